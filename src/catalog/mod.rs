@@ -1,0 +1,324 @@
+//! The interface catalog: the Mech-Mind subprograms, protocol commands and status codes.
+//!
+//! The data live in `catalog.toml` beside this file, embedded at compile time and deserialized
+//! once on first use. Every other module asks this one for names, parameters, ranges, command
+//! numbers and status codes instead of restating them.
+
+use std::sync::OnceLock;
+
+use serde::Deserialize;
+
+const CATALOG_TOML: &str = include_str!("catalog.toml");
+
+/// The catalog, parsed on first use.
+///
+/// # Panics
+/// Only if the embedded `catalog.toml` is invalid, which the catalog tests rule out.
+pub fn catalog() -> &'static Catalog {
+    static CATALOG: OnceLock<Catalog> = OnceLock::new();
+    CATALOG.get_or_init(|| {
+        toml::from_str(CATALOG_TOML).unwrap_or_else(|e| panic!("embedded catalog.toml: {e}"))
+    })
+}
+
+/// The raw catalog text (for `krlkit` docs and tests).
+pub fn catalog_source() -> &'static str {
+    CATALOG_TOML
+}
+
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct Catalog {
+    pub dialect: String,
+    pub limits: Limits,
+    #[serde(rename = "command")]
+    pub commands: Vec<Command>,
+    #[serde(rename = "subprogram")]
+    pub subprograms: Vec<Subprogram>,
+    #[serde(rename = "status")]
+    pub statuses: Vec<Status>,
+}
+
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct Limits {
+    pub batch_default: u32,
+    pub batch_max: u32,
+    pub point_capacity: u32,
+    pub user_data_len: u32,
+    pub plan_results_len: u32,
+    pub do_list_len: u32,
+    pub krl_identifier_max: usize,
+    pub eki_raw_size_max: u32,
+    pub flag_min: i64,
+    pub flag_max: i64,
+    pub ascii_bytes_per_point: u32,
+    pub ascii_header_bytes: u32,
+}
+
+/// One protocol command (robot → server), e.g. 101.
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct Command {
+    pub code: u32,
+    pub name: String,
+    pub summary: String,
+    pub request: Vec<String>,
+    pub reply: Vec<String>,
+    #[serde(default)]
+    pub record: Vec<String>,
+    pub success: u32,
+    #[serde(default)]
+    pub assumption: Option<String>,
+}
+
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Deserialize)]
+#[serde(rename_all = "lowercase")]
+pub enum Direction {
+    In,
+    Out,
+}
+
+impl Direction {
+    pub fn krl(self) -> &'static str {
+        match self {
+            Direction::In => "IN",
+            Direction::Out => "OUT",
+        }
+    }
+}
+
+/// One parameter of a subprogram, in signature order.
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct Param {
+    /// As the seed writes it (`XML_Name[]` for the CHAR array).
+    pub name: String,
+    pub dir: Direction,
+    /// KRL type of the formal parameter (`INT`, `REAL`, `CHAR[]`, `E6AXIS`, `E6POS`).
+    #[serde(rename = "type")]
+    pub ty: String,
+    /// Declared types of an actual argument that fit; empty means just `ty`.
+    #[serde(default)]
+    pub accepts: Vec<String>,
+    #[serde(default)]
+    pub min: Option<f64>,
+    #[serde(default)]
+    pub max: Option<f64>,
+    #[serde(default)]
+    pub min_exclusive: Option<f64>,
+    #[serde(default)]
+    pub values: Vec<i64>,
+    #[serde(default)]
+    pub unit: Option<String>,
+    pub meaning: String,
+    /// This output carries the status code.
+    #[serde(default)]
+    pub status: bool,
+}
+
+impl Param {
+    /// The name without a trailing `[]`.
+    pub fn ident(&self) -> &str {
+        self.name.trim_end_matches("[]")
+    }
+
+    pub fn is_array(&self) -> bool {
+        self.ty.ends_with("[]")
+    }
+
+    /// Declared types that fit this parameter (upper case).
+    pub fn accepted_types(&self) -> Vec<&str> {
+        if self.accepts.is_empty() {
+            vec![self.ty.as_str()]
+        } else {
+            self.accepts.iter().map(String::as_str).collect()
+        }
+    }
+
+    /// Whether `v` lies in the documented range (always true when no range is documented).
+    pub fn in_range(&self, v: f64) -> bool {
+        if !self.values.is_empty() {
+            return self.values.iter().any(|&a| a as f64 == v);
+        }
+        self.min.is_none_or(|m| v >= m)
+            && self.max.is_none_or(|m| v <= m)
+            && self.min_exclusive.is_none_or(|m| v > m)
+    }
+
+    pub fn has_range(&self) -> bool {
+        !self.values.is_empty()
+            || self.min.is_some()
+            || self.max.is_some()
+            || self.min_exclusive.is_some()
+    }
+
+    /// The documented range in words, e.g. `1 to 99`, `1 or 3`, `> 0`, `>= 1`.
+    pub fn range_text(&self) -> Option<String> {
+        if !self.values.is_empty() {
+            let v: Vec<String> = self.values.iter().map(|v| v.to_string()).collect();
+            return Some(match v.len() {
+                1 => v[0].clone(),
+                n => format!("{} or {}", v[..n - 1].join(", "), v[n - 1]),
+            });
+        }
+        let num = |x: f64| {
+            if x.fract() == 0.0 {
+                format!("{}", x as i64)
+            } else {
+                format!("{x}")
+            }
+        };
+        match (self.min, self.max, self.min_exclusive) {
+            (Some(a), Some(b), _) => Some(format!("{} to {}", num(a), num(b))),
+            (Some(a), None, _) => Some(format!(">= {}", num(a))),
+            (None, Some(b), _) => Some(format!("<= {}", num(b))),
+            (None, None, Some(a)) => Some(format!("> {}", num(a))),
+            (None, None, None) => None,
+        }
+    }
+}
+
+/// One KUKA `MM_*` subprogram of the interface.
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct Subprogram {
+    pub name: String,
+    /// The corresponding Kawasaki AS command (seed 001), where one exists.
+    #[serde(default)]
+    pub kawasaki: Option<String>,
+    pub summary: String,
+    /// Protocol commands it sends (empty: local copy or configuration only).
+    pub commands: Vec<u32>,
+    #[serde(default, rename = "param")]
+    pub params: Vec<Param>,
+    /// At least one of these must have run earlier.
+    #[serde(default)]
+    pub after: Vec<String>,
+    /// This call must come before these.
+    #[serde(default)]
+    pub before: Vec<String>,
+    /// Has no status output; the package stores its status in the global `MM_Last_Status`.
+    #[serde(default)]
+    pub status_global: bool,
+    #[serde(default)]
+    pub assumption: Option<String>,
+}
+
+impl Subprogram {
+    /// Success status codes of the commands it sends.
+    pub fn success_codes(&self) -> Vec<u32> {
+        let cat = catalog();
+        self.commands
+            .iter()
+            .filter_map(|c| cat.command(*c))
+            .map(|c| c.success)
+            .collect()
+    }
+
+    pub fn param(&self, name: &str) -> Option<&Param> {
+        self.params
+            .iter()
+            .find(|p| p.ident().eq_ignore_ascii_case(name.trim_end_matches("[]")))
+    }
+
+    /// The KRL signature as the seed prints it, e.g. `MM_Get_Status(MM_Status:OUT)`.
+    pub fn signature(&self) -> String {
+        let params: Vec<String> = self
+            .params
+            .iter()
+            .map(|p| format!("{}:{}", p.name, p.dir.krl()))
+            .collect();
+        format!("{}({})", self.name, params.join(","))
+    }
+
+    pub fn status_param(&self) -> Option<&Param> {
+        self.params.iter().find(|p| p.status)
+    }
+}
+
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Deserialize)]
+#[serde(rename_all = "lowercase")]
+pub enum Origin {
+    Vision,
+    Viz,
+    Center,
+    Robot,
+    Calib,
+    /// Set by the generated KRL package itself.
+    Package,
+}
+
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct Status {
+    pub code: u32,
+    pub origin: Origin,
+    pub meaning: String,
+    #[serde(default)]
+    pub ok: bool,
+    /// Symbolic name, for package-defined codes (used as a KRL constant suffix).
+    #[serde(default)]
+    pub name: Option<String>,
+    #[serde(default)]
+    pub assumption: Option<String>,
+}
+
+impl Catalog {
+    /// Case-insensitive lookup, as KRL names are case-insensitive.
+    pub fn subprogram(&self, name: &str) -> Option<&Subprogram> {
+        self.subprograms
+            .iter()
+            .find(|s| s.name.eq_ignore_ascii_case(name))
+    }
+
+    pub fn command(&self, code: u32) -> Option<&Command> {
+        self.commands.iter().find(|c| c.code == code)
+    }
+
+    pub fn status(&self, code: u32) -> Option<&Status> {
+        self.statuses.iter().find(|s| s.code == code)
+    }
+
+    /// A package-defined status code by its symbolic name, e.g. `NO_CONNECTION` → 3099.
+    ///
+    /// # Panics
+    /// If the name is not in the catalog (a programming error caught by the tests).
+    pub fn package_code(&self, name: &str) -> u32 {
+        self.statuses
+            .iter()
+            .find(|s| s.origin == Origin::Package && s.name.as_deref() == Some(name))
+            .unwrap_or_else(|| panic!("no package status code named {name}"))
+            .code
+    }
+
+    /// The subprogram whose name is nearest to `name` (for "did you mean" help).
+    pub fn nearest_subprogram(&self, name: &str) -> Option<&Subprogram> {
+        let lower = name.to_ascii_lowercase();
+        self.subprograms
+            .iter()
+            .map(|s| (edit_distance(&lower, &s.name.to_ascii_lowercase()), s))
+            .filter(|(d, _)| *d <= 4.max(name.len() / 3))
+            .min_by_key(|(d, _)| *d)
+            .map(|(_, s)| s)
+    }
+}
+
+/// Levenshtein distance over bytes (names are ASCII).
+pub fn edit_distance(a: &str, b: &str) -> usize {
+    let (a, b) = (a.as_bytes(), b.as_bytes());
+    let mut prev: Vec<usize> = (0..=b.len()).collect();
+    let mut cur = vec![0; b.len() + 1];
+    for (i, ca) in a.iter().enumerate() {
+        cur[0] = i + 1;
+        for (j, cb) in b.iter().enumerate() {
+            let sub = prev[j] + usize::from(ca != cb);
+            cur[j + 1] = sub.min(prev[j + 1] + 1).min(cur[j] + 1);
+        }
+        std::mem::swap(&mut prev, &mut cur);
+    }
+    prev[b.len()]
+}
+
+#[cfg(test)]
+mod tests;

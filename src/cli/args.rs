@@ -1,0 +1,200 @@
+//! Argument definitions (clap derive). Behaviour lives in the sibling modules.
+
+use std::path::PathBuf;
+
+use clap::{Args, Parser, Subcommand, ValueEnum};
+
+#[derive(Debug, Parser)]
+#[command(
+    name = "krlkit",
+    version,
+    about = "Generate, lint, transpile and run KUKA KRL for Mech-Mind 3D vision"
+)]
+pub struct Cli {
+    #[command(subcommand)]
+    pub command: Command,
+}
+
+#[derive(Debug, Subcommand)]
+pub enum Command {
+    /// Write the controller package (KRL + EKI XML) for a spec.
+    Gen(GenArgs),
+    /// Write a commented starter spec (the default spec, every key explained).
+    Init(InitArgs),
+    /// Lint KRL files against the Mech-Mind interface.
+    Check(CheckArgs),
+    /// Syntax only: report syntax errors, or print the lossless tree.
+    Parse(ParseArgs),
+    /// List the lint rules.
+    Rules,
+    /// Explain one rule: what, why, example, fix.
+    Rule(RuleArgs),
+    /// Translate a KRL program to another robot language.
+    Transpile(TranspileArgs),
+    /// Simulation tools: the fake Mech-Mind vision server.
+    Sim(SimArgs),
+    /// Interpret a KRL program with the generated package against a vision server.
+    Run(RunArgs),
+    /// Decode or encode an SRCI RaStatusWord.
+    Srci(SrciArgs),
+}
+
+#[derive(Debug, Clone, Copy, PartialEq, Eq, ValueEnum)]
+pub enum Target {
+    Kuka,
+    Kawasaki,
+    All,
+}
+
+#[derive(Debug, Args)]
+pub struct GenArgs {
+    /// Spec file (TOML). Without it, the embedded default spec is used.
+    #[arg(long)]
+    pub spec: Option<PathBuf>,
+    /// Output directory.
+    #[arg(long, default_value = "mm_package")]
+    pub out: PathBuf,
+    /// Which robot package to write.
+    #[arg(long, value_enum, default_value_t = Target::Kuka)]
+    pub target: Target,
+    /// Write nothing; exit 1 if DIR differs from what would be generated.
+    #[arg(long)]
+    pub check: bool,
+}
+
+#[derive(Debug, Args)]
+pub struct InitArgs {
+    /// Where to write the spec.
+    #[arg(default_value = "krlkit.toml")]
+    pub file: PathBuf,
+    /// Overwrite an existing file.
+    #[arg(long)]
+    pub force: bool,
+}
+
+#[derive(Debug, Clone, Copy, PartialEq, Eq, ValueEnum)]
+pub enum CheckFormat {
+    Human,
+    Concise,
+    Json,
+    Sarif,
+    Github,
+}
+
+#[derive(Debug, Args)]
+pub struct CheckArgs {
+    /// Files or directories (walked recursively).
+    #[arg(required = true)]
+    pub paths: Vec<PathBuf>,
+    #[arg(long, value_enum, default_value_t = CheckFormat::Human)]
+    pub format: CheckFormat,
+    /// EKI XML config to cross-check MM_Init_Socket against.
+    #[arg(long)]
+    pub eki_xml: Option<PathBuf>,
+    /// Config file with a [lint] section (default: ./krlkit.toml if present).
+    #[arg(long)]
+    pub config: Option<PathBuf>,
+}
+
+#[derive(Debug, Clone, Copy, PartialEq, Eq, ValueEnum)]
+pub enum ParseFormat {
+    Human,
+    Json,
+}
+
+#[derive(Debug, Args)]
+pub struct ParseArgs {
+    /// Files or directories (walked recursively).
+    #[arg(required = true)]
+    pub paths: Vec<PathBuf>,
+    #[arg(long, value_enum, default_value_t = ParseFormat::Human)]
+    pub format: ParseFormat,
+    /// Print the lossless syntax tree of one file as JSON.
+    #[arg(long)]
+    pub tree: bool,
+}
+
+#[derive(Debug, Args)]
+pub struct RuleArgs {
+    /// Rule code, e.g. MM003.
+    pub code: String,
+}
+
+#[derive(Debug, Clone, Copy, PartialEq, Eq, ValueEnum)]
+pub enum TranspileTarget {
+    Kawasaki,
+    Flexiv,
+}
+
+#[derive(Debug, Args)]
+pub struct TranspileArgs {
+    pub file: PathBuf,
+    #[arg(long, value_enum)]
+    pub to: TranspileTarget,
+    /// Output file (default: stdout).
+    #[arg(short, long)]
+    pub out: Option<PathBuf>,
+    /// Spec that supplies the vision server address (default: the embedded spec).
+    #[arg(long)]
+    pub spec: Option<PathBuf>,
+}
+
+#[derive(Debug, Args)]
+pub struct SimArgs {
+    #[command(subcommand)]
+    pub command: SimCommand,
+}
+
+#[derive(Debug, Subcommand)]
+pub enum SimCommand {
+    /// Run the fake Mech-Mind vision server.
+    Serve(ServeArgs),
+}
+
+#[derive(Debug, Args)]
+pub struct ServeArgs {
+    #[arg(long, default_value = "127.0.0.1:50000")]
+    pub listen: String,
+    /// Scenario file (TOML).
+    #[arg(long)]
+    pub scenario: Option<PathBuf>,
+}
+
+#[derive(Debug, Args)]
+pub struct RunArgs {
+    pub program: PathBuf,
+    /// Directory holding the generated package (default: the embedded default package).
+    #[arg(long)]
+    pub package: Option<PathBuf>,
+    /// Vision server address (overrides the EKI XML's IP and port).
+    #[arg(long)]
+    pub vision: Option<String>,
+    /// Write a JSON Lines trace of motions and MM_ calls.
+    #[arg(long)]
+    pub trace: Option<PathBuf>,
+}
+
+#[derive(Debug, Args)]
+pub struct SrciArgs {
+    #[command(subcommand)]
+    pub command: SrciCommand,
+}
+
+#[derive(Debug, Subcommand)]
+pub enum SrciCommand {
+    /// Decode a 32-bit RaStatusWord.
+    Decode { word: String },
+    /// Encode FIELD=VALUE pairs into a RaStatusWord.
+    Encode { fields: Vec<String> },
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use clap::CommandFactory;
+
+    #[test]
+    fn cli_definition_is_consistent() {
+        Cli::command().debug_assert();
+    }
+}

@@ -1,0 +1,70 @@
+//! The command line. The only module that prints or decides the process exit code.
+
+mod args;
+mod check;
+mod generate;
+mod init;
+mod parse;
+mod rules;
+mod run;
+mod sim;
+mod srci;
+mod transpile;
+
+use std::process::ExitCode;
+
+use clap::Parser;
+
+pub use args::Cli;
+use args::Command;
+
+/// Process outcome, mapped to the contract's exit codes in one place.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Outcome {
+    /// 0: success, no errors (warnings allowed).
+    Success,
+    /// 1: findings of severity error, or `--check` drift.
+    Findings,
+    /// 2: the job could not be done.
+    Failure,
+}
+
+impl From<Outcome> for ExitCode {
+    fn from(o: Outcome) -> ExitCode {
+        match o {
+            Outcome::Success => ExitCode::from(0),
+            Outcome::Findings => ExitCode::from(1),
+            Outcome::Failure => ExitCode::from(2),
+        }
+    }
+}
+
+pub fn main() -> ExitCode {
+    let cli = match Cli::try_parse() {
+        Ok(cli) => cli,
+        Err(e) => {
+            let code = if e.use_stderr() { 2 } else { 0 };
+            let _ = e.print();
+            return ExitCode::from(code);
+        }
+    };
+    let result = match cli.command {
+        Command::Gen(a) => generate::run(a),
+        Command::Init(a) => init::run(a),
+        Command::Check(a) => check::run(a),
+        Command::Parse(a) => parse::run(a),
+        Command::Rules => rules::list(),
+        Command::Rule(a) => rules::explain(a),
+        Command::Transpile(a) => transpile::run(a),
+        Command::Sim(a) => sim::run(a),
+        Command::Run(a) => run::run(a),
+        Command::Srci(a) => srci::run(a),
+    };
+    match result {
+        Ok(outcome) => outcome.into(),
+        Err(e) => {
+            eprintln!("error: {e:#}");
+            Outcome::Failure.into()
+        }
+    }
+}

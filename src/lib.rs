@@ -1,0 +1,14 @@
+//! krlkit: generate, lint, transpile and run KUKA KRL for Mech-Mind 3D vision.
+//!
+//! The crate is one library plus a thin binary. Stages are modules; see ARCHITECTURE.md for the
+//! codemap and the invariants that keep them apart.
+
+pub mod catalog;
+pub mod cli;
+pub mod diag;
+pub mod generate;
+pub mod lint;
+pub mod sim;
+pub mod spec;
+pub mod syntax;
+pub mod transpile;
