@@ -257,7 +257,8 @@ pub struct Status {
     pub meaning: String,
     #[serde(default)]
     pub ok: bool,
-    /// Symbolic name, for package-defined codes (used as a KRL constant suffix).
+    /// Symbolic name (required for package-defined codes, where it is used as a KRL constant
+    /// suffix; optional elsewhere, for code that must name a specific server code).
     #[serde(default)]
     pub name: Option<String>,
     #[serde(default)]
@@ -278,6 +279,18 @@ impl Catalog {
 
     pub fn status(&self, code: u32) -> Option<&Status> {
         self.statuses.iter().find(|s| s.code == code)
+    }
+
+    /// A protocol command by its catalog name, e.g. `get_vision_result` → 102.
+    pub fn command_named(&self, name: &str) -> Option<&Command> {
+        self.commands.iter().find(|c| c.name == name)
+    }
+
+    /// A status code by its symbolic name (any origin), e.g. `NO_CONNECTION` → 3099.
+    pub fn status_named(&self, name: &str) -> Option<&Status> {
+        self.statuses
+            .iter()
+            .find(|s| s.name.as_deref() == Some(name))
     }
 
     /// A package-defined status code by its symbolic name, e.g. `NO_CONNECTION` → 3099.

@@ -111,9 +111,22 @@ fn status_codes_are_unique_and_package_codes_are_named() {
     let n = codes.len();
     codes.dedup();
     assert_eq!(codes.len(), n);
+    let mut names: Vec<&str> = cat
+        .statuses
+        .iter()
+        .filter_map(|s| s.name.as_deref())
+        .collect();
     for s in &cat.statuses {
-        assert_eq!(s.origin == Origin::Package, s.name.is_some(), "{}", s.code);
+        assert!(
+            s.origin != Origin::Package || s.name.is_some(),
+            "{}",
+            s.code
+        );
     }
+    let n = names.len();
+    names.sort();
+    names.dedup();
+    assert_eq!(names.len(), n, "status names must be unique");
     assert_eq!(cat.package_code("NO_CONNECTION"), 3099);
 }
 
