@@ -10,5 +10,6 @@ pub mod generate;
 pub mod lint;
 pub mod sim;
 pub mod spec;
+pub mod srci;
 pub mod syntax;
 pub mod transpile;
