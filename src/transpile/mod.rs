@@ -1,1 +1,3 @@
-//! (in progress)
+//! Translating KRL programs to other robot languages.
+
+pub mod orientation;
