@@ -3,6 +3,7 @@
 //! Nothing here prints. Renderers (in `render`) turn diagnostics into text for the CLI.
 
 mod line_index;
+pub mod render;
 
 pub use line_index::LineIndex;
 

@@ -1,0 +1,423 @@
+//! One line of code → CST node, via the pest grammar in `krl.pest`.
+//!
+//! pest pairs are mapped into our own tree here and nowhere else. Bytes that pest skips (blanks,
+//! literal punctuation, keywords written inline) are re-lexed as tokens by [`gap_tokens`], which
+//! is what keeps the tree lossless without spelling every comma as a grammar rule.
+
+use std::sync::LazyLock;
+
+use pest::Parser;
+use pest::iterators::{Pair, Pairs};
+use pest::pratt_parser::{Assoc, Op, PrattParser};
+
+use super::cst::{Element, Node, NodeKind, Token, TokenKind};
+use crate::diag::Span;
+
+#[derive(pest_derive::Parser)]
+#[grammar = "syntax/krl.pest"]
+struct KrlGrammar;
+
+/// A line that did not parse: where and why.
+pub(crate) struct LineError {
+    /// Byte offset in the file text.
+    pub at: usize,
+    pub len: usize,
+    pub message: String,
+}
+
+/// Parse `text[start..end]` (code only: no leading/trailing blanks, no comment, no newline).
+pub(crate) fn parse_code(text: &str, start: usize, end: usize) -> Result<Node, LineError> {
+    let code = &text[start..end];
+    match KrlGrammar::parse(Rule::line, code) {
+        Ok(mut pairs) => {
+            let line = pairs.next();
+            let stmt = line.and_then(|l| l.into_inner().find(|p| p.as_rule() != Rule::EOI));
+            match stmt.map(|p| convert(p, &Ctx { text, base: start })) {
+                Some(Element::Node(n)) => Ok(n),
+                _ => Err(LineError {
+                    at: start,
+                    len: end - start,
+                    message: "expected a statement".into(),
+                }),
+            }
+        }
+        Err(e) => Err(describe(e, code, start)),
+    }
+}
+
+struct Ctx<'t> {
+    text: &'t str,
+    base: usize,
+}
+
+impl Ctx<'_> {
+    fn span(&self, pair: &Pair<Rule>) -> Span {
+        let s = pair.as_span();
+        Span::new(self.base + s.start(), self.base + s.end())
+    }
+}
+
+enum Class {
+    Node(NodeKind),
+    Token(TokenKind),
+    Expr,
+}
+
+fn classify(rule: Rule) -> Class {
+    use Class::{Node as N, Token as T};
+    match rule {
+        Rule::expr => Class::Expr,
+        Rule::def_line => N(NodeKind::DefLine),
+        Rule::deffct_line => N(NodeKind::DeffctLine),
+        Rule::param_list => N(NodeKind::ParamList),
+        Rule::param => N(NodeKind::Param),
+        Rule::end_line => N(NodeKind::EndLine),
+        Rule::defdat_line => N(NodeKind::DefdatLine),
+        Rule::enddat_line => N(NodeKind::EnddatLine),
+        Rule::if_line => N(NodeKind::IfLine),
+        Rule::else_line => N(NodeKind::ElseLine),
+        Rule::endif_line => N(NodeKind::EndifLine),
+        Rule::for_line => N(NodeKind::ForLine),
+        Rule::endfor_line => N(NodeKind::EndforLine),
+        Rule::while_line => N(NodeKind::WhileLine),
+        Rule::endwhile_line => N(NodeKind::EndwhileLine),
+        Rule::repeat_line => N(NodeKind::RepeatLine),
+        Rule::until_line => N(NodeKind::UntilLine),
+        Rule::loop_line => N(NodeKind::LoopLine),
+        Rule::endloop_line => N(NodeKind::EndloopLine),
+        Rule::switch_line => N(NodeKind::SwitchLine),
+        Rule::case_line => N(NodeKind::CaseLine),
+        Rule::default_line => N(NodeKind::DefaultLine),
+        Rule::endswitch_line => N(NodeKind::EndswitchLine),
+        Rule::spline_line => N(NodeKind::SplineLine),
+        Rule::endspline_line => N(NodeKind::EndsplineLine),
+        Rule::time_block_stmt => N(NodeKind::TimeBlockStmt),
+        Rule::const_vel_stmt => N(NodeKind::ConstVelStmt),
+        Rule::interrupt_decl => N(NodeKind::InterruptDecl),
+        Rule::interrupt_ctl => N(NodeKind::InterruptCtl),
+        Rule::trigger_stmt => N(NodeKind::TriggerStmt),
+        Rule::motion_stmt => N(NodeKind::MotionStmt),
+        Rule::with_clause => N(NodeKind::WithClause),
+        Rule::with_item => N(NodeKind::WithItem),
+        Rule::wait_for_stmt => N(NodeKind::WaitForStmt),
+        Rule::wait_sec_stmt => N(NodeKind::WaitSecStmt),
+        Rule::halt_stmt => N(NodeKind::HaltStmt),
+        Rule::brake_stmt => N(NodeKind::BrakeStmt),
+        Rule::resume_stmt => N(NodeKind::ResumeStmt),
+        Rule::return_stmt => N(NodeKind::ReturnStmt),
+        Rule::continue_stmt => N(NodeKind::ContinueStmt),
+        Rule::exit_stmt => N(NodeKind::ExitStmt),
+        Rule::on_error_proceed_stmt => N(NodeKind::OnErrorProceedStmt),
+        Rule::goto_stmt => N(NodeKind::GotoStmt),
+        Rule::analog_stmt => N(NodeKind::AnalogStmt),
+        Rule::analog_opt => N(NodeKind::AnalogOpt),
+        Rule::label_stmt => N(NodeKind::LabelStmt),
+        Rule::call_stmt => N(NodeKind::CallStmt),
+        Rule::assign_stmt => N(NodeKind::AssignStmt),
+        Rule::decl_stmt => N(NodeKind::DeclStmt),
+        Rule::type_ref => N(NodeKind::TypeRef),
+        Rule::decl_var => N(NodeKind::DeclVar),
+        Rule::dims => N(NodeKind::Dims),
+        Rule::struc_decl => N(NodeKind::StrucDecl),
+        Rule::struc_member => N(NodeKind::StrucMember),
+        Rule::enum_decl => N(NodeKind::EnumDecl),
+        Rule::signal_decl => N(NodeKind::SignalDecl),
+        Rule::channel_decl => N(NodeKind::ChannelDecl),
+        Rule::ext_decl => N(NodeKind::ExtDecl),
+        Rule::ext_param => N(NodeKind::ExtParam),
+        Rule::import_decl => N(NodeKind::ImportDecl),
+        Rule::call => N(NodeKind::Call),
+        Rule::paren => N(NodeKind::Paren),
+        Rule::aggregate => N(NodeKind::Aggregate),
+        Rule::agg_type => N(NodeKind::AggType),
+        Rule::agg_field => N(NodeKind::AggField),
+        Rule::index_suffix => N(NodeKind::Index),
+        Rule::member_suffix => N(NodeKind::Member),
+        Rule::ident => T(TokenKind::Ident),
+        Rule::real => T(TokenKind::Real),
+        Rule::int => T(TokenKind::Int),
+        Rule::bits => T(TokenKind::Bits),
+        Rule::hex => T(TokenKind::Hex),
+        Rule::char_lit => T(TokenKind::Char),
+        Rule::string => T(TokenKind::Str),
+        Rule::enum_lit => T(TokenKind::EnumLit),
+        Rule::bool_lit => T(TokenKind::Bool),
+        Rule::import_path => T(TokenKind::ImportPath),
+        Rule::op_not
+        | Rule::op_bnot
+        | Rule::op_neg
+        | Rule::op_pos
+        | Rule::op_geo
+        | Rule::op_mul
+        | Rule::op_div
+        | Rule::op_add
+        | Rule::op_sub
+        | Rule::op_and
+        | Rule::op_band
+        | Rule::op_or
+        | Rule::op_bor
+        | Rule::op_exor
+        | Rule::op_bexor
+        | Rule::op_eq
+        | Rule::op_ne
+        | Rule::op_le
+        | Rule::op_ge
+        | Rule::op_lt
+        | Rule::op_gt => T(TokenKind::Operator),
+        // K_*, approx, motion_kw, param_dir
+        _ => T(TokenKind::Keyword),
+    }
+}
+
+fn convert(pair: Pair<Rule>, ctx: &Ctx) -> Element {
+    match classify(pair.as_rule()) {
+        Class::Token(kind) => Element::Token(Token {
+            kind,
+            span: ctx.span(&pair),
+        }),
+        Class::Node(kind) => {
+            let span = ctx.span(&pair);
+            let children = pair.into_inner().map(|p| convert(p, ctx)).collect();
+            Element::Node(make_node(ctx.text, kind, span, children))
+        }
+        Class::Expr => expr(pair.into_inner(), ctx),
+    }
+}
+
+/// KRL operator priority, highest first: `:`; NOT B_NOT (and unary signs); * /; + -;
+/// AND B_AND; EXOR B_EXOR; OR B_OR; comparisons. Comparisons binding loosest follows the KSS 8
+/// programming manual's priority table [U: from memory of the manual, not re-verified].
+static PRATT: LazyLock<PrattParser<Rule>> = LazyLock::new(|| {
+    PrattParser::new()
+        .op(Op::infix(Rule::op_eq, Assoc::Left)
+            | Op::infix(Rule::op_ne, Assoc::Left)
+            | Op::infix(Rule::op_le, Assoc::Left)
+            | Op::infix(Rule::op_ge, Assoc::Left)
+            | Op::infix(Rule::op_lt, Assoc::Left)
+            | Op::infix(Rule::op_gt, Assoc::Left))
+        .op(Op::infix(Rule::op_or, Assoc::Left) | Op::infix(Rule::op_bor, Assoc::Left))
+        .op(Op::infix(Rule::op_exor, Assoc::Left) | Op::infix(Rule::op_bexor, Assoc::Left))
+        .op(Op::infix(Rule::op_and, Assoc::Left) | Op::infix(Rule::op_band, Assoc::Left))
+        .op(Op::infix(Rule::op_add, Assoc::Left) | Op::infix(Rule::op_sub, Assoc::Left))
+        .op(Op::infix(Rule::op_mul, Assoc::Left) | Op::infix(Rule::op_div, Assoc::Left))
+        .op(Op::prefix(Rule::op_not)
+            | Op::prefix(Rule::op_bnot)
+            | Op::prefix(Rule::op_neg)
+            | Op::prefix(Rule::op_pos))
+        .op(Op::infix(Rule::op_geo, Assoc::Left))
+        .op(Op::postfix(Rule::index_suffix) | Op::postfix(Rule::member_suffix))
+});
+
+fn expr(pairs: Pairs<Rule>, ctx: &Ctx) -> Element {
+    PRATT
+        .map_primary(|p| convert(p, ctx))
+        .map_prefix(|op, rhs| {
+            let op = convert(op, ctx);
+            let span = op.span().cover(rhs.span());
+            Element::Node(make_node(ctx.text, NodeKind::Unary, span, vec![op, rhs]))
+        })
+        .map_infix(|lhs, op, rhs| {
+            let op = convert(op, ctx);
+            let span = lhs.span().cover(rhs.span());
+            Element::Node(make_node(
+                ctx.text,
+                NodeKind::Binary,
+                span,
+                vec![lhs, op, rhs],
+            ))
+        })
+        .map_postfix(|lhs, op| {
+            let kind = if op.as_rule() == Rule::member_suffix {
+                NodeKind::Member
+            } else {
+                NodeKind::Index
+            };
+            let op_span = ctx.span(&op);
+            let span = lhs.span().cover(op_span);
+            let mut children = vec![lhs];
+            children.extend(op.into_inner().map(|p| convert(p, ctx)));
+            Element::Node(make_node(ctx.text, kind, span, children))
+        })
+        .parse(pairs)
+}
+
+/// Build a node over `span`, filling every byte not covered by `children` with gap tokens.
+pub(crate) fn make_node(text: &str, kind: NodeKind, span: Span, children: Vec<Element>) -> Node {
+    let mut out = Vec::with_capacity(children.len() * 2 + 1);
+    let mut pos = span.start as usize;
+    for child in children {
+        let s = child.span();
+        if (s.start as usize) > pos {
+            gap_tokens(text, pos, s.start as usize, &mut out);
+        }
+        pos = pos.max(s.end as usize);
+        out.push(child);
+    }
+    if (span.end as usize) > pos {
+        gap_tokens(text, pos, span.end as usize, &mut out);
+    }
+    Node {
+        kind,
+        span,
+        children: out,
+    }
+}
+
+/// Lex bytes the grammar matched silently: blanks, punctuation, inline keywords.
+pub(crate) fn gap_tokens(text: &str, start: usize, end: usize, out: &mut Vec<Element>) {
+    let bytes = text.as_bytes();
+    let mut i = start;
+    while i < end {
+        let b = bytes[i];
+        let (kind, len) = if matches!(b, b' ' | b'\t' | 0x0B | 0x0C) {
+            let n = bytes[i..end]
+                .iter()
+                .take_while(|c| matches!(c, b' ' | b'\t' | 0x0B | 0x0C))
+                .count();
+            (TokenKind::Whitespace, n)
+        } else if b.is_ascii_alphanumeric() || b == b'_' || b == b'$' {
+            let n = bytes[i..end]
+                .iter()
+                .take_while(|c| c.is_ascii_alphanumeric() || **c == b'_' || **c == b'$')
+                .count();
+            (TokenKind::Keyword, n)
+        } else if i + 1 < end && matches!(&bytes[i..i + 2], b"==" | b"<>" | b"<=" | b">=") {
+            (TokenKind::Punct, 2)
+        } else {
+            let ch_len = text[i..].chars().next().map_or(1, char::len_utf8);
+            let kind = if text[i..].starts_with('\u{A0}') {
+                TokenKind::Whitespace
+            } else {
+                TokenKind::Punct
+            };
+            (kind, ch_len)
+        };
+        out.push(Element::Token(Token {
+            kind,
+            span: Span::new(i, i + len),
+        }));
+        i += len;
+    }
+}
+
+fn describe(e: pest::error::Error<Rule>, code: &str, base: usize) -> LineError {
+    let pos = match e.location {
+        pest::error::InputLocation::Pos(p) => p,
+        pest::error::InputLocation::Span((s, _)) => s,
+    }
+    .min(code.len());
+    let rest = &code[pos..];
+    let found_len = found_token_len(rest);
+    let found = &rest[..found_len];
+    let expected: Vec<&'static str> = match &e.variant {
+        pest::error::ErrorVariant::ParsingError { positives, .. } => {
+            let mut names: Vec<&'static str> = positives.iter().filter_map(|r| name(*r)).collect();
+            names.sort_unstable();
+            names.dedup();
+            if names.contains(&"expression") {
+                names.retain(|n| *n != "name");
+            }
+            names
+        }
+        pest::error::ErrorVariant::CustomError { .. } => Vec::new(),
+    };
+    let found_desc = if found.is_empty() {
+        "end of line".to_string()
+    } else {
+        format!("`{found}`")
+    };
+    let message = if pos == 0 {
+        format!("syntax error: `{}` does not start a KRL statement", found)
+    } else if !expected.is_empty() && expected.len() <= 4 {
+        format!(
+            "syntax error: expected {}, found {found_desc}",
+            join_or(&expected)
+        )
+    } else {
+        format!("syntax error: unexpected {found_desc}")
+    };
+    LineError {
+        at: base + pos,
+        len: found_len,
+        message,
+    }
+}
+
+fn found_token_len(rest: &str) -> usize {
+    let ident = rest
+        .bytes()
+        .take_while(|c| c.is_ascii_alphanumeric() || *c == b'_' || *c == b'$')
+        .count();
+    if ident > 0 {
+        ident
+    } else {
+        rest.chars().next().map_or(0, char::len_utf8)
+    }
+}
+
+fn join_or(items: &[&str]) -> String {
+    match items {
+        [] => String::new(),
+        [one] => (*one).to_string(),
+        [init @ .., last] => format!("{} or {last}", init.join(", ")),
+    }
+}
+
+/// Human names for the rules an error message may mention; `None` hides a rule.
+fn name(rule: Rule) -> Option<&'static str> {
+    Some(match rule {
+        Rule::expr
+        | Rule::real
+        | Rule::int
+        | Rule::bits
+        | Rule::hex
+        | Rule::char_lit
+        | Rule::string
+        | Rule::enum_lit
+        | Rule::bool_lit
+        | Rule::aggregate
+        | Rule::call
+        | Rule::paren
+        | Rule::op_not
+        | Rule::op_bnot
+        | Rule::op_neg
+        | Rule::op_pos => "expression",
+        Rule::ident => "name",
+        Rule::EOI => "end of line",
+        Rule::op_geo
+        | Rule::op_mul
+        | Rule::op_div
+        | Rule::op_add
+        | Rule::op_sub
+        | Rule::op_and
+        | Rule::op_band
+        | Rule::op_or
+        | Rule::op_bor
+        | Rule::op_exor
+        | Rule::op_bexor
+        | Rule::op_eq
+        | Rule::op_ne
+        | Rule::op_le
+        | Rule::op_ge
+        | Rule::op_lt
+        | Rule::op_gt
+        | Rule::index_suffix
+        | Rule::member_suffix => "operator",
+        Rule::K_THEN => "`THEN`",
+        Rule::K_TO => "`TO`",
+        Rule::K_DO => "`DO`",
+        Rule::K_WHEN => "`WHEN`",
+        Rule::K_DELAY => "`DELAY`",
+        Rule::K_FOR => "`FOR`",
+        Rule::K_SEC => "`SEC`",
+        Rule::K_DECL => "`DECL`",
+        Rule::param | Rule::param_list => "parameter",
+        Rule::param_dir => "`IN` or `OUT`",
+        Rule::type_ref => "type",
+        Rule::decl_var => "variable name",
+        Rule::with_clause => "`WITH`",
+        Rule::approx => "approximation",
+        Rule::agg_field => "aggregate field",
+        _ => return None,
+    })
+}
