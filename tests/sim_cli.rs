@@ -23,7 +23,7 @@ fn bad_scenario_exits_2_with_a_located_message() {
     assert_eq!(out.status.code(), Some(2));
     let err = String::from_utf8_lossy(&out.stderr);
     assert!(
-        err.contains("bad.toml:1:1: `batch = 0` is out of range"),
+        err.contains("bad.toml:2:1: `batch = 0` is out of range"),
         "{err}"
     );
     assert!(err.contains("help: use 1 to 30"), "{err}");

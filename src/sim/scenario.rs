@@ -303,9 +303,24 @@ impl Checker<'_> {
         message: impl Into<String>,
         help: impl Into<String>,
     ) -> ScenarioError {
-        let (line, col) = self
-            .index
-            .line_col(self.text, span.start.min(self.text.len()));
+        self.error_key(span, "", message, help)
+    }
+
+    /// Like `error`, but pointing at `key = ...` inside the table at `span` when it is there.
+    fn error_key(
+        &self,
+        span: std::ops::Range<usize>,
+        key: &str,
+        message: impl Into<String>,
+        help: impl Into<String>,
+    ) -> ScenarioError {
+        let start = span.start.min(self.text.len());
+        let at = if key.is_empty() {
+            start
+        } else {
+            self.find_key(start, key).unwrap_or(start)
+        };
+        let (line, col) = self.index.line_col(self.text, at);
         ScenarioError {
             path: self.path.to_string(),
             line,
@@ -315,10 +330,30 @@ impl Checker<'_> {
         }
     }
 
+    /// Offset of the line `key = ...` in the table starting at `start` (before the next header).
+    fn find_key(&self, start: usize, key: &str) -> Option<usize> {
+        let mut offset = start;
+        for (n, line) in self.text.get(start..)?.split_inclusive('\n').enumerate() {
+            let trimmed = line.trim_start();
+            if n > 0 && trimmed.starts_with('[') {
+                return None;
+            }
+            let indent = line.len() - trimmed.len();
+            if let Some(rest) = trimmed.strip_prefix(key)
+                && rest.trim_start().starts_with('=')
+            {
+                return Some(offset + indent);
+            }
+            offset += line.len();
+        }
+        None
+    }
+
     fn six<T>(&self, at: &Spanned<T>, what: &str, values: &[f64]) -> Result<(), ScenarioError> {
         if values.len() != 6 || values.iter().any(|v| !v.is_finite()) {
-            return Err(self.error(
+            return Err(self.error_key(
                 at.span(),
+                what,
                 format!(
                     "`{what}` has {} values; it needs exactly 6 finite numbers",
                     values.len()
@@ -345,24 +380,27 @@ impl Checker<'_> {
             self.six(w, "pose", p)?;
         }
         if !(1..=2).contains(&wp.motion) {
-            return Err(self.error(
+            return Err(self.error_key(
                 w.span(),
+                "motion",
                 format!("`motion = {}` is not a motion type", wp.motion),
                 "use 1 (joint move) or 2 (linear move)",
             ));
         }
         let plan_len = catalog().limits.plan_results_len as usize;
         if !wp.plan_results.is_empty() && wp.plan_results.len() != plan_len {
-            return Err(self.error(
+            return Err(self.error_key(
                 w.span(),
+                "plan_results",
                 format!("`plan_results` has {} values", wp.plan_results.len()),
                 format!("give exactly {plan_len} Vision Move values, or leave it out for zeros"),
             ));
         }
         let user_len = catalog().limits.user_data_len as usize;
         if wp.custom.len() > user_len {
-            return Err(self.error(
+            return Err(self.error_key(
                 w.span(),
+                "custom",
                 format!("`custom` has {} values", wp.custom.len()),
                 format!("the package stores at most {user_len} custom values per point"),
             ));
@@ -426,8 +464,9 @@ impl Scenario {
                 let settings = s.get_ref().clone();
                 let max = cat.limits.batch_max;
                 if !(1..=max).contains(&settings.batch) {
-                    return Err(ck.error(
+                    return Err(ck.error_key(
                         s.span(),
+                        "batch",
                         format!("`batch = {}` is out of range", settings.batch),
                         format!(
                             "use 1 to {max} points per reply (default {})",
@@ -436,15 +475,17 @@ impl Scenario {
                     ));
                 }
                 if settings.decimals > 9 {
-                    return Err(ck.error(
+                    return Err(ck.error_key(
                         s.span(),
+                        "decimals",
                         format!("`decimals = {}` is too many", settings.decimals),
                         "use 0 to 9 decimals",
                     ));
                 }
                 if !(64..=1 << 20).contains(&settings.max_message_bytes) {
-                    return Err(ck.error(
+                    return Err(ck.error_key(
                         s.span(),
+                        "max_message_bytes",
                         format!(
                             "`max_message_bytes = {}` is out of range",
                             settings.max_message_bytes
@@ -453,8 +494,9 @@ impl Scenario {
                     ));
                 }
                 if settings.idle_timeout_ms == 0 {
-                    return Err(ck.error(
+                    return Err(ck.error_key(
                         s.span(),
+                        "idle_timeout_ms",
                         "`idle_timeout_ms = 0` would close every connection at once",
                         "use a positive number of milliseconds",
                     ));
@@ -511,8 +553,9 @@ impl Scenario {
             for pt in &rp.points {
                 ck.six(pt, "pose", &pt.get_ref().pose)?;
                 if pt.get_ref().custom.len() > user_len {
-                    return Err(ck.error(
+                    return Err(ck.error_key(
                         pt.span(),
+                        "custom",
                         format!("`custom` has {} values", pt.get_ref().custom.len()),
                         format!("the package stores at most {user_len} custom values per point"),
                     ));
@@ -540,8 +583,8 @@ impl Scenario {
                 }
                 for b in &rv.branches {
                     if b.get_ref().exit_ports < 1 {
-                        return Err(ck.error(
-                            b.span(),
+                        return Err(ck.error_key(
+                            b.span(), "exit_ports",
                             "a branch step needs at least one exit port",
                             "set `exit_ports` to the number of exit ports of the Branch by Msg step",
                         ));
@@ -549,8 +592,9 @@ impl Scenario {
                 }
                 for i in &rv.index_steps {
                     if i.get_ref().max_index < 1 {
-                        return Err(ck.error(
+                        return Err(ck.error_key(
                             i.span(),
+                            "max_index",
                             "an index step needs `max_index` >= 1",
                             "set `max_index` to the largest 1-based index the step accepts",
                         ));
@@ -588,8 +632,9 @@ impl Scenario {
             let fault = f.get_ref();
             if cat.command(fault.command).is_none() {
                 let known: Vec<String> = cat.commands.iter().map(|c| c.code.to_string()).collect();
-                return Err(ck.error(
+                return Err(ck.error_key(
                     f.span(),
+                    "command",
                     format!("fault for unknown command {}", fault.command),
                     format!("use one of the catalog's commands: {}", known.join(", ")),
                 ));
@@ -610,15 +655,17 @@ impl Scenario {
                 ));
             }
             if fault.occurrence == Some(0) {
-                return Err(ck.error(
+                return Err(ck.error_key(
                     f.span(),
+                    "occurrence",
                     "`occurrence = 0` never matches",
                     "occurrences count from 1; leave it out to match every request",
                 ));
             }
             if fault.delay_ms > 600_000 {
-                return Err(ck.error(
+                return Err(ck.error_key(
                     f.span(),
+                    "delay_ms",
                     format!("`delay_ms = {}` is longer than 10 minutes", fault.delay_ms),
                     "use a delay of at most 600000 ms",
                 ));
@@ -628,8 +675,9 @@ impl Scenario {
                 .as_ref()
                 .is_some_and(|g| g.contains(['\r', '\n']))
             {
-                return Err(ck.error(
+                return Err(ck.error_key(
                     f.span(),
+                    "garbage",
                     "`garbage` contains a line break",
                     "the server appends the CR itself; write the text on one line",
                 ));

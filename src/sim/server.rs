@@ -21,6 +21,8 @@ const LOG_CAPACITY: usize = 10_000;
 /// How often blocked reads and the accept loop look at the stop flag.
 const POLL: Duration = Duration::from_millis(20);
 const WRITE_TIMEOUT: Duration = Duration::from_secs(2);
+/// Characters of a request kept in the log (the reply is bounded by the scenario).
+const MAX_LOGGED_RAW: usize = 1024;
 
 /// One request as the server saw and answered it.
 #[derive(Debug, Clone, PartialEq)]
@@ -293,9 +295,15 @@ impl Worker {
                 return self.send(stream, &reply);
             }
         };
-        let count = self.occurrences.entry(req.command).or_insert(0);
-        *count = count.saturating_add(1);
-        let occurrence = *count;
+        // Only catalog commands are counted (faults can only name those), so a client cycling
+        // through arbitrary numbers cannot grow the map.
+        let occurrence = if catalog().command(req.command).is_some() {
+            let count = self.occurrences.entry(req.command).or_insert(0);
+            *count = count.saturating_add(1);
+            *count
+        } else {
+            0
+        };
         let fault = lock(&self.shared.state)
             .scenario()
             .faults
@@ -380,6 +388,7 @@ impl Worker {
         reply: Option<String>,
         note: Option<String>,
     ) {
+        let raw = clip(raw, MAX_LOGGED_RAW);
         let entry = RequestLog {
             seq: self.shared.seq.fetch_add(1, Ordering::SeqCst) + 1,
             time: SystemTime::now(),
@@ -411,4 +420,12 @@ fn write_line(stream: &mut TcpStream, reply: &str) -> io::Result<()> {
     bytes.push(b'\r');
     stream.write_all(&bytes)?;
     stream.flush()
+}
+
+/// At most `max` characters, marked with `...` when cut.
+fn clip(text: String, max: usize) -> String {
+    match text.char_indices().nth(max) {
+        Some((i, _)) => format!("{}...", &text[..i]),
+        None => text,
+    }
 }
