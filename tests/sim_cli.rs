@@ -102,10 +102,15 @@ fn serves_the_embedded_scenario_and_logs_each_request() {
         );
         let _ = std::io::stdout().flush();
     });
+    let summary = lines.next().and_then(Result::ok).unwrap_or_default();
     let log1 = lines.next().and_then(Result::ok).unwrap_or_default();
     let _ = child.kill();
     let _ = child.wait();
     result.expect("live run");
+    assert!(
+        summary.contains("projects: 1 (4 points, 2 path waypoints)"),
+        "{summary}"
+    );
     assert!(
         log1.contains("\"101,1,0,0,0,0,0,0,0,0\" (start_vision) -> \"101,1102\""),
         "{log1}"

@@ -70,3 +70,14 @@ proptest! {
         prop_assert_eq!(sim_support::ask_once(server.addr(), "901"), "901,1101");
     }
 }
+
+proptest! {
+    #![proptest_config(ProptestConfig::with_cases(200))]
+    #[test]
+    fn scenario_loading_never_panics(text in "(\\[\\[?(project|viz|fault|server|calibration)(\\.point|\\.waypoint)?\\]\\]?\n|[a-z_]{1,12} = (-?[0-9]{1,4}|\\[[0-9, .]{0,20}\\]|\"[a-z0-9]{0,5}\"|true)\n){0,12}") {
+        if let Err(e) = Scenario::from_toml_str(&text, "p.toml") {
+            prop_assert!(e.line >= 1 && e.col >= 1);
+            prop_assert!(!e.message.is_empty() && !e.help.is_empty());
+        }
+    }
+}

@@ -547,3 +547,18 @@ fn shutdown_with_a_connected_client_is_prompt() {
     assert!(t.elapsed() < Duration::from_secs(2));
     assert_eq!(c.read(), Read1::Closed);
 }
+
+#[test]
+fn a_full_batch_fits_the_catalog_ascii_budget() {
+    // The generated package sizes its receive buffer from these catalog figures.
+    let limits = &catalog().limits;
+    let server = start(fixture("vision_pick.toml"));
+    assert_eq!(ask_once(server.addr(), START_3), "101,1102");
+    let reply = ask_once(server.addr(), "102,3");
+    let budget = limits.ascii_header_bytes + 20 * limits.ascii_bytes_per_point;
+    assert!(
+        reply.len() + 1 <= budget as usize,
+        "{} > {budget}",
+        reply.len()
+    );
+}

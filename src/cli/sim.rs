@@ -41,6 +41,7 @@ fn serve(args: ServeArgs) -> anyhow::Result<Outcome> {
             args.listen
         );
     }
+    let summary = summary(&scenario);
     let (tx, rx) = mpsc::channel();
     let server = Server::start_with_observer(
         scenario,
@@ -60,10 +61,44 @@ fn serve(args: ServeArgs) -> anyhow::Result<Outcome> {
         "krlkit sim: listening on {} ({source}); Ctrl-C stops",
         server.addr()
     );
+    println!("krlkit sim: {summary}");
     // Runs until the process is interrupted; the server thread owns the socket.
     for line in rx {
         println!("{line}");
     }
     server.shutdown();
     Ok(Outcome::Success)
+}
+
+fn summary(s: &Scenario) -> String {
+    let projects: Vec<String> = s
+        .projects
+        .iter()
+        .map(|p| {
+            format!(
+                "{} ({} points, {} path waypoints)",
+                p.id,
+                p.points.len(),
+                p.path.len()
+            )
+        })
+        .collect();
+    let viz = s.viz.as_ref().map_or("none".to_string(), |v| {
+        format!(
+            "{} waypoints, DO list {}",
+            v.path.len(),
+            if v.do_list.is_some() { "yes" } else { "no" }
+        )
+    });
+    format!(
+        "projects: {}; viz: {viz}; calibration points: {}; faults: {}; batch {}",
+        if projects.is_empty() {
+            "none".to_string()
+        } else {
+            projects.join(", ")
+        },
+        s.calibration.len(),
+        s.faults.len(),
+        s.server.batch
+    )
 }

@@ -602,3 +602,20 @@ fn fields<const N: usize>(args: &[f64]) -> Result<[f64; N], u32> {
 fn int(v: f64) -> Result<i64, u32> {
     as_int(v).ok_or(codes().invalid_format)
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn every_command_and_status_name_resolves_in_the_catalog() {
+        let c = codes();
+        assert_eq!(c.commands.len(), COMMANDS.len());
+        for (cmd, name) in COMMANDS {
+            let code = catalog().command_named(name).map(|c| c.code);
+            assert_eq!(code.and_then(|n| c.command(n)), Some(cmd), "{name}");
+        }
+        assert_eq!(c.invalid_format, 3002);
+        assert_eq!(c.project_not_found, 1011);
+    }
+}
