@@ -414,16 +414,13 @@ fn faults_delay_status_drop_garbage_wrong_echo() {
     let server = start(fixture("faults.toml"));
     let addr = server.addr();
 
-    let t = Instant::now();
     assert_eq!(ask_once(addr, "901"), "901,1101");
-    let fast = t.elapsed();
     let t = Instant::now();
     assert_eq!(ask_once(addr, "901"), "901,1101");
     assert!(
         t.elapsed() >= Duration::from_millis(300),
         "2nd 901 is delayed"
     );
-    assert!(fast < Duration::from_millis(300));
 
     assert_eq!(ask_once(addr, "101,1,0,0,0,0,0,0,0,0"), "101,1007");
     assert_eq!(ask_once(addr, "101,1,0,0,0,0,0,0,0,0"), "101,1102");

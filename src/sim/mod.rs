@@ -29,7 +29,8 @@
 //!   answers `0,3002`; a wrong field count or a non-integral integer field answers `<cmd>,3002`.
 //! - 101 checks the payload length for its pose type (0, 2, 3: six values; 1: twelve); an
 //!   invalid pose type answers 1026 whatever follows; a negative expected count 1018.
-//! - 102 and 110 share the point cursor of the last 101; 105 has its own path cursor. A call
+//! - 102 and 110 share the point cursor of the last 101; 105 has its own path cursor (the
+//!   expected count of 101 limits points, not path waypoints). A call
 //!   after everything was sent answers "no result" (1002; 2022 for Viz) instead of repeating.
 //! - 105/205 "first Vision Move position" counts from the first waypoint of the current batch
 //!   (1-based); 0 when no Vision Move waypoint remains. An invalid pose kind answers 1026 (105)
@@ -44,7 +45,9 @@
 //!   after the last point the reply has done = 1 and zeros; 1 or 2 before any 0 answers 7001.
 //! - Faults: `status`, `garbage` and `drop` answer without touching the state; `wrong_echo`
 //!   and a bare `delay_ms` answer normally (the state advances).
-//! - Only dialect v1 is implemented; a v2 scenario is rejected when loaded.
+//! - Only dialect v1 is implemented; a v2 scenario is rejected when loaded. Only the ASCII
+//!   framing is implemented (no HEX); 202, 207, 208, 601 and the 2.x commands answer 3001
+//!   because the 1.x catalog does not list them.
 
 pub mod protocol;
 pub mod scenario;
