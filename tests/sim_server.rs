@@ -407,6 +407,8 @@ fn state_survives_reconnects() {
         &fields(&ask_once(server.addr(), "102,3"))[..4],
         ["102", "1100", "1", "1"]
     );
+    let conns: Vec<u64> = server.requests().iter().map(|r| r.connection).collect();
+    assert_eq!(conns, [1, 2, 3, 4, 5, 6]);
 }
 
 #[test]
@@ -502,6 +504,7 @@ fn request_log_records_every_request() {
     let log = server.requests();
     assert_eq!(log.len(), 4, "empty messages are not logged");
     assert_eq!(log.iter().map(|r| r.seq).collect::<Vec<_>>(), [1, 2, 3, 4]);
+    assert!(log.iter().all(|r| r.connection == 1));
     assert_eq!(log[1].raw, "103, 3,2");
     assert_eq!(log[1].command, Some(103));
     assert_eq!(log[1].name.as_deref(), Some("switch_recipe"));

@@ -33,6 +33,8 @@ pub struct RequestLog {
     /// Since the server started.
     pub elapsed: Duration,
     pub peer: SocketAddr,
+    /// 1-based number of the TCP connection it came on (shows per-command reconnects).
+    pub connection: u64,
     /// The message without its terminator (invalid UTF-8 replaced; oversized input cut).
     pub raw: String,
     /// The decoded command number, if the first field was readable.
@@ -51,9 +53,10 @@ impl fmt::Display for RequestLog {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
         write!(
             f,
-            "#{} +{:.3}s {} {:?}",
+            "#{} +{:.3}s conn {} {} {:?}",
             self.seq,
             self.elapsed.as_secs_f64(),
+            self.connection,
             self.peer,
             self.raw
         )?;
@@ -120,6 +123,7 @@ impl Server {
             observer,
             started: Instant::now(),
             occurrences: HashMap::new(),
+            connections: 0,
         };
         let thread = thread::Builder::new()
             .name("krlkit-sim".into())
@@ -171,6 +175,7 @@ struct Worker {
     started: Instant,
     /// Requests per command number so far (for `occurrence` faults).
     occurrences: HashMap<u32, u32>,
+    connections: u64,
 }
 
 enum Next {
@@ -186,7 +191,10 @@ impl Worker {
     fn run(mut self, listener: &TcpListener) {
         while !self.stopping() {
             match listener.accept() {
-                Ok((stream, peer)) => self.serve(stream, peer),
+                Ok((stream, peer)) => {
+                    self.connections += 1;
+                    self.serve(stream, peer);
+                }
                 Err(e) if e.kind() == ErrorKind::WouldBlock => thread::sleep(POLL),
                 Err(_) => thread::sleep(POLL),
             }
@@ -394,6 +402,7 @@ impl Worker {
             time: SystemTime::now(),
             elapsed: self.started.elapsed(),
             peer,
+            connection: self.connections,
             raw,
             command: req.map(|r| r.command),
             name: req
