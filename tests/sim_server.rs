@@ -562,3 +562,17 @@ fn a_full_batch_fits_the_catalog_ascii_budget() {
         reply.len()
     );
 }
+
+#[test]
+fn connection_per_command_is_fast() {
+    // The interpreter's full cycle budget is 50 ms; the server must not add polling latency.
+    let server = start(fixture("vision_pick.toml"));
+    ask_once(server.addr(), "901");
+    let t = Instant::now();
+    for _ in 0..20 {
+        assert_eq!(ask_once(server.addr(), "901"), "901,1101");
+    }
+    let per = t.elapsed() / 20;
+    eprintln!("connection per command: {per:?} per exchange");
+    assert!(per < Duration::from_millis(10), "{per:?}");
+}

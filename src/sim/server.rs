@@ -109,8 +109,9 @@ impl Server {
         addr: impl ToSocketAddrs,
         observer: Observer,
     ) -> io::Result<Server> {
+        // Blocking accept: a connection per command must not wait for a polling tick. `stop`
+        // wakes the thread with a connection of its own.
         let listener = TcpListener::bind(addr)?;
-        listener.set_nonblocking(true)?;
         let addr = listener.local_addr()?;
         let shared = Arc::new(Shared {
             stop: AtomicBool::new(false),
@@ -158,6 +159,9 @@ impl Server {
     fn stop(&mut self) {
         self.shared.stop.store(true, Ordering::SeqCst);
         if let Some(t) = self.thread.take() {
+            // The worker notices the flag within one read poll while serving a client, and on
+            // its next accept otherwise: give it one to accept.
+            let _ = TcpStream::connect_timeout(&wake_addr(self.addr), WRITE_TIMEOUT);
             let _ = t.join();
         }
     }
@@ -191,11 +195,12 @@ impl Worker {
     fn run(mut self, listener: &TcpListener) {
         while !self.stopping() {
             match listener.accept() {
+                Ok(_) if self.stopping() => break,
                 Ok((stream, peer)) => {
                     self.connections += 1;
                     self.serve(stream, peer);
                 }
-                Err(e) if e.kind() == ErrorKind::WouldBlock => thread::sleep(POLL),
+                // E.g. too many open files: back off instead of spinning.
                 Err(_) => thread::sleep(POLL),
             }
         }
@@ -437,4 +442,16 @@ fn clip(text: String, max: usize) -> String {
         Some((i, _)) => format!("{}...", &text[..i]),
         None => text,
     }
+}
+
+/// Where to connect to reach our own listener (a wildcard bind is reached over loopback).
+fn wake_addr(bound: SocketAddr) -> SocketAddr {
+    let mut a = bound;
+    if a.ip().is_unspecified() {
+        a.set_ip(match a {
+            SocketAddr::V4(_) => std::net::Ipv4Addr::LOCALHOST.into(),
+            SocketAddr::V6(_) => std::net::Ipv6Addr::LOCALHOST.into(),
+        });
+    }
+    a
 }
