@@ -327,14 +327,11 @@ fn describe(e: pest::error::Error<Rule>, code: &str, base: usize) -> LineError {
         format!("`{found}`")
     };
     let message = if pos == 0 {
-        format!("syntax error: `{}` does not start a KRL statement", found)
+        format!("`{}` does not start a KRL statement", found)
     } else if !expected.is_empty() && expected.len() <= 4 {
-        format!(
-            "syntax error: expected {}, found {found_desc}",
-            join_or(&expected)
-        )
+        format!("expected {}, found {found_desc}", join_or(&expected))
     } else {
-        format!("syntax error: unexpected {found_desc}")
+        format!("unexpected {found_desc}")
     };
     LineError {
         at: base + pos,
