@@ -9,6 +9,8 @@ use crate::diag::{Diagnostic, Span};
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub(crate) enum Block {
     Routine,
+    /// DEFFCT … ENDFCT (END is tolerated too).
+    Function,
     Dat,
     If,
     For,
@@ -36,7 +38,8 @@ impl Role {
     pub(crate) fn of(kind: NodeKind) -> Role {
         use NodeKind as K;
         match kind {
-            K::DefLine | K::DeffctLine => Role::Open(Block::Routine),
+            K::DefLine => Role::Open(Block::Routine),
+            K::DeffctLine => Role::Open(Block::Function),
             K::EndLine => Role::Close(Block::Routine),
             K::DefdatLine => Role::Open(Block::Dat),
             K::EnddatLine => Role::Close(Block::Dat),
@@ -80,8 +83,9 @@ impl Role {
             return Role::None;
         }
         match first.as_str() {
-            "DEF" | "DEFFCT" => Role::Open(Block::Routine),
-            "END" => Role::Close(Block::Routine),
+            "DEF" => Role::Open(Block::Routine),
+            "DEFFCT" => Role::Open(Block::Function),
+            "END" | "ENDFCT" => Role::Close(Block::Routine),
             "DEFDAT" => Role::Open(Block::Dat),
             "ENDDAT" => Role::Close(Block::Dat),
             "IF" => Role::Open(Block::If),
@@ -109,7 +113,7 @@ impl Role {
 impl Block {
     fn node_kind(self) -> NodeKind {
         match self {
-            Block::Routine => NodeKind::Routine,
+            Block::Routine | Block::Function => NodeKind::Routine,
             Block::Dat => NodeKind::DatModule,
             Block::If => NodeKind::IfBlock,
             Block::For => NodeKind::ForBlock,
@@ -126,6 +130,7 @@ impl Block {
     fn opener(self) -> &'static str {
         match self {
             Block::Routine => "DEF",
+            Block::Function => "DEFFCT",
             Block::Dat => "DEFDAT",
             Block::If => "IF",
             Block::For => "FOR",
@@ -142,6 +147,7 @@ impl Block {
     fn closer(self) -> &'static str {
         match self {
             Block::Routine => "END",
+            Block::Function => "ENDFCT",
             Block::Dat => "ENDDAT",
             Block::If => "ENDIF",
             Block::For => "ENDFOR",
@@ -161,7 +167,7 @@ impl Block {
 
     /// Module-level blocks: a close never searches past them.
     fn is_module(self) -> bool {
-        matches!(self, Block::Routine | Block::Dat)
+        matches!(self, Block::Routine | Block::Function | Block::Dat)
     }
 }
 
@@ -313,7 +319,7 @@ impl<'t> Assembler<'t> {
         // Find the innermost matching frame without crossing a module boundary.
         let mut found = None;
         for (i, f) in self.stack.iter().enumerate().rev() {
-            if f.block == block {
+            if f.block == block || (block == Block::Routine && f.block == Block::Function) {
                 found = Some(i);
                 break;
             }

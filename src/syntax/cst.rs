@@ -59,6 +59,7 @@ pub enum NodeKind {
     WaitForStmt,
     WaitSecStmt,
     HaltStmt,
+    ConfirmStmt,
     BrakeStmt,
     ResumeStmt,
     ReturnStmt,

@@ -102,6 +102,7 @@ fn classify(rule: Rule) -> Class {
         Rule::wait_for_stmt => N(NodeKind::WaitForStmt),
         Rule::wait_sec_stmt => N(NodeKind::WaitSecStmt),
         Rule::halt_stmt => N(NodeKind::HaltStmt),
+        Rule::confirm_stmt => N(NodeKind::ConfirmStmt),
         Rule::brake_stmt => N(NodeKind::BrakeStmt),
         Rule::resume_stmt => N(NodeKind::ResumeStmt),
         Rule::return_stmt => N(NodeKind::ReturnStmt),

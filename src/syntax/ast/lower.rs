@@ -572,6 +572,9 @@ impl<'t> Cx<'t> {
                 time: first_expr()?,
             },
             K::HaltStmt => StmtKind::Halt,
+            K::ConfirmStmt => StmtKind::Confirm {
+                handle: first_expr()?,
+            },
             K::BrakeStmt => StmtKind::Brake {
                 fast: node.has_keyword(text, "F"),
             },

@@ -276,6 +276,10 @@ pub enum StmtKind {
         time: Expr,
     },
     Halt,
+    /// `CONFIRM handle` (acknowledge a message).
+    Confirm {
+        handle: Expr,
+    },
     Return {
         value: Option<Expr>,
     },
