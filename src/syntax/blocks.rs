@@ -21,6 +21,7 @@ pub(crate) enum Block {
     Case,
     Default,
     Spline,
+    Skip,
 }
 
 /// What a line does to the block structure.
@@ -60,6 +61,8 @@ impl Role {
             K::EndswitchLine => Role::Close(Block::Switch),
             K::SplineLine => Role::Open(Block::Spline),
             K::EndsplineLine => Role::Close(Block::Spline),
+            K::SkipLine => Role::Open(Block::Skip),
+            K::EndskipLine => Role::Close(Block::Skip),
             _ => Role::None,
         }
     }
@@ -79,7 +82,13 @@ impl Role {
             .chars()
             .next()
             .is_some_and(|c| c.is_ascii_alphabetic());
-        if !starts_word {
+        // `skip = 1`: a keyword-like name being assigned is not a block line.
+        let after_first = code
+            .trim_start()
+            .trim_start_matches(|c: char| c.is_ascii_alphanumeric() || c == '_' || c == '$')
+            .trim_start();
+        let assigned = after_first.starts_with('=') && !after_first.starts_with("==");
+        if !starts_word || assigned {
             return Role::None;
         }
         match first.as_str() {
@@ -105,6 +114,8 @@ impl Role {
             "ENDSWITCH" => Role::Close(Block::Switch),
             "SPLINE" | "PTP_SPLINE" => Role::Open(Block::Spline),
             "ENDSPLINE" => Role::Close(Block::Spline),
+            "SKIP" => Role::Open(Block::Skip),
+            "ENDSKIP" => Role::Close(Block::Skip),
             _ => Role::None,
         }
     }
@@ -124,6 +135,7 @@ impl Block {
             Block::Case => NodeKind::CaseBlock,
             Block::Default => NodeKind::DefaultBlock,
             Block::Spline => NodeKind::SplineBlock,
+            Block::Skip => NodeKind::SkipBlock,
         }
     }
 
@@ -141,6 +153,7 @@ impl Block {
             Block::Case => "CASE",
             Block::Default => "DEFAULT",
             Block::Spline => "SPLINE",
+            Block::Skip => "SKIP",
         }
     }
 
@@ -157,6 +170,7 @@ impl Block {
             Block::Switch => "ENDSWITCH",
             Block::Case | Block::Default => "CASE, DEFAULT or ENDSWITCH",
             Block::Spline => "ENDSPLINE",
+            Block::Skip => "ENDSKIP",
         }
     }
 

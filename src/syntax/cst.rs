@@ -22,6 +22,7 @@ pub enum NodeKind {
     CaseBlock,
     DefaultBlock,
     SplineBlock,
+    SkipBlock,
     // whole lines
     HeaderLine,
     CommentLine,
@@ -50,6 +51,8 @@ pub enum NodeKind {
     EndswitchLine,
     SplineLine,
     EndsplineLine,
+    SkipLine,
+    EndskipLine,
     TimeBlockStmt,
     ConstVelStmt,
     InterruptDecl,

@@ -91,6 +91,8 @@ fn classify(rule: Rule) -> Class {
         Rule::endswitch_line => N(NodeKind::EndswitchLine),
         Rule::spline_line => N(NodeKind::SplineLine),
         Rule::endspline_line => N(NodeKind::EndsplineLine),
+        Rule::skip_line => N(NodeKind::SkipLine),
+        Rule::endskip_line => N(NodeKind::EndskipLine),
         Rule::time_block_stmt => N(NodeKind::TimeBlockStmt),
         Rule::const_vel_stmt => N(NodeKind::ConstVelStmt),
         Rule::interrupt_decl => N(NodeKind::InterruptDecl),

@@ -513,6 +513,13 @@ impl<'t> Cx<'t> {
                     body: self.body(inner(&lines, K::EndsplineLine)),
                 }
             }
+            K::SkipBlock => {
+                let lines: Vec<&Node> = node.nodes().collect();
+                StmtKind::Skip {
+                    arg: lines.first().and_then(|h| self.exprs(h).into_iter().next()),
+                    body: self.body(inner(&lines, K::EndskipLine)),
+                }
+            }
             // Block lines seen outside their block (already reported by the assembler).
             K::ElseLine
             | K::EndifLine
