@@ -105,3 +105,29 @@ proptest! {
         }
     }
 }
+
+/// Hostile nesting must be an error, not a stack overflow (checked on a 2 MiB thread, like rayon's).
+#[test]
+fn deep_nesting_is_an_error_not_a_crash() {
+    let cases = [
+        format!("x = {}1{}", "(".repeat(20_000), ")".repeat(20_000)),
+        format!("x = {}1", "- ".repeat(20_000)),
+        format!("x = {}", vec!["1"; 30_000].join("+")),
+        format!("x = {}1", "NOT ".repeat(20_000)),
+        format!("x = {}", "{A ".repeat(20_000)),
+    ];
+    std::thread::Builder::new()
+        .stack_size(2 << 20)
+        .spawn(move || {
+            for line in cases {
+                let text = format!("DEF a()\n{line}\nEND\n");
+                let p = parse(&text);
+                assert_eq!(p.diagnostics.len(), 1, "{}", &line[..20]);
+                assert_eq!(p.root.print(&text), text);
+                let _ = p.ast(&text);
+            }
+        })
+        .expect("spawn")
+        .join()
+        .expect("no stack overflow");
+}

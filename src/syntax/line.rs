@@ -28,7 +28,10 @@ pub(crate) struct LineError {
 /// Parse `text[start..end]` (code only: no leading/trailing blanks, no comment, no newline).
 pub(crate) fn parse_code(text: &str, start: usize, end: usize) -> Result<Node, LineError> {
     let code = &text[start..end];
-    match KrlGrammar::parse(Rule::line, code) {
+    if let Some(err) = too_deep(code, start) {
+        return Err(err);
+    }
+    match KrlGrammar::parse(entry_rule(code), code) {
         Ok(mut pairs) => {
             let line = pairs.next();
             let stmt = line.and_then(|l| l.into_inner().find(|p| p.as_rule() != Rule::EOI));
@@ -43,6 +46,179 @@ pub(crate) fn parse_code(text: &str, start: usize, end: usize) -> Result<Node, L
         }
         Err(e) => Err(describe(e, code, start)),
     }
+}
+
+/// Words that can start a statement other than a declaration, assignment, call or label.
+const STATEMENT_WORDS: &[&str] = &[
+    "ANIN",
+    "ANOUT",
+    "BRAKE",
+    "CASE",
+    "CHANNEL",
+    "CIRC",
+    "CIRC_REL",
+    "CONFIRM",
+    "CONST",
+    "CONST_VEL",
+    "CONTINUE",
+    "DEF",
+    "DEFAULT",
+    "DEFDAT",
+    "DEFFCT",
+    "ELSE",
+    "END",
+    "ENDDAT",
+    "ENDFCT",
+    "ENDFOR",
+    "ENDIF",
+    "ENDLOOP",
+    "ENDSKIP",
+    "ENDSPLINE",
+    "ENDSWITCH",
+    "ENDWHILE",
+    "ENUM",
+    "EXIT",
+    "EXT",
+    "EXTFCT",
+    "EXTFCTP",
+    "EXTP",
+    "FOR",
+    "GLOBAL",
+    "GOTO",
+    "HALT",
+    "IF",
+    "IMPORT",
+    "INTERRUPT",
+    "LIN",
+    "LIN_REL",
+    "LOOP",
+    "ON_ERROR_PROCEED",
+    "PTP",
+    "PTP_REL",
+    "PTP_SPLINE",
+    "REPEAT",
+    "RESUME",
+    "RETURN",
+    "SCIRC",
+    "SCIRC_REL",
+    "SIGNAL",
+    "SKIP",
+    "SLIN",
+    "SLIN_REL",
+    "SPL",
+    "SPLINE",
+    "SPTP",
+    "SPTP_REL",
+    "STRUC",
+    "SWITCH",
+    "TIME_BLOCK",
+    "TRIGGER",
+    "UNTIL",
+    "WAIT",
+    "WHILE",
+];
+
+/// The cheapest grammar entry that can accept this line (always a subset of `line`).
+fn entry_rule(code: &str) -> Rule {
+    let bytes = code.as_bytes();
+    if bytes.first() == Some(&b'$') {
+        return Rule::line_ident;
+    }
+    if !bytes
+        .first()
+        .is_some_and(|b| b.is_ascii_alphabetic() || *b == b'_')
+    {
+        return Rule::line;
+    }
+    let len = bytes
+        .iter()
+        .take_while(|c| c.is_ascii_alphanumeric() || **c == b'_' || **c == b'$')
+        .count();
+    let word = &code[..len];
+    if word.eq_ignore_ascii_case("DECL") {
+        Rule::line_decl
+    } else if len > 16 || STATEMENT_WORDS.iter().any(|k| k.eq_ignore_ascii_case(word)) {
+        Rule::line
+    } else {
+        Rule::line_ident
+    }
+}
+
+/// Limits that keep recursion (pest, Pratt, tree walks) far from the stack's end. pest runs
+/// without its own stack probe (see Cargo.toml), so this check is what makes hostile input safe.
+const MAX_NESTING: usize = 64;
+const MAX_PREFIX_RUN: usize = 64;
+const MAX_OPERATORS: usize = 1024;
+
+fn too_deep(code: &str, base: usize) -> Option<LineError> {
+    let bytes = code.as_bytes();
+    let mut depth = 0usize;
+    let mut prefix_run = 0usize;
+    let mut operators = 0usize;
+    let mut quote: Option<u8> = None;
+    let mut i = 0;
+    while i < bytes.len() {
+        let b = bytes[i];
+        if let Some(q) = quote {
+            if b == q {
+                quote = None;
+            }
+            i += 1;
+            continue;
+        }
+        let word_len = bytes[i..]
+            .iter()
+            .take_while(|c| c.is_ascii_alphanumeric() || **c == b'_' || **c == b'$')
+            .count();
+        let fail = |what: &str| {
+            Some(LineError {
+                at: base + i,
+                len: 1,
+                message: format!("{what}; split the expression"),
+            })
+        };
+        match b {
+            b'"' | b'\'' => quote = Some(b),
+            b'(' | b'[' | b'{' => {
+                depth += 1;
+                if depth > MAX_NESTING {
+                    return fail("brackets nested more than 64 deep");
+                }
+            }
+            b')' | b']' | b'}' => depth = depth.saturating_sub(1),
+            _ => {}
+        }
+        // `i` is always on a char boundary: words are ASCII, other steps are whole chars.
+        let word = code.get(i..i + word_len).unwrap_or("");
+        let is_prefix = matches!(b, b'-' | b'+')
+            || word.eq_ignore_ascii_case("NOT")
+            || word.eq_ignore_ascii_case("B_NOT");
+        let is_operator = is_prefix
+            || matches!(b, b'*' | b'/' | b':' | b'<' | b'>' | b'=')
+            || ["AND", "OR", "EXOR", "B_AND", "B_OR", "B_EXOR"]
+                .iter()
+                .any(|k| word.eq_ignore_ascii_case(k));
+        if is_operator {
+            operators += 1;
+            if operators > MAX_OPERATORS {
+                return fail("more than 1024 operators on one line");
+            }
+        }
+        if is_prefix {
+            prefix_run += 1;
+            if prefix_run > MAX_PREFIX_RUN {
+                return fail("more than 64 signs or NOTs in a row");
+            }
+        } else if !matches!(b, b' ' | b'\t') {
+            prefix_run = 0;
+        }
+        i += if word_len > 0 {
+            word_len
+        } else {
+            code[i..].chars().next().map_or(1, char::len_utf8)
+        };
+    }
+    None
 }
 
 struct Ctx<'t> {
