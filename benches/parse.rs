@@ -1,7 +1,7 @@
 //! Parser throughput: a large synthetic controller-style file, and the fixture directory.
 //! Run briefly: `cargo bench --bench parse -- --warm-up-time 1 --measurement-time 3`.
 
-use criterion::{Criterion, Throughput, criterion_group, criterion_main};
+use criterion::{Criterion, Throughput, criterion_group};
 
 /// A typical mix: headers, folds with inline-form metadata, motions, logic, DAT aggregates.
 fn synthetic(routines: usize) -> String {
@@ -71,4 +71,49 @@ fn bench(c: &mut Criterion) {
 }
 
 criterion_group!(benches, bench);
-criterion_main!(benches);
+
+/// On-CPU nanoseconds of this thread (Linux `schedstat`), so a loaded machine does not skew the
+/// figure the way wall time does.
+fn cpu_ns() -> Option<u64> {
+    let s = std::fs::read_to_string("/proc/thread-self/schedstat").ok()?;
+    s.split_whitespace().next()?.parse().ok()
+}
+
+/// `PARSE_CPU_ITERS=20 cargo bench --bench parse`: parse the synthetic file N times on one
+/// thread and print MB per CPU-second, then exit (no criterion run).
+fn cpu_throughput(iters: usize) {
+    let big = synthetic(400);
+    let before = cpu_ns();
+    let mut diags = 0;
+    for _ in 0..iters {
+        diags += krlkit::syntax::parse(std::hint::black_box(&big))
+            .diagnostics
+            .len();
+    }
+    match (before, cpu_ns()) {
+        (Some(a), Some(b)) if b > a => {
+            let secs = (b - a) as f64 / 1e9;
+            let mb = (big.len() * iters) as f64 / 1e6;
+            println!(
+                "synthetic: {} bytes x {iters} in {secs:.3} CPU-s = {:.1} MB/s per core ({diags} diagnostics)",
+                big.len(),
+                mb / secs
+            );
+        }
+        _ => println!("no CPU clock available"),
+    }
+}
+
+fn main() {
+    if let Some(iters) = std::env::var("PARSE_CPU_ITERS")
+        .ok()
+        .and_then(|v| v.parse().ok())
+    {
+        cpu_throughput(iters);
+        return;
+    }
+    benches();
+    criterion::Criterion::default()
+        .configure_from_args()
+        .final_summary();
+}

@@ -27,10 +27,18 @@ pub(crate) struct LineError {
 
 /// Parse `text[start..end]` (code only: no leading/trailing blanks, no comment, no newline).
 pub(crate) fn parse_code(text: &str, start: usize, end: usize) -> Result<Node, LineError> {
-    let code = &text[start..end];
-    if let Some(err) = too_deep(code, start) {
+    if let Some(err) = too_deep(&text[start..end], start) {
         return Err(err);
     }
+    if let Some(node) = super::fast::parse(text, start, end) {
+        return Ok(node);
+    }
+    parse_with_grammar(text, start, end)
+}
+
+/// The grammar alone (the fast path must agree with it wherever it answers).
+pub(crate) fn parse_with_grammar(text: &str, start: usize, end: usize) -> Result<Node, LineError> {
+    let code = &text[start..end];
     match KrlGrammar::parse(entry_rule(code), code) {
         Ok(mut pairs) => {
             let line = pairs.next();
@@ -355,7 +363,9 @@ fn convert(pair: Pair<Rule>, ctx: &Ctx) -> Element {
             span: ctx.span(&pair),
         }),
         Class::Node(kind) => {
-            let span = ctx.span(&pair);
+            // Canonical form: nodes never end in blanks (pest's implicit whitespace before an
+            // absent optional would otherwise end up inside the node); the parent re-lexes them.
+            let span = tight(ctx.text, ctx.span(&pair));
             let children = pair.into_inner().map(|p| convert(p, ctx)).collect();
             Element::Node(make_node(ctx.text, kind, span, children))
         }
@@ -418,6 +428,12 @@ fn expr(pairs: Pairs<Rule>, ctx: &Ctx) -> Element {
             Element::Node(make_node(ctx.text, kind, span, children))
         })
         .parse(pairs)
+}
+
+fn tight(text: &str, span: Span) -> Span {
+    let s = &text[span.range()];
+    let trimmed = s.trim_end_matches([' ', '\t', '\u{0B}', '\u{0C}', '\u{A0}']);
+    Span::new(span.start as usize, span.start as usize + trimmed.len())
 }
 
 /// Build a node over `span`, filling every byte not covered by `children` with gap tokens.

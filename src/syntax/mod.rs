@@ -25,6 +25,7 @@ pub mod ast;
 mod blocks;
 pub mod cst;
 mod decode;
+mod fast;
 mod line;
 mod parser;
 
