@@ -163,8 +163,16 @@ impl<'t> P<'t> {
         if n > 0 && after == Some(&b':') {
             return None;
         }
-        let upper = first.to_ascii_uppercase();
-        let (kind, children) = match upper.as_str() {
+        let mut buf = [0u8; 24];
+        let upper = if n <= buf.len() {
+            for (u, c) in buf.iter_mut().zip(first.bytes()) {
+                *u = c.to_ascii_uppercase();
+            }
+            std::str::from_utf8(&buf[..n]).unwrap_or("")
+        } else {
+            ""
+        };
+        let (kind, children) = match upper {
             "DECL" => (NodeKind::DeclStmt, self.decl()?),
             "IF" => {
                 let k = self.kw("IF")?;
@@ -185,7 +193,8 @@ impl<'t> P<'t> {
                 self.ws();
                 (kind, vec![k, which, self.expr()?])
             }
-            w if MOTION.contains(&w) => {
+            "PTP_REL" | "LIN_REL" | "CIRC_REL" | "SPTP_REL" | "SLIN_REL" | "SCIRC_REL" | "PTP"
+            | "LIN" | "CIRC" | "SPTP" | "SLIN" | "SCIRC" | "SPL" => {
                 let k = self.kw_any(&MOTION)?;
                 self.ws();
                 let mut children = vec![k, self.expr()?];

@@ -196,16 +196,23 @@ fn too_deep(code: &str, base: usize) -> Option<LineError> {
             b')' | b']' | b'}' => depth = depth.saturating_sub(1),
             _ => {}
         }
-        // `i` is always on a char boundary: words are ASCII, other steps are whole chars.
-        let word = code.get(i..i + word_len).unwrap_or("");
-        let is_prefix = matches!(b, b'-' | b'+')
-            || word.eq_ignore_ascii_case("NOT")
-            || word.eq_ignore_ascii_case("B_NOT");
+        // Only words of 2..=6 ASCII letters can be operator keywords; compare without allocating.
+        let mut upper = [0u8; 6];
+        let word: &[u8] = if (2..=6).contains(&word_len) {
+            for (u, c) in upper.iter_mut().zip(&bytes[i..i + word_len]) {
+                *u = c.to_ascii_uppercase();
+            }
+            &upper[..word_len]
+        } else {
+            b""
+        };
+        let is_prefix = matches!(b, b'-' | b'+') || matches!(word, b"NOT" | b"B_NOT");
         let is_operator = is_prefix
             || matches!(b, b'*' | b'/' | b':' | b'<' | b'>' | b'=')
-            || ["AND", "OR", "EXOR", "B_AND", "B_OR", "B_EXOR"]
-                .iter()
-                .any(|k| word.eq_ignore_ascii_case(k));
+            || matches!(
+                word,
+                b"AND" | b"OR" | b"EXOR" | b"B_AND" | b"B_OR" | b"B_EXOR"
+            );
         if is_operator {
             operators += 1;
             if operators > MAX_OPERATORS {
