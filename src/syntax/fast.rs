@@ -214,12 +214,10 @@ impl<'t> P<'t> {
                 (NodeKind::MotionStmt, children)
             }
             _ => {
-                if let Some(kind) = single_keyword(&upper) {
+                if let Some(kind) = single_keyword(upper) {
                     let k = self.kw(first)?;
                     (kind, vec![k])
-                } else if n > 0 && STATEMENT_LIKE.iter().all(|k| *k != upper)
-                    || self.peek() == Some(b'$')
-                {
+                } else if n > 0 && n <= buf.len() && !statement_like(upper) {
                     self.ident_line()?
                 } else {
                     return None;
@@ -737,42 +735,45 @@ fn single_keyword(upper: &str) -> Option<NodeKind> {
 }
 
 /// First words for which a line is never a plain call or assignment in the grammar's order.
-const STATEMENT_LIKE: &[&str] = &[
-    "ANIN",
-    "ANOUT",
-    "BRAKE",
-    "CASE",
-    "CHANNEL",
-    "CONFIRM",
-    "CONST",
-    "CONST_VEL",
-    "DEF",
-    "DEFDAT",
-    "DEFFCT",
-    "ENDSKIP",
-    "ENDSPLINE",
-    "ENUM",
-    "EXT",
-    "EXTFCT",
-    "EXTFCTP",
-    "EXTP",
-    "FOR",
-    "GLOBAL",
-    "GOTO",
-    "IMPORT",
-    "INTERRUPT",
-    "PTP_SPLINE",
-    "RETURN",
-    "SIGNAL",
-    "SKIP",
-    "SPLINE",
-    "STRUC",
-    "SWITCH",
-    "TIME_BLOCK",
-    "TRIGGER",
-    "UNTIL",
-    "WHILE",
-];
+fn statement_like(upper: &str) -> bool {
+    matches!(
+        upper,
+        "ANIN"
+            | "ANOUT"
+            | "BRAKE"
+            | "CASE"
+            | "CHANNEL"
+            | "CONFIRM"
+            | "CONST"
+            | "CONST_VEL"
+            | "DEF"
+            | "DEFDAT"
+            | "DEFFCT"
+            | "ENDSKIP"
+            | "ENDSPLINE"
+            | "ENUM"
+            | "EXT"
+            | "EXTFCT"
+            | "EXTFCTP"
+            | "EXTP"
+            | "FOR"
+            | "GLOBAL"
+            | "GOTO"
+            | "IMPORT"
+            | "INTERRUPT"
+            | "PTP_SPLINE"
+            | "RETURN"
+            | "SIGNAL"
+            | "SKIP"
+            | "SPLINE"
+            | "STRUC"
+            | "SWITCH"
+            | "TIME_BLOCK"
+            | "TRIGGER"
+            | "UNTIL"
+            | "WHILE"
+    )
+}
 
 #[cfg(test)]
 mod tests {
