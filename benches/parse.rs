@@ -82,6 +82,33 @@ fn cpu_ns() -> Option<u64> {
 /// `PARSE_CPU_ITERS=20 cargo bench --bench parse`: parse the synthetic file N times on one
 /// thread and print MB per CPU-second, then exit (no criterion run).
 fn cpu_throughput(iters: usize) {
+    // PARSE_CPU_DIR=DIR: measure over the KRL files below DIR instead (e.g. a local corpus).
+    if let Ok(dir) = std::env::var("PARSE_CPU_DIR") {
+        let (found, _) = krlkit::files::walk(&[std::path::PathBuf::from(dir)]);
+        let texts: Vec<String> = found
+            .iter()
+            .filter_map(|c| krlkit::files::load(c).ok().flatten())
+            .map(|d| d.text)
+            .collect();
+        let bytes: usize = texts.iter().map(String::len).sum();
+        let before = cpu_ns();
+        let mut clean = 0;
+        for _ in 0..iters {
+            clean = texts
+                .iter()
+                .filter(|t| krlkit::syntax::parse(t).diagnostics.is_empty())
+                .count();
+        }
+        if let (Some(a), Some(b)) = (before, cpu_ns()) {
+            let secs = (b - a) as f64 / 1e9;
+            println!(
+                "dir: {} files, {bytes} bytes x {iters} in {secs:.3} CPU-s = {:.1} MB/s per core; {clean} files without diagnostics",
+                texts.len(),
+                (bytes * iters) as f64 / 1e6 / secs
+            );
+        }
+        return;
+    }
     let big = synthetic(400);
     let before = cpu_ns();
     let mut diags = 0;

@@ -517,7 +517,7 @@ fn describe(e: pest::error::Error<Rule>, code: &str, base: usize) -> LineError {
             names.sort_unstable();
             names.dedup();
             if names.contains(&"expression") {
-                names.retain(|n| *n != "name");
+                names.retain(|n| *n != "name" && *n != "operator");
             }
             names
         }
