@@ -382,7 +382,7 @@ fn convert(pair: Pair<Rule>, ctx: &Ctx) -> Element {
 
 /// KRL operator priority, highest first: `:`; NOT B_NOT (and unary signs); * /; + -;
 /// AND B_AND; EXOR B_EXOR; OR B_OR; comparisons. Comparisons binding loosest follows the KSS 8
-/// programming manual's priority table [U: from memory of the manual, not re-verified].
+/// programming manual's priority table (unverified, marked [U] in the module docs).
 static PRATT: LazyLock<PrattParser<Rule>> = LazyLock::new(|| {
     PrattParser::new()
         .op(Op::infix(Rule::op_eq, Assoc::Left)
