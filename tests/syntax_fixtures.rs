@@ -25,6 +25,16 @@ fn describe(bytes: &[u8]) -> String {
     out
 }
 
+fn json_text(v: &serde_json::Value) -> String {
+    match (v.get("text"), v.get("children")) {
+        (Some(t), _) => t.as_str().unwrap_or_default().to_string(),
+        (None, Some(serde_json::Value::Array(children))) => {
+            children.iter().map(json_text).collect()
+        }
+        _ => String::new(),
+    }
+}
+
 #[test]
 fn valid_fixtures() {
     insta::glob!("fixtures/syntax/valid/*", |path| {
