@@ -14,6 +14,13 @@ fn describe(bytes: &[u8]) -> String {
         bytes,
         "decode + encode must give the bytes"
     );
+    let json: serde_json::Value =
+        serde_json::from_str(&parse.to_json_tree(text)).expect("--tree output is JSON");
+    assert_eq!(
+        json_text(&json),
+        *text,
+        "--tree token texts must concatenate to the text"
+    );
     let index = LineIndex::new(text);
     let mut out = format!("encoding: {:?}\n--- diagnostics\n", decoded.encoding);
     for d in &parse.diagnostics {
