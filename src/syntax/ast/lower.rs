@@ -397,6 +397,15 @@ impl<'t> Cx<'t> {
         let other = || StmtKind::Other {
             text: node.text(text).trim_end().to_string(),
         };
+        // A block whose header line did not parse: keep it visible as an error statement.
+        if let Some(head) = node.nodes().next()
+            && head.kind == K::Error
+            && node.kind != K::Error
+        {
+            return Some(StmtKind::Error {
+                text: head.text(text).trim().to_string(),
+            });
+        }
         Some(match node.kind {
             K::BlankLine | K::CommentLine | K::HeaderLine => return None,
             K::Error => StmtKind::Error {
