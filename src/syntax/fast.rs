@@ -182,6 +182,79 @@ impl<'t> P<'t> {
                 let then = self.kw("THEN")?;
                 (NodeKind::IfLine, vec![k, cond, then])
             }
+            "RETURN" | "SWITCH" | "WHILE" | "UNTIL" => {
+                let k = self.kw(first)?;
+                self.ws();
+                let mut children = vec![k];
+                if upper != "RETURN" || self.pos < self.end {
+                    children.push(self.expr()?);
+                }
+                let kind = match upper {
+                    "RETURN" => NodeKind::ReturnStmt,
+                    "SWITCH" => NodeKind::SwitchLine,
+                    "WHILE" => NodeKind::WhileLine,
+                    _ => NodeKind::UntilLine,
+                };
+                (kind, children)
+            }
+            "CASE" => {
+                let mut children = vec![self.kw("CASE")?];
+                loop {
+                    self.ws();
+                    children.push(self.expr()?);
+                    self.ws();
+                    if !self.punct(b',') {
+                        break;
+                    }
+                }
+                (NodeKind::CaseLine, children)
+            }
+            "GOTO" => {
+                let k = self.kw("GOTO")?;
+                self.ws();
+                (NodeKind::GotoStmt, vec![k, self.ident()?])
+            }
+            "BRAKE" => {
+                let mut children = vec![self.kw("BRAKE")?];
+                self.ws();
+                if let Some(f) = self.kw("F") {
+                    children.push(f);
+                }
+                (NodeKind::BrakeStmt, children)
+            }
+            "INTERRUPT" => {
+                let k = self.kw("INTERRUPT")?;
+                self.ws();
+                let action = self.kw_any(&["ON", "OFF", "ENABLE", "DISABLE"])?;
+                self.ws();
+                let mut children = vec![k, action];
+                if self.pos < self.end {
+                    children.push(self.expr()?);
+                }
+                (NodeKind::InterruptCtl, children)
+            }
+            "FOR" => {
+                let k = self.kw("FOR")?;
+                self.ws();
+                let var = self.ident()?;
+                self.ws();
+                if !self.punct(b'=') {
+                    return None;
+                }
+                self.ws();
+                let from = self.expr()?;
+                self.ws();
+                let to_kw = self.kw("TO")?;
+                self.ws();
+                let mut children = vec![k, var, from, to_kw, self.expr()?];
+                self.ws();
+                if let Some(step) = self.kw("STEP") {
+                    self.ws();
+                    children.push(step);
+                    children.push(self.expr()?);
+                }
+                (NodeKind::ForLine, children)
+            }
             "WAIT" => {
                 let k = self.kw("WAIT")?;
                 self.ws();
@@ -849,6 +922,18 @@ mod tests {
             "x = TRUE",
             "a == b = c",
             "x = - - 1",
+            "FOR i = 1 TO n STEP -1",
+            "for i=a[1] to b",
+            "CASE 1, #two, 'c'",
+            "SWITCH mode",
+            "WHILE NOT done",
+            "UNTIL i >= 10",
+            "RETURN",
+            "RETURN a + 1",
+            "GOTO m1",
+            "BRAKE F",
+            "INTERRUPT ON 3",
+            "interrupt disable",
         ] {
             assert!(agrees(code), "fast path should take {code:?}");
         }
@@ -885,9 +970,9 @@ mod tests {
 
         #[test]
         fn agrees_on_random_statements(
-            head in prop::sample::select(vec!["x = ", "DECL INT a = ", "IF ", "PTP ", "f(", "WAIT FOR "]),
+            head in prop::sample::select(vec!["x = ", "DECL INT a = ", "IF ", "PTP ", "f(", "WAIT FOR ", "FOR i = ", "CASE ", "RETURN ", "INTERRUPT ON ", "SWITCH "]),
             operand in prop::collection::vec(prop::sample::select(vec!["a", "1", "-", "NOT ", "(", ")", "[1]", ".b", "{X 1}", " + ", " AND ", ":", "==", ","]), 1..10),
-            tail in prop::sample::select(vec!["", " THEN", ")", " C_PTP", ", b"]),
+            tail in prop::sample::select(vec!["", " THEN", ")", " C_PTP", ", b", " TO 5", " TO n STEP 2"]),
         ) {
             agrees(&format!("{head}{}{tail}", operand.concat()));
         }
