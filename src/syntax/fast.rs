@@ -14,6 +14,8 @@ pub(crate) fn parse(text: &str, start: usize, end: usize) -> Option<Node> {
         b: text.as_bytes(),
         pos: start,
         end,
+        depth: 0,
+        items: 0,
     };
     let node = p.line(start)?;
     (p.pos == end).then_some(node)
@@ -24,7 +26,14 @@ struct P<'t> {
     b: &'t [u8],
     pos: usize,
     end: usize,
+    /// Bracket nesting, runs of signs/NOTs and expression items on the line: past the same
+    /// limits as the grammar path's pre-check (`line::too_deep`), the fast path gives up.
+    depth: usize,
+    items: usize,
 }
+
+const MAX_DEPTH: usize = 64;
+const MAX_ITEMS: usize = 1024;
 
 fn is_idc(b: u8) -> bool {
     b.is_ascii_alphanumeric() || b == b'_' || b == b'$'
@@ -395,6 +404,7 @@ impl<'t> P<'t> {
 
     /// `expr? ("," expr?)* close`, cursor after the opening bracket; returns the expressions.
     fn list(&mut self, close: u8) -> Option<Vec<Element>> {
+        self.enter()?;
         let mut items = Vec::new();
         loop {
             self.ws();
@@ -403,6 +413,7 @@ impl<'t> P<'t> {
                 self.ws();
             }
             if self.punct(close) {
+                self.depth -= 1;
                 return Some(items);
             }
             if !self.punct(b',') {
@@ -412,6 +423,16 @@ impl<'t> P<'t> {
     }
 
     // ---- expressions --------------------------------------------------------------------------
+
+    fn enter(&mut self) -> Option<()> {
+        self.depth += 1;
+        (self.depth <= MAX_DEPTH).then_some(())
+    }
+
+    fn count_item(&mut self) -> Option<()> {
+        self.items += 1;
+        (self.items <= MAX_ITEMS).then_some(())
+    }
 
     fn expr(&mut self) -> Option<Element> {
         let mut items = Vec::new();
@@ -424,6 +445,7 @@ impl<'t> P<'t> {
                 break;
             };
             let mark = items.len();
+            self.count_item()?;
             items.push(op);
             self.ws();
             if self.segment(&mut items).is_none() {
@@ -438,7 +460,13 @@ impl<'t> P<'t> {
 
     /// `prefix* primary postfix*`.
     fn segment(&mut self, items: &mut Vec<Item>) -> Option<()> {
+        let mut run = 0;
         while let Some(op) = self.prefix() {
+            self.count_item()?;
+            run += 1;
+            if run > MAX_DEPTH {
+                return None;
+            }
             items.push(Item::Prefix(op));
             self.ws();
         }
@@ -614,12 +642,14 @@ impl<'t> P<'t> {
             b'(' => {
                 let start = self.pos;
                 self.pos += 1;
+                self.enter()?;
                 self.ws();
                 let inner = self.expr()?;
                 self.ws();
                 if !self.punct(b')') {
                     return None;
                 }
+                self.depth -= 1;
                 Some(self.node(NodeKind::Paren, start, self.pos, vec![inner]))
             }
             _ => {
@@ -721,6 +751,7 @@ impl<'t> P<'t> {
     fn aggregate(&mut self) -> Option<Element> {
         let start = self.pos;
         self.pos += 1;
+        self.enter()?;
         self.ws();
         let mut children = Vec::new();
         // `{TYPE: …}`
@@ -748,6 +779,7 @@ impl<'t> P<'t> {
         if !self.punct(b'}') {
             return None;
         }
+        self.depth -= 1;
         Some(self.node(NodeKind::Aggregate, start, self.pos, children))
     }
 
@@ -975,6 +1007,32 @@ mod tests {
             tail in prop::sample::select(vec!["", " THEN", ")", " C_PTP", ", b", " TO 5", " TO n STEP 2"]),
         ) {
             agrees(&format!("{head}{}{tail}", operand.concat()));
+        }
+    }
+}
+
+#[cfg(test)]
+mod limits {
+    /// The fast path and the grammar path accept the same lines at the depth limits.
+    #[test]
+    fn same_limits_on_both_paths() {
+        for n in [63, 64, 65] {
+            for line in [
+                format!("x = {}1", "-".repeat(n)),
+                format!("x = {}1{}", "(".repeat(n), ")".repeat(n)),
+                format!("f({}1{})", "{A ".repeat(n - 1), "}".repeat(n - 1)),
+            ] {
+                let text = format!("{line}\n");
+                let p = crate::syntax::parse(&text);
+                let via_grammar = crate::syntax::line::parse_with_grammar(&line, 0, line.len());
+                let guard = super::super::line::too_deep_for_tests(&line);
+                assert_eq!(
+                    p.diagnostics.is_empty(),
+                    via_grammar.is_ok() && !guard,
+                    "{n}: {}",
+                    &line[..12]
+                );
+            }
         }
     }
 }

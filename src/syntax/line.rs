@@ -27,11 +27,18 @@ pub(crate) struct LineError {
 
 /// Parse `text[start..end]` (code only: no leading/trailing blanks, no comment, no newline).
 pub(crate) fn parse_code(text: &str, start: usize, end: usize) -> Result<Node, LineError> {
-    if let Some(err) = too_deep(&text[start..end], start) {
+    // The fast path enforces the same nesting and sign-run limits itself; only a line longer
+    // than MAX_OPERATORS bytes can hit the operator limit, so only such lines are pre-checked
+    // first. Either way both paths accept exactly the same lines.
+    let long = end - start > MAX_OPERATORS;
+    if long && let Some(err) = too_deep(&text[start..end], start) {
         return Err(err);
     }
     if let Some(node) = super::fast::parse(text, start, end) {
         return Ok(node);
+    }
+    if !long && let Some(err) = too_deep(&text[start..end], start) {
+        return Err(err);
     }
     parse_with_grammar(text, start, end)
 }
@@ -157,6 +164,11 @@ fn entry_rule(code: &str) -> Rule {
 const MAX_NESTING: usize = 64;
 const MAX_PREFIX_RUN: usize = 64;
 const MAX_OPERATORS: usize = 1024;
+
+#[cfg(test)]
+pub(crate) fn too_deep_for_tests(code: &str) -> bool {
+    too_deep(code, 0).is_some()
+}
 
 fn too_deep(code: &str, base: usize) -> Option<LineError> {
     let bytes = code.as_bytes();
