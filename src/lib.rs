@@ -3,6 +3,9 @@
 //! The crate is one library plus a thin binary. Stages are modules; see ARCHITECTURE.md for the
 //! codemap and the invariants that keep them apart.
 
+// pest is built without `std` (see Cargo.toml); its generated parser names `alloc` from the crate root.
+extern crate alloc;
+
 pub mod catalog;
 pub mod cli;
 pub mod diag;

@@ -222,3 +222,13 @@ fn channel_and_bit_operators() {
         matches!(&dat.definitions[0], Definition::Channel(c) if c.name.is("SER_1") && c.param.is_some())
     );
 }
+
+#[test]
+fn a_block_with_a_broken_header_stays_an_error_statement() {
+    let text = "DEF a()\n  IF x == THEN\n    y = 1\n  ENDIF\n  z = 2\nEND\n";
+    let p = parse(text);
+    assert_eq!(p.diagnostics.len(), 1, "{:?}", p.diagnostics);
+    let body = &p.ast(text).routines[0].body;
+    assert!(matches!(&body[0].kind, StmtKind::Error { text } if text == "IF x == THEN"));
+    assert!(matches!(body[1].kind, StmtKind::Assign { .. }));
+}

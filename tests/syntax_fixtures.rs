@@ -14,6 +14,13 @@ fn describe(bytes: &[u8]) -> String {
         bytes,
         "decode + encode must give the bytes"
     );
+    let json: serde_json::Value =
+        serde_json::from_str(&parse.to_json_tree(text)).expect("--tree output is JSON");
+    assert_eq!(
+        json_text(&json),
+        *text,
+        "--tree token texts must concatenate to the text"
+    );
     let index = LineIndex::new(text);
     let mut out = format!("encoding: {:?}\n--- diagnostics\n", decoded.encoding);
     for d in &parse.diagnostics {
@@ -23,6 +30,16 @@ fn describe(bytes: &[u8]) -> String {
     out.push_str("--- tree\n");
     out.push_str(&parse.root.debug_tree(text));
     out
+}
+
+fn json_text(v: &serde_json::Value) -> String {
+    match (v.get("text"), v.get("children")) {
+        (Some(t), _) => t.as_str().unwrap_or_default().to_string(),
+        (None, Some(serde_json::Value::Array(children))) => {
+            children.iter().map(json_text).collect()
+        }
+        _ => String::new(),
+    }
 }
 
 #[test]

@@ -1,6 +1,147 @@
-use super::Outcome;
-use super::args::ParseArgs;
+//! `krlkit parse PATH... [--format human|json]` and `krlkit parse --tree FILE`.
+//!
+//! Files are read, parsed and rendered in parallel, one at a time per worker; a tree is dropped
+//! as soon as its file is rendered. An unreadable file is reported and the run goes on (exit 2
+//! at the end); any syntax error gives exit 1.
 
-pub fn run(_args: ParseArgs) -> anyhow::Result<Outcome> {
-    anyhow::bail!("`krlkit parse` is not implemented in this build yet")
+use std::io::Write;
+
+use rayon::prelude::*;
+
+use super::Outcome;
+use super::args::{ParseArgs, ParseFormat};
+use crate::diag::{FileReport, Severity, render};
+use crate::files::{self, Candidate, FileError};
+use crate::syntax;
+
+pub fn run(args: ParseArgs) -> anyhow::Result<Outcome> {
+    if args.tree {
+        return tree(&args);
+    }
+    let (candidates, walk_errors) = files::walk(&args.paths);
+    let results: Vec<Result<Option<Checked>, FileError>> = candidates
+        .par_iter()
+        .map(|c| check(c, args.format))
+        .collect();
+
+    let mut failed = !walk_errors.is_empty();
+    for e in &walk_errors {
+        eprintln!("error: cannot read {e}");
+    }
+    let mut reports = Vec::new();
+    let mut human = String::new();
+    let mut errors = 0;
+    let mut warnings = 0;
+    for result in results {
+        match result {
+            Ok(Some(checked)) => {
+                errors += checked.report.count(Severity::Error);
+                warnings += checked.report.count(Severity::Warning);
+                human.push_str(&checked.human);
+                reports.push(checked.report);
+            }
+            Ok(None) => {}
+            Err(e) => {
+                eprintln!("error: cannot read {e}");
+                failed = true;
+            }
+        }
+    }
+    let mut stdout = std::io::stdout().lock();
+    match args.format {
+        ParseFormat::Json => writeln!(stdout, "{}", render::json::render(&reports))?,
+        ParseFormat::Human => {
+            write!(stdout, "{human}")?;
+            let files = reports.len();
+            if reports.is_empty() && !failed {
+                eprintln!("warning: no KRL files found");
+            }
+            eprintln!(
+                "{files} file{} parsed: {errors} error{}, {warnings} warning{}",
+                plural(files),
+                plural(errors),
+                plural(warnings)
+            );
+        }
+    }
+    Ok(if failed {
+        Outcome::Failure
+    } else if errors > 0 {
+        Outcome::Findings
+    } else {
+        Outcome::Success
+    })
+}
+
+fn plural(n: usize) -> &'static str {
+    if n == 1 { "" } else { "s" }
+}
+
+struct Checked {
+    /// Clean files keep no text, so memory does not grow with the number of files.
+    report: FileReport,
+    human: String,
+}
+
+fn check(candidate: &Candidate, format: ParseFormat) -> Result<Option<Checked>, FileError> {
+    let Some(decoded) = files::load(candidate)? else {
+        return Ok(None);
+    };
+    let parse = syntax::parse(&decoded.text);
+    let path = candidate.path.display().to_string();
+    if parse.diagnostics.is_empty() {
+        return Ok(Some(Checked {
+            report: FileReport {
+                path,
+                text: String::new(),
+                diagnostics: Vec::new(),
+            },
+            human: String::new(),
+        }));
+    }
+    let report = FileReport {
+        path,
+        text: decoded.text,
+        diagnostics: parse.diagnostics,
+    };
+    let mut human = String::new();
+    let report = match format {
+        ParseFormat::Human => {
+            render::human::render(&report, &mut human);
+            // Human output is already rendered; keep only what the summary needs.
+            FileReport {
+                text: String::new(),
+                ..report
+            }
+        }
+        ParseFormat::Json => report,
+    };
+    Ok(Some(Checked { report, human }))
+}
+
+fn tree(args: &ParseArgs) -> anyhow::Result<Outcome> {
+    let [path] = args.paths.as_slice() else {
+        anyhow::bail!("--tree takes exactly one FILE");
+    };
+    let candidate = Candidate {
+        path: path.clone(),
+        origin: files::Origin::Named,
+    };
+    let decoded = files::load(&candidate)?
+        .ok_or_else(|| anyhow::anyhow!("{}: not a KRL file", path.display()))?;
+    let parse = syntax::parse(&decoded.text);
+    let mut stdout = std::io::stdout().lock();
+    writeln!(stdout, "{}", parse.to_json_tree(&decoded.text))?;
+    if parse.diagnostics.is_empty() {
+        return Ok(Outcome::Success);
+    }
+    let report = FileReport {
+        path: path.display().to_string(),
+        text: decoded.text,
+        diagnostics: parse.diagnostics,
+    };
+    let mut human = String::new();
+    render::human::render(&report, &mut human);
+    eprint!("{human}");
+    Ok(Outcome::Findings)
 }

@@ -9,6 +9,8 @@ use crate::diag::{Diagnostic, Span};
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub(crate) enum Block {
     Routine,
+    /// DEFFCT … ENDFCT (END is tolerated too).
+    Function,
     Dat,
     If,
     For,
@@ -19,6 +21,7 @@ pub(crate) enum Block {
     Case,
     Default,
     Spline,
+    Skip,
 }
 
 /// What a line does to the block structure.
@@ -36,7 +39,8 @@ impl Role {
     pub(crate) fn of(kind: NodeKind) -> Role {
         use NodeKind as K;
         match kind {
-            K::DefLine | K::DeffctLine => Role::Open(Block::Routine),
+            K::DefLine => Role::Open(Block::Routine),
+            K::DeffctLine => Role::Open(Block::Function),
             K::EndLine => Role::Close(Block::Routine),
             K::DefdatLine => Role::Open(Block::Dat),
             K::EnddatLine => Role::Close(Block::Dat),
@@ -57,6 +61,8 @@ impl Role {
             K::EndswitchLine => Role::Close(Block::Switch),
             K::SplineLine => Role::Open(Block::Spline),
             K::EndsplineLine => Role::Close(Block::Spline),
+            K::SkipLine => Role::Open(Block::Skip),
+            K::EndskipLine => Role::Close(Block::Skip),
             _ => Role::None,
         }
     }
@@ -76,12 +82,19 @@ impl Role {
             .chars()
             .next()
             .is_some_and(|c| c.is_ascii_alphabetic());
-        if !starts_word {
+        // `skip = 1`: a keyword-like name being assigned is not a block line.
+        let after_first = code
+            .trim_start()
+            .trim_start_matches(|c: char| c.is_ascii_alphanumeric() || c == '_' || c == '$')
+            .trim_start();
+        let assigned = after_first.starts_with('=') && !after_first.starts_with("==");
+        if !starts_word || assigned {
             return Role::None;
         }
         match first.as_str() {
-            "DEF" | "DEFFCT" => Role::Open(Block::Routine),
-            "END" => Role::Close(Block::Routine),
+            "DEF" => Role::Open(Block::Routine),
+            "DEFFCT" => Role::Open(Block::Function),
+            "END" | "ENDFCT" => Role::Close(Block::Routine),
             "DEFDAT" => Role::Open(Block::Dat),
             "ENDDAT" => Role::Close(Block::Dat),
             "IF" => Role::Open(Block::If),
@@ -101,6 +114,8 @@ impl Role {
             "ENDSWITCH" => Role::Close(Block::Switch),
             "SPLINE" | "PTP_SPLINE" => Role::Open(Block::Spline),
             "ENDSPLINE" => Role::Close(Block::Spline),
+            "SKIP" => Role::Open(Block::Skip),
+            "ENDSKIP" => Role::Close(Block::Skip),
             _ => Role::None,
         }
     }
@@ -109,7 +124,7 @@ impl Role {
 impl Block {
     fn node_kind(self) -> NodeKind {
         match self {
-            Block::Routine => NodeKind::Routine,
+            Block::Routine | Block::Function => NodeKind::Routine,
             Block::Dat => NodeKind::DatModule,
             Block::If => NodeKind::IfBlock,
             Block::For => NodeKind::ForBlock,
@@ -120,12 +135,14 @@ impl Block {
             Block::Case => NodeKind::CaseBlock,
             Block::Default => NodeKind::DefaultBlock,
             Block::Spline => NodeKind::SplineBlock,
+            Block::Skip => NodeKind::SkipBlock,
         }
     }
 
     fn opener(self) -> &'static str {
         match self {
             Block::Routine => "DEF",
+            Block::Function => "DEFFCT",
             Block::Dat => "DEFDAT",
             Block::If => "IF",
             Block::For => "FOR",
@@ -136,12 +153,14 @@ impl Block {
             Block::Case => "CASE",
             Block::Default => "DEFAULT",
             Block::Spline => "SPLINE",
+            Block::Skip => "SKIP",
         }
     }
 
     fn closer(self) -> &'static str {
         match self {
             Block::Routine => "END",
+            Block::Function => "ENDFCT",
             Block::Dat => "ENDDAT",
             Block::If => "ENDIF",
             Block::For => "ENDFOR",
@@ -151,6 +170,7 @@ impl Block {
             Block::Switch => "ENDSWITCH",
             Block::Case | Block::Default => "CASE, DEFAULT or ENDSWITCH",
             Block::Spline => "ENDSPLINE",
+            Block::Skip => "ENDSKIP",
         }
     }
 
@@ -161,7 +181,7 @@ impl Block {
 
     /// Module-level blocks: a close never searches past them.
     fn is_module(self) -> bool {
-        matches!(self, Block::Routine | Block::Dat)
+        matches!(self, Block::Routine | Block::Function | Block::Dat)
     }
 }
 
@@ -313,7 +333,7 @@ impl<'t> Assembler<'t> {
         // Find the innermost matching frame without crossing a module boundary.
         let mut found = None;
         for (i, f) in self.stack.iter().enumerate().rev() {
-            if f.block == block {
+            if f.block == block || (block == Block::Routine && f.block == Block::Function) {
                 found = Some(i);
                 break;
             }

@@ -27,8 +27,26 @@ pub(crate) struct LineError {
 
 /// Parse `text[start..end]` (code only: no leading/trailing blanks, no comment, no newline).
 pub(crate) fn parse_code(text: &str, start: usize, end: usize) -> Result<Node, LineError> {
+    // The fast path enforces the same nesting and sign-run limits itself; only a line longer
+    // than MAX_OPERATORS bytes can hit the operator limit, so only such lines are pre-checked
+    // first. Either way both paths accept exactly the same lines.
+    let long = end - start > MAX_OPERATORS;
+    if long && let Some(err) = too_deep(&text[start..end], start) {
+        return Err(err);
+    }
+    if let Some(node) = super::fast::parse(text, start, end) {
+        return Ok(node);
+    }
+    if !long && let Some(err) = too_deep(&text[start..end], start) {
+        return Err(err);
+    }
+    parse_with_grammar(text, start, end)
+}
+
+/// The grammar alone (the fast path must agree with it wherever it answers).
+pub(crate) fn parse_with_grammar(text: &str, start: usize, end: usize) -> Result<Node, LineError> {
     let code = &text[start..end];
-    match KrlGrammar::parse(Rule::line, code) {
+    match KrlGrammar::parse(entry_rule(code), code) {
         Ok(mut pairs) => {
             let line = pairs.next();
             let stmt = line.and_then(|l| l.into_inner().find(|p| p.as_rule() != Rule::EOI));
@@ -43,6 +61,191 @@ pub(crate) fn parse_code(text: &str, start: usize, end: usize) -> Result<Node, L
         }
         Err(e) => Err(describe(e, code, start)),
     }
+}
+
+/// Words that can start a statement other than a declaration, assignment, call or label.
+const STATEMENT_WORDS: &[&str] = &[
+    "ANIN",
+    "ANOUT",
+    "BRAKE",
+    "CASE",
+    "CHANNEL",
+    "CIRC",
+    "CIRC_REL",
+    "CONFIRM",
+    "CONST",
+    "CONST_VEL",
+    "CONTINUE",
+    "DEF",
+    "DEFAULT",
+    "DEFDAT",
+    "DEFFCT",
+    "ELSE",
+    "END",
+    "ENDDAT",
+    "ENDFCT",
+    "ENDFOR",
+    "ENDIF",
+    "ENDLOOP",
+    "ENDSKIP",
+    "ENDSPLINE",
+    "ENDSWITCH",
+    "ENDWHILE",
+    "ENUM",
+    "EXIT",
+    "EXT",
+    "EXTFCT",
+    "EXTFCTP",
+    "EXTP",
+    "FOR",
+    "GLOBAL",
+    "GOTO",
+    "HALT",
+    "IF",
+    "IMPORT",
+    "INTERRUPT",
+    "LIN",
+    "LIN_REL",
+    "LOOP",
+    "ON_ERROR_PROCEED",
+    "PTP",
+    "PTP_REL",
+    "PTP_SPLINE",
+    "REPEAT",
+    "RESUME",
+    "RETURN",
+    "SCIRC",
+    "SCIRC_REL",
+    "SIGNAL",
+    "SKIP",
+    "SLIN",
+    "SLIN_REL",
+    "SPL",
+    "SPLINE",
+    "SPTP",
+    "SPTP_REL",
+    "STRUC",
+    "SWITCH",
+    "TIME_BLOCK",
+    "TRIGGER",
+    "UNTIL",
+    "WAIT",
+    "WHILE",
+];
+
+/// The cheapest grammar entry that can accept this line (always a subset of `line`).
+fn entry_rule(code: &str) -> Rule {
+    let bytes = code.as_bytes();
+    if bytes.first() == Some(&b'$') {
+        return Rule::line_ident;
+    }
+    if !bytes
+        .first()
+        .is_some_and(|b| b.is_ascii_alphabetic() || *b == b'_')
+    {
+        return Rule::line;
+    }
+    let len = bytes
+        .iter()
+        .take_while(|c| c.is_ascii_alphanumeric() || **c == b'_' || **c == b'$')
+        .count();
+    let word = &code[..len];
+    if word.eq_ignore_ascii_case("DECL") {
+        Rule::line_decl
+    } else if len > 16 || STATEMENT_WORDS.iter().any(|k| k.eq_ignore_ascii_case(word)) {
+        Rule::line
+    } else {
+        Rule::line_ident
+    }
+}
+
+/// Limits that keep recursion (pest, Pratt, tree walks) far from the stack's end. pest runs
+/// without its own stack probe (see Cargo.toml), so this check is what makes hostile input safe.
+const MAX_NESTING: usize = 64;
+const MAX_PREFIX_RUN: usize = 64;
+const MAX_OPERATORS: usize = 1024;
+
+#[cfg(test)]
+pub(crate) fn too_deep_for_tests(code: &str) -> bool {
+    too_deep(code, 0).is_some()
+}
+
+fn too_deep(code: &str, base: usize) -> Option<LineError> {
+    let bytes = code.as_bytes();
+    let mut depth = 0usize;
+    let mut prefix_run = 0usize;
+    let mut operators = 0usize;
+    let mut quote: Option<u8> = None;
+    let mut i = 0;
+    while i < bytes.len() {
+        let b = bytes[i];
+        if let Some(q) = quote {
+            if b == q {
+                quote = None;
+            }
+            i += 1;
+            continue;
+        }
+        let word_len = bytes[i..]
+            .iter()
+            .take_while(|c| c.is_ascii_alphanumeric() || **c == b'_' || **c == b'$')
+            .count();
+        let fail = |what: &str| {
+            Some(LineError {
+                at: base + i,
+                len: 1,
+                message: format!("{what}; split the expression"),
+            })
+        };
+        match b {
+            b'"' | b'\'' => quote = Some(b),
+            b'(' | b'[' | b'{' => {
+                depth += 1;
+                if depth > MAX_NESTING {
+                    return fail("brackets nested more than 64 deep");
+                }
+            }
+            b')' | b']' | b'}' => depth = depth.saturating_sub(1),
+            _ => {}
+        }
+        // Only words of 2..=6 ASCII letters can be operator keywords; compare without allocating.
+        let mut upper = [0u8; 6];
+        let word: &[u8] = if (2..=6).contains(&word_len) {
+            for (u, c) in upper.iter_mut().zip(&bytes[i..i + word_len]) {
+                *u = c.to_ascii_uppercase();
+            }
+            &upper[..word_len]
+        } else {
+            b""
+        };
+        let is_prefix = matches!(b, b'-' | b'+') || matches!(word, b"NOT" | b"B_NOT");
+        let is_operator = is_prefix
+            || matches!(b, b'*' | b'/' | b':' | b'<' | b'>' | b'=')
+            || matches!(
+                word,
+                b"AND" | b"OR" | b"EXOR" | b"B_AND" | b"B_OR" | b"B_EXOR"
+            );
+        if is_operator {
+            operators += 1;
+            if operators > MAX_OPERATORS {
+                return fail("more than 1024 operators on one line");
+            }
+        }
+        if is_prefix {
+            prefix_run += 1;
+            if prefix_run > MAX_PREFIX_RUN {
+                return fail("more than 64 signs or NOTs in a row");
+            }
+        } else if !matches!(b, b' ' | b'\t') {
+            prefix_run = 0;
+        }
+        i += if word_len > 0 {
+            word_len
+        } else {
+            code[i..].chars().next().map_or(1, char::len_utf8)
+        };
+    }
+    None
 }
 
 struct Ctx<'t> {
@@ -91,6 +294,8 @@ fn classify(rule: Rule) -> Class {
         Rule::endswitch_line => N(NodeKind::EndswitchLine),
         Rule::spline_line => N(NodeKind::SplineLine),
         Rule::endspline_line => N(NodeKind::EndsplineLine),
+        Rule::skip_line => N(NodeKind::SkipLine),
+        Rule::endskip_line => N(NodeKind::EndskipLine),
         Rule::time_block_stmt => N(NodeKind::TimeBlockStmt),
         Rule::const_vel_stmt => N(NodeKind::ConstVelStmt),
         Rule::interrupt_decl => N(NodeKind::InterruptDecl),
@@ -102,6 +307,7 @@ fn classify(rule: Rule) -> Class {
         Rule::wait_for_stmt => N(NodeKind::WaitForStmt),
         Rule::wait_sec_stmt => N(NodeKind::WaitSecStmt),
         Rule::halt_stmt => N(NodeKind::HaltStmt),
+        Rule::confirm_stmt => N(NodeKind::ConfirmStmt),
         Rule::brake_stmt => N(NodeKind::BrakeStmt),
         Rule::resume_stmt => N(NodeKind::ResumeStmt),
         Rule::return_stmt => N(NodeKind::ReturnStmt),
@@ -176,7 +382,9 @@ fn convert(pair: Pair<Rule>, ctx: &Ctx) -> Element {
             span: ctx.span(&pair),
         }),
         Class::Node(kind) => {
-            let span = ctx.span(&pair);
+            // Canonical form: nodes never end in blanks (pest's implicit whitespace before an
+            // absent optional would otherwise end up inside the node); the parent re-lexes them.
+            let span = tight(ctx.text, ctx.span(&pair));
             let children = pair.into_inner().map(|p| convert(p, ctx)).collect();
             Element::Node(make_node(ctx.text, kind, span, children))
         }
@@ -186,7 +394,7 @@ fn convert(pair: Pair<Rule>, ctx: &Ctx) -> Element {
 
 /// KRL operator priority, highest first: `:`; NOT B_NOT (and unary signs); * /; + -;
 /// AND B_AND; EXOR B_EXOR; OR B_OR; comparisons. Comparisons binding loosest follows the KSS 8
-/// programming manual's priority table [U: from memory of the manual, not re-verified].
+/// programming manual's priority table (unverified, marked [U] in the module docs).
 static PRATT: LazyLock<PrattParser<Rule>> = LazyLock::new(|| {
     PrattParser::new()
         .op(Op::infix(Rule::op_eq, Assoc::Left)
@@ -239,6 +447,12 @@ fn expr(pairs: Pairs<Rule>, ctx: &Ctx) -> Element {
             Element::Node(make_node(ctx.text, kind, span, children))
         })
         .parse(pairs)
+}
+
+fn tight(text: &str, span: Span) -> Span {
+    let s = &text[span.range()];
+    let trimmed = s.trim_end_matches([' ', '\t', '\u{0B}', '\u{0C}', '\u{A0}']);
+    Span::new(span.start as usize, span.start as usize + trimmed.len())
 }
 
 /// Build a node over `span`, filling every byte not covered by `children` with gap tokens.
@@ -315,7 +529,7 @@ fn describe(e: pest::error::Error<Rule>, code: &str, base: usize) -> LineError {
             names.sort_unstable();
             names.dedup();
             if names.contains(&"expression") {
-                names.retain(|n| *n != "name");
+                names.retain(|n| *n != "name" && *n != "operator");
             }
             names
         }
@@ -327,14 +541,11 @@ fn describe(e: pest::error::Error<Rule>, code: &str, base: usize) -> LineError {
         format!("`{found}`")
     };
     let message = if pos == 0 {
-        format!("syntax error: `{}` does not start a KRL statement", found)
+        format!("`{}` does not start a KRL statement", found)
     } else if !expected.is_empty() && expected.len() <= 4 {
-        format!(
-            "syntax error: expected {}, found {found_desc}",
-            join_or(&expected)
-        )
+        format!("expected {}, found {found_desc}", join_or(&expected))
     } else {
-        format!("syntax error: unexpected {found_desc}")
+        format!("unexpected {found_desc}")
     };
     LineError {
         at: base + pos,

@@ -13,6 +13,27 @@
 //! assert_eq!(decoded.encode(), b"DEF main()\r\n  PTP HOME\r\nEND\r\n");
 //! ```
 //!
+//! Public API (what other stages use):
+//! - [`decode`]`(&[u8]) -> `[`Decoded`]` { text, encoding }`, [`Decoded::encode`] (gives back
+//!   the original bytes), [`TextEncoding`]`::{Utf8, Utf8Bom, SingleByte}`.
+//! - [`parse`]`(&str) -> `[`Parse`]` { root: `[`Node`]`, diagnostics }`; [`Parse::to_json_tree`],
+//!   [`Parse::ast`]. CST: [`Node`]` { kind, span, children }`, [`Token`]` { kind, span }`,
+//!   [`Element`], [`NodeKind`], [`TokenKind`]; spans are [`crate::diag::Span`] byte ranges.
+//! - [`ast`]: `SourceFile { routines, dat, top_level, headers }`, `Routine`, `DatModule`, `Decl`,
+//!   `Definition` (STRUC/ENUM/SIGNAL/CHANNEL/EXT/IMPORT), `Stmt`/`StmtKind`, `Expr`/`ExprKind`,
+//!   `Ident` (compare with `Ident::is`, case-insensitive).
+//!
+//! How a line is parsed: blank, comment-only and `&` lines are classified by hand; a hand-written
+//! fast path (`fast.rs`) takes the most frequent shapes (assignments, calls, `DECL`, simple
+//! motions, `IF … THEN`, `WAIT`, one-keyword lines) and must build exactly the tree the pest
+//! grammar (`krl.pest`) would; everything else goes to the grammar. Expression precedence, highest
+//! first: `:`; `NOT B_NOT` and signs; `* /`; `+ -`; `AND B_AND`; `EXOR B_EXOR`; `OR B_OR`;
+//! comparisons (from the KSS 8 manual's priority table; unverified \[U\], not re-checked here).
+//!
+//! Known ambiguity: KRL allows declarations without `DECL` (`INT i`, `E6POS p`), so a misspelt
+//! keyword followed by a name (`PTPP P1`) parses as a declaration of type `PTPP`; an unknown type
+//! is for a later (semantic) stage to report.
+//!
 //! Architecture invariants:
 //! - Parsing never fails: it returns a tree and a list of `KRL001` diagnostics.
 //! - The tree is lossless: its tokens cover the text exactly once, so printing gives back the
@@ -20,11 +41,16 @@
 //! - KRL is line-oriented; each physical line is one node. Lines are parsed independently, so one
 //!   bad line is one error node and one diagnostic, and never hides the lines after it.
 //! - pest types never leave this module (`line.rs` maps them into [`cst`] immediately).
+//! - The fast path never disagrees with the grammar: where it answers, the tree is identical
+//!   (checked on every fixture line and on random lines); where unsure, it answers nothing.
+//! - Hostile input cannot overflow the stack: bracket nesting, runs of signs/NOTs and operators
+//!   per line are bounded before any recursive parsing (a `KRL001` when exceeded).
 
 pub mod ast;
 mod blocks;
 pub mod cst;
 mod decode;
+mod fast;
 mod line;
 mod parser;
 

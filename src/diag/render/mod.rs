@@ -1,1 +1,7 @@
-//! (in progress)
+//! Diagnostics → text. One module per output format; each takes [`FileReport`]s and returns or
+//! appends text, never prints.
+//!
+//! [`FileReport`]: crate::diag::FileReport
+
+pub mod human;
+pub mod json;

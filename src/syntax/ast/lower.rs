@@ -397,6 +397,15 @@ impl<'t> Cx<'t> {
         let other = || StmtKind::Other {
             text: node.text(text).trim_end().to_string(),
         };
+        // A block whose header line did not parse: keep it visible as an error statement.
+        if let Some(head) = node.nodes().next()
+            && head.kind == K::Error
+            && node.kind != K::Error
+        {
+            return Some(StmtKind::Error {
+                text: head.text(text).trim().to_string(),
+            });
+        }
         Some(match node.kind {
             K::BlankLine | K::CommentLine | K::HeaderLine => return None,
             K::Error => StmtKind::Error {
@@ -513,6 +522,13 @@ impl<'t> Cx<'t> {
                     body: self.body(inner(&lines, K::EndsplineLine)),
                 }
             }
+            K::SkipBlock => {
+                let lines: Vec<&Node> = node.nodes().collect();
+                StmtKind::Skip {
+                    arg: lines.first().and_then(|h| self.exprs(h).into_iter().next()),
+                    body: self.body(inner(&lines, K::EndskipLine)),
+                }
+            }
             // Block lines seen outside their block (already reported by the assembler).
             K::ElseLine
             | K::EndifLine
@@ -572,6 +588,9 @@ impl<'t> Cx<'t> {
                 time: first_expr()?,
             },
             K::HaltStmt => StmtKind::Halt,
+            K::ConfirmStmt => StmtKind::Confirm {
+                handle: first_expr()?,
+            },
             K::BrakeStmt => StmtKind::Brake {
                 fast: node.has_keyword(text, "F"),
             },

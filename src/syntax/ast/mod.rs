@@ -276,6 +276,10 @@ pub enum StmtKind {
         time: Expr,
     },
     Halt,
+    /// `CONFIRM handle` (acknowledge a message).
+    Confirm {
+        handle: Expr,
+    },
     Return {
         value: Option<Expr>,
     },
@@ -290,6 +294,11 @@ pub enum StmtKind {
         body: Vec<Stmt>,
     },
     TimeBlock(TimeBlock),
+    /// `SKIP [n] … ENDSKIP [n]`.
+    Skip {
+        arg: Option<Expr>,
+        body: Vec<Stmt>,
+    },
     /// `INTERRUPT ON|OFF|ENABLE|DISABLE [n]`.
     Interrupt {
         action: InterruptAction,

@@ -1,0 +1,133 @@
+//! Invariants over arbitrary input: never panic, always lossless, one KRL001 per garbage line.
+
+use krlkit::diag::LineIndex;
+use krlkit::syntax::{decode, parse};
+use proptest::prelude::*;
+
+const VALID: &str = "DEF main()\r\n  DECL INT i\r\n  i = 1\r\n  IF i > 0 THEN\r\n    PTP HOME C_PTP\r\n  ENDIF\r\n  WAIT SEC 0.5\r\nEND\r\n";
+
+/// Lines that are never KRL.
+fn garbage() -> impl Strategy<Value = String> {
+    prop_oneof![
+        Just("@@@ ?? $$".to_string()),
+        Just("= = =".to_string()),
+        Just("}{".to_string()),
+        "[@?%!][ @?%!a-z]{0,12}",
+    ]
+}
+
+fn krl_ish() -> impl Strategy<Value = String> {
+    let piece = prop_oneof![
+        Just("DEF "),
+        Just("END"),
+        Just("IF "),
+        Just(" THEN"),
+        Just("ENDIF"),
+        Just("FOR "),
+        Just("ENDFOR"),
+        Just("PTP "),
+        Just("{X 1, Y 2}"),
+        Just("'B 101'"),
+        Just("\"s;\""),
+        Just(";FOLD x;%{PE}"),
+        Just(";ENDFOLD"),
+        Just("&ACCESS RV"),
+        Just("\r\n"),
+        Just("\n"),
+        Just("\r"),
+        Just("\t"),
+        Just(" "),
+        Just("="),
+        Just("("),
+        Just(")"),
+        Just(","),
+        Just("$OUT[1]"),
+        Just("#E"),
+        Just(":"),
+        Just("CASE"),
+        Just("SWITCH"),
+        Just("x"),
+        Just("1.5E3"),
+        Just("'"),
+        Just("ä"),
+        Just("\u{0}"),
+    ];
+    prop::collection::vec(piece, 0..60).prop_map(|v| v.concat())
+}
+
+proptest! {
+    #![proptest_config(ProptestConfig { cases: 256, ..ProptestConfig::default() })]
+
+    #[test]
+    fn arbitrary_bytes_round_trip(bytes in prop::collection::vec(any::<u8>(), 0..400)) {
+        let decoded = decode(&bytes);
+        prop_assert_eq!(decoded.encode(), bytes);
+        let p = parse(&decoded.text);
+        prop_assert_eq!(p.root.print(&decoded.text), decoded.text.clone());
+        let _ = p.ast(&decoded.text);
+    }
+
+    #[test]
+    fn krl_like_text_round_trips(text in krl_ish()) {
+        let p = parse(&text);
+        prop_assert_eq!(p.root.print(&text), text.clone());
+        for d in &p.diagnostics {
+            prop_assert!(d.span.end as usize <= text.len());
+            prop_assert!(text.is_char_boundary(d.span.start as usize));
+        }
+        let _ = p.ast(&text);
+        let _ = p.to_json_tree(&text);
+    }
+
+    #[test]
+    fn every_garbage_line_is_reported(inserts in prop::collection::vec((1usize..8, garbage()), 1..4)) {
+        let mut lines: Vec<String> = VALID.split_inclusive("\r\n").map(str::to_string).collect();
+        let mut expected = Vec::new();
+        for (at, g) in inserts {
+            let at = at.min(lines.len() - 1);
+            lines.insert(at, format!("  {g}\r\n"));
+            for e in expected.iter_mut() {
+                if *e >= at { *e += 1; }
+            }
+            expected.push(at);
+        }
+        expected.sort_unstable();
+        let text = lines.concat();
+        let p = parse(&text);
+        let index = LineIndex::new(&text);
+        let got: Vec<usize> = p.diagnostics.iter().map(|d| index.line_of(d.span.start as usize)).collect();
+        prop_assert!(p.diagnostics.iter().all(|d| d.code == "KRL001"));
+        prop_assert_eq!(got, expected, "{}", text);
+        // The column points into the inserted code (after the two-blank indent).
+        for d in &p.diagnostics {
+            let (_, col) = index.line_col(&text, d.span.start as usize);
+            prop_assert!(col >= 3);
+        }
+    }
+}
+
+/// Hostile nesting must be an error, not a stack overflow (checked on a 2 MiB thread, like rayon's).
+#[test]
+fn deep_nesting_is_an_error_not_a_crash() {
+    let cases = [
+        format!("x = {}1{}", "(".repeat(20_000), ")".repeat(20_000)),
+        format!("x = {}1", "- ".repeat(20_000)),
+        format!("x = {}", vec!["1"; 30_000].join("+")),
+        format!("x = {}1", "NOT ".repeat(20_000)),
+        format!("x = {}", "{A ".repeat(20_000)),
+    ];
+    std::thread::Builder::new()
+        .stack_size(2 << 20)
+        .spawn(move || {
+            for line in cases {
+                let text = format!("DEF a()\n{line}\nEND\n");
+                let p = parse(&text);
+                assert_eq!(p.diagnostics.len(), 1, "{}", &line[..20]);
+                assert_eq!(p.root.print(&text), text);
+                let _ = p.ast(&text);
+            }
+        })
+        .expect("spawn")
+        .join()
+        .expect("no stack overflow");
+}
