@@ -52,6 +52,7 @@ pub struct Limits {
     pub eki_raw_size_max: u32,
     pub flag_min: i64,
     pub flag_max: i64,
+    pub out_max: u32,
     pub ascii_bytes_per_point: u32,
     pub ascii_header_bytes: u32,
 }
