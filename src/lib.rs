@@ -6,6 +6,7 @@
 pub mod catalog;
 pub mod cli;
 pub mod diag;
+pub mod eki;
 pub mod generate;
 pub mod lint;
 pub mod sim;
