@@ -169,7 +169,7 @@ pub fn assumptions(spec: &Spec) -> Vec<String> {
         "[U] EKI_Send on a RAW STREAM sends the CHAR array up to its first NUL (buffers are cleared with StrClear first)".into(),
         "[U] flange pose = $BASE:$POS_ACT:INV_POS($TOOL), i.e. in WORLD (equal to ROBROOT on a fixed robot)".into(),
         "[U] returned E6POS targets only get X,Y,Z,A,B,C; S, T and E1..E6 of the caller's variable are left untouched".into(),
-        "[U] Do_Port entries are $OUT numbers; entries outside 1..out_max (0, -1) switch nothing; outputs are not cleared first".into(),
+        format!("[U] Do_Port entries are $OUT numbers; entries outside 1..{} (0, -1) switch nothing; outputs are not cleared first", catalog().limits.out_max),
         "[U] MM_CALIB moves the flange (TOOL and BASE = $NULLFRAME during the move); E1 is written to the target's E1 and not sent".into(),
         format!("[U] $TIMER[{}] is reserved for the package", spec.timer),
     ]
@@ -193,6 +193,8 @@ pub struct Routine {
     /// KRL statement prefix that stores a status: `MM_Status` or `MM_Last_Status`.
     pub status_var: String,
     pub has_status_param: bool,
+    /// Whether any IN argument has a documented range (`bad_args` is not just `FALSE`).
+    pub has_bad_args: bool,
     /// Statements appending the IN arguments to the request, in order.
     pub tx: Vec<String>,
     /// Extra local declarations.
@@ -318,6 +320,9 @@ impl Routine {
             status.push(format!("{} BAD_REPLY", codes.bad_reply));
             status.push(format!("{} WRONG_ECHO", codes.wrong_echo));
         }
+        if cmd == 0 && sp.param("Serial").is_none() {
+            status.push("0 done".into());
+        }
         if !bad.is_empty() {
             status.push(format!("{} BAD_ARGUMENT", codes.bad_argument));
         }
@@ -402,6 +407,7 @@ impl Routine {
             bad_args,
             status_var,
             has_status_param: status_param.is_some(),
+            has_bad_args: !bad.is_empty(),
         }
     }
 }
