@@ -298,3 +298,23 @@ fn unwritable_output_leaves_nothing_behind() {
     assert!(generate::write_atomic(&file, &files).is_err());
     assert_eq!(std::fs::read(&file).unwrap(), b"x");
 }
+
+#[test]
+fn catalog_globals_are_declared_with_the_limit_sizes() {
+    let cat = catalog();
+    let l = &cat.limits;
+    let size = |n: &str| cat.global(n).and_then(|g| g.size);
+    assert_eq!(size("MM_UserData"), Some(l.user_data_len));
+    assert_eq!(size("MM_Plan_Results"), Some(l.plan_results_len));
+    assert_eq!(size("Do_Port"), Some(l.do_list_len));
+    let files = generate::generate(&Spec::default()).unwrap();
+    let dat = files
+        .iter()
+        .find(|f| f.path.ends_with("MM_Comm.dat"))
+        .expect("data module");
+    let text = String::from_utf8(dat.contents.clone()).unwrap();
+    for g in &cat.globals {
+        let decl = format!("DECL GLOBAL {} {}", g.ty, g.name);
+        assert!(text.contains(&decl), "missing `{decl}`");
+    }
+}

@@ -35,6 +35,28 @@ impl Codes {
     }
 }
 
+/// A catalog global as the data module declares it.
+#[derive(Debug, Clone)]
+pub struct GlobalDecl {
+    pub decl: String,
+    pub meaning: String,
+}
+
+fn global_decls() -> Vec<GlobalDecl> {
+    catalog()
+        .globals
+        .iter()
+        .map(|g| GlobalDecl {
+            decl: match g.size {
+                Some(n) => format!("DECL GLOBAL {} {}[{n}]", g.ty, g.name),
+                // Scalars start at 0 so a read before the first call is defined.
+                None => format!("DECL GLOBAL {} {}=0", g.ty, g.name),
+            },
+            meaning: g.meaning.clone(),
+        })
+        .collect()
+}
+
 /// Sizes and settings shared by the helper module, the data module and the routines.
 #[derive(Debug, Clone)]
 pub struct Package {
@@ -59,6 +81,8 @@ pub struct Package {
     pub out_max: u32,
     /// `(code, name, meaning)` of every package-defined status code.
     pub package_codes: Vec<(u32, String, String)>,
+    /// Globals for user programs, from the catalog.
+    pub globals: Vec<GlobalDecl>,
     /// Size of the channel-name buffer.
     pub channel_len: u32,
     /// Values of `MM_Pt_Kind`; joints and TCPs equal the Jps_Pos values 1 and 2.
@@ -139,6 +163,7 @@ impl Package {
             do_list_len: l.do_list_len,
             out_max: l.out_max,
             package_codes,
+            globals: global_decls(),
             channel_len: 32,
             kind_joints: 1,
             kind_tcp: 2,
