@@ -37,6 +37,22 @@ pub struct Catalog {
     pub subprograms: Vec<Subprogram>,
     #[serde(rename = "status")]
     pub statuses: Vec<Status>,
+    /// Globals of the generated package that user programs may read.
+    #[serde(rename = "global", default)]
+    pub globals: Vec<Global>,
+}
+
+/// A global variable of the generated package (declared in `MM_Comm.dat`).
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct Global {
+    pub name: String,
+    #[serde(rename = "type")]
+    pub ty: String,
+    /// Array length; `None` for a scalar.
+    #[serde(default)]
+    pub size: Option<u32>,
+    pub meaning: String,
 }
 
 #[derive(Debug, Deserialize)]
@@ -52,6 +68,7 @@ pub struct Limits {
     pub eki_raw_size_max: u32,
     pub flag_min: i64,
     pub flag_max: i64,
+    pub out_max: u32,
     pub ascii_bytes_per_point: u32,
     pub ascii_header_bytes: u32,
 }
@@ -271,6 +288,13 @@ impl Catalog {
         self.subprograms
             .iter()
             .find(|s| s.name.eq_ignore_ascii_case(name))
+    }
+
+    /// A package global by name (case-insensitive).
+    pub fn global(&self, name: &str) -> Option<&Global> {
+        self.globals
+            .iter()
+            .find(|g| g.name.eq_ignore_ascii_case(name))
     }
 
     pub fn command(&self, code: u32) -> Option<&Command> {

@@ -1,1 +1,97 @@
-//! (in progress)
+//! `krlkit gen`: render the KUKA package (KRL + EKI XML + install note) for a spec, write it
+//! atomically, or compare it with what is on disk (`--check`).
+//!
+//! Invariants: output is a pure function of the spec and the catalog (byte-identical runs);
+//! every KRL file is ASCII with the spec's line endings; nothing is written until everything
+//! rendered.
+
+mod install;
+mod krl;
+mod output;
+pub mod view;
+mod writer;
+
+use std::path::PathBuf;
+
+pub use output::{Drift, check, write_atomic};
+
+use crate::catalog::catalog;
+use crate::spec::{LineEnding, Spec};
+use view::{Package, Routine};
+
+/// Where the KRL files go, relative to the output directory (→ `KRC:\R1\mm\`).
+pub const KRL_DIR: &str = "krl/R1/mm";
+/// Where the channel XML goes (→ `C:\KRC\ROBOTER\Config\User\Common\EthernetKRL\`).
+pub const XML_DIR: &str = "xml/Config/User/Common/EthernetKRL";
+/// The install note.
+pub const INSTALL_PATH: &str = "krl/INSTALL.md";
+/// Name of the helper + global data module.
+pub const COMM_MODULE: &str = "MM_Comm";
+
+/// One generated file: path relative to the output directory, and its bytes.
+#[derive(Debug, Clone, PartialEq, Eq)]
+pub struct GeneratedFile {
+    pub path: PathBuf,
+    pub contents: Vec<u8>,
+}
+
+#[derive(Debug, thiserror::Error)]
+pub enum GenError {
+    #[error("rendering {file}: {source}")]
+    Render {
+        file: String,
+        #[source]
+        source: askama::Error,
+    },
+    #[error("{0}")]
+    Io(String),
+}
+
+fn krl_file(name: &str, ext: &str, text: &str, eol: LineEnding) -> GeneratedFile {
+    GeneratedFile {
+        path: PathBuf::from(KRL_DIR).join(format!("{name}.{ext}")),
+        contents: writer::normalise(text, eol),
+    }
+}
+
+/// Render the whole package for `spec`, in a fixed order (helper module, then the routines in
+/// catalog order, then XML and install note).
+pub fn generate(spec: &Spec) -> Result<Vec<GeneratedFile>, GenError> {
+    let pkg = Package::new(spec);
+    let eol = spec.line_endings;
+    let render_err = |file: &str| {
+        let file = file.to_string();
+        move |source| GenError::Render { file, source }
+    };
+    let mut files = vec![
+        krl_file(
+            COMM_MODULE,
+            "src",
+            &krl::render_comm_src(&pkg).map_err(render_err("MM_Comm.src"))?,
+            eol,
+        ),
+        krl_file(
+            COMM_MODULE,
+            "dat",
+            &krl::render_comm_dat(&pkg).map_err(render_err("MM_Comm.dat"))?,
+            eol,
+        ),
+    ];
+    for sp in catalog().subprograms.iter().filter(|s| spec.emits(&s.name)) {
+        let r = Routine::new(sp, spec);
+        let text = krl::render_routine(&r, &pkg).map_err(render_err(&sp.name))?;
+        files.push(krl_file(&sp.name, "src", &text, eol));
+    }
+    files.push(GeneratedFile {
+        path: PathBuf::from(XML_DIR).join(spec.xml_file_name()),
+        contents: writer::normalise(&crate::eki::channel_xml(spec), eol),
+    });
+    files.push(GeneratedFile {
+        path: PathBuf::from(INSTALL_PATH),
+        contents: writer::normalise(
+            &install::render(spec, &pkg).map_err(render_err("INSTALL.md"))?,
+            LineEnding::Lf,
+        ),
+    });
+    Ok(files)
+}

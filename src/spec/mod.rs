@@ -1,1 +1,114 @@
-//! (in progress)
+//! The generator spec (`krlkit.toml`): what `krlkit gen` builds and how the package talks to the
+//! vision server. Parsing is strict (unknown keys are rejected) and every error carries the
+//! location of the offending text, so the CLI can print `file:line:col`.
+
+mod error;
+mod raw;
+
+use std::net::Ipv4Addr;
+
+pub use error::SpecError;
+
+use crate::catalog::catalog;
+use crate::diag::LineIndex;
+use raw::RawSpec;
+
+/// The commented default spec that `krlkit init` writes; parsing it yields [`Spec::default`].
+pub const DEFAULT_SPEC_TOML: &str = include_str!("../../templates/spec/krlkit.toml");
+
+/// Wire encoding of requests and replies.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, serde::Deserialize)]
+pub enum Codec {
+    /// Comma-separated decimal text, one message per CR (EKI RAW STREAM, EOS 13).
+    #[serde(rename = "ascii")]
+    Ascii,
+    /// 4-byte little-endian fields (EKI RAW BYTE). Accepted by the type, rejected at validation.
+    #[serde(rename = "hex-le")]
+    HexLe,
+}
+
+#[derive(Debug, Clone, Copy, PartialEq, Eq, serde::Deserialize)]
+pub enum LineEnding {
+    #[serde(rename = "crlf")]
+    Crlf,
+    #[serde(rename = "lf")]
+    Lf,
+}
+
+impl LineEnding {
+    pub fn as_str(self) -> &'static str {
+        match self {
+            LineEnding::Crlf => "\r\n",
+            LineEnding::Lf => "\n",
+        }
+    }
+}
+
+/// A validated spec. Construct with [`Spec::parse`] or [`Spec::default`].
+#[derive(Debug, Clone, PartialEq)]
+pub struct Spec {
+    /// EKI channel = XML file stem, e.g. `XML_Kuka_MMIND`.
+    pub channel: String,
+    pub server_ip: Ipv4Addr,
+    pub server_port: u16,
+    pub alive_flag: u32,
+    pub receive_flag: u32,
+    /// Seconds to wait for the connection (default of the generated data module).
+    pub connect_timeout: u32,
+    /// Seconds to wait for a reply.
+    pub reply_timeout: u32,
+    /// Max points per reply (1..=catalog batch_max).
+    pub batch_size: u32,
+    pub codec: Codec,
+    /// `$TIMER[n]` the package uses to bound its waits.
+    pub timer: u32,
+    /// The KRL appends CR itself instead of relying on EKI's STREAM EOS on send.
+    pub append_cr: bool,
+    /// Subprograms to emit, catalog order; always contains `MM_Init_Socket`.
+    pub subprograms: Vec<String>,
+    pub line_endings: LineEnding,
+}
+
+/// Valid `$TIMER` indices (KSS 8.x has `$TIMER[1..64]`).
+pub const TIMER_RANGE: (u32, u32) = (1, 64);
+
+impl Default for Spec {
+    fn default() -> Spec {
+        Spec::parse(DEFAULT_SPEC_TOML, "<default spec>")
+            .unwrap_or_else(|e| panic!("embedded default spec: {e}"))
+    }
+}
+
+impl Spec {
+    /// Parse and validate spec text; `file` is only used in error messages.
+    pub fn parse(text: &str, file: &str) -> Result<Spec, SpecError> {
+        let raw: RawSpec =
+            toml::from_str(text).map_err(|e| SpecError::from_toml(text, file, &e))?;
+        raw.validate(text, file)
+    }
+
+    /// The XML file name, e.g. `XML_Kuka_MMIND.xml`.
+    pub fn xml_file_name(&self) -> String {
+        format!("{}.xml", self.channel)
+    }
+
+    /// Whether the named subprogram is emitted (case-insensitive).
+    pub fn emits(&self, name: &str) -> bool {
+        self.subprograms
+            .iter()
+            .any(|s| s.eq_ignore_ascii_case(name))
+    }
+
+    /// Bytes of the EKI receive record: reply header plus `batch_size` points (ASCII).
+    pub fn receive_size(&self) -> u32 {
+        let l = &catalog().limits;
+        l.ascii_header_bytes + self.batch_size * l.ascii_bytes_per_point
+    }
+}
+
+pub(crate) fn locate(text: &str, offset: usize) -> (usize, usize) {
+    LineIndex::new(text).line_col(text, offset.min(text.len()))
+}
+
+#[cfg(test)]
+mod tests;

@@ -1,0 +1,438 @@
+//! View models: everything the KRL templates print, computed here from the catalog and the
+//! spec, so the templates hold layout only.
+
+use crate::catalog::{Param, Subprogram, catalog};
+use crate::spec::Spec;
+
+/// Package-defined status codes, looked up by symbolic name in the catalog.
+#[derive(Debug, Clone)]
+pub struct Codes {
+    pub no_connection: u32,
+    pub reply_timeout: u32,
+    pub bad_reply: u32,
+    pub wrong_echo: u32,
+    pub too_many_points: u32,
+    pub bad_serial: u32,
+    pub bad_argument: u32,
+    pub wrong_data_kind: u32,
+    pub send_failed: u32,
+}
+
+impl Codes {
+    pub fn from_catalog() -> Codes {
+        let c = catalog();
+        Codes {
+            no_connection: c.package_code("NO_CONNECTION"),
+            reply_timeout: c.package_code("REPLY_TIMEOUT"),
+            bad_reply: c.package_code("BAD_REPLY"),
+            wrong_echo: c.package_code("WRONG_ECHO"),
+            too_many_points: c.package_code("TOO_MANY_POINTS"),
+            bad_serial: c.package_code("BAD_SERIAL"),
+            bad_argument: c.package_code("BAD_ARGUMENT"),
+            wrong_data_kind: c.package_code("WRONG_DATA_KIND"),
+            send_failed: c.package_code("SEND_FAILED"),
+        }
+    }
+}
+
+/// A catalog global as the data module declares it.
+#[derive(Debug, Clone)]
+pub struct GlobalDecl {
+    pub decl: String,
+    pub meaning: String,
+}
+
+fn global_decls() -> Vec<GlobalDecl> {
+    catalog()
+        .globals
+        .iter()
+        .map(|g| GlobalDecl {
+            decl: match g.size {
+                Some(n) => format!("DECL GLOBAL {} {}[{n}]", g.ty, g.name),
+                // Scalars start at 0 so a read before the first call is defined.
+                None => format!("DECL GLOBAL {} {}=0", g.ty, g.name),
+            },
+            meaning: g.meaning.clone(),
+        })
+        .collect()
+}
+
+/// Sizes and settings shared by the helper module, the data module and the routines.
+#[derive(Debug, Clone)]
+pub struct Package {
+    pub channel: String,
+    pub alive_flag: u32,
+    pub receive_flag: u32,
+    pub connect_timeout: u32,
+    pub reply_timeout: u32,
+    pub timer: u32,
+    pub append_cr: bool,
+    pub batch_size: u32,
+    /// Bytes of the receive buffer (= EKI receive record size).
+    pub rx_size: u32,
+    /// Bytes of the send buffer (= EKI send record size).
+    pub tx_size: u32,
+    /// Numbers a parsed reply can hold.
+    pub field_cap: u32,
+    pub point_cap: u32,
+    pub user_data_len: u32,
+    pub plan_results_len: u32,
+    pub do_list_len: u32,
+    pub out_max: u32,
+    /// `(code, name, meaning)` of every package-defined status code.
+    pub package_codes: Vec<(u32, String, String)>,
+    /// Globals for user programs, from the catalog.
+    pub globals: Vec<GlobalDecl>,
+    /// Size of the channel-name buffer.
+    pub channel_len: u32,
+    /// Values of `MM_Pt_Kind`; joints and TCPs equal the Jps_Pos values 1 and 2.
+    pub kind_joints: u32,
+    pub kind_tcp: u32,
+    pub kind_custom: u32,
+    pub kind_plan: u32,
+    pub dy_fixed: u32,
+    pub plan_fixed: u32,
+    pub batch_header: u32,
+    pub point_fields: u32,
+    /// EKI RAW element tags.
+    pub rx_tag: &'static str,
+    pub tx_tag: &'static str,
+    /// `[U]` assumptions, one line each, repeated in the header of the data module.
+    pub assumptions: Vec<String>,
+    pub codes: Codes,
+}
+
+/// Tags of the EKI RAW elements (as in Mech-Mind's shipped XML).
+pub const RX_TAG: &str = "MMRecv";
+pub const TX_TAG: &str = "MMSend";
+
+/// Requests are at most 16 fields (101 with joints and flange pose: 4 + 12), each at most
+/// `ascii_bytes_per_point / 8` characters including the comma.
+const MAX_REQUEST_FIELDS: u32 = 16;
+
+/// Fields of a 210 reply before the Vision Move data: echo, status, all-sent, waypoint type,
+/// six pose values, motion type, tool, speed.
+pub const PLAN_FIXED_FIELDS: u32 = 13;
+/// Fields of a 110 reply before the custom values: echo, status, all-sent, n, pose, label.
+pub const DY_FIXED_FIELDS: u32 = 11;
+/// Fields of a 102/105/205 reply before the points: echo, status, all-sent, count, 5th header.
+pub const BATCH_HEADER_FIELDS: u32 = 5;
+/// Fields per point in a 102/105/205 reply.
+pub const POINT_FIELDS: u32 = 8;
+
+impl Package {
+    pub fn new(spec: &Spec) -> Package {
+        let cat = catalog();
+        let l = &cat.limits;
+        let field_cap = [
+            BATCH_HEADER_FIELDS + POINT_FIELDS * spec.batch_size,
+            2 + l.do_list_len,
+            PLAN_FIXED_FIELDS + l.plan_results_len + 1 + l.user_data_len,
+            DY_FIXED_FIELDS + l.user_data_len,
+        ]
+        .into_iter()
+        .max()
+        .unwrap_or_default();
+        let package_codes = cat
+            .statuses
+            .iter()
+            .filter(|s| s.origin == crate::catalog::Origin::Package)
+            .map(|s| {
+                (
+                    s.code,
+                    s.name.clone().unwrap_or_default(),
+                    s.meaning.clone(),
+                )
+            })
+            .collect();
+        Package {
+            channel: spec.channel.clone(),
+            alive_flag: spec.alive_flag,
+            receive_flag: spec.receive_flag,
+            connect_timeout: spec.connect_timeout,
+            reply_timeout: spec.reply_timeout,
+            timer: spec.timer,
+            append_cr: spec.append_cr,
+            batch_size: spec.batch_size,
+            rx_size: spec.receive_size(),
+            tx_size: MAX_REQUEST_FIELDS * (l.ascii_bytes_per_point / POINT_FIELDS),
+            field_cap,
+            point_cap: l.point_capacity,
+            user_data_len: l.user_data_len,
+            plan_results_len: l.plan_results_len,
+            do_list_len: l.do_list_len,
+            out_max: l.out_max,
+            package_codes,
+            globals: global_decls(),
+            channel_len: 32,
+            kind_joints: 1,
+            kind_tcp: 2,
+            kind_custom: 3,
+            kind_plan: 4,
+            dy_fixed: DY_FIXED_FIELDS,
+            plan_fixed: PLAN_FIXED_FIELDS,
+            batch_header: BATCH_HEADER_FIELDS,
+            point_fields: POINT_FIELDS,
+            rx_tag: RX_TAG,
+            tx_tag: TX_TAG,
+            assumptions: assumptions(spec),
+            codes: Codes::from_catalog(),
+        }
+    }
+}
+
+/// The unverified assumptions the generated package makes (also listed in INSTALL.md).
+pub fn assumptions(spec: &Spec) -> Vec<String> {
+    let cr = if spec.append_cr {
+        "the KRL appends CR (13) to every request itself (append_cr = true)"
+    } else {
+        "EKI appends the STREAM end string (CR) to every request (append_cr = false)"
+    };
+    vec![
+        "[U] Mech-Vision is set to ASCII format; replies end in CR; EKI_GetString may or may not strip it (both parse)".into(),
+        format!("[U] {cr}"),
+        "[U] EKI_Send on a RAW STREAM sends the CHAR array up to its first NUL (buffers are cleared with StrClear first)".into(),
+        "[U] flange pose = $BASE:$POS_ACT:INV_POS($TOOL), i.e. in WORLD (equal to ROBROOT on a fixed robot)".into(),
+        "[U] returned E6POS targets only get X,Y,Z,A,B,C; S, T and E1..E6 of the caller's variable are left untouched".into(),
+        format!("[U] Do_Port entries are $OUT numbers; entries outside 1..{} (0, -1) switch nothing; outputs are not cleared first", catalog().limits.out_max),
+        "[U] MM_CALIB moves the flange (TOOL and BASE = $NULLFRAME during the move); E1 is written to the target's E1 and not sent".into(),
+        format!("[U] $TIMER[{}] is reserved for the package", spec.timer),
+    ]
+}
+
+/// One `MM_*` routine as the templates see it.
+#[derive(Debug, Clone)]
+pub struct Routine {
+    pub name: String,
+    /// `Job:IN,Last_Data:OUT,...` as the seed writes it.
+    pub params: String,
+    pub decls: Vec<String>,
+    /// Comment lines (without the leading `; `).
+    pub header: Vec<String>,
+    /// The first protocol command it sends (0 for local copies).
+    pub cmd: u32,
+    /// Success status of that command.
+    pub ok: u32,
+    /// KRL condition that is TRUE when an IN argument is out of its documented range.
+    pub bad_args: String,
+    /// KRL statement prefix that stores a status: `MM_Status` or `MM_Last_Status`.
+    pub status_var: String,
+    pub has_status_param: bool,
+    /// Whether any IN argument has a documented range (`bad_args` is not just `FALSE`).
+    pub has_bad_args: bool,
+    /// Statements appending the IN arguments to the request, in order.
+    pub tx: Vec<String>,
+    /// Extra local declarations.
+    pub locals: Vec<String>,
+    /// Variable receiving the Vision Move position of a batch (a local when not an output).
+    pub vispos: String,
+    /// Kind of stored points for batch fetches (`Jps_Pos` or the TCP kind).
+    pub kind: String,
+    /// Fields of a full reply (echo + reply fields of the catalog).
+    pub reply_len: usize,
+}
+
+fn krl_num(x: f64) -> String {
+    if x.fract() == 0.0 {
+        format!("{}", x as i64)
+    } else {
+        format!("{x}")
+    }
+}
+
+/// The out-of-range condition of one IN parameter, or None when it has no range.
+fn range_condition(p: &Param, spec: &Spec) -> Option<String> {
+    let id = p.ident();
+    if !p.values.is_empty() {
+        let ors: Vec<String> = p.values.iter().map(|v| format!("({id} == {v})")).collect();
+        return Some(format!("NOT ({})", ors.join(" OR ")));
+    }
+    let mut parts = Vec::new();
+    if let Some(m) = p.min {
+        parts.push(format!("({id} < {})", krl_num(m)));
+    }
+    // Pos_Num_Need may go up to the configured batch when the batch is raised.
+    let max = match (p.max, id) {
+        (Some(m), "Pos_Num_Need") => Some(m.max(f64::from(spec.batch_size))),
+        (m, _) => m,
+    };
+    if let Some(m) = max {
+        parts.push(format!("({id} > {})", krl_num(m)));
+    }
+    if let Some(m) = p.min_exclusive {
+        parts.push(format!("({id} <= {})", krl_num(m)));
+    }
+    (!parts.is_empty()).then(|| parts.join(" OR "))
+}
+
+fn param_line(p: &Param, spec: &Spec) -> String {
+    let mut s = format!(
+        "{} ({}, {}",
+        p.ident(),
+        p.dir.krl(),
+        p.ty.trim_end_matches("[]")
+    );
+    if let Some(u) = &p.unit {
+        s.push_str(&format!(", {u}"));
+    }
+    if let Some(r) = p.range_text() {
+        let r = if p.ident() == "Pos_Num_Need" && spec.batch_size > p.max.unwrap_or(0.0) as u32 {
+            format!("0 to {}", spec.batch_size)
+        } else {
+            r
+        };
+        s.push_str(&format!(", {r}"));
+    }
+    s.push_str(&format!("): {}", p.meaning));
+    s
+}
+
+impl Routine {
+    pub fn new(sp: &Subprogram, spec: &Spec) -> Routine {
+        let cat = catalog();
+        let codes = Codes::from_catalog();
+        let cmd = sp.commands.first().copied().unwrap_or(0);
+        let ok = cat.command(cmd).map_or(0, |c| c.success);
+        let params = sp
+            .params
+            .iter()
+            .map(|p| format!("{}:{}", p.name, p.dir.krl()))
+            .collect::<Vec<_>>()
+            .join(",");
+        let decls = sp
+            .params
+            .iter()
+            .map(|p| {
+                let ty = p.ty.trim_end_matches("[]");
+                let arr = if p.is_array() { "[]" } else { "" };
+                format!("DECL {ty} {}{arr}", p.ident())
+            })
+            .collect();
+        // Serial is checked against the stored count (BAD_SERIAL), not its catalog range.
+        let bad: Vec<String> = sp
+            .params
+            .iter()
+            .filter(|p| p.dir == crate::catalog::Direction::In && p.ident() != "Serial")
+            .filter_map(|p| range_condition(p, spec))
+            .collect();
+        let bad_args = if bad.is_empty() {
+            "FALSE".to_string()
+        } else {
+            bad.join(" OR ")
+        };
+        let status_param = sp.status_param();
+        let status_var =
+            status_param.map_or("MM_Last_Status".to_string(), |p| p.ident().to_string());
+
+        let mut header = vec![format!("{}: {}", sp.name, sp.summary)];
+        if sp.params.is_empty() {
+            header.push("Parameters: none".into());
+        } else {
+            header.push("Parameters:".into());
+            header.extend(
+                sp.params
+                    .iter()
+                    .map(|p| format!("  {}", param_line(p, spec))),
+            );
+        }
+        let mut status = Vec::new();
+        if cmd != 0 {
+            status.push(format!("{ok} OK"));
+            status.push("server codes (catalog)".into());
+            status.push(format!("{} NO_CONNECTION", codes.no_connection));
+            status.push(format!("{} SEND_FAILED", codes.send_failed));
+            status.push(format!("{} REPLY_TIMEOUT", codes.reply_timeout));
+            status.push(format!("{} BAD_REPLY", codes.bad_reply));
+            status.push(format!("{} WRONG_ECHO", codes.wrong_echo));
+        }
+        if cmd == 0 && sp.param("Serial").is_none() {
+            status.push("0 done".into());
+        }
+        if !bad.is_empty() {
+            status.push(format!("{} BAD_ARGUMENT", codes.bad_argument));
+        }
+        if sp.param("Serial").is_some() {
+            status.push(format!("{} BAD_SERIAL", codes.bad_serial));
+            status.push(format!("{} WRONG_DATA_KIND", codes.wrong_data_kind));
+        }
+        if matches!(cmd, 102 | 105 | 110 | 205 | 210) {
+            status.push(format!("{} TOO_MANY_POINTS", codes.too_many_points));
+        }
+        if sp.name == "MM_Set_DoList" {
+            status.push(format!(
+                "{} WRONG_DATA_KIND (no DO list stored)",
+                codes.wrong_data_kind
+            ));
+        }
+        if !status.is_empty() {
+            let target = match status_param {
+                Some(p) => format!("{} and MM_Last_Status", p.ident()),
+                None => "MM_Last_Status".into(),
+            };
+            header.push(format!("Status ({target}): {}", status.join(", ")));
+        }
+        if sp.commands.is_empty() && sp.name != "MM_Init_Socket" && sp.name != "MM_Set_DoList" {
+            header.push(
+                "On success MM_Last_Status keeps the status of the call that stored the data."
+                    .into(),
+            );
+        }
+        if let Some(a) = &sp.assumption {
+            header.push(format!("[U] {a}"));
+        }
+        for c in &sp.commands {
+            if let Some(a) = cat.command(*c).and_then(|c| c.assumption.as_ref()) {
+                header.push(format!("[U] {a}"));
+            }
+        }
+        let tx = sp
+            .params
+            .iter()
+            .filter(|p| p.dir == crate::catalog::Direction::In)
+            .filter_map(|p| {
+                let f = match p.ty.as_str() {
+                    "INT" => "MM_Tx_Int",
+                    "REAL" => "MM_Tx_Real",
+                    "E6POS" => "MM_Tx_Pose",
+                    _ => return None,
+                };
+                Some(format!("{f}({})", p.ident()))
+            })
+            .collect();
+        let has_vispos = sp.param("VisPos_Num").is_some();
+        let vispos = if has_vispos {
+            "VisPos_Num"
+        } else {
+            "Vis_Dummy"
+        }
+        .to_string();
+        let locals = if has_vispos {
+            vec![]
+        } else {
+            vec!["DECL INT Vis_Dummy".to_string()]
+        };
+        let kind = if sp.param("Jps_Pos").is_some() {
+            "Jps_Pos".to_string()
+        } else {
+            "2".to_string()
+        };
+        let reply_len = cat.command(cmd).map_or(0, |c| 1 + c.reply.len());
+        Routine {
+            tx,
+            locals,
+            vispos,
+            kind,
+            reply_len,
+            name: sp.name.clone(),
+            params,
+            decls,
+            header,
+            cmd,
+            ok,
+            bad_args,
+            status_var,
+            has_status_param: status_param.is_some(),
+            has_bad_args: !bad.is_empty(),
+        }
+    }
+}

@@ -1,0 +1,23 @@
+use super::*;
+
+#[test]
+fn default_spec_matches_the_shipped_settings() {
+    let s = Spec::default();
+    assert_eq!(s.channel, "XML_Kuka_MMIND");
+    assert_eq!((s.alive_flag, s.receive_flag), (873, 871));
+    assert_eq!(s.connect_timeout, 60);
+    assert_eq!(s.server_port, 50000);
+    assert_eq!(s.server_ip.to_string(), "192.168.1.121");
+    assert_eq!(s.subprograms.len(), catalog().subprograms.len());
+}
+
+#[test]
+fn empty_spec_equals_default_spec() {
+    assert_eq!(Spec::parse("", "x").unwrap(), Spec::default());
+}
+
+#[test]
+fn init_socket_is_always_emitted() {
+    let s = Spec::parse("subprograms = [\"MM_Get_Status\"]", "x").unwrap();
+    assert_eq!(s.subprograms, vec!["MM_Init_Socket", "MM_Get_Status"]);
+}
