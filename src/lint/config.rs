@@ -37,13 +37,13 @@ impl LintConfig {
             line: line_of(text, needle),
             message,
         };
-        let value: toml::Table = text
-            .parse()
-            .map_err(|e: toml::de::Error| ConfigError {
-                path: path.to_owned(),
-                line: e.span().map_or(0, |s| text[..s.start].lines().count().max(1)),
-                message: e.message().to_owned(),
-            })?;
+        let value: toml::Table = text.parse().map_err(|e: toml::de::Error| ConfigError {
+            path: path.to_owned(),
+            line: e
+                .span()
+                .map_or(0, |s| text[..s.start].lines().count().max(1)),
+            message: e.message().to_owned(),
+        })?;
         let mut cfg = LintConfig::default();
         let Some(lint) = value.get("lint") else {
             return Ok(cfg);
@@ -65,9 +65,9 @@ impl LintConfig {
         for (k, v) in lint {
             match k.as_str() {
                 "disable" => {
-                    let list = v
-                        .as_array()
-                        .ok_or_else(|| err("disable", "`disable` must be a list of rule codes".into()))?;
+                    let list = v.as_array().ok_or_else(|| {
+                        err("disable", "`disable` must be a list of rule codes".into())
+                    })?;
                     for c in list {
                         let c = c
                             .as_str()
@@ -81,12 +81,22 @@ impl LintConfig {
                         .ok_or_else(|| err("severity", "`severity` must be a table".into()))?;
                     for (c, s) in t {
                         let s = s.as_str().and_then(Severity::parse).ok_or_else(|| {
-                            err(c, format!("severity of `{c}` must be \"error\", \"warning\" or \"info\""))
+                            err(
+                                c,
+                                format!(
+                                    "severity of `{c}` must be \"error\", \"warning\" or \"info\""
+                                ),
+                            )
                         })?;
                         cfg.severity.insert(code(c)?, s);
                     }
                 }
-                other => return Err(err(other, format!("unknown key `lint.{other}` (expected `disable` or `severity`)"))),
+                other => {
+                    return Err(err(
+                        other,
+                        format!("unknown key `lint.{other}` (expected `disable` or `severity`)"),
+                    ));
+                }
             }
         }
         Ok(cfg)

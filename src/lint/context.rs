@@ -287,10 +287,12 @@ impl<'p> FileCtx<'p> {
 
 /// Declarations of a routine: its declaration section plus any DECL lines in the body.
 pub fn routine_decls(r: &Routine) -> impl Iterator<Item = &Decl> {
-    r.decls.iter().chain(r.body.iter().filter_map(|s| match &s.kind {
-        StmtKind::Decl(d) => Some(d),
-        _ => None,
-    }))
+    r.decls
+        .iter()
+        .chain(r.body.iter().filter_map(|s| match &s.kind {
+            StmtKind::Decl(d) => Some(d),
+            _ => None,
+        }))
 }
 
 /// Upper-case names local to the routine (parameters and declarations).

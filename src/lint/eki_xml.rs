@@ -42,14 +42,18 @@ pub fn read(name: &str, path: &str, xml: &str) -> Option<EkiChannel> {
         }
         let flag = || {
             e.attributes().flatten().find_map(|a| {
-                a.key.as_ref().eq_ignore_ascii_case("Set_Flag")
+                a.key
+                    .as_ref()
+                    .eq_ignore_ascii_case("Set_Flag")
                     .then(|| a.value.trim().parse::<i64>().ok())
                     .flatten()
             })
         };
         let path: Vec<&str> = stack.iter().map(String::as_str).collect();
         match (tag.as_str(), path.as_slice()) {
-            ("ALIVE", [.., "CONFIGURATION", "INTERNAL"]) => ch.alive_flag = flag().or(ch.alive_flag),
+            ("ALIVE", [.., "CONFIGURATION", "INTERNAL"]) => {
+                ch.alive_flag = flag().or(ch.alive_flag)
+            }
             ("ELEMENT", [.., "RECEIVE", "RAW"]) => ch.receive_flag = flag().or(ch.receive_flag),
             _ => {}
         }
@@ -57,8 +61,11 @@ pub fn read(name: &str, path: &str, xml: &str) -> Option<EkiChannel> {
             stack.push(tag);
         }
     }
-    (!stack.is_empty() || ch.alive_flag.is_some() || ch.receive_flag.is_some() || xml.contains("ETHERNETKRL"))
-        .then_some(ch)
+    (!stack.is_empty()
+        || ch.alive_flag.is_some()
+        || ch.receive_flag.is_some()
+        || xml.contains("ETHERNETKRL"))
+    .then_some(ch)
 }
 
 #[cfg(test)]

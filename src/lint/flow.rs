@@ -100,7 +100,12 @@ struct Shared<'c, 'p> {
 
 impl Shared<'_, '_> {
     fn local_routine(&self, name: &Ident) -> Option<&Routine> {
-        self.ctx.file.ast.routines.iter().find(|r| r.name.is(&name.text))
+        self.ctx
+            .file
+            .ast
+            .routines
+            .iter()
+            .find(|r| r.name.is(&name.text))
     }
 
     fn summary(&self, r: &Routine) -> Summary {
@@ -283,7 +288,10 @@ impl<'s, 'c, 'p> Walker<'s, 'c, 'p> {
         let Some(sp) = subprogram(&name.text) else {
             if let Some(r) = self.sh.local_routine(name) {
                 if self.record {
-                    let slot = self.callsites.remove(&r.name.key()).unwrap_or_else(State::dead);
+                    let slot = self
+                        .callsites
+                        .remove(&r.name.key())
+                        .unwrap_or_else(State::dead);
                     self.callsites.insert(r.name.key(), slot.join(st.clone()));
                 }
                 let sum = self.sh.summary(r);
@@ -422,7 +430,9 @@ impl<'s, 'c, 'p> Walker<'s, 'c, 'p> {
                     was.join(" or ")
                 ),
             )
-            .with_help("pass the same Jps_Pos as the MM_Get_PlanData call that fetched the waypoints");
+            .with_help(
+                "pass the same Jps_Pos as the MM_Get_PlanData call that fetched the waypoints",
+            );
             self.emit(st, d);
         }
     }

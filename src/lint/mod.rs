@@ -77,7 +77,11 @@ fn check_file(project: &Project, index: usize, config: &LintConfig) -> FileRepor
         }
         let before = diagnostics.len();
         (rule.check)(&ctx, &mut diagnostics);
-        let severity = config.severity.get(rule.code).copied().unwrap_or(rule.severity);
+        let severity = config
+            .severity
+            .get(rule.code)
+            .copied()
+            .unwrap_or(rule.severity);
         for d in &mut diagnostics[before..] {
             d.code = rule.code;
             d.severity = severity;
@@ -94,7 +98,9 @@ fn check_file(project: &Project, index: usize, config: &LintConfig) -> FileRepor
                 .is_some_and(|codes| codes.iter().any(|c| c == d.code))
         });
     }
-    diagnostics.sort_by(|a, b| (a.span.start, a.code, &a.message).cmp(&(b.span.start, b.code, &b.message)));
+    diagnostics.sort_by(|a, b| {
+        (a.span.start, a.code, &a.message).cmp(&(b.span.start, b.code, &b.message))
+    });
     diagnostics.dedup();
     FileReport {
         path: file.path.clone(),

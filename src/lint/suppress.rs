@@ -13,7 +13,9 @@ pub fn allowed(text: &str) -> HashMap<usize, Vec<String>> {
         let Some(pos) = line.find(';') else { continue };
         let comment = &line[pos + 1..];
         let lower = comment.to_ascii_lowercase();
-        let Some(k) = lower.find("krlkit:") else { continue };
+        let Some(k) = lower.find("krlkit:") else {
+            continue;
+        };
         let rest = lower[k + 7..].trim_start();
         let Some(args) = rest.strip_prefix("allow(") else {
             continue;
@@ -35,7 +37,8 @@ pub fn allowed(text: &str) -> HashMap<usize, Vec<String>> {
 mod tests {
     #[test]
     fn same_and_next_line() {
-        let m = super::allowed("a\r\n; krlkit: allow(MM008, mm003)\r\nb ; KRLKIT: allow(KRL002)\r\n");
+        let m =
+            super::allowed("a\r\n; krlkit: allow(MM008, mm003)\r\nb ; KRLKIT: allow(KRL002)\r\n");
         assert_eq!(m[&2], vec!["MM008", "MM003"]);
         assert!(m[&3].contains(&"MM003".to_string()));
         assert!(m[&3].contains(&"KRL002".to_string()));

@@ -33,7 +33,10 @@ mod tests {
     fn distance() {
         assert_eq!(edit_distance("MM_Start_Vis", "mm_start_vis"), 0);
         assert_eq!(edit_distance("MM_Start_Viss", "MM_Start_Vis"), 1);
-        assert_eq!(nearest("MM_Get_VisDat", ["MM_Get_VisData", "MM_Start_Vis"]), Some("MM_Get_VisData"));
+        assert_eq!(
+            nearest("MM_Get_VisDat", ["MM_Get_VisData", "MM_Start_Vis"]),
+            Some("MM_Get_VisData")
+        );
         assert_eq!(nearest("MM_Foo", ["MM_Get_VisData"]), None);
     }
 }

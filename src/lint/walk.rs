@@ -48,9 +48,9 @@ pub fn own_exprs(s: &Stmt) -> Vec<&Expr> {
             v.push(value);
         }
         StmtKind::Call { args, .. } => v.extend(args.iter().flatten()),
-        StmtKind::If { cond, .. }
-        | StmtKind::While { cond, .. }
-        | StmtKind::WaitFor { cond } => v.push(cond),
+        StmtKind::If { cond, .. } | StmtKind::While { cond, .. } | StmtKind::WaitFor { cond } => {
+            v.push(cond)
+        }
         StmtKind::Repeat { until, .. } => v.extend(until.iter()),
         StmtKind::Switch {
             selector, cases, ..
@@ -58,9 +58,7 @@ pub fn own_exprs(s: &Stmt) -> Vec<&Expr> {
             v.push(selector);
             v.extend(cases.iter().flat_map(|c| c.values.iter()));
         }
-        StmtKind::For {
-            from, to, step, ..
-        } => {
+        StmtKind::For { from, to, step, .. } => {
             v.push(from);
             v.push(to);
             v.extend(step.iter());

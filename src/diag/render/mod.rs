@@ -1,1 +1,8 @@
-//! (in progress)
+//! Diagnostics → text. One module per output format; each takes [`FileReport`]s and returns or
+//! appends text, never prints.
+//!
+//! [`FileReport`]: crate::diag::FileReport
+
+pub mod concise;
+pub mod github;
+pub mod sarif;

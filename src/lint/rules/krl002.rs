@@ -62,7 +62,10 @@ fn check(ctx: &FileCtx, out: &mut Vec<Diagnostic>) {
                 Diagnostic::error(
                     RULE.code,
                     n.span,
-                    format!("`{}` is {len} characters long; KRL allows at most {max}", n.text),
+                    format!(
+                        "`{}` is {len} characters long; KRL allows at most {max}",
+                        n.text
+                    ),
                 )
                 .with_help(format!("shorten the name to {max} characters or fewer")),
             );

@@ -35,7 +35,10 @@ fn check(ctx: &FileCtx, out: &mut Vec<Diagnostic>) {
         Diagnostic::error(
             RULE.code,
             name.span,
-            format!("{what} `{}` does not match the file name `{file_name}`", name.text),
+            format!(
+                "{what} `{}` does not match the file name `{file_name}`",
+                name.text
+            ),
         )
         .with_help(format!("rename it to `{}` or rename the file", f.stem)),
     );

@@ -54,9 +54,15 @@ fn check(ctx: &FileCtx, out: &mut Vec<Diagnostic>) {
             let mut d = Diagnostic::error(
                 RULE.code,
                 name.span,
-                format!("`{}` is not a subprogram of the Mech-Mind interface", name.text),
+                format!(
+                    "`{}` is not a subprogram of the Mech-Mind interface",
+                    name.text
+                ),
             );
-            if let Some(n) = nearest(&name.text, catalog().subprograms.iter().map(|s| s.name.as_str())) {
+            if let Some(n) = nearest(
+                &name.text,
+                catalog().subprograms.iter().map(|s| s.name.as_str()),
+            ) {
                 d = d.with_help(format!("did you mean `{n}`?"));
             }
             out.push(d);

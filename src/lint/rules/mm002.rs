@@ -26,7 +26,12 @@ fn check(ctx: &FileCtx, out: &mut Vec<Diagnostic>) {
                 Diagnostic::error(
                     RULE.code,
                     c.name.span,
-                    format!("`{}` takes {want} argument{}, but {got} {} given", c.sub.name, if want == 1 { "" } else { "s" }, if got == 1 { "is" } else { "are" }),
+                    format!(
+                        "`{}` takes {want} argument{}, but {got} {} given",
+                        c.sub.name,
+                        if want == 1 { "" } else { "s" },
+                        if got == 1 { "is" } else { "are" }
+                    ),
                 )
                 .with_help(format!("signature: {}", c.sub.signature())),
             );

@@ -20,17 +20,21 @@ fn check(ctx: &FileCtx, out: &mut Vec<Diagnostic>) {
         let plan = c.sub.name == "MM_Get_PlanJps" || c.sub.name == "MM_Get_PlanPose";
         for (p, a) in c.sub.params.iter().zip(c.args) {
             let Some(a) = a else { continue };
-            if p.dir != crate::catalog::Direction::In || !p.has_range() || (plan && p.ident() == "Jps_Pos") {
+            if p.dir != crate::catalog::Direction::In
+                || !p.has_range()
+                || (plan && p.ident() == "Jps_Pos")
+            {
                 continue;
             }
-            let Some(v) = walk::literal_number(a).or_else(|| values.get(&a.span.start).copied()) else {
+            let Some(v) = walk::literal_number(a).or_else(|| values.get(&a.span.start).copied())
+            else {
                 continue;
             };
             if !p.in_range(v) {
                 let origin = if walk::literal_number(a).is_some() {
                     String::new()
                 } else {
-                    format!(" (its value here is {v})")
+                    " (the value assigned earlier)".to_owned()
                 };
                 out.push(
                     Diagnostic::error(

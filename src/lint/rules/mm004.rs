@@ -33,7 +33,11 @@ fn check(ctx: &FileCtx, out: &mut Vec<Diagnostic>) {
                 Diagnostic::error(
                     RULE.code,
                     span,
-                    format!("OUT parameter {} of `{}` must receive a variable", p.ident(), c.sub.name),
+                    format!(
+                        "OUT parameter {} of `{}` must receive a variable",
+                        p.ident(),
+                        c.sub.name
+                    ),
                 )
                 .with_help(format!("pass a variable of type {}", p.ty)),
             );

@@ -37,7 +37,11 @@ fn check(ctx: &FileCtx, out: &mut Vec<Diagnostic>) {
             if found == "a number" && !p.is_array() && (fits("INT") || fits("REAL")) {
                 continue;
             }
-            let shown = if found == "a number" { found.clone() } else { format!("`{found}`") };
+            let shown = if found == "a number" {
+                found.clone()
+            } else {
+                format!("`{found}`")
+            };
             out.push(
                 Diagnostic::error(
                     RULE.code,

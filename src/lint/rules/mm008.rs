@@ -20,10 +20,17 @@ pub static RULE: Rule = Rule {
 
 fn check(ctx: &FileCtx, out: &mut Vec<Diagnostic>) {
     for c in well_formed_calls(ctx) {
-        let Some(idx) = c.sub.params.iter().position(|p| p.status && p.dir == Direction::Out) else {
+        let Some(idx) = c
+            .sub
+            .params
+            .iter()
+            .position(|p| p.status && p.dir == Direction::Out)
+        else {
             continue;
         };
-        let Some(arg) = c.args[idx].as_ref() else { continue };
+        let Some(arg) = c.args[idx].as_ref() else {
+            continue;
+        };
         let crate::syntax::ast::ExprKind::Name(var) = &arg.kind else {
             continue;
         };
@@ -38,7 +45,10 @@ fn check(ctx: &FileCtx, out: &mut Vec<Diagnostic>) {
             Diagnostic::warning(
                 RULE.code,
                 arg.span,
-                format!("status `{}` of `{}` is never read after the call", var.text, c.sub.name),
+                format!(
+                    "status `{}` of `{}` is never read after the call",
+                    var.text, c.sub.name
+                ),
             )
             .with_help(format!(
                 "check it, e.g. `IF {} <> {} THEN ... ENDIF`",
@@ -58,11 +68,14 @@ fn judgeable(ctx: &FileCtx, routine: &Routine, key: &str) -> bool {
     if locals(routine).contains(key) {
         return true;
     }
-    let in_dat = ctx.module_dat.and_then(|f| f.ast.dat.as_ref()).is_some_and(|d| {
-        d.decls
-            .iter()
-            .any(|decl| !decl.global && decl.vars.iter().any(|v| v.name.key() == key))
-    });
+    let in_dat = ctx
+        .module_dat
+        .and_then(|f| f.ast.dat.as_ref())
+        .is_some_and(|d| {
+            d.decls
+                .iter()
+                .any(|decl| !decl.global && decl.vars.iter().any(|v| v.name.key() == key))
+        });
     if !in_dat || ctx.project.global_types.contains_key(key) {
         return false;
     }
@@ -94,10 +107,8 @@ fn stmt_reads(s: &Stmt, key: &str) -> bool {
         for (i, a) in args.iter().enumerate() {
             let Some(a) = a else { continue };
             let out = sub.params.get(i).is_some_and(|p| p.dir == Direction::Out);
-            if out {
-                if let crate::syntax::ast::ExprKind::Name(_) = a.kind {
-                    continue;
-                }
+            if out && matches!(a.kind, crate::syntax::ast::ExprKind::Name(_)) {
+                continue;
             }
             walk::names_in(a, &mut |id| found |= id.key() == key);
         }
@@ -115,7 +126,10 @@ fn read_after(routine: &Routine, key: &str, call: Span) -> bool {
     walk::each_stmt(&routine.body, &mut |s| {
         if matches!(
             s.kind,
-            StmtKind::For { .. } | StmtKind::While { .. } | StmtKind::Repeat { .. } | StmtKind::Loop { .. }
+            StmtKind::For { .. }
+                | StmtKind::While { .. }
+                | StmtKind::Repeat { .. }
+                | StmtKind::Loop { .. }
         ) && s.span.start <= call.start
             && call.end <= s.span.end
         {
@@ -128,7 +142,9 @@ fn read_after(routine: &Routine, key: &str, call: Span) -> bool {
             return;
         }
         let after = s.span.start >= call.end;
-        let in_loop = loops.iter().any(|l| l.start <= s.span.start && s.span.end <= l.end);
+        let in_loop = loops
+            .iter()
+            .any(|l| l.start <= s.span.start && s.span.end <= l.end);
         // A compound statement (IF/WHILE/...) reads in its own header; for REPEAT the UNTIL
         // comes after the body, for WHILE the condition is re-evaluated after each iteration.
         found = after || in_loop || header_after(s, call);
@@ -140,5 +156,11 @@ fn read_after(routine: &Routine, key: &str, call: Span) -> bool {
 fn header_after(s: &Stmt, call: Span) -> bool {
     s.span.start <= call.start
         && call.end <= s.span.end
-        && matches!(s.kind, StmtKind::Repeat { .. } | StmtKind::While { .. } | StmtKind::For { .. } | StmtKind::Loop { .. })
+        && matches!(
+            s.kind,
+            StmtKind::Repeat { .. }
+                | StmtKind::While { .. }
+                | StmtKind::For { .. }
+                | StmtKind::Loop { .. }
+        )
 }

@@ -25,25 +25,46 @@ fn check(ctx: &FileCtx, out: &mut Vec<Diagnostic>) {
         if c.sub.name != "MM_Init_Socket" {
             continue;
         }
-        let Some(Some(xml)) = c.args.first() else { continue };
-        let ExprKind::Str(name) = &xml.kind else { continue };
+        let Some(Some(xml)) = c.args.first() else {
+            continue;
+        };
+        let ExprKind::Str(name) = &xml.kind else {
+            continue;
+        };
         let Some(ch) = channels.iter().find(|ch| ch.name == *name) else {
-            let near = channels.iter().find(|ch| ch.name.eq_ignore_ascii_case(name));
+            let near = channels
+                .iter()
+                .find(|ch| ch.name.eq_ignore_ascii_case(name));
             let names: Vec<&str> = channels.iter().map(|c| c.name.as_str()).collect();
             let msg = match near {
-                Some(ch) => format!("EKI channel `{name}` differs in case from the XML file `{}` (channel names are case-sensitive)", ch.path),
-                None => format!("no EKI XML config named `{name}.xml` (found: {})", names.join(", ")),
+                Some(ch) => format!(
+                    "EKI channel `{name}` differs in case from the XML file `{}` (channel names are case-sensitive)",
+                    ch.path
+                ),
+                None => format!(
+                    "no EKI XML config named `{name}.xml` (found: {})",
+                    names.join(", ")
+                ),
             };
             out.push(
-                Diagnostic::error(RULE.code, xml.span, msg)
-                    .with_help(format!("use the channel name `{}`", near.map_or(names[0], |c| c.name.as_str()))),
+                Diagnostic::error(RULE.code, xml.span, msg).with_help(format!(
+                    "use the channel name `{}`",
+                    near.map_or(names[0], |c| c.name.as_str())
+                )),
             );
             continue;
         };
-        for (i, what, want) in [(1usize, "alive", ch.alive_flag), (2, "receive", ch.receive_flag)] {
+        for (i, what, want) in [
+            (1usize, "alive", ch.alive_flag),
+            (2, "receive", ch.receive_flag),
+        ] {
             let Some(want) = want else { continue };
-            let Some(Some(arg)) = c.args.get(i) else { continue };
-            let Some(got) = walk::literal_number(arg).or_else(|| values.get(&arg.span.start).copied()) else {
+            let Some(Some(arg)) = c.args.get(i) else {
+                continue;
+            };
+            let Some(got) =
+                walk::literal_number(arg).or_else(|| values.get(&arg.span.start).copied())
+            else {
                 continue;
             };
             if got != want as f64 {

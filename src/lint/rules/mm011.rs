@@ -39,11 +39,16 @@ fn check(ctx: &FileCtx, out: &mut Vec<Diagnostic>) {
     }
 }
 
-fn owned(target: &Expr, flags: &std::collections::HashMap<i64, &'static str>) -> Option<(i64, &'static str)> {
+fn owned(
+    target: &Expr,
+    flags: &std::collections::HashMap<i64, &'static str>,
+) -> Option<(i64, &'static str)> {
     let ExprKind::Index { base, indices } = &target.kind else {
         return None;
     };
-    let ExprKind::Name(id) = &base.kind else { return None };
+    let ExprKind::Name(id) = &base.kind else {
+        return None;
+    };
     if !id.is("$FLAG") {
         return None;
     }

@@ -53,6 +53,9 @@ pub fn mm_calls<'a>(ctx: &FileCtx<'a>) -> Vec<MmCall<'a>> {
 pub fn well_formed_calls<'a>(ctx: &FileCtx<'a>) -> Vec<MmCall<'a>> {
     mm_calls(ctx)
         .into_iter()
-        .filter(|c| c.args.len() == c.sub.params.len() || (c.sub.params.is_empty() && c.args.iter().all(Option::is_none)))
+        .filter(|c| {
+            c.args.len() == c.sub.params.len()
+                || (c.sub.params.is_empty() && c.args.iter().all(Option::is_none))
+        })
         .collect()
 }
