@@ -3,5 +3,8 @@
 //!
 //! [`FileReport`]: crate::diag::FileReport
 
+pub mod concise;
+pub mod github;
 pub mod human;
 pub mod json;
+pub mod sarif;

@@ -1,0 +1,133 @@
+//! The `[lint]` section of `krlkit.toml`: rules to disable and severity overrides.
+//!
+//! ```toml
+//! [lint]
+//! disable = ["MM008"]
+//! [lint.severity]
+//! MM011 = "error"
+//! ```
+//! Other sections belong to other stages and are ignored here.
+
+use std::collections::{HashMap, HashSet};
+
+use crate::diag::Severity;
+
+use super::registry;
+
+#[derive(Debug, Clone, Default)]
+pub struct LintConfig {
+    pub disabled: HashSet<&'static str>,
+    pub severity: HashMap<&'static str, Severity>,
+}
+
+/// A problem in the config, with the line it is on (1-based; 0 when unknown).
+#[derive(Debug, thiserror::Error)]
+#[error("{path}:{line}: {message}")]
+pub struct ConfigError {
+    pub path: String,
+    pub line: usize,
+    pub message: String,
+}
+
+impl LintConfig {
+    /// Parse the `[lint]` section of a TOML document.
+    pub fn from_toml(path: &str, text: &str) -> Result<LintConfig, ConfigError> {
+        let err = |needle: &str, message: String| ConfigError {
+            path: path.to_owned(),
+            line: line_of(text, needle),
+            message,
+        };
+        let value: toml::Table = text.parse().map_err(|e: toml::de::Error| ConfigError {
+            path: path.to_owned(),
+            line: e
+                .span()
+                .map_or(0, |s| text[..s.start].lines().count().max(1)),
+            message: e.message().to_owned(),
+        })?;
+        let mut cfg = LintConfig::default();
+        let Some(lint) = value.get("lint") else {
+            return Ok(cfg);
+        };
+        let Some(lint) = lint.as_table() else {
+            return Err(err("lint", "`lint` must be a table".into()));
+        };
+        let code = |c: &str| -> Result<&'static str, ConfigError> {
+            registry::rule(c).map(|r| r.code).ok_or_else(|| {
+                err(
+                    c,
+                    format!(
+                        "unknown rule code `{c}` (did you mean `{}`?)",
+                        registry::nearest_code(c)
+                    ),
+                )
+            })
+        };
+        for (k, v) in lint {
+            match k.as_str() {
+                "disable" => {
+                    let list = v.as_array().ok_or_else(|| {
+                        err("disable", "`disable` must be a list of rule codes".into())
+                    })?;
+                    for c in list {
+                        let c = c
+                            .as_str()
+                            .ok_or_else(|| err("disable", "`disable` must list strings".into()))?;
+                        cfg.disabled.insert(code(c)?);
+                    }
+                }
+                "severity" => {
+                    let t = v
+                        .as_table()
+                        .ok_or_else(|| err("severity", "`severity` must be a table".into()))?;
+                    for (c, s) in t {
+                        let s = s.as_str().and_then(Severity::parse).ok_or_else(|| {
+                            err(
+                                c,
+                                format!(
+                                    "severity of `{c}` must be \"error\", \"warning\" or \"info\""
+                                ),
+                            )
+                        })?;
+                        cfg.severity.insert(code(c)?, s);
+                    }
+                }
+                other => {
+                    return Err(err(
+                        other,
+                        format!("unknown key `lint.{other}` (expected `disable` or `severity`)"),
+                    ));
+                }
+            }
+        }
+        Ok(cfg)
+    }
+}
+
+fn line_of(text: &str, needle: &str) -> usize {
+    text.lines()
+        .position(|l| l.contains(needle))
+        .map_or(0, |i| i + 1)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn reads_lint_section() {
+        let c = LintConfig::from_toml(
+            "k.toml",
+            "[spec]\nx=1\n[lint]\ndisable=[\"mm008\"]\n[lint.severity]\nMM011=\"error\"\n",
+        )
+        .expect("valid");
+        assert!(c.disabled.contains("MM008"));
+        assert_eq!(c.severity.get("MM011"), Some(&Severity::Error));
+    }
+
+    #[test]
+    fn unknown_code_is_located() {
+        let e = LintConfig::from_toml("k.toml", "[lint]\ndisable = [\"MM080\"]\n").unwrap_err();
+        assert_eq!(e.line, 2);
+        assert!(e.message.contains("MM008") || e.message.contains("MM080"));
+    }
+}

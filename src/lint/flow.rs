@@ -1,0 +1,591 @@
+//! Call-order and known-value analysis over each routine's structured control flow.
+//!
+//! Semantics (documented in the MM006/MM007/MM010 rule docs):
+//! - "may" = the set of MM_ calls that happened on at least one path to here. A prerequisite
+//!   (`after` in the catalog, or MM_Init_Socket) is reported missing only when NO path has it.
+//! - "must" = the calls that happened on every path, first loop iteration only. A `before`
+//!   call (e.g. MM_Switch_Model before MM_Start_Vis) is reported only when the later call has
+//!   definitely run already and cannot run again after it (no following call on any path).
+//! - Loops are walked twice, so a prerequisite later in the loop body counts from the second
+//!   iteration. Calls into routines of the same file are followed (their effect is summarised);
+//!   calls to anything else satisfy nothing. Routines whose callers are unknown (called from
+//!   another file, or never called) start from "anything may have happened": silent.
+//! - Known values: `x = literal` is known until x is written again, passed to a routine, or the
+//!   paths disagree; constants declared with a literal in the module's `.dat` or `$config.dat`.
+
+use std::cell::RefCell;
+use std::collections::{HashMap, HashSet};
+
+use super::context::{FileCtx, locals, subprogram};
+use super::walk;
+use crate::catalog::{Direction, catalog};
+use crate::diag::{Diagnostic, Severity};
+use crate::syntax::ast::{Expr, ExprKind, Ident, Routine, Stmt, StmtKind};
+
+/// What the analysis found for one file.
+#[derive(Default)]
+pub struct FlowResult {
+    /// Findings tagged MM006, MM007 and MM010.
+    pub findings: Vec<Diagnostic>,
+    /// Known numeric values of call arguments, by the argument's span start.
+    pub values: HashMap<u32, f64>,
+}
+
+const ALL: u64 = u64::MAX;
+
+fn bit(name: &str) -> u64 {
+    catalog()
+        .subprograms
+        .iter()
+        .position(|s| s.name.eq_ignore_ascii_case(name))
+        .map_or(0, |i| 1u64 << i)
+}
+
+fn names_of(bits: &[String]) -> u64 {
+    bits.iter().fold(0, |acc, n| acc | bit(n))
+}
+
+#[derive(Clone, Debug)]
+struct State {
+    dead: bool,
+    may: u64,
+    must: u64,
+    vals: HashMap<String, f64>,
+    /// Jps_Pos values the last MM_Get_PlanData may have used: bit k for value k, bit 0 unknown.
+    plan: u8,
+}
+
+impl State {
+    fn dead() -> State {
+        State {
+            dead: true,
+            may: 0,
+            must: ALL,
+            vals: HashMap::new(),
+            plan: 0,
+        }
+    }
+
+    fn join(self, other: State) -> State {
+        if self.dead {
+            return other;
+        }
+        if other.dead {
+            return self;
+        }
+        let mut vals = self.vals;
+        vals.retain(|k, v| other.vals.get(k) == Some(v));
+        State {
+            dead: false,
+            may: self.may | other.may,
+            must: self.must & other.must,
+            vals,
+            plan: self.plan | other.plan,
+        }
+    }
+}
+
+#[derive(Clone, Copy, Default)]
+struct Summary {
+    may: u64,
+    must: u64,
+}
+
+struct Shared<'c, 'p> {
+    ctx: &'c FileCtx<'p>,
+    summaries: RefCell<HashMap<String, Summary>>,
+    in_progress: RefCell<HashSet<String>>,
+    consts: HashMap<String, f64>,
+}
+
+impl Shared<'_, '_> {
+    fn local_routine(&self, name: &Ident) -> Option<&Routine> {
+        self.ctx
+            .file
+            .ast
+            .routines
+            .iter()
+            .find(|r| r.name.is(&name.text))
+    }
+
+    fn summary(&self, r: &Routine) -> Summary {
+        let key = r.name.key();
+        if let Some(s) = self.summaries.borrow().get(&key) {
+            return *s;
+        }
+        if !self.in_progress.borrow_mut().insert(key.clone()) {
+            return Summary::default();
+        }
+        let entry = State {
+            dead: false,
+            may: 0,
+            must: 0,
+            vals: HashMap::new(),
+            plan: 0,
+        };
+        let mut a = Walker::new(self, r, false);
+        let end = a.run_routine(entry);
+        let s = Summary {
+            may: if end.dead { 0 } else { end.may },
+            must: if end.dead { 0 } else { end.must },
+        };
+        self.in_progress.borrow_mut().remove(&key);
+        self.summaries.borrow_mut().insert(key, s);
+        s
+    }
+}
+
+struct Walker<'s, 'c, 'p> {
+    sh: &'s Shared<'c, 'p>,
+    routine: &'s Routine,
+    record: bool,
+    locals: HashSet<String>,
+    labels: HashMap<String, State>,
+    returns: State,
+    findings: Vec<Diagnostic>,
+    values: HashMap<u32, f64>,
+    /// Entry states of local routines called from here, joined over call sites.
+    callsites: HashMap<String, State>,
+    /// For each MM_ call (by span start): calls that may still follow it.
+    follows: HashMap<u32, u64>,
+}
+
+impl<'s, 'c, 'p> Walker<'s, 'c, 'p> {
+    fn new(sh: &'s Shared<'c, 'p>, routine: &'s Routine, record: bool) -> Self {
+        Walker {
+            sh,
+            routine,
+            record,
+            locals: locals(routine),
+            labels: HashMap::new(),
+            returns: State::dead(),
+            findings: Vec::new(),
+            values: HashMap::new(),
+            callsites: HashMap::new(),
+            follows: HashMap::new(),
+        }
+    }
+
+    fn run_routine(&mut self, entry: State) -> State {
+        let has_goto = {
+            let mut g = false;
+            walk::each_stmt(&self.routine.body, &mut |s| {
+                g |= matches!(s.kind, StmtKind::Goto { .. })
+            });
+            g
+        };
+        if has_goto {
+            let rec = std::mem::replace(&mut self.record, false);
+            let _ = self.block(&self.routine.body, entry.clone());
+            self.record = rec;
+            self.returns = State::dead();
+        }
+        let end = self.block(&self.routine.body, entry);
+        end.join(std::mem::replace(&mut self.returns, State::dead()))
+    }
+
+    fn block(&mut self, stmts: &'s [Stmt], mut st: State) -> State {
+        for s in stmts {
+            st = self.stmt(s, st);
+        }
+        st
+    }
+
+    fn looped(&mut self, body: &'s [Stmt], st: State) -> State {
+        let rec = std::mem::replace(&mut self.record, false);
+        let first = self.block(body, st.clone());
+        self.record = rec;
+        self.block(body, st.join(first))
+    }
+
+    fn stmt(&mut self, s: &'s Stmt, mut st: State) -> State {
+        match &s.kind {
+            StmtKind::Call { name, args } => self.call(name, args, st),
+            StmtKind::Assign { target, value } => {
+                if let Some(v) = walk::root_var(target) {
+                    let key = v.key();
+                    let known = match (&target.kind, self.value_of(value, &st)) {
+                        (ExprKind::Name(_), Some(x)) => Some(x),
+                        _ => None,
+                    };
+                    match known {
+                        Some(x) => {
+                            st.vals.insert(key, x);
+                        }
+                        None => {
+                            st.vals.remove(&key);
+                        }
+                    }
+                }
+                st
+            }
+            StmtKind::If {
+                then_body,
+                else_body,
+                ..
+            } => {
+                let t = self.block(then_body, st.clone());
+                let e = self.block(else_body, st);
+                t.join(e)
+            }
+            StmtKind::Switch { cases, default, .. } => {
+                let mut out = State::dead();
+                for c in cases {
+                    let r = self.block(&c.body, st.clone());
+                    out = out.join(r);
+                }
+                match default {
+                    Some(d) => out.join(self.block(d, st)),
+                    None => out.join(st),
+                }
+            }
+            StmtKind::For { var, body, .. } => {
+                st.vals.remove(&var.key());
+                let after = self.looped(body, st.clone());
+                st.join(after)
+            }
+            StmtKind::While { body, .. } | StmtKind::Loop { body } => {
+                let after = self.looped(body, st.clone());
+                st.join(after)
+            }
+            StmtKind::Repeat { body, .. } => self.looped(body, st),
+            StmtKind::Spline { body, .. } => self.block(body, st),
+            StmtKind::Return { .. } => {
+                self.returns = std::mem::replace(&mut self.returns, State::dead()).join(st);
+                State::dead()
+            }
+            StmtKind::Goto { label } => {
+                let slot = self.labels.remove(&label.key()).unwrap_or_else(State::dead);
+                self.labels.insert(label.key(), slot.join(st));
+                State::dead()
+            }
+            StmtKind::Label { name } => match self.labels.get(&name.key()) {
+                Some(l) => st.join(l.clone()),
+                None => st,
+            },
+            _ => st,
+        }
+    }
+
+    fn value_of(&self, e: &Expr, st: &State) -> Option<f64> {
+        walk::literal_number(e).or_else(|| match &e.kind {
+            ExprKind::Name(id) => st.vals.get(&id.key()).copied(),
+            _ => None,
+        })
+    }
+
+    fn forget_globals(&self, st: &mut State) {
+        st.vals.retain(|k, _| self.locals.contains(k));
+    }
+
+    fn emit(&mut self, st: &State, d: Diagnostic) {
+        if self.record && !st.dead {
+            self.findings.push(d);
+        }
+    }
+
+    fn call(&mut self, name: &'s Ident, args: &'s [Option<Expr>], mut st: State) -> State {
+        let Some(sp) = subprogram(&name.text) else {
+            if let Some(r) = self.sh.local_routine(name) {
+                if self.record {
+                    let slot = self
+                        .callsites
+                        .remove(&r.name.key())
+                        .unwrap_or_else(State::dead);
+                    self.callsites.insert(r.name.key(), slot.join(st.clone()));
+                }
+                let sum = self.sh.summary(r);
+                st.may |= sum.may;
+                st.must |= sum.must;
+                if sum.may & bit("MM_Get_PlanData") != 0 {
+                    st.plan |= 1;
+                }
+            }
+            self.forget_globals(&mut st);
+            for a in args.iter().flatten() {
+                if let Some(v) = walk::root_var(a) {
+                    st.vals.remove(&v.key());
+                }
+            }
+            return st;
+        };
+        if self.record {
+            for a in args.iter().flatten() {
+                if let Some(v) = self.value_of(a, &st) {
+                    self.values.insert(a.span.start, v);
+                }
+            }
+        }
+        let init = bit("MM_Init_Socket");
+        let me = bit(&sp.name);
+        if me != init && st.may & init == 0 {
+            let d = Diagnostic::error(
+                "MM010",
+                name.span,
+                format!("`{}` is called but `MM_Init_Socket` never runs before it", sp.name),
+            )
+            .with_help("call `MM_Init_Socket(\"<xml name>\", <alive flag>, <receive flag>, <timeout>)` once at the start of the program");
+            self.emit(&st, d);
+            st.may |= init;
+            st.must |= init;
+        }
+        let after = names_of(&sp.after);
+        if after != 0 && st.may & after == 0 {
+            let d = Diagnostic::error(
+                "MM006",
+                name.span,
+                format!(
+                    "`{}` is called before its prerequisite {}",
+                    sp.name,
+                    alternatives(&sp.after)
+                ),
+            )
+            .with_help(format!("call {} first", alternatives(&sp.after)));
+            self.emit(&st, d);
+        }
+        for later in &sp.before {
+            let b = bit(later);
+            let follows = self.follows.get(&name.span.start).copied().unwrap_or(ALL);
+            if st.must & b != 0 && follows & b == 0 {
+                let d = Diagnostic::error(
+                    "MM006",
+                    name.span,
+                    format!(
+                        "`{}` is called after `{later}` has already run, and no `{later}` follows it",
+                        sp.name
+                    ),
+                )
+                .with_help(format!("move `{}` before `{later}`", sp.name));
+                self.emit(&st, d);
+            }
+        }
+        if sp.name == "MM_Get_PlanJps" || sp.name == "MM_Get_PlanPose" {
+            self.check_plan_kind(sp, name, args, &st);
+        }
+        st.may |= me;
+        st.must |= me;
+        if sp.name == "MM_Get_PlanData" {
+            let v = args
+                .first()
+                .and_then(|a| a.as_ref())
+                .and_then(|a| self.value_of(a, &st));
+            st.plan = match v {
+                Some(k) if (1.0..=4.0).contains(&k) && k.fract() == 0.0 => 1 << (k as u8),
+                _ => 1,
+            };
+        }
+        for (p, a) in sp.params.iter().zip(args) {
+            if p.dir == Direction::Out
+                && let Some(v) = a.as_ref().and_then(walk::root_var)
+            {
+                st.vals.remove(&v.key());
+            }
+        }
+        st
+    }
+
+    fn check_plan_kind(
+        &mut self,
+        sp: &crate::catalog::Subprogram,
+        _name: &Ident,
+        args: &[Option<Expr>],
+        st: &State,
+    ) {
+        let Some(i) = sp.params.iter().position(|p| p.ident() == "Jps_Pos") else {
+            return;
+        };
+        let param = &sp.params[i];
+        let Some(arg) = args.get(i).and_then(|a| a.as_ref()) else {
+            return;
+        };
+        let Some(v) = self.value_of(arg, st) else {
+            return;
+        };
+        let range = param.range_text().unwrap_or_default();
+        if !param.in_range(v) {
+            let d = Diagnostic::error(
+                "MM007",
+                arg.span,
+                format!("`{}` takes Jps_Pos {range}, not {v}", sp.name),
+            )
+            .with_help(if sp.name == "MM_Get_PlanJps" {
+                "Jps_Pos 2 and 4 deliver TCPs: use `MM_Get_PlanPose`"
+            } else {
+                "Jps_Pos 1 and 3 deliver joint positions: use `MM_Get_PlanJps`"
+            });
+            self.emit(st, d);
+            return;
+        }
+        let used = st.plan & !1;
+        if st.plan & 1 == 0 && used != 0 && v.fract() == 0.0 && used & (1 << (v as u8)) == 0 {
+            let was: Vec<String> = (1..=4u8)
+                .filter(|k| used & (1 << k) != 0)
+                .map(|k| k.to_string())
+                .collect();
+            let d = Diagnostic::error(
+                "MM007",
+                arg.span,
+                format!(
+                    "Jps_Pos {v} differs from the {} given to `MM_Get_PlanData`",
+                    was.join(" or ")
+                ),
+            )
+            .with_help(
+                "pass the same Jps_Pos as the MM_Get_PlanData call that fetched the waypoints",
+            );
+            self.emit(st, d);
+        }
+    }
+}
+
+fn alternatives(names: &[String]) -> String {
+    let q: Vec<String> = names.iter().map(|n| format!("`{n}`")).collect();
+    match q.len() {
+        0 => String::new(),
+        1 => q[0].clone(),
+        n => format!("{} or {}", q[..n - 1].join(", "), q[n - 1]),
+    }
+}
+
+/// Backward pass: which MM_ calls may still follow each MM_ call.
+fn later_calls(sh: &Shared, stmts: &[Stmt], mut later: u64, out: &mut HashMap<u32, u64>) -> u64 {
+    for s in stmts.iter().rev() {
+        later = match &s.kind {
+            StmtKind::Call { name, .. } => {
+                if subprogram(&name.text).is_some() {
+                    out.insert(name.span.start, later);
+                    later | bit(&name.text)
+                } else if let Some(r) = sh.local_routine(name) {
+                    later | sh.summary(r).may
+                } else {
+                    later
+                }
+            }
+            StmtKind::If {
+                then_body,
+                else_body,
+                ..
+            } => later_calls(sh, then_body, later, out) | later_calls(sh, else_body, later, out),
+            StmtKind::Switch { cases, default, .. } => {
+                let mut acc = if default.is_none() { later } else { 0 };
+                for c in cases {
+                    acc |= later_calls(sh, &c.body, later, out);
+                }
+                if let Some(d) = default {
+                    acc |= later_calls(sh, d, later, out);
+                }
+                acc
+            }
+            StmtKind::For { body, .. }
+            | StmtKind::While { body, .. }
+            | StmtKind::Loop { body }
+            | StmtKind::Repeat { body, .. } => {
+                let first = later_calls(sh, body, later, &mut HashMap::new());
+                later | later_calls(sh, body, later | first, out)
+            }
+            StmtKind::Spline { body, .. } => later_calls(sh, body, later, out),
+            _ => later,
+        };
+    }
+    later
+}
+
+/// Analyse every user routine of the file.
+pub fn analyze(ctx: &FileCtx) -> FlowResult {
+    let sh = Shared {
+        ctx,
+        summaries: RefCell::new(HashMap::new()),
+        in_progress: RefCell::new(HashSet::new()),
+        consts: ctx.known_consts(),
+    };
+    let routines: Vec<&Routine> = ctx.user_routines().collect();
+    let mut result = FlowResult::default();
+    let Some(first) = ctx.file.ast.routines.first() else {
+        return result;
+    };
+    let called_elsewhere = |r: &Routine| {
+        ctx.project
+            .callers
+            .get(&r.name.key())
+            .is_some_and(|files| files.iter().any(|&i| i != ctx.index))
+    };
+    // Local call graph: who calls whom, to order routines from the main one.
+    let mut callers: HashMap<String, HashSet<String>> = HashMap::new();
+    for r in &routines {
+        walk::each_stmt(&r.body, &mut |s| {
+            if let StmtKind::Call { name, .. } = &s.kind
+                && sh.local_routine(name).is_some()
+            {
+                callers.entry(name.key()).or_default().insert(r.name.key());
+            }
+        });
+    }
+    let mut done: HashSet<String> = HashSet::new();
+    let mut entries: HashMap<String, State> = HashMap::new();
+    let is_main = |r: &Routine| std::ptr::eq(r, first) && ctx.file.ext != "dat";
+    let unknown = || State {
+        dead: false,
+        may: ALL,
+        must: 0,
+        vals: sh.consts.clone(),
+        plan: 1,
+    };
+    // Main first, then routines whose local callers are all analysed, then the rest.
+    let mut order: Vec<&Routine> = Vec::new();
+    let mut pending: Vec<&Routine> = routines.clone();
+    pending.sort_by_key(|r| !is_main(r));
+    while !pending.is_empty() {
+        let pos = pending
+            .iter()
+            .position(|r| {
+                is_main(r)
+                    || callers
+                        .get(&r.name.key())
+                        .is_some_and(|c| c.iter().all(|k| order.iter().any(|o| o.name.key() == *k)))
+            })
+            .unwrap_or(0);
+        order.push(pending.remove(pos));
+    }
+    for r in order {
+        let key = r.name.key();
+        let local_callers = callers.get(&key);
+        let entry = if called_elsewhere(r) {
+            unknown()
+        } else if is_main(r) && local_callers.is_none() {
+            State {
+                dead: false,
+                may: 0,
+                must: 0,
+                vals: sh.consts.clone(),
+                plan: 0,
+            }
+        } else if let Some(c) = local_callers
+            && c.iter().all(|k| done.contains(k))
+            && let Some(e) = entries.get(&key)
+        {
+            let mut e = e.clone();
+            e.vals = sh.consts.clone();
+            e
+        } else {
+            unknown()
+        };
+        let exit_later = if is_main(r) && !called_elsewhere(r) && local_callers.is_none() {
+            0
+        } else {
+            ALL
+        };
+        let mut w = Walker::new(&sh, r, true);
+        later_calls(&sh, &r.body, exit_later, &mut w.follows);
+        w.run_routine(entry);
+        for (k, st) in w.callsites.drain() {
+            let slot = entries.remove(&k).unwrap_or_else(State::dead);
+            entries.insert(k, slot.join(st));
+        }
+        done.insert(key);
+        result.findings.append(&mut w.findings);
+        result.values.extend(w.values.drain());
+    }
+    result.findings.sort_by_key(|d| (d.span.start, d.code));
+    let _ = Severity::Error;
+    result
+}

@@ -1,0 +1,59 @@
+//! The rule registry: one table from code to rule. Adding a rule = one file in `rules/` plus one
+//! line in [`RULES`].
+
+use super::context::FileCtx;
+use super::rules;
+use crate::diag::{Diagnostic, Severity};
+
+/// One lint rule: identity, documentation and the check itself.
+pub struct Rule {
+    /// Stable code, e.g. `MM003` (never reused).
+    pub code: &'static str,
+    /// Kebab-case name, e.g. `argument-out-of-range`.
+    pub name: &'static str,
+    pub severity: Severity,
+    /// One line for `krlkit rules` and SARIF `shortDescription`.
+    pub summary: &'static str,
+    /// Markdown: what it checks, why it matters, example, fix (for `krlkit rule` and SARIF help).
+    pub doc: &'static str,
+    /// Appends findings for one file; the driver applies severity overrides and suppressions.
+    pub check: fn(&FileCtx, &mut Vec<Diagnostic>),
+}
+
+/// Every rule, in code order.
+pub static RULES: &[&Rule] = &[
+    &rules::krl001::RULE,
+    &rules::krl002::RULE,
+    &rules::krl003::RULE,
+    &rules::krl004::RULE,
+    &rules::mm001::RULE,
+    &rules::mm002::RULE,
+    &rules::mm003::RULE,
+    &rules::mm004::RULE,
+    &rules::mm005::RULE,
+    &rules::mm006::RULE,
+    &rules::mm007::RULE,
+    &rules::mm008::RULE,
+    &rules::mm009::RULE,
+    &rules::mm010::RULE,
+    &rules::mm011::RULE,
+];
+
+/// The rule with this code (case-insensitive).
+pub fn rule(code: &str) -> Option<&'static Rule> {
+    RULES
+        .iter()
+        .copied()
+        .find(|r| r.code.eq_ignore_ascii_case(code.trim()))
+}
+
+/// The registered code closest to `code` (for "did you mean").
+pub fn nearest_code(code: &str) -> &'static str {
+    let upper = code.trim().to_ascii_uppercase();
+    RULES
+        .iter()
+        .map(|r| (super::text::edit_distance(&upper, r.code), r.code))
+        .min()
+        .map(|(_, c)| c)
+        .unwrap_or("MM001")
+}

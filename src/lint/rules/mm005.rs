@@ -1,0 +1,60 @@
+use crate::diag::{Diagnostic, Severity};
+use crate::lint::context::FileCtx;
+use crate::lint::registry::Rule;
+use crate::syntax::ast::ExprKind;
+
+use super::well_formed_calls;
+
+pub static RULE: Rule = Rule {
+    code: "MM005",
+    name: "argument-type-mismatch",
+    severity: Severity::Error,
+    summary: "An argument's declared type does not fit the parameter",
+    doc: "## What it checks\nWhen an argument is a variable (or an element or standard field of one) whose declaration is found — in the calling routine, the module's `.dat`, a GLOBAL declaration in a scanned `.dat`, or `$config.dat` — its declared type must be one the catalog accepts for the parameter (e.g. `MM_J` accepts `E6AXIS` or `AXIS`; OUT poses need exactly `E6POS`; `XML_Name` needs a `CHAR` array). A string literal passed to a non-`CHAR[]` parameter, or a number literal to a `CHAR[]`/structure parameter, is reported too. When the declaration cannot be found the rule stays silent.\n\n## Why it matters\nKRL checks parameter types when the module is linked; a wrong type stops the program from being selected, or (for IN parameters of a structure type) sends the wrong data.\n\n## Example\n```krl\nDECL E6POS start\nMM_Start_Vis(1, 0, 3, start)   ; MM_J must be E6AXIS or AXIS\n```\n\n## Fix\nDeclare the variable with an accepted type (`DECL E6AXIS start`).",
+    check,
+};
+
+fn check(ctx: &FileCtx, out: &mut Vec<Diagnostic>) {
+    for c in well_formed_calls(ctx) {
+        for (p, a) in c.sub.params.iter().zip(c.args) {
+            let Some(a) = a else { continue };
+            let accepted = p.accepted_types();
+            let fits = |t: &str| accepted.iter().any(|x| x.eq_ignore_ascii_case(t));
+            let found = match &a.kind {
+                ExprKind::Str(_) => Some("CHAR[]".to_owned()),
+                ExprKind::Int(_) | ExprKind::Real(_)
+                    if p.is_array() || !(fits("INT") || fits("REAL")) =>
+                {
+                    Some("a number".to_owned())
+                }
+                _ => ctx.expr_type(c.routine, a).map(|t| t.catalog_form()),
+            };
+            let Some(found) = found else { continue };
+            if found != "a number" && fits(&found) {
+                continue;
+            }
+            // INT and REAL literals convert to each other for IN parameters.
+            if found == "a number" && !p.is_array() && (fits("INT") || fits("REAL")) {
+                continue;
+            }
+            let shown = if found == "a number" {
+                found.clone()
+            } else {
+                format!("`{found}`")
+            };
+            out.push(
+                Diagnostic::error(
+                    RULE.code,
+                    a.span,
+                    format!(
+                        "{} of `{}` needs {}, but this is {shown}",
+                        p.ident(),
+                        c.sub.name,
+                        accepted.join(" or ")
+                    ),
+                )
+                .with_help(format!("declare the argument as {}", accepted.join(" or "))),
+            );
+        }
+    }
+}

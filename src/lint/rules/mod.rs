@@ -1,0 +1,61 @@
+//! One file per rule: its documentation and its check.
+
+pub mod krl001;
+pub mod krl002;
+pub mod krl003;
+pub mod krl004;
+pub mod mm001;
+pub mod mm002;
+pub mod mm003;
+pub mod mm004;
+pub mod mm005;
+pub mod mm006;
+pub mod mm007;
+pub mod mm008;
+pub mod mm009;
+pub mod mm010;
+pub mod mm011;
+
+use super::context::{FileCtx, subprogram};
+use super::walk;
+use crate::catalog::Subprogram;
+use crate::syntax::ast::{Expr, Ident, Routine, StmtKind};
+
+/// A call to a catalog subprogram in a user routine.
+pub struct MmCall<'a> {
+    pub routine: &'a Routine,
+    pub name: &'a Ident,
+    pub args: &'a [Option<Expr>],
+    pub sub: &'static Subprogram,
+}
+
+/// Every call to a catalog subprogram in the file's user routines, in source order.
+pub fn mm_calls<'a>(ctx: &FileCtx<'a>) -> Vec<MmCall<'a>> {
+    let mut v = Vec::new();
+    for r in ctx.user_routines() {
+        walk::each_stmt(&r.body, &mut |s| {
+            if let StmtKind::Call { name, args } = &s.kind
+                && let Some(sub) = subprogram(&name.text)
+            {
+                v.push(MmCall {
+                    routine: r,
+                    name,
+                    args,
+                    sub,
+                });
+            }
+        });
+    }
+    v
+}
+
+/// Calls with the right number of arguments (the per-argument rules skip the others).
+pub fn well_formed_calls<'a>(ctx: &FileCtx<'a>) -> Vec<MmCall<'a>> {
+    mm_calls(ctx)
+        .into_iter()
+        .filter(|c| {
+            c.args.len() == c.sub.params.len()
+                || (c.sub.params.is_empty() && c.args.iter().all(Option::is_none))
+        })
+        .collect()
+}

@@ -1,0 +1,176 @@
+//! Walking the AST: statements (nested bodies included) and the names an expression reads.
+
+use crate::syntax::ast::{Expr, ExprKind, Ident, Stmt, StmtKind};
+
+/// Calls `f` on every statement, depth-first in source order, nested bodies included.
+pub fn each_stmt<'a>(stmts: &'a [Stmt], f: &mut impl FnMut(&'a Stmt)) {
+    for s in stmts {
+        f(s);
+        for body in children(s) {
+            each_stmt(body, f);
+        }
+    }
+}
+
+/// The statement lists nested directly in `s`.
+pub fn children(s: &Stmt) -> Vec<&[Stmt]> {
+    match &s.kind {
+        StmtKind::If {
+            then_body,
+            else_body,
+            ..
+        } => vec![then_body, else_body],
+        StmtKind::Switch { cases, default, .. } => {
+            let mut v: Vec<&[Stmt]> = cases.iter().map(|c| c.body.as_slice()).collect();
+            if let Some(d) = default {
+                v.push(d);
+            }
+            v
+        }
+        StmtKind::For { body, .. }
+        | StmtKind::While { body, .. }
+        | StmtKind::Repeat { body, .. }
+        | StmtKind::Loop { body }
+        | StmtKind::Spline { body, .. } => vec![body],
+        StmtKind::InterruptDecl { handler, .. } => vec![std::slice::from_ref(handler.as_ref())],
+        StmtKind::Trigger { action, .. } => vec![std::slice::from_ref(action.as_ref())],
+        _ => Vec::new(),
+    }
+}
+
+/// Expressions evaluated by `s` itself (not by nested statements). Assignment targets are
+/// excluded; their index expressions are included (they are read).
+pub fn own_exprs(s: &Stmt) -> Vec<&Expr> {
+    let mut v = Vec::new();
+    match &s.kind {
+        StmtKind::Assign { target, value } => {
+            target_reads(target, &mut v);
+            v.push(value);
+        }
+        StmtKind::Call { args, .. } => v.extend(args.iter().flatten()),
+        StmtKind::If { cond, .. } | StmtKind::While { cond, .. } | StmtKind::WaitFor { cond } => {
+            v.push(cond)
+        }
+        StmtKind::Repeat { until, .. } => v.extend(until.iter()),
+        StmtKind::Switch {
+            selector, cases, ..
+        } => {
+            v.push(selector);
+            v.extend(cases.iter().flat_map(|c| c.values.iter()));
+        }
+        StmtKind::For { from, to, step, .. } => {
+            v.push(from);
+            v.push(to);
+            v.extend(step.iter());
+        }
+        StmtKind::WaitSec { time } => v.push(time),
+        StmtKind::Return { value } => v.extend(value.iter()),
+        StmtKind::Motion(m) => {
+            v.push(&m.target);
+            v.extend(m.aux.iter());
+            v.extend(m.ca.iter());
+            v.extend(m.with.iter().map(|(_, e)| e));
+        }
+        StmtKind::Spline { with, .. } => v.extend(with.iter().map(|(_, e)| e)),
+        StmtKind::Interrupt { number, .. } => v.extend(number.iter()),
+        StmtKind::InterruptDecl {
+            number, condition, ..
+        } => {
+            v.push(number);
+            v.push(condition);
+        }
+        StmtKind::Trigger {
+            position,
+            delay,
+            prio,
+            ..
+        } => {
+            v.push(position);
+            v.push(delay);
+            v.extend(prio.iter());
+        }
+        StmtKind::Pulse {
+            signal,
+            level,
+            duration,
+        } => {
+            v.push(signal);
+            v.push(level);
+            v.push(duration);
+        }
+        StmtKind::AnIn(a) | StmtKind::AnOut(a) => {
+            v.extend(a.value.iter());
+            v.extend(a.options.iter().map(|(_, e)| e));
+        }
+        StmtKind::Decl(d) => v.extend(d.vars.iter().filter_map(|x| x.init.as_ref())),
+        _ => {}
+    }
+    v
+}
+
+fn target_reads<'a>(target: &'a Expr, out: &mut Vec<&'a Expr>) {
+    match &target.kind {
+        ExprKind::Index { base, indices } => {
+            target_reads(base, out);
+            out.extend(indices.iter().flatten());
+        }
+        ExprKind::Member { base, .. } => target_reads(base, out),
+        _ => {}
+    }
+}
+
+/// Calls `f` on every name read by `e` (variables, not called function names).
+pub fn names_in<'a>(e: &'a Expr, f: &mut impl FnMut(&'a Ident)) {
+    match &e.kind {
+        ExprKind::Name(id) => f(id),
+        ExprKind::Index { base, indices } => {
+            names_in(base, f);
+            for i in indices.iter().flatten() {
+                names_in(i, f);
+            }
+        }
+        ExprKind::Member { base, .. } => names_in(base, f),
+        ExprKind::Call { args, .. } => {
+            for a in args.iter().flatten() {
+                names_in(a, f);
+            }
+        }
+        ExprKind::Unary { operand, .. } => names_in(operand, f),
+        ExprKind::Binary { lhs, rhs, .. } => {
+            names_in(lhs, f);
+            names_in(rhs, f);
+        }
+        ExprKind::Aggregate { fields, .. } => {
+            for (_, v) in fields {
+                names_in(v, f);
+            }
+        }
+        _ => {}
+    }
+}
+
+/// The variable an lvalue-like expression names (`x`, `x[1]`, `x.y`), if it is one.
+pub fn root_var(e: &Expr) -> Option<&Ident> {
+    match &e.kind {
+        ExprKind::Name(id) => Some(id),
+        ExprKind::Index { base, .. } | ExprKind::Member { base, .. } => root_var(base),
+        _ => None,
+    }
+}
+
+/// A numeric literal's value (`3`, `-2.5`, `+1`).
+pub fn literal_number(e: &Expr) -> Option<f64> {
+    match &e.kind {
+        ExprKind::Int(i) => Some(*i as f64),
+        ExprKind::Real(r) => Some(*r),
+        ExprKind::Unary {
+            op: crate::syntax::ast::UnaryOp::Neg,
+            operand,
+        } => literal_number(operand).map(|v| -v),
+        ExprKind::Unary {
+            op: crate::syntax::ast::UnaryOp::Pos,
+            operand,
+        } => literal_number(operand),
+        _ => None,
+    }
+}
