@@ -8,6 +8,7 @@ pub mod cli;
 pub mod diag;
 pub mod files;
 pub mod generate;
+pub mod interp;
 pub mod lint;
 pub mod sim;
 pub mod spec;
