@@ -158,6 +158,9 @@ pub struct ServeArgs {
     /// Scenario file (TOML).
     #[arg(long)]
     pub scenario: Option<PathBuf>,
+    /// Allow a non-loopback listen address (a real robot cell); loopback only by default.
+    #[arg(long)]
+    pub allow_remote: bool,
 }
 
 #[derive(Debug, Args)]

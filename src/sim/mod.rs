@@ -1,1 +1,58 @@
-//! (in progress)
+//! The fake Mech-Mind vision server (`krlkit sim serve`): a loopback test double that speaks
+//! the ASCII Standard Interface protocol (1.x dialect) and answers from a TOML scenario.
+//!
+//! ```no_run
+//! use krlkit::sim::{Scenario, Server};
+//! let server = Server::start(Scenario::default_embedded(), "127.0.0.1:0")?;
+//! println!("listening on {}", server.addr());
+//! // ... connect a client, send "901\r", read "901,1101\r" ...
+//! for r in server.requests() { println!("{r}"); }
+//! server.shutdown();
+//! # Ok::<(), std::io::Error>(())
+//! ```
+//!
+//! Modules: [`scenario`] (the TOML format, checked with located errors; see `SCENARIO.md`),
+//! [`protocol`] (lenient decoding, reply formatting), [`state`] (the per-command state
+//! machine), [`server`] (TCP, framing, faults, request log).
+//!
+//! Wire handling: a message ends at CR (LF is accepted as a terminator too, so `\r\n` yields
+//! one message plus an ignored empty one); fields are split on `,` and trimmed of spaces and
+//! tabs; numbers may be `1`, `1.0`, `-0`, `1.5E3`; integer fields must be integral. Empty
+//! messages are ignored. Replies end in CR. Several commands per connection and a connection
+//! per command both work; state persists across connections. One client is served at a time;
+//! another waits in the accept backlog until the first disconnects or stays silent longer than
+//! `idle_timeout_ms`. A message longer than `max_message_bytes` gets `0,3002` and the
+//! connection is closed, so memory stays bounded.
+//!
+//! Choices the reference leaves open ([U]), made here:
+//! - Error replies are `<cmd>,<status>` (no further fields); an unreadable command field
+//!   answers `0,3002`; a wrong field count or a non-integral integer field answers `<cmd>,3002`.
+//! - 101 checks the payload length for its pose type (0, 2, 3: six values; 1: twelve); an
+//!   invalid pose type answers 1026 whatever follows; a negative expected count 1018.
+//! - 102 and 110 share the point cursor of the last 101; 105 has its own path cursor (the
+//!   expected count of 101 limits points, not path waypoints). A call
+//!   after everything was sent answers "no result" (1002; 2022 for Viz) instead of repeating.
+//! - 105/205 "first Vision Move position" counts from the first waypoint of the current batch
+//!   (1-based); 0 when no Vision Move waypoint remains. An invalid pose kind answers 1026 (105)
+//!   or 2012 (205, 210); a waypoint without the requested kind answers 1016 (105) or 2022.
+//! - 205 and 210 share one path cursor, reset by 201; before 201 they answer 2022.
+//! - 210 formats 1/3 return joints, 2/4 TCP; Vision Move data (20 values) only for formats
+//!   3/4 on Vision Move waypoints; custom values (count, then values) only on Vision Move
+//!   waypoints, other waypoints end with count 0.
+//! - 206 takes no argument (1.x) and answers 2011 before 201 or without a DO list.
+//! - 203/204 need a `[viz]` section (2014 otherwise) but not a started project.
+//! - 701: state 0 restarts the script; states 1 and 2 (reached / failed to reach) both advance;
+//!   after the last point the reply has done = 1 and zeros; 1 or 2 before any 0 answers 7001.
+//! - Faults: `status`, `garbage` and `drop` answer without touching the state; `wrong_echo`
+//!   and a bare `delay_ms` answer normally (the state advances).
+//! - Only dialect v1 is implemented; a v2 scenario is rejected when loaded. Only the ASCII
+//!   framing is implemented (no HEX); 202, 207, 208, 601 and the 2.x commands answer 3001
+//!   because the 1.x catalog does not list them.
+
+pub mod protocol;
+pub mod scenario;
+pub mod server;
+pub mod state;
+
+pub use scenario::{Dialect, Scenario, ScenarioError};
+pub use server::{Observer, RequestLog, Server};

@@ -1,0 +1,621 @@
+//! The server's state machine: one decoded request in, one reply line out.
+//!
+//! Command numbers, success codes and error codes come from the catalog by name; this module
+//! only decides which one applies.
+
+use std::collections::HashMap;
+use std::sync::OnceLock;
+
+use crate::catalog::catalog;
+
+use super::protocol::{Reply, Request, as_int};
+use super::scenario::{Scenario, Waypoint};
+
+/// The commands this server answers, by catalog name.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
+pub enum Cmd {
+    StartVision,
+    GetVisionResult,
+    SwitchRecipe,
+    GetVisionPath,
+    GetCustomData,
+    StartViz,
+    SetBranch,
+    SetIndex,
+    GetVizPath,
+    GetDoList,
+    GetPlanWaypoint,
+    SetBoxSize,
+    SetExternalMove,
+    Calibrate,
+    GetStatus,
+}
+
+const COMMANDS: [(Cmd, &str); 15] = [
+    (Cmd::StartVision, "start_vision"),
+    (Cmd::GetVisionResult, "get_vision_result"),
+    (Cmd::SwitchRecipe, "switch_recipe"),
+    (Cmd::GetVisionPath, "get_vision_path"),
+    (Cmd::GetCustomData, "get_custom_data"),
+    (Cmd::StartViz, "start_viz"),
+    (Cmd::SetBranch, "set_branch"),
+    (Cmd::SetIndex, "set_index"),
+    (Cmd::GetVizPath, "get_viz_path"),
+    (Cmd::GetDoList, "get_do_list"),
+    (Cmd::GetPlanWaypoint, "get_plan_waypoint"),
+    (Cmd::SetBoxSize, "set_box_size"),
+    (Cmd::SetExternalMove, "set_external_move"),
+    (Cmd::Calibrate, "calibrate"),
+    (Cmd::GetStatus, "get_status"),
+];
+
+/// Status codes the server replies with, resolved from the catalog once.
+#[derive(Debug)]
+pub struct Codes {
+    commands: HashMap<u32, Cmd>,
+    success: HashMap<Cmd, u32>,
+    pub no_result: u32,
+    pub bad_pose_data: u32,
+    pub project_not_found: u32,
+    pub recipe_out_of_range: u32,
+    pub recipe_not_configured: u32,
+    pub port_type_mismatch: u32,
+    pub bad_pose_count: u32,
+    pub not_triggered: u32,
+    pub box_size_unsupported: u32,
+    pub bad_box_size: u32,
+    pub bad_pose_type: u32,
+    pub no_do_list: u32,
+    pub viz_bad_pose_type: u32,
+    pub viz_no_project: u32,
+    pub bad_exit_port: u32,
+    pub viz_no_result: u32,
+    pub bad_branch_step: u32,
+    pub bad_index_step: u32,
+    pub bad_index_value: u32,
+    pub invalid_command: u32,
+    pub invalid_format: u32,
+    pub calib_param_error: u32,
+    pub calib_no_pose: u32,
+}
+
+/// The resolved codes.
+///
+/// # Panics
+/// If a name is missing from the catalog (a build defect the tests catch).
+pub fn codes() -> &'static Codes {
+    static CODES: OnceLock<Codes> = OnceLock::new();
+    CODES.get_or_init(|| {
+        let cat = catalog();
+        let st = |n: &str| {
+            cat.status_named(n)
+                .unwrap_or_else(|| panic!("catalog has no status named {n}"))
+                .code
+        };
+        let mut commands = HashMap::new();
+        let mut success = HashMap::new();
+        for (cmd, name) in COMMANDS {
+            let c = cat
+                .command_named(name)
+                .unwrap_or_else(|| panic!("catalog has no command named {name}"));
+            commands.insert(c.code, cmd);
+            success.insert(cmd, c.success);
+        }
+        Codes {
+            commands,
+            success,
+            no_result: st("NO_RESULT"),
+            bad_pose_data: st("BAD_POSE_DATA"),
+            project_not_found: st("PROJECT_NOT_FOUND"),
+            recipe_out_of_range: st("RECIPE_OUT_OF_RANGE"),
+            recipe_not_configured: st("RECIPE_NOT_CONFIGURED"),
+            port_type_mismatch: st("PORT_TYPE_MISMATCH"),
+            bad_pose_count: st("BAD_POSE_COUNT"),
+            not_triggered: st("NOT_TRIGGERED"),
+            box_size_unsupported: st("BOX_SIZE_UNSUPPORTED"),
+            bad_box_size: st("BAD_BOX_SIZE"),
+            bad_pose_type: st("BAD_POSE_TYPE"),
+            no_do_list: st("NO_DO_LIST"),
+            viz_bad_pose_type: st("VIZ_BAD_POSE_TYPE"),
+            viz_no_project: st("VIZ_NO_PROJECT"),
+            bad_exit_port: st("BAD_EXIT_PORT"),
+            viz_no_result: st("VIZ_NO_RESULT"),
+            bad_branch_step: st("BAD_BRANCH_STEP"),
+            bad_index_step: st("BAD_INDEX_STEP"),
+            bad_index_value: st("BAD_INDEX_VALUE"),
+            invalid_command: st("INVALID_COMMAND"),
+            invalid_format: st("INVALID_FORMAT"),
+            calib_param_error: st("CALIB_PARAM_ERROR"),
+            calib_no_pose: st("CALIB_NO_POSE"),
+        }
+    })
+}
+
+impl Codes {
+    pub fn command(&self, code: u32) -> Option<Cmd> {
+        self.commands.get(&code).copied()
+    }
+
+    pub fn success(&self, cmd: Cmd) -> u32 {
+        self.success[&cmd]
+    }
+}
+
+/// Per-project Mech-Vision state.
+#[derive(Debug, Clone, Default)]
+pub struct ProjectState {
+    pub triggered: bool,
+    /// Points selected by the last 101 (the expected count, capped).
+    pub selected: usize,
+    /// Next point for 102/110.
+    pub cursor: usize,
+    /// Next waypoint for 105.
+    pub path_cursor: usize,
+    pub robot_pose: Vec<f64>,
+    pub recipe: Option<i64>,
+    pub box_size: Option<[f64; 3]>,
+}
+
+/// Mech-Viz state.
+#[derive(Debug, Clone, Default)]
+pub struct VizState {
+    pub started: bool,
+    pub start_pose: Vec<f64>,
+    /// Next waypoint for 205/210 (shared: a program uses one or the other per start).
+    pub cursor: usize,
+    /// Branch step → selected exit port (0-based).
+    pub exits: HashMap<i64, i64>,
+    /// Index step → current index (0-based).
+    pub indices: HashMap<i64, i64>,
+    pub external_tcp: Option<Vec<f64>>,
+}
+
+/// The whole server state, persistent across connections.
+#[derive(Debug, Clone)]
+pub struct State {
+    scenario: Scenario,
+    pub projects: HashMap<i64, ProjectState>,
+    pub viz: VizState,
+    /// Next calibration point (None until a 701 with state 0).
+    pub calib_cursor: Option<usize>,
+}
+
+impl State {
+    pub fn new(scenario: Scenario) -> State {
+        State {
+            scenario,
+            projects: HashMap::new(),
+            viz: VizState::default(),
+            calib_cursor: None,
+        }
+    }
+
+    pub fn scenario(&self) -> &Scenario {
+        &self.scenario
+    }
+
+    fn reply(&self, echo: u32) -> Reply {
+        Reply::new(i64::from(echo), self.scenario.server.decimals)
+    }
+
+    fn status(&self, echo: u32, status: u32) -> String {
+        self.reply(echo).int(i64::from(status)).into_text()
+    }
+
+    /// The reply line (without CR) to one request.
+    pub fn handle(&mut self, req: &Request) -> String {
+        let c = codes();
+        let Some(cmd) = c.command(req.command) else {
+            return self.status(req.command, c.invalid_command);
+        };
+        match self.dispatch(cmd, req) {
+            Ok(text) => text,
+            Err(status) => self.status(req.command, status),
+        }
+    }
+
+    fn dispatch(&mut self, cmd: Cmd, req: &Request) -> Result<String, u32> {
+        let c = codes();
+        let a = &req.args;
+        let ok = c.success(cmd);
+        let echo = req.command;
+        match cmd {
+            Cmd::StartVision => {
+                if a.len() < 3 {
+                    return Err(c.invalid_format);
+                }
+                let project = int(a[0])?;
+                let count = int(a[1])?;
+                let pose_type = int(a[2])?;
+                let payload = &a[3..];
+                let expected = match pose_type {
+                    0 | 2 | 3 => 6,
+                    1 => 12,
+                    _ => return Err(c.bad_pose_type),
+                };
+                if payload.len() != expected {
+                    return Err(c.invalid_format);
+                }
+                let points = self
+                    .scenario
+                    .project(project)
+                    .ok_or(c.project_not_found)?
+                    .points
+                    .len();
+                if count < 0 {
+                    return Err(c.bad_pose_count);
+                }
+                let selected = if count == 0 {
+                    points
+                } else {
+                    points.min(usize::try_from(count).unwrap_or(usize::MAX))
+                };
+                let st = self.projects.entry(project).or_default();
+                st.triggered = true;
+                st.selected = selected;
+                st.cursor = 0;
+                st.path_cursor = 0;
+                st.robot_pose = payload.to_vec();
+                Ok(self.status(echo, ok))
+            }
+            Cmd::GetVisionResult => {
+                let [project] = fields::<1>(a)?;
+                let project = int(project)?;
+                let st = self.triggered(project)?;
+                let (start, end) = (st.cursor, st.selected);
+                if start >= end {
+                    return Err(c.no_result);
+                }
+                let n = (end - start).min(self.scenario.server.batch as usize);
+                let all = start + n >= end;
+                let proj = self.scenario.project(project).ok_or(c.project_not_found)?;
+                let mut r = self
+                    .reply(echo)
+                    .int(i64::from(ok))
+                    .int(i64::from(all))
+                    .int(n as i64)
+                    .int(0);
+                for p in &proj.points[start..start + n] {
+                    r = r.reals(&p.pose).int(p.label).real(p.speed);
+                }
+                self.project_state(project).cursor = start + n;
+                Ok(r.into_text())
+            }
+            Cmd::SwitchRecipe => {
+                let [project, recipe] = fields::<2>(a)?;
+                let (project, recipe) = (int(project)?, int(recipe)?);
+                let proj = self.scenario.project(project).ok_or(c.project_not_found)?;
+                let in_range = catalog()
+                    .subprogram("MM_Switch_Model")
+                    .and_then(|s| s.param("Model_Number"))
+                    .is_none_or(|p| p.in_range(recipe as f64));
+                if !in_range {
+                    return Err(c.recipe_out_of_range);
+                }
+                if !proj.recipes.contains(&recipe) {
+                    return Err(c.recipe_not_configured);
+                }
+                self.project_state(project).recipe = Some(recipe);
+                Ok(self.status(echo, ok))
+            }
+            Cmd::GetVisionPath => {
+                let [project, kind] = fields::<2>(a)?;
+                let (project, kind) = (int(project)?, int(kind)?);
+                let cursor = self.triggered(project)?.path_cursor;
+                let joints = match kind {
+                    1 => true,
+                    2 => false,
+                    _ => return Err(c.bad_pose_type),
+                };
+                let proj = self.scenario.project(project).ok_or(c.project_not_found)?;
+                let text = self.path_batch(
+                    echo,
+                    ok,
+                    &proj.path,
+                    cursor,
+                    joints,
+                    (c.no_result, c.port_type_mismatch),
+                )?;
+                let n = self.batch_len(proj.path.len(), cursor);
+                self.project_state(project).path_cursor = cursor + n;
+                Ok(text)
+            }
+            Cmd::GetCustomData => {
+                let [project] = fields::<1>(a)?;
+                let project = int(project)?;
+                let st = self.triggered(project)?;
+                let (cursor, end) = (st.cursor, st.selected);
+                if cursor >= end {
+                    return Err(c.no_result);
+                }
+                let proj = self.scenario.project(project).ok_or(c.project_not_found)?;
+                let p = &proj.points[cursor];
+                let all = cursor + 1 >= end;
+                let text = self
+                    .reply(echo)
+                    .int(i64::from(ok))
+                    .int(i64::from(all))
+                    .int(p.custom.len() as i64)
+                    .reals(&p.pose)
+                    .int(p.label)
+                    .reals(&p.custom)
+                    .into_text();
+                self.project_state(project).cursor = cursor + 1;
+                Ok(text)
+            }
+            Cmd::StartViz => {
+                if a.is_empty() {
+                    return Err(c.invalid_format);
+                }
+                let pose_type = int(a[0])?;
+                let expected = match pose_type {
+                    0 | 2 => 6,
+                    1 => 12,
+                    _ => return Err(c.viz_bad_pose_type),
+                };
+                if a.len() - 1 != expected {
+                    return Err(c.invalid_format);
+                }
+                if self.scenario.viz.is_none() {
+                    return Err(c.viz_no_project);
+                }
+                self.viz.started = true;
+                self.viz.cursor = 0;
+                self.viz.start_pose = a[1..].to_vec();
+                Ok(self.status(echo, ok))
+            }
+            Cmd::SetBranch => {
+                let [step, port] = fields::<2>(a)?;
+                let (step, port) = (int(step)?, int(port)?);
+                let viz = self.scenario.viz.as_ref().ok_or(c.viz_no_project)?;
+                let b = viz
+                    .branches
+                    .iter()
+                    .find(|b| b.step == step)
+                    .ok_or(c.bad_branch_step)?;
+                if !(1..=b.exit_ports).contains(&port) {
+                    return Err(c.bad_exit_port);
+                }
+                self.viz.exits.insert(step, port - 1);
+                Ok(self.status(echo, ok))
+            }
+            Cmd::SetIndex => {
+                let [step, index] = fields::<2>(a)?;
+                let (step, index) = (int(step)?, int(index)?);
+                let viz = self.scenario.viz.as_ref().ok_or(c.viz_no_project)?;
+                let s = viz
+                    .index_steps
+                    .iter()
+                    .find(|s| s.step == step)
+                    .ok_or(c.bad_index_step)?;
+                if !(1..=s.max_index).contains(&index) {
+                    return Err(c.bad_index_value);
+                }
+                self.viz.indices.insert(step, index - 1);
+                Ok(self.status(echo, ok))
+            }
+            Cmd::GetVizPath => {
+                let [kind] = fields::<1>(a)?;
+                let kind = int(kind)?;
+                let joints = match kind {
+                    1 => true,
+                    2 => false,
+                    _ => return Err(c.viz_bad_pose_type),
+                };
+                let viz = self.started_viz()?;
+                let cursor = self.viz.cursor;
+                let text = self.path_batch(
+                    echo,
+                    ok,
+                    &viz.path,
+                    cursor,
+                    joints,
+                    (c.viz_no_result, c.viz_no_result),
+                )?;
+                self.viz.cursor = cursor + self.batch_len(viz.path.len(), cursor);
+                Ok(text)
+            }
+            Cmd::GetDoList => {
+                fields::<0>(a)?;
+                let list = self
+                    .scenario
+                    .viz
+                    .as_ref()
+                    .filter(|_| self.viz.started)
+                    .and_then(|v| v.do_list.as_ref())
+                    .ok_or(c.no_do_list)?;
+                let len = catalog().limits.do_list_len as usize;
+                let padded: Vec<i64> = list
+                    .iter()
+                    .copied()
+                    .chain(std::iter::repeat(-1))
+                    .take(len)
+                    .collect();
+                Ok(self
+                    .reply(echo)
+                    .int(i64::from(ok))
+                    .ints(&padded)
+                    .into_text())
+            }
+            Cmd::GetPlanWaypoint => {
+                let [format] = fields::<1>(a)?;
+                let format = int(format)?;
+                if !(1..=4).contains(&format) {
+                    return Err(c.viz_bad_pose_type);
+                }
+                let joints = format % 2 == 1;
+                let with_plan = format >= 3;
+                let viz = self.started_viz()?;
+                let cursor = self.viz.cursor;
+                let w = viz.path.get(cursor).ok_or(c.viz_no_result)?;
+                let values = w.values(joints).ok_or(c.viz_no_result)?;
+                let all = cursor + 1 >= viz.path.len();
+                let mut r = self
+                    .reply(echo)
+                    .int(i64::from(ok))
+                    .int(i64::from(all))
+                    .int(i64::from(w.vision_move))
+                    .reals(values)
+                    .int(w.motion)
+                    .int(w.tool)
+                    .real(w.speed);
+                if w.vision_move {
+                    if with_plan {
+                        r = r.reals(&plan_results(w));
+                    }
+                    r = r.int(w.custom.len() as i64).reals(&w.custom);
+                } else {
+                    r = r.int(0);
+                }
+                self.viz.cursor = cursor + 1;
+                Ok(r.into_text())
+            }
+            Cmd::SetBoxSize => {
+                let [project, l, w, h] = fields::<4>(a)?;
+                let project = int(project)?;
+                let proj = self.scenario.project(project).ok_or(c.project_not_found)?;
+                if !proj.box_size {
+                    return Err(c.box_size_unsupported);
+                }
+                if [l, w, h].iter().any(|v| *v <= 0.0) {
+                    return Err(c.bad_box_size);
+                }
+                self.project_state(project).box_size = Some([l, w, h]);
+                Ok(self.status(echo, ok))
+            }
+            Cmd::SetExternalMove => {
+                let tcp = fields::<6>(a)?;
+                self.viz.external_tcp = Some(tcp.to_vec());
+                Ok(self.status(echo, ok))
+            }
+            Cmd::Calibrate => {
+                let f = fields::<13>(a)?;
+                let state = int(f[0])?;
+                let points = &self.scenario.calibration;
+                if points.is_empty() {
+                    return Err(c.calib_no_pose);
+                }
+                let next = match (state, self.calib_cursor) {
+                    (0, _) => 0,
+                    // A point the robot could not reach is skipped, like a reached one [U].
+                    (1 | 2, Some(cur)) => cur + 1,
+                    _ => return Err(c.calib_param_error),
+                };
+                self.calib_cursor = Some(next);
+                let r = self.reply(echo).int(i64::from(ok));
+                Ok(match points.get(next) {
+                    Some(p) => r.int(0).reals(&p.pose).reals(&p.joints),
+                    None => r.int(1).reals(&[0.0; 12]),
+                }
+                .into_text())
+            }
+            Cmd::GetStatus => {
+                fields::<0>(a)?;
+                Ok(self.status(echo, ok))
+            }
+        }
+    }
+
+    fn project_state(&mut self, project: i64) -> &mut ProjectState {
+        self.projects.entry(project).or_default()
+    }
+
+    /// The state of a known, triggered project, or the status to reply.
+    fn triggered(&self, project: i64) -> Result<&ProjectState, u32> {
+        let c = codes();
+        self.scenario.project(project).ok_or(c.project_not_found)?;
+        self.projects
+            .get(&project)
+            .filter(|s| s.triggered)
+            .ok_or(c.not_triggered)
+    }
+
+    fn started_viz(&self) -> Result<&super::scenario::Viz, u32> {
+        let c = codes();
+        let viz = self.scenario.viz.as_ref().ok_or(c.viz_no_project)?;
+        if !self.viz.started {
+            return Err(c.viz_no_result);
+        }
+        Ok(viz)
+    }
+
+    fn batch_len(&self, len: usize, cursor: usize) -> usize {
+        len.saturating_sub(cursor)
+            .min(self.scenario.server.batch as usize)
+    }
+
+    /// A 105/205 reply: `echo,ok,all,n,visPos, n × [p1..p6,label,speed]`. The Vision Move
+    /// position counts from the first waypoint of this batch (1-based; 0 = none left).
+    fn path_batch(
+        &self,
+        echo: u32,
+        ok: u32,
+        path: &[Waypoint],
+        cursor: usize,
+        joints: bool,
+        (empty, mismatch): (u32, u32),
+    ) -> Result<String, u32> {
+        let n = self.batch_len(path.len(), cursor);
+        if n == 0 {
+            return Err(empty);
+        }
+        let batch = &path[cursor..cursor + n];
+        if batch.iter().any(|w| w.values(joints).is_none()) {
+            return Err(mismatch);
+        }
+        let vis_pos = path[cursor..]
+            .iter()
+            .position(|w| w.vision_move)
+            .map_or(0, |i| i as i64 + 1);
+        let all = cursor + n >= path.len();
+        let mut r = self
+            .reply(echo)
+            .int(i64::from(ok))
+            .int(i64::from(all))
+            .int(n as i64)
+            .int(vis_pos);
+        for w in batch {
+            r = r
+                .reals(w.values(joints).unwrap_or(&[]))
+                .int(w.label)
+                .real(w.speed);
+        }
+        Ok(r.into_text())
+    }
+}
+
+fn plan_results(w: &Waypoint) -> Vec<f64> {
+    let len = catalog().limits.plan_results_len as usize;
+    if w.plan_results.is_empty() {
+        vec![0.0; len]
+    } else {
+        w.plan_results.clone()
+    }
+}
+
+/// Exactly `N` argument fields, or "invalid data length or format".
+fn fields<const N: usize>(args: &[f64]) -> Result<[f64; N], u32> {
+    <[f64; N]>::try_from(args).map_err(|_| codes().invalid_format)
+}
+
+/// An integer field, or "invalid data length or format".
+fn int(v: f64) -> Result<i64, u32> {
+    as_int(v).ok_or(codes().invalid_format)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn every_command_and_status_name_resolves_in_the_catalog() {
+        let c = codes();
+        assert_eq!(c.commands.len(), COMMANDS.len());
+        for (cmd, name) in COMMANDS {
+            let code = catalog().command_named(name).map(|c| c.code);
+            assert_eq!(code.and_then(|n| c.command(n)), Some(cmd), "{name}");
+        }
+        assert_eq!(c.invalid_format, 3002);
+        assert_eq!(c.project_not_found, 1011);
+    }
+}
