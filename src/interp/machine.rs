@@ -90,6 +90,9 @@ pub(crate) struct Machine<'p> {
 
 const TIMERS: usize = 64;
 
+/// Globals the interpreter predefines (like `$config.dat`); not reported in [`RunResult::globals`].
+const BUILTIN_GLOBALS: [&str; 2] = ["HOME", "XHOME"];
+
 impl<'p> Machine<'p> {
     pub(crate) fn new(prog: &'p Program, opts: &'p Options) -> Machine<'p> {
         let mut m = Machine {
@@ -239,7 +242,7 @@ impl<'p> Machine<'p> {
         let globals = self
             .globals
             .iter()
-            .filter(|(k, _)| !k.starts_with('$'))
+            .filter(|(k, _)| !k.starts_with('$') && !BUILTIN_GLOBALS.contains(&k.as_str()))
             .map(|(k, v)| (k.clone(), v.clone()))
             .collect();
         RunResult {

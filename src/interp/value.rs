@@ -61,6 +61,11 @@ impl Value {
         }
     }
 
+    /// JSON for traces and reports: CHAR arrays as strings, STRUCs as objects.
+    pub fn to_json(&self) -> serde_json::Value {
+        super::machine::to_json(self)
+    }
+
     /// The text of a CHAR array (up to the first NUL) or a string literal.
     pub fn as_text(&self) -> Option<String> {
         match self {
