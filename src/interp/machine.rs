@@ -1373,7 +1373,7 @@ impl<'p> Machine<'p> {
 
 /// Dimensions to declare for an IN parameter declared `x[]`: take them from the incoming value.
 fn fixed(dims: &[usize], incoming: &Value) -> Vec<usize> {
-    if dims.contains(&0) {
+    if dims.contains(&0) || (dims.is_empty() && matches!(incoming, Value::Array { .. })) {
         if let Value::Array { dims: d, .. } = incoming {
             return d.clone();
         }
