@@ -415,13 +415,23 @@ impl<'p> Machine<'p> {
                         )));
                     }
                 },
-                (_, Some(e)) => Some(Slot::Own(self.eval(e)?)),
+                (_, Some(e)) => {
+                    let v = match self.eval(e)? {
+                        // A literal passed to `name[]` arrives as a CHAR array of its length.
+                        Value::Str(s) if p.array => Value::char_array(s.as_bytes(), s.len().max(1)),
+                        v => v,
+                    };
+                    Some(Slot::Own(v))
+                }
             };
             if let Some(s) = slot {
                 vars.insert(p.name.key(), s);
             }
         }
-        let is_mm = routine.name.text.to_ascii_uppercase().starts_with("MM_");
+        // Only the interface's subprograms are traced, not the package's internal helpers.
+        let is_mm = crate::catalog::catalog()
+            .subprogram(&routine.name.text)
+            .is_some();
         if is_mm {
             self.events.push(Event::Call {
                 name: routine.name.text.clone(),
@@ -468,9 +478,14 @@ impl<'p> Machine<'p> {
                     }
                 }
             }
+            let status = match self.globals.get("MM_LAST_STATUS") {
+                Some(Value::Int(i)) => Some(*i),
+                _ => None,
+            };
             self.events.push(Event::Return {
                 name: routine.name.text.clone(),
                 out,
+                status,
             });
         }
         if routine.kind == RoutineKind::Deffct {

@@ -89,6 +89,8 @@ pub enum Event {
     Return {
         name: String,
         out: Vec<(String, serde_json::Value)>,
+        /// The package's `MM_Last_Status` global after the call, when the package has one.
+        status: Option<i64>,
     },
     Message {
         text: String,
@@ -116,12 +118,12 @@ impl Event {
                 json!({"event": "motion", "kind": kind, "target": pairs(target)})
             }
             Event::Call { name } => json!({"event": "call", "name": name}),
-            Event::Return { name, out } => {
+            Event::Return { name, out, status } => {
                 let mut m = Map::new();
                 for (k, v) in out {
                     m.insert(k.clone(), v.clone());
                 }
-                json!({"event": "return", "name": name, "out": J::Object(m)})
+                json!({"event": "return", "name": name, "out": J::Object(m), "status": status})
             }
             Event::Message { text } => json!({"event": "message", "text": text}),
             Event::End {
