@@ -12,6 +12,7 @@ pub mod diag;
 pub mod eki;
 pub mod files;
 pub mod generate;
+pub mod interp;
 pub mod lint;
 pub mod sim;
 pub mod spec;

@@ -1,6 +1,138 @@
+//! `krlkit run`: interpret a KRL program plus the MM_* package.
+//!
+//! Exit codes: 0 the program ended normally; 1 it stopped at a `HALT`; 2 it could not be run or
+//! ended in a runtime error (printed as `file:line: message`).
+
+use std::io::Write;
+use std::path::{Path, PathBuf};
+
+use anyhow::Context;
+
 use super::Outcome;
 use super::args::RunArgs;
+use crate::interp::{self, End, Options, Program};
 
-pub fn run(_args: RunArgs) -> anyhow::Result<Outcome> {
-    anyhow::bail!("`krlkit run` is not implemented in this build yet")
+fn read_text(path: &Path) -> anyhow::Result<String> {
+    let bytes = std::fs::read(path).with_context(|| format!("cannot read {}", path.display()))?;
+    Ok(crate::syntax::decode(&bytes).text)
+}
+
+fn has_ext(p: &Path, ext: &str) -> bool {
+    p.extension()
+        .and_then(|e| e.to_str())
+        .is_some_and(|e| e.eq_ignore_ascii_case(ext))
+}
+
+/// The program's `.src` and its sibling `.dat` (same stem, any case).
+fn program_files(program: &Path) -> anyhow::Result<Vec<PathBuf>> {
+    let mut files = vec![program.to_path_buf()];
+    let dir = program
+        .parent()
+        .filter(|d| !d.as_os_str().is_empty())
+        .unwrap_or(Path::new("."));
+    let stem = program
+        .file_stem()
+        .and_then(|s| s.to_str())
+        .unwrap_or("")
+        .to_ascii_lowercase();
+    if let Ok(rd) = std::fs::read_dir(dir) {
+        let mut dats: Vec<PathBuf> = rd
+            .flatten()
+            .map(|e| e.path())
+            .filter(|p| {
+                has_ext(p, "dat")
+                    && p.file_stem()
+                        .and_then(|s| s.to_str())
+                        .map(|s| s.to_ascii_lowercase())
+                        == Some(stem.clone())
+            })
+            .collect();
+        dats.sort();
+        files.extend(dats);
+    }
+    Ok(files)
+}
+
+/// Every `.src`/`.dat` under `dir` and every directory holding an `.xml`.
+fn package_files(dir: &Path, files: &mut Vec<PathBuf>, xml_dirs: &mut Vec<PathBuf>) {
+    let Ok(rd) = std::fs::read_dir(dir) else {
+        return;
+    };
+    let mut entries: Vec<PathBuf> = rd.flatten().map(|e| e.path()).collect();
+    entries.sort();
+    for p in entries {
+        if p.is_dir() {
+            package_files(&p, files, xml_dirs);
+        } else if has_ext(&p, "src") || has_ext(&p, "dat") {
+            files.push(p);
+        } else if has_ext(&p, "xml") && !xml_dirs.contains(&dir.to_path_buf()) {
+            xml_dirs.push(dir.to_path_buf());
+        }
+    }
+}
+
+pub fn run(args: RunArgs) -> anyhow::Result<Outcome> {
+    let mut files = program_files(&args.program)?;
+    let mut options = Options {
+        vision: args.vision.clone(),
+        ..Options::default()
+    };
+    if let Some(dir) = args.program.parent() {
+        options.eki_dirs.push(if dir.as_os_str().is_empty() {
+            PathBuf::from(".")
+        } else {
+            dir.to_path_buf()
+        });
+    }
+    let package_dir = match &args.package {
+        Some(d) => Some(d.clone()),
+        // Without --package: the committed reference package of a checkout, if present.
+        None => [PathBuf::from(".")]
+            .into_iter()
+            .find(|d| d.join("krl").is_dir() && d.join("xml").is_dir()),
+    };
+    if let Some(dir) = &package_dir {
+        let mut pkg = Vec::new();
+        package_files(dir, &mut pkg, &mut options.eki_dirs);
+        let canon = |p: &Path| std::fs::canonicalize(p).unwrap_or_else(|_| p.to_path_buf());
+        let mine: Vec<PathBuf> = files.iter().map(|p| canon(p)).collect();
+        // Example programs inside the package are not part of the library.
+        pkg.retain(|p| {
+            !mine.contains(&canon(p)) && !p.components().any(|c| c.as_os_str() == "examples")
+        });
+        files.extend(pkg);
+    }
+    let mut sources = Vec::new();
+    for f in &files {
+        sources.push((f.display().to_string(), read_text(f)?));
+    }
+    let program = match Program::load(sources) {
+        Ok(p) => p,
+        Err(e) => {
+            eprintln!("error: {e}");
+            return Ok(Outcome::Failure);
+        }
+    };
+    let result = interp::run(&program, &options);
+    for m in &result.messages {
+        eprintln!("{m}");
+    }
+    if let Some(path) = &args.trace {
+        let mut out = std::io::BufWriter::new(
+            std::fs::File::create(path)
+                .with_context(|| format!("cannot write {}", path.display()))?,
+        );
+        for e in &result.events {
+            writeln!(out, "{}", e.to_json())?;
+        }
+        out.flush()?;
+    }
+    Ok(match result.end {
+        End::Normal => Outcome::Success,
+        End::Halt { .. } => Outcome::Findings,
+        End::Error(e) => {
+            eprintln!("error: {e}");
+            Outcome::Failure
+        }
+    })
 }

@@ -1,0 +1,533 @@
+//! EthernetKRL emulation: channels configured by EKI XML, client connections over real TCP,
+//! RAW STREAM/BYTE records, the ALIVE and receive flags, and the EKI_* functions.
+//!
+//! Assumed `Msg_No` values (the manual's numbering is not verified, see reference Part 3.3):
+//! 0 OK, 2 channel not initialised, 9 connection not available (refused, lost, not open),
+//! 23 initialisation already performed, 512 connection destroyed while sending.
+
+use std::collections::{HashMap, VecDeque};
+use std::io::{ErrorKind, Read, Write};
+use std::net::{SocketAddr, TcpStream, ToSocketAddrs};
+use std::time::Duration;
+
+use quick_xml::Reader;
+use quick_xml::events::Event as X;
+
+use crate::syntax::ast::Expr;
+
+use super::machine::{Machine, R};
+use super::value::Value;
+
+pub const MSG_NOT_INIT: i64 = 2;
+pub const MSG_NO_CONNECTION: i64 = 9;
+pub const MSG_ALREADY_INIT: i64 = 23;
+pub const MSG_DESTROYED: i64 = 512;
+
+#[derive(Debug, Clone, PartialEq)]
+pub enum RawKind {
+    Stream { eos: Vec<Vec<u8>> },
+    Byte,
+}
+
+#[derive(Debug, Clone, PartialEq)]
+pub struct RawElement {
+    pub tag: String,
+    pub kind: RawKind,
+    pub size: usize,
+    pub set_flag: Option<usize>,
+    pub set_out: Option<usize>,
+}
+
+/// The parts of an EKI XML file the emulation uses.
+#[derive(Debug, Clone, PartialEq, Default)]
+pub struct ChannelConfig {
+    pub external_type: String,
+    pub ip: String,
+    pub port: u16,
+    pub connect_timeout_ms: u64,
+    pub alive_flag: Option<usize>,
+    pub alive_out: Option<usize>,
+    pub receive: Vec<RawElement>,
+    pub send: Vec<RawElement>,
+    /// True when RECEIVE/SEND use `<XML>` (not supported here).
+    pub xml_mode: bool,
+}
+
+fn parse_eos(s: &str) -> Result<Vec<Vec<u8>>, String> {
+    s.split('|')
+        .map(|alt| {
+            alt.split(',')
+                .map(|n| {
+                    n.trim()
+                        .parse::<u8>()
+                        .map_err(|_| format!("bad EOS value `{s}`"))
+                })
+                .collect()
+        })
+        .collect()
+}
+
+/// Read an EKI configuration (element and attribute names case-insensitive).
+pub fn parse_config(xml: &str) -> Result<ChannelConfig, String> {
+    let mut r = Reader::from_str(xml);
+    r.config_mut().trim_text(true);
+    let mut cfg = ChannelConfig {
+        connect_timeout_ms: 2000,
+        external_type: "Server".into(),
+        ..Default::default()
+    };
+    let mut stack: Vec<String> = Vec::new();
+    loop {
+        let ev = r.read_event().map_err(|e| format!("EKI XML: {e}"))?;
+        let empty = matches!(ev, X::Empty(_));
+        match ev {
+            X::Start(e) | X::Empty(e) => {
+                let name = e.name().into_inner().to_ascii_uppercase();
+                let mut attrs = HashMap::new();
+                for a in e.attributes().flatten() {
+                    let k = a.key.into_inner().to_ascii_uppercase();
+                    #[allow(deprecated)]
+                    let v = a
+                        .unescape_value()
+                        .map(|v| v.into_owned())
+                        .unwrap_or_default();
+                    attrs.insert(k, v);
+                }
+                let num = |k: &str| attrs.get(k).and_then(|v| v.trim().parse::<usize>().ok());
+                let path = stack.join("/");
+                match name.as_str() {
+                    "ALIVE" => {
+                        cfg.alive_flag = num("SET_FLAG");
+                        cfg.alive_out = num("SET_OUT");
+                    }
+                    "TIMEOUT" => {
+                        if let Some(t) = num("CONNECT") {
+                            cfg.connect_timeout_ms = t as u64;
+                        }
+                    }
+                    "XML" if path.contains("RECEIVE") || path.contains("SEND") => {
+                        cfg.xml_mode = true
+                    }
+                    "ELEMENT" if path.ends_with("RAW") => {
+                        let tag = attrs.get("TAG").cloned().unwrap_or_default();
+                        let ty = attrs
+                            .get("TYPE")
+                            .map(|t| t.to_ascii_uppercase())
+                            .unwrap_or_default();
+                        let kind = if ty == "BYTE" {
+                            RawKind::Byte
+                        } else {
+                            RawKind::Stream {
+                                eos: match attrs.get("EOS") {
+                                    Some(s) => parse_eos(s)?,
+                                    None => vec![],
+                                },
+                            }
+                        };
+                        let el = RawElement {
+                            tag,
+                            kind,
+                            size: num("SIZE").unwrap_or(3600),
+                            set_flag: num("SET_FLAG"),
+                            set_out: num("SET_OUT"),
+                        };
+                        if path.contains("RECEIVE") {
+                            cfg.receive.push(el);
+                        } else {
+                            cfg.send.push(el);
+                        }
+                    }
+                    _ => {}
+                }
+                if !empty {
+                    stack.push(name);
+                }
+            }
+            X::Text(t) => {
+                let raw: &str = t.as_ref();
+                let text = raw.trim().to_string();
+                let path = stack.join("/");
+                if path.ends_with("EXTERNAL/IP") {
+                    cfg.ip = text;
+                } else if path.ends_with("EXTERNAL/PORT") {
+                    cfg.port = text
+                        .parse()
+                        .map_err(|_| format!("EKI XML: bad PORT `{text}`"))?;
+                } else if path.ends_with("EXTERNAL/TYPE") {
+                    cfg.external_type = text;
+                }
+            }
+            X::End(_) => {
+                stack.pop();
+            }
+            X::Eof => break,
+            _ => {}
+        }
+    }
+    Ok(cfg)
+}
+
+#[derive(Debug)]
+struct Channel {
+    cfg: ChannelConfig,
+    stream: Option<TcpStream>,
+    rx: Vec<u8>,
+    records: HashMap<String, VecDeque<Vec<u8>>>,
+    counter: i64,
+}
+
+#[derive(Debug, Default)]
+pub(crate) struct Eki {
+    channels: HashMap<String, Channel>,
+}
+
+impl Eki {
+    pub(crate) fn any_connected(&self) -> bool {
+        self.channels.values().any(|c| c.stream.is_some())
+    }
+
+    pub(crate) fn close_all(&mut self) {
+        for c in self.channels.values_mut() {
+            c.stream = None;
+        }
+    }
+
+    /// Read what has arrived (waiting up to `wait` for the first bytes), split it into records,
+    /// and set the configured flags.
+    pub(crate) fn pump(&mut self, globals: &mut HashMap<String, Value>, wait: Duration) {
+        let mut waited = false;
+        for c in self.channels.values_mut() {
+            let Some(s) = &mut c.stream else { continue };
+            let mut buf = [0u8; 8192];
+            let mut closed = false;
+            loop {
+                let blocking = !waited && !wait.is_zero();
+                let _ = if blocking {
+                    s.set_nonblocking(false)
+                        .and_then(|_| s.set_read_timeout(Some(wait)))
+                } else {
+                    s.set_nonblocking(true)
+                };
+                waited |= blocking;
+                match s.read(&mut buf) {
+                    Ok(0) => {
+                        closed = true;
+                        break;
+                    }
+                    Ok(n) => c.rx.extend_from_slice(&buf[..n]),
+                    Err(e) if matches!(e.kind(), ErrorKind::WouldBlock | ErrorKind::TimedOut) => {
+                        break;
+                    }
+                    Err(e) if e.kind() == ErrorKind::Interrupted => continue,
+                    Err(_) => {
+                        closed = true;
+                        break;
+                    }
+                }
+            }
+            c.split_records(globals);
+            if closed {
+                c.stream = None;
+                set_flag(globals, "$FLAG", c.cfg.alive_flag, false);
+                set_flag(globals, "$OUT", c.cfg.alive_out, false);
+            }
+        }
+    }
+}
+
+impl Channel {
+    fn split_records(&mut self, globals: &mut HashMap<String, Value>) {
+        let Some(el) = self.cfg.receive.first().cloned() else {
+            self.rx.clear();
+            return;
+        };
+        loop {
+            let cut = match &el.kind {
+                RawKind::Byte => (self.rx.len() >= el.size).then_some((el.size, el.size)),
+                RawKind::Stream { eos } => eos
+                    .iter()
+                    .filter(|e| !e.is_empty())
+                    .filter_map(|e| {
+                        self.rx
+                            .windows(e.len())
+                            .position(|w| w == e.as_slice())
+                            .map(|p| (p, p + e.len()))
+                    })
+                    .min(),
+            };
+            let Some((data_end, consumed)) = cut else {
+                break;
+            };
+            let mut record: Vec<u8> = self.rx.drain(..consumed).collect();
+            record.truncate(data_end.min(el.size));
+            self.records
+                .entry(el.tag.to_ascii_uppercase())
+                .or_default()
+                .push_back(record);
+            set_flag(globals, "$FLAG", el.set_flag, true);
+            set_flag(globals, "$OUT", el.set_out, true);
+        }
+    }
+}
+
+fn set_flag(globals: &mut HashMap<String, Value>, var: &str, n: Option<usize>, v: bool) {
+    if let Some(n) = n
+        && let Some(Value::Array { items, .. }) = globals.get_mut(var)
+        && let Some(slot) = n.checked_sub(1).and_then(|i| items.get_mut(i))
+    {
+        *slot = Value::Bool(v);
+    }
+}
+
+fn status(buff: usize, read: usize, msg: i64, connected: bool, counter: i64) -> Value {
+    Value::Struc {
+        ty: "EKI_STATUS".into(),
+        fields: vec![
+            ("Buff".into(), Value::Int(buff as i64)),
+            ("Read".into(), Value::Int(read as i64)),
+            ("Msg_No".into(), Value::Int(msg)),
+            ("Connected".into(), Value::Bool(connected)),
+            ("Counter".into(), Value::Int(counter)),
+        ],
+    }
+}
+
+fn load_config(m: &Machine, name: &str) -> R<ChannelConfig> {
+    let key = name.to_ascii_uppercase();
+    let text = match m.opts.eki_configs.get(&key) {
+        Some(t) => t.clone(),
+        None => {
+            let found = m.opts.eki_dirs.iter().find_map(|d| {
+                std::fs::read_dir(d).ok()?.flatten().find_map(|e| {
+                    let p = e.path();
+                    let stem = p.file_stem()?.to_str()?.to_ascii_uppercase();
+                    let xml = p.extension()?.to_str()?.eq_ignore_ascii_case("xml");
+                    (xml && stem == key)
+                        .then(|| std::fs::read_to_string(&p).ok())
+                        .flatten()
+                })
+            });
+            found.ok_or_else(|| {
+                m.err(format!(
+                    "EKI_Init: no EKI configuration `{name}.xml` (looked in {})",
+                    m.opts
+                        .eki_dirs
+                        .iter()
+                        .map(|d| d.display().to_string())
+                        .collect::<Vec<_>>()
+                        .join(", ")
+                ))
+            })?
+        }
+    };
+    let cfg = parse_config(&text).map_err(|e| m.err(format!("{name}.xml: {e}")))?;
+    if cfg.xml_mode {
+        return Err(m.err(format!(
+            "{name}.xml: XML-mode EKI channels are not supported by krlkit run (RAW only)"
+        )));
+    }
+    Ok(cfg)
+}
+
+fn m_err_never() -> super::machine::Stop {
+    super::machine::Stop::Error(super::RuntimeError {
+        file: String::new(),
+        line: 0,
+        message: "EKI channel vanished".into(),
+    })
+}
+
+fn resolve(addr: &str) -> Option<SocketAddr> {
+    addr.to_socket_addrs().ok()?.next()
+}
+
+/// Run `EKI_*` function `up` (upper-case name).
+pub(crate) fn call(m: &mut Machine, up: &str, args: &[Option<Expr>]) -> R<Value> {
+    let name = m
+        .arg_value(args, 0, up)?
+        .as_text()
+        .ok_or_else(|| m.err(format!("{up}: the channel name must be a string")))?;
+    let key = name.to_ascii_uppercase();
+    let tag_arg = |m: &mut Machine| -> R<String> {
+        m.arg_value(args, 1, up)?
+            .as_text()
+            .map(|t| t.to_ascii_uppercase())
+            .ok_or_else(|| m.err(format!("{up}: the tag must be a string")))
+    };
+    let not_init = |m: &Machine| {
+        let connected = m.eki.channels.get(&key).is_some_and(|c| c.stream.is_some());
+        status(0, 0, MSG_NOT_INIT, connected, 0)
+    };
+    match up {
+        "EKI_INIT" => {
+            if m.eki.channels.contains_key(&key) {
+                return Ok(status(0, 0, MSG_ALREADY_INIT, false, 0));
+            }
+            let cfg = load_config(m, &name)?;
+            m.eki.channels.insert(
+                key,
+                Channel {
+                    cfg,
+                    stream: None,
+                    rx: Vec::new(),
+                    records: HashMap::new(),
+                    counter: 0,
+                },
+            );
+            Ok(status(0, 0, 0, false, 0))
+        }
+        "EKI_OPEN" => {
+            let vision = m.opts.vision.clone();
+            let Some(c) = m.eki.channels.get(&key) else {
+                return Ok(not_init(m));
+            };
+            if c.stream.is_some() {
+                return Ok(status(0, 0, 0, true, c.counter));
+            }
+            if !c.cfg.external_type.eq_ignore_ascii_case("Server") {
+                return Err(m.err("EKI_Open: only channels whose EXTERNAL TYPE is Server (robot = client) are supported"));
+            }
+            let addr_text = vision.unwrap_or_else(|| format!("{}:{}", c.cfg.ip, c.cfg.port));
+            let timeout = Duration::from_millis(c.cfg.connect_timeout_ms.clamp(1, 2000));
+            let stream = resolve(&addr_text).and_then(|a| TcpStream::connect_timeout(&a, timeout).ok());
+            let c = m.eki.channels.get_mut(&key).ok_or_else(m_err_never)?;
+            match stream {
+                Some(s) => {
+                    let _ = s.set_nodelay(true);
+                    c.stream = Some(s);
+                    let (af, ao) = (c.cfg.alive_flag, c.cfg.alive_out);
+                    let g = m.globals_mut();
+                    set_flag(g, "$FLAG", af, true);
+                    set_flag(g, "$OUT", ao, true);
+                    Ok(status(0, 0, 0, true, 0))
+                }
+                None => {
+                    m.message(format!("EKI: connection to {addr_text} not available (channel {name})"));
+                    Ok(status(0, 0, MSG_NO_CONNECTION, false, 0))
+                }
+            }
+        }
+        "EKI_SEND" => {
+            let data = m.arg_value(args, 1, up)?;
+            let len = match args.get(2).and_then(|a| a.as_ref()) {
+                Some(e) => Some(m.eval_int(e)?.max(0) as usize),
+                None => None,
+            };
+            let mut bytes: Vec<u8> = match (&data, len) {
+                (Value::Array { items, .. }, Some(n)) => items
+                    .iter()
+                    .take(n)
+                    .map(|v| if let Value::Char(c) = v { *c } else { 0 })
+                    .collect(),
+                _ => data
+                    .as_text()
+                    .ok_or_else(|| m.err("EKI_Send: data must be a CHAR array"))?
+                    .bytes()
+                    .collect(),
+            };
+            let Some(c) = m.eki.channels.get_mut(&key) else {
+                return Ok(not_init(m));
+            };
+            let el = c.cfg.send.first().or(c.cfg.receive.first());
+            if let Some(RawElement {
+                kind: RawKind::Stream { eos },
+                ..
+            }) = el
+                && let Some(first) = eos.first()
+            {
+                bytes.extend_from_slice(first);
+            }
+            let counter = c.counter;
+            let Some(s) = &mut c.stream else {
+                return Ok(status(0, 0, MSG_NO_CONNECTION, false, counter));
+            };
+            let _ = s.set_nonblocking(false);
+            let _ = s.set_write_timeout(Some(Duration::from_secs(2)));
+            match s.write_all(&bytes) {
+                Ok(()) => Ok(status(0, 0, 0, true, counter)),
+                Err(_) => {
+                    c.stream = None;
+                    let af = c.cfg.alive_flag;
+                    set_flag(m.globals_mut(), "$FLAG", af, false);
+                    Ok(status(0, 0, MSG_DESTROYED, false, counter))
+                }
+            }
+        }
+        "EKI_GETSTRING" => {
+            let tag = tag_arg(m)?;
+            let target = m.arg_place(args, 2, up)?;
+            let mut g = std::mem::take(m.globals_mut());
+            m.eki.pump(&mut g, Duration::ZERO);
+            *m.globals_mut() = g;
+            let Some(c) = m.eki.channels.get_mut(&key) else {
+                return Ok(not_init(m));
+            };
+            let connected = c.stream.is_some();
+            let q = c.records.entry(tag).or_default();
+            match q.pop_front() {
+                Some(rec) => {
+                    c.counter += 1;
+                    let (buff, counter) = (q.len(), c.counter);
+                    let cur = m.read_value(&target)?;
+                    let len = match &cur {
+                        Value::Array { items, .. } => items.len(),
+                        v => return Err(m.err(format!("EKI_GetString: target must be a CHAR array, found {}", v.kind_name()))),
+                    };
+                    m.assign(&target, Value::char_array(&rec, len))?;
+                    Ok(status(buff, 1, 0, connected, counter))
+                }
+                None => {
+                    let counter = c.counter;
+                    Ok(status(0, 0, 0, connected, counter))
+                }
+            }
+        }
+        "EKI_CHECKBUFFER" => {
+            let tag = tag_arg(m)?;
+            let mut g = std::mem::take(m.globals_mut());
+            m.eki.pump(&mut g, Duration::ZERO);
+            *m.globals_mut() = g;
+            let Some(c) = m.eki.channels.get(&key) else {
+                return Ok(not_init(m));
+            };
+            let n = c.records.get(&tag).map(|q| q.len()).unwrap_or(0);
+            Ok(status(n, 0, 0, c.stream.is_some(), c.counter))
+        }
+        "EKI_CLEARBUFFER" => {
+            let tag = tag_arg(m)?;
+            let Some(c) = m.eki.channels.get_mut(&key) else {
+                return Ok(not_init(m));
+            };
+            if c.records.contains_key(&tag) {
+                c.records.remove(&tag);
+            } else {
+                c.records.clear();
+            }
+            c.rx.clear();
+            Ok(status(0, 0, 0, c.stream.is_some(), c.counter))
+        }
+        "EKI_CLOSE" | "EKI_CLEAR" => {
+            let Some(c) = m.eki.channels.get_mut(&key) else {
+                return Ok(not_init(m));
+            };
+            c.stream = None;
+            let (af, ao) = (c.cfg.alive_flag, c.cfg.alive_out);
+            if up == "EKI_CLEAR" {
+                m.eki.channels.remove(&key);
+            }
+            let g = m.globals_mut();
+            set_flag(g, "$FLAG", af, false);
+            set_flag(g, "$OUT", ao, false);
+            Ok(status(0, 0, 0, false, 0))
+        }
+        "EKI_LOCK" | "EKI_UNLOCK" => {
+            let Some(c) = m.eki.channels.get(&key) else {
+                return Ok(not_init(m));
+            };
+            Ok(status(0, 0, 0, c.stream.is_some(), c.counter))
+        }
+        other => Err(m.err(format!(
+            "{other} is not supported by krlkit run (RAW channels: EKI_Init/Open/Send/GetString/CheckBuffer/ClearBuffer/Close/Clear)"
+        ))),
+    }
+}

@@ -1,0 +1,1428 @@
+//! The executor: scopes, places (for OUT parameters), statements and expressions.
+
+use std::collections::HashMap;
+
+use crate::syntax::ast::{
+    BinaryOp, Decl, Expr, ExprKind, Motion, MotionKind, ParamDir, Routine, RoutineKind, Stmt,
+    StmtKind, UnaryOp,
+};
+
+use super::eki::Eki;
+use super::program::Program;
+use super::value::{AXIS_FIELDS, BaseType, CART_FIELDS, Types, Value};
+use super::{End, Event, Options, RunResult, RuntimeError};
+
+/// Where a value lives: the target of assignments and OUT parameters.
+#[derive(Debug, Clone, PartialEq)]
+pub(crate) struct Place {
+    root: Root,
+    path: Vec<Seg>,
+}
+
+#[derive(Debug, Clone, PartialEq)]
+enum Root {
+    Global(String),
+    Local(usize, String),
+}
+
+#[derive(Debug, Clone, PartialEq)]
+enum Seg {
+    Index(usize),
+    Field(String),
+}
+
+#[derive(Debug)]
+enum Slot {
+    Own(Value),
+    Alias(Place),
+}
+
+#[derive(Debug)]
+struct Frame {
+    module: usize,
+    vars: HashMap<String, Slot>,
+}
+
+/// Why execution of a block stopped early.
+pub(crate) enum Stop {
+    Error(RuntimeError),
+    Halt { file: String, line: usize },
+}
+
+impl From<RuntimeError> for Stop {
+    fn from(e: RuntimeError) -> Stop {
+        Stop::Error(e)
+    }
+}
+
+enum Flow {
+    Next,
+    Exit,
+    Return(Option<Value>),
+    Goto(String),
+}
+
+#[derive(Debug, Clone, Copy, Default)]
+struct Timer {
+    base: f64,
+    start: f64,
+    running: bool,
+}
+
+pub(crate) type R<T> = Result<T, Stop>;
+
+pub(crate) struct Machine<'p> {
+    pub(crate) prog: &'p Program,
+    pub(crate) opts: &'p Options,
+    globals: HashMap<String, Value>,
+    frames: Vec<Frame>,
+    /// Current module and byte offset, for error locations.
+    loc: (usize, u32),
+    pub(crate) clock_ms: f64,
+    timers: Vec<Timer>,
+    pub(crate) eki: Eki,
+    events: Vec<Event>,
+    messages: Vec<String>,
+    steps: u64,
+    /// TRIGGER actions waiting for the next motion.
+    pending_triggers: Vec<Stmt>,
+}
+
+const TIMERS: usize = 64;
+
+/// Globals the interpreter predefines (like `$config.dat`); not reported in [`RunResult::globals`].
+const BUILTIN_GLOBALS: [&str; 2] = ["HOME", "XHOME"];
+
+impl<'p> Machine<'p> {
+    pub(crate) fn new(prog: &'p Program, opts: &'p Options) -> Machine<'p> {
+        let mut m = Machine {
+            prog,
+            opts,
+            globals: HashMap::new(),
+            frames: Vec::new(),
+            loc: (0, 0),
+            clock_ms: 0.0,
+            timers: vec![Timer::default(); TIMERS + 1],
+            eki: Eki::default(),
+            events: Vec::new(),
+            messages: Vec::new(),
+            steps: 0,
+            pending_triggers: Vec::new(),
+        };
+        m.init_system();
+        m
+    }
+
+    fn types(&self) -> &Types {
+        &self.prog.types
+    }
+
+    pub(crate) fn err(&self, message: impl Into<String>) -> Stop {
+        Stop::Error(self.error(message))
+    }
+
+    pub(crate) fn error(&self, message: impl Into<String>) -> RuntimeError {
+        let (mi, off) = self.loc;
+        let (file, line) = match self.prog.modules.get(mi) {
+            Some(m) => (m.name.clone(), m.line_of(off)),
+            None => (String::new(), 0),
+        };
+        RuntimeError {
+            file,
+            line,
+            message: message.into(),
+        }
+    }
+
+    fn init_system(&mut self) {
+        let t = self.prog.types.clone();
+        let bools = |n: usize| t.default_value(&BaseType::Bool, &[n]);
+        let mut put = |k: &str, v: Value| {
+            self.globals.insert(k.to_string(), v);
+        };
+        put("$FLAG", bools(1024));
+        put("$OUT", bools(4096));
+        let mut inputs = bools(4096);
+        if let Value::Array { items, .. } = &mut inputs {
+            for (n, v) in &self.opts.inputs {
+                if let Some(slot) = n.checked_sub(1).and_then(|i| items.get_mut(i)) {
+                    *slot = Value::Bool(*v);
+                }
+            }
+        }
+        put("$IN", inputs);
+        put("$TIMER", t.default_value(&BaseType::Int, &[TIMERS]));
+        put("$TIMER_STOP", {
+            let mut v = bools(TIMERS);
+            if let Value::Array { items, .. } = &mut v {
+                items.iter_mut().for_each(|x| *x = Value::Bool(true));
+            }
+            v
+        });
+        put("$TIMER_FLAG", bools(TIMERS));
+        let frame = t.default_value(&BaseType::Struc("FRAME".into()), &[]);
+        for k in ["$BASE", "$TOOL", "$NULLFRAME", "$WORLD", "$ROBROOT"] {
+            put(k, frame.clone());
+        }
+        let mut home = t.default_value(&BaseType::Struc("E6AXIS".into()), &[]);
+        for (f, v) in [("A2", -90.0), ("A3", 90.0)] {
+            if let Some(x) = home.field_mut(f) {
+                *x = Value::Real(v);
+            }
+        }
+        put("$AXIS_ACT", home.clone());
+        put("$AXIS_HOME", home.clone());
+        put("XHOME", home.clone());
+        put("HOME", home);
+        put(
+            "$POS_ACT",
+            t.default_value(&BaseType::Struc("E6POS".into()), &[]),
+        );
+        put(
+            "$VEL",
+            t.default_value(&BaseType::Struc("VEL_CP_T".into()), &[]),
+        );
+        put(
+            "$ACC",
+            t.default_value(&BaseType::Struc("VEL_CP_T".into()), &[]),
+        );
+        put(
+            "$APO",
+            t.default_value(&BaseType::Struc("APO_T".into()), &[]),
+        );
+        put("$VEL_AXIS", t.default_value(&BaseType::Int, &[12]));
+        put("$ACC_AXIS", t.default_value(&BaseType::Int, &[12]));
+        for k in ["$ADVANCE", "$OV_PRO", "$TOOL_NO", "$BASE_NO"] {
+            put(k, Value::Int(0));
+        }
+    }
+
+    // ---------------------------------------------------------------- running
+
+    pub(crate) fn run_main(mut self) -> RunResult {
+        let end = match self.prog.entry() {
+            None => End::Error(RuntimeError {
+                file: self
+                    .prog
+                    .modules
+                    .first()
+                    .map(|m| m.name.clone())
+                    .unwrap_or_default(),
+                line: 1,
+                message: "no DEF to run".into(),
+            }),
+            Some((mi, ri)) => match self.init_dats().and_then(|_| {
+                let r = &self.prog.modules[mi].ast.routines[ri];
+                if !r.params.is_empty() {
+                    self.loc = (mi, r.span.start);
+                    return Err(self.err(format!(
+                        "{} takes parameters; the program to run must not",
+                        r.name.text
+                    )));
+                }
+                self.call_routine(mi, ri, &[]).map(|_| ())
+            }) {
+                Ok(()) => End::Normal,
+                Err(Stop::Halt { file, line }) => End::Halt { file, line },
+                Err(Stop::Error(e)) => End::Error(e),
+            },
+        };
+        self.eki.close_all();
+        let (status, message) = match &end {
+            End::Normal => ("ok".to_string(), None),
+            End::Halt { file, line } => ("halt".to_string(), Some(format!("{file}:{line}: HALT"))),
+            End::Error(e) => ("error".to_string(), Some(e.to_string())),
+        };
+        self.events.push(Event::End {
+            status,
+            message,
+            steps: self.steps,
+            time_ms: self.clock_ms,
+        });
+        let globals = self
+            .globals
+            .iter()
+            .filter(|(k, _)| !k.starts_with('$') && !BUILTIN_GLOBALS.contains(&k.as_str()))
+            .map(|(k, v)| (k.clone(), v.clone()))
+            .collect();
+        RunResult {
+            end,
+            events: self.events,
+            messages: self.messages,
+            globals,
+            steps: self.steps,
+            sim_time_ms: self.clock_ms,
+        }
+    }
+
+    /// Declare every DEFDAT's variables, then run their initialisers in file order.
+    fn init_dats(&mut self) -> R<()> {
+        for mi in 0..self.prog.modules.len() {
+            let m = &self.prog.modules[mi];
+            let Some(dat) = &m.ast.dat else { continue };
+            for d in &dat.decls {
+                self.loc = (mi, d.span.start);
+                let global = d.global;
+                let scope = m.scope.clone();
+                self.declare(
+                    d,
+                    |name| {
+                        if global {
+                            name.to_string()
+                        } else {
+                            format!("{scope}::{name}")
+                        }
+                    },
+                    None,
+                )?;
+            }
+        }
+        // DEFDAT bodies (e.g. `name[]="text"` lines) run once, before the program.
+        for mi in 0..self.prog.modules.len() {
+            let Some(dat) = &self.prog.modules[mi].ast.dat else {
+                continue;
+            };
+            self.frames.push(Frame {
+                module: mi,
+                vars: HashMap::new(),
+            });
+            let r = self.exec_block(&dat.body);
+            self.frames.pop();
+            r?;
+        }
+        Ok(())
+    }
+
+    /// Declare the variables of `d` as globals named by `key`, or as locals of the top frame.
+    fn declare(&mut self, d: &Decl, key: impl Fn(&str) -> String, local: Option<usize>) -> R<()> {
+        let ty = self
+            .prog
+            .base_type(&d.ty.name.text)
+            .ok_or_else(|| self.err(format!("unknown type `{}`", d.ty.name.text)))?;
+        for v in &d.vars {
+            let mut dims = Vec::new();
+            for dim in &v.dims {
+                match dim {
+                    Some(e) => {
+                        let n = self.eval_int(e)?;
+                        if n <= 0 {
+                            return Err(self.err(format!(
+                                "array dimension of {} must be positive",
+                                v.name.text
+                            )));
+                        }
+                        dims.push(n as usize);
+                    }
+                    // `x[]` with an initialiser: sized by the literal.
+                    None => dims.push(0),
+                }
+            }
+            let name = v.name.key();
+            if let Some(fi) = local {
+                // A parameter keeps its caller-provided value/alias; IN values get the declared type.
+                if let Some(slot) = self.frames[fi].vars.get_mut(&name) {
+                    if let Slot::Own(val) = slot {
+                        let mut target = self.prog.types.default_value(&ty, &fixed(&dims, val));
+                        let incoming = std::mem::replace(val, Value::Int(0));
+                        target = self.coerce(target, incoming)?;
+                        if let Some(Slot::Own(val)) = self.frames[fi].vars.get_mut(&name) {
+                            *val = target;
+                        }
+                    }
+                    continue;
+                }
+            }
+            let mut init_dims = dims.clone();
+            if let (
+                Some(Expr {
+                    kind: ExprKind::Str(s),
+                    ..
+                }),
+                true,
+            ) = (&v.init, dims.first() == Some(&0))
+            {
+                init_dims[0] = s.len().max(1);
+            }
+            if init_dims.contains(&0) {
+                init_dims.iter_mut().for_each(|d| *d = (*d).max(1));
+            }
+            let mut value = self.types().default_value(&ty, &init_dims);
+            if let Some(e) = &v.init {
+                let iv = self.eval(e)?;
+                value = self.coerce(value, iv)?;
+            }
+            match local {
+                Some(fi) => {
+                    self.frames[fi].vars.insert(name, Slot::Own(value));
+                }
+                None => {
+                    self.globals.insert(key(&name), value);
+                }
+            }
+        }
+        Ok(())
+    }
+
+    fn tick(&mut self) -> R<()> {
+        self.steps += 1;
+        if self.steps > self.opts.step_limit {
+            return Err(self.err(format!(
+                "step limit of {} statements exceeded (endless loop?)",
+                self.opts.step_limit
+            )));
+        }
+        Ok(())
+    }
+
+    // ---------------------------------------------------------------- routines
+
+    fn find_routine(&self, name: &str) -> Option<(usize, usize)> {
+        let key = name.to_ascii_uppercase();
+        let scope = &self.prog.modules[self.cur_module()].scope;
+        self.prog
+            .local_routines
+            .get(&(scope.clone(), key.clone()))
+            .or_else(|| self.prog.global_routines.get(&key))
+            .copied()
+    }
+
+    fn cur_module(&self) -> usize {
+        self.frames.last().map(|f| f.module).unwrap_or(self.loc.0)
+    }
+
+    fn call_routine(&mut self, mi: usize, ri: usize, args: &[Option<Expr>]) -> R<Option<Value>> {
+        let routine: &'p Routine = &self.prog.modules[mi].ast.routines[ri];
+        if args.len() > routine.params.len() {
+            return Err(self.err(format!(
+                "{} takes {} parameters, {} given",
+                routine.name.text,
+                routine.params.len(),
+                args.len()
+            )));
+        }
+        let mut vars = HashMap::new();
+        for (i, p) in routine.params.iter().enumerate() {
+            let arg = args.get(i).and_then(|a| a.as_ref());
+            let slot = match (p.dir, arg) {
+                (_, None) => None,
+                (Some(ParamDir::Out), Some(e)) => match self.place_of(e) {
+                    Ok(place) => Some(Slot::Alias(place)),
+                    Err(_) => {
+                        return Err(self.err(format!(
+                            "argument {} of {} is an OUT parameter and needs a variable",
+                            i + 1,
+                            routine.name.text
+                        )));
+                    }
+                },
+                (_, Some(e)) => {
+                    let v = match self.eval(e)? {
+                        // A literal passed to `name[]` arrives as a CHAR array of its length.
+                        Value::Str(s) if p.array => Value::char_array(s.as_bytes(), s.len().max(1)),
+                        v => v,
+                    };
+                    Some(Slot::Own(v))
+                }
+            };
+            if let Some(s) = slot {
+                vars.insert(p.name.key(), s);
+            }
+        }
+        // Only the interface's subprograms are traced, not the package's internal helpers.
+        let is_mm = crate::catalog::catalog()
+            .subprogram(&routine.name.text)
+            .is_some();
+        if is_mm {
+            self.events.push(Event::Call {
+                name: routine.name.text.clone(),
+            });
+        }
+        if self.frames.len() > 200 {
+            return Err(self.err("call depth exceeds 200 (endless recursion?)"));
+        }
+        let saved_loc = self.loc;
+        self.frames.push(Frame { module: mi, vars });
+        let fi = self.frames.len() - 1;
+        let result = (|| -> R<Option<Value>> {
+            // Omitted parameters are still declared, with their zero value.
+            for d in &routine.decls {
+                self.loc = (mi, d.span.start);
+                self.declare(d, |n| n.to_string(), Some(fi))?;
+            }
+            for p in &routine.params {
+                if !self.frames[fi].vars.contains_key(&p.name.key()) {
+                    return Err(self.err(format!(
+                        "parameter {} of {} has no declaration",
+                        p.name.text, routine.name.text
+                    )));
+                }
+            }
+            match self.exec_block(&routine.body)? {
+                Flow::Return(v) => Ok(v),
+                Flow::Goto(l) => Err(self.err(format!("GOTO {l}: label not found"))),
+                _ => Ok(None),
+            }
+        })();
+        let frame = self.frames.pop();
+        self.loc = saved_loc;
+        let ret = result?;
+        if is_mm {
+            let mut out = Vec::new();
+            if let Some(frame) = &frame {
+                for p in &routine.params {
+                    if p.dir == Some(ParamDir::Out)
+                        && let Some(Slot::Alias(place)) = frame.vars.get(&p.name.key())
+                        && let Ok(v) = self.read_place(place)
+                    {
+                        out.push((p.name.text.clone(), to_json(v)));
+                    }
+                }
+            }
+            let status = match self.globals.get("MM_LAST_STATUS") {
+                Some(Value::Int(i)) => Some(*i),
+                _ => None,
+            };
+            self.events.push(Event::Return {
+                name: routine.name.text.clone(),
+                out,
+                status,
+            });
+        }
+        if routine.kind == RoutineKind::Deffct {
+            let Some(v) = ret else {
+                return Err(self.err(format!(
+                    "function {} ended without RETURN",
+                    routine.name.text
+                )));
+            };
+            let rt = routine
+                .return_type
+                .as_ref()
+                .and_then(|t| self.prog.base_type(&t.name.text));
+            return match rt {
+                Some(t) => {
+                    let target = self.types().default_value(&t, &fixed(&[], &v));
+                    Ok(Some(self.coerce(target, v)?))
+                }
+                None => Ok(Some(v)),
+            };
+        }
+        Ok(None)
+    }
+
+    // ---------------------------------------------------------------- statements
+
+    fn exec_block(&mut self, stmts: &[Stmt]) -> R<Flow> {
+        let mut i = 0;
+        while i < stmts.len() {
+            match self.exec(&stmts[i])? {
+                Flow::Next => i += 1,
+                Flow::Goto(label) => {
+                    let target = stmts.iter().position(
+                        |s| matches!(&s.kind, StmtKind::Label { name } if name.is(&label)),
+                    );
+                    match target {
+                        Some(t) => {
+                            self.tick()?;
+                            i = t + 1;
+                        }
+                        None => return Ok(Flow::Goto(label)),
+                    }
+                }
+                other => return Ok(other),
+            }
+        }
+        Ok(Flow::Next)
+    }
+
+    fn exec(&mut self, s: &Stmt) -> R<Flow> {
+        self.loc = (self.cur_module(), s.span.start);
+        self.tick()?;
+        match &s.kind {
+            StmtKind::Assign { target, value } => {
+                let v = self.eval(value)?;
+                let place = self.place_of(target)?;
+                self.assign(&place, v)?;
+            }
+            StmtKind::Call { name, args } => {
+                self.call(name.text.as_str(), args, false)?;
+            }
+            StmtKind::If {
+                cond,
+                then_body,
+                else_body,
+            } => {
+                let c = self.eval_bool(cond)?;
+                return self.exec_block(if c { then_body } else { else_body });
+            }
+            StmtKind::Switch {
+                selector,
+                cases,
+                default,
+            } => {
+                let v = self.eval(selector)?;
+                for case in cases {
+                    for cv in &case.values {
+                        let c = self.eval(cv)?;
+                        if self.equal(&v, &c)? {
+                            return self.exec_block(&case.body);
+                        }
+                    }
+                }
+                if let Some(d) = default {
+                    return self.exec_block(d);
+                }
+            }
+            StmtKind::For {
+                var,
+                from,
+                to,
+                step,
+                body,
+            } => {
+                let from = self.eval_int(from)?;
+                let to = self.eval_int(to)?;
+                let step = match step {
+                    Some(e) => self.eval_int(e)?,
+                    None => 1,
+                };
+                if step == 0 {
+                    return Err(self.err("FOR with STEP 0"));
+                }
+                let place = self.place_of(&Expr {
+                    kind: ExprKind::Name(var.clone()),
+                    span: var.span,
+                })?;
+                let mut i = from;
+                loop {
+                    if (step > 0 && i > to) || (step < 0 && i < to) {
+                        break;
+                    }
+                    self.assign(&place, Value::Int(i))?;
+                    match self.exec_block(body)? {
+                        Flow::Next => {}
+                        Flow::Exit => return Ok(Flow::Next),
+                        other => return Ok(other),
+                    }
+                    self.tick()?;
+                    i = self.eval_place_int(&place)? + step;
+                }
+                self.assign(&place, Value::Int(i))?;
+            }
+            StmtKind::While { cond, body } => {
+                while self.eval_bool(cond)? {
+                    match self.exec_block(body)? {
+                        Flow::Next => {}
+                        Flow::Exit => break,
+                        other => return Ok(other),
+                    }
+                    self.loop_back_edge()?;
+                }
+            }
+            StmtKind::Repeat { body, until } => {
+                let Some(until) = until else {
+                    return Err(self.err("REPEAT without UNTIL"));
+                };
+                loop {
+                    match self.exec_block(body)? {
+                        Flow::Next => {}
+                        Flow::Exit => break,
+                        other => return Ok(other),
+                    }
+                    if self.eval_bool(until)? {
+                        break;
+                    }
+                    self.loop_back_edge()?;
+                }
+            }
+            StmtKind::Loop { body } => loop {
+                match self.exec_block(body)? {
+                    Flow::Next => {}
+                    Flow::Exit => break,
+                    other => return Ok(other),
+                }
+                self.loop_back_edge()?;
+            },
+            StmtKind::Exit => return Ok(Flow::Exit),
+            StmtKind::Goto { label } => return Ok(Flow::Goto(label.text.clone())),
+            StmtKind::Label { .. } | StmtKind::Continue => {}
+            StmtKind::WaitSec { time } => {
+                let t = self.eval_real(time)?;
+                self.wait_sec(t)?;
+            }
+            StmtKind::WaitFor { cond } => self.wait_for(cond)?,
+            StmtKind::Halt => {
+                let e = self.error("HALT");
+                self.message(format!("{}:{}: HALT", e.file, e.line));
+                return Err(Stop::Halt {
+                    file: e.file,
+                    line: e.line,
+                });
+            }
+            StmtKind::Return { value } => {
+                let v = match value {
+                    Some(e) => Some(self.eval(e)?),
+                    None => None,
+                };
+                return Ok(Flow::Return(v));
+            }
+            StmtKind::Motion(m) => self.motion(m)?,
+            StmtKind::Spline { body, .. } => return self.exec_block(body),
+            StmtKind::Decl(d) => {
+                let fi = self.frames.len() - 1;
+                self.declare(d, |n| n.to_string(), Some(fi))?;
+            }
+            StmtKind::Definition(_) => {}
+            StmtKind::Trigger { action, .. } => self.pending_triggers.push((**action).clone()),
+            StmtKind::Pulse { signal, level, .. } => {
+                let v = self.eval(level)?;
+                let p = self.place_of(signal)?;
+                self.assign(&p, v)?;
+            }
+            StmtKind::OnErrorProceed | StmtKind::TimeBlock(_) => {}
+            StmtKind::Interrupt { .. } | StmtKind::InterruptDecl { .. } => {
+                return Err(self.err("interrupts are not supported by krlkit run"));
+            }
+            StmtKind::Brake { .. } | StmtKind::Resume => {
+                return Err(self.err("BRAKE/RESUME are not supported by krlkit run"));
+            }
+            StmtKind::AnIn(_) | StmtKind::AnOut(_) => {
+                return Err(self.err("ANIN/ANOUT are not supported by krlkit run"));
+            }
+            StmtKind::Error { text } => {
+                return Err(self.err(format!(
+                    "cannot run a line that did not parse: {}",
+                    text.trim()
+                )));
+            }
+            StmtKind::Other { text } => {
+                return Err(self.err(format!("unsupported statement: {}", text.trim())));
+            }
+        }
+        Ok(Flow::Next)
+    }
+
+    /// Polling loops (`WHILE NOT $FLAG[n]`) must see time pass and data arrive.
+    fn loop_back_edge(&mut self) -> R<()> {
+        self.tick()?;
+        if self.eki.any_connected() {
+            let before = std::time::Instant::now();
+            self.eki
+                .pump(&mut self.globals, std::time::Duration::from_micros(200));
+            self.clock_ms +=
+                (before.elapsed().as_secs_f64() * 1000.0 * self.opts.time_scale).max(0.01);
+        } else {
+            self.clock_ms += 0.01;
+        }
+        Ok(())
+    }
+
+    pub(crate) fn message(&mut self, text: String) {
+        self.events.push(Event::Message { text: text.clone() });
+        self.messages.push(text);
+    }
+
+    fn wait_sec(&mut self, t: f64) -> R<()> {
+        if t < 0.0 {
+            return Err(self.err("WAIT SEC with a negative time"));
+        }
+        let ms = t * 1000.0;
+        if self.eki.any_connected() {
+            // Data that would arrive during the wait must be there afterwards.
+            let real =
+                std::time::Duration::from_secs_f64(ms / 1000.0 / self.opts.time_scale.max(1e-6));
+            self.eki.pump(
+                &mut self.globals,
+                real.min(std::time::Duration::from_millis(50)),
+            );
+        }
+        self.clock_ms += ms;
+        Ok(())
+    }
+
+    fn wait_for(&mut self, cond: &Expr) -> R<()> {
+        let start = self.clock_ms;
+        loop {
+            self.eki.pump(&mut self.globals, std::time::Duration::ZERO);
+            if self.eval_bool(cond)? {
+                return Ok(());
+            }
+            self.tick()?;
+            let timers = self.timers.iter().any(|t| t.running);
+            if self.eki.any_connected() {
+                let before = std::time::Instant::now();
+                self.eki
+                    .pump(&mut self.globals, std::time::Duration::from_millis(2));
+                let real_ms = before.elapsed().as_secs_f64() * 1000.0;
+                self.clock_ms += (real_ms * self.opts.time_scale).max(0.05);
+            } else if timers {
+                // Only the clock can change the condition: advance one interpreter cycle (12 ms).
+                self.clock_ms += 12.0;
+            } else {
+                return Err(self.err(
+                    "WAIT FOR can never become TRUE: no timer runs and no EKI connection is open",
+                ));
+            }
+            if self.clock_ms - start > self.opts.max_wait_ms {
+                return Err(self.err(format!(
+                    "WAIT FOR still FALSE after {:.0} s of simulated time",
+                    self.opts.max_wait_ms / 1000.0
+                )));
+            }
+        }
+    }
+
+    // ---------------------------------------------------------------- motions
+
+    fn motion(&mut self, m: &Motion) -> R<()> {
+        if let Some(aux) = &m.aux {
+            self.eval(aux)?;
+        }
+        let target = self.eval(&m.target)?;
+        let axis = match &target {
+            Value::Struc { ty, .. } => Types::is_axis_type(ty),
+            Value::Partial(f) => f
+                .iter()
+                .any(|(n, _)| n.to_ascii_uppercase().starts_with('A') && n.len() == 2 && n != "A"),
+            other => {
+                return Err(self.err(format!(
+                    "motion target must be a position, not {}",
+                    other.kind_name()
+                )));
+            }
+        };
+        let (act, names): (&str, &[&str]) = if axis {
+            ("$AXIS_ACT", &AXIS_FIELDS)
+        } else {
+            ("$POS_ACT", &CART_FIELDS)
+        };
+        let mut cur = self.globals.get(act).cloned().unwrap_or(Value::Int(0));
+        let fields: Vec<(String, Value)> = match &target {
+            Value::Struc { fields, .. } | Value::Partial(fields) => fields.clone(),
+            _ => vec![],
+        };
+        for (n, v) in fields {
+            if let Some(slot) = cur.field_mut(&n) {
+                let x = v.as_f64().or(match v {
+                    Value::Int(i) => Some(i as f64),
+                    _ => None,
+                });
+                let Some(x) = x else { continue };
+                let base = if m.relative {
+                    slot.as_f64().unwrap_or(0.0)
+                } else {
+                    0.0
+                };
+                *slot = match slot {
+                    Value::Int(_) => Value::Int((base + x).round() as i64),
+                    _ => Value::Real(base + x),
+                };
+            }
+        }
+        let kind = match m.kind {
+            MotionKind::Ptp => "PTP",
+            MotionKind::Lin => "LIN",
+            MotionKind::Circ => "CIRC",
+            MotionKind::Sptp => "SPTP",
+            MotionKind::Slin => "SLIN",
+            MotionKind::Scirc => "SCIRC",
+            MotionKind::Spl => "SPL",
+        };
+        let kind = if m.relative {
+            format!("{kind}_REL")
+        } else {
+            kind.to_string()
+        };
+        let target = names
+            .iter()
+            .map(|n| {
+                (
+                    n.to_string(),
+                    cur.field(n).and_then(|v| v.as_f64()).unwrap_or(0.0),
+                )
+            })
+            .collect();
+        self.globals.insert(act.to_string(), cur);
+        self.events.push(Event::Motion { kind, target });
+        for t in std::mem::take(&mut self.pending_triggers) {
+            self.exec(&t)?;
+        }
+        Ok(())
+    }
+
+    // ---------------------------------------------------------------- places
+
+    fn lookup_root(&self, name: &str) -> R<Place> {
+        let key = name.to_ascii_uppercase();
+        if let Some((fi, f)) = self.frames.iter().enumerate().next_back()
+            && let Some(slot) = f.vars.get(&key)
+        {
+            return Ok(match slot {
+                Slot::Own(_) => Place {
+                    root: Root::Local(fi, key),
+                    path: vec![],
+                },
+                Slot::Alias(p) => p.clone(),
+            });
+        }
+        let scoped = format!("{}::{key}", self.prog.modules[self.cur_module()].scope);
+        if self.globals.contains_key(&scoped) {
+            return Ok(Place {
+                root: Root::Global(scoped),
+                path: vec![],
+            });
+        }
+        if self.globals.contains_key(&key) {
+            return Ok(Place {
+                root: Root::Global(key),
+                path: vec![],
+            });
+        }
+        Err(self.err(format!("unknown variable `{name}`")))
+    }
+
+    pub(crate) fn place_of(&mut self, e: &Expr) -> R<Place> {
+        match &e.kind {
+            ExprKind::Name(id) => self.lookup_root(&id.text),
+            ExprKind::Member { base, field } => {
+                let mut p = self.place_of(base)?;
+                let v = self.read_place(&p)?;
+                if v.field(&field.text).is_none() {
+                    return Err(self.err(format!(
+                        "{} has no member {}",
+                        v.kind_name(),
+                        field.text
+                    )));
+                }
+                p.path.push(Seg::Field(field.text.to_ascii_uppercase()));
+                Ok(p)
+            }
+            ExprKind::Index { base, indices } => {
+                let mut p = self.place_of(base)?;
+                if indices.iter().all(|i| i.is_none()) {
+                    return Ok(p);
+                }
+                let mut idx = Vec::new();
+                for i in indices {
+                    match i {
+                        Some(e) => idx.push(self.eval_int(e)?),
+                        None => return Err(self.err("empty index")),
+                    }
+                }
+                let dims = match self.read_place(&p)? {
+                    Value::Array { dims, .. } => dims.clone(),
+                    other => {
+                        return Err(self.err(format!("{} is not an array", other.kind_name())));
+                    }
+                };
+                let flat = self.flat_index(&dims, &idx)?;
+                p.path.push(Seg::Index(flat));
+                Ok(p)
+            }
+            _ => Err(self.err("not a variable")),
+        }
+    }
+
+    fn flat_index(&self, dims: &[usize], idx: &[i64]) -> R<usize> {
+        if dims.len() != idx.len() {
+            return Err(self.err(format!(
+                "array has {} dimensions, {} indices given",
+                dims.len(),
+                idx.len()
+            )));
+        }
+        let mut flat = 0usize;
+        for (d, i) in dims.iter().zip(idx) {
+            if *i < 1 || *i as usize > *d {
+                return Err(self.err(format!("index {i} out of range 1..{d}")));
+            }
+            flat = flat * d + (*i as usize - 1);
+        }
+        Ok(flat)
+    }
+
+    fn root_ref(&self, root: &Root) -> Option<&Value> {
+        match root {
+            Root::Global(k) => self.globals.get(k),
+            Root::Local(fi, k) => match self.frames.get(*fi)?.vars.get(k)? {
+                Slot::Own(v) => Some(v),
+                Slot::Alias(_) => None,
+            },
+        }
+    }
+
+    pub(crate) fn read_place(&self, p: &Place) -> R<&Value> {
+        let mut v = self
+            .root_ref(&p.root)
+            .ok_or_else(|| self.err("dangling reference"))?;
+        for s in &p.path {
+            v = match (s, v) {
+                (Seg::Index(i), Value::Array { items, .. }) => items.get(*i),
+                (Seg::Field(f), v) => v.field(f),
+                _ => None,
+            }
+            .ok_or_else(|| self.err("invalid access"))?;
+        }
+        Ok(v)
+    }
+
+    pub(crate) fn read_value(&mut self, p: &Place) -> R<Value> {
+        if let Root::Global(k) = &p.root
+            && (k == "$TIMER" || k == "$TIMER_FLAG")
+        {
+            self.sync_timers();
+        }
+        self.read_place(p).cloned()
+    }
+
+    fn eval_place_int(&mut self, p: &Place) -> R<i64> {
+        match self.read_value(p)? {
+            Value::Int(i) => Ok(i),
+            v => Err(self.err(format!("expected INT, found {}", v.kind_name()))),
+        }
+    }
+
+    pub(crate) fn assign(&mut self, p: &Place, v: Value) -> R<()> {
+        let current = self.read_place(p)?.clone();
+        let new = self.coerce(current, v)?;
+        let root = match &p.root {
+            Root::Global(k) => self.globals.get_mut(k),
+            Root::Local(fi, k) => match self.frames.get_mut(*fi).and_then(|f| f.vars.get_mut(k)) {
+                Some(Slot::Own(v)) => Some(v),
+                _ => None,
+            },
+        };
+        let mut slot = match root {
+            Some(r) => r,
+            None => {
+                return Err(Stop::Error(RuntimeError {
+                    file: String::new(),
+                    line: 0,
+                    message: "dangling reference".into(),
+                }));
+            }
+        };
+        for s in &p.path {
+            let next = match (s, slot) {
+                (Seg::Index(i), Value::Array { items, .. }) => items.get_mut(*i),
+                (Seg::Field(f), v) => v.field_mut(f),
+                _ => None,
+            };
+            slot = match next {
+                Some(n) => n,
+                None => return Err(self.err("invalid access")),
+            };
+        }
+        *slot = new;
+        if let Root::Global(k) = &p.root {
+            self.after_system_write(k.clone(), &p.path);
+        }
+        Ok(())
+    }
+
+    // ---------------------------------------------------------------- timers
+
+    fn timer_value(&self, t: &Timer) -> f64 {
+        if t.running {
+            t.base + (self.clock_ms - t.start)
+        } else {
+            t.base
+        }
+    }
+
+    fn sync_timers(&mut self) {
+        let vals: Vec<f64> = self.timers[1..]
+            .iter()
+            .map(|t| self.timer_value(t))
+            .collect();
+        if let Some(Value::Array { items, .. }) = self.globals.get_mut("$TIMER") {
+            for (slot, v) in items.iter_mut().zip(&vals) {
+                *slot = Value::Int(v.floor() as i64);
+            }
+        }
+        if let Some(Value::Array { items, .. }) = self.globals.get_mut("$TIMER_FLAG") {
+            for (slot, v) in items.iter_mut().zip(&vals) {
+                *slot = Value::Bool(*v >= 0.0);
+            }
+        }
+    }
+
+    fn after_system_write(&mut self, key: String, path: &[Seg]) {
+        let Some(Seg::Index(i)) = path.first() else {
+            return;
+        };
+        let n = i + 1;
+        match key.as_str() {
+            "$TIMER" => {
+                if let Some(Value::Array { items, .. }) = self.globals.get("$TIMER")
+                    && let Some(Value::Int(v)) = items.get(*i)
+                {
+                    let now = self.clock_ms;
+                    let t = &mut self.timers[n];
+                    t.base = *v as f64;
+                    t.start = now;
+                }
+            }
+            "$TIMER_STOP" => {
+                if let Some(Value::Array { items, .. }) = self.globals.get("$TIMER_STOP")
+                    && let Some(Value::Bool(stop)) = items.get(*i)
+                {
+                    let now = self.clock_ms;
+                    let current = self.timer_value(&self.timers[n]);
+                    let t = &mut self.timers[n];
+                    t.base = current;
+                    t.start = now;
+                    t.running = !*stop;
+                }
+            }
+            _ => {}
+        }
+    }
+
+    // ---------------------------------------------------------------- values
+
+    /// Convert `v` to the type of `target` (KRL assignment rules).
+    pub(crate) fn coerce(&self, target: Value, v: Value) -> R<Value> {
+        Ok(match (target, v) {
+            (Value::Int(_), Value::Int(i)) => Value::Int(i),
+            (Value::Int(_), Value::Real(r)) => Value::Int(r.round() as i64),
+            (Value::Int(_), Value::Char(c)) => Value::Int(c as i64),
+            (Value::Real(_), Value::Int(i)) => Value::Real(i as f64),
+            (Value::Real(_), Value::Real(r)) => Value::Real(r),
+            (Value::Bool(_), Value::Bool(b)) => Value::Bool(b),
+            (Value::Char(_), Value::Char(c)) => Value::Char(c),
+            (Value::Char(_), Value::Int(i)) if (0..=255).contains(&i) => Value::Char(i as u8),
+            (Value::Char(_), Value::Str(s)) if s.len() == 1 => Value::Char(s.as_bytes()[0]),
+            (Value::Enum(_), Value::Enum(e)) => Value::Enum(e.to_ascii_uppercase()),
+            (Value::Array { dims, items }, Value::Str(s))
+                if matches!(items.first(), Some(Value::Char(_))) =>
+            {
+                let n = items.len();
+                let mut v = Value::char_array(s.as_bytes(), n);
+                if let Value::Array { dims: d, .. } = &mut v {
+                    *d = dims;
+                }
+                v
+            }
+            (Value::Array { dims, items }, Value::Array { items: src, .. }) => {
+                let mut out = Vec::with_capacity(items.len());
+                let mut src = src.into_iter();
+                for t in items {
+                    match src.next() {
+                        Some(s) => out.push(self.coerce(t, s)?),
+                        None => out.push(t),
+                    }
+                }
+                Value::Array { dims, items: out }
+            }
+            (Value::Struc { ty, fields }, Value::Struc { fields: src, .. })
+            | (Value::Struc { ty, fields }, Value::Partial(src)) => {
+                let mut out = fields;
+                for (n, v) in src {
+                    if let Some((_, slot)) =
+                        out.iter_mut().find(|(f, _)| f.eq_ignore_ascii_case(&n))
+                    {
+                        let t = std::mem::replace(slot, Value::Int(0));
+                        *slot = self.coerce(t, v)?;
+                    } else if !matches!(ty.as_str(), "E6POS" | "POS" | "FRAME" | "AXIS" | "E6AXIS")
+                    {
+                        return Err(self.err(format!("{ty} has no member {n}")));
+                    }
+                }
+                Value::Struc { ty, fields: out }
+            }
+            (t, v) => {
+                return Err(self.err(format!(
+                    "cannot assign {} to {}",
+                    v.kind_name(),
+                    t.kind_name()
+                )));
+            }
+        })
+    }
+
+    pub(crate) fn eval_bool(&mut self, e: &Expr) -> R<bool> {
+        match self.eval(e)? {
+            Value::Bool(b) => Ok(b),
+            v => Err(self.err(format!("expected BOOL, found {}", v.kind_name()))),
+        }
+    }
+
+    pub(crate) fn eval_int(&mut self, e: &Expr) -> R<i64> {
+        match self.eval(e)? {
+            Value::Int(i) => Ok(i),
+            Value::Real(r) => Ok(r.round() as i64),
+            v => Err(self.err(format!("expected INT, found {}", v.kind_name()))),
+        }
+    }
+
+    pub(crate) fn eval_real(&mut self, e: &Expr) -> R<f64> {
+        match self.eval(e)? {
+            Value::Int(i) => Ok(i as f64),
+            Value::Real(r) => Ok(r),
+            v => Err(self.err(format!("expected REAL, found {}", v.kind_name()))),
+        }
+    }
+
+    fn equal(&self, a: &Value, b: &Value) -> R<bool> {
+        Ok(match (a, b) {
+            (Value::Int(_) | Value::Real(_), Value::Int(_) | Value::Real(_)) => match (a, b) {
+                (Value::Int(x), Value::Int(y)) => x == y,
+                _ => a.as_f64() == b.as_f64(),
+            },
+            (Value::Bool(x), Value::Bool(y)) => x == y,
+            (Value::Char(x), Value::Char(y)) => x == y,
+            (Value::Enum(x), Value::Enum(y)) => x.eq_ignore_ascii_case(y),
+            _ => {
+                return Err(self.err(format!(
+                    "cannot compare {} with {}",
+                    a.kind_name(),
+                    b.kind_name()
+                )));
+            }
+        })
+    }
+
+    pub(crate) fn eval(&mut self, e: &Expr) -> R<Value> {
+        Ok(match &e.kind {
+            ExprKind::Int(i) => Value::Int(*i),
+            ExprKind::Real(r) => Value::Real(*r),
+            ExprKind::Bool(b) => Value::Bool(*b),
+            ExprKind::Char(c) => Value::Char(u8::try_from(*c as u32).unwrap_or(b'?')),
+            ExprKind::Str(s) => Value::Str(s.clone()),
+            ExprKind::Bits(b) | ExprKind::Hex(b) => Value::Int(*b as i64),
+            ExprKind::Enum(n) => Value::Enum(n.to_ascii_uppercase()),
+            ExprKind::Name(_) | ExprKind::Member { .. } | ExprKind::Index { .. } => {
+                let p = self.place_of(e)?;
+                self.read_value(&p)?
+            }
+            ExprKind::Call { name, args } => match self.call(&name.text, args, true)? {
+                Some(v) => v,
+                None => return Err(self.err(format!("{} returns no value", name.text))),
+            },
+            ExprKind::Unary { op, operand } => {
+                let v = self.eval(operand)?;
+                match (op, v) {
+                    (UnaryOp::Not, Value::Bool(b)) => Value::Bool(!b),
+                    (UnaryOp::BNot, Value::Int(i)) => Value::Int(!i),
+                    (UnaryOp::Neg, Value::Int(i)) => Value::Int(-i),
+                    (UnaryOp::Neg, Value::Real(r)) => Value::Real(-r),
+                    (UnaryOp::Pos, v @ (Value::Int(_) | Value::Real(_))) => v,
+                    (op, v) => {
+                        return Err(self.err(format!(
+                            "operator {op:?} does not apply to {}",
+                            v.kind_name()
+                        )));
+                    }
+                }
+            }
+            ExprKind::Binary { op, lhs, rhs } => self.binary(*op, lhs, rhs)?,
+            ExprKind::Aggregate { type_name, fields } => {
+                let mut vals = Vec::new();
+                for (n, fe) in fields {
+                    let v = self.eval(fe)?;
+                    match n {
+                        Some(n) => vals.push((n.text.to_ascii_uppercase(), v)),
+                        None => return Err(self.err("positional aggregates are not supported")),
+                    }
+                }
+                match type_name {
+                    Some(t) => {
+                        let ty = self
+                            .prog
+                            .base_type(&t.text)
+                            .ok_or_else(|| self.err(format!("unknown type `{}`", t.text)))?;
+                        let base = self.types().default_value(&ty, &[]);
+                        self.coerce(base, Value::Partial(vals))?
+                    }
+                    None => Value::Partial(vals),
+                }
+            }
+            ExprKind::Invalid(s) => return Err(self.err(format!("invalid literal {s}"))),
+        })
+    }
+
+    fn binary(&mut self, op: BinaryOp, lhs: &Expr, rhs: &Expr) -> R<Value> {
+        use BinaryOp as B;
+        let a = self.eval(lhs)?;
+        // Short-circuit so guards like `(i <= n) AND (a[i] > 0)` do not fault.
+        match (op, &a) {
+            (B::And, Value::Bool(false)) => return Ok(Value::Bool(false)),
+            (B::Or, Value::Bool(true)) => return Ok(Value::Bool(true)),
+            _ => {}
+        }
+        let b = self.eval(rhs)?;
+        let num = |v: &Value| v.as_f64();
+        Ok(match op {
+            B::Geo => super::frame::compose(&a, &b).ok_or_else(|| {
+                self.err(format!(
+                    "`:` needs two frames, got {} and {}",
+                    a.kind_name(),
+                    b.kind_name()
+                ))
+            })?,
+            B::Add | B::Sub | B::Mul | B::Div => match (&a, &b) {
+                (Value::Int(x), Value::Int(y)) => Value::Int(match op {
+                    B::Add => x.wrapping_add(*y),
+                    B::Sub => x.wrapping_sub(*y),
+                    B::Mul => x.wrapping_mul(*y),
+                    _ => {
+                        if *y == 0 {
+                            return Err(self.err("division by zero"));
+                        }
+                        x / y
+                    }
+                }),
+                _ => match (num(&a), num(&b)) {
+                    (Some(x), Some(y)) => Value::Real(match op {
+                        B::Add => x + y,
+                        B::Sub => x - y,
+                        B::Mul => x * y,
+                        _ => {
+                            if y == 0.0 {
+                                return Err(self.err("division by zero"));
+                            }
+                            x / y
+                        }
+                    }),
+                    _ => {
+                        return Err(self.err(format!(
+                            "arithmetic on {} and {}",
+                            a.kind_name(),
+                            b.kind_name()
+                        )));
+                    }
+                },
+            },
+            B::And | B::Or | B::Exor => match (&a, &b) {
+                (Value::Bool(x), Value::Bool(y)) => Value::Bool(match op {
+                    B::And => *x && *y,
+                    B::Or => *x || *y,
+                    _ => x != y,
+                }),
+                _ => {
+                    return Err(self.err(format!(
+                        "logic on {} and {}",
+                        a.kind_name(),
+                        b.kind_name()
+                    )));
+                }
+            },
+            B::BAnd | B::BOr | B::BExor => {
+                let int = |v: &Value| match v {
+                    Value::Int(i) => Some(*i),
+                    Value::Char(c) => Some(*c as i64),
+                    _ => None,
+                };
+                match (int(&a), int(&b)) {
+                    (Some(x), Some(y)) => Value::Int(match op {
+                        B::BAnd => x & y,
+                        B::BOr => x | y,
+                        _ => x ^ y,
+                    }),
+                    _ => return Err(self.err("bit operators need INT operands")),
+                }
+            }
+            B::Eq => Value::Bool(self.equal(&a, &b)?),
+            B::Ne => Value::Bool(!self.equal(&a, &b)?),
+            B::Lt | B::Gt | B::Le | B::Ge => {
+                let (x, y) = match (&a, &b) {
+                    (Value::Char(x), Value::Char(y)) => (*x as f64, *y as f64),
+                    _ => match (num(&a), num(&b)) {
+                        (Some(x), Some(y)) => (x, y),
+                        _ => {
+                            return Err(self.err(format!(
+                                "cannot order {} and {}",
+                                a.kind_name(),
+                                b.kind_name()
+                            )));
+                        }
+                    },
+                };
+                Value::Bool(match op {
+                    B::Lt => x < y,
+                    B::Gt => x > y,
+                    B::Le => x <= y,
+                    _ => x >= y,
+                })
+            }
+        })
+    }
+
+    /// A call of a user routine or a built-in; `want_value` for calls inside expressions.
+    fn call(&mut self, name: &str, args: &[Option<Expr>], want_value: bool) -> R<Option<Value>> {
+        if let Some((mi, ri)) = self.find_routine(name) {
+            let r = self.call_routine(mi, ri, args)?;
+            if want_value && r.is_none() {
+                return Err(self.err(format!("{name} is a DEF, not a DEFFCT")));
+            }
+            return Ok(r);
+        }
+        match super::builtins::call(self, name, args)? {
+            Some(v) => Ok(Some(v)),
+            None => Err(self.err(format!("unknown routine or built-in function `{name}`"))),
+        }
+    }
+
+    /// Write the value of a place back (used by built-ins with OUT arguments).
+    pub(crate) fn arg_place(&mut self, args: &[Option<Expr>], i: usize, fname: &str) -> R<Place> {
+        match args.get(i).and_then(|a| a.as_ref()) {
+            Some(e) => self
+                .place_of(e)
+                .map_err(|_| self.err(format!("argument {} of {fname} must be a variable", i + 1))),
+            None => Err(self.err(format!("{fname}: argument {} missing", i + 1))),
+        }
+    }
+
+    pub(crate) fn arg_value(&mut self, args: &[Option<Expr>], i: usize, fname: &str) -> R<Value> {
+        match args.get(i).and_then(|a| a.as_ref()) {
+            Some(e) => self.eval(e),
+            None => Err(self.err(format!("{fname}: argument {} missing", i + 1))),
+        }
+    }
+
+    pub(crate) fn globals_mut(&mut self) -> &mut HashMap<String, Value> {
+        &mut self.globals
+    }
+}
+
+/// Dimensions to declare for an IN parameter declared `x[]`: take them from the incoming value.
+fn fixed(dims: &[usize], incoming: &Value) -> Vec<usize> {
+    if dims.contains(&0) || (dims.is_empty() && matches!(incoming, Value::Array { .. })) {
+        if let Value::Array { dims: d, .. } = incoming {
+            return d.clone();
+        }
+        if let Value::Str(s) = incoming {
+            return vec![s.len().max(1)];
+        }
+        return dims.iter().map(|d| (*d).max(1)).collect();
+    }
+    dims.to_vec()
+}
+
+pub(crate) fn to_json(v: &Value) -> serde_json::Value {
+    use serde_json::json;
+    match v {
+        Value::Int(i) => json!(i),
+        Value::Real(r) => json!(r),
+        Value::Bool(b) => json!(b),
+        Value::Char(c) => json!((*c as char).to_string()),
+        Value::Enum(e) => json!(format!("#{e}")),
+        Value::Str(s) => json!(s),
+        Value::Array { items, .. } => {
+            if let Some(t) = v.as_text()
+                && matches!(items.first(), Some(Value::Char(_)))
+            {
+                return json!(t);
+            }
+            serde_json::Value::Array(items.iter().map(to_json).collect())
+        }
+        Value::Struc { fields, .. } | Value::Partial(fields) => {
+            let mut m = serde_json::Map::new();
+            for (k, x) in fields {
+                m.insert(k.clone(), to_json(x));
+            }
+            serde_json::Value::Object(m)
+        }
+    }
+}

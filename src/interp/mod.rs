@@ -1,0 +1,167 @@
+//! A KRL interpreter on the typed AST: runs a customer program plus the generated MM_* package
+//! against a vision server through an emulation of KUKA EthernetKRL.
+//!
+//! Invariants:
+//! - Nothing the program does makes the interpreter panic: unsupported constructs, type errors
+//!   and out-of-range accesses are [`RuntimeError`]s located at `file:line`.
+//! - Time is simulated: `WAIT SEC` and timers advance a clock, never the wall clock; only waits
+//!   on open EKI connections consume real time (scaled by [`Options::time_scale`]).
+//! - Every run terminates: a step limit stops endless loops and a `WAIT FOR` that nothing can
+//!   satisfy is an error, not a hang.
+//! - Library code never prints: messages and trace events are returned in [`RunResult`].
+
+mod builtins;
+mod eki;
+mod format;
+mod frame;
+mod machine;
+mod program;
+mod value;
+
+use std::collections::HashMap;
+use std::path::PathBuf;
+
+pub use program::{Module, Program};
+pub use value::Value;
+
+/// A runtime error at a source location.
+#[derive(Debug, Clone, PartialEq)]
+pub struct RuntimeError {
+    pub file: String,
+    pub line: usize,
+    pub message: String,
+}
+
+impl std::fmt::Display for RuntimeError {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        write!(f, "{}:{}: {}", self.file, self.line, self.message)
+    }
+}
+
+impl std::error::Error for RuntimeError {}
+
+/// Run configuration.
+#[derive(Debug, Clone)]
+pub struct Options {
+    /// Overrides the EXTERNAL IP/PORT of every EKI channel (`--vision`).
+    pub vision: Option<String>,
+    /// EKI channel name (upper-case) → XML text. Looked up before `eki_dirs`.
+    pub eki_configs: HashMap<String, String>,
+    /// Directories searched for `<channel>.xml`.
+    pub eki_dirs: Vec<PathBuf>,
+    /// Statement budget; exceeding it is a runtime error.
+    pub step_limit: u64,
+    /// Simulated milliseconds per real millisecond while waiting on an open EKI connection.
+    pub time_scale: f64,
+    /// `$IN[n]` values (default FALSE).
+    pub inputs: HashMap<usize, bool>,
+    /// Longest simulated time one `WAIT FOR` may take before it is reported as stuck (ms).
+    pub max_wait_ms: f64,
+}
+
+impl Default for Options {
+    fn default() -> Options {
+        Options {
+            vision: None,
+            eki_configs: HashMap::new(),
+            eki_dirs: Vec::new(),
+            step_limit: 50_000_000,
+            time_scale: 10.0,
+            inputs: HashMap::new(),
+            max_wait_ms: 3_600_000.0,
+        }
+    }
+}
+
+/// One trace record (serialised as one JSON line).
+#[derive(Debug, Clone, PartialEq)]
+pub enum Event {
+    Motion {
+        kind: String,
+        /// `X,Y,Z,A,B,C` for Cartesian targets, `A1…A6` for axis targets.
+        target: Vec<(String, f64)>,
+    },
+    /// Entry into an `MM_*` routine.
+    Call {
+        name: String,
+    },
+    /// Return from an `MM_*` routine with the final values of its OUT parameters.
+    Return {
+        name: String,
+        out: Vec<(String, serde_json::Value)>,
+        /// The package's `MM_Last_Status` global after the call, when the package has one.
+        status: Option<i64>,
+    },
+    Message {
+        text: String,
+    },
+    End {
+        status: String,
+        message: Option<String>,
+        steps: u64,
+        time_ms: f64,
+    },
+}
+
+impl Event {
+    pub fn to_json(&self) -> serde_json::Value {
+        use serde_json::{Map, Value as J, json};
+        let pairs = |v: &[(String, f64)]| {
+            let mut m = Map::new();
+            for (k, x) in v {
+                m.insert(k.clone(), json!(x));
+            }
+            J::Object(m)
+        };
+        match self {
+            Event::Motion { kind, target } => {
+                json!({"event": "motion", "kind": kind, "target": pairs(target)})
+            }
+            Event::Call { name } => json!({"event": "call", "name": name}),
+            Event::Return { name, out, status } => {
+                let mut m = Map::new();
+                for (k, v) in out {
+                    m.insert(k.clone(), v.clone());
+                }
+                json!({"event": "return", "name": name, "out": J::Object(m), "status": status})
+            }
+            Event::Message { text } => json!({"event": "message", "text": text}),
+            Event::End {
+                status,
+                message,
+                steps,
+                time_ms,
+            } => json!({"event": "end", "status": status, "message": message,
+                         "steps": steps, "time_ms": time_ms}),
+        }
+    }
+}
+
+/// How a run ended.
+#[derive(Debug, Clone, PartialEq)]
+pub enum End {
+    Normal,
+    /// `HALT` at this location.
+    Halt {
+        file: String,
+        line: usize,
+    },
+    Error(RuntimeError),
+}
+
+#[derive(Debug, Clone)]
+pub struct RunResult {
+    pub end: End,
+    pub events: Vec<Event>,
+    /// Messages in order (also present as [`Event::Message`]).
+    pub messages: Vec<String>,
+    /// Final values of the global variables of the DEFDATs, by upper-case name.
+    pub globals: HashMap<String, Value>,
+    pub steps: u64,
+    pub sim_time_ms: f64,
+}
+
+/// Run the first DEF of the program's first file.
+pub fn run(program: &Program, options: &Options) -> RunResult {
+    machine::Machine::new(program, options).run_main()
+}

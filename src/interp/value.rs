@@ -1,0 +1,263 @@
+//! Runtime values and types.
+
+use std::collections::HashMap;
+
+/// A KRL runtime value. Arrays are flattened row-major with 1-based KRL indices mapped to 0-based
+/// offsets; CHAR arrays double as strings (NUL-terminated when shorter than the array).
+#[derive(Debug, Clone, PartialEq)]
+pub enum Value {
+    Int(i64),
+    Real(f64),
+    Bool(bool),
+    Char(u8),
+    /// `#NAME`, upper-case.
+    Enum(String),
+    /// A string literal before it lands in a CHAR array.
+    Str(String),
+    Array {
+        dims: Vec<usize>,
+        items: Vec<Value>,
+    },
+    Struc {
+        ty: String,
+        fields: Vec<(String, Value)>,
+    },
+    /// An untyped aggregate (`{X 1, Y 2}`): merged into a typed value on assignment.
+    Partial(Vec<(String, Value)>),
+}
+
+impl Value {
+    pub fn kind_name(&self) -> String {
+        match self {
+            Value::Int(_) => "INT".into(),
+            Value::Real(_) => "REAL".into(),
+            Value::Bool(_) => "BOOL".into(),
+            Value::Char(_) => "CHAR".into(),
+            Value::Enum(_) => "ENUM".into(),
+            Value::Str(_) => "string".into(),
+            Value::Array { .. } => "array".into(),
+            Value::Struc { ty, .. } => ty.clone(),
+            Value::Partial(_) => "aggregate".into(),
+        }
+    }
+
+    pub fn field(&self, name: &str) -> Option<&Value> {
+        match self {
+            Value::Struc { fields, .. } | Value::Partial(fields) => fields
+                .iter()
+                .find(|(n, _)| n.eq_ignore_ascii_case(name))
+                .map(|(_, v)| v),
+            _ => None,
+        }
+    }
+
+    pub fn field_mut(&mut self, name: &str) -> Option<&mut Value> {
+        match self {
+            Value::Struc { fields, .. } | Value::Partial(fields) => fields
+                .iter_mut()
+                .find(|(n, _)| n.eq_ignore_ascii_case(name))
+                .map(|(_, v)| v),
+            _ => None,
+        }
+    }
+
+    /// JSON for traces and reports: CHAR arrays as strings, STRUCs as objects.
+    pub fn to_json(&self) -> serde_json::Value {
+        super::machine::to_json(self)
+    }
+
+    /// The text of a CHAR array (up to the first NUL) or a string literal.
+    pub fn as_text(&self) -> Option<String> {
+        match self {
+            Value::Str(s) => Some(s.clone()),
+            Value::Char(c) => Some((*c as char).to_string()),
+            Value::Array { items, .. } if items.iter().all(|v| matches!(v, Value::Char(_))) => {
+                Some(
+                    items
+                        .iter()
+                        .map_while(|v| match v {
+                            Value::Char(0) => None,
+                            Value::Char(c) => Some(*c as char),
+                            _ => None,
+                        })
+                        .collect(),
+                )
+            }
+            _ => None,
+        }
+    }
+
+    pub fn as_f64(&self) -> Option<f64> {
+        match self {
+            Value::Int(i) => Some(*i as f64),
+            Value::Real(r) => Some(*r),
+            _ => None,
+        }
+    }
+
+    /// A CHAR array of `len` holding `text` (truncated), NUL-padded.
+    pub fn char_array(text: &[u8], len: usize) -> Value {
+        let mut items: Vec<Value> = text.iter().take(len).map(|b| Value::Char(*b)).collect();
+        items.resize(len, Value::Char(0));
+        Value::Array {
+            dims: vec![len],
+            items,
+        }
+    }
+}
+
+/// Element type of a declaration.
+#[derive(Debug, Clone, PartialEq)]
+pub enum BaseType {
+    Int,
+    Real,
+    Bool,
+    Char,
+    Enum(String),
+    Struc(String),
+}
+
+#[derive(Debug, Clone, PartialEq)]
+pub struct StrucDef {
+    pub name: String,
+    pub fields: Vec<(String, BaseType, Vec<usize>)>,
+}
+
+/// Type definitions in scope: built-in STRUCs/ENUMs plus every STRUC/ENUM of the loaded files.
+#[derive(Debug, Clone, Default)]
+pub struct Types {
+    pub strucs: HashMap<String, StrucDef>,
+    /// ENUM name → its values (upper-case).
+    pub enums: HashMap<String, Vec<String>>,
+}
+
+const FRAME6: [&str; 6] = ["X", "Y", "Z", "A", "B", "C"];
+const AXES: [&str; 6] = ["A1", "A2", "A3", "A4", "A5", "A6"];
+const EXT: [&str; 6] = ["E1", "E2", "E3", "E4", "E5", "E6"];
+
+impl Types {
+    pub fn builtin() -> Types {
+        let mut t = Types::default();
+        let reals = |names: &[&str]| -> Vec<(String, BaseType, Vec<usize>)> {
+            names
+                .iter()
+                .map(|n| (n.to_string(), BaseType::Real, vec![]))
+                .collect()
+        };
+        let ints = |names: &[&str]| -> Vec<(String, BaseType, Vec<usize>)> {
+            names
+                .iter()
+                .map(|n| (n.to_string(), BaseType::Int, vec![]))
+                .collect()
+        };
+        let mut add = |name: &str, fields: Vec<(String, BaseType, Vec<usize>)>| {
+            t.strucs.insert(
+                name.into(),
+                StrucDef {
+                    name: name.into(),
+                    fields,
+                },
+            );
+        };
+        add("FRAME", reals(&FRAME6));
+        let mut pos = reals(&FRAME6);
+        pos.extend(ints(&["S", "T"]));
+        add("POS", pos.clone());
+        let mut e6pos = pos;
+        e6pos.extend(reals(&EXT));
+        add("E6POS", e6pos);
+        add("AXIS", reals(&AXES));
+        let mut e6axis = reals(&AXES);
+        e6axis.extend(reals(&EXT));
+        add("E6AXIS", e6axis);
+        let mut eki = ints(&["Buff", "Read", "Msg_No"]);
+        eki.push(("Connected".into(), BaseType::Bool, vec![]));
+        eki.extend(ints(&["Counter"]));
+        add("EKI_STATUS", eki);
+        add(
+            "STATE_T",
+            vec![
+                ("RET1".into(), BaseType::Enum("CMD_STAT".into()), vec![]),
+                ("HITS".into(), BaseType::Int, vec![]),
+                ("LENGTH".into(), BaseType::Int, vec![]),
+            ],
+        );
+        add("VEL_CP_T", reals(&["CP", "ORI1", "ORI2"]));
+        add("APO_T", reals(&["CDIS", "CPTP", "CORI", "CVEL"]));
+        t.enums.insert(
+            "CMD_STAT".into(),
+            [
+                "CMD_OK",
+                "CMD_TIMEOUT",
+                "DATA_OK",
+                "DATA_BLK",
+                "DATA_END",
+                "CMD_ABORT",
+                "CMD_REJ",
+                "CMD_SYN",
+                "DATA_TYP",
+                "FMT_ERR",
+            ]
+            .iter()
+            .map(|s| s.to_string())
+            .collect(),
+        );
+        t
+    }
+
+    pub fn base_type(&self, name: &str) -> Option<BaseType> {
+        let up = name.to_ascii_uppercase();
+        Some(match up.as_str() {
+            "INT" => BaseType::Int,
+            "REAL" => BaseType::Real,
+            "BOOL" => BaseType::Bool,
+            "CHAR" => BaseType::Char,
+            _ if self.strucs.contains_key(&up) => BaseType::Struc(up),
+            _ if self.enums.contains_key(&up) => BaseType::Enum(up),
+            _ => return None,
+        })
+    }
+
+    /// The zero value of a type (KRL leaves variables uninitialised; we start them at zero).
+    pub fn default_value(&self, ty: &BaseType, dims: &[usize]) -> Value {
+        if !dims.is_empty() {
+            let n: usize = dims.iter().product();
+            let item = self.default_value(ty, &[]);
+            return Value::Array {
+                dims: dims.to_vec(),
+                items: vec![item; n],
+            };
+        }
+        match ty {
+            BaseType::Int => Value::Int(0),
+            BaseType::Real => Value::Real(0.0),
+            BaseType::Bool => Value::Bool(false),
+            BaseType::Char => Value::Char(0),
+            BaseType::Enum(e) => Value::Enum(
+                self.enums
+                    .get(e)
+                    .and_then(|v| v.first().cloned())
+                    .unwrap_or_default(),
+            ),
+            BaseType::Struc(s) => match self.strucs.get(s) {
+                Some(def) => Value::Struc {
+                    ty: s.clone(),
+                    fields: def
+                        .fields
+                        .iter()
+                        .map(|(n, t, d)| (n.clone(), self.default_value(t, d)))
+                        .collect(),
+                },
+                None => Value::Int(0),
+            },
+        }
+    }
+
+    /// The names of the six Cartesian or axis components of a motion target type.
+    pub fn is_axis_type(ty: &str) -> bool {
+        matches!(ty, "AXIS" | "E6AXIS")
+    }
+}
+
+pub const CART_FIELDS: [&str; 6] = FRAME6;
+pub const AXIS_FIELDS: [&str; 6] = AXES;
