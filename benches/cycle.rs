@@ -24,7 +24,12 @@ fn program() -> Program {
     let dir = Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/fixtures/interp/eki");
     let files = ["cycle.src", "cycle.dat", "mmt_client.src", "mmt_client.dat"]
         .iter()
-        .map(|n| (n.to_string(), std::fs::read_to_string(dir.join(n)).expect("fixture")))
+        .map(|n| {
+            (
+                n.to_string(),
+                std::fs::read_to_string(dir.join(n)).expect("fixture"),
+            )
+        })
         .collect();
     Program::load(files).expect("parses")
 }

@@ -118,6 +118,45 @@ fn walk_dir(dir: &Path, found: &mut Vec<Candidate>, errors: &mut Vec<FileError>)
     }
 }
 
+/// EKI XML files among `paths`: `.xml` files named directly or found by walking directories
+/// (sorted, symlinks not followed). Unreadable directories are skipped here; [`walk`] reports them.
+pub fn walk_xml(paths: &[PathBuf]) -> Vec<PathBuf> {
+    fn is_xml(p: &Path) -> bool {
+        p.extension()
+            .and_then(|e| e.to_str())
+            .is_some_and(|e| e.eq_ignore_ascii_case("xml"))
+    }
+    fn dir(d: &Path, out: &mut Vec<PathBuf>) {
+        let Ok(entries) = std::fs::read_dir(d) else {
+            return;
+        };
+        let mut paths: Vec<(PathBuf, bool)> = entries
+            .filter_map(Result::ok)
+            .filter_map(|e| {
+                let ty = e.file_type().ok()?;
+                (!ty.is_symlink()).then(|| (e.path(), ty.is_dir()))
+            })
+            .collect();
+        paths.sort();
+        for (p, is_dir) in paths {
+            if is_dir {
+                dir(&p, out);
+            } else if is_xml(&p) {
+                out.push(p);
+            }
+        }
+    }
+    let mut out = Vec::new();
+    for p in paths {
+        if p.is_dir() {
+            dir(p, &mut out);
+        } else if is_xml(p) {
+            out.push(p.clone());
+        }
+    }
+    out
+}
+
 /// Read and decode one candidate. `Ok(None)`: a walked file whose content is not KRL.
 pub fn load(candidate: &Candidate) -> Result<Option<Decoded>, FileError> {
     let bytes = std::fs::read(&candidate.path).map_err(|source| FileError {

@@ -6,7 +6,10 @@ use std::process::Command;
 fn krlkit(args: &[&str]) -> (i32, String, String) {
     let out = Command::new(env!("CARGO_BIN_EXE_krlkit"))
         .args(args)
-        .current_dir(concat!(env!("CARGO_MANIFEST_DIR"), "/tests/fixtures/lint_cli"))
+        .current_dir(concat!(
+            env!("CARGO_MANIFEST_DIR"),
+            "/tests/fixtures/lint_cli"
+        ))
         .output()
         .expect("run krlkit");
     (
@@ -46,7 +49,10 @@ fn sarif_format() {
     let v: serde_json::Value = serde_json::from_str(&out).expect("SARIF JSON");
     assert_eq!(v["version"], "2.1.0");
     let run = &v["runs"][0];
-    assert_eq!(run["tool"]["driver"]["rules"].as_array().map(Vec::len), Some(15));
+    assert_eq!(
+        run["tool"]["driver"]["rules"].as_array().map(Vec::len),
+        Some(15)
+    );
     let results = run["results"].as_array().expect("results");
     assert_eq!(results.len(), 3);
     assert_eq!(results[0]["ruleId"], "MM003");
@@ -121,8 +127,11 @@ fn rules_list() {
 fn rule_explain_and_unknown() {
     let (code, out, _) = krlkit(&["rule", "mm006"]);
     assert_eq!(code, 0);
-    assert!(out.contains("## Why it matters") && out.contains("## Fix"), "{out}");
-    let (code, _, err) = krlkit(&["rule", "MM060"]);
+    assert!(
+        out.contains("## Why it matters") && out.contains("## Fix"),
+        "{out}"
+    );
+    let (code, _, err) = krlkit(&["rule", "MM06"]);
     assert_eq!(code, 2);
     assert!(err.contains("MM006"), "{err}");
 }

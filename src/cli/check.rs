@@ -1,6 +1,136 @@
-use super::Outcome;
-use super::args::CheckArgs;
+//! `krlkit check PATH... [--format …] [--eki-xml FILE] [--config FILE]`.
+//!
+//! Files are found and read in parallel, linted together as one program tree, then rendered in
+//! input order. An unreadable file or a bad config is named on stderr and gives exit 2; the files
+//! that could be read are still checked and reported.
 
-pub fn run(_args: CheckArgs) -> anyhow::Result<Outcome> {
-    anyhow::bail!("`krlkit check` is not implemented in this build yet")
+use std::io::Write;
+use std::path::{Path, PathBuf};
+
+use anyhow::Context;
+use rayon::prelude::*;
+
+use super::Outcome;
+use super::args::{CheckArgs, CheckFormat};
+use crate::diag::{FileReport, Severity, render};
+use crate::files;
+use crate::lint::{self, EkiChannel, Input, LintConfig};
+
+pub fn run(args: CheckArgs) -> anyhow::Result<Outcome> {
+    let config = match load_config(args.config.as_deref()) {
+        Ok(c) => c,
+        Err(message) => {
+            eprintln!("error: {message}");
+            return Ok(Outcome::Failure);
+        }
+    };
+    let (channels, channels_given) = match &args.eki_xml {
+        Some(path) => (vec![read_channel(path)?], true),
+        None => (scanned_channels(&args.paths), false),
+    };
+
+    let (candidates, walk_errors) = files::walk(&args.paths);
+    let loaded: Vec<_> = candidates
+        .par_iter()
+        .map(|c| files::load(c).map(|d| d.map(|d| (c.path.display().to_string(), d.text))))
+        .collect();
+    let mut failed = !walk_errors.is_empty();
+    for e in &walk_errors {
+        eprintln!("error: cannot read {e}");
+    }
+    let mut inputs = Vec::new();
+    for result in loaded {
+        match result {
+            Ok(Some((path, text))) => inputs.push(Input { path, text }),
+            Ok(None) => {}
+            Err(e) => {
+                eprintln!("error: cannot read {e}");
+                failed = true;
+            }
+        }
+    }
+
+    let reports = lint::lint(inputs, channels, channels_given, &config);
+    let errors: usize = reports.iter().map(|r| r.count(Severity::Error)).sum();
+    let warnings: usize = reports.iter().map(|r| r.count(Severity::Warning)).sum();
+    let mut out = String::new();
+    match args.format {
+        CheckFormat::Human => each(&reports, &mut out, render::human::render),
+        CheckFormat::Concise => each(&reports, &mut out, render::concise::render),
+        CheckFormat::Github => each(&reports, &mut out, render::github::render),
+        CheckFormat::Json => out = render::json::render(&reports) + "\n",
+        CheckFormat::Sarif => out = render::sarif::render(&reports) + "\n",
+    }
+    std::io::stdout().lock().write_all(out.as_bytes())?;
+    if args.format == CheckFormat::Human {
+        let files = reports.len();
+        if files == 0 && !failed {
+            eprintln!("warning: no KRL files found");
+        }
+        eprintln!(
+            "{files} file{} checked: {errors} error{}, {warnings} warning{}",
+            plural(files),
+            plural(errors),
+            plural(warnings)
+        );
+    }
+    Ok(if failed {
+        Outcome::Failure
+    } else if errors > 0 {
+        Outcome::Findings
+    } else {
+        Outcome::Success
+    })
+}
+
+fn each(reports: &[FileReport], out: &mut String, render: fn(&FileReport, &mut String)) {
+    for r in reports {
+        render(r, out);
+    }
+}
+
+fn plural(n: usize) -> &'static str {
+    if n == 1 { "" } else { "s" }
+}
+
+/// `--config FILE`, else `./krlkit.toml` when present, else the defaults.
+fn load_config(path: Option<&Path>) -> Result<LintConfig, String> {
+    let default = PathBuf::from("krlkit.toml");
+    let path = match path {
+        Some(p) => p.to_path_buf(),
+        None if default.is_file() => default,
+        None => return Ok(LintConfig::default()),
+    };
+    let text = std::fs::read_to_string(&path)
+        .map_err(|e| format!("cannot read config {}: {e}", path.display()))?;
+    LintConfig::from_toml(&path.display().to_string(), &text).map_err(|e| e.to_string())
+}
+
+fn channel_name(path: &Path) -> String {
+    path.file_stem()
+        .map(|s| s.to_string_lossy().into_owned())
+        .unwrap_or_default()
+}
+
+fn read_channel(path: &Path) -> anyhow::Result<EkiChannel> {
+    let text = std::fs::read(path).with_context(|| format!("cannot read {}", path.display()))?;
+    let text = crate::syntax::decode(&text).text;
+    lint::eki_xml::read(&channel_name(path), &path.display().to_string(), &text).ok_or_else(|| {
+        anyhow::anyhow!(
+            "{}: not an EthernetKRL config (no <ETHERNETKRL> root element)",
+            path.display()
+        )
+    })
+}
+
+/// EKI configs found among the scanned paths; files that are not EKI XML are ignored.
+fn scanned_channels(paths: &[PathBuf]) -> Vec<EkiChannel> {
+    files::walk_xml(paths)
+        .par_iter()
+        .filter_map(|p| {
+            let bytes = std::fs::read(p).ok()?;
+            let text = crate::syntax::decode(&bytes).text;
+            lint::eki_xml::read(&channel_name(p), &p.display().to_string(), &text)
+        })
+        .collect()
 }

@@ -668,6 +668,12 @@ impl<'p> Machine<'p> {
             }
             StmtKind::Motion(m) => self.motion(m)?,
             StmtKind::Spline { body, .. } => return self.exec_block(body),
+            // The simulated robot reaches every point, so the skip condition never cuts a motion short.
+            StmtKind::Skip { body, .. } => return self.exec_block(body),
+            // Messages are printed, never pending, so acknowledging one has nothing to do.
+            StmtKind::Confirm { handle } => {
+                self.eval(handle)?;
+            }
             StmtKind::Decl(d) => {
                 let fi = self.frames.len() - 1;
                 self.declare(d, |n| n.to_string(), Some(fi))?;
