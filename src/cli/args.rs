@@ -166,9 +166,14 @@ pub struct ServeArgs {
 #[derive(Debug, Args)]
 pub struct RunArgs {
     pub program: PathBuf,
-    /// Directory holding the generated package (default: the embedded default package).
+    /// Directory holding the generated package (a `krlkit gen --out` directory, or any directory
+    /// of .src/.dat/.xml files). Default: the package generated in memory from --spec.
     #[arg(long)]
     pub package: Option<PathBuf>,
+    /// Spec to generate the package from when --package is not given (default: the embedded
+    /// default spec).
+    #[arg(long, conflicts_with = "package")]
+    pub spec: Option<PathBuf>,
     /// Vision server address (overrides the EKI XML's IP and port).
     #[arg(long)]
     pub vision: Option<String>,

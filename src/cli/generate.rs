@@ -43,7 +43,7 @@ pub fn run(args: GenArgs) -> anyhow::Result<Outcome> {
     Ok(Outcome::Success)
 }
 
-fn load_spec(path: Option<&Path>) -> Result<Spec, String> {
+pub(super) fn load_spec(path: Option<&Path>) -> Result<Spec, String> {
     let Some(path) = path else {
         return Ok(Spec::default());
     };

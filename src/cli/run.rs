@@ -84,28 +84,52 @@ pub fn run(args: RunArgs) -> anyhow::Result<Outcome> {
             dir.to_path_buf()
         });
     }
-    let package_dir = match &args.package {
-        Some(d) => Some(d.clone()),
-        // Without --package: the committed reference package of a checkout, if present.
-        None => [PathBuf::from(".")]
-            .into_iter()
-            .find(|d| d.join("krl").is_dir() && d.join("xml").is_dir()),
-    };
-    if let Some(dir) = &package_dir {
-        let mut pkg = Vec::new();
-        package_files(dir, &mut pkg, &mut options.eki_dirs);
-        let canon = |p: &Path| std::fs::canonicalize(p).unwrap_or_else(|_| p.to_path_buf());
-        let mine: Vec<PathBuf> = files.iter().map(|p| canon(p)).collect();
-        // Example programs inside the package are not part of the library.
-        pkg.retain(|p| {
-            !mine.contains(&canon(p)) && !p.components().any(|c| c.as_os_str() == "examples")
-        });
-        files.extend(pkg);
-    }
     let mut sources = Vec::new();
+    match &args.package {
+        Some(dir) => {
+            if !dir.is_dir() {
+                eprintln!("error: package directory {} does not exist", dir.display());
+                return Ok(Outcome::Failure);
+            }
+            let mut pkg = Vec::new();
+            package_files(dir, &mut pkg, &mut options.eki_dirs);
+            let canon = |p: &Path| std::fs::canonicalize(p).unwrap_or_else(|_| p.to_path_buf());
+            let mine: Vec<PathBuf> = files.iter().map(|p| canon(p)).collect();
+            // Example programs inside the package are not part of the library.
+            pkg.retain(|p| {
+                !mine.contains(&canon(p)) && !p.components().any(|c| c.as_os_str() == "examples")
+            });
+            files.extend(pkg);
+        }
+        None => {
+            let spec = match super::generate::load_spec(args.spec.as_deref()) {
+                Ok(s) => s,
+                Err(message) => {
+                    eprintln!("{message}");
+                    return Ok(Outcome::Failure);
+                }
+            };
+            for f in crate::generate::generate(&spec)? {
+                let text = crate::syntax::decode(&f.contents).text;
+                if has_ext(&f.path, "xml") {
+                    let channel = f
+                        .path
+                        .file_stem()
+                        .and_then(|s| s.to_str())
+                        .unwrap_or_default()
+                        .to_ascii_uppercase();
+                    options.eki_configs.insert(channel, text);
+                } else if has_ext(&f.path, "src") || has_ext(&f.path, "dat") {
+                    sources.push((format!("<package>/{}", f.path.display()), text));
+                }
+            }
+        }
+    }
+    let generated = std::mem::take(&mut sources);
     for f in &files {
         sources.push((f.display().to_string(), read_text(f)?));
     }
+    sources.extend(generated);
     let program = match Program::load(sources) {
         Ok(p) => p,
         Err(e) => {
