@@ -1,7 +1,8 @@
 //! `krlkit run`: interpret a KRL program plus the MM_* package.
 //!
-//! Exit codes: 0 the program ended normally; 1 it stopped at a `HALT`; 2 it could not be run or
-//! ended in a runtime error (printed as `file:line: message`).
+//! Exit codes: 0 the program ended normally; 1 it stopped at a `HALT`; 2 it could not be run,
+//! ended in a runtime error (printed as `file:line: message`), or the vision server could not be
+//! reached (network failure; the trace is still written and shows the package's status codes).
 
 use std::io::Write;
 use std::path::{Path, PathBuf};
@@ -109,20 +110,9 @@ pub fn run(args: RunArgs) -> anyhow::Result<Outcome> {
                     return Ok(Outcome::Failure);
                 }
             };
-            for f in crate::generate::generate(&spec)? {
-                let text = crate::syntax::decode(&f.contents).text;
-                if has_ext(&f.path, "xml") {
-                    let channel = f
-                        .path
-                        .file_stem()
-                        .and_then(|s| s.to_str())
-                        .unwrap_or_default()
-                        .to_ascii_uppercase();
-                    options.eki_configs.insert(channel, text);
-                } else if has_ext(&f.path, "src") || has_ext(&f.path, "dat") {
-                    sources.push((format!("<package>/{}", f.path.display()), text));
-                }
-            }
+            let package = interp::package::generated(&spec)?;
+            options.eki_configs = package.eki_configs;
+            sources = package.sources;
         }
     }
     let generated = std::mem::take(&mut sources);
@@ -147,16 +137,32 @@ pub fn run(args: RunArgs) -> anyhow::Result<Outcome> {
                 .with_context(|| format!("cannot write {}", path.display()))?,
         );
         for e in &result.events {
-            writeln!(out, "{}", e.to_json())?;
+            writeln!(out, "{}", e.to_json_line())?;
         }
         out.flush()?;
     }
+    if let End::Error(e) = &result.end {
+        eprintln!("error: {e}");
+        return Ok(Outcome::Failure);
+    }
+    // The program saw the failure as a status code (NO_CONNECTION) and may have ended
+    // normally or at a HALT, but the run did not prove anything against a server.
+    if result.eki.failed_connects > 0 {
+        eprintln!(
+            "error: the vision server at {} could not be reached ({} failed connection attempt{})",
+            result.eki.failed_addr.as_deref().unwrap_or("?"),
+            result.eki.failed_connects,
+            if result.eki.failed_connects == 1 {
+                ""
+            } else {
+                "s"
+            }
+        );
+        eprintln!("  help: start one with `krlkit sim serve` and pass its address with --vision");
+        return Ok(Outcome::Failure);
+    }
     Ok(match result.end {
         End::Normal => Outcome::Success,
-        End::Halt { .. } => Outcome::Findings,
-        End::Error(e) => {
-            eprintln!("error: {e}");
-            Outcome::Failure
-        }
+        _ => Outcome::Findings,
     })
 }

@@ -179,6 +179,7 @@ struct Channel {
 #[derive(Debug, Default)]
 pub(crate) struct Eki {
     channels: HashMap<String, Channel>,
+    pub(crate) stats: super::EkiStats,
 }
 
 impl Eki {
@@ -396,12 +397,15 @@ pub(crate) fn call(m: &mut Machine, up: &str, args: &[Option<Expr>]) -> R<Value>
                     let _ = s.set_nodelay(true);
                     c.stream = Some(s);
                     let (af, ao) = (c.cfg.alive_flag, c.cfg.alive_out);
+                    m.eki.stats.connections += 1;
                     let g = m.globals_mut();
                     set_flag(g, "$FLAG", af, true);
                     set_flag(g, "$OUT", ao, true);
                     Ok(status(0, 0, 0, true, 0))
                 }
                 None => {
+                    m.eki.stats.failed_connects += 1;
+                    m.eki.stats.failed_addr = Some(addr_text.clone());
                     m.message(format!("EKI: connection to {addr_text} not available (channel {name})"));
                     Ok(status(0, 0, MSG_NO_CONNECTION, false, 0))
                 }
@@ -444,7 +448,10 @@ pub(crate) fn call(m: &mut Machine, up: &str, args: &[Option<Expr>]) -> R<Value>
             let _ = s.set_nonblocking(false);
             let _ = s.set_write_timeout(Some(Duration::from_secs(2)));
             match s.write_all(&bytes) {
-                Ok(()) => Ok(status(0, 0, 0, true, counter)),
+                Ok(()) => {
+                    m.eki.stats.sends += 1;
+                    Ok(status(0, 0, 0, true, counter))
+                }
                 Err(_) => {
                     c.stream = None;
                     let af = c.cfg.alive_flag;

@@ -41,13 +41,15 @@ fn frame(m: &M) -> [f64; 6] {
     } else {
         (m[1][0].atan2(m[0][0]), m[2][1].atan2(m[2][2]))
     };
+    // Rounding noise around zero would print as "-0.0000" in requests.
+    let clean = |x: f64| if x.abs() < 1e-9 { 0.0 } else { x };
     [
-        m[0][3],
-        m[1][3],
-        m[2][3],
-        a.to_degrees(),
-        b.to_degrees(),
-        c.to_degrees(),
+        clean(m[0][3]),
+        clean(m[1][3]),
+        clean(m[2][3]),
+        clean(a.to_degrees()),
+        clean(b.to_degrees()),
+        clean(c.to_degrees()),
     ]
 }
 
@@ -92,4 +94,77 @@ pub fn inverse(a: &Value) -> Option<Value> {
     }
     inv[3][3] = 1.0;
     Some(with_frame(a, frame(&inv)))
+}
+
+/// `$POS_ACT` after `$BASE`/`$TOOL` changed from `old` to `new` (each `(base, tool)`): the
+/// flange stays where it is, so the same physical pose is expressed in the new frames
+/// (`INV(new_base) : old_base : pos : INV(old_tool) : new_tool`). Fields other than X..C keep
+/// their values.
+pub fn rebase(pos: &Value, old: (&Value, &Value), new: (&Value, &Value)) -> Option<Value> {
+    let inv = |f: &Value| -> Option<M> {
+        let m = matrix(get(f)?);
+        let mut r = [[0.0; 4]; 4];
+        for i in 0..3 {
+            for j in 0..3 {
+                r[i][j] = m[j][i];
+            }
+            r[i][3] = -(0..3).map(|k| m[k][i] * m[k][3]).sum::<f64>();
+        }
+        r[3][3] = 1.0;
+        Some(r)
+    };
+    let flange = mul(&mul(&matrix(get(old.0)?), &matrix(get(pos)?)), &inv(old.1)?);
+    let m = mul(&mul(&inv(new.0)?, &flange), &matrix(get(new.1)?));
+    Some(with_frame(pos, frame(&m)))
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn pose(f: [f64; 6]) -> Value {
+        Value::Struc {
+            ty: "E6POS".into(),
+            fields: CART_FIELDS
+                .iter()
+                .zip(f)
+                .map(|(n, v)| (n.to_string(), Value::Real(v)))
+                .chain([("E1".to_string(), Value::Real(7.0))])
+                .collect(),
+        }
+    }
+
+    fn close(a: &Value, b: [f64; 6]) -> bool {
+        get(a)
+            .unwrap()
+            .iter()
+            .zip(b)
+            .all(|(x, y)| (x - y).abs() < 1e-9)
+    }
+
+    #[test]
+    fn rebase_keeps_the_flange_where_it_is() {
+        let null = pose([0.0; 6]);
+        let tool = pose([0.0, 0.0, 100.0, 0.0, 0.0, 0.0]);
+        // A TCP pointing down (B = 180): with the 100 mm tool, the flange is 100 mm higher, so
+        // the flange pose read without a tool is the TCP pose plus 100 in Z.
+        let tcp = pose([500.0, 20.0, 300.0, 0.0, 180.0, 0.0]);
+        let flange = rebase(&tcp, (&null, &tool), (&null, &null)).unwrap();
+        assert!(
+            close(&flange, [500.0, 20.0, 400.0, 180.0, 0.0, 180.0]),
+            "{flange:?}"
+        );
+        let back = rebase(&flange, (&null, &null), (&null, &tool)).unwrap();
+        assert!(
+            close(&back, [500.0, 20.0, 300.0, 180.0, 0.0, 180.0]),
+            "{back:?}"
+        );
+        assert_eq!(back.field("E1"), Some(&Value::Real(7.0)));
+        let base = pose([100.0, 0.0, 0.0, 0.0, 0.0, 0.0]);
+        let in_base = rebase(&flange, (&null, &null), (&base, &null)).unwrap();
+        assert!(
+            close(&in_base, [400.0, 20.0, 400.0, 180.0, 0.0, 180.0]),
+            "{in_base:?}"
+        );
+    }
 }

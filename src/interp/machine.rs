@@ -245,8 +245,19 @@ impl<'p> Machine<'p> {
             .filter(|(k, _)| !k.starts_with('$') && !BUILTIN_GLOBALS.contains(&k.as_str()))
             .map(|(k, v)| (k.clone(), v.clone()))
             .collect();
+        let outputs = match self.globals.get("$OUT") {
+            Some(Value::Array { items, .. }) => items
+                .iter()
+                .enumerate()
+                .filter(|(_, v)| **v == Value::Bool(true))
+                .map(|(i, _)| i + 1)
+                .collect(),
+            _ => Vec::new(),
+        };
         RunResult {
             end,
+            outputs,
+            eki: std::mem::take(&mut self.eki.stats),
             events: self.events,
             messages: self.messages,
             globals,
@@ -991,6 +1002,10 @@ impl<'p> Machine<'p> {
     pub(crate) fn assign(&mut self, p: &Place, v: Value) -> R<()> {
         let current = self.read_place(p)?.clone();
         let new = self.coerce(current, v)?;
+        let frames_before = match &p.root {
+            Root::Global(k) if k == "$TOOL" || k == "$BASE" => Some(self.tool_base()),
+            _ => None,
+        };
         let root = match &p.root {
             Root::Global(k) => self.globals.get_mut(k),
             Root::Local(fi, k) => match self.frames.get_mut(*fi).and_then(|f| f.vars.get_mut(k)) {
@@ -1023,7 +1038,29 @@ impl<'p> Machine<'p> {
         if let Root::Global(k) = &p.root {
             self.after_system_write(k.clone(), &p.path);
         }
+        if let Some((old_base, old_tool)) = frames_before {
+            self.follow_frames(&old_base, &old_tool);
+        }
         Ok(())
+    }
+
+    fn tool_base(&self) -> (Value, Value) {
+        let get = |k: &str| self.globals.get(k).cloned().unwrap_or(Value::Int(0));
+        (get("$BASE"), get("$TOOL"))
+    }
+
+    /// After `$BASE` or `$TOOL` changed, `$POS_ACT` describes the same flange pose in the new
+    /// frames, like the controller's (the robot did not move).
+    fn follow_frames(&mut self, old_base: &Value, old_tool: &Value) {
+        let (base, tool) = self.tool_base();
+        if base == *old_base && tool == *old_tool {
+            return;
+        }
+        if let Some(pos) = self.globals.get("$POS_ACT")
+            && let Some(moved) = super::frame::rebase(pos, (old_base, old_tool), (&base, &tool))
+        {
+            self.globals.insert("$POS_ACT".into(), moved);
+        }
     }
 
     // ---------------------------------------------------------------- timers

@@ -15,12 +15,14 @@ mod eki;
 mod format;
 mod frame;
 mod machine;
+pub mod package;
 mod program;
 mod value;
 
 use std::collections::HashMap;
 use std::path::PathBuf;
 
+pub use package::Package;
 pub use program::{Module, Program};
 pub use value::Value;
 
@@ -104,6 +106,26 @@ pub enum Event {
 }
 
 impl Event {
+    /// The event as one JSON Lines record for `--trace`. Like [`Event::to_json`], except that
+    /// a motion target keeps its natural order (`X,Y,Z,A,B,C` or `A1…A6`) instead of sorted keys.
+    pub fn to_json_line(&self) -> String {
+        match self {
+            Event::Motion { kind, target } => {
+                let fields: Vec<String> = target
+                    .iter()
+                    .map(|(k, v)| format!("{}:{}", serde_json::json!(k), serde_json::json!(v)))
+                    .collect();
+                format!(
+                    "{{\"event\":\"motion\",\"kind\":{},\"target\":{{{}}}}}",
+                    serde_json::json!(kind),
+                    fields.join(",")
+                )
+            }
+            other => other.to_json().to_string(),
+        }
+    }
+
+    /// The event as a JSON value (object keys sorted).
     pub fn to_json(&self) -> serde_json::Value {
         use serde_json::{Map, Value as J, json};
         let pairs = |v: &[(String, f64)]| {
@@ -159,6 +181,21 @@ pub struct RunResult {
     pub globals: HashMap<String, Value>,
     pub steps: u64,
     pub sim_time_ms: f64,
+    /// `$OUT` numbers that are TRUE at the end, ascending.
+    pub outputs: Vec<usize>,
+    pub eki: EkiStats,
+}
+
+/// What the EKI emulation did over TCP during a run.
+#[derive(Debug, Clone, Default, PartialEq)]
+pub struct EkiStats {
+    /// Successful `EKI_Open` connections.
+    pub connections: u64,
+    /// `EKI_Open` calls whose connection attempt failed, and the address of the last one.
+    pub failed_connects: u64,
+    pub failed_addr: Option<String>,
+    /// Successful `EKI_Send` calls (each is one request the server should have logged).
+    pub sends: u64,
 }
 
 /// Run the first DEF of the program's first file.
