@@ -26,7 +26,7 @@ fn render(src: &Path) -> String {
     let result = interp::run(&program, &options);
     let mut out = String::new();
     for e in &result.events {
-        out.push_str(&e.to_json().to_string());
+        out.push_str(&e.to_json_line());
         out.push('\n');
     }
     let mut globals: Vec<_> = result.globals.iter().collect();

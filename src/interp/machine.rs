@@ -7,6 +7,8 @@ use crate::syntax::ast::{
     StmtKind, UnaryOp,
 };
 
+mod interrupt;
+
 use super::eki::Eki;
 use super::program::Program;
 use super::value::{AXIS_FIELDS, BaseType, CART_FIELDS, Types, Value};
@@ -86,12 +88,24 @@ pub(crate) struct Machine<'p> {
     steps: u64,
     /// TRIGGER actions waiting for the next motion.
     pending_triggers: Vec<Stmt>,
+    interrupts: interrupt::Interrupts,
 }
 
 const TIMERS: usize = 64;
 
 /// Globals the interpreter predefines (like `$config.dat`); not reported in [`RunResult::globals`].
-const BUILTIN_GLOBALS: [&str; 2] = ["HOME", "XHOME"];
+const BUILTIN_GLOBALS: [&str; 10] = [
+    "HOME",
+    "XHOME",
+    "TOOL_DATA",
+    "BASE_DATA",
+    "PDEFAULT",
+    "LDEFAULT",
+    "FHOME",
+    "PDAT_ACT",
+    "LDAT_ACT",
+    "FDAT_ACT",
+];
 
 impl<'p> Machine<'p> {
     pub(crate) fn new(prog: &'p Program, opts: &'p Options) -> Machine<'p> {
@@ -108,6 +122,7 @@ impl<'p> Machine<'p> {
             messages: Vec::new(),
             steps: 0,
             pending_triggers: Vec::new(),
+            interrupts: interrupt::Interrupts::default(),
         };
         m.init_system();
         m
@@ -195,6 +210,58 @@ impl<'p> Machine<'p> {
         for k in ["$ADVANCE", "$OV_PRO", "$TOOL_NO", "$BASE_NO"] {
             put(k, Value::Int(0));
         }
+        // What the standard INI fold and the inline forms of KUKA's templates touch
+        // ($config.dat, BAS): tool and base tables, motion data, stop message, H_POS.
+        for k in ["$STOPMESS", "$BWDSTART"] {
+            put(k, Value::Bool(false));
+        }
+        put(
+            "$H_POS",
+            t.default_value(&BaseType::Struc("E6AXIS".into()), &[]),
+        );
+        put("$ORI_TYPE", Value::Enum("VAR".into()));
+        put("$CIRC_TYPE", Value::Enum("BASE".into()));
+        put(
+            "TOOL_DATA",
+            t.default_value(&BaseType::Struc("FRAME".into()), &[16]),
+        );
+        put(
+            "BASE_DATA",
+            t.default_value(&BaseType::Struc("FRAME".into()), &[32]),
+        );
+        let with = |ty: &str, values: &[(&str, Value)]| {
+            let mut v = t.default_value(&BaseType::Struc(ty.into()), &[]);
+            for (f, x) in values {
+                if let Some(slot) = v.field_mut(f) {
+                    *slot = x.clone();
+                }
+            }
+            v
+        };
+        let pdefault = with(
+            "PDAT",
+            &[
+                ("VEL", Value::Real(100.0)),
+                ("ACC", Value::Real(100.0)),
+                ("APO_DIST", Value::Real(100.0)),
+            ],
+        );
+        let ldefault = with(
+            "LDAT",
+            &[
+                ("VEL", Value::Real(2.0)),
+                ("ACC", Value::Real(100.0)),
+                ("APO_DIST", Value::Real(100.0)),
+                ("APO_FAC", Value::Real(50.0)),
+            ],
+        );
+        let fhome = with("FDAT", &[]);
+        put("PDAT_ACT", pdefault.clone());
+        put("PDEFAULT", pdefault);
+        put("LDAT_ACT", ldefault.clone());
+        put("LDEFAULT", ldefault);
+        put("FDAT_ACT", fhome.clone());
+        put("FHOME", fhome);
     }
 
     // ---------------------------------------------------------------- running
@@ -382,7 +449,15 @@ impl<'p> Machine<'p> {
                 self.opts.step_limit
             )));
         }
-        Ok(())
+        self.poll_interrupts()
+    }
+
+    /// Run an interrupt's handler (a routine call) between two statements.
+    fn exec_handler(&mut self, handler: &Stmt) -> R<()> {
+        match self.exec(handler)? {
+            Flow::Next | Flow::Return(_) => Ok(()),
+            _ => Err(self.err("an interrupt handler must be a routine call")),
+        }
     }
 
     // ---------------------------------------------------------------- routines
@@ -697,8 +772,14 @@ impl<'p> Machine<'p> {
                 self.assign(&p, v)?;
             }
             StmtKind::OnErrorProceed | StmtKind::TimeBlock(_) => {}
-            StmtKind::Interrupt { .. } | StmtKind::InterruptDecl { .. } => {
-                return Err(self.err("interrupts are not supported by krlkit run"));
+            StmtKind::InterruptDecl {
+                number,
+                condition,
+                handler,
+                ..
+            } => self.interrupt_decl(number, condition, handler)?,
+            StmtKind::Interrupt { action, number } => {
+                self.interrupt_switch(*action, number.as_ref())?
             }
             StmtKind::Brake { .. } | StmtKind::Resume => {
                 return Err(self.err("BRAKE/RESUME are not supported by krlkit run"));

@@ -184,6 +184,33 @@ impl Types {
         );
         add("VEL_CP_T", reals(&["CP", "ORI1", "ORI2"]));
         add("APO_T", reals(&["CDIS", "CPTP", "CORI", "CVEL"]));
+        // Motion data of the inline forms (`PDAT_ACT = PDEFAULT`, `FDAT_ACT = FHOME`, ...).
+        let en = |field: &str, ty: &str| (field.to_string(), BaseType::Enum(ty.into()), vec![]);
+        let mut pdat = reals(&["VEL", "ACC", "APO_DIST"]);
+        pdat.push(en("APO_MODE", "APO_MODE_T"));
+        pdat.extend(reals(&["GEAR_JERK"]));
+        pdat.extend(ints(&["EXAX_IGN"]));
+        add("PDAT", pdat);
+        let mut ldat = reals(&["VEL", "ACC", "APO_DIST", "APO_FAC", "AXIS_VEL", "AXIS_ACC"]);
+        ldat.push(en("ORI_TYP", "ORI_TYPE"));
+        ldat.push(en("CIRC_TYP", "CIRC_TYPE"));
+        ldat.extend(reals(&["JERK_FAC", "GEAR_JERK"]));
+        ldat.extend(ints(&["EXAX_IGN"]));
+        add("LDAT", ldat);
+        let mut fdat = ints(&["TOOL_NO", "BASE_NO"]);
+        fdat.push(en("IPO_FRAME", "IPO_MODE"));
+        fdat.push(("POINT2".into(), BaseType::Char, vec![24]));
+        fdat.push(("TQ_STATE".into(), BaseType::Bool, vec![]));
+        add("FDAT", fdat);
+        for (name, values) in [
+            ("APO_MODE_T", &["CDIS", "CPTP"][..]),
+            ("ORI_TYPE", &["VAR", "CONSTANT", "JOINT"][..]),
+            ("CIRC_TYPE", &["BASE", "PATH"][..]),
+            ("IPO_MODE", &["BASE", "TCP"][..]),
+        ] {
+            t.enums
+                .insert(name.into(), values.iter().map(|s| s.to_string()).collect());
+        }
         t.enums.insert(
             "CMD_STAT".into(),
             [

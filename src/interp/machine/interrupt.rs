@@ -1,0 +1,134 @@
+//! KRL interrupts: `INTERRUPT DECL n WHEN cond DO handler`, `INTERRUPT ON|OFF|ENABLE|DISABLE [n]`.
+//!
+//! A declared interrupt that is on and enabled fires when its condition changes from FALSE to
+//! TRUE (edge-triggered, like the controller), checked before every statement; the handler
+//! runs to completion with further interrupts held back. Conditions the simulation never makes
+//! TRUE (`$STOPMESS` in the standard INI fold) simply never fire.
+
+use std::collections::BTreeMap;
+
+use crate::syntax::ast::{Expr, InterruptAction, Stmt};
+
+use super::{Machine, R};
+
+#[derive(Debug, Clone)]
+pub(super) struct Interrupt {
+    /// Module and offset of the declaration, for error locations while evaluating it.
+    loc: (usize, u32),
+    condition: Expr,
+    handler: Stmt,
+    on: bool,
+    enabled: bool,
+    /// The condition's value at the last check (an interrupt fires on a rising edge).
+    last: bool,
+}
+
+#[derive(Debug, Default)]
+pub(super) struct Interrupts {
+    table: BTreeMap<i64, Interrupt>,
+    /// Number of interrupts that are on and enabled: nothing to check when 0.
+    active: usize,
+    handling: bool,
+}
+
+impl Interrupts {
+    fn recount(&mut self) {
+        self.active = self.table.values().filter(|i| i.on && i.enabled).count();
+    }
+}
+
+/// Interrupt numbers the controller offers to programs.
+const NUMBERS: std::ops::RangeInclusive<i64> = 1..=128;
+
+impl<'p> Machine<'p> {
+    pub(super) fn interrupt_decl(&mut self, number: &Expr, cond: &Expr, handler: &Stmt) -> R<()> {
+        let n = self.eval_int(number)?;
+        if !NUMBERS.contains(&n) {
+            return Err(self.err(format!("interrupt number {n} is outside 1..128")));
+        }
+        let i = Interrupt {
+            loc: self.loc,
+            condition: cond.clone(),
+            handler: handler.clone(),
+            on: false,
+            enabled: true,
+            last: false,
+        };
+        self.interrupts.table.insert(n, i);
+        self.interrupts.recount();
+        Ok(())
+    }
+
+    pub(super) fn interrupt_switch(
+        &mut self,
+        action: InterruptAction,
+        number: Option<&Expr>,
+    ) -> R<()> {
+        let numbers: Vec<i64> = match number {
+            Some(e) => {
+                let n = self.eval_int(e)?;
+                if !self.interrupts.table.contains_key(&n) {
+                    return Err(self.err(format!("interrupt {n} was not declared")));
+                }
+                vec![n]
+            }
+            None => self.interrupts.table.keys().copied().collect(),
+        };
+        for n in numbers {
+            // The edge is measured from now: a condition already TRUE does not fire.
+            let last = match action {
+                InterruptAction::On => {
+                    let cond = self.interrupts.table[&n].condition.clone();
+                    self.eval_bool(&cond)?
+                }
+                _ => self.interrupts.table[&n].last,
+            };
+            if let Some(i) = self.interrupts.table.get_mut(&n) {
+                match action {
+                    InterruptAction::On => i.on = true,
+                    InterruptAction::Off => i.on = false,
+                    InterruptAction::Enable => i.enabled = true,
+                    InterruptAction::Disable => i.enabled = false,
+                }
+                i.last = last;
+            }
+        }
+        self.interrupts.recount();
+        Ok(())
+    }
+
+    /// Fire the interrupts whose condition rose since the last check (lowest number first).
+    pub(super) fn poll_interrupts(&mut self) -> R<()> {
+        if self.interrupts.active == 0 || self.interrupts.handling {
+            return Ok(());
+        }
+        let live: Vec<i64> = self
+            .interrupts
+            .table
+            .iter()
+            .filter(|(_, i)| i.on && i.enabled)
+            .map(|(n, _)| *n)
+            .collect();
+        for n in live {
+            let Some(i) = self.interrupts.table.get(&n).cloned() else {
+                continue;
+            };
+            let saved = self.loc;
+            self.loc = i.loc;
+            let now = self.eval_bool(&i.condition);
+            self.loc = saved;
+            let now = now?;
+            if let Some(slot) = self.interrupts.table.get_mut(&n) {
+                slot.last = now;
+            }
+            if now && !i.last {
+                self.interrupts.handling = true;
+                let r = self.exec_handler(&i.handler);
+                self.interrupts.handling = false;
+                self.loc = saved;
+                r?;
+            }
+        }
+        Ok(())
+    }
+}
