@@ -5,15 +5,20 @@
 //! HALTs), and the snapshot holds the trace (calls, OUT values, status, motions), the
 //! server's request log, the final globals (the program's and the catalog's: MM_UserData,
 //! MM_Plan_Results, Do_Port, MM_Last_Status) and the `$OUT`s left on.
+//!
+//! The example programs under `krl/examples/` run against `tests/fixtures/scenarios/examples.toml`
+//! the same way: they must end normally, every call must succeed, and their motion targets must
+//! be the scenario's poses, in order.
 
 mod interp_support;
 
 use std::collections::{BTreeMap, BTreeSet};
 use std::path::Path;
 
-use interp_support::{Case, check_invariants, render, root, run};
+use interp_support::{Case, check_invariants, render, root, run, scenario_of};
 use krlkit::catalog::catalog;
 use krlkit::interp::Event;
+use krlkit::sim::Scenario;
 
 /// Status codes that mean "it worked" for a subprogram: the success codes of its commands,
 /// or (for local copies and settings) any success code or 0.
@@ -89,4 +94,90 @@ fn cases_are_found() {
         })
         .count();
     assert!(n >= 22, "only {n} cases in {}", Path::new(&dir).display());
+}
+
+/// The motions an example must make against the examples scenario, from the scenario itself.
+fn expected_motions(example: &str, sc: &Scenario) -> Vec<(&'static str, Vec<f64>)> {
+    let project = |id: i64| sc.projects.iter().find(|p| p.id == id).expect("project");
+    let viz = sc.viz.as_ref().expect("viz");
+    let joints = |w: &krlkit::sim::scenario::Waypoint| w.joints.clone().expect("joints");
+    let pose = |w: &krlkit::sim::scenario::Waypoint| w.pose.clone().expect("pose");
+    match example {
+        "vision_pick" => project(1)
+            .points
+            .iter()
+            .map(|p| ("LIN", p.pose.clone()))
+            .collect(),
+        "custom_data" => project(2)
+            .points
+            .iter()
+            .map(|p| ("LIN", p.pose.clone()))
+            .collect(),
+        "vis_path" => project(3).path.iter().map(|w| ("PTP", joints(w))).collect(),
+        "viz_cycle" => viz.path.iter().map(|w| ("PTP", joints(w))).collect(),
+        "plan_depal" => viz
+            .path
+            .iter()
+            .map(|w| ("PTP", joints(w)))
+            .chain(viz.path.iter().map(|w| ("LIN", pose(w))))
+            .collect(),
+        "calibration" => sc
+            .calibration
+            .iter()
+            .map(|c| ("PTP", c.joints.clone()))
+            .collect(),
+        "status_check" => Vec::new(),
+        other => {
+            panic!("krl/examples/{other}.src: add its expected motions to tests/interp_e2e.rs")
+        }
+    }
+}
+
+#[test]
+fn examples_run_against_the_examples_scenario() {
+    let dir = root().join("krl/examples");
+    let mut names: Vec<String> = std::fs::read_dir(&dir)
+        .unwrap()
+        .map(|e| e.unwrap().path())
+        .filter(|p| p.extension().is_some_and(|x| x.eq_ignore_ascii_case("src")))
+        .map(|p| p.file_stem().unwrap().to_string_lossy().into_owned())
+        .collect();
+    names.sort();
+    assert!(names.len() >= 7, "{names:?}");
+    for name in names {
+        let mut case = Case::new(dir.join(format!("{name}.src")));
+        case.scenario = Some(root().join("tests/fixtures/scenarios/examples.toml"));
+        let outcome = run(&case);
+        check_invariants(&name, &case, &outcome);
+        for e in &outcome.result.events {
+            if let Event::Return {
+                name: sub,
+                status: Some(s),
+                ..
+            } = e
+            {
+                assert!(is_success(sub, *s), "{name}: {sub} ended in {s}");
+            }
+        }
+        let motions: Vec<(String, Vec<f64>)> = outcome
+            .result
+            .events
+            .iter()
+            .filter_map(|e| match e {
+                Event::Motion { kind, target } => {
+                    Some((kind.clone(), target.iter().map(|(_, v)| *v).collect()))
+                }
+                _ => None,
+            })
+            .collect();
+        let expected: Vec<(String, Vec<f64>)> = expected_motions(&name, &scenario_of(&case))
+            .into_iter()
+            .map(|(k, v)| (k.to_string(), v))
+            .collect();
+        assert_eq!(motions, expected, "{name}: motion targets");
+        insta::assert_snapshot!(
+            format!("example_{name}"),
+            render(&outcome, outcome.addr.as_deref())
+        );
+    }
 }
