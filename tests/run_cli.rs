@@ -1,0 +1,230 @@
+//! `krlkit run` as a process against the fake vision server (in-process, ephemeral port): the
+//! trace format of issue 5 and the exit codes of the contract (0 normal end, 1 HALT, 2 could
+//! not run: unreadable or unparsable program, runtime error, vision server unreachable).
+
+use std::path::{Path, PathBuf};
+use std::process::{Command, Output};
+
+use krlkit::sim::{Scenario, Server};
+
+fn root() -> PathBuf {
+    PathBuf::from(env!("CARGO_MANIFEST_DIR"))
+}
+
+fn krlkit(args: &[&str]) -> Output {
+    Command::new(env!("CARGO_BIN_EXE_krlkit"))
+        .args(args)
+        .current_dir(root())
+        .output()
+        .expect("krlkit runs")
+}
+
+fn examples_server() -> (Server, Scenario) {
+    let path = root().join("tests/fixtures/scenarios/examples.toml");
+    let text = std::fs::read_to_string(&path).unwrap();
+    let sc = Scenario::from_toml_str(&text, "examples.toml").unwrap();
+    (Server::start(sc.clone(), "127.0.0.1:0").unwrap(), sc)
+}
+
+fn closed_port() -> String {
+    let l = std::net::TcpListener::bind("127.0.0.1:0").unwrap();
+    let addr = l.local_addr().unwrap().to_string();
+    drop(l);
+    addr
+}
+
+fn stderr(o: &Output) -> String {
+    String::from_utf8_lossy(&o.stderr).into_owned()
+}
+
+fn trace_lines(path: &Path) -> Vec<String> {
+    std::fs::read_to_string(path)
+        .unwrap()
+        .lines()
+        .map(str::to_string)
+        .collect()
+}
+
+/// `{"event":"motion","kind":K,"target":{...}}` with the target's keys in order.
+fn motion(line: &str) -> Option<(String, Vec<(String, f64)>)> {
+    let v: serde_json::Value = serde_json::from_str(line).expect("each line is JSON");
+    if v["event"] != "motion" {
+        return None;
+    }
+    let kind = v["kind"].as_str().unwrap().to_string();
+    // Key order as written (serde_json's map would sort them): read the object by hand.
+    let target = line
+        .split("\"target\":{")
+        .nth(1)
+        .unwrap()
+        .trim_end_matches("}}");
+    let fields = target
+        .split(',')
+        .map(|kv| {
+            let (k, x) = kv.split_once(':').unwrap();
+            (k.trim_matches('"').to_string(), x.parse::<f64>().unwrap())
+        })
+        .collect();
+    Some((kind, fields))
+}
+
+#[test]
+fn trace_has_one_event_per_motion_and_per_mm_call() {
+    let (server, sc) = examples_server();
+    let dir = tempfile::tempdir().unwrap();
+    let trace = dir.path().join("trace.jsonl");
+    let out = krlkit(&[
+        "run",
+        "krl/examples/vision_pick.src",
+        "--vision",
+        &server.addr().to_string(),
+        "--trace",
+        trace.to_str().unwrap(),
+    ]);
+    assert_eq!(out.status.code(), Some(0), "{}", stderr(&out));
+    let lines = trace_lines(&trace);
+    let motions: Vec<_> = lines.iter().filter_map(|l| motion(l)).collect();
+    let points = &sc.projects.iter().find(|p| p.id == 1).unwrap().points;
+    assert_eq!(motions.len(), points.len());
+    for ((kind, target), p) in motions.iter().zip(points) {
+        assert_eq!(kind, "LIN");
+        let keys: Vec<&str> = target.iter().map(|(k, _)| k.as_str()).collect();
+        assert_eq!(keys, ["X", "Y", "Z", "A", "B", "C"]);
+        let values: Vec<f64> = target.iter().map(|(_, v)| *v).collect();
+        assert_eq!(values, p.pose);
+    }
+    let calls: Vec<String> = lines
+        .iter()
+        .map(|l| serde_json::from_str::<serde_json::Value>(l).unwrap())
+        .filter(|v| v["event"] == "call")
+        .map(|v| v["name"].as_str().unwrap().to_string())
+        .collect();
+    // Init, Switch_Model, Start_Vis, three batches and one MM_Get_Pose per point.
+    assert_eq!(calls.len(), 3 + 3 + points.len(), "{calls:?}");
+    assert!(calls.iter().all(|c| c.starts_with("MM_")));
+    let last: serde_json::Value = serde_json::from_str(lines.last().unwrap()).unwrap();
+    assert_eq!(last["event"], "end");
+    assert_eq!(last["status"], "ok");
+}
+
+#[test]
+fn axis_targets_are_a1_to_a6() {
+    let (server, _) = examples_server();
+    let dir = tempfile::tempdir().unwrap();
+    let trace = dir.path().join("trace.jsonl");
+    let out = krlkit(&[
+        "run",
+        "krl/examples/calibration.src",
+        "--vision",
+        &server.addr().to_string(),
+        "--trace",
+        trace.to_str().unwrap(),
+    ]);
+    assert_eq!(out.status.code(), Some(0), "{}", stderr(&out));
+    let motions: Vec<_> = trace_lines(&trace)
+        .iter()
+        .filter_map(|l| motion(l))
+        .collect();
+    assert_eq!(motions.len(), 3);
+    for (kind, target) in motions {
+        assert_eq!(kind, "PTP");
+        let keys: Vec<&str> = target.iter().map(|(k, _)| k.as_str()).collect();
+        assert_eq!(keys, ["A1", "A2", "A3", "A4", "A5", "A6"]);
+    }
+}
+
+#[test]
+fn halt_exits_1() {
+    let dir = tempfile::tempdir().unwrap();
+    let prog = dir.path().join("stop.src");
+    std::fs::write(&prog, "DEF stop()\n  HALT\nEND\n").unwrap();
+    let out = krlkit(&["run", prog.to_str().unwrap()]);
+    assert_eq!(out.status.code(), Some(1));
+    assert!(
+        stderr(&out).contains("stop.src:2: HALT"),
+        "{}",
+        stderr(&out)
+    );
+}
+
+#[test]
+fn unreachable_server_exits_2_and_still_writes_the_trace() {
+    let dir = tempfile::tempdir().unwrap();
+    let trace = dir.path().join("trace.jsonl");
+    let addr = closed_port();
+    let out = krlkit(&[
+        "run",
+        "krl/examples/status_check.src",
+        "--vision",
+        &addr,
+        "--trace",
+        trace.to_str().unwrap(),
+    ]);
+    assert_eq!(out.status.code(), Some(2));
+    let err = stderr(&out);
+    assert!(
+        err.contains(&format!("the vision server at {addr} could not be reached")),
+        "{err}"
+    );
+    let text = std::fs::read_to_string(&trace).unwrap();
+    assert!(
+        text.contains(r#""name":"MM_Get_Status","out":{"MM_Status":3099}"#),
+        "{text}"
+    );
+}
+
+#[test]
+fn runtime_error_exits_2_at_file_and_line() {
+    let dir = tempfile::tempdir().unwrap();
+    let prog = dir.path().join("bad.src");
+    std::fs::write(&prog, "DEF bad()\n  DECL INT a[2]\n  a[3] = 1\nEND\n").unwrap();
+    let out = krlkit(&["run", prog.to_str().unwrap()]);
+    assert_eq!(out.status.code(), Some(2));
+    assert!(stderr(&out).contains("bad.src:3:"), "{}", stderr(&out));
+}
+
+#[test]
+fn unreadable_or_unparsable_program_exits_2() {
+    let out = krlkit(&["run", "no/such/program.src"]);
+    assert_eq!(out.status.code(), Some(2));
+    assert!(stderr(&out).contains("cannot read"), "{}", stderr(&out));
+    let dir = tempfile::tempdir().unwrap();
+    let prog = dir.path().join("broken.src");
+    std::fs::write(&prog, "DEF broken()\n  IF THEN\nEND\n").unwrap();
+    let out = krlkit(&["run", prog.to_str().unwrap()]);
+    assert_eq!(out.status.code(), Some(2));
+    assert!(stderr(&out).contains("broken.src:2:"), "{}", stderr(&out));
+}
+
+#[test]
+fn a_generated_package_directory_runs_like_the_in_memory_package() {
+    let (server, _) = examples_server();
+    let dir = tempfile::tempdir().unwrap();
+    let pkg = dir.path().join("pkg");
+    let gen_out = krlkit(&["gen", "--out", pkg.to_str().unwrap()]);
+    assert_eq!(gen_out.status.code(), Some(0), "{}", stderr(&gen_out));
+    let addr = server.addr().to_string();
+    let motions = |extra: &[&str], name: &str| {
+        let trace = dir.path().join(name);
+        let trace_arg = trace.to_str().unwrap().to_string();
+        let mut args = vec![
+            "run",
+            "krl/examples/plan_depal.src",
+            "--vision",
+            addr.as_str(),
+            "--trace",
+            trace_arg.as_str(),
+        ];
+        args.extend_from_slice(extra);
+        let out = krlkit(&args);
+        assert_eq!(out.status.code(), Some(0), "{}", stderr(&out));
+        trace_lines(&trace)
+            .iter()
+            .filter_map(|l| motion(l))
+            .collect::<Vec<_>>()
+    };
+    let from_dir = motions(&["--package", pkg.to_str().unwrap()], "dir.jsonl");
+    let in_memory = motions(&[], "mem.jsonl");
+    assert_eq!(from_dir.len(), 10);
+    assert_eq!(from_dir, in_memory);
+}
