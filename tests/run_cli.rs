@@ -134,6 +134,23 @@ fn axis_targets_are_a1_to_a6() {
 }
 
 #[test]
+fn input_flag_sets_digital_inputs() {
+    let dir = tempfile::tempdir().unwrap();
+    let prog = dir.path().join("grip.src");
+    std::fs::write(
+        &prog,
+        "DEF grip()\n  $OUT[1] = TRUE\n  WAIT FOR $IN[7]\n  IF $IN[8] THEN\n    HALT\n  ENDIF\nEND\n",
+    )
+    .unwrap();
+    let out = krlkit(&["run", prog.to_str().unwrap(), "--input", "7"]);
+    assert_eq!(out.status.code(), Some(0), "{}", stderr(&out));
+    let out = krlkit(&["run", prog.to_str().unwrap()]);
+    assert_eq!(out.status.code(), Some(2));
+    assert!(stderr(&out).contains("grip.src:3: WAIT FOR can never become TRUE"));
+    assert!(stderr(&out).contains("--input N"), "{}", stderr(&out));
+}
+
+#[test]
 fn halt_exits_1() {
     let dir = tempfile::tempdir().unwrap();
     let prog = dir.path().join("stop.src");

@@ -180,6 +180,10 @@ pub struct RunArgs {
     /// Write a JSON Lines trace of motions and MM_ calls.
     #[arg(long)]
     pub trace: Option<PathBuf>,
+    /// Digital input N (1..4096) reads TRUE for the whole run (e.g. a gripper sensor the program
+    /// waits for); repeatable. Inputs not given read FALSE.
+    #[arg(long = "input", value_name = "N", value_parser = clap::value_parser!(u16).range(1..=4096))]
+    pub inputs: Vec<u16>,
 }
 
 #[derive(Debug, Args)]

@@ -76,6 +76,11 @@ pub fn run(args: RunArgs) -> anyhow::Result<Outcome> {
     let mut files = program_files(&args.program)?;
     let mut options = Options {
         vision: args.vision.clone(),
+        inputs: args
+            .inputs
+            .iter()
+            .map(|n| (usize::from(*n), true))
+            .collect(),
         ..Options::default()
     };
     if let Some(dir) = args.program.parent() {

@@ -858,7 +858,8 @@ impl<'p> Machine<'p> {
                 self.clock_ms += 12.0;
             } else {
                 return Err(self.err(
-                    "WAIT FOR can never become TRUE: no timer runs and no EKI connection is open",
+                    "WAIT FOR can never become TRUE: no timer runs, no EKI connection is open, \
+                     and inputs keep their values (`krlkit run --input N` sets $IN[N] TRUE)",
                 ));
             }
             if self.clock_ms - start > self.opts.max_wait_ms {
