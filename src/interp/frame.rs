@@ -41,8 +41,12 @@ fn frame(m: &M) -> [f64; 6] {
     } else {
         (m[1][0].atan2(m[0][0]), m[2][1].atan2(m[2][2]))
     };
-    // Rounding noise around zero would print as "-0.0000" in requests.
-    let clean = |x: f64| if x.abs() < 1e-9 { 0.0 } else { x };
+    // Rounded to 1e-9 (far below a REAL's precision on the controller), so composed poses do
+    // not carry float noise (-165.00000000000003, "-0.0000" in requests) into traces.
+    let clean = |x: f64| {
+        let r = (x * 1e9).round() / 1e9;
+        if r == 0.0 { 0.0 } else { r }
+    };
     [
         clean(m[0][3]),
         clean(m[1][3]),
