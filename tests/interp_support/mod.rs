@@ -84,7 +84,7 @@ pub struct Outcome {
     pub addr: Option<String>,
 }
 
-fn load(case: &Case) -> Program {
+fn load(case: &Case, package: &interp::Package) -> Program {
     let program = &case.program;
     let mut files = Vec::new();
     let own = [program.to_path_buf(), program.with_extension("dat")];
@@ -94,16 +94,14 @@ fn load(case: &Case) -> Program {
             files.push((name, std::fs::read_to_string(p).unwrap()));
         }
     }
-    let package = interp::package::generated(&Spec::default()).expect("default package");
-    files.extend(package.sources);
+    files.extend(package.sources.iter().cloned());
     Program::load(files).unwrap_or_else(|e| panic!("{e}"))
 }
 
-fn options(vision: String, time_scale: f64) -> Options {
-    let package = interp::package::generated(&Spec::default()).expect("default package");
+fn options(vision: String, time_scale: f64, package: &interp::Package) -> Options {
     Options {
         vision: Some(vision),
-        eki_configs: package.eki_configs,
+        eki_configs: package.eki_configs.clone(),
         time_scale,
         step_limit: 5_000_000,
         ..Options::default()
@@ -132,10 +130,11 @@ pub fn scenario_of(case: &Case) -> Scenario {
 /// Run the case; the request log is taken once the server has answered (or given up on)
 /// every request the program sent, so delayed replies are in it too.
 pub fn run(case: &Case) -> Outcome {
-    let program = load(case);
+    let package = interp::package::generated(&Spec::default()).expect("default package");
+    let program = load(case, &package);
     if case.server_absent {
         let addr = closed_port();
-        let result = interp::run(&program, &options(addr.clone(), case.time_scale));
+        let result = interp::run(&program, &options(addr.clone(), case.time_scale, &package));
         return Outcome {
             result,
             requests: Vec::new(),
@@ -145,7 +144,7 @@ pub fn run(case: &Case) -> Outcome {
     let server = Server::start(scenario_of(case), "127.0.0.1:0").expect("server starts");
     let result = interp::run(
         &program,
-        &options(server.addr().to_string(), case.time_scale),
+        &options(server.addr().to_string(), case.time_scale, &package),
     );
     let deadline = Instant::now() + Duration::from_secs(10);
     let mut requests = server.requests();
