@@ -8,7 +8,8 @@
   ; Every mm_ program sets mm_status; programs with .ret set it too. Codes of the package:
   ;   3099 NO_CONNECTION: Connection to the vision server could not be opened within the connect
   ;     timeout (or the init call, MM_Init_Socket / mm_init_skt, was not made)
-  ;   4091 REPLY_TIMEOUT: No reply from the vision server within the reply timeout
+  ;   4091 REPLY_TIMEOUT: No reply from the vision server within the reply timeout (or the
+  ;     connection closed before it)
   ;   4092 BAD_REPLY: Malformed reply (not a comma-separated list of numbers of the expected
   ;     length)
   ;   4093 WRONG_ECHO: The reply answers another command than the one sent

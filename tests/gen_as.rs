@@ -185,7 +185,10 @@ fn layouts_agree_with_the_kuka_view() {
     assert_eq!(p.plan_len, 21);
     let c2 = AsPackage::new(&cell2());
     assert_eq!(c2.field_cap, 5 + 8 * 30);
-    assert!(c2.piece_max < catalog().kawasaki_limits.string_max, "room for the CR");
+    assert!(
+        c2.piece_max < catalog().kawasaki_limits.string_max,
+        "room for the CR"
+    );
     assert!(c2.recv_chunk + c2.field_max <= catalog().kawasaki_limits.string_max);
 }
 
