@@ -31,7 +31,11 @@ fn is_success(name: &str, status: i64) -> bool {
     if !own.is_empty() {
         return own.iter().any(|c| i64::from(*c) == status);
     }
-    status == 0 || cat.commands.iter().any(|c| i64::from(c.success) == status)
+    status == 0
+        || cat
+            .commands
+            .iter()
+            .any(|c| c.success.map(i64::from) == Some(status))
 }
 
 #[test]
