@@ -59,7 +59,7 @@ fn scenario(faults: &str) -> Scenario {
 }
 
 fn success(command: u32) -> i64 {
-    catalog().command(command).unwrap().success as i64
+    catalog().command(command).unwrap().success.unwrap() as i64
 }
 
 fn closed_port() -> String {
@@ -74,7 +74,7 @@ fn ping_round_trip_sets_and_clears_the_alive_flag() {
     let server = Server::start(Scenario::default_embedded(), "127.0.0.1:0").unwrap();
     let r = run("ping", &server.addr().to_string(), 10.0);
     assert_eq!(r.end, End::Normal, "{:?}", r.end);
-    let ready = catalog().command(901).unwrap().success;
+    let ready = catalog().command(901).unwrap().success.unwrap();
     assert_eq!(int(&r, "PING_STATUS"), ready as i64);
     assert_eq!(int(&r, "MMT_OPEN_MSG"), 0);
     assert_eq!(r.globals.get("MMT_ALIVE"), Some(&Value::Bool(true)));

@@ -4,9 +4,15 @@
 //! once on first use. Every other module asks this one for names, parameters, ranges, command
 //! numbers and status codes instead of restating them.
 
+mod kawasaki;
+
 use std::sync::OnceLock;
 
 use serde::Deserialize;
+
+pub use kawasaki::{
+    AsKind, AsParam, GlobalOrigin, KawasakiCommand, KawasakiGlobal, KawasakiLimits, VisionMoveField,
+};
 
 const CATALOG_TOML: &str = include_str!("catalog.toml");
 
@@ -40,6 +46,16 @@ pub struct Catalog {
     /// Globals of the generated package that user programs may read.
     #[serde(rename = "global", default)]
     pub globals: Vec<Global>,
+    /// The Kawasaki AS `mm_*` programs of seed 001, in the seed's order.
+    #[serde(rename = "kawasaki")]
+    pub kawasaki: Vec<KawasakiCommand>,
+    /// Globals of the Kawasaki package: those seed 001 documents and the package's own.
+    #[serde(rename = "kawasaki_global")]
+    pub kawasaki_globals: Vec<KawasakiGlobal>,
+    pub kawasaki_limits: KawasakiLimits,
+    /// The parts of the Vision Move (depalletizing) data, in wire order.
+    #[serde(rename = "vision_move_field")]
+    pub vision_move_fields: Vec<VisionMoveField>,
 }
 
 /// A global variable of the generated package (declared in `MM_Comm.dat`).
@@ -84,7 +100,9 @@ pub struct Command {
     pub reply: Vec<String>,
     #[serde(default)]
     pub record: Vec<String>,
-    pub success: u32,
+    /// Status code of a successful reply; `None` when the reply carries no status (601).
+    #[serde(default)]
+    pub success: Option<u32>,
     #[serde(default)]
     pub assumption: Option<String>,
 }
@@ -153,8 +171,41 @@ impl Param {
         }
     }
 
+    fn range(&self) -> Range<'_> {
+        Range {
+            values: &self.values,
+            min: self.min,
+            max: self.max,
+            min_exclusive: self.min_exclusive,
+        }
+    }
+
     /// Whether `v` lies in the documented range (always true when no range is documented).
     pub fn in_range(&self, v: f64) -> bool {
+        self.range().contains(v)
+    }
+
+    pub fn has_range(&self) -> bool {
+        self.range().is_some()
+    }
+
+    /// The documented range in words, e.g. `1 to 99`, `1 or 3`, `> 0`, `>= 1`.
+    pub fn range_text(&self) -> Option<String> {
+        self.range().text()
+    }
+}
+
+/// A documented value range: allowed values, or inclusive/exclusive bounds.
+#[derive(Debug, Clone, Copy)]
+struct Range<'a> {
+    values: &'a [i64],
+    min: Option<f64>,
+    max: Option<f64>,
+    min_exclusive: Option<f64>,
+}
+
+impl Range<'_> {
+    fn contains(&self, v: f64) -> bool {
         if !self.values.is_empty() {
             return self.values.iter().any(|&a| a as f64 == v);
         }
@@ -163,15 +214,14 @@ impl Param {
             && self.min_exclusive.is_none_or(|m| v > m)
     }
 
-    pub fn has_range(&self) -> bool {
+    fn is_some(&self) -> bool {
         !self.values.is_empty()
             || self.min.is_some()
             || self.max.is_some()
             || self.min_exclusive.is_some()
     }
 
-    /// The documented range in words, e.g. `1 to 99`, `1 or 3`, `> 0`, `>= 1`.
-    pub fn range_text(&self) -> Option<String> {
+    fn text(&self) -> Option<String> {
         if !self.values.is_empty() {
             let v: Vec<String> = self.values.iter().map(|v| v.to_string()).collect();
             return Some(match v.len() {
@@ -201,9 +251,6 @@ impl Param {
 #[serde(deny_unknown_fields)]
 pub struct Subprogram {
     pub name: String,
-    /// The corresponding Kawasaki AS command (seed 001), where one exists.
-    #[serde(default)]
-    pub kawasaki: Option<String>,
     pub summary: String,
     /// Protocol commands it sends (empty: local copy or configuration only).
     pub commands: Vec<u32>,
@@ -229,8 +276,17 @@ impl Subprogram {
         self.commands
             .iter()
             .filter_map(|c| cat.command(*c))
-            .map(|c| c.success)
+            .filter_map(|c| c.success)
             .collect()
+    }
+
+    /// The corresponding Kawasaki AS program (seed 001), where one exists. The catalog states
+    /// the correspondence once, on the Kawasaki side (`[[kawasaki]] kuka = ...`).
+    pub fn kawasaki(&self) -> Option<&'static KawasakiCommand> {
+        catalog()
+            .kawasaki
+            .iter()
+            .find(|k| k.kuka.as_deref() == Some(self.name.as_str()))
     }
 
     pub fn param(&self, name: &str) -> Option<&Param> {
@@ -357,5 +413,7 @@ pub fn edit_distance(a: &str, b: &str) -> usize {
     prev[b.len()]
 }
 
+#[cfg(test)]
+mod kawasaki_tests;
 #[cfg(test)]
 mod tests;

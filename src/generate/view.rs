@@ -292,7 +292,7 @@ impl Routine {
         let cat = catalog();
         let codes = Codes::from_catalog();
         let cmd = sp.commands.first().copied().unwrap_or(0);
-        let ok = cat.command(cmd).map_or(0, |c| c.success);
+        let ok = cat.command(cmd).and_then(|c| c.success).unwrap_or(0);
         let params = sp
             .params
             .iter()

@@ -99,7 +99,11 @@ pub fn codes() -> &'static Codes {
                 .command_named(name)
                 .unwrap_or_else(|| panic!("catalog has no command named {name}"));
             commands.insert(c.code, cmd);
-            success.insert(cmd, c.success);
+            success.insert(
+                cmd,
+                c.success
+                    .unwrap_or_else(|| panic!("served command {name} has no success code")),
+            );
         }
         Codes {
             commands,

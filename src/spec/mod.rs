@@ -99,6 +99,23 @@ impl Spec {
             .any(|s| s.eq_ignore_ascii_case(name))
     }
 
+    /// The number a catalog `spec = "..."` reference names: `server_ip[1]`..`server_ip[4]`
+    /// (the address fields) or `server_port`. `None` for any other key.
+    pub fn key_value(&self, key: &str) -> Option<f64> {
+        if key == "server_port" {
+            return Some(f64::from(self.server_port));
+        }
+        let i: usize = key
+            .strip_prefix("server_ip[")?
+            .strip_suffix(']')?
+            .parse()
+            .ok()?;
+        let octets = self.server_ip.octets();
+        (1..=octets.len())
+            .contains(&i)
+            .then(|| f64::from(octets[i - 1]))
+    }
+
     /// Bytes of the EKI receive record: reply header plus `batch_size` points (ASCII).
     pub fn receive_size(&self) -> u32 {
         let l = &catalog().limits;

@@ -21,3 +21,22 @@ fn init_socket_is_always_emitted() {
     let s = Spec::parse("subprograms = [\"MM_Get_Status\"]", "x").unwrap();
     assert_eq!(s.subprograms, vec!["MM_Init_Socket", "MM_Get_Status"]);
 }
+
+#[test]
+fn key_value_names_the_address_fields_and_the_port() {
+    let s = Spec::default();
+    let v: Vec<Option<f64>> = ["server_ip[1]", "server_ip[4]", "server_port"]
+        .iter()
+        .map(|k| s.key_value(k))
+        .collect();
+    assert_eq!(v, [Some(192.0), Some(121.0), Some(50000.0)]);
+    for bad in [
+        "server_ip[0]",
+        "server_ip[5]",
+        "server_ip",
+        "timer",
+        "server_ip[x]",
+    ] {
+        assert_eq!(s.key_value(bad), None, "{bad}");
+    }
+}
