@@ -62,17 +62,17 @@ impl CommentQueue {
         v
     }
 
-    /// A comment that follows code on the line that ends at or after `offset` (the end of a
-    /// statement), if it is the next one.
-    pub fn trailing(&mut self, offset: u32, text: &str) -> Option<Comment> {
+    /// The comment that follows code on the last line of `span` (a statement), if it is the
+    /// next one.
+    pub fn trailing(&mut self, span: Span, text: &str) -> Option<Comment> {
         let c = self.comments.get(self.next)?;
-        // A span that ends with its line break ended the line: nothing can trail it.
-        let end = text.get(..offset as usize)?;
-        if c.own_line || c.span.start < offset || end.ends_with(['\n', '\r']) {
+        if c.own_line {
             return None;
         }
-        let between = text.get(offset as usize..c.span.start as usize)?;
-        if between.contains(['\n', '\r']) {
+        let end = text.get(..span.end as usize)?.trim_end_matches(['\n', '\r']);
+        let line_start = end.rfind(['\n', '\r']).map_or(0, |i| i + 1);
+        let start = c.span.start as usize;
+        if start < line_start || text.get(line_start..start)?.contains(['\n', '\r']) {
             return None;
         }
         self.next += 1;

@@ -6,7 +6,7 @@ use crate::diag::Span;
 use crate::syntax::ast::{BinaryOp, Expr, ExprKind, Ident, UnaryOp};
 use crate::transpile::front::literal::{self, AggError, AggKind, Aggregate};
 use crate::transpile::front::report::FileId;
-use crate::transpile::front::symbols::{Bank, Scope, Ty};
+use crate::transpile::front::symbols::{Bank, Ty};
 use crate::transpile::front::sysvar::{self, Sys};
 use crate::transpile::orientation::abc_to_oat;
 
@@ -345,7 +345,10 @@ impl<'p> Tx<'p> {
                 format!("BITS({},{})", off + r.from, r.width())
             }));
         }
-        if self.var(&id.text).is_none() && self.prog.symbols.enum_value(&id.text).is_none() {
+        if self.var(&id.text).is_none()
+            && self.prog.symbols.enum_value(&id.text).is_none()
+            && super::mm::package_global(&id.text).is_none()
+        {
             // A constant or variable from elsewhere (e.g. $config.dat).
             self.assume(id, &Ty::Real, "a number");
         }

@@ -76,6 +76,8 @@ struct Rt {
     accuracy: Option<String>,
     /// One entry per enclosing loop: the label an `EXIT` jumps to (None: no EXIT inside).
     exits: Vec<Option<String>>,
+    /// Scratch locals made up so far, by base name (each is reused within the program).
+    scratch: HashMap<String, String>,
 }
 
 /// An `INTERRUPT DECL` seen in the file.
@@ -264,6 +266,11 @@ impl<'p> Tx<'p> {
             let (n, r) = ns.name(&id.text, &NAME_RULES);
             self.note_rename("variable", FileId::Src, id.span, r);
             (n, true)
+        } else if self.var(&id.text).is_none()
+            && let Some(g) = mm::package_global(&id.text)
+        {
+            // A global of the KUKA package: the Kawasaki package's global with the same data.
+            (g.to_owned(), false)
         } else {
             let (n, r) = self.globals_ns.name(&id.text, &NAME_RULES);
             self.note_rename("variable", FileId::Src, id.span, r);
@@ -298,6 +305,19 @@ impl<'p> Tx<'p> {
             .or_default()
             .fresh(base, NAME_RULES.max_len);
         format!(".{n}")
+    }
+
+    /// A scratch local for the translator's own use, the same one for `base` throughout the
+    /// program (rendered with its `.`).
+    fn scratch(&mut self, base: &str) -> String {
+        if let Some(n) = self.rt.as_ref().and_then(|r| r.scratch.get(base)) {
+            return n.clone();
+        }
+        let n = self.fresh_local(base);
+        if let Some(rt) = &mut self.rt {
+            rt.scratch.insert(base.to_owned(), n.clone());
+        }
+        n
     }
 
     /// The type of an undeclared name, assumed from how it is used; reported once per name.
@@ -382,6 +402,7 @@ impl<'p> Tx<'p> {
             retval: None,
             accuracy: None,
             exits: Vec::new(),
+            scratch: HashMap::new(),
         });
         // Locals first (parameters, then declarations), then labels, so made-up names never
         // take a user's.
@@ -524,6 +545,7 @@ impl<'p> Tx<'p> {
             retval: None,
             accuracy: None,
             exits: Vec::new(),
+            scratch: HashMap::new(),
         });
         self.lines.clear();
         self.stmts(&prog.src.ast.top_level);

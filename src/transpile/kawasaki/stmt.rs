@@ -93,7 +93,7 @@ impl<'p> Tx<'p> {
             self.keep_as_comment("TR001", s.span);
         }
         self.settle();
-        self.trailing_comment(s.span.end, start);
+        self.trailing_comment(s.span, start);
     }
 
     /// Translate one statement-like piece with its own coverage entry.
@@ -107,12 +107,12 @@ impl<'p> Tx<'p> {
             self.keep_as_comment("TR001", s.span);
         }
         self.settle();
-        self.trailing_comment(s.span.end, start);
+        self.trailing_comment(s.span, start);
     }
 
-    fn trailing_comment(&mut self, end: u32, start: usize) {
+    fn trailing_comment(&mut self, span: Span, start: usize) {
         let text = &self.prog.src.text;
-        if let Some(c) = self.comments.trailing(end, text) {
+        if let Some(c) = self.comments.trailing(span, text) {
             if self.lines.len() > start {
                 if let Some(last) = self.lines.last_mut() {
                     last.push_str(&format!(" ;{}", c.text));
@@ -627,7 +627,7 @@ impl<'p> Tx<'p> {
                 .routine(&name.text)
                 .and_then(|r| r.return_ty.clone())
                 .unwrap_or(Ty::Real);
-            let tmp = self.fresh_local("fct_result");
+            let tmp = self.scratch("fct_result");
             a.push(format::param_sigil(&tmp, &ty));
         }
         let p = self.program_name(name);
