@@ -16,7 +16,6 @@ use super::args::{CheckFormat, TranspileArgs, TranspileTarget};
 use crate::diag::render::sarif::RuleMeta;
 use crate::diag::{FileReport, Severity, render};
 use crate::lint::{self, EkiChannel};
-use crate::spec::Spec;
 use crate::transpile::{self, Options, SignalMap, Source, Target, VisionServer};
 
 pub fn run(args: TranspileArgs) -> anyhow::Result<Outcome> {
@@ -41,12 +40,10 @@ pub fn run(args: TranspileArgs) -> anyhow::Result<Outcome> {
         ..Options::default()
     };
     if let Some(spec) = &args.spec {
-        let text = std::fs::read_to_string(spec)
-            .with_context(|| format!("cannot read {}", spec.display()))?;
-        let spec_data = match Spec::parse(&text, &spec.display().to_string()) {
+        let spec_data = match super::generate::load_spec(Some(spec)) {
             Ok(s) => s,
-            Err(e) => {
-                eprintln!("error: {e}");
+            Err(msg) => {
+                eprintln!("{msg}");
                 return Ok(Outcome::Failure);
             }
         };

@@ -105,6 +105,10 @@ pub fn transpile(
     let (text, mut report) = match target {
         Target::Kawasaki => kawasaki::translate(&program, options),
     };
+    trim_spans(&mut report.src, &program.src.text);
+    if let Some(dat) = &program.dat {
+        trim_spans(&mut report.dat, &dat.text);
+    }
     report.finish();
     let mut reports = vec![FileReport {
         path: program.src.path.clone(),
@@ -122,5 +126,21 @@ pub fn transpile(
         text,
         reports,
         coverage: report.coverage,
+    }
+}
+
+/// Statement spans cover their whole lines; findings point at the code, not at the
+/// indentation or the line break.
+fn trim_spans(diagnostics: &mut [crate::diag::Diagnostic], text: &str) {
+    const BLANK: [char; 4] = [' ', '\t', '\r', '\n'];
+    for d in diagnostics {
+        let (start, end) = (d.span.start as usize, d.span.end as usize);
+        if let Some(s) = text.get(start..end) {
+            let code = s.trim_matches(BLANK);
+            if !code.is_empty() {
+                let from = start + (s.len() - s.trim_start_matches(BLANK).len());
+                d.span = crate::diag::Span::new(from, from + code.len());
+            }
+        }
     }
 }

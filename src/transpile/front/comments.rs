@@ -69,7 +69,9 @@ impl CommentQueue {
         if c.own_line {
             return None;
         }
-        let end = text.get(..span.end as usize)?.trim_end_matches(['\n', '\r']);
+        let end = text
+            .get(..span.end as usize)?
+            .trim_end_matches(['\n', '\r']);
         let line_start = end.rfind(['\n', '\r']).map_or(0, |i| i + 1);
         let start = c.span.start as usize;
         if start < line_start || text.get(line_start..start)?.contains(['\n', '\r']) {

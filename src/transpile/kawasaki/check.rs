@@ -21,6 +21,11 @@ pub fn check(text: &str) -> Vec<String> {
     c.problems
 }
 
+/// The section keywords of an `.as` file this module writes or accepts.
+const SECTIONS: [&str; 6] = [
+    ".PROGRAM", ".END", ".TRANS", ".JOINTS", ".REALS", ".STRINGS",
+];
+
 #[derive(Default)]
 struct Checker {
     problems: Vec<String>,
@@ -45,7 +50,13 @@ impl Checker {
             return;
         }
         let upper = code.to_ascii_uppercase();
-        if upper.starts_with('.') && !upper.starts_with(".END") || upper == ".END" {
+        let first = upper
+            .split(|c: char| c.is_whitespace() || c == '(')
+            .next()
+            .unwrap_or("");
+        let in_program = self.section.as_ref().is_some_and(|(k, _)| k == ".PROGRAM");
+        // Inside a program, `.x = 1` is a local variable; only section keywords are sections.
+        if SECTIONS.contains(&first) || (first.starts_with('.') && !in_program) {
             return self.section_line(n, code, &upper);
         }
         match self.section.as_ref().map(|(k, _)| k.as_str()) {
@@ -117,7 +128,8 @@ impl Checker {
     fn program_line(&mut self, n: usize, code: &str, upper: &str) {
         self.names(n, code);
         let first = upper.split_whitespace().next().unwrap_or("");
-        if let Some(at) = self.c1.take()
+        let after_c1 = self.c1.take();
+        if let Some(at) = after_c1
             && first != "C2MOVE"
         {
             self.problem(at, "C1MOVE not followed by C2MOVE");
@@ -183,7 +195,7 @@ impl Checker {
                 self.gotos.push((l, n));
             }
             "C1MOVE" => self.c1 = Some(n),
-            "C2MOVE" => self.problem(n, "C2MOVE without C1MOVE"),
+            "C2MOVE" if after_c1.is_none() => self.problem(n, "C2MOVE without C1MOVE"),
             _ => {}
         }
     }
@@ -264,7 +276,7 @@ mod tests {
 
     #[test]
     fn well_formed_program_passes() {
-        let text = ".PROGRAM a(.x,.&p)\n  IF .x THEN\n    DO\n      .x = .x - 1\n    UNTIL .x <= 0\n  ELSE\n    CASE .x OF\n    VALUE 1, 2:\n      GOTO lbl\n    ANY:\n      C1MOVE p\n      C2MOVE p\n    END\n  END\nlbl:\n  WHILE TRUE DO ; loop\n  END\n.END\n.TRANS\np 1 2 3 0 180 180\n.END\n.REALS\nx = -1\n.END\n.STRINGS\n$s = \"a;b\"\n.END\n";
+        let text = ".PROGRAM a(.x,.&p)\n.x = 2\n  IF .x THEN\n    DO\n      .x = .x - 1\n    UNTIL .x <= 0\n  ELSE\n    CASE .x OF\n    VALUE 1, 2:\n      GOTO lbl\n    ANY:\n      C1MOVE p\n      C2MOVE p\n    END\n  END\nlbl:\n  WHILE TRUE DO ; loop\n  END\n.END\n.TRANS\np 1 2 3 0 180 180\n.END\n.REALS\nx = -1\n.END\n.STRINGS\n$s = \"a;b\"\n.END\n";
         assert_eq!(check(text), Vec::<String>::new());
     }
 

@@ -98,9 +98,10 @@ impl<'p> Tx<'p> {
             .get(&name.to_ascii_uppercase())
             .map(|v| v.ty.clone())
             .unwrap_or(Ty::Real);
-        // KUKA inline-form motion data: used where *_ACT is set, no AS data of their own.
+        // KUKA inline-form data: motion records (used where *_ACT is set) and the editor's
+        // last suggestion; no AS data of their own.
         if let Ty::Other(t) = &ty
-            && matches!(t.as_str(), "PDAT" | "LDAT" | "FDAT")
+            && matches!(t.as_str(), "PDAT" | "LDAT" | "FDAT" | "BASIS_SUGG_T")
         {
             self.rep
                 .coverage
@@ -124,7 +125,7 @@ impl<'p> Tx<'p> {
             Err(f) => {
                 self.rep.untranslatable(id, f.span, f.message, f.help);
                 let text = file.slice(span).trim().to_owned();
-                for l in text.lines() {
+                for l in text.split(['\n', '\r']).filter(|l| !l.trim().is_empty()) {
                     self.data.kept.push(format!("; [TR001] {}", l.trim()));
                 }
             }

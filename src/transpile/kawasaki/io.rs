@@ -236,10 +236,12 @@ impl<'p> Tx<'p> {
                 continue;
             };
             let target = self.interrupt_target(condition, handler);
+            let stop_messages = is_stop_message_interrupt(condition, handler);
             self.interrupts.push(InterruptDecl {
                 at: s.span.start,
                 number: n,
                 target,
+                stop_messages,
             });
         }
     }
@@ -274,6 +276,10 @@ impl<'p> Tx<'p> {
             );
         };
         let decl = self.interrupts.iter().find(|d| d.at == span.start).cloned();
+        if decl.as_ref().is_some_and(|d| d.stop_messages) {
+            self.stop_message_interrupt(span);
+            return Ok(());
+        }
         match decl.map(|d| d.target) {
             Some(Ok((sig, prog))) => {
                 self.line(format!(
@@ -340,6 +346,10 @@ impl<'p> Tx<'p> {
                     "translate the file that declares the interrupt, or declare it here",
                 );
             };
+            if decl.stop_messages {
+                self.stop_message_interrupt(span);
+                continue;
+            }
             let (sig, prog) = match decl.target {
                 Ok(t) => t,
                 Err(why) => {
@@ -367,6 +377,18 @@ impl<'p> Tx<'p> {
             self.line(l);
         }
         Ok(())
+    }
+
+    /// KUKA's INI fold declares an interrupt on `$STOPMESS` that calls `IR_STOPM`; the Kawasaki
+    /// controller handles its own stop messages, so nothing is needed.
+    fn stop_message_interrupt(&mut self, span: Span) {
+        self.rep.approximate(
+            FileId::Src,
+            span,
+            "KUKA's standard stop-message interrupt ($STOPMESS → IR_STOPM) has no AS counterpart; the Kawasaki controller handles stop messages itself",
+            "nothing to do unless IR_STOPM was customised",
+        );
+        self.keep_as_comment("TR002", span);
     }
 
     // ----- messages ----------------------------------------------------------------------
@@ -424,6 +446,19 @@ fn and_terms<'e>(e: &'e Expr, out: &mut Vec<&'e Expr>) {
         }
         _ => out.push(e),
     }
+}
+
+fn is_stop_message_interrupt(condition: &Expr, handler: &Stmt) -> bool {
+    let mut stopmess = false;
+    if let ExprKind::Binary { lhs, .. } = &condition.kind
+        && let ExprKind::Name(id) = &lhs.kind
+    {
+        stopmess = id.is("$STOPMESS");
+    }
+    if let ExprKind::Name(id) = &condition.kind {
+        stopmess = id.is("$STOPMESS");
+    }
+    stopmess && matches!(&handler.kind, StmtKind::Call { name, .. } if name.is("IR_STOPM"))
 }
 
 /// `-n` for a signal number as AS source.

@@ -11,8 +11,8 @@ use super::format::{self, num};
 use super::{R, Tx, fail};
 use crate::catalog::{AsKind, Direction, KawasakiCommand, Subprogram, catalog};
 use crate::diag::Span;
-use crate::syntax::ast::{Expr, ExprKind, Ident};
 use crate::syntax::TokenKind;
+use crate::syntax::ast::{Expr, ExprKind, Ident};
 use crate::transpile::front::literal;
 use crate::transpile::front::report::FileId;
 use crate::transpile::front::symbols::Ty;
@@ -54,14 +54,24 @@ impl<'p> Tx<'p> {
         let Some(sub) = cat.subprogram(&name.text) else {
             return fail(
                 name.span,
-                format!("`{}` is not a routine of the Mech-Mind interface", name.text),
+                format!(
+                    "`{}` is not a routine of the Mech-Mind interface",
+                    name.text
+                ),
                 "check the name (krlkit check reports the nearest one)",
             );
         };
-        if args.len() != sub.params.len() && !(sub.params.is_empty() && args.iter().all(Option::is_none)) {
+        if args.len() != sub.params.len()
+            && !(sub.params.is_empty() && args.iter().all(Option::is_none))
+        {
             return fail(
                 span,
-                format!("`{}` takes {} arguments, this call passes {}", sub.name, sub.params.len(), args.len()),
+                format!(
+                    "`{}` takes {} arguments, this call passes {}",
+                    sub.name,
+                    sub.params.len(),
+                    args.len()
+                ),
                 format!("call it as {}", sub.signature()),
             );
         }
@@ -116,7 +126,11 @@ impl<'p> Tx<'p> {
                 let kp = sub.params[i].ident();
                 used[i] = true;
                 let Some(Some(arg)) = args.get(i) else {
-                    return fail(span, format!("argument {kp} is omitted"), "pass every argument");
+                    return fail(
+                        span,
+                        format!("argument {kp} is omitted"),
+                        "pass every argument",
+                    );
                 };
                 rendered.push(self.mm_arg(p.kind, p.dir, arg, &mut prelude)?);
                 if p.dir == Direction::In
@@ -145,7 +159,11 @@ impl<'p> Tx<'p> {
                 let s = server.as_ref().map(|s| (s.ip, s.port));
                 let v = s.and_then(|(ip, port)| spec_value(key, ip, port));
                 let Some(v) = v else {
-                    return fail(span, format!("catalog: unknown spec key `{key}` for {}", p.name), "report this catalog error");
+                    return fail(
+                        span,
+                        format!("catalog: unknown spec key `{key}` for {}", p.name),
+                        "report this catalog error",
+                    );
                 };
                 rendered.push(num(v));
             } else if let Some(d) = p.default {
@@ -156,7 +174,11 @@ impl<'p> Tx<'p> {
                 let ty = as_ty(p.kind);
                 rendered.push(format::param_sigil(&tmp, &ty));
             } else {
-                return fail(span, format!("catalog: no value for {} of {}", p.name, k.name), "report this catalog error");
+                return fail(
+                    span,
+                    format!("catalog: no value for {} of {}", p.name, k.name),
+                    "report this catalog error",
+                );
             }
         }
         // KUKA arguments Kawasaki does not take.
@@ -173,8 +195,13 @@ impl<'p> Tx<'p> {
             match q.dir {
                 Direction::In => dropped_inputs.push(q.ident().to_owned()),
                 Direction::Out => {
-                    let Some(Some(arg)) = args.get(i) else { continue };
-                    match DROPPED_OUTPUTS.iter().find(|(n, _)| n.eq_ignore_ascii_case(q.ident())) {
+                    let Some(Some(arg)) = args.get(i) else {
+                        continue;
+                    };
+                    match DROPPED_OUTPUTS
+                        .iter()
+                        .find(|(n, _)| n.eq_ignore_ascii_case(q.ident()))
+                    {
                         Some((n, v)) => {
                             let ty = self.ty_of(arg);
                             let t = self.place_text(arg, &ty)?;
@@ -187,7 +214,11 @@ impl<'p> Tx<'p> {
                             );
                         }
                         None => {
-                            return fail(arg.span, format!("{} has no output {}", k.name, q.ident()), "port by hand");
+                            return fail(
+                                arg.span,
+                                format!("{} has no output {}", k.name, q.ident()),
+                                "port by hand",
+                            );
                         }
                     }
                 }
@@ -208,8 +239,10 @@ impl<'p> Tx<'p> {
                     dropped_inputs.join(", ")
                 ),
                 match k.assumption.as_deref() {
-                    Some(a) => format!("the Kawasaki program {a}"),
-                    None => "check the behaviour on the Kawasaki side".to_owned(),
+                    Some(a) => {
+                        format!("check the behaviour on the Kawasaki side ({}: {a})", k.name)
+                    }
+                    None => format!("check the behaviour of {} on the Kawasaki side", k.name),
                 },
             );
         }
@@ -231,7 +264,13 @@ impl<'p> Tx<'p> {
     }
 
     /// One argument for a Kawasaki parameter of `kind`.
-    fn mm_arg(&mut self, kind: AsKind, dir: Direction, arg: &Expr, prelude: &mut Vec<String>) -> R<String> {
+    fn mm_arg(
+        &mut self,
+        kind: AsKind,
+        dir: Direction,
+        arg: &Expr,
+        prelude: &mut Vec<String>,
+    ) -> R<String> {
         match (kind, dir) {
             (AsKind::Joint, Direction::In) => {
                 match sysvar::classify(arg) {
@@ -254,15 +293,27 @@ impl<'p> Tx<'p> {
                         }
                     }
                 }
-                fail(arg.span, "this joint argument has no AS equivalent", "pass an E6AXIS variable")
+                fail(
+                    arg.span,
+                    "this joint argument has no AS equivalent",
+                    "pass an E6AXIS variable",
+                )
             }
             (_, Direction::Out) => {
                 if super::stmt::root_name(arg).is_none() || sysvar::classify(arg).is_some() {
-                    return fail(arg.span, "an output argument must be a variable", "pass a variable");
+                    return fail(
+                        arg.span,
+                        "an output argument must be a variable",
+                        "pass a variable",
+                    );
                 }
                 let ty = as_ty(kind);
                 let t = self.place_text(arg, &ty)?;
-                Ok(if kind == AsKind::Pose { format::param_sigil(&t, &ty) } else { t })
+                Ok(if kind == AsKind::Pose {
+                    format::param_sigil(&t, &ty)
+                } else {
+                    t
+                })
             }
             (AsKind::Pose, Direction::In) => self.call_arg(arg),
             _ => self.expr(arg),
@@ -270,18 +321,35 @@ impl<'p> Tx<'p> {
     }
 
     /// The KUKA argument named `param`, rendered as a value.
-    fn kuka_arg(&mut self, sub: &Subprogram, args: &[Option<Expr>], param: &str, span: Span) -> R<String> {
-        let i = sub.params.iter().position(|p| p.ident().eq_ignore_ascii_case(param));
+    fn kuka_arg(
+        &mut self,
+        sub: &Subprogram,
+        args: &[Option<Expr>],
+        param: &str,
+        span: Span,
+    ) -> R<String> {
+        let i = sub
+            .params
+            .iter()
+            .position(|p| p.ident().eq_ignore_ascii_case(param));
         match i.and_then(|i| args.get(i)).and_then(Option::as_ref) {
             Some(a) => self.expr(a),
-            None => fail(span, format!("argument {param} is missing"), "pass every argument"),
+            None => fail(
+                span,
+                format!("argument {param} is missing"),
+                "pass every argument",
+            ),
         }
     }
 
     /// The vision server for MM_Init_Socket: the spec, else the EKI XML.
     fn vision_server(&mut self, sub: &Subprogram, args: &[Option<Expr>], span: Span) -> R<Server> {
         if let Some(s) = &self.opts.server {
-            return Ok(Server { ip: s.ip, port: s.port, origin: s.origin.clone() });
+            return Ok(Server {
+                ip: s.ip,
+                port: s.port,
+                origin: s.origin.clone(),
+            });
         }
         let xml_name = sub
             .params
@@ -301,23 +369,37 @@ impl<'p> Tx<'p> {
                     .channels
                     .iter()
                     .find(|c| c.name == *n)
-                    .or_else(|| self.opts.channels.iter().find(|c| c.name.eq_ignore_ascii_case(n)))
+                    .or_else(|| {
+                        self.opts
+                            .channels
+                            .iter()
+                            .find(|c| c.name.eq_ignore_ascii_case(n))
+                    })
             })
         };
         let Some(ch) = channel else {
             let wanted = xml_name.map_or_else(|| "the EKI XML".to_owned(), |n| format!("{n}.xml"));
             return fail(
                 span,
-                format!("the vision server's IP address and port are unknown: no --spec, no --eki-xml, and no {wanted} beside the program"),
+                format!(
+                    "the vision server's IP address and port are unknown: no --spec, no --eki-xml, and no {wanted} beside the program"
+                ),
                 "pass --spec krlkit.toml or --eki-xml FILE (mm_init_skt takes the IP address and port, not the XML name and flags)",
             );
         };
         let ip = ch.ip.as_deref().and_then(|i| i.parse::<Ipv4Addr>().ok());
         match (ip, ch.port) {
-            (Some(ip), Some(port)) => Ok(Server { ip, port, origin: format!("EKI XML {}", ch.path) }),
+            (Some(ip), Some(port)) => Ok(Server {
+                ip,
+                port,
+                origin: format!("EKI XML {}", ch.path),
+            }),
             _ => fail(
                 span,
-                format!("the EKI XML {} has no usable IPv4 address and port (CONFIGURATION/EXTERNAL/IP, PORT)", ch.path),
+                format!(
+                    "the EKI XML {} has no usable IPv4 address and port (CONFIGURATION/EXTERNAL/IP, PORT)",
+                    ch.path
+                ),
                 "fix the XML or pass --spec",
             ),
         }
@@ -336,15 +418,44 @@ impl<'p> Tx<'p> {
                 .and_then(Option::as_ref)
         };
         let (target_param, ty, parts) = if joints {
-            ("MM_J", Ty::Joint, ["vis_pos_j1", "vis_pos_j2", "vis_pos_j3", "vis_pos_j4", "vis_pos_j5", "vis_pos_j6"])
+            (
+                "MM_J",
+                Ty::Joint,
+                [
+                    "vis_pos_j1",
+                    "vis_pos_j2",
+                    "vis_pos_j3",
+                    "vis_pos_j4",
+                    "vis_pos_j5",
+                    "vis_pos_j6",
+                ],
+            )
         } else {
-            ("MM_P", Ty::Pose, ["vis_pos_x", "vis_pos_y", "vis_pos_z", "vis_pos_o", "vis_pos_a", "vis_pos_t"])
+            (
+                "MM_P",
+                Ty::Pose,
+                [
+                    "vis_pos_x",
+                    "vis_pos_y",
+                    "vis_pos_z",
+                    "vis_pos_o",
+                    "vis_pos_a",
+                    "vis_pos_t",
+                ],
+            )
         };
-        for g in parts.iter().chain(&["vis_pos_type", "vis_pos_tool", "vis_pos_spd"]) {
+        for g in parts
+            .iter()
+            .chain(&["vis_pos_type", "vis_pos_tool", "vis_pos_spd"])
+        {
             global(g, span)?;
         }
         let Some(target) = arg(target_param) else {
-            return fail(span, format!("argument {target_param} is missing"), "pass every argument");
+            return fail(
+                span,
+                format!("argument {target_param} is missing"),
+                "pass every argument",
+            );
         };
         let t = self.place_text(target, &ty)?;
         let values: Vec<String> = parts.iter().map(|g| format!("{g}[{serial}]")).collect();
@@ -354,7 +465,11 @@ impl<'p> Tx<'p> {
             format!("TRANS({})", values.join(","))
         };
         self.line(format!("POINT {t} = {value}"));
-        for (kuka, global_name) in [("MM_MoveType", "vis_pos_type"), ("MM_ToolNum", "vis_pos_tool"), ("MM_Speed", "vis_pos_spd")] {
+        for (kuka, global_name) in [
+            ("MM_MoveType", "vis_pos_type"),
+            ("MM_ToolNum", "vis_pos_tool"),
+            ("MM_Speed", "vis_pos_spd"),
+        ] {
             if let Some(a) = arg(kuka) {
                 let ty = self.ty_of(a);
                 let t = self.place_text(a, &ty)?;
@@ -375,7 +490,12 @@ impl<'p> Tx<'p> {
             return Ok(());
         }
         let cat = catalog();
-        for g in ["vis_custom_data", "num_customdata", "vis_plan_result", "vis_pos_vismove"] {
+        for g in [
+            "vis_custom_data",
+            "num_customdata",
+            "vis_plan_result",
+            "vis_pos_vismove",
+        ] {
             global(g, span)?;
         }
         let k = self.scratch("mm_k");
@@ -399,7 +519,9 @@ impl<'p> Tx<'p> {
         if plan {
             let mut runs: Vec<(u32, u32, i64)> = Vec::new();
             for kk in 1..=cat.kuka_plan_len() {
-                let Some(w) = cat.kawasaki_plan_index(kk) else { continue };
+                let Some(w) = cat.kawasaki_plan_index(kk) else {
+                    continue;
+                };
                 let shift = i64::from(w) - i64::from(kk);
                 match runs.last_mut() {
                     Some(r) if r.2 == shift && r.1 + 1 == kk => r.1 = kk,
@@ -456,7 +578,11 @@ impl<'p> Tx<'p> {
 fn global(name: &str, span: Span) -> R<()> {
     match catalog().kawasaki_global(name) {
         Some(_) => Ok(()),
-        None => fail(span, format!("catalog: no Kawasaki global {name}"), "report this catalog error"),
+        None => fail(
+            span,
+            format!("catalog: no Kawasaki global {name}"),
+            "report this catalog error",
+        ),
     }
 }
 
@@ -474,7 +600,11 @@ fn spec_value(key: &str, ip: Ipv4Addr, port: u16) -> Option<f64> {
     if key == "server_port" {
         return Some(f64::from(port));
     }
-    let i: usize = key.strip_prefix("server_ip[")?.strip_suffix(']')?.parse().ok()?;
+    let i: usize = key
+        .strip_prefix("server_ip[")?
+        .strip_suffix(']')?
+        .parse()
+        .ok()?;
     ip.octets().get(i.checked_sub(1)?).map(|o| f64::from(*o))
 }
 

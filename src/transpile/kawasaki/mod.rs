@@ -87,6 +87,8 @@ struct InterruptDecl {
     number: i64,
     /// `Ok((signal expression, handler program))`, or why it cannot be translated.
     target: Result<(String, String), String>,
+    /// KUKA's standard stop-message interrupt (`$STOPMESS` → `IR_STOPM`) of every INI fold.
+    stop_messages: bool,
 }
 
 pub(super) struct Tx<'p> {
@@ -360,7 +362,7 @@ impl<'p> Tx<'p> {
     /// The original KRL of `span`, one comment line per source line, tagged with `code`.
     fn keep_as_comment(&mut self, code: &str, span: Span) {
         let text = self.prog.src.slice(span).to_owned();
-        for l in text.lines() {
+        for l in text.split(['\n', '\r']) {
             let l = l.trim();
             if !l.is_empty() {
                 self.line(format!("; [{code}] {l}"));
@@ -395,7 +397,6 @@ impl<'p> Tx<'p> {
         let before: Vec<String> = std::mem::take(&mut self.lines);
         let key = r.name.key();
         let name = self.programs_ns.get(&r.name.text).unwrap_or("").to_owned();
-        let mark = self.rep.mark();
         self.rt = Some(Rt {
             key: key.clone(),
             kind: r.kind,
@@ -494,11 +495,12 @@ impl<'p> Tx<'p> {
                 "close the routine with END",
             );
         }
-        let o = self.rep.outcome_since(mark).min(if r.closed {
+        // The routine itself (header, parameters); its statements are counted one by one.
+        let o = if r.closed {
             Outcome::Exact
         } else {
             Outcome::Approximate
-        });
+        };
         self.rep.coverage.record(kind, o);
         let body = std::mem::take(&mut self.lines);
         self.programs.push(ProgramOut { header, body });

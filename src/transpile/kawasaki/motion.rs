@@ -508,7 +508,7 @@ impl<'p> Tx<'p> {
     /// `FDAT_ACT = FP1`, `PDAT_ACT = PPDAT1`, `LDAT_ACT = LCPDAT1` (inline-form motion data):
     /// tool and base become TOOL/BASE, a path blending distance becomes the ACCURACY of later
     /// blended moves. `None` if `target` is not one of them.
-    pub(super) fn ilf_assign(&mut self, target: &Ident, value: &Expr) -> Option<R<()>> {
+    pub(super) fn ilf_assign(&mut self, target: &Ident, value: &Expr, span: Span) -> Option<R<()>> {
         let key = target.key();
         if !matches!(key.as_str(), "FDAT_ACT" | "PDAT_ACT" | "LDAT_ACT")
             || self.var(&target.text).is_some()
@@ -527,7 +527,7 @@ impl<'p> Tx<'p> {
                 ),
                 "translate the program together with its .dat",
             );
-            self.keep_as_comment("TR002", value.span);
+            self.keep_as_comment("TR002", span);
             return Some(Ok(()));
         };
         let get = |f: &str| {

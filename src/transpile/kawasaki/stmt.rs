@@ -412,7 +412,7 @@ impl<'p> Tx<'p> {
             return self.system_assign(sys, target, value, span);
         }
         if let ExprKind::Name(id) = &target.kind
-            && let Some(r) = self.ilf_assign(id, value)
+            && let Some(r) = self.ilf_assign(id, value, span)
         {
             return r;
         }
