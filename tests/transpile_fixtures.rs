@@ -111,7 +111,7 @@ fn untranslated_but_kept(stem: &str, t: &Translation) -> Vec<String> {
         for d in r.diagnostics.iter().filter(|d| d.code == "TR001") {
             let line = index.line_of(d.span.start as usize);
             let text = r.text.lines().nth(line).unwrap_or("").trim();
-            if !kept.iter().any(|k| *k == text) {
+            if !kept.contains(&text) {
                 out.push(format!(
                     "{stem}: TR001 at {}:{} (`{text}`) is not kept as a `; [TR001]` comment",
                     r.path,

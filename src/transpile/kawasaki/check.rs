@@ -153,10 +153,8 @@ impl Checker {
                     self.problem(n, "IF without THEN");
                 }
             }
-            "ELSE" => {
-                if self.blocks.last().map(|b| b.0) != Some("IF") {
-                    self.problem(n, "ELSE outside IF");
-                }
+            "ELSE" if self.blocks.last().map(|b| b.0) != Some("IF") => {
+                self.problem(n, "ELSE outside IF");
             }
             "WHILE" => {
                 if !upper.ends_with(" DO") {
@@ -167,7 +165,8 @@ impl Checker {
             "FOR" => self.blocks.push(("FOR", n)),
             "DO" => self.blocks.push(("DO", n)),
             "UNTIL" => {
-                if self.blocks.pop().map(|b| b.0) != Some("DO") {
+                let open = self.blocks.pop().map(|b| b.0);
+                if open != Some("DO") {
                     self.problem(n, "UNTIL without DO");
                 }
             }

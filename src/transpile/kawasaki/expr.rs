@@ -158,7 +158,7 @@ impl<'p> Tx<'p> {
             } else if prec == CMP {
                 c.prec < ADD
             } else {
-                c.prec < UNARY && !(c.op == Some(sym) && !right)
+                c.prec < UNARY && (right || c.op != Some(sym))
             };
             if paren {
                 format!("({})", c.text)
@@ -220,7 +220,7 @@ impl<'p> Tx<'p> {
                 operand,
             } => {
                 let t = self.signal_test(operand)?;
-                Some(t.map(|t| negate(t)))
+                Some(t.map(negate))
             }
             ExprKind::Binary {
                 op: op @ (BinaryOp::Eq | BinaryOp::Ne),

@@ -335,8 +335,7 @@ impl<'p> Tx<'p> {
             let decl = self
                 .interrupts
                 .iter()
-                .filter(|d| d.number == n && d.at < span.start)
-                .last()
+                .rfind(|d| d.number == n && d.at < span.start)
                 .or_else(|| self.interrupts.iter().find(|d| d.number == n))
                 .cloned();
             let Some(decl) = decl else {
