@@ -120,6 +120,7 @@ proptest! {
         let t = translate(&text);
         let problems = check(&t.text);
         prop_assert!(problems.is_empty(), "{problems:?}\n{text}\n{}", t.text);
+        prop_assert!(t.text.is_ascii());
         let again = translate(&text);
         prop_assert_eq!(&again.text, &t.text);
         let errors = t.reports[0].diagnostics.iter().filter(|d| d.code == "TR001").count();
@@ -131,5 +132,6 @@ proptest! {
     fn arbitrary_text_never_panics(text in "(\\PC{0,40}\n){0,12}") {
         let t = translate(&format!("DEF x()\n{text}END\n"));
         prop_assert!(check(&t.text).is_empty(), "{}", t.text);
+        prop_assert!(t.text.is_ascii(), "{}", t.text);
     }
 }

@@ -145,7 +145,10 @@ impl<'p> Tx<'p> {
                 })
             }
             Ty::Char => match &value.kind {
-                ExprKind::Str(s) => Ok(Line::Strings(format!("${name} = {}", format::string(s)))),
+                ExprKind::Str(s) => {
+                    self.check_ascii(id, value.span, s);
+                    Ok(Line::Strings(format!("${name} = {}", format::string(s))))
+                }
                 ExprKind::Char(c) => Ok(Line::Strings(format!(
                     "${name} = {}",
                     format::string(&c.to_string())

@@ -55,8 +55,14 @@ impl<'p> Tx<'p> {
             ExprKind::Int(i) => Ok(Rendered::atom(i.to_string())),
             ExprKind::Real(r) => Ok(Rendered::atom(num(*r))),
             ExprKind::Bool(b) => Ok(Rendered::atom(if *b { "TRUE" } else { "FALSE" }.into())),
-            ExprKind::Char(c) => Ok(Rendered::atom(format::string(&c.to_string()))),
-            ExprKind::Str(s) => Ok(Rendered::atom(format::string(s))),
+            ExprKind::Char(c) => {
+                self.check_ascii(FileId::Src, e.span, &c.to_string());
+                Ok(Rendered::atom(format::string(&c.to_string())))
+            }
+            ExprKind::Str(s) => {
+                self.check_ascii(FileId::Src, e.span, s);
+                Ok(Rendered::atom(format::string(s)))
+            }
             ExprKind::Bits(v) => Ok(Rendered::atom(format!("^B{v:b}"))),
             ExprKind::Hex(v) => Ok(Rendered::atom(format!("^H{v:X}"))),
             ExprKind::Enum(name) => self.enum_value(name, e.span).map(Rendered::atom),

@@ -59,6 +59,18 @@ pub fn copy_stmt(to: &str, from: &str, ty: &Ty) -> String {
     }
 }
 
+/// The text with every non-ASCII character replaced by `?`: the `.as` file is ASCII.
+pub fn ascii(s: &str) -> std::borrow::Cow<'_, str> {
+    if s.is_ascii() {
+        return std::borrow::Cow::Borrowed(s);
+    }
+    std::borrow::Cow::Owned(
+        s.chars()
+            .map(|c| if c.is_ascii() { c } else { '?' })
+            .collect(),
+    )
+}
+
 /// `"text"` for AS (KRL strings cannot contain `"`).
 pub fn string(s: &str) -> String {
     format!("\"{s}\"")
@@ -76,6 +88,12 @@ mod tests {
         assert_eq!(num(-12.25), "-12.25");
         assert_eq!(angle(179.99999999999997), "180");
         assert_eq!(angle(-1e-12), "0");
+    }
+
+    #[test]
+    fn ascii_only() {
+        assert_eq!(ascii("abc"), "abc");
+        assert_eq!(ascii("Stör ü"), "St?r ?");
     }
 
     #[test]

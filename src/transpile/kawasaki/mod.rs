@@ -338,6 +338,18 @@ impl<'p> Tx<'p> {
         let _ = ty;
     }
 
+    /// Strings are ASCII in the output: report a KRL string that is not.
+    fn check_ascii(&mut self, file: FileId, span: Span, s: &str) {
+        if !s.is_ascii() {
+            self.rep.approximate(
+                file,
+                span,
+                "non-ASCII characters in this string become `?` in the ASCII .as file",
+                "use ASCII text",
+            );
+        }
+    }
+
     fn note(&mut self, text: impl Into<String>) {
         let t = text.into();
         if !self.notes.contains(&t) {
@@ -576,17 +588,18 @@ impl<'p> Tx<'p> {
             if i == 0 {
                 for l in &head {
                     out.push_str("  ");
-                    out.push_str(l);
+                    out.push_str(&format::ascii(l));
                     out.push('\n');
                 }
             }
             for l in &p.body {
-                out.push_str(l.trim_end());
+                // Non-ASCII can only come from comments and strings (strings are reported).
+                out.push_str(&format::ascii(l.trim_end()));
                 out.push('\n');
             }
             out.push_str(".END\n");
         }
-        out.push_str(&self.data_text());
+        out.push_str(&format::ascii(&self.data_text()));
         out
     }
 
