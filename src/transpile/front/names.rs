@@ -139,6 +139,7 @@ impl Namespace {
 
     /// A name the translator needs (`base`, else `base2`, `base3`, …) that no KRL name uses.
     pub fn fresh(&mut self, base: &str, max_len: usize) -> String {
+        let base = &base[..base.len().min(max_len)];
         let name = if self.taken.contains_key(base) {
             self.free_variant(base, max_len)
         } else {
@@ -211,5 +212,6 @@ mod tests {
         assert_eq!(ns.fresh("a_b", 15), "a_b3");
         assert_eq!(ns.fresh("tmp", 15), "tmp");
         assert_eq!(ns.fresh("tmp", 15), "tmp2");
+        assert_eq!(ns.fresh("mm_a_very_long_scratch", 15), "mm_a_very_long_");
     }
 }

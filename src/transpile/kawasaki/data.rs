@@ -137,7 +137,7 @@ impl<'p> Tx<'p> {
     fn data_line(&mut self, name: &str, ty: &Ty, value: &Expr, id: FileId) -> R<Line> {
         match ty {
             Ty::Pose | Ty::Joint => {
-                let a = self.aggregate(value, id)?;
+                let a = self.aggregate(value)?;
                 let values = self.literal_values(&a, id)?;
                 Ok(match ty {
                     Ty::Pose => Line::Trans(format!("{name} {}", values.join(" "))),

@@ -356,7 +356,7 @@ impl<'p> Tx<'p> {
             && super::mm::package_global(&id.text).is_none()
         {
             // A constant or variable from elsewhere (e.g. $config.dat).
-            self.assume(id, &Ty::Real, "a number");
+            self.assume(id, "a number");
         }
         Ok(Rendered::atom(self.var_text(id)?))
     }
@@ -503,7 +503,7 @@ impl<'p> Tx<'p> {
 
     /// A pose or joint literal (complete aggregate) as an AS value: `TRANS(…)` or `#PPOINT(…)`.
     pub(super) fn literal_value(&mut self, e: &Expr) -> R<String> {
-        let a = self.aggregate(e, FileId::Src)?;
+        let a = self.aggregate(e)?;
         let values = self.literal_values(&a, FileId::Src)?;
         Ok(match a.kind {
             AggKind::Pose => format!("TRANS({})", values.join(",")),
@@ -511,7 +511,7 @@ impl<'p> Tx<'p> {
         })
     }
 
-    pub(super) fn aggregate(&mut self, e: &Expr, _file: FileId) -> R<Aggregate> {
+    pub(super) fn aggregate(&mut self, e: &Expr) -> R<Aggregate> {
         match literal::aggregate(e) {
             Ok(a) => Ok(a),
             Err(AggError::NotLiteral(span, what)) => fail(

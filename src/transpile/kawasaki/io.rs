@@ -63,7 +63,7 @@ impl<'p> Tx<'p> {
                 self.line(format!("TIMER {i} = {v}"));
                 Ok(())
             }
-            Sys::TimerStop(i) => {
+            Sys::TimerStop(_) => {
                 self.kind("timer");
                 match &value.kind {
                     ExprKind::Bool(false) => {
@@ -74,7 +74,6 @@ impl<'p> Tx<'p> {
                             "reset the timer (TIMER n = 0) where KRL started it, if it was stopped before",
                         );
                         self.keep_as_comment("TR002", span);
-                        let _ = i;
                         Ok(())
                     }
                     _ => fail(
@@ -181,13 +180,7 @@ impl<'p> Tx<'p> {
         Ok(())
     }
 
-    pub(super) fn pulse(
-        &mut self,
-        signal: &Expr,
-        level: &Expr,
-        duration: &Expr,
-        span: Span,
-    ) -> R<()> {
+    pub(super) fn pulse(&mut self, signal: &Expr, level: &Expr, duration: &Expr) -> R<()> {
         let Some(n) = self.signal_number(signal) else {
             return fail(
                 signal.span,
@@ -204,7 +197,6 @@ impl<'p> Tx<'p> {
             );
         }
         let t = self.expr(duration)?;
-        let _ = span;
         self.line(format!("PULSE {n},{t}"));
         Ok(())
     }

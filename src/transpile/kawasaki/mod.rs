@@ -323,7 +323,7 @@ impl<'p> Tx<'p> {
     }
 
     /// The type of an undeclared name, assumed from how it is used; reported once per name.
-    fn assume(&mut self, id: &Ident, ty: &Ty, what: &str) {
+    fn assume(&mut self, id: &Ident, what: &str) {
         if self.assumed.insert(id.key()) {
             self.rep.approximate(
                 FileId::Src,
@@ -335,7 +335,6 @@ impl<'p> Tx<'p> {
                 "declare it (e.g. in the .dat) or check the AS name's type sigil",
             );
         }
-        let _ = ty;
     }
 
     /// Strings are ASCII in the output: report a KRL string that is not.

@@ -153,7 +153,7 @@ impl<'p> Tx<'p> {
                         } else {
                             (Ty::Pose, "a pose (E6POS)")
                         };
-                        self.assume(id, &ty, what);
+                        self.assume(id, what);
                         ty
                     }
                 };
@@ -190,7 +190,7 @@ impl<'p> Tx<'p> {
                 "compute the target (e.g. #PPOINT or SHIFT/TRANS) and move to it",
             );
         }
-        let a = self.aggregate(&m.target, FileId::Src)?;
+        let a = self.aggregate(&m.target)?;
         if a.kind != literal::AggKind::Pose
             || a.main[3..].iter().any(|v| v.is_some_and(|v| v != 0.0))
             || a.ext_used().next().is_some()

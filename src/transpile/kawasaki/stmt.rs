@@ -227,7 +227,7 @@ impl<'p> Tx<'p> {
                 signal,
                 level,
                 duration,
-            } => self.pulse(signal, level, duration, s.span),
+            } => self.pulse(signal, level, duration),
             StmtKind::Brake { fast } => {
                 self.line("BRAKE");
                 if *fast {
@@ -398,7 +398,7 @@ impl<'p> Tx<'p> {
         match (ty, &value.kind) {
             (Ty::Pose | Ty::Joint, ExprKind::Aggregate { .. }) => self.literal_value(value),
             (Ty::Joint, ExprKind::Name(id)) if self.var(&id.text).is_none() => {
-                self.assume(id, &Ty::Joint, "a joint value (E6AXIS)");
+                self.assume(id, "a joint value (E6AXIS)");
                 let (n, local) = self.var_name(id);
                 Ok(with_sigil(&if local { format!(".{n}") } else { n }, ty))
             }
@@ -452,7 +452,7 @@ impl<'p> Tx<'p> {
                     Ty::Char => "a string",
                     _ => "a number",
                 };
-                self.assume(root, &t, what);
+                self.assume(root, what);
                 t
             }
         };
