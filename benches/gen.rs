@@ -1,7 +1,8 @@
-//! Generating the full default package (render only, no I/O). Target: < 20 ms.
+//! Generating the full default packages (render only, no I/O). Targets: KUKA < 20 ms,
+//! Kawasaki AS < 20 ms.
 
 use criterion::{Criterion, criterion_group, criterion_main};
-use krlkit::generate::generate;
+use krlkit::generate::{generate, generate_kawasaki};
 use krlkit::spec::Spec;
 
 fn bench(c: &mut Criterion) {
@@ -9,6 +10,11 @@ fn bench(c: &mut Criterion) {
     c.bench_function("generate default package", |b| {
         b.iter(|| generate(std::hint::black_box(&spec)).expect("renders"))
     });
+    let mut g = c.benchmark_group("kawasaki");
+    g.bench_function("generate default AS package", |b| {
+        b.iter(|| generate_kawasaki(std::hint::black_box(&spec)).expect("renders"))
+    });
+    g.finish();
 }
 
 criterion_group!(benches, bench);

@@ -86,11 +86,115 @@ fn bad_spec_exits_2_with_location() {
 }
 
 #[test]
-fn other_targets_are_not_supported_yet() {
+fn target_kawasaki_writes_the_as_package_only_and_checks_it() {
     let dir = tempfile::tempdir().unwrap();
-    let o = krlkit(&["gen", "--target", "kawasaki"], dir.path());
-    assert_eq!(o.status.code(), Some(2));
-    assert!(stderr(&o).contains("not supported yet"));
+    let o = krlkit(&["gen", "--target", "kawasaki", "--out", "p"], dir.path());
+    assert_eq!(o.status.code(), Some(0), "{}", stderr(&o));
+    assert!(String::from_utf8_lossy(&o.stdout).contains("wrote 2 files"));
+    let p = dir.path().join("p");
+    let text = std::fs::read_to_string(p.join("as/mm_package.as")).unwrap();
+    assert!(text.starts_with(".PROGRAM mm_about()\r\n"));
+    assert!(
+        text.contains(".PROGRAM mm_start_vis(.job,.pos_num_need,.sendpos_type,.#start_vis)\r\n")
+    );
+    assert!(p.join("as/INSTALL.md").is_file());
+    assert!(!p.join("krl").exists() && !p.join("xml").exists());
+    let o = krlkit(
+        &["gen", "--target", "kawasaki", "--check", "--out", "p"],
+        dir.path(),
+    );
+    assert_eq!(o.status.code(), Some(0), "{}", stderr(&o));
+    assert!(String::from_utf8_lossy(&o.stdout).contains("up to date (2 files)"));
+    // The KUKA package was not generated here: its check reports it missing.
+    let o = krlkit(&["gen", "--check", "--out", "p"], dir.path());
+    assert_eq!(o.status.code(), Some(1));
+    assert!(String::from_utf8_lossy(&o.stdout).contains("missing: krl/R1/mm/MM_Comm.src"));
+    std::fs::write(p.join("as/mm_package.as"), "changed").unwrap();
+    std::fs::write(p.join("as/stale.as"), "x").unwrap();
+    let o = krlkit(
+        &["gen", "--target", "kawasaki", "--check", "--out", "p"],
+        dir.path(),
+    );
+    assert_eq!(o.status.code(), Some(1));
+    let out = String::from_utf8_lossy(&o.stdout);
+    assert!(out.contains("differs: as/mm_package.as"), "{out}");
+    assert!(out.contains("extra:   as/stale.as"), "{out}");
+}
+
+#[test]
+fn target_all_writes_both_packages() {
+    let dir = tempfile::tempdir().unwrap();
+    let o = krlkit(
+        &[
+            "gen",
+            "--target",
+            "all",
+            "--spec",
+            "cell2.toml",
+            "--out",
+            "p",
+        ],
+        &dir_with_cell2(dir.path()),
+    );
+    assert_eq!(o.status.code(), Some(0), "{}", stderr(&o));
+    let p = dir.path().join("p");
+    assert!(p.join("krl/R1/mm/MM_Comm.src").is_file());
+    assert!(
+        p.join("xml/Config/User/Common/EthernetKRL/MM_Cell2.xml")
+            .is_file()
+    );
+    let text = std::fs::read_to_string(p.join("as/mm_package.as")).unwrap();
+    assert!(text.contains("CALL mm_init_skt(10,0,0,5,50001)"));
+    for target in ["all", "kuka", "kawasaki"] {
+        let o = krlkit(
+            &[
+                "gen",
+                "--target",
+                target,
+                "--spec",
+                "cell2.toml",
+                "--check",
+                "--out",
+                "p",
+            ],
+            dir.path(),
+        );
+        assert_eq!(o.status.code(), Some(0), "{target}: {}", stderr(&o));
+    }
+}
+
+#[test]
+fn bad_spec_exits_2_for_every_target() {
+    let dir = tempfile::tempdir().unwrap();
+    std::fs::write(dir.path().join("krlkit.toml"), "calib_wait = 0\n").unwrap();
+    for target in ["kawasaki", "all"] {
+        let o = krlkit(
+            &[
+                "gen",
+                "--target",
+                target,
+                "--spec",
+                "krlkit.toml",
+                "--out",
+                "p",
+            ],
+            dir.path(),
+        );
+        assert_eq!(o.status.code(), Some(2), "{target}");
+        assert!(
+            stderr(&o).contains("`calib_wait` = 0 is out of range"),
+            "{}",
+            stderr(&o)
+        );
+        assert!(!dir.path().join("p").exists());
+    }
+}
+
+/// Copy the non-default spec fixture into `dir`; returns `dir`.
+fn dir_with_cell2(dir: &Path) -> std::path::PathBuf {
+    let src = Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/fixtures/specs/ok/cell2.toml");
+    std::fs::copy(src, dir.join("cell2.toml")).unwrap();
+    dir.to_path_buf()
 }
 
 #[test]

@@ -6,16 +6,6 @@ use crate::generate::{self, Drift};
 use crate::spec::Spec;
 
 pub fn run(args: GenArgs) -> anyhow::Result<Outcome> {
-    if args.target != Target::Kuka {
-        eprintln!(
-            "error: --target {} is not supported yet\n  help: use --target kuka (the default)",
-            match args.target {
-                Target::Kawasaki => "kawasaki",
-                _ => "all",
-            }
-        );
-        return Ok(Outcome::Failure);
-    }
     let spec = match load_spec(args.spec.as_deref()) {
         Ok(s) => s,
         Err(msg) => {
@@ -23,7 +13,12 @@ pub fn run(args: GenArgs) -> anyhow::Result<Outcome> {
             return Ok(Outcome::Failure);
         }
     };
-    let files = generate::generate(&spec)?;
+    let target = match args.target {
+        Target::Kuka => generate::Target::Kuka,
+        Target::Kawasaki => generate::Target::Kawasaki,
+        Target::All => generate::Target::All,
+    };
+    let files = generate::generate_target(&spec, target)?;
     if args.check {
         let drift = generate::check(&args.out, &files);
         if drift.is_clean() {

@@ -1,7 +1,8 @@
-//! The install note (`krl/INSTALL.md`).
+//! The install notes (`krl/INSTALL.md`, `as/INSTALL.md`).
 
 use askama::Template;
 
+use super::as_view::AsPackage;
 use super::view::Package;
 use super::{KRL_DIR, XML_DIR};
 use crate::spec::Spec;
@@ -14,6 +15,22 @@ struct Install<'a> {
     krl_dir: &'a str,
     xml_dir: &'a str,
     xml_file: String,
+}
+
+#[derive(Template)]
+#[template(path = "as_install.md", escape = "none")]
+struct AsInstall<'a> {
+    p: &'a AsPackage,
+    as_path: &'a str,
+}
+
+/// The Kawasaki install note (`as/INSTALL.md`).
+pub fn render_as(_spec: &Spec, pkg: &AsPackage) -> askama::Result<String> {
+    AsInstall {
+        p: pkg,
+        as_path: super::AS_PATH,
+    }
+    .render()
 }
 
 pub fn render(spec: &Spec, pkg: &Package) -> askama::Result<String> {

@@ -1,11 +1,15 @@
-//! `krlkit gen`: render the KUKA package (KRL + EKI XML + install note) for a spec, write it
-//! atomically, or compare it with what is on disk (`--check`).
+//! `krlkit gen`: render the KUKA package (KRL + EKI XML + install note) and the Kawasaki AS
+//! package (one `.as` file + install note) for a spec, write them atomically, or compare them
+//! with what is on disk (`--check`).
 //!
 //! Invariants: output is a pure function of the spec and the catalog (byte-identical runs);
-//! every KRL file is ASCII with the spec's line endings; nothing is written until everything
-//! rendered.
+//! every KRL and AS file is ASCII with the spec's line endings; nothing is written until
+//! everything rendered.
 
+pub mod as_check;
+pub mod as_view;
 mod install;
+mod kawasaki;
 mod krl;
 mod output;
 pub mod view;
@@ -27,6 +31,20 @@ pub const XML_DIR: &str = "xml/Config/User/Common/EthernetKRL";
 pub const INSTALL_PATH: &str = "krl/INSTALL.md";
 /// Name of the helper + global data module.
 pub const COMM_MODULE: &str = "MM_Comm";
+/// Where the Kawasaki package goes, relative to the output directory.
+pub const AS_DIR: &str = "as";
+/// The Kawasaki AS file (all programs and the data section; load it into the controller).
+pub const AS_PATH: &str = "as/mm_package.as";
+/// The Kawasaki install note.
+pub const AS_INSTALL_PATH: &str = "as/INSTALL.md";
+
+/// Which robot package(s) to generate.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Target {
+    Kuka,
+    Kawasaki,
+    All,
+}
 
 /// One generated file: path relative to the output directory, and its bytes.
 #[derive(Debug, Clone, PartialEq, Eq)]
@@ -93,5 +111,38 @@ pub fn generate(spec: &Spec) -> Result<Vec<GeneratedFile>, GenError> {
             LineEnding::Lf,
         ),
     });
+    Ok(files)
+}
+
+/// Render the Kawasaki AS package for `spec`: the `.as` file and its install note.
+pub fn generate_kawasaki(spec: &Spec) -> Result<Vec<GeneratedFile>, GenError> {
+    let pkg = as_view::AsPackage::new(spec);
+    let text = kawasaki::render_package(&pkg)
+        .map_err(|(file, source)| GenError::Render { file, source })?;
+    let note = install::render_as(spec, &pkg).map_err(|source| GenError::Render {
+        file: "as/INSTALL.md".into(),
+        source,
+    })?;
+    Ok(vec![
+        GeneratedFile {
+            path: PathBuf::from(AS_PATH),
+            contents: writer::normalise_dense(&text, spec.line_endings),
+        },
+        GeneratedFile {
+            path: PathBuf::from(AS_INSTALL_PATH),
+            contents: writer::normalise(&note, LineEnding::Lf),
+        },
+    ])
+}
+
+/// Render the package(s) of `target`: KUKA first, then Kawasaki.
+pub fn generate_target(spec: &Spec, target: Target) -> Result<Vec<GeneratedFile>, GenError> {
+    let mut files = Vec::new();
+    if matches!(target, Target::Kuka | Target::All) {
+        files.extend(generate(spec)?);
+    }
+    if matches!(target, Target::Kawasaki | Target::All) {
+        files.extend(generate_kawasaki(spec)?);
+    }
     Ok(files)
 }

@@ -4,7 +4,7 @@ use std::collections::BTreeSet;
 use std::fs;
 use std::path::{Path, PathBuf};
 
-use super::{GenError, GeneratedFile, KRL_DIR, XML_DIR};
+use super::{AS_DIR, GenError, GeneratedFile, KRL_DIR, XML_DIR};
 
 /// Write every file into a staging directory inside `out`, then move each into place by
 /// rename. A failure before the first rename leaves `out` as it was.
@@ -50,8 +50,8 @@ impl Drift {
     }
 }
 
-/// Compare `files` with `out`. Only the generated paths and the two generated folders are
-/// looked at; everything else in `out` is ignored.
+/// Compare `files` with `out`. Only the generated paths and the generated folders of the
+/// packages in `files` are looked at (files only); everything else in `out` is ignored.
 pub fn check(out: &Path, files: &[GeneratedFile]) -> Drift {
     let mut drift = Drift::default();
     for f in files {
@@ -62,12 +62,19 @@ pub fn check(out: &Path, files: &[GeneratedFile]) -> Drift {
         }
     }
     let expected: BTreeSet<&Path> = files.iter().map(|f| f.path.as_path()).collect();
-    for dir in [KRL_DIR, XML_DIR] {
+    for dir in [KRL_DIR, XML_DIR, AS_DIR] {
+        if !files
+            .iter()
+            .any(|f| f.path.parent() == Some(Path::new(dir)))
+        {
+            continue;
+        }
         let Ok(entries) = fs::read_dir(out.join(dir)) else {
             continue;
         };
         let mut extra: Vec<PathBuf> = entries
             .filter_map(Result::ok)
+            .filter(|e| e.file_type().is_ok_and(|t| t.is_file()))
             .map(|e| PathBuf::from(dir).join(e.file_name()))
             .filter(|p| !expected.contains(p.as_path()))
             .collect();

@@ -28,6 +28,18 @@ pub fn normalise(text: &str, eol: LineEnding) -> Vec<u8> {
     out.into_bytes()
 }
 
+/// Like [`normalise`], but without any blank line: AS programs are written without them, as the
+/// controller saves them.
+pub fn normalise_dense(text: &str, eol: LineEnding) -> Vec<u8> {
+    let eol = eol.as_str();
+    let mut out = String::with_capacity(text.len() + text.len() / 16);
+    for line in text.lines().map(str::trim_end).filter(|l| !l.is_empty()) {
+        out.push_str(line);
+        out.push_str(eol);
+    }
+    out.into_bytes()
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -36,5 +48,14 @@ mod tests {
     fn crlf_everywhere_and_single_blank_lines() {
         let out = normalise("\n\nA  \r\n\n\n\nB\nC\n\n", LineEnding::Crlf);
         assert_eq!(out, b"A\r\n\r\nB\r\nC\r\n");
+    }
+
+    #[test]
+    fn dense_drops_every_blank_line() {
+        let out = normalise_dense(
+            "\n.PROGRAM a()  \n\n  x = 1\r\n\n.END\n\n",
+            LineEnding::Crlf,
+        );
+        assert_eq!(out, b".PROGRAM a()\r\n  x = 1\r\n.END\r\n");
     }
 }

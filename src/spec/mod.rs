@@ -67,6 +67,8 @@ pub struct Spec {
     /// Subprograms to emit, catalog order; always contains `MM_Init_Socket`.
     pub subprograms: Vec<String>,
     pub line_endings: LineEnding,
+    /// Seconds the Kawasaki `calibrate` settles after each move (it has no WaitTime parameter).
+    pub calib_wait: u32,
 }
 
 /// Valid `$TIMER` indices (KSS 8.x has `$TIMER[1..64]`).

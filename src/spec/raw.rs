@@ -21,6 +21,7 @@ pub(crate) const KEYS: &[&str] = &[
     "append_cr",
     "subprograms",
     "line_endings",
+    "calib_wait",
 ];
 
 pub(crate) fn nearest_key(key: &str) -> Option<&'static str> {
@@ -47,6 +48,7 @@ pub(crate) struct RawSpec {
     append_cr: Option<bool>,
     subprograms: Option<Spanned<Vec<Spanned<String>>>>,
     line_endings: Option<LineEnding>,
+    calib_wait: Option<Spanned<i64>>,
 }
 
 /// Defaults for keys a spec leaves out. They equal the values in the default spec file (a test
@@ -60,6 +62,8 @@ mod default {
     pub const CONNECT_TIMEOUT: u32 = 60;
     pub const REPLY_TIMEOUT: u32 = 15;
     pub const TIMER: u32 = 64;
+    /// Seconds; the vendor default of MM_CALIB's WaitTime.
+    pub const CALIB_WAIT: u32 = 2;
 }
 
 struct Ctx<'a> {
@@ -229,6 +233,8 @@ impl RawSpec {
             default::TIMER,
         )?;
 
+        let calib_wait = cx.int_in(&self.calib_wait, "calib_wait", 1, 60, default::CALIB_WAIT)?;
+
         let subprograms = match &self.subprograms {
             None => catalog()
                 .subprograms
@@ -252,6 +258,7 @@ impl RawSpec {
             append_cr: self.append_cr.unwrap_or(false),
             subprograms,
             line_endings: self.line_endings.unwrap_or(LineEnding::Crlf),
+            calib_wait,
         };
         if spec.receive_size() > lim.eki_raw_size_max {
             let at = self.batch_size.as_ref().map_or(0, |s| s.span().start);
