@@ -3,8 +3,10 @@
 //! AS text and of the findings live in `tests/fixtures/transpile/snapshots/`.
 //!
 //! Checked for every fixture: the AS text is structurally sound (sections and blocks balanced,
-//! names ≤ 15), translation is deterministic, and every TR001 finding's construct is still in
-//! the output as a `; [TR001]` comment. The coverage summary `COVERAGE.md` is regenerated
+//! labels, names ≤ 15), it passes the generator's `as_check` with every `CALL` naming a program of
+//! the text or of the generated Kawasaki package (`as/mm_package.as`) with the right number of
+//! arguments, translation is deterministic, and every TR001 finding's construct is still in the
+//! output as a `; [TR001]` comment. The coverage summary `COVERAGE.md` is regenerated
 //! and compared (`UPDATE_COVERAGE=1 cargo test --test transpile_fixtures` rewrites it).
 
 use std::path::{Path, PathBuf};
@@ -67,9 +69,30 @@ fn concise_text(reports: &[FileReport]) -> String {
     out
 }
 
+/// The programs of the committed Kawasaki package, with their parameter counts.
+fn package_programs() -> Vec<(String, usize)> {
+    let path = Path::new(env!("CARGO_MANIFEST_DIR")).join("as/mm_package.as");
+    let text = std::fs::read_to_string(path).expect("as/mm_package.as");
+    text.lines()
+        .filter_map(|l| l.strip_prefix(".PROGRAM "))
+        .map(|h| {
+            let (name, params) = h.split_once('(').expect("parameter list");
+            let params = params.trim_end_matches(')');
+            let n = params.split(',').filter(|p| !p.trim().is_empty()).count();
+            (name.trim().to_owned(), n)
+        })
+        .collect()
+}
+
 #[test]
 fn fixtures_translate_to_sound_as() {
     let programs = programs();
+    let package = package_programs();
+    assert!(package.iter().any(|(n, c)| n == "mm_get_pose" && *c == 4));
+    let external: Vec<(&str, usize)> = package.iter().map(|(n, c)| (n.as_str(), *c)).collect();
+    // The cross-check is not vacuous: a wrong arity or an unknown program is found.
+    let wrong = ".PROGRAM x()\n  CALL mm_get_pose(1)\n  CALL mm_nothing\n.END\n";
+    assert_eq!(krlkit::generate::as_check::check(wrong, &external).len(), 2);
     assert!(programs.len() >= 6, "fixtures present");
     let mut failures = Vec::new();
     for src in &programs {
@@ -88,6 +111,9 @@ fn fixtures_translate_to_sound_as() {
         });
         for p in check(&t.text) {
             failures.push(format!("{stem}: {p}"));
+        }
+        for p in krlkit::generate::as_check::check(&t.text, &external) {
+            failures.push(format!("{stem}: as_check line {}: {}", p.line, p.message));
         }
         let again = translate(src);
         if again.text != t.text || concise_text(&again.reports) != concise_text(&t.reports) {
