@@ -11,8 +11,10 @@ use crate::transpile::front::symbols::Ty;
 use crate::transpile::front::sysvar;
 use crate::transpile::front::walk::{each_stmt, exits_loop};
 
-/// KUKA routines (KRL built-ins and options) that have no AS counterpart, by prefix or name.
-const UNTRANSLATABLE_CALLS: [(&str, &str); 8] = [
+/// KUKA routines (KRL built-ins and options) that have no AS counterpart: a name prefix and
+/// what to do instead. Any other call to a routine this file does not define is assumed to be
+/// a program of another module and becomes `CALL`.
+const UNTRANSLATABLE_CALLS: [(&str, &str); 15] = [
     (
         "EKI_",
         "EthernetKRL channels have no AS equivalent; use TCP_CONNECT/TCP_SEND/TCP_RECV",
@@ -33,6 +35,11 @@ const UNTRANSLATABLE_CALLS: [(&str, &str); 8] = [
         "CCLOSE",
         "serial channels have no AS equivalent here; port by hand",
     ),
+    ("SWRITE", "format the string with $ENCODE"),
+    ("SREAD", "parse the string with $DECODE and VAL"),
+    ("STRCOPY", "assign the string ($a = $b)"),
+    ("STRADD", "concatenate with + ($a = $a + $b)"),
+    ("STRCLEAR", "assign an empty string ($a = \"\")"),
     (
         "SET_KRLMSG",
         "KUKA system messages have no AS equivalent; use PRINT or PROMPT",
@@ -41,8 +48,13 @@ const UNTRANSLATABLE_CALLS: [(&str, &str); 8] = [
         "SET_KRLDLG",
         "KUKA dialogs have no AS equivalent; use PROMPT",
     ),
+    ("CLEAR_KRLMSG", "KUKA system messages have no AS equivalent"),
     (
         "FORWARD",
+        "kinematics functions have no AS equivalent; port by hand",
+    ),
+    (
+        "INVERSE",
         "kinematics functions have no AS equivalent; port by hand",
     ),
 ];
@@ -609,7 +621,12 @@ impl<'p> Tx<'p> {
             return r;
         }
         for (prefix, help) in UNTRANSLATABLE_CALLS {
-            if key.starts_with(prefix) {
+            let matches = if prefix.ends_with('_') {
+                key.starts_with(prefix)
+            } else {
+                key == prefix
+            };
+            if matches && self.prog.symbols.routine(&name.text).is_none() {
                 return fail(span, format!("`{}` has no AS equivalent", name.text), help);
             }
         }
