@@ -157,6 +157,33 @@ pub fn walk_xml(paths: &[PathBuf]) -> Vec<PathBuf> {
     out
 }
 
+/// The `.dat` beside a program: same directory, same stem, extension `dat` in any case
+/// (the first in sorted order if several differ only in case).
+pub fn sibling_dat(program: &Path) -> Option<PathBuf> {
+    let dir = program
+        .parent()
+        .filter(|d| !d.as_os_str().is_empty())
+        .unwrap_or(Path::new("."));
+    let stem = program.file_stem()?.to_str()?.to_ascii_lowercase();
+    let mut found: Vec<PathBuf> = std::fs::read_dir(dir)
+        .ok()?
+        .flatten()
+        .map(|e| e.path())
+        .filter(|p| {
+            p != program
+                && p.extension()
+                    .and_then(|e| e.to_str())
+                    .is_some_and(|e| e.eq_ignore_ascii_case("dat"))
+                && p.file_stem()
+                    .and_then(|s| s.to_str())
+                    .is_some_and(|s| s.eq_ignore_ascii_case(&stem))
+                && p.is_file()
+        })
+        .collect();
+    found.sort();
+    found.into_iter().next()
+}
+
 /// Read and decode one candidate. `Ok(None)`: a walked file whose content is not KRL.
 pub fn load(candidate: &Candidate) -> Result<Option<Decoded>, FileError> {
     let bytes = std::fs::read(&candidate.path).map_err(|source| FileError {

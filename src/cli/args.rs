@@ -128,15 +128,31 @@ pub enum TranspileTarget {
 
 #[derive(Debug, Args)]
 pub struct TranspileArgs {
+    /// The KRL program (.src); its .dat beside it is read too.
     pub file: PathBuf,
     #[arg(long, value_enum)]
     pub to: TranspileTarget,
-    /// Output file (default: stdout).
+    /// Output file, written atomically (default: stdout, and the diagnostics go to stderr).
     #[arg(short, long)]
     pub out: Option<PathBuf>,
-    /// Spec that supplies the vision server address (default: the embedded spec).
+    /// Spec whose vision server address (IP, port) MM_Init_Socket translates to.
     #[arg(long)]
     pub spec: Option<PathBuf>,
+    /// EKI XML config whose IP and port MM_Init_Socket translates to (default: the XML named
+    /// by MM_Init_Socket beside the program).
+    #[arg(long)]
+    pub eki_xml: Option<PathBuf>,
+    #[arg(long, value_enum, default_value_t = CheckFormat::Human)]
+    pub format: CheckFormat,
+    /// $IN[n] becomes signal INPUT_OFFSET+n (controller I/O configuration).
+    #[arg(long, default_value_t = 1000, allow_negative_numbers = true)]
+    pub input_offset: i64,
+    /// $OUT[n] becomes signal OUTPUT_OFFSET+n.
+    #[arg(long, default_value_t = 0, allow_negative_numbers = true)]
+    pub output_offset: i64,
+    /// $FLAG[n] becomes internal signal FLAG_OFFSET+n.
+    #[arg(long, default_value_t = 2000, allow_negative_numbers = true)]
+    pub flag_offset: i64,
 }
 
 #[derive(Debug, Args)]

@@ -1,16 +1,38 @@
 use super::Outcome;
 use super::args::RuleArgs;
-use crate::lint::{RULES, nearest_code, rule};
+use crate::diag::Severity;
+use crate::lint::{self, RULES};
+use crate::transpile::rules as tr;
+
+/// Code, name, severity, summary, doc of every rule: the lint rules, then the transpile codes.
+fn all() -> Vec<(
+    &'static str,
+    &'static str,
+    Severity,
+    &'static str,
+    &'static str,
+)> {
+    let mut v: Vec<_> = RULES
+        .iter()
+        .map(|r| (r.code, r.name, r.severity, r.summary, r.doc))
+        .collect();
+    v.extend(
+        tr::RULES
+            .iter()
+            .map(|r| (r.code, r.name, r.severity, r.summary, r.doc)),
+    );
+    v
+}
 
 pub fn list() -> anyhow::Result<Outcome> {
     let mut out = String::from("code    severity  name                          summary\n");
-    for r in RULES {
+    for (code, name, severity, summary, _) in all() {
         out.push_str(&format!(
             "{:<7} {:<9} {:<29} {}\n",
-            r.code,
-            r.severity.as_str(),
-            r.name,
-            r.summary
+            code,
+            severity.as_str(),
+            name,
+            summary
         ));
     }
     print!("{out}");
@@ -18,25 +40,36 @@ pub fn list() -> anyhow::Result<Outcome> {
 }
 
 pub fn explain(args: RuleArgs) -> anyhow::Result<Outcome> {
-    match rule(&args.code) {
-        Some(r) => {
+    let code = args.code.trim();
+    match all().into_iter().find(|r| r.0.eq_ignore_ascii_case(code)) {
+        Some((code, name, severity, summary, doc)) => {
             println!(
-                "# {} {} ({})\n\n{}\n\n{}",
-                r.code,
-                r.name,
-                r.severity.as_str(),
-                r.summary,
-                r.doc
+                "# {code} {name} ({})\n\n{summary}\n\n{doc}",
+                severity.as_str()
             );
             Ok(Outcome::Success)
         }
         None => {
+            let upper = code.to_ascii_uppercase();
+            let nearest = if upper.starts_with("TR") {
+                tr::RULES
+                    .iter()
+                    .min_by_key(|r| strsim(&upper, r.code))
+                    .map_or("TR001", |r| r.code)
+            } else {
+                lint::nearest_code(code)
+            };
             eprintln!(
-                "error: unknown rule code `{}`; did you mean `{}`? (`krlkit rules` lists them)",
-                args.code,
-                nearest_code(&args.code)
+                "error: unknown rule code `{}`; did you mean `{nearest}`? (`krlkit rules` lists them)",
+                args.code
             );
             Ok(Outcome::Failure)
         }
     }
+}
+
+/// Characters that differ position by position, plus the length difference.
+fn strsim(a: &str, b: &str) -> usize {
+    let common = a.chars().zip(b.chars()).filter(|(x, y)| x != y).count();
+    common + a.len().abs_diff(b.len())
 }

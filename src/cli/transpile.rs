@@ -1,6 +1,196 @@
-use super::Outcome;
-use super::args::TranspileArgs;
+//! `krlkit transpile FILE --to kawasaki [-o OUT] [--spec FILE] [--eki-xml FILE] [--format …]`.
+//!
+//! Reads the program and its `.dat`, finds the vision server address (spec, else EKI XML),
+//! translates, writes the target program (atomically with `-o`, else to stdout) and renders the
+//! findings: to stdout when the program goes to a file, to stderr when it goes to stdout.
+//! Exit 1 when a finding is an error (TR001; the output is still written), 2 when the input
+//! cannot be read or the arguments are bad.
 
-pub fn run(_args: TranspileArgs) -> anyhow::Result<Outcome> {
-    anyhow::bail!("`krlkit transpile` is not implemented in this build yet")
+use std::io::Write;
+use std::path::{Path, PathBuf};
+
+use anyhow::Context;
+
+use super::Outcome;
+use super::args::{CheckFormat, TranspileArgs, TranspileTarget};
+use crate::diag::render::sarif::RuleMeta;
+use crate::diag::{FileReport, Severity, render};
+use crate::lint::{self, EkiChannel};
+use crate::transpile::{self, Options, SignalMap, Source, Target, VisionServer};
+
+pub fn run(args: TranspileArgs) -> anyhow::Result<Outcome> {
+    let target = match args.to {
+        TranspileTarget::Kawasaki => Target::Kawasaki,
+        TranspileTarget::Flexiv => {
+            eprintln!("error: `--to flexiv` is not available in this build yet (only kawasaki)");
+            return Ok(Outcome::Failure);
+        }
+    };
+    let src = read_source(&args.file)?;
+    let dat = match crate::files::sibling_dat(&args.file) {
+        Some(p) => Some(read_source(&p)?),
+        None => None,
+    };
+    let mut options = Options {
+        signals: SignalMap {
+            output_offset: args.output_offset,
+            input_offset: args.input_offset,
+            flag_offset: args.flag_offset,
+        },
+        ..Options::default()
+    };
+    if let Some(spec) = &args.spec {
+        let spec_data = match super::generate::load_spec(Some(spec)) {
+            Ok(s) => s,
+            Err(msg) => {
+                eprintln!("{msg}");
+                return Ok(Outcome::Failure);
+            }
+        };
+        options.server = Some(VisionServer {
+            ip: spec_data.server_ip,
+            port: spec_data.server_port,
+            origin: format!("spec {}", file_name(spec)),
+        });
+    }
+    match &args.eki_xml {
+        Some(path) => {
+            options.channels = vec![read_channel(path)?];
+            options.channels_given = true;
+        }
+        None => options.channels = channels_beside(&args.file),
+    }
+
+    let t = transpile::transpile(target, src, dat, &options);
+    match &args.out {
+        Some(out) => write_atomically(out, t.text.as_bytes())?,
+        None => std::io::stdout().lock().write_all(t.text.as_bytes())?,
+    }
+    let errors: usize = t.reports.iter().map(|r| r.count(Severity::Error)).sum();
+    let warnings: usize = t.reports.iter().map(|r| r.count(Severity::Warning)).sum();
+    let infos: usize = t.reports.iter().map(|r| r.count(Severity::Info)).sum();
+    let rendered = render_reports(&t.reports, args.format);
+    if args.out.is_some() {
+        std::io::stdout().lock().write_all(rendered.as_bytes())?;
+    } else {
+        std::io::stderr().lock().write_all(rendered.as_bytes())?;
+    }
+    if args.format == CheckFormat::Human {
+        let c = t.coverage.total();
+        eprintln!(
+            "{}: {errors} error{}, {warnings} warning{}, {infos} renamed; {} of {} constructs translated ({} approximately)",
+            args.file.display(),
+            plural(errors),
+            plural(warnings),
+            c.exact + c.approximate,
+            c.total(),
+            c.approximate
+        );
+    }
+    Ok(if errors > 0 {
+        Outcome::Findings
+    } else {
+        Outcome::Success
+    })
+}
+
+fn plural(n: usize) -> &'static str {
+    if n == 1 { "" } else { "s" }
+}
+
+fn render_reports(reports: &[FileReport], format: CheckFormat) -> String {
+    let mut out = String::new();
+    match format {
+        CheckFormat::Human => reports
+            .iter()
+            .for_each(|r| render::human::render(r, &mut out)),
+        CheckFormat::Concise => reports
+            .iter()
+            .for_each(|r| render::concise::render(r, &mut out)),
+        CheckFormat::Github => reports
+            .iter()
+            .for_each(|r| render::github::render(r, &mut out)),
+        CheckFormat::Json => out = render::json::render(reports) + "\n",
+        CheckFormat::Sarif => {
+            let rules: Vec<RuleMeta> = transpile::rules::RULES
+                .iter()
+                .map(|r| RuleMeta {
+                    code: r.code,
+                    name: r.name,
+                    severity: r.severity,
+                    summary: r.summary,
+                    doc: r.doc,
+                })
+                .collect();
+            out = render::sarif::render_with_rules(reports, &rules) + "\n";
+        }
+    }
+    out
+}
+
+fn read_source(path: &Path) -> anyhow::Result<Source> {
+    let bytes = std::fs::read(path).with_context(|| format!("cannot read {}", path.display()))?;
+    Ok(Source {
+        path: path.display().to_string(),
+        text: crate::syntax::decode(&bytes).text,
+    })
+}
+
+fn file_name(path: &Path) -> String {
+    path.file_name()
+        .map(|s| s.to_string_lossy().into_owned())
+        .unwrap_or_default()
+}
+
+fn read_channel(path: &Path) -> anyhow::Result<EkiChannel> {
+    let bytes = std::fs::read(path).with_context(|| format!("cannot read {}", path.display()))?;
+    let text = crate::syntax::decode(&bytes).text;
+    let stem = path
+        .file_stem()
+        .map(|s| s.to_string_lossy().into_owned())
+        .unwrap_or_default();
+    lint::eki_xml::read(&stem, &file_name(path), &text).ok_or_else(|| {
+        anyhow::anyhow!(
+            "{}: not an EthernetKRL config (no <ETHERNETKRL> root element)",
+            path.display()
+        )
+    })
+}
+
+/// EKI configs in the program's directory (not walked further); others are ignored.
+fn channels_beside(program: &Path) -> Vec<EkiChannel> {
+    let dir = program
+        .parent()
+        .filter(|d| !d.as_os_str().is_empty())
+        .unwrap_or(Path::new("."));
+    let Ok(rd) = std::fs::read_dir(dir) else {
+        return Vec::new();
+    };
+    let mut xml: Vec<PathBuf> = rd
+        .flatten()
+        .map(|e| e.path())
+        .filter(|p| {
+            p.is_file()
+                && p.extension()
+                    .and_then(|e| e.to_str())
+                    .is_some_and(|e| e.eq_ignore_ascii_case("xml"))
+        })
+        .collect();
+    xml.sort();
+    xml.iter().filter_map(|p| read_channel(p).ok()).collect()
+}
+
+/// Write to a temporary file in the target's directory, then rename it into place.
+fn write_atomically(path: &Path, bytes: &[u8]) -> anyhow::Result<()> {
+    let dir = path
+        .parent()
+        .filter(|d| !d.as_os_str().is_empty())
+        .unwrap_or(Path::new("."));
+    let mut tmp = tempfile::NamedTempFile::new_in(dir)
+        .with_context(|| format!("cannot write in {}", dir.display()))?;
+    tmp.write_all(bytes)
+        .with_context(|| format!("cannot write {}", path.display()))?;
+    tmp.persist(path)
+        .map_err(|e| anyhow::anyhow!("cannot write {}: {}", path.display(), e.error))?;
+    Ok(())
 }

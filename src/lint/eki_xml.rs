@@ -1,6 +1,6 @@
-//! Just enough of an EthernetKRL XML config for the cross-check: the channel name (file stem),
-//! the alive flag (`CONFIGURATION/INTERNAL/ALIVE@Set_Flag`) and the receive flag
-//! (`RECEIVE/RAW/ELEMENT@Set_Flag`).
+//! Just enough of an EthernetKRL XML config for the cross-check and the transpiler: the channel
+//! name (file stem), the alive flag (`CONFIGURATION/INTERNAL/ALIVE@Set_Flag`), the receive flag
+//! (`RECEIVE/RAW/ELEMENT@Set_Flag`) and the server address (`CONFIGURATION/EXTERNAL/IP`, `PORT`).
 
 use quick_xml::events::Event;
 
@@ -12,6 +12,10 @@ pub struct EkiChannel {
     pub path: String,
     pub alive_flag: Option<i64>,
     pub receive_flag: Option<i64>,
+    /// `CONFIGURATION/EXTERNAL/IP`, trimmed.
+    pub ip: Option<String>,
+    /// `CONFIGURATION/EXTERNAL/PORT`, when it is a number.
+    pub port: Option<u16>,
 }
 
 /// Read a channel from XML text. `None` if the root element is not `ETHERNETKRL`.
@@ -23,6 +27,8 @@ pub fn read(name: &str, path: &str, xml: &str) -> Option<EkiChannel> {
         path: path.to_owned(),
         alive_flag: None,
         receive_flag: None,
+        ip: None,
+        port: None,
     };
     loop {
         let (e, empty) = match reader.read_event() {
@@ -33,6 +39,19 @@ pub fn read(name: &str, path: &str, xml: &str) -> Option<EkiChannel> {
                 continue;
             }
             Ok(Event::Eof) => break,
+            Ok(Event::Text(t)) => {
+                let path: Vec<&str> = stack.iter().map(String::as_str).collect();
+                let raw: &str = t.as_ref();
+                let text = raw.trim().to_owned();
+                match path.as_slice() {
+                    [.., "CONFIGURATION", "EXTERNAL", "IP"] if !text.is_empty() => {
+                        ch.ip = Some(text)
+                    }
+                    [.., "CONFIGURATION", "EXTERNAL", "PORT"] => ch.port = text.parse().ok(),
+                    _ => {}
+                }
+                continue;
+            }
             Ok(_) => continue,
             Err(_) => return None,
         };
@@ -78,6 +97,13 @@ mod tests {
         let c = read("XML_Kuka_MMIND", "x.xml", xml).expect("channel");
         assert_eq!(c.alive_flag, Some(873));
         assert_eq!(c.receive_flag, Some(871));
+        assert_eq!(c.ip.as_deref(), Some("1.2.3.4"));
+        assert_eq!(c.port, None);
+        let with_port = xml.replace("</IP>", "</IP><PORT> 50001 </PORT>");
+        assert_eq!(
+            read("a", "a.xml", &with_port).expect("channel").port,
+            Some(50001)
+        );
         assert!(read("a", "a.xml", "<other/>").is_none());
     }
 }

@@ -1,4 +1,5 @@
-//! SARIF 2.1.0: one run, the rule metadata of the lint registry, one result per finding.
+//! SARIF 2.1.0: one run, the rule metadata (the lint registry's, or the caller's), one result
+//! per finding.
 
 use serde_json::{Value, json};
 
@@ -15,9 +16,35 @@ fn level(s: Severity) -> &'static str {
     }
 }
 
-/// The whole SARIF log for `reports` (paths are used as relative URIs, `\` turned into `/`).
+/// What SARIF says about one rule.
+#[derive(Debug, Clone, Copy)]
+pub struct RuleMeta<'a> {
+    pub code: &'a str,
+    pub name: &'a str,
+    pub severity: Severity,
+    pub summary: &'a str,
+    pub doc: &'a str,
+}
+
+/// The whole SARIF log for `reports` with the lint rules' metadata (paths are used as
+/// relative URIs, `\` turned into `/`).
 pub fn render(reports: &[FileReport]) -> String {
-    let rules: Vec<Value> = RULES
+    let rules: Vec<RuleMeta> = RULES
+        .iter()
+        .map(|r| RuleMeta {
+            code: r.code,
+            name: r.name,
+            severity: r.severity,
+            summary: r.summary,
+            doc: r.doc,
+        })
+        .collect();
+    render_with_rules(reports, &rules)
+}
+
+/// The whole SARIF log for `reports` with the metadata of `rules`.
+pub fn render_with_rules(reports: &[FileReport], rule_meta: &[RuleMeta]) -> String {
+    let rules: Vec<Value> = rule_meta
         .iter()
         .map(|r| {
             json!({
@@ -49,7 +76,7 @@ pub fn render(reports: &[FileReport]) -> String {
             }
             results.push(json!({
                 "ruleId": d.code,
-                "ruleIndex": RULES.iter().position(|r| r.code == d.code),
+                "ruleIndex": rule_meta.iter().position(|r| r.code == d.code),
                 "level": level(d.severity),
                 "message": { "text": text },
                 "locations": [{

@@ -1,0 +1,652 @@
+//! `MM_*` calls → the Kawasaki `mm_*` programs, driven by the catalog: every `[[kawasaki]]`
+//! entry names the KUKA subprogram it corresponds to and, per parameter, the KUKA parameter
+//! it takes its value from (`kuka`), the spec key that supplies it (`spec`) or the value to
+//! pass (`default`). KUKA routines without a Kawasaki program either read the `vis_*` globals
+//! (`MM_Get_PlanJps`/`MM_Get_PlanPose`, with the Vision Move index shift from the catalog) or
+//! are untranslatable.
+
+use std::net::Ipv4Addr;
+
+use super::format::{self, num};
+use super::{R, Tx, fail};
+use crate::catalog::{AsKind, Direction, KawasakiCommand, Subprogram, catalog};
+use crate::diag::Span;
+use crate::syntax::TokenKind;
+use crate::syntax::ast::{Expr, ExprKind, Ident};
+use crate::transpile::front::literal;
+use crate::transpile::front::report::FileId;
+use crate::transpile::front::symbols::Ty;
+use crate::transpile::front::sysvar::{self, Sys};
+
+/// KUKA package globals and the Kawasaki globals that hold the same data. `MM_UserData` and
+/// `MM_Plan_Results` hold the data of one selected point on KUKA; Kawasaki keeps them per
+/// point (`vis_custom_data[i,j]`, `vis_plan_result[i,j]`), so the translation fills AS copies
+/// with these names where KUKA selects the point.
+const GLOBALS: [(&str, &str); 4] = [
+    ("MM_Last_Status", "mm_status"),
+    ("Do_Port", "mm_do_list"),
+    ("MM_UserData", "mm_userdata"),
+    ("MM_Plan_Results", "mm_plan_results"),
+];
+
+/// KUKA output parameters without a Kawasaki counterpart, and the value they get: Kawasaki
+/// programs deliver everything in one call, so there is never a further batch.
+const DROPPED_OUTPUTS: [(&str, f64); 1] = [("Last_Data", 1.0)];
+
+/// The AS name of a KUKA package global, if `name` is one.
+pub(super) fn package_global(name: &str) -> Option<&'static str> {
+    GLOBALS
+        .iter()
+        .find(|(k, _)| k.eq_ignore_ascii_case(name))
+        .map(|(_, a)| *a)
+}
+
+/// The vision server address resolved for `MM_Init_Socket`.
+struct Server {
+    ip: Ipv4Addr,
+    port: u16,
+    origin: String,
+}
+
+impl<'p> Tx<'p> {
+    pub(super) fn mm_call(&mut self, name: &Ident, args: &[Option<Expr>], span: Span) -> R<()> {
+        let cat = catalog();
+        let Some(sub) = cat.subprogram(&name.text) else {
+            return fail(
+                name.span,
+                format!(
+                    "`{}` is not a routine of the Mech-Mind interface",
+                    name.text
+                ),
+                "check the name (krlkit check reports the nearest one)",
+            );
+        };
+        if args.len() != sub.params.len()
+            && !(sub.params.is_empty() && args.iter().all(Option::is_none))
+        {
+            return fail(
+                span,
+                format!(
+                    "`{}` takes {} arguments, this call passes {}",
+                    sub.name,
+                    sub.params.len(),
+                    args.len()
+                ),
+                format!("call it as {}", sub.signature()),
+            );
+        }
+        match sub.name.as_str() {
+            "MM_Get_PlanJps" | "MM_Get_PlanPose" => return self.plan_point(sub, args, span),
+            // KUKA splits "get the custom data" and "select one point"; Kawasaki's
+            // mm_get_dydata stores every point and mm_get_pose selects one.
+            "MM_Get_DyPose" => {
+                if let Some(k) = cat.kawasaki_command("mm_get_pose") {
+                    self.mm_command(sub, k, args, span)?;
+                    let serial = self.kuka_arg(sub, args, "Serial", span)?;
+                    return self.copy_point_data(&serial, false, span);
+                }
+            }
+            _ => {}
+        }
+        match sub.kawasaki() {
+            Some(k) => self.mm_command(sub, k, args, span),
+            None => fail(
+                span,
+                format!("`{}` has no Kawasaki counterpart (the Kawasaki interface has no such command)", sub.name),
+                match sub.name.as_str() {
+                    "MM_Get_Status" => "remove the check; mm_init_skt fails when the vision system is not reachable".to_owned(),
+                    "MM_Set_Pos" => "send the pose with the Mech-Vision External Move settings by hand, or restructure the cycle".to_owned(),
+                    _ => "port by hand".to_owned(),
+                },
+            ),
+        }
+    }
+
+    /// `CALL mm_x(…)` with the arguments mapped parameter by parameter.
+    fn mm_command(
+        &mut self,
+        sub: &'static Subprogram,
+        k: &'static KawasakiCommand,
+        args: &[Option<Expr>],
+        span: Span,
+    ) -> R<()> {
+        let mut rendered = Vec::new();
+        let mut used = vec![false; sub.params.len()];
+        let mut prelude: Vec<String> = Vec::new();
+        let mut server: Option<Server> = None;
+        for p in &k.params {
+            // The KUKA parameter this one takes its value from, if the called routine has it
+            // (MM_Get_DyPose borrows mm_get_pose, whose .speed it lacks).
+            let kuka_index = p.kuka.as_ref().and_then(|kp| {
+                sub.params
+                    .iter()
+                    .position(|q| q.ident().eq_ignore_ascii_case(kp))
+            });
+            if let Some(i) = kuka_index {
+                let kp = sub.params[i].ident();
+                used[i] = true;
+                let Some(Some(arg)) = args.get(i) else {
+                    return fail(
+                        span,
+                        format!("argument {kp} is omitted"),
+                        "pass every argument",
+                    );
+                };
+                rendered.push(self.mm_arg(p.kind, p.dir, arg, &mut prelude)?);
+                if p.dir == Direction::In
+                    && p.has_range()
+                    && let Some(v) = literal::number(arg)
+                    && !p.in_range(v)
+                {
+                    self.rep.approximate(
+                        FileId::Src,
+                        arg.span,
+                        format!(
+                            "{} = {} is outside the range Kawasaki's {} documents for {} ({})",
+                            kp,
+                            num(v),
+                            k.name,
+                            p.name,
+                            p.range_text().unwrap_or_default()
+                        ),
+                        "check the value against the Kawasaki interface",
+                    );
+                }
+            } else if let Some(key) = &p.spec {
+                if server.is_none() {
+                    server = Some(self.vision_server(sub, args, span)?);
+                }
+                let s = server.as_ref().map(|s| (s.ip, s.port));
+                let v = s.and_then(|(ip, port)| spec_value(key, ip, port));
+                let Some(v) = v else {
+                    return fail(
+                        span,
+                        format!("catalog: unknown spec key `{key}` for {}", p.name),
+                        "report this catalog error",
+                    );
+                };
+                rendered.push(num(v));
+            } else if let Some(d) = p.default {
+                rendered.push(num(d));
+            } else if p.dir == Direction::Out {
+                // An output KUKA does not have: a scratch local receives it.
+                let tmp = self.scratch(&format!("mm_{}", p.ident()));
+                let ty = as_ty(p.kind);
+                rendered.push(format::param_sigil(&tmp, &ty));
+            } else {
+                return fail(
+                    span,
+                    format!("catalog: no value for {} of {}", p.name, k.name),
+                    "report this catalog error",
+                );
+            }
+        }
+        // KUKA arguments Kawasaki does not take.
+        let mut after = Vec::new();
+        let mut dropped_inputs = Vec::new();
+        for (i, q) in sub.params.iter().enumerate() {
+            if used[i] {
+                continue;
+            }
+            if sub.name == "MM_Init_Socket" && i < 3 {
+                // XML name and EKI flags: they selected the channel whose address is used.
+                continue;
+            }
+            match q.dir {
+                Direction::In => dropped_inputs.push(q.ident().to_owned()),
+                Direction::Out => {
+                    let Some(Some(arg)) = args.get(i) else {
+                        continue;
+                    };
+                    match DROPPED_OUTPUTS
+                        .iter()
+                        .find(|(n, _)| n.eq_ignore_ascii_case(q.ident()))
+                    {
+                        Some((n, v)) => {
+                            let ty = self.ty_of(arg);
+                            let t = self.place_text(arg, &ty)?;
+                            after.push(format!("{t} = {}", num(*v)));
+                            self.rep.approximate(
+                                FileId::Src,
+                                arg.span,
+                                format!("{} has no {n}; {} is set to {} after the call (all data arrive in one call)", k.name, self.prog.src.slice(arg.span), num(*v)),
+                                "a loop that fetches further batches runs once; check that one call returns all points you need",
+                            );
+                        }
+                        None => {
+                            return fail(
+                                arg.span,
+                                format!("{} has no output {}", k.name, q.ident()),
+                                "port by hand",
+                            );
+                        }
+                    }
+                }
+            }
+        }
+        if !dropped_inputs.is_empty() {
+            let (noun, verb) = if dropped_inputs.len() == 1 {
+                ("argument", "is")
+            } else {
+                ("arguments", "are")
+            };
+            self.rep.approximate(
+                FileId::Src,
+                span,
+                format!(
+                    "{} takes no {}; the {noun} {verb} dropped",
+                    k.name,
+                    dropped_inputs.join(", ")
+                ),
+                match k.assumption.as_deref() {
+                    Some(a) => {
+                        format!("check the behaviour on the Kawasaki side ({}: {a})", k.name)
+                    }
+                    None => format!("check the behaviour of {} on the Kawasaki side", k.name),
+                },
+            );
+        }
+        if let Some(s) = &server {
+            self.server_used = Some(format!("{}:{} ({})", s.ip, s.port, s.origin));
+        }
+        for l in prelude {
+            self.line(l);
+        }
+        if rendered.is_empty() {
+            self.line(format!("CALL {}", k.name));
+        } else {
+            self.line(format!("CALL {}({})", k.name, rendered.join(",")));
+        }
+        for l in after {
+            self.line(l);
+        }
+        Ok(())
+    }
+
+    /// One argument for a Kawasaki parameter of `kind`.
+    fn mm_arg(
+        &mut self,
+        kind: AsKind,
+        dir: Direction,
+        arg: &Expr,
+        prelude: &mut Vec<String>,
+    ) -> R<String> {
+        match (kind, dir) {
+            (AsKind::Joint, Direction::In) => {
+                match sysvar::classify(arg) {
+                    Some(Sys::AxisAct) => {
+                        let tmp = self.scratch("mm_here");
+                        prelude.push(format!("HERE {}", format::with_sigil(&tmp, &Ty::Joint)));
+                        return Ok(format::with_sigil(&tmp, &Ty::Joint));
+                    }
+                    Some(_) => {}
+                    None => {
+                        if let ExprKind::Aggregate { .. } = arg.kind {
+                            let v = self.literal_value(arg)?;
+                            let tmp = self.scratch("mm_joints");
+                            let t = format::with_sigil(&tmp, &Ty::Joint);
+                            prelude.push(format!("POINT {t} = {v}"));
+                            return Ok(t);
+                        }
+                        if super::stmt::root_name(arg).is_some() {
+                            return self.place_text(arg, &Ty::Joint);
+                        }
+                    }
+                }
+                fail(
+                    arg.span,
+                    "this joint argument has no AS equivalent",
+                    "pass an E6AXIS variable",
+                )
+            }
+            (_, Direction::Out) => {
+                if super::stmt::root_name(arg).is_none() || sysvar::classify(arg).is_some() {
+                    return fail(
+                        arg.span,
+                        "an output argument must be a variable",
+                        "pass a variable",
+                    );
+                }
+                let ty = as_ty(kind);
+                let t = self.place_text(arg, &ty)?;
+                Ok(if kind == AsKind::Pose {
+                    format::param_sigil(&t, &ty)
+                } else {
+                    t
+                })
+            }
+            (AsKind::Pose, Direction::In) => self.call_arg(arg),
+            _ => self.expr(arg),
+        }
+    }
+
+    /// The KUKA argument named `param`, rendered as a value.
+    fn kuka_arg(
+        &mut self,
+        sub: &Subprogram,
+        args: &[Option<Expr>],
+        param: &str,
+        span: Span,
+    ) -> R<String> {
+        let i = sub
+            .params
+            .iter()
+            .position(|p| p.ident().eq_ignore_ascii_case(param));
+        match i.and_then(|i| args.get(i)).and_then(Option::as_ref) {
+            Some(a) => self.expr(a),
+            None => fail(
+                span,
+                format!("argument {param} is missing"),
+                "pass every argument",
+            ),
+        }
+    }
+
+    /// The vision server for MM_Init_Socket: the spec, else the EKI XML.
+    fn vision_server(&mut self, sub: &Subprogram, args: &[Option<Expr>], span: Span) -> R<Server> {
+        if let Some(s) = &self.opts.server {
+            return Ok(Server {
+                ip: s.ip,
+                port: s.port,
+                origin: s.origin.clone(),
+            });
+        }
+        let xml_name = sub
+            .params
+            .iter()
+            .position(|p| p.is_array())
+            .and_then(|i| args.get(i))
+            .and_then(Option::as_ref)
+            .and_then(|a| match &a.kind {
+                ExprKind::Str(s) => Some(s.clone()),
+                _ => None,
+            });
+        let channel = if self.opts.channels_given {
+            self.opts.channels.first()
+        } else {
+            xml_name.as_ref().and_then(|n| {
+                self.opts
+                    .channels
+                    .iter()
+                    .find(|c| c.name == *n)
+                    .or_else(|| {
+                        self.opts
+                            .channels
+                            .iter()
+                            .find(|c| c.name.eq_ignore_ascii_case(n))
+                    })
+            })
+        };
+        let Some(ch) = channel else {
+            let wanted = xml_name.map_or_else(|| "the EKI XML".to_owned(), |n| format!("{n}.xml"));
+            return fail(
+                span,
+                format!(
+                    "the vision server's IP address and port are unknown: no --spec, no --eki-xml, and no {wanted} beside the program"
+                ),
+                "pass --spec krlkit.toml or --eki-xml FILE (mm_init_skt takes the IP address and port, not the XML name and flags)",
+            );
+        };
+        let ip = ch.ip.as_deref().and_then(|i| i.parse::<Ipv4Addr>().ok());
+        match (ip, ch.port) {
+            (Some(ip), Some(port)) => Ok(Server {
+                ip,
+                port,
+                origin: format!("EKI XML {}", ch.path),
+            }),
+            _ => fail(
+                span,
+                format!(
+                    "the EKI XML {} has no usable IPv4 address and port (CONFIGURATION/EXTERNAL/IP, PORT)",
+                    ch.path
+                ),
+                "fix the XML or pass --spec",
+            ),
+        }
+    }
+
+    /// `MM_Get_PlanJps` / `MM_Get_PlanPose`: Kawasaki has no command; the waypoint is read
+    /// from the `vis_*` globals mm_get_plandata filled.
+    fn plan_point(&mut self, sub: &'static Subprogram, args: &[Option<Expr>], span: Span) -> R<()> {
+        let joints = sub.name == "MM_Get_PlanJps";
+        let serial = self.kuka_arg(sub, args, "Serial", span)?;
+        let arg = |name: &str| {
+            sub.params
+                .iter()
+                .position(|p| p.ident().eq_ignore_ascii_case(name))
+                .and_then(|i| args.get(i))
+                .and_then(Option::as_ref)
+        };
+        let (target_param, ty, parts) = if joints {
+            (
+                "MM_J",
+                Ty::Joint,
+                [
+                    "vis_pos_j1",
+                    "vis_pos_j2",
+                    "vis_pos_j3",
+                    "vis_pos_j4",
+                    "vis_pos_j5",
+                    "vis_pos_j6",
+                ],
+            )
+        } else {
+            (
+                "MM_P",
+                Ty::Pose,
+                [
+                    "vis_pos_x",
+                    "vis_pos_y",
+                    "vis_pos_z",
+                    "vis_pos_o",
+                    "vis_pos_a",
+                    "vis_pos_t",
+                ],
+            )
+        };
+        for g in parts
+            .iter()
+            .chain(&["vis_pos_type", "vis_pos_tool", "vis_pos_spd"])
+        {
+            global(g, span)?;
+        }
+        let Some(target) = arg(target_param) else {
+            return fail(
+                span,
+                format!("argument {target_param} is missing"),
+                "pass every argument",
+            );
+        };
+        let t = self.place_text(target, &ty)?;
+        let values: Vec<String> = parts.iter().map(|g| format!("{g}[{serial}]")).collect();
+        let value = if joints {
+            format!("#PPOINT({})", values.join(","))
+        } else {
+            format!("TRANS({})", values.join(","))
+        };
+        self.line(format!("POINT {t} = {value}"));
+        for (kuka, global_name) in [
+            ("MM_MoveType", "vis_pos_type"),
+            ("MM_ToolNum", "vis_pos_tool"),
+            ("MM_Speed", "vis_pos_spd"),
+        ] {
+            if let Some(a) = arg(kuka) {
+                let ty = self.ty_of(a);
+                let t = self.place_text(a, &ty)?;
+                self.line(format!("{t} = {global_name}[{serial}]"));
+            }
+        }
+        self.copy_point_data(&serial, true, span)
+    }
+
+    /// KUKA fills `MM_UserData` (and, for plan points, `MM_Plan_Results`) with the data of the
+    /// selected point, zeros where the point has none; the translation fills AS copies the
+    /// same way, from the per-point Kawasaki globals, when the program reads them.
+    /// `vision_move`: the data exist only for Vision Move waypoints (plan data).
+    fn copy_point_data(&mut self, serial: &str, vision_move: bool, span: Span) -> R<()> {
+        let user = self.uses_name("MM_UserData");
+        let plan = vision_move && self.uses_name("MM_Plan_Results");
+        if !user && !plan {
+            return Ok(());
+        }
+        let cat = catalog();
+        for g in [
+            "vis_custom_data",
+            "num_customdata",
+            "vis_plan_result",
+            "vis_pos_vismove",
+        ] {
+            global(g, span)?;
+        }
+        let k = self.scratch("mm_k");
+        let user_to = package_global("MM_UserData").unwrap_or("mm_userdata");
+        let plan_to = package_global("MM_Plan_Results").unwrap_or("mm_plan_results");
+        if user {
+            self.zero_loop(&k, user_to, cat.limits.user_data_len);
+        }
+        if plan {
+            self.zero_loop(&k, plan_to, cat.kuka_plan_len());
+        }
+        if vision_move {
+            self.line(format!("IF vis_pos_vismove[{serial}] == 1 THEN"));
+            self.depth += 1;
+        }
+        if user {
+            self.line(format!("FOR {k} = 1 TO num_customdata[{serial}]"));
+            self.line(format!("  {user_to}[{k}] = vis_custom_data[{serial},{k}]"));
+            self.line("END");
+        }
+        if plan {
+            let mut runs: Vec<(u32, u32, i64)> = Vec::new();
+            for kk in 1..=cat.kuka_plan_len() {
+                let Some(w) = cat.kawasaki_plan_index(kk) else {
+                    continue;
+                };
+                let shift = i64::from(w) - i64::from(kk);
+                match runs.last_mut() {
+                    Some(r) if r.2 == shift && r.1 + 1 == kk => r.1 = kk,
+                    _ => runs.push((kk, kk, shift)),
+                }
+            }
+            for (a, b, shift) in runs {
+                let j = match shift {
+                    0 => k.clone(),
+                    s => format!("{k}+{s}"),
+                };
+                self.line(format!("FOR {k} = {a} TO {b}"));
+                self.line(format!("  {plan_to}[{k}] = vis_plan_result[{serial},{j}]"));
+                self.line("END");
+            }
+            self.note(format!(
+                "MM_Plan_Results[k] -> {plan_to}[k], copied from vis_plan_result[i,j] (Kawasaki inserts element 17, so KUKA 17..{} are Kawasaki 18..{})",
+                cat.kuka_plan_len(),
+                cat.kawasaki_plan_len()
+            ));
+        }
+        if vision_move {
+            self.depth -= 1;
+            self.line("END");
+        }
+        if user {
+            self.note(format!(
+                "MM_UserData[k] -> {user_to}[k], copied from vis_custom_data[i,j] where KUKA selects point i"
+            ));
+        }
+        Ok(())
+    }
+
+    fn zero_loop(&mut self, k: &str, array: &str, n: u32) {
+        self.line(format!("FOR {k} = 1 TO {n}"));
+        self.line(format!("  {array}[{k}] = 0"));
+        self.line("END");
+    }
+
+    /// Whether the program's text names `name` (an identifier token, any case).
+    fn uses_name(&self, name: &str) -> bool {
+        let text = &self.prog.src.text;
+        let mut found = false;
+        self.prog.src.parse.root.walk_tokens(&mut |t| {
+            if t.kind == TokenKind::Ident && t.text(text).eq_ignore_ascii_case(name) {
+                found = true;
+            }
+        });
+        found
+    }
+}
+
+/// A catalog Kawasaki global that must exist.
+fn global(name: &str, span: Span) -> R<()> {
+    match catalog().kawasaki_global(name) {
+        Some(_) => Ok(()),
+        None => fail(
+            span,
+            format!("catalog: no Kawasaki global {name}"),
+            "report this catalog error",
+        ),
+    }
+}
+
+fn as_ty(kind: AsKind) -> Ty {
+    match kind {
+        AsKind::Real => Ty::Real,
+        AsKind::Joint => Ty::Joint,
+        AsKind::Pose => Ty::Pose,
+        AsKind::String => Ty::Char,
+    }
+}
+
+/// The value of a catalog `spec = "…"` key: `server_ip[1]`…`server_ip[4]`, `server_port`.
+fn spec_value(key: &str, ip: Ipv4Addr, port: u16) -> Option<f64> {
+    if key == "server_port" {
+        return Some(f64::from(port));
+    }
+    let i: usize = key
+        .strip_prefix("server_ip[")?
+        .strip_suffix(']')?
+        .parse()
+        .ok()?;
+    ip.octets().get(i.checked_sub(1)?).map(|o| f64::from(*o))
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn package_globals_exist_on_both_sides() {
+        let cat = catalog();
+        for (kuka, kaw) in GLOBALS {
+            assert!(cat.global(kuka).is_some(), "KUKA global {kuka}");
+            if !matches!(kuka, "MM_UserData" | "MM_Plan_Results") {
+                assert!(cat.kawasaki_global(kaw).is_some(), "Kawasaki global {kaw}");
+            }
+            assert!(kaw.len() <= super::super::NAME_RULES.max_len);
+        }
+    }
+
+    #[test]
+    fn dropped_outputs_are_kuka_parameters_without_counterpart() {
+        let cat = catalog();
+        for (name, _) in DROPPED_OUTPUTS {
+            let subs: Vec<&Subprogram> = cat
+                .subprograms
+                .iter()
+                .filter(|s| s.param(name).is_some())
+                .collect();
+            assert!(!subs.is_empty());
+            for s in subs {
+                let k = s.kawasaki().expect("has a Kawasaki program");
+                assert!(k.params.iter().all(|p| p.kuka.as_deref() != Some(name)));
+            }
+        }
+    }
+
+    #[test]
+    fn spec_keys() {
+        let ip = Ipv4Addr::new(192, 168, 1, 121);
+        assert_eq!(spec_value("server_ip[4]", ip, 50000), Some(121.0));
+        assert_eq!(spec_value("server_port", ip, 50000), Some(50000.0));
+        assert_eq!(spec_value("server_ip[5]", ip, 1), None);
+        assert_eq!(spec_value("server_ip[0]", ip, 1), None);
+    }
+}
