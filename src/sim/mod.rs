@@ -49,10 +49,12 @@
 //!   framing is implemented (no HEX); 202, 207, 208, 601 and the 2.x commands answer 3001
 //!   because the 1.x catalog does not list them.
 
+pub mod clock;
 pub mod protocol;
 pub mod scenario;
 pub mod server;
 pub mod state;
 
+pub use clock::{Clock, ManualClock, SystemClock};
 pub use scenario::{Dialect, Scenario, ScenarioError};
 pub use server::{Observer, RequestLog, Server};
