@@ -72,6 +72,8 @@ const COMMANDS: [(Cmd, &str); 20] = [
 pub struct Codes {
     commands: HashMap<u32, Cmd>,
     success: HashMap<Cmd, u32>,
+    /// Request fields after the command, for requests without a variable-length part.
+    arity: HashMap<Cmd, usize>,
     pub no_result: u32,
     pub bad_pose_data: u32,
     pub project_not_found: u32,
@@ -114,11 +116,15 @@ pub fn codes() -> &'static Codes {
         };
         let mut commands = HashMap::new();
         let mut success = HashMap::new();
+        let mut arity = HashMap::new();
         for (cmd, name) in COMMANDS {
             let c = cat
                 .command_named(name)
                 .unwrap_or_else(|| panic!("catalog has no command named {name}"));
             commands.insert(c.code, cmd);
+            if !c.request.iter().any(|f| f.ends_with("...")) {
+                arity.insert(cmd, c.request.len());
+            }
             // A reply without a status field (601) has no success code either.
             if c.reply.first().is_some_and(|f| f == "status") {
                 success.insert(
@@ -131,6 +137,7 @@ pub fn codes() -> &'static Codes {
         Codes {
             commands,
             success,
+            arity,
             no_result: st("NO_RESULT"),
             bad_pose_data: st("BAD_POSE_DATA"),
             project_not_found: st("PROJECT_NOT_FOUND"),
@@ -163,6 +170,11 @@ pub fn codes() -> &'static Codes {
 impl Codes {
     pub fn command(&self, code: u32) -> Option<Cmd> {
         self.commands.get(&code).copied()
+    }
+
+    /// How many fields follow the command in its request (`None`: it has a variable part).
+    pub fn arity(&self, cmd: Cmd) -> Option<usize> {
+        self.arity.get(&cmd).copied()
     }
 
     /// The success code of a command whose reply has a status field (`None` for 601).
@@ -267,6 +279,11 @@ impl State {
     fn dispatch(&mut self, cmd: Cmd, req: &Request) -> Result<String, u32> {
         let c = codes();
         let a = &req.args;
+        // The catalog's request layout decides the field count; the destructuring below
+        // repeats it for the compiler (the tests check the two agree).
+        if c.arity(cmd).is_some_and(|n| n != a.len()) {
+            return Err(c.invalid_format);
+        }
         // 0 only for 601, whose reply has no status field and never uses it.
         let ok = c.success(cmd).unwrap_or(0);
         let echo = req.command;
@@ -784,5 +801,33 @@ mod tests {
         }
         assert_eq!(c.invalid_format, 3002);
         assert_eq!(c.project_not_found, 1011);
+    }
+
+    #[test]
+    fn every_fixed_request_layout_of_the_catalog_is_the_one_served() {
+        let mut state = State::new(Scenario::default_embedded());
+        let bad = codes().invalid_format.to_string();
+        let mut fixed = 0;
+        for (cmd, name) in COMMANDS {
+            let Some(n) = codes().arity(cmd) else {
+                continue;
+            };
+            fixed += 1;
+            let code = catalog().command_named(name).map_or(0, |c| c.code);
+            let ask = |state: &mut State, len: usize| {
+                state.handle(&Request {
+                    command: code,
+                    args: vec![1.0; len],
+                })
+            };
+            let reply = ask(&mut state, n);
+            assert_ne!(
+                reply.split(',').nth(1),
+                Some(bad.as_str()),
+                "{name}: {reply}"
+            );
+            assert_eq!(ask(&mut state, n + 1), format!("{code},{bad}"), "{name}");
+        }
+        assert_eq!(fixed, COMMANDS.len() - 2, "all but 101 and 201");
     }
 }
