@@ -5,7 +5,7 @@ mod sim_support;
 
 use krlkit::sim::Scenario;
 use krlkit::sim::protocol::{DecodeError, decode};
-use krlkit::sim::state::State;
+use krlkit::sim::state::{NOTIFY_CAPACITY, State};
 use proptest::prelude::*;
 use sim_support::{Client, Read1, fixture, start};
 
@@ -16,6 +16,11 @@ fn message() -> impl Strategy<Value = String> {
         Just("205".to_string()),
         Just("210".to_string()),
         Just("701".to_string()),
+        Just("106".to_string()),
+        Just("111".to_string()),
+        Just("207".to_string()),
+        Just("208".to_string()),
+        Just("601".to_string()),
         (-5i64..1000).prop_map(|v| v.to_string()),
         any::<f64>().prop_map(|v| v.to_string()),
         "[ 0-9eE.+-]{0,6}",
@@ -40,6 +45,7 @@ proptest! {
                 Err(DecodeError::BadField(c)) => format!("{c},3002"),
             };
             prop_assert!(reply.is_ascii() && !reply.contains(['\r', '\n']));
+            prop_assert!(state.notices.len() <= NOTIFY_CAPACITY);
         }
     }
 
@@ -74,7 +80,7 @@ proptest! {
 proptest! {
     #![proptest_config(ProptestConfig::with_cases(200))]
     #[test]
-    fn scenario_loading_never_panics(text in "(\\[\\[?(project|viz|fault|server|calibration)(\\.point|\\.waypoint)?\\]\\]?\n|[a-z_]{1,12} = (-?[0-9]{1,4}|\\[[0-9, .]{0,20}\\]|\"[a-z0-9]{0,5}\"|true)\n){0,12}") {
+    fn scenario_loading_never_panics(text in "(\\[\\[?(project|viz|fault|server|calibration)(\\.point|\\.waypoint|\\.path|\\.notify|\\.property)?\\]\\]?\n|[a-z_]{1,12} = (-?[0-9]{1,4}|\\[[0-9, .]{0,20}\\]|\"[a-z0-9]{0,5}\"|true|inf|nan)\n){0,12}") {
         if let Err(e) = Scenario::from_toml_str(&text, "p.toml") {
             prop_assert!(e.line >= 1 && e.col >= 1);
             prop_assert!(!e.message.is_empty() && !e.help.is_empty());

@@ -13,7 +13,8 @@
 //!
 //! Modules: [`scenario`] (the TOML format, checked with located errors; see `SCENARIO.md`),
 //! [`protocol`] (lenient decoding, reply formatting), [`state`] (the per-command state
-//! machine), [`server`] (TCP, framing, faults, request log).
+//! machine), [`server`] (TCP, framing, faults, request log), [`clock`] (the time Notify
+//! messages expire on: wall time, or a manual clock in tests).
 //!
 //! Wire handling: a message ends at CR (LF is accepted as a terminator too, so `\r\n` yields
 //! one message plus an ignored empty one); fields are split on `,` and trimmed of spaces and
@@ -40,19 +41,39 @@
 //!   3/4 on Vision Move waypoints; custom values (count, then values) only on Vision Move
 //!   waypoints, other waypoints end with count 0.
 //! - 206 takes no argument (1.x) and answers 2011 before 201 or without a DO list.
+//! - 106 takes the project ID only (no 2.x gripper sections); it answers 1020 before that
+//!   project's 101 and 1008 when the project has no DO list.
+//! - 111 (project, pose kind) returns one waypoint of the project's path per call and shares
+//!   105's cursor; its Vision Move data always has the Kawasaki 1.8.3 layout (21 values) and
+//!   comes on Vision Move waypoints only, whatever the pose kind; no custom values. 210 uses
+//!   the layout of `[server] vision_move_layout` (KUKA 1.x, 20 values, by default). Data
+//!   given in the other layout is converted field by field (the catalog's
+//!   `[[vision_move_field]]`); fields the given layout lacks are 0.
+//! - 207/208 look up `read` and `write` lines of the scenario's `property_config`
+//!   separately (3008 when the Config ID has no line of that kind, 2014 without `[viz]`); a
+//!   208 applies all write lines of its ID, and a later 207 of the same step parameter reads
+//!   the written value. They work with or without a started Mech-Viz project.
+//! - 601: 101 and 201 put the messages of the project's Notify steps into one buffer (at
+//!   start + `after_ms`); each 601 returns and removes the oldest message that is due; a
+//!   message not read within [`state::NOTIFY_LIFETIME`] (the reference's 3 s buffer time) of
+//!   becoming due is dropped, on the server's clock. With nothing waiting the reply is `601,0`, as the reply has no
+//!   status field [U]; a malformed 601 still answers `601,3002`. At most
+//!   [`state::NOTIFY_CAPACITY`] messages are kept (the earliest go first).
 //! - 203/204 need a `[viz]` section (2014 otherwise) but not a started project.
 //! - 701: state 0 restarts the script; states 1 and 2 (reached / failed to reach) both advance;
 //!   after the last point the reply has done = 1 and zeros; 1 or 2 before any 0 answers 7001.
 //! - Faults: `status`, `garbage` and `drop` answer without touching the state; `wrong_echo`
 //!   and a bare `delay_ms` answer normally (the state advances).
 //! - Only dialect v1 is implemented; a v2 scenario is rejected when loaded. Only the ASCII
-//!   framing is implemented (no HEX); 202, 207, 208, 601 and the 2.x commands answer 3001
-//!   because the 1.x catalog does not list them.
+//!   framing is implemented (no HEX); 202 and the 2.x-only commands (100, 104, 200, 503-507)
+//!   answer 3001 because the catalog does not list them.
 
+pub mod clock;
 pub mod protocol;
 pub mod scenario;
 pub mod server;
 pub mod state;
 
+pub use clock::{Clock, ManualClock, SystemClock};
 pub use scenario::{Dialect, Scenario, ScenarioError};
 pub use server::{Observer, RequestLog, Server};

@@ -1,5 +1,6 @@
-//! The scenario: what the fake vision server knows (projects, points, paths, DO list,
-//! calibration script) and which faults it injects. Loaded from TOML (format in `SCENARIO.md`).
+//! The scenario: what the fake vision server knows (projects, points, paths, DO lists, Notify
+//! messages, step parameters, calibration script) and which faults it injects. Loaded from
+//! TOML (format in `SCENARIO.md`).
 //!
 //! Every table the user writes is checked after deserialization; errors carry the location of
 //! the offending table or value as `file:line:col` plus a hint on what to change.
@@ -13,6 +14,8 @@ use crate::catalog::catalog;
 use crate::diag::LineIndex;
 
 const DEFAULT_SCENARIO: &str = include_str!("default_scenario.toml");
+/// Longest fault delay and Notify offset (10 minutes).
+const MAX_DELAY_MS: u64 = 600_000;
 
 /// A checked scenario.
 #[derive(Debug, Clone)]
@@ -49,6 +52,20 @@ pub struct ServerSettings {
     /// Longest message accepted before its CR; longer input gets `0,3002` and a close.
     #[serde(default = "default_max_message_bytes")]
     pub max_message_bytes: usize,
+    /// The Vision Move data layout of 210 formats 3/4 (111 always sends the Kawasaki one).
+    #[serde(default)]
+    pub vision_move_layout: PlanLayout,
+}
+
+/// A layout of the Vision Move data, as the catalog's `[[vision_move_field]]` list defines it.
+#[derive(Debug, Clone, Copy, Default, PartialEq, Eq, Deserialize)]
+#[serde(rename_all = "lowercase")]
+pub enum PlanLayout {
+    /// The KUKA 1.x layout (seed 000, `MM_Plan_Results`): the fields marked `kuka = true`.
+    #[default]
+    Kuka,
+    /// The Kawasaki 1.8.3 layout (seed 001, `vis_plan_result[i,j]`): every field.
+    Kawasaki,
 }
 
 fn default_batch() -> u32 {
@@ -71,6 +88,7 @@ impl Default for ServerSettings {
             decimals: default_decimals(),
             idle_timeout_ms: default_idle_timeout_ms(),
             max_message_bytes: default_max_message_bytes(),
+            vision_move_layout: PlanLayout::default(),
         }
     }
 }
@@ -88,9 +106,45 @@ pub struct Project {
     pub box_size: bool,
     #[serde(default, rename = "point")]
     pub points: Vec<VisionPoint>,
-    /// The Path Planning result returned by 105.
+    /// The Path Planning result returned by 105 and 111.
     #[serde(default, rename = "path")]
     pub path: Vec<Waypoint>,
+    /// DO numbers for 106 (padded with -1 to the catalog's list length); absent → 1008.
+    #[serde(default)]
+    pub do_list: Option<Vec<i64>>,
+    /// Notify steps: their messages enter the 601 buffer when 101 triggers the project.
+    #[serde(default)]
+    pub notify: Vec<Notify>,
+}
+
+/// A Notify step: its message enters the 601 buffer `after_ms` after the project starts.
+#[derive(Debug, Clone, PartialEq, Eq, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct Notify {
+    pub message: i64,
+    #[serde(default)]
+    pub after_ms: u64,
+}
+
+/// One line of the server's `property_config` file (207 reads, 208 writes).
+#[derive(Debug, Clone, PartialEq, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct Property {
+    /// The Config ID the robot sends.
+    pub config: i64,
+    pub access: Access,
+    /// The Mech-Viz step and parameter name: lines naming the same pair address one value.
+    pub step: i64,
+    pub key: String,
+    /// Read lines: the parameter's value until a 208 changes it. Write lines: the value set.
+    pub value: f64,
+}
+
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Deserialize)]
+#[serde(rename_all = "lowercase")]
+pub enum Access {
+    Read,
+    Write,
 }
 
 #[derive(Debug, Clone, Deserialize)]
@@ -151,6 +205,33 @@ impl Waypoint {
             self.pose.as_deref()
         }
     }
+
+    /// The Vision Move data in `layout`. The scenario gives either layout (or none: zeros);
+    /// fields the given layout lacks are 0.
+    pub fn plan_results(&self, layout: PlanLayout) -> Vec<f64> {
+        let cat = catalog();
+        let full_len = cat.kawasaki_plan_len() as usize;
+        let kuka_len = cat.kuka_plan_len();
+        // The KUKA element k is the Kawasaki element kawasaki_plan_index(k) (both 1-based).
+        let at = |k: u32| cat.kawasaki_plan_index(k).map(|i| i as usize - 1);
+        let full = if self.plan_results.len() == full_len {
+            self.plan_results.clone()
+        } else {
+            let mut full = vec![0.0; full_len];
+            for (k, v) in (1..).zip(&self.plan_results) {
+                if let Some(slot) = at(k).and_then(|i| full.get_mut(i)) {
+                    *slot = *v;
+                }
+            }
+            full
+        };
+        match layout {
+            PlanLayout::Kawasaki => full,
+            PlanLayout::Kuka => (1..=kuka_len)
+                .map(|k| at(k).and_then(|i| full.get(i)).copied().unwrap_or(0.0))
+                .collect(),
+        }
+    }
 }
 
 /// The Mech-Viz project.
@@ -166,6 +247,12 @@ pub struct Viz {
     /// DO numbers for 206 (padded with -1 to the catalog's list length); absent → 2011.
     #[serde(default)]
     pub do_list: Option<Vec<i64>>,
+    /// Notify steps: their messages enter the 601 buffer when 201 starts the project.
+    #[serde(default)]
+    pub notify: Vec<Notify>,
+    /// The `property_config` lines (207, 208).
+    #[serde(default, rename = "property")]
+    pub properties: Vec<Property>,
 }
 
 /// A "Branch by Msg" step: 203 accepts wire values 1..=exit_ports.
@@ -275,6 +362,10 @@ struct RawProject {
     points: Vec<Spanned<VisionPoint>>,
     #[serde(default, rename = "path")]
     path: Vec<Spanned<Waypoint>>,
+    #[serde(default)]
+    do_list: Option<Spanned<Vec<i64>>>,
+    #[serde(default)]
+    notify: Vec<Spanned<Notify>>,
 }
 
 #[derive(Deserialize)]
@@ -288,6 +379,10 @@ struct RawViz {
     index_steps: Vec<Spanned<IndexStep>>,
     #[serde(default)]
     do_list: Option<Spanned<Vec<i64>>>,
+    #[serde(default)]
+    notify: Vec<Spanned<Notify>>,
+    #[serde(default, rename = "property")]
+    properties: Vec<Spanned<Property>>,
 }
 
 struct Checker<'a> {
@@ -364,6 +459,106 @@ impl Checker<'_> {
         Ok(())
     }
 
+    fn finite<T>(&self, at: &Spanned<T>, what: &str, values: &[f64]) -> Result<(), ScenarioError> {
+        if values.iter().all(|v| v.is_finite()) {
+            return Ok(());
+        }
+        Err(self.error_key(
+            at.span(),
+            what,
+            format!("`{what}` contains inf or nan"),
+            "the protocol sends plain decimal numbers: write finite values",
+        ))
+    }
+
+    fn do_list(&self, list: &Spanned<Vec<i64>>) -> Result<(), ScenarioError> {
+        let max = catalog().limits.do_list_len as usize;
+        if list.get_ref().len() > max {
+            return Err(self.error(
+                list.span(),
+                format!("`do_list` has {} entries", list.get_ref().len()),
+                format!("give at most {max} DO numbers; the rest is filled with -1"),
+            ));
+        }
+        Ok(())
+    }
+
+    fn notify(&self, steps: &[Spanned<Notify>]) -> Result<(), ScenarioError> {
+        for n in steps {
+            if n.get_ref().after_ms > MAX_DELAY_MS {
+                return Err(self.error_key(
+                    n.span(),
+                    "after_ms",
+                    format!(
+                        "`after_ms = {}` is longer than 10 minutes",
+                        n.get_ref().after_ms
+                    ),
+                    format!("use at most {MAX_DELAY_MS} ms after the project starts"),
+                ));
+            }
+        }
+        Ok(())
+    }
+
+    /// The `property_config` rules: Config IDs in the range the robot can send, read IDs
+    /// unique, one starting value per step parameter.
+    fn properties(&self, lines: &[Spanned<Property>]) -> Result<(), ScenarioError> {
+        let range = catalog()
+            .kawasaki_command("mm_get_property")
+            .and_then(|k| k.param(".group_num"));
+        for (n, line) in lines.iter().enumerate() {
+            let p = line.get_ref();
+            if range.is_some_and(|r| !r.in_range(p.config as f64)) {
+                return Err(self.error_key(
+                    line.span(),
+                    "config",
+                    format!("Config ID {} is out of range", p.config),
+                    format!(
+                        "the robot sends Config IDs {}",
+                        range.and_then(|r| r.range_text()).unwrap_or_default()
+                    ),
+                ));
+            }
+            if p.key.trim().is_empty() {
+                return Err(self.error_key(
+                    line.span(),
+                    "key",
+                    "a property line has an empty `key`",
+                    "name the step parameter, e.g. `key = \"velocity\"`",
+                ));
+            }
+            self.finite(line, "value", &[p.value])?;
+            if p.access != Access::Read {
+                continue;
+            }
+            for earlier in lines[..n].iter().map(Spanned::get_ref) {
+                if earlier.access != Access::Read {
+                    continue;
+                }
+                if earlier.config == p.config {
+                    return Err(self.error_key(
+                        line.span(),
+                        "config",
+                        format!("read Config ID {} is defined twice", p.config),
+                        "Config IDs of `read` lines are unique (several `write` lines may share one)",
+                    ));
+                }
+                if earlier.step == p.step && earlier.key == p.key && earlier.value != p.value {
+                    return Err(self.error_key(
+                        line.span(),
+                        "value",
+                        format!(
+                            "step {} `{}` starts at {} in one read line and at {} in another",
+                            p.step, p.key, earlier.value, p.value
+                        ),
+                        "a step parameter has one value: give its read lines the same `value`",
+                    ));
+                }
+            }
+        }
+        Ok(())
+    }
+
     fn waypoint(&self, w: &Spanned<Waypoint>, table: &str) -> Result<(), ScenarioError> {
         let wp = w.get_ref();
         if wp.joints.is_none() && wp.pose.is_none() {
@@ -387,15 +582,21 @@ impl Checker<'_> {
                 "use 1 (joint move) or 2 (linear move)",
             ));
         }
-        let plan_len = catalog().limits.plan_results_len as usize;
-        if !wp.plan_results.is_empty() && wp.plan_results.len() != plan_len {
+        let (kuka, kawasaki) = (catalog().kuka_plan_len(), catalog().kawasaki_plan_len());
+        let given = wp.plan_results.len();
+        if given != 0 && given != kuka as usize && given != kawasaki as usize {
             return Err(self.error_key(
                 w.span(),
                 "plan_results",
-                format!("`plan_results` has {} values", wp.plan_results.len()),
-                format!("give exactly {plan_len} Vision Move values, or leave it out for zeros"),
+                format!("`plan_results` has {given} values"),
+                format!(
+                    "give exactly {kuka} (KUKA layout) or {kawasaki} (Kawasaki layout) Vision Move values, or leave it out for zeros"
+                ),
             ));
         }
+        self.finite(w, "plan_results", &wp.plan_results)?;
+        self.finite(w, "custom", &wp.custom)?;
+        self.finite(w, "speed", &[wp.speed])?;
         let user_len = catalog().limits.user_data_len as usize;
         if wp.custom.len() > user_len {
             return Err(self.error_key(
@@ -552,6 +753,8 @@ impl Scenario {
             }
             for pt in &rp.points {
                 ck.six(pt, "pose", &pt.get_ref().pose)?;
+                ck.finite(pt, "speed", &[pt.get_ref().speed])?;
+                ck.finite(pt, "custom", &pt.get_ref().custom)?;
                 if pt.get_ref().custom.len() > user_len {
                     return Err(ck.error_key(
                         pt.span(),
@@ -564,6 +767,10 @@ impl Scenario {
             for w in &rp.path {
                 ck.waypoint(w, "project.path")?;
             }
+            if let Some(d) = &rp.do_list {
+                ck.do_list(d)?;
+            }
+            ck.notify(&rp.notify)?;
             let rp = p.into_inner();
             projects.push(Project {
                 id,
@@ -571,6 +778,8 @@ impl Scenario {
                 box_size: rp.box_size,
                 points: rp.points.into_iter().map(Spanned::into_inner).collect(),
                 path: rp.path.into_iter().map(Spanned::into_inner).collect(),
+                do_list: rp.do_list.map(Spanned::into_inner),
+                notify: rp.notify.into_iter().map(Spanned::into_inner).collect(),
             });
         }
 
@@ -601,15 +810,10 @@ impl Scenario {
                     }
                 }
                 if let Some(d) = &rv.do_list {
-                    let max = cat.limits.do_list_len as usize;
-                    if d.get_ref().len() > max {
-                        return Err(ck.error(
-                            d.span(),
-                            format!("`do_list` has {} entries", d.get_ref().len()),
-                            format!("give at most {max} DO numbers; the rest is filled with -1"),
-                        ));
-                    }
+                    ck.do_list(d)?;
                 }
+                ck.notify(&rv.notify)?;
+                ck.properties(&rv.properties)?;
                 Some(Viz {
                     path: rv.path.into_iter().map(Spanned::into_inner).collect(),
                     branches: rv.branches.into_iter().map(Spanned::into_inner).collect(),
@@ -619,6 +823,8 @@ impl Scenario {
                         .map(Spanned::into_inner)
                         .collect(),
                     do_list: rv.do_list.map(Spanned::into_inner),
+                    notify: rv.notify.into_iter().map(Spanned::into_inner).collect(),
+                    properties: rv.properties.into_iter().map(Spanned::into_inner).collect(),
                 })
             }
         };
@@ -662,12 +868,12 @@ impl Scenario {
                     "occurrences count from 1; leave it out to match every request",
                 ));
             }
-            if fault.delay_ms > 600_000 {
+            if fault.delay_ms > MAX_DELAY_MS {
                 return Err(ck.error_key(
                     f.span(),
                     "delay_ms",
                     format!("`delay_ms = {}` is longer than 10 minutes", fault.delay_ms),
-                    "use a delay of at most 600000 ms",
+                    format!("use a delay of at most {MAX_DELAY_MS} ms"),
                 ));
             }
             if fault

@@ -12,6 +12,7 @@ use std::time::{Duration, Instant, SystemTime};
 
 use crate::catalog::catalog;
 
+use super::clock::{Clock, SystemClock};
 use super::protocol::{self, DecodeError, Request};
 use super::scenario::{Fault, Scenario};
 use super::state::{State, codes};
@@ -109,6 +110,25 @@ impl Server {
         addr: impl ToSocketAddrs,
         observer: Observer,
     ) -> io::Result<Server> {
+        Server::spawn(scenario, addr, observer, Arc::new(SystemClock::new()))
+    }
+
+    /// Like [`Server::start`], with Notify messages expiring on `clock` (a
+    /// [`ManualClock`](super::ManualClock) in tests) instead of wall time.
+    pub fn start_with_clock(
+        scenario: Scenario,
+        addr: impl ToSocketAddrs,
+        clock: Arc<dyn Clock>,
+    ) -> io::Result<Server> {
+        Server::spawn(scenario, addr, Box::new(|_| {}), clock)
+    }
+
+    fn spawn(
+        scenario: Scenario,
+        addr: impl ToSocketAddrs,
+        observer: Observer,
+        clock: Arc<dyn Clock>,
+    ) -> io::Result<Server> {
         // Blocking accept: a connection per command must not wait for a polling tick. `stop`
         // wakes the thread with a connection of its own.
         let listener = TcpListener::bind(addr)?;
@@ -117,7 +137,7 @@ impl Server {
             stop: AtomicBool::new(false),
             seq: AtomicU64::new(0),
             log: Mutex::new(VecDeque::new()),
-            state: Mutex::new(State::new(scenario)),
+            state: Mutex::new(State::with_clock(scenario, clock)),
         });
         let worker = Worker {
             shared: Arc::clone(&shared),

@@ -3,13 +3,21 @@
 //! Command numbers, success codes and error codes come from the catalog by name; this module
 //! only decides which one applies.
 
-use std::collections::HashMap;
-use std::sync::OnceLock;
+use std::collections::{HashMap, VecDeque};
+use std::sync::{Arc, OnceLock};
+use std::time::Duration;
 
 use crate::catalog::catalog;
 
+use super::clock::{Clock, SystemClock};
 use super::protocol::{Reply, Request, as_int};
-use super::scenario::{Scenario, Waypoint};
+use super::scenario::{Access, Notify, PlanLayout, Scenario, Waypoint};
+
+/// How long a Notify message stays in the server's buffer (protocol reference 1.4, [S]).
+pub const NOTIFY_LIFETIME: Duration = Duration::from_secs(3);
+/// Notify messages kept at most; a client re-triggering faster than they expire drops the
+/// oldest instead of growing the buffer.
+pub const NOTIFY_CAPACITY: usize = 256;
 
 /// The commands this server answers, by catalog name.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
@@ -18,33 +26,43 @@ pub enum Cmd {
     GetVisionResult,
     SwitchRecipe,
     GetVisionPath,
+    GetVisionDoList,
     GetCustomData,
+    GetVisionPlanWaypoint,
     StartViz,
     SetBranch,
     SetIndex,
     GetVizPath,
     GetDoList,
+    GetVizProperty,
+    SetVizProperty,
     GetPlanWaypoint,
     SetBoxSize,
     SetExternalMove,
+    GetNotify,
     Calibrate,
     GetStatus,
 }
 
-const COMMANDS: [(Cmd, &str); 15] = [
+const COMMANDS: [(Cmd, &str); 20] = [
     (Cmd::StartVision, "start_vision"),
     (Cmd::GetVisionResult, "get_vision_result"),
     (Cmd::SwitchRecipe, "switch_recipe"),
     (Cmd::GetVisionPath, "get_vision_path"),
+    (Cmd::GetVisionDoList, "get_vision_do_list"),
     (Cmd::GetCustomData, "get_custom_data"),
+    (Cmd::GetVisionPlanWaypoint, "get_vision_plan_waypoint"),
     (Cmd::StartViz, "start_viz"),
     (Cmd::SetBranch, "set_branch"),
     (Cmd::SetIndex, "set_index"),
     (Cmd::GetVizPath, "get_viz_path"),
     (Cmd::GetDoList, "get_do_list"),
+    (Cmd::GetVizProperty, "get_viz_property"),
+    (Cmd::SetVizProperty, "set_viz_property"),
     (Cmd::GetPlanWaypoint, "get_plan_waypoint"),
     (Cmd::SetBoxSize, "set_box_size"),
     (Cmd::SetExternalMove, "set_external_move"),
+    (Cmd::GetNotify, "get_notify"),
     (Cmd::Calibrate, "calibrate"),
     (Cmd::GetStatus, "get_status"),
 ];
@@ -54,6 +72,8 @@ const COMMANDS: [(Cmd, &str); 15] = [
 pub struct Codes {
     commands: HashMap<u32, Cmd>,
     success: HashMap<Cmd, u32>,
+    /// Request fields after the command, for requests without a variable-length part.
+    arity: HashMap<Cmd, usize>,
     pub no_result: u32,
     pub bad_pose_data: u32,
     pub project_not_found: u32,
@@ -77,6 +97,8 @@ pub struct Codes {
     pub invalid_format: u32,
     pub calib_param_error: u32,
     pub calib_no_pose: u32,
+    pub vision_no_do_list: u32,
+    pub no_config_id: u32,
 }
 
 /// The resolved codes.
@@ -94,20 +116,28 @@ pub fn codes() -> &'static Codes {
         };
         let mut commands = HashMap::new();
         let mut success = HashMap::new();
+        let mut arity = HashMap::new();
         for (cmd, name) in COMMANDS {
             let c = cat
                 .command_named(name)
                 .unwrap_or_else(|| panic!("catalog has no command named {name}"));
             commands.insert(c.code, cmd);
-            success.insert(
-                cmd,
-                c.success
-                    .unwrap_or_else(|| panic!("served command {name} has no success code")),
-            );
+            if !c.request.iter().any(|f| f.ends_with("...")) {
+                arity.insert(cmd, c.request.len());
+            }
+            // A reply without a status field (601) has no success code either.
+            if c.reply.first().is_some_and(|f| f == "status") {
+                success.insert(
+                    cmd,
+                    c.success
+                        .unwrap_or_else(|| panic!("served command {name} has no success code")),
+                );
+            }
         }
         Codes {
             commands,
             success,
+            arity,
             no_result: st("NO_RESULT"),
             bad_pose_data: st("BAD_POSE_DATA"),
             project_not_found: st("PROJECT_NOT_FOUND"),
@@ -131,6 +161,8 @@ pub fn codes() -> &'static Codes {
             invalid_format: st("INVALID_FORMAT"),
             calib_param_error: st("CALIB_PARAM_ERROR"),
             calib_no_pose: st("CALIB_NO_POSE"),
+            vision_no_do_list: st("VISION_NO_DO_LIST"),
+            no_config_id: st("NO_CONFIG_ID"),
         }
     })
 }
@@ -140,8 +172,14 @@ impl Codes {
         self.commands.get(&code).copied()
     }
 
-    pub fn success(&self, cmd: Cmd) -> u32 {
-        self.success[&cmd]
+    /// How many fields follow the command in its request (`None`: it has a variable part).
+    pub fn arity(&self, cmd: Cmd) -> Option<usize> {
+        self.arity.get(&cmd).copied()
+    }
+
+    /// The success code of a command whose reply has a status field (`None` for 601).
+    pub fn success(&self, cmd: Cmd) -> Option<u32> {
+        self.success.get(&cmd).copied()
     }
 }
 
@@ -153,7 +191,7 @@ pub struct ProjectState {
     pub selected: usize,
     /// Next point for 102/110.
     pub cursor: usize,
-    /// Next waypoint for 105.
+    /// Next waypoint for 105 and 111 (shared: a program uses one or the other per trigger).
     pub path_cursor: usize,
     pub robot_pose: Vec<f64>,
     pub recipe: Option<i64>,
@@ -172,25 +210,45 @@ pub struct VizState {
     /// Index step → current index (0-based).
     pub indices: HashMap<i64, i64>,
     pub external_tcp: Option<Vec<f64>>,
+    /// Step parameters set by 208: (step, key) → value; unset ones read as their read line says.
+    pub params: HashMap<(i64, String), f64>,
+}
+
+/// A Notify message in the 601 buffer.
+#[derive(Debug, Clone, PartialEq, Eq)]
+pub struct Notice {
+    pub message: i64,
+    /// When it entered the buffer, on the server's clock; it is gone `NOTIFY_LIFETIME` later.
+    pub at: Duration,
 }
 
 /// The whole server state, persistent across connections.
 #[derive(Debug, Clone)]
 pub struct State {
     scenario: Scenario,
+    clock: Arc<dyn Clock>,
     pub projects: HashMap<i64, ProjectState>,
     pub viz: VizState,
     /// Next calibration point (None until a 701 with state 0).
     pub calib_cursor: Option<usize>,
+    /// The Notify buffer in order of `at` (pending ones included), at most `NOTIFY_CAPACITY`.
+    pub notices: VecDeque<Notice>,
 }
 
 impl State {
     pub fn new(scenario: Scenario) -> State {
+        State::with_clock(scenario, Arc::new(SystemClock::new()))
+    }
+
+    /// A state whose Notify messages expire on `clock`.
+    pub fn with_clock(scenario: Scenario, clock: Arc<dyn Clock>) -> State {
         State {
             scenario,
+            clock,
             projects: HashMap::new(),
             viz: VizState::default(),
             calib_cursor: None,
+            notices: VecDeque::new(),
         }
     }
 
@@ -221,7 +279,13 @@ impl State {
     fn dispatch(&mut self, cmd: Cmd, req: &Request) -> Result<String, u32> {
         let c = codes();
         let a = &req.args;
-        let ok = c.success(cmd);
+        // The catalog's request layout decides the field count; the destructuring below
+        // repeats it for the compiler (the tests check the two agree).
+        if c.arity(cmd).is_some_and(|n| n != a.len()) {
+            return Err(c.invalid_format);
+        }
+        // 0 only for 601, whose reply has no status field and never uses it.
+        let ok = c.success(cmd).unwrap_or(0);
         let echo = req.command;
         match cmd {
             Cmd::StartVision => {
@@ -260,6 +324,12 @@ impl State {
                 st.cursor = 0;
                 st.path_cursor = 0;
                 st.robot_pose = payload.to_vec();
+                let steps = self
+                    .scenario
+                    .project(project)
+                    .map(|p| p.notify.clone())
+                    .unwrap_or_default();
+                self.notify(&steps);
                 Ok(self.status(echo, ok))
             }
             Cmd::GetVisionResult => {
@@ -366,6 +436,13 @@ impl State {
                 self.viz.started = true;
                 self.viz.cursor = 0;
                 self.viz.start_pose = a[1..].to_vec();
+                let steps = self
+                    .scenario
+                    .viz
+                    .as_ref()
+                    .map(|v| v.notify.clone())
+                    .unwrap_or_default();
+                self.notify(&steps);
                 Ok(self.status(echo, ok))
             }
             Cmd::SetBranch => {
@@ -428,18 +505,101 @@ impl State {
                     .filter(|_| self.viz.started)
                     .and_then(|v| v.do_list.as_ref())
                     .ok_or(c.no_do_list)?;
-                let len = catalog().limits.do_list_len as usize;
-                let padded: Vec<i64> = list
-                    .iter()
-                    .copied()
-                    .chain(std::iter::repeat(-1))
-                    .take(len)
-                    .collect();
                 Ok(self
                     .reply(echo)
                     .int(i64::from(ok))
-                    .ints(&padded)
+                    .ints(&padded_do_list(list))
                     .into_text())
+            }
+            Cmd::GetVisionDoList => {
+                let [project] = fields::<1>(a)?;
+                let project = int(project)?;
+                self.triggered(project)?;
+                let list = self
+                    .scenario
+                    .project(project)
+                    .and_then(|p| p.do_list.as_ref())
+                    .ok_or(c.vision_no_do_list)?;
+                Ok(self
+                    .reply(echo)
+                    .int(i64::from(ok))
+                    .ints(&padded_do_list(list))
+                    .into_text())
+            }
+            Cmd::GetVisionPlanWaypoint => {
+                let [project, kind] = fields::<2>(a)?;
+                let (project, kind) = (int(project)?, int(kind)?);
+                let cursor = self.triggered(project)?.path_cursor;
+                let joints = match kind {
+                    1 => true,
+                    2 => false,
+                    _ => return Err(c.bad_pose_type),
+                };
+                let proj = self.scenario.project(project).ok_or(c.project_not_found)?;
+                let w = proj.path.get(cursor).ok_or(c.no_result)?;
+                let values = w.values(joints).ok_or(c.port_type_mismatch)?;
+                let all = cursor + 1 >= proj.path.len();
+                let mut r = self
+                    .reply(echo)
+                    .int(i64::from(ok))
+                    .int(i64::from(all))
+                    .int(i64::from(w.vision_move))
+                    .reals(values)
+                    .int(w.motion)
+                    .int(w.tool)
+                    .real(w.speed);
+                // 111 is a 1.8.3 command: its Vision Move data has the Kawasaki layout.
+                if w.vision_move {
+                    r = r.reals(&w.plan_results(PlanLayout::Kawasaki));
+                }
+                self.project_state(project).path_cursor = cursor + 1;
+                Ok(r.into_text())
+            }
+            Cmd::GetVizProperty => {
+                let [config] = fields::<1>(a)?;
+                let config = int(config)?;
+                let viz = self.scenario.viz.as_ref().ok_or(c.viz_no_project)?;
+                let line = viz
+                    .properties
+                    .iter()
+                    .find(|p| p.access == Access::Read && p.config == config)
+                    .ok_or(c.no_config_id)?;
+                let value = self
+                    .viz
+                    .params
+                    .get(&(line.step, line.key.clone()))
+                    .copied()
+                    .unwrap_or(line.value);
+                Ok(self.reply(echo).int(i64::from(ok)).real(value).into_text())
+            }
+            Cmd::SetVizProperty => {
+                let [config] = fields::<1>(a)?;
+                let config = int(config)?;
+                let viz = self.scenario.viz.as_ref().ok_or(c.viz_no_project)?;
+                let writes: Vec<((i64, String), f64)> = viz
+                    .properties
+                    .iter()
+                    .filter(|p| p.access == Access::Write && p.config == config)
+                    .map(|p| ((p.step, p.key.clone()), p.value))
+                    .collect();
+                if writes.is_empty() {
+                    return Err(c.no_config_id);
+                }
+                // Keys come from the scenario only, so the map stays bounded.
+                self.viz.params.extend(writes);
+                Ok(self.status(echo, ok))
+            }
+            Cmd::GetNotify => {
+                fields::<0>(a)?;
+                let now = self.clock.now();
+                self.notices
+                    .retain(|n| now < n.at.saturating_add(NOTIFY_LIFETIME));
+                // No message waiting answers 0 [U]: the reply has no status field to say so.
+                let message = match self.notices.front() {
+                    Some(n) if n.at <= now => self.notices.pop_front().map_or(0, |n| n.message),
+                    _ => 0,
+                };
+                Ok(self.reply(echo).int(message).into_text())
             }
             Cmd::GetPlanWaypoint => {
                 let [format] = fields::<1>(a)?;
@@ -465,7 +625,7 @@ impl State {
                     .real(w.speed);
                 if w.vision_move {
                     if with_plan {
-                        r = r.reals(&plan_results(w));
+                        r = r.reals(&w.plan_results(self.scenario.server.vision_move_layout));
                     }
                     r = r.int(w.custom.len() as i64).reals(&w.custom);
                 } else {
@@ -516,6 +676,25 @@ impl State {
             Cmd::GetStatus => {
                 fields::<0>(a)?;
                 Ok(self.status(echo, ok))
+            }
+        }
+    }
+
+    /// Queue the messages of the Notify steps of a project that just started.
+    fn notify(&mut self, steps: &[Notify]) {
+        let now = self.clock.now();
+        for step in steps {
+            let at = now.saturating_add(Duration::from_millis(step.after_ms));
+            let i = self.notices.partition_point(|n| n.at <= at);
+            self.notices.insert(
+                i,
+                Notice {
+                    message: step.message,
+                    at,
+                },
+            );
+            if self.notices.len() > NOTIFY_CAPACITY {
+                self.notices.pop_front();
             }
         }
     }
@@ -588,13 +767,14 @@ impl State {
     }
 }
 
-fn plan_results(w: &Waypoint) -> Vec<f64> {
-    let len = catalog().limits.plan_results_len as usize;
-    if w.plan_results.is_empty() {
-        vec![0.0; len]
-    } else {
-        w.plan_results.clone()
-    }
+/// A DO list padded with -1 to the catalog's length.
+fn padded_do_list(list: &[i64]) -> Vec<i64> {
+    let len = catalog().limits.do_list_len as usize;
+    list.iter()
+        .copied()
+        .chain(std::iter::repeat(-1))
+        .take(len)
+        .collect()
 }
 
 /// Exactly `N` argument fields, or "invalid data length or format".
@@ -621,5 +801,33 @@ mod tests {
         }
         assert_eq!(c.invalid_format, 3002);
         assert_eq!(c.project_not_found, 1011);
+    }
+
+    #[test]
+    fn every_fixed_request_layout_of_the_catalog_is_the_one_served() {
+        let mut state = State::new(Scenario::default_embedded());
+        let bad = codes().invalid_format.to_string();
+        let mut fixed = 0;
+        for (cmd, name) in COMMANDS {
+            let Some(n) = codes().arity(cmd) else {
+                continue;
+            };
+            fixed += 1;
+            let code = catalog().command_named(name).map_or(0, |c| c.code);
+            let ask = |state: &mut State, len: usize| {
+                state.handle(&Request {
+                    command: code,
+                    args: vec![1.0; len],
+                })
+            };
+            let reply = ask(&mut state, n);
+            assert_ne!(
+                reply.split(',').nth(1),
+                Some(bad.as_str()),
+                "{name}: {reply}"
+            );
+            assert_eq!(ask(&mut state, n + 1), format!("{code},{bad}"), "{name}");
+        }
+        assert_eq!(fixed, COMMANDS.len() - 2, "all but 101 and 201");
     }
 }
