@@ -615,3 +615,16 @@ fn lenient_numbers_pass_and_malformed_replies_do_not() {
     let conns: Vec<u64> = server.requests().iter().map(|r| r.connection).collect();
     assert_eq!(conns, [1, 1, 2, 2, 2, 3]);
 }
+
+#[test]
+fn a_210_reply_without_its_custom_count_is_a_bad_reply() {
+    // KUKA 1.x layout (20 Vision Move values) and N = 0: field by field this has the length of
+    // the Kawasaki layout (21 values) without N, which must not be mistaken for it.
+    let twenty = list((1..=20).map(f64::from));
+    let replies = [(210, format!("210,2100,1,1,0,0,0,0,0,0,2,0,30,{twenty},0"))];
+    let server = start(garbage(&fixture_text("kawasaki.toml"), &replies));
+    let mut a = connected(&server);
+    a.exec("CALL mm_start_viz(0,#start_vis)").unwrap();
+    a.exec("CALL mm_get_plandata(0,4,n,vis,st)").unwrap();
+    assert_eq!((a.num("st"), a.num("n")), (code("BAD_REPLY"), 0.0));
+}

@@ -359,7 +359,13 @@
     .idx = .idx + {{ p.plan_len }}
   END
   .n = 0
-  IF (.cmd == 210) AND (mm_fld_n >= .idx) THEN
+  IF .cmd == 210 THEN
+    ; 210 always ends in N and N custom values; a reply without N (e.g. Vision Move data in
+    ; another layout) would otherwise be misread field by field.
+    IF mm_fld_n < .idx THEN
+      .st = {{ p.codes.bad_reply }}
+      RETURN
+    END
     .n = mm_fld[.idx]
     IF (.n < 0) OR (mm_fld_n <> .idx + .n) THEN
       .st = {{ p.codes.bad_reply }}
