@@ -866,6 +866,7 @@ fn statement_like(upper: &str) -> bool {
             | "GOTO"
             | "IMPORT"
             | "INTERRUPT"
+            | "MOVE_EMI"
             | "PTP_SPLINE"
             | "RETURN"
             | "SIGNAL"

@@ -59,8 +59,24 @@ pub(crate) fn parse_with_grammar(text: &str, start: usize, end: usize) -> Result
                 }),
             }
         }
-        Err(e) => Err(describe(e, code, start)),
+        Err(e) => Err(global_decl(code, start).unwrap_or_else(|| describe(e, code, start))),
     }
+}
+
+/// `GLOBAL DECL …` is a common slip for `DECL GLOBAL …`; say so instead of pest's message.
+fn global_decl(code: &str, base: usize) -> Option<LineError> {
+    let mut words = code.split_whitespace();
+    let first = words.next()?;
+    let second = words.next()?;
+    if !(first.eq_ignore_ascii_case("GLOBAL") && second.eq_ignore_ascii_case("DECL")) {
+        return None;
+    }
+    let at = code[first.len()..].find(second)? + first.len();
+    Some(LineError {
+        at: base + at,
+        len: second.len(),
+        message: "`GLOBAL DECL` is not KRL: write `DECL GLOBAL`".into(),
+    })
 }
 
 /// Words that can start a statement other than a declaration, assignment, call or label.
@@ -107,6 +123,7 @@ const STATEMENT_WORDS: &[&str] = &[
     "LIN",
     "LIN_REL",
     "LOOP",
+    "MOVE_EMI",
     "ON_ERROR_PROCEED",
     "PTP",
     "PTP_REL",
@@ -317,6 +334,7 @@ fn classify(rule: Rule) -> Class {
         Rule::goto_stmt => N(NodeKind::GotoStmt),
         Rule::analog_stmt => N(NodeKind::AnalogStmt),
         Rule::analog_opt => N(NodeKind::AnalogOpt),
+        Rule::move_emi_stmt => N(NodeKind::MoveEmiStmt),
         Rule::label_stmt => N(NodeKind::LabelStmt),
         Rule::call_stmt => N(NodeKind::CallStmt),
         Rule::assign_stmt => N(NodeKind::AssignStmt),
