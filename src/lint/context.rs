@@ -110,7 +110,7 @@ impl Project {
                 });
             }
             if let Some(dat) = &f.ast.dat {
-                let config = f.stem == "$config";
+                let config = f.stem == "$config" || dat.name.is("$CONFIG");
                 for d in &dat.decls {
                     if config || d.global {
                         add_decl(d, &mut p.global_types, &mut p.global_consts);
