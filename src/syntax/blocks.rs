@@ -189,6 +189,11 @@ impl Block {
     }
 }
 
+/// Deepest block nesting kept as a tree. Real controller files nest at most 8 deep; the limit
+/// keeps every recursive walk after parsing (AST lowering, lint) well inside a 2 MiB thread
+/// stack even in debug builds (see `push`).
+const MAX_BLOCK_DEPTH: usize = 40;
+
 struct Frame {
     block: Block,
     /// Span of the opener's code, for "not closed" diagnostics.
@@ -313,6 +318,12 @@ impl<'t> Assembler<'t> {
                     while !self.stack.is_empty() {
                         self.close_top(true, diagnostics);
                     }
+                } else if self.stack.len() >= MAX_BLOCK_DEPTH {
+                    // Every later stage walks blocks recursively; hostile nesting must not
+                    // overflow their stacks. The line stays in the tree, unnested.
+                    let what = format!("blocks nested more than {MAX_BLOCK_DEPTH} deep");
+                    self.unexpected(node, &what, diagnostics);
+                    return;
                 }
                 self.open(block, node);
             }

@@ -796,15 +796,42 @@ impl<'t> P<'t> {
                 }
                 self.ws();
             }
+            let committed = self.at_expr_start();
             if let Some(value) = self.expr() {
                 let end = value.span().end as usize;
                 return Some(self.node(NodeKind::AggField, start, end, vec![name, value]));
+            }
+            if committed {
+                // As in the grammar: no second, positional attempt (see `agg_field`).
+                return None;
             }
             self.pos = start;
         }
         let value = self.expr()?;
         let end = value.span().end as usize;
         Some(self.node(NodeKind::AggField, start, end, vec![value]))
+    }
+}
+
+impl P<'_> {
+    /// Whether an expression can start at the cursor (the grammar's `expr_start`).
+    fn at_expr_start(&self) -> bool {
+        let Some(c) = self.peek() else {
+            return false;
+        };
+        match c {
+            b'0'..=b'9' | b'(' | b'{' | b'\'' | b'"' | b'#' | b'-' | b'+' => true,
+            b'.' => self.b[self.pos + 1..self.end]
+                .first()
+                .is_some_and(u8::is_ascii_digit),
+            c if c.is_ascii_alphabetic() || c == b'_' || c == b'$' => {
+                let w = &self.text[self.pos..self.pos + self.word_len()];
+                w.eq_ignore_ascii_case("NOT")
+                    || w.eq_ignore_ascii_case("B_NOT")
+                    || !RESERVED.iter().any(|r| r.eq_ignore_ascii_case(w))
+            }
+            _ => false,
+        }
     }
 }
 

@@ -45,6 +45,8 @@ pub(crate) fn parse_code(text: &str, start: usize, end: usize) -> Result<Node, L
 
 /// The grammar alone (the fast path must agree with it wherever it answers).
 pub(crate) fn parse_with_grammar(text: &str, start: usize, end: usize) -> Result<Node, LineError> {
+    static BUDGET: std::sync::Once = std::sync::Once::new();
+    BUDGET.call_once(|| pest::set_call_limit(std::num::NonZeroUsize::new(MAX_GRAMMAR_CALLS)));
     let code = &text[start..end];
     match KrlGrammar::parse(entry_rule(code), code) {
         Ok(mut pairs) => {
@@ -181,6 +183,10 @@ fn entry_rule(code: &str) -> Rule {
 const MAX_NESTING: usize = 64;
 const MAX_PREFIX_RUN: usize = 64;
 const MAX_OPERATORS: usize = 1024;
+/// pest calls allowed for one line. Backtracking the grammar cannot rule out (nothing known is
+/// worse than linear) stays bounded: a line that needs more is reported as too complex instead of
+/// hanging. Real lines, 1,248-character aggregates included, need a small fraction of this.
+const MAX_GRAMMAR_CALLS: usize = 2_000_000;
 
 #[cfg(test)]
 pub(crate) fn too_deep_for_tests(code: &str) -> bool {
@@ -551,7 +557,16 @@ fn describe(e: pest::error::Error<Rule>, code: &str, base: usize) -> LineError {
             }
             names
         }
-        pest::error::ErrorVariant::CustomError { .. } => Vec::new(),
+        pest::error::ErrorVariant::CustomError { message } => {
+            if message.contains("limit") {
+                return LineError {
+                    at: base,
+                    len: code.len(),
+                    message: "line too complex to parse; split it".into(),
+                };
+            }
+            Vec::new()
+        }
     };
     let found_desc = if found.is_empty() {
         "end of line".to_string()

@@ -8,7 +8,7 @@
 
 use super::blocks::{Assembler, Role};
 use super::cst::{Element, Node, NodeKind, Token, TokenKind};
-use super::line::{make_node, parse_code};
+use super::line::{gap_tokens, make_node, parse_code};
 use crate::diag::{Diagnostic, Span};
 
 /// Rule code for syntax errors.
@@ -145,7 +145,16 @@ fn parse_line(
     match parse_code(text, code_start, code_end) {
         Ok(stmt) => {
             let role = Role::of(stmt.kind);
+            // Blanks the line splitter does not know (a no-break space) can sit between the
+            // indentation and the statement, or after it; they stay in the tree as whitespace.
+            let (s, e) = (stmt.span.start as usize, stmt.span.end as usize);
+            if s > code_start {
+                gap_tokens(text, code_start, s, &mut children);
+            }
             children.extend(stmt.children);
+            if code_end > e {
+                gap_tokens(text, e, code_end, &mut children);
+            }
             trailing(&mut children);
             (finish(children, stmt.kind), role)
         }
