@@ -152,6 +152,25 @@ const STATEMENT_WORDS: &[&str] = &[
     "WHILE",
 ];
 
+/// First words whose lines `line_kw` covers (see krl.pest): most lines the fast path leaves to
+/// the grammar start with one of these.
+const KW_LED: &[&str] = &[
+    "CHANNEL",
+    "DEF",
+    "DEFDAT",
+    "DEFFCT",
+    "ENUM",
+    "EXT",
+    "EXTFCT",
+    "EXTFCTP",
+    "EXTP",
+    "GLOBAL",
+    "INTERRUPT",
+    "SIGNAL",
+    "STRUC",
+    "TRIGGER",
+];
+
 /// The cheapest grammar entry that can accept this line (always a subset of `line`).
 fn entry_rule(code: &str) -> Rule {
     let bytes = code.as_bytes();
@@ -171,6 +190,8 @@ fn entry_rule(code: &str) -> Rule {
     let word = &code[..len];
     if word.eq_ignore_ascii_case("DECL") {
         Rule::line_decl
+    } else if KW_LED.iter().any(|k| k.eq_ignore_ascii_case(word)) {
+        Rule::line_kw
     } else if len > 16 || STATEMENT_WORDS.iter().any(|k| k.eq_ignore_ascii_case(word)) {
         Rule::line
     } else {
@@ -664,4 +685,87 @@ fn name(rule: Rule) -> Option<&'static str> {
         Rule::agg_field => "aggregate field",
         _ => return None,
     })
+}
+
+#[cfg(test)]
+mod entry_tests {
+    use super::*;
+
+    /// What `line` alone makes of `code`: the tree, or only the fact that it failed.
+    fn via(rule: Rule, code: &str) -> Option<Node> {
+        let mut pairs = KrlGrammar::parse(rule, code).ok()?;
+        let stmt = pairs
+            .next()?
+            .into_inner()
+            .find(|p| p.as_rule() != Rule::EOI)?;
+        match convert(
+            stmt,
+            &Ctx {
+                text: code,
+                base: 0,
+            },
+        ) {
+            Element::Node(n) => Some(n),
+            Element::Token(_) => None,
+        }
+    }
+
+    /// The narrow entry rules accept exactly what `line` accepts, with the same tree.
+    #[test]
+    fn entry_rules_agree_with_line() {
+        let root = concat!(env!("CARGO_MANIFEST_DIR"), "/tests/fixtures");
+        let mut dirs = vec![std::path::PathBuf::from(root)];
+        let mut lines: Vec<String> = [
+            "GLOBAL DEF a(x:IN)",
+            "GLOBAL DEFFCT INT f()",
+            "GLOBAL INTERRUPT DECL 3 WHEN $STOPMESS==TRUE DO IR_STOPM ( )",
+            "GLOBAL INT x = 1",
+            "GLOBAL CONST REAL r = 1.5",
+            "GLOBAL DECL INT g",
+            "GLOBAL STRUC s INT a, REAL b",
+            "GLOBAL ENUM e a, b",
+            "GLOBAL SIGNAL s $OUT[1] TO $OUT[8]",
+            "GLOBAL EXTFCT INT f(INT :IN)",
+            "SIGNAL s FALSE",
+            "SIGNAL = 1",
+            "SIGNAL(1)",
+            "TRIGGER WHEN DISTANCE=0 DELAY=10 DO $OUT[1]=TRUE PRIO=-1",
+            "TRIGGER: ",
+            "TRIGGER:",
+            "DEF: ",
+            "INTERRUPT ON 3",
+            "INTERRUPT DECL 5 WHEN $IN[1] DO f()",
+            "INTERRUPT x",
+            "CHANNEL :SER_1 :SER_1 $PSER_1",
+            "EXTP f(E6POS :OUT)",
+            "STRUC",
+            "DEFDAT x PUBLIC",
+            "DEF f(a[,]:OUT, b[80]:IN)",
+        ]
+        .iter()
+        .map(|s| s.to_string())
+        .collect();
+        while let Some(dir) = dirs.pop() {
+            for entry in std::fs::read_dir(&dir).expect("fixture dir").flatten() {
+                let path = entry.path();
+                if path.is_dir() {
+                    dirs.push(path);
+                    continue;
+                }
+                let text = crate::syntax::decode(&std::fs::read(&path).expect("read")).text;
+                for line in text.split(['\n', '\r']) {
+                    let code = line.split(';').next().unwrap_or("").trim();
+                    if !code.is_empty() && !code.starts_with('&') {
+                        lines.push(code.to_string());
+                    }
+                }
+            }
+        }
+        for code in &lines {
+            let entry = entry_rule(code);
+            if entry != Rule::line {
+                assert_eq!(via(entry, code), via(Rule::line, code), "{code:?}");
+            }
+        }
+    }
 }
