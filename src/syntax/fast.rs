@@ -415,7 +415,7 @@ impl<'t> P<'t> {
             Some(b'(') => {
                 self.pos += 1;
                 let mut children = vec![name];
-                children.extend(self.list(b')')?);
+                self.list_into(b')', &mut children)?;
                 Some((NodeKind::CallStmt, children))
             }
             Some(c) if is_idc(c) => {
@@ -558,7 +558,7 @@ impl<'t> P<'t> {
         let mut end = self.pos;
         self.ws();
         if self.punct(b'[') {
-            children.extend(self.list(b']')?);
+            self.list_into(b']', &mut children)?;
             end = self.pos;
             self.ws();
         }
@@ -637,24 +637,30 @@ impl<'t> P<'t> {
         Some(self.node(NodeKind::Dims, start, self.pos, items))
     }
 
-    /// `expr? ("," expr?)* close`, cursor after the opening bracket; returns the expressions.
-    fn list(&mut self, close: u8) -> Option<Vec<Element>> {
+    /// `expr? ("," expr?)* close`, cursor after the opening bracket; the expressions are
+    /// appended to `out`.
+    fn list_into(&mut self, close: u8, out: &mut Vec<Element>) -> Option<()> {
         self.enter()?;
-        let mut items = Vec::new();
         loop {
             self.ws();
             if self.peek() != Some(b',') && self.peek() != Some(close) {
-                items.push(self.expr()?);
+                out.push(self.expr()?);
                 self.ws();
             }
             if self.punct(close) {
                 self.depth -= 1;
-                return Some(items);
+                return Some(());
             }
             if !self.punct(b',') {
                 return None;
             }
         }
+    }
+
+    fn list(&mut self, close: u8) -> Option<Vec<Element>> {
+        let mut items = Vec::new();
+        self.list_into(close, &mut items)?;
+        Some(items)
     }
 
     // ---- expressions --------------------------------------------------------------------------
@@ -671,7 +677,21 @@ impl<'t> P<'t> {
 
     fn expr(&mut self) -> Option<Element> {
         let mut items = Vec::new();
-        self.segment(&mut items)?;
+        if self.prefix_ahead() {
+            self.segment(&mut items)?;
+        } else {
+            // Most expressions are one literal or name: answer those without the item list.
+            let primary = self.primary()?;
+            let save = self.pos;
+            self.ws();
+            let more = matches!(self.peek(), Some(b'[' | b'.')) || self.infix().is_some();
+            self.pos = save;
+            if !more {
+                return Some(primary);
+            }
+            items.push(Item::Primary(primary));
+            self.postfixes(&mut items)?;
+        }
         loop {
             let save = self.pos;
             self.ws();
@@ -707,6 +727,23 @@ impl<'t> P<'t> {
         }
         let primary = self.primary()?;
         items.push(Item::Primary(primary));
+        self.postfixes(items)
+    }
+
+    /// Whether a prefix operator (`NOT`, `B_NOT`, a sign) is at the cursor.
+    fn prefix_ahead(&self) -> bool {
+        match self.peek() {
+            Some(b'-' | b'+') => true,
+            Some(b'N' | b'n' | b'B' | b'b') => {
+                let w = &self.text[self.pos..self.pos + self.word_len()];
+                w.eq_ignore_ascii_case("NOT") || w.eq_ignore_ascii_case("B_NOT")
+            }
+            _ => false,
+        }
+    }
+
+    /// `postfix*` after a primary.
+    fn postfixes(&mut self, items: &mut Vec<Item>) -> Option<()> {
         loop {
             let save = self.pos;
             self.ws();
@@ -900,7 +937,7 @@ impl<'t> P<'t> {
                 self.ws();
                 if self.punct(b'(') {
                     let mut children = vec![name];
-                    children.extend(self.list(b')')?);
+                    self.list_into(b')', &mut children)?;
                     return Some(self.node(NodeKind::Call, start, self.pos, children));
                 }
                 self.pos = after_name;
