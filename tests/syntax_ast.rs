@@ -232,3 +232,52 @@ fn a_block_with_a_broken_header_stays_an_error_statement() {
     assert!(matches!(&body[0].kind, StmtKind::Error { text } if text == "IF x == THEN"));
     assert!(matches!(body[1].kind, StmtKind::Assign { .. }));
 }
+
+#[test]
+fn array_parameters_and_named_ext_parameters() {
+    let f = lower_fixture("array_params.src");
+    let r = f.routine("array_params").expect("routine");
+    let arrays: Vec<bool> = r.params.iter().map(|p| p.array).collect();
+    assert_eq!(arrays, [true, true, true, false]);
+    assert_eq!(r.params[0].dir, Some(ParamDir::Out));
+    assert_eq!(r.params[0].name.text, "m");
+    assert_eq!(r.params[2].name.text, "s");
+
+    let f = lower_fixture("ext_named_params.dat");
+    let dat = f.dat.expect("DEFDAT");
+    let exts: Vec<&ExtDecl> = dat
+        .definitions
+        .iter()
+        .filter_map(|d| match d {
+            Definition::Ext(e) => Some(e),
+            _ => None,
+        })
+        .collect();
+    assert_eq!(exts.len(), 6);
+    let read_state = exts.iter().find(|e| e.name.is("read_state")).expect("ext");
+    let types: Vec<&str> = read_state
+        .params
+        .iter()
+        .map(|p| p.ty.name.text.as_str())
+        .collect();
+    assert_eq!(types, ["CHAR", "INT", "REAL"]);
+    assert_eq!(read_state.params[1].dir, Some(ParamDir::Out));
+}
+
+#[test]
+fn enum_values_written_with_a_blank_after_the_hash() {
+    let f = lower_fixture("emi_and_enums.src");
+    let r = &f.routines[0];
+    let StmtKind::Assign { value, .. } = &r.body[1].kind else {
+        panic!("{:?}", r.body[1].kind)
+    };
+    assert_eq!(value.kind, ExprKind::Enum("FAST".into()));
+    assert!(
+        r.body
+            .iter()
+            .filter(|s| matches!(s.kind, StmtKind::Other { .. }))
+            .count()
+            == 3,
+        "MOVE_EMI lines are kept as Other statements"
+    );
+}

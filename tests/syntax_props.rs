@@ -131,3 +131,59 @@ fn deep_nesting_is_an_error_not_a_crash() {
         .join()
         .expect("no stack overflow");
 }
+
+/// Thousands of nested blocks (or block openers whose ends are missing) are capped, so the
+/// recursive stages after parsing (AST, lint) cannot overflow a 2 MiB thread either.
+#[test]
+fn deep_block_nesting_is_an_error_not_a_crash() {
+    let openers = ["IF a THEN", "FOR i = 1 TO 2", "WHILE a", "LOOP", "REPEAT"];
+    let closers = ["ENDIF", "ENDFOR", "ENDWHILE", "ENDLOOP", "UNTIL a"];
+    let mut text = String::from("DEF deep()\n");
+    for i in 0..5_000 {
+        text.push_str(openers[i % 5]);
+        text.push_str("\n  MM_Start_Vis(1, 0, 1, st)\n");
+    }
+    for i in (0..5_000).rev() {
+        text.push_str(closers[i % 5]);
+        text.push('\n');
+    }
+    text.push_str("END\n");
+    let unclosed = format!("DEF open()\n{}END\n", "FOR i = 1 TO 2\n".repeat(5_000));
+    std::thread::Builder::new()
+        .stack_size(2 << 20)
+        .spawn(move || {
+            for text in [text, unclosed] {
+                let p = parse(&text);
+                assert_eq!(p.root.print(&text), text);
+                assert!(
+                    p.diagnostics
+                        .iter()
+                        .any(|d| d.message.contains("nested more than"))
+                );
+                let _ = p.ast(&text);
+                let _ = p.to_json_tree(&text);
+                let report = krlkit::lint::lint_text("deep.src", &text);
+                assert!(!report.diagnostics.is_empty());
+            }
+        })
+        .expect("spawn")
+        .join()
+        .expect("no stack overflow");
+}
+
+/// `{A (` read as a named field that fails must not be re-read as a positional call at every
+/// level: that doubled the work per level (4^32 steps here). Without the fix, the per-line
+/// budget would end it as "too complex" instead of an ordinary syntax error.
+#[test]
+fn failing_named_fields_are_not_retried_as_calls() {
+    for unit in ["{A (", "{A f(", "{X {Y (", "{A {B a["] {
+        let text = format!("DEF a()\nx = {}1\nEND\n", unit.repeat(30));
+        let p = parse(&text);
+        assert_eq!(p.diagnostics.len(), 1, "{unit}");
+        assert!(
+            !p.diagnostics[0].message.contains("too complex"),
+            "{unit}: {}",
+            p.diagnostics[0].message
+        );
+    }
+}

@@ -8,14 +8,16 @@ use super::eki_xml::EkiChannel;
 use super::flow::FlowResult;
 use super::walk;
 use crate::catalog::{Subprogram, catalog};
-use crate::syntax::Parse;
+use crate::diag::Diagnostic;
 use crate::syntax::ast::{Decl, Expr, ExprKind, Routine, SourceFile, StmtKind};
 
 /// One scanned KRL file, parsed.
 pub struct Parsed {
     pub path: String,
     pub text: String,
-    pub parse: Parse,
+    /// The parser's KRL001 findings. The syntax tree itself is dropped once lowered: every
+    /// file is held at once while linting, and the tree is most of a file's memory.
+    pub syntax_errors: Vec<Diagnostic>,
     pub ast: SourceFile,
     /// File name without extension, lower case (`$config` for `$config.dat`).
     pub stem: String,
@@ -41,7 +43,7 @@ impl Parsed {
         Parsed {
             path,
             text,
-            parse,
+            syntax_errors: parse.diagnostics,
             ast,
             stem,
             ext,
@@ -110,7 +112,7 @@ impl Project {
                 });
             }
             if let Some(dat) = &f.ast.dat {
-                let config = f.stem == "$config";
+                let config = f.stem == "$config" || dat.name.is("$CONFIG");
                 for d in &dat.decls {
                     if config || d.global {
                         add_decl(d, &mut p.global_types, &mut p.global_consts);

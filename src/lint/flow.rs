@@ -192,6 +192,11 @@ impl<'s, 'c, 'p> Walker<'s, 'c, 'p> {
     }
 
     fn looped(&mut self, body: &'s [Stmt], st: State) -> State {
+        if !self.record {
+            // The exploratory pass only needs the state after one iteration. Walking nested
+            // loops twice here too would cost 2^depth.
+            return self.block(body, st);
+        }
         let rec = std::mem::replace(&mut self.record, false);
         let first = self.block(body, st.clone());
         self.record = rec;
@@ -480,14 +485,40 @@ fn later_calls(sh: &Shared, stmts: &[Stmt], mut later: u64, out: &mut HashMap<u3
             | StmtKind::While { body, .. }
             | StmtKind::Loop { body }
             | StmtKind::Repeat { body, .. } => {
-                let first = later_calls(sh, body, later, &mut HashMap::new());
-                later | later_calls(sh, body, later | first, out)
+                // From the second iteration on, every call of the body may follow (linear, where
+                // a nested backward pass per loop level would be exponential).
+                let first = later | calls_in(sh, body);
+                later | later_calls(sh, body, first, out)
             }
             StmtKind::Spline { body, .. } => later_calls(sh, body, later, out),
             _ => later,
         };
     }
     later
+}
+
+/// Every MM_ call that may happen in `stmts` (local routines by their summary), in any order:
+/// what [`later_calls`] accumulates over the same statements.
+fn calls_in(sh: &Shared, stmts: &[Stmt]) -> u64 {
+    let mut bits = 0;
+    for s in stmts {
+        match &s.kind {
+            StmtKind::Call { name, .. } => {
+                if subprogram(&name.text).is_some() {
+                    bits |= bit(&name.text);
+                } else if let Some(r) = sh.local_routine(name) {
+                    bits |= sh.summary(r).may;
+                }
+            }
+            StmtKind::InterruptDecl { .. } | StmtKind::Trigger { .. } => {}
+            _ => {
+                for body in walk::children(s) {
+                    bits |= calls_in(sh, body);
+                }
+            }
+        }
+    }
+    bits
 }
 
 /// Analyse every user routine of the file.

@@ -9,7 +9,7 @@ pub fn allowed(text: &str) -> HashMap<usize, Vec<String>> {
     if !text.contains("krlkit") {
         return map;
     }
-    for (i, line) in text.lines().enumerate() {
+    for (i, (_, line)) in crate::lint::text::lines(text).enumerate() {
         let Some(pos) = line.find(';') else { continue };
         let comment = &line[pos + 1..];
         let lower = comment.to_ascii_lowercase();

@@ -1,5 +1,31 @@
 //! Small text helpers shared by rules.
 
+/// Physical lines with their byte offsets, without terminators. LF, CRLF and a lone CR all end
+/// a line (as in the parser and `LineIndex`), so line numbers agree everywhere.
+pub fn lines(text: &str) -> impl Iterator<Item = (usize, &str)> {
+    let bytes = text.as_bytes();
+    let mut start = 0;
+    std::iter::from_fn(move || {
+        if start >= bytes.len() {
+            return None;
+        }
+        let rel = bytes[start..]
+            .iter()
+            .position(|&b| b == b'\n' || b == b'\r');
+        let (end, next) = match rel {
+            None => (bytes.len(), bytes.len()),
+            Some(r) => {
+                let end = start + r;
+                let crlf = bytes[end] == b'\r' && bytes.get(end + 1) == Some(&b'\n');
+                (end, end + if crlf { 2 } else { 1 })
+            }
+        };
+        let line = (start, &text[start..end]);
+        start = next;
+        Some(line)
+    })
+}
+
 /// Levenshtein distance over chars, case-insensitive.
 pub fn edit_distance(a: &str, b: &str) -> usize {
     let a: Vec<char> = a.chars().map(|c| c.to_ascii_uppercase()).collect();
@@ -28,6 +54,13 @@ pub fn nearest<'a>(name: &str, candidates: impl IntoIterator<Item = &'a str>) ->
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn lines_end_at_lf_crlf_and_cr() {
+        let got: Vec<(usize, &str)> = lines("a\r\nbc\rd\n\ne").collect();
+        assert_eq!(got, [(0, "a"), (3, "bc"), (6, "d"), (8, ""), (9, "e")]);
+        assert_eq!(lines("").count(), 0);
+    }
 
     #[test]
     fn distance() {

@@ -1,6 +1,10 @@
 //! Nest line nodes into blocks: DEF…END, DEFDAT…ENDDAT, IF/ELSE/ENDIF, FOR, WHILE, REPEAT/UNTIL,
 //! LOOP, SWITCH/CASE/DEFAULT, SPLINE/PTP_SPLINE…ENDSPLINE. Never fails: a block end without a
 //! start, or a start without an end, is a `KRL001` and the lines stay in the tree.
+//!
+//! KSS also rejects a declaration after the first statement of a routine; that is checked here
+//! too, because it is what turns a misspelt keyword (`PTPP P1`, read as a declaration of type
+//! `PTPP`) into the error it is.
 
 use super::cst::{Element, Node, NodeKind, TokenKind};
 use super::parser::{SYNTAX_ERROR, container};
@@ -185,11 +189,41 @@ impl Block {
     }
 }
 
+/// Deepest block nesting kept as a tree. Real controller files nest at most 8 deep; the limit
+/// keeps every recursive walk after parsing (AST lowering, lint) well inside a 2 MiB thread
+/// stack even in debug builds (see `push`).
+const MAX_BLOCK_DEPTH: usize = 40;
+
 struct Frame {
     block: Block,
     /// Span of the opener's code, for "not closed" diagnostics.
     anchor: Span,
     children: Vec<Element>,
+    /// Routines only: a statement has been seen, so declarations are no longer allowed.
+    in_statements: bool,
+}
+
+/// What a line is to the declaration-before-statement rule.
+#[derive(PartialEq)]
+enum Part {
+    Declaration,
+    Statement,
+    Neutral,
+}
+
+fn part(kind: NodeKind) -> Part {
+    use NodeKind as K;
+    match kind {
+        K::DeclStmt
+        | K::StrucDecl
+        | K::EnumDecl
+        | K::SignalDecl
+        | K::ChannelDecl
+        | K::ExtDecl
+        | K::ImportDecl => Part::Declaration,
+        K::BlankLine | K::CommentLine | K::HeaderLine | K::Error => Part::Neutral,
+        _ => Part::Statement,
+    }
 }
 
 pub(crate) struct Assembler<'t> {
@@ -246,6 +280,7 @@ impl<'t> Assembler<'t> {
             block,
             anchor,
             children: vec![Element::Node(node)],
+            in_statements: false,
         });
     }
 
@@ -275,6 +310,7 @@ impl<'t> Assembler<'t> {
     }
 
     pub(crate) fn push(&mut self, node: Node, role: Role, diagnostics: &mut Vec<Diagnostic>) {
+        self.check_declaration_order(&node, role, diagnostics);
         match role {
             Role::None => self.sink().push(Element::Node(node)),
             Role::Open(block) => {
@@ -282,6 +318,12 @@ impl<'t> Assembler<'t> {
                     while !self.stack.is_empty() {
                         self.close_top(true, diagnostics);
                     }
+                } else if self.stack.len() >= MAX_BLOCK_DEPTH {
+                    // Every later stage walks blocks recursively; hostile nesting must not
+                    // overflow their stacks. The line stays in the tree, unnested.
+                    let what = format!("blocks nested more than {MAX_BLOCK_DEPTH} deep");
+                    self.unexpected(node, &what, diagnostics);
+                    return;
                 }
                 self.open(block, node);
             }
@@ -317,6 +359,67 @@ impl<'t> Assembler<'t> {
                     self.unexpected(node, what, diagnostics);
                 }
             }
+        }
+    }
+
+    /// In a routine, declarations come before the first statement (KSS refuses the module
+    /// otherwise).
+    fn check_declaration_order(
+        &mut self,
+        node: &Node,
+        role: Role,
+        diagnostics: &mut Vec<Diagnostic>,
+    ) {
+        if matches!(role, Role::Open(b) if b.is_module()) {
+            return;
+        }
+        let Some(routine) = self
+            .stack
+            .first_mut()
+            .filter(|f| matches!(f.block, Block::Routine | Block::Function))
+        else {
+            return;
+        };
+        match part(node.kind) {
+            Part::Neutral => {}
+            Part::Statement => routine.in_statements = true,
+            Part::Declaration if routine.in_statements => {
+                let span = code_span(node);
+                let code = &self.text[span.range()];
+                let first = code
+                    .split(|c: char| !(c.is_ascii_alphanumeric() || c == '_' || c == '$'))
+                    .find(|w| !w.is_empty())
+                    .unwrap_or("");
+                let explicit = [
+                    "DECL", "GLOBAL", "CONST", "STRUC", "ENUM", "SIGNAL", "CHANNEL",
+                ]
+                .iter()
+                .chain(&["EXT", "EXTP", "EXTFCT", "EXTFCTP", "IMPORT"])
+                .any(|k| k.eq_ignore_ascii_case(first));
+                let diagnostic = if explicit {
+                    Diagnostic::error(
+                        SYNTAX_ERROR,
+                        span,
+                        "declaration after the first statement of the routine".to_string(),
+                    )
+                    .with_help("move it up, before the routine's first statement")
+                } else {
+                    Diagnostic::error(
+                        SYNTAX_ERROR,
+                        span,
+                        format!(
+                            "`{code}` reads as a declaration of type `{first}`, but declarations \
+                             must come before the routine's first statement"
+                        ),
+                    )
+                    .with_help(format!(
+                        "if `{first}` is meant to be a keyword, check its spelling; a declaration \
+                         belongs before the first statement"
+                    ))
+                };
+                diagnostics.push(diagnostic);
+            }
+            Part::Declaration => {}
         }
     }
 

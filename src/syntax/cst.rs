@@ -71,6 +71,8 @@ pub enum NodeKind {
     OnErrorProceedStmt,
     GotoStmt,
     AnalogStmt,
+    /// `MOVE_EMI device[] "mode" [FLT n]` (external motion interface).
+    MoveEmiStmt,
     LabelStmt,
     CallStmt,
     AssignStmt,

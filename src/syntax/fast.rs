@@ -61,6 +61,78 @@ const MOTION: [&str; 13] = [
     "SPL",
 ];
 
+/// Words that never name a type in a declaration without DECL (the grammar's `not_a_type`).
+const NOT_A_TYPE: [&str; 68] = [
+    "DECL",
+    "DEF",
+    "DEFFCT",
+    "DEFDAT",
+    "END",
+    "ENDFCT",
+    "ENDDAT",
+    "IF",
+    "ELSE",
+    "ENDIF",
+    "FOR",
+    "ENDFOR",
+    "WHILE",
+    "ENDWHILE",
+    "REPEAT",
+    "UNTIL",
+    "LOOP",
+    "ENDLOOP",
+    "SWITCH",
+    "CASE",
+    "DEFAULT",
+    "ENDSWITCH",
+    "RETURN",
+    "WAIT",
+    "HALT",
+    "BRAKE",
+    "RESUME",
+    "CONTINUE",
+    "EXIT",
+    "GOTO",
+    "PTP",
+    "LIN",
+    "CIRC",
+    "PTP_REL",
+    "LIN_REL",
+    "CIRC_REL",
+    "SPTP",
+    "SLIN",
+    "SCIRC",
+    "SPL",
+    "SPTP_REL",
+    "SLIN_REL",
+    "SCIRC_REL",
+    "SPLINE",
+    "PTP_SPLINE",
+    "ENDSPLINE",
+    "TIME_BLOCK",
+    "CONST_VEL",
+    "INTERRUPT",
+    "TRIGGER",
+    "ANIN",
+    "ANOUT",
+    "STRUC",
+    "ENUM",
+    "SIGNAL",
+    "CHANNEL",
+    "EXT",
+    "EXTP",
+    "EXTFCT",
+    "EXTFCTP",
+    "IMPORT",
+    "CONFIRM",
+    "ON_ERROR_PROCEED",
+    "SKIP",
+    "ENDSKIP",
+    "MOVE_EMI",
+    "GLOBAL",
+    "CONST",
+];
+
 const APPROX: [&str; 5] = ["C_PTP", "C_DIS", "C_VEL", "C_ORI", "C_SPL"];
 
 /// Binding powers as in `line.rs`'s Pratt table (relative order is all that matters).
@@ -183,6 +255,21 @@ impl<'t> P<'t> {
         };
         let (kind, children) = match upper {
             "DECL" => (NodeKind::DeclStmt, self.decl()?),
+            "DEF" | "DEFFCT" => self.def_line(Vec::new())?,
+            "DEFDAT" => (NodeKind::DefdatLine, self.defdat_line()?),
+            "SIGNAL" => (NodeKind::SignalDecl, self.signal(Vec::new())?),
+            "CONST" => (NodeKind::DeclStmt, self.decl_free(Vec::new())?),
+            "GLOBAL" => {
+                let g = self.kw("GLOBAL")?;
+                self.ws();
+                let n = self.word_len();
+                let next = self.text[self.pos..self.pos + n].to_ascii_uppercase();
+                match next.as_str() {
+                    "DEF" | "DEFFCT" => self.def_line(vec![g])?,
+                    "SIGNAL" => (NodeKind::SignalDecl, self.signal(vec![g])?),
+                    _ => (NodeKind::DeclStmt, self.decl_free(vec![g])?),
+                }
+            }
             "IF" => {
                 let k = self.kw("IF")?;
                 self.ws();
@@ -328,10 +415,14 @@ impl<'t> P<'t> {
             Some(b'(') => {
                 self.pos += 1;
                 let mut children = vec![name];
-                children.extend(self.list(b')')?);
+                self.list_into(b')', &mut children)?;
                 Some((NodeKind::CallStmt, children))
             }
-            Some(c) if is_idc(c) => None,
+            Some(c) if is_idc(c) => {
+                // `INT i`, `E6POS p = {…}`: a declaration without DECL.
+                self.pos = save;
+                Some((NodeKind::DeclStmt, self.decl_free(Vec::new())?))
+            }
             _ => {
                 self.pos = save;
                 let target = self.expr()?;
@@ -363,6 +454,32 @@ impl<'t> P<'t> {
             children.push(c);
             self.ws();
         }
+        self.decl_tail(children)
+    }
+
+    /// `[GLOBAL] [CONST] type var …` without `DECL`; `children` holds a `GLOBAL` already read.
+    /// A statement keyword is never the type (the grammar's `not_a_type`).
+    fn decl_free(&mut self, mut children: Vec<Element>) -> Option<Vec<Element>> {
+        if children.is_empty()
+            && let Some(g) = self.kw("GLOBAL")
+        {
+            children.push(g);
+            self.ws();
+        }
+        if let Some(c) = self.kw("CONST") {
+            children.push(c);
+            self.ws();
+        }
+        let n = self.word_len();
+        let w = &self.text[self.pos..self.pos + n];
+        if NOT_A_TYPE.iter().any(|k| k.eq_ignore_ascii_case(w)) {
+            return None;
+        }
+        self.decl_tail(children)
+    }
+
+    /// `type[dims] var[dims] [= expr] {, …}` after the declaration's leading keywords.
+    fn decl_tail(&mut self, mut children: Vec<Element>) -> Option<Vec<Element>> {
         let ty_start = self.pos;
         let mut ty = vec![self.ident()?];
         self.ws();
@@ -395,6 +512,124 @@ impl<'t> P<'t> {
         Some(children)
     }
 
+    /// `[GLOBAL] DEF name(params)` or `[GLOBAL] DEFFCT type name(params)`.
+    fn def_line(&mut self, mut children: Vec<Element>) -> Option<(NodeKind, Vec<Element>)> {
+        let kind = if let Some(k) = self.kw("DEFFCT") {
+            children.push(k);
+            self.ws();
+            children.push(self.type_ref()?);
+            NodeKind::DeffctLine
+        } else {
+            children.push(self.kw("DEF")?);
+            NodeKind::DefLine
+        };
+        self.ws();
+        children.push(self.ident()?);
+        self.ws();
+        if !self.punct(b'(') {
+            return None;
+        }
+        self.ws();
+        if self.peek() != Some(b')') {
+            let list_start = self.pos;
+            let mut params = Vec::new();
+            loop {
+                self.ws();
+                params.push(self.param()?);
+                self.ws();
+                if !self.punct(b',') {
+                    break;
+                }
+            }
+            let end = params.last()?.span().end as usize;
+            children.push(self.node(NodeKind::ParamList, list_start, end, params));
+            self.ws();
+        }
+        if !self.punct(b')') {
+            return None;
+        }
+        Some((kind, children))
+    }
+
+    /// `name ["[" dims "]"] [: IN|OUT]`.
+    fn param(&mut self) -> Option<Element> {
+        let start = self.pos;
+        let mut children = vec![self.ident()?];
+        let mut end = self.pos;
+        self.ws();
+        if self.punct(b'[') {
+            self.list_into(b']', &mut children)?;
+            end = self.pos;
+            self.ws();
+        }
+        if self.punct(b':') {
+            self.ws();
+            let dir = self.kw("IN").or_else(|| self.kw("OUT"))?;
+            end = self.pos;
+            children.push(dir);
+        }
+        self.pos = end;
+        Some(self.node(NodeKind::Param, start, end, children))
+    }
+
+    fn type_ref(&mut self) -> Option<Element> {
+        let start = self.pos;
+        let mut ty = vec![self.ident()?];
+        let after_name = self.pos;
+        self.ws();
+        if self.peek() == Some(b'[') {
+            ty.push(self.dims()?);
+        } else {
+            self.pos = after_name;
+        }
+        let end = ty.last()?.span().end as usize;
+        Some(self.node(NodeKind::TypeRef, start, end, ty))
+    }
+
+    /// `DEFDAT name [()] [PUBLIC]`.
+    fn defdat_line(&mut self) -> Option<Vec<Element>> {
+        let mut children = vec![self.kw("DEFDAT")?];
+        self.ws();
+        children.push(self.ident()?);
+        let save = self.pos;
+        self.ws();
+        if self.punct(b'(') {
+            self.ws();
+            if !self.punct(b')') {
+                return None;
+            }
+        } else {
+            self.pos = save;
+        }
+        let save = self.pos;
+        self.ws();
+        match self.kw("PUBLIC") {
+            Some(p) => children.push(p),
+            None => self.pos = save,
+        }
+        Some(children)
+    }
+
+    /// `[GLOBAL] SIGNAL name expr [TO expr]`.
+    fn signal(&mut self, mut children: Vec<Element>) -> Option<Vec<Element>> {
+        children.push(self.kw("SIGNAL")?);
+        self.ws();
+        children.push(self.ident()?);
+        self.ws();
+        children.push(self.expr()?);
+        let save = self.pos;
+        self.ws();
+        match self.kw("TO") {
+            Some(to) => {
+                children.push(to);
+                self.ws();
+                children.push(self.expr()?);
+            }
+            None => self.pos = save,
+        }
+        Some(children)
+    }
+
     fn dims(&mut self) -> Option<Element> {
         let start = self.pos;
         self.pos += 1;
@@ -402,24 +637,30 @@ impl<'t> P<'t> {
         Some(self.node(NodeKind::Dims, start, self.pos, items))
     }
 
-    /// `expr? ("," expr?)* close`, cursor after the opening bracket; returns the expressions.
-    fn list(&mut self, close: u8) -> Option<Vec<Element>> {
+    /// `expr? ("," expr?)* close`, cursor after the opening bracket; the expressions are
+    /// appended to `out`.
+    fn list_into(&mut self, close: u8, out: &mut Vec<Element>) -> Option<()> {
         self.enter()?;
-        let mut items = Vec::new();
         loop {
             self.ws();
             if self.peek() != Some(b',') && self.peek() != Some(close) {
-                items.push(self.expr()?);
+                out.push(self.expr()?);
                 self.ws();
             }
             if self.punct(close) {
                 self.depth -= 1;
-                return Some(items);
+                return Some(());
             }
             if !self.punct(b',') {
                 return None;
             }
         }
+    }
+
+    fn list(&mut self, close: u8) -> Option<Vec<Element>> {
+        let mut items = Vec::new();
+        self.list_into(close, &mut items)?;
+        Some(items)
     }
 
     // ---- expressions --------------------------------------------------------------------------
@@ -436,7 +677,21 @@ impl<'t> P<'t> {
 
     fn expr(&mut self) -> Option<Element> {
         let mut items = Vec::new();
-        self.segment(&mut items)?;
+        if self.prefix_ahead() {
+            self.segment(&mut items)?;
+        } else {
+            // Most expressions are one literal or name: answer those without the item list.
+            let primary = self.primary()?;
+            let save = self.pos;
+            self.ws();
+            let more = matches!(self.peek(), Some(b'[' | b'.')) || self.infix().is_some();
+            self.pos = save;
+            if !more {
+                return Some(primary);
+            }
+            items.push(Item::Primary(primary));
+            self.postfixes(&mut items)?;
+        }
         loop {
             let save = self.pos;
             self.ws();
@@ -472,6 +727,23 @@ impl<'t> P<'t> {
         }
         let primary = self.primary()?;
         items.push(Item::Primary(primary));
+        self.postfixes(items)
+    }
+
+    /// Whether a prefix operator (`NOT`, `B_NOT`, a sign) is at the cursor.
+    fn prefix_ahead(&self) -> bool {
+        match self.peek() {
+            Some(b'-' | b'+') => true,
+            Some(b'N' | b'n' | b'B' | b'b') => {
+                let w = &self.text[self.pos..self.pos + self.word_len()];
+                w.eq_ignore_ascii_case("NOT") || w.eq_ignore_ascii_case("B_NOT")
+            }
+            _ => false,
+        }
+    }
+
+    /// `postfix*` after a primary.
+    fn postfixes(&mut self, items: &mut Vec<Item>) -> Option<()> {
         loop {
             let save = self.pos;
             self.ws();
@@ -665,7 +937,7 @@ impl<'t> P<'t> {
                 self.ws();
                 if self.punct(b'(') {
                     let mut children = vec![name];
-                    children.extend(self.list(b')')?);
+                    self.list_into(b')', &mut children)?;
                     return Some(self.node(NodeKind::Call, start, self.pos, children));
                 }
                 self.pos = after_name;
@@ -796,15 +1068,42 @@ impl<'t> P<'t> {
                 }
                 self.ws();
             }
+            let committed = self.at_expr_start();
             if let Some(value) = self.expr() {
                 let end = value.span().end as usize;
                 return Some(self.node(NodeKind::AggField, start, end, vec![name, value]));
+            }
+            if committed {
+                // As in the grammar: no second, positional attempt (see `agg_field`).
+                return None;
             }
             self.pos = start;
         }
         let value = self.expr()?;
         let end = value.span().end as usize;
         Some(self.node(NodeKind::AggField, start, end, vec![value]))
+    }
+}
+
+impl P<'_> {
+    /// Whether an expression can start at the cursor (the grammar's `expr_start`).
+    fn at_expr_start(&self) -> bool {
+        let Some(c) = self.peek() else {
+            return false;
+        };
+        match c {
+            b'0'..=b'9' | b'(' | b'{' | b'\'' | b'"' | b'#' | b'-' | b'+' => true,
+            b'.' => self.b[self.pos + 1..self.end]
+                .first()
+                .is_some_and(u8::is_ascii_digit),
+            c if c.is_ascii_alphabetic() || c == b'_' || c == b'$' => {
+                let w = &self.text[self.pos..self.pos + self.word_len()];
+                w.eq_ignore_ascii_case("NOT")
+                    || w.eq_ignore_ascii_case("B_NOT")
+                    || !RESERVED.iter().any(|r| r.eq_ignore_ascii_case(w))
+            }
+            _ => false,
+        }
     }
 }
 
@@ -866,6 +1165,7 @@ fn statement_like(upper: &str) -> bool {
             | "GOTO"
             | "IMPORT"
             | "INTERRUPT"
+            | "MOVE_EMI"
             | "PTP_SPLINE"
             | "RETURN"
             | "SIGNAL"
@@ -966,12 +1266,30 @@ mod tests {
             "BRAKE F",
             "INTERRUPT ON 3",
             "interrupt disable",
+            "INT i",
+            "E6POS p = {X 1, Y 2}",
+            "GLOBAL CONST REAL r = 1.5, q",
+            "CONST INT n = 3",
+            "global bool done",
+            "DEF main( )",
+            "GLOBAL DEF pick(n:IN, v[]:OUT, m[,] : OUT, s[80]:IN, k)",
+            "DEFFCT CHAR[15] name_of(i :IN)",
+            "global deffct int f()",
+            "DEFDAT cell PUBLIC",
+            "DEFDAT cell ( )",
+            "defdat $config",
+            "SIGNAL s $OUT[1] TO $OUT[8]",
+            "GLOBAL SIGNAL s FALSE",
         ] {
             assert!(agrees(code), "fast path should take {code:?}");
         }
         for code in [
             "label:",
-            "INT i",
+            "PTPP P1 C_DIS",
+            "RETURN a=b",
+            "GLOBAL INTERRUPT DECL 3 WHEN a DO b()",
+            "GLOBAL DECL INT x",
+            "GLOBAL STRUC s INT a",
             "x = = 1",
             "PTP",
             "DECL STRUC s INT a",
@@ -1002,7 +1320,7 @@ mod tests {
 
         #[test]
         fn agrees_on_random_statements(
-            head in prop::sample::select(vec!["x = ", "DECL INT a = ", "IF ", "PTP ", "f(", "WAIT FOR ", "FOR i = ", "CASE ", "RETURN ", "INTERRUPT ON ", "SWITCH "]),
+            head in prop::sample::select(vec!["x = ", "DECL INT a = ", "INT a = ", "GLOBAL REAL r[2] = ", "SIGNAL s ", "DEF f(", "DEFFCT INT f(", "IF ", "PTP ", "f(", "WAIT FOR ", "FOR i = ", "CASE ", "RETURN ", "INTERRUPT ON ", "SWITCH "]),
             operand in prop::collection::vec(prop::sample::select(vec!["a", "1", "-", "NOT ", "(", ")", "[1]", ".b", "{X 1}", " + ", " AND ", ":", "==", ","]), 1..10),
             tail in prop::sample::select(vec!["", " THEN", ")", " C_PTP", ", b", " TO 5", " TO n STEP 2"]),
         ) {

@@ -45,6 +45,8 @@ pub(crate) fn parse_code(text: &str, start: usize, end: usize) -> Result<Node, L
 
 /// The grammar alone (the fast path must agree with it wherever it answers).
 pub(crate) fn parse_with_grammar(text: &str, start: usize, end: usize) -> Result<Node, LineError> {
+    static BUDGET: std::sync::Once = std::sync::Once::new();
+    BUDGET.call_once(|| pest::set_call_limit(std::num::NonZeroUsize::new(MAX_GRAMMAR_CALLS)));
     let code = &text[start..end];
     match KrlGrammar::parse(entry_rule(code), code) {
         Ok(mut pairs) => {
@@ -59,8 +61,24 @@ pub(crate) fn parse_with_grammar(text: &str, start: usize, end: usize) -> Result
                 }),
             }
         }
-        Err(e) => Err(describe(e, code, start)),
+        Err(e) => Err(global_decl(code, start).unwrap_or_else(|| describe(e, code, start))),
     }
+}
+
+/// `GLOBAL DECL …` is a common slip for `DECL GLOBAL …`; say so instead of pest's message.
+fn global_decl(code: &str, base: usize) -> Option<LineError> {
+    let mut words = code.split_whitespace();
+    let first = words.next()?;
+    let second = words.next()?;
+    if !(first.eq_ignore_ascii_case("GLOBAL") && second.eq_ignore_ascii_case("DECL")) {
+        return None;
+    }
+    let at = code[first.len()..].find(second)? + first.len();
+    Some(LineError {
+        at: base + at,
+        len: second.len(),
+        message: "`GLOBAL DECL` is not KRL: write `DECL GLOBAL`".into(),
+    })
 }
 
 /// Words that can start a statement other than a declaration, assignment, call or label.
@@ -107,6 +125,7 @@ const STATEMENT_WORDS: &[&str] = &[
     "LIN",
     "LIN_REL",
     "LOOP",
+    "MOVE_EMI",
     "ON_ERROR_PROCEED",
     "PTP",
     "PTP_REL",
@@ -133,6 +152,25 @@ const STATEMENT_WORDS: &[&str] = &[
     "WHILE",
 ];
 
+/// First words whose lines `line_kw` covers (see krl.pest): most lines the fast path leaves to
+/// the grammar start with one of these.
+const KW_LED: &[&str] = &[
+    "CHANNEL",
+    "DEF",
+    "DEFDAT",
+    "DEFFCT",
+    "ENUM",
+    "EXT",
+    "EXTFCT",
+    "EXTFCTP",
+    "EXTP",
+    "GLOBAL",
+    "INTERRUPT",
+    "SIGNAL",
+    "STRUC",
+    "TRIGGER",
+];
+
 /// The cheapest grammar entry that can accept this line (always a subset of `line`).
 fn entry_rule(code: &str) -> Rule {
     let bytes = code.as_bytes();
@@ -152,6 +190,8 @@ fn entry_rule(code: &str) -> Rule {
     let word = &code[..len];
     if word.eq_ignore_ascii_case("DECL") {
         Rule::line_decl
+    } else if KW_LED.iter().any(|k| k.eq_ignore_ascii_case(word)) {
+        Rule::line_kw
     } else if len > 16 || STATEMENT_WORDS.iter().any(|k| k.eq_ignore_ascii_case(word)) {
         Rule::line
     } else {
@@ -164,6 +204,10 @@ fn entry_rule(code: &str) -> Rule {
 const MAX_NESTING: usize = 64;
 const MAX_PREFIX_RUN: usize = 64;
 const MAX_OPERATORS: usize = 1024;
+/// pest calls allowed for one line. Backtracking the grammar cannot rule out (nothing known is
+/// worse than linear) stays bounded: a line that needs more is reported as too complex instead of
+/// hanging. Real lines, 1,248-character aggregates included, need a small fraction of this.
+const MAX_GRAMMAR_CALLS: usize = 2_000_000;
 
 #[cfg(test)]
 pub(crate) fn too_deep_for_tests(code: &str) -> bool {
@@ -317,6 +361,7 @@ fn classify(rule: Rule) -> Class {
         Rule::goto_stmt => N(NodeKind::GotoStmt),
         Rule::analog_stmt => N(NodeKind::AnalogStmt),
         Rule::analog_opt => N(NodeKind::AnalogOpt),
+        Rule::move_emi_stmt => N(NodeKind::MoveEmiStmt),
         Rule::label_stmt => N(NodeKind::LabelStmt),
         Rule::call_stmt => N(NodeKind::CallStmt),
         Rule::assign_stmt => N(NodeKind::AssignStmt),
@@ -533,7 +578,16 @@ fn describe(e: pest::error::Error<Rule>, code: &str, base: usize) -> LineError {
             }
             names
         }
-        pest::error::ErrorVariant::CustomError { .. } => Vec::new(),
+        pest::error::ErrorVariant::CustomError { message } => {
+            if message.contains("limit") {
+                return LineError {
+                    at: base,
+                    len: code.len(),
+                    message: "line too complex to parse; split it".into(),
+                };
+            }
+            Vec::new()
+        }
     };
     let found_desc = if found.is_empty() {
         "end of line".to_string()
@@ -631,4 +685,87 @@ fn name(rule: Rule) -> Option<&'static str> {
         Rule::agg_field => "aggregate field",
         _ => return None,
     })
+}
+
+#[cfg(test)]
+mod entry_tests {
+    use super::*;
+
+    /// What `line` alone makes of `code`: the tree, or only the fact that it failed.
+    fn via(rule: Rule, code: &str) -> Option<Node> {
+        let mut pairs = KrlGrammar::parse(rule, code).ok()?;
+        let stmt = pairs
+            .next()?
+            .into_inner()
+            .find(|p| p.as_rule() != Rule::EOI)?;
+        match convert(
+            stmt,
+            &Ctx {
+                text: code,
+                base: 0,
+            },
+        ) {
+            Element::Node(n) => Some(n),
+            Element::Token(_) => None,
+        }
+    }
+
+    /// The narrow entry rules accept exactly what `line` accepts, with the same tree.
+    #[test]
+    fn entry_rules_agree_with_line() {
+        let root = concat!(env!("CARGO_MANIFEST_DIR"), "/tests/fixtures");
+        let mut dirs = vec![std::path::PathBuf::from(root)];
+        let mut lines: Vec<String> = [
+            "GLOBAL DEF a(x:IN)",
+            "GLOBAL DEFFCT INT f()",
+            "GLOBAL INTERRUPT DECL 3 WHEN $STOPMESS==TRUE DO IR_STOPM ( )",
+            "GLOBAL INT x = 1",
+            "GLOBAL CONST REAL r = 1.5",
+            "GLOBAL DECL INT g",
+            "GLOBAL STRUC s INT a, REAL b",
+            "GLOBAL ENUM e a, b",
+            "GLOBAL SIGNAL s $OUT[1] TO $OUT[8]",
+            "GLOBAL EXTFCT INT f(INT :IN)",
+            "SIGNAL s FALSE",
+            "SIGNAL = 1",
+            "SIGNAL(1)",
+            "TRIGGER WHEN DISTANCE=0 DELAY=10 DO $OUT[1]=TRUE PRIO=-1",
+            "TRIGGER: ",
+            "TRIGGER:",
+            "DEF: ",
+            "INTERRUPT ON 3",
+            "INTERRUPT DECL 5 WHEN $IN[1] DO f()",
+            "INTERRUPT x",
+            "CHANNEL :SER_1 :SER_1 $PSER_1",
+            "EXTP f(E6POS :OUT)",
+            "STRUC",
+            "DEFDAT x PUBLIC",
+            "DEF f(a[,]:OUT, b[80]:IN)",
+        ]
+        .iter()
+        .map(|s| s.to_string())
+        .collect();
+        while let Some(dir) = dirs.pop() {
+            for entry in std::fs::read_dir(&dir).expect("fixture dir").flatten() {
+                let path = entry.path();
+                if path.is_dir() {
+                    dirs.push(path);
+                    continue;
+                }
+                let text = crate::syntax::decode(&std::fs::read(&path).expect("read")).text;
+                for line in text.split(['\n', '\r']) {
+                    let code = line.split(';').next().unwrap_or("").trim();
+                    if !code.is_empty() && !code.starts_with('&') {
+                        lines.push(code.to_string());
+                    }
+                }
+            }
+        }
+        for code in &lines {
+            let entry = entry_rule(code);
+            if entry != Rule::line {
+                assert_eq!(via(entry, code), via(Rule::line, code), "{code:?}");
+            }
+        }
+    }
 }

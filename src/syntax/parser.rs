@@ -8,7 +8,7 @@
 
 use super::blocks::{Assembler, Role};
 use super::cst::{Element, Node, NodeKind, Token, TokenKind};
-use super::line::{make_node, parse_code};
+use super::line::{gap_tokens, make_node, parse_code};
 use crate::diag::{Diagnostic, Span};
 
 /// Rule code for syntax errors.
@@ -58,9 +58,7 @@ pub fn parse(text: &str) -> Parse {
 
 /// End of the line's content and end of the line including its terminator.
 fn line_bounds(bytes: &[u8], start: usize) -> (usize, usize) {
-    let rel = bytes[start..]
-        .iter()
-        .position(|&b| b == b'\n' || b == b'\r');
+    let rel = memchr::memchr2(b'\n', b'\r', &bytes[start..]);
     match rel {
         None => (bytes.len(), bytes.len()),
         Some(r) => {
@@ -99,10 +97,8 @@ fn parse_line(
             .iter()
             .take_while(|&&b| is_blank(b))
             .count();
-    let mut children = Vec::with_capacity(4);
-    if code_start > start {
-        children.push(tok(TokenKind::Whitespace, start, code_start));
-    }
+    let indent = (code_start > start).then(|| tok(TokenKind::Whitespace, start, code_start));
+    let mut children: Vec<Element> = Vec::new();
     let newline = (line_end > content_end).then(|| tok(TokenKind::Newline, content_end, line_end));
     let finish = |mut children: Vec<Element>, kind| {
         children.extend(newline);
@@ -114,9 +110,11 @@ fn parse_line(
     };
 
     if code_start == content_end {
+        children.extend(indent);
         return (finish(children, NodeKind::BlankLine), Role::None);
     }
     if bytes[code_start] == b'&' {
+        children.extend(indent);
         children.push(tok(TokenKind::Header, code_start, content_end));
         return (finish(children, NodeKind::HeaderLine), Role::None);
     }
@@ -139,15 +137,30 @@ fn parse_line(
         }
     };
     if code_end == code_start {
+        children.extend(indent);
         trailing(&mut children);
         return (finish(children, NodeKind::CommentLine), Role::None);
     }
     match parse_code(text, code_start, code_end) {
         Ok(stmt) => {
             let role = Role::of(stmt.kind);
-            children.extend(stmt.children);
-            trailing(&mut children);
-            (finish(children, stmt.kind), role)
+            // Blanks the line splitter does not know (a no-break space) can sit between the
+            // indentation and the statement, or after it; they stay in the tree as whitespace.
+            let (s, e) = (stmt.span.start as usize, stmt.span.end as usize);
+            // The statement's own children become the line's (no copy into a new vector).
+            let mut line = stmt.children;
+            if s > code_start {
+                children.extend(indent);
+                gap_tokens(text, code_start, s, &mut children);
+                line.splice(0..0, children);
+            } else if let Some(indent) = indent {
+                line.insert(0, indent);
+            }
+            if code_end > e {
+                gap_tokens(text, e, code_end, &mut line);
+            }
+            trailing(&mut line);
+            (finish(line, stmt.kind), role)
         }
         Err(err) => {
             let role = Role::guess(&text[code_start..code_end]);
@@ -157,6 +170,7 @@ fn parse_line(
                 Span::new(at, (at + err.len).min(code_end)),
                 err.message,
             ));
+            children.extend(indent);
             children.push(tok(TokenKind::Error, code_start, code_end));
             trailing(&mut children);
             (finish(children, NodeKind::Error), role)
@@ -167,14 +181,23 @@ fn parse_line(
 /// First `;` that is not inside a string or character literal (or `end` if none).
 fn find_comment(bytes: &[u8], start: usize, end: usize) -> usize {
     let mut quote: Option<u8> = None;
-    for (i, &b) in bytes[start..end].iter().enumerate() {
+    let mut i = start;
+    while i < end {
         match quote {
-            Some(q) if b == q => quote = None,
-            Some(_) => {}
-            None => match b {
-                b';' => return start + i,
-                b'"' | b'\'' => quote = Some(b),
-                _ => {}
+            Some(q) => match memchr::memchr(q, &bytes[i..end]) {
+                Some(p) => {
+                    quote = None;
+                    i += p + 1;
+                }
+                None => break,
+            },
+            None => match memchr::memchr3(b';', b'"', b'\'', &bytes[i..end]) {
+                Some(p) if bytes[i + p] == b';' => return i + p,
+                Some(p) => {
+                    quote = Some(bytes[i + p]);
+                    i += p + 1;
+                }
+                None => break,
             },
         }
     }

@@ -12,5 +12,5 @@ pub static RULE: Rule = Rule {
 };
 
 fn check(ctx: &FileCtx, out: &mut Vec<Diagnostic>) {
-    out.extend(ctx.file.parse.diagnostics.iter().cloned());
+    out.extend(ctx.file.syntax_errors.iter().cloned());
 }

@@ -1,33 +1,33 @@
 use crate::diag::{Diagnostic, Severity, Span};
 use crate::lint::context::FileCtx;
 use crate::lint::registry::Rule;
+use crate::lint::text::lines;
 
 pub static RULE: Rule = Rule {
     code: "KRL004",
     name: "unbalanced-fold",
     severity: Severity::Warning,
     summary: "`;FOLD` / `;ENDFOLD` not balanced",
-    doc: "## What it checks\nEvery comment line starting with `;FOLD` (any case, after optional blanks) must be closed by a later `;ENDFOLD` line, and every `;ENDFOLD` must close an open fold. An `;ENDFOLD` without a fold is reported at that line; a fold still open at the end of the file is reported at its `;FOLD` line.\n\n## Why it matters\nThe smartPAD editor uses folds to hide inline-form details; unbalanced folds hide or garble code in the editor and break inline forms.\n\n## Example\n```krl\n;FOLD PTP HOME\nPTP HOME\n```\n\n## Fix\nAdd the missing `;ENDFOLD` (or remove the stray one).",
+    doc: "## What it checks\nEvery comment line starting with `;FOLD` (any case, blanks allowed before and after the `;`) must be closed by a later `;ENDFOLD` line, and every `;ENDFOLD` must close an open fold. An `;ENDFOLD` without a fold is reported at that line; a fold still open at the end of the file is reported at its `;FOLD` line.\n\n## Why it matters\nThe smartPAD editor uses folds to hide inline-form details; unbalanced folds hide or garble code in the editor and break inline forms.\n\n## Example\n```krl\n;FOLD PTP HOME\nPTP HOME\n```\n\n## Fix\nAdd the missing `;ENDFOLD` (or remove the stray one).",
     check,
 };
 
 fn check(ctx: &FileCtx, out: &mut Vec<Diagnostic>) {
     let text = &ctx.file.text;
     let mut open: Vec<Span> = Vec::new();
-    let mut offset = 0;
-    for line in text.split_inclusive('\n') {
+    for (offset, line) in lines(text) {
         let trimmed = line.trim_start_matches([' ', '\t']);
         let start = offset + (line.len() - trimmed.len());
-        offset += line.len();
         let Some(comment) = trimmed.strip_prefix(';') else {
             continue;
         };
+        // `; FOLD` with blanks after the `;` is a fold too (KUKA's own system modules write it).
         let word: String = comment
+            .trim_start_matches([' ', '\t'])
             .chars()
             .take_while(|c| c.is_ascii_alphabetic())
             .collect();
-        let content = trimmed.trim_end_matches(['\r', '\n']);
-        let span = Span::new(start, start + content.len());
+        let span = Span::new(start, start + trimmed.len());
         if word.eq_ignore_ascii_case("FOLD") {
             open.push(span);
         } else if word.eq_ignore_ascii_case("ENDFOLD") && open.pop().is_none() {

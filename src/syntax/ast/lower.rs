@@ -175,7 +175,7 @@ impl<'t> Cx<'t> {
                     Err(_) => ExprKind::Invalid(s.into()),
                 }
             }
-            T::EnumLit => ExprKind::Enum(s.trim_start_matches('#').into()),
+            T::EnumLit => ExprKind::Enum(s.trim_start_matches('#').trim_start().into()),
             _ => ExprKind::Invalid(s.into()),
         }
     }
@@ -899,7 +899,12 @@ impl<'t> Cx<'t> {
                 } else if let Element::Token(t) = el
                     && t.kind == T::EnumLit
                 {
-                    frame = Some(t.text(self.text).trim_start_matches('#').to_string());
+                    frame = Some(
+                        t.text(self.text)
+                            .trim_start_matches('#')
+                            .trim_start()
+                            .to_string(),
+                    );
                 }
             }
             prev_ca = false;
