@@ -494,6 +494,7 @@ impl As {
             Expr::Str(s) => V::Str(s.clone()),
             Expr::Fmt(f) => V::Str(f.clone()),
             Expr::Null => V::Pose([0.0; 6]),
+            Expr::Group(x) => self.eval(x)?,
             Expr::Var(v) => {
                 let val = self.read_var(v)?;
                 if v.amp && !matches!(val, V::Pose(_)) {

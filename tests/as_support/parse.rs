@@ -29,6 +29,16 @@ pub enum Expr {
     Neg(Box<Expr>),
     Not(Box<Expr>),
     Bin(&'static str, Box<Expr>, Box<Expr>),
+    /// A parenthesised expression (kept to tell `(a AND b) OR c` from `a AND b OR c`).
+    Group(Box<Expr>),
+}
+
+/// The logical operator at the top of `e`, unless parenthesised.
+fn logic_op(e: &Expr) -> Option<&'static str> {
+    match e {
+        Expr::Bin(op, ..) if LEVELS[0].contains(op) || LEVELS[1].contains(op) => Some(op),
+        _ => None,
+    }
 }
 
 pub struct Parser {
@@ -147,6 +157,18 @@ impl Parser {
         while let Some(op) = self.op_at(level) {
             self.i += 1;
             let r = operand(self)?;
+            if level < 2 {
+                // AS documents no precedence among its logical operators.
+                for side in [&l, &r] {
+                    if let Some(inner) = logic_op(side).filter(|o| *o != op) {
+                        return Err(format!(
+                            "`{}` inside `{}` without parentheses (AS precedence unverified)",
+                            inner.to_ascii_uppercase(),
+                            op.to_ascii_uppercase()
+                        ));
+                    }
+                }
+            }
             l = Expr::Bin(op, Box::new(l), Box::new(r));
             if level == 2 {
                 // Comparisons do not chain.
@@ -158,9 +180,23 @@ impl Parser {
 
     fn not(&mut self) -> Result<Expr, String> {
         if self.eat_kw("not") {
-            return Ok(Expr::Not(Box::new(self.not()?)));
+            let operand = self.not_operand()?;
+            if self.op_at(2).is_some() {
+                return Err(
+                    "`NOT a` followed by a comparison without parentheses (AS precedence unverified)"
+                        .into(),
+                );
+            }
+            return Ok(Expr::Not(Box::new(operand)));
         }
         self.level(2)
+    }
+
+    fn not_operand(&mut self) -> Result<Expr, String> {
+        if self.eat_kw("not") {
+            return Ok(Expr::Not(Box::new(self.not_operand()?)));
+        }
+        self.level(3)
     }
 
     fn unary(&mut self) -> Result<Expr, String> {
@@ -185,7 +221,7 @@ impl Parser {
             Tok::P("(") => {
                 let e = self.expr()?;
                 self.expect(")")?;
-                Ok(e)
+                Ok(Expr::Group(Box::new(e)))
             }
             Tok::Id(name) => {
                 match name.as_str() {
