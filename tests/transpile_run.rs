@@ -324,35 +324,47 @@ fn same_motions(krl: &KrlRun, run: &AsRun, printed: &[usize]) -> Result<(), Stri
     Ok(())
 }
 
-/// The numeric `.dat` globals of the KRL run (`MODULE::NAME` → value; TRUE is -1 as in AS),
-/// and the same names read from the AS run.
+/// A KRL number as AS holds it (TRUE is -1).
+fn krl_number(v: &Value) -> Option<f64> {
+    match v {
+        Value::Int(i) => Some(*i as f64),
+        Value::Real(r) => Some(*r),
+        Value::Bool(b) => Some(if *b { -1.0 } else { 0.0 }),
+        _ => None,
+    }
+}
+
+/// The numeric `.dat` globals of the KRL run (`MODULE::NAME` → value; one-dimensional
+/// numeric arrays element by element, `name[k]`), and the same names read from the AS run.
 fn dat_globals(krl: &KrlRun, run: &AsRun, module: &str) -> Vec<(String, f64, Option<f64>)> {
     let prefix = format!("{}::", module.to_ascii_uppercase());
-    let mut out: Vec<(String, f64, Option<f64>)> = krl
-        .r
-        .globals
-        .iter()
-        .filter_map(|(k, v)| {
-            let name = k.strip_prefix(&prefix)?.to_ascii_lowercase();
-            let n = match v {
-                Value::Int(i) => *i as f64,
-                Value::Real(r) => *r,
-                Value::Bool(b) => {
-                    if *b {
-                        -1.0
-                    } else {
-                        0.0
+    let as_num = |name: &str| match run.a.get(name) {
+        Some(V::Num(x)) => Some(*x),
+        _ => None,
+    };
+    let mut out = Vec::new();
+    for (k, v) in &krl.r.globals {
+        let Some(name) = k.strip_prefix(&prefix).map(str::to_ascii_lowercase) else {
+            continue;
+        };
+        match v {
+            Value::Array { dims, items } if dims.len() == 1 => {
+                for (i, item) in items.iter().enumerate() {
+                    if let Some(n) = krl_number(item) {
+                        let e = format!("{name}[{}]", i + 1);
+                        let a = as_num(&e);
+                        out.push((e, n, a));
                     }
                 }
-                _ => return None,
-            };
-            let as_value = match run.a.get(&name) {
-                Some(V::Num(x)) => Some(*x),
-                _ => None,
-            };
-            Some((name, n, as_value))
-        })
-        .collect();
+            }
+            other => {
+                if let Some(n) = krl_number(other) {
+                    let a = as_num(&name);
+                    out.push((name, n, a));
+                }
+            }
+        }
+    }
     out.sort_by(|a, b| a.0.cmp(&b.0));
     out
 }
@@ -482,7 +494,11 @@ fn cell_with(base: &str, extra: &str) -> Scenario {
 
 /// The vision poses the AS run received, in the order of the scenario's project points.
 fn received(s: &Scenario, project: i64) -> Vec<[f64; 6]> {
-    let p = s.projects.iter().find(|p| p.id == project).expect("project");
+    let p = s
+        .projects
+        .iter()
+        .find(|p| p.id == project)
+        .expect("project");
     p.points
         .iter()
         .map(|v| v.pose.clone().try_into().unwrap())
@@ -601,9 +617,7 @@ fn bin_pick_runs_like_the_krl_original() {
 #[test]
 fn bin_pick_error_cells_end_in_their_status_codes() {
     // (what happens, the cell (None: no server), err_code, bin_empty, how the run ends)
-    let faults = |cmd: u32, what: &str| {
-        format!("\n[[fault]]\ncommand = {cmd}\n{what}\n")
-    };
+    let faults = |cmd: u32, what: &str| format!("\n[[fault]]\ncommand = {cmd}\n{what}\n");
     let cells: Vec<(&str, Option<Scenario>, f64, f64, &str)> = vec![
         ("server absent", None, 3099.0, 0.0, "HALT"),
         (
@@ -629,7 +643,10 @@ fn bin_pick_error_cells_end_in_their_status_codes() {
         ),
         (
             "malformed reply (102)",
-            Some(cell_with("bin_pick.toml", &faults(102, "garbage = \"102,1100,x\""))),
+            Some(cell_with(
+                "bin_pick.toml",
+                &faults(102, "garbage = \"102,1100,x\""),
+            )),
             4092.0,
             0.0,
             "HALT",
@@ -663,9 +680,18 @@ fn bin_pick_error_cells_end_in_their_status_codes() {
         }
         assert_same_run("bin_pick", &krl, &run, &[2]);
         let g = dat_globals(&krl, &run, "bin_pick");
-        assert!(g.contains(&("err_code".into(), code, Some(code))), "{what}: {g:?}");
-        assert!(g.contains(&("bin_empty".into(), empty, Some(empty))), "{what}: {g:?}");
-        assert!(g.contains(&("picked".into(), 0.0, Some(0.0))), "{what}: {g:?}");
+        assert!(
+            g.contains(&("err_code".into(), code, Some(code))),
+            "{what}: {g:?}"
+        );
+        assert!(
+            g.contains(&("bin_empty".into(), empty, Some(empty))),
+            "{what}: {g:?}"
+        );
+        assert!(
+            g.contains(&("picked".into(), 0.0, Some(0.0))),
+            "{what}: {g:?}"
+        );
         for t in [run.real_time, krl.real_time] {
             assert!(t < Duration::from_secs(10), "{what}: took {t:?}");
         }
@@ -674,8 +700,8 @@ fn bin_pick_error_cells_end_in_their_status_codes() {
 
 #[test]
 fn pallet_pattern_runs_like_the_krl_original() {
-    // No vision: computed place poses, a pose function, OUT parameters, a GOTO out of three
-    // loops, and REAL quotients assigned to INT variables (KRL rounds: 480 / 125.5 = 3.82
+    // No vision: computed place poses, a pose function, OUT and array parameters, a GOTO out
+    // of three loops, and REAL quotients assigned to INT variables (KRL rounds: 480 / 125.5 = 3.82
     // gives 4 layers, 14 * 100 / 24 = 58.3 gives 58).
     let krl = run_krl(&fixture("pallet_pattern"), None, &[]);
     assert!(matches!(krl.r.end, interp::End::Normal), "{:?}", krl.r.end);
@@ -688,6 +714,11 @@ fn pallet_pattern_runs_like_the_krl_original() {
         ("boxes", 14.0),
         ("fill_pct", 58.0),
         ("reported", 10.0),
+        // Filled through an array parameter (`.counts[]`).
+        ("per_layer[1]", 6.0),
+        ("per_layer[2]", 6.0),
+        ("per_layer[3]", 2.0),
+        ("per_layer[4]", 0.0),
     ] {
         assert!(g.contains(&(name.into(), v, Some(v))), "{name}: {g:?}");
     }
@@ -710,6 +741,28 @@ fn rounding_regression_is_caught_by_the_run() {
     });
     assert_eq!(run.end, End::Done);
     assert!(same_globals(&krl, &run, "pallet_pattern").is_err());
+}
+
+#[test]
+fn array_parameter_regression_is_caught_by_the_run() {
+    // The translation before the fix declared an array parameter without `[]`, so the AS
+    // program received `per_layer[]` in a scalar parameter.
+    let spec = spec(closed_port());
+    let (text, errors) = translate(&fixture("pallet_pattern"), &spec);
+    assert!(errors.is_empty());
+    let old = text.replace(
+        ".PROGRAM layer_counts(.counts[],.total)",
+        ".PROGRAM layer_counts(.counts,.total)",
+    );
+    assert_ne!(old, text);
+    let package = as_package(&spec);
+    let mut a =
+        As::load_files(&[("as/mm_package.as", &package), ("pallet_pattern.as", &old)]).unwrap();
+    let e = a.run("pallet_pattern").unwrap_err();
+    assert!(
+        e.contains("CALL layer_counts: argument 1 and parameter .counts must both be whole arrays"),
+        "{e}"
+    );
 }
 
 #[test]
@@ -758,9 +811,15 @@ fn every_fixture_runs_or_stops_at_a_located_error() {
         ("bin_pick", "bin_pick.as:20: SWAIT 1003,-1005 still waiting"),
         ("control", "done"),
         ("depal_plan", "PAUSE"),
-        ("gripper_check", "gripper_check.as:9: SWAIT 1005 still waiting"),
+        (
+            "gripper_check",
+            "gripper_check.as:9: SWAIT 1005 still waiting",
+        ),
         ("io_waits", "io_waits.as:9: the variable .ok is not defined"),
-        ("motions", "motions.as:53: a 7th value (JT7) is not modelled"),
+        (
+            "motions",
+            "motions.as:53: a 7th value (JT7) is not modelled",
+        ),
         ("pallet_pattern", "done"),
         ("pick_cycle", "pick_cycle.as:17: SWAIT 1010 still waiting"),
         ("taught", "taught.as:15: the variable #xhome is not defined"),
@@ -777,10 +836,10 @@ fn every_fixture_runs_or_stops_at_a_located_error() {
     let listed: Vec<&str> = expected.iter().map(|(n, _)| *n).collect();
     assert_eq!(names, listed, "add new fixtures here");
     // viz_depal reads `layer` before KRL assigns it, as the KRL original does.
-    let all = expected
-        .iter()
-        .copied()
-        .chain([("viz_depal", "viz_depal.as:14: the variable .layer is not defined")]);
+    let all = expected.iter().copied().chain([(
+        "viz_depal",
+        "viz_depal.as:14: the variable .layer is not defined",
+    )]);
     for (name, want) in all {
         let spec = spec(closed_port());
         let (text, _) = translate(&fixture(name), &spec);
@@ -798,5 +857,33 @@ fn every_fixture_runs_or_stops_at_a_located_error() {
             }
         };
         assert!(got.starts_with(want), "{name}: {got}");
+    }
+}
+
+#[test]
+#[ignore]
+fn probe() {
+    let src = PathBuf::from(std::env::var("PROBE").unwrap());
+    let inputs: Vec<i64> = std::env::var("INPUTS")
+        .map(|s| s.split(',').map(|x| x.parse().unwrap()).collect())
+        .unwrap_or_default();
+    let krl = run_krl(&src, None, &inputs);
+    eprintln!(
+        "KRL end {:?} outputs {:?} messages {:?}",
+        krl.r.end, krl.r.outputs, krl.r.messages
+    );
+    let run = run_as(&src, None, &inputs);
+    eprintln!("AS end {:?} outputs {:?}", run.end, run.a.outputs_on());
+    eprintln!(
+        "{:?}",
+        run.a
+            .trace
+            .iter()
+            .filter(|e| matches!(e, Event::Print(_)))
+            .collect::<Vec<_>>()
+    );
+    eprintln!("motions {:?}", same_motions(&krl, &run, &[]));
+    for g in dat_globals(&krl, &run, &stem(&src)) {
+        eprintln!("{g:?}");
     }
 }

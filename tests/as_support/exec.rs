@@ -167,7 +167,9 @@ impl As {
                     other => return Err(format!("DECOMPOSE of {}", other.describe()).into()),
                 };
                 let [first] = v.idx.as_slice() else {
-                    return Err("DECOMPOSE needs one array element (a[1])".to_string().into());
+                    return Err("DECOMPOSE needs one array element (a[1])"
+                        .to_string()
+                        .into());
                 };
                 let start = self.index(first)?;
                 for (k, x) in vals.iter().enumerate() {
@@ -175,6 +177,7 @@ impl As {
                         name: v.name.clone(),
                         amp: false,
                         idx: vec![Expr::Num((start + k as i64) as f64)],
+                        whole: false,
                     };
                     self.set(&r, V::Num(*x))?;
                 }
@@ -346,6 +349,23 @@ impl As {
                 Kind::Joint => "a joint value (#)",
                 Kind::Str => "a string ($)",
             };
+            if p.array || matches!(a, Expr::Var(v) if v.whole) {
+                match a {
+                    Expr::Var(v) if v.whole && p.array => {
+                        let base = self.array_base(v)?;
+                        frame.arrays.insert(p.name.clone(), base);
+                        continue;
+                    }
+                    _ => {
+                        return Err(format!(
+                            "CALL {name}: argument {} and parameter {} must both be whole arrays (name[])",
+                            k + 1,
+                            p.name
+                        )
+                        .into());
+                    }
+                }
+            }
             match a {
                 Expr::Var(v) => {
                     let kind = if v.amp {
@@ -412,7 +432,28 @@ impl As {
         Ok(v as i64)
     }
 
+    /// Where the whole array `v` (written `name[]`) lives.
+    fn array_base(&mut self, v: &VarRef) -> Result<Place, String> {
+        let f = self.frames.len() - 1;
+        if !v.name.starts_with('.') || f == 0 {
+            return Ok(Place::Global(v.name.trim_start_matches('.').to_string()));
+        }
+        if let Some(p) = self.frames[f].arrays.get(&v.name) {
+            return Ok(p.clone());
+        }
+        if self.frames[f].refs.contains_key(&v.name) {
+            return Err(format!("{} is not an array parameter", v.name));
+        }
+        Ok(Place::Local(f, v.name.clone()))
+    }
+
     fn place(&mut self, v: &VarRef) -> Result<Place, String> {
+        if v.whole {
+            return Err(format!(
+                "the whole array {}[] is only an argument of CALL",
+                v.name
+            ));
+        }
         let idx: Vec<i64> = v
             .idx
             .iter()
@@ -422,6 +463,15 @@ impl As {
         if !v.name.starts_with('.') || f == 0 {
             // The top-level frame of `exec` is the caller's program: its names are globals.
             return Ok(Place::Global(key(v.name.trim_start_matches('.'), &idx)));
+        }
+        if let Some(base) = self.frames[f].arrays.get(&v.name) {
+            if idx.is_empty() {
+                return Err(format!("the array parameter {}[] needs an index", v.name));
+            }
+            return Ok(match base {
+                Place::Global(b) => Place::Global(key(b, &idx)),
+                Place::Local(bf, b) => Place::Local(*bf, key(b, &idx)),
+            });
         }
         if let Some(p) = self.frames[f].refs.get(&v.name) {
             if !idx.is_empty() {
@@ -482,6 +532,7 @@ impl As {
                     name: v.name.clone(),
                     amp: false,
                     idx: vec![Expr::Num((first + offset as i64) as f64)],
+                    whole: false,
                 })
             }
             _ => Err("an array element (a[1]) expected".into()),
@@ -639,7 +690,9 @@ impl As {
             "distance" => {
                 arity(2)?;
                 let (p, q) = (a[0].pose()?, a[1].pose()?);
-                V::Num(((p[0] - q[0]).powi(2) + (p[1] - q[1]).powi(2) + (p[2] - q[2]).powi(2)).sqrt())
+                V::Num(
+                    ((p[0] - q[0]).powi(2) + (p[1] - q[1]).powi(2) + (p[2] - q[2]).powi(2)).sqrt(),
+                )
             }
             "$left" | "$right" => {
                 arity(2)?;

@@ -4,9 +4,9 @@
 //! inputs 1001…2000 (set only by the test), internal signals 2001…. A negative number means
 //! "off" in `SIGNAL`, `SWAIT` and `SIG`.
 
+use super::exec::Fault;
 use super::parse::Expr;
 use super::{As, End, Event, Interrupt};
-use super::exec::Fault;
 
 /// Simulated seconds between two checks of a waiting condition.
 const TICK: f64 = 0.01;
@@ -83,7 +83,9 @@ impl As {
     pub(super) fn pulse(&mut self, s: &Expr, t: Option<&Expr>) -> Result<(), String> {
         let n = self.signal_number(s)?;
         if n < 0 || is_input(n) {
-            return Err(format!("PULSE {n}: only outputs and internal signals pulse"));
+            return Err(format!(
+                "PULSE {n}: only outputs and internal signals pulse"
+            ));
         }
         let t = match t {
             Some(t) => self.eval(t)?.num()?,
@@ -106,7 +108,9 @@ impl As {
             return Err(format!("BITS {start},{count}"));
         }
         if value.fract() != 0.0 || value < 0.0 || value >= 2f64.powi(count as i32) {
-            return Err(format!("BITS {start},{count} = {value}: not a {count}-bit number"));
+            return Err(format!(
+                "BITS {start},{count} = {value}: not a {count}-bit number"
+            ));
         }
         if (start..start + count).any(is_input) {
             return Err(format!("BITS {start},{count}: includes inputs"));

@@ -61,7 +61,10 @@ impl V {
     fn pose(&self) -> Result<[f64; 6], String> {
         match self {
             V::Pose(p) => Ok(*p),
-            other => Err(format!("a transformation expected, got {}", other.describe())),
+            other => Err(format!(
+                "a transformation expected, got {}",
+                other.describe()
+            )),
         }
     }
     fn describe(&self) -> String {
@@ -79,11 +82,18 @@ impl V {
 pub enum Event {
     /// A motion statement (`JMOVE`, `LMOVE`, `C1MOVE`, `C2MOVE`, `JAPPRO`, `LAPPRO`, `JDEPART`,
     /// `LDEPART`, `DRAW`, `TDRAW`, `HOME`) and the target it moved to.
-    Motion { instr: &'static str, target: V },
+    Motion {
+        instr: &'static str,
+        target: V,
+    },
     /// `SIGNAL` with its signed signal numbers.
     Signal(Vec<i64>),
     Pulse(i64, f64),
-    Bits { start: i64, count: i64, value: i64 },
+    Bits {
+        start: i64,
+        count: i64,
+        value: i64,
+    },
     /// `TWAIT` seconds.
     Twait(f64),
     /// `SPEED`, `ACCURACY`, `ACCEL`, `DECEL`, `TOOL`, `BASE`, `WEIGHT`, `CP` with evaluated values.
@@ -120,6 +130,8 @@ struct Frame {
     program: String,
     vars: HashMap<String, V>,
     refs: HashMap<String, Place>,
+    /// Array parameters: the caller's array (its storage name, without index).
+    arrays: HashMap<String, Place>,
     /// FOR loops: the index of their ForInit → (end value, step).
     loops: HashMap<usize, (f64, f64)>,
 }

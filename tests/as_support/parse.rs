@@ -13,6 +13,8 @@ pub struct VarRef {
     /// Written with `&` (a transformation passed by reference).
     pub amp: bool,
     pub idx: Vec<Expr>,
+    /// Written `name[]` / `name[,]`: the whole array (a CALL argument).
+    pub whole: bool,
 }
 
 #[derive(Debug, Clone)]
@@ -269,10 +271,22 @@ impl Parser {
         let amp = raw.contains('&');
         let name = raw.replace('&', "");
         let mut idx = Vec::new();
+        let mut whole = false;
         if self.eat("[") {
-            idx = self.list_until("]")?;
+            if matches!(self.peek(), Some(Tok::P("]" | ","))) {
+                while self.eat(",") {}
+                self.expect("]")?;
+                whole = true;
+            } else {
+                idx = self.list_until("]")?;
+            }
         }
-        Ok(VarRef { name, amp, idx })
+        Ok(VarRef {
+            name,
+            amp,
+            idx,
+            whole,
+        })
     }
 
     /// Comma-separated expressions to the end of the line.
@@ -316,11 +330,20 @@ pub struct Param {
     /// Storage name (`.x`, `.#j`, `.$s`, `.p` for `.&p`).
     pub name: String,
     pub kind: Kind,
+    /// Written `.a[]` (`.a[,]` …): receives a whole array.
+    pub array: bool,
 }
 
 impl Param {
     pub fn parse(text: &str) -> Result<Param, String> {
         let t = text.trim().to_ascii_lowercase();
+        let (t, array) = match t.find('[') {
+            Some(i) if t.ends_with(']') && t[i + 1..t.len() - 1].chars().all(|c| c == ',') => {
+                (t[..i].to_string(), true)
+            }
+            Some(_) => return Err(format!("bad parameter `{}`", text.trim())),
+            None => (t, false),
+        };
         let kind = if t.contains('&') {
             Kind::Pose
         } else if t.contains('#') {
@@ -340,7 +363,7 @@ impl Param {
         {
             return Err(format!("bad parameter `{}`", text.trim()));
         }
-        Ok(Param { name, kind })
+        Ok(Param { name, kind, array })
     }
 }
 
@@ -552,7 +575,8 @@ pub fn compile(
 fn is_label(text: &str) -> Option<String> {
     let l = text.strip_suffix(':')?.trim_end();
     let ok = l.starts_with(|c: char| c.is_ascii_alphabetic())
-        && l.chars().all(|c| c.is_ascii_alphanumeric() || c == '_' || c == '.');
+        && l.chars()
+            .all(|c| c.is_ascii_alphanumeric() || c == '_' || c == '.');
     (ok && !l.eq_ignore_ascii_case("any")).then(|| l.to_ascii_lowercase())
 }
 
@@ -730,7 +754,10 @@ impl Compiler {
                     return Err(format!("{head} outside CASE"));
                 };
                 if (head == "SVALUE") != *string && head != "ANY" {
-                    return Err(format!("{head} in a {}", if *string { "SCASE" } else { "CASE" }));
+                    return Err(format!(
+                        "{head} in a {}",
+                        if *string { "SCASE" } else { "CASE" }
+                    ));
                 }
                 let (op, was_in_arm) = (*op, *in_arm);
                 *in_arm = true;
@@ -1005,9 +1032,7 @@ impl Compiler {
                 p.end()?;
                 Op::Nothing
             }
-            "TCP_CONNECT" | "TCP_SEND" | "TCP_RECV" | "TCP_CLOSE" => {
-                Op::Tcp(kw(&head), p.list()?)
-            }
+            "TCP_CONNECT" | "TCP_SEND" | "TCP_RECV" | "TCP_CLOSE" => Op::Tcp(kw(&head), p.list()?),
             _ => {
                 // `var = expr`, or a statement this interpreter does not know.
                 let mut p = Parser::new(text)?;
