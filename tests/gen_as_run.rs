@@ -202,10 +202,7 @@ fn do_list_switches_its_signals_and_simple_commands_report_server_codes() {
     assert_eq!(a.num("mm_status"), ok(206));
     assert_eq!(a.num("mm_do_list[4]"), -1.0);
     a.exec("CALL mm_set_dolist").unwrap();
-    assert_eq!(
-        (a.num("mm_status"), a.signals()),
-        (0.0, vec![1, 2, 3])
-    );
+    assert_eq!((a.num("mm_status"), a.signals()), (0.0, vec![1, 2, 3]));
 
     let cases = [
         ("CALL mm_switch_model(1,2)", ok(103)),
