@@ -804,10 +804,37 @@ fn depal_plan_runs_like_the_krl_original() {
 }
 
 #[test]
+fn vision_variants_run_like_the_krl_original() {
+    // Custom data (MM_Get_Dy_Data + MM_Get_DyPose + MM_UserData), a vision path in joints
+    // (MM_Get_VisPath + MM_Get_Jps), a Mech-Viz path (MM_Get_VizData + MM_Get_Pose) and the
+    // calibration (MM_CALIB becomes calibrate, which moves to the server's joint positions).
+    let sc = cell("vision_variants.toml");
+    let krl = run_krl(&fixture("vision_variants"), Some(sc.clone()), &[]);
+    assert!(matches!(krl.r.end, interp::End::Normal), "{:?}", krl.r.end);
+    let run = run_as(&fixture("vision_variants"), Some(for_kawasaki(&sc)), &[]);
+    assert_eq!(run.end, End::Done, "{}", run.text);
+    assert_same_run("vision_variants", &krl, &run, &[]);
+    let g = dat_globals(&krl, &run, "vision_variants");
+    for (name, v) in [
+        ("dy_num", 2.0),
+        ("labels", 34.0),
+        // MM_UserData[1] * 10 + MM_UserData[3] of both poses: 10 + 2.5, 0 + 0.5.
+        ("udata_sum", 13.0),
+        ("path_vis", 2.0),
+        ("speeds", 110.0),
+        ("calib_status", 7101.0),
+    ] {
+        assert!(g.contains(&(name.into(), v, Some(v))), "{name}: {g:?}");
+    }
+    // Home, 2 poses, 2 path joints, 2 Mech-Viz TCPs, 2 calibration points.
+    assert_eq!(run.a.motions().len(), 9);
+}
+
+#[test]
 fn every_fixture_runs_or_stops_at_a_located_error() {
     // Translated as they are (TR001 lines stay comments), with no vision server: the AS either
     // runs to its end or fails with the file and line of the statement that cannot run.
-    let expected: [(&str, &str); 10] = [
+    let expected: [(&str, &str); 11] = [
         ("bin_pick", "bin_pick.as:20: SWAIT 1003,-1005 still waiting"),
         ("control", "done"),
         ("depal_plan", "PAUSE"),
@@ -824,6 +851,7 @@ fn every_fixture_runs_or_stops_at_a_located_error() {
         ("pick_cycle", "pick_cycle.as:17: SWAIT 1010 still waiting"),
         ("taught", "taught.as:15: the variable #xhome is not defined"),
         ("untranslatable", "done"),
+        ("vision_variants", "done"),
     ];
     let mut names: Vec<String> = std::fs::read_dir(dir())
         .unwrap()
@@ -867,21 +895,18 @@ fn probe() {
     let inputs: Vec<i64> = std::env::var("INPUTS")
         .map(|s| s.split(',').map(|x| x.parse().unwrap()).collect())
         .unwrap_or_default();
-    let krl = run_krl(&src, None, &inputs);
-    eprintln!(
-        "KRL end {:?} outputs {:?} messages {:?}",
-        krl.r.end, krl.r.outputs, krl.r.messages
-    );
-    let run = run_as(&src, None, &inputs);
+    let cell = std::env::var("CELL")
+        .ok()
+        .map(|c| sim_support::scenario(&std::fs::read_to_string(c).unwrap()));
+    let krl = run_krl(&src, cell.clone(), &inputs);
+    eprintln!("KRL end {:?} outputs {:?}", krl.r.end, krl.r.outputs);
+    let run = run_as(&src, cell.as_ref().map(for_kawasaki), &inputs);
     eprintln!("AS end {:?} outputs {:?}", run.end, run.a.outputs_on());
-    eprintln!(
-        "{:?}",
-        run.a
-            .trace
-            .iter()
-            .filter(|e| matches!(e, Event::Print(_)))
-            .collect::<Vec<_>>()
-    );
+    eprintln!("requests KRL {:?}", commands(&krl.requests));
+    eprintln!("requests AS  {:?}", commands(&run.requests));
+    for m in as_motions(&run.a) {
+        eprintln!("AS {m:?}");
+    }
     eprintln!("motions {:?}", same_motions(&krl, &run, &[]));
     for g in dat_globals(&krl, &run, &stem(&src)) {
         eprintln!("{g:?}");
