@@ -7,6 +7,7 @@
 mod as_support;
 
 use as_support::{As, End, Event, V};
+use proptest::prelude::*;
 
 fn run(text: &str) -> Result<As, String> {
     let mut a = As::load_files(&[("t.as", text)])?;
@@ -398,4 +399,82 @@ fn what_it_does_not_model_or_allow_fails_at_its_line() {
     }
     let e = err(".PROGRAM main()\n  JMOVE 5\n.END\n");
     assert!(e.starts_with("t.as:2: JMOVE to the number 5"), "{e}");
+}
+
+/// Pieces of AS programs: statements and whole blocks.
+const PIECES: [&str; 31] = [
+    "x = 1",
+    "x = x + 1",
+    "y = x / (x - 1)",
+    ".l = x * 2",
+    "$s = \"a\" + $s",
+    "POINT p = TRANS(1,2,3,0,180,0)",
+    "POINT #j = #PPOINT(1,2,3,4,5,6)",
+    "POINT p = p + -p",
+    "LMOVE p",
+    "JMOVE #j",
+    "LAPPRO p, 10",
+    "TDRAW ,,5",
+    "C1MOVE p\nC2MOVE p",
+    "HERE q",
+    "IF x > 2 THEN\n  x = x - 1\nELSE\n  x = x + 2\nEND",
+    "WHILE x < 5 DO\n  x = x + 1\nEND",
+    "DO\n  x = x + 1\nUNTIL x > 3",
+    "FOR .i = 1 TO 3 STEP x\n  y = .i\nEND",
+    "CASE x OF\nVALUE 1, 2:\n  y = 1\nANY:\n  y = 2\nEND",
+    "IF x == 3 THEN\n  GOTO lab\nEND",
+    "CALL sub(x,&p)",
+    "CALL sub(x,p)",
+    "SIGNAL x, -2",
+    "SWAIT 1001",
+    "WAIT TIMER(1) > 0.5",
+    "PULSE 3, 0.1",
+    "TWAIT x",
+    "ON 2001 CALL sub0\nSIGNAL 2001",
+    "BITS 1,4 = x",
+    "PAUSE",
+    "d[x] = DX(p)",
+];
+
+/// Pieces that do not load.
+const BROKEN: [&str; 5] = ["x = ((1", "XMOVE p TILL 1", "END", "IF x THEN", "x = y z"];
+
+proptest! {
+    #![proptest_config(ProptestConfig::with_cases(400))]
+
+    #[test]
+    fn never_panics(
+        picks in proptest::collection::vec(0..PIECES.len(), 0..30),
+        broken in proptest::option::weighted(0.1, 0..BROKEN.len()),
+        junk in proptest::option::weighted(0.1, "[ -~]{0,12}"),
+    ) {
+        let mut text = String::from(".PROGRAM main()\n");
+        if picks.len() % 3 != 0 {
+            // Mostly defined variables, sometimes not.
+            text.push_str("x = 0\nPOINT p = TRANS()\nPOINT #j = #PPOINT(0,0,0,0,0,0)\n$s = \"\"\n");
+        }
+        for (k, p) in picks.iter().enumerate() {
+            text.push_str(PIECES[*p]);
+            if k == picks.len() / 2 {
+                if let Some(j) = &junk {
+                    text.push_str(j);
+                }
+                if let Some(b) = broken {
+                    text.push('\n');
+                    text.push_str(BROKEN[b]);
+                }
+            }
+            text.push('\n');
+        }
+        text.push_str("lab:\n.END\n.PROGRAM sub(.a,.&t)\n  .a = .a + 1\n.END\n");
+        text.push_str(".PROGRAM sub0()\n  z = 1\n.END\n");
+        if let Ok(mut a) = As::load(&text) {
+            a.step_limit = 2_000;
+            a.max_wait = 1.0;
+            // Either outcome is fine; an error must say where.
+            if let Err(e) = a.run("main") {
+                prop_assert!(e.starts_with("<as>:") || e.starts_with("exec:"), "{}", e);
+            }
+        }
+    }
 }

@@ -144,8 +144,7 @@ impl As {
     /// Let `dt` simulated seconds pass, applying pulse ends and input changes on the way.
     pub(super) fn advance(&mut self, dt: f64) {
         let to = self.clock + dt;
-        self.schedule
-            .sort_by(|a, b| a.0.partial_cmp(&b.0).expect("finite times"));
+        self.schedule.sort_by(|a, b| a.0.total_cmp(&b.0));
         while let Some(&(at, n, on)) = self.schedule.first() {
             if at > to {
                 break;
