@@ -520,6 +520,38 @@ fn as_pose(v: &V) -> [f64; 6] {
     }
 }
 
+/// The ACCURACY in force at each motion of the AS run (`ACCURACY d` without ALWAYS applies to
+/// the next motion only).
+fn accuracies(a: &As) -> Vec<f64> {
+    let (mut always, mut once) = (None, None);
+    let mut out = Vec::new();
+    for e in &a.trace {
+        match e {
+            Event::Setting(s) if s.starts_with("ACCURACY ") => {
+                let mut words = s.split_whitespace().skip(1);
+                let v: f64 = words.next().unwrap().parse().unwrap();
+                if words.next() == Some("ALWAYS") {
+                    always = Some(v);
+                } else {
+                    once = Some(v);
+                }
+            }
+            Event::Motion { .. } => out.push(once.take().or(always).expect("ACCURACY set")),
+            _ => {}
+        }
+    }
+    out
+}
+
+/// The pallet's blending as KRL states it: home exact, then per box above (C_DIS, 25 mm),
+/// place (exact, in the put_down routine), above again (C_DIS), and home exact.
+fn pallet_blending(boxes: usize) -> Vec<f64> {
+    let mut v = vec![1.0];
+    v.extend([25.0, 1.0, 25.0].repeat(boxes));
+    v.push(1.0);
+    v
+}
+
 /// A compact, reviewable text of an AS run for snapshots.
 fn render(run: &AsRun) -> String {
     let num = |x: f64| {
@@ -618,6 +650,15 @@ fn bin_pick_runs_like_the_krl_original() {
     // Per part: grip 0.2 s, (label 2: inspection 0.5 s), release 0.1 s.
     let per_cycle = [0.2, 0.1, 0.2, 0.5, 0.1, 0.2, 0.1];
     assert_eq!(run.a.waits(), per_cycle.repeat(2));
+    // Blending as in KRL ($APO.CDIS 15 on the C_DIS moves, exact stops elsewhere): clear,
+    // scan; per part approach, pick, retreat, then the drop (label 2: inspect, drop).
+    let cycle = [
+        15.0, 1.0, 15.0, 1.0, 15.0, 1.0, 15.0, 1.0, 15.0, 1.0, 1.0, 15.0, 1.0, 15.0, 1.0,
+    ];
+    let mut blending = vec![1.0];
+    blending.extend(cycle.repeat(2));
+    blending.push(1.0);
+    assert_eq!(accuracies(&run.a), blending);
     assert!(run.a.clock >= per_cycle.iter().sum::<f64>() * 2.0);
     insta::assert_snapshot!(render(&run));
 }
@@ -730,9 +771,24 @@ fn pallet_pattern_runs_like_the_krl_original() {
     ] {
         assert!(g.contains(&(name.into(), v, Some(v))), "{name}: {g:?}");
     }
-    // Home, then above/place/above per box, then home.
-    assert_eq!(run.a.motions().len(), 2 + 3 * 14);
+    // Home, then above/place/above per box, then home, each with the KRL blending.
+    assert_eq!(accuracies(&run.a), pallet_blending(14));
     assert_eq!(run.a.signals(), [3, -3].repeat(14));
+}
+
+#[test]
+fn accuracy_after_a_call_regression_is_caught_by_the_run() {
+    // The translation before the fix assumed the ACCURACY set before `CALL put_down` was still
+    // in force after it, but put_down's exact move had set ACCURACY 1: the next blended move
+    // ran as an exact stop.
+    let krl_like = pallet_blending(14);
+    let run = run_as_edited(&fixture("pallet_pattern"), None, &[], &|t| {
+        let fixed = "CALL put_down(.&place)\n        ACCURACY 25 ALWAYS\n";
+        assert!(t.contains(fixed));
+        t.replace(fixed, "CALL put_down(.&place)\n")
+    });
+    assert_eq!(run.end, End::Done);
+    assert_ne!(accuracies(&run.a), krl_like);
 }
 
 #[test]
@@ -853,7 +909,7 @@ fn every_fixture_runs_or_stops_at_a_located_error() {
         ("io_waits", "io_waits.as:9: the variable .ok is not defined"),
         (
             "motions",
-            "motions.as:53: a 7th value (JT7) is not modelled",
+            "motions.as:54: a 7th value (JT7) is not modelled",
         ),
         ("pallet_pattern", "done"),
         ("pick_cycle", "pick_cycle.as:17: SWAIT 1010 still waiting"),
