@@ -110,6 +110,11 @@ pub(super) struct Tx<'p> {
     pending: Option<(&'static str, (usize, usize))>,
     /// `$APO.CDIS` (or an inline form's APO_DIST) last set, rendered.
     apo_cdis: Option<String>,
+    /// The routine of this file, just called, that changes `$APO.CDIS` (its value is unknown
+    /// until the program sets it again).
+    apo_changed_by: Option<String>,
+    /// The `$APO.CDIS` last written in the source: what a routine starts with.
+    apo_last_written: Option<String>,
     /// Speeds set so far: (PTP %, CP mm/s, mixed reported).
     speeds: (bool, bool, bool),
     interrupts: Vec<InterruptDecl>,
@@ -141,6 +146,8 @@ impl<'p> Tx<'p> {
             rt: None,
             pending: None,
             apo_cdis: None,
+            apo_changed_by: None,
+            apo_last_written: None,
             speeds: (false, false, false),
             interrupts: Vec::new(),
             assumed: BTreeSet::new(),
@@ -408,6 +415,8 @@ impl<'p> Tx<'p> {
         let before: Vec<String> = std::mem::take(&mut self.lines);
         let key = r.name.key();
         let name = self.programs_ns.get(&r.name.text).unwrap_or("").to_owned();
+        self.apo_cdis = self.apo_last_written.clone();
+        self.apo_changed_by = None;
         self.rt = Some(Rt {
             key: key.clone(),
             kind: r.kind,

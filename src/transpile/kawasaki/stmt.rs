@@ -445,7 +445,7 @@ impl<'p> Tx<'p> {
             a.push(self.call_arg(target)?);
             let p = self.program_name(name);
             self.line(format!("CALL {p}({})", a.join(",")));
-            self.forget_accuracy();
+            self.after_call(name);
             return Ok(());
         }
         let Some(root) = root_name(target) else {
@@ -658,8 +658,7 @@ impl<'p> Tx<'p> {
         } else {
             self.line(format!("CALL {p}({})", a.join(",")));
         }
-        // ACCURACY … ALWAYS is controller state: the called program may have changed it.
-        self.forget_accuracy();
+        self.after_call(name);
         Ok(())
     }
 }
