@@ -909,7 +909,7 @@ fn every_fixture_runs_or_stops_at_a_located_error() {
         ("io_waits", "io_waits.as:9: the variable .ok is not defined"),
         (
             "motions",
-            "motions.as:54: a 7th value (JT7) is not modelled",
+            "motions.as:62: a 7th value (JT7) is not modelled",
         ),
         ("pallet_pattern", "done"),
         ("pick_cycle", "pick_cycle.as:17: SWAIT 1010 still waiting"),
