@@ -952,28 +952,3 @@ fn every_fixture_runs_or_stops_at_a_located_error() {
         assert!(got.starts_with(want), "{name}: {got}");
     }
 }
-
-#[test]
-#[ignore]
-fn probe() {
-    let src = PathBuf::from(std::env::var("PROBE").unwrap());
-    let inputs: Vec<i64> = std::env::var("INPUTS")
-        .map(|s| s.split(',').map(|x| x.parse().unwrap()).collect())
-        .unwrap_or_default();
-    let cell = std::env::var("CELL")
-        .ok()
-        .map(|c| sim_support::scenario(&std::fs::read_to_string(c).unwrap()));
-    let krl = run_krl(&src, cell.clone(), &inputs);
-    eprintln!("KRL end {:?} outputs {:?}", krl.r.end, krl.r.outputs);
-    let run = run_as(&src, cell.as_ref().map(for_kawasaki), &inputs);
-    eprintln!("AS end {:?} outputs {:?}", run.end, run.a.outputs_on());
-    eprintln!("requests KRL {:?}", commands(&krl.requests));
-    eprintln!("requests AS  {:?}", commands(&run.requests));
-    for m in as_motions(&run.a) {
-        eprintln!("AS {m:?}");
-    }
-    eprintln!("motions {:?}", same_motions(&krl, &run, &[]));
-    for g in dat_globals(&krl, &run, &stem(&src)) {
-        eprintln!("{g:?}");
-    }
-}

@@ -270,13 +270,13 @@ impl As {
                 }
             } else {
                 let kind = upper.clone();
-                for k in i + 1..end {
-                    let d = lexer::code(lines[k]);
+                for (k, line) in lines.iter().enumerate().take(end).skip(i + 1) {
+                    let d = lexer::code(line);
                     if d.is_empty() {
                         continue;
                     }
                     let (name, v) = data_line(&kind, d)
-                        .map_err(|e| format!("{file}:{}: {e}: `{}`", k + 1, lines[k].trim()))?;
+                        .map_err(|e| format!("{file}:{}: {e}: `{}`", k + 1, line.trim()))?;
                     self.globals.insert(name, v);
                 }
             }
