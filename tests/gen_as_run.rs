@@ -78,7 +78,7 @@ fn vision_points_are_fetched_and_copied() {
     assert_eq!((a.num("pt_label[1]"), a.num("pt_speed[1]")), (1.0, 50.0));
     assert_eq!(a.num("vis_pos_x[4]"), 560.0);
     // Out of range, and the wrong kind for joints.
-    a.exec("CALL mm_get_pose(5,p,l,s)").unwrap();
+    a.exec("CALL mm_get_pose(5,&p,l,s)").unwrap();
     assert_eq!(a.num("mm_status"), code("BAD_SERIAL"));
     a.exec("CALL mm_get_jps(1,#j,l,s)").unwrap();
     assert_eq!(a.num("mm_status"), code("WRONG_DATA_KIND"));
@@ -127,14 +127,14 @@ fn paths_of_vision_and_viz_come_as_joints_or_tcps() {
         (a.num("l"), a.num("s"), a.num("mm_status")),
         (1.0, 30.0, 0.0)
     );
-    a.exec("CALL mm_get_pose(1,p,l,s)").unwrap();
+    a.exec("CALL mm_get_pose(1,&p,l,s)").unwrap();
     assert_eq!(a.num("mm_status"), code("WRONG_DATA_KIND"));
 
     a.exec("CALL mm_start_viz(0,#start_vis)").unwrap();
     assert_eq!(a.num("mm_status"), ok(201));
     a.exec("CALL mm_get_vizdata(2,n,vis,st)").unwrap();
     assert_eq!((a.num("st"), a.num("n"), a.num("vis")), (ok(205), 3.0, 2.0));
-    a.exec("CALL mm_get_pose(3,p,l,s)").unwrap();
+    a.exec("CALL mm_get_pose(3,&p,l,s)").unwrap();
     assert_eq!(pose(&a, "p"), [500.0, 0.0, 600.0, 0.0, 180.0, 0.0]);
     // An argument outside the seed's values is refused before anything is sent.
     let before = server.requests().len();
@@ -159,7 +159,7 @@ fn plan_data_fills_the_seed_globals() {
     assert_eq!(a.num("vis_custom_data[2,2]"), 2.0);
     assert_eq!(a.num("num_customdata[1]"), 0.0);
     assert_eq!(a.num("vis_plan_result[2,21]"), 0.0);
-    a.exec("CALL mm_get_pose(2,p,l,s)").unwrap();
+    a.exec("CALL mm_get_pose(2,&p,l,s)").unwrap();
     assert_eq!(a.num("mm_status"), 0.0);
     // (Formats 3/4 carry 21 Vision Move values in the Kawasaki layout: see
     // vision_move_data_comes_in_the_kawasaki_layout.)
@@ -184,7 +184,7 @@ fn custom_data_and_counts() {
     assert_eq!(a.num("vis_custom_data[1,3]"), 1.0);
     assert_eq!(a.num("vis_custom_data[2,5]"), 1.0);
     assert_eq!(a.num("num_customdata[2]"), 5.0);
-    a.exec("CALL mm_get_pose(1,p,l,s)").unwrap();
+    a.exec("CALL mm_get_pose(1,&p,l,s)").unwrap();
     assert_eq!(pose(&a, "p"), [1.0, 2.0, 3.0, 4.0, 5.0, 6.0]);
     assert_eq!((a.num("l"), a.num("s")), (7.0, 0.0));
 }
@@ -202,10 +202,7 @@ fn do_list_switches_its_signals_and_simple_commands_report_server_codes() {
     assert_eq!(a.num("mm_status"), ok(206));
     assert_eq!(a.num("mm_do_list[4]"), -1.0);
     a.exec("CALL mm_set_dolist").unwrap();
-    assert_eq!(
-        (a.num("mm_status"), a.signals.clone()),
-        (0.0, vec![1, 2, 3])
-    );
+    assert_eq!((a.num("mm_status"), a.signals()), (0.0, vec![1, 2, 3]));
 
     let cases = [
         ("CALL mm_switch_model(1,2)", ok(103)),
@@ -243,8 +240,8 @@ fn calibration_moves_to_every_point_then_stops() {
         .collect();
     let targets: Vec<V> = joints.iter().map(|j| V::Joint(*j)).collect();
     assert_eq!(targets.len(), 2);
-    assert_eq!(a.moves, targets);
-    assert_eq!(a.waits, [f64::from(Spec::default().calib_wait); 2]);
+    assert_eq!(a.moves(), targets);
+    assert_eq!(a.waits(), [f64::from(Spec::default().calib_wait); 2]);
     let states: Vec<f64> = server
         .requests()
         .iter()
@@ -308,7 +305,7 @@ fn every_failure_ends_in_its_status_code() {
     a.exec("CALL mm_start_vis(4,0,0,#start_vis)").unwrap();
     a.exec("CALL mm_get_visdata(4,n,st)").unwrap();
     assert_eq!((a.num("st"), a.num("n")), (code("TOO_MANY_POINTS"), 0.0));
-    a.exec("CALL mm_get_pose(1,p,l,s)").unwrap();
+    a.exec("CALL mm_get_pose(1,&p,l,s)").unwrap();
     assert_eq!(
         a.num("mm_status"),
         code("BAD_SERIAL"),
@@ -354,7 +351,7 @@ fn vision_move_data_comes_in_the_kawasaki_layout() {
     assert_eq!(a.num("vis_plan_result[2,21]"), 210.0);
     a.exec("CALL mm_get_jps(2,#j,l,s)").unwrap();
     assert_eq!(joints(&a, "#j"), [10.0, -80.0, 95.0, 0.0, 75.0, 10.0]);
-    a.exec("CALL mm_get_pose(1,p,l,s)").unwrap();
+    a.exec("CALL mm_get_pose(1,&p,l,s)").unwrap();
     assert_eq!(a.num("mm_status"), code("WRONG_DATA_KIND"));
 
     // Project 4 gives its data in the KUKA layout: KUKA element k lands at the Kawasaki index
@@ -399,7 +396,7 @@ fn do_lists_come_from_mech_viz_or_a_vision_project() {
     assert_eq!(a.num("mm_status"), ok(106));
     assert_eq!(a.num("mm_do_list[3]"), -1.0);
     a.exec("CALL mm_set_dolist").unwrap();
-    assert_eq!((a.num("mm_status"), a.signals.clone()), (0.0, vec![7, 8]));
+    assert_eq!((a.num("mm_status"), a.signals()), (0.0, vec![7, 8]));
     // Project 4 plans no DO list; project 9 does not exist.
     a.exec("CALL mm_start_vis(4,0,0,#start_vis)").unwrap();
     a.exec("CALL mm_get_dolist(4)").unwrap();
@@ -411,7 +408,7 @@ fn do_lists_come_from_mech_viz_or_a_vision_project() {
     a.exec("CALL mm_get_dolist(0)").unwrap();
     assert_eq!(a.num("mm_status"), ok(206));
     a.exec("CALL mm_set_dolist").unwrap();
-    assert_eq!(a.signals, [7, 8, 1, 2, 3]);
+    assert_eq!(a.signals(), [7, 8, 1, 2, 3]);
     let raws: Vec<String> = server
         .requests()
         .iter()
@@ -593,7 +590,7 @@ fn lenient_numbers_pass_and_malformed_replies_do_not() {
     let mut a = connected(&server);
     a.exec("CALL mm_get_visdata(1,n,st)").unwrap();
     assert_eq!((a.num("st"), a.num("n")), (ok(102), 1.0));
-    a.exec("CALL mm_get_pose(1,p,l,s)").unwrap();
+    a.exec("CALL mm_get_pose(1,&p,l,s)").unwrap();
     assert_eq!(pose(&a, "p"), [1.5, 0.0, 3.0, 0.0, 180.25, -7.0]);
     for want in [
         "BAD_REPLY",
@@ -606,7 +603,7 @@ fn lenient_numbers_pass_and_malformed_replies_do_not() {
         assert_eq!((a.num("st"), a.num("n")), (code(want), 0.0), "{want}");
         // Refused before storing: the points of the last good fetch are kept (as in the KUKA
         // package); a fetch that fails half-way drops them (see every_failure_...).
-        a.exec("CALL mm_get_pose(1,p,l,s)").unwrap();
+        a.exec("CALL mm_get_pose(1,&p,l,s)").unwrap();
         assert_eq!(a.num("mm_status"), 0.0, "{want}");
         assert_eq!(pose(&a, "p")[4], 180.25, "{want}");
     }

@@ -184,6 +184,22 @@ impl<'p> Tx<'p> {
         })
     }
 
+    /// A REAL rounded to the nearest whole number, halves away from zero, as KRL rounds a REAL
+    /// assigned to an INT. AS has no confirmed ROUND; with INT truncating (the assumption KRL
+    /// integer division already relies on), `INT(2*x) - INT(x)` is exactly that rounding.
+    pub(super) fn rounded(&mut self, value: &Expr) -> R<String> {
+        if let Some(v) = literal::number(value) {
+            return Ok(num(v.round()));
+        }
+        let r = self.render(value)?;
+        let twice = if r.prec == ATOM {
+            format!("2*{}", r.text)
+        } else {
+            format!("2*({})", r.text)
+        };
+        Ok(format!("INT({twice}) - INT({})", r.text))
+    }
+
     /// `$TIMER[n] > 500` (ms) → `TIMER(n) > 0.5` (s).
     fn timer_compare(&mut self, op: BinaryOp, lhs: &Expr, rhs: &Expr) -> Option<R<Rendered>> {
         let sym = match op {
@@ -621,11 +637,14 @@ impl<'p> Tx<'p> {
                     };
                 }
                 match &e.kind {
-                    ExprKind::Name(id) => self.var(&id.text).map_or(Ty::Real, |v| match &v.ty {
-                        Ty::Signal(r) if r.width() == 1 => Ty::Bool,
-                        Ty::Signal(_) => Ty::Int,
-                        t => t.clone(),
-                    }),
+                    ExprKind::Name(id) => match self.var(&id.text) {
+                        Some(v) => match &v.ty {
+                            Ty::Signal(r) if r.width() == 1 => Ty::Bool,
+                            Ty::Signal(_) => Ty::Int,
+                            t => t.clone(),
+                        },
+                        None => super::mm::package_global_ty(&id.text).unwrap_or(Ty::Real),
+                    },
                     ExprKind::Index { base, .. } => self.ty_of(base),
                     _ => Ty::Real,
                 }

@@ -41,6 +41,17 @@ pub(super) fn package_global(name: &str) -> Option<&'static str> {
         .map(|(_, a)| *a)
 }
 
+/// The KRL type of a KUKA package global (from the catalog), if `name` is one.
+pub(super) fn package_global_ty(name: &str) -> Option<Ty> {
+    package_global(name)?;
+    let g = catalog().global(name)?;
+    Some(match g.ty.to_ascii_uppercase().as_str() {
+        "INT" => Ty::Int,
+        "BOOL" => Ty::Bool,
+        _ => Ty::Real,
+    })
+}
+
 /// The vision server address resolved for `MM_Init_Socket`.
 struct Server {
     ip: Ipv4Addr,

@@ -110,6 +110,11 @@ pub(super) struct Tx<'p> {
     pending: Option<(&'static str, (usize, usize))>,
     /// `$APO.CDIS` (or an inline form's APO_DIST) last set, rendered.
     apo_cdis: Option<String>,
+    /// The routine of this file, just called, that changes `$APO.CDIS` (its value is unknown
+    /// until the program sets it again).
+    apo_changed_by: Option<String>,
+    /// The `$APO.CDIS` last written in the source: what a routine starts with.
+    apo_last_written: Option<String>,
     /// Speeds set so far: (PTP %, CP mm/s, mixed reported).
     speeds: (bool, bool, bool),
     interrupts: Vec<InterruptDecl>,
@@ -141,6 +146,8 @@ impl<'p> Tx<'p> {
             rt: None,
             pending: None,
             apo_cdis: None,
+            apo_changed_by: None,
+            apo_last_written: None,
             speeds: (false, false, false),
             interrupts: Vec::new(),
             assumed: BTreeSet::new(),
@@ -408,6 +415,8 @@ impl<'p> Tx<'p> {
         let before: Vec<String> = std::mem::take(&mut self.lines);
         let key = r.name.key();
         let name = self.programs_ns.get(&r.name.text).unwrap_or("").to_owned();
+        self.apo_cdis = self.apo_last_written.clone();
+        self.apo_changed_by = None;
         self.rt = Some(Rt {
             key: key.clone(),
             kind: r.kind,
@@ -462,7 +471,18 @@ impl<'p> Tx<'p> {
             let ty = v.map(|v| v.ty.clone()).unwrap_or(Ty::Real);
             let (n, _) = self.var_name(&p.name);
             let is_in = p.dir.unwrap_or(ParamDir::In) == ParamDir::In;
-            if is_in && modified.contains(&p.name.key()) {
+            // A whole array is passed as `name[]` (`name[,]` …) and received the same way; a
+            // CHAR array is one AS string.
+            let dims = v.map_or(0, |v| v.dims).max(usize::from(p.array));
+            let dims = if ty == Ty::Char {
+                dims.saturating_sub(1)
+            } else {
+                dims
+            };
+            if dims > 0 {
+                let sig = format::param_sigil(&format!(".{n}"), &ty);
+                params.push(format!("{sig}[{}]", ",".repeat(dims - 1)));
+            } else if is_in && modified.contains(&p.name.key()) {
                 // AS passes by reference: keep the caller's variable unchanged.
                 let copy = self.fresh_local(&format!("{}_in", truncate(&n, 12)));
                 params.push(format::param_sigil(&copy, &ty));
@@ -485,6 +505,16 @@ impl<'p> Tx<'p> {
         }
         let header = format!(".PROGRAM {name}({})", params.join(","));
         self.lines = before;
+        let bad_header = self.header_syntax_error(r);
+        if let Some(line) = bad_header {
+            self.rep.untranslatable(
+                FileId::Src,
+                line,
+                "this DEF line does not parse (KRL001), so the routine's name and parameters cannot be translated",
+                "fix the syntax error (krlkit check) and translate again",
+            );
+            self.keep_as_comment("TR001", line);
+        }
         for c in copies {
             self.line(c);
         }
@@ -507,7 +537,9 @@ impl<'p> Tx<'p> {
             );
         }
         // The routine itself (header, parameters); its statements are counted one by one.
-        let o = if r.closed {
+        let o = if bad_header.is_some() {
+            Outcome::Untranslated
+        } else if r.closed {
             Outcome::Exact
         } else {
             Outcome::Approximate
@@ -516,6 +548,27 @@ impl<'p> Tx<'p> {
         let body = std::mem::take(&mut self.lines);
         self.programs.push(ProgramOut { header, body });
         self.rt = None;
+    }
+
+    /// The line of `r`'s header when the parser reported a syntax error on it (what follows
+    /// the error, e.g. the parameter list, is missing from the tree).
+    fn header_syntax_error(&self, r: &Routine) -> Option<Span> {
+        let first = r
+            .decls
+            .iter()
+            .map(|d| d.span.start)
+            .chain(r.body.iter().map(|s| s.span.start))
+            .min()
+            .unwrap_or(r.span.end);
+        let d =
+            self.prog.src.parse.diagnostics.iter().find(|d| {
+                d.code == "KRL001" && d.span.start >= r.span.start && d.span.start < first
+            })?;
+        let text = &self.prog.src.text;
+        let at = (d.span.start as usize).min(text.len());
+        let from = text[..at].rfind(['\n', '\r']).map_or(0, |i| i + 1);
+        let to = text[at..].find(['\n', '\r']).map_or(text.len(), |i| at + i);
+        Some(Span::new(from, to))
     }
 
     /// `DECL INT i = 0` inside a routine: the value is assigned at the start of the program.

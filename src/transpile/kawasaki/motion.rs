@@ -19,6 +19,47 @@ const FINE_ACCURACY: &str = "1";
 const INIT_SPEED: &str = "10";
 
 impl<'p> Tx<'p> {
+    /// After a CALL of `routine`: ACCURACY … ALWAYS is controller state the called program may
+    /// have changed, and so may be `$APO.CDIS` if the routine (or one it calls) of this file
+    /// sets it.
+    pub(super) fn after_call(&mut self, routine: &Ident) {
+        self.forget_accuracy();
+        let mut seen = std::collections::HashSet::new();
+        if self.sets_apo_cdis(&routine.key(), &mut seen) {
+            self.apo_cdis = None;
+            self.apo_changed_by = Some(routine.text.clone());
+        }
+    }
+
+    /// Whether the routine `key` of this file assigns `$APO.CDIS` (or LDAT_ACT), itself or
+    /// through routines of this file it calls.
+    fn sets_apo_cdis(&self, key: &str, seen: &mut std::collections::HashSet<String>) -> bool {
+        if !seen.insert(key.to_owned()) {
+            return false;
+        }
+        let prog = self.prog;
+        let Some(r) = prog.src.ast.routines.iter().find(|r| r.name.key() == key) else {
+            return false;
+        };
+        let mut sets = false;
+        let mut callees = Vec::new();
+        crate::transpile::front::walk::each_stmt(&r.body, &mut |st| match &st.kind {
+            crate::syntax::ast::StmtKind::Assign { target, value } => {
+                if matches!(sysvar::classify(target), Some(Sys::ApoCdis))
+                    || matches!(&target.kind, ExprKind::Name(id) if id.is("LDAT_ACT"))
+                {
+                    sets = true;
+                }
+                if let ExprKind::Call { name, .. } = &value.kind {
+                    callees.push(name.key());
+                }
+            }
+            crate::syntax::ast::StmtKind::Call { name, .. } => callees.push(name.key()),
+            _ => {}
+        });
+        sets || callees.iter().any(|c| self.sets_apo_cdis(c, seen))
+    }
+
     pub(super) fn forget_accuracy(&mut self) {
         if let Some(rt) = &mut self.rt {
             rt.accuracy = None;
@@ -42,9 +83,20 @@ impl<'p> Tx<'p> {
         let value = match approx {
             None => FINE_ACCURACY.to_owned(),
             Some(a) => {
-                let value = match &self.apo_cdis {
-                    Some(v) => v.clone(),
-                    None => {
+                let value = match (&self.apo_cdis, &self.apo_changed_by) {
+                    (Some(v), _) => v.clone(),
+                    (None, Some(r)) => {
+                        self.rep.approximate(
+                            FileId::Src,
+                            span,
+                            format!(
+                                "`{r}`, called before this move, changes the blending distance ($APO.CDIS), which is not known here; ACCURACY {FINE_ACCURACY} (no blending) is used"
+                            ),
+                            "set $APO.CDIS again after the call, or edit the ACCURACY line",
+                        );
+                        FINE_ACCURACY.to_owned()
+                    }
+                    (None, None) => {
                         self.rep.approximate(
                             FileId::Src,
                             span,
@@ -293,6 +345,8 @@ impl<'p> Tx<'p> {
             Sys::ApoCdis => {
                 self.kind("approximation");
                 self.apo_cdis = Some(self.expr(value)?);
+                self.apo_changed_by = None;
+                self.apo_last_written = self.apo_cdis.clone();
             }
             Sys::ApoCptp | Sys::ApoOther => {
                 self.kind("approximation");
@@ -552,6 +606,8 @@ impl<'p> Tx<'p> {
                 && let Some(d) = get("APO_DIST")
             {
                 self.apo_cdis = Some(num(d));
+                self.apo_changed_by = None;
+                self.apo_last_written = self.apo_cdis.clone();
             }
             Ok(())
         })())

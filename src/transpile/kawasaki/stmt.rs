@@ -405,8 +405,12 @@ impl<'p> Tx<'p> {
         Ok(())
     }
 
-    /// A value for a target of type `ty` (poses and joints: literals converted).
+    /// A value for a target of type `ty` (poses and joints: literals converted; a REAL for an
+    /// INT rounded, as KRL assignment does).
     pub(super) fn value_for(&mut self, ty: &Ty, value: &Expr) -> R<String> {
+        if *ty == Ty::Int && self.ty_of(value) == Ty::Real {
+            return self.rounded(value);
+        }
         match (ty, &value.kind) {
             (Ty::Pose | Ty::Joint, ExprKind::Aggregate { .. }) => self.literal_value(value),
             (Ty::Joint, ExprKind::Name(id)) if self.var(&id.text).is_none() => {
@@ -441,6 +445,7 @@ impl<'p> Tx<'p> {
             a.push(self.call_arg(target)?);
             let p = self.program_name(name);
             self.line(format!("CALL {p}({})", a.join(",")));
+            self.after_call(name);
             return Ok(());
         }
         let Some(root) = root_name(target) else {
@@ -514,7 +519,7 @@ impl<'p> Tx<'p> {
                     );
                 }
                 let t = self.place_text(target, &ty)?;
-                let v = self.expr(value)?;
+                let v = self.value_for(&ty, value)?;
                 self.line(format!("{t} = {v}"));
                 Ok(())
             }
@@ -653,6 +658,7 @@ impl<'p> Tx<'p> {
         } else {
             self.line(format!("CALL {p}({})", a.join(",")));
         }
+        self.after_call(name);
         Ok(())
     }
 }
