@@ -123,6 +123,29 @@ fn names(code: &str) -> Vec<String> {
     out
 }
 
+/// The comma-separated items of an argument or parameter list, ignoring commas inside
+/// brackets (`.t[,]`, `f(a, b)`); empty for a blank list.
+fn split_top_level(list: &str) -> Vec<&str> {
+    if list.trim().is_empty() {
+        return Vec::new();
+    }
+    let mut items = Vec::new();
+    let (mut depth, mut start) = (0i32, 0);
+    for (i, c) in list.char_indices() {
+        match c {
+            '(' | '[' => depth += 1,
+            ')' | ']' => depth -= 1,
+            ',' if depth == 0 => {
+                items.push(list[start..i].trim());
+                start = i + 1;
+            }
+            _ => {}
+        }
+    }
+    items.push(list[start..].trim());
+    items
+}
+
 /// `(name, argument count)` of a `CALL` statement's target.
 fn call_target(rest: &str) -> (String, usize) {
     let rest = rest.trim();
@@ -130,27 +153,10 @@ fn call_target(rest: &str) -> (String, usize) {
         Some(p) => (&rest[..p], Some(&rest[p + 1..])),
         None => (rest.split_whitespace().next().unwrap_or(""), None),
     };
-    let arity = match args {
-        None => 0,
-        Some(a) => {
-            let inner = a.rsplit_once(')').map_or(a, |(x, _)| x);
-            if inner.trim().is_empty() {
-                0
-            } else {
-                let mut depth = 0i32;
-                let mut n = 1;
-                for c in inner.chars() {
-                    match c {
-                        '(' | '[' => depth += 1,
-                        ')' | ']' => depth -= 1,
-                        ',' if depth == 0 => n += 1,
-                        _ => {}
-                    }
-                }
-                n
-            }
-        }
-    };
+    let arity = args.map_or(0, |a| {
+        let inner = a.rsplit_once(')').map_or(a, |(x, _)| x);
+        split_top_level(inner).len()
+    });
     (name.trim().to_ascii_lowercase(), arity)
 }
 
@@ -191,18 +197,12 @@ pub fn check(text: &str, external: &[(&str, usize)]) -> Vec<AsProblem> {
                     if name.len() > max {
                         push(n, format!("program name `{name}` is longer than {max}"));
                     }
-                    let params: Vec<&str> = params
-                        .map(|p| {
-                            p.split(',')
-                                .map(str::trim)
-                                .filter(|s| !s.is_empty())
-                                .collect()
-                        })
-                        .unwrap_or_default();
+                    let params: Vec<&str> = params.map(split_top_level).unwrap_or_default();
                     for p in &params {
                         let id = p
                             .strip_prefix('.')
-                            .map(|s| s.trim_start_matches(['#', '&', '$']));
+                            .map(|s| s.trim_start_matches(['#', '&', '$']))
+                            .map(|s| s.split('[').next().unwrap_or(s));
                         match id {
                             None => push(n, format!("parameter `{p}` is not a local (.name)")),
                             Some(id) if id.len() > max || id.is_empty() => {
@@ -421,6 +421,12 @@ mod tests {
                 "3: non-ASCII character"
             ]
         );
+    }
+
+    #[test]
+    fn array_parameters_count_once() {
+        let t = ".PROGRAM f(.t[,],.$s[])\n  .t[1,1] = 0\n.END\n.PROGRAM g()\n  CALL f(x[,],$y[])\n.END\n";
+        assert_eq!(messages(t), Vec::<String>::new());
     }
 
     #[test]
