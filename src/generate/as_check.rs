@@ -125,7 +125,7 @@ fn names(code: &str) -> Vec<String> {
 
 /// The comma-separated items of an argument or parameter list, ignoring commas inside
 /// brackets (`.t[,]`, `f(a, b)`); empty for a blank list.
-fn split_top_level(list: &str) -> Vec<&str> {
+pub fn split_top_level(list: &str) -> Vec<&str> {
     if list.trim().is_empty() {
         return Vec::new();
     }

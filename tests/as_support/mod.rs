@@ -33,6 +33,7 @@ use std::collections::HashMap;
 use std::net::TcpStream;
 use std::rc::Rc;
 
+use krlkit::generate::as_check::split_top_level;
 use parse::{Param, Program};
 
 #[derive(Debug, Clone, PartialEq)]
@@ -254,9 +255,8 @@ impl As {
                     _ => return Err(at("bad program header".into())),
                 };
                 let name = name.trim().to_ascii_lowercase();
-                let params: Vec<Param> = params
-                    .split(',')
-                    .filter(|p| !p.trim().is_empty())
+                let params: Vec<Param> = split_top_level(params)
+                    .into_iter()
                     .map(Param::parse)
                     .collect::<Result<_, _>>()
                     .map_err(at)?;
