@@ -5,7 +5,6 @@ use super::{R, Tx, fail};
 use crate::diag::{LineIndex, Span};
 use crate::syntax::ast::{Expr, ExprKind, Ident, UnaryOp};
 use crate::transpile::front::ilf;
-use crate::transpile::front::literal;
 use crate::transpile::front::report::FileId;
 use crate::transpile::front::symbols::{Bank, SignalRange};
 use crate::transpile::front::sysvar::Sys;
@@ -132,9 +131,10 @@ impl<'p> Tx<'p> {
             _ => {
                 let c = self.render(cond)?;
                 let t = c.at(NOT);
-                // Comparisons read better negated in place.
+                // Comparisons read better negated in place, negations without their `not`.
                 match (c.prec, negate_comparison(&c.text)) {
                     (CMP, Some(n)) => n,
+                    (NOT, _) if c.text.starts_with("not ") => c.text["not ".len()..].to_owned(),
                     _ => format!("not {t}"),
                 }
             }
@@ -278,6 +278,5 @@ fn negate_comparison(text: &str) -> Option<String> {
         i += 1;
     }
     let (at, op, neg) = found?;
-    let _ = literal::number;
     Some(format!("{}{neg}{}", &text[..at], &text[at + op.len()..]))
 }

@@ -233,9 +233,7 @@ impl<'p> Tx<'p> {
 
     /// Marks a module-level name as assigned by the current function (`global` line).
     fn assigns_global(&mut self, name: &str) {
-        if let Some(rt) = &mut self.rt
-            && !rt.key.is_empty()
-        {
+        if let Some(rt) = &mut self.rt {
             rt.globals.insert(name.to_owned());
         }
     }
@@ -504,10 +502,14 @@ impl<'p> Tx<'p> {
             self.line("pass");
         }
         let body = std::mem::take(&mut self.lines);
+        let globals = self.rt.take().map(|rt| rt.globals).unwrap_or_default();
         let mut f = vec![format!("def {name}():")];
+        if !globals.is_empty() {
+            let g: Vec<&str> = globals.iter().map(String::as_str).collect();
+            f.push(format!("    global {}", g.join(", ")));
+        }
         f.extend(body);
         self.functions.push(f.join("\n"));
-        self.rt = None;
         self.depth = 0;
         if self.entry.is_none() && prog.src.ast.routines.is_empty() {
             self.entry = Some(name);
