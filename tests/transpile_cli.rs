@@ -320,7 +320,9 @@ fn flexiv_script_to_stdout_or_file() {
     assert!(written.contains("robot.SetDigitalOutputs({port: bool(value)})"));
     assert!(written.contains("ROBOT_SN = \"Rizon4-123456\""));
     assert!(written.contains("while not get_in(1):") && written.contains("set_out(0, True)"));
-    assert!(written.contains("$OUT[n] -> digital output port n-2, $IN[n] -> digital input port n "));
+    assert!(
+        written.contains("$OUT[n] -> digital output port n-2, $IN[n] -> digital input port n ")
+    );
     assert_eq!(std::fs::read_dir(dir.path()).expect("dir").count(), 1);
 }
 
@@ -332,7 +334,10 @@ fn flexiv_vision_server_from_spec_or_eki_xml_or_tr001() {
         out.contains("# [TR001] MM_Init_Socket(\"Cell_XML\", 873, 871, 60)"),
         "{out}"
     );
-    assert!(err.contains("mm.init_socket takes the IP address and port"), "{err}");
+    assert!(
+        err.contains("mm.init_socket takes the IP address and port"),
+        "{err}"
+    );
     let (code, out, err) = krlkit(&[
         "transpile",
         "socket.src",
@@ -342,9 +347,15 @@ fn flexiv_vision_server_from_spec_or_eki_xml_or_tr001() {
         "cell.toml",
     ]);
     assert_eq!(code, 0, "{err}");
-    assert!(out.contains("mm.init_socket(\"10.0.0.5\", 50001, 60)"), "{out}");
+    assert!(
+        out.contains("mm.init_socket(\"10.0.0.5\", 50001, 60)"),
+        "{out}"
+    );
     assert!(out.contains("n, n, status = mm.get_visdata(1)"), "{out}");
-    assert!(out.contains("# Vision server: 10.0.0.5:50001 (spec cell.toml)."), "{out}");
+    assert!(
+        out.contains("# Vision server: 10.0.0.5:50001 (spec cell.toml)."),
+        "{out}"
+    );
     let (code, out, _) = krlkit(&[
         "transpile",
         "socket.src",
@@ -354,5 +365,8 @@ fn flexiv_vision_server_from_spec_or_eki_xml_or_tr001() {
         "eki/Cell_XML.xml",
     ]);
     assert_eq!(code, 0);
-    assert!(out.contains("mm.init_socket(\"172.16.3.9\", 50123, 60)"), "{out}");
+    assert!(
+        out.contains("mm.init_socket(\"172.16.3.9\", 50123, 60)"),
+        "{out}"
+    );
 }

@@ -240,7 +240,9 @@ fn options_change_the_api_shape_and_the_motions() {
                 assert!(t.contains("RDK = \"1.7\""));
             }
             _ => {
-                assert!(t.contains("return flexivrdk.JPos([j.a1, j.a2, 0.0, j.a3, j.a4, j.a5, j.a6])"));
+                assert!(
+                    t.contains("return flexivrdk.JPos([j.a1, j.a2, 0.0, j.a3, j.a4, j.a5, j.a6])")
+                );
                 assert!(t.contains("    move_j(home_pos)\n"), "{}", program_part(&t));
                 assert!(t.contains("move_ptp(scan_pos, \"Z20\")"));
                 assert!(t.contains("start_jnt = axis_act()"));
@@ -370,7 +372,10 @@ fn the_pick_program_runs_against_the_fake_vision_server() {
         assert_eq!(moves.len(), want.len(), "RDK {rdk}: number of MoveL");
         for (i, (got, want)) in moves.iter().zip(&want).enumerate() {
             for (g, w) in got.iter().zip(want) {
-                assert!((g - w).abs() < 1e-9, "RDK {rdk}: MoveL {i}: {got:?} != {want:?}");
+                assert!(
+                    (g - w).abs() < 1e-9,
+                    "RDK {rdk}: MoveL {i}: {got:?} != {want:?}"
+                );
             }
         }
         // The gripper output (port 0) is set and reset once per point.
@@ -502,7 +507,11 @@ fn nums(v: &serde_json::Value) -> Vec<f64> {
 fn the_mech_mind_client_speaks_the_protocol() {
     let Some(py) = python() else { return };
     let cat = catalog();
-    let ok = |name: &str| cat.command_named(name).and_then(|c| c.success).expect("success");
+    let ok = |name: &str| {
+        cat.command_named(name)
+            .and_then(|c| c.success)
+            .expect("success")
+    };
     let pkg = |name: &str| cat.package_code(name);
 
     let sc = Scenario::default_embedded();
@@ -510,13 +519,22 @@ fn the_mech_mind_client_speaks_the_protocol() {
     let server = Server::start(sc.clone(), "127.0.0.1:0").expect("server");
     let steps = drive(py, "default", server.addr().port());
     assert_eq!(status(&steps, "status before init"), pkg("NO_CONNECTION"));
-    assert_eq!(status(&steps, "init with a bad timeout"), pkg("BAD_ARGUMENT"));
+    assert_eq!(
+        status(&steps, "init with a bad timeout"),
+        pkg("BAD_ARGUMENT")
+    );
     assert_eq!(status(&steps, "init"), 0);
     assert_eq!(status(&steps, "get_status"), ok("get_status"));
     assert_eq!(status(&steps, "switch_model"), ok("switch_recipe"));
-    assert_eq!(status(&steps, "switch_model bad recipe"), pkg("BAD_ARGUMENT"));
+    assert_eq!(
+        status(&steps, "switch_model bad recipe"),
+        pkg("BAD_ARGUMENT")
+    );
     assert_eq!(status(&steps, "set_boxsize"), ok("set_box_size"));
-    assert_eq!(status(&steps, "start_vis with the current pose"), ok("start_vision"));
+    assert_eq!(
+        status(&steps, "start_vis with the current pose"),
+        ok("start_vision")
+    );
     assert_eq!(status(&steps, "start_vis"), ok("start_vision"));
     let n = project.points.len() as f64;
     assert_eq!(
@@ -528,13 +546,25 @@ fn the_mech_mind_client_speaks_the_protocol() {
     assert_eq!(nums(&pose[0]), project.points[1].pose);
     assert_eq!(pose[1], project.points[1].label);
     assert_eq!(status(&steps, "get_pose 5"), pkg("BAD_SERIAL"));
-    assert_eq!(value(&steps, "get_pose 5"), &serde_json::json!([null, null, null]));
+    assert_eq!(
+        value(&steps, "get_pose 5"),
+        &serde_json::json!([null, null, null])
+    );
     assert_eq!(status(&steps, "get_jps on poses"), pkg("WRONG_DATA_KIND"));
     let path = nums(value(&steps, "get_vispath joints"));
-    let vispos = project.path.iter().position(|w| w.vision_move).map_or(0, |i| i + 1);
+    let vispos = project
+        .path
+        .iter()
+        .position(|w| w.vision_move)
+        .map_or(0, |i| i + 1);
     assert_eq!(
         path,
-        [1.0, project.path.len() as f64, vispos as f64, f64::from(ok("get_vision_path"))]
+        [
+            1.0,
+            project.path.len() as f64,
+            vispos as f64,
+            f64::from(ok("get_vision_path"))
+        ]
     );
     assert_eq!(
         nums(&value(&steps, "get_jps 2")[0]),
@@ -544,7 +574,10 @@ fn the_mech_mind_client_speaks_the_protocol() {
         nums(value(&steps, "get_dy_data")),
         [n, f64::from(ok("get_custom_data"))]
     );
-    assert_eq!(nums(&value(&steps, "get_dypose 1")[0]), project.points[0].pose);
+    assert_eq!(
+        nums(&value(&steps, "get_dypose 1")[0]),
+        project.points[0].pose
+    );
     assert_eq!(status(&steps, "start_viz"), ok("start_viz"));
     assert_eq!(status(&steps, "set_branch"), ok("set_branch"));
     assert_eq!(status(&steps, "set_index"), ok("set_index"));
@@ -567,8 +600,14 @@ fn the_mech_mind_client_speaks_the_protocol() {
         nums(value(&steps, "plan_results")),
         w.plan_results(krlkit::sim::scenario::PlanLayout::Kuka)
     );
-    assert_eq!(nums(value(&steps, "user_data"))[..w.custom.len()], w.custom[..]);
-    assert_eq!(status(&steps, "get_planjps other format"), pkg("WRONG_DATA_KIND"));
+    assert_eq!(
+        nums(value(&steps, "user_data"))[..w.custom.len()],
+        w.custom[..]
+    );
+    assert_eq!(
+        status(&steps, "get_planjps other format"),
+        pkg("WRONG_DATA_KIND")
+    );
     assert_eq!(status(&steps, "get_dolist"), ok("get_do_list"));
     let dos: Vec<f64> = viz
         .do_list

@@ -207,9 +207,5 @@ fn generated_programs_compile_as_python() {
         .args(&files)
         .output()
         .expect("py_compile");
-    assert!(
-        o.status.success(),
-        "{}",
-        String::from_utf8_lossy(&o.stderr)
-    );
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
 }

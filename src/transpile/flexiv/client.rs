@@ -72,7 +72,12 @@ impl Layout {
             .iter()
             .position(|f| f.ends_with("..."))
             .unwrap_or(cmd.record.len());
-        let reply_at = |name: &str| fixed_reply.iter().position(|f| *f == name).map_or(0, |i| i + 1);
+        let reply_at = |name: &str| {
+            fixed_reply
+                .iter()
+                .position(|f| *f == name)
+                .map_or(0, |i| i + 1)
+        };
         let record_at = |name: &str| {
             cmd.record[..fixed_record]
                 .iter()
@@ -235,8 +240,15 @@ fn method(sub: &Subprogram, fx: &FlexivOptions) -> Method {
         let mut line = format!(
             "{} ({}{}",
             param_name(p),
-            if p.dir == Direction::In { "in" } else { "returned" },
-            p.unit.as_ref().map(|u| format!(", {u}")).unwrap_or_default()
+            if p.dir == Direction::In {
+                "in"
+            } else {
+                "returned"
+            },
+            p.unit
+                .as_ref()
+                .map(|u| format!(", {u}"))
+                .unwrap_or_default()
         );
         if let Some(r) = p.range_text() {
             line.push_str(&format!(", {r}"));
@@ -275,13 +287,18 @@ fn method(sub: &Subprogram, fx: &FlexivOptions) -> Method {
         (Some(_), _) => "jps_pos".to_owned(),
         (None, _) => "self.KIND_TCP".to_owned(),
     };
-    let value = if sub.params.iter().any(|p| p.ty == "E6AXIS" && p.dir == Direction::Out) {
+    let value = if sub
+        .params
+        .iter()
+        .any(|p| p.ty == "E6AXIS" && p.dir == Direction::Out)
+    {
         "Axis"
     } else {
         "Pose"
     };
     let summary = if init {
-        "Stores the vision server's address and the connect timeout that every other call uses.".to_owned()
+        "Stores the vision server's address and the connect timeout that every other call uses."
+            .to_owned()
     } else {
         sub.summary.clone()
     };
@@ -424,7 +441,9 @@ mod tests {
         assert_eq!((l.head, l.fixed, l.count_at, l.label_at), (4, 11, 3, 10));
         let l = Layout::of(cat.command_named("get_plan_waypoint").expect("210"));
         assert_eq!(
-            (l.head, l.fixed, l.wtype_at, l.move_at, l.tool_at, l.speed_at),
+            (
+                l.head, l.fixed, l.wtype_at, l.move_at, l.tool_at, l.speed_at
+            ),
             (4, 13, 3, 10, 11, 12)
         );
         let l = Layout::of(cat.command_named("get_do_list").expect("206"));
@@ -454,7 +473,11 @@ mod tests {
 
     #[test]
     fn every_supported_subprogram_renders() {
-        let all: BTreeSet<String> = catalog().subprograms.iter().map(|s| s.name.clone()).collect();
+        let all: BTreeSet<String> = catalog()
+            .subprograms
+            .iter()
+            .map(|s| s.name.clone())
+            .collect();
         let text = render(&all, &FlexivOptions::default()).expect("renders");
         for sub in catalog().subprograms.iter().filter(|s| supported(s)) {
             assert!(

@@ -57,18 +57,42 @@ const UNTRANSLATABLE_CALLS: [(&str, &str); 15] = [
         "EKI_",
         "EthernetKRL channels do not exist on the host; use Python's socket module",
     ),
-    ("CWRITE", "CWRITE/CREAD channels do not exist on the host; port by hand"),
-    ("CREAD", "CWRITE/CREAD channels do not exist on the host; port by hand"),
-    ("COPEN", "serial channels: use a Python serial library by hand"),
-    ("CCLOSE", "serial channels: use a Python serial library by hand"),
-    ("SWRITE", "format the string with Python's % operator or str.format"),
+    (
+        "CWRITE",
+        "CWRITE/CREAD channels do not exist on the host; port by hand",
+    ),
+    (
+        "CREAD",
+        "CWRITE/CREAD channels do not exist on the host; port by hand",
+    ),
+    (
+        "COPEN",
+        "serial channels: use a Python serial library by hand",
+    ),
+    (
+        "CCLOSE",
+        "serial channels: use a Python serial library by hand",
+    ),
+    (
+        "SWRITE",
+        "format the string with Python's % operator or str.format",
+    ),
     ("SREAD", "parse the string with Python (split, int, float)"),
     ("STRCOPY", "assign the string (a = b)"),
     ("STRADD", "concatenate with + (a = a + b)"),
     ("STRCLEAR", "assign an empty string (a = \"\")"),
-    ("SET_KRLMSG", "KUKA system messages do not exist on the host; use print"),
-    ("SET_KRLDLG", "KUKA dialogs do not exist on the host; use input"),
-    ("CLEAR_KRLMSG", "KUKA system messages do not exist on the host"),
+    (
+        "SET_KRLMSG",
+        "KUKA system messages do not exist on the host; use print",
+    ),
+    (
+        "SET_KRLDLG",
+        "KUKA dialogs do not exist on the host; use input",
+    ),
+    (
+        "CLEAR_KRLMSG",
+        "KUKA system messages do not exist on the host",
+    ),
     (
         "FORWARD",
         "kinematics functions: the Rizon's kinematics differ; port by hand",
@@ -344,7 +368,11 @@ impl<'p> Tx<'p> {
     }
 
     /// A SIGNAL name read as a value.
-    fn signal_value(&mut self, r: crate::transpile::front::symbols::SignalRange, span: Span) -> R<Py> {
+    fn signal_value(
+        &mut self,
+        r: crate::transpile::front::symbols::SignalRange,
+        span: Span,
+    ) -> R<Py> {
         let fx = self.fx;
         let (offset, bank) = match r.bank {
             Bank::In => (fx.input_offset, "input"),
@@ -543,11 +571,7 @@ impl<'p> Tx<'p> {
             return Ok(Py::atom(format!("{f}({})", values.join(", "))));
         }
         if let Some(help) = untranslatable_call(&key) {
-            return fail(
-                span,
-                format!("`{}` has no translation", name.text),
-                help,
-            );
+            return fail(span, format!("`{}` has no translation", name.text), help);
         }
         let f = self.external(name, span);
         Ok(Py::atom(format!("{f}({})", values.join(", "))))
@@ -697,7 +721,10 @@ pub(super) fn member_field(ty: &Ty, field: &Ident) -> R<String> {
         ),
         Ty::Pose | Ty::Joint => fail(
             field.span,
-            format!("component `{}` (external axis) has no counterpart", field.text),
+            format!(
+                "component `{}` (external axis) has no counterpart",
+                field.text
+            ),
             "drop the external axis",
         ),
         _ => fail(

@@ -43,7 +43,13 @@ pub fn string(s: &str) -> String {
 /// Comment text for the ASCII script: every non-ASCII character becomes `?`.
 pub fn ascii(s: &str) -> String {
     s.chars()
-        .map(|c| if c.is_ascii() && !c.is_ascii_control() { c } else { '?' })
+        .map(|c| {
+            if c.is_ascii() && !c.is_ascii_control() {
+                c
+            } else {
+                '?'
+            }
+        })
         .collect()
 }
 

@@ -166,7 +166,13 @@ impl<'p> Tx<'p> {
         Ok(())
     }
 
-    pub(super) fn pulse(&mut self, signal: &Expr, level: &Expr, duration: &Expr, span: Span) -> R<()> {
+    pub(super) fn pulse(
+        &mut self,
+        signal: &Expr,
+        level: &Expr,
+        duration: &Expr,
+        span: Span,
+    ) -> R<()> {
         let fx = self.fx;
         let port = match crate::transpile::front::sysvar::classify(signal) {
             Some(Sys::Out(i)) => self.port(fx.output_offset, i)?,
@@ -195,7 +201,11 @@ impl<'p> Tx<'p> {
             "PULSE becomes set, sleep, reset: the script waits for the pulse to end (KRL does not)",
             "move the reset to where the program should continue, if the wait matters",
         );
-        let (a, b) = if on { ("True", "False") } else { ("False", "True") };
+        let (a, b) = if on {
+            ("True", "False")
+        } else {
+            ("False", "True")
+        };
         self.line(format!("set_out({}, {a})", port.text));
         self.line(format!("time.sleep({t})"));
         self.line(format!("set_out({}, {b})", port.text));
@@ -231,7 +241,10 @@ impl<'p> Tx<'p> {
             }
             "MSGDIALOG" | "MSGLOOP" => Some(fail(
                 span,
-                format!("{} (a dialog with answers) has no direct translation", name.text),
+                format!(
+                    "{} (a dialog with answers) has no direct translation",
+                    name.text
+                ),
                 "ask with input() and test the answer",
             )),
             _ => None,

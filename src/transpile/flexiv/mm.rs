@@ -106,7 +106,8 @@ impl<'p> Tx<'p> {
                                 "pass a variable",
                             );
                         }
-                        if self.var(&root_name(a).map(|r| r.text.clone()).unwrap_or_default())
+                        if self
+                            .var(&root_name(a).map(|r| r.text.clone()).unwrap_or_default())
                             .is_none()
                             && let Some(r) = root_name(a)
                         {
@@ -157,7 +158,10 @@ impl<'p> Tx<'p> {
             .last()
             .and_then(Option::as_ref)
             .is_some_and(|a| matches!(sysvar::classify(a), Some(Sys::AxisAct)));
-        let sends_current = match args.get(at).and_then(Option::as_ref).and_then(literal::integer)
+        let sends_current = match args
+            .get(at)
+            .and_then(Option::as_ref)
+            .and_then(literal::integer)
         {
             Some(t) => t == current || (axis_act_arg && t == given),
             None => true,

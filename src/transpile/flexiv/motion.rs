@@ -529,7 +529,9 @@ impl<'p> Tx<'p> {
                 self.rep.approximate(
                     FileId::Src,
                     span,
-                    format!("BAS(#{what}) is not carried over; the robot uses its default accelerations"),
+                    format!(
+                        "BAS(#{what}) is not carried over; the robot uses its default accelerations"
+                    ),
                     "set MoveL's acc in move_l by hand if it matters",
                 );
                 self.keep_as_comment("TR002", span);

@@ -216,7 +216,12 @@ mod tests {
         assert_eq!("1.6".parse::<RdkVersion>().unwrap().api(), Api::V16);
         assert_eq!("1.7.1".parse::<RdkVersion>().unwrap().api(), Api::V17);
         assert_eq!("v1.9".parse::<RdkVersion>().unwrap().to_string(), "1.9");
-        assert!("2.0".parse::<RdkVersion>().unwrap_err().contains("joint groups"));
+        assert!(
+            "2.0"
+                .parse::<RdkVersion>()
+                .unwrap_err()
+                .contains("joint groups")
+        );
         assert!("1.5".parse::<RdkVersion>().is_err());
         assert!("one".parse::<RdkVersion>().is_err());
         assert!("1.6.x".parse::<RdkVersion>().is_err());
@@ -231,7 +236,12 @@ mod tests {
         assert_eq!(m.to_string(), "A1,A2,0,A3,A4,A5,A6");
         let partial: JointMap = "A1,A2,0,A3,A4,A5,-30.5".parse().unwrap();
         assert!(!partial.invertible());
-        assert!("A1,A2".parse::<JointMap>().unwrap_err().contains("7 entries"));
+        assert!(
+            "A1,A2"
+                .parse::<JointMap>()
+                .unwrap_err()
+                .contains("7 entries")
+        );
         assert!("A1,A2,0,A3,A4,A5,A7".parse::<JointMap>().is_err());
         assert!("A1,A2,x,A3,A4,A5,A6".parse::<JointMap>().is_err());
     }
