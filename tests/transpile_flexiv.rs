@@ -10,7 +10,8 @@
 //! the stub `flexivrdk` of `tests/flexiv_stub/` (RDK 1.6 and 1.7 API shapes), its MoveL targets
 //! compared with the scenario's poses converted to Flexiv units; and the Mech-Mind client of a
 //! program calling every supported `MM_*` routine, driven method by method against the fake
-//! server (successes, values, every client status code, injected faults).
+//! server (successes, values, every client status code, injected faults); and the script's pose
+//! maths (`:`, INV_POS, quaternion read-back, Coord order) against values worked out by hand.
 //! Without python3 (CI has it) the Python checks are skipped with a message.
 
 use std::path::{Path, PathBuf};
@@ -643,4 +644,33 @@ fn the_mech_mind_client_speaks_the_protocol() {
     };
     let steps = drive(py, "closed", port);
     assert_eq!(status(&steps, "get_status"), pkg("NO_CONNECTION"));
+}
+
+#[test]
+fn the_scripts_pose_maths_agrees_with_kuka() {
+    let Some(py) = python() else { return };
+    let steps = drive(py, "frames", 1);
+    let near = |name: &str, want: &[f64]| {
+        let got = nums(value(&steps, name));
+        assert_eq!(got.len(), want.len(), "{name}");
+        for (g, w) in got.iter().zip(want) {
+            assert!((g - w).abs() < 1e-9, "{name}: {got:?} != {want:?}");
+        }
+    };
+    near("compose rotations", &[0.0, 0.0, 0.0, 30.0, 20.0, 0.0]);
+    near("compose offset", &[100.0, 10.0, 0.0, 90.0, 0.0, 0.0]);
+    // The tool's Z points down (B = 180): 80 mm back along it is 80 mm up; the orientation
+    // comes back as KUKA writes it, B within +-90 (A 180, B 0, C 180 is the same rotation).
+    near("tool offset", &[500.0, 0.0, 380.0, 180.0, 0.0, 180.0]);
+    near("inverse", &[0.0; 6]);
+    near("gimbal lock", &[0.0, 0.0, 0.0, 10.0, -90.0, 0.0]);
+    near("quaternion", &[500.0, -250.0, 125.0, 40.0, -25.0, 170.0]);
+    let c = value(&steps, "coord");
+    assert_eq!(nums(&c[0]), [0.5, -0.25, 0.125]);
+    assert_eq!(
+        nums(&c[1]),
+        [170.0, -25.0, 40.0],
+        "[rx, ry, rz] = [C, B, A]"
+    );
+    assert_eq!(c[2], serde_json::json!(["WORLD", "WORLD_ORIGIN"]));
 }

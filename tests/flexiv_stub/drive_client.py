@@ -71,6 +71,26 @@ elif plan == "faults":
     step("get_visdata dropped", mm.get_visdata(1))
     step("switch_model garbage", mm.switch_model(1, 1))
     step("set_boxsize wrong echo", mm.set_boxsize(1, 1, 1, 1))
+elif plan == "frames":
+    # The script's pose maths against values worked out by hand (KUKA A, B, C = Z, Y', X'').
+    P = mod.Pose
+    step("compose rotations", mod.frame_mul(P(0, 0, 0, 30, 0, 0), P(0, 0, 0, 0, 20, 0)))
+    step("compose offset", mod.frame_mul(P(100, 0, 0, 90, 0, 0), P(10, 0, 0, 0, 0, 0)))
+    step("tool offset", mod.frame_mul(P(500, 0, 300, 0, 180, 0), P(0, 0, -80, 0, 0, 0)))
+    p = P(512.5, -30, 250, 12, 33, -140)
+    step("inverse", mod.frame_mul(p, mod.frame_inv(p)))
+    step("gimbal lock", mod.frame_mul(P(0, 0, 0, 10, -90, 0), P(0, 0, 0, 0, 0, 0)))
+    # A quaternion for A=40, B=-25, C=170 (reference formulas, half angles).
+    a, b, c = (mod.math.radians(v) / 2 for v in (40, -25, 170))
+    cos, sin = mod.math.cos, mod.math.sin
+    q = [
+        cos(a) * cos(b) * cos(c) + sin(a) * sin(b) * sin(c),
+        cos(a) * cos(b) * sin(c) - sin(a) * sin(b) * cos(c),
+        cos(a) * sin(b) * cos(c) + sin(a) * cos(b) * sin(c),
+        sin(a) * cos(b) * cos(c) - cos(a) * sin(b) * sin(c),
+    ]
+    step("quaternion", mod.pose_from_flexiv([0.5, -0.25, 0.125] + q))
+    step("coord", [list(x) if isinstance(x, list) else x for x in (lambda k: [k.position, k.orientation, k.ref_frame])(mod.to_coord(P(500, -250, 125, 40, -25, 170)))])
 elif plan == "closed":
     mm.init_socket(host, port, 1)
     step("get_status", mm.get_status())

@@ -304,10 +304,13 @@ impl<'p> Tx<'p> {
                     let s = self.var_text(id)?;
                     return match indices.as_slice() {
                         [None] | [] => Ok(Py::atom(s)),
-                        [Some(i)] => {
-                            let i = self.render(i)?;
-                            Ok(Py::atom(format!("{s}[{} - 1 : {}]", i.at(ADD), i.text)))
-                        }
+                        [Some(i)] => match literal::integer(i) {
+                            Some(n) => Ok(Py::atom(format!("{s}[{}:{n}]", n - 1))),
+                            None => {
+                                let i = self.render(i)?;
+                                Ok(Py::atom(format!("{s}[{} - 1 : {}]", i.at(ADD), i.text)))
+                            }
+                        },
                         _ => fail(
                             e.span,
                             "a two-dimensional CHAR array has no translation",

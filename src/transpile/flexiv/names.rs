@@ -97,7 +97,9 @@ pub const SCRIPT_NAMES: [&str; 28] = [
 ];
 
 /// More names the script defines.
-const SCRIPT_NAMES_2: [&str; 6] = [
+const SCRIPT_NAMES_2: [&str; 8] = [
+    "to_int",
+    "pose_from_flexiv",
     "axis_act",
     "flange_pose",
     "vision_joints",
