@@ -147,12 +147,18 @@ impl<'p> Tx<'p> {
     /// Requests that carry the robot's current joints send six of a Rizon's seven; the
     /// current flange pose comes from RobotStates.
     fn current_pose_caveats(&mut self, name: &str, args: &[Option<Expr>], span: Span) {
-        // (position of SendPos_Type, the type that sends the current joints, the type that
-        // sends MM_J).
-        let (at, current, given) = match name {
-            "MM_Start_Vis" => (2, 1, 3),
-            "MM_Start_Viz" => (0, 1, 2),
+        // The SendPos_Type that sends the current joints, and the one that sends MM_J (the
+        // catalog's meaning of SendPos_Type; `$AXIS_ACT` as MM_J also means the current joints).
+        let (current, given) = match name {
+            "MM_Start_Vis" => (1, 3),
+            "MM_Start_Viz" => (1, 2),
             _ => return,
+        };
+        let Some(at) = catalog()
+            .subprogram(name)
+            .and_then(|s| s.params.iter().position(|p| p.ident() == "SendPos_Type"))
+        else {
+            return;
         };
         let axis_act_arg = args
             .last()
