@@ -1,4 +1,4 @@
-//! Transpile throughput (KRL → Kawasaki AS): the fixture programs, and a large synthetic
+//! Transpile throughput (KRL → Kawasaki AS, KRL → Flexiv Python): the fixture programs, and a large synthetic
 //! program with many routines, motions, I/O and `.dat` poses.
 //! Run briefly: `cargo bench --bench transpile -- --warm-up-time 1 --measurement-time 3`.
 
@@ -32,8 +32,12 @@ fn synthetic(routines: usize) -> (String, String) {
 }
 
 fn run(src: &str, dat: Option<&str>) -> usize {
+    run_to(Target::Kawasaki, src, dat)
+}
+
+fn run_to(target: Target, src: &str, dat: Option<&str>) -> usize {
     let t = transpile::transpile(
-        Target::Kawasaki,
+        target,
         Source {
             path: "bench.src".into(),
             text: src.into(),
@@ -53,6 +57,9 @@ fn bench(c: &mut Criterion) {
     g.throughput(Throughput::Bytes((src.len() + dat.len()) as u64));
     g.bench_function("synthetic_200_routines", |b| {
         b.iter(|| run(&src, Some(&dat)))
+    });
+    g.bench_function("synthetic_200_routines_flexiv", |b| {
+        b.iter(|| run_to(Target::Flexiv, &src, Some(&dat)))
     });
     g.finish();
     let mut fixtures = Vec::new();

@@ -1,6 +1,6 @@
 //! `krlkit transpile` as a user runs it: where the program and the findings go, every exit code,
 //! the vision server address from `--spec`, `--eki-xml` or nowhere, the signal offsets, atomic
-//! output, and `krlkit rule TR00x`.
+//! output, the Flexiv options, and `krlkit rule TR00x`.
 
 use std::path::Path;
 use std::process::Command;
@@ -208,9 +208,20 @@ fn could_not_do_the_job_exit_2() {
         "{err}"
     );
 
-    let (code, _, err) = krlkit(&["transpile", "clean.src", "--to", "flexiv"]);
-    assert_eq!(code, 2);
-    assert!(err.contains("flexiv"), "{err}");
+    for (args, want) in [
+        (&["--rdk", "2.0"][..], "joint groups"),
+        (&["--rdk", "1.5"][..], "1.6 to 1.9"),
+        (&["--rdk", "one"][..], "MAJOR.MINOR"),
+        (&["--joint-map", "A1,A2"][..], "7 entries"),
+        (&["--joint-map", "A1,A2,0,A3,A4,A5,A9"][..], "A1..A6"),
+        (&["--serial", "Rizon\t4"][..], "serial number"),
+    ] {
+        let mut a = vec!["transpile", "clean.src", "--to", "flexiv"];
+        a.extend_from_slice(args);
+        let (code, out, err) = krlkit(&a);
+        assert_eq!((code, out.as_str()), (2, ""), "{args:?}: {err}");
+        assert!(err.contains(want), "{args:?}: {err}");
+    }
 
     let (code, _, _) = krlkit(&["transpile", "clean.src", "--to", "abb"]);
     assert_eq!(code, 2);
@@ -268,4 +279,94 @@ fn rules_explain_the_transpile_codes() {
     let (c, _, err) = krlkit(&["rule", "TR01"]);
     assert_eq!(c, 2);
     assert!(err.contains("TR001"), "{err}");
+}
+
+#[test]
+fn flexiv_script_to_stdout_or_file() {
+    let (code, out, err) = krlkit(&["transpile", "clean.src", "--to", "flexiv"]);
+    assert_eq!(code, 0, "{err}");
+    assert!(out.starts_with("#!/usr/bin/env python3\n"), "{out}");
+    assert!(out.contains("\ndef clean():\n    n = 0\n"), "{out}");
+    assert!(out.contains("    while not get_in(0):\n        time.sleep(POLL)\n"));
+    assert!(out.contains("    set_out(1, True)\n"));
+    assert!(out.contains("robot.SetDigitalOutputs([port], [bool(value)])"));
+    assert!(out.ends_with("    main()\n"));
+    assert!(
+        err.contains("clean.src: 0 errors, 0 warnings, 0 renamed; 5 of 5 constructs translated"),
+        "{err}"
+    );
+
+    let dir = tempfile::tempdir().expect("tempdir");
+    let out_path = dir.path().join("clean.py");
+    let (code, out, err) = krlkit(&[
+        "transpile",
+        "clean.src",
+        "--to",
+        "flexiv",
+        "-o",
+        out_path.to_str().expect("utf-8"),
+        "--rdk",
+        "1.8",
+        "--serial",
+        "Rizon4-123456",
+        "--input-offset",
+        "0",
+        "--output-offset",
+        "-2",
+    ]);
+    assert_eq!(code, 0, "{err}");
+    assert_eq!(out, "");
+    let written = std::fs::read_to_string(&out_path).expect("written");
+    assert!(written.contains("robot.SetDigitalOutputs({port: bool(value)})"));
+    assert!(written.contains("ROBOT_SN = \"Rizon4-123456\""));
+    assert!(written.contains("while not get_in(1):") && written.contains("set_out(0, True)"));
+    assert!(
+        written.contains("$OUT[n] -> digital output port n-2, $IN[n] -> digital input port n ")
+    );
+    assert_eq!(std::fs::read_dir(dir.path()).expect("dir").count(), 1);
+}
+
+#[test]
+fn flexiv_vision_server_from_spec_or_eki_xml_or_tr001() {
+    let (code, out, err) = krlkit(&["transpile", "socket.src", "--to", "flexiv"]);
+    assert_eq!(code, 1, "{err}");
+    assert!(
+        out.contains("# [TR001] MM_Init_Socket(\"Cell_XML\", 873, 871, 60)"),
+        "{out}"
+    );
+    assert!(
+        err.contains("mm.init_socket takes the IP address and port"),
+        "{err}"
+    );
+    let (code, out, err) = krlkit(&[
+        "transpile",
+        "socket.src",
+        "--to",
+        "flexiv",
+        "--spec",
+        "cell.toml",
+    ]);
+    assert_eq!(code, 0, "{err}");
+    assert!(
+        out.contains("mm.init_socket(\"10.0.0.5\", 50001, 60)"),
+        "{out}"
+    );
+    assert!(out.contains("n, n, status = mm.get_visdata(1)"), "{out}");
+    assert!(
+        out.contains("# Vision server: 10.0.0.5:50001 (spec cell.toml)."),
+        "{out}"
+    );
+    let (code, out, _) = krlkit(&[
+        "transpile",
+        "socket.src",
+        "--to",
+        "flexiv",
+        "--eki-xml",
+        "eki/Cell_XML.xml",
+    ]);
+    assert_eq!(code, 0);
+    assert!(
+        out.contains("mm.init_socket(\"172.16.3.9\", 50123, 60)"),
+        "{out}"
+    );
 }

@@ -1,4 +1,6 @@
-//! `krlkit transpile FILE --to kawasaki [-o OUT] [--spec FILE] [--eki-xml FILE] [--format …]`.
+//! `krlkit transpile FILE --to kawasaki|flexiv [-o OUT] [--spec FILE] [--eki-xml FILE]
+//! [--format …]` plus the target's options (signal offsets; RDK version, serial number, PTP
+//! primitive, joint map).
 //!
 //! Reads the program and its `.dat`, finds the vision server address (spec, else EKI XML),
 //! translates, writes the target program (atomically with `-o`, else to stdout) and renders the
@@ -12,17 +14,22 @@ use std::path::{Path, PathBuf};
 use anyhow::Context;
 
 use super::Outcome;
-use super::args::{CheckFormat, TranspileArgs, TranspileTarget};
+use super::args::{CheckFormat, PtpPrimitive, TranspileArgs, TranspileTarget};
 use crate::diag::render::sarif::RuleMeta;
 use crate::diag::{FileReport, Severity, render};
 use crate::lint::{self, EkiChannel};
+use crate::transpile::flexiv::{self, FlexivOptions, JointMap, RdkVersion};
 use crate::transpile::{self, Options, SignalMap, Source, Target, VisionServer};
 
 pub fn run(args: TranspileArgs) -> anyhow::Result<Outcome> {
     let target = match args.to {
         TranspileTarget::Kawasaki => Target::Kawasaki,
-        TranspileTarget::Flexiv => {
-            eprintln!("error: `--to flexiv` is not available in this build yet (only kawasaki)");
+        TranspileTarget::Flexiv => Target::Flexiv,
+    };
+    let flexiv = match flexiv_options(&args) {
+        Ok(f) => f,
+        Err(msg) => {
+            eprintln!("error: {msg}");
             return Ok(Outcome::Failure);
         }
     };
@@ -31,12 +38,14 @@ pub fn run(args: TranspileArgs) -> anyhow::Result<Outcome> {
         Some(p) => Some(read_source(&p)?),
         None => None,
     };
+    let defaults = SignalMap::default();
     let mut options = Options {
         signals: SignalMap {
-            output_offset: args.output_offset,
-            input_offset: args.input_offset,
+            output_offset: args.output_offset.unwrap_or(defaults.output_offset),
+            input_offset: args.input_offset.unwrap_or(defaults.input_offset),
             flag_offset: args.flag_offset,
         },
+        flexiv,
         ..Options::default()
     };
     if let Some(spec) = &args.spec {
@@ -52,6 +61,8 @@ pub fn run(args: TranspileArgs) -> anyhow::Result<Outcome> {
             port: spec_data.server_port,
             origin: format!("spec {}", file_name(spec)),
         });
+        options.flexiv.reply_timeout = spec_data.reply_timeout;
+        options.flexiv.batch_size = spec_data.batch_size;
     }
     match &args.eki_xml {
         Some(path) => {
@@ -92,6 +103,37 @@ pub fn run(args: TranspileArgs) -> anyhow::Result<Outcome> {
     } else {
         Outcome::Success
     })
+}
+
+/// The Flexiv backend's options from the arguments (checked also for `--to kawasaki`, so a
+/// typo is never silently ignored).
+fn flexiv_options(args: &TranspileArgs) -> Result<FlexivOptions, String> {
+    let mut f = FlexivOptions {
+        rdk: args.rdk.parse::<RdkVersion>()?,
+        ptp: match args.ptp {
+            PtpPrimitive::Movel => flexiv::PtpPrimitive::MoveL,
+            PtpPrimitive::Moveptp => flexiv::PtpPrimitive::MovePtp,
+        },
+        ..FlexivOptions::default()
+    };
+    if let Some(m) = &args.joint_map {
+        f.joint_map = Some(m.parse::<JointMap>()?);
+    }
+    if let Some(sn) = &args.serial {
+        if sn.trim().is_empty() || sn.chars().any(|c| c.is_control() || !c.is_ascii()) {
+            return Err(format!(
+                "--serial `{sn}` is not a robot serial number (printable ASCII, e.g. Rizon4-123456)"
+            ));
+        }
+        f.serial = Some(sn.clone());
+    }
+    if let Some(o) = args.input_offset {
+        f.input_offset = o;
+    }
+    if let Some(o) = args.output_offset {
+        f.output_offset = o;
+    }
+    Ok(f)
 }
 
 fn plural(n: usize) -> &'static str {

@@ -2,7 +2,8 @@
 //!
 //! Layout: [`front`] is target-independent (symbols and types, system variables by meaning,
 //! literal poses, comments, deterministic renaming, findings and coverage); each target is a
-//! backend module that walks the AST with it and writes its language ([`kawasaki`]: Kawasaki AS).
+//! backend module that walks the AST with it and writes its language ([`kawasaki`]: Kawasaki AS,
+//! [`flexiv`]: a Flexiv RDK Python script).
 //! [`orientation`] holds the Euler-angle conversions, [`rules`] the diagnostic codes TR001–TR003.
 //!
 //! Invariants: translation never fails and never panics on user input: what cannot be
@@ -10,6 +11,7 @@
 //! approximations are `TR002`, renamed identifiers `TR003`. Output is deterministic: the same
 //! input and options give byte-identical text and findings.
 
+pub mod flexiv;
 pub mod front;
 pub mod kawasaki;
 pub mod orientation;
@@ -26,6 +28,8 @@ use crate::lint::EkiChannel;
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub enum Target {
     Kawasaki,
+    /// A Flexiv RDK Python script.
+    Flexiv,
 }
 
 /// How KRL I/O numbers map to the target's signal numbers. The defaults follow the usual
@@ -70,6 +74,8 @@ pub struct Options {
     /// program; the one named by `MM_Init_Socket` supplies IP and port.
     pub channels: Vec<EkiChannel>,
     pub channels_given: bool,
+    /// The Flexiv backend's settings.
+    pub flexiv: flexiv::FlexivOptions,
 }
 
 /// One input file.
@@ -104,6 +110,7 @@ pub fn transpile(
     );
     let (text, mut report) = match target {
         Target::Kawasaki => kawasaki::translate(&program, options),
+        Target::Flexiv => flexiv::translate(&program, options),
     };
     trim_spans(&mut report.src, &program.src.text);
     if let Some(dat) = &program.dat {

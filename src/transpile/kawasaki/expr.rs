@@ -619,68 +619,7 @@ impl<'p> Tx<'p> {
 
     /// The static type of an expression, as far as it can be known.
     pub(super) fn ty_of(&self, e: &Expr) -> Ty {
-        match &e.kind {
-            ExprKind::Int(_) | ExprKind::Bits(_) | ExprKind::Hex(_) => Ty::Int,
-            ExprKind::Real(_) => Ty::Real,
-            ExprKind::Bool(_) => Ty::Bool,
-            ExprKind::Char(_) | ExprKind::Str(_) => Ty::Char,
-            ExprKind::Enum(_) => Ty::Int,
-            ExprKind::Invalid(_) => Ty::Real,
-            ExprKind::Name(_) | ExprKind::Index { .. } | ExprKind::Member { .. } => {
-                if let Some(s) = sysvar::classify(e) {
-                    return match s {
-                        Sys::In(_) | Sys::Out(_) | Sys::OutC(_) | Sys::Flag(_) => Ty::Bool,
-                        Sys::Timer(_) => Ty::Int,
-                        Sys::PosAct | Sys::Tool | Sys::Base | Sys::NullFrame => Ty::Pose,
-                        Sys::AxisAct => Ty::Joint,
-                        _ => Ty::Real,
-                    };
-                }
-                match &e.kind {
-                    ExprKind::Name(id) => match self.var(&id.text) {
-                        Some(v) => match &v.ty {
-                            Ty::Signal(r) if r.width() == 1 => Ty::Bool,
-                            Ty::Signal(_) => Ty::Int,
-                            t => t.clone(),
-                        },
-                        None => super::mm::package_global_ty(&id.text).unwrap_or(Ty::Real),
-                    },
-                    ExprKind::Index { base, .. } => self.ty_of(base),
-                    _ => Ty::Real,
-                }
-            }
-            ExprKind::Call { name, .. } => self
-                .prog
-                .symbols
-                .routine(&name.text)
-                .and_then(|r| r.return_ty.clone())
-                .unwrap_or(if name.is("INV_POS") {
-                    Ty::Pose
-                } else {
-                    Ty::Real
-                }),
-            ExprKind::Unary { op, operand } => match op {
-                UnaryOp::Not => Ty::Bool,
-                _ => self.ty_of(operand),
-            },
-            ExprKind::Binary { op, lhs, rhs } => match op {
-                BinaryOp::Geo => Ty::Pose,
-                BinaryOp::Add | BinaryOp::Sub | BinaryOp::Mul | BinaryOp::Div => {
-                    match (self.ty_of(lhs), self.ty_of(rhs)) {
-                        (Ty::Int, Ty::Int) => Ty::Int,
-                        (Ty::Char, _) => Ty::Char,
-                        _ => Ty::Real,
-                    }
-                }
-                BinaryOp::BAnd | BinaryOp::BOr | BinaryOp::BExor => Ty::Int,
-                _ => Ty::Bool,
-            },
-            ExprKind::Aggregate { .. } => match literal::aggregate(e) {
-                Ok(a) if a.kind == AggKind::Axis => Ty::Joint,
-                Ok(_) => Ty::Pose,
-                Err(_) => Ty::Other("STRUC".into()),
-            },
-        }
+        crate::transpile::front::types::ty_of(&self.prog.symbols, self.routine_key(), e)
     }
 }
 

@@ -3,12 +3,13 @@
 use super::format::num;
 use super::{InterruptDecl, R, Tx, fail};
 use crate::diag::Span;
-use crate::syntax::ast::{BinaryOp, Expr, ExprKind, Ident, InterruptAction, Stmt, StmtKind};
+use crate::syntax::ast::{Expr, ExprKind, Ident, InterruptAction, Stmt, StmtKind};
+use crate::transpile::front::ilf;
 use crate::transpile::front::literal;
 use crate::transpile::front::report::FileId;
 use crate::transpile::front::symbols::{Bank, SignalRange};
 use crate::transpile::front::sysvar::Sys;
-use crate::transpile::front::walk::each_stmt;
+use crate::transpile::front::walk::{and_terms, each_stmt};
 
 impl<'p> Tx<'p> {
     /// Assignment to a system variable.
@@ -88,7 +89,7 @@ impl<'p> Tx<'p> {
                 "$TIMER_FLAG has no AS equivalent",
                 "compare TIMER(n) with the limit where the flag is read",
             ),
-            Sys::Other(e) if is_ilf_bookkeeping(e) => {
+            Sys::Other(e) if ilf::is_bookkeeping(e) => {
                 self.kind("inline-form data");
                 let text = self.prog.src.slice(span).trim().to_owned();
                 self.line(format!(
@@ -228,7 +229,7 @@ impl<'p> Tx<'p> {
                 continue;
             };
             let target = self.interrupt_target(condition, handler);
-            let stop_messages = is_stop_message_interrupt(condition, handler);
+            let stop_messages = ilf::is_stop_message_interrupt(condition, handler);
             self.interrupts.push(InterruptDecl {
                 at: s.span.start,
                 number: n,
@@ -424,47 +425,11 @@ impl<'p> Tx<'p> {
     }
 }
 
-/// The terms of a chain of ANDs.
-fn and_terms<'e>(e: &'e Expr, out: &mut Vec<&'e Expr>) {
-    match &e.kind {
-        ExprKind::Binary {
-            op: BinaryOp::And,
-            lhs,
-            rhs,
-        } => {
-            and_terms(lhs, out);
-            and_terms(rhs, out);
-        }
-        _ => out.push(e),
-    }
-}
-
-fn is_stop_message_interrupt(condition: &Expr, handler: &Stmt) -> bool {
-    let mut stopmess = false;
-    if let ExprKind::Binary { lhs, .. } = &condition.kind
-        && let ExprKind::Name(id) = &lhs.kind
-    {
-        stopmess = id.is("$STOPMESS");
-    }
-    if let ExprKind::Name(id) = &condition.kind {
-        stopmess = id.is("$STOPMESS");
-    }
-    stopmess && matches!(&handler.kind, StmtKind::Call { name, .. } if name.is("IR_STOPM"))
-}
-
 /// `-n` for a signal number as AS source.
 fn negative(n: &str) -> String {
     if n.chars().all(|c| c.is_ascii_digit()) {
         format!("-{n}")
     } else {
         format!("-({n})")
-    }
-}
-
-/// `$BWDSTART`, `$H_POS`: set by KUKA inline forms for backward motion and the home check.
-fn is_ilf_bookkeeping(e: &Expr) -> bool {
-    match &e.kind {
-        ExprKind::Name(id) => id.is("$BWDSTART") || id.is("$H_POS"),
-        _ => false,
     }
 }

@@ -11,12 +11,12 @@ use super::format::{self, num};
 use super::{R, Tx, fail};
 use crate::catalog::{AsKind, Direction, KawasakiCommand, Subprogram, catalog};
 use crate::diag::Span;
-use crate::syntax::TokenKind;
 use crate::syntax::ast::{Expr, ExprKind, Ident};
 use crate::transpile::front::literal;
 use crate::transpile::front::report::FileId;
 use crate::transpile::front::symbols::Ty;
 use crate::transpile::front::sysvar::{self, Sys};
+use crate::transpile::front::walk::root_name;
 
 /// KUKA package globals and the Kawasaki globals that hold the same data. `MM_UserData` and
 /// `MM_Plan_Results` hold the data of one selected point on KUKA; Kawasaki keeps them per
@@ -39,24 +39,6 @@ pub(super) fn package_global(name: &str) -> Option<&'static str> {
         .iter()
         .find(|(k, _)| k.eq_ignore_ascii_case(name))
         .map(|(_, a)| *a)
-}
-
-/// The KRL type of a KUKA package global (from the catalog), if `name` is one.
-pub(super) fn package_global_ty(name: &str) -> Option<Ty> {
-    package_global(name)?;
-    let g = catalog().global(name)?;
-    Some(match g.ty.to_ascii_uppercase().as_str() {
-        "INT" => Ty::Int,
-        "BOOL" => Ty::Bool,
-        _ => Ty::Real,
-    })
-}
-
-/// The vision server address resolved for `MM_Init_Socket`.
-struct Server {
-    ip: Ipv4Addr,
-    port: u16,
-    origin: String,
 }
 
 impl<'p> Tx<'p> {
@@ -124,7 +106,7 @@ impl<'p> Tx<'p> {
         let mut rendered = Vec::new();
         let mut used = vec![false; sub.params.len()];
         let mut prelude: Vec<String> = Vec::new();
-        let mut server: Option<Server> = None;
+        let mut server: Option<crate::transpile::VisionServer> = None;
         for p in &k.params {
             // The KUKA parameter this one takes its value from, if the called routine has it
             // (MM_Get_DyPose borrows mm_get_pose, whose .speed it lacks).
@@ -165,7 +147,13 @@ impl<'p> Tx<'p> {
                 }
             } else if let Some(key) = &p.spec {
                 if server.is_none() {
-                    server = Some(self.vision_server(sub, args, span)?);
+                    server = Some(crate::transpile::front::vision::resolve(
+                        self.opts,
+                        sub,
+                        args,
+                        span,
+                        "mm_init_skt",
+                    )?);
                 }
                 let s = server.as_ref().map(|s| (s.ip, s.port));
                 let v = s.and_then(|(ip, port)| spec_value(key, ip, port));
@@ -299,7 +287,7 @@ impl<'p> Tx<'p> {
                             prelude.push(format!("POINT {t} = {v}"));
                             return Ok(t);
                         }
-                        if super::stmt::root_name(arg).is_some() {
+                        if root_name(arg).is_some() {
                             return self.place_text(arg, &Ty::Joint);
                         }
                     }
@@ -311,7 +299,7 @@ impl<'p> Tx<'p> {
                 )
             }
             (_, Direction::Out) => {
-                if super::stmt::root_name(arg).is_none() || sysvar::classify(arg).is_some() {
+                if root_name(arg).is_none() || sysvar::classify(arg).is_some() {
                     return fail(
                         arg.span,
                         "an output argument must be a variable",
@@ -349,69 +337,6 @@ impl<'p> Tx<'p> {
                 span,
                 format!("argument {param} is missing"),
                 "pass every argument",
-            ),
-        }
-    }
-
-    /// The vision server for MM_Init_Socket: the spec, else the EKI XML.
-    fn vision_server(&mut self, sub: &Subprogram, args: &[Option<Expr>], span: Span) -> R<Server> {
-        if let Some(s) = &self.opts.server {
-            return Ok(Server {
-                ip: s.ip,
-                port: s.port,
-                origin: s.origin.clone(),
-            });
-        }
-        let xml_name = sub
-            .params
-            .iter()
-            .position(|p| p.is_array())
-            .and_then(|i| args.get(i))
-            .and_then(Option::as_ref)
-            .and_then(|a| match &a.kind {
-                ExprKind::Str(s) => Some(s.clone()),
-                _ => None,
-            });
-        let channel = if self.opts.channels_given {
-            self.opts.channels.first()
-        } else {
-            xml_name.as_ref().and_then(|n| {
-                self.opts
-                    .channels
-                    .iter()
-                    .find(|c| c.name == *n)
-                    .or_else(|| {
-                        self.opts
-                            .channels
-                            .iter()
-                            .find(|c| c.name.eq_ignore_ascii_case(n))
-                    })
-            })
-        };
-        let Some(ch) = channel else {
-            let wanted = xml_name.map_or_else(|| "the EKI XML".to_owned(), |n| format!("{n}.xml"));
-            return fail(
-                span,
-                format!(
-                    "the vision server's IP address and port are unknown: no --spec, no --eki-xml, and no {wanted} beside the program"
-                ),
-                "pass --spec krlkit.toml or --eki-xml FILE (mm_init_skt takes the IP address and port, not the XML name and flags)",
-            );
-        };
-        let ip = ch.ip.as_deref().and_then(|i| i.parse::<Ipv4Addr>().ok());
-        match (ip, ch.port) {
-            (Some(ip), Some(port)) => Ok(Server {
-                ip,
-                port,
-                origin: format!("EKI XML {}", ch.path),
-            }),
-            _ => fail(
-                span,
-                format!(
-                    "the EKI XML {} has no usable IPv4 address and port (CONFIGURATION/EXTERNAL/IP, PORT)",
-                    ch.path
-                ),
-                "fix the XML or pass --spec",
             ),
         }
     }
@@ -495,8 +420,8 @@ impl<'p> Tx<'p> {
     /// same way, from the per-point Kawasaki globals, when the program reads them.
     /// `vision_move`: the data exist only for Vision Move waypoints (plan data).
     fn copy_point_data(&mut self, serial: &str, vision_move: bool, span: Span) -> R<()> {
-        let user = self.uses_name("MM_UserData");
-        let plan = vision_move && self.uses_name("MM_Plan_Results");
+        let user = self.prog.uses_name("MM_UserData");
+        let plan = vision_move && self.prog.uses_name("MM_Plan_Results");
         if !user && !plan {
             return Ok(());
         }
@@ -570,18 +495,6 @@ impl<'p> Tx<'p> {
         self.line(format!("FOR {k} = 1 TO {n}"));
         self.line(format!("  {array}[{k}] = 0"));
         self.line("END");
-    }
-
-    /// Whether the program's text names `name` (an identifier token, any case).
-    fn uses_name(&self, name: &str) -> bool {
-        let text = &self.prog.src.text;
-        let mut found = false;
-        self.prog.src.parse.root.walk_tokens(&mut |t| {
-            if t.kind == TokenKind::Ident && t.text(text).eq_ignore_ascii_case(name) {
-                found = true;
-            }
-        });
-        found
     }
 }
 

@@ -41,23 +41,7 @@ pub fn translate(program: &Program, options: &Options) -> (String, Report) {
     (text, tx.rep)
 }
 
-/// Why a construct could not be translated: where, what, and what to do.
-#[derive(Debug, Clone)]
-pub(super) struct Fail {
-    pub span: Span,
-    pub message: String,
-    pub help: String,
-}
-
-pub(super) type R<T> = Result<T, Fail>;
-
-pub(super) fn fail<T>(span: Span, message: impl Into<String>, help: impl Into<String>) -> R<T> {
-    Err(Fail {
-        span,
-        message: message.into(),
-        help: help.into(),
-    })
-}
+pub(super) use super::front::{Fail, R, fail};
 
 /// One translated `.PROGRAM`.
 struct ProgramOut {
@@ -205,54 +189,11 @@ impl<'p> Tx<'p> {
         let mut globals: Vec<&Var> = prog.symbols.globals.values().collect();
         globals.sort_by_key(|v| (v.span.start, v.name.to_ascii_uppercase()));
         for v in globals {
-            let file = self.decl_file(v);
+            let file = self.prog.decl_file(v);
             let (_, r) = self.globals_ns.name(&v.name, &NAME_RULES);
-            let span = self.name_span(file, v);
+            let span = self.prog.name_span(file, v);
             self.note_rename("variable", file, span, r);
         }
-    }
-
-    /// Which file declares a global: the `.dat` when the program has one that declares it.
-    fn decl_file(&self, v: &Var) -> FileId {
-        let in_dat = self.prog.dat.as_ref().is_some_and(|d| {
-            d.ast
-                .dat
-                .as_ref()
-                .is_some_and(|m| m.span.start <= v.span.start && v.span.end <= m.span.end)
-                && d.slice(v.span)
-                    .to_ascii_uppercase()
-                    .contains(&v.name.to_ascii_uppercase())
-        });
-        if in_dat { FileId::Dat } else { FileId::Src }
-    }
-
-    /// The span of a variable's name inside its declaration (the declaration if not found).
-    fn name_span(&self, file: FileId, v: &Var) -> Span {
-        let text = match file {
-            FileId::Src => &self.prog.src.text,
-            FileId::Dat => match &self.prog.dat {
-                Some(d) => &d.text,
-                None => return v.span,
-            },
-        };
-        let decl = text.get(v.span.range()).unwrap_or("");
-        let upper = decl.to_ascii_uppercase();
-        let key = v.name.to_ascii_uppercase();
-        let mut from = 0;
-        while let Some(i) = upper[from..].find(&key) {
-            let at = from + i;
-            let before = upper[..at].chars().next_back();
-            let after = upper[at + key.len()..].chars().next();
-            let word = |c: Option<char>| {
-                c.is_some_and(|c| c.is_ascii_alphanumeric() || c == '_' || c == '$')
-            };
-            if !word(before) && !word(after) {
-                let s = v.span.start as usize + at;
-                return Span::new(s, s + key.len());
-            }
-            from = at + key.len();
-        }
-        v.span
     }
 
     /// The current routine's key (upper case), if inside one.
@@ -434,7 +375,7 @@ impl<'p> Tx<'p> {
             for v in vars {
                 let ns = self.locals_ns.entry(key.clone()).or_default();
                 let (_, ren) = ns.name(&v.name, &NAME_RULES);
-                let span = self.name_span(FileId::Src, v);
+                let span = self.prog.name_span(FileId::Src, v);
                 self.note_rename("variable", FileId::Src, span, ren);
             }
         }
@@ -465,7 +406,7 @@ impl<'p> Tx<'p> {
 
         let mut params: Vec<String> = Vec::new();
         let mut copies: Vec<String> = Vec::new();
-        let modified = stmt::assigned_names(&r.body);
+        let modified = super::front::walk::assigned_names(&r.body);
         for p in &r.params {
             let v = self.var(&p.name.text);
             let ty = v.map(|v| v.ty.clone()).unwrap_or(Ty::Real);

@@ -212,7 +212,9 @@ impl<'p> Tx<'p> {
                 self.motion_var(e, &ty)
             }
             ExprKind::Index { .. } if sysvar::classify(e).is_none() => {
-                let ty = match super::stmt::root_name(e).and_then(|id| self.var(&id.text)) {
+                let ty = match crate::transpile::front::walk::root_name(e)
+                    .and_then(|id| self.var(&id.text))
+                {
                     Some(v) => v.ty.clone(),
                     None => Ty::Pose,
                 };
@@ -564,13 +566,11 @@ impl<'p> Tx<'p> {
     /// blended moves. `None` if `target` is not one of them.
     pub(super) fn ilf_assign(&mut self, target: &Ident, value: &Expr, span: Span) -> Option<R<()>> {
         let key = target.key();
-        if !matches!(key.as_str(), "FDAT_ACT" | "PDAT_ACT" | "LDAT_ACT")
-            || self.var(&target.text).is_some()
-        {
+        if !crate::transpile::front::ilf::is_selector(self.prog, self.routine_key(), target) {
             return None;
         }
         self.kind("inline-form data");
-        let fields = self.dat_record(value);
+        let fields = crate::transpile::front::ilf::dat_record(self.prog, value);
         let Some(fields) = fields else {
             self.rep.approximate(
                 FileId::Src,
@@ -611,29 +611,5 @@ impl<'p> Tx<'p> {
             }
             Ok(())
         })())
-    }
-
-    /// The numeric fields of a `.dat` record such as `DECL FDAT FP1={TOOL_NO 1,BASE_NO 0,…}`.
-    fn dat_record(&self, value: &Expr) -> Option<Vec<(String, f64)>> {
-        let ExprKind::Name(id) = &value.kind else {
-            return None;
-        };
-        let dat = self.prog.dat.as_ref()?.ast.dat.as_ref()?;
-        let init = dat
-            .decls
-            .iter()
-            .flat_map(|d| d.vars.iter())
-            .find(|v| v.name.is(&id.text))?
-            .init
-            .as_ref()?;
-        let ExprKind::Aggregate { fields, .. } = &init.kind else {
-            return None;
-        };
-        Some(
-            fields
-                .iter()
-                .filter_map(|(n, v)| Some((n.as_ref()?.key(), literal::number(v)?)))
-                .collect(),
-        )
     }
 }

@@ -1,15 +1,15 @@
 //! Statements and control flow.
 
-use std::collections::HashSet;
-
 use super::format::{self, with_sigil};
 use super::{R, Tx, fail};
 use crate::diag::Span;
 use crate::syntax::ast::{Expr, ExprKind, Ident, RoutineKind, Stmt, StmtKind};
+use crate::transpile::front::end_line_start;
+use crate::transpile::front::kinds::category;
 use crate::transpile::front::report::FileId;
 use crate::transpile::front::symbols::Ty;
 use crate::transpile::front::sysvar;
-use crate::transpile::front::walk::{each_stmt, exits_loop};
+use crate::transpile::front::walk::{exits_loop, root_name};
 
 /// KUKA routines (KRL built-ins and options) that have no AS counterpart: a name prefix and
 /// what to do instead. Any other call to a routine this file does not define is assumed to be
@@ -660,80 +660,5 @@ impl<'p> Tx<'p> {
         }
         self.after_call(name);
         Ok(())
-    }
-}
-
-/// The variable an lvalue names.
-pub(super) fn root_name(e: &Expr) -> Option<&Ident> {
-    match &e.kind {
-        ExprKind::Name(id) => Some(id),
-        ExprKind::Index { base, .. } | ExprKind::Member { base, .. } => root_name(base),
-        _ => None,
-    }
-}
-
-/// Upper-case names assigned anywhere in `body` (assignment targets and FOR variables).
-pub(super) fn assigned_names(body: &[Stmt]) -> HashSet<String> {
-    let mut set = HashSet::new();
-    each_stmt(body, &mut |s| match &s.kind {
-        StmtKind::Assign { target, .. } => {
-            if let Some(id) = root_name(target) {
-                set.insert(id.key());
-            }
-        }
-        StmtKind::For { var, .. } => {
-            set.insert(var.key());
-        }
-        _ => {}
-    });
-    set
-}
-
-/// Where the last line of `span` starts (the END line of a block).
-fn end_line_start(text: &str, span: Span) -> u32 {
-    let s = &text[..(span.end as usize).min(text.len())];
-    let s = s.trim_end_matches(['\r', '\n']);
-    s.rfind(['\n', '\r']).map_or(span.start, |i| i as u32 + 1)
-}
-
-/// The coverage kind of a statement (handlers refine assignments and calls).
-fn category(s: &Stmt) -> &'static str {
-    match &s.kind {
-        StmtKind::Assign { .. } => "assignment",
-        StmtKind::Call { .. } => "call",
-        StmtKind::If { .. } => "IF",
-        StmtKind::Switch { .. } => "SWITCH",
-        StmtKind::For { .. } => "FOR",
-        StmtKind::While { .. } => "WHILE",
-        StmtKind::Repeat { .. } => "REPEAT",
-        StmtKind::Loop { .. } => "LOOP",
-        StmtKind::Exit => "EXIT",
-        StmtKind::Goto { .. } | StmtKind::Label { .. } => "GOTO/label",
-        StmtKind::WaitFor { .. } => "WAIT FOR",
-        StmtKind::WaitSec { .. } => "WAIT SEC",
-        StmtKind::Halt => "HALT",
-        StmtKind::Return { .. } => "RETURN",
-        StmtKind::Motion(m) => motion_kind(m),
-        StmtKind::Spline { .. } => "SPLINE block",
-        StmtKind::Trigger { .. } => "TRIGGER",
-        StmtKind::Interrupt { .. } | StmtKind::InterruptDecl { .. } => "interrupt",
-        StmtKind::Pulse { .. } => "PULSE",
-        StmtKind::Brake { .. } | StmtKind::Resume => "BRAKE/RESUME",
-        StmtKind::Continue => "CONTINUE",
-        StmtKind::Error { .. } => "syntax error",
-        _ => "other",
-    }
-}
-
-fn motion_kind(m: &crate::syntax::ast::Motion) -> &'static str {
-    use crate::syntax::ast::MotionKind as K;
-    if m.relative {
-        return "relative motion";
-    }
-    match m.kind {
-        K::Ptp => "PTP",
-        K::Lin => "LIN",
-        K::Circ => "CIRC",
-        K::Sptp | K::Slin | K::Scirc | K::Spl => "spline motion",
     }
 }

@@ -1,0 +1,198 @@
+//! `MM_*` calls → methods of the script's Mech-Mind client (`mm`): IN arguments are passed,
+//! OUT arguments are assigned from what the method returns, in the subprogram's order
+//! (`MM_Get_VisData(1, last, n, st)` → `last, n, st = mm.get_visdata(1)`). Which methods exist
+//! and what they send comes from the catalog (`client.rs`); `MM_Init_Socket` gets the vision
+//! server's address from the spec or the EKI XML, as for Kawasaki.
+
+use super::client::{method_name, supported};
+use super::{R, Tx, fail};
+use crate::catalog::{Direction, catalog};
+use crate::diag::Span;
+use crate::syntax::ast::{Expr, ExprKind, Ident};
+use crate::transpile::front::literal;
+use crate::transpile::front::report::FileId;
+use crate::transpile::front::sysvar::{self, Sys};
+use crate::transpile::front::vision;
+use crate::transpile::front::walk::root_name;
+
+/// KUKA package globals and the client attributes that hold the same data.
+const GLOBALS: [(&str, &str); 4] = [
+    ("MM_Last_Status", "mm.last_status"),
+    ("Do_Port", "mm.do_port"),
+    ("MM_UserData", "mm.user_data"),
+    ("MM_Plan_Results", "mm.plan_results"),
+];
+
+/// The client attribute of a KUKA package global, if `name` is one.
+pub(super) fn package_global(name: &str) -> Option<&'static str> {
+    GLOBALS
+        .iter()
+        .find(|(k, _)| k.eq_ignore_ascii_case(name))
+        .map(|(_, a)| *a)
+}
+
+impl<'p> Tx<'p> {
+    pub(super) fn mm_call(&mut self, name: &Ident, args: &[Option<Expr>], span: Span) -> R<()> {
+        let cat = catalog();
+        let Some(sub) = cat.subprogram(&name.text) else {
+            return fail(
+                name.span,
+                format!(
+                    "`{}` is not a routine of the Mech-Mind interface",
+                    name.text
+                ),
+                "check the name (krlkit check reports the nearest one)",
+            );
+        };
+        if args.len() != sub.params.len()
+            && !(sub.params.is_empty() && args.iter().all(Option::is_none))
+        {
+            return fail(
+                span,
+                format!(
+                    "`{}` takes {} arguments, this call passes {}",
+                    sub.name,
+                    sub.params.len(),
+                    args.len()
+                ),
+                format!("call it as {}", sub.signature()),
+            );
+        }
+        if !supported(sub) {
+            return fail(
+                span,
+                format!(
+                    "`{}` moves the robot through the KUKA package's own motions; the script's client does not translate it",
+                    sub.name
+                ),
+                "run the hand-eye calibration with Mech-Vision's Flexiv support, or port the handshake (command 701) by hand",
+            );
+        }
+        let method = format!("mm.{}", method_name(&sub.name));
+        let mut ins = Vec::new();
+        let mut places = Vec::new();
+        if sub.name == "MM_Init_Socket" {
+            let server = vision::resolve(self.opts, sub, args, span, "mm.init_socket")?;
+            let time_out = sub
+                .params
+                .iter()
+                .position(|p| p.ident() == "Time_Out")
+                .and_then(|i| args.get(i))
+                .and_then(Option::as_ref);
+            let Some(time_out) = time_out else {
+                return fail(span, "argument Time_Out is omitted", "pass every argument");
+            };
+            ins.push(super::format::string(&server.ip.to_string()));
+            ins.push(server.port.to_string());
+            ins.push(self.expr(time_out)?);
+            self.server_used = Some(format!("{}:{} ({})", server.ip, server.port, server.origin));
+        } else {
+            for (p, a) in sub.params.iter().zip(args) {
+                let Some(a) = a else {
+                    return fail(
+                        span,
+                        format!("argument {} is omitted", p.ident()),
+                        "pass every argument",
+                    );
+                };
+                match p.dir {
+                    Direction::In if p.ty == "E6AXIS" => ins.push(self.mm_joints(a)?),
+                    Direction::In => ins.push(self.expr(a)?),
+                    Direction::Out => {
+                        if root_name(a).is_none() || sysvar::classify(a).is_some() {
+                            return fail(
+                                a.span,
+                                "an OUT argument must be a variable",
+                                "pass a variable",
+                            );
+                        }
+                        if self
+                            .var(&root_name(a).map(|r| r.text.clone()).unwrap_or_default())
+                            .is_none()
+                            && let Some(r) = root_name(a)
+                        {
+                            let what = match p.ty.as_str() {
+                                "E6POS" => "a pose (E6POS)",
+                                "E6AXIS" => "axis values (E6AXIS)",
+                                _ => "a number",
+                            };
+                            self.assume(r, what);
+                        }
+                        places.push(self.place(a)?.0);
+                    }
+                }
+            }
+            self.current_pose_caveats(&sub.name, args, span);
+        }
+        self.mm_used.insert(sub.name.clone());
+        let call = format!("{method}({})", ins.join(", "));
+        self.assign_many(&places, &call);
+        Ok(())
+    }
+
+    /// An E6AXIS argument: a variable or literal as it is; `$AXIS_ACT` as None, for which the
+    /// client sends the robot's current joints.
+    fn mm_joints(&mut self, a: &Expr) -> R<String> {
+        if let Some(Sys::AxisAct) = sysvar::classify(a) {
+            return Ok("None".into());
+        }
+        if let ExprKind::Name(id) = &a.kind
+            && self.var(&id.text).is_none()
+        {
+            self.assume(id, "axis values (E6AXIS)");
+        }
+        self.expr(a)
+    }
+
+    /// Requests that carry the robot's current joints send six of a Rizon's seven; the
+    /// current flange pose comes from RobotStates.
+    fn current_pose_caveats(&mut self, name: &str, args: &[Option<Expr>], span: Span) {
+        // The SendPos_Type that sends the current joints, and the one that sends MM_J (the
+        // catalog's meaning of SendPos_Type; `$AXIS_ACT` as MM_J also means the current joints).
+        let (current, given) = match name {
+            "MM_Start_Vis" => (1, 3),
+            "MM_Start_Viz" => (1, 2),
+            _ => return,
+        };
+        let Some(at) = catalog()
+            .subprogram(name)
+            .and_then(|s| s.params.iter().position(|p| p.ident() == "SendPos_Type"))
+        else {
+            return;
+        };
+        let axis_act_arg = args
+            .last()
+            .and_then(Option::as_ref)
+            .is_some_and(|a| matches!(sysvar::classify(a), Some(Sys::AxisAct)));
+        let sends_current = match args
+            .get(at)
+            .and_then(Option::as_ref)
+            .and_then(literal::integer)
+        {
+            Some(t) => t == current || (axis_act_arg && t == given),
+            None => true,
+        };
+        let invertible = self.fx.joint_map.as_ref().is_some_and(|m| m.invertible());
+        if sends_current && !invertible {
+            self.rep.approximate(
+                FileId::Src,
+                span,
+                "the request carries the robot's current joints: six values, but a Rizon has seven (the client sends joints 1-6 [?])",
+                "set the Mech-Vision/Mech-Viz project up for the Rizon, or give --joint-map so the joints are read back as KUKA axes",
+            );
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn package_globals_are_catalog_globals() {
+        let cat = catalog();
+        for (kuka, _) in GLOBALS {
+            assert!(cat.global(kuka).is_some(), "KUKA global {kuka}");
+        }
+    }
+}

@@ -1,0 +1,248 @@
+//! What the Flexiv backend needs to know that the KRL program does not say: the RDK version
+//! (its Python API shape), the robot's serial number, the I/O port map, whether a joint map
+//! from KUKA's six axes to the Rizon's seven joints exists, which primitive a Cartesian PTP
+//! becomes, and the Mech-Mind client's settings from the spec.
+
+use std::fmt;
+use std::str::FromStr;
+
+/// The Flexiv RDK release the script is written for. Supported: 1.6 (the seed's API) up to
+/// 1.9; 2.x (joint groups) has a different `ExecutePrimitive`/`primitive_states` shape.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, PartialOrd, Ord)]
+pub struct RdkVersion {
+    pub major: u32,
+    pub minor: u32,
+}
+
+/// The Python API shapes that differ between the supported releases.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Api {
+    /// 1.6: `SetDigitalOutputs(port_list, value_list)`, `JPos.q`.
+    V16,
+    /// 1.7 to 1.9: `SetDigitalOutputs({port: value})`, `JPos.q_m`.
+    V17,
+}
+
+impl RdkVersion {
+    pub const DEFAULT: RdkVersion = RdkVersion { major: 1, minor: 6 };
+
+    pub fn api(self) -> Api {
+        if self.minor >= 7 { Api::V17 } else { Api::V16 }
+    }
+}
+
+impl Default for RdkVersion {
+    fn default() -> RdkVersion {
+        RdkVersion::DEFAULT
+    }
+}
+
+impl fmt::Display for RdkVersion {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        write!(f, "{}.{}", self.major, self.minor)
+    }
+}
+
+impl FromStr for RdkVersion {
+    type Err = String;
+
+    /// `1.6`, `1.7.1`, `v1.8` …
+    fn from_str(s: &str) -> Result<RdkVersion, String> {
+        let t = s.trim().trim_start_matches(['v', 'V']);
+        let mut parts = t.split('.');
+        let num = |p: Option<&str>| p.and_then(|p| p.parse::<u32>().ok());
+        let (Some(major), Some(minor)) = (num(parts.next()), num(parts.next())) else {
+            return Err(format!(
+                "`{s}` is not an RDK version; write it as MAJOR.MINOR, e.g. 1.6"
+            ));
+        };
+        if parts.any(|p| p.parse::<u32>().is_err()) {
+            return Err(format!(
+                "`{s}` is not an RDK version; write it as MAJOR.MINOR, e.g. 1.6"
+            ));
+        }
+        let v = RdkVersion { major, minor };
+        if major == 2 {
+            return Err(format!(
+                "RDK {v} is not supported: 2.x drives joint groups (ExecutePrimitive per group, PrimitiveStates objects); use --rdk 1.6 to 1.9"
+            ));
+        }
+        if major != 1 || !(6..=9).contains(&minor) {
+            return Err(format!(
+                "RDK {v} is not supported: the translation writes the Python API of RDK 1.6 to 1.9 (flexivrdk on PyPI starts at 1.6)"
+            ));
+        }
+        Ok(v)
+    }
+}
+
+/// What a Cartesian `PTP` becomes.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+pub enum PtpPrimitive {
+    /// `MoveL` with a TR002 (the path is a straight line, not joint-interpolated).
+    #[default]
+    MoveL,
+    /// `MovePTP`, which the user confirms exists on the robot's software (unverified).
+    MovePtp,
+}
+
+/// Where one Rizon joint's value comes from.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub enum JointSource {
+    /// KUKA axis A1..A6 (1-based).
+    Axis(u8),
+    /// A fixed angle in degrees.
+    Fixed(f64),
+}
+
+/// KUKA's six axes → the Rizon's seven joints (degrees), e.g. `A1,A2,0,A3,A4,A5,A6`.
+#[derive(Debug, Clone, PartialEq)]
+pub struct JointMap(pub [JointSource; 7]);
+
+impl JointMap {
+    /// The Rizon joint (0-based) that carries KUKA axis `axis` (1-based), if exactly one does.
+    pub fn joint_of(&self, axis: u8) -> Option<usize> {
+        let mut it = self
+            .0
+            .iter()
+            .enumerate()
+            .filter(|(_, s)| **s == JointSource::Axis(axis))
+            .map(|(i, _)| i);
+        let first = it.next()?;
+        it.next().is_none().then_some(first)
+    }
+
+    /// Every KUKA axis is carried by exactly one joint, so joints can be read back as axes.
+    pub fn invertible(&self) -> bool {
+        (1..=6).all(|a| self.joint_of(a).is_some())
+    }
+}
+
+impl fmt::Display for JointMap {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        let parts: Vec<String> = self
+            .0
+            .iter()
+            .map(|s| match s {
+                JointSource::Axis(a) => format!("A{a}"),
+                JointSource::Fixed(v) => super::format::num(*v),
+            })
+            .collect();
+        f.write_str(&parts.join(","))
+    }
+}
+
+impl FromStr for JointMap {
+    type Err = String;
+
+    fn from_str(s: &str) -> Result<JointMap, String> {
+        let items: Vec<&str> = s.split(',').map(str::trim).collect();
+        if items.len() != 7 {
+            return Err(format!(
+                "the joint map needs 7 entries (one per Rizon joint), `{s}` has {}; e.g. A1,A2,0,A3,A4,A5,A6",
+                items.len()
+            ));
+        }
+        let mut out = [JointSource::Fixed(0.0); 7];
+        for (i, it) in items.iter().enumerate() {
+            let upper = it.to_ascii_uppercase();
+            out[i] = if let Some(n) = upper.strip_prefix('A') {
+                match n.parse::<u8>() {
+                    Ok(a @ 1..=6) => JointSource::Axis(a),
+                    _ => {
+                        return Err(format!(
+                            "joint {} of the map: `{it}` is neither A1..A6 nor a number of degrees",
+                            i + 1
+                        ));
+                    }
+                }
+            } else {
+                match it.parse::<f64>() {
+                    Ok(v) if v.is_finite() => JointSource::Fixed(v),
+                    _ => {
+                        return Err(format!(
+                            "joint {} of the map: `{it}` is neither A1..A6 nor a number of degrees",
+                            i + 1
+                        ));
+                    }
+                }
+            };
+        }
+        Ok(JointMap(out))
+    }
+}
+
+/// Options of the Flexiv backend.
+#[derive(Debug, Clone)]
+pub struct FlexivOptions {
+    pub rdk: RdkVersion,
+    /// The robot's serial number; `None`: the script reads it from its argument or
+    /// `FLEXIV_ROBOT_SN`.
+    pub serial: Option<String>,
+    /// `$IN[n]` → digital input port `n + input_offset` (Flexiv ports are 0-based).
+    pub input_offset: i64,
+    /// `$OUT[n]` → digital output port `n + output_offset`.
+    pub output_offset: i64,
+    pub ptp: PtpPrimitive,
+    pub joint_map: Option<JointMap>,
+    /// Mech-Mind client: seconds to wait for a reply (spec `reply_timeout`).
+    pub reply_timeout: u32,
+    /// Mech-Mind client: most points one reply may carry (spec `batch_size`).
+    pub batch_size: u32,
+}
+
+impl Default for FlexivOptions {
+    fn default() -> FlexivOptions {
+        let spec = crate::spec::Spec::default();
+        FlexivOptions {
+            rdk: RdkVersion::DEFAULT,
+            serial: None,
+            input_offset: -1,
+            output_offset: -1,
+            ptp: PtpPrimitive::MoveL,
+            joint_map: None,
+            reply_timeout: spec.reply_timeout,
+            batch_size: spec.batch_size,
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn versions() {
+        assert_eq!("1.6".parse::<RdkVersion>().unwrap().api(), Api::V16);
+        assert_eq!("1.7.1".parse::<RdkVersion>().unwrap().api(), Api::V17);
+        assert_eq!("v1.9".parse::<RdkVersion>().unwrap().to_string(), "1.9");
+        assert!(
+            "2.0"
+                .parse::<RdkVersion>()
+                .unwrap_err()
+                .contains("joint groups")
+        );
+        assert!("1.5".parse::<RdkVersion>().is_err());
+        assert!("one".parse::<RdkVersion>().is_err());
+        assert!("1.6.x".parse::<RdkVersion>().is_err());
+    }
+
+    #[test]
+    fn joint_maps() {
+        let m: JointMap = "A1, A2, 0, a3, A4, A5, A6".parse().unwrap();
+        assert_eq!(m.0[2], JointSource::Fixed(0.0));
+        assert_eq!(m.joint_of(3), Some(3));
+        assert!(m.invertible());
+        assert_eq!(m.to_string(), "A1,A2,0,A3,A4,A5,A6");
+        let partial: JointMap = "A1,A2,0,A3,A4,A5,-30.5".parse().unwrap();
+        assert!(!partial.invertible());
+        assert!(
+            "A1,A2"
+                .parse::<JointMap>()
+                .unwrap_err()
+                .contains("7 entries")
+        );
+        assert!("A1,A2,0,A3,A4,A5,A7".parse::<JointMap>().is_err());
+        assert!("A1,A2,x,A3,A4,A5,A6".parse::<JointMap>().is_err());
+    }
+}
