@@ -898,10 +898,11 @@ fn vision_variants_run_like_the_krl_original() {
 fn every_fixture_runs_or_stops_at_a_located_error() {
     // Translated as they are (TR001 lines stay comments), with no vision server: the AS either
     // runs to its end or fails with the file and line of the statement that cannot run.
-    let expected: [(&str, &str); 11] = [
+    let expected: [(&str, &str); 13] = [
         ("bin_pick", "bin_pick.as:20: SWAIT 1003,-1005 still waiting"),
         ("control", "done"),
         ("depal_plan", "PAUSE"),
+        ("flexiv_pick", "flexiv_pick.as:12: SWAIT 1001 still waiting"),
         (
             "gripper_check",
             "gripper_check.as:9: SWAIT 1005 still waiting",
@@ -913,6 +914,7 @@ fn every_fixture_runs_or_stops_at_a_located_error() {
         ),
         ("pallet_pattern", "done"),
         ("pick_cycle", "pick_cycle.as:17: SWAIT 1010 still waiting"),
+        ("python_names", "done"),
         ("taught", "taught.as:15: the variable #xhome is not defined"),
         ("untranslatable", "done"),
         ("vision_variants", "done"),
