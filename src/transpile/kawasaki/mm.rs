@@ -565,7 +565,7 @@ impl<'p> Tx<'p> {
     fn uses_name(&self, name: &str) -> bool {
         let text = &self.prog.src.text;
         let mut found = false;
-        self.prog.src.parse.root.walk_tokens(&mut |t| {
+        self.prog.src.parse.root().walk_tokens(&mut |t| {
             if t.kind == TokenKind::Ident && t.text(text).eq_ignore_ascii_case(name) {
                 found = true;
             }
