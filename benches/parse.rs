@@ -4,6 +4,9 @@
 use criterion::{Criterion, Throughput, criterion_group};
 
 /// A typical mix: headers, folds with inline-form metadata, motions, logic, DAT aggregates.
+/// Compared with a corpus of 993 real controller files it has about the same bytes per line
+/// (38.7 against 37.9), more DAT aggregate bytes (44% against 19%), fewer assignments, and about
+/// seven times their share of `INTERRUPT DECL` and motion-with-`WITH` lines; both measure alike.
 fn synthetic(routines: usize) -> String {
     let mut s = String::from("&ACCESS RVP\r\n&REL 3\r\n&PARAM EDITMASK = *\r\n");
     for r in 0..routines {

@@ -58,7 +58,12 @@ fn generated_krl_reparses_without_errors_and_round_trips() {
                 input.path,
                 parse.diagnostics
             );
-            assert_eq!(parse.root.print(&input.text), input.text, "{}", input.path);
+            assert_eq!(
+                parse.root().print(&input.text),
+                input.text,
+                "{}",
+                input.path
+            );
         }
     }
 }

@@ -8,7 +8,7 @@ fn describe(bytes: &[u8]) -> String {
     let decoded = decode(bytes);
     let text = &decoded.text;
     let parse = parse(text);
-    assert_eq!(parse.root.print(text), *text, "tree must print the input");
+    assert_eq!(parse.root().print(text), *text, "tree must print the input");
     assert_eq!(
         decoded.encode(),
         bytes,
@@ -28,7 +28,7 @@ fn describe(bytes: &[u8]) -> String {
         out.push_str(&format!("{line}:{col} {} {}\n", d.code, d.message));
     }
     out.push_str("--- tree\n");
-    out.push_str(&parse.root.debug_tree(text));
+    out.push_str(&parse.root().debug_tree(text));
     out
 }
 

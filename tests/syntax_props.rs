@@ -63,14 +63,14 @@ proptest! {
         let decoded = decode(&bytes);
         prop_assert_eq!(decoded.encode(), bytes);
         let p = parse(&decoded.text);
-        prop_assert_eq!(p.root.print(&decoded.text), decoded.text.clone());
+        prop_assert_eq!(p.root().print(&decoded.text), decoded.text.clone());
         let _ = p.ast(&decoded.text);
     }
 
     #[test]
     fn krl_like_text_round_trips(text in krl_ish()) {
         let p = parse(&text);
-        prop_assert_eq!(p.root.print(&text), text.clone());
+        prop_assert_eq!(p.root().print(&text), text.clone());
         for d in &p.diagnostics {
             prop_assert!(d.span.end as usize <= text.len());
             prop_assert!(text.is_char_boundary(d.span.start as usize));
@@ -123,7 +123,7 @@ fn deep_nesting_is_an_error_not_a_crash() {
                 let text = format!("DEF a()\n{line}\nEND\n");
                 let p = parse(&text);
                 assert_eq!(p.diagnostics.len(), 1, "{}", &line[..20]);
-                assert_eq!(p.root.print(&text), text);
+                assert_eq!(p.root().print(&text), text);
                 let _ = p.ast(&text);
             }
         })
@@ -154,7 +154,7 @@ fn deep_block_nesting_is_an_error_not_a_crash() {
         .spawn(move || {
             for text in [text, unclosed] {
                 let p = parse(&text);
-                assert_eq!(p.root.print(&text), text);
+                assert_eq!(p.root().print(&text), text);
                 assert!(
                     p.diagnostics
                         .iter()

@@ -6,8 +6,9 @@
 //! too, because it is what turns a misspelt keyword (`PTPP P1`, read as a declaration of type
 //! `PTPP`) into the error it is.
 
-use super::cst::{Element, Node, NodeKind, TokenKind};
-use super::parser::{SYNTAX_ERROR, container};
+use super::build::Builder;
+use super::cst::{Child, NodeKind, SyntaxTree};
+use super::parser::SYNTAX_ERROR;
 use crate::diag::{Diagnostic, Span};
 
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -198,7 +199,8 @@ struct Frame {
     block: Block,
     /// Span of the opener's code, for "not closed" diagnostics.
     anchor: Span,
-    children: Vec<Element>,
+    /// The block's lines are the builder's pending children from here on.
+    mark: usize,
     /// Routines only: a statement has been seen, so declarations are no longer allowed.
     in_statements: bool,
 }
@@ -226,29 +228,33 @@ fn part(kind: NodeKind) -> Part {
     }
 }
 
-pub(crate) struct Assembler<'t> {
-    text: &'t str,
-    root: Vec<Element>,
+/// Lines not in a block are pending at the bottom of the builder's stack; each open block's
+/// lines above them, from its frame's mark.
+pub(crate) struct Assembler {
     stack: Vec<Frame>,
 }
 
 /// The span of a line node's code (first to last non-trivia child).
-fn code_span(node: &Node) -> Span {
-    let mut it = node.children.iter().filter(|e| {
-        !matches!(e, Element::Token(t) if matches!(t.kind, TokenKind::Whitespace | TokenKind::Newline | TokenKind::Comment | TokenKind::FoldOpen | TokenKind::FoldClose))
-    });
+fn code_span(b: &Builder, line: Child) -> Span {
+    let Child::Node(id) = line else {
+        return b.span_of(line);
+    };
+    let mut it = b
+        .children_of(id)
+        .iter()
+        .filter(|c| !matches!(c, Child::Token(t) if t.kind.is_trivia()));
     match it.next() {
-        None => Span::empty(node.span.start as usize),
+        None => Span::empty(b.span_of(line).start as usize),
         Some(first) => {
             let last = it.next_back().unwrap_or(first);
-            first.span().cover(last.span())
+            b.span_of(*first).cover(b.span_of(*last))
         }
     }
 }
 
-fn first_word_span(text: &str, node: &Node) -> Span {
-    let code = code_span(node);
-    let s = &text[code.range()];
+fn first_word_span(b: &Builder, line: Child) -> Span {
+    let code = code_span(b, line);
+    let s = &b.text[code.range()];
     let n = s
         .bytes()
         .take_while(|c| c.is_ascii_alphanumeric() || *c == b'_')
@@ -258,34 +264,31 @@ fn first_word_span(text: &str, node: &Node) -> Span {
     Span::new(code.start as usize, code.start as usize + n)
 }
 
-impl<'t> Assembler<'t> {
-    pub(crate) fn new(text: &'t str) -> Self {
-        Assembler {
-            text,
-            root: Vec::new(),
-            stack: Vec::new(),
-        }
+fn kind_of(b: &Builder, line: Child) -> Option<NodeKind> {
+    match line {
+        Child::Node(id) => Some(b.kind_of(id)),
+        Child::Token(_) => None,
+    }
+}
+
+impl Assembler {
+    pub(crate) fn new() -> Self {
+        Assembler { stack: Vec::new() }
     }
 
-    fn sink(&mut self) -> &mut Vec<Element> {
-        match self.stack.last_mut() {
-            Some(f) => &mut f.children,
-            None => &mut self.root,
-        }
-    }
-
-    fn open(&mut self, block: Block, node: Node) {
-        let anchor = code_span(&node);
+    fn open(&mut self, b: &mut Builder, block: Block, line: Child) {
+        let anchor = code_span(b, line);
         self.stack.push(Frame {
             block,
             anchor,
-            children: vec![Element::Node(node)],
+            mark: b.mark(),
             in_statements: false,
         });
+        b.push(line);
     }
 
     /// Pop the top frame into its parent; `report` says whether a missing end is an error.
-    fn close_top(&mut self, report: bool, diagnostics: &mut Vec<Diagnostic>) {
+    fn close_top(&mut self, b: &mut Builder, report: bool, diagnostics: &mut Vec<Diagnostic>) {
         if let Some(frame) = self.stack.pop() {
             if report && !frame.block.implicit_end() {
                 diagnostics.push(
@@ -304,35 +307,46 @@ impl<'t> Assembler<'t> {
                     )),
                 );
             }
-            let node = container(self.text, frame.block.node_kind(), frame.children);
-            self.sink().push(Element::Node(node));
+            let lines = b.pending(frame.mark);
+            let span = match (lines.first(), lines.last()) {
+                (Some(f), Some(l)) => b.span_of(*f).cover(b.span_of(*l)),
+                _ => Span::empty(0),
+            };
+            let node = b.finish(frame.mark, frame.block.node_kind(), span);
+            b.push(node);
         }
     }
 
-    pub(crate) fn push(&mut self, node: Node, role: Role, diagnostics: &mut Vec<Diagnostic>) {
-        self.check_declaration_order(&node, role, diagnostics);
+    pub(crate) fn push(
+        &mut self,
+        b: &mut Builder,
+        node: Child,
+        role: Role,
+        diagnostics: &mut Vec<Diagnostic>,
+    ) {
+        self.check_declaration_order(b, node, role, diagnostics);
         match role {
-            Role::None => self.sink().push(Element::Node(node)),
+            Role::None => b.push(node),
             Role::Open(block) => {
                 if block.is_module() {
                     while !self.stack.is_empty() {
-                        self.close_top(true, diagnostics);
+                        self.close_top(b, true, diagnostics);
                     }
                 } else if self.stack.len() >= MAX_BLOCK_DEPTH {
                     // Every later stage walks blocks recursively; hostile nesting must not
                     // overflow their stacks. The line stays in the tree, unnested.
                     let what = format!("blocks nested more than {MAX_BLOCK_DEPTH} deep");
-                    self.unexpected(node, &what, diagnostics);
+                    self.unexpected(b, node, &what, diagnostics);
                     return;
                 }
-                self.open(block, node);
+                self.open(b, block, node);
             }
-            Role::Close(block) => self.close(block, node, diagnostics),
+            Role::Close(block) => self.close(b, block, node, diagnostics),
             Role::Else => {
                 if self.stack.last().is_some_and(|f| f.block == Block::If) {
-                    self.sink().push(Element::Node(node));
+                    b.push(node);
                 } else {
-                    self.unexpected(node, "`ELSE` outside an `IF` block", diagnostics);
+                    self.unexpected(b, node, "`ELSE` outside an `IF` block", diagnostics);
                 }
             }
             Role::Case | Role::Default => {
@@ -341,7 +355,7 @@ impl<'t> Assembler<'t> {
                     .last()
                     .is_some_and(|f| f.block == Block::Case || f.block == Block::Default)
                 {
-                    self.close_top(false, diagnostics);
+                    self.close_top(b, false, diagnostics);
                 }
                 if self.stack.last().is_some_and(|f| f.block == Block::Switch) {
                     let block = if role == Role::Case {
@@ -349,14 +363,14 @@ impl<'t> Assembler<'t> {
                     } else {
                         Block::Default
                     };
-                    self.open(block, node);
+                    self.open(b, block, node);
                 } else {
                     let what = if role == Role::Case {
                         "`CASE` outside a `SWITCH` block"
                     } else {
                         "`DEFAULT` outside a `SWITCH` block"
                     };
-                    self.unexpected(node, what, diagnostics);
+                    self.unexpected(b, node, what, diagnostics);
                 }
             }
         }
@@ -366,11 +380,12 @@ impl<'t> Assembler<'t> {
     /// otherwise).
     fn check_declaration_order(
         &mut self,
-        node: &Node,
+        b: &Builder,
+        node: Child,
         role: Role,
         diagnostics: &mut Vec<Diagnostic>,
     ) {
-        if matches!(role, Role::Open(b) if b.is_module()) {
+        if matches!(role, Role::Open(block) if block.is_module()) {
             return;
         }
         let Some(routine) = self
@@ -380,12 +395,15 @@ impl<'t> Assembler<'t> {
         else {
             return;
         };
-        match part(node.kind) {
+        let Some(kind) = kind_of(b, node) else {
+            return;
+        };
+        match part(kind) {
             Part::Neutral => {}
             Part::Statement => routine.in_statements = true,
             Part::Declaration if routine.in_statements => {
-                let span = code_span(node);
-                let code = &self.text[span.range()];
+                let span = code_span(b, node);
+                let code = &b.text[span.range()];
                 let first = code
                     .split(|c: char| !(c.is_ascii_alphanumeric() || c == '_' || c == '$'))
                     .find(|w| !w.is_empty())
@@ -423,16 +441,28 @@ impl<'t> Assembler<'t> {
         }
     }
 
-    fn unexpected(&mut self, node: Node, what: &str, diagnostics: &mut Vec<Diagnostic>) {
+    fn unexpected(
+        &mut self,
+        b: &mut Builder,
+        node: Child,
+        what: &str,
+        diagnostics: &mut Vec<Diagnostic>,
+    ) {
         diagnostics.push(Diagnostic::error(
             SYNTAX_ERROR,
-            first_word_span(self.text, &node),
+            first_word_span(b, node),
             what.to_string(),
         ));
-        self.sink().push(Element::Node(node));
+        b.push(node);
     }
 
-    fn close(&mut self, block: Block, node: Node, diagnostics: &mut Vec<Diagnostic>) {
+    fn close(
+        &mut self,
+        b: &mut Builder,
+        block: Block,
+        node: Child,
+        diagnostics: &mut Vec<Diagnostic>,
+    ) {
         // Find the innermost matching frame without crossing a module boundary.
         let mut found = None;
         for (i, f) in self.stack.iter().enumerate().rev() {
@@ -447,10 +477,10 @@ impl<'t> Assembler<'t> {
         match found {
             Some(i) => {
                 while self.stack.len() > i + 1 {
-                    self.close_top(true, diagnostics);
+                    self.close_top(b, true, diagnostics);
                 }
-                self.sink().push(Element::Node(node));
-                self.close_top(false, diagnostics);
+                b.push(node);
+                self.close_top(b, false, diagnostics);
             }
             None => {
                 let what = format!(
@@ -458,20 +488,20 @@ impl<'t> Assembler<'t> {
                     block.closer(),
                     block.opener()
                 );
-                self.unexpected(node, &what, diagnostics);
+                self.unexpected(b, node, &what, diagnostics);
             }
         }
     }
 
-    pub(crate) fn finish(mut self, diagnostics: &mut Vec<Diagnostic>) -> Node {
+    pub(crate) fn finish(
+        mut self,
+        mut b: Builder,
+        diagnostics: &mut Vec<Diagnostic>,
+    ) -> SyntaxTree {
         while !self.stack.is_empty() {
-            self.close_top(true, diagnostics);
+            self.close_top(&mut b, true, diagnostics);
         }
-        let span = Span::new(0, self.text.len());
-        Node {
-            kind: NodeKind::SourceFile,
-            span,
-            children: self.root,
-        }
+        let root = b.finish(0, NodeKind::SourceFile, Span::new(0, b.text.len()));
+        b.into_tree(root)
     }
 }

@@ -3,6 +3,11 @@
 //! Invariant: the tokens of a tree, in order, cover the text exactly once — no gaps, no overlap —
 //! so [`Node::print`] gives back the input. Spans are byte ranges into the decoded text; the tree
 //! never owns text.
+//!
+//! Storage is flat because building and dropping one heap vector per node was a third of parse
+//! time: a [`SyntaxTree`] holds every node in one vector and every node's children, contiguous,
+//! in another (a child is a token stored inline or a node index). [`Node`] and [`Element`] are
+//! small `Copy` views into it.
 
 use crate::diag::Span;
 
@@ -136,26 +141,152 @@ pub enum TokenKind {
     Error,
 }
 
+/// A leaf: a kind and the bytes it covers.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub struct Token {
     pub kind: TokenKind,
     pub span: Span,
 }
 
-#[derive(Debug, Clone, PartialEq)]
-pub struct Node {
-    pub kind: NodeKind,
-    pub span: Span,
-    pub children: Vec<Element>,
+/// One file's tree. Nodes are built bottom-up (see `build.rs`), so a node's children always
+/// precede it in `nodes`; the root is the last node.
+#[derive(Clone, Default)]
+pub struct SyntaxTree {
+    pub(crate) nodes: Vec<NodeData>,
+    pub(crate) children: Vec<Child>,
 }
 
-#[derive(Debug, Clone, PartialEq)]
-pub enum Element {
-    Node(Node),
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub(crate) struct NodeData {
+    pub(crate) kind: NodeKind,
+    pub(crate) span: Span,
+    /// This node's children are `children[first..first + len]`.
+    pub(crate) first: u32,
+    pub(crate) len: u32,
+}
+
+/// A child as stored: tokens inline (12 bytes), nodes by index.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub(crate) enum Child {
+    Token(Token),
+    Node(u32),
+}
+
+const _: () = assert!(std::mem::size_of::<Child>() == 12);
+
+/// A view of one node: its kind and span, and access to its children in the tree.
+#[derive(Clone, Copy)]
+pub struct Node<'a> {
+    pub kind: NodeKind,
+    pub span: Span,
+    tree: &'a SyntaxTree,
+    id: u32,
+}
+
+/// A child of a node: another node or a token.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub enum Element<'a> {
+    Node(Node<'a>),
     Token(Token),
 }
 
-impl Element {
+impl SyntaxTree {
+    /// The `SourceFile` node (an empty tree, which parsing never returns, answers a node
+    /// without children).
+    pub fn root(&self) -> Node<'_> {
+        match self.nodes.len() {
+            0 => Node {
+                kind: NodeKind::SourceFile,
+                span: Span::empty(0),
+                tree: self,
+                id: u32::MAX,
+            },
+            n => self.node((n - 1) as u32),
+        }
+    }
+
+    pub(crate) fn node(&self, id: u32) -> Node<'_> {
+        let data = &self.nodes[id as usize];
+        Node {
+            kind: data.kind,
+            span: data.span,
+            tree: self,
+            id,
+        }
+    }
+
+    fn children_of(&self, id: u32) -> &[Child] {
+        match self.nodes.get(id as usize) {
+            Some(d) => &self.children[d.first as usize..(d.first + d.len) as usize],
+            None => &[],
+        }
+    }
+
+    fn element(&self, child: &Child) -> Element<'_> {
+        match *child {
+            Child::Token(t) => Element::Token(t),
+            Child::Node(id) => Element::Node(self.node(id)),
+        }
+    }
+}
+
+impl std::fmt::Debug for SyntaxTree {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        self.root().fmt(f)
+    }
+}
+
+impl PartialEq for SyntaxTree {
+    fn eq(&self, other: &SyntaxTree) -> bool {
+        self.root() == other.root()
+    }
+}
+
+/// Trees are equal when their shapes, kinds and spans are (however they are stored).
+impl PartialEq for Node<'_> {
+    fn eq(&self, other: &Node<'_>) -> bool {
+        self.kind == other.kind
+            && self.span == other.span
+            && self.children().len() == other.children().len()
+            && self.children().eq(other.children())
+    }
+}
+
+impl std::fmt::Debug for Node<'_> {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        write!(f, "{:?}@{}..{} ", self.kind, self.span.start, self.span.end)?;
+        f.debug_list().entries(self.children()).finish()
+    }
+}
+
+/// The children of a node, in order.
+#[derive(Clone)]
+pub struct Children<'a> {
+    tree: &'a SyntaxTree,
+    inner: std::slice::Iter<'a, Child>,
+}
+
+impl<'a> Iterator for Children<'a> {
+    type Item = Element<'a>;
+
+    fn next(&mut self) -> Option<Element<'a>> {
+        self.inner.next().map(|c| self.tree.element(c))
+    }
+
+    fn size_hint(&self) -> (usize, Option<usize>) {
+        self.inner.size_hint()
+    }
+}
+
+impl DoubleEndedIterator for Children<'_> {
+    fn next_back(&mut self) -> Option<Self::Item> {
+        self.inner.next_back().map(|c| self.tree.element(c))
+    }
+}
+
+impl ExactSizeIterator for Children<'_> {}
+
+impl<'a> Element<'a> {
     pub fn span(&self) -> Span {
         match self {
             Element::Node(n) => n.span,
@@ -163,9 +294,9 @@ impl Element {
         }
     }
 
-    pub fn as_node(&self) -> Option<&Node> {
+    pub fn as_node(&self) -> Option<Node<'a>> {
         match self {
-            Element::Node(n) => Some(n),
+            Element::Node(n) => Some(*n),
             Element::Token(_) => None,
         }
     }
@@ -202,30 +333,47 @@ impl Token {
     }
 }
 
-impl Node {
+impl<'a> Node<'a> {
     pub fn text<'t>(&self, text: &'t str) -> &'t str {
         &text[self.span.range()]
     }
 
+    /// All children, trivia included.
+    pub fn children(&self) -> Children<'a> {
+        Children {
+            tree: self.tree,
+            inner: self.tree.children_of(self.id).iter(),
+        }
+    }
+
     /// Child nodes, skipping tokens.
-    pub fn nodes(&self) -> impl Iterator<Item = &Node> {
-        self.children.iter().filter_map(Element::as_node)
+    pub fn nodes(&self) -> impl DoubleEndedIterator<Item = Node<'a>> + Clone + 'a {
+        let tree = self.tree;
+        tree.children_of(self.id)
+            .iter()
+            .filter_map(move |c| match *c {
+                Child::Node(id) => Some(tree.node(id)),
+                Child::Token(_) => None,
+            })
     }
 
     /// Child tokens that are not trivia.
-    pub fn tokens(&self) -> impl Iterator<Item = &Token> {
-        self.children
+    pub fn tokens(&self) -> impl DoubleEndedIterator<Item = &'a Token> + Clone + 'a {
+        self.tree
+            .children_of(self.id)
             .iter()
-            .filter_map(Element::as_token)
-            .filter(|t| !t.kind.is_trivia())
+            .filter_map(|c| match c {
+                Child::Token(t) if !t.kind.is_trivia() => Some(t),
+                _ => None,
+            })
     }
 
     /// Children that are not trivia.
-    pub fn significant(&self) -> impl Iterator<Item = &Element> {
-        self.children.iter().filter(|e| !e.is_trivia())
+    pub fn significant(&self) -> impl DoubleEndedIterator<Item = Element<'a>> + Clone + 'a {
+        self.children().filter(|e| !e.is_trivia())
     }
 
-    pub fn child(&self, kind: NodeKind) -> Option<&Node> {
+    pub fn child(&self, kind: NodeKind) -> Option<Node<'a>> {
         self.nodes().find(|n| n.kind == kind)
     }
 
@@ -237,10 +385,10 @@ impl Node {
 
     /// Every token below this node, in order.
     pub fn walk_tokens(&self, f: &mut impl FnMut(&Token)) {
-        for child in &self.children {
+        for child in self.tree.children_of(self.id) {
             match child {
-                Element::Node(n) => n.walk_tokens(f),
-                Element::Token(t) => f(t),
+                Child::Node(id) => self.tree.node(*id).walk_tokens(f),
+                Child::Token(t) => f(t),
             }
         }
     }
@@ -271,7 +419,7 @@ impl Node {
             self.span.end,
             indent = depth * 2
         );
-        for child in &self.children {
+        for child in self.children() {
             match child {
                 Element::Node(n) => n.debug_into(text, depth + 1, out),
                 Element::Token(t) => {
@@ -296,7 +444,7 @@ impl Node {
         out.push_str("{\"kind\":\"");
         out.push_str(&format!("{:?}", self.kind));
         out.push_str("\",\"children\":[");
-        for (i, child) in self.children.iter().enumerate() {
+        for (i, child) in self.children().enumerate() {
             if i > 0 {
                 out.push(',');
             }

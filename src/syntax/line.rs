@@ -4,13 +4,15 @@
 //! literal punctuation, keywords written inline) are re-lexed as tokens by [`gap_tokens`], which
 //! is what keeps the tree lossless without spelling every comma as a grammar rule.
 
+use std::cell::RefCell;
 use std::sync::LazyLock;
 
 use pest::Parser;
 use pest::iterators::{Pair, Pairs};
 use pest::pratt_parser::{Assoc, Op, PrattParser};
 
-use super::cst::{Element, Node, NodeKind, Token, TokenKind};
+use super::build::Builder;
+use super::cst::{Child, NodeKind, TokenKind};
 use crate::diag::Span;
 
 #[derive(pest_derive::Parser)]
@@ -26,7 +28,10 @@ pub(crate) struct LineError {
 }
 
 /// Parse `text[start..end]` (code only: no leading/trailing blanks, no comment, no newline).
-pub(crate) fn parse_code(text: &str, start: usize, end: usize) -> Result<Node, LineError> {
+/// On success the statement's children are left pending on the builder's stack (its gaps not yet
+/// filled) and its kind is returned; on failure nothing is left.
+pub(crate) fn parse_code(b: &mut Builder, start: usize, end: usize) -> Result<NodeKind, LineError> {
+    let text = b.text;
     // The fast path enforces the same nesting and sign-run limits itself; only a line longer
     // than MAX_OPERATORS bytes can hit the operator limit, so only such lines are pre-checked
     // first. Either way both paths accept exactly the same lines.
@@ -34,26 +39,42 @@ pub(crate) fn parse_code(text: &str, start: usize, end: usize) -> Result<Node, L
     if long && let Some(err) = too_deep(&text[start..end], start) {
         return Err(err);
     }
-    if let Some(node) = super::fast::parse(text, start, end) {
-        return Ok(node);
+    if let Some(kind) = super::fast::parse(b, start, end) {
+        return Ok(kind);
     }
     if !long && let Some(err) = too_deep(&text[start..end], start) {
         return Err(err);
     }
-    parse_with_grammar(text, start, end)
+    parse_with_grammar(b, start, end)
 }
 
 /// The grammar alone (the fast path must agree with it wherever it answers).
-pub(crate) fn parse_with_grammar(text: &str, start: usize, end: usize) -> Result<Node, LineError> {
+/// Like [`parse_code`], children pending on success.
+pub(crate) fn parse_with_grammar(
+    b: &mut Builder,
+    start: usize,
+    end: usize,
+) -> Result<NodeKind, LineError> {
     static BUDGET: std::sync::Once = std::sync::Once::new();
     BUDGET.call_once(|| pest::set_call_limit(std::num::NonZeroUsize::new(MAX_GRAMMAR_CALLS)));
+    let text = b.text;
     let code = &text[start..end];
     match KrlGrammar::parse(entry_rule(code), code) {
         Ok(mut pairs) => {
             let line = pairs.next();
             let stmt = line.and_then(|l| l.into_inner().find(|p| p.as_rule() != Rule::EOI));
-            match stmt.map(|p| convert(p, &Ctx { text, base: start })) {
-                Some(Element::Node(n)) => Ok(n),
+            match stmt.map(|p| (classify(p.as_rule()), p)) {
+                Some((Class::Node(kind), p)) => {
+                    let ctx = Ctx {
+                        text,
+                        base: start,
+                        b: RefCell::new(b),
+                    };
+                    for inner in p.into_inner() {
+                        convert(inner, &ctx);
+                    }
+                    Ok(kind)
+                }
                 _ => Err(LineError {
                     at: start,
                     len: end - start,
@@ -292,12 +313,15 @@ fn too_deep(code: &str, base: usize) -> Option<LineError> {
     None
 }
 
-struct Ctx<'t> {
+/// Conversion state; the builder sits in a `RefCell` because pest's Pratt parser takes one
+/// closure per operator class, all of which build.
+struct Ctx<'t, 'b> {
     text: &'t str,
     base: usize,
+    b: RefCell<&'b mut Builder<'t>>,
 }
 
-impl Ctx<'_> {
+impl Ctx<'_, '_> {
     fn span(&self, pair: &Pair<Rule>) -> Span {
         let s = pair.as_span();
         Span::new(self.base + s.start(), self.base + s.end())
@@ -420,21 +444,41 @@ fn classify(rule: Rule) -> Class {
     }
 }
 
-fn convert(pair: Pair<Rule>, ctx: &Ctx) -> Element {
+/// Convert one pair and push it (one child) onto the builder's stack.
+fn convert(pair: Pair<Rule>, ctx: &Ctx) {
     match classify(pair.as_rule()) {
-        Class::Token(kind) => Element::Token(Token {
-            kind,
-            span: ctx.span(&pair),
-        }),
+        Class::Token(kind) => {
+            let span = ctx.span(&pair);
+            ctx.b
+                .borrow_mut()
+                .push(Child::Token(super::cst::Token { kind, span }));
+        }
         Class::Node(kind) => {
             // Canonical form: nodes never end in blanks (pest's implicit whitespace before an
             // absent optional would otherwise end up inside the node); the parent re-lexes them.
             let span = tight(ctx.text, ctx.span(&pair));
-            let children = pair.into_inner().map(|p| convert(p, ctx)).collect();
-            Element::Node(make_node(ctx.text, kind, span, children))
+            let mark = ctx.b.borrow().mark();
+            for inner in pair.into_inner() {
+                convert(inner, ctx);
+            }
+            let mut b = ctx.b.borrow_mut();
+            let node = b.finish(mark, kind, span);
+            b.push(node);
         }
         Class::Expr => expr(pair.into_inner(), ctx),
     }
+}
+
+/// An operator pair as a token.
+fn operator(pair: &Pair<Rule>, ctx: &Ctx) -> Child {
+    let kind = match classify(pair.as_rule()) {
+        Class::Token(kind) => kind,
+        _ => TokenKind::Operator,
+    };
+    Child::Token(super::cst::Token {
+        kind,
+        span: ctx.span(pair),
+    })
 }
 
 /// KRL operator priority, highest first: `:`; NOT B_NOT (and unary signs); * /; + -;
@@ -461,35 +505,48 @@ static PRATT: LazyLock<PrattParser<Rule>> = LazyLock::new(|| {
         .op(Op::postfix(Rule::index_suffix) | Op::postfix(Rule::member_suffix))
 });
 
-fn expr(pairs: Pairs<Rule>, ctx: &Ctx) -> Element {
+/// Every operand is exactly one child on top of the builder's stack when its operator is
+/// applied (pest calls the primaries in text order), so combining pops the operands and pushes
+/// the new node.
+fn expr(pairs: Pairs<Rule>, ctx: &Ctx) {
     PRATT
         .map_primary(|p| convert(p, ctx))
-        .map_prefix(|op, rhs| {
-            let op = convert(op, ctx);
-            let span = op.span().cover(rhs.span());
-            Element::Node(make_node(ctx.text, NodeKind::Unary, span, vec![op, rhs]))
+        .map_prefix(|op, ()| {
+            let op = operator(&op, ctx);
+            let mut b = ctx.b.borrow_mut();
+            let rhs = b.pop();
+            let span = b.span_of(op).cover(b.span_of(rhs));
+            let node = b.node(NodeKind::Unary, span, &[op, rhs]);
+            b.push(node);
         })
-        .map_infix(|lhs, op, rhs| {
-            let op = convert(op, ctx);
-            let span = lhs.span().cover(rhs.span());
-            Element::Node(make_node(
-                ctx.text,
-                NodeKind::Binary,
-                span,
-                vec![lhs, op, rhs],
-            ))
+        .map_infix(|(), op, ()| {
+            let op = operator(&op, ctx);
+            let mut b = ctx.b.borrow_mut();
+            let rhs = b.pop();
+            let lhs = b.pop();
+            let span = b.span_of(lhs).cover(b.span_of(rhs));
+            let node = b.node(NodeKind::Binary, span, &[lhs, op, rhs]);
+            b.push(node);
         })
-        .map_postfix(|lhs, op| {
+        .map_postfix(|(), op| {
             let kind = if op.as_rule() == Rule::member_suffix {
                 NodeKind::Member
             } else {
                 NodeKind::Index
             };
             let op_span = ctx.span(&op);
-            let span = lhs.span().cover(op_span);
-            let mut children = vec![lhs];
-            children.extend(op.into_inner().map(|p| convert(p, ctx)));
-            Element::Node(make_node(ctx.text, kind, span, children))
+            let mark = {
+                let b = ctx.b.borrow();
+                b.mark() - 1
+            };
+            for p in op.into_inner() {
+                convert(p, ctx);
+            }
+            let mut b = ctx.b.borrow_mut();
+            let lhs = b.pending(mark)[0];
+            let span = b.span_of(lhs).cover(op_span);
+            let node = b.finish(mark, kind, span);
+            b.push(node);
         })
         .parse(pairs)
 }
@@ -498,65 +555,6 @@ fn tight(text: &str, span: Span) -> Span {
     let s = &text[span.range()];
     let trimmed = s.trim_end_matches([' ', '\t', '\u{0B}', '\u{0C}', '\u{A0}']);
     Span::new(span.start as usize, span.start as usize + trimmed.len())
-}
-
-/// Build a node over `span`, filling every byte not covered by `children` with gap tokens.
-pub(crate) fn make_node(text: &str, kind: NodeKind, span: Span, children: Vec<Element>) -> Node {
-    let mut out = Vec::with_capacity(children.len() * 2 + 1);
-    let mut pos = span.start as usize;
-    for child in children {
-        let s = child.span();
-        if (s.start as usize) > pos {
-            gap_tokens(text, pos, s.start as usize, &mut out);
-        }
-        pos = pos.max(s.end as usize);
-        out.push(child);
-    }
-    if (span.end as usize) > pos {
-        gap_tokens(text, pos, span.end as usize, &mut out);
-    }
-    Node {
-        kind,
-        span,
-        children: out,
-    }
-}
-
-/// Lex bytes the grammar matched silently: blanks, punctuation, inline keywords.
-pub(crate) fn gap_tokens(text: &str, start: usize, end: usize, out: &mut Vec<Element>) {
-    let bytes = text.as_bytes();
-    let mut i = start;
-    while i < end {
-        let b = bytes[i];
-        let (kind, len) = if matches!(b, b' ' | b'\t' | 0x0B | 0x0C) {
-            let n = bytes[i..end]
-                .iter()
-                .take_while(|c| matches!(c, b' ' | b'\t' | 0x0B | 0x0C))
-                .count();
-            (TokenKind::Whitespace, n)
-        } else if b.is_ascii_alphanumeric() || b == b'_' || b == b'$' {
-            let n = bytes[i..end]
-                .iter()
-                .take_while(|c| c.is_ascii_alphanumeric() || **c == b'_' || **c == b'$')
-                .count();
-            (TokenKind::Keyword, n)
-        } else if i + 1 < end && matches!(&bytes[i..i + 2], b"==" | b"<>" | b"<=" | b">=") {
-            (TokenKind::Punct, 2)
-        } else {
-            let ch_len = text[i..].chars().next().map_or(1, char::len_utf8);
-            let kind = if text[i..].starts_with('\u{A0}') {
-                TokenKind::Whitespace
-            } else {
-                TokenKind::Punct
-            };
-            (kind, ch_len)
-        };
-        out.push(Element::Token(Token {
-            kind,
-            span: Span::new(i, i + len),
-        }));
-        i += len;
-    }
 }
 
 fn describe(e: pest::error::Error<Rule>, code: &str, base: usize) -> LineError {
@@ -691,23 +689,27 @@ fn name(rule: Rule) -> Option<&'static str> {
 mod entry_tests {
     use super::*;
 
-    /// What `line` alone makes of `code`: the tree, or only the fact that it failed.
-    fn via(rule: Rule, code: &str) -> Option<Node> {
-        let mut pairs = KrlGrammar::parse(rule, code).ok()?;
-        let stmt = pairs
-            .next()?
-            .into_inner()
-            .find(|p| p.as_rule() != Rule::EOI)?;
-        match convert(
-            stmt,
-            &Ctx {
+    /// What `rule` alone makes of `code`: the tree, or only the fact that it failed.
+    fn via(rule: Rule, code: &str) -> Option<crate::syntax::cst::SyntaxTree> {
+        crate::syntax::build::standalone(code, |b| {
+            let mut pairs = KrlGrammar::parse(rule, code).ok()?;
+            let stmt = pairs
+                .next()?
+                .into_inner()
+                .find(|p| p.as_rule() != Rule::EOI)?;
+            let Class::Node(kind) = classify(stmt.as_rule()) else {
+                return None;
+            };
+            let ctx = Ctx {
                 text: code,
                 base: 0,
-            },
-        ) {
-            Element::Node(n) => Some(n),
-            Element::Token(_) => None,
-        }
+                b: RefCell::new(b),
+            };
+            for inner in stmt.into_inner() {
+                convert(inner, &ctx);
+            }
+            Some(kind)
+        })
     }
 
     /// The narrow entry rules accept exactly what `line` accepts, with the same tree.

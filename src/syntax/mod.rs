@@ -7,7 +7,7 @@
 //! let decoded = krlkit::syntax::decode(b"DEF main()\r\n  PTP HOME\r\nEND\r\n");
 //! let parse = krlkit::syntax::parse(&decoded.text);
 //! assert!(parse.diagnostics.is_empty());
-//! assert_eq!(parse.root.print(&decoded.text), decoded.text);
+//! assert_eq!(parse.root().print(&decoded.text), decoded.text);
 //! let file = parse.ast(&decoded.text);
 //! assert_eq!(file.routines[0].name.text, "main");
 //! assert_eq!(decoded.encode(), b"DEF main()\r\n  PTP HOME\r\nEND\r\n");
@@ -16,17 +16,22 @@
 //! Public API (what other stages use):
 //! - [`decode`]`(&[u8]) -> `[`Decoded`]` { text, encoding }`, [`Decoded::encode`] (gives back
 //!   the original bytes), [`TextEncoding`]`::{Utf8, Utf8Bom, SingleByte}`.
-//! - [`parse`]`(&str) -> `[`Parse`]` { root: `[`Node`]`, diagnostics }`; [`Parse::to_json_tree`],
-//!   [`Parse::ast`]. CST: [`Node`]` { kind, span, children }`, [`Token`]` { kind, span }`,
-//!   [`Element`], [`NodeKind`], [`TokenKind`]; spans are [`crate::diag::Span`] byte ranges.
+//! - [`parse`]`(&str) -> `[`Parse`]` { tree: `[`SyntaxTree`]`, diagnostics }`; [`Parse::root`],
+//!   [`Parse::to_json_tree`], [`Parse::ast`]. CST: the tree is stored flat (two vectors per
+//!   file); [`Node`]`<'_> { kind, span }` is a `Copy` view with `children()`, `nodes()`,
+//!   `tokens()`, `significant()`, `walk_tokens`, `print`; [`Element`]`<'_>` is a child (node or
+//!   [`Token`]` { kind, span }`); [`NodeKind`], [`TokenKind`]; spans are [`crate::diag::Span`]
+//!   byte ranges.
 //! - [`ast`]: `SourceFile { routines, dat, top_level, headers }`, `Routine`, `DatModule`, `Decl`,
 //!   `Definition` (STRUC/ENUM/SIGNAL/CHANNEL/EXT/IMPORT), `Stmt`/`StmtKind`, `Expr`/`ExprKind`,
 //!   `Ident` (compare with `Ident::is`, case-insensitive).
 //!
 //! How a line is parsed: blank, comment-only and `&` lines are classified by hand; a hand-written
-//! fast path (`fast.rs`) takes the most frequent shapes (assignments, calls, `DECL`, simple
-//! motions, `IF … THEN`, `WAIT`, one-keyword lines) and must build exactly the tree the pest
-//! grammar (`krl.pest`) would; everything else goes to the grammar. Expression precedence, highest
+//! fast path (`fast.rs`) takes the frequent shapes (assignments, calls, labels, declarations,
+//! headers, motions, block lines, `WAIT`, `INTERRUPT`, `TRIGGER`, one-keyword lines) and must
+//! build exactly the tree the pest grammar (`krl.pest`) would; everything else (rare statements
+//! and every line with a syntax error, whose message comes from the grammar) goes to the grammar.
+//! Both build into one `build::Builder` per file: no heap allocation per node. Expression precedence, highest
 //! first: `:`; `NOT B_NOT` and signs; `* /`; `+ -`; `AND B_AND`; `EXOR B_EXOR`; `OR B_OR`;
 //! comparisons (from the KSS 8 manual's priority table; unverified \[U\], not re-checked here).
 //!
@@ -48,12 +53,13 @@
 
 pub mod ast;
 mod blocks;
+mod build;
 pub mod cst;
 mod decode;
 mod fast;
 mod line;
 mod parser;
 
-pub use cst::{Element, Node, NodeKind, Token, TokenKind};
+pub use cst::{Children, Element, Node, NodeKind, SyntaxTree, Token, TokenKind};
 pub use decode::{Decoded, TextEncoding, decode, encode_as};
 pub use parser::{Parse, SYNTAX_ERROR, parse};

@@ -7,8 +7,9 @@
 //! starts fresh.
 
 use super::blocks::{Assembler, Role};
-use super::cst::{Element, Node, NodeKind, Token, TokenKind};
-use super::line::{gap_tokens, make_node, parse_code};
+use super::build::Builder;
+use super::cst::{Child, Node, NodeKind, SyntaxTree, TokenKind};
+use super::line::parse_code;
 use crate::diag::{Diagnostic, Span};
 
 /// Rule code for syntax errors.
@@ -17,15 +18,20 @@ pub const SYNTAX_ERROR: &str = "KRL001";
 /// The result of parsing one file: always a tree, plus whatever went wrong.
 #[derive(Debug, Clone)]
 pub struct Parse {
-    pub root: Node,
+    pub tree: SyntaxTree,
     pub diagnostics: Vec<Diagnostic>,
 }
 
 impl Parse {
+    /// The `SourceFile` node.
+    pub fn root(&self) -> Node<'_> {
+        self.tree.root()
+    }
+
     /// The contract's `--tree` JSON.
     pub fn to_json_tree(&self, text: &str) -> String {
         let mut out = String::with_capacity(text.len() * 8);
-        self.root.write_json(text, &mut out);
+        self.root().write_json(text, &mut out);
         out
     }
 
@@ -42,18 +48,19 @@ impl Parse {
 /// Parse decoded KRL text.
 pub fn parse(text: &str) -> Parse {
     let mut diagnostics = Vec::new();
-    let mut asm = Assembler::new(text);
+    let mut b = Builder::new(text);
+    let mut asm = Assembler::new();
     let bytes = text.as_bytes();
     let mut start = 0;
     while start < bytes.len() {
         let (content_end, line_end) = line_bounds(bytes, start);
-        let (node, role) = parse_line(text, start, content_end, line_end, &mut diagnostics);
-        asm.push(node, role, &mut diagnostics);
+        let (line, role) = parse_line(&mut b, start, content_end, line_end, &mut diagnostics);
+        asm.push(&mut b, line, role, &mut diagnostics);
         start = line_end;
     }
-    let root = asm.finish(&mut diagnostics);
+    let tree = asm.finish(b, &mut diagnostics);
     diagnostics.sort_by_key(|d| d.span.start);
-    Parse { root, diagnostics }
+    Parse { tree, diagnostics }
 }
 
 /// End of the line's content and end of the line including its terminator.
@@ -76,93 +83,74 @@ fn is_blank(b: u8) -> bool {
     matches!(b, b' ' | b'\t' | 0x0B | 0x0C)
 }
 
-fn tok(kind: TokenKind, start: usize, end: usize) -> Element {
-    Element::Token(Token {
-        kind,
-        span: Span::new(start, end),
-    })
-}
-
+/// One physical line as a finished node (not yet placed in a block).
 fn parse_line(
-    text: &str,
+    b: &mut Builder,
     start: usize,
     content_end: usize,
     line_end: usize,
     diagnostics: &mut Vec<Diagnostic>,
-) -> (Node, Role) {
+) -> (Child, Role) {
+    let text = b.text;
     let bytes = text.as_bytes();
     let span = Span::new(start, line_end);
     let code_start = start
         + bytes[start..content_end]
             .iter()
-            .take_while(|&&b| is_blank(b))
+            .take_while(|&&c| is_blank(c))
             .count();
-    let indent = (code_start > start).then(|| tok(TokenKind::Whitespace, start, code_start));
-    let mut children: Vec<Element> = Vec::new();
-    let newline = (line_end > content_end).then(|| tok(TokenKind::Newline, content_end, line_end));
-    let finish = |mut children: Vec<Element>, kind| {
-        children.extend(newline);
-        Node {
-            kind,
-            span,
-            children,
+    let mark = b.mark();
+    if code_start > start {
+        b.push_token(TokenKind::Whitespace, start, code_start);
+    }
+    let finish = |b: &mut Builder, kind| {
+        if line_end > content_end {
+            b.push_token(TokenKind::Newline, content_end, line_end);
         }
+        b.finish(mark, kind, span)
     };
 
     if code_start == content_end {
-        children.extend(indent);
-        return (finish(children, NodeKind::BlankLine), Role::None);
+        return (finish(b, NodeKind::BlankLine), Role::None);
     }
     if bytes[code_start] == b'&' {
-        children.extend(indent);
-        children.push(tok(TokenKind::Header, code_start, content_end));
-        return (finish(children, NodeKind::HeaderLine), Role::None);
+        b.push_token(TokenKind::Header, code_start, content_end);
+        return (finish(b, NodeKind::HeaderLine), Role::None);
     }
     let comment_start = find_comment(bytes, code_start, content_end);
     let code_end = code_start
         + bytes[code_start..comment_start]
             .iter()
-            .rposition(|&b| !is_blank(b))
+            .rposition(|&c| !is_blank(c))
             .map_or(0, |p| p + 1);
-    let trailing = |children: &mut Vec<Element>| {
+    let trailing = |b: &mut Builder| {
         if comment_start > code_end {
-            children.push(tok(TokenKind::Whitespace, code_end, comment_start));
+            b.push_token(TokenKind::Whitespace, code_end, comment_start);
         }
         if comment_start < content_end {
-            children.push(tok(
+            b.push_token(
                 comment_kind(&text[comment_start..content_end]),
                 comment_start,
                 content_end,
-            ));
+            );
         }
     };
     if code_end == code_start {
-        children.extend(indent);
-        trailing(&mut children);
-        return (finish(children, NodeKind::CommentLine), Role::None);
+        trailing(b);
+        return (finish(b, NodeKind::CommentLine), Role::None);
     }
-    match parse_code(text, code_start, code_end) {
-        Ok(stmt) => {
-            let role = Role::of(stmt.kind);
-            // Blanks the line splitter does not know (a no-break space) can sit between the
-            // indentation and the statement, or after it; they stay in the tree as whitespace.
-            let (s, e) = (stmt.span.start as usize, stmt.span.end as usize);
-            // The statement's own children become the line's (no copy into a new vector).
-            let mut line = stmt.children;
-            if s > code_start {
-                children.extend(indent);
-                gap_tokens(text, code_start, s, &mut children);
-                line.splice(0..0, children);
-            } else if let Some(indent) = indent {
-                line.insert(0, indent);
-            }
-            if code_end > e {
-                gap_tokens(text, e, code_end, &mut line);
-            }
-            trailing(&mut line);
-            (finish(line, stmt.kind), role)
+    let cp = b.checkpoint();
+    match parse_code(b, code_start, code_end) {
+        Ok(kind) => {
+            // The statement's children are pending on the stack, so they become the line's
+            // (the line node has the statement's kind). Bytes between them, and blanks the line
+            // splitter does not know (a no-break space) before or after the statement, are
+            // filled in as gap tokens when the line is finished.
+            trailing(b);
+            (finish(b, kind), Role::of(kind))
         }
         Err(err) => {
+            b.rollback(cp);
             let role = Role::guess(&text[code_start..code_end]);
             let at = err.at.min(code_end);
             diagnostics.push(Diagnostic::error(
@@ -170,10 +158,9 @@ fn parse_line(
                 Span::new(at, (at + err.len).min(code_end)),
                 err.message,
             ));
-            children.extend(indent);
-            children.push(tok(TokenKind::Error, code_start, code_end));
-            trailing(&mut children);
-            (finish(children, NodeKind::Error), role)
+            b.push_token(TokenKind::Error, code_start, code_end);
+            trailing(b);
+            (finish(b, NodeKind::Error), role)
         }
     }
 }
@@ -223,13 +210,4 @@ fn comment_kind(comment: &str) -> TokenKind {
     } else {
         TokenKind::Comment
     }
-}
-
-/// Wrap loose elements as a node (used by the assembler for synthetic containers).
-pub(crate) fn container(text: &str, kind: NodeKind, children: Vec<Element>) -> Node {
-    let span = match (children.first(), children.last()) {
-        (Some(f), Some(l)) => f.span().cover(l.span()),
-        _ => Span::empty(0),
-    };
-    make_node(text, kind, span, children)
 }

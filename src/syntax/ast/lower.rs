@@ -9,7 +9,7 @@ use crate::syntax::parser::Parse;
 pub fn lower(parse: &Parse, text: &str) -> SourceFile {
     let cx = Cx { text };
     let mut file = SourceFile::default();
-    for node in parse.root.nodes() {
+    for node in parse.root().nodes() {
         match node.kind {
             K::Routine => file.routines.push(cx.routine(node)),
             K::DatModule => {
@@ -71,22 +71,22 @@ impl<'t> Cx<'t> {
         }
     }
 
-    fn idents(&self, node: &Node) -> Vec<Ident> {
+    fn idents(&self, node: Node) -> Vec<Ident> {
         node.tokens()
             .filter(|t| t.kind == T::Ident)
             .map(|t| self.ident(t))
             .collect()
     }
 
-    fn exprs(&self, node: &Node) -> Vec<Expr> {
+    fn exprs(&self, node: Node) -> Vec<Expr> {
         node.significant()
             .filter(|e| is_expr(e))
-            .map(|e| self.expr(e))
+            .map(|e| self.expr(&e))
             .collect()
     }
 
     /// Comma-separated list between `open` and `close` with omitted entries as `None`.
-    fn list(&self, elements: &[&Element], open: &str, close: &str) -> Vec<Option<Expr>> {
+    fn list(&self, elements: &[Element], open: &str, close: &str) -> Vec<Option<Expr>> {
         let mut out = Vec::new();
         let mut cur = None;
         let mut inside = false;
@@ -111,15 +111,15 @@ impl<'t> Cx<'t> {
         out
     }
 
-    fn dims(&self, node: Option<&Node>) -> Vec<Option<Expr>> {
+    fn dims(&self, node: Option<Node>) -> Vec<Option<Expr>> {
         node.map(|n| {
-            let els: Vec<&Element> = n.significant().collect();
+            let els: Vec<Element> = n.significant().collect();
             self.list(&els, "[", "]")
         })
         .unwrap_or_default()
     }
 
-    fn type_ref(&self, node: &Node) -> TypeRef {
+    fn type_ref(&self, node: Node) -> TypeRef {
         let name = node
             .tokens()
             .find(|t| t.kind == T::Ident)
@@ -141,7 +141,7 @@ impl<'t> Cx<'t> {
         let span = el.span();
         let kind = match el {
             Element::Token(t) => self.literal(t),
-            Element::Node(n) => self.compound(n),
+            Element::Node(n) => self.compound(*n),
         };
         Expr { kind, span }
     }
@@ -180,8 +180,8 @@ impl<'t> Cx<'t> {
         }
     }
 
-    fn compound(&self, n: &Node) -> ExprKind {
-        let sig: Vec<&Element> = n.significant().collect();
+    fn compound(&self, n: Node) -> ExprKind {
+        let sig: Vec<Element> = n.significant().collect();
         match n.kind {
             K::Paren => sig
                 .iter()
@@ -241,7 +241,7 @@ impl<'t> Cx<'t> {
                     .and_then(|t| t.tokens().find(|t| t.kind == T::Ident))
                     .map(|t| self.ident(t));
                 let fields = n.nodes().filter(|c| c.kind == K::AggField).filter_map(|f| {
-                    let parts: Vec<&Element> = f.significant().filter(|e| is_expr(e)).collect();
+                    let parts: Vec<Element> = f.significant().filter(|e| is_expr(e)).collect();
                     match parts.as_slice() {
                         [Element::Token(name), .., value]
                             if name.kind == T::Ident && parts.len() >= 2 =>
@@ -263,7 +263,7 @@ impl<'t> Cx<'t> {
 
     // ---- modules ----------------------------------------------------------------------------
 
-    fn routine(&self, node: &Node) -> Routine {
+    fn routine(&self, node: Node) -> Routine {
         let header = node.nodes().next();
         let mut r = Routine {
             kind: RoutineKind::Def,
@@ -306,7 +306,7 @@ impl<'t> Cx<'t> {
         r
     }
 
-    fn param(&self, p: &Node) -> ParamDecl {
+    fn param(&self, p: Node) -> ParamDecl {
         let name = p
             .tokens()
             .find(|t| t.kind == T::Ident)
@@ -323,7 +323,7 @@ impl<'t> Cx<'t> {
         }
     }
 
-    fn dir(&self, n: &Node) -> Option<ParamDir> {
+    fn dir(&self, n: Node) -> Option<ParamDir> {
         n.tokens().filter(|t| t.kind == T::Keyword).find_map(|t| {
             match t.text(self.text).to_ascii_uppercase().as_str() {
                 "IN" => Some(ParamDir::In),
@@ -333,7 +333,7 @@ impl<'t> Cx<'t> {
         })
     }
 
-    fn dat(&self, node: &Node) -> DatModule {
+    fn dat(&self, node: Node) -> DatModule {
         let header = node.nodes().next();
         let name = header
             .and_then(|h| h.tokens().find(|t| t.kind == T::Ident))
@@ -371,16 +371,16 @@ impl<'t> Cx<'t> {
 
     // ---- statements ---------------------------------------------------------------------------
 
-    fn body(&self, nodes: &[&Node]) -> Vec<Stmt> {
+    fn body(&self, nodes: &[Node]) -> Vec<Stmt> {
         let mut out = Vec::new();
         for n in nodes {
-            self.stmt_into(n, &mut out);
+            self.stmt_into(*n, &mut out);
         }
         out
     }
 
     /// Lower one line or block node; trivia lines add nothing.
-    fn stmt_into(&self, node: &Node, out: &mut Vec<Stmt>) {
+    fn stmt_into(&self, node: Node, out: &mut Vec<Stmt>) {
         if let Some(kind) = self.stmt_kind(node) {
             out.push(Stmt {
                 kind,
@@ -389,9 +389,9 @@ impl<'t> Cx<'t> {
         }
     }
 
-    fn stmt_kind(&self, node: &Node) -> Option<StmtKind> {
+    fn stmt_kind(&self, node: Node) -> Option<StmtKind> {
         let text = self.text;
-        let sig: Vec<&Element> = node.significant().collect();
+        let sig: Vec<Element> = node.significant().collect();
         let exprs = || self.exprs(node);
         let first_expr = || exprs().into_iter().next();
         let other = || StmtKind::Other {
@@ -416,10 +416,10 @@ impl<'t> Cx<'t> {
                     .unwrap_or_default(),
             },
             K::IfBlock => {
-                let lines: Vec<&Node> = node.nodes().collect();
+                let lines: Vec<Node> = node.nodes().collect();
                 let cond = lines
                     .first()
-                    .and_then(|h| self.exprs(h).into_iter().next())?;
+                    .and_then(|h| self.exprs(*h).into_iter().next())?;
                 let else_at = lines.iter().position(|n| n.kind == K::ElseLine);
                 let end = if lines.last().is_some_and(|n| n.kind == K::EndifLine) {
                     lines.len() - 1
@@ -437,7 +437,7 @@ impl<'t> Cx<'t> {
                 }
             }
             K::ForBlock => {
-                let lines: Vec<&Node> = node.nodes().collect();
+                let lines: Vec<Node> = node.nodes().collect();
                 let head = lines.first()?;
                 let var = head
                     .tokens()
@@ -448,7 +448,7 @@ impl<'t> Cx<'t> {
                     .significant()
                     .skip_while(|e| !is_punct(text, e, "="))
                     .filter(|e| is_expr(e))
-                    .map(|e| self.expr(e));
+                    .map(|e| self.expr(&e));
                 let from = parts.next()?;
                 let to = parts.next()?;
                 let step = parts.next();
@@ -461,38 +461,38 @@ impl<'t> Cx<'t> {
                 }
             }
             K::WhileBlock => {
-                let lines: Vec<&Node> = node.nodes().collect();
+                let lines: Vec<Node> = node.nodes().collect();
                 StmtKind::While {
-                    cond: self.exprs(lines.first()?).into_iter().next()?,
+                    cond: self.exprs(*lines.first()?).into_iter().next()?,
                     body: self.body(inner(&lines, K::EndwhileLine)),
                 }
             }
             K::RepeatBlock => {
-                let lines: Vec<&Node> = node.nodes().collect();
+                let lines: Vec<Node> = node.nodes().collect();
                 StmtKind::Repeat {
                     until: lines
                         .last()
                         .filter(|l| l.kind == K::UntilLine)
-                        .and_then(|l| self.exprs(l).into_iter().next()),
+                        .and_then(|l| self.exprs(*l).into_iter().next()),
                     body: self.body(inner(&lines, K::UntilLine)),
                 }
             }
             K::LoopBlock => {
-                let lines: Vec<&Node> = node.nodes().collect();
+                let lines: Vec<Node> = node.nodes().collect();
                 StmtKind::Loop {
                     body: self.body(inner(&lines, K::EndloopLine)),
                 }
             }
             K::SwitchBlock => {
-                let lines: Vec<&Node> = node.nodes().collect();
-                let selector = self.exprs(lines.first()?).into_iter().next()?;
+                let lines: Vec<Node> = node.nodes().collect();
+                let selector = self.exprs(*lines.first()?).into_iter().next()?;
                 let mut cases = Vec::new();
                 let mut default = None;
                 for n in &lines[1..] {
-                    let block: Vec<&Node> = n.nodes().collect();
+                    let block: Vec<Node> = n.nodes().collect();
                     match n.kind {
                         K::CaseBlock => cases.push(Case {
-                            values: block.first().map(|h| self.exprs(h)).unwrap_or_default(),
+                            values: block.first().map(|h| self.exprs(*h)).unwrap_or_default(),
                             body: self.body(&block[1..]),
                             span: n.span,
                         }),
@@ -507,7 +507,7 @@ impl<'t> Cx<'t> {
                 }
             }
             K::SplineBlock => {
-                let lines: Vec<&Node> = node.nodes().collect();
+                let lines: Vec<Node> = node.nodes().collect();
                 let head = lines.first()?;
                 let end = lines.last().filter(|l| l.kind == K::EndsplineLine);
                 StmtKind::Spline {
@@ -517,15 +517,17 @@ impl<'t> Cx<'t> {
                         .map(|w| self.with(w))
                         .unwrap_or_default(),
                     approx: end
-                        .and_then(|e| self.approx(e))
-                        .or_else(|| self.approx(head)),
+                        .and_then(|e| self.approx(*e))
+                        .or_else(|| self.approx(*head)),
                     body: self.body(inner(&lines, K::EndsplineLine)),
                 }
             }
             K::SkipBlock => {
-                let lines: Vec<&Node> = node.nodes().collect();
+                let lines: Vec<Node> = node.nodes().collect();
                 StmtKind::Skip {
-                    arg: lines.first().and_then(|h| self.exprs(h).into_iter().next()),
+                    arg: lines
+                        .first()
+                        .and_then(|h| self.exprs(*h).into_iter().next()),
                     body: self.body(inner(&lines, K::EndskipLine)),
                 }
             }
@@ -744,7 +746,7 @@ impl<'t> Cx<'t> {
                 }))
             }
             K::ChannelDecl => {
-                let ids: Vec<&Element> = sig.iter().copied().filter(|e| is_expr(e)).collect();
+                let ids: Vec<Element> = sig.iter().copied().filter(|e| is_expr(e)).collect();
                 let name = ids
                     .first()
                     .and_then(|e| e.as_token())
@@ -807,7 +809,7 @@ impl<'t> Cx<'t> {
         })
     }
 
-    fn decl(&self, node: &Node) -> Decl {
+    fn decl(&self, node: Node) -> Decl {
         let ty = node
             .child(K::TypeRef)
             .map(|t| self.type_ref(t))
@@ -824,7 +826,7 @@ impl<'t> Cx<'t> {
                     .significant()
                     .skip_while(|e| !is_punct(self.text, e, "="))
                     .find(|e| is_expr(e))
-                    .map(|e| self.expr(e));
+                    .map(|e| self.expr(&e));
                 Some(DeclVar {
                     name,
                     dims: self.dims(v.child(K::Dims)),
@@ -841,7 +843,7 @@ impl<'t> Cx<'t> {
         }
     }
 
-    fn with(&self, clause: &Node) -> Vec<(Expr, Expr)> {
+    fn with(&self, clause: Node) -> Vec<(Expr, Expr)> {
         clause
             .nodes()
             .filter(|n| n.kind == K::WithItem)
@@ -852,7 +854,7 @@ impl<'t> Cx<'t> {
             .collect()
     }
 
-    fn approx(&self, node: &Node) -> Option<Approx> {
+    fn approx(&self, node: Node) -> Option<Approx> {
         node.tokens()
             .filter(|t| t.kind == T::Keyword)
             .find_map(|t| match t.text(self.text).to_ascii_uppercase().as_str() {
@@ -865,7 +867,7 @@ impl<'t> Cx<'t> {
             })
     }
 
-    fn motion(&self, node: &Node, sig: &[&Element]) -> Option<Motion> {
+    fn motion(&self, node: Node, sig: &[Element]) -> Option<Motion> {
         let kw = self.kw(sig.first()?)?;
         let relative = kw.ends_with("_REL");
         let kind = match kw.trim_end_matches("_REL") {
@@ -935,7 +937,7 @@ impl<'t> Cx<'t> {
 }
 
 /// The lines between a block's header and its end line.
-fn inner<'a>(lines: &'a [&'a Node], end: K) -> &'a [&'a Node] {
+fn inner<'l, 'a>(lines: &'l [Node<'a>], end: K) -> &'l [Node<'a>] {
     if lines.is_empty() {
         return lines;
     }

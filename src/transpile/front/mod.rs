@@ -113,7 +113,7 @@ impl Program {
     pub fn uses_name(&self, name: &str) -> bool {
         let text = &self.src.text;
         let mut found = false;
-        self.src.parse.root.walk_tokens(&mut |t| {
+        self.src.parse.root().walk_tokens(&mut |t| {
             if t.kind == TokenKind::Ident && t.text(text).eq_ignore_ascii_case(name) {
                 found = true;
             }

@@ -113,7 +113,7 @@ pub(super) struct Tx<'p> {
 
 impl<'p> Tx<'p> {
     fn new(prog: &'p Program, opts: &'p Options) -> Tx<'p> {
-        let comments = CommentQueue::new(comments::collect(&prog.src.parse.root, &prog.src.text));
+        let comments = CommentQueue::new(comments::collect(&prog.src.parse.root(), &prog.src.text));
         Tx {
             prog,
             opts,
