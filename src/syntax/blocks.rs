@@ -483,11 +483,13 @@ impl Assembler {
                 self.close_top(b, false, diagnostics);
             }
             None => {
-                let what = format!(
-                    "`{}` without a matching `{}`",
-                    block.closer(),
-                    block.opener()
-                );
+                // Name the closer as written: END and ENDFCT share a block kind.
+                let written = b.text[first_word_span(b, node).range()].to_ascii_uppercase();
+                let (closer, opener) = match written.as_str() {
+                    "ENDFCT" => ("ENDFCT", Block::Function.opener()),
+                    _ => (block.closer(), block.opener()),
+                };
+                let what = format!("`{closer}` without a matching `{opener}`");
                 self.unexpected(b, node, &what, diagnostics);
             }
         }
