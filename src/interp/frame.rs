@@ -83,6 +83,39 @@ pub fn compose(a: &Value, b: &Value) -> Option<Value> {
     Some(with_frame(b, r))
 }
 
+/// The target of a Cartesian `LIN_REL`/`PTP_REL` from `cur` by `rel` (fields it lacks are 0).
+/// In the base (`in_tool` false, KRL's default) the offset's X,Y,Z add to the position and its
+/// rotation turns about the base axes; with `#TOOL` both are taken in the tool's own axes.
+/// The angles are recomputed only when the offset rotates, so a pure translation keeps them
+/// as they were written.
+pub fn relative(cur: &Value, rel: &Value, in_tool: bool) -> Option<Value> {
+    let c = get(cur)?;
+    let r = get(rel)?;
+    let m = matrix(c);
+    if r[3..].iter().all(|x| *x == 0.0) {
+        let d = if in_tool {
+            [0, 1, 2].map(|i| (0..3).map(|k| m[i][k] * r[k]).sum::<f64>())
+        } else {
+            [r[0], r[1], r[2]]
+        };
+        let mut out = c;
+        for i in 0..3 {
+            out[i] += d[i];
+        }
+        return Some(with_frame(cur, out));
+    }
+    let composed = if in_tool {
+        mul(&m, &matrix(r))
+    } else {
+        let mut turned = mul(&matrix([0.0, 0.0, 0.0, r[3], r[4], r[5]]), &m);
+        for i in 0..3 {
+            turned[i][3] = c[i] + r[i];
+        }
+        turned
+    };
+    Some(with_frame(cur, frame(&composed)))
+}
+
 /// INV_POS: the inverse frame.
 #[allow(clippy::needless_range_loop)]
 pub fn inverse(a: &Value) -> Option<Value> {

@@ -3,11 +3,13 @@
 use std::collections::HashMap;
 
 use crate::syntax::ast::{
-    BinaryOp, Decl, Expr, ExprKind, Motion, MotionKind, ParamDir, Routine, RoutineKind, Stmt,
-    StmtKind, UnaryOp,
+    BinaryOp, Decl, Definition, Expr, ExprKind, Motion, MotionKind, ParamDir, Routine,
+    RoutineKind, Stmt, StmtKind, UnaryOp,
 };
 
+mod bas;
 mod interrupt;
+mod signals;
 
 use super::eki::Eki;
 use super::program::Program;
@@ -25,6 +27,14 @@ pub(crate) struct Place {
 enum Root {
     Global(String),
     Local(usize, String),
+    /// A SIGNAL group: bits `lo..=hi` (0-based offsets) of a BOOL array global.
+    Group {
+        array: String,
+        lo: usize,
+        hi: usize,
+    },
+    /// `SIGNAL name FALSE` (or TRUE).
+    Const(bool),
 }
 
 #[derive(Debug, Clone, PartialEq)]
@@ -89,12 +99,17 @@ pub(crate) struct Machine<'p> {
     /// TRIGGER actions waiting for the next motion.
     pending_triggers: Vec<Stmt>,
     interrupts: interrupt::Interrupts,
+    /// SIGNAL names of the DEFDATs, keyed like globals (`NAME` or `SCOPE::NAME`).
+    signals: HashMap<String, Place>,
+    /// Outputs a PULSE will set back.
+    pulses: Vec<signals::Pulse>,
+    message_handles: i64,
 }
 
 const TIMERS: usize = 64;
 
 /// Globals the interpreter predefines (like `$config.dat`); not reported in [`RunResult::globals`].
-const BUILTIN_GLOBALS: [&str; 10] = [
+const BUILTIN_GLOBALS: [&str; 11] = [
     "HOME",
     "XHOME",
     "TOOL_DATA",
@@ -105,6 +120,7 @@ const BUILTIN_GLOBALS: [&str; 10] = [
     "PDAT_ACT",
     "LDAT_ACT",
     "FDAT_ACT",
+    "LOAD_DATA",
 ];
 
 impl<'p> Machine<'p> {
@@ -123,6 +139,9 @@ impl<'p> Machine<'p> {
             steps: 0,
             pending_triggers: Vec::new(),
             interrupts: interrupt::Interrupts::default(),
+            signals: HashMap::new(),
+            pulses: Vec::new(),
+            message_handles: 0,
         };
         m.init_system();
         m
@@ -207,9 +226,23 @@ impl<'p> Machine<'p> {
         );
         put("$VEL_AXIS", t.default_value(&BaseType::Int, &[12]));
         put("$ACC_AXIS", t.default_value(&BaseType::Int, &[12]));
-        for k in ["$ADVANCE", "$OV_PRO", "$TOOL_NO", "$BASE_NO"] {
+        for k in ["$TOOL_NO", "$BASE_NO"] {
             put(k, Value::Int(0));
         }
+        // The controller's values after a cold start: look-ahead 3, override 100 %, no tool or
+        // base selected yet, base-related interpolation, manual reduced velocity.
+        put("$ADVANCE", Value::Int(3));
+        put("$OV_PRO", Value::Int(100));
+        put("$ACT_TOOL", Value::Int(-1));
+        put("$ACT_BASE", Value::Int(-1));
+        put("$IPO_MODE", Value::Enum("BASE".into()));
+        put("$MODE_OP", Value::Enum("T1".into()));
+        let load = t.default_value(&BaseType::Struc("LOAD".into()), &[]);
+        put("$LOAD", load.clone());
+        put(
+            "LOAD_DATA",
+            t.default_value(&BaseType::Struc("LOAD".into()), &[16]),
+        );
         // What the standard INI fold and the inline forms of KUKA's templates touch
         // ($config.dat, BAS): tool and base tables, motion data, stop message, H_POS.
         for k in ["$STOPMESS", "$BWDSTART"] {
@@ -295,6 +328,10 @@ impl<'p> Machine<'p> {
             },
         };
         self.eki.close_all();
+        let end = match (end, self.expire_pulses(true)) {
+            (End::Normal, Err(Stop::Error(e))) => End::Error(e),
+            (end, _) => end,
+        };
         let (status, message) = match &end {
             End::Normal => ("ok".to_string(), None),
             End::Halt { file, line } => ("halt".to_string(), Some(format!("{file}:{line}: HALT"))),
@@ -338,6 +375,13 @@ impl<'p> Machine<'p> {
         for mi in 0..self.prog.modules.len() {
             let m = &self.prog.modules[mi];
             let Some(dat) = &m.ast.dat else { continue };
+            for d in &dat.definitions {
+                if let Definition::Signal(sig) = d {
+                    self.loc = (mi, sig.span.start);
+                    let scope = m.scope.clone();
+                    self.declare_dat_signal(sig, &scope)?;
+                }
+            }
             for d in &dat.decls {
                 self.loc = (mi, d.span.start);
                 let global = d.global;
@@ -449,6 +493,7 @@ impl<'p> Machine<'p> {
                 self.opts.step_limit
             )));
         }
+        self.expire_pulses(false)?;
         self.poll_interrupts()
     }
 
@@ -530,6 +575,12 @@ impl<'p> Machine<'p> {
         self.frames.push(Frame { module: mi, vars });
         let fi = self.frames.len() - 1;
         let result = (|| -> R<Option<Value>> {
+            for d in &routine.definitions {
+                if let Definition::Signal(sig) = d {
+                    self.loc = (mi, sig.span.start);
+                    self.declare_local_signal(sig, fi)?;
+                }
+            }
             // Omitted parameters are still declared, with their zero value.
             for d in &routine.decls {
                 self.loc = (mi, d.span.start);
@@ -558,9 +609,9 @@ impl<'p> Machine<'p> {
                 for p in &routine.params {
                     if p.dir == Some(ParamDir::Out)
                         && let Some(Slot::Alias(place)) = frame.vars.get(&p.name.key())
-                        && let Ok(v) = self.read_place(place)
+                        && let Ok(v) = self.read_value(place)
                     {
-                        out.push((p.name.text.clone(), to_json(v)));
+                        out.push((p.name.text.clone(), to_json(&v)));
                     }
                 }
             }
@@ -764,13 +815,17 @@ impl<'p> Machine<'p> {
                 let fi = self.frames.len() - 1;
                 self.declare(d, |n| n.to_string(), Some(fi))?;
             }
+            StmtKind::Definition(Definition::Signal(sig)) => {
+                let fi = self.frames.len() - 1;
+                self.declare_local_signal(sig, fi)?;
+            }
             StmtKind::Definition(_) => {}
             StmtKind::Trigger { action, .. } => self.pending_triggers.push((**action).clone()),
-            StmtKind::Pulse { signal, level, .. } => {
-                let v = self.eval(level)?;
-                let p = self.place_of(signal)?;
-                self.assign(&p, v)?;
-            }
+            StmtKind::Pulse {
+                signal,
+                level,
+                duration,
+            } => self.pulse(signal, level, duration)?,
             StmtKind::OnErrorProceed | StmtKind::TimeBlock(_) => {}
             StmtKind::InterruptDecl {
                 number,
@@ -815,6 +870,11 @@ impl<'p> Machine<'p> {
         Ok(())
     }
 
+    pub(crate) fn next_message_handle(&mut self) -> i64 {
+        self.message_handles += 1;
+        self.message_handles
+    }
+
     pub(crate) fn message(&mut self, text: String) {
         self.events.push(Event::Message { text: text.clone() });
         self.messages.push(text);
@@ -846,7 +906,7 @@ impl<'p> Machine<'p> {
                 return Ok(());
             }
             self.tick()?;
-            let timers = self.timers.iter().any(|t| t.running);
+            let timers = self.timers.iter().any(|t| t.running) || self.pulses_running();
             if self.eki.any_connected() {
                 let before = std::time::Instant::now();
                 self.eki
@@ -900,7 +960,24 @@ impl<'p> Machine<'p> {
             Value::Struc { fields, .. } | Value::Partial(fields) => fields.clone(),
             _ => vec![],
         };
+        let in_tool = match m.frame.as_deref() {
+            None => false,
+            Some(f) if f.eq_ignore_ascii_case("BASE") => false,
+            Some(f) if f.eq_ignore_ascii_case("TOOL") => true,
+            Some(f) => return Err(self.err(format!("unknown frame #{f} for a relative motion"))),
+        };
+        // Cartesian offsets are frame arithmetic; axis offsets and the other fields (S, T,
+        // E1…) add component by component below.
+        let cartesian_rel = m.relative && !axis;
+        if cartesian_rel {
+            cur = super::frame::relative(&cur, &target, in_tool).ok_or_else(|| {
+                self.err("a relative motion needs a Cartesian offset such as {Z 100}")
+            })?;
+        }
         for (n, v) in fields {
+            if cartesian_rel && CART_FIELDS.iter().any(|c| c.eq_ignore_ascii_case(&n)) {
+                continue;
+            }
             if let Some(slot) = cur.field_mut(&n) {
                 let x = v.as_f64().or(match v {
                     Value::Int(i) => Some(i as f64),
@@ -965,6 +1042,11 @@ impl<'p> Machine<'p> {
             });
         }
         let scoped = format!("{}::{key}", self.prog.modules[self.cur_module()].scope);
+        for k in [&scoped, &key] {
+            if let Some(p) = self.signals.get(k) {
+                return Ok(p.clone());
+            }
+        }
         if self.globals.contains_key(&scoped) {
             return Ok(Place {
                 root: Root::Global(scoped),
@@ -1047,10 +1129,14 @@ impl<'p> Machine<'p> {
                 Slot::Own(v) => Some(v),
                 Slot::Alias(_) => None,
             },
+            Root::Group { .. } | Root::Const(_) => None,
         }
     }
 
     pub(crate) fn read_place(&self, p: &Place) -> R<&Value> {
+        if matches!(p.root, Root::Group { .. } | Root::Const(_)) {
+            return Err(self.err("a signal group or constant has no members or elements"));
+        }
         let mut v = self
             .root_ref(&p.root)
             .ok_or_else(|| self.err("dangling reference"))?;
@@ -1071,6 +1157,9 @@ impl<'p> Machine<'p> {
         {
             self.sync_timers();
         }
+        if let Some(v) = self.read_signal(&p.root)? {
+            return Ok(v);
+        }
         self.read_place(p).cloned()
     }
 
@@ -1082,6 +1171,14 @@ impl<'p> Machine<'p> {
     }
 
     pub(crate) fn assign(&mut self, p: &Place, v: Value) -> R<()> {
+        if let Some(Value::Int(_) | Value::Bool(_)) = self.read_signal(&p.root)? {
+            let v = match v {
+                Value::Real(r) => Value::Int(r.round() as i64),
+                v => v,
+            };
+            self.write_signal(&p.root, v)?;
+            return Ok(());
+        }
         let current = self.read_place(p)?.clone();
         let new = self.coerce(current, v)?;
         let frames_before = match &p.root {
@@ -1094,6 +1191,7 @@ impl<'p> Machine<'p> {
                 Some(Slot::Own(v)) => Some(v),
                 _ => None,
             },
+            Root::Group { .. } | Root::Const(_) => None,
         };
         let mut slot = match root {
             Some(r) => r,
