@@ -79,7 +79,18 @@ pub fn run(args: RunArgs) -> anyhow::Result<Outcome> {
         inputs: args
             .inputs
             .iter()
-            .map(|n| (usize::from(*n), true))
+            .filter_map(|s| match s {
+                interp::InputSetting::Fixed(n, v) => Some((*n, *v)),
+                interp::InputSetting::Link(_) => None,
+            })
+            .collect(),
+        input_links: args
+            .inputs
+            .iter()
+            .filter_map(|s| match s {
+                interp::InputSetting::Link(l) => Some(*l),
+                interp::InputSetting::Fixed(..) => None,
+            })
             .collect(),
         ..Options::default()
     };

@@ -193,7 +193,7 @@ pub(crate) fn call(m: &mut Machine, name: &str, args: &[Option<Expr>]) -> R<Opti
             Value::Bool(true)
         }
         "BAS" => m.bas(args)?,
-        _ => return Ok(None),
+        _ => return m.form_function(&up, args),
     };
     Ok(Some(v))
 }

@@ -41,12 +41,6 @@ fn frame(m: &M) -> [f64; 6] {
     } else {
         (m[1][0].atan2(m[0][0]), m[2][1].atan2(m[2][2]))
     };
-    // Rounded to 1e-9 (far below a REAL's precision on the controller), so composed poses do
-    // not carry float noise (-165.00000000000003, "-0.0000" in requests) into traces.
-    let clean = |x: f64| {
-        let r = (x * 1e9).round() / 1e9;
-        if r == 0.0 { 0.0 } else { r }
-    };
     [
         clean(m[0][3]),
         clean(m[1][3]),
@@ -55,6 +49,13 @@ fn frame(m: &M) -> [f64; 6] {
         clean(b.to_degrees()),
         clean(c.to_degrees()),
     ]
+}
+
+/// Rounded to 1e-9 (far below a REAL's precision on the controller), so computed poses do
+/// not carry float noise (-165.00000000000003, "-0.0000" in requests) into traces.
+fn clean(x: f64) -> f64 {
+    let r = (x * 1e9).round() / 1e9;
+    if r == 0.0 { 0.0 } else { r }
 }
 
 fn mul(x: &M, y: &M) -> M {
@@ -100,7 +101,7 @@ pub fn relative(cur: &Value, rel: &Value, in_tool: bool) -> Option<Value> {
         };
         let mut out = c;
         for i in 0..3 {
-            out[i] += d[i];
+            out[i] = clean(out[i] + d[i]);
         }
         return Some(with_frame(cur, out));
     }

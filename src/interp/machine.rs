@@ -8,6 +8,7 @@ use crate::syntax::ast::{
 };
 
 mod bas;
+mod forms;
 mod interrupt;
 mod signals;
 
@@ -58,7 +59,17 @@ struct Frame {
 /// Why execution of a block stopped early.
 pub(crate) enum Stop {
     Error(RuntimeError),
-    Halt { file: String, line: usize },
+    Halt {
+        file: String,
+        line: usize,
+    },
+    /// `RESUME` in an interrupt routine: abandon the routines called since the level (call
+    /// depth) where the interrupt was declared; that level continues after its current call.
+    Resume {
+        depth: usize,
+        file: String,
+        line: usize,
+    },
 }
 
 impl From<RuntimeError> for Stop {
@@ -175,9 +186,19 @@ impl<'p> Machine<'p> {
             self.globals.insert(k.to_string(), v);
         };
         put("$FLAG", bools(1024));
-        put("$OUT", bools(4096));
-        let mut inputs = bools(4096);
+        put("$OUT", bools(super::IO_COUNT));
+        put("$ANIN", t.default_value(&BaseType::Real, &[32]));
+        put("$ANOUT", t.default_value(&BaseType::Real, &[32]));
+        // Controller states a program may check: the program runs, the robot is on its path,
+        // the periphery and the safety circuit are fine. `$IN_HOME` is computed when read.
+        for k in ["$PRO_ACT", "$ON_PATH", "$PERI_RDY", "$USER_SAF"] {
+            put(k, Value::Bool(true));
+        }
+        put("$IN_HOME", Value::Bool(false));
+        let mut inputs = bools(super::IO_COUNT);
         if let Value::Array { items, .. } = &mut inputs {
+            // KSS wires $IN[1025] to TRUE.
+            items[1024] = Value::Bool(true);
             for (n, v) in &self.opts.inputs {
                 if let Some(slot) = n.checked_sub(1).and_then(|i| items.get_mut(i)) {
                     *slot = Value::Bool(*v);
@@ -225,6 +246,12 @@ impl<'p> Machine<'p> {
             t.default_value(&BaseType::Struc("APO_T".into()), &[]),
         );
         put("$VEL_AXIS", t.default_value(&BaseType::Int, &[12]));
+        put("$GEAR_JERK", t.default_value(&BaseType::Real, &[12]));
+        put("$COLLMON_TOL_PRO", t.default_value(&BaseType::Real, &[12]));
+        put(
+            "$JERK",
+            t.default_value(&BaseType::Struc("JERK_STRUC".into()), &[]),
+        );
         put("$ACC_AXIS", t.default_value(&BaseType::Int, &[12]));
         for k in ["$TOOL_NO", "$BASE_NO"] {
             put(k, Value::Int(0));
@@ -325,6 +352,11 @@ impl<'p> Machine<'p> {
                 Ok(()) => End::Normal,
                 Err(Stop::Halt { file, line }) => End::Halt { file, line },
                 Err(Stop::Error(e)) => End::Error(e),
+                Err(Stop::Resume { file, line, .. }) => End::Error(RuntimeError {
+                    file,
+                    line,
+                    message: "RESUME found no routine to return to".into(),
+                }),
             },
         };
         self.eki.close_all();
@@ -602,6 +634,11 @@ impl<'p> Machine<'p> {
         })();
         let frame = self.frames.pop();
         self.loc = saved_loc;
+        let result = match result {
+            // The routine called from the interrupt's level is abandoned; that level goes on.
+            Err(Stop::Resume { depth, .. }) if self.frames.len() == depth => Ok(None),
+            other => other,
+        };
         let ret = result?;
         if is_mm {
             let mut out = Vec::new();
@@ -804,7 +841,12 @@ impl<'p> Machine<'p> {
                 return Ok(Flow::Return(v));
             }
             StmtKind::Motion(m) => self.motion(m)?,
-            StmtKind::Spline { body, .. } => return self.exec_block(body),
+            StmtKind::Spline { body, with, .. } => {
+                let saved = self.apply_with(with)?;
+                let flow = self.exec_block(body);
+                self.restore_with(saved)?;
+                return flow;
+            }
             // The simulated robot reaches every point, so the skip condition never cuts a motion short.
             StmtKind::Skip { body, .. } => return self.exec_block(body),
             // Messages are printed, never pending, so acknowledging one has nothing to do.
@@ -836,9 +878,9 @@ impl<'p> Machine<'p> {
             StmtKind::Interrupt { action, number } => {
                 self.interrupt_switch(*action, number.as_ref())?
             }
-            StmtKind::Brake { .. } | StmtKind::Resume => {
-                return Err(self.err("BRAKE/RESUME are not supported by krlkit run"));
-            }
+            // Motions end before the next statement runs, so there is nothing to brake.
+            StmtKind::Brake { .. } => {}
+            StmtKind::Resume => return Err(self.resume()),
             StmtKind::AnIn(_) | StmtKind::AnOut(_) => {
                 return Err(self.err("ANIN/ANOUT are not supported by krlkit run"));
             }
@@ -919,7 +961,8 @@ impl<'p> Machine<'p> {
             } else {
                 return Err(self.err(
                     "WAIT FOR can never become TRUE: no timer runs, no EKI connection is open, \
-                     and inputs keep their values (`krlkit run --input N` sets $IN[N] TRUE)",
+                     and inputs keep their values (`krlkit run --input N` sets $IN[N] TRUE, \
+                     `--input N=out:M` makes it follow $OUT[M])",
                 ));
             }
             if self.clock_ms - start > self.opts.max_wait_ms {
@@ -934,6 +977,13 @@ impl<'p> Machine<'p> {
     // ---------------------------------------------------------------- motions
 
     fn motion(&mut self, m: &Motion) -> R<()> {
+        let saved = self.apply_with(&m.with)?;
+        let moved = self.move_to(m);
+        self.restore_with(saved)?;
+        moved
+    }
+
+    fn move_to(&mut self, m: &Motion) -> R<()> {
         if let Some(aux) = &m.aux {
             self.eval(aux)?;
         }
@@ -1029,7 +1079,12 @@ impl<'p> Machine<'p> {
     // ---------------------------------------------------------------- places
 
     fn lookup_root(&self, name: &str) -> R<Place> {
-        let key = name.to_ascii_uppercase();
+        let mut key = name.to_ascii_uppercase();
+        // `$OUT_C` sets outputs at the motion's end; motions are done before the next
+        // statement runs, so it is `$OUT`.
+        if key == "$OUT_C" {
+            key = "$OUT".into();
+        }
         if let Some((fi, f)) = self.frames.iter().enumerate().next_back()
             && let Some(slot) = f.vars.get(&key)
         {
@@ -1152,10 +1207,11 @@ impl<'p> Machine<'p> {
     }
 
     pub(crate) fn read_value(&mut self, p: &Place) -> R<Value> {
-        if let Root::Global(k) = &p.root
-            && (k == "$TIMER" || k == "$TIMER_FLAG")
-        {
-            self.sync_timers();
+        match &p.root {
+            Root::Global(k) if k == "$TIMER" || k == "$TIMER_FLAG" => self.sync_timers(),
+            Root::Global(k) | Root::Group { array: k, .. } if k == "$IN" => self.sync_inputs(),
+            Root::Global(k) if k == "$IN_HOME" => return Ok(Value::Bool(self.in_home())),
+            _ => {}
         }
         if let Some(v) = self.read_signal(&p.root)? {
             return Ok(v);
@@ -1222,6 +1278,44 @@ impl<'p> Machine<'p> {
             self.follow_frames(&old_base, &old_tool);
         }
         Ok(())
+    }
+
+    /// Inputs linked to outputs (`--input N=out:M`) take the outputs' current values.
+    fn sync_inputs(&mut self) {
+        if self.opts.input_links.is_empty() {
+            return;
+        }
+        let outs: Vec<bool> = self
+            .opts
+            .input_links
+            .iter()
+            .map(|l| match self.globals.get("$OUT") {
+                Some(Value::Array { items, .. }) => {
+                    matches!(items.get(l.output - 1), Some(Value::Bool(true))) != l.inverted
+                }
+                _ => l.inverted,
+            })
+            .collect();
+        if let Some(Value::Array { items, .. }) = self.globals.get_mut("$IN") {
+            for (l, v) in self.opts.input_links.iter().zip(outs) {
+                if let Some(slot) = items.get_mut(l.input - 1) {
+                    *slot = Value::Bool(v);
+                }
+            }
+        }
+    }
+
+    /// `$IN_HOME`: the axes are where `$AXIS_HOME` says (within 0.01°).
+    fn in_home(&self) -> bool {
+        match (self.globals.get("$AXIS_ACT"), self.globals.get("$AXIS_HOME")) {
+            (Some(a), Some(h)) => AXIS_FIELDS.iter().all(|f| {
+                match (a.field(f).and_then(|v| v.as_f64()), h.field(f).and_then(|v| v.as_f64())) {
+                    (Some(x), Some(y)) => (x - y).abs() < 0.01,
+                    _ => false,
+                }
+            }),
+            _ => false,
+        }
     }
 
     fn tool_base(&self) -> (Value, Value) {
@@ -1347,7 +1441,20 @@ impl<'p> Machine<'p> {
                     {
                         let t = std::mem::replace(slot, Value::Int(0));
                         *slot = self.coerce(t, v)?;
-                    } else if !matches!(ty.as_str(), "E6POS" | "POS" | "FRAME" | "AXIS" | "E6AXIS")
+                    } else if !matches!(
+                        ty.as_str(),
+                        "E6POS"
+                            | "POS"
+                            | "FRAME"
+                            | "AXIS"
+                            | "E6AXIS"
+                            // Inline-form data carry members of newer KSS releases
+                            // (LDAT's CB, …) that change nothing here.
+                            | "PDAT"
+                            | "LDAT"
+                            | "FDAT"
+                            | "BASIS_SUGG_T"
+                    )
                     {
                         return Err(self.err(format!("{ty} has no member {n}")));
                     }

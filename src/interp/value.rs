@@ -256,6 +256,7 @@ impl Types {
             vec![en("SK_TYPE", "KRLMSGPARTYPE_T"), chars("SK_TXT", 10)],
         );
         add("INERTIA", reals(&["X", "Y", "Z"]));
+        add("JERK_STRUC", reals(&["CP", "ORI"]));
         add(
             "LOAD",
             vec![

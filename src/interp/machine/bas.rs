@@ -179,7 +179,7 @@ impl<'p> Machine<'p> {
     }
 
     /// Entry `n` of `TOOL_DATA`/`BASE_DATA`; 0 is `$NULLFRAME`.
-    fn table_frame(&self, table: &str, n: i64, what: &str) -> R<Value> {
+    pub(super) fn table_frame(&self, table: &str, n: i64, what: &str) -> R<Value> {
         if n == 0 {
             return Ok(self.globals.get("$NULLFRAME").cloned().unwrap_or(Value::Int(0)));
         }
@@ -192,7 +192,7 @@ impl<'p> Machine<'p> {
         })
     }
 
-    fn table_entry(&self, table: &str, n: i64) -> Option<Value> {
+    pub(super) fn table_entry(&self, table: &str, n: i64) -> Option<Value> {
         match self.globals.get(table) {
             Some(Value::Array { items, .. }) => usize::try_from(n - 1)
                 .ok()

@@ -9,7 +9,7 @@ use std::collections::BTreeMap;
 
 use crate::syntax::ast::{Expr, InterruptAction, Stmt};
 
-use super::{Machine, R};
+use super::{Machine, R, Stop};
 
 #[derive(Debug, Clone)]
 pub(super) struct Interrupt {
@@ -21,6 +21,8 @@ pub(super) struct Interrupt {
     enabled: bool,
     /// The condition's value at the last check (an interrupt fires on a rising edge).
     last: bool,
+    /// Call depth of the declaration: where a RESUME in its handler returns to.
+    depth: usize,
 }
 
 #[derive(Debug, Default)]
@@ -29,6 +31,8 @@ pub(super) struct Interrupts {
     /// Number of interrupts that are on and enabled: nothing to check when 0.
     active: usize,
     handling: bool,
+    /// Declaration depth of the interrupt whose handler runs.
+    handling_depth: usize,
 }
 
 impl Interrupts {
@@ -41,6 +45,19 @@ impl Interrupts {
 const NUMBERS: std::ops::RangeInclusive<i64> = 1..=128;
 
 impl<'p> Machine<'p> {
+    /// `RESUME`: only inside an interrupt routine.
+    pub(super) fn resume(&self) -> Stop {
+        if !self.interrupts.handling {
+            return self.err("RESUME is only allowed in an interrupt routine");
+        }
+        let e = self.error("RESUME");
+        Stop::Resume {
+            depth: self.interrupts.handling_depth,
+            file: e.file,
+            line: e.line,
+        }
+    }
+
     pub(super) fn interrupt_decl(&mut self, number: &Expr, cond: &Expr, handler: &Stmt) -> R<()> {
         let n = self.eval_int(number)?;
         if !NUMBERS.contains(&n) {
@@ -53,6 +70,7 @@ impl<'p> Machine<'p> {
             on: false,
             enabled: true,
             last: false,
+            depth: self.frames.len(),
         };
         self.interrupts.table.insert(n, i);
         self.interrupts.recount();
@@ -123,6 +141,7 @@ impl<'p> Machine<'p> {
             }
             if now && !i.last {
                 self.interrupts.handling = true;
+                self.interrupts.handling_depth = i.depth;
                 let r = self.exec_handler(&i.handler);
                 self.interrupts.handling = false;
                 self.loc = saved;
