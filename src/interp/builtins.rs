@@ -193,6 +193,15 @@ pub(crate) fn call(m: &mut Machine, name: &str, args: &[Option<Expr>]) -> R<Opti
             Value::Bool(true)
         }
         "BAS" => m.bas(args)?,
+        // Variables start at their zero value here, so every declared one is initialised.
+        "VARSTATE" => {
+            let name = text(m, 0)?;
+            Value::Enum(if m.is_variable(name.trim()) {
+                "INITIALIZED".into()
+            } else {
+                "UNKNOWN".into()
+            })
+        }
         _ => return m.form_function(&up, args),
     };
     Ok(Some(v))

@@ -117,6 +117,58 @@ pub fn relative(cur: &Value, rel: &Value, in_tool: bool) -> Option<Value> {
     Some(with_frame(cur, frame(&composed)))
 }
 
+/// Where `CIRC aux, end, CA angle` stops: `start` turned by `angle` degrees about the centre of
+/// the circle through `start`, `aux` and `end`, in the direction start → aux → end (aux fields
+/// it lacks are the start's); X, Y, Z from the arc, everything else from `end`. `None` when the
+/// three points are on one line.
+pub fn circ_end(start: &Value, aux: &Value, end: &Value, angle: f64) -> Option<Value> {
+    let s = get(start)?;
+    let e = get(end)?;
+    let a: Vec<f64> = (0..3)
+        .map(|i| {
+            aux.field(CART_FIELDS[i])
+                .and_then(|x| x.as_f64())
+                .unwrap_or(s[i])
+        })
+        .collect();
+    let sub = |p: &[f64], q: &[f64]| [p[0] - q[0], p[1] - q[1], p[2] - q[2]];
+    let cross = |u: [f64; 3], v: [f64; 3]| {
+        [
+            u[1] * v[2] - u[2] * v[1],
+            u[2] * v[0] - u[0] * v[2],
+            u[0] * v[1] - u[1] * v[0],
+        ]
+    };
+    let dot = |u: [f64; 3], v: [f64; 3]| u[0] * v[0] + u[1] * v[1] + u[2] * v[2];
+    let (u, v) = (sub(&a, &s[..3]), sub(&e[..3], &s[..3]));
+    let n = cross(u, v);
+    let nn = dot(n, n);
+    if nn < 1e-12 {
+        return None;
+    }
+    // Circumcentre of the triangle start, aux, end.
+    let w1 = cross(n, u);
+    let w2 = cross(v, n);
+    let (uu, vv) = (dot(u, u), dot(v, v));
+    let centre: Vec<f64> = (0..3)
+        .map(|i| s[i] + (vv * w1[i] + uu * w2[i]) / (2.0 * nn))
+        .collect();
+    let r = sub(&s[..3], &centre);
+    let k = {
+        let l = nn.sqrt();
+        [n[0] / l, n[1] / l, n[2] / l]
+    };
+    // Rodrigues: turn r about k.
+    let (sin, cos) = angle.to_radians().sin_cos();
+    let kxr = cross(k, r);
+    let kr = dot(k, r);
+    let mut out = e;
+    for i in 0..3 {
+        out[i] = clean(centre[i] + r[i] * cos + kxr[i] * sin + k[i] * kr * (1.0 - cos));
+    }
+    Some(with_frame(end, out))
+}
+
 /// INV_POS: the inverse frame.
 #[allow(clippy::needless_range_loop)]
 pub fn inverse(a: &Value) -> Option<Value> {
@@ -178,6 +230,26 @@ mod tests {
             .iter()
             .zip(b)
             .all(|(x, y)| (x - y).abs() < 1e-9)
+    }
+
+    #[test]
+    fn circ_with_an_angle_follows_the_arc() {
+        // Circle through (0,0), (10,10), (20,0) in the XY plane: centre (10,0), radius 10;
+        // the arc runs over (10,10), so 90 degrees from the start is (10,10) and 180 the end.
+        let start = pose([0.0, 0.0, 5.0, 0.0, 0.0, 0.0]);
+        let aux = Value::Partial(vec![
+            ("X".into(), Value::Real(10.0)),
+            ("Y".into(), Value::Real(10.0)),
+        ]);
+        let end = pose([20.0, 0.0, 5.0, 30.0, 0.0, 0.0]);
+        let q = circ_end(&start, &aux, &end, 90.0).unwrap();
+        assert!(close(&q, [10.0, 10.0, 5.0, 30.0, 0.0, 0.0]), "{q:?}");
+        let h = circ_end(&start, &aux, &end, 180.0).unwrap();
+        assert!(close(&h, [20.0, 0.0, 5.0, 30.0, 0.0, 0.0]), "{h:?}");
+        let back = circ_end(&start, &aux, &end, -90.0).unwrap();
+        assert!(close(&back, [10.0, -10.0, 5.0, 30.0, 0.0, 0.0]), "{back:?}");
+        let line = pose([40.0, 0.0, 5.0, 0.0, 0.0, 0.0]);
+        assert!(circ_end(&start, &end, &line, 90.0).is_none());
     }
 
     #[test]

@@ -984,9 +984,10 @@ impl<'p> Machine<'p> {
     }
 
     fn move_to(&mut self, m: &Motion) -> R<()> {
-        if let Some(aux) = &m.aux {
-            self.eval(aux)?;
-        }
+        let aux = match &m.aux {
+            Some(aux) => Some(self.eval(aux)?),
+            None => None,
+        };
         let target = self.eval(&m.target)?;
         let axis = match &target {
             Value::Struc { ty, .. } => Types::is_axis_type(ty),
@@ -1044,6 +1045,15 @@ impl<'p> Machine<'p> {
                     _ => Value::Real(base + x),
                 };
             }
+        }
+        if let (Some(ca), Some(aux), false) = (&m.ca, &aux, axis) {
+            // `CIRC aux, end, CA angle`: the arc through the start, the auxiliary point and the
+            // end point, followed for `angle` degrees from the start; the orientation is the
+            // end point's.
+            let angle = self.eval_real(ca)?;
+            let start = self.globals.get(act).cloned().unwrap_or(Value::Int(0));
+            cur = super::frame::circ_end(&start, aux, &cur, angle)
+                .ok_or_else(|| self.err("CIRC: the start, auxiliary and end points are on one line"))?;
         }
         let kind = match m.kind {
             MotionKind::Ptp => "PTP",
@@ -1115,6 +1125,11 @@ impl<'p> Machine<'p> {
             });
         }
         Err(self.err(format!("unknown variable `{name}`")))
+    }
+
+    /// Whether `name` is a variable (or signal) visible here.
+    pub(crate) fn is_variable(&self, name: &str) -> bool {
+        self.lookup_root(name).is_ok()
     }
 
     pub(crate) fn place_of(&mut self, e: &Expr) -> R<Place> {
@@ -1502,6 +1517,12 @@ impl<'p> Machine<'p> {
             },
             (Value::Bool(x), Value::Bool(y)) => x == y,
             (Value::Char(x), Value::Char(y)) => x == y,
+            // A one-character literal is a CHAR: `c == "x"`, `CASE "x"`.
+            (Value::Char(x), Value::Str(s)) | (Value::Str(s), Value::Char(x))
+                if s.len() == 1 =>
+            {
+                s.as_bytes()[0] == *x
+            }
             (Value::Enum(x), Value::Enum(y)) => x.eq_ignore_ascii_case(y),
             _ => {
                 return Err(self.err(format!(

@@ -272,6 +272,7 @@ impl Types {
             ("IPO_MODE", &["BASE", "TCP"][..]),
             ("MODE_OP", &["T1", "T2", "AUT", "EX", "INVALID"][..]),
             ("KRLMSGPARTYPE_T", &["VALUE", "KEY", "EMPTY"][..]),
+            ("VAR_STATE", &["DECLARED", "INITIALIZED", "UNKNOWN"][..]),
             (
                 "EKRLMSGTYPE",
                 &["NOTIFY", "STATE", "QUIT", "WAITING", "DIALOG"][..],
