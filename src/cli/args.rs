@@ -219,6 +219,10 @@ pub struct RunArgs {
     /// Write a JSON Lines trace of motions and MM_ calls.
     #[arg(long)]
     pub trace: Option<PathBuf>,
+    /// Further modules the program calls (a .src with its .dat, or a directory of them);
+    /// repeatable.
+    #[arg(long = "module", value_name = "PATH")]
+    pub modules: Vec<PathBuf>,
     /// Digital input N (1..4096) reads TRUE for the whole run (e.g. a gripper sensor the program
     /// waits for); `N=off` FALSE; `N=out:M` follows output M (a sensor that answers the
     /// output), `N=not:M` its opposite. Repeatable. Inputs not given read FALSE ($IN[1025]

@@ -101,6 +101,20 @@ pub fn run(args: RunArgs) -> anyhow::Result<Outcome> {
             dir.to_path_buf()
         });
     }
+    for m in &args.modules {
+        if m.is_dir() {
+            let mut dirs = Vec::new();
+            package_files(m, &mut files, &mut dirs);
+        } else if m.is_file() {
+            files.extend(program_files(m)?);
+        } else {
+            eprintln!("error: module {} does not exist", m.display());
+            return Ok(Outcome::Failure);
+        }
+    }
+    // A module given twice (or the program itself) is loaded once.
+    let mut seen = std::collections::HashSet::new();
+    files.retain(|p| seen.insert(std::fs::canonicalize(p).unwrap_or_else(|_| p.clone())));
     let mut sources = Vec::new();
     match &args.package {
         Some(dir) => {

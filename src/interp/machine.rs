@@ -1711,7 +1711,10 @@ impl<'p> Machine<'p> {
         }
         match super::builtins::call(self, name, args)? {
             Some(v) => Ok(Some(v)),
-            None => Err(self.err(format!("unknown routine or built-in function `{name}`"))),
+            None => Err(self.err(format!(
+                "unknown routine or built-in function `{name}` (a routine of another module: \
+                 load it with `krlkit run --module FILE`)"
+            ))),
         }
     }
 
