@@ -115,6 +115,9 @@ pub(crate) struct Machine<'p> {
     /// Outputs a PULSE will set back.
     pulses: Vec<signals::Pulse>,
     message_handles: i64,
+    /// Assignments and motions so far: a loop iteration that adds none changed nothing.
+    writes: u64,
+    motions: u64,
 }
 
 const TIMERS: usize = 64;
@@ -153,6 +156,8 @@ impl<'p> Machine<'p> {
             signals: HashMap::new(),
             pulses: Vec::new(),
             message_handles: 0,
+            writes: 0,
+            motions: 0,
         };
         m.init_system();
         m
@@ -525,6 +530,13 @@ impl<'p> Machine<'p> {
                 self.opts.step_limit
             )));
         }
+        if self.clock_ms > self.opts.max_time_ms {
+            return Err(self.err(format!(
+                "the program ran for more than {:.0} s of simulated time (endless loop, or a \
+                 wait for an input that never comes?)",
+                self.opts.max_time_ms / 1000.0
+            )));
+        }
         self.expire_pulses(false)?;
         self.poll_interrupts()
     }
@@ -688,6 +700,7 @@ impl<'p> Machine<'p> {
 
     fn exec_block(&mut self, stmts: &[Stmt]) -> R<Flow> {
         let mut i = 0;
+        let mut seen = self.writes;
         while i < stmts.len() {
             match self.exec(&stmts[i])? {
                 Flow::Next => i += 1,
@@ -696,6 +709,12 @@ impl<'p> Machine<'p> {
                         |s| matches!(&s.kind, StmtKind::Label { name } if name.is(&label)),
                     );
                     match target {
+                        // A jump back closes a loop: time passes as in WHILE loops.
+                        Some(t) if t <= i => {
+                            let at = (self.cur_module(), stmts[t].span.start);
+                            self.loop_back_edge(&mut seen, at)?;
+                            i = t + 1;
+                        }
                         Some(t) => {
                             self.tick()?;
                             i = t + 1;
@@ -784,19 +803,21 @@ impl<'p> Machine<'p> {
                 self.assign(&place, Value::Int(i))?;
             }
             StmtKind::While { cond, body } => {
+                let (mut seen, at) = (self.writes, self.loc);
                 while self.eval_bool(cond)? {
                     match self.exec_block(body)? {
                         Flow::Next => {}
                         Flow::Exit => break,
                         other => return Ok(other),
                     }
-                    self.loop_back_edge()?;
+                    self.loop_back_edge(&mut seen, at)?;
                 }
             }
             StmtKind::Repeat { body, until } => {
                 let Some(until) = until else {
                     return Err(self.err("REPEAT without UNTIL"));
                 };
+                let (mut seen, at) = (self.writes, self.loc);
                 loop {
                     match self.exec_block(body)? {
                         Flow::Next => {}
@@ -806,17 +827,20 @@ impl<'p> Machine<'p> {
                     if self.eval_bool(until)? {
                         break;
                     }
-                    self.loop_back_edge()?;
+                    self.loop_back_edge(&mut seen, at)?;
                 }
             }
-            StmtKind::Loop { body } => loop {
-                match self.exec_block(body)? {
-                    Flow::Next => {}
-                    Flow::Exit => break,
-                    other => return Ok(other),
+            StmtKind::Loop { body } => {
+                let (mut seen, at) = (self.writes, self.loc);
+                loop {
+                    match self.exec_block(body)? {
+                        Flow::Next => {}
+                        Flow::Exit => break,
+                        other => return Ok(other),
+                    }
+                    self.loop_back_edge(&mut seen, at)?;
                 }
-                self.loop_back_edge()?;
-            },
+            }
             StmtKind::Exit => return Ok(Flow::Exit),
             StmtKind::Goto { label } => return Ok(Flow::Goto(label.text.clone())),
             StmtKind::Label { .. } | StmtKind::Continue => {}
@@ -897,15 +921,35 @@ impl<'p> Machine<'p> {
         Ok(Flow::Next)
     }
 
-    /// Polling loops (`WHILE NOT $FLAG[n]`) must see time pass and data arrive.
-    fn loop_back_edge(&mut self) -> R<()> {
+    /// Polling loops (`WHILE NOT $FLAG[n]`) must see time pass and data arrive. An iteration
+    /// that changed nothing while nothing outside the program can change (no EKI connection,
+    /// no timer, no pulse) leaves the loop where it was: it would run forever, so it is an
+    /// error at the loop (`at`). `seen` is the write count at the previous back edge.
+    fn loop_back_edge(&mut self, seen: &mut u64, at: (usize, u32)) -> R<()> {
         self.tick()?;
+        let external = self.eki.any_connected()
+            || self.timers.iter().any(|t| t.running)
+            || self.pulses_running();
+        let idle = self.writes == *seen;
+        if idle && !external {
+            self.loc = at;
+            return Err(self.err(
+                "this loop can never end: an iteration changed nothing, no timer runs, no EKI \
+                 connection is open, and inputs keep their values (`krlkit run --input N` sets \
+                 $IN[N] TRUE, `--input N=out:M` makes it follow $OUT[M])",
+            ));
+        }
+        *seen = self.writes;
         if self.eki.any_connected() {
             let before = std::time::Instant::now();
             self.eki
                 .pump(&mut self.globals, std::time::Duration::from_micros(200));
             self.clock_ms +=
                 (before.elapsed().as_secs_f64() * 1000.0 * self.opts.time_scale).max(0.01);
+        } else if idle {
+            // A pure polling iteration (it only waits for a timer or a pulse): one
+            // interpreter cycle, as in WAIT FOR.
+            self.clock_ms += 12.0;
         } else {
             self.clock_ms += 0.01;
         }
@@ -1079,6 +1123,14 @@ impl<'p> Machine<'p> {
             })
             .collect();
         self.globals.insert(act.to_string(), cur);
+        self.writes += 1;
+        self.motions += 1;
+        if self.motions > self.opts.max_motions {
+            return Err(self.err(format!(
+                "more than {} motions (a cell program that loops forever?)",
+                self.opts.max_motions
+            )));
+        }
         self.events.push(Event::Motion { kind, target });
         for t in std::mem::take(&mut self.pending_triggers) {
             self.exec(&t)?;
@@ -1242,6 +1294,7 @@ impl<'p> Machine<'p> {
     }
 
     pub(crate) fn assign(&mut self, p: &Place, v: Value) -> R<()> {
+        self.writes += 1;
         if let Some(Value::Int(_) | Value::Bool(_)) = self.read_signal(&p.root)? {
             let v = match v {
                 Value::Real(r) => Value::Int(r.round() as i64),

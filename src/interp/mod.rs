@@ -6,8 +6,11 @@
 //!   and out-of-range accesses are [`RuntimeError`]s located at `file:line`.
 //! - Time is simulated: `WAIT SEC` and timers advance a clock, never the wall clock; only waits
 //!   on open EKI connections consume real time (scaled by [`Options::time_scale`]).
-//! - Every run terminates: a step limit stops endless loops and a `WAIT FOR` that nothing can
-//!   satisfy is an error, not a hang.
+//! - Every run terminates: step, motion and simulated-time limits stop endless loops (the
+//!   time limit stops
+//!   polling loops such as `WHILE NOT $IN[3] … WAIT SEC 0.1 … ENDWHILE`), a loop iteration
+//!   that changes nothing while nothing outside can change is an error at the loop, and a
+//!   `WAIT FOR` that nothing can satisfy is an error, not a hang.
 //! - Library code never prints: messages and trace events are returned in [`RunResult`].
 
 mod builtins;
@@ -61,6 +64,12 @@ pub struct Options {
     pub input_links: Vec<InputLink>,
     /// Longest simulated time one `WAIT FOR` may take before it is reported as stuck (ms).
     pub max_wait_ms: f64,
+    /// Longest simulated run time (ms): a polling loop that waits for something that never
+    /// comes ends here instead of running into the step limit.
+    pub max_time_ms: f64,
+    /// Most motions one run may make: a cell program that loops forever (picking the same
+    /// scenario again and again) ends here with a clear error instead of filling memory.
+    pub max_motions: u64,
 }
 
 impl Default for Options {
@@ -69,11 +78,13 @@ impl Default for Options {
             vision: None,
             eki_configs: HashMap::new(),
             eki_dirs: Vec::new(),
-            step_limit: 50_000_000,
+            step_limit: 10_000_000,
             time_scale: 10.0,
             inputs: HashMap::new(),
             input_links: Vec::new(),
             max_wait_ms: 3_600_000.0,
+            max_time_ms: 3_600_000.0,
+            max_motions: 50_000,
         }
     }
 }
