@@ -700,7 +700,9 @@ impl<'p> Machine<'p> {
 
     fn exec_block(&mut self, stmts: &[Stmt]) -> R<Flow> {
         let mut i = 0;
-        let mut seen = self.writes;
+        // Write count at the last jump back to each label: the loop it closes changed
+        // nothing since when it is the same at the next jump there.
+        let mut seen: Vec<(usize, u64)> = Vec::new();
         while i < stmts.len() {
             match self.exec(&stmts[i])? {
                 Flow::Next => i += 1,
@@ -712,7 +714,14 @@ impl<'p> Machine<'p> {
                         // A jump back closes a loop: time passes as in WHILE loops.
                         Some(t) if t <= i => {
                             let at = (self.cur_module(), stmts[t].span.start);
-                            self.loop_back_edge(&mut seen, at)?;
+                            match seen.iter_mut().find(|(l, _)| *l == t) {
+                                Some((_, last)) => self.loop_back_edge(last, at)?,
+                                None => {
+                                    let mut last = u64::MAX;
+                                    self.loop_back_edge(&mut last, at)?;
+                                    seen.push((t, last));
+                                }
+                            }
                             i = t + 1;
                         }
                         Some(t) => {
