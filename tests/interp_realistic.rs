@@ -23,7 +23,9 @@ use std::path::{Path, PathBuf};
 use std::process::{Command, Stdio};
 use std::time::{Duration, Instant};
 
-use interp_support::{Case, Outcome, check_invariants, closed_port, render, root, run, scenario_of};
+use interp_support::{
+    Case, Outcome, check_invariants, closed_port, render, root, run, scenario_of,
+};
 use krlkit::interp::{Event, Value};
 use krlkit::sim::scenario::PlanLayout;
 use krlkit::sim::{Scenario, Server};
@@ -171,12 +173,18 @@ fn same(t: &Target, kind: &str, got: &[(String, f64)]) -> Result<(), String> {
         };
     }
     let pos_ok = (0..3).all(|i| (v[i] - t.values[i]).abs() < 1e-6);
-    let (r1, r2) = (rot(v[3], v[4], v[5]), rot(t.values[3], t.values[4], t.values[5]));
+    let (r1, r2) = (
+        rot(v[3], v[4], v[5]),
+        rot(t.values[3], t.values[4], t.values[5]),
+    );
     let rot_ok = (0..3).all(|i| (0..3).all(|j| (r1[i][j] - r2[i][j]).abs() < 1e-9));
     if pos_ok && rot_ok {
         Ok(())
     } else {
-        Err(format!("target {v:?}, expected {:?} (within 1e-6)", t.values))
+        Err(format!(
+            "target {v:?}, expected {:?} (within 1e-6)",
+            t.values
+        ))
     }
 }
 
@@ -337,7 +345,10 @@ fn expected(program: &str, sc: &Scenario) -> Vec<Target> {
 /// What the case must produce: all expected motions, or the first `motions` of them, except
 /// for cases that end early by design (the program stops at the start, the bin is empty).
 fn expected_for(spec: &Spec, case: &Case) -> Vec<Target> {
-    let stem = Path::new(&spec.program).file_stem().unwrap().to_string_lossy();
+    let stem = Path::new(&spec.program)
+        .file_stem()
+        .unwrap()
+        .to_string_lossy();
     let mut all = expected(&stem, &scenario_of(case));
     if spec.name == "recipe_retry_bin_empty" {
         // Home, scan position, home: the program gives up before picking.
@@ -345,7 +356,12 @@ fn expected_for(spec: &Spec, case: &Case) -> Vec<Target> {
     }
     match spec.motions {
         Some(n) => {
-            assert!(n <= all.len(), "{}: motions = {n} > {}", spec.name, all.len());
+            assert!(
+                n <= all.len(),
+                "{}: motions = {n} > {}",
+                spec.name,
+                all.len()
+            );
             all.truncate(n);
             all
         }
@@ -417,7 +433,10 @@ fn check_outcome(spec: &Spec, case: &Case, o: &Outcome) {
             .get(k)
             .or_else(|| o.result.globals.get(&format!("{scope}::{k}")))
             .unwrap_or_else(|| panic!("{name}: no global {k}"));
-        assert!(global_matches(got, want), "{name}: {k} = {got:?}, expected {want}");
+        assert!(
+            global_matches(got, want),
+            "{name}: {k} = {got:?}, expected {want}"
+        );
     }
     check_motions(name, &expected_for(spec, case), &motions_of(events));
 }
@@ -513,7 +532,11 @@ fn realistic_programs_through_krlkit_run() {
             args.push(i.clone());
         }
         let (code, stderr, took) = run_cli(&args, Duration::from_secs(60));
-        assert_eq!(code, spec.exit, "{}: exit code; stderr:\n{stderr}", spec.name);
+        assert_eq!(
+            code, spec.exit,
+            "{}: exit code; stderr:\n{stderr}",
+            spec.name
+        );
         let text = std::fs::read_to_string(&trace).unwrap();
         let end: serde_json::Value =
             serde_json::from_str(text.lines().last().expect("trace ends")).unwrap();
@@ -533,7 +556,11 @@ fn realistic_programs_through_krlkit_run() {
         );
         // Simulated waits (WAIT SEC, timers) cost no real time; only the package's reply
         // timeout waits on the socket (15 s simulated at 10x).
-        assert!(took < Duration::from_secs(20), "{}: took {took:?}", spec.name);
+        assert!(
+            took < Duration::from_secs(20),
+            "{}: took {took:?}",
+            spec.name
+        );
     }
 }
 
@@ -550,7 +577,9 @@ fn cases_cover_every_program_and_every_kind_of_failure() {
     assert!(programs.len() >= 8, "{programs:?}");
     for p in &programs {
         assert!(
-            specs.iter().any(|s| s.program == *p && s.end == "ok" && s.motions.is_none()),
+            specs
+                .iter()
+                .any(|s| s.program == *p && s.end == "ok" && s.motions.is_none()),
             "{p}: no case where it runs to the end"
         );
     }

@@ -196,7 +196,11 @@ fn module_flag_loads_the_routines_a_program_calls() {
     let (m, l) = (main.to_str().unwrap(), lib.to_str().unwrap());
     let out = krlkit(&["run", m]);
     assert_eq!(out.status.code(), Some(2));
-    assert!(stderr(&out).contains("cell.src:2: unknown routine"), "{}", stderr(&out));
+    assert!(
+        stderr(&out).contains("cell.src:2: unknown routine"),
+        "{}",
+        stderr(&out)
+    );
     assert!(stderr(&out).contains("--module"), "{}", stderr(&out));
     let out = krlkit(&["run", m, "--module", l]);
     assert_eq!(out.status.code(), Some(0), "{}", stderr(&out));

@@ -348,7 +348,10 @@ fn krl_msg_text(
     {
         for (i, p) in items.iter().enumerate() {
             let empty = matches!(p.field("PAR_TYPE"), Some(Value::Enum(e)) if e == "EMPTY");
-            let txt = p.field("PAR_TXT").and_then(|v| v.as_text()).unwrap_or_default();
+            let txt = p
+                .field("PAR_TXT")
+                .and_then(|v| v.as_text())
+                .unwrap_or_default();
             let val = if empty {
                 String::new()
             } else if !txt.trim().is_empty() {

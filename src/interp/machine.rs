@@ -3,8 +3,8 @@
 use std::collections::HashMap;
 
 use crate::syntax::ast::{
-    BinaryOp, Decl, Definition, Expr, ExprKind, Motion, MotionKind, ParamDir, Routine,
-    RoutineKind, Stmt, StmtKind, UnaryOp,
+    BinaryOp, Decl, Definition, Expr, ExprKind, Motion, MotionKind, ParamDir, Routine, RoutineKind,
+    Stmt, StmtKind, UnaryOp,
 };
 
 mod bas;
@@ -1105,8 +1105,9 @@ impl<'p> Machine<'p> {
             // end point's.
             let angle = self.eval_real(ca)?;
             let start = self.globals.get(act).cloned().unwrap_or(Value::Int(0));
-            cur = super::frame::circ_end(&start, aux, &cur, angle)
-                .ok_or_else(|| self.err("CIRC: the start, auxiliary and end points are on one line"))?;
+            cur = super::frame::circ_end(&start, aux, &cur, angle).ok_or_else(|| {
+                self.err("CIRC: the start, auxiliary and end points are on one line")
+            })?;
         }
         let kind = match m.kind {
             MotionKind::Ptp => "PTP",
@@ -1384,9 +1385,15 @@ impl<'p> Machine<'p> {
 
     /// `$IN_HOME`: the axes are where `$AXIS_HOME` says (within 0.01°).
     fn in_home(&self) -> bool {
-        match (self.globals.get("$AXIS_ACT"), self.globals.get("$AXIS_HOME")) {
+        match (
+            self.globals.get("$AXIS_ACT"),
+            self.globals.get("$AXIS_HOME"),
+        ) {
             (Some(a), Some(h)) => AXIS_FIELDS.iter().all(|f| {
-                match (a.field(f).and_then(|v| v.as_f64()), h.field(f).and_then(|v| v.as_f64())) {
+                match (
+                    a.field(f).and_then(|v| v.as_f64()),
+                    h.field(f).and_then(|v| v.as_f64()),
+                ) {
                     (Some(x), Some(y)) => (x - y).abs() < 0.01,
                     _ => false,
                 }
@@ -1531,8 +1538,7 @@ impl<'p> Machine<'p> {
                             | "LDAT"
                             | "FDAT"
                             | "BASIS_SUGG_T"
-                    )
-                    {
+                    ) {
                         return Err(self.err(format!("{ty} has no member {n}")));
                     }
                 }
@@ -1580,9 +1586,7 @@ impl<'p> Machine<'p> {
             (Value::Bool(x), Value::Bool(y)) => x == y,
             (Value::Char(x), Value::Char(y)) => x == y,
             // A one-character literal is a CHAR: `c == "x"`, `CASE "x"`.
-            (Value::Char(x), Value::Str(s)) | (Value::Str(s), Value::Char(x))
-                if s.len() == 1 =>
-            {
+            (Value::Char(x), Value::Str(s)) | (Value::Str(s), Value::Char(x)) if s.len() == 1 => {
                 s.as_bytes()[0] == *x
             }
             (Value::Enum(x), Value::Enum(y)) => x.eq_ignore_ascii_case(y),

@@ -109,7 +109,9 @@ impl<'p> Machine<'p> {
         if v > 0.0 && v <= 100.0 {
             Ok(v)
         } else {
-            Err(self.err(format!("BAS({what}, {v}): the value is a percentage, 0 < value <= 100")))
+            Err(self.err(format!(
+                "BAS({what}, {v}): the value is a percentage, 0 < value <= 100"
+            )))
         }
     }
 
@@ -133,7 +135,11 @@ impl<'p> Machine<'p> {
         self.set_sys("$VEL", &["CP"], Value::Real(v))?;
         let acc = self.data_real("LDAT_ACT", "ACC")?;
         if acc > 0.0 {
-            self.set_sys("$ACC", &["CP"], Value::Real(DEF_ACC_CP * acc.min(100.0) / 100.0))?;
+            self.set_sys(
+                "$ACC",
+                &["CP"],
+                Value::Real(DEF_ACC_CP * acc.min(100.0) / 100.0),
+            )?;
         }
         let dist = self.data_real("LDAT_ACT", "APO_DIST")?;
         self.set_sys("$APO", &["CDIS"], Value::Real(dist))?;
@@ -181,15 +187,18 @@ impl<'p> Machine<'p> {
     /// Entry `n` of `TOOL_DATA`/`BASE_DATA`; 0 is `$NULLFRAME`.
     pub(super) fn table_frame(&self, table: &str, n: i64, what: &str) -> R<Value> {
         if n == 0 {
-            return Ok(self.globals.get("$NULLFRAME").cloned().unwrap_or(Value::Int(0)));
+            return Ok(self
+                .globals
+                .get("$NULLFRAME")
+                .cloned()
+                .unwrap_or(Value::Int(0)));
         }
         let len = match self.globals.get(table) {
             Some(Value::Array { items, .. }) => items.len(),
             _ => 0,
         };
-        self.table_entry(table, n).ok_or_else(|| {
-            self.err(format!("{what} number {n} is outside 0..{len} ({table})"))
-        })
+        self.table_entry(table, n)
+            .ok_or_else(|| self.err(format!("{what} number {n} is outside 0..{len} ({table})")))
     }
 
     pub(super) fn table_entry(&self, table: &str, n: i64) -> Option<Value> {

@@ -59,11 +59,7 @@ impl<'p> Machine<'p> {
                 let n = self.num_arg(args, name)?.round() as i64;
                 match self.table_entry("LOAD_DATA", n) {
                     Some(l) if n > 0 => l,
-                    _ => self
-                        .globals
-                        .get("$LOAD")
-                        .cloned()
-                        .unwrap_or(Value::Int(0)),
+                    _ => self.globals.get("$LOAD").cloned().unwrap_or(Value::Int(0)),
                 }
             }
             "SIPO_MODE" => arg(self, 0)?,
@@ -110,7 +106,11 @@ impl<'p> Machine<'p> {
 
     fn num_arg(&mut self, args: &[Option<Expr>], name: &str) -> R<f64> {
         let v = self.arg_value(args, 0, name)?;
-        v.as_f64()
-            .ok_or_else(|| self.err(format!("{name}: expected a number, found {}", v.kind_name())))
+        v.as_f64().ok_or_else(|| {
+            self.err(format!(
+                "{name}: expected a number, found {}",
+                v.kind_name()
+            ))
+        })
     }
 }

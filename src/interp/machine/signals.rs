@@ -82,7 +82,9 @@ impl<'p> Machine<'p> {
         }
         let place = self.place_of(e)?;
         match (&place.root, place.path.as_slice()) {
-            (Root::Global(_), [Seg::Index(i)]) if matches!(self.read_place(&place)?, Value::Bool(_)) => {
+            (Root::Global(_), [Seg::Index(i)])
+                if matches!(self.read_place(&place)?, Value::Bool(_)) =>
+            {
                 let i = *i;
                 Ok((place, i))
             }
@@ -173,10 +175,14 @@ impl<'p> Machine<'p> {
         let level = self.eval_bool(level)?;
         let t = self.eval_real(duration)?;
         let place = self.place_of(signal)?;
-        if !matches!((&place.root, place.path.as_slice()), (Root::Global(_), [Seg::Index(_)]))
-            || !matches!(self.read_place(&place)?, Value::Bool(_))
+        if !matches!(
+            (&place.root, place.path.as_slice()),
+            (Root::Global(_), [Seg::Index(_)])
+        ) || !matches!(self.read_place(&place)?, Value::Bool(_))
         {
-            return Err(self.err("PULSE needs a single output such as $OUT[5] or a SIGNAL of one bit"));
+            return Err(
+                self.err("PULSE needs a single output such as $OUT[5] or a SIGNAL of one bit")
+            );
         }
         if t <= 0.0 {
             return Err(self.err(format!("PULSE duration must be positive, not {t} s")));
