@@ -207,6 +207,7 @@ mod cell {
     pub const J_SCAN: [f64; 6] = [-10.0, -95.0, 110.0, 0.0, 75.0, -10.0];
     pub const J_DROP1: [f64; 6] = [80.0, -80.0, 100.0, 0.0, 70.0, 80.0];
     pub const J_DROP2: [f64; 6] = [100.0, -80.0, 100.0, 0.0, 70.0, 100.0];
+    pub const J_REGRIP: [f64; 6] = [95.0, -85.0, 100.0, 0.0, 75.0, 95.0];
 }
 
 fn project(sc: &Scenario, id: i64) -> &krlkit::sim::scenario::Project {
@@ -327,6 +328,21 @@ fn expected(program: &str, sc: &Scenario) -> Vec<Target> {
                     cell::J_DROP1
                 };
                 m.push(axes("PTP", drop));
+            }
+            m.push(home("PTP"));
+        }
+        "two_stage" => {
+            let path = &project(sc, 6).path;
+            let place = six(&project(sc, 7).points[0].pose);
+            m.push(home("PTP"));
+            for _cycle in 0..2 {
+                for w in path {
+                    m.push(axes("PTP", six(w.joints.as_ref().unwrap())));
+                }
+                m.push(axes("PTP", cell::J_REGRIP));
+                m.push(cart("LIN", plus_z(place, 120.0), false));
+                m.push(cart("LIN", place, true));
+                m.push(cart("LIN", plus_z(place, 120.0), false));
             }
             m.push(home("PTP"));
         }
@@ -574,7 +590,7 @@ fn cases_cover_every_program_and_every_kind_of_failure() {
         .map(|p| p.file_name().unwrap().to_string_lossy().into_owned())
         .collect();
     programs.sort();
-    assert!(programs.len() >= 8, "{programs:?}");
+    assert!(programs.len() >= 9, "{programs:?}");
     for p in &programs {
         assert!(
             specs

@@ -117,6 +117,9 @@ pub(crate) struct Machine<'p> {
     message_handles: i64,
     /// Assignments and motions so far: a loop iteration that adds none changed nothing.
     writes: u64,
+    /// While an interrupt's condition or handler call is evaluated: the declaring module, whose
+    /// names they use wherever the program is (even inside the package).
+    interrupt_scope: Option<usize>,
     motions: u64,
 }
 
@@ -158,6 +161,7 @@ impl<'p> Machine<'p> {
             message_handles: 0,
             writes: 0,
             motions: 0,
+            interrupt_scope: None,
         };
         m.init_system();
         m
@@ -562,7 +566,10 @@ impl<'p> Machine<'p> {
     }
 
     fn cur_module(&self) -> usize {
-        self.frames.last().map(|f| f.module).unwrap_or(self.loc.0)
+        match self.interrupt_scope {
+            Some(m) => m,
+            None => self.frames.last().map(|f| f.module).unwrap_or(self.loc.0),
+        }
     }
 
     fn call_routine(&mut self, mi: usize, ri: usize, args: &[Option<Expr>]) -> R<Option<Value>> {
@@ -616,6 +623,7 @@ impl<'p> Machine<'p> {
             return Err(self.err("call depth exceeds 200 (endless recursion?)"));
         }
         let saved_loc = self.loc;
+        let saved_scope = self.interrupt_scope.take();
         self.frames.push(Frame { module: mi, vars });
         let fi = self.frames.len() - 1;
         let result = (|| -> R<Option<Value>> {
@@ -646,6 +654,7 @@ impl<'p> Machine<'p> {
         })();
         let frame = self.frames.pop();
         self.loc = saved_loc;
+        self.interrupt_scope = saved_scope;
         let result = match result {
             // The routine called from the interrupt's level is abandoned; that level goes on.
             Err(Stop::Resume { depth, .. }) if self.frames.len() == depth => Ok(None),
@@ -1158,6 +1167,7 @@ impl<'p> Machine<'p> {
             key = "$OUT".into();
         }
         if let Some((fi, f)) = self.frames.iter().enumerate().next_back()
+            && self.interrupt_scope.is_none_or(|m| m == f.module)
             && let Some(slot) = f.vars.get(&key)
         {
             return Ok(match slot {

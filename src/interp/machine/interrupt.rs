@@ -96,8 +96,8 @@ impl<'p> Machine<'p> {
             // The edge is measured from now: a condition already TRUE does not fire.
             let last = match action {
                 InterruptAction::On => {
-                    let cond = self.interrupts.table[&n].condition.clone();
-                    self.eval_bool(&cond)?
+                    let i = self.interrupts.table[&n].clone();
+                    self.in_declaring_scope(&i, |m| m.eval_bool(&i.condition))?
                 }
                 _ => self.interrupts.table[&n].last,
             };
@@ -113,6 +113,16 @@ impl<'p> Machine<'p> {
         }
         self.interrupts.recount();
         Ok(())
+    }
+
+    /// Run `f` with names resolved in the module that declared `i`: its condition and handler
+    /// mean the same wherever the program is when they are checked (a non-GLOBAL interrupt stays
+    /// active in the routines its routine calls, the package's among them).
+    fn in_declaring_scope<T>(&mut self, i: &Interrupt, f: impl FnOnce(&mut Self) -> R<T>) -> R<T> {
+        let saved = self.interrupt_scope.replace(i.loc.0);
+        let r = f(self);
+        self.interrupt_scope = saved;
+        r
     }
 
     /// Fire the interrupts whose condition rose since the last check (lowest number first).
@@ -133,7 +143,7 @@ impl<'p> Machine<'p> {
             };
             let saved = self.loc;
             self.loc = i.loc;
-            let now = self.eval_bool(&i.condition);
+            let now = self.in_declaring_scope(&i, |m| m.eval_bool(&i.condition));
             self.loc = saved;
             let now = now?;
             if let Some(slot) = self.interrupts.table.get_mut(&n) {
@@ -142,7 +152,7 @@ impl<'p> Machine<'p> {
             if now && !i.last {
                 self.interrupts.handling = true;
                 self.interrupts.handling_depth = i.depth;
-                let r = self.exec_handler(&i.handler);
+                let r = self.in_declaring_scope(&i, |m| m.exec_handler(&i.handler));
                 self.interrupts.handling = false;
                 self.loc = saved;
                 r?;
