@@ -108,7 +108,7 @@ pub(crate) struct Machine<'p> {
     messages: Vec<String>,
     steps: u64,
     /// TRIGGER actions waiting for the next motion.
-    pending_triggers: Vec<Stmt>,
+    pending_triggers: Vec<(usize, Stmt)>,
     interrupts: interrupt::Interrupts,
     /// SIGNAL names of the DEFDATs, keyed like globals (`NAME` or `SCOPE::NAME`).
     signals: HashMap<String, Place>,
@@ -117,9 +117,10 @@ pub(crate) struct Machine<'p> {
     message_handles: i64,
     /// Assignments and motions so far: a loop iteration that adds none changed nothing.
     writes: u64,
-    /// While an interrupt's condition or handler call is evaluated: the declaring module, whose
-    /// names they use wherever the program is (even inside the package).
-    interrupt_scope: Option<usize>,
+    /// While an interrupt's condition or handler call, or a TRIGGER's action, is evaluated: the
+    /// module that declared it, whose names it uses wherever the program is (even inside the
+    /// package). Cleared inside the routines it calls.
+    declared_scope: Option<usize>,
     motions: u64,
 }
 
@@ -161,7 +162,7 @@ impl<'p> Machine<'p> {
             message_handles: 0,
             writes: 0,
             motions: 0,
-            interrupt_scope: None,
+            declared_scope: None,
         };
         m.init_system();
         m
@@ -566,7 +567,7 @@ impl<'p> Machine<'p> {
     }
 
     fn cur_module(&self) -> usize {
-        match self.interrupt_scope {
+        match self.declared_scope {
             Some(m) => m,
             None => self.frames.last().map(|f| f.module).unwrap_or(self.loc.0),
         }
@@ -623,7 +624,7 @@ impl<'p> Machine<'p> {
             return Err(self.err("call depth exceeds 200 (endless recursion?)"));
         }
         let saved_loc = self.loc;
-        let saved_scope = self.interrupt_scope.take();
+        let saved_scope = self.declared_scope.take();
         self.frames.push(Frame { module: mi, vars });
         let fi = self.frames.len() - 1;
         let result = (|| -> R<Option<Value>> {
@@ -654,7 +655,7 @@ impl<'p> Machine<'p> {
         })();
         let frame = self.frames.pop();
         self.loc = saved_loc;
-        self.interrupt_scope = saved_scope;
+        self.declared_scope = saved_scope;
         let result = match result {
             // The routine called from the interrupt's level is abandoned; that level goes on.
             Err(Stop::Resume { depth, .. }) if self.frames.len() == depth => Ok(None),
@@ -904,7 +905,10 @@ impl<'p> Machine<'p> {
                 self.declare_local_signal(sig, fi)?;
             }
             StmtKind::Definition(_) => {}
-            StmtKind::Trigger { action, .. } => self.pending_triggers.push((**action).clone()),
+            StmtKind::Trigger { action, .. } => {
+                let module = self.cur_module();
+                self.pending_triggers.push((module, (**action).clone()))
+            }
             StmtKind::Pulse {
                 signal,
                 level,
@@ -1151,8 +1155,13 @@ impl<'p> Machine<'p> {
             )));
         }
         self.events.push(Event::Motion { kind, target });
-        for t in std::mem::take(&mut self.pending_triggers) {
-            self.exec(&t)?;
+        // A trigger's action uses the names of the module that programmed it, even when the
+        // next motion is made elsewhere (MM_CALIB's).
+        for (module, t) in std::mem::take(&mut self.pending_triggers) {
+            let saved = self.declared_scope.replace(module);
+            let r = self.exec(&t);
+            self.declared_scope = saved;
+            r?;
         }
         Ok(())
     }
@@ -1167,7 +1176,7 @@ impl<'p> Machine<'p> {
             key = "$OUT".into();
         }
         if let Some((fi, f)) = self.frames.iter().enumerate().next_back()
-            && self.interrupt_scope.is_none_or(|m| m == f.module)
+            && self.declared_scope.is_none_or(|m| m == f.module)
             && let Some(slot) = f.vars.get(&key)
         {
             return Ok(match slot {

@@ -119,9 +119,9 @@ impl<'p> Machine<'p> {
     /// mean the same wherever the program is when they are checked (a non-GLOBAL interrupt stays
     /// active in the routines its routine calls, the package's among them).
     fn in_declaring_scope<T>(&mut self, i: &Interrupt, f: impl FnOnce(&mut Self) -> R<T>) -> R<T> {
-        let saved = self.interrupt_scope.replace(i.loc.0);
+        let saved = self.declared_scope.replace(i.loc.0);
         let r = f(self);
-        self.interrupt_scope = saved;
+        self.declared_scope = saved;
         r
     }
 
