@@ -1171,9 +1171,13 @@ impl<'p> Machine<'p> {
     fn lookup_root(&self, name: &str) -> R<Place> {
         let mut key = name.to_ascii_uppercase();
         // `$OUT_C` sets outputs at the motion's end; motions are done before the next
-        // statement runs, so it is `$OUT`.
-        if key == "$OUT_C" {
-            key = "$OUT".into();
+        // statement runs, so it is `$OUT`. The robot is always where its last motion put it,
+        // so the measured position and the position at an interrupt are the commanded one.
+        match key.as_str() {
+            "$OUT_C" => key = "$OUT".into(),
+            "$POS_ACT_MES" | "$POS_INT" => key = "$POS_ACT".into(),
+            "$AXIS_ACT_MEAS" | "$AXIS_INT" => key = "$AXIS_ACT".into(),
+            _ => {}
         }
         if let Some((fi, f)) = self.frames.iter().enumerate().next_back()
             && self.declared_scope.is_none_or(|m| m == f.module)
