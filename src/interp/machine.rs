@@ -1118,7 +1118,12 @@ impl<'p> Machine<'p> {
             // end point's.
             let angle = self.eval_real(ca)?;
             let start = self.globals.get(act).cloned().unwrap_or(Value::Int(0));
-            cur = super::frame::circ_end(&start, aux, &cur, angle).ok_or_else(|| {
+            let aux = if m.relative {
+                super::frame::relative(&start, aux, in_tool).unwrap_or_else(|| aux.clone())
+            } else {
+                aux.clone()
+            };
+            cur = super::frame::circ_end(&start, &aux, &cur, angle).ok_or_else(|| {
                 self.err("CIRC: the start, auxiliary and end points are on one line")
             })?;
         }
@@ -1392,14 +1397,15 @@ impl<'p> Machine<'p> {
             .iter()
             .map(|l| match self.globals.get("$OUT") {
                 Some(Value::Array { items, .. }) => {
-                    matches!(items.get(l.output - 1), Some(Value::Bool(true))) != l.inverted
+                    let on = l.output.checked_sub(1).and_then(|i| items.get(i));
+                    matches!(on, Some(Value::Bool(true))) != l.inverted
                 }
                 _ => l.inverted,
             })
             .collect();
         if let Some(Value::Array { items, .. }) = self.globals.get_mut("$IN") {
             for (l, v) in self.opts.input_links.iter().zip(outs) {
-                if let Some(slot) = items.get_mut(l.input - 1) {
+                if let Some(slot) = l.input.checked_sub(1).and_then(|i| items.get_mut(i)) {
                     *slot = Value::Bool(v);
                 }
             }
