@@ -193,6 +193,10 @@ pub(crate) fn call(m: &mut Machine, name: &str, args: &[Option<Expr>]) -> R<Opti
             Value::Bool(true)
         }
         "BAS" => m.bas(args)?,
+        // KRL system functions a simulation without kinematics or serial channels cannot give.
+        "CWRITE" | "CREAD" | "CAST_TO" | "CAST_FROM" | "FORWARD" | "INVERSE" => {
+            return Err(m.err(format!("{name} is not supported by krlkit run")));
+        }
         // Variables start at their zero value here, so every declared one is initialised.
         "VARSTATE" => {
             let name = text(m, 0)?;
