@@ -4,7 +4,7 @@
 //! the same place, so reads, writes, OUT parameters, `WAIT FOR`, interrupts and `PULSE` see
 //! one value. A group (`SIGNAL Code $OUT[17] TO $OUT[24]`) reads as the unsigned INT of its
 //! bits, the first named bit being bit 0, and writing an INT sets every bit (the value is taken
-//! modulo 2^width, like the controller's bit assignment). `SIGNAL name FALSE` is a constant.
+//! modulo 2^width: its low bits). `SIGNAL name FALSE` is a constant.
 //!
 //! `PULSE(signal, level, seconds)` sets the output now and sets it to the opposite level
 //! once the simulated clock has advanced by the duration; pulses still running when the
@@ -15,7 +15,7 @@ use crate::syntax::ast::{Expr, ExprKind, SignalDecl};
 use super::{Frame, Machine, Place, R, Root, Seg, Slot};
 use crate::interp::value::Value;
 
-/// Widest signal group (bits), as on the controller.
+/// Widest signal group (bits): a KRL INT has 32.
 const MAX_GROUP_BITS: usize = 32;
 
 /// An output that a `PULSE` sets back when the clock reaches `until_ms`.
