@@ -151,6 +151,67 @@ fn input_flag_sets_digital_inputs() {
 }
 
 #[test]
+fn input_flag_links_an_input_to_an_output_or_sets_it_off() {
+    let dir = tempfile::tempdir().unwrap();
+    let prog = dir.path().join("vac.src");
+    // One vacuum switch: ON after the valve opens, OFF after it closes.
+    std::fs::write(
+        &prog,
+        "DEF vac()\n  $OUT[3] = TRUE\n  WAIT FOR $IN[9]\n  $OUT[3] = FALSE\n  WAIT FOR NOT $IN[9]\n  \
+         IF NOT $IN[1025] THEN\n    HALT\n  ENDIF\nEND\n",
+    )
+    .unwrap();
+    let p = prog.to_str().unwrap();
+    let out = krlkit(&["run", p, "--input", "9=out:3"]);
+    assert_eq!(out.status.code(), Some(0), "{}", stderr(&out));
+    // A fixed input cannot satisfy both waits.
+    let out = krlkit(&["run", p, "--input", "9"]);
+    assert_eq!(out.status.code(), Some(2));
+    assert!(stderr(&out).contains("vac.src:5: WAIT FOR can never become TRUE"));
+    // $IN[1025] reads TRUE unless switched off.
+    let out = krlkit(&["run", p, "--input", "9=out:3", "--input", "1025=off"]);
+    assert_eq!(out.status.code(), Some(1), "{}", stderr(&out));
+    let out = krlkit(&["run", p, "--input", "9=not:3"]);
+    assert_eq!(out.status.code(), Some(2));
+    assert!(stderr(&out).contains("vac.src:3: WAIT FOR can never become TRUE"));
+    for bad in ["0", "4097", "9=out:0", "9=maybe", "x"] {
+        let out = krlkit(&["run", p, "--input", bad]);
+        assert_eq!(out.status.code(), Some(2), "--input {bad}");
+        assert!(stderr(&out).contains("--input"), "{bad}: {}", stderr(&out));
+    }
+}
+
+#[test]
+fn module_flag_loads_the_routines_a_program_calls() {
+    let dir = tempfile::tempdir().unwrap();
+    let main = dir.path().join("cell.src");
+    std::fs::write(&main, "DEF cell()\n  Grip_Open()\nEND\n").unwrap();
+    let lib = dir.path().join("gripper.src");
+    std::fs::write(&lib, "GLOBAL DEF Grip_Open()\n  GripCmd = TRUE\nEND\n").unwrap();
+    std::fs::write(
+        dir.path().join("gripper.dat"),
+        "DEFDAT gripper PUBLIC\nGLOBAL SIGNAL GripCmd $OUT[10]\nENDDAT\n",
+    )
+    .unwrap();
+    let (m, l) = (main.to_str().unwrap(), lib.to_str().unwrap());
+    let out = krlkit(&["run", m]);
+    assert_eq!(out.status.code(), Some(2));
+    assert!(
+        stderr(&out).contains("cell.src:2: unknown routine"),
+        "{}",
+        stderr(&out)
+    );
+    assert!(stderr(&out).contains("--module"), "{}", stderr(&out));
+    let out = krlkit(&["run", m, "--module", l]);
+    assert_eq!(out.status.code(), Some(0), "{}", stderr(&out));
+    // A directory of modules (the program itself among them is loaded once).
+    let out = krlkit(&["run", m, "--module", dir.path().to_str().unwrap()]);
+    assert_eq!(out.status.code(), Some(0), "{}", stderr(&out));
+    let out = krlkit(&["run", m, "--module", "no/such/module.src"]);
+    assert_eq!(out.status.code(), Some(2));
+}
+
+#[test]
 fn halt_exits_1() {
     let dir = tempfile::tempdir().unwrap();
     let prog = dir.path().join("stop.src");

@@ -219,10 +219,16 @@ pub struct RunArgs {
     /// Write a JSON Lines trace of motions and MM_ calls.
     #[arg(long)]
     pub trace: Option<PathBuf>,
+    /// Further modules the program calls (a .src with its .dat, or a directory of them);
+    /// repeatable.
+    #[arg(long = "module", value_name = "PATH")]
+    pub modules: Vec<PathBuf>,
     /// Digital input N (1..4096) reads TRUE for the whole run (e.g. a gripper sensor the program
-    /// waits for); repeatable. Inputs not given read FALSE.
-    #[arg(long = "input", value_name = "N", value_parser = clap::value_parser!(u16).range(1..=4096))]
-    pub inputs: Vec<u16>,
+    /// waits for); `N=off` FALSE; `N=out:M` follows output M (a sensor that answers the
+    /// output), `N=not:M` its opposite. Repeatable. Inputs not given read FALSE ($IN[1025]
+    /// TRUE, as on the controller).
+    #[arg(long = "input", value_name = "N[=on|off|out:M|not:M]")]
+    pub inputs: Vec<crate::interp::InputSetting>,
 }
 
 #[derive(Debug, Args)]

@@ -79,7 +79,18 @@ pub fn run(args: RunArgs) -> anyhow::Result<Outcome> {
         inputs: args
             .inputs
             .iter()
-            .map(|n| (usize::from(*n), true))
+            .filter_map(|s| match s {
+                interp::InputSetting::Fixed(n, v) => Some((*n, *v)),
+                interp::InputSetting::Link(_) => None,
+            })
+            .collect(),
+        input_links: args
+            .inputs
+            .iter()
+            .filter_map(|s| match s {
+                interp::InputSetting::Link(l) => Some(*l),
+                interp::InputSetting::Fixed(..) => None,
+            })
             .collect(),
         ..Options::default()
     };
@@ -90,6 +101,20 @@ pub fn run(args: RunArgs) -> anyhow::Result<Outcome> {
             dir.to_path_buf()
         });
     }
+    for m in &args.modules {
+        if m.is_dir() {
+            let mut dirs = Vec::new();
+            package_files(m, &mut files, &mut dirs);
+        } else if m.is_file() {
+            files.extend(program_files(m)?);
+        } else {
+            eprintln!("error: module {} does not exist", m.display());
+            return Ok(Outcome::Failure);
+        }
+    }
+    // A module given twice (or the program itself) is loaded once.
+    let mut seen = std::collections::HashSet::new();
+    files.retain(|p| seen.insert(std::fs::canonicalize(p).unwrap_or_else(|_| p.clone())));
     let mut sources = Vec::new();
     match &args.package {
         Some(dir) => {

@@ -155,31 +155,58 @@ pub(crate) fn call(m: &mut Machine, name: &str, args: &[Option<Expr>]) -> R<Opti
             Value::Int(0)
         }
         "SET_KRLMSG" => {
-            // Set_KrlMsg(#TYPE, msg, par[], opt): print MSG_TXT with %1..%3 filled in.
-            let msg = m.arg_value(args, 1, name)?;
-            let mut t = msg
-                .field("MSG_TXT")
-                .and_then(|v| v.as_text())
-                .unwrap_or_default();
-            if let Ok(Value::Array { items, .. }) = m.arg_value(args, 2, name) {
-                for (i, p) in items.iter().enumerate() {
-                    let val = p
-                        .field("PAR_TXT")
-                        .and_then(|v| v.as_text())
-                        .filter(|s| !s.is_empty())
-                        .or_else(|| match p.field("PAR_INT") {
-                            Some(Value::Int(i)) if *i != 0 => Some(i.to_string()),
-                            _ => None,
-                        })
-                        .unwrap_or_default();
-                    t = t.replace(&format!("%{}", i + 1), &val);
-                }
-            }
-            m.message(t);
-            Value::Int(1)
+            // Set_KrlMsg(#TYPE, msg, par[], opt): the message text with %1..%3 filled in.
+            let text = krl_msg_text(m, args, 1, 2, name)?;
+            m.message(text);
+            next_handle(m)
         }
-        "BAS" => Value::Bool(true),
-        _ => return Ok(None),
+        "SET_KRLDLG" => {
+            // Set_KrlDlg(msg, par[], softkeys[], opt): nobody is there to answer, so the dialog
+            // is answered at once with its first softkey (Exists_KrlDlg reports it).
+            let text = krl_msg_text(m, args, 0, 1, name)?;
+            let key = match m.arg_value(args, 2, name) {
+                Ok(Value::Array { items, .. }) => items
+                    .first()
+                    .and_then(|k| k.field("SK_TXT"))
+                    .and_then(|t| t.as_text())
+                    .unwrap_or_default(),
+                _ => String::new(),
+            };
+            m.message(format!("{text} [dialog answered: {}]", key.trim()));
+            next_handle(m)
+        }
+        // Messages are printed, not kept: none is pending, every dialog was answered (softkey 1).
+        "EXISTS_KRLMSG" => {
+            m.arg_value(args, 0, name)?;
+            Value::Bool(false)
+        }
+        "EXISTS_KRLDLG" => {
+            m.arg_value(args, 0, name)?;
+            if args.get(1).and_then(|a| a.as_ref()).is_some() {
+                let p = m.arg_place(args, 1, name)?;
+                m.assign(&p, Value::Int(1))?;
+            }
+            Value::Bool(false)
+        }
+        "CLEAR_KRLMSG" => {
+            m.arg_value(args, 0, name)?;
+            Value::Bool(true)
+        }
+        "BAS" => m.bas(args)?,
+        // KRL system functions a simulation without kinematics or serial channels cannot give.
+        "CWRITE" | "CREAD" | "CAST_TO" | "CAST_FROM" | "FORWARD" | "INVERSE" => {
+            return Err(m.err(format!("{name} is not supported by krlkit run")));
+        }
+        // Variables start at their zero value here, so every declared one is initialised.
+        "VARSTATE" => {
+            let name = text(m, 0)?;
+            Value::Enum(if m.is_variable(name.trim()) {
+                "INITIALIZED".into()
+            } else {
+                "UNKNOWN".into()
+            })
+        }
+        _ => return m.form_function(&up, args),
     };
     Ok(Some(v))
 }
@@ -302,4 +329,51 @@ fn sread(m: &mut Machine, args: &[Option<Expr>]) -> R<Value> {
     m.assign(&off_p, Value::Int(pos as i64))?;
     set_state(m, &state, hits == wanted, hits, pos)?;
     Ok(Value::Bool(hits == wanted))
+}
+
+/// The text of a KrlMsg_T (argument `msg`) with `%1`..`%3` replaced by the KrlMsgPar_T array
+/// (argument `par`): a text parameter, else a non-zero REAL, else the INT; #EMPTY is blank.
+fn krl_msg_text(
+    m: &mut Machine,
+    args: &[Option<Expr>],
+    msg: usize,
+    par: usize,
+    name: &str,
+) -> R<String> {
+    let msg = m.arg_value(args, msg, name)?;
+    let mut t = msg
+        .field("MSG_TXT")
+        .and_then(|v| v.as_text())
+        .ok_or_else(|| m.err(format!("{name}: the message must be a KrlMsg_T")))?;
+    if let Some(Ok(Value::Array { items, .. })) = args
+        .get(par)
+        .and_then(|a| a.as_ref())
+        .map(|_| m.arg_value(args, par, name))
+    {
+        for (i, p) in items.iter().enumerate() {
+            let empty = matches!(p.field("PAR_TYPE"), Some(Value::Enum(e)) if e == "EMPTY");
+            let txt = p
+                .field("PAR_TXT")
+                .and_then(|v| v.as_text())
+                .unwrap_or_default();
+            let val = if empty {
+                String::new()
+            } else if !txt.trim().is_empty() {
+                txt
+            } else {
+                match (p.field("PAR_REAL"), p.field("PAR_INT")) {
+                    (Some(Value::Real(r)), _) if *r != 0.0 => r.to_string(),
+                    (_, Some(Value::Int(n))) => n.to_string(),
+                    _ => String::new(),
+                }
+            };
+            t = t.replace(&format!("%{}", i + 1), &val);
+        }
+    }
+    Ok(t)
+}
+
+/// Message handles count up from 1, like the controller's (0 and below mean failure).
+fn next_handle(m: &mut Machine) -> Value {
+    Value::Int(m.next_message_handle())
 }

@@ -41,12 +41,6 @@ fn frame(m: &M) -> [f64; 6] {
     } else {
         (m[1][0].atan2(m[0][0]), m[2][1].atan2(m[2][2]))
     };
-    // Rounded to 1e-9 (far below a REAL's precision on the controller), so composed poses do
-    // not carry float noise (-165.00000000000003, "-0.0000" in requests) into traces.
-    let clean = |x: f64| {
-        let r = (x * 1e9).round() / 1e9;
-        if r == 0.0 { 0.0 } else { r }
-    };
     [
         clean(m[0][3]),
         clean(m[1][3]),
@@ -55,6 +49,13 @@ fn frame(m: &M) -> [f64; 6] {
         clean(b.to_degrees()),
         clean(c.to_degrees()),
     ]
+}
+
+/// Rounded to 1e-9 (far below a REAL's precision on the controller), so computed poses do
+/// not carry float noise (-165.00000000000003, "-0.0000" in requests) into traces.
+fn clean(x: f64) -> f64 {
+    let r = (x * 1e9).round() / 1e9;
+    if r == 0.0 { 0.0 } else { r }
 }
 
 fn mul(x: &M, y: &M) -> M {
@@ -81,6 +82,91 @@ fn with_frame(template: &Value, f: [f64; 6]) -> Value {
 pub fn compose(a: &Value, b: &Value) -> Option<Value> {
     let r = frame(&mul(&matrix(get(a)?), &matrix(get(b)?)));
     Some(with_frame(b, r))
+}
+
+/// The target of a Cartesian `LIN_REL`/`PTP_REL` from `cur` by `rel` (fields it lacks are 0).
+/// In the base (`in_tool` false, KRL's default) the offset's X,Y,Z add to the position and its
+/// rotation turns about the base axes; with `#TOOL` both are taken in the tool's own axes.
+/// The angles are recomputed only when the offset rotates, so a pure translation keeps them
+/// as they were written.
+pub fn relative(cur: &Value, rel: &Value, in_tool: bool) -> Option<Value> {
+    let c = get(cur)?;
+    let r = get(rel)?;
+    let m = matrix(c);
+    if r[3..].iter().all(|x| *x == 0.0) {
+        let d = if in_tool {
+            [0, 1, 2].map(|i| (0..3).map(|k| m[i][k] * r[k]).sum::<f64>())
+        } else {
+            [r[0], r[1], r[2]]
+        };
+        let mut out = c;
+        for i in 0..3 {
+            out[i] = clean(out[i] + d[i]);
+        }
+        return Some(with_frame(cur, out));
+    }
+    let composed = if in_tool {
+        mul(&m, &matrix(r))
+    } else {
+        let mut turned = mul(&matrix([0.0, 0.0, 0.0, r[3], r[4], r[5]]), &m);
+        for i in 0..3 {
+            turned[i][3] = c[i] + r[i];
+        }
+        turned
+    };
+    Some(with_frame(cur, frame(&composed)))
+}
+
+/// Where `CIRC aux, end, CA angle` stops: `start` turned by `angle` degrees about the centre of
+/// the circle through `start`, `aux` and `end`, in the direction start → aux → end (aux fields
+/// it lacks are the start's); X, Y, Z from the arc, everything else from `end`. `None` when the
+/// three points are on one line.
+pub fn circ_end(start: &Value, aux: &Value, end: &Value, angle: f64) -> Option<Value> {
+    let s = get(start)?;
+    let e = get(end)?;
+    let a: Vec<f64> = (0..3)
+        .map(|i| {
+            aux.field(CART_FIELDS[i])
+                .and_then(|x| x.as_f64())
+                .unwrap_or(s[i])
+        })
+        .collect();
+    let sub = |p: &[f64], q: &[f64]| [p[0] - q[0], p[1] - q[1], p[2] - q[2]];
+    let cross = |u: [f64; 3], v: [f64; 3]| {
+        [
+            u[1] * v[2] - u[2] * v[1],
+            u[2] * v[0] - u[0] * v[2],
+            u[0] * v[1] - u[1] * v[0],
+        ]
+    };
+    let dot = |u: [f64; 3], v: [f64; 3]| u[0] * v[0] + u[1] * v[1] + u[2] * v[2];
+    let (u, v) = (sub(&a, &s[..3]), sub(&e[..3], &s[..3]));
+    let n = cross(u, v);
+    let nn = dot(n, n);
+    if nn < 1e-12 {
+        return None;
+    }
+    // Circumcentre of the triangle start, aux, end.
+    let w1 = cross(n, u);
+    let w2 = cross(v, n);
+    let (uu, vv) = (dot(u, u), dot(v, v));
+    let centre: Vec<f64> = (0..3)
+        .map(|i| s[i] + (vv * w1[i] + uu * w2[i]) / (2.0 * nn))
+        .collect();
+    let r = sub(&s[..3], &centre);
+    let k = {
+        let l = nn.sqrt();
+        [n[0] / l, n[1] / l, n[2] / l]
+    };
+    // Rodrigues: turn r about k.
+    let (sin, cos) = angle.to_radians().sin_cos();
+    let kxr = cross(k, r);
+    let kr = dot(k, r);
+    let mut out = e;
+    for i in 0..3 {
+        out[i] = clean(centre[i] + r[i] * cos + kxr[i] * sin + k[i] * kr * (1.0 - cos));
+    }
+    Some(with_frame(end, out))
 }
 
 /// INV_POS: the inverse frame.
@@ -144,6 +230,26 @@ mod tests {
             .iter()
             .zip(b)
             .all(|(x, y)| (x - y).abs() < 1e-9)
+    }
+
+    #[test]
+    fn circ_with_an_angle_follows_the_arc() {
+        // Circle through (0,0), (10,10), (20,0) in the XY plane: centre (10,0), radius 10;
+        // the arc runs over (10,10), so 90 degrees from the start is (10,10) and 180 the end.
+        let start = pose([0.0, 0.0, 5.0, 0.0, 0.0, 0.0]);
+        let aux = Value::Partial(vec![
+            ("X".into(), Value::Real(10.0)),
+            ("Y".into(), Value::Real(10.0)),
+        ]);
+        let end = pose([20.0, 0.0, 5.0, 30.0, 0.0, 0.0]);
+        let q = circ_end(&start, &aux, &end, 90.0).unwrap();
+        assert!(close(&q, [10.0, 10.0, 5.0, 30.0, 0.0, 0.0]), "{q:?}");
+        let h = circ_end(&start, &aux, &end, 180.0).unwrap();
+        assert!(close(&h, [20.0, 0.0, 5.0, 30.0, 0.0, 0.0]), "{h:?}");
+        let back = circ_end(&start, &aux, &end, -90.0).unwrap();
+        assert!(close(&back, [10.0, -10.0, 5.0, 30.0, 0.0, 0.0]), "{back:?}");
+        let line = pose([40.0, 0.0, 5.0, 0.0, 0.0, 0.0]);
+        assert!(circ_end(&start, &end, &line, 90.0).is_none());
     }
 
     #[test]

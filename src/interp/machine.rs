@@ -3,11 +3,14 @@
 use std::collections::HashMap;
 
 use crate::syntax::ast::{
-    BinaryOp, Decl, Expr, ExprKind, Motion, MotionKind, ParamDir, Routine, RoutineKind, Stmt,
-    StmtKind, UnaryOp,
+    BinaryOp, Decl, Definition, Expr, ExprKind, Motion, MotionKind, ParamDir, Routine, RoutineKind,
+    Stmt, StmtKind, UnaryOp,
 };
 
+mod bas;
+mod forms;
 mod interrupt;
+mod signals;
 
 use super::eki::Eki;
 use super::program::Program;
@@ -25,6 +28,14 @@ pub(crate) struct Place {
 enum Root {
     Global(String),
     Local(usize, String),
+    /// A SIGNAL group: bits `lo..=hi` (0-based offsets) of a BOOL array global.
+    Group {
+        array: String,
+        lo: usize,
+        hi: usize,
+    },
+    /// `SIGNAL name FALSE` (or TRUE).
+    Const(bool),
 }
 
 #[derive(Debug, Clone, PartialEq)]
@@ -48,7 +59,17 @@ struct Frame {
 /// Why execution of a block stopped early.
 pub(crate) enum Stop {
     Error(RuntimeError),
-    Halt { file: String, line: usize },
+    Halt {
+        file: String,
+        line: usize,
+    },
+    /// `RESUME` in an interrupt routine: abandon the routines called since the level (call
+    /// depth) where the interrupt was declared; that level continues after its current call.
+    Resume {
+        depth: usize,
+        file: String,
+        line: usize,
+    },
 }
 
 impl From<RuntimeError> for Stop {
@@ -87,14 +108,26 @@ pub(crate) struct Machine<'p> {
     messages: Vec<String>,
     steps: u64,
     /// TRIGGER actions waiting for the next motion.
-    pending_triggers: Vec<Stmt>,
+    pending_triggers: Vec<(usize, Stmt)>,
     interrupts: interrupt::Interrupts,
+    /// SIGNAL names of the DEFDATs, keyed like globals (`NAME` or `SCOPE::NAME`).
+    signals: HashMap<String, Place>,
+    /// Outputs a PULSE will set back.
+    pulses: Vec<signals::Pulse>,
+    message_handles: i64,
+    /// Assignments and motions so far: a loop iteration that adds none changed nothing.
+    writes: u64,
+    /// While an interrupt's condition or handler call, or a TRIGGER's action, is evaluated: the
+    /// module that declared it, whose names it uses wherever the program is (even inside the
+    /// package). Cleared inside the routines it calls.
+    declared_scope: Option<usize>,
+    motions: u64,
 }
 
 const TIMERS: usize = 64;
 
 /// Globals the interpreter predefines (like `$config.dat`); not reported in [`RunResult::globals`].
-const BUILTIN_GLOBALS: [&str; 10] = [
+const BUILTIN_GLOBALS: [&str; 11] = [
     "HOME",
     "XHOME",
     "TOOL_DATA",
@@ -105,6 +138,7 @@ const BUILTIN_GLOBALS: [&str; 10] = [
     "PDAT_ACT",
     "LDAT_ACT",
     "FDAT_ACT",
+    "LOAD_DATA",
 ];
 
 impl<'p> Machine<'p> {
@@ -123,6 +157,12 @@ impl<'p> Machine<'p> {
             steps: 0,
             pending_triggers: Vec::new(),
             interrupts: interrupt::Interrupts::default(),
+            signals: HashMap::new(),
+            pulses: Vec::new(),
+            message_handles: 0,
+            writes: 0,
+            motions: 0,
+            declared_scope: None,
         };
         m.init_system();
         m
@@ -156,9 +196,19 @@ impl<'p> Machine<'p> {
             self.globals.insert(k.to_string(), v);
         };
         put("$FLAG", bools(1024));
-        put("$OUT", bools(4096));
-        let mut inputs = bools(4096);
+        put("$OUT", bools(super::IO_COUNT));
+        put("$ANIN", t.default_value(&BaseType::Real, &[32]));
+        put("$ANOUT", t.default_value(&BaseType::Real, &[32]));
+        // Controller states a program may check: the program runs, the robot is on its path,
+        // the periphery and the safety circuit are fine. `$IN_HOME` is computed when read.
+        for k in ["$PRO_ACT", "$ON_PATH", "$PERI_RDY", "$USER_SAF"] {
+            put(k, Value::Bool(true));
+        }
+        put("$IN_HOME", Value::Bool(false));
+        let mut inputs = bools(super::IO_COUNT);
         if let Value::Array { items, .. } = &mut inputs {
+            // KSS wires $IN[1025] to TRUE.
+            items[1024] = Value::Bool(true);
             for (n, v) in &self.opts.inputs {
                 if let Some(slot) = n.checked_sub(1).and_then(|i| items.get_mut(i)) {
                     *slot = Value::Bool(*v);
@@ -206,10 +256,30 @@ impl<'p> Machine<'p> {
             t.default_value(&BaseType::Struc("APO_T".into()), &[]),
         );
         put("$VEL_AXIS", t.default_value(&BaseType::Int, &[12]));
+        put("$GEAR_JERK", t.default_value(&BaseType::Real, &[12]));
+        put("$COLLMON_TOL_PRO", t.default_value(&BaseType::Real, &[12]));
+        put(
+            "$JERK",
+            t.default_value(&BaseType::Struc("JERK_STRUC".into()), &[]),
+        );
         put("$ACC_AXIS", t.default_value(&BaseType::Int, &[12]));
-        for k in ["$ADVANCE", "$OV_PRO", "$TOOL_NO", "$BASE_NO"] {
+        for k in ["$TOOL_NO", "$BASE_NO"] {
             put(k, Value::Int(0));
         }
+        // The controller's values after a cold start: look-ahead 3, override 100 %, no tool or
+        // base selected yet, base-related interpolation, manual reduced velocity.
+        put("$ADVANCE", Value::Int(3));
+        put("$OV_PRO", Value::Int(100));
+        put("$ACT_TOOL", Value::Int(-1));
+        put("$ACT_BASE", Value::Int(-1));
+        put("$IPO_MODE", Value::Enum("BASE".into()));
+        put("$MODE_OP", Value::Enum("T1".into()));
+        let load = t.default_value(&BaseType::Struc("LOAD".into()), &[]);
+        put("$LOAD", load.clone());
+        put(
+            "LOAD_DATA",
+            t.default_value(&BaseType::Struc("LOAD".into()), &[16]),
+        );
         // What the standard INI fold and the inline forms of KUKA's templates touch
         // ($config.dat, BAS): tool and base tables, motion data, stop message, H_POS.
         for k in ["$STOPMESS", "$BWDSTART"] {
@@ -292,9 +362,18 @@ impl<'p> Machine<'p> {
                 Ok(()) => End::Normal,
                 Err(Stop::Halt { file, line }) => End::Halt { file, line },
                 Err(Stop::Error(e)) => End::Error(e),
+                Err(Stop::Resume { file, line, .. }) => End::Error(RuntimeError {
+                    file,
+                    line,
+                    message: "RESUME found no routine to return to".into(),
+                }),
             },
         };
         self.eki.close_all();
+        let end = match (end, self.expire_pulses(true)) {
+            (End::Normal, Err(Stop::Error(e))) => End::Error(e),
+            (end, _) => end,
+        };
         let (status, message) = match &end {
             End::Normal => ("ok".to_string(), None),
             End::Halt { file, line } => ("halt".to_string(), Some(format!("{file}:{line}: HALT"))),
@@ -338,6 +417,13 @@ impl<'p> Machine<'p> {
         for mi in 0..self.prog.modules.len() {
             let m = &self.prog.modules[mi];
             let Some(dat) = &m.ast.dat else { continue };
+            for d in &dat.definitions {
+                if let Definition::Signal(sig) = d {
+                    self.loc = (mi, sig.span.start);
+                    let scope = m.scope.clone();
+                    self.declare_dat_signal(sig, &scope)?;
+                }
+            }
             for d in &dat.decls {
                 self.loc = (mi, d.span.start);
                 let global = d.global;
@@ -449,6 +535,14 @@ impl<'p> Machine<'p> {
                 self.opts.step_limit
             )));
         }
+        if self.clock_ms > self.opts.max_time_ms {
+            return Err(self.err(format!(
+                "the program ran for more than {:.0} s of simulated time (endless loop, or a \
+                 wait for an input that never comes?)",
+                self.opts.max_time_ms / 1000.0
+            )));
+        }
+        self.expire_pulses(false)?;
         self.poll_interrupts()
     }
 
@@ -473,7 +567,10 @@ impl<'p> Machine<'p> {
     }
 
     fn cur_module(&self) -> usize {
-        self.frames.last().map(|f| f.module).unwrap_or(self.loc.0)
+        match self.declared_scope {
+            Some(m) => m,
+            None => self.frames.last().map(|f| f.module).unwrap_or(self.loc.0),
+        }
     }
 
     fn call_routine(&mut self, mi: usize, ri: usize, args: &[Option<Expr>]) -> R<Option<Value>> {
@@ -527,9 +624,16 @@ impl<'p> Machine<'p> {
             return Err(self.err("call depth exceeds 200 (endless recursion?)"));
         }
         let saved_loc = self.loc;
+        let saved_scope = self.declared_scope.take();
         self.frames.push(Frame { module: mi, vars });
         let fi = self.frames.len() - 1;
         let result = (|| -> R<Option<Value>> {
+            for d in &routine.definitions {
+                if let Definition::Signal(sig) = d {
+                    self.loc = (mi, sig.span.start);
+                    self.declare_local_signal(sig, fi)?;
+                }
+            }
             // Omitted parameters are still declared, with their zero value.
             for d in &routine.decls {
                 self.loc = (mi, d.span.start);
@@ -551,6 +655,12 @@ impl<'p> Machine<'p> {
         })();
         let frame = self.frames.pop();
         self.loc = saved_loc;
+        self.declared_scope = saved_scope;
+        let result = match result {
+            // The routine called from the interrupt's level is abandoned; that level goes on.
+            Err(Stop::Resume { depth, .. }) if self.frames.len() == depth => Ok(None),
+            other => other,
+        };
         let ret = result?;
         if is_mm {
             let mut out = Vec::new();
@@ -558,9 +668,9 @@ impl<'p> Machine<'p> {
                 for p in &routine.params {
                     if p.dir == Some(ParamDir::Out)
                         && let Some(Slot::Alias(place)) = frame.vars.get(&p.name.key())
-                        && let Ok(v) = self.read_place(place)
+                        && let Ok(v) = self.read_value(place)
                     {
-                        out.push((p.name.text.clone(), to_json(v)));
+                        out.push((p.name.text.clone(), to_json(&v)));
                     }
                 }
             }
@@ -600,6 +710,9 @@ impl<'p> Machine<'p> {
 
     fn exec_block(&mut self, stmts: &[Stmt]) -> R<Flow> {
         let mut i = 0;
+        // Write count at the last jump back to each label: the loop it closes changed
+        // nothing since when it is the same at the next jump there.
+        let mut seen: Vec<(usize, u64)> = Vec::new();
         while i < stmts.len() {
             match self.exec(&stmts[i])? {
                 Flow::Next => i += 1,
@@ -608,6 +721,19 @@ impl<'p> Machine<'p> {
                         |s| matches!(&s.kind, StmtKind::Label { name } if name.is(&label)),
                     );
                     match target {
+                        // A jump back closes a loop: time passes as in WHILE loops.
+                        Some(t) if t <= i => {
+                            let at = (self.cur_module(), stmts[t].span.start);
+                            match seen.iter_mut().find(|(l, _)| *l == t) {
+                                Some((_, last)) => self.loop_back_edge(last, at)?,
+                                None => {
+                                    let mut last = u64::MAX;
+                                    self.loop_back_edge(&mut last, at)?;
+                                    seen.push((t, last));
+                                }
+                            }
+                            i = t + 1;
+                        }
                         Some(t) => {
                             self.tick()?;
                             i = t + 1;
@@ -696,19 +822,21 @@ impl<'p> Machine<'p> {
                 self.assign(&place, Value::Int(i))?;
             }
             StmtKind::While { cond, body } => {
+                let (mut seen, at) = (self.writes, self.loc);
                 while self.eval_bool(cond)? {
                     match self.exec_block(body)? {
                         Flow::Next => {}
                         Flow::Exit => break,
                         other => return Ok(other),
                     }
-                    self.loop_back_edge()?;
+                    self.loop_back_edge(&mut seen, at)?;
                 }
             }
             StmtKind::Repeat { body, until } => {
                 let Some(until) = until else {
                     return Err(self.err("REPEAT without UNTIL"));
                 };
+                let (mut seen, at) = (self.writes, self.loc);
                 loop {
                     match self.exec_block(body)? {
                         Flow::Next => {}
@@ -718,17 +846,20 @@ impl<'p> Machine<'p> {
                     if self.eval_bool(until)? {
                         break;
                     }
-                    self.loop_back_edge()?;
+                    self.loop_back_edge(&mut seen, at)?;
                 }
             }
-            StmtKind::Loop { body } => loop {
-                match self.exec_block(body)? {
-                    Flow::Next => {}
-                    Flow::Exit => break,
-                    other => return Ok(other),
+            StmtKind::Loop { body } => {
+                let (mut seen, at) = (self.writes, self.loc);
+                loop {
+                    match self.exec_block(body)? {
+                        Flow::Next => {}
+                        Flow::Exit => break,
+                        other => return Ok(other),
+                    }
+                    self.loop_back_edge(&mut seen, at)?;
                 }
-                self.loop_back_edge()?;
-            },
+            }
             StmtKind::Exit => return Ok(Flow::Exit),
             StmtKind::Goto { label } => return Ok(Flow::Goto(label.text.clone())),
             StmtKind::Label { .. } | StmtKind::Continue => {}
@@ -753,7 +884,12 @@ impl<'p> Machine<'p> {
                 return Ok(Flow::Return(v));
             }
             StmtKind::Motion(m) => self.motion(m)?,
-            StmtKind::Spline { body, .. } => return self.exec_block(body),
+            StmtKind::Spline { body, with, .. } => {
+                let saved = self.apply_with(with)?;
+                let flow = self.exec_block(body);
+                self.restore_with(saved)?;
+                return flow;
+            }
             // The simulated robot reaches every point, so the skip condition never cuts a motion short.
             StmtKind::Skip { body, .. } => return self.exec_block(body),
             // Messages are printed, never pending, so acknowledging one has nothing to do.
@@ -764,13 +900,20 @@ impl<'p> Machine<'p> {
                 let fi = self.frames.len() - 1;
                 self.declare(d, |n| n.to_string(), Some(fi))?;
             }
-            StmtKind::Definition(_) => {}
-            StmtKind::Trigger { action, .. } => self.pending_triggers.push((**action).clone()),
-            StmtKind::Pulse { signal, level, .. } => {
-                let v = self.eval(level)?;
-                let p = self.place_of(signal)?;
-                self.assign(&p, v)?;
+            StmtKind::Definition(Definition::Signal(sig)) => {
+                let fi = self.frames.len() - 1;
+                self.declare_local_signal(sig, fi)?;
             }
+            StmtKind::Definition(_) => {}
+            StmtKind::Trigger { action, .. } => {
+                let module = self.cur_module();
+                self.pending_triggers.push((module, (**action).clone()))
+            }
+            StmtKind::Pulse {
+                signal,
+                level,
+                duration,
+            } => self.pulse(signal, level, duration)?,
             StmtKind::OnErrorProceed | StmtKind::TimeBlock(_) => {}
             StmtKind::InterruptDecl {
                 number,
@@ -781,9 +924,9 @@ impl<'p> Machine<'p> {
             StmtKind::Interrupt { action, number } => {
                 self.interrupt_switch(*action, number.as_ref())?
             }
-            StmtKind::Brake { .. } | StmtKind::Resume => {
-                return Err(self.err("BRAKE/RESUME are not supported by krlkit run"));
-            }
+            // Motions end before the next statement runs, so there is nothing to brake.
+            StmtKind::Brake { .. } => {}
+            StmtKind::Resume => return Err(self.resume()),
             StmtKind::AnIn(_) | StmtKind::AnOut(_) => {
                 return Err(self.err("ANIN/ANOUT are not supported by krlkit run"));
             }
@@ -800,19 +943,44 @@ impl<'p> Machine<'p> {
         Ok(Flow::Next)
     }
 
-    /// Polling loops (`WHILE NOT $FLAG[n]`) must see time pass and data arrive.
-    fn loop_back_edge(&mut self) -> R<()> {
+    /// Polling loops (`WHILE NOT $FLAG[n]`) must see time pass and data arrive. An iteration
+    /// that changed nothing while nothing outside the program can change (no EKI connection,
+    /// no timer, no pulse) leaves the loop where it was: it would run forever, so it is an
+    /// error at the loop (`at`). `seen` is the write count at the previous back edge.
+    fn loop_back_edge(&mut self, seen: &mut u64, at: (usize, u32)) -> R<()> {
         self.tick()?;
+        let external = self.eki.any_connected()
+            || self.timers.iter().any(|t| t.running)
+            || self.pulses_running();
+        let idle = self.writes == *seen;
+        if idle && !external {
+            self.loc = at;
+            return Err(self.err(
+                "this loop can never end: an iteration changed nothing, no timer runs, no EKI \
+                 connection is open, and inputs keep their values (`krlkit run --input N` sets \
+                 $IN[N] TRUE, `--input N=out:M` makes it follow $OUT[M])",
+            ));
+        }
+        *seen = self.writes;
         if self.eki.any_connected() {
             let before = std::time::Instant::now();
             self.eki
                 .pump(&mut self.globals, std::time::Duration::from_micros(200));
             self.clock_ms +=
                 (before.elapsed().as_secs_f64() * 1000.0 * self.opts.time_scale).max(0.01);
+        } else if idle {
+            // A pure polling iteration (it only waits for a timer or a pulse): one
+            // interpreter cycle, as in WAIT FOR.
+            self.clock_ms += 12.0;
         } else {
             self.clock_ms += 0.01;
         }
         Ok(())
+    }
+
+    pub(crate) fn next_message_handle(&mut self) -> i64 {
+        self.message_handles += 1;
+        self.message_handles
     }
 
     pub(crate) fn message(&mut self, text: String) {
@@ -846,7 +1014,7 @@ impl<'p> Machine<'p> {
                 return Ok(());
             }
             self.tick()?;
-            let timers = self.timers.iter().any(|t| t.running);
+            let timers = self.timers.iter().any(|t| t.running) || self.pulses_running();
             if self.eki.any_connected() {
                 let before = std::time::Instant::now();
                 self.eki
@@ -859,7 +1027,8 @@ impl<'p> Machine<'p> {
             } else {
                 return Err(self.err(
                     "WAIT FOR can never become TRUE: no timer runs, no EKI connection is open, \
-                     and inputs keep their values (`krlkit run --input N` sets $IN[N] TRUE)",
+                     and inputs keep their values (`krlkit run --input N` sets $IN[N] TRUE, \
+                     `--input N=out:M` makes it follow $OUT[M])",
                 ));
             }
             if self.clock_ms - start > self.opts.max_wait_ms {
@@ -874,9 +1043,17 @@ impl<'p> Machine<'p> {
     // ---------------------------------------------------------------- motions
 
     fn motion(&mut self, m: &Motion) -> R<()> {
-        if let Some(aux) = &m.aux {
-            self.eval(aux)?;
-        }
+        let saved = self.apply_with(&m.with)?;
+        let moved = self.move_to(m);
+        self.restore_with(saved)?;
+        moved
+    }
+
+    fn move_to(&mut self, m: &Motion) -> R<()> {
+        let aux = match &m.aux {
+            Some(aux) => Some(self.eval(aux)?),
+            None => None,
+        };
         let target = self.eval(&m.target)?;
         let axis = match &target {
             Value::Struc { ty, .. } => Types::is_axis_type(ty),
@@ -900,7 +1077,24 @@ impl<'p> Machine<'p> {
             Value::Struc { fields, .. } | Value::Partial(fields) => fields.clone(),
             _ => vec![],
         };
+        let in_tool = match m.frame.as_deref() {
+            None => false,
+            Some(f) if f.eq_ignore_ascii_case("BASE") => false,
+            Some(f) if f.eq_ignore_ascii_case("TOOL") => true,
+            Some(f) => return Err(self.err(format!("unknown frame #{f} for a relative motion"))),
+        };
+        // Cartesian offsets are frame arithmetic; axis offsets and the other fields (S, T,
+        // E1…) add component by component below.
+        let cartesian_rel = m.relative && !axis;
+        if cartesian_rel {
+            cur = super::frame::relative(&cur, &target, in_tool).ok_or_else(|| {
+                self.err("a relative motion needs a Cartesian offset such as {Z 100}")
+            })?;
+        }
         for (n, v) in fields {
+            if cartesian_rel && CART_FIELDS.iter().any(|c| c.eq_ignore_ascii_case(&n)) {
+                continue;
+            }
             if let Some(slot) = cur.field_mut(&n) {
                 let x = v.as_f64().or(match v {
                     Value::Int(i) => Some(i as f64),
@@ -917,6 +1111,21 @@ impl<'p> Machine<'p> {
                     _ => Value::Real(base + x),
                 };
             }
+        }
+        if let (Some(ca), Some(aux), false) = (&m.ca, &aux, axis) {
+            // `CIRC aux, end, CA angle`: the arc through the start, the auxiliary point and the
+            // end point, followed for `angle` degrees from the start; the orientation is the
+            // end point's.
+            let angle = self.eval_real(ca)?;
+            let start = self.globals.get(act).cloned().unwrap_or(Value::Int(0));
+            let aux = if m.relative {
+                super::frame::relative(&start, aux, in_tool).unwrap_or_else(|| aux.clone())
+            } else {
+                aux.clone()
+            };
+            cur = super::frame::circ_end(&start, &aux, &cur, angle).ok_or_else(|| {
+                self.err("CIRC: the start, auxiliary and end points are on one line")
+            })?;
         }
         let kind = match m.kind {
             MotionKind::Ptp => "PTP",
@@ -942,9 +1151,22 @@ impl<'p> Machine<'p> {
             })
             .collect();
         self.globals.insert(act.to_string(), cur);
+        self.writes += 1;
+        self.motions += 1;
+        if self.motions > self.opts.max_motions {
+            return Err(self.err(format!(
+                "more than {} motions (a cell program that loops forever?)",
+                self.opts.max_motions
+            )));
+        }
         self.events.push(Event::Motion { kind, target });
-        for t in std::mem::take(&mut self.pending_triggers) {
-            self.exec(&t)?;
+        // A trigger's action uses the names of the module that programmed it, even when the
+        // next motion is made elsewhere (MM_CALIB's).
+        for (module, t) in std::mem::take(&mut self.pending_triggers) {
+            let saved = self.declared_scope.replace(module);
+            let r = self.exec(&t);
+            self.declared_scope = saved;
+            r?;
         }
         Ok(())
     }
@@ -952,8 +1174,18 @@ impl<'p> Machine<'p> {
     // ---------------------------------------------------------------- places
 
     fn lookup_root(&self, name: &str) -> R<Place> {
-        let key = name.to_ascii_uppercase();
+        let mut key = name.to_ascii_uppercase();
+        // `$OUT_C` sets outputs at the motion's end; motions are done before the next
+        // statement runs, so it is `$OUT`. The robot is always where its last motion put it,
+        // so the measured position and the position at an interrupt are the commanded one.
+        match key.as_str() {
+            "$OUT_C" => key = "$OUT".into(),
+            "$POS_ACT_MES" | "$POS_INT" => key = "$POS_ACT".into(),
+            "$AXIS_ACT_MEAS" | "$AXIS_INT" => key = "$AXIS_ACT".into(),
+            _ => {}
+        }
         if let Some((fi, f)) = self.frames.iter().enumerate().next_back()
+            && self.declared_scope.is_none_or(|m| m == f.module)
             && let Some(slot) = f.vars.get(&key)
         {
             return Ok(match slot {
@@ -965,6 +1197,11 @@ impl<'p> Machine<'p> {
             });
         }
         let scoped = format!("{}::{key}", self.prog.modules[self.cur_module()].scope);
+        for k in [&scoped, &key] {
+            if let Some(p) = self.signals.get(k) {
+                return Ok(p.clone());
+            }
+        }
         if self.globals.contains_key(&scoped) {
             return Ok(Place {
                 root: Root::Global(scoped),
@@ -978,6 +1215,11 @@ impl<'p> Machine<'p> {
             });
         }
         Err(self.err(format!("unknown variable `{name}`")))
+    }
+
+    /// Whether `name` is a variable (or signal) visible here.
+    pub(crate) fn is_variable(&self, name: &str) -> bool {
+        self.lookup_root(name).is_ok()
     }
 
     pub(crate) fn place_of(&mut self, e: &Expr) -> R<Place> {
@@ -1047,10 +1289,14 @@ impl<'p> Machine<'p> {
                 Slot::Own(v) => Some(v),
                 Slot::Alias(_) => None,
             },
+            Root::Group { .. } | Root::Const(_) => None,
         }
     }
 
     pub(crate) fn read_place(&self, p: &Place) -> R<&Value> {
+        if matches!(p.root, Root::Group { .. } | Root::Const(_)) {
+            return Err(self.err("a signal group or constant has no members or elements"));
+        }
         let mut v = self
             .root_ref(&p.root)
             .ok_or_else(|| self.err("dangling reference"))?;
@@ -1066,10 +1312,14 @@ impl<'p> Machine<'p> {
     }
 
     pub(crate) fn read_value(&mut self, p: &Place) -> R<Value> {
-        if let Root::Global(k) = &p.root
-            && (k == "$TIMER" || k == "$TIMER_FLAG")
-        {
-            self.sync_timers();
+        match &p.root {
+            Root::Global(k) if k == "$TIMER" || k == "$TIMER_FLAG" => self.sync_timers(),
+            Root::Global(k) | Root::Group { array: k, .. } if k == "$IN" => self.sync_inputs(),
+            Root::Global(k) if k == "$IN_HOME" => return Ok(Value::Bool(self.in_home())),
+            _ => {}
+        }
+        if let Some(v) = self.read_signal(&p.root)? {
+            return Ok(v);
         }
         self.read_place(p).cloned()
     }
@@ -1082,6 +1332,15 @@ impl<'p> Machine<'p> {
     }
 
     pub(crate) fn assign(&mut self, p: &Place, v: Value) -> R<()> {
+        self.writes += 1;
+        if let Some(Value::Int(_) | Value::Bool(_)) = self.read_signal(&p.root)? {
+            let v = match v {
+                Value::Real(r) => Value::Int(r.round() as i64),
+                v => v,
+            };
+            self.write_signal(&p.root, v)?;
+            return Ok(());
+        }
         let current = self.read_place(p)?.clone();
         let new = self.coerce(current, v)?;
         let frames_before = match &p.root {
@@ -1094,6 +1353,7 @@ impl<'p> Machine<'p> {
                 Some(Slot::Own(v)) => Some(v),
                 _ => None,
             },
+            Root::Group { .. } | Root::Const(_) => None,
         };
         let mut slot = match root {
             Some(r) => r,
@@ -1124,6 +1384,51 @@ impl<'p> Machine<'p> {
             self.follow_frames(&old_base, &old_tool);
         }
         Ok(())
+    }
+
+    /// Inputs linked to outputs (`--input N=out:M`) take the outputs' current values.
+    fn sync_inputs(&mut self) {
+        if self.opts.input_links.is_empty() {
+            return;
+        }
+        let outs: Vec<bool> = self
+            .opts
+            .input_links
+            .iter()
+            .map(|l| match self.globals.get("$OUT") {
+                Some(Value::Array { items, .. }) => {
+                    let on = l.output.checked_sub(1).and_then(|i| items.get(i));
+                    matches!(on, Some(Value::Bool(true))) != l.inverted
+                }
+                _ => l.inverted,
+            })
+            .collect();
+        if let Some(Value::Array { items, .. }) = self.globals.get_mut("$IN") {
+            for (l, v) in self.opts.input_links.iter().zip(outs) {
+                if let Some(slot) = l.input.checked_sub(1).and_then(|i| items.get_mut(i)) {
+                    *slot = Value::Bool(v);
+                }
+            }
+        }
+    }
+
+    /// `$IN_HOME`: the axes are where `$AXIS_HOME` says (within 0.01°).
+    fn in_home(&self) -> bool {
+        match (
+            self.globals.get("$AXIS_ACT"),
+            self.globals.get("$AXIS_HOME"),
+        ) {
+            (Some(a), Some(h)) => AXIS_FIELDS.iter().all(|f| {
+                match (
+                    a.field(f).and_then(|v| v.as_f64()),
+                    h.field(f).and_then(|v| v.as_f64()),
+                ) {
+                    (Some(x), Some(y)) => (x - y).abs() < 0.01,
+                    _ => false,
+                }
+            }),
+            _ => false,
+        }
     }
 
     fn tool_base(&self) -> (Value, Value) {
@@ -1249,8 +1554,20 @@ impl<'p> Machine<'p> {
                     {
                         let t = std::mem::replace(slot, Value::Int(0));
                         *slot = self.coerce(t, v)?;
-                    } else if !matches!(ty.as_str(), "E6POS" | "POS" | "FRAME" | "AXIS" | "E6AXIS")
-                    {
+                    } else if !matches!(
+                        ty.as_str(),
+                        "E6POS"
+                            | "POS"
+                            | "FRAME"
+                            | "AXIS"
+                            | "E6AXIS"
+                            // Inline-form data carry members of newer KSS releases
+                            // (LDAT's CB, …) that change nothing here.
+                            | "PDAT"
+                            | "LDAT"
+                            | "FDAT"
+                            | "BASIS_SUGG_T"
+                    ) {
                         return Err(self.err(format!("{ty} has no member {n}")));
                     }
                 }
@@ -1297,6 +1614,10 @@ impl<'p> Machine<'p> {
             },
             (Value::Bool(x), Value::Bool(y)) => x == y,
             (Value::Char(x), Value::Char(y)) => x == y,
+            // A one-character literal is a CHAR: `c == "x"`, `CASE "x"`.
+            (Value::Char(x), Value::Str(s)) | (Value::Str(s), Value::Char(x)) if s.len() == 1 => {
+                s.as_bytes()[0] == *x
+            }
             (Value::Enum(x), Value::Enum(y)) => x.eq_ignore_ascii_case(y),
             _ => {
                 return Err(self.err(format!(
@@ -1485,7 +1806,10 @@ impl<'p> Machine<'p> {
         }
         match super::builtins::call(self, name, args)? {
             Some(v) => Ok(Some(v)),
-            None => Err(self.err(format!("unknown routine or built-in function `{name}`"))),
+            None => Err(self.err(format!(
+                "unknown routine or built-in function `{name}` (a routine of another module: \
+                 load it with `krlkit run --module FILE`)"
+            ))),
         }
     }
 

@@ -6,8 +6,11 @@
 //!   and out-of-range accesses are [`RuntimeError`]s located at `file:line`.
 //! - Time is simulated: `WAIT SEC` and timers advance a clock, never the wall clock; only waits
 //!   on open EKI connections consume real time (scaled by [`Options::time_scale`]).
-//! - Every run terminates: a step limit stops endless loops and a `WAIT FOR` that nothing can
-//!   satisfy is an error, not a hang.
+//! - Every run terminates: step, motion and simulated-time limits stop endless loops (the
+//!   time limit stops
+//!   polling loops such as `WHILE NOT $IN[3] … WAIT SEC 0.1 … ENDWHILE`), a loop iteration
+//!   that changes nothing while nothing outside can change is an error at the loop, and a
+//!   `WAIT FOR` that nothing can satisfy is an error, not a hang.
 //! - Library code never prints: messages and trace events are returned in [`RunResult`].
 
 mod builtins;
@@ -55,10 +58,18 @@ pub struct Options {
     pub step_limit: u64,
     /// Simulated milliseconds per real millisecond while waiting on an open EKI connection.
     pub time_scale: f64,
-    /// `$IN[n]` values (default FALSE).
+    /// `$IN[n]` values (default FALSE, except `$IN[1025]`, which is always TRUE).
     pub inputs: HashMap<usize, bool>,
+    /// Inputs that follow an output (a simulated sensor: `$IN[12]` TRUE while `$OUT[12]` is).
+    pub input_links: Vec<InputLink>,
     /// Longest simulated time one `WAIT FOR` may take before it is reported as stuck (ms).
     pub max_wait_ms: f64,
+    /// Longest simulated run time (ms): a polling loop that waits for something that never
+    /// comes ends here instead of running into the step limit.
+    pub max_time_ms: f64,
+    /// Most motions one run may make: a cell program that loops forever (picking the same
+    /// scenario again and again) ends here with a clear error instead of filling memory.
+    pub max_motions: u64,
 }
 
 impl Default for Options {
@@ -67,10 +78,70 @@ impl Default for Options {
             vision: None,
             eki_configs: HashMap::new(),
             eki_dirs: Vec::new(),
-            step_limit: 50_000_000,
+            step_limit: 10_000_000,
             time_scale: 10.0,
             inputs: HashMap::new(),
+            input_links: Vec::new(),
             max_wait_ms: 3_600_000.0,
+            max_time_ms: 3_600_000.0,
+            max_motions: 50_000,
+        }
+    }
+}
+
+/// `$IN[input]` reads as `$OUT[output]` (or its opposite).
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub struct InputLink {
+    pub input: usize,
+    pub output: usize,
+    pub inverted: bool,
+}
+
+/// One `krlkit run --input` setting.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum InputSetting {
+    Fixed(usize, bool),
+    Link(InputLink),
+}
+
+/// Number of digital inputs and outputs (`$IN[1..4096]`, `$OUT[1..4096]`).
+pub const IO_COUNT: usize = 4096;
+
+impl std::str::FromStr for InputSetting {
+    type Err = String;
+
+    /// `N` (TRUE for the whole run), `N=on`, `N=off`, `N=out:M` (follows `$OUT[M]`),
+    /// `N=not:M` (TRUE while `$OUT[M]` is FALSE).
+    fn from_str(s: &str) -> Result<InputSetting, String> {
+        let number = |t: &str, what: &str| -> Result<usize, String> {
+            match t.trim().parse::<usize>() {
+                Ok(n) if (1..=IO_COUNT).contains(&n) => Ok(n),
+                _ => Err(format!("{what} `{t}` is not a number in 1..{IO_COUNT}")),
+            }
+        };
+        let (n, value) = match s.split_once('=') {
+            None => return Ok(InputSetting::Fixed(number(s, "input")?, true)),
+            Some((n, v)) => (number(n, "input")?, v.trim().to_ascii_lowercase()),
+        };
+        match value.as_str() {
+            "on" | "true" | "1" => Ok(InputSetting::Fixed(n, true)),
+            "off" | "false" | "0" => Ok(InputSetting::Fixed(n, false)),
+            v => {
+                let (inverted, out) = if let Some(m) = v.strip_prefix("out:") {
+                    (false, m)
+                } else if let Some(m) = v.strip_prefix("not:") {
+                    (true, m)
+                } else {
+                    return Err(format!(
+                        "`{s}`: expected N, N=on, N=off, N=out:M or N=not:M"
+                    ));
+                };
+                Ok(InputSetting::Link(InputLink {
+                    input: n,
+                    output: number(out, "output")?,
+                    inverted,
+                }))
+            }
         }
     }
 }

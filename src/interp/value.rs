@@ -202,11 +202,81 @@ impl Types {
         fdat.push(("POINT2".into(), BaseType::Char, vec![24]));
         fdat.push(("TQ_STATE".into(), BaseType::Bool, vec![]));
         add("FDAT", fdat);
+        // The inline forms' record of the last motion's parameters (every template .dat has one).
+        let text = |names: &[&str]| -> Vec<(String, BaseType, Vec<usize>)> {
+            names
+                .iter()
+                .map(|n| (n.to_string(), BaseType::Char, vec![24]))
+                .collect()
+        };
+        add(
+            "BASIS_SUGG_T",
+            text(&[
+                "POINT1",
+                "POINT2",
+                "CP_PARAMS",
+                "PTP_PARAMS",
+                "CONT",
+                "CP_VEL",
+                "PTP_VEL",
+                "SYNC_PARAMS",
+                "SPL_NAME",
+                "A_PARAMS",
+            ]),
+        );
+        // User messages (KUKA's KrlMsg interface: Set_KrlMsg, Set_KrlDlg, ...).
+        let chars = |name: &str, n: usize| (name.to_string(), BaseType::Char, vec![n]);
+        add(
+            "KRLMSG_T",
+            vec![
+                chars("MODUL", 24),
+                ("NR".into(), BaseType::Int, vec![]),
+                chars("MSG_TXT", 80),
+            ],
+        );
+        add(
+            "KRLMSGPAR_T",
+            vec![
+                en("PAR_TYPE", "KRLMSGPARTYPE_T"),
+                chars("PAR_TXT", 26),
+                ("PAR_INT".into(), BaseType::Int, vec![]),
+                ("PAR_REAL".into(), BaseType::Real, vec![]),
+                ("PAR_BOOL".into(), BaseType::Bool, vec![]),
+            ],
+        );
+        add(
+            "KRLMSGOPT_T",
+            ["VL_STOP", "CLEAR_P_RESET", "CLEAR_P_SAW", "LOG_TO_DB"]
+                .iter()
+                .map(|n| (n.to_string(), BaseType::Bool, vec![]))
+                .collect(),
+        );
+        add(
+            "KRLMSGDLGSK_T",
+            vec![en("SK_TYPE", "KRLMSGPARTYPE_T"), chars("SK_TXT", 10)],
+        );
+        add("INERTIA", reals(&["X", "Y", "Z"]));
+        add("JERK_STRUC", reals(&["CP", "ORI"]));
+        add(
+            "LOAD",
+            vec![
+                ("M".into(), BaseType::Real, vec![]),
+                ("CM".into(), BaseType::Struc("FRAME".into()), vec![]),
+                ("J".into(), BaseType::Struc("INERTIA".into()), vec![]),
+            ],
+        );
         for (name, values) in [
             ("APO_MODE_T", &["CDIS", "CPTP"][..]),
             ("ORI_TYPE", &["VAR", "CONSTANT", "JOINT"][..]),
             ("CIRC_TYPE", &["BASE", "PATH"][..]),
             ("IPO_MODE", &["BASE", "TCP"][..]),
+            ("MODE_OP", &["T1", "T2", "AUT", "EX", "INVALID"][..]),
+            ("KRLMSGPARTYPE_T", &["VALUE", "KEY", "EMPTY"][..]),
+            ("VAR_STATE", &["DECLARED", "INITIALIZED", "UNKNOWN"][..]),
+            (
+                "EKRLMSGTYPE",
+                &["NOTIFY", "STATE", "QUIT", "WAITING", "DIALOG"][..],
+            ),
         ] {
             t.enums
                 .insert(name.into(), values.iter().map(|s| s.to_string()).collect());

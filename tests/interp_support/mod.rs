@@ -8,7 +8,7 @@ use std::path::PathBuf;
 use std::time::{Duration, Instant};
 
 use krlkit::catalog::catalog;
-use krlkit::interp::{self, End, Event, Options, Program, RunResult, Value};
+use krlkit::interp::{self, End, Event, InputSetting, Options, Program, RunResult, Value};
 use krlkit::sim::{RequestLog, Scenario, Server};
 use krlkit::spec::Spec;
 
@@ -30,6 +30,10 @@ pub struct Case {
     pub end: String,
     /// Further KRL files loaded after the program (shared test helpers).
     pub library: Vec<PathBuf>,
+    /// Scenario text appended to the scenario file (extra `[[fault]]` tables).
+    pub scenario_extra: String,
+    /// Digital inputs (`krlkit run --input` settings).
+    pub inputs: Vec<InputSetting>,
 }
 
 impl Case {
@@ -41,6 +45,8 @@ impl Case {
             time_scale: 10.0,
             end: "ok".into(),
             library: Vec::new(),
+            scenario_extra: String::new(),
+            inputs: Vec::new(),
         }
     }
 
@@ -98,14 +104,23 @@ fn load(case: &Case, package: &interp::Package) -> Program {
     Program::load(files).unwrap_or_else(|e| panic!("{e}"))
 }
 
-fn options(vision: String, time_scale: f64, package: &interp::Package) -> Options {
-    Options {
+fn options(vision: String, case: &Case, package: &interp::Package) -> Options {
+    let mut o = Options {
         vision: Some(vision),
         eki_configs: package.eki_configs.clone(),
-        time_scale,
+        time_scale: case.time_scale,
         step_limit: 5_000_000,
         ..Options::default()
+    };
+    for s in &case.inputs {
+        match s {
+            InputSetting::Fixed(n, v) => {
+                o.inputs.insert(*n, *v);
+            }
+            InputSetting::Link(l) => o.input_links.push(*l),
+        }
     }
+    o
 }
 
 pub fn closed_port() -> String {
@@ -118,8 +133,10 @@ pub fn closed_port() -> String {
 pub fn scenario_of(case: &Case) -> Scenario {
     match &case.scenario {
         Some(p) => {
-            let text = std::fs::read_to_string(p)
+            let mut text = std::fs::read_to_string(p)
                 .unwrap_or_else(|e| panic!("scenario {}: {e}", p.display()));
+            text.push('\n');
+            text.push_str(&case.scenario_extra);
             Scenario::from_toml_str(&text, &p.display().to_string())
                 .unwrap_or_else(|e| panic!("{e}"))
         }
@@ -134,7 +151,7 @@ pub fn run(case: &Case) -> Outcome {
     let program = load(case, &package);
     if case.server_absent {
         let addr = closed_port();
-        let result = interp::run(&program, &options(addr.clone(), case.time_scale, &package));
+        let result = interp::run(&program, &options(addr.clone(), case, &package));
         return Outcome {
             result,
             requests: Vec::new(),
@@ -144,7 +161,7 @@ pub fn run(case: &Case) -> Outcome {
     let server = Server::start(scenario_of(case), "127.0.0.1:0").expect("server starts");
     let result = interp::run(
         &program,
-        &options(server.addr().to_string(), case.time_scale, &package),
+        &options(server.addr().to_string(), case, &package),
     );
     let deadline = Instant::now() + Duration::from_secs(10);
     let mut requests = server.requests();

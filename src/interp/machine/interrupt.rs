@@ -9,7 +9,7 @@ use std::collections::BTreeMap;
 
 use crate::syntax::ast::{Expr, InterruptAction, Stmt};
 
-use super::{Machine, R};
+use super::{Machine, R, Stop};
 
 #[derive(Debug, Clone)]
 pub(super) struct Interrupt {
@@ -21,6 +21,8 @@ pub(super) struct Interrupt {
     enabled: bool,
     /// The condition's value at the last check (an interrupt fires on a rising edge).
     last: bool,
+    /// Call depth of the declaration: where a RESUME in its handler returns to.
+    depth: usize,
 }
 
 #[derive(Debug, Default)]
@@ -29,6 +31,8 @@ pub(super) struct Interrupts {
     /// Number of interrupts that are on and enabled: nothing to check when 0.
     active: usize,
     handling: bool,
+    /// Declaration depth of the interrupt whose handler runs.
+    handling_depth: usize,
 }
 
 impl Interrupts {
@@ -41,6 +45,19 @@ impl Interrupts {
 const NUMBERS: std::ops::RangeInclusive<i64> = 1..=128;
 
 impl<'p> Machine<'p> {
+    /// `RESUME`: only inside an interrupt routine.
+    pub(super) fn resume(&self) -> Stop {
+        if !self.interrupts.handling {
+            return self.err("RESUME is only allowed in an interrupt routine");
+        }
+        let e = self.error("RESUME");
+        Stop::Resume {
+            depth: self.interrupts.handling_depth,
+            file: e.file,
+            line: e.line,
+        }
+    }
+
     pub(super) fn interrupt_decl(&mut self, number: &Expr, cond: &Expr, handler: &Stmt) -> R<()> {
         let n = self.eval_int(number)?;
         if !NUMBERS.contains(&n) {
@@ -53,6 +70,7 @@ impl<'p> Machine<'p> {
             on: false,
             enabled: true,
             last: false,
+            depth: self.frames.len(),
         };
         self.interrupts.table.insert(n, i);
         self.interrupts.recount();
@@ -78,8 +96,8 @@ impl<'p> Machine<'p> {
             // The edge is measured from now: a condition already TRUE does not fire.
             let last = match action {
                 InterruptAction::On => {
-                    let cond = self.interrupts.table[&n].condition.clone();
-                    self.eval_bool(&cond)?
+                    let i = self.interrupts.table[&n].clone();
+                    self.in_declaring_scope(&i, |m| m.eval_bool(&i.condition))?
                 }
                 _ => self.interrupts.table[&n].last,
             };
@@ -95,6 +113,16 @@ impl<'p> Machine<'p> {
         }
         self.interrupts.recount();
         Ok(())
+    }
+
+    /// Run `f` with names resolved in the module that declared `i`: its condition and handler
+    /// mean the same wherever the program is when they are checked (a non-GLOBAL interrupt stays
+    /// active in the routines its routine calls, the package's among them).
+    fn in_declaring_scope<T>(&mut self, i: &Interrupt, f: impl FnOnce(&mut Self) -> R<T>) -> R<T> {
+        let saved = self.declared_scope.replace(i.loc.0);
+        let r = f(self);
+        self.declared_scope = saved;
+        r
     }
 
     /// Fire the interrupts whose condition rose since the last check (lowest number first).
@@ -115,7 +143,7 @@ impl<'p> Machine<'p> {
             };
             let saved = self.loc;
             self.loc = i.loc;
-            let now = self.eval_bool(&i.condition);
+            let now = self.in_declaring_scope(&i, |m| m.eval_bool(&i.condition));
             self.loc = saved;
             let now = now?;
             if let Some(slot) = self.interrupts.table.get_mut(&n) {
@@ -123,7 +151,8 @@ impl<'p> Machine<'p> {
             }
             if now && !i.last {
                 self.interrupts.handling = true;
-                let r = self.exec_handler(&i.handler);
+                self.interrupts.handling_depth = i.depth;
+                let r = self.in_declaring_scope(&i, |m| m.exec_handler(&i.handler));
                 self.interrupts.handling = false;
                 self.loc = saved;
                 r?;
