@@ -255,6 +255,11 @@ impl<'s, 'c, 'p> Walker<'s, 'c, 'p> {
             }
             StmtKind::Repeat { body, .. } => self.looped(body, st),
             StmtKind::Spline { body, .. } => self.block(body, st),
+            // The block may be skipped when its condition holds at the start.
+            StmtKind::Skip { body, .. } => {
+                let t = self.block(body, st.clone());
+                st.join(t)
+            }
             StmtKind::Return { .. } => {
                 self.returns = std::mem::replace(&mut self.returns, State::dead()).join(st);
                 State::dead()
@@ -491,6 +496,7 @@ fn later_calls(sh: &Shared, stmts: &[Stmt], mut later: u64, out: &mut HashMap<u3
                 later | later_calls(sh, body, first, out)
             }
             StmtKind::Spline { body, .. } => later_calls(sh, body, later, out),
+            StmtKind::Skip { body, .. } => later | later_calls(sh, body, later, out),
             _ => later,
         };
     }
@@ -511,11 +517,7 @@ fn calls_in(sh: &Shared, stmts: &[Stmt]) -> u64 {
                 }
             }
             StmtKind::InterruptDecl { .. } | StmtKind::Trigger { .. } => {}
-            _ => {
-                for body in walk::children(s) {
-                    bits |= calls_in(sh, body);
-                }
-            }
+            _ => s.for_each_body(|body| bits |= calls_in(sh, body)),
         }
     }
     bits
