@@ -120,7 +120,10 @@ fn target_kawasaki_writes_the_as_package_only_and_checks_it() {
     let out = String::from_utf8_lossy(&o.stdout);
     assert!(out.contains("differs: as/mm_package.as"), "{out}");
     assert!(out.contains("stale:   as/OLD.md"), "{out}");
-    assert!(!out.contains("mine.as"), "a user's file is not drift: {out}");
+    assert!(
+        !out.contains("mine.as"),
+        "a user's file is not drift: {out}"
+    );
 }
 
 #[test]
@@ -206,7 +209,9 @@ fn unwritable_output_exits_2() {
     let o = krlkit(&["gen", "--out", "afile"], dir.path());
     assert_eq!(o.status.code(), Some(2));
     assert!(
-        stderr(&o).contains("afile is a file, not a folder; choose another --out (afile was not changed)"),
+        stderr(&o).contains(
+            "afile is a file, not a folder; choose another --out (afile was not changed)"
+        ),
         "{}",
         stderr(&o)
     );

@@ -61,7 +61,7 @@ pub fn write_atomic(out: &Path, files: &[GeneratedFile]) -> Result<WriteReport, 
         Err(e) if e.kind() == io::ErrorKind::NotFound => None,
         Err(e) => return Err(unchanged(format!("cannot read {}: {e}", out.display()))),
     };
-    let plan = plan(&out_abs, files).map_err(|e| unchanged(e))?;
+    let plan = plan(&out_abs, files).map_err(&unchanged)?;
 
     let stage = tempfile::Builder::new()
         .prefix(&format!(".{name}{STAGE_TAG}"))
@@ -83,7 +83,7 @@ pub fn write_atomic(out: &Path, files: &[GeneratedFile]) -> Result<WriteReport, 
     for unit in &units {
         let dest = new_root.join(unit);
         let src = out_abs.join(unit);
-        build(&src, &dest, unit, &plan, files).map_err(|e| unchanged(e))?;
+        build(&src, &dest, unit, &plan, files).map_err(&unchanged)?;
     }
     if let Some(meta) = &old {
         let _ = fs::set_permissions(&new_root, meta.permissions());
