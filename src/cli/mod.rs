@@ -4,6 +4,7 @@ mod args;
 mod check;
 mod generate;
 mod init;
+mod outputs;
 mod parse;
 mod rules;
 mod run;
