@@ -14,6 +14,7 @@
 //! - Library code never prints: messages and trace events are returned in [`RunResult`].
 
 mod builtins;
+mod cast;
 mod eki;
 mod format;
 mod frame;
