@@ -29,8 +29,13 @@ pub fn run(args: CheckArgs) -> anyhow::Result<Outcome> {
         None => (scanned_channels(&args.paths), false),
     };
 
-    let (candidates, walk_errors) = files::walk(&args.paths);
-    let loaded: Vec<_> = candidates
+    let walk = files::walk(&args.paths);
+    for s in &walk.skipped {
+        eprintln!("warning: {s}");
+    }
+    let walk_errors = walk.errors;
+    let loaded: Vec<_> = walk
+        .found
         .par_iter()
         .map(|c| files::load(c).map(|d| d.map(|d| (c.path.display().to_string(), d.text))))
         .collect();

@@ -44,7 +44,11 @@ pub fn run(args: FmtArgs) -> anyhow::Result<Outcome> {
         }
         return stdin(&args, &opts);
     }
-    let (candidates, walk_errors) = files::walk(&args.paths);
+    let walk = files::walk(&args.paths);
+    for s in &walk.skipped {
+        eprintln!("warning: {s}");
+    }
+    let (candidates, walk_errors) = (walk.found, walk.errors);
     let mut failed = !walk_errors.is_empty();
     for e in &walk_errors {
         eprintln!("error: cannot read {e}");

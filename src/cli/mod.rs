@@ -6,6 +6,7 @@ mod fmt;
 mod generate;
 mod init;
 mod inplace;
+mod outputs;
 mod parse;
 mod rules;
 mod run;
