@@ -101,8 +101,8 @@ fn full_cycle_moves_to_every_scenario_pose_in_order() {
     let motions: Vec<Vec<f64>> = r
         .events
         .iter()
-        .filter_map(|e| match e {
-            Event::Motion { kind, target } if kind == "LIN" => {
+        .filter_map(|r| match &r.event {
+            Event::Motion { kind, target, .. } if kind == "LIN" => {
                 Some(target.iter().map(|(_, v)| *v).collect())
             }
             _ => None,
