@@ -62,6 +62,8 @@ pub struct Workspace {
     pub sources: Vec<Source>,
     pub am_ini: Vec<AmIni>,
     pub errors: Vec<LoadError>,
+    /// Paths passed over (special files such as FIFOs), as messages.
+    pub skipped: Vec<String>,
 }
 
 /// Entries larger than this are not read from an archive (no KRL file comes near it).
@@ -120,8 +122,11 @@ impl Workspace {
     }
 
     fn load_path(&mut self, path: &Path, group: u32) {
-        let (candidates, walk_errors) = files::walk(std::slice::from_ref(&path.to_path_buf()));
-        for e in walk_errors {
+        let walk = files::walk(std::slice::from_ref(&path.to_path_buf()));
+        self.skipped
+            .extend(walk.skipped.iter().map(|s| s.to_string()));
+        let candidates = walk.found;
+        for e in walk.errors {
             self.errors.push(LoadError {
                 path: e.path.display().to_string(),
                 message: e.source.to_string(),
