@@ -4,6 +4,7 @@ mod args;
 mod check;
 mod generate;
 mod init;
+mod lsp;
 mod parse;
 mod rules;
 mod run;
@@ -59,6 +60,7 @@ pub fn main() -> ExitCode {
         Command::Sim(a) => sim::run(a),
         Command::Run(a) => run::run(a),
         Command::Srci(a) => srci::run(a),
+        Command::Lsp => lsp::run(),
     };
     match result {
         Ok(outcome) => outcome.into(),
