@@ -14,8 +14,26 @@ const START: &str = "&ACCESS RVP\r\nDEF prop( )\r\n  DECL INT status\r\n  ; Grü
 
 /// Pieces an edit inserts.
 const PIECES: &[&str] = &[
-    "", "a", "ä", "😀", "\r\n", "\r", "\n", "MM_Start_Vis(", ")", ",", ";FOLD x", ";ENDFOLD",
-    "END", "\"", "DEF f()", "  ", "€", "IF x THEN", "ENDIF", "$OUT[1]",
+    "",
+    "a",
+    "ä",
+    "😀",
+    "\r\n",
+    "\r",
+    "\n",
+    "MM_Start_Vis(",
+    ")",
+    ",",
+    ";FOLD x",
+    ";ENDFOLD",
+    "END",
+    "\"",
+    "DEF f()",
+    "  ",
+    "€",
+    "IF x THEN",
+    "ENDIF",
+    "$OUT[1]",
 ];
 
 /// Position of char index `c` as an editor computes it (UTF-16 columns; CR, LF, CRLF).

@@ -2,9 +2,12 @@
 
 mod args;
 mod check;
+mod fmt;
 mod generate;
 mod init;
+mod inplace;
 mod lsp;
+mod outputs;
 mod parse;
 mod rules;
 mod run;
@@ -61,6 +64,7 @@ pub fn main() -> ExitCode {
         Command::Run(a) => run::run(a),
         Command::Srci(a) => srci::run(a),
         Command::Lsp => lsp::run(),
+        Command::Fmt(a) => fmt::run(a),
     };
     match result {
         Ok(outcome) => outcome.into(),

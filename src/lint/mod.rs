@@ -18,7 +18,7 @@ mod rules;
 mod session;
 mod suppress;
 mod text;
-mod walk;
+pub(crate) mod walk;
 
 pub use config::{ConfigError, LintConfig};
 pub use eki_xml::EkiChannel;

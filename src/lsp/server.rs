@@ -192,7 +192,9 @@ impl Server {
             Ok(v) => Some(v),
             Err(_) => {
                 self.failures += 1;
-                self.log(&format!("krlkit failed while handling {what}; please report it"));
+                self.log(&format!(
+                    "krlkit failed while handling {what}; please report it"
+                ));
                 None
             }
         }
@@ -279,10 +281,10 @@ impl Server {
             Err(_) => {
                 self.failures += 1;
                 error(
-                id,
-                ErrorCode::InternalError,
-                &format!("krlkit failed on {method}; please report it with the file"),
-            )
+                    id,
+                    ErrorCode::InternalError,
+                    &format!("krlkit failed on {method}; please report it with the file"),
+                )
             }
         }
     }

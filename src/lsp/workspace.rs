@@ -30,8 +30,10 @@ impl Workspace {
         let mut problems = Problems::new();
         let (inputs, channels) = match &root {
             Some(r) => {
-                let (candidates, errors) = files::walk(std::slice::from_ref(r));
-                problems.extend(errors.iter().map(|e| format!("cannot read {e}")));
+                let walk = files::walk(std::slice::from_ref(r));
+                problems.extend(walk.errors.iter().map(|e| format!("cannot read {e}")));
+                problems.extend(walk.skipped.iter().map(|s| s.to_string()));
+                let candidates = walk.found;
                 let loaded: Vec<_> = candidates.par_iter().map(files::load).collect();
                 let mut inputs = Vec::new();
                 for (c, r) in candidates.iter().zip(loaded) {
