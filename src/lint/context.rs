@@ -59,6 +59,76 @@ pub struct FileText {
     pub text: String,
 }
 
+/// Every file's path and text, by position (`FileId`).
+pub trait Texts: Sync {
+    fn path(&self, i: usize) -> &str;
+    fn text(&self, i: usize) -> &str;
+}
+
+impl Texts for Vec<FileText> {
+    fn path(&self, i: usize) -> &str {
+        &self[i].path
+    }
+    fn text(&self, i: usize) -> &str {
+        &self[i].text
+    }
+}
+
+impl Texts for Vec<Parsed> {
+    fn path(&self, i: usize) -> &str {
+        &self[i].path
+    }
+    fn text(&self, i: usize) -> &str {
+        &self[i].text
+    }
+}
+
+/// One KRL file, parsed, as the language server keeps it.
+#[derive(Debug, Clone)]
+pub struct Parsed {
+    pub path: String,
+    pub text: String,
+    /// The parser's KRL001 findings (the syntax tree is dropped once lowered).
+    pub syntax_errors: Vec<Diagnostic>,
+    pub ast: SourceFile,
+    /// File name without extension, lower case (`$config` for `$config.dat`).
+    pub stem: String,
+    /// Extension, lower case (`src`, `dat`, `sub`, or empty).
+    pub ext: String,
+}
+
+impl Parsed {
+    pub fn new(path: String, text: String) -> Parsed {
+        let parse = crate::syntax::parse(&text);
+        let ast = parse.ast(&text);
+        let p = std::path::Path::new(&path);
+        let part = |s: Option<&std::ffi::OsStr>| {
+            s.and_then(|s| s.to_str())
+                .unwrap_or("")
+                .to_ascii_lowercase()
+        };
+        Parsed {
+            stem: part(p.file_stem()),
+            ext: part(p.extension()),
+            path,
+            text,
+            syntax_errors: parse.diagnostics,
+            ast,
+        }
+    }
+
+    /// Both files belong to one module: same stem, same folder (as the model pairs them).
+    pub fn same_module(&self, other: &Parsed) -> bool {
+        let dir = |p: &str| {
+            std::path::Path::new(p)
+                .parent()
+                .map(|d| d.to_string_lossy().to_ascii_lowercase())
+                .unwrap_or_default()
+        };
+        self.stem == other.stem && dir(&self.path) == dir(&other.path)
+    }
+}
+
 /// Lint-only facts about the whole run that the model does not hold (EKI configuration).
 #[derive(Default)]
 pub struct Project {
@@ -145,7 +215,7 @@ pub struct FileCtx<'p> {
     pub ast: Option<&'p SourceFile>,
     pub project: &'p Project,
     /// Every file's path and text (messages about declarations elsewhere).
-    pub all: &'p [FileText],
+    pub all: &'p dyn Texts,
     flow: OnceLock<FlowResult>,
     lines: OnceLock<LineIndex>,
 }
@@ -156,14 +226,13 @@ impl<'p> FileCtx<'p> {
         id: FileId,
         ast: Option<&'p SourceFile>,
         project: &'p Project,
-        all: &'p [FileText],
+        all: &'p dyn Texts,
     ) -> FileCtx<'p> {
-        let f = &all[id.index()];
         FileCtx {
             sema,
             id,
-            path: &f.path,
-            text: &f.text,
+            path: all.path(id.index()),
+            text: all.text(id.index()),
             ast,
             project,
             all,
@@ -184,13 +253,13 @@ impl<'p> FileCtx<'p> {
 
     /// `path:line` of a place in any file of the workspace.
     pub fn place(&self, loc: Loc) -> String {
-        let f = &self.all[loc.file.index()];
+        let i = loc.file.index();
         let line = if loc.file == self.id {
             self.lines().line_of(loc.span.start as usize)
         } else {
-            LineIndex::new(&f.text).line_of(loc.span.start as usize)
+            LineIndex::new(self.all.text(i)).line_of(loc.span.start as usize)
         };
-        format!("{}:{}", f.path, line + 1)
+        format!("{}:{}", self.all.path(i), line + 1)
     }
 
     /// Whether names the model cannot find could be declared in files that were not given.

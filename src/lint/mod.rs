@@ -22,6 +22,7 @@ pub mod eki_xml;
 mod flow;
 pub mod registry;
 mod rules;
+mod session;
 mod suppress;
 mod text;
 pub(crate) mod walk;
@@ -31,6 +32,7 @@ use rayon::prelude::*;
 pub use config::{ConfigError, LintConfig};
 pub use eki_xml::EkiChannel;
 pub use registry::{Check, RULES, Rule, nearest_code, rule};
+pub use session::{Affected, Session};
 
 use crate::diag::{Diagnostic, FileReport, LineIndex};
 use crate::sema::{FileId, FileSummary, KssVersion, Sema, SemaInput, Stats, Workspace};
@@ -191,7 +193,7 @@ pub fn lint_workspace(
                     run(rule, config, &mut findings, |out| check(&ctx, out));
                 }
             }
-            finish(&texts[i], findings)
+            finish(&texts[i].path, &texts[i].text, findings)
         })
         .collect();
     let mut reports = reports;
@@ -266,10 +268,10 @@ fn run(
 }
 
 /// Apply inline suppressions, sort, and make the report.
-fn finish(file: &FileText, mut diagnostics: Vec<Diagnostic>) -> FileReport {
-    let allowed = suppress::allowed(&file.text);
+fn finish(path: &str, text: &str, mut diagnostics: Vec<Diagnostic>) -> FileReport {
+    let allowed = suppress::allowed(text);
     if !allowed.is_empty() {
-        let index = LineIndex::new(&file.text);
+        let index = LineIndex::new(text);
         diagnostics.retain(|d| {
             let line = index.line_of(d.span.start as usize) + 1;
             !allowed
@@ -282,7 +284,7 @@ fn finish(file: &FileText, mut diagnostics: Vec<Diagnostic>) -> FileReport {
     });
     diagnostics.dedup();
     FileReport {
-        path: file.path.clone(),
+        path: path.to_owned(),
         // Moved in once every file is checked (rules read every file's text until then).
         text: String::new(),
         diagnostics,

@@ -294,6 +294,92 @@ impl FileSummary {
         out
     }
 
+    /// What other files can depend on, without positions: declarations (routines and their
+    /// parameters, data, types, EXTs, the DEFDAT) and the names the file calls. Two versions of
+    /// a file with the same interface affect no other file's findings differently.
+    pub fn interface(&self) -> String {
+        use std::fmt::Write;
+        let n = |i: u32| self.names[i as usize].to_ascii_uppercase();
+        let t = |t: &TypeRefItem| {
+            format!(
+                "{}{:?}{:?}",
+                n(self.uses[t.use_ix as usize].name),
+                t.dims,
+                t.sizes
+            )
+        };
+        let mut out = String::new();
+        if let Some((name, _, public)) = self.dat {
+            let _ = write!(out, "dat {} {public};", n(name));
+        }
+        for r in &self.routines {
+            let _ = write!(
+                out,
+                "r {} {:?} {} {:?}",
+                n(r.name),
+                r.kind,
+                r.global,
+                r.ret.as_ref().map(t)
+            );
+            for p in &r.params {
+                let _ = write!(out, " {} {:?} {}", n(p.name), p.dir, p.array);
+            }
+            out.push(';');
+        }
+        for d in &self.decls {
+            let _ = write!(
+                out,
+                "d {} {} {:?} {} {:?} {:?};",
+                d.owner,
+                n(d.name),
+                d.kind,
+                d.global,
+                d.ty.as_ref().map(t),
+                d.value
+            );
+        }
+        for ty in &self.types {
+            let _ = write!(out, "t {} {} {}", ty.owner, n(ty.name), ty.global);
+            match &ty.kind {
+                TypeItemKind::Struc(fields) => {
+                    for f in fields {
+                        let _ = write!(out, " {} {}", n(f.name), t(&f.ty));
+                    }
+                }
+                TypeItemKind::Enum(values) => {
+                    for (v, _) in values {
+                        let _ = write!(out, " {}", n(*v));
+                    }
+                }
+            }
+            out.push(';');
+        }
+        for x in &self.exts {
+            let _ = write!(
+                out,
+                "x {} {} {:?} {:?}",
+                x.owner,
+                n(x.name),
+                x.kind,
+                x.ret.as_ref().map(t)
+            );
+            for (p, dir) in &x.params {
+                let _ = write!(out, " {} {dir:?}", t(p));
+            }
+            out.push(';');
+        }
+        let mut calls: Vec<String> = self
+            .uses
+            .iter()
+            .filter(|u| u.kind == UseKind::Call)
+            .map(|u| n(u.name))
+            .collect();
+        calls.sort();
+        calls.dedup();
+        let _ = write!(out, "calls {calls:?}");
+        out
+    }
+
     /// Number of name uses (for statistics and tests).
     pub fn use_count(&self) -> usize {
         self.uses.len()
