@@ -15,7 +15,7 @@ use anyhow::Context;
 
 use super::Outcome;
 use super::args::RunArgs;
-use crate::interp::{self, End, Event, Options, Program, Summary, TraceSink};
+use crate::interp::{self, End, Options, Program, Record, Summary, TraceSink};
 
 /// `--vision`: a `HOST:PORT` that resolves, checked before anything runs.
 pub(super) fn vision_address(s: &str) -> Result<String, String> {
@@ -54,11 +54,11 @@ struct JsonLines {
 }
 
 impl TraceSink for JsonLines {
-    fn event(&mut self, event: &Event) {
+    fn record(&mut self, record: &Record) {
         if self.failed.is_some() {
             return;
         }
-        let line = event.to_json_line();
+        let line = record.to_json_line();
         if let Err(e) = writeln!(self.out, "{line}").and_then(|()| self.out.flush()) {
             self.failed = Some(e);
         }
@@ -163,6 +163,21 @@ pub fn run(args: RunArgs) -> anyhow::Result<Outcome> {
             files.extend(program_files(m)?);
         } else {
             eprintln!("error: module {} does not exist", m.display());
+            return Ok(Outcome::Failure);
+        }
+    }
+    if let Some(trace) = &args.trace {
+        let mut inputs: Vec<(&str, &Path)> =
+            files.iter().map(|f| ("input file", f.as_path())).collect();
+        inputs[0].0 = "program";
+        inputs.extend(args.spec.as_deref().map(|s| ("spec", s)));
+        let mut pkg = Vec::new();
+        if let Some(dir) = &args.package {
+            package_files(dir, &mut pkg, &mut Vec::new());
+        }
+        inputs.extend(pkg.iter().map(|p| ("package file", p.as_path())));
+        if let Err(msg) = super::outputs::check("--trace", trace, &inputs) {
+            eprintln!("{msg}");
             return Ok(Outcome::Failure);
         }
     }
@@ -355,6 +370,24 @@ fn summary(program: &Path, s: &Summary) -> String {
                 statuses.join(", ")
             }
         );
+    }
+    if !s.io_changes.is_empty() {
+        const SHOWN: usize = 8;
+        let changes: u64 = s.io_changes.iter().map(|(_, on, off)| on + off).sum();
+        let mut parts: Vec<String> = s
+            .io_changes
+            .iter()
+            .take(SHOWN)
+            .map(|(name, on, off)| match (on, off) {
+                (0, off) => format!("{name} off {off}"),
+                (on, 0) => format!("{name} on {on}"),
+                (on, off) => format!("{name} on {on} off {off}"),
+            })
+            .collect();
+        if s.io_changes.len() > SHOWN {
+            parts.push(format!("{} more", s.io_changes.len() - SHOWN));
+        }
+        let _ = writeln!(out, "  I/O changes: {changes} ({})", parts.join(", "));
     }
     let on: Vec<String> = s.outputs_on.iter().map(|n| format!("$OUT[{n}]")).collect();
     let _ = writeln!(

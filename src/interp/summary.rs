@@ -31,6 +31,9 @@ pub struct Summary {
     /// In the order of their first call.
     pub calls: Vec<CallCount>,
     pub messages: usize,
+    /// I/O bits that changed (`$OUT[12]`, `$FLAG[873]`, ...) → (times set TRUE, times set FALSE),
+    /// in the order of their first change.
+    pub io_changes: Vec<(String, u64, u64)>,
     /// `$OUT` numbers on at the end.
     pub outputs_on: Vec<usize>,
     /// The last `MM_*` status before the run ended.
@@ -44,8 +47,28 @@ impl Summary {
         let mut motions = BTreeMap::new();
         let mut calls: Vec<CallCount> = Vec::new();
         let mut last_status = None;
-        for e in &result.events {
-            match e {
+        let mut io_changes: Vec<(String, u64, u64)> = Vec::new();
+        for r in &result.events {
+            match &r.event {
+                Event::Io {
+                    signal,
+                    index,
+                    value,
+                } => {
+                    let name = format!("{signal}[{index}]");
+                    let i = match io_changes.iter().position(|(n, ..)| *n == name) {
+                        Some(i) => i,
+                        None => {
+                            io_changes.push((name, 0, 0));
+                            io_changes.len() - 1
+                        }
+                    };
+                    if *value {
+                        io_changes[i].1 += 1;
+                    } else {
+                        io_changes[i].2 += 1;
+                    }
+                }
                 Event::Motion { kind, .. } => *motions.entry(kind.clone()).or_insert(0) += 1,
                 Event::Call { name } => match calls.iter_mut().find(|c| &c.name == name) {
                     Some(c) => c.calls += 1,
@@ -79,6 +102,7 @@ impl Summary {
             motions,
             calls,
             messages: result.messages.len(),
+            io_changes,
             outputs_on: result.outputs.clone(),
             last_status,
             requests_sent: result.eki.sends,
