@@ -14,6 +14,7 @@ pub mod files;
 pub mod generate;
 pub mod interp;
 pub mod lint;
+pub mod report;
 pub mod sim;
 pub mod spec;
 pub mod srci;

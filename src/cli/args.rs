@@ -37,6 +37,8 @@ pub enum Command {
     Run(RunArgs),
     /// Decode or encode an SRCI RaStatusWord.
     Srci(SrciArgs),
+    /// Write the HTML dry-run report of a `krlkit run --trace` file.
+    Report(ReportArgs),
 }
 
 #[derive(Debug, Clone, Copy, PartialEq, Eq, ValueEnum)]
@@ -219,6 +221,9 @@ pub struct RunArgs {
     /// Write a JSON Lines trace of motions and MM_ calls.
     #[arg(long)]
     pub trace: Option<PathBuf>,
+    /// Write the dry-run report: one self-contained HTML page (tool path, timeline, coverage).
+    #[arg(long, value_name = "FILE.html")]
+    pub report: Option<PathBuf>,
     /// Further modules the program calls (a .src with its .dat, or a directory of them);
     /// repeatable.
     #[arg(long = "module", value_name = "PATH")]
@@ -229,6 +234,15 @@ pub struct RunArgs {
     /// TRUE, as on the controller).
     #[arg(long = "input", value_name = "N[=on|off|out:M|not:M]")]
     pub inputs: Vec<crate::interp::InputSetting>,
+}
+
+#[derive(Debug, Args)]
+pub struct ReportArgs {
+    /// A trace written by `krlkit run --trace`.
+    pub trace: PathBuf,
+    /// The HTML page to write.
+    #[arg(short, long, value_name = "FILE.html")]
+    pub out: PathBuf,
 }
 
 #[derive(Debug, Args)]

@@ -6,6 +6,7 @@ mod generate;
 mod init;
 mod outputs;
 mod parse;
+mod report;
 mod rules;
 mod run;
 mod sim;
@@ -60,6 +61,7 @@ pub fn main() -> ExitCode {
         Command::Sim(a) => sim::run(a),
         Command::Run(a) => run::run(a),
         Command::Srci(a) => srci::run(a),
+        Command::Report(a) => report::run(a),
     };
     match result {
         Ok(outcome) => outcome.into(),

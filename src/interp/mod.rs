@@ -16,7 +16,7 @@
 mod builtins;
 mod eki;
 mod format;
-mod frame;
+pub(crate) mod frame;
 mod machine;
 pub mod package;
 mod program;
