@@ -24,8 +24,8 @@ fn stderr(o: &Output) -> String {
 
 #[test]
 fn run_report_equals_the_report_of_its_trace() {
-    let text = std::fs::read_to_string(root().join("tests/fixtures/scenarios/examples.toml"))
-        .unwrap();
+    let text =
+        std::fs::read_to_string(root().join("tests/fixtures/scenarios/examples.toml")).unwrap();
     let sc = Scenario::from_toml_str(&text, "examples.toml").unwrap();
     let server = Server::start(sc, "127.0.0.1:0").unwrap();
     let dir = tempfile::tempdir().unwrap();
@@ -76,8 +76,11 @@ fn report_errors_are_explained() {
     assert!(stderr(&o).contains("cannot read"), "{}", stderr(&o));
 
     let bad = dir.path().join("bad.jsonl");
-    std::fs::write(&bad, "{\"event\":\"call\",\"name\":\"MM_Init_Socket\",\"t\":0}\nnot json\n")
-        .unwrap();
+    std::fs::write(
+        &bad,
+        "{\"event\":\"call\",\"name\":\"MM_Init_Socket\",\"t\":0}\nnot json\n",
+    )
+    .unwrap();
     let o = krlkit(&["report", bad.to_str().unwrap(), "-o", out.to_str().unwrap()]);
     assert_eq!(o.status.code(), Some(2));
     assert!(stderr(&o).contains("line 2"), "{}", stderr(&o));
@@ -85,7 +88,11 @@ fn report_errors_are_explained() {
 
     let o = krlkit(&["report", bad.to_str().unwrap(), "-o", bad.to_str().unwrap()]);
     assert_eq!(o.status.code(), Some(2));
-    assert!(stderr(&o).contains("would overwrite the trace"), "{}", stderr(&o));
+    assert!(
+        stderr(&o).contains("would overwrite the trace"),
+        "{}",
+        stderr(&o)
+    );
 
     let same = dir.path().join("same");
     let o = krlkit(&[

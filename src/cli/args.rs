@@ -39,6 +39,29 @@ pub enum Command {
     Srci(SrciArgs),
     /// Write the HTML dry-run report of a `krlkit run --trace` file.
     Report(ReportArgs),
+    /// Language server over stdin/stdout, for editors (VS Code, Neovim, Helix, Zed).
+    Lsp,
+    /// Format KRL files in place: blanks and word case only; protected lines untouched.
+    Fmt(FmtArgs),
+}
+
+#[derive(Debug, Args)]
+pub struct FmtArgs {
+    /// Files or directories (walked recursively); `-` reads stdin and writes stdout.
+    #[arg(default_value = ".")]
+    pub paths: Vec<PathBuf>,
+    /// Write nothing; list the files that would change and exit 1 if any.
+    #[arg(long)]
+    pub check: bool,
+    /// Write nothing; print a unified diff of what would change (exit 1 if anything would).
+    #[arg(long)]
+    pub diff: bool,
+    /// Config file with a [fmt] table (default: ./krlkit.toml if present).
+    #[arg(long)]
+    pub config: Option<PathBuf>,
+    /// The name to report for `-` (stdin).
+    #[arg(long, value_name = "NAME")]
+    pub stdin_filename: Option<String>,
 }
 
 #[derive(Debug, Clone, Copy, PartialEq, Eq, ValueEnum)]
@@ -215,15 +238,24 @@ pub struct RunArgs {
     /// default spec).
     #[arg(long, conflicts_with = "package")]
     pub spec: Option<PathBuf>,
-    /// Vision server address (overrides the EKI XML's IP and port).
-    #[arg(long)]
+    /// Vision server address HOST:PORT (overrides the EKI XML's IP and port); checked before
+    /// the run starts.
+    #[arg(long, value_name = "HOST:PORT", value_parser = crate::cli::run::vision_address)]
     pub vision: Option<String>,
-    /// Write a JSON Lines trace of motions and MM_ calls.
-    #[arg(long)]
+    /// Write a JSON Lines trace of motions, MM_ calls and the end, as the run goes.
+    #[arg(long, value_name = "FILE")]
     pub trace: Option<PathBuf>,
     /// Write the dry-run report: one self-contained HTML page (tool path, timeline, coverage).
     #[arg(long, value_name = "FILE.html")]
     pub report: Option<PathBuf>,
+    /// Most statements the run may execute before it is stopped as an endless loop.
+    #[arg(long, value_name = "N", default_value_t = crate::interp::Options::default().step_limit)]
+    pub step_limit: u64,
+    /// Simulated time per real time while waiting on the vision server: 1 (default) keeps the
+    /// package's connect and reply timeouts as long as on the controller; 10 makes a 15 s
+    /// timeout pass in 1.5 s against the fake server.
+    #[arg(long, value_name = "FACTOR", default_value_t = 1.0, value_parser = crate::cli::run::time_scale)]
+    pub time_scale: f64,
     /// Further modules the program calls (a .src with its .dat, or a directory of them);
     /// repeatable.
     #[arg(long = "module", value_name = "PATH")]

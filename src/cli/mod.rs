@@ -2,8 +2,11 @@
 
 mod args;
 mod check;
+mod fmt;
 mod generate;
 mod init;
+mod inplace;
+mod lsp;
 mod outputs;
 mod parse;
 mod report;
@@ -62,6 +65,8 @@ pub fn main() -> ExitCode {
         Command::Run(a) => run::run(a),
         Command::Srci(a) => srci::run(a),
         Command::Report(a) => report::run(a),
+        Command::Lsp => lsp::run(),
+        Command::Fmt(a) => fmt::run(a),
     };
     match result {
         Ok(outcome) => outcome.into(),
