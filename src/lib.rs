@@ -17,6 +17,7 @@ pub mod interp;
 pub mod lint;
 pub mod lsp;
 pub mod report;
+pub mod sema;
 pub mod sim;
 pub mod spec;
 pub mod srci;
