@@ -1,20 +1,21 @@
 //! `krlkit check PATH... [--format …] [--eki-xml FILE] [--config FILE]`.
 //!
-//! Files are found and read in parallel, linted together as one program tree, then rendered in
-//! input order. An unreadable file or a bad config is named on stderr and gives exit 2; the files
-//! that could be read are still checked and reported.
+//! Files are found and read in parallel (folders walked, KUKA backup `.zip`s read in place),
+//! linted together as one workspace, then rendered in input order. An unreadable file, a corrupt
+//! archive or a bad config is named on stderr and gives exit 2; the files that could be read are
+//! still checked and reported. The summary line names the files, modules and routines read and
+//! the KSS version of a backup's `am.ini`.
 
 use std::io::Write;
 use std::path::{Path, PathBuf};
 
 use anyhow::Context;
-use rayon::prelude::*;
 
 use super::Outcome;
 use super::args::{CheckArgs, CheckFormat};
 use crate::diag::{FileReport, Severity, render};
-use crate::files;
-use crate::lint::{self, EkiChannel, Input, LintConfig};
+use crate::lint::{self, EkiChannel, LintConfig};
+use crate::sema::Workspace;
 
 pub fn run(args: CheckArgs) -> anyhow::Result<Outcome> {
     let config = match load_config(args.config.as_deref()) {
@@ -29,42 +30,26 @@ pub fn run(args: CheckArgs) -> anyhow::Result<Outcome> {
         None => (lint::eki_xml::scan(&args.paths), false),
     };
 
-    let walk = files::walk(&args.paths);
-    for s in &walk.skipped {
+    // Folders, files and backup archives (read in place), as one workspace per path given.
+    let ws = Workspace::load(&args.paths);
+    for s in &ws.skipped {
         eprintln!("warning: {s}");
     }
-    let walk_errors = walk.errors;
-    let loaded: Vec<_> = walk
-        .found
-        .par_iter()
-        .map(|c| files::load(c).map(|d| d.map(|d| (c.path.display().to_string(), d.text))))
-        .collect();
-    let mut failed = !walk_errors.is_empty();
-    for e in &walk_errors {
+    let failed = !ws.errors.is_empty();
+    for e in &ws.errors {
         eprintln!("error: cannot read {e}");
     }
-    let mut inputs = Vec::new();
-    for result in loaded {
-        match result {
-            Ok(Some((path, text))) => inputs.push(Input { path, text }),
-            Ok(None) => {}
-            Err(e) => {
-                eprintln!("error: cannot read {e}");
-                failed = true;
-            }
-        }
-    }
-
-    let reports = lint::lint(inputs, channels, channels_given, &config);
+    let outcome = lint::lint_workspace(ws, channels, channels_given, &config);
+    let reports = &outcome.reports;
     let errors: usize = reports.iter().map(|r| r.count(Severity::Error)).sum();
     let warnings: usize = reports.iter().map(|r| r.count(Severity::Warning)).sum();
     let mut out = String::new();
     match args.format {
-        CheckFormat::Human => each(&reports, &mut out, render::human::render),
-        CheckFormat::Concise => each(&reports, &mut out, render::concise::render),
-        CheckFormat::Github => each(&reports, &mut out, render::github::render),
-        CheckFormat::Json => out = render::json::render(&reports) + "\n",
-        CheckFormat::Sarif => out = render::sarif::render(&reports) + "\n",
+        CheckFormat::Human => each(reports, &mut out, render::human::render),
+        CheckFormat::Concise => each(reports, &mut out, render::concise::render),
+        CheckFormat::Github => each(reports, &mut out, render::github::render),
+        CheckFormat::Json => out = render::json::render(reports) + "\n",
+        CheckFormat::Sarif => out = render::sarif::render(reports) + "\n",
     }
     std::io::stdout().lock().write_all(out.as_bytes())?;
     if args.format == CheckFormat::Human {
@@ -72,9 +57,21 @@ pub fn run(args: CheckArgs) -> anyhow::Result<Outcome> {
         if files == 0 && !failed {
             eprintln!("warning: no KRL files found");
         }
+        if let Some(note) = outcome.incomplete_note() {
+            eprintln!("note: {note}");
+        }
+        let stats = outcome.stats;
+        let kss = outcome
+            .kss_version()
+            .map(|v| format!("; KSS {v}"))
+            .unwrap_or_default();
         eprintln!(
-            "{files} file{} checked: {errors} error{}, {warnings} warning{}",
+            "{files} file{} checked ({} module{}, {} routine{}{kss}): {errors} error{}, {warnings} warning{}",
             plural(files),
+            stats.modules,
+            plural(stats.modules),
+            stats.routines,
+            plural(stats.routines),
             plural(errors),
             plural(warnings)
         );

@@ -279,9 +279,10 @@ fn partition(inputs: &[SemaInput], am_ini: &[AmIni]) -> (Vec<RobotId>, Vec<Robot
             .iter()
             .map(|&i| robot_root(&inputs[i].path))
             .collect();
+        roots.sort();
         roots.dedup();
-        if roots.len() <= 1 {
-            roots = vec![String::new()];
+        if roots.is_empty() {
+            roots.push(String::new());
         }
         let first = robots.len();
         for r in &roots {

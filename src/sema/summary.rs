@@ -682,7 +682,7 @@ impl<'a> Summarizer<'a> {
             StmtKind::Assign { target, value } => {
                 let t = self.expr(target, Access::Write);
                 let v = self.expr(value, Access::Read);
-                self.assign(s.span, t, v);
+                self.assign(Span::new(target.span.start as usize, value.span.end as usize), t, v);
             }
             StmtKind::Call { name, args } => {
                 self.call(name, args);
