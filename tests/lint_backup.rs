@@ -85,7 +85,8 @@ fn zip_tree(dir: &Path, to: &Path) {
             continue;
         }
         zip.start_file(name, options).expect("entry");
-        zip.write_all(&std::fs::read(&f).expect("read")).expect("write");
+        zip.write_all(&std::fs::read(&f).expect("read"))
+            .expect("write");
     }
     zip.finish().expect("finish");
 }

@@ -178,11 +178,12 @@ pub fn lint_workspace(
         rest.push((p.findings, p.ast));
     }
     let sema = Sema::build(inputs, &am_ini);
-    let project = Project::new(
+    let mut project = Project::new(
         channels,
         channels_given,
         rest.iter().filter_map(|(_, a)| a.as_ref()),
     );
+    project.learn_environment(&sema);
     let reports: Vec<FileReport> = rest
         .into_par_iter()
         .enumerate()

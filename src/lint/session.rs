@@ -107,6 +107,7 @@ impl Session {
                 .filter(|(_, m)| m.mm)
                 .map(|(f, _)| &f.ast),
         );
+        self.project.learn_environment(&self.sema);
     }
 
     /// Add a file, or replace the one with the same path; only this file is parsed.

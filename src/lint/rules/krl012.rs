@@ -34,8 +34,10 @@ fn check(ctx: &FileCtx, out: &mut Vec<Diagnostic>) {
             format!("`{name}` is already declared {what}")
         };
         out.push(
-            Diagnostic::error(RULE.code, d.second.span, message)
-                .with_help(format!("first declared at {}; rename or remove one", ctx.place(d.first))),
+            Diagnostic::error(RULE.code, d.second.span, message).with_help(format!(
+                "first declared at {}; rename or remove one",
+                ctx.place(d.first)
+            )),
         );
     }
 }

@@ -1,8 +1,8 @@
 use crate::diag::{Diagnostic, Severity};
 use crate::lint::context::FileCtx;
 use crate::lint::registry::{Check, Rule};
-use crate::sema::{ArgForm, Resolved, SymbolKind, assignable};
-use crate::syntax::ast::ParamDir;
+use crate::sema::{ArgForm, Resolved, SymbolKind, TyKind, assignable};
+use crate::syntax::ast::{ExtKind, ParamDir};
 
 pub static RULE: Rule = Rule {
     code: "KRL014",
@@ -17,6 +17,15 @@ fn check(ctx: &FileCtx, out: &mut Vec<Diagnostic>) {
     let sema = ctx.sema;
     for c in sema.calls(ctx.id) {
         if !matches!(c.target, Resolved::Routine(_) | Resolved::Ext(_)) {
+            continue;
+        }
+        // An EXT declaration does not tell a CHAR array from a CHAR (KUKA's own write `CHAR :IN`
+        // for a `CHAR[]` parameter), and EXTP/EXTFCTP link elsewhere: neither is judged as such.
+        let ext = match c.target {
+            Resolved::Ext(x) => Some(sema.ext(x).kind),
+            _ => None,
+        };
+        if matches!(ext, Some(ExtKind::Extp | ExtKind::Extfctp)) {
             continue;
         }
         let Some(sig) = sema.callable(c.target) else {
@@ -50,14 +59,18 @@ fn check(ctx: &FileCtx, out: &mut Vec<Diagnostic>) {
                         Diagnostic::error(
                             RULE.code,
                             arg.span,
-                            format!("{param} of `{callee}` is OUT and needs a variable, not {problem}"),
+                            format!(
+                                "{param} of `{callee}` is OUT and needs a variable, not {problem}"
+                            ),
                         )
                         .with_help("pass a variable; the routine writes its result into it"),
                     );
                     continue;
                 }
             }
-            if assignable(p.ty, arg.ty, sema) == Some(false) {
+            if (ext.is_none() || p.ty.kind != TyKind::Char)
+                && assignable(p.ty, arg.ty, sema) == Some(false)
+            {
                 out.push(
                     Diagnostic::error(
                         RULE.code,

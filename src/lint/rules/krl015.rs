@@ -9,7 +9,7 @@ pub static RULE: Rule = Rule {
     name: "ext-mismatch",
     severity: Severity::Error,
     summary: "An EXT/EXTFCT declaration disagrees with the GLOBAL DEF/DEFFCT it links to",
-    doc: "## What it checks\nAn `EXT` declaration must describe a DEF and an `EXTFCT` a DEFFCT; when the routine it names is in the workspace (a GLOBAL routine or another module's main routine), the declaration must have as many parameters, each of the same type (array or not) and, where both say it, the same direction (`:IN`/`:OUT`), and an `EXTFCT` the same return type. `EXTP`/`EXTFCTP` and declarations whose routine is not in the workspace are not checked.\n\n## Why it matters\nThe linker connects the call to the routine through the declaration; when they disagree the module does not link, or the callee reads its parameters with the wrong types.\n\n## Example\n```krl\nEXT pick_part(INT :IN)        ; the routine takes (INT :IN, REAL :IN)\n```\n\n## Fix\nCopy the routine's parameter list into the declaration (or remove the declaration: a GLOBAL routine needs none).",
+    doc: "## What it checks\nAn `EXT` declaration must describe a DEF and an `EXTFCT` a DEFFCT; when the routine it names is in the workspace (a GLOBAL routine or another module's main routine), the declaration must have as many parameters, each of the same element type and, where both say it, the same direction (`:IN`/`:OUT`), and an `EXTFCT` the same return type. `EXTP`/`EXTFCTP` and declarations whose routine is not in the workspace are not checked.\n\n## Why it matters\nThe linker connects the call to the routine through the declaration; when they disagree the module does not link, or the callee reads its parameters with the wrong types.\n\n## Example\n```krl\nEXT pick_part(INT :IN)        ; the routine takes (INT :IN, REAL :IN)\n```\n\n## Fix\nCopy the routine's parameter list into the declaration (or remove the declaration: a GLOBAL routine needs none).",
     check: Check::Model(check),
 };
 
@@ -47,8 +47,12 @@ fn check(ctx: &FileCtx, out: &mut Vec<Diagnostic>) {
                 .zip(&sig.params)
                 .enumerate()
                 .find_map(|(i, (e, p))| {
-                    let pname = p.name.map_or(String::new(), |n| format!(" `{}`", sema.name(n)));
-                    if known(e.ty) && known(p.ty) && e.ty != p.ty {
+                    let pname = p
+                        .name
+                        .map_or(String::new(), |n| format!(" `{}`", sema.name(n)));
+                    // An EXT may write `CHAR` for a `CHAR[]` parameter (KUKA's own
+                    // $config.dat does): only the element types are compared.
+                    if known(e.ty) && known(p.ty) && e.ty.kind != p.ty.kind {
                         Some(format!(
                             "parameter {}{pname} is `{}` in the declaration, `{}` in the routine",
                             i + 1,
@@ -67,11 +71,13 @@ fn check(ctx: &FileCtx, out: &mut Vec<Diagnostic>) {
                     }
                 })
                 .or_else(|| match (x.sig.ret, sig.ret) {
-                    (Some(a), Some(b)) if known(a) && known(b) && a != b => Some(format!(
-                        "it returns `{}`, the routine returns `{}`",
-                        sema.ty_name(a),
-                        sema.ty_name(b)
-                    )),
+                    (Some(a), Some(b)) if known(a) && known(b) && a.kind != b.kind => {
+                        Some(format!(
+                            "it returns `{}`, the routine returns `{}`",
+                            sema.ty_name(a),
+                            sema.ty_name(b)
+                        ))
+                    }
                     _ => None,
                 }),
         };
@@ -86,7 +92,9 @@ fn check(ctx: &FileCtx, out: &mut Vec<Diagnostic>) {
                     x.decl.span,
                     format!("the declaration of `{name}` does not match the routine: {problem}"),
                 )
-                .with_help(format!("the routine is at {def}; make the declaration match it")),
+                .with_help(format!(
+                    "the routine is at {def}; make the declaration match it"
+                )),
             );
         }
     }

@@ -16,6 +16,9 @@ pub static RULE: Rule = Rule {
 
 fn check(ctx: &FileCtx, out: &mut Vec<Diagnostic>) {
     let sema = ctx.sema;
+    if ctx.is_vendor() {
+        return;
+    }
     let file = sema.file(ctx.id);
     if file.routines.is_empty() {
         return;
@@ -46,8 +49,12 @@ fn check(ctx: &FileCtx, out: &mut Vec<Diagnostic>) {
         }
         let name = sema.name(sym.name);
         out.push(
-            Diagnostic::warning(RULE.code, decl.span, format!("`{name}` is declared but never used"))
-                .with_help("remove the declaration, or use the variable you meant to"),
+            Diagnostic::warning(
+                RULE.code,
+                decl.span,
+                format!("`{name}` is declared but never used"),
+            )
+            .with_help("remove the declaration, or use the variable you meant to"),
         );
     }
 }

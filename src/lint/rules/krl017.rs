@@ -28,10 +28,7 @@ fn check(ctx: &FileCtx, out: &mut Vec<Diagnostic>) {
                         shown(sema.ty_name(a.value))
                     ),
                 )
-                .with_help(format!(
-                    "assign a value of type {}",
-                    sema.ty_name(a.target)
-                )),
+                .with_help(format!("assign a value of type {}", sema.ty_name(a.target))),
             );
         }
     }
