@@ -617,7 +617,7 @@ impl<'p> Machine<'p> {
             .is_some();
         if is_mm {
             self.events.push(Event::Call {
-                name: routine.name.text.clone(),
+                name: routine.name.text.to_string(),
             });
         }
         if self.frames.len() > 200 {
@@ -670,7 +670,7 @@ impl<'p> Machine<'p> {
                         && let Some(Slot::Alias(place)) = frame.vars.get(&p.name.key())
                         && let Ok(v) = self.read_value(place)
                     {
-                        out.push((p.name.text.clone(), to_json(&v)));
+                        out.push((p.name.text.to_string(), to_json(&v)));
                     }
                 }
             }
@@ -679,7 +679,7 @@ impl<'p> Machine<'p> {
                 _ => None,
             };
             self.events.push(Event::Return {
-                name: routine.name.text.clone(),
+                name: routine.name.text.to_string(),
                 out,
                 status,
             });
@@ -861,7 +861,7 @@ impl<'p> Machine<'p> {
                 }
             }
             StmtKind::Exit => return Ok(Flow::Exit),
-            StmtKind::Goto { label } => return Ok(Flow::Goto(label.text.clone())),
+            StmtKind::Goto { label } => return Ok(Flow::Goto(label.text.to_string())),
             StmtKind::Label { .. } | StmtKind::Continue => {}
             StmtKind::WaitSec { time } => {
                 let t = self.eval_real(time)?;
@@ -1235,7 +1235,7 @@ impl<'p> Machine<'p> {
                         field.text
                     )));
                 }
-                p.path.push(Seg::Field(field.text.to_ascii_uppercase()));
+                p.path.push(Seg::Field(field.key()));
                 Ok(p)
             }
             ExprKind::Index { base, indices } => {
@@ -1668,7 +1668,7 @@ impl<'p> Machine<'p> {
                 for (n, fe) in fields {
                     let v = self.eval(fe)?;
                     match n {
-                        Some(n) => vals.push((n.text.to_ascii_uppercase(), v)),
+                        Some(n) => vals.push((n.key(), v)),
                         None => return Err(self.err("positional aggregates are not supported")),
                     }
                 }

@@ -292,7 +292,7 @@ pub fn routine_decls(r: &Routine) -> impl Iterator<Item = &Decl> {
     r.decls
         .iter()
         .chain(r.body.iter().filter_map(|s| match &s.kind {
-            StmtKind::Decl(d) => Some(d),
+            StmtKind::Decl(d) => Some(&**d),
             _ => None,
         }))
 }

@@ -542,7 +542,7 @@ impl<'p> Tx<'p> {
             .unwrap_or("main")
             .to_owned();
         let id = Ident {
-            text: stem,
+            text: stem.into(),
             span: Span::empty(0),
         };
         let name = self.program_name(&id);

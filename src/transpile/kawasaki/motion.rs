@@ -27,7 +27,7 @@ impl<'p> Tx<'p> {
         let mut seen = std::collections::HashSet::new();
         if self.sets_apo_cdis(&routine.key(), &mut seen) {
             self.apo_cdis = None;
-            self.apo_changed_by = Some(routine.text.clone());
+            self.apo_changed_by = Some(routine.text.to_string());
         }
     }
 
