@@ -12,6 +12,7 @@ mod memory_bounds;
 
 fn run(args: &[&str], cwd: &Path) -> (f64, u64) {
     let start = Instant::now();
+    #[allow(clippy::zombie_processes)] // reaped by wait4 below, which also gives its rusage
     let child = Command::new(env!("CARGO_BIN_EXE_krlkit"))
         .args(args)
         .current_dir(cwd)
@@ -39,9 +40,16 @@ fn main() {
         memory_bounds::big_program(mb << 20),
     )
     .expect("write");
-    std::fs::write(dir.path().join("blank.src"), "\n".repeat((mb * 2 / 5) << 20)).expect("write");
+    std::fs::write(
+        dir.path().join("blank.src"),
+        "\n".repeat((mb * 2 / 5) << 20),
+    )
+    .expect("write");
     for file in ["big.src", "blank.src"] {
-        let size = std::fs::metadata(dir.path().join(file)).expect("size").len() >> 20;
+        let size = std::fs::metadata(dir.path().join(file))
+            .expect("size")
+            .len()
+            >> 20;
         for args in [
             &["check", file][..],
             &["parse", file],

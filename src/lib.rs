@@ -11,6 +11,7 @@ pub mod cli;
 pub mod diag;
 pub mod eki;
 pub mod files;
+pub mod fmt;
 pub mod generate;
 pub mod interp;
 pub mod lint;

@@ -315,7 +315,7 @@ fn catalog_globals_are_declared_with_the_limit_sizes() {
         .find(|f| f.path.ends_with("MM_Comm.dat"))
         .expect("data module");
     let text = String::from_utf8(dat.contents.clone()).unwrap();
-    for g in &cat.globals {
+    for g in cat.globals_of(krlkit::catalog::Interface::V1) {
         let decl = format!("DECL GLOBAL {} {}", g.ty, g.name);
         assert!(text.contains(&decl), "missing `{decl}`");
     }

@@ -9,7 +9,9 @@ use std::process::{Command, Stdio};
 
 /// A KRL program of about `bytes` bytes: one routine of motions, IF/FOR blocks, waits, FOLDs.
 pub fn big_program(bytes: usize) -> String {
-    let mut s = String::from("&ACCESS RVP\r\nDEF big()\r\n  DECL INT i, n\r\n  DECL REAL x\r\n  DECL E6POS p\r\n");
+    let mut s = String::from(
+        "&ACCESS RVP\r\nDEF big()\r\n  DECL INT i, n\r\n  DECL REAL x\r\n  DECL E6POS p\r\n",
+    );
     let mut k = 0;
     while s.len() < bytes {
         k += 1;
@@ -28,6 +30,7 @@ pub fn big_program(bytes: usize) -> String {
 
 /// Peak resident set of one run of krlkit, in bytes.
 fn peak_rss(args: &[&str], cwd: &Path) -> u64 {
+    #[allow(clippy::zombie_processes)] // reaped by wait4 below, which also gives its rusage
     let child = Command::new(env!("CARGO_BIN_EXE_krlkit"))
         .args(args)
         .current_dir(cwd)

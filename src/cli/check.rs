@@ -100,15 +100,24 @@ fn plural(n: usize) -> &'static str {
 
 /// `--config FILE`, else `./krlkit.toml` when present, else the defaults.
 fn load_config(path: Option<&Path>) -> Result<LintConfig, String> {
+    match read_config(path)? {
+        Some((path, text)) => LintConfig::from_toml(&path, &text).map_err(|e| e.to_string()),
+        None => Ok(LintConfig::default()),
+    }
+}
+
+/// The config file `check` and `fmt` read: `--config FILE`, else `./krlkit.toml` when present.
+/// Returns its path as shown to the user and its text.
+pub(super) fn read_config(path: Option<&Path>) -> Result<Option<(String, String)>, String> {
     let default = PathBuf::from("krlkit.toml");
     let path = match path {
         Some(p) => p.to_path_buf(),
         None if default.is_file() => default,
-        None => return Ok(LintConfig::default()),
+        None => return Ok(None),
     };
     let text = std::fs::read_to_string(&path)
         .map_err(|e| format!("cannot read config {}: {e}", path.display()))?;
-    LintConfig::from_toml(&path.display().to_string(), &text).map_err(|e| e.to_string())
+    Ok(Some((path.display().to_string(), text)))
 }
 
 fn channel_name(path: &Path) -> String {

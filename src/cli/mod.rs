@@ -2,8 +2,10 @@
 
 mod args;
 mod check;
+mod fmt;
 mod generate;
 mod init;
+mod inplace;
 mod outputs;
 mod parse;
 mod rules;
@@ -60,6 +62,7 @@ pub fn main() -> ExitCode {
         Command::Sim(a) => sim::run(a),
         Command::Run(a) => run::run(a),
         Command::Srci(a) => srci::run(a),
+        Command::Fmt(a) => fmt::run(a),
     };
     match result {
         Ok(outcome) => outcome.into(),

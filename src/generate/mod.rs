@@ -64,6 +64,8 @@ pub enum GenError {
     },
     #[error("{0}")]
     Io(String),
+    #[error("{0}")]
+    Unsupported(String),
 }
 
 impl GeneratedFile {
@@ -85,6 +87,12 @@ fn krl_file(name: &str, ext: &str, text: &str, eol: LineEnding) -> GeneratedFile
 /// Render the whole package for `spec`, in a fixed order (helper module, then the routines in
 /// catalog order, then XML and install note).
 pub fn generate(spec: &Spec) -> Result<Vec<GeneratedFile>, GenError> {
+    if spec.codec != crate::spec::Codec::Ascii || spec.interface != crate::catalog::Interface::V1 {
+        return Err(GenError::Unsupported(format!(
+            "the KUKA package for codec {} and interface {} is not generated yet (issue 14)",
+            spec.codec, spec.interface
+        )));
+    }
     let pkg = Package::new(spec);
     let eol = spec.line_endings;
     let render_err = |file: &str| {

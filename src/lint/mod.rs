@@ -17,7 +17,7 @@ pub mod registry;
 mod rules;
 mod suppress;
 mod text;
-mod walk;
+pub(crate) mod walk;
 
 use rayon::prelude::*;
 

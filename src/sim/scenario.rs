@@ -857,7 +857,10 @@ impl Scenario {
         for f in &raw.faults {
             let fault = f.get_ref();
             if cat.command(fault.command).is_none() {
-                let known: Vec<String> = cat.commands.iter().map(|c| c.code.to_string()).collect();
+                let known: Vec<String> = cat
+                    .commands_of(crate::catalog::Interface::V1)
+                    .map(|c| c.code.to_string())
+                    .collect();
                 return Err(ck.error_key(
                     f.span(),
                     "command",

@@ -38,7 +38,11 @@ impl Parse {
 
     /// The `--tree` JSON, written as the tree is walked (nothing the size of the output is
     /// built in memory).
-    pub fn write_json_tree(&self, text: &str, out: &mut impl std::io::Write) -> std::io::Result<()> {
+    pub fn write_json_tree(
+        &self,
+        text: &str,
+        out: &mut impl std::io::Write,
+    ) -> std::io::Result<()> {
         self.root().write_json(text, out)
     }
 
