@@ -15,6 +15,7 @@ pub mod fmt;
 pub mod generate;
 pub mod interp;
 pub mod lint;
+pub mod lsp;
 pub mod sim;
 pub mod spec;
 pub mod srci;

@@ -37,6 +37,8 @@ pub enum Command {
     Run(RunArgs),
     /// Decode or encode an SRCI RaStatusWord.
     Srci(SrciArgs),
+    /// Language server over stdin/stdout, for editors (VS Code, Neovim, Helix, Zed).
+    Lsp,
     /// Format KRL files in place: blanks and word case only; protected lines untouched.
     Fmt(FmtArgs),
 }
