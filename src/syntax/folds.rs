@@ -59,13 +59,14 @@ fn line(
         let rest = &text[title_start..end];
         let rest = rest.find(";%").map_or(rest, |i| &rest[..i]);
         let lead = rest.len() - rest.trim_start().len();
-        let title = Span::new(title_start + lead, title_start + rest.trim_end().len());
+        // A blank title trims to nothing from both sides: its start would pass its end.
+        let (from, to) = (title_start + lead, title_start + rest.trim_end().len());
         open.push(all.len());
         all.push(Fold {
             open: span,
             close: None,
-            title: if title.start <= title.end {
-                title
+            title: if from <= to {
+                Span::new(from, to)
             } else {
                 Span::empty(title_start)
             },
@@ -81,6 +82,12 @@ fn line(
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn a_fold_with_a_blank_title_has_an_empty_title() {
+        let (f, _) = folds(";FOLD   \n;ENDFOLD\n");
+        assert_eq!(f[0].title, Span::empty(5));
+    }
 
     #[test]
     fn nested_folds_titles_and_strays() {
