@@ -91,7 +91,7 @@ fn cycle_package(c: &mut Criterion) {
             let moves = r
                 .events
                 .iter()
-                .filter(|e| matches!(e, Event::Motion { .. }))
+                .filter(|r| matches!(r.event, Event::Motion { .. }))
                 .count();
             assert_eq!(moves, 20);
             moves

@@ -87,7 +87,7 @@ fn cpu_ns() -> Option<u64> {
 fn cpu_throughput(iters: usize) {
     // PARSE_CPU_DIR=DIR: measure over the KRL files below DIR instead (e.g. a local corpus).
     if let Ok(dir) = std::env::var("PARSE_CPU_DIR") {
-        let (found, _) = krlkit::files::walk(&[std::path::PathBuf::from(dir)]);
+        let found = krlkit::files::walk(&[std::path::PathBuf::from(dir)]).found;
         let texts: Vec<String> = found
             .iter()
             .filter_map(|c| krlkit::files::load(c).ok().flatten())

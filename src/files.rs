@@ -1,10 +1,15 @@
 //! Finding and reading KRL files.
 //!
-//! Paths named explicitly are always read. Directories are walked recursively (in sorted order,
-//! symlinks not followed); a file found there is KRL if its extension is `.src`, `.sub` or `.dat`
-//! (any case) and its content looks like KRL ([`looks_like_krl`]). Walking only collects paths,
-//! so callers can read, parse and drop files one at a time, in parallel.
+//! Paths named explicitly are always read. Directories are walked recursively in sorted order,
+//! following symlinks (a folder reached twice, e.g. through a symlink loop, is walked once); a
+//! file found there is KRL if its extension is `.src`, `.sub` or `.dat` (any case) and its
+//! content looks like KRL ([`looks_like_krl`]). Only regular files are ever opened, and never in
+//! a way that blocks: FIFOs, sockets and devices found by walking are named and skipped, and one
+//! named explicitly is an error. Walking only collects paths, so callers can read, parse and
+//! drop files one at a time, in parallel.
 
+use std::collections::HashSet;
+use std::io::{self, Read};
 use std::path::{Path, PathBuf};
 
 use crate::syntax::{Decoded, decode};
@@ -15,7 +20,7 @@ use crate::syntax::{Decoded, decode};
 pub struct FileError {
     pub path: PathBuf,
     #[source]
-    pub source: std::io::Error,
+    pub source: io::Error,
 }
 
 /// Where a candidate came from: named by the user, or found in a directory.
@@ -31,13 +36,38 @@ pub struct Candidate {
     pub origin: Origin,
 }
 
+/// A walked entry that was not read, and why (`"a FIFO"`, `"a broken symlink"` …).
+#[derive(Debug, Clone, PartialEq, Eq)]
+pub struct Skipped {
+    pub path: PathBuf,
+    pub what: &'static str,
+}
+
+impl std::fmt::Display for Skipped {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        write!(f, "{}: skipped, {}", self.path.display(), self.what)
+    }
+}
+
+/// The result of walking: candidate files, paths that could not be walked, entries skipped.
+#[derive(Debug, Default)]
+pub struct Walk {
+    pub found: Vec<Candidate>,
+    pub errors: Vec<FileError>,
+    pub skipped: Vec<Skipped>,
+}
+
 /// KRL file extensions.
 pub const EXTENSIONS: [&str; 3] = ["src", "sub", "dat"];
 
 pub fn has_krl_extension(path: &Path) -> bool {
+    has_extension(path, &EXTENSIONS)
+}
+
+fn has_extension(path: &Path, exts: &[&str]) -> bool {
     path.extension()
         .and_then(|e| e.to_str())
-        .is_some_and(|e| EXTENSIONS.iter().any(|k| e.eq_ignore_ascii_case(k)))
+        .is_some_and(|e| exts.iter().any(|k| e.eq_ignore_ascii_case(k)))
 }
 
 /// The first significant line (not blank, not a `;` comment) is an `&` header or starts with
@@ -66,95 +96,161 @@ pub fn looks_like_krl(text: &str) -> bool {
             && words.find(|w| !w.is_empty()).is_some_and(is_def))
 }
 
-/// Expand `paths` into candidate files. Missing paths and unreadable directories are errors;
-/// the walk goes on past them.
-pub fn walk(paths: &[PathBuf]) -> (Vec<Candidate>, Vec<FileError>) {
-    let mut found = Vec::new();
-    let mut errors = Vec::new();
+/// What a file system entry is, for messages about entries that are not regular files.
+fn kind(ty: std::fs::FileType) -> &'static str {
+    #[cfg(unix)]
+    {
+        use std::os::unix::fs::FileTypeExt;
+        if ty.is_fifo() {
+            return "a FIFO (named pipe)";
+        }
+        if ty.is_socket() {
+            return "a socket";
+        }
+        if ty.is_block_device() || ty.is_char_device() {
+            return "a device";
+        }
+    }
+    if ty.is_dir() {
+        "a folder"
+    } else {
+        "not a regular file"
+    }
+}
+
+/// Read a regular file whole. Anything else (FIFO, socket, device, folder) is an error, found
+/// without blocking: the file is opened non-blocking and checked before it is read.
+pub fn read_regular(path: &Path) -> io::Result<Vec<u8>> {
+    let mut options = std::fs::OpenOptions::new();
+    options.read(true);
+    #[cfg(unix)]
+    {
+        use std::os::unix::fs::OpenOptionsExt;
+        options.custom_flags(libc::O_NONBLOCK);
+    }
+    let mut file = options.open(path)?;
+    let meta = file.metadata()?;
+    if !meta.is_file() {
+        return Err(io::Error::new(
+            io::ErrorKind::InvalidInput,
+            format!("{}, not a regular file", kind(meta.file_type())),
+        ));
+    }
+    let mut bytes = Vec::with_capacity(meta.len().try_into().unwrap_or(0));
+    file.read_to_end(&mut bytes)?;
+    Ok(bytes)
+}
+
+/// Expand `paths` into candidate KRL files. Missing paths and unreadable directories are
+/// errors; the walk goes on past them.
+pub fn walk(paths: &[PathBuf]) -> Walk {
+    walk_with(paths, has_krl_extension)
+}
+
+fn walk_with(paths: &[PathBuf], wanted: fn(&Path) -> bool) -> Walk {
+    let mut walk = Walk::default();
+    let mut seen = HashSet::new();
     for path in paths {
         match std::fs::metadata(path) {
-            Ok(meta) if meta.is_dir() => walk_dir(path, &mut found, &mut errors),
-            Ok(_) => found.push(Candidate {
+            Ok(meta) if meta.is_dir() => {
+                if seen.insert(identity(path, &meta)) {
+                    walk_dir(path, wanted, &mut seen, &mut walk);
+                }
+            }
+            Ok(meta) if meta.is_file() => walk.found.push(Candidate {
                 path: path.clone(),
                 origin: Origin::Named,
             }),
-            Err(source) => errors.push(FileError {
+            Ok(meta) => walk.errors.push(FileError {
+                path: path.clone(),
+                source: io::Error::new(
+                    io::ErrorKind::InvalidInput,
+                    format!("{}, not a regular file", kind(meta.file_type())),
+                ),
+            }),
+            Err(source) => walk.errors.push(FileError {
                 path: path.clone(),
                 source,
             }),
         }
     }
-    (found, errors)
+    walk
 }
 
-fn walk_dir(dir: &Path, found: &mut Vec<Candidate>, errors: &mut Vec<FileError>) {
+/// What makes a folder the same folder however it is reached.
+#[cfg(unix)]
+fn identity(_: &Path, meta: &std::fs::Metadata) -> (u64, u64, PathBuf) {
+    use std::os::unix::fs::MetadataExt;
+    (meta.dev(), meta.ino(), PathBuf::new())
+}
+
+#[cfg(not(unix))]
+fn identity(path: &Path, _: &std::fs::Metadata) -> (u64, u64, PathBuf) {
+    (
+        0,
+        0,
+        std::fs::canonicalize(path).unwrap_or_else(|_| path.to_path_buf()),
+    )
+}
+
+fn walk_dir(
+    dir: &Path,
+    wanted: fn(&Path) -> bool,
+    seen: &mut HashSet<(u64, u64, PathBuf)>,
+    walk: &mut Walk,
+) {
     let entries = match std::fs::read_dir(dir) {
         Ok(e) => e,
         Err(source) => {
-            errors.push(FileError {
+            walk.errors.push(FileError {
                 path: dir.to_path_buf(),
                 source,
             });
             return;
         }
     };
-    let mut paths: Vec<(PathBuf, bool)> = entries
-        .filter_map(Result::ok)
-        .filter_map(|e| {
-            let ty = e.file_type().ok()?;
-            (!ty.is_symlink()).then(|| (e.path(), ty.is_dir()))
-        })
-        .collect();
+    let mut paths: Vec<PathBuf> = entries.filter_map(Result::ok).map(|e| e.path()).collect();
     paths.sort();
-    for (path, is_dir) in paths {
-        if is_dir {
-            walk_dir(&path, found, errors);
-        } else if has_krl_extension(&path) {
-            found.push(Candidate {
+    for path in paths {
+        // Follows symlinks; the `seen` set stops loops.
+        let meta = match std::fs::metadata(&path) {
+            Ok(m) => m,
+            Err(_) => {
+                if wanted(&path) {
+                    walk.skipped.push(Skipped {
+                        path,
+                        what: "a broken symlink",
+                    });
+                }
+                continue;
+            }
+        };
+        if meta.is_dir() {
+            if seen.insert(identity(&path, &meta)) {
+                walk_dir(&path, wanted, seen, walk);
+            }
+        } else if !wanted(&path) {
+        } else if meta.is_file() {
+            walk.found.push(Candidate {
                 path,
                 origin: Origin::Walked,
             });
+        } else {
+            let what = kind(meta.file_type());
+            walk.skipped.push(Skipped { path, what });
         }
     }
 }
 
 /// EKI XML files among `paths`: `.xml` files named directly or found by walking directories
-/// (sorted, symlinks not followed). Unreadable directories are skipped here; [`walk`] reports them.
+/// (sorted). Unreadable directories and special files are skipped here; [`walk`] reports them.
 pub fn walk_xml(paths: &[PathBuf]) -> Vec<PathBuf> {
-    fn is_xml(p: &Path) -> bool {
-        p.extension()
-            .and_then(|e| e.to_str())
-            .is_some_and(|e| e.eq_ignore_ascii_case("xml"))
-    }
-    fn dir(d: &Path, out: &mut Vec<PathBuf>) {
-        let Ok(entries) = std::fs::read_dir(d) else {
-            return;
-        };
-        let mut paths: Vec<(PathBuf, bool)> = entries
-            .filter_map(Result::ok)
-            .filter_map(|e| {
-                let ty = e.file_type().ok()?;
-                (!ty.is_symlink()).then(|| (e.path(), ty.is_dir()))
-            })
-            .collect();
-        paths.sort();
-        for (p, is_dir) in paths {
-            if is_dir {
-                dir(&p, out);
-            } else if is_xml(&p) {
-                out.push(p);
-            }
-        }
-    }
-    let mut out = Vec::new();
-    for p in paths {
-        if p.is_dir() {
-            dir(p, &mut out);
-        } else if is_xml(p) {
-            out.push(p.clone());
-        }
-    }
-    out
+    walk_with(paths, |p| has_extension(p, &["xml"]))
+        .found
+        .into_iter()
+        .map(|c| c.path)
+        .filter(|p| has_extension(p, &["xml"]))
+        .collect()
 }
 
 /// The `.dat` beside a program: same directory, same stem, extension `dat` in any case
@@ -186,7 +282,7 @@ pub fn sibling_dat(program: &Path) -> Option<PathBuf> {
 
 /// Read and decode one candidate. `Ok(None)`: a walked file whose content is not KRL.
 pub fn load(candidate: &Candidate) -> Result<Option<Decoded>, FileError> {
-    let bytes = std::fs::read(&candidate.path).map_err(|source| FileError {
+    let bytes = read_regular(&candidate.path).map_err(|source| FileError {
         path: candidate.path.clone(),
         source,
     })?;

@@ -248,13 +248,15 @@ fn check_sees_only_the_folders_of_the_target() {
     let kawasaki = generate::generate_kawasaki(&spec).unwrap();
     generate::write_atomic(dir.path(), &kawasaki).unwrap();
     assert!(generate::check(dir.path(), &kawasaki).is_clean());
-    std::fs::write(dir.path().join("as/old.as"), "x").unwrap();
+    // A generated file the spec no longer produces is stale; a user's file beside it is not.
+    std::fs::write(dir.path().join("as/old.as"), &kawasaki[0].contents).unwrap();
+    std::fs::write(dir.path().join("as/notes.txt"), "x").unwrap();
     std::fs::create_dir_all(dir.path().join("as/backup")).unwrap();
     let d = generate::check(dir.path(), &kawasaki);
-    assert_eq!(d.extra, [Path::new("as/old.as")]);
+    assert_eq!(d.stale, [Path::new("as/old.as")]);
     // The KUKA check of the same folder misses the KUKA files and ignores as/.
     let kuka = generate::generate(&spec).unwrap();
     let d = generate::check(dir.path(), &kuka);
     assert_eq!(d.missing.len(), kuka.len());
-    assert!(d.extra.is_empty());
+    assert!(d.stale.is_empty());
 }

@@ -110,7 +110,8 @@ fn target_kawasaki_writes_the_as_package_only_and_checks_it() {
     assert_eq!(o.status.code(), Some(1));
     assert!(String::from_utf8_lossy(&o.stdout).contains("missing: krl/R1/mm/MM_Comm.src"));
     std::fs::write(p.join("as/mm_package.as"), "changed").unwrap();
-    std::fs::write(p.join("as/stale.as"), "x").unwrap();
+    std::fs::copy(p.join("as/INSTALL.md"), p.join("as/OLD.md")).unwrap();
+    std::fs::write(p.join("as/mine.as"), "x").unwrap();
     let o = krlkit(
         &["gen", "--target", "kawasaki", "--check", "--out", "p"],
         dir.path(),
@@ -118,7 +119,11 @@ fn target_kawasaki_writes_the_as_package_only_and_checks_it() {
     assert_eq!(o.status.code(), Some(1));
     let out = String::from_utf8_lossy(&o.stdout);
     assert!(out.contains("differs: as/mm_package.as"), "{out}");
-    assert!(out.contains("extra:   as/stale.as"), "{out}");
+    assert!(out.contains("stale:   as/OLD.md"), "{out}");
+    assert!(
+        !out.contains("mine.as"),
+        "a user's file is not drift: {out}"
+    );
 }
 
 #[test]
@@ -203,7 +208,13 @@ fn unwritable_output_exits_2() {
     std::fs::write(dir.path().join("afile"), "x").unwrap();
     let o = krlkit(&["gen", "--out", "afile"], dir.path());
     assert_eq!(o.status.code(), Some(2));
-    assert!(stderr(&o).contains("nothing was written"), "{}", stderr(&o));
+    assert!(
+        stderr(&o).contains(
+            "afile is a file, not a folder; choose another --out (afile was not changed)"
+        ),
+        "{}",
+        stderr(&o)
+    );
 }
 
 #[test]

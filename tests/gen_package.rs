@@ -271,7 +271,7 @@ fn committed_reference_output_has_no_drift() {
 }
 
 #[test]
-fn check_reports_differing_missing_and_extra_files() {
+fn check_reports_differing_missing_and_stale_files() {
     let dir = tempfile::tempdir().unwrap();
     let files = generate::generate(&Spec::default()).unwrap();
     generate::write_atomic(dir.path(), &files).unwrap();
@@ -279,14 +279,16 @@ fn check_reports_differing_missing_and_extra_files() {
     let mm = dir.path().join(generate::KRL_DIR);
     std::fs::write(mm.join("MM_Get_Pose.src"), "changed").unwrap();
     std::fs::remove_file(mm.join("MM_CALIB.src")).unwrap();
-    std::fs::write(mm.join("MM_Old.src"), "stale").unwrap();
+    // A generated file (it has the marker) the spec does not produce is stale; a user's is not.
+    std::fs::copy(mm.join("MM_Get_Jps.src"), mm.join("MM_Old.src")).unwrap();
+    std::fs::write(mm.join("MM_Mine.src"), "DEF MM_Mine()\nEND\n").unwrap();
     std::fs::create_dir_all(dir.path().join("krl/examples")).unwrap();
     std::fs::write(dir.path().join("krl/examples/ignored.src"), "x").unwrap();
     let d = generate::check(dir.path(), &files);
     let p = |s: &str| Path::new(generate::KRL_DIR).join(s);
     assert_eq!(d.differing, vec![p("MM_Get_Pose.src")]);
     assert_eq!(d.missing, vec![p("MM_CALIB.src")]);
-    assert_eq!(d.extra, vec![p("MM_Old.src")]);
+    assert_eq!(d.stale, vec![p("MM_Old.src")]);
 }
 
 #[test]
@@ -313,7 +315,7 @@ fn catalog_globals_are_declared_with_the_limit_sizes() {
         .find(|f| f.path.ends_with("MM_Comm.dat"))
         .expect("data module");
     let text = String::from_utf8(dat.contents.clone()).unwrap();
-    for g in &cat.globals {
+    for g in cat.globals_of(krlkit::catalog::Interface::V1) {
         let decl = format!("DECL GLOBAL {} {}", g.ty, g.name);
         assert!(text.contains(&decl), "missing `{decl}`");
     }

@@ -47,7 +47,7 @@ fn every_subprogram_end_to_end() {
         let case = Case::from_directives(path.to_path_buf());
         let outcome = run(&case);
         check_invariants(&name, &case, &outcome);
-        for e in &outcome.result.events {
+        for e in outcome.result.events.iter().map(|r| &r.event) {
             if let Event::Return {
                 name,
                 status: Some(s),
@@ -153,7 +153,7 @@ fn examples_run_against_the_examples_scenario() {
         case.scenario = Some(root().join("tests/fixtures/scenarios/examples.toml"));
         let outcome = run(&case);
         check_invariants(&name, &case, &outcome);
-        for e in &outcome.result.events {
+        for e in outcome.result.events.iter().map(|r| &r.event) {
             if let Event::Return {
                 name: sub,
                 status: Some(s),
@@ -167,8 +167,8 @@ fn examples_run_against_the_examples_scenario() {
             .result
             .events
             .iter()
-            .filter_map(|e| match e {
-                Event::Motion { kind, target } => {
+            .filter_map(|r| match &r.event {
+                Event::Motion { kind, target, .. } => {
                     Some((kind.clone(), target.iter().map(|(_, v)| *v).collect()))
                 }
                 _ => None,

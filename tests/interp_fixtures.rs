@@ -1,9 +1,10 @@
 //! Each `tests/fixtures/interp/*.src` (with its `.dat`) runs in the interpreter; the snapshot
-//! holds the trace (JSON Lines), the final DEFDAT globals and how the run ended.
+//! holds the trace (JSON Lines, without the `source` events), the final DEFDAT globals and how
+//! the run ended.
 
 use std::path::Path;
 
-use krlkit::interp::{self, End, Options, Program};
+use krlkit::interp::{self, End, Event, Options, Program};
 
 fn load(src: &Path) -> Program {
     let mut files = Vec::new();
@@ -25,7 +26,12 @@ fn render(src: &Path) -> String {
     };
     let result = interp::run(&program, &options);
     let mut out = String::new();
-    for e in &result.events {
+    // The source events repeat the fixture files.
+    for e in result
+        .events
+        .iter()
+        .filter(|r| !matches!(r.event, Event::Source { .. }))
+    {
         out.push_str(&e.to_json_line());
         out.push('\n');
     }

@@ -26,7 +26,7 @@ use std::time::{Duration, Instant};
 use interp_support::{
     Case, Outcome, check_invariants, closed_port, render, root, run, scenario_of,
 };
-use krlkit::interp::{Event, Value};
+use krlkit::interp::{Event, Record, Value};
 use krlkit::sim::scenario::PlanLayout;
 use krlkit::sim::{Scenario, Server};
 use serde::Deserialize;
@@ -404,18 +404,18 @@ fn check_motions(name: &str, want: &[Target], got: &[(String, Vec<(String, f64)>
     );
 }
 
-fn motions_of(events: &[Event]) -> Vec<(String, Vec<(String, f64)>)> {
+fn motions_of(events: &[Record]) -> Vec<(String, Vec<(String, f64)>)> {
     events
         .iter()
-        .filter_map(|e| match e {
-            Event::Motion { kind, target } => Some((kind.clone(), target.clone())),
+        .filter_map(|r| match &r.event {
+            Event::Motion { kind, target, .. } => Some((kind.clone(), target.clone())),
             _ => None,
         })
         .collect()
 }
 
-fn last_status(events: &[Event]) -> Option<i64> {
-    events.iter().rev().find_map(|e| match e {
+fn last_status(events: &[Record]) -> Option<i64> {
+    events.iter().rev().find_map(|r| match &r.event {
         Event::Return { status, .. } => *status,
         _ => None,
     })

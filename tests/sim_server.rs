@@ -3,6 +3,7 @@
 
 mod sim_support;
 
+use std::io::Write as _;
 use std::time::{Duration, Instant};
 
 use krlkit::catalog::catalog;
@@ -464,22 +465,126 @@ fn faults_delay_status_drop_garbage_wrong_echo() {
 }
 
 #[test]
-fn one_client_at_a_time() {
+fn clients_are_served_concurrently_and_share_the_project_state() {
     let server = start(fixture("vision_pick.toml"));
     let mut a = Client::connect(server.addr());
     assert_eq!(a.ask("901"), "901,1101");
+    // A second client is answered while the first keeps its connection open.
     let mut b = Client::connect(server.addr());
-    b.set_read_timeout(Duration::from_millis(300));
-    b.send_raw(b"901\r");
-    assert_eq!(
-        b.read(),
-        Read1::TimedOut,
-        "second client waits while the first is served"
+    b.set_read_timeout(Duration::from_secs(1));
+    assert_eq!(b.ask(START_3), "101,1102");
+    // The trigger on one connection is fetched on another, as with a real Mech-Vision.
+    assert_eq!(&fields(&a.ask("102,3"))[..2], ["102", "1100"]);
+    assert_eq!(server.open_sessions(), 2);
+    let conns: Vec<u64> = server.requests().iter().map(|r| r.connection).collect();
+    assert_eq!(conns, [1, 2, 1]);
+}
+
+#[test]
+fn a_client_dribbling_bytes_neither_holds_others_nor_its_session() {
+    let server = start(scenario("[server]\nidle_timeout_ms = 600\n"));
+    let mut slow = Client::connect(server.addr());
+    let t = Instant::now();
+    // A CR or a space every 100 ms: blank messages and bytes, never a complete request, so the
+    // idle timer is not restarted.
+    let writer = {
+        let mut s = slow.try_clone_stream();
+        std::thread::spawn(move || {
+            for i in 0..20 {
+                let byte: &[u8] = if i % 2 == 0 { b"\r" } else { b" " };
+                if s.write_all(byte).is_err() {
+                    break;
+                }
+                std::thread::sleep(Duration::from_millis(100));
+            }
+        })
+    };
+    std::thread::sleep(Duration::from_millis(150));
+    let asked = Instant::now();
+    assert_eq!(ask_once(server.addr(), "901"), "901,1101");
+    assert!(
+        asked.elapsed() < Duration::from_millis(300),
+        "{:?}",
+        asked.elapsed()
     );
+    assert_eq!(slow.read(), Read1::Closed);
+    let closed = t.elapsed();
+    assert!(
+        closed >= Duration::from_millis(550) && closed < Duration::from_millis(1500),
+        "closed after {closed:?}"
+    );
+    writer.join().unwrap();
+}
+
+#[test]
+fn complete_messages_keep_a_session_open() {
+    let server = start(scenario("[server]\nidle_timeout_ms = 300\n"));
+    let mut c = Client::connect(server.addr());
+    for _ in 0..6 {
+        std::thread::sleep(Duration::from_millis(100));
+        assert_eq!(c.ask("901"), "901,1101");
+    }
+    let t = Instant::now();
+    assert_eq!(c.read(), Read1::Closed);
+    assert!(
+        t.elapsed() >= Duration::from_millis(200),
+        "{:?}",
+        t.elapsed()
+    );
+}
+
+#[test]
+fn two_hundred_clients_holding_their_sockets_wait_little() {
+    let server = start(fixture("vision_pick.toml"));
+    let addr = server.addr();
+    let clients: Vec<_> = (0..200)
+        .map(|_| {
+            std::thread::spawn(move || {
+                let t = Instant::now();
+                let mut c = Client::connect(addr);
+                assert_eq!(c.ask("901"), "901,1101");
+                let waited = t.elapsed();
+                std::thread::sleep(Duration::from_millis(500));
+                drop(c);
+                waited
+            })
+        })
+        .collect();
+    let mut waits: Vec<Duration> = clients.into_iter().map(|h| h.join().unwrap()).collect();
+    waits.sort();
+    let median = waits[waits.len() / 2];
+    eprintln!("200 clients: median wait {median:?}, max {:?}", waits[199]);
+    assert!(median < Duration::from_millis(500), "median {median:?}");
+    assert_eq!(server.requests().len(), 200);
+}
+
+#[test]
+fn clients_beyond_max_clients_are_refused_and_logged() {
+    let server = start(scenario("[server]\nmax_clients = 2\n"));
+    let mut a = Client::connect(server.addr());
+    let mut b = Client::connect(server.addr());
     assert_eq!(a.ask("901"), "901,1101");
+    assert_eq!(b.ask("901"), "901,1101");
+    let mut c = Client::connect(server.addr());
+    assert_eq!(c.read(), Read1::Closed);
+    let refused = server
+        .requests()
+        .into_iter()
+        .find(|r| r.note.as_deref().is_some_and(|n| n.contains("refused")))
+        .expect("the refusal is logged");
+    assert_eq!(refused.connection, 3);
+    assert!(
+        refused
+            .to_string()
+            .contains("2 clients are connected (max_clients)")
+    );
     drop(a);
-    b.set_read_timeout(Duration::from_secs(3));
-    assert_eq!(b.read(), Read1::Line("901,1101".into()));
+    // The slot is free again once a session ends.
+    let deadline = Instant::now() + Duration::from_secs(3);
+    while server.open_sessions() > 1 && Instant::now() < deadline {
+        std::thread::sleep(Duration::from_millis(10));
+    }
+    assert_eq!(ask_once(server.addr(), "901"), "901,1101");
 }
 
 #[test]
@@ -537,15 +642,22 @@ fn observer_streams_records() {
 }
 
 #[test]
-fn shutdown_with_a_connected_client_is_prompt() {
+fn shutdown_with_connected_clients_is_prompt() {
     let server = start(fixture("vision_pick.toml"));
     let addr = server.addr();
     let mut c = Client::connect(addr);
     assert_eq!(c.ask("901"), "901,1101");
+    let mut others: Vec<Client> = (0..50).map(|_| Client::connect(addr)).collect();
+    others[0].send_raw(b"90");
     let t = Instant::now();
-    server.shutdown();
-    assert!(t.elapsed() < Duration::from_secs(2));
+    drop(server);
+    assert!(
+        t.elapsed() < Duration::from_millis(500),
+        "{:?}",
+        t.elapsed()
+    );
     assert_eq!(c.read(), Read1::Closed);
+    assert_eq!(others[0].read(), Read1::Closed);
 }
 
 #[test]

@@ -253,8 +253,8 @@ fn kawasaki(v: &[f64]) -> Pose {
 fn krl_motions(r: &RunResult) -> Vec<(String, Pose)> {
     r.events
         .iter()
-        .filter_map(|e| match e {
-            KrlEvent::Motion { kind, target } => {
+        .filter_map(|r| match &r.event {
+            KrlEvent::Motion { kind, target, .. } => {
                 let v: Vec<f64> = target.iter().map(|(_, v)| *v).collect();
                 let pose = if target.first().is_some_and(|(n, _)| n == "A1") {
                     Pose::Axis(v.try_into().expect("six axes"))

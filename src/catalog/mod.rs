@@ -4,12 +4,15 @@
 //! once on first use. Every other module asks this one for names, parameters, ranges, command
 //! numbers and status codes instead of restating them.
 
+mod interface;
 mod kawasaki;
 
 use std::sync::OnceLock;
 
 use serde::Deserialize;
 
+use interface::applies;
+pub use interface::{Hex, HexKind, Interface};
 pub use kawasaki::{
     AsKind, AsParam, GlobalOrigin, KawasakiCommand, KawasakiGlobal, KawasakiLimits, VisionMoveField,
 };
@@ -23,7 +26,12 @@ const CATALOG_TOML: &str = include_str!("catalog.toml");
 pub fn catalog() -> &'static Catalog {
     static CATALOG: OnceLock<Catalog> = OnceLock::new();
     CATALOG.get_or_init(|| {
-        toml::from_str(CATALOG_TOML).unwrap_or_else(|e| panic!("embedded catalog.toml: {e}"))
+        let mut cat: Catalog =
+            toml::from_str(CATALOG_TOML).unwrap_or_else(|e| panic!("embedded catalog.toml: {e}"));
+        for s in &mut cat.subprograms_v2 {
+            s.interface = Interface::V2;
+        }
+        cat
     })
 }
 
@@ -35,14 +43,21 @@ pub fn catalog_source() -> &'static str {
 #[derive(Debug, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct Catalog {
-    pub dialect: String,
     pub limits: Limits,
+    /// Protocol commands; a code may appear once per interface version.
     #[serde(rename = "command")]
     pub commands: Vec<Command>,
+    /// The 1.x KUKA subprograms of seed 000, in the seed's order.
     #[serde(rename = "subprogram")]
     pub subprograms: Vec<Subprogram>,
+    /// The 2.x KUKA subprograms (Mech-Vision 2.x), in the vendor page's order.
+    #[serde(rename = "subprogram_v2")]
+    pub subprograms_v2: Vec<Subprogram>,
+    /// Status codes; a code may appear once per interface version.
     #[serde(rename = "status")]
     pub statuses: Vec<Status>,
+    /// HEX framing: field kinds and frame sizes.
+    pub hex: Hex,
     /// Globals of the generated package that user programs may read.
     #[serde(rename = "global", default)]
     pub globals: Vec<Global>,
@@ -63,6 +78,9 @@ pub struct Catalog {
 #[serde(deny_unknown_fields)]
 pub struct Global {
     pub name: String,
+    /// The interface version this entry belongs to (None: both).
+    #[serde(default)]
+    pub interface: Option<Interface>,
     #[serde(rename = "type")]
     pub ty: String,
     /// Array length; `None` for a scalar.
@@ -95,6 +113,9 @@ pub struct Limits {
 pub struct Command {
     pub code: u32,
     pub name: String,
+    /// The interface version this layout belongs to (None: both).
+    #[serde(default)]
+    pub interface: Option<Interface>,
     pub summary: String,
     pub request: Vec<String>,
     pub reply: Vec<String>,
@@ -267,6 +288,12 @@ pub struct Subprogram {
     pub status_global: bool,
     #[serde(default)]
     pub assumption: Option<String>,
+    /// Where the signature comes from when it is not seed 000 (2.x entries).
+    #[serde(default)]
+    pub source: Option<String>,
+    /// The interface version this subprogram belongs to (set when the catalog is loaded).
+    #[serde(skip)]
+    pub interface: Interface,
 }
 
 impl Subprogram {
@@ -275,7 +302,7 @@ impl Subprogram {
         let cat = catalog();
         self.commands
             .iter()
-            .filter_map(|c| cat.command(*c))
+            .filter_map(|c| cat.command_in(self.interface, *c))
             .filter_map(|c| c.success)
             .collect()
     }
@@ -326,6 +353,9 @@ pub enum Origin {
 #[serde(deny_unknown_fields)]
 pub struct Status {
     pub code: u32,
+    /// The interface version whose table has this entry (None: both).
+    #[serde(default)]
+    pub interface: Option<Interface>,
     pub origin: Origin,
     pub meaning: String,
     #[serde(default)]
@@ -339,41 +369,98 @@ pub struct Status {
 }
 
 impl Catalog {
-    /// Case-insensitive lookup, as KRL names are case-insensitive.
+    /// The KUKA subprograms of an interface version.
+    pub fn subprograms_of(&self, iface: Interface) -> &[Subprogram] {
+        match iface {
+            Interface::V1 => &self.subprograms,
+            Interface::V2 => &self.subprograms_v2,
+        }
+    }
+
+    /// Case-insensitive lookup among the 1.x subprograms, as KRL names are case-insensitive.
     pub fn subprogram(&self, name: &str) -> Option<&Subprogram> {
-        self.subprograms
+        self.subprogram_in(Interface::V1, name)
+    }
+
+    /// Case-insensitive lookup among the subprograms of `iface`.
+    pub fn subprogram_in(&self, iface: Interface, name: &str) -> Option<&Subprogram> {
+        self.subprograms_of(iface)
             .iter()
             .find(|s| s.name.eq_ignore_ascii_case(name))
     }
 
-    /// A package global by name (case-insensitive).
-    pub fn global(&self, name: &str) -> Option<&Global> {
+    /// The package globals of an interface version.
+    pub fn globals_of(&self, iface: Interface) -> impl Iterator<Item = &Global> {
         self.globals
             .iter()
+            .filter(move |g| applies(g.interface, iface))
+    }
+
+    /// A 1.x package global by name (case-insensitive).
+    pub fn global(&self, name: &str) -> Option<&Global> {
+        self.globals_of(Interface::V1)
             .find(|g| g.name.eq_ignore_ascii_case(name))
     }
 
+    /// A command's 1.x layout.
     pub fn command(&self, code: u32) -> Option<&Command> {
-        self.commands.iter().find(|c| c.code == code)
+        self.command_in(Interface::V1, code)
     }
 
+    /// A command's layout in `iface`.
+    pub fn command_in(&self, iface: Interface, code: u32) -> Option<&Command> {
+        self.commands
+            .iter()
+            .find(|c| c.code == code && applies(c.interface, iface))
+    }
+
+    /// The commands of an interface version.
+    pub fn commands_of(&self, iface: Interface) -> impl Iterator<Item = &Command> {
+        self.commands
+            .iter()
+            .filter(move |c| applies(c.interface, iface))
+    }
+
+    /// A code's entry in the 1.x status table.
     pub fn status(&self, code: u32) -> Option<&Status> {
-        self.statuses.iter().find(|s| s.code == code)
+        self.status_in(Interface::V1, code)
     }
 
-    /// A protocol command by its catalog name, e.g. `get_vision_result` → 102.
-    pub fn command_named(&self, name: &str) -> Option<&Command> {
-        self.commands.iter().find(|c| c.name == name)
+    /// A code's entry in the status table of `iface`.
+    pub fn status_in(&self, iface: Interface, code: u32) -> Option<&Status> {
+        self.statuses_of(iface).find(|s| s.code == code)
     }
 
-    /// A status code by its symbolic name (any origin), e.g. `NO_CONNECTION` → 3099.
-    pub fn status_named(&self, name: &str) -> Option<&Status> {
+    /// The status table of an interface version.
+    pub fn statuses_of(&self, iface: Interface) -> impl Iterator<Item = &Status> {
         self.statuses
             .iter()
+            .filter(move |s| applies(s.interface, iface))
+    }
+
+    /// A protocol command by its catalog name (1.x layout), e.g. `get_vision_result` → 102.
+    pub fn command_named(&self, name: &str) -> Option<&Command> {
+        self.command_named_in(Interface::V1, name)
+    }
+
+    /// A protocol command by its catalog name, in the layout of `iface`.
+    pub fn command_named_in(&self, iface: Interface, name: &str) -> Option<&Command> {
+        self.commands_of(iface).find(|c| c.name == name)
+    }
+
+    /// A 1.x status code by its symbolic name (any origin), e.g. `NO_CONNECTION` → 3099.
+    pub fn status_named(&self, name: &str) -> Option<&Status> {
+        self.status_named_in(Interface::V1, name)
+    }
+
+    /// A status code of `iface` by its symbolic name.
+    pub fn status_named_in(&self, iface: Interface, name: &str) -> Option<&Status> {
+        self.statuses_of(iface)
             .find(|s| s.name.as_deref() == Some(name))
     }
 
-    /// A package-defined status code by its symbolic name, e.g. `NO_CONNECTION` → 3099.
+    /// A package-defined status code by its symbolic name, e.g. `NO_CONNECTION` → 3099. The
+    /// package's own codes are the same in every interface version.
     ///
     /// # Panics
     /// If the name is not in the catalog (a programming error caught by the tests).
@@ -385,15 +472,34 @@ impl Catalog {
             .code
     }
 
-    /// The subprogram whose name is nearest to `name` (for "did you mean" help).
+    /// The 1.x subprogram whose name is nearest to `name` (for "did you mean" help).
     pub fn nearest_subprogram(&self, name: &str) -> Option<&Subprogram> {
+        self.nearest_subprogram_in(Interface::V1, name)
+    }
+
+    /// The subprogram of `iface` whose name is nearest to `name`.
+    pub fn nearest_subprogram_in(&self, iface: Interface, name: &str) -> Option<&Subprogram> {
         let lower = name.to_ascii_lowercase();
-        self.subprograms
+        self.subprograms_of(iface)
             .iter()
             .map(|s| (edit_distance(&lower, &s.name.to_ascii_lowercase()), s))
             .filter(|(d, _)| *d <= 4.max(name.len() / 3))
             .min_by_key(|(d, _)| *d)
             .map(|(_, s)| s)
+    }
+
+    /// Values of the Vision Move data the KUKA package of `iface` stores per waypoint
+    /// (`MM_Plan_Results`): the 20-value seed layout in 1.x, all 21 values in 2.x.
+    pub fn plan_results_len_in(&self, iface: Interface) -> u32 {
+        match iface {
+            Interface::V1 => self.kuka_plan_len(),
+            Interface::V2 => self.kawasaki_plan_len(),
+        }
+    }
+
+    /// Bytes of a KUKA HEX frame for a batch of `batch` points (660 for the default 20).
+    pub fn hex_frame_bytes(&self, batch: u32) -> u32 {
+        self.hex.frame_bytes(batch)
     }
 }
 

@@ -37,6 +37,29 @@ pub enum Command {
     Run(RunArgs),
     /// Decode or encode an SRCI RaStatusWord.
     Srci(SrciArgs),
+    /// Language server over stdin/stdout, for editors (VS Code, Neovim, Helix, Zed).
+    Lsp,
+    /// Format KRL files in place: blanks and word case only; protected lines untouched.
+    Fmt(FmtArgs),
+}
+
+#[derive(Debug, Args)]
+pub struct FmtArgs {
+    /// Files or directories (walked recursively); `-` reads stdin and writes stdout.
+    #[arg(default_value = ".")]
+    pub paths: Vec<PathBuf>,
+    /// Write nothing; list the files that would change and exit 1 if any.
+    #[arg(long)]
+    pub check: bool,
+    /// Write nothing; print a unified diff of what would change (exit 1 if anything would).
+    #[arg(long)]
+    pub diff: bool,
+    /// Config file with a [fmt] table (default: ./krlkit.toml if present).
+    #[arg(long)]
+    pub config: Option<PathBuf>,
+    /// The name to report for `-` (stdin).
+    #[arg(long, value_name = "NAME")]
+    pub stdin_filename: Option<String>,
 }
 
 #[derive(Debug, Clone, Copy, PartialEq, Eq, ValueEnum)]

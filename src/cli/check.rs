@@ -26,11 +26,16 @@ pub fn run(args: CheckArgs) -> anyhow::Result<Outcome> {
     };
     let (channels, channels_given) = match &args.eki_xml {
         Some(path) => (vec![read_channel(path)?], true),
-        None => (scanned_channels(&args.paths), false),
+        None => (lint::eki_xml::scan(&args.paths), false),
     };
 
-    let (candidates, walk_errors) = files::walk(&args.paths);
-    let loaded: Vec<_> = candidates
+    let walk = files::walk(&args.paths);
+    for s in &walk.skipped {
+        eprintln!("warning: {s}");
+    }
+    let walk_errors = walk.errors;
+    let loaded: Vec<_> = walk
+        .found
         .par_iter()
         .map(|c| files::load(c).map(|d| d.map(|d| (c.path.display().to_string(), d.text))))
         .collect();
@@ -95,42 +100,38 @@ fn plural(n: usize) -> &'static str {
 
 /// `--config FILE`, else `./krlkit.toml` when present, else the defaults.
 fn load_config(path: Option<&Path>) -> Result<LintConfig, String> {
+    match read_config(path)? {
+        Some((path, text)) => LintConfig::from_toml(&path, &text).map_err(|e| e.to_string()),
+        None => Ok(LintConfig::default()),
+    }
+}
+
+/// The config file `check` and `fmt` read: `--config FILE`, else `./krlkit.toml` when present.
+/// Returns its path as shown to the user and its text.
+pub(super) fn read_config(path: Option<&Path>) -> Result<Option<(String, String)>, String> {
     let default = PathBuf::from("krlkit.toml");
     let path = match path {
         Some(p) => p.to_path_buf(),
         None if default.is_file() => default,
-        None => return Ok(LintConfig::default()),
+        None => return Ok(None),
     };
     let text = std::fs::read_to_string(&path)
         .map_err(|e| format!("cannot read config {}: {e}", path.display()))?;
-    LintConfig::from_toml(&path.display().to_string(), &text).map_err(|e| e.to_string())
-}
-
-fn channel_name(path: &Path) -> String {
-    path.file_stem()
-        .map(|s| s.to_string_lossy().into_owned())
-        .unwrap_or_default()
+    Ok(Some((path.display().to_string(), text)))
 }
 
 fn read_channel(path: &Path) -> anyhow::Result<EkiChannel> {
     let text = std::fs::read(path).with_context(|| format!("cannot read {}", path.display()))?;
     let text = crate::syntax::decode(&text).text;
-    lint::eki_xml::read(&channel_name(path), &path.display().to_string(), &text).ok_or_else(|| {
+    lint::eki_xml::read(
+        &lint::eki_xml::channel_name(path),
+        &path.display().to_string(),
+        &text,
+    )
+    .ok_or_else(|| {
         anyhow::anyhow!(
             "{}: not an EthernetKRL config (no <ETHERNETKRL> root element)",
             path.display()
         )
     })
-}
-
-/// EKI configs found among the scanned paths; files that are not EKI XML are ignored.
-fn scanned_channels(paths: &[PathBuf]) -> Vec<EkiChannel> {
-    files::walk_xml(paths)
-        .par_iter()
-        .filter_map(|p| {
-            let bytes = std::fs::read(p).ok()?;
-            let text = crate::syntax::decode(&bytes).text;
-            lint::eki_xml::read(&channel_name(p), &p.display().to_string(), &text)
-        })
-        .collect()
 }

@@ -2,8 +2,12 @@
 
 mod args;
 mod check;
+mod fmt;
 mod generate;
 mod init;
+mod inplace;
+mod lsp;
+mod outputs;
 mod parse;
 mod rules;
 mod run;
@@ -59,6 +63,8 @@ pub fn main() -> ExitCode {
         Command::Sim(a) => sim::run(a),
         Command::Run(a) => run::run(a),
         Command::Srci(a) => srci::run(a),
+        Command::Lsp => lsp::run(),
+        Command::Fmt(a) => fmt::run(a),
     };
     match result {
         Ok(outcome) => outcome.into(),

@@ -18,8 +18,13 @@ pub fn run(args: ParseArgs) -> anyhow::Result<Outcome> {
     if args.tree {
         return tree(&args);
     }
-    let (candidates, walk_errors) = files::walk(&args.paths);
-    let results: Vec<Result<Option<Checked>, FileError>> = candidates
+    let walk = files::walk(&args.paths);
+    for s in &walk.skipped {
+        eprintln!("warning: {s}");
+    }
+    let walk_errors = walk.errors;
+    let results: Vec<Result<Option<Checked>, FileError>> = walk
+        .found
         .par_iter()
         .map(|c| check(c, args.format))
         .collect();
@@ -127,8 +132,15 @@ fn tree(args: &ParseArgs) -> anyhow::Result<Outcome> {
         path: path.clone(),
         origin: files::Origin::Named,
     };
-    let decoded = files::load(&candidate)?
-        .ok_or_else(|| anyhow::anyhow!("{}: not a KRL file", path.display()))?;
+    let decoded = match files::load(&candidate) {
+        Ok(Some(d)) => d,
+        Ok(None) => anyhow::bail!("{}: not a KRL file", path.display()),
+        Err(e) => {
+            // The error names the path and the reason once.
+            eprintln!("error: cannot read {e}");
+            return Ok(Outcome::Failure);
+        }
+    };
     let parse = syntax::parse(&decoded.text);
     let mut stdout = std::io::stdout().lock();
     writeln!(stdout, "{}", parse.to_json_tree(&decoded.text))?;

@@ -112,6 +112,21 @@ pub fn run(args: RunArgs) -> anyhow::Result<Outcome> {
             return Ok(Outcome::Failure);
         }
     }
+    if let Some(trace) = &args.trace {
+        let mut inputs: Vec<(&str, &Path)> =
+            files.iter().map(|f| ("input file", f.as_path())).collect();
+        inputs[0].0 = "program";
+        inputs.extend(args.spec.as_deref().map(|s| ("spec", s)));
+        let mut pkg = Vec::new();
+        if let Some(dir) = &args.package {
+            package_files(dir, &mut pkg, &mut Vec::new());
+        }
+        inputs.extend(pkg.iter().map(|p| ("package file", p.as_path())));
+        if let Err(msg) = super::outputs::check("--trace", trace, &inputs) {
+            eprintln!("{msg}");
+            return Ok(Outcome::Failure);
+        }
+    }
     // A module given twice (or the program itself) is loaded once.
     let mut seen = std::collections::HashSet::new();
     files.retain(|p| seen.insert(std::fs::canonicalize(p).unwrap_or_else(|_| p.clone())));

@@ -33,8 +33,19 @@ pub fn run(args: TranspileArgs) -> anyhow::Result<Outcome> {
             return Ok(Outcome::Failure);
         }
     };
+    let dat_path = crate::files::sibling_dat(&args.file);
+    if let Some(out) = &args.out {
+        let mut inputs: Vec<(&str, &Path)> = vec![("input program", &args.file)];
+        inputs.extend(dat_path.as_deref().map(|d| ("program's .dat", d)));
+        inputs.extend(args.spec.as_deref().map(|s| ("spec", s)));
+        inputs.extend(args.eki_xml.as_deref().map(|x| ("EKI XML", x)));
+        if let Err(msg) = super::outputs::check("-o", out, &inputs) {
+            eprintln!("{msg}");
+            return Ok(Outcome::Failure);
+        }
+    }
     let src = read_source(&args.file)?;
-    let dat = match crate::files::sibling_dat(&args.file) {
+    let dat = match dat_path {
         Some(p) => Some(read_source(&p)?),
         None => None,
     };

@@ -1,10 +1,13 @@
-//! Diagnostics as data: a code, a severity, a span, a message and optional help.
+//! Diagnostics as data: a code, a severity, a span, a message, optional help and an optional
+//! fix (byte-span edits with an applicability, [`fix`]).
 //!
 //! Nothing here prints. Renderers (in `render`) turn diagnostics into text for the CLI.
 
+pub mod fix;
 mod line_index;
 pub mod render;
 
+pub use fix::{Applicability, Edit, Fix};
 pub use line_index::LineIndex;
 
 use serde::Serialize;
@@ -95,6 +98,9 @@ pub struct Diagnostic {
     pub message: String,
     /// Optional: what to do about it.
     pub help: Option<String>,
+    /// Optional: the change that would resolve it, as data (see [`fix`]).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub fix: Option<Fix>,
 }
 
 impl Diagnostic {
@@ -110,6 +116,7 @@ impl Diagnostic {
             span,
             message: message.into(),
             help: None,
+            fix: None,
         }
     }
 
@@ -123,6 +130,11 @@ impl Diagnostic {
 
     pub fn with_help(mut self, help: impl Into<String>) -> Diagnostic {
         self.help = Some(help.into());
+        self
+    }
+
+    pub fn with_fix(mut self, fix: Fix) -> Diagnostic {
+        self.fix = Some(fix);
         self
     }
 }

@@ -11,6 +11,7 @@ pub mod as_view;
 mod install;
 mod kawasaki;
 mod krl;
+pub mod marker;
 mod output;
 pub mod view;
 mod writer;
@@ -63,18 +64,35 @@ pub enum GenError {
     },
     #[error("{0}")]
     Io(String),
+    #[error("{0}")]
+    Unsupported(String),
+}
+
+impl GeneratedFile {
+    /// A generated file with its `krlkit:generated` marker (see [`marker`]).
+    fn new(path: PathBuf, contents: Vec<u8>, eol: LineEnding) -> GeneratedFile {
+        let contents = marker::stamp(&path, &contents, eol.as_str());
+        GeneratedFile { path, contents }
+    }
 }
 
 fn krl_file(name: &str, ext: &str, text: &str, eol: LineEnding) -> GeneratedFile {
-    GeneratedFile {
-        path: PathBuf::from(KRL_DIR).join(format!("{name}.{ext}")),
-        contents: writer::normalise(text, eol),
-    }
+    GeneratedFile::new(
+        PathBuf::from(KRL_DIR).join(format!("{name}.{ext}")),
+        writer::normalise(text, eol),
+        eol,
+    )
 }
 
 /// Render the whole package for `spec`, in a fixed order (helper module, then the routines in
 /// catalog order, then XML and install note).
 pub fn generate(spec: &Spec) -> Result<Vec<GeneratedFile>, GenError> {
+    if spec.codec != crate::spec::Codec::Ascii || spec.interface != crate::catalog::Interface::V1 {
+        return Err(GenError::Unsupported(format!(
+            "the KUKA package for codec {} and interface {} is not generated yet (issue 14)",
+            spec.codec, spec.interface
+        )));
+    }
     let pkg = Package::new(spec);
     let eol = spec.line_endings;
     let render_err = |file: &str| {
@@ -100,17 +118,19 @@ pub fn generate(spec: &Spec) -> Result<Vec<GeneratedFile>, GenError> {
         let text = krl::render_routine(&r, &pkg).map_err(render_err(&sp.name))?;
         files.push(krl_file(&sp.name, "src", &text, eol));
     }
-    files.push(GeneratedFile {
-        path: PathBuf::from(XML_DIR).join(spec.xml_file_name()),
-        contents: writer::normalise(&crate::eki::channel_xml(spec), eol),
-    });
-    files.push(GeneratedFile {
-        path: PathBuf::from(INSTALL_PATH),
-        contents: writer::normalise(
+    files.push(GeneratedFile::new(
+        PathBuf::from(XML_DIR).join(spec.xml_file_name()),
+        writer::normalise(&crate::eki::channel_xml(spec), eol),
+        eol,
+    ));
+    files.push(GeneratedFile::new(
+        PathBuf::from(INSTALL_PATH),
+        writer::normalise(
             &install::render(spec, &pkg).map_err(render_err("INSTALL.md"))?,
             LineEnding::Lf,
         ),
-    });
+        LineEnding::Lf,
+    ));
     Ok(files)
 }
 
@@ -124,14 +144,16 @@ pub fn generate_kawasaki(spec: &Spec) -> Result<Vec<GeneratedFile>, GenError> {
         source,
     })?;
     Ok(vec![
-        GeneratedFile {
-            path: PathBuf::from(AS_PATH),
-            contents: writer::normalise_dense(&text, spec.line_endings),
-        },
-        GeneratedFile {
-            path: PathBuf::from(AS_INSTALL_PATH),
-            contents: writer::normalise(&note, LineEnding::Lf),
-        },
+        GeneratedFile::new(
+            PathBuf::from(AS_PATH),
+            writer::normalise_dense(&text, spec.line_endings),
+            spec.line_endings,
+        ),
+        GeneratedFile::new(
+            PathBuf::from(AS_INSTALL_PATH),
+            writer::normalise(&note, LineEnding::Lf),
+            LineEnding::Lf,
+        ),
     ])
 }
 

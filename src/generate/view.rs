@@ -44,8 +44,7 @@ pub struct GlobalDecl {
 
 fn global_decls() -> Vec<GlobalDecl> {
     catalog()
-        .globals
-        .iter()
+        .globals_of(crate::catalog::Interface::V1)
         .map(|g| GlobalDecl {
             decl: match g.size {
                 Some(n) => format!("DECL GLOBAL {} {}[{n}]", g.ty, g.name),

@@ -1,6 +1,10 @@
 //! EthernetKRL emulation: channels configured by EKI XML, client connections over real TCP,
 //! RAW STREAM/BYTE records, the ALIVE and receive flags, and the EKI_* functions.
 //!
+//! `EKI_Send` on a RAW STREAM element sends the CHAR array up to its first NUL (or the given
+//! length) plus the end string; on a RAW BYTE element it sends the given length, else the
+//! element's `Size` bytes of the array, zero-padded [U].
+//!
 //! Assumed `Msg_No` values (the manual's numbering is not verified, see reference Part 3.3):
 //! 0 OK, 2 channel not initialised, 9 connection not available (refused, lost, not open),
 //! 23 initialisation already performed, 512 connection destroyed while sending.
@@ -180,6 +184,8 @@ struct Channel {
 pub(crate) struct Eki {
     channels: HashMap<String, Channel>,
     pub(crate) stats: super::EkiStats,
+    /// Flags and outputs [`Eki::pump`] changed, for the trace: `(array, 1-based index, value)`.
+    pub(crate) io_changes: Vec<(&'static str, usize, bool)>,
 }
 
 impl Eki {
@@ -226,18 +232,23 @@ impl Eki {
                     }
                 }
             }
-            c.split_records(globals);
+            let changes = &mut self.io_changes;
+            c.split_records(globals, changes);
             if closed {
                 c.stream = None;
-                set_flag(globals, "$FLAG", c.cfg.alive_flag, false);
-                set_flag(globals, "$OUT", c.cfg.alive_out, false);
+                set_flag(globals, changes, "$FLAG", c.cfg.alive_flag, false);
+                set_flag(globals, changes, "$OUT", c.cfg.alive_out, false);
             }
         }
     }
 }
 
 impl Channel {
-    fn split_records(&mut self, globals: &mut HashMap<String, Value>) {
+    fn split_records(
+        &mut self,
+        globals: &mut HashMap<String, Value>,
+        changes: &mut Vec<(&'static str, usize, bool)>,
+    ) {
         let Some(el) = self.cfg.receive.first().cloned() else {
             self.rx.clear();
             return;
@@ -265,17 +276,26 @@ impl Channel {
                 .entry(el.tag.to_ascii_uppercase())
                 .or_default()
                 .push_back(record);
-            set_flag(globals, "$FLAG", el.set_flag, true);
-            set_flag(globals, "$OUT", el.set_out, true);
+            set_flag(globals, changes, "$FLAG", el.set_flag, true);
+            set_flag(globals, changes, "$OUT", el.set_out, true);
         }
     }
 }
 
-fn set_flag(globals: &mut HashMap<String, Value>, var: &str, n: Option<usize>, v: bool) {
+fn set_flag(
+    globals: &mut HashMap<String, Value>,
+    changes: &mut Vec<(&'static str, usize, bool)>,
+    var: &'static str,
+    n: Option<usize>,
+    v: bool,
+) {
     if let Some(n) = n
         && let Some(Value::Array { items, .. }) = globals.get_mut(var)
         && let Some(slot) = n.checked_sub(1).and_then(|i| items.get_mut(i))
     {
+        if *slot != Value::Bool(v) {
+            changes.push((var, n, v));
+        }
         *slot = Value::Bool(v);
     }
 }
@@ -398,9 +418,8 @@ pub(crate) fn call(m: &mut Machine, up: &str, args: &[Option<Expr>]) -> R<Value>
                     c.stream = Some(s);
                     let (af, ao) = (c.cfg.alive_flag, c.cfg.alive_out);
                     m.eki.stats.connections += 1;
-                    let g = m.globals_mut();
-                    set_flag(g, "$FLAG", af, true);
-                    set_flag(g, "$OUT", ao, true);
+                    m.set_io("$FLAG", af, true);
+                    m.set_io("$OUT", ao, true);
                     Ok(status(0, 0, 0, true, 0))
                 }
                 None => {
@@ -417,12 +436,29 @@ pub(crate) fn call(m: &mut Machine, up: &str, args: &[Option<Expr>]) -> R<Value>
                 Some(e) => Some(m.eval_int(e)?.max(0) as usize),
                 None => None,
             };
-            let mut bytes: Vec<u8> = match (&data, len) {
-                (Value::Array { items, .. }, Some(n)) => items
-                    .iter()
-                    .take(n)
-                    .map(|v| if let Value::Char(c) = v { *c } else { 0 })
-                    .collect(),
+            // A RAW BYTE element sends its fixed record: `Size` bytes of the array [U].
+            let byte_size = m.eki.channels.get(&key).and_then(|c| {
+                match c.cfg.send.first().or(c.cfg.receive.first()) {
+                    Some(RawElement {
+                        kind: RawKind::Byte,
+                        size,
+                        ..
+                    }) => Some(*size),
+                    _ => None,
+                }
+            });
+            let mut bytes: Vec<u8> = match (&data, len.or(byte_size)) {
+                (Value::Array { items, .. }, Some(n)) => {
+                    let mut b: Vec<u8> = items
+                        .iter()
+                        .take(n)
+                        .map(|v| if let Value::Char(c) = v { *c } else { 0 })
+                        .collect();
+                    if len.is_none() {
+                        b.resize(n, 0);
+                    }
+                    b
+                }
                 _ => data
                     .as_text()
                     .ok_or_else(|| m.err("EKI_Send: data must be a CHAR array"))?
@@ -455,7 +491,7 @@ pub(crate) fn call(m: &mut Machine, up: &str, args: &[Option<Expr>]) -> R<Value>
                 Err(_) => {
                     c.stream = None;
                     let af = c.cfg.alive_flag;
-                    set_flag(m.globals_mut(), "$FLAG", af, false);
+                    m.set_io("$FLAG", af, false);
                     Ok(status(0, 0, MSG_DESTROYED, false, counter))
                 }
             }
@@ -522,9 +558,8 @@ pub(crate) fn call(m: &mut Machine, up: &str, args: &[Option<Expr>]) -> R<Value>
             if up == "EKI_CLEAR" {
                 m.eki.channels.remove(&key);
             }
-            let g = m.globals_mut();
-            set_flag(g, "$FLAG", af, false);
-            set_flag(g, "$OUT", ao, false);
+            m.set_io("$FLAG", af, false);
+            m.set_io("$OUT", ao, false);
             Ok(status(0, 0, 0, false, 0))
         }
         "EKI_LOCK" | "EKI_UNLOCK" => {

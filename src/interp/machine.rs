@@ -15,7 +15,7 @@ mod signals;
 use super::eki::Eki;
 use super::program::Program;
 use super::value::{AXIS_FIELDS, BaseType, CART_FIELDS, Types, Value};
-use super::{End, Event, Options, RunResult, RuntimeError};
+use super::{End, Event, Location, Options, Record, RunResult, RuntimeError, WaitKind};
 
 /// Where a value lives: the target of assignments and OUT parameters.
 #[derive(Debug, Clone, PartialEq)]
@@ -104,7 +104,9 @@ pub(crate) struct Machine<'p> {
     pub(crate) clock_ms: f64,
     timers: Vec<Timer>,
     pub(crate) eki: Eki,
-    events: Vec<Event>,
+    events: Vec<Record>,
+    /// Per module, per 0-based line: statements run there.
+    hits: Vec<Vec<u64>>,
     messages: Vec<String>,
     steps: u64,
     /// TRIGGER actions waiting for the next motion.
@@ -153,6 +155,11 @@ impl<'p> Machine<'p> {
             timers: vec![Timer::default(); TIMERS + 1],
             eki: Eki::default(),
             events: Vec::new(),
+            hits: prog
+                .modules
+                .iter()
+                .map(|m| vec![0; m.lines.line_count()])
+                .collect(),
             messages: Vec::new(),
             steps: 0,
             pending_triggers: Vec::new(),
@@ -337,6 +344,16 @@ impl<'p> Machine<'p> {
     // ---------------------------------------------------------------- running
 
     pub(crate) fn run_main(mut self) -> RunResult {
+        for m in &self.prog.modules {
+            self.events.push(Record {
+                t_ms: 0.0,
+                at: None,
+                event: Event::Source {
+                    file: m.name.clone(),
+                    text: m.text.clone(),
+                },
+            });
+        }
         let end = match self.prog.entry() {
             None => End::Error(RuntimeError {
                 file: self
@@ -379,12 +396,29 @@ impl<'p> Machine<'p> {
             End::Halt { file, line } => ("halt".to_string(), Some(format!("{file}:{line}: HALT"))),
             End::Error(e) => ("error".to_string(), Some(e.to_string())),
         };
-        self.events.push(Event::End {
-            status,
-            message,
-            steps: self.steps,
-            time_ms: self.clock_ms,
-        });
+        for c in self.coverage() {
+            self.emit_at(None, c);
+        }
+        let at = match &end {
+            End::Normal => None,
+            End::Halt { file, line } => Some(Location {
+                file: file.clone(),
+                line: *line,
+            }),
+            End::Error(e) => Some(Location {
+                file: e.file.clone(),
+                line: e.line,
+            }),
+        };
+        self.emit_at(
+            at,
+            Event::End {
+                status,
+                message,
+                steps: self.steps,
+                time_ms: self.clock_ms,
+            },
+        );
         let globals = self
             .globals
             .iter()
@@ -410,6 +444,56 @@ impl<'p> Machine<'p> {
             steps: self.steps,
             sim_time_ms: self.clock_ms,
         }
+    }
+
+    /// Every statement line of every module with its hit count.
+    fn coverage(&self) -> Vec<Event> {
+        self.prog
+            .modules
+            .iter()
+            .zip(&self.hits)
+            .map(|(m, hits)| {
+                let mut lines = Vec::new();
+                let mut add = |s: &Stmt| lines.push(m.lines.line_of(s.span.start as usize));
+                for r in &m.ast.routines {
+                    crate::lint::walk::each_stmt(&r.body, &mut add);
+                }
+                crate::lint::walk::each_stmt(&m.ast.top_level, &mut add);
+                lines.sort_unstable();
+                lines.dedup();
+                Event::Coverage {
+                    file: m.name.clone(),
+                    lines: lines
+                        .into_iter()
+                        .map(|l| (l + 1, hits.get(l).copied().unwrap_or(0)))
+                        .collect(),
+                }
+            })
+            .collect()
+    }
+
+    /// The statement being run, as a trace location.
+    pub(crate) fn location(&self) -> Option<Location> {
+        let (mi, off) = self.loc;
+        let m = self.prog.modules.get(mi)?;
+        Some(Location {
+            file: m.name.clone(),
+            line: m.line_of(off),
+        })
+    }
+
+    /// Add a trace event, located at the statement being run.
+    pub(crate) fn emit(&mut self, event: Event) {
+        let at = self.location();
+        self.emit_at(at, event);
+    }
+
+    fn emit_at(&mut self, at: Option<Location>, event: Event) {
+        self.events.push(Record {
+            t_ms: self.clock_ms,
+            at,
+            event,
+        });
     }
 
     /// Declare every DEFDAT's variables, then run their initialisers in file order.
@@ -543,7 +627,56 @@ impl<'p> Machine<'p> {
             )));
         }
         self.expire_pulses(false)?;
+        self.flush_eki_io();
         self.poll_interrupts()
+    }
+
+    /// Trace the flags and outputs EKI changed while data arrived.
+    fn flush_eki_io(&mut self) {
+        if self.eki.io_changes.is_empty() {
+            return;
+        }
+        for (array, n, value) in std::mem::take(&mut self.eki.io_changes) {
+            self.io_changed(array, n, value);
+        }
+    }
+
+    /// Set `array[n]` (1-based; `None` does nothing), tracing a change.
+    pub(crate) fn set_io(&mut self, array: &'static str, n: Option<usize>, value: bool) {
+        let Some(n) = n else { return };
+        if let Some(Value::Array { items, .. }) = self.globals.get_mut(array)
+            && let Some(slot) = n.checked_sub(1).and_then(|i| items.get_mut(i))
+            && *slot != Value::Bool(value)
+        {
+            *slot = Value::Bool(value);
+            self.io_changed(array, n, value);
+        }
+    }
+
+    /// Trace a changed I/O bit (1-based `n`), and the inputs that follow it when it is an
+    /// output.
+    fn io_changed(&mut self, signal: &'static str, n: usize, value: bool) {
+        self.emit(Event::Io {
+            signal,
+            index: n,
+            value,
+        });
+        if signal == "$OUT" {
+            let followers: Vec<(usize, bool)> = self
+                .opts
+                .input_links
+                .iter()
+                .filter(|l| l.output == n)
+                .map(|l| (l.input, value != l.inverted))
+                .collect();
+            for (input, v) in followers {
+                self.emit(Event::Io {
+                    signal: "$IN",
+                    index: input,
+                    value: v,
+                });
+            }
+        }
     }
 
     /// Run an interrupt's handler (a routine call) between two statements.
@@ -616,7 +749,7 @@ impl<'p> Machine<'p> {
             .subprogram(&routine.name.text)
             .is_some();
         if is_mm {
-            self.events.push(Event::Call {
+            self.emit(Event::Call {
                 name: routine.name.text.clone(),
             });
         }
@@ -678,7 +811,7 @@ impl<'p> Machine<'p> {
                 Some(Value::Int(i)) => Some(*i),
                 _ => None,
             };
-            self.events.push(Event::Return {
+            self.emit(Event::Return {
                 name: routine.name.text.clone(),
                 out,
                 status,
@@ -749,6 +882,13 @@ impl<'p> Machine<'p> {
 
     fn exec(&mut self, s: &Stmt) -> R<Flow> {
         self.loc = (self.cur_module(), s.span.start);
+        let (mi, off) = self.loc;
+        if let Some(h) = self.prog.modules.get(mi).and_then(|m| {
+            let line = m.lines.line_of(off as usize);
+            self.hits.get_mut(mi)?.get_mut(line)
+        }) {
+            *h += 1;
+        }
         self.tick()?;
         match &s.kind {
             StmtKind::Assign { target, value } => {
@@ -865,9 +1005,21 @@ impl<'p> Machine<'p> {
             StmtKind::Label { .. } | StmtKind::Continue => {}
             StmtKind::WaitSec { time } => {
                 let t = self.eval_real(time)?;
+                let start = self.clock_ms;
                 self.wait_sec(t)?;
+                self.emit(Event::Wait {
+                    kind: WaitKind::Sec,
+                    ms: self.clock_ms - start,
+                });
             }
-            StmtKind::WaitFor { cond } => self.wait_for(cond)?,
+            StmtKind::WaitFor { cond } => {
+                let start = self.clock_ms;
+                self.wait_for(cond)?;
+                self.emit(Event::Wait {
+                    kind: WaitKind::For,
+                    ms: self.clock_ms - start,
+                });
+            }
             StmtKind::Halt => {
                 let e = self.error("HALT");
                 self.message(format!("{}:{}: HALT", e.file, e.line));
@@ -984,7 +1136,7 @@ impl<'p> Machine<'p> {
     }
 
     pub(crate) fn message(&mut self, text: String) {
-        self.events.push(Event::Message { text: text.clone() });
+        self.emit(Event::Message { text: text.clone() });
         self.messages.push(text);
     }
 
@@ -1112,6 +1264,29 @@ impl<'p> Machine<'p> {
                 };
             }
         }
+        // The auxiliary point of a circle, absolute (a relative one is taken from the start).
+        let aux_abs = match (&aux, axis) {
+            (Some(aux), false) if m.relative => {
+                let start = self.globals.get(act).cloned().unwrap_or(Value::Int(0));
+                Some(super::frame::relative(&start, aux, in_tool).unwrap_or_else(|| aux.clone()))
+            }
+            (Some(aux), false) => Some(aux.clone()),
+            _ => None,
+        };
+        // Fields the auxiliary point lacks are the start's.
+        let aux_point: Option<Vec<(String, f64)>> = aux_abs.map(|a| {
+            let start = self.globals.get(act);
+            CART_FIELDS[..3]
+                .iter()
+                .map(|n| {
+                    let v = a
+                        .field(n)
+                        .or_else(|| start.and_then(|p| p.field(n)))
+                        .and_then(|v| v.as_f64());
+                    (n.to_string(), v.unwrap_or(0.0))
+                })
+                .collect()
+        });
         if let (Some(ca), Some(aux), false) = (&m.ca, &aux, axis) {
             // `CIRC aux, end, CA angle`: the arc through the start, the auxiliary point and the
             // end point, followed for `angle` degrees from the start; the orientation is the
@@ -1159,7 +1334,11 @@ impl<'p> Machine<'p> {
                 self.opts.max_motions
             )));
         }
-        self.events.push(Event::Motion { kind, target });
+        self.emit(Event::Motion {
+            kind,
+            target,
+            aux: aux_point,
+        });
         // A trigger's action uses the names of the module that programmed it, even when the
         // next motion is made elsewhere (MM_CALIB's).
         for (module, t) in std::mem::take(&mut self.pending_triggers) {
@@ -1342,7 +1521,18 @@ impl<'p> Machine<'p> {
             return Ok(());
         }
         let current = self.read_place(p)?.clone();
+        let io = match (&p.root, p.path.as_slice(), &current) {
+            (Root::Global(k), [Seg::Index(i)], Value::Bool(old)) => {
+                io_array(k).map(|a| (a, i + 1, *old))
+            }
+            _ => None,
+        };
         let new = self.coerce(current, v)?;
+        if let (Some((array, n, old)), Value::Bool(b)) = (io, &new)
+            && old != *b
+        {
+            self.io_changed(array, n, *b);
+        }
         let frames_before = match &p.root {
             Root::Global(k) if k == "$TOOL" || k == "$BASE" => Some(self.tool_base()),
             _ => None,
@@ -1847,6 +2037,16 @@ fn fixed(dims: &[usize], incoming: &Value) -> Vec<usize> {
         return dims.iter().map(|d| (*d).max(1)).collect();
     }
     dims.to_vec()
+}
+
+/// The traced I/O array a global key names.
+pub(crate) fn io_array(key: &str) -> Option<&'static str> {
+    match key {
+        "$OUT" => Some("$OUT"),
+        "$IN" => Some("$IN"),
+        "$FLAG" => Some("$FLAG"),
+        _ => None,
+    }
 }
 
 pub(crate) fn to_json(v: &Value) -> serde_json::Value {

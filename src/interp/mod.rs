@@ -14,6 +14,7 @@
 //! - Library code never prints: messages and trace events are returned in [`RunResult`].
 
 mod builtins;
+mod cast;
 mod eki;
 mod format;
 mod frame;
@@ -146,13 +147,32 @@ impl std::str::FromStr for InputSetting {
     }
 }
 
-/// One trace record (serialised as one JSON line).
+/// Where a trace event happened: the statement's file (the module's display name) and 1-based
+/// line.
+#[derive(Debug, Clone, PartialEq, Eq)]
+pub struct Location {
+    pub file: String,
+    pub line: usize,
+}
+
+/// One trace record: what happened ([`Event`]), when (simulated milliseconds since the start)
+/// and where (the statement that did it; `None` where no statement did, e.g. a normal end).
+#[derive(Debug, Clone, PartialEq)]
+pub struct Record {
+    pub t_ms: f64,
+    pub at: Option<Location>,
+    pub event: Event,
+}
+
+/// One trace event.
 #[derive(Debug, Clone, PartialEq)]
 pub enum Event {
     Motion {
         kind: String,
         /// `X,Y,Z,A,B,C` for Cartesian targets, `A1…A6` for axis targets.
         target: Vec<(String, f64)>,
+        /// The auxiliary point of a circular motion (`CIRC`, `SCIRC`), absolute, `X,Y,Z`.
+        aux: Option<Vec<(String, f64)>>,
     },
     /// Entry into an `MM_*` routine.
     Call {
@@ -168,6 +188,35 @@ pub enum Event {
     Message {
         text: String,
     },
+    /// A digital I/O bit changed: `$OUT`, `$FLAG`, or an `$IN` that follows an output
+    /// (`--input N=out:M`).
+    Io {
+        signal: &'static str,
+        index: usize,
+        value: bool,
+    },
+    /// A `WAIT SEC` or `WAIT FOR` ended; it took `ms` of simulated time (the record's time is
+    /// its end).
+    Wait {
+        kind: WaitKind,
+        ms: f64,
+    },
+    /// The SRCI RaStatusWord the status packer writes changed (see [`Options::submit`]).
+    Srci {
+        word: u32,
+    },
+    /// A loaded file (first in the trace, one per file, in load order), so a trace alone is
+    /// enough to show the source (`krlkit report`).
+    Source {
+        file: String,
+        text: String,
+    },
+    /// Line coverage of one loaded file (just before `End`, one per file): every line that
+    /// holds a statement, `(1-based line, hits)`, ascending; 0 hits: never ran.
+    Coverage {
+        file: String,
+        lines: Vec<(usize, u64)>,
+    },
     End {
         status: String,
         message: Option<String>,
@@ -176,27 +225,82 @@ pub enum Event {
     },
 }
 
-impl Event {
-    /// The event as one JSON Lines record for `--trace`. Like [`Event::to_json`], except that
-    /// a motion target keeps its natural order (`X,Y,Z,A,B,C` or `A1…A6`) instead of sorted keys.
-    pub fn to_json_line(&self) -> String {
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum WaitKind {
+    Sec,
+    For,
+}
+
+impl WaitKind {
+    pub fn as_str(self) -> &'static str {
         match self {
-            Event::Motion { kind, target } => {
-                let fields: Vec<String> = target
-                    .iter()
-                    .map(|(k, v)| format!("{}:{}", serde_json::json!(k), serde_json::json!(v)))
-                    .collect();
-                format!(
-                    "{{\"event\":\"motion\",\"kind\":{},\"target\":{{{}}}}}",
-                    serde_json::json!(kind),
-                    fields.join(",")
-                )
-            }
-            other => other.to_json().to_string(),
+            WaitKind::Sec => "SEC",
+            WaitKind::For => "FOR",
         }
     }
+}
 
-    /// The event as a JSON value (object keys sorted).
+/// Simulated time in the trace: microsecond resolution (EKI waits add scaled real time, whose
+/// float noise says nothing).
+fn trace_ms(t: f64) -> f64 {
+    let r = (t * 1000.0).round() / 1000.0;
+    if r == 0.0 { 0.0 } else { r }
+}
+
+fn ordered(fields: &[(String, f64)]) -> String {
+    let fields: Vec<String> = fields
+        .iter()
+        .map(|(k, v)| format!("{}:{}", serde_json::json!(k), serde_json::json!(v)))
+        .collect();
+    format!("{{{}}}", fields.join(","))
+}
+
+impl Record {
+    /// The record as one JSON Lines line for `--trace`: the event's keys plus `t` (simulated
+    /// ms) and, when known, `file` and `line`. Keys are sorted, except that a motion target
+    /// (and aux point) keeps its natural order (`X,Y,Z,A,B,C` or `A1…A6`).
+    pub fn to_json_line(&self) -> String {
+        let Event::Motion { kind, target, aux } = &self.event else {
+            return self.to_json().to_string();
+        };
+        let json = |v: serde_json::Value| v.to_string();
+        let mut parts = Vec::new();
+        if let Some(aux) = aux {
+            parts.push(format!("\"aux\":{}", ordered(aux)));
+        }
+        parts.push("\"event\":\"motion\"".to_string());
+        if let Some(at) = &self.at {
+            parts.push(format!("\"file\":{}", json(serde_json::json!(at.file))));
+        }
+        parts.push(format!("\"kind\":{}", json(serde_json::json!(kind))));
+        if let Some(at) = &self.at {
+            parts.push(format!("\"line\":{}", at.line));
+        }
+        parts.push(format!(
+            "\"t\":{}",
+            json(serde_json::json!(trace_ms(self.t_ms)))
+        ));
+        parts.push(format!("\"target\":{}", ordered(target)));
+        format!("{{{}}}", parts.join(","))
+    }
+
+    /// The record as a JSON value (object keys sorted).
+    pub fn to_json(&self) -> serde_json::Value {
+        let mut v = self.event.to_json();
+        if let Some(map) = v.as_object_mut() {
+            map.insert("t".into(), serde_json::json!(trace_ms(self.t_ms)));
+            if let Some(at) = &self.at {
+                map.insert("file".into(), serde_json::json!(at.file));
+                map.insert("line".into(), serde_json::json!(at.line));
+            }
+        }
+        v
+    }
+}
+
+impl Event {
+    /// The event as a JSON value (object keys sorted), without time and place (see
+    /// [`Record::to_json`]).
     pub fn to_json(&self) -> serde_json::Value {
         use serde_json::{Map, Value as J, json};
         let pairs = |v: &[(String, f64)]| {
@@ -207,8 +311,12 @@ impl Event {
             J::Object(m)
         };
         match self {
-            Event::Motion { kind, target } => {
-                json!({"event": "motion", "kind": kind, "target": pairs(target)})
+            Event::Motion { kind, target, aux } => {
+                let mut v = json!({"event": "motion", "kind": kind, "target": pairs(target)});
+                if let Some(aux) = aux {
+                    v["aux"] = pairs(aux);
+                }
+                v
             }
             Event::Call { name } => json!({"event": "call", "name": name}),
             Event::Return { name, out, status } => {
@@ -219,6 +327,19 @@ impl Event {
                 json!({"event": "return", "name": name, "out": J::Object(m), "status": status})
             }
             Event::Message { text } => json!({"event": "message", "text": text}),
+            Event::Io {
+                signal,
+                index,
+                value,
+            } => json!({"event": "io", "signal": signal, "index": index, "value": value}),
+            Event::Wait { kind, ms } => {
+                json!({"event": "wait", "kind": kind.as_str(), "ms": trace_ms(*ms)})
+            }
+            Event::Srci { word } => json!({"event": "srci", "word": word}),
+            Event::Source { file, text } => json!({"event": "source", "file": file, "text": text}),
+            Event::Coverage { file, lines } => {
+                json!({"event": "coverage", "file": file, "lines": lines})
+            }
             Event::End {
                 status,
                 message,
@@ -245,7 +366,7 @@ pub enum End {
 #[derive(Debug, Clone)]
 pub struct RunResult {
     pub end: End,
-    pub events: Vec<Event>,
+    pub events: Vec<Record>,
     /// Messages in order (also present as [`Event::Message`]).
     pub messages: Vec<String>,
     /// Final values of the global variables of the DEFDATs, by upper-case name.

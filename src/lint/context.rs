@@ -50,6 +50,11 @@ impl Parsed {
         }
     }
 
+    /// Both files belong to one module: same stem, same folder.
+    pub fn same_module(&self, other: &Parsed) -> bool {
+        self.stem == other.stem && self.dir() == other.dir()
+    }
+
     fn dir(&self) -> &std::path::Path {
         std::path::Path::new(&self.path)
             .parent()
@@ -123,6 +128,18 @@ impl Project {
         p.files = files;
         p.owned_flags = owned_flags(&p);
         p
+    }
+
+    /// Whether both projects hold the same whole-program facts (what a file's findings may
+    /// depend on besides its own module).
+    pub fn same_facts(&self, other: &Project) -> bool {
+        self.defined == other.defined
+            && self.callers == other.callers
+            && self.global_types == other.global_types
+            && self.global_consts == other.global_consts
+            && self.channels == other.channels
+            && self.channels_given == other.channels_given
+            && self.owned_flags == other.owned_flags
     }
 
     /// The `.dat` of the module `file` belongs to (same stem, same directory).

@@ -15,18 +15,18 @@ pub mod eki_xml;
 mod flow;
 pub mod registry;
 mod rules;
+mod session;
 mod suppress;
 mod text;
-mod walk;
-
-use rayon::prelude::*;
+pub(crate) mod walk;
 
 pub use config::{ConfigError, LintConfig};
 pub use eki_xml::EkiChannel;
 pub use registry::{RULES, Rule, nearest_code, rule};
+pub use session::{Affected, Session};
 
 use crate::diag::{Diagnostic, FileReport, LineIndex};
-use context::{FileCtx, Parsed, Project};
+use context::{FileCtx, Project};
 
 /// One file to check: the path as the user should see it and its decoded text.
 #[derive(Debug, Clone)]
@@ -43,15 +43,7 @@ pub fn lint(
     channels_given: bool,
     config: &LintConfig,
 ) -> Vec<FileReport> {
-    let parsed: Vec<Parsed> = inputs
-        .into_par_iter()
-        .map(|i| Parsed::new(i.path, i.text))
-        .collect();
-    let project = Project::build(parsed, channels, channels_given);
-    (0..project.files.len())
-        .into_par_iter()
-        .map(|i| check_file(&project, i, config))
-        .collect()
+    Session::new(inputs, channels, channels_given, config.clone()).check_all()
 }
 
 /// Lint one file on its own (tests, editors).

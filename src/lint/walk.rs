@@ -31,7 +31,8 @@ pub fn children(s: &Stmt) -> Vec<&[Stmt]> {
         | StmtKind::While { body, .. }
         | StmtKind::Repeat { body, .. }
         | StmtKind::Loop { body }
-        | StmtKind::Spline { body, .. } => vec![body],
+        | StmtKind::Spline { body, .. }
+        | StmtKind::Skip { body, .. } => vec![body],
         StmtKind::InterruptDecl { handler, .. } => vec![std::slice::from_ref(handler.as_ref())],
         StmtKind::Trigger { action, .. } => vec![std::slice::from_ref(action.as_ref())],
         _ => Vec::new(),

@@ -12,18 +12,28 @@
 //! ```
 //!
 //! Modules: [`scenario`] (the TOML format, checked with located errors; see `SCENARIO.md`),
-//! [`protocol`] (lenient decoding, reply formatting), [`state`] (the per-command state
-//! machine), [`server`] (TCP, framing, faults, request log), [`clock`] (the time Notify
+//! [`protocol`] (the [`protocol::Codec`] that frames, decodes and encodes; lenient decoding,
+//! reply formatting), [`state`] (the per-command state machine), [`server`] (TCP sessions,
+//! faults, request log), [`clock`] (the time Notify
 //! messages expire on: wall time, or a manual clock in tests).
 //!
 //! Wire handling: a message ends at CR (LF is accepted as a terminator too, so `\r\n` yields
 //! one message plus an ignored empty one); fields are split on `,` and trimmed of spaces and
 //! tabs; numbers may be `1`, `1.0`, `-0`, `1.5E3`; integer fields must be integral. Empty
 //! messages are ignored. Replies end in CR. Several commands per connection and a connection
-//! per command both work; state persists across connections. One client is served at a time;
-//! another waits in the accept backlog until the first disconnects or stays silent longer than
-//! `idle_timeout_ms`. A message longer than `max_message_bytes` gets `0,3002` and the
-//! connection is closed, so memory stays bounded.
+//! per command both work; state persists across connections.
+//!
+//! Clients are served concurrently, each connection in its own session (input buffer, idle
+//! timer, connection number) on its own thread, all sharing one protocol state: a real
+//! Mech-Vision runs one project state that every robot connection addresses (the KUKA package
+//! triggers on one connection and fetches on the next), and serves several robots at once (up
+//! to four ports [S]); how it treats a second client on one port is not documented [U], so the
+//! test double does the useful thing and serves it. At most `max_clients` sessions (default
+//! 256) are open at once; a further connection is refused: closed at once, with a
+//! "connection refused" entry in the request log. A session is closed when no complete message
+//! arrived for `idle_timeout_ms` (blank lines and loose bytes do not count). A message longer
+//! than `max_message_bytes` gets `0,3002` and the connection is closed, so memory stays
+//! bounded (per session and by the session cap).
 //!
 //! Choices the reference leaves open ([U]), made here:
 //! - Error replies are `<cmd>,<status>` (no further fields); an unreadable command field

@@ -1,6 +1,81 @@
-//! The ASCII wire format: lenient request parsing and reply formatting.
+//! The wire format: how a connection's byte stream is cut into messages ([`Codec`]), lenient
+//! request parsing and reply formatting. The server (`server.rs`) owns sockets and sessions and
+//! asks a codec for every framing and encoding question, so another wire format (HEX records)
+//! plugs in without touching connection handling or the state machine.
 
 use std::fmt::Write as _;
+
+/// One unit a codec cut from the front of a connection's input.
+#[derive(Debug, Clone, PartialEq, Eq)]
+pub enum Frame {
+    /// A complete message, without its terminator.
+    Message(Vec<u8>),
+    /// Input longer than the message limit without completing a message (the session answers
+    /// `0,3002` and closes, so memory stays bounded).
+    Oversized(Vec<u8>),
+}
+
+/// A wire format, one value per connection (it may keep per-connection state).
+pub trait Codec: Send {
+    /// Take the next complete message (or an oversized run of input) from the front of `input`.
+    /// Input that is no message at all (the ASCII format's empty lines) is dropped here, so
+    /// every [`Frame::Message`] is a request that gets a reply.
+    fn next_frame(&mut self, input: &mut Vec<u8>) -> Option<Frame>;
+    /// Decode one message.
+    fn decode(&self, message: &[u8]) -> Result<Request, DecodeError>;
+    /// The bytes that carry one reply line (`echo,field,...`) on the wire.
+    fn encode(&self, reply: &str) -> Vec<u8>;
+    /// The message as text for the request log.
+    fn show(&self, message: &[u8]) -> String;
+}
+
+/// The ASCII format: messages end at CR (LF accepted too); blank messages are ignored; replies
+/// end in CR.
+#[derive(Debug, Clone)]
+pub struct AsciiCodec {
+    max_message_bytes: usize,
+}
+
+impl AsciiCodec {
+    pub fn new(max_message_bytes: usize) -> AsciiCodec {
+        AsciiCodec { max_message_bytes }
+    }
+}
+
+fn blank(message: &[u8]) -> bool {
+    message.iter().all(|b| matches!(b, b' ' | b'\t'))
+}
+
+impl Codec for AsciiCodec {
+    fn next_frame(&mut self, input: &mut Vec<u8>) -> Option<Frame> {
+        let max = self.max_message_bytes;
+        while let Some(end) = input.iter().position(|b| matches!(b, b'\r' | b'\n')) {
+            let message: Vec<u8> = input.drain(..=end).take(end).collect();
+            if message.len() > max {
+                return Some(Frame::Oversized(message));
+            }
+            if !blank(&message) {
+                return Some(Frame::Message(message));
+            }
+        }
+        (input.len() > max).then(|| Frame::Oversized(std::mem::take(input)))
+    }
+
+    fn decode(&self, message: &[u8]) -> Result<Request, DecodeError> {
+        decode(String::from_utf8_lossy(message).trim_matches([' ', '\t']))
+    }
+
+    fn encode(&self, reply: &str) -> Vec<u8> {
+        let mut bytes = Vec::with_capacity(reply.len() + 1);
+        bytes.extend_from_slice(reply.as_bytes());
+        bytes.push(b'\r');
+        bytes
+    }
+
+    fn show(&self, message: &[u8]) -> String {
+        String::from_utf8_lossy(message).into_owned()
+    }
+}
 
 /// One decoded request: the command number and its numeric fields (after the command).
 #[derive(Debug, Clone, PartialEq)]
@@ -131,6 +206,32 @@ mod tests {
         assert_eq!(decode("101,inf"), Err(DecodeError::BadField(101)));
         assert_eq!(decode("101,NaN"), Err(DecodeError::BadField(101)));
         assert_eq!(decode("101,1e999"), Err(DecodeError::BadField(101)));
+    }
+
+    #[test]
+    fn ascii_frames_skip_blank_lines_and_bound_input() {
+        let mut c = AsciiCodec::new(8);
+        let mut input = b"\r \r901\r\n102,1\r10".to_vec();
+        assert_eq!(
+            c.next_frame(&mut input),
+            Some(Frame::Message(b"901".to_vec()))
+        );
+        assert_eq!(
+            c.next_frame(&mut input),
+            Some(Frame::Message(b"102,1".to_vec()))
+        );
+        assert_eq!(c.next_frame(&mut input), None);
+        assert_eq!(input, b"10");
+        input.extend_from_slice(b"1234567");
+        assert!(matches!(
+            c.next_frame(&mut input),
+            Some(Frame::Oversized(_))
+        ));
+        assert!(input.is_empty());
+        let mut long = b"123456789\r".to_vec();
+        assert!(matches!(c.next_frame(&mut long), Some(Frame::Oversized(_))));
+        assert_eq!(c.encode("901,1101"), b"901,1101\r");
+        assert_eq!(c.decode(b" 901 ").unwrap().command, 901);
     }
 
     #[test]

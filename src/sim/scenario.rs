@@ -52,6 +52,9 @@ pub struct ServerSettings {
     /// Longest message accepted before its CR; longer input gets `0,3002` and a close.
     #[serde(default = "default_max_message_bytes")]
     pub max_message_bytes: usize,
+    /// Clients served at once; a further connection is refused (closed and logged).
+    #[serde(default = "default_max_clients")]
+    pub max_clients: usize,
     /// The Vision Move data layout of 210 formats 3/4 (111 always sends the Kawasaki one).
     #[serde(default)]
     pub vision_move_layout: PlanLayout,
@@ -80,6 +83,11 @@ fn default_idle_timeout_ms() -> u64 {
 fn default_max_message_bytes() -> usize {
     4096
 }
+fn default_max_clients() -> usize {
+    256
+}
+/// Most clients a scenario may allow at once (a session is a thread with a small stack).
+pub const MAX_CLIENTS_LIMIT: usize = 1024;
 
 impl Default for ServerSettings {
     fn default() -> Self {
@@ -88,6 +96,7 @@ impl Default for ServerSettings {
             decimals: default_decimals(),
             idle_timeout_ms: default_idle_timeout_ms(),
             max_message_bytes: default_max_message_bytes(),
+            max_clients: default_max_clients(),
             vision_move_layout: PlanLayout::default(),
         }
     }
@@ -694,6 +703,17 @@ impl Scenario {
                         "use 64 to 1048576 bytes",
                     ));
                 }
+                if !(1..=MAX_CLIENTS_LIMIT).contains(&settings.max_clients) {
+                    return Err(ck.error_key(
+                        s.span(),
+                        "max_clients",
+                        format!("`max_clients = {}` is out of range", settings.max_clients),
+                        format!(
+                            "use 1 to {MAX_CLIENTS_LIMIT} clients (default {})",
+                            default_max_clients()
+                        ),
+                    ));
+                }
                 if settings.idle_timeout_ms == 0 {
                     return Err(ck.error_key(
                         s.span(),
@@ -837,7 +857,10 @@ impl Scenario {
         for f in &raw.faults {
             let fault = f.get_ref();
             if cat.command(fault.command).is_none() {
-                let known: Vec<String> = cat.commands.iter().map(|c| c.code.to_string()).collect();
+                let known: Vec<String> = cat
+                    .commands_of(crate::catalog::Interface::V1)
+                    .map(|c| c.code.to_string())
+                    .collect();
                 return Err(ck.error_key(
                     f.span(),
                     "command",

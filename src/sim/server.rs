@@ -1,10 +1,17 @@
-//! The TCP side: one background thread that accepts one client at a time, splits its byte
-//! stream into CR-terminated messages, applies injected faults and answers from [`State`].
+//! The TCP side: an accept thread and one session thread per connected client (at most
+//! `max_clients`), each cutting its byte stream into messages with a [`Codec`], applying
+//! injected faults and answering from the shared [`State`].
+//!
+//! Sessions share the protocol state (the one Mech-Vision/Mech-Viz project a real server runs:
+//! a 101 on one connection is fetched by a 102 on the next, as the KUKA package connects per
+//! command), the fault occurrence counters and the request log; each has its own input buffer
+//! and idle timer. The idle timer restarts on complete messages only, so a client that sends a
+//! byte now and then cannot keep its session (and, at the cap, another client) waiting.
 
 use std::collections::{HashMap, VecDeque};
 use std::fmt;
 use std::io::{self, ErrorKind, Read, Write};
-use std::net::{SocketAddr, TcpListener, TcpStream, ToSocketAddrs};
+use std::net::{Shutdown, SocketAddr, TcpListener, TcpStream, ToSocketAddrs};
 use std::sync::atomic::{AtomicBool, AtomicU64, Ordering};
 use std::sync::{Arc, Mutex, MutexGuard};
 use std::thread::{self, JoinHandle};
@@ -13,17 +20,22 @@ use std::time::{Duration, Instant, SystemTime};
 use crate::catalog::catalog;
 
 use super::clock::{Clock, SystemClock};
-use super::protocol::{self, DecodeError, Request};
-use super::scenario::{Fault, Scenario};
+use super::protocol::{AsciiCodec, Codec, DecodeError, Frame, Request};
+use super::scenario::{Fault, Scenario, ServerSettings};
 use super::state::{State, codes};
 
 /// Requests kept in memory; older ones are dropped (the observer still saw them).
 const LOG_CAPACITY: usize = 10_000;
-/// How often blocked reads and the accept loop look at the stop flag.
+/// Longest a blocked read waits before the session looks at the stop flag and its idle timer
+/// again (a stop also shuts the socket down, which ends the read at once).
+const MAX_READ_WAIT: Duration = Duration::from_millis(250);
+/// How often a fault's delay looks at the stop flag.
 const POLL: Duration = Duration::from_millis(20);
 const WRITE_TIMEOUT: Duration = Duration::from_secs(2);
 /// Characters of a request kept in the log (the reply is bounded by the scenario).
 const MAX_LOGGED_RAW: usize = 1024;
+/// Stack of a session thread: sessions only parse short messages and format replies.
+const SESSION_STACK: usize = 256 * 1024;
 
 /// One request as the server saw and answered it.
 #[derive(Debug, Clone, PartialEq)]
@@ -75,14 +87,35 @@ impl fmt::Display for RequestLog {
     }
 }
 
-/// Called on the server thread for every request, after it was answered.
+/// Called for every request, after it was answered (from the session's thread; calls are
+/// serialised and come in `seq` order).
 pub type Observer = Box<dyn FnMut(&RequestLog) + Send>;
+
+/// Open sessions: a handle on each socket (to end it at a stop) and every session thread.
+#[derive(Default)]
+struct Sessions {
+    open: HashMap<u64, TcpStream>,
+    threads: Vec<JoinHandle<()>>,
+}
 
 struct Shared {
     stop: AtomicBool,
-    seq: AtomicU64,
-    log: Mutex<VecDeque<RequestLog>>,
+    started: Instant,
+    settings: ServerSettings,
+    /// TCP connections accepted so far (refused ones included).
+    connections: AtomicU64,
+    log: Mutex<Log>,
+    observer: Mutex<Observer>,
     state: Mutex<State>,
+    /// Requests per catalog command so far (for `occurrence` faults), over all sessions.
+    occurrences: Mutex<HashMap<u32, u32>>,
+    sessions: Mutex<Sessions>,
+}
+
+#[derive(Default)]
+struct Log {
+    seq: u64,
+    entries: VecDeque<RequestLog>,
 }
 
 fn lock<T>(m: &Mutex<T>) -> MutexGuard<'_, T> {
@@ -91,7 +124,54 @@ fn lock<T>(m: &Mutex<T>) -> MutexGuard<'_, T> {
     m.lock().unwrap_or_else(|e| e.into_inner())
 }
 
-/// A running fake vision server. Dropping it stops the server thread.
+impl Shared {
+    fn stopping(&self) -> bool {
+        self.stop.load(Ordering::SeqCst)
+    }
+
+    fn record(&self, peer: SocketAddr, connection: u64, entry: Entry) {
+        let Entry {
+            raw,
+            request,
+            reply,
+            note,
+        } = entry;
+        let mut log = lock(&self.log);
+        log.seq += 1;
+        let record = RequestLog {
+            seq: log.seq,
+            time: SystemTime::now(),
+            elapsed: self.started.elapsed(),
+            peer,
+            connection,
+            raw: clip(raw, MAX_LOGGED_RAW),
+            command: request.as_ref().map(|r| r.command),
+            name: request
+                .as_ref()
+                .and_then(|r| catalog().command(r.command))
+                .map(|c| c.name.clone()),
+            args: request.map(|r| r.args).unwrap_or_default(),
+            reply,
+            note,
+        };
+        if log.entries.len() >= LOG_CAPACITY {
+            log.entries.pop_front();
+        }
+        log.entries.push_back(record.clone());
+        // Still under the log lock, so observers see records in `seq` order.
+        (lock(&self.observer))(&record);
+    }
+}
+
+/// What a log entry says, before the server numbers and stamps it.
+struct Entry {
+    raw: String,
+    request: Option<Request>,
+    reply: Option<String>,
+    note: Option<String>,
+}
+
+/// A running fake vision server. Dropping it stops every thread of it promptly.
 pub struct Server {
     addr: SocketAddr,
     shared: Arc<Shared>,
@@ -135,20 +215,19 @@ impl Server {
         let addr = listener.local_addr()?;
         let shared = Arc::new(Shared {
             stop: AtomicBool::new(false),
-            seq: AtomicU64::new(0),
-            log: Mutex::new(VecDeque::new()),
-            state: Mutex::new(State::with_clock(scenario, clock)),
-        });
-        let worker = Worker {
-            shared: Arc::clone(&shared),
-            observer,
             started: Instant::now(),
-            occurrences: HashMap::new(),
-            connections: 0,
-        };
+            settings: scenario.server.clone(),
+            connections: AtomicU64::new(0),
+            log: Mutex::new(Log::default()),
+            observer: Mutex::new(observer),
+            state: Mutex::new(State::with_clock(scenario, clock)),
+            occurrences: Mutex::new(HashMap::new()),
+            sessions: Mutex::new(Sessions::default()),
+        });
+        let accepting = Arc::clone(&shared);
         let thread = thread::Builder::new()
             .name("krlkit-sim".into())
-            .spawn(move || worker.run(&listener))?;
+            .spawn(move || accept_loop(&accepting, &listener))?;
         Ok(Server {
             addr,
             shared,
@@ -163,7 +242,7 @@ impl Server {
 
     /// The requests so far (the most recent ones, up to a fixed capacity).
     pub fn requests(&self) -> Vec<RequestLog> {
-        lock(&self.shared.log).iter().cloned().collect()
+        lock(&self.shared.log).entries.iter().cloned().collect()
     }
 
     /// A copy of the protocol state (triggered projects, cursors, Viz settings, ...).
@@ -171,17 +250,30 @@ impl Server {
         lock(&self.shared.state).clone()
     }
 
-    /// Stop accepting, close the current client and wait for the server thread.
+    /// Sessions open right now.
+    pub fn open_sessions(&self) -> usize {
+        lock(&self.shared.sessions).open.len()
+    }
+
+    /// Stop accepting, close every client and wait for all server threads.
     pub fn shutdown(mut self) {
         self.stop();
     }
 
     fn stop(&mut self) {
         self.shared.stop.store(true, Ordering::SeqCst);
-        if let Some(t) = self.thread.take() {
-            // The worker notices the flag within one read poll while serving a client, and on
-            // its next accept otherwise: give it one to accept.
-            let _ = TcpStream::connect_timeout(&wake_addr(self.addr), WRITE_TIMEOUT);
+        let Some(accept) = self.thread.take() else {
+            return;
+        };
+        // The accept thread registers sessions under this lock and checks the flag there, so
+        // no session opens after this pass; shutting the sockets down ends blocked reads.
+        for s in lock(&self.shared.sessions).open.values() {
+            let _ = s.shutdown(Shutdown::Both);
+        }
+        let _ = TcpStream::connect_timeout(&wake_addr(self.addr), WRITE_TIMEOUT);
+        let _ = accept.join();
+        let threads = std::mem::take(&mut lock(&self.shared.sessions).threads);
+        for t in threads {
             let _ = t.join();
         }
     }
@@ -193,13 +285,78 @@ impl Drop for Server {
     }
 }
 
-struct Worker {
-    shared: Arc<Shared>,
-    observer: Observer,
-    started: Instant,
-    /// Requests per command number so far (for `occurrence` faults).
-    occurrences: HashMap<u32, u32>,
-    connections: u64,
+fn accept_loop(shared: &Arc<Shared>, listener: &TcpListener) {
+    while !shared.stopping() {
+        match listener.accept() {
+            Ok(_) if shared.stopping() => break,
+            Ok((stream, peer)) => admit(shared, stream, peer),
+            // E.g. too many open files: back off instead of spinning.
+            Err(_) => thread::sleep(POLL),
+        }
+    }
+}
+
+/// Start a session for a new connection, or refuse it when `max_clients` are open.
+fn admit(shared: &Arc<Shared>, stream: TcpStream, peer: SocketAddr) {
+    let connection = shared.connections.fetch_add(1, Ordering::SeqCst) + 1;
+    let max = shared.settings.max_clients;
+    let mut sessions = lock(&shared.sessions);
+    if shared.stopping() {
+        return;
+    }
+    sessions.threads.retain(|t| !t.is_finished());
+    if sessions.open.len() >= max {
+        drop(sessions);
+        refuse(
+            shared,
+            &stream,
+            peer,
+            connection,
+            format!("connection refused: {max} clients are connected (max_clients)"),
+        );
+        return;
+    }
+    let Ok(handle) = stream.try_clone() else {
+        drop(sessions);
+        let why = "connection refused: cannot use the socket".to_string();
+        refuse(shared, &stream, peer, connection, why);
+        return;
+    };
+    let worker = Arc::clone(shared);
+    let spawned = thread::Builder::new()
+        .name(format!("krlkit-sim-{connection}"))
+        .stack_size(SESSION_STACK)
+        .spawn(move || {
+            Session::new(&worker, stream, peer, connection).run();
+            lock(&worker.sessions).open.remove(&connection);
+        });
+    match spawned {
+        Ok(t) => {
+            sessions.open.insert(connection, handle);
+            sessions.threads.push(t);
+        }
+        Err(e) => {
+            drop(sessions);
+            let why = format!("connection refused: no session thread ({e})");
+            refuse(shared, &handle, peer, connection, why);
+        }
+    }
+}
+
+/// Close a connection that gets no session, and say why in the request log.
+fn refuse(shared: &Shared, stream: &TcpStream, peer: SocketAddr, connection: u64, why: String) {
+    // Logged before the close, so whoever sees the close finds the entry.
+    shared.record(
+        peer,
+        connection,
+        Entry {
+            raw: String::new(),
+            request: None,
+            reply: None,
+            note: Some(why),
+        },
+    );
+    let _ = stream.shutdown(Shutdown::Both);
 }
 
 enum Next {
@@ -207,160 +364,170 @@ enum Next {
     Close,
 }
 
-impl Worker {
-    fn stopping(&self) -> bool {
-        self.shared.stop.load(Ordering::SeqCst)
-    }
+/// One client's connection: its input buffer, codec and idle timer.
+struct Session<'s> {
+    shared: &'s Shared,
+    stream: TcpStream,
+    peer: SocketAddr,
+    connection: u64,
+    codec: Box<dyn Codec>,
+}
 
-    fn run(mut self, listener: &TcpListener) {
-        while !self.stopping() {
-            match listener.accept() {
-                Ok(_) if self.stopping() => break,
-                Ok((stream, peer)) => {
-                    self.connections += 1;
-                    self.serve(stream, peer);
-                }
-                // E.g. too many open files: back off instead of spinning.
-                Err(_) => thread::sleep(POLL),
-            }
+impl<'s> Session<'s> {
+    fn new(shared: &'s Shared, stream: TcpStream, peer: SocketAddr, connection: u64) -> Self {
+        Session {
+            codec: Box::new(AsciiCodec::new(shared.settings.max_message_bytes)),
+            shared,
+            stream,
+            peer,
+            connection,
         }
     }
 
-    fn serve(&mut self, mut stream: TcpStream, peer: SocketAddr) {
-        let settings = lock(&self.shared.state).scenario().server.clone();
-        let configured = stream
+    fn run(mut self) {
+        let configured = self
+            .stream
             .set_nonblocking(false)
-            .and_then(|()| stream.set_read_timeout(Some(POLL)))
-            .and_then(|()| stream.set_write_timeout(Some(WRITE_TIMEOUT)))
-            .and_then(|()| stream.set_nodelay(true));
+            .and_then(|()| self.stream.set_write_timeout(Some(WRITE_TIMEOUT)))
+            .and_then(|()| self.stream.set_nodelay(true));
         if configured.is_err() {
             return;
         }
-        let idle_limit = Duration::from_millis(settings.idle_timeout_ms);
-        let max = settings.max_message_bytes;
-        let mut buf: Vec<u8> = Vec::new();
+        let idle_limit = Duration::from_millis(self.shared.settings.idle_timeout_ms);
+        let mut input: Vec<u8> = Vec::new();
         let mut chunk = [0u8; 1024];
-        let mut last_input = Instant::now();
+        // Restarted by complete messages only: bytes that never make one do not keep a
+        // session open.
+        let mut last_message = Instant::now();
         loop {
-            while let Some(end) = buf.iter().position(|b| matches!(b, b'\r' | b'\n')) {
-                let message: Vec<u8> = buf.drain(..=end).take(end).collect();
-                let next = if message.len() > max {
-                    self.oversized(&mut stream, peer, &message, max)
-                } else {
-                    self.message(&mut stream, peer, &message)
+            while let Some(frame) = self.codec.next_frame(&mut input) {
+                let next = match frame {
+                    Frame::Message(m) => self.message(&m),
+                    Frame::Oversized(bytes) => self.oversized(&bytes),
                 };
                 if matches!(next, Next::Close) {
                     return;
                 }
+                last_message = Instant::now();
             }
-            if buf.len() > max {
-                self.oversized(&mut stream, peer, &buf, max);
+            if self.shared.stopping() {
                 return;
             }
-            if self.stopping() {
+            let idle_left = idle_limit.saturating_sub(last_message.elapsed());
+            if idle_left.is_zero() {
                 return;
             }
-            match stream.read(&mut chunk) {
+            if self
+                .stream
+                .set_read_timeout(Some(idle_left.min(MAX_READ_WAIT)))
+                .is_err()
+            {
+                return;
+            }
+            match self.stream.read(&mut chunk) {
                 Ok(0) => return,
-                Ok(n) => {
-                    buf.extend_from_slice(&chunk[..n]);
-                    last_input = Instant::now();
-                }
-                Err(e) if matches!(e.kind(), ErrorKind::WouldBlock | ErrorKind::TimedOut) => {
-                    if last_input.elapsed() >= idle_limit {
-                        return;
-                    }
-                }
-                Err(e) if e.kind() == ErrorKind::Interrupted => {}
+                Ok(n) => input.extend_from_slice(&chunk[..n]),
+                Err(e)
+                    if matches!(
+                        e.kind(),
+                        ErrorKind::WouldBlock | ErrorKind::TimedOut | ErrorKind::Interrupted
+                    ) => {}
                 Err(_) => return,
             }
         }
     }
 
-    fn oversized(
-        &mut self,
-        stream: &mut TcpStream,
-        peer: SocketAddr,
-        bytes: &[u8],
-        max: usize,
-    ) -> Next {
+    fn record(&self, entry: Entry) {
+        self.shared.record(self.peer, self.connection, entry);
+    }
+
+    fn oversized(&mut self, bytes: &[u8]) -> Next {
+        let max = self.shared.settings.max_message_bytes;
         let reply = format!("0,{}", codes().invalid_format);
-        let shown = String::from_utf8_lossy(&bytes[..bytes.len().min(64)]).into_owned();
-        self.record(
-            peer,
-            format!("{shown}..."),
-            None,
-            Some(reply.clone()),
-            Some(format!(
+        let shown = self.codec.show(&bytes[..bytes.len().min(64)]);
+        self.record(Entry {
+            raw: format!("{shown}..."),
+            request: None,
+            reply: Some(reply.clone()),
+            note: Some(format!(
                 "message longer than {max} bytes without a terminator; connection closed"
             )),
-        );
-        let _ = write_line(stream, &reply);
+        });
+        let _ = self.send(&reply);
         Next::Close
     }
 
-    fn message(&mut self, stream: &mut TcpStream, peer: SocketAddr, bytes: &[u8]) -> Next {
-        let raw = String::from_utf8_lossy(bytes).into_owned();
-        let text = raw.trim_matches([' ', '\t']);
-        if text.is_empty() {
-            return Next::Continue;
-        }
-        let bad = codes().invalid_format;
-        let req = match protocol::decode(text) {
+    fn message(&mut self, bytes: &[u8]) -> Next {
+        let raw = self.codec.show(bytes);
+        let req = match self.codec.decode(bytes) {
             Ok(r) => r,
             Err(e) => {
                 let (cmd, echo) = match e {
                     DecodeError::NoCommand => (None, 0),
                     DecodeError::BadField(c) => (Some(c), c),
                 };
-                let reply = format!("{echo},{bad}");
-                let decoded = cmd.map(|c| Request {
-                    command: c,
-                    args: Vec::new(),
-                });
-                self.record(
-                    peer,
+                let reply = format!("{echo},{}", codes().invalid_format);
+                self.record(Entry {
                     raw,
-                    decoded.as_ref(),
-                    Some(reply.clone()),
-                    Some("not a comma-separated list of numbers".into()),
-                );
-                return self.send(stream, &reply);
+                    request: cmd.map(|c| Request {
+                        command: c,
+                        args: Vec::new(),
+                    }),
+                    reply: Some(reply.clone()),
+                    note: Some("not a comma-separated list of numbers".into()),
+                });
+                return self.send(&reply);
             }
         };
-        // Only catalog commands are counted (faults can only name those), so a client cycling
-        // through arbitrary numbers cannot grow the map.
-        let occurrence = if catalog().command(req.command).is_some() {
-            let count = self.occurrences.entry(req.command).or_insert(0);
-            *count = count.saturating_add(1);
-            *count
-        } else {
-            0
-        };
-        let fault = lock(&self.shared.state)
-            .scenario()
-            .faults
-            .iter()
-            .find(|f| f.matches(req.command, occurrence))
-            .cloned();
+        let fault = self.fault_for(&req);
         let Some(fault) = fault else {
             let reply = lock(&self.shared.state).handle(&req);
-            self.record(peer, raw, Some(&req), Some(reply.clone()), None);
-            return self.send(stream, &reply);
+            self.record(Entry {
+                raw,
+                request: Some(req),
+                reply: Some(reply.clone()),
+                note: None,
+            });
+            return self.send(&reply);
         };
         if fault.delay_ms > 0 && !self.sleep(Duration::from_millis(fault.delay_ms)) {
             return Next::Close;
         }
         let (reply, note) = self.apply(&fault, &req);
-        self.record(peer, raw, Some(&req), reply.clone(), Some(note));
+        self.record(Entry {
+            raw,
+            request: Some(req),
+            reply: reply.clone(),
+            note: Some(note),
+        });
         match reply {
-            Some(r) => self.send(stream, &r),
+            Some(r) => self.send(&r),
             None => Next::Close,
         }
     }
 
+    /// The fault this request triggers, counting it among its command's occurrences.
+    fn fault_for(&self, req: &Request) -> Option<Fault> {
+        // Only catalog commands are counted (faults can only name those), so a client cycling
+        // through arbitrary numbers cannot grow the map.
+        let occurrence = if catalog().command(req.command).is_some() {
+            let mut occurrences = lock(&self.shared.occurrences);
+            let count = occurrences.entry(req.command).or_insert(0);
+            *count = count.saturating_add(1);
+            *count
+        } else {
+            0
+        };
+        lock(&self.shared.state)
+            .scenario()
+            .faults
+            .iter()
+            .find(|f| f.matches(req.command, occurrence))
+            .cloned()
+    }
+
     /// The reply (None = drop the connection) and a description of an injected fault.
-    fn apply(&mut self, fault: &Fault, req: &Request) -> (Option<String>, String) {
+    fn apply(&self, fault: &Fault, req: &Request) -> (Option<String>, String) {
         let delay = if fault.delay_ms > 0 {
             format!("delayed {} ms", fault.delay_ms)
         } else {
@@ -398,7 +565,7 @@ impl Worker {
     fn sleep(&self, total: Duration) -> bool {
         let until = Instant::now() + total;
         while Instant::now() < until {
-            if self.stopping() {
+            if self.shared.stopping() {
                 return false;
             }
             thread::sleep(POLL.min(until.saturating_duration_since(Instant::now())));
@@ -406,54 +573,17 @@ impl Worker {
         true
     }
 
-    fn send(&self, stream: &mut TcpStream, reply: &str) -> Next {
-        match write_line(stream, reply) {
+    fn send(&mut self, reply: &str) -> Next {
+        let bytes = self.codec.encode(reply);
+        match self
+            .stream
+            .write_all(&bytes)
+            .and_then(|()| self.stream.flush())
+        {
             Ok(()) => Next::Continue,
             Err(_) => Next::Close,
         }
     }
-
-    fn record(
-        &mut self,
-        peer: SocketAddr,
-        raw: String,
-        req: Option<&Request>,
-        reply: Option<String>,
-        note: Option<String>,
-    ) {
-        let raw = clip(raw, MAX_LOGGED_RAW);
-        let entry = RequestLog {
-            seq: self.shared.seq.fetch_add(1, Ordering::SeqCst) + 1,
-            time: SystemTime::now(),
-            elapsed: self.started.elapsed(),
-            peer,
-            connection: self.connections,
-            raw,
-            command: req.map(|r| r.command),
-            name: req
-                .and_then(|r| catalog().command(r.command))
-                .map(|c| c.name.clone()),
-            args: req.map(|r| r.args.clone()).unwrap_or_default(),
-            reply,
-            note,
-        };
-        {
-            let mut log = lock(&self.shared.log);
-            if log.len() >= LOG_CAPACITY {
-                log.pop_front();
-            }
-            log.push_back(entry.clone());
-        }
-        (self.observer)(&entry);
-    }
-}
-
-fn write_line(stream: &mut TcpStream, reply: &str) -> io::Result<()> {
-    let mut bytes = Vec::with_capacity(reply.len() + 1);
-    bytes.extend_from_slice(reply.as_bytes());
-    bytes.push(b'\r');
-    stream.write_all(&bytes)?;
-    stream.flush()
 }
 
 /// At most `max` characters, marked with `...` when cut.

@@ -9,6 +9,7 @@ use std::net::Ipv4Addr;
 
 pub use error::SpecError;
 
+pub use crate::catalog::Interface;
 use crate::catalog::catalog;
 use crate::diag::LineIndex;
 use raw::RawSpec;
@@ -17,14 +18,50 @@ use raw::RawSpec;
 pub const DEFAULT_SPEC_TOML: &str = include_str!("../../templates/spec/krlkit.toml");
 
 /// Wire encoding of requests and replies.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, serde::Deserialize)]
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, serde::Deserialize)]
 pub enum Codec {
     /// Comma-separated decimal text, one message per CR (EKI RAW STREAM, EOS 13).
     #[serde(rename = "ascii")]
     Ascii,
-    /// 4-byte little-endian fields (EKI RAW BYTE). Accepted by the type, rejected at validation.
+    /// 4-byte little-endian fields, int32 or float32 (EKI RAW BYTE): Mech-Vision's KUKA default.
     #[serde(rename = "hex-le")]
     HexLe,
+    /// 4-byte big-endian fields (EKI RAW BYTE; the package swaps the bytes of every field).
+    #[serde(rename = "hex-be")]
+    HexBe,
+}
+
+impl Codec {
+    pub const ALL: [Codec; 3] = [Codec::Ascii, Codec::HexLe, Codec::HexBe];
+
+    pub fn as_str(self) -> &'static str {
+        match self {
+            Codec::Ascii => "ascii",
+            Codec::HexLe => "hex-le",
+            Codec::HexBe => "hex-be",
+        }
+    }
+
+    pub fn is_hex(self) -> bool {
+        self != Codec::Ascii
+    }
+}
+
+impl std::fmt::Display for Codec {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.write_str(self.as_str())
+    }
+}
+
+impl std::str::FromStr for Codec {
+    type Err = String;
+
+    fn from_str(s: &str) -> Result<Codec, String> {
+        Codec::ALL
+            .into_iter()
+            .find(|c| c.as_str() == s)
+            .ok_or_else(|| format!("unknown codec `{s}` (use \"ascii\", \"hex-le\" or \"hex-be\")"))
+    }
 }
 
 #[derive(Debug, Clone, Copy, PartialEq, Eq, serde::Deserialize)]
@@ -60,11 +97,13 @@ pub struct Spec {
     /// Max points per reply (1..=catalog batch_max).
     pub batch_size: u32,
     pub codec: Codec,
+    /// The Mech-Mind interface version whose KUKA subprograms the package implements.
+    pub interface: Interface,
     /// `$TIMER[n]` the package uses to bound its waits.
     pub timer: u32,
     /// The KRL appends CR itself instead of relying on EKI's STREAM EOS on send.
     pub append_cr: bool,
-    /// Subprograms to emit, catalog order; always contains `MM_Init_Socket`.
+    /// Subprograms to emit, in the catalog order of `interface`; always contains `MM_Init_Socket`.
     pub subprograms: Vec<String>,
     pub line_endings: LineEnding,
     /// Seconds the Kawasaki `calibrate` settles after each move (it has no WaitTime parameter).
@@ -118,10 +157,16 @@ impl Spec {
             .then(|| f64::from(octets[i - 1]))
     }
 
-    /// Bytes of the EKI receive record: reply header plus `batch_size` points (ASCII).
+    /// Bytes of the EKI receive record. ASCII: the longest reply of `batch_size` points (a
+    /// STREAM maximum). HEX: the fixed frame, a 102 reply of `max(batch_size, 20)` points (660
+    /// bytes for 20), in both directions.
     pub fn receive_size(&self) -> u32 {
-        let l = &catalog().limits;
-        l.ascii_header_bytes + self.batch_size * l.ascii_bytes_per_point
+        let cat = catalog();
+        let l = &cat.limits;
+        match self.codec {
+            Codec::Ascii => l.ascii_header_bytes + self.batch_size * l.ascii_bytes_per_point,
+            Codec::HexLe | Codec::HexBe => cat.hex_frame_bytes(self.batch_size),
+        }
     }
 }
 

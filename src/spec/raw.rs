@@ -4,7 +4,7 @@ use serde::Deserialize;
 use toml::Spanned;
 
 use super::{Codec, LineEnding, Spec, SpecError, TIMER_RANGE};
-use crate::catalog::{catalog, edit_distance};
+use crate::catalog::{Interface, catalog, edit_distance};
 
 /// Every key of the spec, for "did you mean" help.
 pub(crate) const KEYS: &[&str] = &[
@@ -17,6 +17,7 @@ pub(crate) const KEYS: &[&str] = &[
     "reply_timeout",
     "batch_size",
     "codec",
+    "interface",
     "timer",
     "append_cr",
     "subprograms",
@@ -44,6 +45,7 @@ pub(crate) struct RawSpec {
     reply_timeout: Option<Spanned<i64>>,
     batch_size: Option<Spanned<i64>>,
     codec: Option<Spanned<Codec>>,
+    interface: Option<Spanned<Interface>>,
     timer: Option<Spanned<i64>>,
     append_cr: Option<bool>,
     subprograms: Option<Spanned<Vec<Spanned<String>>>>,
@@ -210,21 +212,11 @@ impl RawSpec {
             i64::from(lim.batch_max),
             lim.batch_default,
         )?;
-        let codec = match &self.codec {
-            None => Codec::Ascii,
-            Some(c) if *c.get_ref() == Codec::HexLe => {
-                return Err(cx.err(
-                    c.span().start,
-                    "hex-le is not supported yet (HEX pose encoding is unverified, see \
-                     reference §1.2)"
-                        .into(),
-                    "use codec = \"ascii\" and select ASCII in Mech-Vision's Robot \
-                     Communication Configuration"
-                        .into(),
-                ));
-            }
-            Some(c) => *c.get_ref(),
-        };
+        let codec = self.codec.as_ref().map_or(Codec::Ascii, |c| *c.get_ref());
+        let interface = self
+            .interface
+            .as_ref()
+            .map_or(Interface::V1, |i| *i.get_ref());
         let timer = cx.int_in(
             &self.timer,
             "timer",
@@ -237,11 +229,11 @@ impl RawSpec {
 
         let subprograms = match &self.subprograms {
             None => catalog()
-                .subprograms
+                .subprograms_of(interface)
                 .iter()
                 .map(|s| s.name.clone())
                 .collect(),
-            Some(list) => select_subprograms(&cx, list.get_ref())?,
+            Some(list) => select_subprograms(&cx, list.get_ref(), interface)?,
         };
 
         let spec = Spec {
@@ -254,6 +246,7 @@ impl RawSpec {
             reply_timeout,
             batch_size,
             codec,
+            interface,
             timer,
             append_cr: self.append_cr.unwrap_or(false),
             subprograms,
@@ -261,13 +254,19 @@ impl RawSpec {
             calib_wait,
         };
         if spec.receive_size() > lim.eki_raw_size_max {
-            let at = self.batch_size.as_ref().map_or(0, |s| s.span().start);
+            let at = self
+                .batch_size
+                .as_ref()
+                .map(|s| s.span().start)
+                .or(self.codec.as_ref().map(|s| s.span().start))
+                .unwrap_or(0);
             return Err(cx.err(
                 at,
                 format!(
-                    "a batch of {} points needs a {}-byte EKI record, more than EKI's {}",
+                    "a batch of {} points needs a {}-byte EKI record ({}), more than EKI's {}",
                     spec.batch_size,
                     spec.receive_size(),
+                    spec.codec,
                     lim.eki_raw_size_max
                 ),
                 "lower `batch_size`".into(),
@@ -277,34 +276,43 @@ impl RawSpec {
     }
 }
 
-/// Resolve names against the catalog (case-insensitive), keep catalog order, always include
-/// `MM_Init_Socket` (every other routine needs it).
-fn select_subprograms(cx: &Ctx<'_>, list: &[Spanned<String>]) -> Result<Vec<String>, SpecError> {
+/// Resolve names against the catalog of `iface` (case-insensitive), keep catalog order, always
+/// include `MM_Init_Socket` (every other routine needs it).
+fn select_subprograms(
+    cx: &Ctx<'_>,
+    list: &[Spanned<String>],
+    iface: Interface,
+) -> Result<Vec<String>, SpecError> {
     let cat = catalog();
+    let subs = cat.subprograms_of(iface);
     let mut wanted = Vec::new();
     for item in list {
         let name = item.get_ref();
         if name == "all" {
-            return Ok(cat.subprograms.iter().map(|s| s.name.clone()).collect());
+            return Ok(subs.iter().map(|s| s.name.clone()).collect());
         }
-        match cat.subprogram(name) {
+        match cat.subprogram_in(iface, name) {
             Some(s) => wanted.push(s.name.as_str()),
             None => {
-                let help = match cat.nearest_subprogram(name) {
-                    Some(s) => format!("did you mean `{}`?", s.name),
-                    None => "use names from `krlkit rules` / the catalog, or \"all\"".into(),
+                let other = Interface::ALL.into_iter().find(|&i| i != iface);
+                let help = match (cat.nearest_subprogram_in(iface, name), other) {
+                    (_, Some(o)) if cat.subprogram_in(o, name).is_some() => format!(
+                        "`{name}` belongs to the {o} interface; remove it or set \
+                         `interface = \"{o}\"`"
+                    ),
+                    (Some(s), _) => format!("did you mean `{}`?", s.name),
+                    (None, _) => "use names from `krlkit rules` / the catalog, or \"all\"".into(),
                 };
                 return Err(cx.err(
                     item.span().start,
-                    format!("unknown subprogram `{name}`"),
+                    format!("unknown {iface} subprogram `{name}`"),
                     help,
                 ));
             }
         }
     }
-    let init = &cat.subprograms[0].name;
-    Ok(cat
-        .subprograms
+    let init = &subs[0].name;
+    Ok(subs
         .iter()
         .filter(|s| &s.name == init || wanted.contains(&s.name.as_str()))
         .map(|s| s.name.clone())

@@ -40,3 +40,11 @@ fn key_value_names_the_address_fields_and_the_port() {
         assert_eq!(s.key_value(bad), None, "{bad}");
     }
 }
+
+#[test]
+fn interface_and_codec_keys() {
+    let s = Spec::parse("interface = \"2.x\"\ncodec = \"hex-le\"", "x")
+        .unwrap_or_else(|e| panic!("{e:?}"));
+    assert_eq!(s.interface, Interface::V2);
+    assert_eq!(s.codec, Codec::HexLe);
+}

@@ -50,6 +50,11 @@ impl Client {
         }
     }
 
+    /// A second handle on the socket (to write from another thread).
+    pub fn try_clone_stream(&self) -> TcpStream {
+        self.stream.try_clone().expect("clone")
+    }
+
     pub fn set_read_timeout(&self, t: Duration) {
         self.stream.set_read_timeout(Some(t)).expect("timeout");
     }

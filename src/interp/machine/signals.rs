@@ -146,12 +146,23 @@ impl<'p> Machine<'p> {
                     }
                 };
                 let (lo, hi) = (*lo, *hi);
+                let traced = super::io_array(array);
                 let Some(Value::Array { items, .. }) = self.globals.get_mut(array) else {
                     return Err(self.err(format!("{array} is not an I/O array")));
                 };
+                let mut changed = Vec::new();
                 for (bit, i) in (lo..=hi).enumerate() {
                     if let Some(slot) = items.get_mut(i) {
-                        *slot = Value::Bool((n >> bit) & 1 == 1);
+                        let v = Value::Bool((n >> bit) & 1 == 1);
+                        if *slot != v {
+                            changed.push((i + 1, (n >> bit) & 1 == 1));
+                        }
+                        *slot = v;
+                    }
+                }
+                if let Some(array) = traced {
+                    for (index, value) in changed {
+                        self.io_changed(array, index, value);
                     }
                 }
                 Ok(true)

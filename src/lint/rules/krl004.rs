@@ -1,7 +1,6 @@
-use crate::diag::{Diagnostic, Severity, Span};
+use crate::diag::{Diagnostic, Severity};
 use crate::lint::context::FileCtx;
 use crate::lint::registry::Rule;
-use crate::lint::text::lines;
 
 pub static RULE: Rule = Rule {
     code: "KRL004",
@@ -13,33 +12,16 @@ pub static RULE: Rule = Rule {
 };
 
 fn check(ctx: &FileCtx, out: &mut Vec<Diagnostic>) {
-    let text = &ctx.file.text;
-    let mut open: Vec<Span> = Vec::new();
-    for (offset, line) in lines(text) {
-        let trimmed = line.trim_start_matches([' ', '\t']);
-        let start = offset + (line.len() - trimmed.len());
-        let Some(comment) = trimmed.strip_prefix(';') else {
-            continue;
-        };
-        // `; FOLD` with blanks after the `;` is a fold too (KUKA's own system modules write it).
-        let word: String = comment
-            .trim_start_matches([' ', '\t'])
-            .chars()
-            .take_while(|c| c.is_ascii_alphabetic())
-            .collect();
-        let span = Span::new(start, start + trimmed.len());
-        if word.eq_ignore_ascii_case("FOLD") {
-            open.push(span);
-        } else if word.eq_ignore_ascii_case("ENDFOLD") && open.pop().is_none() {
-            out.push(
-                Diagnostic::warning(RULE.code, span, "`;ENDFOLD` without a matching `;FOLD`")
-                    .with_help("remove it or add the `;FOLD` line it should close"),
-            );
-        }
-    }
-    for span in open {
+    let (folds, stray) = crate::syntax::folds::folds(&ctx.file.text);
+    for span in stray {
         out.push(
-            Diagnostic::warning(RULE.code, span, "`;FOLD` is never closed by `;ENDFOLD`")
+            Diagnostic::warning(RULE.code, span, "`;ENDFOLD` without a matching `;FOLD`")
+                .with_help("remove it or add the `;FOLD` line it should close"),
+        );
+    }
+    for f in folds.iter().filter(|f| f.close.is_none()) {
+        out.push(
+            Diagnostic::warning(RULE.code, f.open, "`;FOLD` is never closed by `;ENDFOLD`")
                 .with_help("add `;ENDFOLD` after the folded lines"),
         );
     }

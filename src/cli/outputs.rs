@@ -1,0 +1,89 @@
+//! The one check every output option goes through before any work starts: the output must not
+//! be one of the command's inputs (under any name: symlink, hard link, `./`), and must be a
+//! path a file can be written to.
+
+use std::path::Path;
+
+/// `option` (e.g. `-o`) names `out`; `inputs` are what the command reads, each with what it is
+/// (`"input program"` …). Returns the message to print when `out` cannot be used.
+pub(super) fn check(option: &str, out: &Path, inputs: &[(&str, &Path)]) -> Result<(), String> {
+    let shown = out.display();
+    if let Ok(meta) = std::fs::metadata(out) {
+        if meta.is_dir() {
+            return Err(format!(
+                "error: {option} {shown} is a folder\n  help: name a file to write"
+            ));
+        }
+        for (what, input) in inputs {
+            if same_file(out, input) {
+                return Err(format!(
+                    "error: {option} {shown} would overwrite the {what} {}\n  help: write the output to another file; krlkit never writes over its inputs",
+                    input.display()
+                ));
+            }
+        }
+    } else {
+        let dir = out
+            .parent()
+            .filter(|d| !d.as_os_str().is_empty())
+            .unwrap_or(Path::new("."));
+        if !dir.is_dir() {
+            return Err(format!(
+                "error: {option} {shown}: the folder {} does not exist\n  help: create it first, or write somewhere else",
+                dir.display()
+            ));
+        }
+    }
+    Ok(())
+}
+
+fn same_file(a: &Path, b: &Path) -> bool {
+    #[cfg(unix)]
+    {
+        use std::os::unix::fs::MetadataExt;
+        if let (Ok(x), Ok(y)) = (std::fs::metadata(a), std::fs::metadata(b)) {
+            return x.dev() == y.dev() && x.ino() == y.ino();
+        }
+        false
+    }
+    #[cfg(not(unix))]
+    {
+        matches!(
+            (std::fs::canonicalize(a), std::fs::canonicalize(b)),
+            (Ok(x), Ok(y)) if x == y
+        )
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn the_same_file_under_another_name_is_refused() {
+        let dir = tempfile::tempdir().unwrap();
+        let p = dir.path().join("p.src");
+        std::fs::write(&p, "DEF p()\nEND\n").unwrap();
+        let dotted = dir.path().join(".").join("p.src");
+        let e = check("-o", &dotted, &[("input program", &p)]).unwrap_err();
+        assert!(e.contains("would overwrite the input program"), "{e}");
+        #[cfg(unix)]
+        {
+            let link = dir.path().join("link.src");
+            std::os::unix::fs::symlink(&p, &link).unwrap();
+            assert!(check("--trace", &link, &[("program", &p)]).is_err());
+        }
+        assert!(check("-o", &dir.path().join("q.as"), &[("input program", &p)]).is_ok());
+        assert!(
+            check("-o", dir.path(), &[])
+                .unwrap_err()
+                .contains("is a folder")
+        );
+        let missing = dir.path().join("nope/q.as");
+        assert!(
+            check("-o", &missing, &[])
+                .unwrap_err()
+                .contains("does not exist")
+        );
+    }
+}
