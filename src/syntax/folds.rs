@@ -59,16 +59,18 @@ fn line(
         let rest = &text[title_start..end];
         let rest = rest.find(";%").map_or(rest, |i| &rest[..i]);
         let lead = rest.len() - rest.trim_start().len();
-        let title = Span::new(title_start + lead, title_start + rest.trim_end().len());
+        // A title of blanks only has no extent.
+        let (from, to) = (title_start + lead, title_start + rest.trim_end().len());
+        let title = if from <= to {
+            Span::new(from, to)
+        } else {
+            Span::empty(title_start)
+        };
         open.push(all.len());
         all.push(Fold {
             open: span,
             close: None,
-            title: if title.start <= title.end {
-                title
-            } else {
-                Span::empty(title_start)
-            },
+            title,
         });
     } else if word.eq_ignore_ascii_case("ENDFOLD") {
         match open.pop() {
