@@ -59,10 +59,10 @@ fn line(
         let rest = &text[title_start..end];
         let rest = rest.find(";%").map_or(rest, |i| &rest[..i]);
         let lead = rest.len() - rest.trim_start().len();
-        // A title of blanks only has no extent.
-        let (from, to) = (title_start + lead, title_start + rest.trim_end().len());
-        let title = if from <= to {
-            Span::new(from, to)
+        let tail = rest.trim_end().len();
+        // A title of blanks only is empty (its start would pass its end).
+        let title = if lead <= tail {
+            Span::new(title_start + lead, title_start + tail)
         } else {
             Span::empty(title_start)
         };
@@ -83,6 +83,12 @@ fn line(
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn a_title_of_blanks_is_empty() {
+        let (folds, _) = folds(";FOLD   \n;ENDFOLD\n");
+        assert_eq!(folds[0].title.start, folds[0].title.end);
+    }
 
     #[test]
     fn nested_folds_titles_and_strays() {
