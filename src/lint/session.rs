@@ -1,71 +1,112 @@
-//! A lint run kept alive between edits (the language server): every file stays parsed, one file
-//! can be replaced or removed, and files are checked on demand. [`super::lint`] is a session
-//! that checks every file once, so the editor and `check` cannot disagree.
+//! A lint run kept alive between edits (the language server): every file stays parsed and
+//! summarised, one file can be replaced or removed (only it is parsed again; the model is
+//! rebuilt from the summaries), and files are checked on demand. It runs the same rules on the
+//! same model as [`super::lint`], so the editor and `check` cannot disagree.
 
 use std::collections::HashMap;
 
 use rayon::prelude::*;
 
-use super::context::{Parsed, Project};
-use super::{EkiChannel, Input, LintConfig, check_file};
+use super::context::{FileCtx, Parsed, Project, SyntaxCtx};
+use super::{Check, EkiChannel, Input, LintConfig, RULES, finish, mm_relevant, run};
 use crate::diag::FileReport;
+use crate::sema::{FileId, FileSummary, Sema, SemaInput};
 
 /// Which files' findings an edit may have changed, besides the edited files themselves.
 #[derive(Debug, Clone, PartialEq, Eq)]
 pub enum Affected {
-    /// The whole-program facts changed: any file may read differently.
+    /// Declarations, calls or channel facts changed: any file may read differently.
     All,
     /// Only these (the other files of the edited modules).
     Files(Vec<String>),
 }
 
-/// Invariant: a file's findings depend only on its own text, the other file of its module
-/// (`.src`/`.dat` of one name in one folder), the whole-program facts ([`Project`]) and the
-/// config; so [`Affected`] names every file whose findings may change.
+/// What the session keeps of one file besides its parse.
+struct Meta {
+    summary: FileSummary,
+    /// What other files' findings can depend on (see [`FileSummary::interface`]).
+    interface: String,
+    /// The Mech-Mind rules look at it.
+    mm: bool,
+}
+
+/// Invariant: a file's findings depend only on its own text, the other file of its module,
+/// the declarations and calls of the workspace, the EKI channel facts and the config; so
+/// [`Affected`] names every file whose findings may change.
 pub struct Session {
+    /// Parsed files, in order.
+    files: Vec<Parsed>,
+    meta: Vec<Meta>,
+    /// Path → index into `files`.
+    index: HashMap<String, usize>,
+    sema: Sema,
     project: Project,
     config: LintConfig,
-    /// File path → index into `project.files`.
-    index: HashMap<String, usize>,
+}
+
+fn entry(i: Input) -> (Parsed, Meta) {
+    let parsed = Parsed::new(i.path, i.text);
+    let summary = FileSummary::of(&parsed.ast);
+    let meta = Meta {
+        interface: summary.interface(),
+        mm: mm_relevant(&parsed.ast),
+        summary,
+    };
+    (parsed, meta)
 }
 
 impl Session {
-    /// Parse every input (in parallel) and collect the whole-program facts.
+    /// Parse every input (in parallel) and build the model.
     pub fn new(
         inputs: Vec<Input>,
         channels: Vec<EkiChannel>,
         channels_given: bool,
         config: LintConfig,
     ) -> Session {
-        let parsed: Vec<Parsed> = inputs
-            .into_par_iter()
-            .map(|i| Parsed::new(i.path, i.text))
-            .collect();
+        let (files, meta): (Vec<Parsed>, Vec<Meta>) = inputs.into_par_iter().map(entry).unzip();
         let mut s = Session {
-            project: Project::build(parsed, channels, channels_given),
-            config,
+            files,
+            meta,
             index: HashMap::new(),
+            sema: Sema::build(Vec::new(), &[]),
+            project: Project::default(),
+            config,
         };
-        s.reindex();
+        s.project.channels = channels;
+        s.project.channels_given = channels_given;
+        s.rebuild();
         s
     }
 
-    fn reindex(&mut self) {
+    /// Rebuild the model and the lint facts from the summaries (no file is parsed again).
+    fn rebuild(&mut self) {
         self.index = self
-            .project
             .files
             .iter()
             .enumerate()
             .map(|(i, f)| (f.path.clone(), i))
             .collect();
-    }
-
-    /// Rebuild the whole-program facts from the parsed files (no file is parsed again);
-    /// returns the previous project, without its files, for comparison.
-    fn rebuild(&mut self, files: Vec<Parsed>) -> Project {
+        let inputs = self
+            .files
+            .iter()
+            .zip(&self.meta)
+            .map(|(f, m)| SemaInput {
+                path: f.path.clone(),
+                group: 0,
+                summary: m.summary.clone(),
+            })
+            .collect();
+        self.sema = Sema::build(inputs, &[]);
         let channels = std::mem::take(&mut self.project.channels);
-        let given = self.project.channels_given;
-        std::mem::replace(&mut self.project, Project::build(files, channels, given))
+        self.project = Project::new(
+            channels,
+            self.project.channels_given,
+            self.files
+                .iter()
+                .zip(&self.meta)
+                .filter(|(_, m)| m.mm)
+                .map(|(f, _)| &f.ast),
+        );
     }
 
     /// Add a file, or replace the one with the same path; only this file is parsed.
@@ -73,35 +114,38 @@ impl Session {
         self.set_files(vec![input])
     }
 
-    /// Add or replace several files at once (one rebuild of the facts). Says which other
+    /// Add or replace several files at once (one rebuild of the model). Says which other
     /// files' findings may have changed.
     pub fn set_files(&mut self, inputs: Vec<Input>) -> Affected {
-        let parsed: Vec<Parsed> = inputs
-            .into_par_iter()
-            .map(|i| Parsed::new(i.path, i.text))
-            .collect();
+        let fresh: Vec<(Parsed, Meta)> = inputs.into_par_iter().map(entry).collect();
+        let flags_before = self.project.owned_flags.clone();
         let mut changed: Vec<String> = Vec::new();
-        let mut files = std::mem::take(&mut self.project.files);
-        for p in parsed {
-            changed.push(p.path.clone());
-            match self.index.get(&p.path) {
-                Some(&i) => files[i] = p,
+        let mut all = false;
+        for (f, m) in fresh {
+            changed.push(f.path.clone());
+            match self.index.get(&f.path) {
+                Some(&i) => {
+                    all |= self.meta[i].interface != m.interface;
+                    self.files[i] = f;
+                    self.meta[i] = m;
+                }
                 None => {
-                    self.index.insert(p.path.clone(), files.len());
-                    files.push(p);
+                    all = true;
+                    self.index.insert(f.path.clone(), self.files.len());
+                    self.files.push(f);
+                    self.meta.push(m);
                 }
             }
         }
-        let old = self.rebuild(files);
-        if !old.same_facts(&self.project) {
+        self.rebuild();
+        if all || self.project.owned_flags != flags_before {
             return Affected::All;
         }
         let mut module: Vec<String> = Vec::new();
         for path in &changed {
             let Some(f) = self.file(path) else { continue };
             module.extend(
-                self.project
-                    .files
+                self.files
                     .iter()
                     .filter(|o| o.path != f.path && o.same_module(f))
                     .map(|o| o.path.clone()),
@@ -117,10 +161,11 @@ impl Session {
         if !self.index.contains_key(path) {
             return;
         }
-        let mut files = std::mem::take(&mut self.project.files);
-        files.retain(|f| f.path != path);
-        let _ = self.rebuild(files);
-        self.reindex();
+        if let Some(i) = self.files.iter().position(|f| f.path == path) {
+            self.files.remove(i);
+            self.meta.remove(i);
+        }
+        self.rebuild();
     }
 
     pub fn set_config(&mut self, config: LintConfig) {
@@ -128,37 +173,68 @@ impl Session {
     }
 
     pub fn set_channels(&mut self, channels: Vec<EkiChannel>, channels_given: bool) {
-        let files = std::mem::take(&mut self.project.files);
         self.project.channels = channels;
         self.project.channels_given = channels_given;
-        let _ = self.rebuild(files);
+        self.rebuild();
     }
 
     /// The parsed file at `path`.
     pub fn file(&self, path: &str) -> Option<&Parsed> {
-        self.index.get(path).map(|&i| &self.project.files[i])
+        self.index.get(path).map(|&i| &self.files[i])
     }
 
     /// Every file, in the order they were given.
     pub fn files(&self) -> &[Parsed] {
-        &self.project.files
+        &self.files
+    }
+
+    /// The model of the whole workspace (`FileId(i)` is the i-th of [`Session::files`]).
+    pub fn sema(&self) -> &Sema {
+        &self.sema
     }
 
     pub fn project(&self) -> &Project {
         &self.project
     }
 
-    /// Check one file against the whole program.
+    fn check_index(&self, i: usize) -> FileReport {
+        let p = &self.files[i];
+        let cx = SyntaxCtx::new(&p.path, &p.text, &p.ast, &p.syntax_errors);
+        let mut findings = Vec::new();
+        for rule in RULES {
+            if let Check::Syntax(check) = rule.check {
+                run(rule, &self.config, &mut findings, |out| check(&cx, out));
+            }
+        }
+        let ast = self.meta[i].mm.then_some(&p.ast);
+        let ctx = FileCtx::new(
+            &self.sema,
+            FileId(i as u32),
+            ast,
+            &self.project,
+            &self.files,
+        );
+        for rule in RULES {
+            if let Check::Model(check) = rule.check {
+                run(rule, &self.config, &mut findings, |out| check(&ctx, out));
+            }
+        }
+        let mut report = finish(&p.path, &p.text, findings);
+        report.text = p.text.clone();
+        report
+    }
+
+    /// Check one file against the whole workspace.
     pub fn check(&self, path: &str) -> Option<FileReport> {
         let &i = self.index.get(path)?;
-        Some(check_file(&self.project, i, &self.config))
+        Some(self.check_index(i))
     }
 
     /// Check every file (in parallel); reports in file order.
     pub fn check_all(&self) -> Vec<FileReport> {
-        (0..self.project.files.len())
+        (0..self.files.len())
             .into_par_iter()
-            .map(|i| check_file(&self.project, i, &self.config))
+            .map(|i| self.check_index(i))
             .collect()
     }
 }
@@ -176,8 +252,7 @@ mod tests {
 
     #[test]
     fn replacing_a_file_updates_the_other_files_findings() {
-        // MM010: a command before any MM_Init_Socket. Once the other file defines the
-        // routine it calls, nothing changes for it; the facts are rebuilt either way.
+        // MM010: a command before any MM_Init_Socket.
         let main = "DEF main()\r\n  MM_Start_Vis(1,0,0,x)\r\nEND\r\n";
         let mut s = Session::new(
             vec![input("main.src", main)],
@@ -198,5 +273,46 @@ mod tests {
         s.remove_file("main.src");
         assert!(s.check("main.src").is_none());
         assert!(s.check("other.src").is_some());
+    }
+
+    #[test]
+    fn an_edit_inside_a_body_affects_only_its_module() {
+        let mut s = Session::new(
+            vec![
+                input("a.src", "DEF a()\r\nDECL INT i\r\ni = 1\r\nEND\r\n"),
+                input("a.dat", "DEFDAT a\r\nENDDAT\r\n"),
+                input("b.src", "DEF b()\r\nEND\r\n"),
+            ],
+            Vec::new(),
+            false,
+            LintConfig::default(),
+        );
+        let body = s.set_file(input("a.src", "DEF a()\r\nDECL INT i\r\ni = 2\r\nEND\r\n"));
+        assert_eq!(body, Affected::Files(vec!["a.dat".into()]));
+        let decl = s.set_file(input("a.src", "DEF a()\r\nDECL INT j\r\nj = 2\r\nEND\r\n"));
+        assert_eq!(decl, Affected::All);
+    }
+
+    #[test]
+    fn check_and_the_session_agree() {
+        let files = vec![
+            input(
+                "$config.dat",
+                "DEFDAT $CONFIG\r\nDECL INT shared\r\nENDDAT\r\n",
+            ),
+            input(
+                "p.src",
+                "DEF p()\r\nDECL INT unused\r\nshared = missing\r\nEND\r\n",
+            ),
+        ];
+        let s = Session::new(files.clone(), Vec::new(), false, LintConfig::default());
+        let a = s.check_all();
+        let b = super::super::lint(files, Vec::new(), false, &LintConfig::default());
+        let codes = |r: &[FileReport]| -> Vec<Vec<&str>> {
+            r.iter()
+                .map(|f| f.diagnostics.iter().map(|d| d.code).collect())
+                .collect()
+        };
+        assert_eq!(codes(&a), codes(&b));
     }
 }

@@ -1,6 +1,6 @@
 use crate::diag::{Diagnostic, Severity};
-use crate::lint::context::FileCtx;
-use crate::lint::registry::Rule;
+use crate::lint::context::SyntaxCtx;
+use crate::lint::registry::{Check, Rule};
 
 pub static RULE: Rule = Rule {
     code: "KRL004",
@@ -8,11 +8,11 @@ pub static RULE: Rule = Rule {
     severity: Severity::Warning,
     summary: "`;FOLD` / `;ENDFOLD` not balanced",
     doc: "## What it checks\nEvery comment line starting with `;FOLD` (any case, blanks allowed before and after the `;`) must be closed by a later `;ENDFOLD` line, and every `;ENDFOLD` must close an open fold. An `;ENDFOLD` without a fold is reported at that line; a fold still open at the end of the file is reported at its `;FOLD` line.\n\n## Why it matters\nThe smartPAD editor uses folds to hide inline-form details; unbalanced folds hide or garble code in the editor and break inline forms.\n\n## Example\n```krl\n;FOLD PTP HOME\nPTP HOME\n```\n\n## Fix\nAdd the missing `;ENDFOLD` (or remove the stray one).",
-    check,
+    check: Check::Syntax(check),
 };
 
-fn check(ctx: &FileCtx, out: &mut Vec<Diagnostic>) {
-    let (folds, stray) = crate::syntax::folds::folds(&ctx.file.text);
+fn check(ctx: &SyntaxCtx, out: &mut Vec<Diagnostic>) {
+    let (folds, stray) = crate::syntax::folds::folds(ctx.text);
     for span in stray {
         out.push(
             Diagnostic::warning(RULE.code, span, "`;ENDFOLD` without a matching `;FOLD`")

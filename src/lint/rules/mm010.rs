@@ -1,6 +1,6 @@
 use crate::diag::{Applicability, Diagnostic, Edit, Fix, Severity, Span};
 use crate::lint::context::FileCtx;
-use crate::lint::registry::Rule;
+use crate::lint::registry::{Check, Rule};
 
 pub static RULE: Rule = Rule {
     code: "MM010",
@@ -8,14 +8,14 @@ pub static RULE: Rule = Rule {
     severity: Severity::Error,
     summary: "An `MM_` command is used but `MM_Init_Socket` is never called before it",
     doc: "## What it checks\nEvery interface call other than `MM_Init_Socket` needs `MM_Init_Socket` to have run on at least one path before it (same control-flow rules as MM006: loops, branches, calls into routines of the same file). Once reported in a routine, the rule assumes the socket is initialised so that one missing call is one finding. Routines whose callers are unknown are not checked.\n\n## Why it matters\nWithout `MM_Init_Socket` the package does not know the EKI channel or its flags; every command fails with a connection status.\n\n## Example\n```krl\nDEF pick()\n  MM_Start_Vis(1, 0, 2, start)\nEND\n```\n\n## Fix\nCall `MM_Init_Socket(\"XML_Kuka_MMIND\", 873, 871, 60)` once at the start of the program. The finding carries this as a fix that editors offer (`krlkit lsp` quick fix; never applied by `check --fix`): a line before the call, with the channel and flags of the EKI XML found with the program, else the default spec's.",
-    check,
+    check: Check::Model(check),
 };
 
 fn check(ctx: &FileCtx, out: &mut Vec<Diagnostic>) {
     let mut call: Option<String> = None;
     for d in ctx.flow().findings.iter().filter(|d| d.code == RULE.code) {
         let call = call.get_or_insert_with(|| init_call(ctx));
-        let fix = insert_line_before(&ctx.file.text, d.span.start as usize, call);
+        let fix = insert_line_before(ctx.text, d.span.start as usize, call);
         out.push(d.clone().with_fix(fix));
     }
 }
