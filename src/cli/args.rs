@@ -115,6 +115,10 @@ pub struct CheckArgs {
     /// Config file with a [lint] section (default: ./krlkit.toml if present).
     #[arg(long)]
     pub config: Option<PathBuf>,
+    /// Apply the fixes rules declare safe, in place (atomically, encoding and line endings
+    /// kept; a fix that would add a syntax error is skipped), then report what is left.
+    #[arg(long)]
+    pub fix: bool,
 }
 
 #[derive(Debug, Clone, Copy, PartialEq, Eq, ValueEnum)]

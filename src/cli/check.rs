@@ -55,7 +55,25 @@ pub fn run(args: CheckArgs) -> anyhow::Result<Outcome> {
         }
     }
 
-    let reports = lint::lint(inputs, channels, channels_given, &config);
+    let mut reports = lint::lint(inputs, channels.clone(), channels_given, &config);
+    if args.fix {
+        let fixed = super::fix::apply(&reports);
+        failed |= fixed.failed;
+        if fixed.applied > 0 {
+            reports = lint::lint(fixed.inputs, channels, channels_given, &config);
+        }
+        eprintln!(
+            "fixed {} finding{} in {} file{}{}",
+            fixed.applied,
+            plural(fixed.applied),
+            fixed.files,
+            plural(fixed.files),
+            match fixed.skipped {
+                0 => String::new(),
+                n => format!(" ({n} fix{} skipped)", if n == 1 { "" } else { "es" }),
+            }
+        );
+    }
     let errors: usize = reports.iter().map(|r| r.count(Severity::Error)).sum();
     let warnings: usize = reports.iter().map(|r| r.count(Severity::Warning)).sum();
     let mut out = String::new();

@@ -23,7 +23,7 @@ use rayon::prelude::*;
 
 pub use config::{ConfigError, LintConfig};
 pub use eki_xml::EkiChannel;
-pub use registry::{RULES, Rule, nearest_code, rule};
+pub use registry::{FIXES, RULES, Rule, fix_of, nearest_code, rule};
 
 use crate::diag::{Diagnostic, FileReport, LineIndex};
 use context::{FileCtx, Parsed, Project};
