@@ -15,6 +15,8 @@ pub mod fmt;
 pub mod generate;
 pub mod interp;
 pub mod lint;
+pub mod lsp;
+pub mod sema;
 pub mod sim;
 pub mod spec;
 pub mod srci;

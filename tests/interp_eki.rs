@@ -185,3 +185,53 @@ fn dropped_connection_clears_alive_and_times_out() {
         catalog().package_code("REPLY_TIMEOUT") as i64
     );
 }
+
+#[test]
+fn byte_records_have_their_fixed_size_both_ways() {
+    use std::io::{Read, Write};
+    let listener = std::net::TcpListener::bind("127.0.0.1:0").unwrap();
+    let addr = listener.local_addr().unwrap().to_string();
+    let peer = std::thread::spawn(move || {
+        let (mut s, _) = listener.accept().unwrap();
+        let mut req = [0u8; 12];
+        s.read_exact(&mut req).unwrap();
+        // Answer in two pieces: the flag must wait for the whole record.
+        let mut reply = Vec::new();
+        reply.extend_from_slice(&901i32.to_le_bytes());
+        reply.extend_from_slice(&9100i32.to_le_bytes());
+        reply.extend_from_slice(&(-0.75f32).to_le_bytes());
+        s.write_all(&reply[..5]).unwrap();
+        std::thread::sleep(Duration::from_millis(50));
+        s.write_all(&reply[5..]).unwrap();
+        let mut rest = Vec::new();
+        let _ = s.read_to_end(&mut rest);
+        (req, rest)
+    });
+    let mut files = Vec::new();
+    for name in ["byte_record.src", "byte_record.dat"] {
+        files.push((
+            name.to_string(),
+            std::fs::read_to_string(dir().join(name)).unwrap(),
+        ));
+    }
+    let options = Options {
+        vision: Some(addr),
+        eki_dirs: vec![dir()],
+        time_scale: 10.0,
+        ..Options::default()
+    };
+    let r = interp::run(&Program::load(files).unwrap(), &options);
+    assert_eq!(r.end, End::Normal, "{:?}", r.end);
+    let (req, rest) = peer.join().unwrap();
+    let mut want = Vec::new();
+    want.extend_from_slice(&901i32.to_le_bytes());
+    want.extend_from_slice(&0i32.to_le_bytes());
+    want.extend_from_slice(&2.5f32.to_le_bytes());
+    assert_eq!(req.to_vec(), want, "the whole record, zeros included");
+    assert!(rest.is_empty(), "nothing beyond the record: {rest:?}");
+    assert_eq!(int(&r, "SEND_MSG"), 0);
+    assert_eq!(r.globals.get("GOT_RECORD"), Some(&Value::Bool(true)));
+    assert_eq!(int(&r, "ECHO"), 901);
+    assert_eq!(int(&r, "STATUS"), 9100);
+    assert_eq!(r.globals.get("VALUE"), Some(&Value::Real(-0.75)));
+}

@@ -37,6 +37,8 @@ pub enum Command {
     Run(RunArgs),
     /// Decode or encode an SRCI RaStatusWord.
     Srci(SrciArgs),
+    /// Language server over stdin/stdout, for editors (VS Code, Neovim, Helix, Zed).
+    Lsp,
     /// Format KRL files in place: blanks and word case only; protected lines untouched.
     Fmt(FmtArgs),
 }
@@ -238,12 +240,21 @@ pub struct RunArgs {
     /// default spec).
     #[arg(long, conflicts_with = "package")]
     pub spec: Option<PathBuf>,
-    /// Vision server address (overrides the EKI XML's IP and port).
-    #[arg(long)]
+    /// Vision server address HOST:PORT (overrides the EKI XML's IP and port); checked before
+    /// the run starts.
+    #[arg(long, value_name = "HOST:PORT", value_parser = crate::cli::run::vision_address)]
     pub vision: Option<String>,
-    /// Write a JSON Lines trace of motions and MM_ calls.
-    #[arg(long)]
+    /// Write a JSON Lines trace of motions, MM_ calls and the end, as the run goes.
+    #[arg(long, value_name = "FILE")]
     pub trace: Option<PathBuf>,
+    /// Most statements the run may execute before it is stopped as an endless loop.
+    #[arg(long, value_name = "N", default_value_t = crate::interp::Options::default().step_limit)]
+    pub step_limit: u64,
+    /// Simulated time per real time while waiting on the vision server: 1 (default) keeps the
+    /// package's connect and reply timeouts as long as on the controller; 10 makes a 15 s
+    /// timeout pass in 1.5 s against the fake server.
+    #[arg(long, value_name = "FACTOR", default_value_t = 1.0, value_parser = crate::cli::run::time_scale)]
+    pub time_scale: f64,
     /// Further modules the program calls (a .src with its .dat, or a directory of them);
     /// repeatable.
     #[arg(long = "module", value_name = "PATH")]

@@ -7,6 +7,7 @@ mod fmt;
 mod generate;
 mod init;
 mod inplace;
+mod lsp;
 mod outputs;
 mod parse;
 mod rules;
@@ -63,6 +64,7 @@ pub fn main() -> ExitCode {
         Command::Sim(a) => sim::run(a),
         Command::Run(a) => run::run(a),
         Command::Srci(a) => srci::run(a),
+        Command::Lsp => lsp::run(),
         Command::Fmt(a) => fmt::run(a),
     };
     match result {

@@ -180,3 +180,15 @@ fn flush_run<'t>(
         f(orig, Some(&line));
     }
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn a_blank_line_after_a_lone_cr_keeps_its_blanks() {
+        let text = "DEF main(a:IN, b:OUT)\r  \nDEF main(a:IN, b:OUT)\r\n";
+        let out = format_text(text, &FmtOptions::default());
+        assert_eq!(out.text, text);
+    }
+}

@@ -1,4 +1,4 @@
-//! Built-in functions: math, strings, SWRITE/SREAD, messages, EKI_*.
+//! Built-in functions: math, strings, SWRITE/SREAD, CAST_TO/CAST_FROM, messages, EKI_*.
 
 use crate::syntax::ast::Expr;
 
@@ -194,7 +194,9 @@ pub(crate) fn call(m: &mut Machine, name: &str, args: &[Option<Expr>]) -> R<Opti
         }
         "BAS" => m.bas(args)?,
         // KRL system functions a simulation without kinematics or serial channels cannot give.
-        "CWRITE" | "CREAD" | "CAST_TO" | "CAST_FROM" | "FORWARD" | "INVERSE" => {
+        "CAST_TO" => super::cast::cast_to(m, args)?,
+        "CAST_FROM" => super::cast::cast_from(m, args)?,
+        "CWRITE" | "CREAD" | "FORWARD" | "INVERSE" => {
             return Err(m.err(format!("{name} is not supported by krlkit run")));
         }
         // Variables start at their zero value here, so every declared one is initialised.

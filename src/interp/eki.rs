@@ -1,6 +1,10 @@
 //! EthernetKRL emulation: channels configured by EKI XML, client connections over real TCP,
 //! RAW STREAM/BYTE records, the ALIVE and receive flags, and the EKI_* functions.
 //!
+//! `EKI_Send` on a RAW STREAM element sends the CHAR array up to its first NUL (or the given
+//! length) plus the end string; on a RAW BYTE element it sends the given length, else the
+//! element's `Size` bytes of the array, zero-padded [U].
+//!
 //! Assumed `Msg_No` values (the manual's numbering is not verified, see reference Part 3.3):
 //! 0 OK, 2 channel not initialised, 9 connection not available (refused, lost, not open),
 //! 23 initialisation already performed, 512 connection destroyed while sending.
@@ -187,6 +191,30 @@ pub(crate) struct Eki {
 impl Eki {
     pub(crate) fn any_connected(&self) -> bool {
         self.channels.values().any(|c| c.stream.is_some())
+    }
+
+    /// Whether a connected channel sets `var[n]` (`$FLAG` or `$OUT`, 1-based; `None`: any):
+    /// its alive flag or output (dropped when the peer goes away) or a receive element's.
+    pub(crate) fn sets(&self, var: &str, n: Option<usize>) -> bool {
+        self.channels
+            .values()
+            .filter(|c| c.stream.is_some())
+            .flat_map(|c| {
+                let flag = var == "$FLAG";
+                let alive = if flag {
+                    c.cfg.alive_flag
+                } else {
+                    c.cfg.alive_out
+                };
+                let elements = c
+                    .cfg
+                    .receive
+                    .iter()
+                    .map(move |e| if flag { e.set_flag } else { e.set_out });
+                std::iter::once(alive).chain(elements)
+            })
+            .flatten()
+            .any(|m| n.is_none_or(|n| n == m))
     }
 
     pub(crate) fn close_all(&mut self) {
@@ -432,12 +460,29 @@ pub(crate) fn call(m: &mut Machine, up: &str, args: &[Option<Expr>]) -> R<Value>
                 Some(e) => Some(m.eval_int(e)?.max(0) as usize),
                 None => None,
             };
-            let mut bytes: Vec<u8> = match (&data, len) {
-                (Value::Array { items, .. }, Some(n)) => items
-                    .iter()
-                    .take(n)
-                    .map(|v| if let Value::Char(c) = v { *c } else { 0 })
-                    .collect(),
+            // A RAW BYTE element sends its fixed record: `Size` bytes of the array [U].
+            let byte_size = m.eki.channels.get(&key).and_then(|c| {
+                match c.cfg.send.first().or(c.cfg.receive.first()) {
+                    Some(RawElement {
+                        kind: RawKind::Byte,
+                        size,
+                        ..
+                    }) => Some(*size),
+                    _ => None,
+                }
+            });
+            let mut bytes: Vec<u8> = match (&data, len.or(byte_size)) {
+                (Value::Array { items, .. }, Some(n)) => {
+                    let mut b: Vec<u8> = items
+                        .iter()
+                        .take(n)
+                        .map(|v| if let Value::Char(c) = v { *c } else { 0 })
+                        .collect();
+                    if len.is_none() {
+                        b.resize(n, 0);
+                    }
+                    b
+                }
                 _ => data
                     .as_text()
                     .ok_or_else(|| m.err("EKI_Send: data must be a CHAR array"))?

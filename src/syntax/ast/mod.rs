@@ -6,8 +6,10 @@
 //! Names compare case-insensitively in KRL: use [`Ident::is`] rather than `==` on text.
 
 mod lower;
+pub mod walk;
 
 pub use lower::lower;
+pub use walk::each_stmt;
 
 use crate::diag::Span;
 
