@@ -54,7 +54,7 @@ pub struct FmtArgs {
     /// Write nothing; print a unified diff of what would change (exit 1 if anything would).
     #[arg(long)]
     pub diff: bool,
-    /// Config file with a [fmt] table (default: ./krlkit.toml if present).
+    /// Config file with a [fmt] table (default: ./.krlkit.toml or ./krlkit.toml if present).
     #[arg(long)]
     pub config: Option<PathBuf>,
     /// The name to report for `-` (stdin).

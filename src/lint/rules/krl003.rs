@@ -115,7 +115,10 @@ mod tests {
         assert_eq!(fix.applicability, Applicability::Safe);
         assert_eq!(fix.edits[0].replacement, "Pick");
         assert_eq!(fix.edits[0].span, crate::diag::Span::new(4, 14));
-        let fix = fix_of("pick.src", "DEF pick_cycle()\nEND\nDEF b()\npick_cycle()\nEND\n");
+        let fix = fix_of(
+            "pick.src",
+            "DEF pick_cycle()\nEND\nDEF b()\npick_cycle()\nEND\n",
+        );
         assert_eq!(fix.applicability, Applicability::Unsafe);
         let none = crate::lint::lint_text("9pick.src", "DEF pick_cycle()\nEND\n");
         assert!(none.diagnostics.iter().all(|d| d.fix.is_none()));
