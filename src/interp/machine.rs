@@ -382,14 +382,13 @@ impl<'p> Machine<'p> {
 
     pub(crate) fn run_main(mut self) -> RunResult {
         for m in &self.prog.modules {
-            self.events.push(Record {
-                t_ms: 0.0,
-                at: None,
-                event: Event::Source {
+            self.emit_at(
+                None,
+                Event::Source {
                     file: m.name.clone(),
                     text: m.text.clone(),
                 },
-            });
+            );
         }
         let end = match self.prog.entry() {
             None => End::Error(RuntimeError {
@@ -791,7 +790,7 @@ impl<'p> Machine<'p> {
             .is_some();
         if is_mm {
             self.emit(Event::Call {
-                name: routine.name.text.clone(),
+                name: routine.name.text.to_string(),
             });
         }
         if self.frames.len() > 200 {
@@ -801,7 +800,7 @@ impl<'p> Machine<'p> {
         let saved_scope = self.declared_scope.take();
         let mut frame = Frame::new(mi, vars);
         frame.call_site = (!self.frames.is_empty()).then_some(saved_loc);
-        frame.mm = is_mm.then(|| routine.name.text.clone());
+        frame.mm = is_mm.then(|| routine.name.text.to_string());
         self.frames.push(frame);
         let fi = self.frames.len() - 1;
         let result = (|| -> R<Option<Value>> {
@@ -847,7 +846,7 @@ impl<'p> Machine<'p> {
                         && let Some(Slot::Alias(place)) = frame.vars.get(&p.name.key())
                         && let Ok(v) = self.read_value(place)
                     {
-                        out.push((p.name.text.clone(), to_json(&v)));
+                        out.push((p.name.text.to_string(), to_json(&v)));
                     }
                 }
             }
@@ -856,7 +855,7 @@ impl<'p> Machine<'p> {
                 _ => None,
             };
             self.emit(Event::Return {
-                name: routine.name.text.clone(),
+                name: routine.name.text.to_string(),
                 out,
                 status,
             });
@@ -1051,7 +1050,7 @@ impl<'p> Machine<'p> {
                 });
             }
             StmtKind::Exit => return Ok(Flow::Exit),
-            StmtKind::Goto { label } => return Ok(Flow::Goto(label.text.clone())),
+            StmtKind::Goto { label } => return Ok(Flow::Goto(label.text.to_string())),
             StmtKind::Label { .. } | StmtKind::Continue => {}
             StmtKind::WaitSec { time } => {
                 let t = self.eval_real(time)?;
@@ -1356,43 +1355,40 @@ impl<'p> Machine<'p> {
             }
         }
         // The auxiliary point of a circle, absolute (a relative one is taken from the start).
+        let start = self.globals.get(act).cloned().unwrap_or(Value::Int(0));
         let aux_abs = match (&aux, axis) {
             (Some(aux), false) if m.relative => {
-                let start = self.globals.get(act).cloned().unwrap_or(Value::Int(0));
                 Some(super::frame::relative(&start, aux, in_tool).unwrap_or_else(|| aux.clone()))
             }
             (Some(aux), false) => Some(aux.clone()),
             _ => None,
         };
+        // For the trace: a point on the arc between start and end (the auxiliary point, or the
+        // middle of a `CA` arc, which need not pass the auxiliary point).
+        let mut on_arc = aux_abs.clone();
+        if let (Some(ca), Some(aux)) = (&m.ca, &aux_abs) {
+            // `CIRC aux, end, CA angle`: the arc through the start, the auxiliary point and the
+            // end point, followed for `angle` degrees from the start; the orientation is the
+            // end point's.
+            let angle = self.eval_real(ca)?;
+            let on_line = || self.err("CIRC: the start, auxiliary and end points are on one line");
+            on_arc =
+                Some(super::frame::circ_end(&start, aux, &cur, angle / 2.0).ok_or_else(on_line)?);
+            cur = super::frame::circ_end(&start, aux, &cur, angle).ok_or_else(on_line)?;
+        }
         // Fields the auxiliary point lacks are the start's.
-        let aux_point: Option<Vec<(String, f64)>> = aux_abs.map(|a| {
-            let start = self.globals.get(act);
+        let aux_point: Option<Vec<(String, f64)>> = on_arc.map(|a| {
             CART_FIELDS[..3]
                 .iter()
                 .map(|n| {
                     let v = a
                         .field(n)
-                        .or_else(|| start.and_then(|p| p.field(n)))
+                        .or_else(|| start.field(n))
                         .and_then(|v| v.as_f64());
                     (n.to_string(), v.unwrap_or(0.0))
                 })
                 .collect()
         });
-        if let (Some(ca), Some(aux), false) = (&m.ca, &aux, axis) {
-            // `CIRC aux, end, CA angle`: the arc through the start, the auxiliary point and the
-            // end point, followed for `angle` degrees from the start; the orientation is the
-            // end point's.
-            let angle = self.eval_real(ca)?;
-            let start = self.globals.get(act).cloned().unwrap_or(Value::Int(0));
-            let aux = if m.relative {
-                super::frame::relative(&start, aux, in_tool).unwrap_or_else(|| aux.clone())
-            } else {
-                aux.clone()
-            };
-            cur = super::frame::circ_end(&start, &aux, &cur, angle).ok_or_else(|| {
-                self.err("CIRC: the start, auxiliary and end points are on one line")
-            })?;
-        }
         let kind = match m.kind {
             MotionKind::Ptp => "PTP",
             MotionKind::Lin => "LIN",
@@ -1505,7 +1501,7 @@ impl<'p> Machine<'p> {
                         field.text
                     )));
                 }
-                p.path.push(Seg::Field(field.text.to_ascii_uppercase()));
+                p.path.push(Seg::Field(field.key()));
                 Ok(p)
             }
             ExprKind::Index { base, indices } => {
@@ -1950,7 +1946,7 @@ impl<'p> Machine<'p> {
                 for (n, fe) in fields {
                     let v = self.eval(fe)?;
                     match n {
-                        Some(n) => vals.push((n.text.to_ascii_uppercase(), v)),
+                        Some(n) => vals.push((n.key(), v)),
                         None => return Err(self.err("positional aggregates are not supported")),
                     }
                 }
