@@ -14,8 +14,9 @@ use anyhow::Context;
 use super::Outcome;
 use super::args::{CheckArgs, CheckFormat};
 use crate::diag::{FileReport, Severity, render};
+use crate::files;
 use crate::lint::{self, EkiChannel, LintConfig};
-use crate::sema::Workspace;
+use crate::sema::{SourceKind, Workspace, WorkspaceFile};
 
 pub fn run(args: CheckArgs) -> anyhow::Result<Outcome> {
     let config = match load_config(args.config.as_deref()) {
@@ -27,32 +28,120 @@ pub fn run(args: CheckArgs) -> anyhow::Result<Outcome> {
     };
     let (channels, channels_given) = match &args.eki_xml {
         Some(path) => (vec![read_channel(path)?], true),
-        None => (lint::eki_xml::scan(&args.paths), false),
+        None => (
+            lint::eki_xml::scan(&files::split_stdin(&args.paths).0),
+            false,
+        ),
     };
 
-    // Folders, files and backup archives (read in place), as one workspace per path given.
-    let ws = Workspace::load(&args.paths);
+    let (paths, stdin) = files::split_stdin(&args.paths);
+    // Folders, files and backup archives (read in place), one workspace source per path.
+    let mut ws = Workspace::load(&paths);
     for s in &ws.skipped {
         eprintln!("warning: {s}");
     }
-    let failed = !ws.errors.is_empty();
+    if super::ui::verbose() {
+        for f in &ws.files {
+            eprintln!("checking {}", f.path);
+        }
+    }
+    let mut failed = !ws.errors.is_empty();
     for e in &ws.errors {
         eprintln!("error: cannot read {e}");
     }
-    let outcome = lint::lint_workspace(ws, channels, channels_given, &config);
+    if stdin {
+        let name = args
+            .stdin_filename
+            .clone()
+            .unwrap_or_else(|| "<stdin>".into());
+        match files::read_stdin() {
+            Ok(d) => ws.files.push(WorkspaceFile {
+                path: name,
+                text: d.text,
+                group: paths.len() as u32,
+            }),
+            Err(e) => {
+                eprintln!("error: cannot read stdin: {e}");
+                failed = true;
+            }
+        }
+    }
+    // Files read from an archive are not written back by --fix.
+    let archived: Vec<u32> = ws
+        .sources
+        .iter()
+        .enumerate()
+        .filter(|(_, s)| s.kind == SourceKind::Archive)
+        .map(|(g, _)| g as u32)
+        .collect();
+    let groups: std::collections::HashMap<String, u32> =
+        ws.files.iter().map(|f| (f.path.clone(), f.group)).collect();
+    let am_ini = ws.am_ini.clone();
+    let mut outcome = lint::lint_workspace(ws, channels.clone(), channels_given, &config);
+    if args.fix {
+        let in_archive = |r: &FileReport| groups.get(&r.path).is_some_and(|g| archived.contains(g));
+        if outcome.reports.iter().any(in_archive) {
+            eprintln!("warning: files inside an archive are not fixed (unpack it to fix them)");
+        }
+        let fixable: Vec<FileReport> = outcome
+            .reports
+            .iter()
+            .map(|r| {
+                let mut r = r.clone();
+                if in_archive(&r) {
+                    r.diagnostics.retain(|d| d.fix.is_none());
+                }
+                r
+            })
+            .collect();
+        let fixed = super::fix::apply(&fixable);
+        failed |= fixed.failed;
+        if fixed.applied > 0 {
+            let ws = Workspace {
+                files: fixed
+                    .inputs
+                    .into_iter()
+                    .map(|i| WorkspaceFile {
+                        group: groups.get(&i.path).copied().unwrap_or(0),
+                        path: i.path,
+                        text: i.text,
+                    })
+                    .collect(),
+                am_ini,
+                ..Workspace::default()
+            };
+            outcome = lint::lint_workspace(ws, channels, channels_given, &config);
+        }
+        eprintln!(
+            "fixed {} finding{} in {} file{}{}",
+            fixed.applied,
+            plural(fixed.applied),
+            fixed.files,
+            plural(fixed.files),
+            match fixed.skipped {
+                0 => String::new(),
+                n => format!(" ({n} fix{} skipped)", if n == 1 { "" } else { "es" }),
+            }
+        );
+    }
     let reports = &outcome.reports;
     let errors: usize = reports.iter().map(|r| r.count(Severity::Error)).sum();
     let warnings: usize = reports.iter().map(|r| r.count(Severity::Warning)).sum();
     let mut out = String::new();
     match args.format {
-        CheckFormat::Human => each(reports, &mut out, render::human::render),
+        CheckFormat::Human => {
+            let renderer = super::ui::renderer(true);
+            for r in reports {
+                render::human::render_with(r, &mut out, &renderer);
+            }
+        }
         CheckFormat::Concise => each(reports, &mut out, render::concise::render),
         CheckFormat::Github => each(reports, &mut out, render::github::render),
         CheckFormat::Json => out = render::json::render(reports) + "\n",
         CheckFormat::Sarif => out = render::sarif::render(reports) + "\n",
     }
     std::io::stdout().lock().write_all(out.as_bytes())?;
-    if args.format == CheckFormat::Human {
+    if args.format == CheckFormat::Human && !super::ui::quiet() {
         let files = reports.len();
         if files == 0 && !failed {
             eprintln!("warning: no KRL files found");
@@ -95,7 +184,7 @@ fn plural(n: usize) -> &'static str {
     if n == 1 { "" } else { "s" }
 }
 
-/// `--config FILE`, else `./krlkit.toml` when present, else the defaults.
+/// `--config FILE`, else `./.krlkit.toml` or `./krlkit.toml` when present, else the defaults.
 fn load_config(path: Option<&Path>) -> Result<LintConfig, String> {
     match read_config(path)? {
         Some((path, text)) => LintConfig::from_toml(&path, &text).map_err(|e| e.to_string()),
@@ -103,14 +192,18 @@ fn load_config(path: Option<&Path>) -> Result<LintConfig, String> {
     }
 }
 
-/// The config file `check` and `fmt` read: `--config FILE`, else `./krlkit.toml` when present.
-/// Returns its path as shown to the user and its text.
+/// The config file `check` and `fmt` read: `--config FILE`, else the first of `./.krlkit.toml`
+/// and `./krlkit.toml` that exists (the names the language server looks for). Returns its path
+/// as shown to the user and its text.
 pub(super) fn read_config(path: Option<&Path>) -> Result<Option<(String, String)>, String> {
-    let default = PathBuf::from("krlkit.toml");
-    let path = match path {
-        Some(p) => p.to_path_buf(),
-        None if default.is_file() => default,
-        None => return Ok(None),
+    let default = crate::lsp::workspace::CONFIG_NAMES
+        .iter()
+        .map(PathBuf::from)
+        .find(|p| p.is_file());
+    let path = match (path, default) {
+        (Some(p), _) => p.to_path_buf(),
+        (None, Some(p)) => p,
+        (None, None) => return Ok(None),
     };
     let text = std::fs::read_to_string(&path)
         .map_err(|e| format!("cannot read config {}: {e}", path.display()))?;

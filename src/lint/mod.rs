@@ -31,7 +31,7 @@ use rayon::prelude::*;
 
 pub use config::{ConfigError, LintConfig};
 pub use eki_xml::EkiChannel;
-pub use registry::{Check, RULES, Rule, nearest_code, rule};
+pub use registry::{Check, FIXES, RULES, Rule, fix_of, nearest_code, rule};
 pub use session::{Affected, Session};
 
 use crate::diag::{Diagnostic, FileReport, LineIndex};
@@ -72,9 +72,8 @@ impl LintOutcome {
             return None;
         }
         Some(
-            "no $config.dat among the files checked: names and routines not declared in them \
-             may be declared in files not given, so KRL010 and KRL011 are not reported \
-             (check the whole robot: its KRC folder or its backup .zip)"
+            "no $config.dat among the files: undeclared names and routines may be declared in \
+             files not given, so KRL010/KRL011 are off (check the robot's KRC folder or backup .zip)"
                 .to_owned(),
         )
     }
@@ -226,15 +225,17 @@ fn mm_relevant(ast: &SourceFile) -> bool {
         .map(|r| r.body.as_slice())
         .chain(std::iter::once(ast.top_level.as_slice()));
     for body in bodies {
+        let writes_flag = |target: &crate::syntax::ast::Expr| {
+            walk::root_var(target).is_some_and(|v| v.is("$FLAG"))
+                && matches!(target.kind, ExprKind::Index { .. })
+        };
         walk::each_stmt(body, &mut |s| {
             found |= match &s.kind {
                 StmtKind::Call { name, .. } => {
                     name.text.len() >= 3 && name.text[..3].eq_ignore_ascii_case("MM_")
                 }
-                StmtKind::Assign { target, .. } | StmtKind::Pulse { signal: target, .. } => {
-                    walk::root_var(target).is_some_and(|v| v.is("$FLAG"))
-                        && matches!(target.kind, ExprKind::Index { .. })
-                }
+                StmtKind::Assign { target, .. } => writes_flag(target),
+                StmtKind::Pulse { signal, .. } => writes_flag(signal),
                 _ => false,
             }
         });
