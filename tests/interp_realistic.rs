@@ -551,6 +551,9 @@ fn realistic_programs_through_krlkit_run() {
             args.push("--input".into());
             args.push(i.clone());
         }
+        // The same clock as in process: the fake server's delays are meant against a 10x clock.
+        args.push("--time-scale".into());
+        args.push(case.time_scale.to_string());
         let (code, stderr, took) = run_cli(&args, Duration::from_secs(60));
         assert_eq!(
             code, spec.exit,
@@ -562,6 +565,11 @@ fn realistic_programs_through_krlkit_run() {
             serde_json::from_str(text.lines().last().expect("trace ends")).unwrap();
         assert_eq!(end["event"], "end", "{}", spec.name);
         assert_eq!(end["status"], spec.end.as_str(), "{}: {end}", spec.name);
+        assert_eq!(
+            end["exit"], code,
+            "{}: the end event agrees with the exit code",
+            spec.name
+        );
         let statuses: Vec<i64> = text
             .lines()
             .filter_map(|l| serde_json::from_str::<serde_json::Value>(l).ok())

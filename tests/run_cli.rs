@@ -306,3 +306,236 @@ fn a_generated_package_directory_runs_like_the_in_memory_package() {
     assert_eq!(from_dir.len(), 10);
     assert_eq!(from_dir, in_memory);
 }
+
+fn server_with(faults: &str) -> Server {
+    let path = root().join("tests/fixtures/scenarios/examples.toml");
+    let mut text = std::fs::read_to_string(&path).unwrap();
+    text.push('\n');
+    text.push_str(faults);
+    let sc = Scenario::from_toml_str(&text, "examples.toml").unwrap();
+    Server::start(sc, "127.0.0.1:0").unwrap()
+}
+
+fn stdout(o: &Output) -> String {
+    String::from_utf8_lossy(&o.stdout).into_owned()
+}
+
+fn last_event(path: &Path) -> serde_json::Value {
+    let lines = trace_lines(path);
+    serde_json::from_str(lines.last().expect("a trace")).unwrap()
+}
+
+#[test]
+fn a_server_answering_in_2_s_is_not_a_reply_timeout() {
+    // The package's reply timeout is 15 s of controller time; waits on a real peer run on the
+    // wall clock, so a Mech-Vision that takes 2 s is answered, not timed out (4091).
+    let server = server_with("[[fault]]\ncommand = 901\ndelay_ms = 2000\n");
+    let dir = tempfile::tempdir().unwrap();
+    let trace = dir.path().join("t.jsonl");
+    let t = std::time::Instant::now();
+    let out = krlkit(&[
+        "run",
+        "krl/examples/status_check.src",
+        "--vision",
+        &server.addr().to_string(),
+        "--trace",
+        trace.to_str().unwrap(),
+    ]);
+    assert_eq!(out.status.code(), Some(0), "{}", stderr(&out));
+    assert!(t.elapsed() >= std::time::Duration::from_secs(2));
+    let text = std::fs::read_to_string(&trace).unwrap();
+    assert!(
+        text.contains(r#""name":"MM_Get_Status","out":{"MM_Status":1101}"#),
+        "{text}"
+    );
+    let summary = stdout(&out);
+    let line = summary.lines().find(|l| l.contains("MM_Get_Status"));
+    assert!(
+        line.is_some_and(|l| l.ends_with("1x  status 1101 x1")),
+        "{summary}"
+    );
+}
+
+#[test]
+fn time_scale_makes_the_reply_timeout_pass_sooner() {
+    let server = server_with("[[fault]]\ncommand = 901\ndelay_ms = 5000\n");
+    let t = std::time::Instant::now();
+    let out = krlkit(&[
+        "run",
+        "krl/examples/status_check.src",
+        "--vision",
+        &server.addr().to_string(),
+        "--time-scale",
+        "100",
+    ]);
+    // 15 s at 100x: 150 ms; the program HALTs on the timeout status.
+    assert_eq!(out.status.code(), Some(1), "{}", stderr(&out));
+    assert!(
+        t.elapsed() < std::time::Duration::from_secs(3),
+        "{:?}",
+        t.elapsed()
+    );
+    let timeout = krlkit::catalog::catalog().package_code("REPLY_TIMEOUT");
+    assert!(
+        stdout(&out).contains(&format!(
+            "last status before the HALT: {timeout} from MM_Get_Status"
+        )),
+        "{}",
+        stdout(&out)
+    );
+}
+
+#[test]
+fn an_impossible_wait_on_an_open_connection_is_reported_at_once() {
+    let server = server_with("");
+    let dir = tempfile::tempdir().unwrap();
+    let wait = dir.path().join("stuck.src");
+    std::fs::write(
+        &wait,
+        "DEF stuck()\n  DECL EKI_STATUS ret\n  ret = EKI_Init(\"XML_Kuka_MMIND\")\n  \
+         ret = EKI_Open(\"XML_Kuka_MMIND\")\n  WAIT FOR $FLAG[5]\nEND\n",
+    )
+    .unwrap();
+    let poll = dir.path().join("poll.src");
+    std::fs::write(
+        &poll,
+        "DEF poll()\n  DECL EKI_STATUS ret\n  ret = EKI_Init(\"XML_Kuka_MMIND\")\n  \
+         ret = EKI_Open(\"XML_Kuka_MMIND\")\n  WHILE NOT $FLAG[5]\n  ENDWHILE\nEND\n",
+    )
+    .unwrap();
+    let addr = server.addr().to_string();
+    for (prog, line) in [
+        (&wait, "stuck.src:5: WAIT FOR can never become TRUE"),
+        (&poll, "poll.src:5: this loop can never end"),
+    ] {
+        let t = std::time::Instant::now();
+        let out = krlkit(&["run", prog.to_str().unwrap(), "--vision", &addr]);
+        assert_eq!(out.status.code(), Some(2), "{}", stderr(&out));
+        assert!(stderr(&out).contains(line), "{}", stderr(&out));
+        assert!(
+            t.elapsed() < std::time::Duration::from_secs(2),
+            "{:?}",
+            t.elapsed()
+        );
+    }
+    // The alive flag of the open channel can change (the peer may go away): that wait is real.
+    let alive = dir.path().join("alive.src");
+    std::fs::write(
+        &alive,
+        "DEF alive()\n  DECL EKI_STATUS ret\n  ret = EKI_Init(\"XML_Kuka_MMIND\")\n  \
+         ret = EKI_Open(\"XML_Kuka_MMIND\")\n  WAIT FOR NOT $FLAG[873]\nEND\n",
+    )
+    .unwrap();
+    let sc = Scenario::from_toml_str("[server]\nidle_timeout_ms = 300\n", "idle.toml").unwrap();
+    let short = Server::start(sc, "127.0.0.1:0").unwrap();
+    let out = krlkit(&[
+        "run",
+        alive.to_str().unwrap(),
+        "--vision",
+        &short.addr().to_string(),
+    ]);
+    assert_eq!(out.status.code(), Some(0), "{}", stderr(&out));
+}
+
+#[test]
+fn a_tight_loop_of_mm_calls_is_reported_at_the_users_loop() {
+    let server = server_with("");
+    let dir = tempfile::tempdir().unwrap();
+    let prog = dir.path().join("spin.src");
+    std::fs::write(
+        &prog,
+        "DEF spin()\n  DECL INT status\n  MM_Init_Socket(\"XML_Kuka_MMIND\", 873, 871, 60)\n  \
+         LOOP\n    MM_Get_Status(status)\n  ENDLOOP\nEND\n",
+    )
+    .unwrap();
+    let out = krlkit(&[
+        "run",
+        prog.to_str().unwrap(),
+        "--vision",
+        &server.addr().to_string(),
+        "--step-limit",
+        "20000",
+    ]);
+    assert_eq!(out.status.code(), Some(2), "{}", stderr(&out));
+    let err = stderr(&out);
+    assert!(
+        err.contains("spin.src:4: step limit of 20000 statements exceeded"),
+        "{err}"
+    );
+    assert!(err.contains("(in MM_Get_Status, at <package>/"), "{err}");
+}
+
+#[test]
+fn a_killed_run_leaves_its_trace_so_far() {
+    let server = server_with("");
+    let dir = tempfile::tempdir().unwrap();
+    let prog = dir.path().join("long.src");
+    // Moves, then waits 30 s of real time on an open connection.
+    std::fs::write(
+        &prog,
+        "DEF long()\n  DECL EKI_STATUS ret\n  PTP {A1 10, A2 -90, A3 90, A4 0, A5 0, A6 0}\n  \
+         ret = EKI_Init(\"XML_Kuka_MMIND\")\n  ret = EKI_Open(\"XML_Kuka_MMIND\")\n  \
+         $TIMER[1] = -30000\n  $TIMER_STOP[1] = FALSE\n  WAIT FOR $TIMER_FLAG[1]\nEND\n",
+    )
+    .unwrap();
+    let trace = dir.path().join("t.jsonl");
+    let mut child = Command::new(env!("CARGO_BIN_EXE_krlkit"))
+        .args([
+            "run",
+            prog.to_str().unwrap(),
+            "--vision",
+            &server.addr().to_string(),
+            "--trace",
+            trace.to_str().unwrap(),
+        ])
+        .spawn()
+        .unwrap();
+    std::thread::sleep(std::time::Duration::from_millis(700));
+    child.kill().unwrap();
+    child.wait().unwrap();
+    let lines = trace_lines(&trace);
+    let events: Vec<serde_json::Value> = lines
+        .iter()
+        .map(|l| serde_json::from_str(l).expect("every line written is whole"))
+        .collect();
+    assert!(events.iter().any(|e| e["event"] == "motion"), "{lines:?}");
+    assert!(events.iter().all(|e| e["event"] != "end"), "{lines:?}");
+}
+
+#[test]
+fn the_end_event_carries_the_exit_code() {
+    let dir = tempfile::tempdir().unwrap();
+    let trace = dir.path().join("t.jsonl");
+    let t = trace.to_str().unwrap();
+    // Normal end, but the server was unreachable: exit 2 in both places.
+    let out = krlkit(&[
+        "run",
+        "krl/examples/status_check.src",
+        "--vision",
+        &closed_port(),
+        "--trace",
+        t,
+    ]);
+    assert_eq!(out.status.code(), Some(2));
+    assert_eq!(last_event(&trace)["exit"], 2);
+    let server = server_with("[[fault]]\ncommand = 901\nstatus = 1011\n");
+    let out = krlkit(&[
+        "run",
+        "krl/examples/status_check.src",
+        "--vision",
+        &server.addr().to_string(),
+        "--trace",
+        t,
+    ]);
+    assert_eq!(out.status.code(), Some(1), "{}", stderr(&out));
+    let end = last_event(&trace);
+    assert_eq!(
+        (end["status"].as_str(), end["exit"].as_i64()),
+        (Some("halt"), Some(1))
+    );
+    assert!(
+        stdout(&out).contains("last status before the HALT: 1011 from MM_Get_Status"),
+        "{}",
+        stdout(&out)
+    );
+}

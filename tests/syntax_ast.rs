@@ -281,3 +281,26 @@ fn enum_values_written_with_a_blank_after_the_hash() {
         "MOVE_EMI lines are kept as Other statements"
     );
 }
+
+#[test]
+fn struc_member_groups_without_a_comma_before_the_next_type() {
+    let f = lower_fixture("struc_groups.dat");
+    let dat = f.dat.as_ref().expect("DEFDAT");
+    let Definition::Struc(s) = &dat.definitions[0] else {
+        panic!("{:?}", dat.definitions)
+    };
+    let fields: Vec<(&str, &str, usize)> = s
+        .fields
+        .iter()
+        .map(|m| (m.ty.text.as_str(), m.name.text.as_str(), m.dims.len()))
+        .collect();
+    assert_eq!(
+        fields,
+        [
+            ("INT", "ID", 0),
+            ("INT", "n", 0),
+            ("CHAR", "name", 1),
+            ("REAL", "t", 0)
+        ]
+    );
+}

@@ -37,6 +37,10 @@ pub enum Command {
     Run(RunArgs),
     /// Decode or encode an SRCI RaStatusWord.
     Srci(SrciArgs),
+    /// Write the HTML dry-run report of a `krlkit run --trace` file.
+    Report(ReportArgs),
+    /// Language server over stdin/stdout, for editors (VS Code, Neovim, Helix, Zed).
+    Lsp,
     /// Format KRL files in place: blanks and word case only; protected lines untouched.
     Fmt(FmtArgs),
 }
@@ -240,12 +244,24 @@ pub struct RunArgs {
     /// default spec).
     #[arg(long, conflicts_with = "package")]
     pub spec: Option<PathBuf>,
-    /// Vision server address (overrides the EKI XML's IP and port).
-    #[arg(long)]
+    /// Vision server address HOST:PORT (overrides the EKI XML's IP and port); checked before
+    /// the run starts.
+    #[arg(long, value_name = "HOST:PORT", value_parser = crate::cli::run::vision_address)]
     pub vision: Option<String>,
-    /// Write a JSON Lines trace of motions and MM_ calls.
-    #[arg(long)]
+    /// Write a JSON Lines trace of motions, MM_ calls and the end, as the run goes.
+    #[arg(long, value_name = "FILE")]
     pub trace: Option<PathBuf>,
+    /// Write the dry-run report: one self-contained HTML page (tool path, timeline, coverage).
+    #[arg(long, value_name = "FILE.html")]
+    pub report: Option<PathBuf>,
+    /// Most statements the run may execute before it is stopped as an endless loop.
+    #[arg(long, value_name = "N", default_value_t = crate::interp::Options::default().step_limit)]
+    pub step_limit: u64,
+    /// Simulated time per real time while waiting on the vision server: 1 (default) keeps the
+    /// package's connect and reply timeouts as long as on the controller; 10 makes a 15 s
+    /// timeout pass in 1.5 s against the fake server.
+    #[arg(long, value_name = "FACTOR", default_value_t = 1.0, value_parser = crate::cli::run::time_scale)]
+    pub time_scale: f64,
     /// Further modules the program calls (a .src with its .dat, or a directory of them);
     /// repeatable.
     #[arg(long = "module", value_name = "PATH")]
@@ -256,6 +272,15 @@ pub struct RunArgs {
     /// TRUE, as on the controller).
     #[arg(long = "input", value_name = "N[=on|off|out:M|not:M]")]
     pub inputs: Vec<crate::interp::InputSetting>,
+}
+
+#[derive(Debug, Args)]
+pub struct ReportArgs {
+    /// A trace written by `krlkit run --trace`.
+    pub trace: PathBuf,
+    /// The HTML page to write.
+    #[arg(short, long, value_name = "FILE.html")]
+    pub out: PathBuf,
 }
 
 #[derive(Debug, Args)]

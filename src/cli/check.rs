@@ -26,7 +26,7 @@ pub fn run(args: CheckArgs) -> anyhow::Result<Outcome> {
     };
     let (channels, channels_given) = match &args.eki_xml {
         Some(path) => (vec![read_channel(path)?], true),
-        None => (scanned_channels(&args.paths), false),
+        None => (lint::eki_xml::scan(&args.paths), false),
     };
 
     let walk = files::walk(&args.paths);
@@ -120,31 +120,18 @@ pub(super) fn read_config(path: Option<&Path>) -> Result<Option<(String, String)
     Ok(Some((path.display().to_string(), text)))
 }
 
-fn channel_name(path: &Path) -> String {
-    path.file_stem()
-        .map(|s| s.to_string_lossy().into_owned())
-        .unwrap_or_default()
-}
-
 fn read_channel(path: &Path) -> anyhow::Result<EkiChannel> {
     let text = std::fs::read(path).with_context(|| format!("cannot read {}", path.display()))?;
     let text = crate::syntax::decode(&text).text;
-    lint::eki_xml::read(&channel_name(path), &path.display().to_string(), &text).ok_or_else(|| {
+    lint::eki_xml::read(
+        &lint::eki_xml::channel_name(path),
+        &path.display().to_string(),
+        &text,
+    )
+    .ok_or_else(|| {
         anyhow::anyhow!(
             "{}: not an EthernetKRL config (no <ETHERNETKRL> root element)",
             path.display()
         )
     })
-}
-
-/// EKI configs found among the scanned paths; files that are not EKI XML are ignored.
-fn scanned_channels(paths: &[PathBuf]) -> Vec<EkiChannel> {
-    files::walk_xml(paths)
-        .par_iter()
-        .filter_map(|p| {
-            let bytes = std::fs::read(p).ok()?;
-            let text = crate::syntax::decode(&bytes).text;
-            lint::eki_xml::read(&channel_name(p), &p.display().to_string(), &text)
-        })
-        .collect()
 }

@@ -193,6 +193,30 @@ impl Eki {
         self.channels.values().any(|c| c.stream.is_some())
     }
 
+    /// Whether a connected channel sets `var[n]` (`$FLAG` or `$OUT`, 1-based; `None`: any):
+    /// its alive flag or output (dropped when the peer goes away) or a receive element's.
+    pub(crate) fn sets(&self, var: &str, n: Option<usize>) -> bool {
+        self.channels
+            .values()
+            .filter(|c| c.stream.is_some())
+            .flat_map(|c| {
+                let flag = var == "$FLAG";
+                let alive = if flag {
+                    c.cfg.alive_flag
+                } else {
+                    c.cfg.alive_out
+                };
+                let elements = c
+                    .cfg
+                    .receive
+                    .iter()
+                    .map(move |e| if flag { e.set_flag } else { e.set_out });
+                std::iter::once(alive).chain(elements)
+            })
+            .flatten()
+            .any(|m| n.is_none_or(|n| n == m))
+    }
+
     pub(crate) fn close_all(&mut self) {
         for c in self.channels.values_mut() {
             c.stream = None;

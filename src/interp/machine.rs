@@ -11,11 +11,12 @@ mod bas;
 mod forms;
 mod interrupt;
 mod signals;
+mod watch;
 
 use super::eki::Eki;
 use super::program::Program;
 use super::value::{AXIS_FIELDS, BaseType, CART_FIELDS, Types, Value};
-use super::{End, Event, Location, Options, Record, RunResult, RuntimeError, WaitKind};
+use super::{End, Event, Location, Options, Record, RunResult, RuntimeError, TraceSink, WaitKind};
 
 /// Where a value lives: the target of assignments and OUT parameters.
 #[derive(Debug, Clone, PartialEq)]
@@ -54,6 +55,24 @@ enum Slot {
 struct Frame {
     module: usize,
     vars: HashMap<String, Slot>,
+    /// Where the routine was called from (`None`: the program's main routine, a DEFDAT body).
+    call_site: Option<(usize, u32)>,
+    /// The `MM_*` subprogram this frame runs, when it is one of the interface's.
+    mm: Option<String>,
+    /// Headers of the loops running in this frame, innermost last (where limits are reported).
+    loops: Vec<(usize, u32)>,
+}
+
+impl Frame {
+    fn new(module: usize, vars: HashMap<String, Slot>) -> Frame {
+        Frame {
+            module,
+            vars,
+            call_site: None,
+            mm: None,
+            loops: Vec::new(),
+        }
+    }
 }
 
 /// Why execution of a block stopped early.
@@ -105,6 +124,8 @@ pub(crate) struct Machine<'p> {
     timers: Vec<Timer>,
     pub(crate) eki: Eki,
     events: Vec<Record>,
+    /// Where each record also goes the moment it is made (`--trace` as the run goes).
+    sink: Option<&'p mut (dyn TraceSink + 'p)>,
     /// Per module, per 0-based line: statements run there.
     hits: Vec<Vec<u64>>,
     messages: Vec<String>,
@@ -124,6 +145,10 @@ pub(crate) struct Machine<'p> {
     /// package). Cleared inside the routines it calls.
     declared_scope: Option<usize>,
     motions: u64,
+    /// What the `WAIT FOR` check under way reads (see `watch.rs`).
+    reads: Option<watch::Reads>,
+    /// What the current iteration of an idle polling loop reads.
+    loop_reads: watch::LoopReads,
 }
 
 const TIMERS: usize = 64;
@@ -155,6 +180,7 @@ impl<'p> Machine<'p> {
             timers: vec![Timer::default(); TIMERS + 1],
             eki: Eki::default(),
             events: Vec::new(),
+            sink: None,
             hits: prog
                 .modules
                 .iter()
@@ -170,9 +196,17 @@ impl<'p> Machine<'p> {
             writes: 0,
             motions: 0,
             declared_scope: None,
+            reads: None,
+            loop_reads: None,
         };
         m.init_system();
         m
+    }
+
+    /// Send every event to `sink` as well, as it happens.
+    pub(crate) fn with_sink(mut self, sink: &'p mut (dyn TraceSink + 'p)) -> Machine<'p> {
+        self.sink = Some(sink);
+        self
     }
 
     fn types(&self) -> &Types {
@@ -184,7 +218,10 @@ impl<'p> Machine<'p> {
     }
 
     pub(crate) fn error(&self, message: impl Into<String>) -> RuntimeError {
-        let (mi, off) = self.loc;
+        self.error_at(self.loc, message)
+    }
+
+    fn error_at(&self, (mi, off): (usize, u32), message: impl Into<String>) -> RuntimeError {
         let (file, line) = match self.prog.modules.get(mi) {
             Some(m) => (m.name.clone(), m.line_of(off)),
             None => (String::new(), 0),
@@ -345,14 +382,13 @@ impl<'p> Machine<'p> {
 
     pub(crate) fn run_main(mut self) -> RunResult {
         for m in &self.prog.modules {
-            self.events.push(Record {
-                t_ms: 0.0,
-                at: None,
-                event: Event::Source {
+            self.emit_at(
+                None,
+                Event::Source {
                     file: m.name.clone(),
                     text: m.text.clone(),
                 },
-            });
+            );
         }
         let end = match self.prog.entry() {
             None => End::Error(RuntimeError {
@@ -417,6 +453,7 @@ impl<'p> Machine<'p> {
                 message,
                 steps: self.steps,
                 time_ms: self.clock_ms,
+                exit: super::exit_code(&end, &self.eki.stats),
             },
         );
         let globals = self
@@ -488,12 +525,17 @@ impl<'p> Machine<'p> {
         self.emit_at(at, event);
     }
 
+    /// Add a trace record (and hand it to the sink at once).
     fn emit_at(&mut self, at: Option<Location>, event: Event) {
-        self.events.push(Record {
+        let record = Record {
             t_ms: self.clock_ms,
             at,
             event,
-        });
+        };
+        if let Some(sink) = self.sink.as_mut() {
+            sink.record(&record);
+        }
+        self.events.push(record);
     }
 
     /// Declare every DEFDAT's variables, then run their initialisers in file order.
@@ -530,10 +572,7 @@ impl<'p> Machine<'p> {
             let Some(dat) = &self.prog.modules[mi].ast.dat else {
                 continue;
             };
-            self.frames.push(Frame {
-                module: mi,
-                vars: HashMap::new(),
-            });
+            self.frames.push(Frame::new(mi, HashMap::new()));
             let r = self.exec_block(&dat.body);
             self.frames.pop();
             r?;
@@ -614,13 +653,14 @@ impl<'p> Machine<'p> {
     fn tick(&mut self) -> R<()> {
         self.steps += 1;
         if self.steps > self.opts.step_limit {
-            return Err(self.err(format!(
-                "step limit of {} statements exceeded (endless loop?)",
+            return Err(self.limit_error(format!(
+                "step limit of {} statements exceeded (endless loop? `krlkit run --step-limit N` \
+                 raises it)",
                 self.opts.step_limit
             )));
         }
         if self.clock_ms > self.opts.max_time_ms {
-            return Err(self.err(format!(
+            return Err(self.limit_error(format!(
                 "the program ran for more than {:.0} s of simulated time (endless loop, or a \
                  wait for an input that never comes?)",
                 self.opts.max_time_ms / 1000.0
@@ -753,7 +793,7 @@ impl<'p> Machine<'p> {
         });
         if is_mm {
             self.emit(Event::Call {
-                name: routine.name.text.clone(),
+                name: routine.name.text.to_string(),
             });
         }
         if self.frames.len() > 200 {
@@ -761,7 +801,10 @@ impl<'p> Machine<'p> {
         }
         let saved_loc = self.loc;
         let saved_scope = self.declared_scope.take();
-        self.frames.push(Frame { module: mi, vars });
+        let mut frame = Frame::new(mi, vars);
+        frame.call_site = (!self.frames.is_empty()).then_some(saved_loc);
+        frame.mm = is_mm.then(|| routine.name.text.to_string());
+        self.frames.push(frame);
         let fi = self.frames.len() - 1;
         let result = (|| -> R<Option<Value>> {
             for d in &routine.definitions {
@@ -806,7 +849,7 @@ impl<'p> Machine<'p> {
                         && let Some(Slot::Alias(place)) = frame.vars.get(&p.name.key())
                         && let Ok(v) = self.read_value(place)
                     {
-                        out.push((p.name.text.clone(), to_json(&v)));
+                        out.push((p.name.text.to_string(), to_json(&v)));
                     }
                 }
             }
@@ -815,7 +858,7 @@ impl<'p> Machine<'p> {
                 _ => None,
             };
             self.emit(Event::Return {
-                name: routine.name.text.clone(),
+                name: routine.name.text.to_string(),
                 out,
                 status,
             });
@@ -965,46 +1008,52 @@ impl<'p> Machine<'p> {
                 self.assign(&place, Value::Int(i))?;
             }
             StmtKind::While { cond, body } => {
-                let (mut seen, at) = (self.writes, self.loc);
-                while self.eval_bool(cond)? {
-                    match self.exec_block(body)? {
-                        Flow::Next => {}
-                        Flow::Exit => break,
-                        other => return Ok(other),
+                return self.in_loop(|m, seen, at| {
+                    while m.eval_bool(cond)? {
+                        match m.exec_block(body)? {
+                            Flow::Next => {}
+                            Flow::Exit => break,
+                            other => return Ok(other),
+                        }
+                        m.loop_back_edge(seen, at)?;
                     }
-                    self.loop_back_edge(&mut seen, at)?;
-                }
+                    Ok(Flow::Next)
+                });
             }
             StmtKind::Repeat { body, until } => {
                 let Some(until) = until else {
                     return Err(self.err("REPEAT without UNTIL"));
                 };
-                let (mut seen, at) = (self.writes, self.loc);
-                loop {
-                    match self.exec_block(body)? {
-                        Flow::Next => {}
-                        Flow::Exit => break,
-                        other => return Ok(other),
+                return self.in_loop(|m, seen, at| {
+                    loop {
+                        match m.exec_block(body)? {
+                            Flow::Next => {}
+                            Flow::Exit => break,
+                            other => return Ok(other),
+                        }
+                        if m.eval_bool(until)? {
+                            break;
+                        }
+                        m.loop_back_edge(seen, at)?;
                     }
-                    if self.eval_bool(until)? {
-                        break;
-                    }
-                    self.loop_back_edge(&mut seen, at)?;
-                }
+                    Ok(Flow::Next)
+                });
             }
             StmtKind::Loop { body } => {
-                let (mut seen, at) = (self.writes, self.loc);
-                loop {
-                    match self.exec_block(body)? {
-                        Flow::Next => {}
-                        Flow::Exit => break,
-                        other => return Ok(other),
+                return self.in_loop(|m, seen, at| {
+                    loop {
+                        match m.exec_block(body)? {
+                            Flow::Next => {}
+                            Flow::Exit => break,
+                            other => return Ok(other),
+                        }
+                        m.loop_back_edge(seen, at)?;
                     }
-                    self.loop_back_edge(&mut seen, at)?;
-                }
+                    Ok(Flow::Next)
+                });
             }
             StmtKind::Exit => return Ok(Flow::Exit),
-            StmtKind::Goto { label } => return Ok(Flow::Goto(label.text.clone())),
+            StmtKind::Goto { label } => return Ok(Flow::Goto(label.text.to_string())),
             StmtKind::Label { .. } | StmtKind::Continue => {}
             StmtKind::WaitSec { time } => {
                 let t = self.eval_real(time)?;
@@ -1098,23 +1147,54 @@ impl<'p> Machine<'p> {
         Ok(Flow::Next)
     }
 
+    /// Run a structured loop whose header is the current statement: `f` gets the write count
+    /// for [`Machine::loop_back_edge`] and the header's location, which limits are reported at
+    /// while the loop runs.
+    fn in_loop(&mut self, f: impl FnOnce(&mut Self, &mut u64, (usize, u32)) -> R<Flow>) -> R<Flow> {
+        let (mut seen, at) = (self.writes, self.loc);
+        if let Some(frame) = self.frames.last_mut() {
+            frame.loops.push(at);
+        }
+        let flow = f(self, &mut seen, at);
+        if let Some(frame) = self.frames.last_mut() {
+            frame.loops.pop();
+        }
+        flow
+    }
+
     /// Polling loops (`WHILE NOT $FLAG[n]`) must see time pass and data arrive. An iteration
-    /// that changed nothing while nothing outside the program can change (no EKI connection,
-    /// no timer, no pulse) leaves the loop where it was: it would run forever, so it is an
-    /// error at the loop (`at`). `seen` is the write count at the previous back edge.
+    /// that changed nothing while nothing it read can change (no EKI channel sets it, no
+    /// timer or pulse runs for it) leaves the loop where it was: it would run forever, so it
+    /// is an error at the loop (`at`). `seen` is the write count at the previous back edge.
     fn loop_back_edge(&mut self, seen: &mut u64, at: (usize, u32)) -> R<()> {
         self.tick()?;
         let external = self.eki.any_connected()
             || self.timers.iter().any(|t| t.running)
             || self.pulses_running();
         let idle = self.writes == *seen;
+        let never = |m: &mut Self| {
+            m.loc = at;
+            m.err(
+                "this loop can never end: an iteration changed nothing, and nothing it reads \
+                 can change (no EKI channel sets it, no timer or pulse runs for it, inputs keep \
+                 their values: `krlkit run --input N` sets $IN[N] TRUE, `--input N=out:M` makes \
+                 it follow $OUT[M])",
+            )
+        };
         if idle && !external {
-            self.loc = at;
-            return Err(self.err(
-                "this loop can never end: an iteration changed nothing, no timer runs, no EKI \
-                 connection is open, and inputs keep their values (`krlkit run --input N` sets \
-                 $IN[N] TRUE, `--input N=out:M` makes it follow $OUT[M])",
-            ));
+            return Err(never(self));
+        }
+        if idle && self.eki.any_connected() {
+            // The iteration that just ended was recorded if the one before was idle too.
+            if let Some((tag, reads)) = self.loop_reads.take()
+                && tag == at
+                && !self.can_change(&reads)
+            {
+                return Err(never(self));
+            }
+            self.loop_reads = Some((at, watch::Reads::default()));
+        } else if !idle {
+            self.loop_reads = None;
         }
         *seen = self.writes;
         if self.eki.any_connected() {
@@ -1165,26 +1245,36 @@ impl<'p> Machine<'p> {
         let start = self.clock_ms;
         loop {
             self.eki.pump(&mut self.globals, std::time::Duration::ZERO);
-            if self.eval_bool(cond)? {
+            // One check: the condition, then the interrupt conditions between statements
+            // (and the pulses that end there: a write during the check is a change).
+            let writes = self.writes;
+            let (done, reads) = self.recording(|m| {
+                if m.eval_bool(cond)? {
+                    return Ok(true);
+                }
+                m.tick()?;
+                Ok(false)
+            });
+            if done? {
                 return Ok(());
             }
-            self.tick()?;
-            let timers = self.timers.iter().any(|t| t.running) || self.pulses_running();
+            if self.writes == writes && !self.can_change(&reads) {
+                return Err(self.err(
+                    "WAIT FOR can never become TRUE: nothing it reads can change while it waits \
+                     (no EKI channel sets it, no timer or pulse runs for it, inputs keep their \
+                     values: `krlkit run --input N` sets $IN[N] TRUE, `--input N=out:M` makes it \
+                     follow $OUT[M])",
+                ));
+            }
             if self.eki.any_connected() {
                 let before = std::time::Instant::now();
                 self.eki
                     .pump(&mut self.globals, std::time::Duration::from_millis(2));
                 let real_ms = before.elapsed().as_secs_f64() * 1000.0;
                 self.clock_ms += (real_ms * self.opts.time_scale).max(0.05);
-            } else if timers {
+            } else {
                 // Only the clock can change the condition: advance one interpreter cycle (12 ms).
                 self.clock_ms += 12.0;
-            } else {
-                return Err(self.err(
-                    "WAIT FOR can never become TRUE: no timer runs, no EKI connection is open, \
-                     and inputs keep their values (`krlkit run --input N` sets $IN[N] TRUE, \
-                     `--input N=out:M` makes it follow $OUT[M])",
-                ));
             }
             if self.clock_ms - start > self.opts.max_wait_ms {
                 return Err(self.err(format!(
@@ -1268,43 +1358,40 @@ impl<'p> Machine<'p> {
             }
         }
         // The auxiliary point of a circle, absolute (a relative one is taken from the start).
+        let start = self.globals.get(act).cloned().unwrap_or(Value::Int(0));
         let aux_abs = match (&aux, axis) {
             (Some(aux), false) if m.relative => {
-                let start = self.globals.get(act).cloned().unwrap_or(Value::Int(0));
                 Some(super::frame::relative(&start, aux, in_tool).unwrap_or_else(|| aux.clone()))
             }
             (Some(aux), false) => Some(aux.clone()),
             _ => None,
         };
+        // For the trace: a point on the arc between start and end (the auxiliary point, or the
+        // middle of a `CA` arc, which need not pass the auxiliary point).
+        let mut on_arc = aux_abs.clone();
+        if let (Some(ca), Some(aux)) = (&m.ca, &aux_abs) {
+            // `CIRC aux, end, CA angle`: the arc through the start, the auxiliary point and the
+            // end point, followed for `angle` degrees from the start; the orientation is the
+            // end point's.
+            let angle = self.eval_real(ca)?;
+            let on_line = || self.err("CIRC: the start, auxiliary and end points are on one line");
+            on_arc =
+                Some(super::frame::circ_end(&start, aux, &cur, angle / 2.0).ok_or_else(on_line)?);
+            cur = super::frame::circ_end(&start, aux, &cur, angle).ok_or_else(on_line)?;
+        }
         // Fields the auxiliary point lacks are the start's.
-        let aux_point: Option<Vec<(String, f64)>> = aux_abs.map(|a| {
-            let start = self.globals.get(act);
+        let aux_point: Option<Vec<(String, f64)>> = on_arc.map(|a| {
             CART_FIELDS[..3]
                 .iter()
                 .map(|n| {
                     let v = a
                         .field(n)
-                        .or_else(|| start.and_then(|p| p.field(n)))
+                        .or_else(|| start.field(n))
                         .and_then(|v| v.as_f64());
                     (n.to_string(), v.unwrap_or(0.0))
                 })
                 .collect()
         });
-        if let (Some(ca), Some(aux), false) = (&m.ca, &aux, axis) {
-            // `CIRC aux, end, CA angle`: the arc through the start, the auxiliary point and the
-            // end point, followed for `angle` degrees from the start; the orientation is the
-            // end point's.
-            let angle = self.eval_real(ca)?;
-            let start = self.globals.get(act).cloned().unwrap_or(Value::Int(0));
-            let aux = if m.relative {
-                super::frame::relative(&start, aux, in_tool).unwrap_or_else(|| aux.clone())
-            } else {
-                aux.clone()
-            };
-            cur = super::frame::circ_end(&start, &aux, &cur, angle).ok_or_else(|| {
-                self.err("CIRC: the start, auxiliary and end points are on one line")
-            })?;
-        }
         let kind = match m.kind {
             MotionKind::Ptp => "PTP",
             MotionKind::Lin => "LIN",
@@ -1332,7 +1419,7 @@ impl<'p> Machine<'p> {
         self.writes += 1;
         self.motions += 1;
         if self.motions > self.opts.max_motions {
-            return Err(self.err(format!(
+            return Err(self.limit_error(format!(
                 "more than {} motions (a cell program that loops forever?)",
                 self.opts.max_motions
             )));
@@ -1417,7 +1504,7 @@ impl<'p> Machine<'p> {
                         field.text
                     )));
                 }
-                p.path.push(Seg::Field(field.text.to_ascii_uppercase()));
+                p.path.push(Seg::Field(field.key()));
                 Ok(p)
             }
             ExprKind::Index { base, indices } => {
@@ -1494,6 +1581,7 @@ impl<'p> Machine<'p> {
     }
 
     pub(crate) fn read_value(&mut self, p: &Place) -> R<Value> {
+        self.note_read(&p.root, &p.path);
         match &p.root {
             Root::Global(k) if k == "$TIMER" || k == "$TIMER_FLAG" => self.sync_timers(),
             Root::Global(k) | Root::Group { array: k, .. } if k == "$IN" => self.sync_inputs(),
@@ -1861,7 +1949,7 @@ impl<'p> Machine<'p> {
                 for (n, fe) in fields {
                     let v = self.eval(fe)?;
                     match n {
-                        Some(n) => vals.push((n.text.to_ascii_uppercase(), v)),
+                        Some(n) => vals.push((n.key(), v)),
                         None => return Err(self.err("positional aggregates are not supported")),
                     }
                 }
@@ -1990,6 +2078,9 @@ impl<'p> Machine<'p> {
 
     /// A call of a user routine or a built-in; `want_value` for calls inside expressions.
     fn call(&mut self, name: &str, args: &[Option<Expr>], want_value: bool) -> R<Option<Value>> {
+        if name.len() > 4 && name[..4].eq_ignore_ascii_case("EKI_") {
+            self.note_external();
+        }
         if let Some((mi, ri)) = self.find_routine(name) {
             let r = self.call_routine(mi, ri, args)?;
             if want_value && r.is_none() {

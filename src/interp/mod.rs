@@ -5,22 +5,28 @@
 //! - Nothing the program does makes the interpreter panic: unsupported constructs, type errors
 //!   and out-of-range accesses are [`RuntimeError`]s located at `file:line`.
 //! - Time is simulated: `WAIT SEC` and timers advance a clock, never the wall clock; only waits
-//!   on open EKI connections consume real time (scaled by [`Options::time_scale`]).
+//!   on open EKI connections take real time, and there the clock follows the wall clock
+//!   ([`Options::time_scale`], 1 by default), so the package's reply and connect timeouts last
+//!   as long as on the controller when the peer is a real server.
 //! - Every run terminates: step, motion and simulated-time limits stop endless loops (the
 //!   time limit stops
 //!   polling loops such as `WHILE NOT $IN[3] … WAIT SEC 0.1 … ENDWHILE`), a loop iteration
-//!   that changes nothing while nothing outside can change is an error at the loop, and a
-//!   `WAIT FOR` that nothing can satisfy is an error, not a hang.
+//!   that changes nothing while nothing it reads can change is an error at the loop, and a
+//!   `WAIT FOR` that nothing can satisfy is an error at once, not a hang (what a check reads is
+//!   recorded; only EKI flags and outputs of open channels, running timers and pulses, and the
+//!   inputs following those outputs change while the program waits). A limit reached inside
+//!   an `MM_*` subprogram is reported at the user's code around the call (its innermost loop).
 //! - Library code never prints: messages and trace events are returned in [`RunResult`].
 
 mod builtins;
 mod cast;
 mod eki;
 mod format;
-mod frame;
+pub(crate) mod frame;
 mod machine;
 pub mod package;
 mod program;
+pub mod summary;
 mod value;
 
 use std::collections::HashMap;
@@ -28,6 +34,7 @@ use std::path::PathBuf;
 
 pub use package::Package;
 pub use program::{Module, Program};
+pub use summary::Summary;
 pub use value::Value;
 
 /// A runtime error at a source location.
@@ -57,7 +64,9 @@ pub struct Options {
     pub eki_dirs: Vec<PathBuf>,
     /// Statement budget; exceeding it is a runtime error.
     pub step_limit: u64,
-    /// Simulated milliseconds per real millisecond while waiting on an open EKI connection.
+    /// Simulated milliseconds per real millisecond while waiting on an open EKI connection:
+    /// 1 (real time, the default) makes a timeout against a real server as long as on the
+    /// controller; tests against the fake server use more to make timeouts pass quickly.
     pub time_scale: f64,
     /// `$IN[n]` values (default FALSE, except `$IN[1025]`, which is always TRUE).
     pub inputs: HashMap<usize, bool>,
@@ -80,7 +89,7 @@ impl Default for Options {
             eki_configs: HashMap::new(),
             eki_dirs: Vec::new(),
             step_limit: 10_000_000,
-            time_scale: 10.0,
+            time_scale: 1.0,
             inputs: HashMap::new(),
             input_links: Vec::new(),
             max_wait_ms: 3_600_000.0,
@@ -222,7 +231,16 @@ pub enum Event {
         message: Option<String>,
         steps: u64,
         time_ms: f64,
+        /// The exit code of `krlkit run` for this run ([`exit_code`]).
+        exit: i32,
     },
+}
+
+/// Receives trace records the moment the run makes them, so a trace file is written as the run
+/// goes (a killed run leaves the records so far). The records also end up in
+/// [`RunResult::events`].
+pub trait TraceSink {
+    fn record(&mut self, record: &Record);
 }
 
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -345,8 +363,9 @@ impl Event {
                 message,
                 steps,
                 time_ms,
+                exit,
             } => json!({"event": "end", "status": status, "message": message,
-                         "steps": steps, "time_ms": time_ms}),
+                         "steps": steps, "time_ms": time_ms, "exit": exit}),
         }
     }
 }
@@ -390,7 +409,33 @@ pub struct EkiStats {
     pub sends: u64,
 }
 
+/// The exit code of `krlkit run` (the contract's): 0 the program ended normally, 1 it stopped
+/// at a `HALT`, 2 it ended in a runtime error or the vision server could not be reached (the
+/// program saw NO_CONNECTION and may have ended normally, but proved nothing against a server).
+pub fn exit_code(end: &End, eki: &EkiStats) -> i32 {
+    match end {
+        End::Error(_) => 2,
+        _ if eki.failed_connects > 0 => 2,
+        End::Normal => 0,
+        End::Halt { .. } => 1,
+    }
+}
+
+impl RunResult {
+    /// See [`exit_code`].
+    pub fn exit_code(&self) -> i32 {
+        exit_code(&self.end, &self.eki)
+    }
+}
+
 /// Run the first DEF of the program's first file.
 pub fn run(program: &Program, options: &Options) -> RunResult {
     machine::Machine::new(program, options).run_main()
+}
+
+/// Like [`run`], and send every trace event to `sink` as it happens.
+pub fn run_traced(program: &Program, options: &Options, sink: &mut dyn TraceSink) -> RunResult {
+    machine::Machine::new(program, options)
+        .with_sink(sink)
+        .run_main()
 }

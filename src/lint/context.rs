@@ -1,22 +1,94 @@
-//! What the rules see: one parsed file plus the whole-program facts collected from every scanned
-//! file first (defined routines, declarations in `.dat` files and `$config.dat`, EKI channels).
+//! What the rules see. Syntax rules get one file while its tree is held ([`SyntaxCtx`]); model
+//! rules get one file of the workspace model ([`FileCtx`]): names, types, declarations and
+//! calls come from [`crate::sema`]. The syntax tree stays available in the model phase only for
+//! files the Mech-Mind rules look at (they call an `MM_` routine or write a `$FLAG`).
 
-use std::collections::{HashMap, HashSet};
+use std::collections::HashMap;
 use std::sync::OnceLock;
 
 use super::eki_xml::EkiChannel;
 use super::flow::FlowResult;
 use super::walk;
 use crate::catalog::{Subprogram, catalog};
-use crate::diag::Diagnostic;
-use crate::syntax::ast::{Decl, Expr, ExprKind, Routine, SourceFile, StmtKind};
+use crate::diag::{Diagnostic, LineIndex};
+use crate::sema::{
+    ConstValue, FileId, Loc, Resolved, RoutineId, Scope, Sema, SymbolId, SymbolKind, Ty, TyKind,
+};
+use crate::syntax::ast::{Expr, ExprKind, Routine, SourceFile, StmtKind};
 
-/// One scanned KRL file, parsed.
+/// One file while its syntax tree is held (first pass).
+pub struct SyntaxCtx<'a> {
+    pub path: &'a str,
+    pub text: &'a str,
+    pub ast: &'a SourceFile,
+    /// The parser's KRL001 findings.
+    pub syntax_errors: &'a [Diagnostic],
+    /// File name without extension, lower case (`$config` for `$config.dat`).
+    pub stem: String,
+    /// Extension, lower case (`src`, `dat`, `sub`, or empty).
+    pub ext: String,
+}
+
+impl<'a> SyntaxCtx<'a> {
+    pub fn new(
+        path: &'a str,
+        text: &'a str,
+        ast: &'a SourceFile,
+        syntax_errors: &'a [Diagnostic],
+    ) -> SyntaxCtx<'a> {
+        let p = std::path::Path::new(path);
+        let part = |s: Option<&std::ffi::OsStr>| {
+            s.and_then(|s| s.to_str())
+                .unwrap_or("")
+                .to_ascii_lowercase()
+        };
+        SyntaxCtx {
+            path,
+            text,
+            ast,
+            syntax_errors,
+            stem: part(p.file_stem()),
+            ext: part(p.extension()),
+        }
+    }
+}
+
+/// A file of the workspace, by path and text (for messages that point into other files).
+pub struct FileText {
+    pub path: String,
+    pub text: String,
+}
+
+/// Every file's path and text, by position (`FileId`).
+pub trait Texts: Sync {
+    fn path(&self, i: usize) -> &str;
+    fn text(&self, i: usize) -> &str;
+}
+
+impl Texts for Vec<FileText> {
+    fn path(&self, i: usize) -> &str {
+        &self[i].path
+    }
+    fn text(&self, i: usize) -> &str {
+        &self[i].text
+    }
+}
+
+impl Texts for Vec<Parsed> {
+    fn path(&self, i: usize) -> &str {
+        &self[i].path
+    }
+    fn text(&self, i: usize) -> &str {
+        &self[i].text
+    }
+}
+
+/// One KRL file, parsed, as the language server keeps it.
+#[derive(Debug, Clone)]
 pub struct Parsed {
     pub path: String,
     pub text: String,
-    /// The parser's KRL001 findings. The syntax tree itself is dropped once lowered: every
-    /// file is held at once while linting, and the tree is most of a file's memory.
+    /// The parser's KRL001 findings (the syntax tree is dropped once lowered).
     pub syntax_errors: Vec<Diagnostic>,
     pub ast: SourceFile,
     /// File name without extension, lower case (`$config` for `$config.dat`).
@@ -30,34 +102,92 @@ impl Parsed {
         let parse = crate::syntax::parse(&text);
         let ast = parse.ast(&text);
         let p = std::path::Path::new(&path);
-        let stem = p
-            .file_stem()
-            .and_then(|s| s.to_str())
-            .unwrap_or("")
-            .to_ascii_lowercase();
-        let ext = p
-            .extension()
-            .and_then(|s| s.to_str())
-            .unwrap_or("")
-            .to_ascii_lowercase();
+        let part = |s: Option<&std::ffi::OsStr>| {
+            s.and_then(|s| s.to_str())
+                .unwrap_or("")
+                .to_ascii_lowercase()
+        };
         Parsed {
+            stem: part(p.file_stem()),
+            ext: part(p.extension()),
             path,
             text,
             syntax_errors: parse.diagnostics,
             ast,
-            stem,
-            ext,
         }
     }
 
-    fn dir(&self) -> &std::path::Path {
-        std::path::Path::new(&self.path)
-            .parent()
-            .unwrap_or(std::path::Path::new(""))
+    /// Both files belong to one module: same stem, same folder (as the model pairs them).
+    pub fn same_module(&self, other: &Parsed) -> bool {
+        let dir = |p: &str| {
+            std::path::Path::new(p)
+                .parent()
+                .map(|d| d.to_string_lossy().to_ascii_lowercase())
+                .unwrap_or_default()
+        };
+        self.stem == other.stem && dir(&self.path) == dir(&other.path)
     }
 }
 
-/// A declared type: upper-case type name and whether the variable is an array.
+/// Lint-only facts about the whole run that the model does not hold (EKI configuration).
+#[derive(Default)]
+pub struct Project {
+    /// EKI channels: from `--eki-xml`, else every EthernetKRL XML found in the scanned tree.
+    pub channels: Vec<EkiChannel>,
+    /// Whether `channels` came from `--eki-xml` (then a name mismatch is always reported).
+    pub channels_given: bool,
+    /// Flags owned by an EKI channel the program uses (alive and receive), by flag number.
+    pub owned_flags: HashMap<i64, &'static str>,
+}
+
+impl Project {
+    /// `asts`: the syntax trees kept for the model phase (every file calling an `MM_` routine).
+    pub fn new<'a>(
+        channels: Vec<EkiChannel>,
+        channels_given: bool,
+        asts: impl Iterator<Item = &'a SourceFile>,
+    ) -> Project {
+        let mut p = Project {
+            channels,
+            channels_given,
+            owned_flags: HashMap::new(),
+        };
+        for ast in asts {
+            owned_flags(&p.channels, ast, &mut p.owned_flags);
+        }
+        p
+    }
+}
+
+/// Flags the channel owns: from the XML named by an `MM_Init_Socket` call, else from the flag
+/// arguments of the `MM_Init_Socket` calls themselves.
+fn owned_flags(channels: &[EkiChannel], ast: &SourceFile, flags: &mut HashMap<i64, &'static str>) {
+    for r in &ast.routines {
+        walk::each_stmt(&r.body, &mut |s| {
+            let StmtKind::Call { name, args } = &s.kind else {
+                return;
+            };
+            if !name.is("MM_Init_Socket") {
+                return;
+            }
+            let arg = |i: usize| args.get(i).and_then(|a| a.as_ref());
+            let xml = arg(0).and_then(|e| match &e.kind {
+                ExprKind::Str(s) => Some(s.as_str()),
+                _ => None,
+            });
+            if let Some(ch) = xml.and_then(|x| channels.iter().find(|c| c.name == x)) {
+                flags.extend(ch.alive_flag.map(|v| (v, "alive")));
+                flags.extend(ch.receive_flag.map(|v| (v, "receive")));
+            } else {
+                let num = |i| arg(i).and_then(walk::literal_number).map(|v| v as i64);
+                flags.extend(num(1).map(|v| (v, "alive")));
+                flags.extend(num(2).map(|v| (v, "receive")));
+            }
+        });
+    }
+}
+
+/// A declared type as the catalog writes accepted types: upper-case name, array or not.
 #[derive(Debug, Clone, PartialEq, Eq)]
 pub struct DeclType {
     pub name: String,
@@ -75,134 +205,39 @@ impl DeclType {
     }
 }
 
-/// Facts about the whole scanned tree.
-#[derive(Default)]
-pub struct Project {
-    pub files: Vec<Parsed>,
-    /// Upper-case names of every DEF/DEFFCT in any scanned file.
-    pub defined: HashSet<String>,
-    /// Upper-case callee name → indices of the files that call it.
-    pub callers: HashMap<String, HashSet<usize>>,
-    /// Variables declared GLOBAL in a `.dat`, or anywhere in `$config.dat`.
-    pub global_types: HashMap<String, DeclType>,
-    /// Constants with a literal value from the same declarations.
-    pub global_consts: HashMap<String, f64>,
-    /// EKI channels: from `--eki-xml`, else every EthernetKRL XML found in the scanned tree.
-    pub channels: Vec<EkiChannel>,
-    /// Whether `channels` came from `--eki-xml` (then a name mismatch is always reported).
-    pub channels_given: bool,
-    /// Flags owned by an EKI channel the program uses (alive and receive), by flag number.
-    pub owned_flags: HashMap<i64, &'static str>,
-}
-
-impl Project {
-    pub fn build(files: Vec<Parsed>, channels: Vec<EkiChannel>, channels_given: bool) -> Project {
-        let mut p = Project {
-            channels,
-            channels_given,
-            ..Project::default()
-        };
-        for (i, f) in files.iter().enumerate() {
-            for r in &f.ast.routines {
-                p.defined.insert(r.name.key());
-                walk::each_stmt(&r.body, &mut |s| {
-                    if let StmtKind::Call { name, .. } = &s.kind {
-                        p.callers.entry(name.key()).or_default().insert(i);
-                    }
-                });
-            }
-            if let Some(dat) = &f.ast.dat {
-                let config = f.stem == "$config" || dat.name.is("$CONFIG");
-                for d in &dat.decls {
-                    if config || d.global {
-                        add_decl(d, &mut p.global_types, &mut p.global_consts);
-                    }
-                }
-            }
-        }
-        p.files = files;
-        p.owned_flags = owned_flags(&p);
-        p
-    }
-
-    /// The `.dat` of the module `file` belongs to (same stem, same directory).
-    pub fn module_dat(&self, file: &Parsed) -> Option<&Parsed> {
-        if file.ext == "dat" {
-            return None;
-        }
-        self.files
-            .iter()
-            .find(|f| f.ext == "dat" && f.stem == file.stem && f.dir() == file.dir())
-    }
-}
-
-/// Flags the channel owns: from the XML named by an `MM_Init_Socket` call, else from the flag
-/// arguments of the `MM_Init_Socket` calls themselves.
-fn owned_flags(p: &Project) -> HashMap<i64, &'static str> {
-    let mut flags = HashMap::new();
-    for f in &p.files {
-        for r in &f.ast.routines {
-            walk::each_stmt(&r.body, &mut |s| {
-                let StmtKind::Call { name, args } = &s.kind else {
-                    return;
-                };
-                if !name.is("MM_Init_Socket") {
-                    return;
-                }
-                let arg = |i: usize| args.get(i).and_then(|a| a.as_ref());
-                let xml = arg(0).and_then(|e| match &e.kind {
-                    ExprKind::Str(s) => Some(s.as_str()),
-                    _ => None,
-                });
-                if let Some(ch) = xml.and_then(|x| p.channels.iter().find(|c| c.name == x)) {
-                    flags.extend(ch.alive_flag.map(|v| (v, "alive")));
-                    flags.extend(ch.receive_flag.map(|v| (v, "receive")));
-                } else {
-                    let num = |i| arg(i).and_then(walk::literal_number).map(|v| v as i64);
-                    flags.extend(num(1).map(|v| (v, "alive")));
-                    flags.extend(num(2).map(|v| (v, "receive")));
-                }
-            });
-        }
-    }
-    flags
-}
-
-fn add_decl(d: &Decl, types: &mut HashMap<String, DeclType>, consts: &mut HashMap<String, f64>) {
-    for v in &d.vars {
-        types.insert(
-            v.name.key(),
-            DeclType {
-                name: d.ty.name.key(),
-                array: !v.dims.is_empty(),
-            },
-        );
-        if d.constant
-            && let Some(val) = v.init.as_ref().and_then(walk::literal_number)
-        {
-            consts.insert(v.name.key(), val);
-        }
-    }
-}
-
-/// One file being checked, with the project around it.
+/// One file of the workspace model being checked (second pass).
 pub struct FileCtx<'p> {
+    pub sema: &'p Sema,
+    pub id: FileId,
+    pub path: &'p str,
+    pub text: &'p str,
+    /// Held only for files the Mech-Mind rules look at (see the module docs).
+    pub ast: Option<&'p SourceFile>,
     pub project: &'p Project,
-    pub file: &'p Parsed,
-    pub index: usize,
-    pub module_dat: Option<&'p Parsed>,
+    /// Every file's path and text (messages about declarations elsewhere).
+    pub all: &'p dyn Texts,
     flow: OnceLock<FlowResult>,
+    lines: OnceLock<LineIndex>,
 }
 
 impl<'p> FileCtx<'p> {
-    pub fn new(project: &'p Project, index: usize) -> FileCtx<'p> {
-        let file = &project.files[index];
+    pub fn new(
+        sema: &'p Sema,
+        id: FileId,
+        ast: Option<&'p SourceFile>,
+        project: &'p Project,
+        all: &'p dyn Texts,
+    ) -> FileCtx<'p> {
         FileCtx {
+            sema,
+            id,
+            path: all.path(id.index()),
+            text: all.text(id.index()),
+            ast,
             project,
-            file,
-            index,
-            module_dat: project.module_dat(file),
+            all,
             flow: OnceLock::new(),
+            lines: OnceLock::new(),
         }
     }
 
@@ -211,99 +246,103 @@ impl<'p> FileCtx<'p> {
         self.flow.get_or_init(|| super::flow::analyze(self))
     }
 
+    /// Line numbers of this file.
+    pub fn lines(&self) -> &LineIndex {
+        self.lines.get_or_init(|| LineIndex::new(self.text))
+    }
+
+    /// `path:line` of a place in any file of the workspace.
+    pub fn place(&self, loc: Loc) -> String {
+        let i = loc.file.index();
+        let line = if loc.file == self.id {
+            self.lines().line_of(loc.span.start as usize)
+        } else {
+            LineIndex::new(self.all.text(i)).line_of(loc.span.start as usize)
+        };
+        format!("{}:{}", self.all.path(i), line + 1)
+    }
+
+    /// Whether names the model cannot find could be declared in files that were not given.
+    pub fn workspace_complete(&self) -> bool {
+        self.sema.robot(self.sema.file(self.id).robot).is_complete()
+    }
+
     /// Routines of this file that are the user's code (not the MM package's own subprograms).
     pub fn user_routines(&self) -> impl Iterator<Item = &'p Routine> {
-        self.file
-            .ast
-            .routines
-            .iter()
+        self.ast
+            .into_iter()
+            .flat_map(|a| a.routines.iter())
             .filter(|r| subprogram(&r.name.text).is_none())
     }
 
-    /// Declared type of the variable `name` as seen from `routine`; `None` when unknown.
-    pub fn decl_type(&self, routine: &Routine, name: &str) -> Option<DeclType> {
-        let key = name.to_ascii_uppercase();
-        let mut found = None;
-        for d in routine_decls(routine) {
-            if let Some(v) = d.vars.iter().find(|v| v.name.key() == key) {
-                found = Some(DeclType {
-                    name: d.ty.name.key(),
-                    array: !v.dims.is_empty(),
-                });
-            }
-        }
-        if found.is_some() {
-            return found;
-        }
-        if let Some(dat) = self.module_dat.and_then(|f| f.ast.dat.as_ref()) {
-            for d in &dat.decls {
-                if let Some(v) = d.vars.iter().find(|v| v.name.key() == key) {
-                    return Some(DeclType {
-                        name: d.ty.name.key(),
-                        array: !v.dims.is_empty(),
-                    });
-                }
-            }
-        }
-        self.project.global_types.get(&key).cloned()
+    /// The model's id of a routine of this file's AST.
+    pub fn routine_id(&self, r: &Routine) -> Option<RoutineId> {
+        let ast = self.ast?;
+        let i = ast.routines.iter().position(|x| std::ptr::eq(x, r))?;
+        self.sema.file(self.id).routines.get(i).copied()
     }
 
-    /// Declared type of an argument expression, where it can be known.
-    pub fn expr_type(&self, routine: &Routine, e: &Expr) -> Option<DeclType> {
-        match &e.kind {
-            ExprKind::Name(id) if !id.is_system() => self.decl_type(routine, &id.text),
-            ExprKind::Index { base, indices } => {
-                let t = self.expr_type(routine, base)?;
-                if !t.array {
-                    // Indexing a CHAR scalar or a struct: not something to judge here.
-                    return None;
-                }
-                (!indices.is_empty() && indices.iter().all(Option::is_some)).then_some(DeclType {
-                    name: t.name,
-                    array: false,
-                })
-            }
-            ExprKind::Member { base, field } => {
-                let t = self.expr_type(routine, base)?;
-                if t.array {
-                    return None;
-                }
-                standard_field_type(&t.name, &field.key())
-            }
+    /// The symbol a name at `offset` of this file resolves to.
+    pub fn symbol_at(&self, offset: u32) -> Option<SymbolId> {
+        match self.sema.resolve(self.id, offset)? {
+            (_, Resolved::Symbol(s)) => Some(s),
             _ => None,
         }
     }
 
-    /// Constants of the module's `.dat` and the project with a literal value.
-    pub fn known_consts(&self) -> HashMap<String, f64> {
-        let mut m = self.project.global_consts.clone();
-        if let Some(dat) = self.module_dat.and_then(|f| f.ast.dat.as_ref()) {
-            let mut types = HashMap::new();
-            for d in &dat.decls {
-                add_decl(d, &mut types, &mut m);
+    /// Declared type of an argument expression (a variable, an element or a field of one),
+    /// where the model knows it.
+    pub fn expr_type(&self, e: &Expr) -> Option<DeclType> {
+        if !matches!(
+            e.kind,
+            ExprKind::Name(_) | ExprKind::Index { .. } | ExprKind::Member { .. }
+        ) {
+            return None;
+        }
+        let ty = self.sema.type_of(self.id, e);
+        self.decl_type(ty)
+    }
+
+    fn decl_type(&self, ty: Ty) -> Option<DeclType> {
+        if self.sema.is_unverified(ty) {
+            return None;
+        }
+        let name = match ty.kind {
+            TyKind::Int => "INT".to_owned(),
+            TyKind::Real => "REAL".into(),
+            TyKind::Bool => "BOOL".into(),
+            TyKind::Char => "CHAR".into(),
+            TyKind::Struc(id) | TyKind::Enum(id) => {
+                self.sema.names.key(self.sema.type_def(id).name).to_owned()
+            }
+            _ => return None,
+        };
+        Some(DeclType {
+            name,
+            array: ty.dims > 0,
+        })
+    }
+
+    /// Constants with a numeric literal value visible in this file's module (its `.dat`, the
+    /// robot's GLOBAL ones and `$config.dat`), by symbol.
+    pub fn known_consts(&self) -> HashMap<SymbolId, f64> {
+        let info = self.sema.file(self.id);
+        let mut m = HashMap::new();
+        for (id, s) in self.sema.symbols() {
+            let visible = match s.scope {
+                Scope::Module(md) => md == info.module,
+                Scope::Global(r) | Scope::Config(r) => r == info.robot,
+                _ => false,
+            };
+            if visible
+                && s.kind == SymbolKind::Constant
+                && let Some(v) = s.value.as_ref().and_then(ConstValue::as_f64)
+            {
+                m.insert(id, v);
             }
         }
         m
     }
-}
-
-/// Declarations of a routine: its declaration section plus any DECL lines in the body.
-pub fn routine_decls(r: &Routine) -> impl Iterator<Item = &Decl> {
-    r.decls
-        .iter()
-        .chain(r.body.iter().filter_map(|s| match &s.kind {
-            StmtKind::Decl(d) => Some(d),
-            _ => None,
-        }))
-}
-
-/// Upper-case names local to the routine (parameters and declarations).
-pub fn locals(r: &Routine) -> HashSet<String> {
-    let mut s: HashSet<String> = r.params.iter().map(|p| p.name.key()).collect();
-    for d in routine_decls(r) {
-        s.extend(d.vars.iter().map(|v| v.name.key()));
-    }
-    s
 }
 
 /// The catalog subprogram called `name` (case-insensitive).
@@ -312,25 +351,4 @@ pub fn subprogram(name: &str) -> Option<&'static Subprogram> {
         .subprograms
         .iter()
         .find(|s| s.name.eq_ignore_ascii_case(name))
-}
-
-fn standard_field_type(ty: &str, field: &str) -> Option<DeclType> {
-    let real = |_| DeclType {
-        name: "REAL".into(),
-        array: false,
-    };
-    let pos = matches!(ty, "POS" | "E6POS" | "FRAME");
-    let axis = matches!(ty, "AXIS" | "E6AXIS" | "E6POS");
-    match field {
-        "X" | "Y" | "Z" | "A" | "B" | "C" if pos => Some(real(())),
-        "S" | "T" if matches!(ty, "POS" | "E6POS") => Some(DeclType {
-            name: "INT".into(),
-            array: false,
-        }),
-        "A1" | "A2" | "A3" | "A4" | "A5" | "A6" if matches!(ty, "AXIS" | "E6AXIS") => {
-            Some(real(()))
-        }
-        "E1" | "E2" | "E3" | "E4" | "E5" | "E6" if axis => Some(real(())),
-        _ => None,
-    }
 }

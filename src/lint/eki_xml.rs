@@ -18,6 +18,27 @@ pub struct EkiChannel {
     pub port: Option<u16>,
 }
 
+/// EKI configs among `paths` (XML files named or found by walking, see
+/// [`crate::files::walk_xml`]); files that cannot be read or are not EKI XML are skipped.
+pub fn scan(paths: &[std::path::PathBuf]) -> Vec<EkiChannel> {
+    use rayon::prelude::*;
+    crate::files::walk_xml(paths)
+        .par_iter()
+        .filter_map(|p| {
+            let bytes = std::fs::read(p).ok()?;
+            let text = crate::syntax::decode(&bytes).text;
+            read(&channel_name(p), &p.display().to_string(), &text)
+        })
+        .collect()
+}
+
+/// The channel a config file defines: its file stem, case preserved.
+pub fn channel_name(path: &std::path::Path) -> String {
+    path.file_stem()
+        .map(|s| s.to_string_lossy().into_owned())
+        .unwrap_or_default()
+}
+
 /// Read a channel from XML text. `None` if the root element is not `ETHERNETKRL`.
 pub fn read(name: &str, path: &str, xml: &str) -> Option<EkiChannel> {
     let mut reader = quick_xml::Reader::from_str(xml);

@@ -16,10 +16,11 @@
 use std::cell::RefCell;
 use std::collections::{HashMap, HashSet};
 
-use super::context::{FileCtx, locals, subprogram};
+use super::context::{FileCtx, subprogram};
 use super::walk;
 use crate::catalog::{Direction, catalog};
 use crate::diag::{Diagnostic, Severity};
+use crate::sema::{Resolved, Scope, SymbolId};
 use crate::syntax::ast::{Expr, ExprKind, Ident, Routine, Stmt, StmtKind};
 
 /// What the analysis found for one file.
@@ -50,7 +51,7 @@ struct State {
     dead: bool,
     may: u64,
     must: u64,
-    vals: HashMap<String, f64>,
+    vals: HashMap<SymbolId, f64>,
     /// Jps_Pos values the last MM_Get_PlanData may have used: bit k for value k, bit 0 unknown.
     plan: u8,
 }
@@ -93,27 +94,44 @@ struct Summary {
 
 struct Shared<'c, 'p> {
     ctx: &'c FileCtx<'p>,
-    summaries: RefCell<HashMap<String, Summary>>,
-    in_progress: RefCell<HashSet<String>>,
-    consts: HashMap<String, f64>,
+    summaries: RefCell<HashMap<usize, Summary>>,
+    in_progress: RefCell<HashSet<usize>>,
+    consts: HashMap<SymbolId, f64>,
+    routines: &'c [Routine],
 }
 
 impl Shared<'_, '_> {
-    fn local_routine(&self, name: &Ident) -> Option<&Routine> {
-        self.ctx
-            .file
-            .ast
-            .routines
-            .iter()
-            .find(|r| r.name.is(&name.text))
+    /// The routine of this file a call reaches (as the model resolves it), by AST index.
+    fn local_routine(&self, name: &Ident) -> Option<usize> {
+        let sema = self.ctx.sema;
+        match sema.use_at(self.ctx.id, name.span.start)? {
+            (_, Resolved::Routine(r)) if sema.routine(r).file == self.ctx.id => {
+                Some(sema.routine(r).index as usize)
+            }
+            _ => None,
+        }
     }
 
-    fn summary(&self, r: &Routine) -> Summary {
-        let key = r.name.key();
+    fn index_of(&self, r: &Routine) -> usize {
+        self.routines
+            .iter()
+            .position(|x| std::ptr::eq(x, r))
+            .unwrap_or(usize::MAX)
+    }
+
+    /// The symbol a variable name resolves to.
+    fn symbol(&self, id: &Ident) -> Option<SymbolId> {
+        self.ctx.symbol_at(id.span.start)
+    }
+
+    fn summary(&self, key: usize) -> Summary {
+        let Some(r) = self.routines.get(key) else {
+            return Summary::default();
+        };
         if let Some(s) = self.summaries.borrow().get(&key) {
             return *s;
         }
-        if !self.in_progress.borrow_mut().insert(key.clone()) {
+        if !self.in_progress.borrow_mut().insert(key) {
             return Summary::default();
         }
         let entry = State {
@@ -139,13 +157,12 @@ struct Walker<'s, 'c, 'p> {
     sh: &'s Shared<'c, 'p>,
     routine: &'s Routine,
     record: bool,
-    locals: HashSet<String>,
     labels: HashMap<String, State>,
     returns: State,
     findings: Vec<Diagnostic>,
     values: HashMap<u32, f64>,
     /// Entry states of local routines called from here, joined over call sites.
-    callsites: HashMap<String, State>,
+    callsites: HashMap<usize, State>,
     /// For each MM_ call (by span start): calls that may still follow it.
     follows: HashMap<u32, u64>,
 }
@@ -156,7 +173,6 @@ impl<'s, 'c, 'p> Walker<'s, 'c, 'p> {
             sh,
             routine,
             record,
-            locals: locals(routine),
             labels: HashMap::new(),
             returns: State::dead(),
             findings: Vec::new(),
@@ -207,8 +223,7 @@ impl<'s, 'c, 'p> Walker<'s, 'c, 'p> {
         match &s.kind {
             StmtKind::Call { name, args } => self.call(name, args, st),
             StmtKind::Assign { target, value } => {
-                if let Some(v) = walk::root_var(target) {
-                    let key = v.key();
+                if let Some(key) = walk::root_var(target).and_then(|v| self.sh.symbol(v)) {
                     let known = match (&target.kind, self.value_of(value, &st)) {
                         (ExprKind::Name(_), Some(x)) => Some(x),
                         _ => None,
@@ -245,7 +260,9 @@ impl<'s, 'c, 'p> Walker<'s, 'c, 'p> {
                 }
             }
             StmtKind::For { var, body, .. } => {
-                st.vals.remove(&var.key());
+                if let Some(k) = self.sh.symbol(var) {
+                    st.vals.remove(&k);
+                }
                 let after = self.looped(body, st.clone());
                 st.join(after)
             }
@@ -255,6 +272,11 @@ impl<'s, 'c, 'p> Walker<'s, 'c, 'p> {
             }
             StmtKind::Repeat { body, .. } => self.looped(body, st),
             StmtKind::Spline { body, .. } => self.block(body, st),
+            // The block may be skipped when its condition holds at the start.
+            StmtKind::Skip { body, .. } => {
+                let t = self.block(body, st.clone());
+                st.join(t)
+            }
             StmtKind::Return { .. } => {
                 self.returns = std::mem::replace(&mut self.returns, State::dead()).join(st);
                 State::dead()
@@ -274,13 +296,15 @@ impl<'s, 'c, 'p> Walker<'s, 'c, 'p> {
 
     fn value_of(&self, e: &Expr, st: &State) -> Option<f64> {
         walk::literal_number(e).or_else(|| match &e.kind {
-            ExprKind::Name(id) => st.vals.get(&id.key()).copied(),
+            ExprKind::Name(id) => self.sh.symbol(id).and_then(|k| st.vals.get(&k).copied()),
             _ => None,
         })
     }
 
     fn forget_globals(&self, st: &mut State) {
-        st.vals.retain(|k, _| self.locals.contains(k));
+        let sema = self.sh.ctx.sema;
+        st.vals
+            .retain(|k, _| matches!(sema.symbol(*k).scope, Scope::Routine(_)));
     }
 
     fn emit(&mut self, st: &State, d: Diagnostic) {
@@ -293,11 +317,8 @@ impl<'s, 'c, 'p> Walker<'s, 'c, 'p> {
         let Some(sp) = subprogram(&name.text) else {
             if let Some(r) = self.sh.local_routine(name) {
                 if self.record {
-                    let slot = self
-                        .callsites
-                        .remove(&r.name.key())
-                        .unwrap_or_else(State::dead);
-                    self.callsites.insert(r.name.key(), slot.join(st.clone()));
+                    let slot = self.callsites.remove(&r).unwrap_or_else(State::dead);
+                    self.callsites.insert(r, slot.join(st.clone()));
                 }
                 let sum = self.sh.summary(r);
                 st.may |= sum.may;
@@ -308,8 +329,8 @@ impl<'s, 'c, 'p> Walker<'s, 'c, 'p> {
             }
             self.forget_globals(&mut st);
             for a in args.iter().flatten() {
-                if let Some(v) = walk::root_var(a) {
-                    st.vals.remove(&v.key());
+                if let Some(k) = walk::root_var(a).and_then(|v| self.sh.symbol(v)) {
+                    st.vals.remove(&k);
                 }
             }
             return st;
@@ -381,9 +402,12 @@ impl<'s, 'c, 'p> Walker<'s, 'c, 'p> {
         }
         for (p, a) in sp.params.iter().zip(args) {
             if p.dir == Direction::Out
-                && let Some(v) = a.as_ref().and_then(walk::root_var)
+                && let Some(k) = a
+                    .as_ref()
+                    .and_then(walk::root_var)
+                    .and_then(|v| self.sh.symbol(v))
             {
-                st.vals.remove(&v.key());
+                st.vals.remove(&k);
             }
         }
         st
@@ -491,6 +515,7 @@ fn later_calls(sh: &Shared, stmts: &[Stmt], mut later: u64, out: &mut HashMap<u3
                 later | later_calls(sh, body, first, out)
             }
             StmtKind::Spline { body, .. } => later_calls(sh, body, later, out),
+            StmtKind::Skip { body, .. } => later | later_calls(sh, body, later, out),
             _ => later,
         };
     }
@@ -511,11 +536,7 @@ fn calls_in(sh: &Shared, stmts: &[Stmt]) -> u64 {
                 }
             }
             StmtKind::InterruptDecl { .. } | StmtKind::Trigger { .. } => {}
-            _ => {
-                for body in walk::children(s) {
-                    bits |= calls_in(sh, body);
-                }
-            }
+            _ => s.for_each_body(|body| bits |= calls_in(sh, body)),
         }
     }
     bits
@@ -523,37 +544,43 @@ fn calls_in(sh: &Shared, stmts: &[Stmt]) -> u64 {
 
 /// Analyse every user routine of the file.
 pub fn analyze(ctx: &FileCtx) -> FlowResult {
+    let mut result = FlowResult::default();
+    let Some(ast) = ctx.ast else {
+        return result;
+    };
     let sh = Shared {
         ctx,
         summaries: RefCell::new(HashMap::new()),
         in_progress: RefCell::new(HashSet::new()),
         consts: ctx.known_consts(),
+        routines: &ast.routines,
     };
-    let routines: Vec<&Routine> = ctx.user_routines().collect();
-    let mut result = FlowResult::default();
-    let Some(first) = ctx.file.ast.routines.first() else {
+    let routines: Vec<usize> = ctx.user_routines().map(|r| sh.index_of(r)).collect();
+    if ast.routines.is_empty() {
         return result;
-    };
-    let called_elsewhere = |r: &Routine| {
-        ctx.project
-            .callers
-            .get(&r.name.key())
-            .is_some_and(|files| files.iter().any(|&i| i != ctx.index))
+    }
+    let called_elsewhere = |k: usize| {
+        ctx.sema
+            .file(ctx.id)
+            .routines
+            .get(k)
+            .is_some_and(|&rid| ctx.sema.callers(rid).iter().any(|c| c.at.file != ctx.id))
     };
     // Local call graph: who calls whom, to order routines from the main one.
-    let mut callers: HashMap<String, HashSet<String>> = HashMap::new();
-    for r in &routines {
-        walk::each_stmt(&r.body, &mut |s| {
+    let mut callers: HashMap<usize, HashSet<usize>> = HashMap::new();
+    for &k in &routines {
+        walk::each_stmt(&ast.routines[k].body, &mut |s| {
             if let StmtKind::Call { name, .. } = &s.kind
-                && sh.local_routine(name).is_some()
+                && let Some(callee) = sh.local_routine(name)
             {
-                callers.entry(name.key()).or_default().insert(r.name.key());
+                callers.entry(callee).or_default().insert(k);
             }
         });
     }
-    let mut done: HashSet<String> = HashSet::new();
-    let mut entries: HashMap<String, State> = HashMap::new();
-    let is_main = |r: &Routine| std::ptr::eq(r, first) && ctx.file.ext != "dat";
+    let mut done: HashSet<usize> = HashSet::new();
+    let mut entries: HashMap<usize, State> = HashMap::new();
+    let is_dat = ctx.sema.file(ctx.id).kind == crate::sema::FileKind::Dat;
+    let is_main = |k: usize| k == 0 && !is_dat;
     let unknown = || State {
         dead: false,
         may: ALL,
@@ -562,27 +589,27 @@ pub fn analyze(ctx: &FileCtx) -> FlowResult {
         plan: 1,
     };
     // Main first, then routines whose local callers are all analysed, then the rest.
-    let mut order: Vec<&Routine> = Vec::new();
-    let mut pending: Vec<&Routine> = routines.clone();
-    pending.sort_by_key(|r| !is_main(r));
+    let mut order: Vec<usize> = Vec::new();
+    let mut pending: Vec<usize> = routines.clone();
+    pending.sort_by_key(|&k| !is_main(k));
     while !pending.is_empty() {
         let pos = pending
             .iter()
-            .position(|r| {
-                is_main(r)
+            .position(|&k| {
+                is_main(k)
                     || callers
-                        .get(&r.name.key())
-                        .is_some_and(|c| c.iter().all(|k| order.iter().any(|o| o.name.key() == *k)))
+                        .get(&k)
+                        .is_some_and(|c| c.iter().all(|x| order.contains(x)))
             })
             .unwrap_or(0);
         order.push(pending.remove(pos));
     }
-    for r in order {
-        let key = r.name.key();
-        let local_callers = callers.get(&key);
-        let entry = if called_elsewhere(r) {
+    for k in order {
+        let r = &ast.routines[k];
+        let local_callers = callers.get(&k);
+        let entry = if called_elsewhere(k) {
             unknown()
-        } else if is_main(r) && local_callers.is_none() {
+        } else if is_main(k) && local_callers.is_none() {
             State {
                 dead: false,
                 may: 0,
@@ -591,8 +618,8 @@ pub fn analyze(ctx: &FileCtx) -> FlowResult {
                 plan: 0,
             }
         } else if let Some(c) = local_callers
-            && c.iter().all(|k| done.contains(k))
-            && let Some(e) = entries.get(&key)
+            && c.iter().all(|x| done.contains(x))
+            && let Some(e) = entries.get(&k)
         {
             let mut e = e.clone();
             e.vals = sh.consts.clone();
@@ -600,7 +627,7 @@ pub fn analyze(ctx: &FileCtx) -> FlowResult {
         } else {
             unknown()
         };
-        let exit_later = if is_main(r) && !called_elsewhere(r) && local_callers.is_none() {
+        let exit_later = if is_main(k) && !called_elsewhere(k) && local_callers.is_none() {
             0
         } else {
             ALL
@@ -608,11 +635,11 @@ pub fn analyze(ctx: &FileCtx) -> FlowResult {
         let mut w = Walker::new(&sh, r, true);
         later_calls(&sh, &r.body, exit_later, &mut w.follows);
         w.run_routine(entry);
-        for (k, st) in w.callsites.drain() {
-            let slot = entries.remove(&k).unwrap_or_else(State::dead);
-            entries.insert(k, slot.join(st));
+        for (c, st) in w.callsites.drain() {
+            let slot = entries.remove(&c).unwrap_or_else(State::dead);
+            entries.insert(c, slot.join(st));
         }
-        done.insert(key);
+        done.insert(k);
         result.findings.append(&mut w.findings);
         result.values.extend(w.values.drain());
     }

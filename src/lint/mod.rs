@@ -1,13 +1,20 @@
 //! The linter: checks KRL programs against the KRL rules and the Mech-Mind interface catalog.
 //!
-//! Pipeline: every file is parsed (in parallel), whole-program facts are collected
-//! ([`context::Project`]: routines defined anywhere, `.dat`/`$config.dat` declarations, EKI
-//! channels), then every rule of the [`registry`] runs on every file (in parallel). The driver
-//! applies the `[lint]` config (disabled rules, severity overrides) and inline
+//! Pipeline, streamed so that a whole controller fits in little memory:
+//! 1. every file is parsed in parallel; the syntax rules (KRL001–KRL004) run on its tree, the
+//!    file is summarised for the semantic model ([`crate::sema::FileSummary`]) and the tree is
+//!    dropped — except for files the Mech-Mind rules look at (those calling an `MM_` routine
+//!    or writing a `$FLAG`);
+//! 2. the workspace model is built ([`crate::sema::Sema`]: robots, modules, scopes, every name
+//!    resolved, types);
+//! 3. the model rules run on every file in parallel ([`context::FileCtx`]).
+//!
+//! The driver applies the `[lint]` config (disabled rules, severity overrides) and inline
 //! `; krlkit: allow(CODE)` suppressions. Reports come back in input order.
 //!
 //! Invariants: rules never print and never panic on user input; a fact that cannot be known
-//! (an undeclared variable, a routine in a file that was not scanned) keeps a rule silent.
+//! (a name declared in a file that was not given, a type the model cannot tell) keeps a rule
+//! silent; names are resolved only by the model.
 
 pub mod config;
 pub mod context;
@@ -15,6 +22,7 @@ pub mod eki_xml;
 mod flow;
 pub mod registry;
 mod rules;
+mod session;
 mod suppress;
 mod text;
 pub(crate) mod walk;
@@ -23,16 +31,60 @@ use rayon::prelude::*;
 
 pub use config::{ConfigError, LintConfig};
 pub use eki_xml::EkiChannel;
-pub use registry::{RULES, Rule, nearest_code, rule};
+pub use registry::{Check, RULES, Rule, nearest_code, rule};
+pub use session::{Affected, Session};
 
 use crate::diag::{Diagnostic, FileReport, LineIndex};
-use context::{FileCtx, Parsed, Project};
+use crate::sema::{FileId, FileSummary, KssVersion, Sema, SemaInput, Stats, Workspace};
+use crate::syntax::ast::{ExprKind, SourceFile, StmtKind};
+use context::{FileCtx, FileText, Project, SyntaxCtx};
 
 /// One file to check: the path as the user should see it and its decoded text.
 #[derive(Debug, Clone)]
 pub struct Input {
     pub path: String,
     pub text: String,
+}
+
+/// What one robot of the workspace is, for the summary line.
+#[derive(Debug, Clone, PartialEq, Eq)]
+pub struct RobotReport {
+    pub root: String,
+    pub kss_version: Option<KssVersion>,
+    pub kss_version_text: Option<String>,
+    /// Has a `$config.dat`: undeclared names and unknown routines are reported.
+    pub complete: bool,
+}
+
+/// Everything `check` reports.
+#[derive(Debug, Clone)]
+pub struct LintOutcome {
+    pub reports: Vec<FileReport>,
+    /// Files, modules and routines read.
+    pub stats: Stats,
+    pub robots: Vec<RobotReport>,
+}
+
+impl LintOutcome {
+    /// The note to show once when names could live in files that were not given.
+    pub fn incomplete_note(&self) -> Option<String> {
+        if self.robots.iter().all(|r| r.complete) || self.reports.is_empty() {
+            return None;
+        }
+        Some(
+            "no $config.dat among the files checked: names and routines not declared in them \
+             may be declared in files not given, so KRL010 and KRL011 are not reported \
+             (check the whole robot: its KRC folder or its backup .zip)"
+                .to_owned(),
+        )
+    }
+
+    /// The KSS version of the first robot whose backup names one.
+    pub fn kss_version(&self) -> Option<&str> {
+        self.robots
+            .iter()
+            .find_map(|r| r.kss_version_text.as_deref())
+    }
 }
 
 /// Lint `inputs` together (they form one program tree). `channels_given`: the channels came
@@ -43,15 +95,18 @@ pub fn lint(
     channels_given: bool,
     config: &LintConfig,
 ) -> Vec<FileReport> {
-    let parsed: Vec<Parsed> = inputs
-        .into_par_iter()
-        .map(|i| Parsed::new(i.path, i.text))
-        .collect();
-    let project = Project::build(parsed, channels, channels_given);
-    (0..project.files.len())
-        .into_par_iter()
-        .map(|i| check_file(&project, i, config))
-        .collect()
+    let ws = Workspace {
+        files: inputs
+            .into_iter()
+            .map(|i| crate::sema::WorkspaceFile {
+                path: i.path,
+                text: i.text,
+                group: 0,
+            })
+            .collect(),
+        ..Workspace::default()
+    };
+    lint_workspace(ws, channels, channels_given, config).reports
 }
 
 /// Lint one file on its own (tests, editors).
@@ -68,29 +123,157 @@ pub fn lint_text(path: &str, text: &str) -> FileReport {
     .remove(0)
 }
 
-fn check_file(project: &Project, index: usize, config: &LintConfig) -> FileReport {
-    let ctx = FileCtx::new(project, index);
-    let mut diagnostics: Vec<Diagnostic> = Vec::new();
-    for rule in RULES {
-        if config.disabled.contains(rule.code) {
-            continue;
-        }
-        let before = diagnostics.len();
-        (rule.check)(&ctx, &mut diagnostics);
-        let severity = config
-            .severity
-            .get(rule.code)
-            .copied()
-            .unwrap_or(rule.severity);
-        for d in &mut diagnostics[before..] {
-            d.code = rule.code;
-            d.severity = severity;
+/// The first pass over one file.
+struct Pass1 {
+    text: FileText,
+    findings: Vec<Diagnostic>,
+    ast: Option<SourceFile>,
+    input: SemaInput,
+}
+
+/// Lint a loaded workspace (folders, files, backup archives).
+pub fn lint_workspace(
+    ws: Workspace,
+    channels: Vec<EkiChannel>,
+    channels_given: bool,
+    config: &LintConfig,
+) -> LintOutcome {
+    let Workspace { files, am_ini, .. } = ws;
+    let pass1: Vec<Pass1> = files
+        .into_par_iter()
+        .map(|f| {
+            let parse = crate::syntax::parse(&f.text);
+            let ast = parse.ast(&f.text);
+            drop(parse.tree);
+            let cx = SyntaxCtx::new(&f.path, &f.text, &ast, &parse.diagnostics);
+            let mut findings = Vec::new();
+            for rule in RULES {
+                if let Check::Syntax(check) = rule.check {
+                    run(rule, config, &mut findings, |out| check(&cx, out));
+                }
+            }
+            let summary = FileSummary::of(&ast);
+            let keep = mm_relevant(&ast);
+            Pass1 {
+                input: SemaInput {
+                    path: f.path.clone(),
+                    group: f.group,
+                    summary,
+                },
+                text: FileText {
+                    path: f.path,
+                    text: f.text,
+                },
+                findings,
+                ast: keep.then_some(ast),
+            }
+        })
+        .collect();
+    let mut texts = Vec::with_capacity(pass1.len());
+    let mut inputs = Vec::with_capacity(pass1.len());
+    let mut rest = Vec::with_capacity(pass1.len());
+    for p in pass1 {
+        texts.push(p.text);
+        inputs.push(p.input);
+        rest.push((p.findings, p.ast));
+    }
+    let sema = Sema::build(inputs, &am_ini);
+    let project = Project::new(
+        channels,
+        channels_given,
+        rest.iter().filter_map(|(_, a)| a.as_ref()),
+    );
+    let reports: Vec<FileReport> = rest
+        .into_par_iter()
+        .enumerate()
+        .map(|(i, (mut findings, ast))| {
+            let ctx = FileCtx::new(&sema, FileId(i as u32), ast.as_ref(), &project, &texts);
+            for rule in RULES {
+                if let Check::Model(check) = rule.check {
+                    run(rule, config, &mut findings, |out| check(&ctx, out));
+                }
+            }
+            finish(&texts[i].path, &texts[i].text, findings)
+        })
+        .collect();
+    let mut reports = reports;
+    for (r, t) in reports.iter_mut().zip(texts) {
+        r.text = t.text;
+    }
+    LintOutcome {
+        reports,
+        stats: sema.stats(),
+        robots: sema
+            .robots()
+            .map(|(_, r)| RobotReport {
+                root: r.root.clone(),
+                kss_version: r.kss_version,
+                kss_version_text: r.kss_version_text.clone(),
+                complete: r.is_complete(),
+            })
+            .collect(),
+    }
+}
+
+/// Whether the Mech-Mind rules need the file's tree: it calls an `MM_` routine or writes a
+/// `$FLAG` (every other file can give them nothing to report).
+fn mm_relevant(ast: &SourceFile) -> bool {
+    let mut found = false;
+    let bodies = ast
+        .routines
+        .iter()
+        .map(|r| r.body.as_slice())
+        .chain(std::iter::once(ast.top_level.as_slice()));
+    for body in bodies {
+        let writes_flag = |target: &crate::syntax::ast::Expr| {
+            walk::root_var(target).is_some_and(|v| v.is("$FLAG"))
+                && matches!(target.kind, ExprKind::Index { .. })
+        };
+        walk::each_stmt(body, &mut |s| {
+            found |= match &s.kind {
+                StmtKind::Call { name, .. } => {
+                    name.text.len() >= 3 && name.text[..3].eq_ignore_ascii_case("MM_")
+                }
+                StmtKind::Assign { target, .. } => writes_flag(target),
+                StmtKind::Pulse { signal, .. } => writes_flag(signal),
+                _ => false,
+            }
+        });
+        if found {
+            return true;
         }
     }
-    let file = ctx.file;
-    let allowed = suppress::allowed(&file.text);
+    false
+}
+
+/// Run one rule, with the config's severity override.
+fn run(
+    rule: &Rule,
+    config: &LintConfig,
+    out: &mut Vec<Diagnostic>,
+    check: impl FnOnce(&mut Vec<Diagnostic>),
+) {
+    if config.disabled.contains(rule.code) {
+        return;
+    }
+    let before = out.len();
+    check(out);
+    let severity = config
+        .severity
+        .get(rule.code)
+        .copied()
+        .unwrap_or(rule.severity);
+    for d in &mut out[before..] {
+        d.code = rule.code;
+        d.severity = severity;
+    }
+}
+
+/// Apply inline suppressions, sort, and make the report.
+fn finish(path: &str, text: &str, mut diagnostics: Vec<Diagnostic>) -> FileReport {
+    let allowed = suppress::allowed(text);
     if !allowed.is_empty() {
-        let index = LineIndex::new(&file.text);
+        let index = LineIndex::new(text);
         diagnostics.retain(|d| {
             let line = index.line_of(d.span.start as usize) + 1;
             !allowed
@@ -103,8 +286,9 @@ fn check_file(project: &Project, index: usize, config: &LintConfig) -> FileRepor
     });
     diagnostics.dedup();
     FileReport {
-        path: file.path.clone(),
-        text: file.text.clone(),
+        path: path.to_owned(),
+        // Moved in once every file is checked (rules read every file's text until then).
+        text: String::new(),
         diagnostics,
     }
 }

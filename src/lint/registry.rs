@@ -1,7 +1,7 @@
 //! The rule registry: one table from code to rule. Adding a rule = one file in `rules/` plus one
 //! line in [`RULES`].
 
-use super::context::FileCtx;
+use super::context::{FileCtx, SyntaxCtx};
 use super::rules;
 use crate::diag::{Diagnostic, Severity};
 
@@ -17,7 +17,16 @@ pub struct Rule {
     /// Markdown: what it checks, why it matters, example, fix (for `krlkit rule` and SARIF help).
     pub doc: &'static str,
     /// Appends findings for one file; the driver applies severity overrides and suppressions.
-    pub check: fn(&FileCtx, &mut Vec<Diagnostic>),
+    pub check: Check,
+}
+
+/// When a rule runs: on one file's syntax tree, or on the workspace model.
+#[derive(Clone, Copy)]
+pub enum Check {
+    /// While the file's tree is held (first pass).
+    Syntax(fn(&SyntaxCtx, &mut Vec<Diagnostic>)),
+    /// On the model, once every file is summarised (second pass).
+    Model(fn(&FileCtx, &mut Vec<Diagnostic>)),
 }
 
 /// Every rule, in code order.

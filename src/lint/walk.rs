@@ -1,43 +1,9 @@
-//! Walking the AST: statements (nested bodies included) and the names an expression reads.
+//! Walking the AST: the names an expression reads (statements: the shared
+//! [`crate::syntax::ast::walk`]).
 
 use crate::syntax::ast::{Expr, ExprKind, Ident, Stmt, StmtKind};
 
-/// Calls `f` on every statement, depth-first in source order, nested bodies included.
-pub fn each_stmt<'a>(stmts: &'a [Stmt], f: &mut impl FnMut(&'a Stmt)) {
-    for s in stmts {
-        f(s);
-        for body in children(s) {
-            each_stmt(body, f);
-        }
-    }
-}
-
-/// The statement lists nested directly in `s`.
-pub fn children(s: &Stmt) -> Vec<&[Stmt]> {
-    match &s.kind {
-        StmtKind::If {
-            then_body,
-            else_body,
-            ..
-        } => vec![then_body, else_body],
-        StmtKind::Switch { cases, default, .. } => {
-            let mut v: Vec<&[Stmt]> = cases.iter().map(|c| c.body.as_slice()).collect();
-            if let Some(d) = default {
-                v.push(d);
-            }
-            v
-        }
-        StmtKind::For { body, .. }
-        | StmtKind::While { body, .. }
-        | StmtKind::Repeat { body, .. }
-        | StmtKind::Loop { body }
-        | StmtKind::Spline { body, .. }
-        | StmtKind::Skip { body, .. } => vec![body],
-        StmtKind::InterruptDecl { handler, .. } => vec![std::slice::from_ref(handler.as_ref())],
-        StmtKind::Trigger { action, .. } => vec![std::slice::from_ref(action.as_ref())],
-        _ => Vec::new(),
-    }
-}
+pub use crate::syntax::ast::each_stmt;
 
 /// Expressions evaluated by `s` itself (not by nested statements). Assignment targets are
 /// excluded; their index expressions are included (they are read).
@@ -62,7 +28,7 @@ pub fn own_exprs(s: &Stmt) -> Vec<&Expr> {
         StmtKind::For { from, to, step, .. } => {
             v.push(from);
             v.push(to);
-            v.extend(step.iter());
+            v.extend(step.as_deref());
         }
         StmtKind::WaitSec { time } => v.push(time),
         StmtKind::Return { value } => v.extend(value.iter()),
@@ -88,7 +54,7 @@ pub fn own_exprs(s: &Stmt) -> Vec<&Expr> {
         } => {
             v.push(position);
             v.push(delay);
-            v.extend(prio.iter());
+            v.extend(prio.as_deref());
         }
         StmtKind::Pulse {
             signal,

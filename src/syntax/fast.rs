@@ -1006,10 +1006,16 @@ impl<'t> P<'t, '_> {
             self.push(first);
             let after_first = self.pos;
             self.ws();
-            // `(ident ~ &ident)? ~ ident`: a second name makes the first one the type.
-            match self.ident() {
-                Some(name) => self.push(name),
-                None => self.pos = after_first,
+            // `(ident ~ &(ident ~ !ident))? ~ ident`: a second name makes the first one the type,
+            // unless a third name follows (then the second starts the next, typed member).
+            let second = self.ident();
+            let after_second = self.pos;
+            self.ws();
+            let third = self.ident().is_some();
+            self.pos = after_second;
+            match second {
+                Some(name) if !third => self.push(name),
+                _ => self.pos = after_first,
             }
             let after_name = self.pos;
             self.ws();
@@ -1024,7 +1030,17 @@ impl<'t> P<'t, '_> {
                 .finish(mark, NodeKind::StrucMember, Span::new(start, self.pos));
             self.push(member);
             self.ws();
-            if !self.punct(b',') {
+            if self.punct(b',') {
+                continue;
+            }
+            // A typed member may follow without a comma (`INT id, n CHAR name[24]`).
+            let here = self.pos;
+            let two = self.ident().is_some() && {
+                self.ws();
+                self.ident().is_some()
+            };
+            self.pos = here;
+            if !two {
                 return Some(());
             }
         }
@@ -1790,6 +1806,9 @@ mod tests {
             "STRUC s INT a, REAL b",
             "GLOBAL STRUC SPOT_TYPE INT GUN,S_PAIR_SLCT PAIR,INT CLO_TM",
             "STRUC T CHAR GUN[24],RETR_CMD[24],CHOISE[24]",
+            "GLOBAL STRUC S INT ID, n CHAR name[24], REAL t",
+            "STRUC S INT a b",
+            "STRUC S INT a[2] REAL b, c",
             "DECL STRUC s INT a",
             "DECL GLOBAL STRUC s BOOL b",
             "GLOBAL DECL STRUC s INT a",

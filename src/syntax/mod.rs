@@ -22,6 +22,8 @@
 //!   `tokens()`, `significant()`, `walk_tokens`, `print`; [`Element`]`<'_>` is a child (node or
 //!   [`Token`]` { kind, span }`); [`NodeKind`], [`TokenKind`]; spans are [`crate::diag::Span`]
 //!   byte ranges.
+//! - [`folds`]`(&str)`: the `;FOLD`/`;ENDFOLD` pairs (comments to the parser, sections to
+//!   the smartPAD editor).
 //! - [`ast`]: `SourceFile { routines, dat, top_level, headers }`, `Routine`, `DatModule`, `Decl`,
 //!   `Definition` (STRUC/ENUM/SIGNAL/CHANNEL/EXT/IMPORT), `Stmt`/`StmtKind`, `Expr`/`ExprKind`,
 //!   `Ident` (compare with `Ident::is`, case-insensitive).
@@ -57,9 +59,10 @@ mod build;
 pub mod cst;
 mod decode;
 mod fast;
+pub mod folds;
 mod line;
 mod parser;
 
 pub use cst::{Children, Element, Node, NodeKind, SyntaxTree, Token, TokenKind};
-pub use decode::{Decoded, TextEncoding, decode, encode_as};
-pub use parser::{Parse, SYNTAX_ERROR, parse};
+pub use decode::{Decoded, TextEncoding, decode, decode_owned, encode_as};
+pub use parser::{Parse, SYNTAX_ERROR, diagnostics, parse};

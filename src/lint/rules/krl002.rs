@@ -1,7 +1,7 @@
 use crate::catalog::catalog;
 use crate::diag::{Diagnostic, Severity};
-use crate::lint::context::FileCtx;
-use crate::lint::registry::Rule;
+use crate::lint::context::SyntaxCtx;
+use crate::lint::registry::{Check, Rule};
 use crate::lint::walk;
 use crate::syntax::ast::{Decl, Definition, Ident, StmtKind};
 
@@ -11,13 +11,13 @@ pub static RULE: Rule = Rule {
     severity: Severity::Error,
     summary: "A declared name is longer than 24 characters",
     doc: "## What it checks\nNames introduced by the file — DEF/DEFFCT/DEFDAT names, parameters, variables, constants, STRUC/ENUM types and their fields and values, SIGNALs and labels — must not be longer than 24 characters (the catalog's `krl_identifier_max`). Uses of names and `$` system variables are not checked.\n\n## Why it matters\nThe KRL compiler rejects longer names, so the module cannot be loaded.\n\n## Example\n```krl\nDECL INT number_of_parts_in_the_box\n```\n\n## Fix\nShorten the name to 24 characters or fewer.",
-    check,
+    check: Check::Syntax(check),
 };
 
-fn check(ctx: &FileCtx, out: &mut Vec<Diagnostic>) {
+fn check(ctx: &SyntaxCtx, out: &mut Vec<Diagnostic>) {
     let max = catalog().limits.krl_identifier_max;
     let mut names: Vec<&Ident> = Vec::new();
-    let ast = &ctx.file.ast;
+    let ast = ctx.ast;
     let mut decls: Vec<&Decl> = Vec::new();
     let mut defs: Vec<&Definition> = Vec::new();
     for r in &ast.routines {

@@ -1,6 +1,6 @@
 use crate::diag::{Diagnostic, Severity};
-use crate::lint::context::FileCtx;
-use crate::lint::registry::Rule;
+use crate::lint::context::SyntaxCtx;
+use crate::lint::registry::{Check, Rule};
 
 pub static RULE: Rule = Rule {
     code: "KRL003",
@@ -8,11 +8,11 @@ pub static RULE: Rule = Rule {
     severity: Severity::Error,
     summary: "The module's main DEF/DEFFCT/DEFDAT name differs from the file name",
     doc: "## What it checks\nIn a `.src` (or `.sub`) file the FIRST `DEF`/`DEFFCT` is the module's main routine; its name must equal the file stem (case-insensitive). In a `.dat` file the `DEFDAT` name must equal the file stem. A leading `$` is ignored on both sides (system data lists such as `$config.dat` are often copied without it), and a header that does not parse is left to KRL001. Later routines in a `.src` are local helpers and may have any name. Files without a DEF (fragments) are not checked.\n\n## Why it matters\nThe controller finds a module's main routine and data list by file name; a mismatch makes the module unselectable or the DAT unlinked.\n\n## Example\nFile `pick.src`:\n```krl\nDEF pick_cycle()\nEND\n```\n\n## Fix\nRename the routine (or the file) so that both names agree.",
-    check,
+    check: Check::Syntax(check),
 };
 
-fn check(ctx: &FileCtx, out: &mut Vec<Diagnostic>) {
-    let f = ctx.file;
+fn check(ctx: &SyntaxCtx, out: &mut Vec<Diagnostic>) {
+    let f = ctx;
     let (name, what) = if f.ext == "dat" {
         match &f.ast.dat {
             Some(d) => (&d.name, "DEFDAT"),
@@ -34,7 +34,7 @@ fn check(ctx: &FileCtx, out: &mut Vec<Diagnostic>) {
     let file_name = std::path::Path::new(&f.path)
         .file_name()
         .and_then(|n| n.to_str())
-        .unwrap_or(&f.path);
+        .unwrap_or(f.path);
     out.push(
         Diagnostic::error(
             RULE.code,

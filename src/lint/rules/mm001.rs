@@ -1,43 +1,22 @@
 use crate::catalog::catalog;
 use crate::diag::{Diagnostic, Severity};
 use crate::lint::context::{FileCtx, subprogram};
-use crate::lint::registry::Rule;
+use crate::lint::registry::{Check, Rule};
 use crate::lint::text::nearest;
 use crate::lint::walk;
-use crate::syntax::ast::{Definition, StmtKind};
+use crate::sema::Resolved;
+use crate::syntax::ast::StmtKind;
 
 pub static RULE: Rule = Rule {
     code: "MM001",
     name: "unknown-mm-subprogram",
     severity: Severity::Error,
     summary: "A call to an `MM_` name that is not in the interface",
-    doc: "## What it checks\nA call statement whose name starts with `MM_` must name a subprogram of the Mech-Mind interface catalog (`krlkit rule` lists them via the catalog). Names DEFINED as DEF/DEFFCT in any scanned file, or declared with `EXT`/`EXTFCT` in the calling file, are the user's own and are not reported. The help names the nearest interface subprogram.\n\n## Why it matters\nA misspelled interface call does not link: the program fails at selection time on the controller, often during commissioning.\n\n## Example\n```krl\nMM_Get_VisDat(1, last, num, status)\n```\n\n## Fix\nUse the interface name (`MM_Get_VisData`), or define/declare your own routine.",
-    check,
+    doc: "## What it checks\nA call statement whose name starts with `MM_` must name a subprogram of the Mech-Mind interface catalog (`krlkit rule` lists them via the catalog). Names that resolve to the user's own routine (one of the calling module, a GLOBAL one, or another module's main routine) or to an `EXT`/`EXTFCT` declaration are not reported. The help names the nearest interface subprogram.\n\n## Why it matters\nA misspelled interface call does not link: the program fails at selection time on the controller, often during commissioning.\n\n## Example\n```krl\nMM_Get_VisDat(1, last, num, status)\n```\n\n## Fix\nUse the interface name (`MM_Get_VisData`), or define/declare your own routine.",
+    check: Check::Model(check),
 };
 
 fn check(ctx: &FileCtx, out: &mut Vec<Diagnostic>) {
-    let mut ext: Vec<String> = Vec::new();
-    for r in &ctx.file.ast.routines {
-        for d in &r.definitions {
-            if let Definition::Ext(e) = d {
-                ext.push(e.name.key());
-            }
-        }
-    }
-    if let Some(dat) = &ctx.file.ast.dat {
-        for d in &dat.definitions {
-            if let Definition::Ext(e) = d {
-                ext.push(e.name.key());
-            }
-        }
-    }
-    for r in ctx.user_routines() {
-        walk::each_stmt(&r.body, &mut |s| {
-            if let StmtKind::Definition(Definition::Ext(e)) = &s.kind {
-                ext.push(e.name.key());
-            }
-        });
-    }
     for r in ctx.user_routines() {
         walk::each_stmt(&r.body, &mut |s| {
             let StmtKind::Call { name, .. } = &s.kind else {
@@ -46,8 +25,12 @@ fn check(ctx: &FileCtx, out: &mut Vec<Diagnostic>) {
             if name.text.len() < 3
                 || !name.text[..3].eq_ignore_ascii_case("MM_")
                 || subprogram(&name.text).is_some()
-                || ctx.project.defined.contains(&name.key())
-                || ext.contains(&name.key())
+            {
+                return;
+            }
+            // The user's own routine (visible at the call) or an EXT declaration of one.
+            if let Some((_, Resolved::Routine(_) | Resolved::Ext(_))) =
+                ctx.sema.use_at(ctx.id, name.span.start)
             {
                 return;
             }

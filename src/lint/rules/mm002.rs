@@ -1,6 +1,6 @@
 use crate::diag::{Diagnostic, Severity};
 use crate::lint::context::FileCtx;
-use crate::lint::registry::Rule;
+use crate::lint::registry::{Check, Rule};
 
 use super::mm_calls;
 
@@ -10,7 +10,7 @@ pub static RULE: Rule = Rule {
     severity: Severity::Error,
     summary: "A call to an interface subprogram has the wrong number of arguments",
     doc: "## What it checks\nEach call to an interface subprogram must pass exactly as many arguments as its catalog signature has parameters (see `krlkit rule MM002` examples and the seed documentation). Calls to routines with the same name defined by the user are not checked.\n\n## Why it matters\nKRL does not allow extra arguments, and a missing OUT argument leaves the result nowhere; the module will not compile.\n\n## Example\n```krl\nMM_Start_Vis(1, 0, 2)          ; MM_J is missing\n```\n\n## Fix\nPass every parameter in signature order, e.g. `MM_Start_Vis(1, 0, 2, start_joints)`.",
-    check,
+    check: Check::Model(check),
 };
 
 fn check(ctx: &FileCtx, out: &mut Vec<Diagnostic>) {

@@ -1,6 +1,6 @@
 use crate::diag::{Diagnostic, Severity};
 use crate::lint::context::FileCtx;
-use crate::lint::registry::Rule;
+use crate::lint::registry::{Check, Rule};
 use crate::lint::walk;
 
 use super::well_formed_calls;
@@ -11,7 +11,7 @@ pub static RULE: Rule = Rule {
     severity: Severity::Error,
     summary: "An argument's value is outside its documented range",
     doc: "## What it checks\nFor every IN parameter with a documented range in the catalog (e.g. Mech-Vision project `Job` 1 to 99, `SendPos_Type` 0 to 3, `Serial` 1 to 100), the argument's value must lie in the range. The value is known when the argument is a number literal, a constant declared with a literal in the module's `.dat` or `$config.dat`, or a variable assigned a literal earlier in the same routine and not changed since on any path (not passed to another routine, not assigned differently in a branch or loop). Other values are not judged. `Jps_Pos` of `MM_Get_PlanJps`/`MM_Get_PlanPose` is checked by MM007 instead.\n\n## Why it matters\nThe vision server rejects out-of-range requests with an error status, and the robot program stops at an unexpected place.\n\n## Example\n```krl\nMM_Start_Vis(120, 0, 2, start_joints)   ; Job 1 to 99\n```\n\n## Fix\nUse a value in the documented range (see `krlkit rule` / the seed documentation for the parameter).",
-    check,
+    check: Check::Model(check),
 };
 
 fn check(ctx: &FileCtx, out: &mut Vec<Diagnostic>) {

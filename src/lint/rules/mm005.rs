@@ -1,6 +1,6 @@
 use crate::diag::{Diagnostic, Severity};
 use crate::lint::context::FileCtx;
-use crate::lint::registry::Rule;
+use crate::lint::registry::{Check, Rule};
 use crate::syntax::ast::ExprKind;
 
 use super::well_formed_calls;
@@ -11,7 +11,7 @@ pub static RULE: Rule = Rule {
     severity: Severity::Error,
     summary: "An argument's declared type does not fit the parameter",
     doc: "## What it checks\nWhen an argument is a variable (or an element or standard field of one) whose declaration is found — in the calling routine, the module's `.dat`, a GLOBAL declaration in a scanned `.dat`, or `$config.dat` — its declared type must be one the catalog accepts for the parameter (e.g. `MM_J` accepts `E6AXIS` or `AXIS`; OUT poses need exactly `E6POS`; `XML_Name` needs a `CHAR` array). A string literal passed to a non-`CHAR[]` parameter, or a number literal to a `CHAR[]`/structure parameter, is reported too. When the declaration cannot be found the rule stays silent.\n\n## Why it matters\nKRL checks parameter types when the module is linked; a wrong type stops the program from being selected, or (for IN parameters of a structure type) sends the wrong data.\n\n## Example\n```krl\nDECL E6POS start\nMM_Start_Vis(1, 0, 3, start)   ; MM_J must be E6AXIS or AXIS\n```\n\n## Fix\nDeclare the variable with an accepted type (`DECL E6AXIS start`).",
-    check,
+    check: Check::Model(check),
 };
 
 fn check(ctx: &FileCtx, out: &mut Vec<Diagnostic>) {
@@ -27,7 +27,7 @@ fn check(ctx: &FileCtx, out: &mut Vec<Diagnostic>) {
                 {
                     Some("a number".to_owned())
                 }
-                _ => ctx.expr_type(c.routine, a).map(|t| t.catalog_form()),
+                _ => ctx.expr_type(a).map(|t| t.catalog_form()),
             };
             let Some(found) = found else { continue };
             if found != "a number" && fits(&found) {

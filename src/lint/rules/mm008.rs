@@ -1,10 +1,9 @@
-use std::collections::HashSet;
-
 use crate::catalog::Direction;
 use crate::diag::{Diagnostic, Severity, Span};
-use crate::lint::context::{FileCtx, locals, subprogram};
-use crate::lint::registry::Rule;
+use crate::lint::context::{FileCtx, subprogram};
+use crate::lint::registry::{Check, Rule};
 use crate::lint::walk;
+use crate::sema::{Scope, SymbolKind};
 use crate::syntax::ast::{Routine, Stmt, StmtKind};
 
 use super::well_formed_calls;
@@ -15,7 +14,7 @@ pub static RULE: Rule = Rule {
     severity: Severity::Warning,
     summary: "A status OUT variable is never read after the call",
     doc: "## What it checks\nFor every interface call with a status output (`MM_Status`), the variable that receives it must be read somewhere after the call: in any expression (a condition, an assignment's value, a SWITCH selector, an index) or as an argument of a non-interface routine. Inside a loop, a read anywhere in the loop counts (the next iteration reads it). The rule only judges variables declared in the calling routine (not OUT parameters of it) or in the module's `.dat` and not read by any other routine of the file; global variables, `$config.dat` variables and undeclared names are left alone, since other code may read them.\n\n## Why it matters\nThe interface reports failures only through the status code. A program that never looks at it picks with stale or missing poses after a vision error.\n\n## Example\n```krl\nMM_Get_VisData(1, last, count, status)\nMM_Get_Pose(1, pick, label, speed)    ; status never checked\n```\n\n## Fix\nCompare the status with the success code (e.g. `IF status <> 1100 THEN ... ENDIF`) or pass it to your error handler.",
-    check,
+    check: Check::Model(check),
 };
 
 fn check(ctx: &FileCtx, out: &mut Vec<Diagnostic>) {
@@ -34,7 +33,7 @@ fn check(ctx: &FileCtx, out: &mut Vec<Diagnostic>) {
         let crate::syntax::ast::ExprKind::Name(var) = &arg.kind else {
             continue;
         };
-        if !judgeable(ctx, c.routine, &var.key()) {
+        if !judgeable(ctx, c.routine, var) {
             continue;
         }
         let key = var.key();
@@ -59,33 +58,24 @@ fn check(ctx: &FileCtx, out: &mut Vec<Diagnostic>) {
     }
 }
 
-/// A variable the rule can see all readers of.
-fn judgeable(ctx: &FileCtx, routine: &Routine, key: &str) -> bool {
-    let params: HashSet<String> = routine.params.iter().map(|p| p.name.key()).collect();
-    if params.contains(key) {
+/// A variable the rule can see all readers of: a local of the calling routine (not a
+/// parameter), or a non-GLOBAL variable of the module's `.dat` that no other routine of the file
+/// reads.
+fn judgeable(ctx: &FileCtx, routine: &Routine, var: &crate::syntax::ast::Ident) -> bool {
+    let Some(sym) = ctx.symbol_at(var.span.start) else {
         return false;
+    };
+    let s = ctx.sema.symbol(sym);
+    match s.scope {
+        Scope::Routine(r) => Some(r) == ctx.routine_id(routine) && s.kind != SymbolKind::Parameter,
+        Scope::Module(_) if !s.global => {
+            let key = var.key();
+            !ctx.user_routines()
+                .filter(|r| !std::ptr::eq(*r, routine))
+                .any(|r| reads_anywhere(&r.body, &key))
+        }
+        _ => false,
     }
-    if locals(routine).contains(key) {
-        return true;
-    }
-    let in_dat = ctx
-        .module_dat
-        .and_then(|f| f.ast.dat.as_ref())
-        .is_some_and(|d| {
-            d.decls
-                .iter()
-                .any(|decl| !decl.global && decl.vars.iter().any(|v| v.name.key() == key))
-        });
-    if !in_dat || ctx.project.global_types.contains_key(key) {
-        return false;
-    }
-    // Another routine of the file reading it would count as a check.
-    !ctx.file
-        .ast
-        .routines
-        .iter()
-        .filter(|r| !std::ptr::eq(*r, routine))
-        .any(|r| reads_anywhere(&r.body, key))
 }
 
 fn reads_anywhere(body: &[Stmt], key: &str) -> bool {

@@ -1,6 +1,6 @@
 use crate::diag::{Diagnostic, Severity};
 use crate::lint::context::FileCtx;
-use crate::lint::registry::Rule;
+use crate::lint::registry::{Check, Rule};
 use crate::lint::walk;
 use crate::syntax::ast::ExprKind;
 
@@ -12,7 +12,7 @@ pub static RULE: Rule = Rule {
     severity: Severity::Error,
     summary: "`MM_Init_Socket` names an XML file, alive flag or receive flag that does not match the EKI XML config",
     doc: "## What it checks\n`MM_Init_Socket(XML_Name, Alive_Flag, Recv_Flag, Time_Out)` is compared with the EthernetKRL XML config: the one given with `--eki-xml`, else the XML files with an `ETHERNETKRL` root found in the scanned tree. `XML_Name` (a string literal) must equal the XML file's name without `.xml`, case included (EKI channel names are case-sensitive). `Alive_Flag` must equal `CONFIGURATION/INTERNAL/ALIVE@Set_Flag` and `Recv_Flag` must equal `RECEIVE/RAW/ELEMENT@Set_Flag` of that file (values from literals or constants). Without any EKI XML, or when an argument's value is not known, the rule is silent.\n\n## Why it matters\n`EKI_Init` fails when the channel name is wrong, and with the wrong flags the package waits forever for a reply flag that is never set (timeouts, or a hang).\n\n## Example\n```krl\nMM_Init_Socket(\"XML_Kuka_MMIND\", 873, 872, 60)   ; the XML sets the receive flag 871\n```\n\n## Fix\nUse the channel name and the flag numbers of the XML file (or regenerate the package and XML from one spec with `krlkit gen`).",
-    check,
+    check: Check::Model(check),
 };
 
 fn check(ctx: &FileCtx, out: &mut Vec<Diagnostic>) {

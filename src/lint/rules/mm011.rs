@@ -1,6 +1,6 @@
 use crate::diag::{Diagnostic, Severity};
 use crate::lint::context::FileCtx;
-use crate::lint::registry::Rule;
+use crate::lint::registry::{Check, Rule};
 use crate::lint::walk;
 use crate::syntax::ast::{Expr, ExprKind, StmtKind};
 
@@ -10,7 +10,7 @@ pub static RULE: Rule = Rule {
     severity: Severity::Warning,
     summary: "The program writes a `$FLAG` that the EKI channel owns (alive or receive flag)",
     doc: "## What it checks\nThe EKI channel sets its alive flag and its receive flag itself. An assignment to `$FLAG[n]` (or a `PULSE` of it) where `n` is one of those flags is reported. The flag numbers come from the EKI XML of the channel named by an `MM_Init_Socket` call in the scanned files, or else from that call's flag arguments. When no `MM_Init_Socket` call is found the rule is silent.\n\n## Why it matters\nThe package waits on the receive flag for replies; resetting or setting it by hand makes it read a reply that has not arrived, or miss one that has.\n\n## Example\n```krl\n$FLAG[871] = FALSE\n```\n\n## Fix\nLeave the channel's flags to EKI; use a flag of your own for your logic.",
-    check,
+    check: Check::Model(check),
 };
 
 fn check(ctx: &FileCtx, out: &mut Vec<Diagnostic>) {

@@ -1,0 +1,318 @@
+//! A lint run kept alive between edits (the language server): every file stays parsed and
+//! summarised, one file can be replaced or removed (only it is parsed again; the model is
+//! rebuilt from the summaries), and files are checked on demand. It runs the same rules on the
+//! same model as [`super::lint`], so the editor and `check` cannot disagree.
+
+use std::collections::HashMap;
+
+use rayon::prelude::*;
+
+use super::context::{FileCtx, Parsed, Project, SyntaxCtx};
+use super::{Check, EkiChannel, Input, LintConfig, RULES, finish, mm_relevant, run};
+use crate::diag::FileReport;
+use crate::sema::{FileId, FileSummary, Sema, SemaInput};
+
+/// Which files' findings an edit may have changed, besides the edited files themselves.
+#[derive(Debug, Clone, PartialEq, Eq)]
+pub enum Affected {
+    /// Declarations, calls or channel facts changed: any file may read differently.
+    All,
+    /// Only these (the other files of the edited modules).
+    Files(Vec<String>),
+}
+
+/// What the session keeps of one file besides its parse.
+struct Meta {
+    summary: FileSummary,
+    /// What other files' findings can depend on (see [`FileSummary::interface`]).
+    interface: String,
+    /// The Mech-Mind rules look at it.
+    mm: bool,
+}
+
+/// Invariant: a file's findings depend only on its own text, the other file of its module,
+/// the declarations and calls of the workspace, the EKI channel facts and the config; so
+/// [`Affected`] names every file whose findings may change.
+pub struct Session {
+    /// Parsed files, in order.
+    files: Vec<Parsed>,
+    meta: Vec<Meta>,
+    /// Path → index into `files`.
+    index: HashMap<String, usize>,
+    sema: Sema,
+    project: Project,
+    config: LintConfig,
+}
+
+fn entry(i: Input) -> (Parsed, Meta) {
+    let parsed = Parsed::new(i.path, i.text);
+    let summary = FileSummary::of(&parsed.ast);
+    let meta = Meta {
+        interface: summary.interface(),
+        mm: mm_relevant(&parsed.ast),
+        summary,
+    };
+    (parsed, meta)
+}
+
+impl Session {
+    /// Parse every input (in parallel) and build the model.
+    pub fn new(
+        inputs: Vec<Input>,
+        channels: Vec<EkiChannel>,
+        channels_given: bool,
+        config: LintConfig,
+    ) -> Session {
+        let (files, meta): (Vec<Parsed>, Vec<Meta>) = inputs.into_par_iter().map(entry).unzip();
+        let mut s = Session {
+            files,
+            meta,
+            index: HashMap::new(),
+            sema: Sema::build(Vec::new(), &[]),
+            project: Project::default(),
+            config,
+        };
+        s.project.channels = channels;
+        s.project.channels_given = channels_given;
+        s.rebuild();
+        s
+    }
+
+    /// Rebuild the model and the lint facts from the summaries (no file is parsed again).
+    fn rebuild(&mut self) {
+        self.index = self
+            .files
+            .iter()
+            .enumerate()
+            .map(|(i, f)| (f.path.clone(), i))
+            .collect();
+        let inputs = self
+            .files
+            .iter()
+            .zip(&self.meta)
+            .map(|(f, m)| SemaInput {
+                path: f.path.clone(),
+                group: 0,
+                summary: m.summary.clone(),
+            })
+            .collect();
+        self.sema = Sema::build(inputs, &[]);
+        let channels = std::mem::take(&mut self.project.channels);
+        self.project = Project::new(
+            channels,
+            self.project.channels_given,
+            self.files
+                .iter()
+                .zip(&self.meta)
+                .filter(|(_, m)| m.mm)
+                .map(|(f, _)| &f.ast),
+        );
+    }
+
+    /// Add a file, or replace the one with the same path; only this file is parsed.
+    pub fn set_file(&mut self, input: Input) -> Affected {
+        self.set_files(vec![input])
+    }
+
+    /// Add or replace several files at once (one rebuild of the model). Says which other
+    /// files' findings may have changed.
+    pub fn set_files(&mut self, inputs: Vec<Input>) -> Affected {
+        let fresh: Vec<(Parsed, Meta)> = inputs.into_par_iter().map(entry).collect();
+        let flags_before = self.project.owned_flags.clone();
+        let mut changed: Vec<String> = Vec::new();
+        let mut all = false;
+        for (f, m) in fresh {
+            changed.push(f.path.clone());
+            match self.index.get(&f.path) {
+                Some(&i) => {
+                    all |= self.meta[i].interface != m.interface;
+                    self.files[i] = f;
+                    self.meta[i] = m;
+                }
+                None => {
+                    all = true;
+                    self.index.insert(f.path.clone(), self.files.len());
+                    self.files.push(f);
+                    self.meta.push(m);
+                }
+            }
+        }
+        self.rebuild();
+        if all || self.project.owned_flags != flags_before {
+            return Affected::All;
+        }
+        let mut module: Vec<String> = Vec::new();
+        for path in &changed {
+            let Some(f) = self.file(path) else { continue };
+            module.extend(
+                self.files
+                    .iter()
+                    .filter(|o| o.path != f.path && o.same_module(f))
+                    .map(|o| o.path.clone()),
+            );
+        }
+        module.retain(|p| !changed.contains(p));
+        module.sort();
+        module.dedup();
+        Affected::Files(module)
+    }
+
+    pub fn remove_file(&mut self, path: &str) {
+        if !self.index.contains_key(path) {
+            return;
+        }
+        if let Some(i) = self.files.iter().position(|f| f.path == path) {
+            self.files.remove(i);
+            self.meta.remove(i);
+        }
+        self.rebuild();
+    }
+
+    pub fn set_config(&mut self, config: LintConfig) {
+        self.config = config;
+    }
+
+    pub fn set_channels(&mut self, channels: Vec<EkiChannel>, channels_given: bool) {
+        self.project.channels = channels;
+        self.project.channels_given = channels_given;
+        self.rebuild();
+    }
+
+    /// The parsed file at `path`.
+    pub fn file(&self, path: &str) -> Option<&Parsed> {
+        self.index.get(path).map(|&i| &self.files[i])
+    }
+
+    /// Every file, in the order they were given.
+    pub fn files(&self) -> &[Parsed] {
+        &self.files
+    }
+
+    /// The model of the whole workspace (`FileId(i)` is the i-th of [`Session::files`]).
+    pub fn sema(&self) -> &Sema {
+        &self.sema
+    }
+
+    pub fn project(&self) -> &Project {
+        &self.project
+    }
+
+    fn check_index(&self, i: usize) -> FileReport {
+        let p = &self.files[i];
+        let cx = SyntaxCtx::new(&p.path, &p.text, &p.ast, &p.syntax_errors);
+        let mut findings = Vec::new();
+        for rule in RULES {
+            if let Check::Syntax(check) = rule.check {
+                run(rule, &self.config, &mut findings, |out| check(&cx, out));
+            }
+        }
+        let ast = self.meta[i].mm.then_some(&p.ast);
+        let ctx = FileCtx::new(
+            &self.sema,
+            FileId(i as u32),
+            ast,
+            &self.project,
+            &self.files,
+        );
+        for rule in RULES {
+            if let Check::Model(check) = rule.check {
+                run(rule, &self.config, &mut findings, |out| check(&ctx, out));
+            }
+        }
+        let mut report = finish(&p.path, &p.text, findings);
+        report.text = p.text.clone();
+        report
+    }
+
+    /// Check one file against the whole workspace.
+    pub fn check(&self, path: &str) -> Option<FileReport> {
+        let &i = self.index.get(path)?;
+        Some(self.check_index(i))
+    }
+
+    /// Check every file (in parallel); reports in file order.
+    pub fn check_all(&self) -> Vec<FileReport> {
+        (0..self.files.len())
+            .into_par_iter()
+            .map(|i| self.check_index(i))
+            .collect()
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn input(path: &str, text: &str) -> Input {
+        Input {
+            path: path.into(),
+            text: text.into(),
+        }
+    }
+
+    #[test]
+    fn replacing_a_file_updates_the_other_files_findings() {
+        // MM010: a command before any MM_Init_Socket.
+        let main = "DEF main()\r\n  MM_Start_Vis(1,0,0,x)\r\nEND\r\n";
+        let mut s = Session::new(
+            vec![input("main.src", main)],
+            Vec::new(),
+            false,
+            LintConfig::default(),
+        );
+        let before = s.check("main.src").unwrap();
+        assert!(before.diagnostics.iter().any(|d| d.code == "MM010"));
+        s.set_file(input(
+            "main.src",
+            "DEF main()\r\n  MM_Init_Socket(\"XML_Kuka_MMIND\",873,871,60)\r\n  MM_Start_Vis(1,0,0,x)\r\nEND\r\n",
+        ));
+        let after = s.check("main.src").unwrap();
+        assert!(!after.diagnostics.iter().any(|d| d.code == "MM010"));
+        s.set_file(input("other.src", "DEF other()\r\nEND\r\n"));
+        assert_eq!(s.files().len(), 2);
+        s.remove_file("main.src");
+        assert!(s.check("main.src").is_none());
+        assert!(s.check("other.src").is_some());
+    }
+
+    #[test]
+    fn an_edit_inside_a_body_affects_only_its_module() {
+        let mut s = Session::new(
+            vec![
+                input("a.src", "DEF a()\r\nDECL INT i\r\ni = 1\r\nEND\r\n"),
+                input("a.dat", "DEFDAT a\r\nENDDAT\r\n"),
+                input("b.src", "DEF b()\r\nEND\r\n"),
+            ],
+            Vec::new(),
+            false,
+            LintConfig::default(),
+        );
+        let body = s.set_file(input("a.src", "DEF a()\r\nDECL INT i\r\ni = 2\r\nEND\r\n"));
+        assert_eq!(body, Affected::Files(vec!["a.dat".into()]));
+        let decl = s.set_file(input("a.src", "DEF a()\r\nDECL INT j\r\nj = 2\r\nEND\r\n"));
+        assert_eq!(decl, Affected::All);
+    }
+
+    #[test]
+    fn check_and_the_session_agree() {
+        let files = vec![
+            input(
+                "$config.dat",
+                "DEFDAT $CONFIG\r\nDECL INT shared\r\nENDDAT\r\n",
+            ),
+            input(
+                "p.src",
+                "DEF p()\r\nDECL INT unused\r\nshared = missing\r\nEND\r\n",
+            ),
+        ];
+        let s = Session::new(files.clone(), Vec::new(), false, LintConfig::default());
+        let a = s.check_all();
+        let b = super::super::lint(files, Vec::new(), false, &LintConfig::default());
+        let codes = |r: &[FileReport]| -> Vec<Vec<&str>> {
+            r.iter()
+                .map(|f| f.diagnostics.iter().map(|d| d.code).collect())
+                .collect()
+        };
+        assert_eq!(codes(&a), codes(&b));
+    }
+}

@@ -1,0 +1,46 @@
+//! krlkit findings → LSP diagnostics: range in UTF-16, severity, the rule code, the help as a
+//! second line of the message. (The rule's doc is in the hover over a finding.)
+
+use lsp_types::{Diagnostic, DiagnosticSeverity, NumberOrString};
+
+use super::position::Lines;
+use crate::diag::{self, FileReport, Severity};
+
+pub const SOURCE: &str = "krlkit";
+
+pub fn severity(s: Severity) -> DiagnosticSeverity {
+    match s {
+        Severity::Error => DiagnosticSeverity::ERROR,
+        Severity::Warning => DiagnosticSeverity::WARNING,
+        Severity::Info => DiagnosticSeverity::INFORMATION,
+    }
+}
+
+/// One finding.
+pub fn convert(lines: &Lines, d: &diag::Diagnostic) -> Diagnostic {
+    let message = match &d.help {
+        Some(h) => format!("{}\nhelp: {h}", d.message),
+        None => d.message.clone(),
+    };
+    Diagnostic {
+        range: lines.range(d.span),
+        severity: Some(severity(d.severity)),
+        code: Some(NumberOrString::String(d.code.to_owned())),
+        code_description: None,
+        source: Some(SOURCE.to_owned()),
+        message,
+        related_information: None,
+        tags: None,
+        data: None,
+    }
+}
+
+/// Every finding of a report, in its order.
+pub fn of_report(report: &FileReport) -> Vec<Diagnostic> {
+    let lines = Lines::new(&report.text);
+    report
+        .diagnostics
+        .iter()
+        .map(|d| convert(&lines, d))
+        .collect()
+}

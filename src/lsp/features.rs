@@ -1,0 +1,282 @@
+//! Requests: which ones the server answers (capabilities) and the handlers. Handlers read the
+//! analysed workspace and turn krlkit's answers into LSP shapes; the knowledge itself lives in
+//! the catalog, the linter and the syntax tree.
+
+use lsp_server::{ErrorCode, Request, ResponseError};
+use lsp_types::request::{self as req, Request as _};
+use lsp_types::{
+    CodeAction, CodeActionKind, CodeActionOptions, CodeActionOrCommand, CodeActionParams,
+    CodeActionProviderCapability, CodeActionResponse, CompletionOptions, CompletionParams,
+    CompletionResponse, DocumentSymbolParams, DocumentSymbolResponse, FoldingRange,
+    FoldingRangeParams, FoldingRangeProviderCapability, Hover, HoverContents, HoverParams,
+    HoverProviderCapability, MarkupContent, MarkupKind, OneOf, ServerCapabilities, SignatureHelp,
+    SignatureHelpOptions, SignatureHelpParams, TextDocumentIdentifier, TextDocumentPositionParams,
+    TextEdit, Uri, WorkspaceEdit,
+};
+use serde_json::Value;
+
+use super::cursor::{self, Place};
+use super::position::Lines;
+use super::server::Server;
+use super::{diagnostics, mm, outline, paths};
+use crate::diag::{Applicability, Edit};
+use crate::lint::context::Parsed;
+
+pub fn capabilities() -> ServerCapabilities {
+    ServerCapabilities {
+        hover_provider: Some(HoverProviderCapability::Simple(true)),
+        completion_provider: Some(CompletionOptions {
+            trigger_characters: Some(vec!["$".into()]),
+            ..CompletionOptions::default()
+        }),
+        signature_help_provider: Some(SignatureHelpOptions {
+            trigger_characters: Some(vec!["(".into(), ",".into()]),
+            retrigger_characters: None,
+            work_done_progress_options: Default::default(),
+        }),
+        document_symbol_provider: Some(OneOf::Left(true)),
+        folding_range_provider: Some(FoldingRangeProviderCapability::Simple(true)),
+        code_action_provider: Some(CodeActionProviderCapability::Options(CodeActionOptions {
+            code_action_kinds: Some(vec![CodeActionKind::QUICKFIX, fix_all()]),
+            ..CodeActionOptions::default()
+        })),
+        document_formatting_provider: Some(OneOf::Left(true)),
+        document_range_formatting_provider: Some(OneOf::Left(true)),
+        ..ServerCapabilities::default()
+    }
+}
+
+/// Answer `r`; `None` for a method the server does not know.
+pub fn dispatch(s: &mut Server, r: Request) -> Option<Result<Value, ResponseError>> {
+    let Request { method, params, .. } = r;
+    let s = &*s;
+    Some(match method.as_str() {
+        req::HoverRequest::METHOD => call::<req::HoverRequest>(params, |p| hover(s, p)),
+        req::Completion::METHOD => call::<req::Completion>(params, |p| completion(s, p)),
+        req::SignatureHelpRequest::METHOD => {
+            call::<req::SignatureHelpRequest>(params, |p| signature_help(s, p))
+        }
+        req::DocumentSymbolRequest::METHOD => {
+            call::<req::DocumentSymbolRequest>(params, |p| document_symbols(s, p))
+        }
+        req::FoldingRangeRequest::METHOD => {
+            call::<req::FoldingRangeRequest>(params, |p| folding_ranges(s, p))
+        }
+        req::CodeActionRequest::METHOD => {
+            call::<req::CodeActionRequest>(params, |p| code_actions(s, p))
+        }
+        req::Formatting::METHOD => {
+            call::<req::Formatting>(params, |p| formatting(s, &p.text_document, None))
+        }
+        req::RangeFormatting::METHOD => {
+            call::<req::RangeFormatting>(params, |p| formatting(s, &p.text_document, Some(p.range)))
+        }
+        // Not LSP: how many files still wait for a check (tests and editors' status bars).
+        STATUS => Ok(serde_json::json!({
+            "pending": s.pending(),
+            "files": s.ws.files().len(),
+        })),
+        _ => return None,
+    })
+}
+
+/// The one request of krlkit's own: `{"pending": n, "files": m}`.
+pub const STATUS: &str = "krlkit/status";
+
+fn call<R: req::Request>(
+    params: Value,
+    f: impl FnOnce(R::Params) -> R::Result,
+) -> Result<Value, ResponseError> {
+    let p: R::Params = serde_json::from_value(params).map_err(|e| ResponseError {
+        code: ErrorCode::InvalidParams as i32,
+        message: format!("invalid parameters for {}: {e}", R::METHOD),
+        data: None,
+    })?;
+    serde_json::to_value(f(p)).map_err(|e| ResponseError {
+        code: ErrorCode::InternalError as i32,
+        message: e.to_string(),
+        data: None,
+    })
+}
+
+/// The analysed file of a document.
+fn file<'s>(s: &'s Server, doc: &TextDocumentIdentifier) -> Option<&'s Parsed> {
+    s.ws.file(&paths::id_of(&doc.uri))
+}
+
+/// The file, its lines and the byte offset of a position.
+fn at<'s>(s: &'s Server, p: &TextDocumentPositionParams) -> Option<(&'s Parsed, Lines<'s>, usize)> {
+    let f = file(s, &p.text_document)?;
+    let lines = Lines::new(&f.text);
+    let offset = lines.offset(p.position);
+    Some((f, lines, offset))
+}
+
+fn markdown(value: String) -> HoverContents {
+    HoverContents::Markup(MarkupContent {
+        kind: MarkupKind::Markdown,
+        value,
+    })
+}
+
+fn hover(s: &Server, p: HoverParams) -> Option<Hover> {
+    let (f, lines, offset) = at(s, &p.text_document_position_params)?;
+    let mut parts: Vec<String> = Vec::new();
+    let mut range = None;
+    if let (Place::Code, call) = cursor::context(&lines, offset) {
+        let word = cursor::word_at(&f.text, offset);
+        match word.and_then(|w| mm::subprogram(&f.text[w.range()]).map(|sub| (w, sub))) {
+            // On the name of an MM_ subprogram: the whole signature.
+            Some((w, sub)) => {
+                parts.push(mm::hover(sub, None));
+                range = Some(lines.range(w));
+            }
+            // In its argument list: the parameter under the cursor.
+            None => {
+                if let Some(c) = call
+                    && let Some(sub) = mm::subprogram(&f.text[c.name.range()])
+                {
+                    parts.push(mm::hover(sub, Some(c.arg)));
+                    range = word.map(|w| lines.range(w));
+                }
+            }
+        }
+    }
+    // The rule behind each finding under the cursor.
+    if let Some(found) = s.findings.get(&f.path) {
+        for d in found
+            .iter()
+            .filter(|d| d.span.start as usize <= offset && offset <= d.span.end as usize)
+        {
+            if let Some(rule) = crate::lint::rule(d.code) {
+                parts.push(format!(
+                    "**{}** ({}): {}. `krlkit rule {}` explains it.",
+                    rule.code, rule.name, rule.summary, rule.code
+                ));
+            }
+        }
+    }
+    (!parts.is_empty()).then(|| Hover {
+        contents: markdown(parts.join("\n---\n")),
+        range,
+    })
+}
+
+fn completion(s: &Server, p: CompletionParams) -> Option<CompletionResponse> {
+    let (_, lines, offset) = at(s, &p.text_document_position)?;
+    if cursor::context(&lines, offset).0 != Place::Code {
+        return None;
+    }
+    Some(CompletionResponse::Array(mm::completions()))
+}
+
+fn signature_help(s: &Server, p: SignatureHelpParams) -> Option<SignatureHelp> {
+    let (f, lines, offset) = at(s, &p.text_document_position_params)?;
+    let (Place::Code, Some(call)) = cursor::context(&lines, offset) else {
+        return None;
+    };
+    let sub = mm::subprogram(&f.text[call.name.range()])?;
+    Some(mm::signature_help(sub, call.arg))
+}
+
+fn document_symbols(s: &Server, p: DocumentSymbolParams) -> Option<DocumentSymbolResponse> {
+    let f = file(s, &p.text_document)?;
+    let lines = Lines::new(&f.text);
+    Some(DocumentSymbolResponse::Nested(outline::document_symbols(
+        &lines, &f.ast,
+    )))
+}
+
+fn folding_ranges(s: &Server, p: FoldingRangeParams) -> Option<Vec<FoldingRange>> {
+    let f = file(s, &p.text_document)?;
+    let lines = Lines::new(&f.text);
+    Some(outline::folding_ranges(&lines, &f.ast))
+}
+
+/// `source.fixAll.krlkit`: every safe fix of the file at once.
+fn fix_all() -> CodeActionKind {
+    CodeActionKind::new("source.fixAll.krlkit")
+}
+
+fn text_edits(lines: &Lines, edits: &[Edit]) -> Vec<TextEdit> {
+    edits
+        .iter()
+        .map(|e| TextEdit::new(lines.range(e.span), e.replacement.clone()))
+        .collect()
+}
+
+fn workspace_edit(uri: &Uri, edits: Vec<TextEdit>) -> WorkspaceEdit {
+    WorkspaceEdit {
+        changes: Some([(uri.clone(), edits)].into_iter().collect()),
+        ..WorkspaceEdit::default()
+    }
+}
+
+/// The fixes the rules attached to the findings in the range (quick fixes), and all safe fixes
+/// of the file together (`source.fixAll.krlkit`). Nothing here decides what a fix is.
+fn code_actions(s: &Server, p: CodeActionParams) -> Option<CodeActionResponse> {
+    let f = file(s, &p.text_document)?;
+    let lines = Lines::new(&f.text);
+    let want = lines.span(p.range);
+    let found = s.findings.get(&f.path)?;
+    let wanted = |k: &CodeActionKind| {
+        p.context.only.as_ref().is_none_or(|only| {
+            only.iter().any(|o| {
+                k.as_str() == o.as_str() || k.as_str().starts_with(&format!("{}.", o.as_str()))
+            })
+        })
+    };
+    let uri = &p.text_document.uri;
+    let mut out: CodeActionResponse = Vec::new();
+    if wanted(&CodeActionKind::QUICKFIX) {
+        for d in found {
+            let Some(fix) = &d.fix else { continue };
+            if d.span.start > want.end || want.start > d.span.end {
+                continue;
+            }
+            out.push(CodeActionOrCommand::CodeAction(CodeAction {
+                title: fix.title.clone(),
+                kind: Some(CodeActionKind::QUICKFIX),
+                diagnostics: Some(vec![diagnostics::convert(&lines, d)]),
+                edit: Some(workspace_edit(uri, text_edits(&lines, &fix.edits))),
+                is_preferred: Some(fix.applicability == Applicability::Safe),
+                ..CodeAction::default()
+            }));
+        }
+    }
+    if wanted(&fix_all()) {
+        let mut edits: Vec<Edit> = Vec::new();
+        for fix in found.iter().filter_map(|d| d.fix.as_ref()) {
+            if fix.applicability == Applicability::Safe
+                && !crate::diag::fix::overlaps(&edits, &fix.edits)
+            {
+                edits.extend(fix.edits.iter().cloned());
+            }
+        }
+        if !edits.is_empty() {
+            edits.sort_by_key(|e| (e.span.start, e.span.end));
+            out.push(CodeActionOrCommand::CodeAction(CodeAction {
+                title: "Apply every safe krlkit fix".into(),
+                kind: Some(fix_all()),
+                edit: Some(workspace_edit(uri, text_edits(&lines, &edits))),
+                ..CodeAction::default()
+            }));
+        }
+    }
+    Some(out)
+}
+
+/// `krlkit fmt` on the document (or the lines of a range), with the workspace's `[fmt]` options.
+fn formatting(
+    s: &Server,
+    doc: &TextDocumentIdentifier,
+    range: Option<lsp_types::Range>,
+) -> Option<Vec<TextEdit>> {
+    let f = file(s, doc)?;
+    let lines = Lines::new(&f.text);
+    let edits = match range {
+        None => crate::fmt::format_edits(&f.text, &s.ws.fmt),
+        Some(r) => crate::fmt::format_range(&f.text, lines.span(r).range(), &s.ws.fmt),
+    };
+    Some(text_edits(&lines, &edits))
+}

@@ -1,0 +1,1190 @@
+//! Stage 1, one file at a time: what the file declares (items) and every name it uses, with the
+//! facts the workspace rules need (calls and their arguments, assignments) in a compact form
+//! that does not hold on to the AST. Nothing here looks outside the file: names are resolved in
+//! stage 2 ([`super::build`]), once every file's items are known, so `check` can drop each
+//! file's syntax tree as soon as its summary is made.
+
+use std::hash::{Hash, Hasher};
+
+use rustc_hash::{FxHashMap, FxHasher};
+
+use super::ty::Sizes;
+use crate::diag::Span;
+use crate::syntax::ast::{
+    self, BinaryOp, Decl, Definition, Expr, ExprKind, ExtKind, Ident, ParamDir, RoutineKind,
+    SourceFile, Stmt, StmtKind, TypeRef, UnaryOp,
+};
+
+/// "No routine" (module level) and "no term" (an omitted argument).
+pub(crate) const NONE: u32 = u32::MAX;
+
+/// What a name use is.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum UseKind {
+    /// A variable, constant, SIGNAL or system variable.
+    Var,
+    /// A called routine or function.
+    Call,
+    /// A type name (declarations, typed aggregates, STRUC fields, EXT parameters).
+    Type,
+}
+
+/// How a variable use touches its variable.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Access {
+    Read,
+    /// Assigned, a FOR variable, `WITH $x =`, a PULSE/ANIN target.
+    Write,
+    /// Passed to a routine as a variable (written when the parameter is OUT).
+    Arg,
+    /// Only named in a string (`VARSTATE("x")`) or in a line that did not parse: counts as a
+    /// use for "never used", is never reported as undeclared.
+    Mention,
+    /// The name of a call, or a type name.
+    Name,
+}
+
+/// One name use. `name` is a per-file index until the workspace interns it.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub struct Use {
+    pub(crate) name: u32,
+    pub span: Span,
+    /// Index of the routine in the file's `routines`, or [`NONE`] for module level.
+    pub(crate) owner: u32,
+    pub kind: UseKind,
+    pub access: Access,
+}
+
+/// A type as written in a declaration.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub(crate) struct TypeRefItem {
+    /// The `Type` use of the type's name.
+    pub use_ix: u32,
+    pub dims: u8,
+    pub sizes: Sizes,
+}
+
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub(crate) enum DeclKind {
+    Var,
+    Const,
+    /// One bit: BOOL. A group (`… TO …`): INT. An analog channel: REAL. `SIGNAL x FALSE`: BOOL
+    /// constant.
+    Signal {
+        group: bool,
+        analog: bool,
+        constant: bool,
+    },
+    Import,
+    Channel,
+}
+
+/// A literal value of a constant (or a DECL initialiser).
+#[derive(Debug, Clone, PartialEq)]
+pub enum ConstValue {
+    Int(i64),
+    Real(f64),
+    Bool(bool),
+    Char(char),
+    Str(Box<str>),
+    /// `#VALUE`, upper case.
+    Enum(Box<str>),
+}
+
+impl ConstValue {
+    pub fn as_f64(&self) -> Option<f64> {
+        match self {
+            ConstValue::Int(i) => Some(*i as f64),
+            ConstValue::Real(r) => Some(*r),
+            _ => None,
+        }
+    }
+}
+
+#[derive(Debug, Clone, PartialEq)]
+pub(crate) struct DeclItem {
+    pub name: u32,
+    pub span: Span,
+    pub owner: u32,
+    pub kind: DeclKind,
+    pub global: bool,
+    pub ty: Option<TypeRefItem>,
+    pub value: Option<ConstValue>,
+}
+
+#[derive(Debug, Clone, PartialEq)]
+pub(crate) struct FieldItem {
+    pub name: u32,
+    pub span: Span,
+    pub ty: TypeRefItem,
+}
+
+#[derive(Debug, Clone, PartialEq)]
+pub(crate) enum TypeItemKind {
+    Struc(Vec<FieldItem>),
+    Enum(Vec<(u32, Span)>),
+}
+
+#[derive(Debug, Clone, PartialEq)]
+pub(crate) struct TypeItem {
+    pub name: u32,
+    pub span: Span,
+    pub owner: u32,
+    pub global: bool,
+    pub kind: TypeItemKind,
+}
+
+#[derive(Debug, Clone, PartialEq)]
+pub(crate) struct ExtItem {
+    pub name: u32,
+    pub span: Span,
+    pub owner: u32,
+    pub kind: ExtKind,
+    pub params: Vec<(TypeRefItem, Option<ParamDir>)>,
+    pub ret: Option<TypeRefItem>,
+}
+
+#[derive(Debug, Clone, PartialEq)]
+pub(crate) struct ParamItem {
+    pub name: u32,
+    pub span: Span,
+    pub dir: Option<ParamDir>,
+    pub array: bool,
+}
+
+#[derive(Debug, Clone, PartialEq)]
+pub(crate) struct RoutineItem {
+    pub name: u32,
+    pub name_span: Span,
+    pub span: Span,
+    pub kind: RoutineKind,
+    pub global: bool,
+    pub params: Vec<ParamItem>,
+    pub ret: Option<TypeRefItem>,
+    /// A DEFFCT with a path from its start to ENDFCT that passes no RETURN.
+    pub missing_return: bool,
+}
+
+/// A projection on a variable: `.field` or `[i, j]`.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub(crate) enum Proj {
+    Field(u32),
+    Index(u8),
+}
+
+/// What the type of an expression depends on. Evaluated in stage 2.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub(crate) enum Term {
+    Int,
+    Real,
+    Bool,
+    Char,
+    Str(u32),
+    /// `#VALUE` (a per-file name).
+    EnumLit(u32),
+    Aggregate,
+    /// `{TYPE: …}`: the `Type` use of its name.
+    TypedAggregate(u32),
+    /// A variable use with up to three projections.
+    Var {
+        use_ix: u32,
+        proj: [Proj; 3],
+        len: u8,
+    },
+    /// The result of a function call (the `Call` use).
+    Call(u32),
+    /// `+ - * /`: INT when both are INT, REAL when both are numbers.
+    Arith(u32, u32),
+    /// `a : b`: the type of the right operand when it is a STRUC.
+    Geo(u32, u32),
+    /// The declared type of a DECL item (its initialiser's target).
+    Decl(u32),
+    Unknown,
+}
+
+/// How an argument was written.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum ArgForm {
+    Omitted,
+    /// A variable, an element or a field of one (the root `Var` use).
+    Place(u32),
+    Literal,
+    Expression,
+}
+
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub(crate) struct ArgFact {
+    pub span: Span,
+    pub term: u32,
+    pub form: ArgForm,
+}
+
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub(crate) struct CallFact {
+    /// The `Call` use.
+    pub use_ix: u32,
+    pub args: (u32, u32),
+    /// Written as `f()` with nothing between the parentheses.
+    pub empty_parens: bool,
+}
+
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub(crate) struct AssignFact {
+    pub span: Span,
+    pub target: u32,
+    pub value: u32,
+}
+
+/// Everything stage 2 needs from one file.
+#[derive(Debug, Clone, Default)]
+pub struct FileSummary {
+    /// Per-file name table (first spelling); items and uses index it.
+    pub(crate) names: Vec<Box<str>>,
+    pub(crate) routines: Vec<RoutineItem>,
+    /// DEFDAT name and PUBLIC.
+    pub(crate) dat: Option<(u32, Span, bool)>,
+    pub(crate) decls: Vec<DeclItem>,
+    pub(crate) types: Vec<TypeItem>,
+    pub(crate) exts: Vec<ExtItem>,
+    pub(crate) uses: Vec<Use>,
+    pub(crate) terms: Vec<Term>,
+    pub(crate) calls: Vec<CallFact>,
+    pub(crate) args: Vec<ArgFact>,
+    pub(crate) assigns: Vec<AssignFact>,
+    /// Statements that did not parse (KRL001): names in them may be used.
+    pub(crate) has_errors: bool,
+}
+
+impl FileSummary {
+    /// Summarise one parsed file.
+    pub fn of(file: &SourceFile) -> FileSummary {
+        let mut s = Summarizer::default();
+        for (i, r) in file.routines.iter().enumerate() {
+            s.routine(i as u32, r);
+        }
+        if let Some(dat) = &file.dat {
+            s.owner = NONE;
+            let name = s.name(&dat.name.text);
+            s.out.dat = Some((name, dat.name.span, dat.public));
+            for d in &dat.decls {
+                s.decl(d, true);
+            }
+            for d in &dat.definitions {
+                s.definition(d);
+            }
+            s.block(&dat.body);
+        }
+        s.owner = NONE;
+        s.block(&file.top_level);
+        let Summarizer { mut out, spell, .. } = s;
+        out.names = spell.into_iter().map(Box::from).collect();
+        out
+    }
+
+    /// One expression on its own (for type queries on any expression): its root term is the
+    /// last one.
+    pub(crate) fn expression(e: &Expr) -> FileSummary {
+        let mut s = Summarizer {
+            owner: NONE,
+            ..Summarizer::default()
+        };
+        s.expr(e, Access::Read);
+        let Summarizer { mut out, spell, .. } = s;
+        out.names = spell.into_iter().map(Box::from).collect();
+        out
+    }
+
+    /// What other files can depend on, without positions: declarations (routines and their
+    /// parameters, data, types, EXTs, the DEFDAT) and the names the file calls. Two versions of
+    /// a file with the same interface affect no other file's findings differently.
+    pub fn interface(&self) -> String {
+        use std::fmt::Write;
+        let n = |i: u32| self.names[i as usize].to_ascii_uppercase();
+        let t = |t: &TypeRefItem| {
+            format!(
+                "{}{:?}{:?}",
+                n(self.uses[t.use_ix as usize].name),
+                t.dims,
+                t.sizes
+            )
+        };
+        let mut out = String::new();
+        if let Some((name, _, public)) = self.dat {
+            let _ = write!(out, "dat {} {public};", n(name));
+        }
+        for r in &self.routines {
+            let _ = write!(
+                out,
+                "r {} {:?} {} {:?}",
+                n(r.name),
+                r.kind,
+                r.global,
+                r.ret.as_ref().map(t)
+            );
+            for p in &r.params {
+                let _ = write!(out, " {} {:?} {}", n(p.name), p.dir, p.array);
+            }
+            out.push(';');
+        }
+        for d in &self.decls {
+            let _ = write!(
+                out,
+                "d {} {} {:?} {} {:?} {:?};",
+                d.owner,
+                n(d.name),
+                d.kind,
+                d.global,
+                d.ty.as_ref().map(t),
+                d.value
+            );
+        }
+        for ty in &self.types {
+            let _ = write!(out, "t {} {} {}", ty.owner, n(ty.name), ty.global);
+            match &ty.kind {
+                TypeItemKind::Struc(fields) => {
+                    for f in fields {
+                        let _ = write!(out, " {} {}", n(f.name), t(&f.ty));
+                    }
+                }
+                TypeItemKind::Enum(values) => {
+                    for (v, _) in values {
+                        let _ = write!(out, " {}", n(*v));
+                    }
+                }
+            }
+            out.push(';');
+        }
+        for x in &self.exts {
+            let _ = write!(
+                out,
+                "x {} {} {:?} {:?}",
+                x.owner,
+                n(x.name),
+                x.kind,
+                x.ret.as_ref().map(t)
+            );
+            for (p, dir) in &x.params {
+                let _ = write!(out, " {} {dir:?}", t(p));
+            }
+            out.push(';');
+        }
+        let mut calls: Vec<String> = self
+            .uses
+            .iter()
+            .filter(|u| u.kind == UseKind::Call)
+            .map(|u| n(u.name))
+            .collect();
+        calls.sort();
+        calls.dedup();
+        let _ = write!(out, "calls {calls:?}");
+        out
+    }
+
+    /// Number of name uses (for statistics and tests).
+    pub fn use_count(&self) -> usize {
+        self.uses.len()
+    }
+}
+
+/// A name compared without regard to ASCII case.
+#[derive(Clone, Copy)]
+struct Caseless<'a>(&'a str);
+
+impl PartialEq for Caseless<'_> {
+    fn eq(&self, other: &Self) -> bool {
+        self.0.eq_ignore_ascii_case(other.0)
+    }
+}
+
+impl Eq for Caseless<'_> {}
+
+impl Hash for Caseless<'_> {
+    fn hash<H: Hasher>(&self, state: &mut H) {
+        let mut h = FxHasher::default();
+        for b in self.0.bytes() {
+            h.write_u8(b.to_ascii_uppercase());
+        }
+        state.write_u64(h.finish());
+    }
+}
+
+#[derive(Default)]
+struct Summarizer<'a> {
+    out: FileSummary,
+    ids: FxHashMap<Caseless<'a>, u32>,
+    spell: Vec<&'a str>,
+    owner: u32,
+}
+
+impl<'a> Summarizer<'a> {
+    fn name(&mut self, text: &'a str) -> u32 {
+        let next = self.spell.len() as u32;
+        let id = *self.ids.entry(Caseless(text)).or_insert(next);
+        if id == next {
+            self.spell.push(text);
+        }
+        id
+    }
+
+    fn use_of(&mut self, id: &'a Ident, kind: UseKind, access: Access) -> u32 {
+        let name = self.name(&id.text);
+        self.out.uses.push(Use {
+            name,
+            span: id.span,
+            owner: self.owner,
+            kind,
+            access,
+        });
+        (self.out.uses.len() - 1) as u32
+    }
+
+    fn term(&mut self, t: Term) -> u32 {
+        self.out.terms.push(t);
+        (self.out.terms.len() - 1) as u32
+    }
+
+    fn type_ref(&mut self, t: &'a TypeRef, var_dims: &'a [Option<Expr>]) -> TypeRefItem {
+        let use_ix = self.use_of(&t.name, UseKind::Type, Access::Name);
+        self.sized(use_ix, &t.dims, var_dims)
+    }
+
+    /// Dimensions written on the type (`CHAR[24]`) and on the name (`x[24]`).
+    fn sized(
+        &mut self,
+        use_ix: u32,
+        type_dims: &'a [Option<Expr>],
+        var_dims: &'a [Option<Expr>],
+    ) -> TypeRefItem {
+        let mut sizes = [0u32; 3];
+        let mut n = 0usize;
+        for d in type_dims.iter().chain(var_dims) {
+            if let Some(e) = d {
+                self.expr(e, Access::Read);
+                if let (Some(slot), ExprKind::Int(v)) = (sizes.get_mut(n), &e.kind) {
+                    *slot = u32::try_from(*v).unwrap_or(0);
+                }
+            }
+            n += 1;
+        }
+        TypeRefItem {
+            use_ix,
+            dims: n.min(255) as u8,
+            sizes,
+        }
+    }
+
+    fn routine(&mut self, index: u32, r: &'a ast::Routine) {
+        self.owner = index;
+        let name = self.name(&r.name.text);
+        let params = r
+            .params
+            .iter()
+            .map(|p| ParamItem {
+                name: self.name(&p.name.text),
+                span: p.name.span,
+                dir: p.dir,
+                array: p.array,
+            })
+            .collect();
+        let ret = r.return_type.as_ref().map(|t| self.type_ref(t, &[]));
+        let missing_return = r.kind == RoutineKind::Deffct && r.closed && falls_off_end(&r.body);
+        self.out.routines.push(RoutineItem {
+            name,
+            name_span: r.name.span,
+            span: r.span,
+            kind: r.kind,
+            global: r.global,
+            params,
+            ret,
+            missing_return,
+        });
+        for d in &r.decls {
+            self.decl(d, false);
+        }
+        for d in &r.definitions {
+            self.definition(d);
+        }
+        self.block(&r.body);
+    }
+
+    fn decl(&mut self, d: &'a Decl, in_dat: bool) {
+        let ty_use = self.use_of(&d.ty.name, UseKind::Type, Access::Name);
+        for v in &d.vars {
+            let ty = self.sized(ty_use, &d.ty.dims, &v.dims);
+            let name = self.name(&v.name.text);
+            let value = v.init.as_ref().and_then(const_value);
+            self.out.decls.push(DeclItem {
+                name,
+                span: v.name.span,
+                owner: self.owner,
+                kind: if d.constant {
+                    DeclKind::Const
+                } else {
+                    DeclKind::Var
+                },
+                global: d.global,
+                ty: Some(ty),
+                value: if d.constant || in_dat { value } else { None },
+            });
+            if let Some(init) = &v.init {
+                let target = self.term(Term::Decl((self.out.decls.len() - 1) as u32));
+                let value = self.expr(init, Access::Read);
+                self.assign(init.span, target, value);
+            }
+        }
+    }
+
+    fn assign(&mut self, span: Span, target: u32, value: u32) {
+        let known = |t: &Term| !matches!(t, Term::Unknown);
+        if known(&self.out.terms[target as usize]) && known(&self.out.terms[value as usize]) {
+            self.out.assigns.push(AssignFact {
+                span,
+                target,
+                value,
+            });
+        }
+    }
+
+    /// Facts made so far: terms made after a mark may go when no fact was added since.
+    fn facts(&self) -> (usize, usize) {
+        (self.out.assigns.len(), self.out.calls.len())
+    }
+
+    fn release(&mut self, mark: usize, facts: (usize, usize)) {
+        if self.facts() == facts {
+            self.out.terms.truncate(mark);
+        }
+    }
+
+    fn definition(&mut self, d: &'a Definition) {
+        match d {
+            Definition::Struc(s) => {
+                let name = self.name(&s.name.text);
+                let fields = s
+                    .fields
+                    .iter()
+                    .map(|f| {
+                        let use_ix = self.use_of(&f.ty, UseKind::Type, Access::Name);
+                        let ty = self.sized(use_ix, &[], &f.dims);
+                        FieldItem {
+                            name: self.name(&f.name.text),
+                            span: f.name.span,
+                            ty,
+                        }
+                    })
+                    .collect();
+                self.out.types.push(TypeItem {
+                    name,
+                    span: s.name.span,
+                    owner: self.owner,
+                    global: s.global,
+                    kind: TypeItemKind::Struc(fields),
+                });
+            }
+            Definition::Enum(e) => {
+                let name = self.name(&e.name.text);
+                let values = e
+                    .values
+                    .iter()
+                    .map(|v| (self.name(&v.text), v.span))
+                    .collect();
+                self.out.types.push(TypeItem {
+                    name,
+                    span: e.name.span,
+                    owner: self.owner,
+                    global: e.global,
+                    kind: TypeItemKind::Enum(values),
+                });
+            }
+            Definition::Signal(sig) => {
+                let analog = matches!(&sig.from.kind, ExprKind::Index { base, .. }
+                    if matches!(&base.kind, ExprKind::Name(n) if n.is("$ANIN") || n.is("$ANOUT")));
+                let constant = matches!(sig.from.kind, ExprKind::Bool(_));
+                self.expr(&sig.from, Access::Read);
+                if let Some(to) = &sig.to {
+                    self.expr(to, Access::Read);
+                }
+                let name = self.name(&sig.name.text);
+                self.out.decls.push(DeclItem {
+                    name,
+                    span: sig.name.span,
+                    owner: self.owner,
+                    kind: DeclKind::Signal {
+                        group: sig.to.is_some(),
+                        analog,
+                        constant,
+                    },
+                    global: sig.global,
+                    ty: None,
+                    value: match sig.from.kind {
+                        ExprKind::Bool(b) => Some(ConstValue::Bool(b)),
+                        _ => None,
+                    },
+                });
+            }
+            Definition::Channel(c) => {
+                let name = self.name(&c.name.text);
+                if let Some(p) = &c.param {
+                    self.expr(p, Access::Read);
+                }
+                self.out.decls.push(DeclItem {
+                    name,
+                    span: c.name.span,
+                    owner: self.owner,
+                    kind: DeclKind::Channel,
+                    global: false,
+                    ty: None,
+                    value: None,
+                });
+            }
+            Definition::Ext(x) => {
+                let name = self.name(&x.name.text);
+                let params = x
+                    .params
+                    .iter()
+                    .map(|p| (self.type_ref(&p.ty, &[]), p.dir))
+                    .collect();
+                let ret = x.return_type.as_ref().map(|t| self.type_ref(t, &[]));
+                self.out.exts.push(ExtItem {
+                    name,
+                    span: x.name.span,
+                    owner: self.owner,
+                    kind: x.kind,
+                    params,
+                    ret,
+                });
+            }
+            Definition::Import(i) => {
+                let ty = self.type_ref(&i.ty, &i.dims);
+                let name = self.name(&i.name.text);
+                self.out.decls.push(DeclItem {
+                    name,
+                    span: i.name.span,
+                    owner: self.owner,
+                    kind: DeclKind::Import,
+                    global: false,
+                    ty: Some(ty),
+                    value: None,
+                });
+            }
+        }
+    }
+
+    fn block(&mut self, stmts: &'a [Stmt]) {
+        for s in stmts {
+            self.stmt(s);
+        }
+    }
+
+    fn stmt(&mut self, s: &'a Stmt) {
+        let (mark, facts) = (self.out.terms.len(), self.facts());
+        match &s.kind {
+            StmtKind::Assign { target, value } => {
+                let t = self.expr(target, Access::Write);
+                let v = self.expr(value, Access::Read);
+                self.assign(s.span, t, v);
+            }
+            StmtKind::Call { name, args } => {
+                self.call(name, args);
+            }
+            StmtKind::If { cond, .. }
+            | StmtKind::While { cond, .. }
+            | StmtKind::WaitFor { cond } => {
+                self.expr(cond, Access::Read);
+            }
+            StmtKind::Repeat { until: Some(u), .. } => {
+                // The body, then the UNTIL condition evaluated after it.
+                self.block_then(s, Some(u));
+                self.release(mark, facts);
+                return;
+            }
+            StmtKind::Switch {
+                selector, cases, ..
+            } => {
+                self.expr(selector, Access::Read);
+                for c in cases {
+                    for v in &c.values {
+                        self.expr(v, Access::Read);
+                    }
+                }
+            }
+            StmtKind::For {
+                var,
+                from,
+                to,
+                step,
+                ..
+            } => {
+                self.use_of(var, UseKind::Var, Access::Write);
+                self.expr(from, Access::Read);
+                self.expr(to, Access::Read);
+                if let Some(st) = step {
+                    self.expr(st, Access::Read);
+                }
+            }
+            StmtKind::WaitSec { time } => {
+                self.expr(time, Access::Read);
+            }
+            StmtKind::Confirm { handle } => {
+                self.expr(handle, Access::Read);
+            }
+            StmtKind::Return { value: Some(v) } => {
+                self.expr(v, Access::Read);
+            }
+            StmtKind::Motion(m) => {
+                if let Some(a) = &m.aux {
+                    self.expr(a, Access::Read);
+                }
+                self.expr(&m.target, Access::Read);
+                if let Some(ca) = &m.ca {
+                    self.expr(ca, Access::Read);
+                }
+                for (k, v) in &m.with {
+                    self.expr(k, Access::Write);
+                    self.expr(v, Access::Read);
+                }
+            }
+            StmtKind::Spline { with, .. } => {
+                for (k, v) in with {
+                    self.expr(k, Access::Write);
+                    self.expr(v, Access::Read);
+                }
+            }
+            StmtKind::TimeBlock(ast::TimeBlock::Part(e))
+            | StmtKind::TimeBlock(ast::TimeBlock::End(Some(e))) => {
+                self.expr(e, Access::Read);
+            }
+            StmtKind::Skip { arg: Some(a), .. } => {
+                self.expr(a, Access::Read);
+            }
+            StmtKind::Interrupt {
+                number: Some(n), ..
+            } => {
+                self.expr(n, Access::Read);
+            }
+            StmtKind::InterruptDecl {
+                number, condition, ..
+            } => {
+                self.expr(number, Access::Read);
+                self.expr(condition, Access::Read);
+            }
+            StmtKind::Trigger {
+                position,
+                delay,
+                prio,
+                ..
+            } => {
+                self.expr(position, Access::Read);
+                self.expr(delay, Access::Read);
+                if let Some(p) = prio {
+                    self.expr(p, Access::Read);
+                }
+            }
+            StmtKind::Pulse {
+                signal,
+                level,
+                duration,
+            } => {
+                self.expr(signal, Access::Write);
+                self.expr(level, Access::Read);
+                self.expr(duration, Access::Read);
+            }
+            StmtKind::AnIn(a) | StmtKind::AnOut(a) => {
+                self.expr(&a.target, Access::Write);
+                if let Some(v) = &a.value {
+                    self.expr(v, Access::Read);
+                }
+                for (_, v) in &a.options {
+                    self.expr(v, Access::Read);
+                }
+            }
+            StmtKind::Decl(d) => self.decl(d, self.owner == NONE),
+            StmtKind::Definition(d) => self.definition(d),
+            StmtKind::Error { text } | StmtKind::Other { text } => {
+                self.out.has_errors |= matches!(s.kind, StmtKind::Error { .. });
+                self.mentions(text, s.span);
+            }
+            _ => {}
+        }
+        self.release(mark, facts);
+        if s.has_body() {
+            s.for_each_body(|b| self.block(b));
+        }
+    }
+
+    /// REPEAT: the body, then the UNTIL condition.
+    fn block_then(&mut self, s: &'a Stmt, until: Option<&'a Expr>) {
+        s.for_each_body(|b| self.block(b));
+        if let Some(u) = until {
+            self.expr(u, Access::Read);
+        }
+    }
+
+    /// Words of a line that did not parse: each may name a variable.
+    fn mentions(&mut self, text: &'a str, span: Span) {
+        let bytes = text.as_bytes();
+        let mut i = 0;
+        while i < bytes.len() {
+            let c = bytes[i];
+            if c == b';' {
+                break;
+            }
+            if c.is_ascii_alphabetic() || c == b'_' || c == b'$' {
+                let start = i;
+                while i < bytes.len()
+                    && (bytes[i].is_ascii_alphanumeric() || bytes[i] == b'_' || bytes[i] == b'$')
+                {
+                    i += 1;
+                }
+                self.mention(&text[start..i], span);
+            } else {
+                i += 1;
+            }
+        }
+    }
+
+    fn mention(&mut self, word: &'a str, span: Span) {
+        let name = self.name(word);
+        self.out.uses.push(Use {
+            name,
+            span,
+            owner: self.owner,
+            kind: UseKind::Var,
+            access: Access::Mention,
+        });
+    }
+
+    fn call(&mut self, name: &'a Ident, args: &'a [Option<Expr>]) -> u32 {
+        let use_ix = self.use_of(name, UseKind::Call, Access::Name);
+        if name.is("VARSTATE")
+            && let Some(Some(Expr {
+                kind: ExprKind::Str(s),
+                span,
+            })) = args.first()
+        {
+            self.mention(s.trim(), *span);
+        }
+        let empty_parens = args.iter().all(Option::is_none) && args.len() <= 1;
+        let facts: Vec<ArgFact> = args
+            .iter()
+            .map(|a| match a {
+                None => ArgFact {
+                    span: name.span,
+                    term: NONE,
+                    form: ArgForm::Omitted,
+                },
+                Some(e) => {
+                    let place = is_place(e);
+                    let term = self.expr(e, if place { Access::Arg } else { Access::Read });
+                    let form = match (&self.out.terms[term as usize], place) {
+                        (Term::Var { use_ix, .. }, true) => ArgForm::Place(*use_ix),
+                        _ if is_literal(e) => ArgForm::Literal,
+                        _ => ArgForm::Expression,
+                    };
+                    ArgFact {
+                        span: e.span,
+                        term,
+                        form,
+                    }
+                }
+            })
+            .collect();
+        let start = self.out.args.len() as u32;
+        let n = facts.len() as u32;
+        self.out.args.extend(facts);
+        self.out.calls.push(CallFact {
+            use_ix,
+            args: (start, n),
+            empty_parens,
+        });
+        use_ix
+    }
+
+    /// The type term of `e`, recording every name it uses.
+    fn expr(&mut self, e: &'a Expr, access: Access) -> u32 {
+        let t = match &e.kind {
+            ExprKind::Int(_) | ExprKind::Bits(_) | ExprKind::Hex(_) => Term::Int,
+            ExprKind::Real(_) => Term::Real,
+            ExprKind::Bool(_) => Term::Bool,
+            ExprKind::Char(_) => Term::Char,
+            ExprKind::Str(s) => Term::Str(s.len().min(u32::MAX as usize) as u32),
+            ExprKind::Enum(v) => Term::EnumLit(self.name(v)),
+            ExprKind::Invalid(_) => Term::Unknown,
+            ExprKind::Name(id) => {
+                let use_ix = self.use_of(id, UseKind::Var, access);
+                Term::Var {
+                    use_ix,
+                    proj: [Proj::Index(0); 3],
+                    len: 0,
+                }
+            }
+            ExprKind::Index { base, indices } => {
+                for i in indices.iter().flatten() {
+                    self.expr(i, Access::Read);
+                }
+                let b = self.expr(base, access);
+                // `a[1,]` is a row: an empty index keeps its dimension.
+                let given = indices.iter().filter(|i| i.is_some()).count();
+                self.project(b, Proj::Index(given.min(255) as u8))
+            }
+            ExprKind::Member { base, field } => {
+                let b = self.expr(base, access);
+                let f = self.name(&field.text);
+                self.project(b, Proj::Field(f))
+            }
+            ExprKind::Call { name, args } => Term::Call(self.call(name, args)),
+            ExprKind::Unary { op, operand } => {
+                let o = self.expr(operand, Access::Read);
+                match op {
+                    UnaryOp::Not => Term::Bool,
+                    UnaryOp::BNot => Term::Int,
+                    UnaryOp::Neg | UnaryOp::Pos => self.out.terms[o as usize],
+                }
+            }
+            ExprKind::Binary { op, lhs, rhs } => {
+                let l = self.expr(lhs, Access::Read);
+                let r = self.expr(rhs, Access::Read);
+                match op {
+                    BinaryOp::Eq
+                    | BinaryOp::Ne
+                    | BinaryOp::Lt
+                    | BinaryOp::Gt
+                    | BinaryOp::Le
+                    | BinaryOp::Ge
+                    | BinaryOp::And
+                    | BinaryOp::Or
+                    | BinaryOp::Exor => Term::Bool,
+                    BinaryOp::BAnd | BinaryOp::BOr | BinaryOp::BExor => Term::Int,
+                    BinaryOp::Add | BinaryOp::Sub | BinaryOp::Mul | BinaryOp::Div => {
+                        Term::Arith(l, r)
+                    }
+                    BinaryOp::Geo => Term::Geo(l, r),
+                }
+            }
+            ExprKind::Aggregate { type_name, fields } => {
+                for (_, v) in fields {
+                    self.expr(v, Access::Read);
+                }
+                match type_name {
+                    Some(t) => Term::TypedAggregate(self.use_of(t, UseKind::Type, Access::Name)),
+                    None => Term::Aggregate,
+                }
+            }
+        };
+        self.term(t)
+    }
+
+    fn project(&mut self, base: u32, p: Proj) -> Term {
+        match self.out.terms[base as usize] {
+            Term::Var {
+                use_ix,
+                mut proj,
+                len,
+            } if (len as usize) < proj.len() => {
+                proj[len as usize] = p;
+                Term::Var {
+                    use_ix,
+                    proj,
+                    len: len + 1,
+                }
+            }
+            _ => Term::Unknown,
+        }
+    }
+}
+
+fn is_place(e: &Expr) -> bool {
+    match &e.kind {
+        ExprKind::Name(_) => true,
+        ExprKind::Index { base, .. } | ExprKind::Member { base, .. } => is_place(base),
+        _ => false,
+    }
+}
+
+fn is_literal(e: &Expr) -> bool {
+    match &e.kind {
+        ExprKind::Int(_)
+        | ExprKind::Real(_)
+        | ExprKind::Bool(_)
+        | ExprKind::Char(_)
+        | ExprKind::Str(_)
+        | ExprKind::Bits(_)
+        | ExprKind::Hex(_)
+        | ExprKind::Enum(_)
+        | ExprKind::Aggregate { .. } => true,
+        ExprKind::Unary {
+            op: UnaryOp::Neg | UnaryOp::Pos,
+            operand,
+        } => is_literal(operand),
+        _ => false,
+    }
+}
+
+/// The value of a literal initialiser (`5`, `-2.5`, `TRUE`, `"text"`, `#ENUM`).
+pub(crate) fn const_value(e: &Expr) -> Option<ConstValue> {
+    Some(match &e.kind {
+        ExprKind::Int(i) => ConstValue::Int(*i),
+        ExprKind::Bits(b) | ExprKind::Hex(b) => ConstValue::Int(i64::try_from(*b).ok()?),
+        ExprKind::Real(r) => ConstValue::Real(*r),
+        ExprKind::Bool(b) => ConstValue::Bool(*b),
+        ExprKind::Char(c) => ConstValue::Char(*c),
+        ExprKind::Str(s) => ConstValue::Str(s.as_str().into()),
+        ExprKind::Enum(v) => ConstValue::Enum(v.to_ascii_uppercase().into()),
+        ExprKind::Unary {
+            op: UnaryOp::Neg,
+            operand,
+        } => match const_value(operand)? {
+            ConstValue::Int(i) => ConstValue::Int(i.checked_neg()?),
+            ConstValue::Real(r) => ConstValue::Real(-r),
+            _ => return None,
+        },
+        ExprKind::Unary {
+            op: UnaryOp::Pos,
+            operand,
+        } => const_value(operand)?,
+        _ => return None,
+    })
+}
+
+/// How a statement list can end: falling off its end, or leaving the innermost loop (EXIT).
+#[derive(Clone, Copy)]
+struct Ends {
+    falls: bool,
+    exits: bool,
+}
+
+/// Whether a DEFFCT body can reach ENDFCT without RETURN. GOTO and lines that did not parse
+/// make the answer unknown: then `false` (never reported).
+fn falls_off_end(body: &[Stmt]) -> bool {
+    let mut unknown = false;
+    ast::each_stmt(body, &mut |s| {
+        unknown |= matches!(
+            s.kind,
+            StmtKind::Goto { .. } | StmtKind::Label { .. } | StmtKind::Error { .. }
+        );
+    });
+    !unknown && ends(body).falls
+}
+
+fn ends(stmts: &[Stmt]) -> Ends {
+    let mut exits = false;
+    for s in stmts {
+        let e = stmt_ends(s);
+        exits |= e.exits;
+        if !e.falls {
+            return Ends {
+                falls: false,
+                exits,
+            };
+        }
+    }
+    Ends { falls: true, exits }
+}
+
+fn literal_bool(e: &Expr) -> Option<bool> {
+    match e.kind {
+        ExprKind::Bool(b) => Some(b),
+        _ => None,
+    }
+}
+
+fn stmt_ends(s: &Stmt) -> Ends {
+    let falls = |falls| Ends {
+        falls,
+        exits: false,
+    };
+    match &s.kind {
+        StmtKind::Return { .. } => falls(false),
+        StmtKind::Exit => Ends {
+            falls: false,
+            exits: true,
+        },
+        StmtKind::If {
+            then_body,
+            else_body,
+            ..
+        } => {
+            let (t, e) = (ends(then_body), ends(else_body));
+            Ends {
+                falls: t.falls || e.falls,
+                exits: t.exits || e.exits,
+            }
+        }
+        StmtKind::Switch { cases, default, .. } => {
+            let mut out = Ends {
+                falls: default.is_none(),
+                exits: false,
+            };
+            for b in cases
+                .iter()
+                .map(|c| c.body.as_slice())
+                .chain(default.as_deref())
+            {
+                let e = ends(b);
+                out.falls |= e.falls;
+                out.exits |= e.exits;
+            }
+            out
+        }
+        StmtKind::Loop { body } => falls(ends(body).exits),
+        StmtKind::While { cond, body } => {
+            falls(literal_bool(cond) != Some(true) || ends(body).exits)
+        }
+        StmtKind::Repeat { body, until } => {
+            let b = ends(body);
+            let endless = until.as_ref().and_then(literal_bool) == Some(false);
+            falls(b.exits || (b.falls && !endless))
+        }
+        StmtKind::Skip { body, .. } | StmtKind::Spline { body, .. } => Ends {
+            falls: true,
+            exits: ends(body).exits,
+        },
+        _ => falls(true),
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn summary(text: &str) -> FileSummary {
+        FileSummary::of(&crate::syntax::parse(text).ast(text))
+    }
+
+    fn missing(text: &str) -> Vec<bool> {
+        summary(text)
+            .routines
+            .iter()
+            .map(|r| r.missing_return)
+            .collect()
+    }
+
+    #[test]
+    fn deffct_paths_without_return() {
+        let text = "DEFFCT INT a(x:IN)\nDECL INT x\nIF x > 0 THEN\nRETURN 1\nENDIF\nENDFCT\n\
+                    DEFFCT INT b(x:IN)\nDECL INT x\nIF x > 0 THEN\nRETURN 1\nELSE\nRETURN 2\nENDIF\nENDFCT\n\
+                    DEFFCT INT c()\nLOOP\nRETURN 1\nENDLOOP\nENDFCT\n\
+                    DEFFCT INT d()\nLOOP\nEXIT\nENDLOOP\nENDFCT\n\
+                    DEFFCT INT e()\nSWITCH 1\nCASE 1\nRETURN 1\nDEFAULT\nRETURN 2\nENDSWITCH\nENDFCT\n\
+                    DEFFCT INT f()\nGOTO l\nl:\nENDFCT\n\
+                    DEFFCT INT g()\nWHILE TRUE\nRETURN 1\nENDWHILE\nENDFCT\n";
+        assert_eq!(
+            missing(text),
+            [true, false, false, true, false, false, false]
+        );
+    }
+
+    #[test]
+    fn names_are_per_file_and_case_insensitive() {
+        let s = summary("DEF a()\nDECL INT Count\ncount = COUNT + 1\nEND\n");
+        let counts = s.uses.iter().filter(|u| u.kind == UseKind::Var).count();
+        assert_eq!(counts, 2);
+        assert!(
+            s.uses
+                .iter()
+                .filter(|u| u.kind == UseKind::Var)
+                .all(|u| u.name == s.decls[0].name)
+        );
+        assert_eq!(s.assigns.len(), 1);
+    }
+}

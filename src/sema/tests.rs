@@ -1,0 +1,251 @@
+use super::*;
+use crate::syntax::ast::{ParamDir, StmtKind};
+
+fn analysis(files: &[(&str, &str)]) -> Analysis {
+    Analysis::new(
+        files
+            .iter()
+            .map(|(p, t)| (p.to_string(), t.to_string()))
+            .collect(),
+    )
+}
+
+/// What the name at the first occurrence of `needle` (plus `skip` bytes) in `path` resolves to.
+fn at(a: &Analysis, path: &str, needle: &str) -> Resolved {
+    let f = a.sema.file_id(path).expect("file");
+    let off = a.file(f).text.find(needle).expect("needle") as u32;
+    a.sema
+        .resolve(f, off)
+        .map(|(_, r)| r)
+        .expect("something there")
+}
+
+fn decl_file(a: &Analysis, r: Resolved) -> String {
+    let loc = a.sema.declaration(r).expect("declared");
+    a.sema.file(loc.file).path.clone()
+}
+
+const CONFIG: &str = "DEFDAT $CONFIG\nDECL INT cfg_count = 3\nDECL GLOBAL REAL speed\nSTRUC job_t INT id, n CHAR name[24], REAL t\nENDDAT\n";
+
+#[test]
+fn scopes_in_krl_order() {
+    let a = analysis(&[
+        ("R1/System/$config.dat", CONFIG),
+        (
+            "R1/Program/cell.src",
+            "DEF cell()\nDECL INT local\nlocal = cfg_count + counter\nhelper(local)\npick()\nEND\nDEF helper(x:IN)\nDECL INT x\nx = speed\nEND\n",
+        ),
+        (
+            "R1/Program/cell.dat",
+            "DEFDAT cell\nDECL INT counter = 1\nENDDAT\n",
+        ),
+        (
+            "R1/Program/pick.src",
+            "DEF pick()\nDECL INT counter\ncounter = 2\nEND\n",
+        ),
+    ]);
+    let s = &a.sema;
+    let Resolved::Symbol(local) = at(&a, "R1/Program/cell.src", "local =") else {
+        panic!()
+    };
+    assert!(matches!(s.symbol(local).scope, Scope::Routine(_)));
+    // A non-GLOBAL declaration of $config.dat is visible everywhere.
+    let cfg = at(&a, "R1/Program/cell.src", "cfg_count +");
+    assert_eq!(decl_file(&a, cfg), "R1/System/$config.dat");
+    // The module's .dat (same folder, same stem).
+    let counter = at(&a, "R1/Program/cell.src", "counter\n");
+    assert_eq!(decl_file(&a, counter), "R1/Program/cell.dat");
+    // pick's own local shadows nothing else.
+    let own = at(&a, "R1/Program/pick.src", "counter =");
+    assert_eq!(decl_file(&a, own), "R1/Program/pick.src");
+    // Calls: a local subroutine and another module's main routine.
+    let Resolved::Routine(h) = at(&a, "R1/Program/cell.src", "helper(") else {
+        panic!()
+    };
+    assert_eq!(s.name(s.routine(h).name), "helper");
+    assert!(matches!(
+        at(&a, "R1/Program/cell.src", "pick()"),
+        Resolved::Routine(_)
+    ));
+    let sig = s.signature(h);
+    assert_eq!(sig.params.len(), 1);
+    assert_eq!(sig.params[0].dir, Some(ParamDir::In));
+    assert_eq!(sig.params[0].ty, Ty::INT);
+    assert_eq!(s.callers(h).len(), 1);
+    let speed = at(&a, "R1/Program/cell.src", "speed");
+    assert_eq!(s.ty_of_resolved(speed), Ty::REAL);
+    let Resolved::Symbol(c) = cfg else { panic!() };
+    assert_eq!(s.symbol(c).value, Some(ConstValue::Int(3)));
+    assert_eq!(s.references(c).len(), 1);
+    assert!(s.robots().all(|(_, r)| r.is_complete()));
+}
+
+#[test]
+fn a_dat_pairs_only_with_the_src_of_its_folder() {
+    let a = analysis(&[
+        ("a/prog.src", "DEF prog()\nx = 1\nEND\n"),
+        ("b/prog.dat", "DEFDAT prog\nDECL INT x\nENDDAT\n"),
+    ]);
+    assert_eq!(at(&a, "a/prog.src", "x = 1"), Resolved::Unresolved);
+    let src = a.sema.file_id("a/prog.src").unwrap();
+    let dat = a.sema.file_id("b/prog.dat").unwrap();
+    assert_ne!(a.sema.file(src).module, a.sema.file(dat).module);
+}
+
+#[test]
+fn struc_fields_and_axis_has_no_e1() {
+    let a = analysis(&[
+        ("R1/System/$config.dat", CONFIG),
+        (
+            "t.src",
+            "DEF t()\nDECL AXIS ax\nDECL E6AXIS e6\nDECL job_t job\nDECL REAL r\nr = ax.E1\nr = e6.E1\nr = job.t\nEND\n",
+        ),
+    ]);
+    let f = a.sema.file_id("t.src").unwrap();
+    let body = &a.file(f).ast.routines[0].body;
+    let values: Vec<Ty> = body
+        .iter()
+        .filter_map(|s| match &s.kind {
+            StmtKind::Assign { value, .. } => Some(a.sema.type_of(f, value)),
+            _ => None,
+        })
+        .collect();
+    assert_eq!(values, [Ty::UNKNOWN, Ty::REAL, Ty::REAL]);
+    let Resolved::Type(job) = a.sema.lookup_type(a.sema.position(f, 0), "JOB_T") else {
+        panic!()
+    };
+    let names: Vec<&str> = a
+        .sema
+        .fields(job)
+        .iter()
+        .map(|x| a.sema.name(x.name))
+        .collect();
+    assert_eq!(names, ["id", "n", "name", "t"]);
+    assert_eq!(a.sema.field(job, "n").unwrap().ty, Ty::INT);
+    assert_eq!(
+        a.sema.field(job, "name").unwrap().ty,
+        Ty::array(TyKind::Char, 1)
+    );
+}
+
+#[test]
+fn several_backups_are_several_robots() {
+    let a = analysis(&[
+        (
+            "one/KRC/R1/System/$config.dat",
+            "DEFDAT $CONFIG\nDECL INT x\nENDDAT\n",
+        ),
+        ("one/KRC/R1/Program/p.src", "DEF p()\nx = 1\ny = 1\nEND\n"),
+        (
+            "two/KRC/R1/System/$config.dat",
+            "DEFDAT $CONFIG\nDECL INT y\nENDDAT\n",
+        ),
+        ("two/KRC/R1/Program/p.src", "DEF p()\ny = 1\nEND\n"),
+    ]);
+    assert_eq!(a.sema.robots().count(), 2);
+    assert!(matches!(
+        at(&a, "one/KRC/R1/Program/p.src", "x ="),
+        Resolved::Symbol(_)
+    ));
+    assert_eq!(
+        at(&a, "one/KRC/R1/Program/p.src", "y ="),
+        Resolved::Unresolved
+    );
+    assert!(matches!(
+        at(&a, "two/KRC/R1/Program/p.src", "y ="),
+        Resolved::Symbol(_)
+    ));
+    assert!(a.sema.duplicates().is_empty(), "{:?}", a.sema.duplicates());
+}
+
+#[test]
+fn duplicates_in_one_scope_and_across_globals() {
+    let a = analysis(&[
+        ("$config.dat", "DEFDAT $CONFIG\nDECL INT shared\nENDDAT\n"),
+        (
+            "a.dat",
+            "DEFDAT a PUBLIC\nDECL GLOBAL INT shared\nDECL INT twice\nDECL INT twice\nENDDAT\n",
+        ),
+        (
+            "a.src",
+            "DEF a()\nDECL INT i\nDECL REAL i\nEND\nGLOBAL DEF g()\nEND\n",
+        ),
+        ("b.src", "DEF b()\nEND\nGLOBAL DEF g()\nEND\n"),
+    ]);
+    let d: Vec<(String, &str)> = a
+        .sema
+        .duplicates()
+        .iter()
+        .map(|d| {
+            (
+                a.sema.name(d.name).to_owned(),
+                a.sema.file(d.second.file).path.as_str(),
+            )
+        })
+        .collect();
+    assert_eq!(
+        d,
+        [
+            ("shared".to_owned(), "a.dat"),
+            ("twice".to_owned(), "a.dat"),
+            ("i".to_owned(), "a.src"),
+            ("g".to_owned(), "b.src"),
+        ]
+    );
+}
+
+#[test]
+fn environment_types_and_builtins() {
+    let a = analysis(&[(
+        "t.src",
+        "DEF t()\nDECL INT n\nDECL E6POS p\nn = StrLen(\"abc\")\np = $POS_ACT\n$OUT[3] = TRUE\nEND\n",
+    )]);
+    assert!(matches!(at(&a, "t.src", "StrLen"), Resolved::Builtin(_)));
+    let pos = at(&a, "t.src", "$POS_ACT");
+    assert_eq!(a.sema.ty_name(a.sema.ty_of_resolved(pos)), "E6POS");
+    let out = at(&a, "t.src", "$OUT");
+    assert_eq!(a.sema.ty_name(a.sema.ty_of_resolved(out)), "BOOL[]");
+    // Without $config.dat the robot is incomplete.
+    assert!(a.sema.robots().all(|(_, r)| !r.is_complete()));
+}
+
+#[test]
+fn calls_and_assignments_as_facts() {
+    let a = analysis(&[(
+        "t.src",
+        "DEF t()\nDECL INT n\nDECL E6POS p\nf(1, n, , p.x)\nn = p\nEND\nDEF f(a:IN, b:OUT, c:IN, d:IN)\nDECL INT a, b, c\nDECL REAL d\nEND\n",
+    )]);
+    let f = a.sema.file_id("t.src").unwrap();
+    let calls: Vec<CallInfo> = a.sema.calls(f).collect();
+    assert_eq!(calls.len(), 1);
+    let args: Vec<ArgInfo> = calls[0].args().collect();
+    assert_eq!(args.len(), 4);
+    assert_eq!(args[0].form, ArgForm::Literal);
+    assert!(matches!(args[1].form, ArgForm::Place(_)));
+    assert_eq!(args[2].form, ArgForm::Omitted);
+    assert_eq!(args[3].ty, Ty::REAL);
+    let assigns: Vec<AssignInfo> = a.sema.assignments(f).collect();
+    assert_eq!(assigns.len(), 1);
+    assert_eq!(assigns[0].target, Ty::INT);
+    assert_eq!(a.sema.ty_name(assigns[0].value), "E6POS");
+    assert_eq!(
+        assignable(assigns[0].target, assigns[0].value, &a.sema),
+        Some(false)
+    );
+}
+
+#[test]
+fn completion_lists_locals_first() {
+    let a = analysis(&[("t.src", "DEF t()\nDECL INT zeta\nzeta = 1\nEND\n")]);
+    let f = a.sema.file_id("t.src").unwrap();
+    let off = a.file(f).text.find("zeta = 1").unwrap() as u32;
+    let names: Vec<&str> = a
+        .sema
+        .visible(f, off)
+        .iter()
+        .map(|(n, _)| a.sema.name(*n))
+        .collect();
+    assert_eq!(names[0], "zeta");
+    assert!(names.contains(&"$OUT"));
+    assert!(names.contains(&"SIN"));
+}
