@@ -12,7 +12,7 @@ use std::collections::HashSet;
 use std::io::{self, Read};
 use std::path::{Path, PathBuf};
 
-use crate::syntax::{Decoded, decode};
+use crate::syntax::{Decoded, decode_owned};
 
 /// A path that could not be walked or read. Carries the path so the user sees which one.
 #[derive(Debug, thiserror::Error)]
@@ -286,7 +286,7 @@ pub fn load(candidate: &Candidate) -> Result<Option<Decoded>, FileError> {
         path: candidate.path.clone(),
         source,
     })?;
-    let decoded = decode(&bytes);
+    let decoded = decode_owned(bytes);
     if candidate.origin == Origin::Walked && !looks_like_krl(&decoded.text) {
         return Ok(None);
     }

@@ -92,9 +92,9 @@ fn check(candidate: &Candidate, format: ParseFormat) -> Result<Option<Checked>, 
     let Some(decoded) = files::load(candidate)? else {
         return Ok(None);
     };
-    let parse = syntax::parse(&decoded.text);
+    let diagnostics = syntax::diagnostics(&decoded.text);
     let path = candidate.path.display().to_string();
-    if parse.diagnostics.is_empty() {
+    if diagnostics.is_empty() {
         return Ok(Some(Checked {
             report: FileReport {
                 path,
@@ -107,7 +107,7 @@ fn check(candidate: &Candidate, format: ParseFormat) -> Result<Option<Checked>, 
     let report = FileReport {
         path,
         text: decoded.text,
-        diagnostics: parse.diagnostics,
+        diagnostics,
     };
     let mut human = String::new();
     let report = match format {
@@ -142,8 +142,11 @@ fn tree(args: &ParseArgs) -> anyhow::Result<Outcome> {
         }
     };
     let parse = syntax::parse(&decoded.text);
-    let mut stdout = std::io::stdout().lock();
-    writeln!(stdout, "{}", parse.to_json_tree(&decoded.text))?;
+    let mut stdout = std::io::BufWriter::new(std::io::stdout().lock());
+    parse.write_json_tree(&decoded.text, &mut stdout)?;
+    writeln!(stdout)?;
+    stdout.flush()?;
+    drop(stdout);
     if parse.diagnostics.is_empty() {
         return Ok(Outcome::Success);
     }

@@ -182,10 +182,11 @@ fn render_reports(reports: &[FileReport], format: CheckFormat) -> String {
 }
 
 fn read_source(path: &Path) -> anyhow::Result<Source> {
-    let bytes = std::fs::read(path).with_context(|| format!("cannot read {}", path.display()))?;
+    let bytes = crate::files::read_regular(path)
+        .with_context(|| format!("cannot read {}", path.display()))?;
     Ok(Source {
         path: path.display().to_string(),
-        text: crate::syntax::decode(&bytes).text,
+        text: crate::syntax::decode_owned(bytes).text,
     })
 }
 

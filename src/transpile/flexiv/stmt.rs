@@ -143,7 +143,7 @@ impl<'p> Tx<'p> {
                 to,
                 step,
                 body,
-            } => self.for_loop(var, from, to, step.as_ref(), body, s.span),
+            } => self.for_loop(var, from, to, step.as_deref(), body, s.span),
             StmtKind::While { cond, body } => {
                 let c = self.expr(cond)?;
                 self.settle();

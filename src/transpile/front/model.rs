@@ -127,7 +127,7 @@ impl<'p> Model<'p> {
                 .iter()
                 .map(|p| {
                     (
-                        p.name.text.clone(),
+                        p.name.text.to_string(),
                         dir(p.dir.unwrap_or(ast::ParamDir::In)),
                         p.array,
                     )
