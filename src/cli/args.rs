@@ -56,7 +56,7 @@ pub struct FmtArgs {
     /// Write nothing; print a unified diff of what would change (exit 1 if anything would).
     #[arg(long)]
     pub diff: bool,
-    /// Config file with a [fmt] table (default: ./krlkit.toml if present).
+    /// Config file with a [fmt] table (default: ./.krlkit.toml or ./krlkit.toml if present).
     #[arg(long)]
     pub config: Option<PathBuf>,
     /// The name to report for `-` (stdin).
@@ -119,6 +119,10 @@ pub struct CheckArgs {
     /// Config file with a [lint] section (default: ./krlkit.toml if present).
     #[arg(long)]
     pub config: Option<PathBuf>,
+    /// Apply the fixes rules declare safe, in place (atomically, encoding and line endings
+    /// kept; a fix that would add a syntax error is skipped), then report what is left.
+    #[arg(long)]
+    pub fix: bool,
 }
 
 #[derive(Debug, Clone, Copy, PartialEq, Eq, ValueEnum)]

@@ -55,7 +55,25 @@ pub fn run(args: CheckArgs) -> anyhow::Result<Outcome> {
         }
     }
 
-    let reports = lint::lint(inputs, channels, channels_given, &config);
+    let mut reports = lint::lint(inputs, channels.clone(), channels_given, &config);
+    if args.fix {
+        let fixed = super::fix::apply(&reports);
+        failed |= fixed.failed;
+        if fixed.applied > 0 {
+            reports = lint::lint(fixed.inputs, channels, channels_given, &config);
+        }
+        eprintln!(
+            "fixed {} finding{} in {} file{}{}",
+            fixed.applied,
+            plural(fixed.applied),
+            fixed.files,
+            plural(fixed.files),
+            match fixed.skipped {
+                0 => String::new(),
+                n => format!(" ({n} fix{} skipped)", if n == 1 { "" } else { "es" }),
+            }
+        );
+    }
     let errors: usize = reports.iter().map(|r| r.count(Severity::Error)).sum();
     let warnings: usize = reports.iter().map(|r| r.count(Severity::Warning)).sum();
     let mut out = String::new();
@@ -98,7 +116,7 @@ fn plural(n: usize) -> &'static str {
     if n == 1 { "" } else { "s" }
 }
 
-/// `--config FILE`, else `./krlkit.toml` when present, else the defaults.
+/// `--config FILE`, else `./.krlkit.toml` or `./krlkit.toml` when present, else the defaults.
 fn load_config(path: Option<&Path>) -> Result<LintConfig, String> {
     match read_config(path)? {
         Some((path, text)) => LintConfig::from_toml(&path, &text).map_err(|e| e.to_string()),
@@ -106,14 +124,18 @@ fn load_config(path: Option<&Path>) -> Result<LintConfig, String> {
     }
 }
 
-/// The config file `check` and `fmt` read: `--config FILE`, else `./krlkit.toml` when present.
-/// Returns its path as shown to the user and its text.
+/// The config file `check` and `fmt` read: `--config FILE`, else the first of `./.krlkit.toml`
+/// and `./krlkit.toml` that exists (the names the language server looks for). Returns its path
+/// as shown to the user and its text.
 pub(super) fn read_config(path: Option<&Path>) -> Result<Option<(String, String)>, String> {
-    let default = PathBuf::from("krlkit.toml");
-    let path = match path {
-        Some(p) => p.to_path_buf(),
-        None if default.is_file() => default,
-        None => return Ok(None),
+    let default = crate::lsp::workspace::CONFIG_NAMES
+        .iter()
+        .map(PathBuf::from)
+        .find(|p| p.is_file());
+    let path = match (path, default) {
+        (Some(p), _) => p.to_path_buf(),
+        (None, Some(p)) => p,
+        (None, None) => return Ok(None),
     };
     let text = std::fs::read_to_string(&path)
         .map_err(|e| format!("cannot read config {}: {e}", path.display()))?;

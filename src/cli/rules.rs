@@ -43,8 +43,12 @@ pub fn explain(args: RuleArgs) -> anyhow::Result<Outcome> {
     let code = args.code.trim();
     match all().into_iter().find(|r| r.0.eq_ignore_ascii_case(code)) {
         Some((code, name, severity, summary, doc)) => {
+            let fix = match lint::fix_of(code) {
+                Some(what) => format!("yes: {what}; `krlkit check --fix` applies safe fixes"),
+                None => "none".to_owned(),
+            };
             println!(
-                "# {code} {name} ({})\n\n{summary}\n\n{doc}",
+                "# {code} {name} ({})\n\n{summary}\n\n{doc}\n\n## Automatic fix\n{fix}",
                 severity.as_str()
             );
             Ok(Outcome::Success)
