@@ -26,12 +26,21 @@ pub fn run(args: CheckArgs) -> anyhow::Result<Outcome> {
     };
     let (channels, channels_given) = match &args.eki_xml {
         Some(path) => (vec![read_channel(path)?], true),
-        None => (lint::eki_xml::scan(&args.paths), false),
+        None => (
+            lint::eki_xml::scan(&files::split_stdin(&args.paths).0),
+            false,
+        ),
     };
 
-    let walk = files::walk(&args.paths);
+    let (paths, stdin) = files::split_stdin(&args.paths);
+    let walk = files::walk(&paths);
     for s in &walk.skipped {
         eprintln!("warning: {s}");
+    }
+    if super::ui::verbose() {
+        for c in &walk.found {
+            eprintln!("checking {}", c.path.display());
+        }
     }
     let walk_errors = walk.errors;
     let loaded: Vec<_> = walk
@@ -44,6 +53,22 @@ pub fn run(args: CheckArgs) -> anyhow::Result<Outcome> {
         eprintln!("error: cannot read {e}");
     }
     let mut inputs = Vec::new();
+    if stdin {
+        let name = args
+            .stdin_filename
+            .clone()
+            .unwrap_or_else(|| "<stdin>".into());
+        match files::read_stdin() {
+            Ok(d) => inputs.push(Input {
+                path: name,
+                text: d.text,
+            }),
+            Err(e) => {
+                eprintln!("error: cannot read stdin: {e}");
+                failed = true;
+            }
+        }
+    }
     for result in loaded {
         match result {
             Ok(Some((path, text))) => inputs.push(Input { path, text }),
@@ -78,14 +103,19 @@ pub fn run(args: CheckArgs) -> anyhow::Result<Outcome> {
     let warnings: usize = reports.iter().map(|r| r.count(Severity::Warning)).sum();
     let mut out = String::new();
     match args.format {
-        CheckFormat::Human => each(&reports, &mut out, render::human::render),
+        CheckFormat::Human => {
+            let renderer = super::ui::renderer(true);
+            for r in &reports {
+                render::human::render_with(r, &mut out, &renderer);
+            }
+        }
         CheckFormat::Concise => each(&reports, &mut out, render::concise::render),
         CheckFormat::Github => each(&reports, &mut out, render::github::render),
         CheckFormat::Json => out = render::json::render(&reports) + "\n",
         CheckFormat::Sarif => out = render::sarif::render(&reports) + "\n",
     }
     std::io::stdout().lock().write_all(out.as_bytes())?;
-    if args.format == CheckFormat::Human {
+    if args.format == CheckFormat::Human && !super::ui::quiet() {
         let files = reports.len();
         if files == 0 && !failed {
             eprintln!("warning: no KRL files found");
