@@ -312,7 +312,7 @@ impl<'p> Model<'p> {
         for f in std::iter::once(&self.program.src).chain(&self.program.dat) {
             for d in f.ast.dat.iter().flat_map(|d| d.definitions.iter()) {
                 if let Definition::Enum(e) = d {
-                    out.push((e.name.text.clone(), None));
+                    out.push((e.name.text.to_string(), None));
                 }
             }
             for r in &f.ast.routines {
@@ -325,7 +325,7 @@ impl<'p> Model<'p> {
                     }));
                 for d in own {
                     if let Definition::Enum(e) = d {
-                        out.push((e.name.text.clone(), Some(r.name.text.clone())));
+                        out.push((e.name.text.to_string(), Some(r.name.text.to_string())));
                     }
                 }
             }

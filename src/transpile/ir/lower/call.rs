@@ -41,7 +41,7 @@ impl<'p> Lower<'p> {
                     let text = self.expr(text, ops)?;
                     ops.push(Stmt {
                         op: Op::Message {
-                            routine: name.text.clone(),
+                            routine: name.text.to_string(),
                             text,
                         },
                         span,
@@ -50,19 +50,19 @@ impl<'p> Lower<'p> {
                 }
                 "MSGDIALOG" | "MSGLOOP" => {
                     self.kind("message");
-                    return fail(Why::Dialog(name.text.clone()), span);
+                    return fail(Why::Dialog(name.text.to_string()), span);
                 }
                 _ => {}
             }
             if let Some(family) = KukaOnly::of(&key) {
-                return fail(Why::KukaRoutine(name.text.clone(), family), span);
+                return fail(Why::KukaRoutine(name.text.to_string(), family), span);
             }
         }
         let args = self.call_args(routine, name, args, span, ops)?;
         let callee = match routine {
             Some(r) => Callee::Routine(r),
             None => Callee::External {
-                name: name.text.clone(),
+                name: name.text.to_string(),
                 span: name.span,
                 function: false,
             },
@@ -88,7 +88,7 @@ impl<'p> Lower<'p> {
     ) -> L<()> {
         let cat = catalog();
         let Some(sub) = cat.subprogram(&name.text) else {
-            return fail(Why::NotMm(name.text.clone()), name.span);
+            return fail(Why::NotMm(name.text.to_string()), name.span);
         };
         if args.len() != sub.params.len()
             && !(sub.params.is_empty() && args.iter().all(Option::is_none))
@@ -225,7 +225,7 @@ impl<'p> Lower<'p> {
                     Ok(match self.out.routine_named(&name.text) {
                         Some(r) => Callee::Routine(r),
                         None => Callee::External {
-                            name: name.text.clone(),
+                            name: name.text.to_string(),
                             span: name.span,
                             function: false,
                         },

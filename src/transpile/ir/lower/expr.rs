@@ -431,7 +431,7 @@ impl<'p> Lower<'p> {
                             Layout::Axis
                         };
                         let Some(c) = self.model.component(layout, &field.text) else {
-                            return fail(Why::Component(field.text.clone()), field.span);
+                            return fail(Why::Component(field.text.to_string()), field.span);
                         };
                         let cty = match c {
                             Component::Status | Component::Turn => Ty::Int,
@@ -439,7 +439,7 @@ impl<'p> Lower<'p> {
                         };
                         Ok((Place::Component(Box::new(b), c), cty))
                     }
-                    _ => Ok((Place::Member(Box::new(b), field.text.clone()), Ty::Real)),
+                    _ => Ok((Place::Member(Box::new(b), field.text.to_string()), Ty::Real)),
                 }
             }
             _ => fail(Why::AssignTarget, span),
@@ -456,7 +456,7 @@ impl<'p> Lower<'p> {
             Layout::Pose
         };
         let Some(c) = self.model.component(layout, &field.text) else {
-            return fail(Why::Component(field.text.clone()), field.span);
+            return fail(Why::Component(field.text.to_string()), field.span);
         };
         Ok(Expr::new(
             ExprKind::Place(Place::Component(Box::new(p), c)),
@@ -554,7 +554,7 @@ impl<'p> Lower<'p> {
         }
         if let Some(r) = self.out.routine_named(&name.text) {
             if self.out.routine(r).kind != RoutineKind::Deffct {
-                return fail(Why::NotAFunction(name.text.clone()), span);
+                return fail(Why::NotAFunction(name.text.to_string()), span);
             }
             let args = self.call_args(Some(r), name, args, span, pre)?;
             let ty = self.out.routine(r).ret.clone().unwrap_or(Ty::Real);
@@ -570,7 +570,7 @@ impl<'p> Lower<'p> {
             return Ok(Expr::new(ExprKind::Place(Place::Temp(t)), ty, span));
         }
         if let Some(family) = KukaOnly::of(&key) {
-            return fail(Why::KukaRoutine(name.text.clone(), family), span);
+            return fail(Why::KukaRoutine(name.text.to_string(), family), span);
         }
         // A function of another module.
         let args = self.call_args(None, name, args, span, pre)?;
@@ -578,7 +578,7 @@ impl<'p> Lower<'p> {
         pre.push(Stmt {
             op: Op::Call {
                 callee: Callee::External {
-                    name: name.text.clone(),
+                    name: name.text.to_string(),
                     span: name.span,
                     function: true,
                 },
@@ -607,7 +607,7 @@ impl<'p> Lower<'p> {
             if p.len() != args.len() && header_ok {
                 return fail(
                     Why::Arity {
-                        name: name.text.clone(),
+                        name: name.text.to_string(),
                         takes: p.len(),
                         given: args.len(),
                     },

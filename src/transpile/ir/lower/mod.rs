@@ -238,7 +238,7 @@ impl<'p> Lower<'p> {
             "declare it (e.g. in the .dat), or check its value and type in the translation",
         );
         let info = VarInfo {
-            name: id.text.clone(),
+            name: id.text.to_string(),
             ty,
             dims: 0,
             kind: VarKind::Global,
@@ -279,7 +279,7 @@ impl<'p> Lower<'p> {
         }
         let l = LabelId(rt.label_names.len() as u32);
         rt.labels.insert(name.key(), l);
-        rt.label_names.push((name.text.clone(), name.span));
+        rt.label_names.push((name.text.to_string(), name.span));
         l
     }
 
@@ -324,7 +324,7 @@ impl<'p> Lower<'p> {
             })
             .collect();
         self.out.routines.push(Routine {
-            name: r.name.text.clone(),
+            name: r.name.text.to_string(),
             name_span: r.name.span,
             kind,
             ret: sig.and_then(|s| s.ret),
@@ -488,7 +488,7 @@ impl<'p> Lower<'p> {
                         expr_calls(value, &mut callees);
                     }
                     StmtKind::Call { name, args } => {
-                        callees.push(name.text.clone());
+                        callees.push(name.text.to_string());
                         for a in args.iter().flatten() {
                             if let Some(id) = walk::root_name(a) {
                                 set.insert(id.key());
@@ -538,7 +538,7 @@ impl<'p> Lower<'p> {
                 let mut callees = Vec::new();
                 walk::each_stmt(&r.body, &mut |s| match &s.kind {
                     StmtKind::Motion(_) | StmtKind::Spline { .. } => moves = true,
-                    StmtKind::Call { name, .. } => callees.push(name.text.clone()),
+                    StmtKind::Call { name, .. } => callees.push(name.text.to_string()),
                     StmtKind::Assign { value, .. } => expr_calls(value, &mut callees),
                     _ => {}
                 });
@@ -697,7 +697,7 @@ const KNOWN_STILL: [&str; 8] = [
 fn expr_calls(e: &ast::Expr, out: &mut Vec<String>) {
     match &e.kind {
         ast::ExprKind::Call { name, args } => {
-            out.push(name.text.clone());
+            out.push(name.text.to_string());
             for a in args.iter().flatten() {
                 expr_calls(a, out);
             }

@@ -207,7 +207,7 @@ impl<'p> Lower<'p> {
                     (Place::Var(v), Ty::Int)
                 };
                 let mut bounds: Vec<&ast::Expr> = vec![from, to];
-                bounds.extend(step.as_ref());
+                bounds.extend(step.as_deref());
                 let mut v = self.seq(&bounds, ops)?.into_iter();
                 let (from, to) = (v.next().expect("from"), v.next().expect("to"));
                 let step = v.next();
@@ -383,7 +383,7 @@ impl<'p> Lower<'p> {
                 *onstart,
                 delay,
                 action,
-                prio.as_ref(),
+                prio.as_deref(),
                 span,
             ),
             StmtKind::Interrupt { action, number } => {
