@@ -1796,8 +1796,19 @@ impl<'p> Machine<'p> {
     /// Convert `v` to the type of `target` (KRL assignment rules).
     pub(crate) fn coerce(&self, target: Value, v: Value) -> R<Value> {
         Ok(match (target, v) {
-            (Value::Int(_), Value::Int(i)) => Value::Int(i),
-            (Value::Int(_), Value::Real(r)) => Value::Int(r.round() as i64),
+            (Value::Int(_), Value::Int(i)) => {
+                if !(super::value::INT_MIN..=super::value::INT_MAX).contains(&i) {
+                    return Err(self.int_overflow(format!("the value {i}")));
+                }
+                Value::Int(i)
+            }
+            (Value::Int(_), Value::Real(r)) => {
+                let i = r.round();
+                if !(super::value::INT_MIN as f64..=super::value::INT_MAX as f64).contains(&i) {
+                    return Err(self.int_overflow(format!("the REAL {r} as an INT")));
+                }
+                Value::Int(i as i64)
+            }
             (Value::Int(_), Value::Char(c)) => Value::Int(c as i64),
             (Value::Real(_), Value::Int(i)) => Value::Real(i as f64),
             (Value::Real(_), Value::Real(r)) => Value::Real(r),
@@ -1810,6 +1821,15 @@ impl<'p> Machine<'p> {
                 if matches!(items.first(), Some(Value::Char(_))) =>
             {
                 let n = items.len();
+                if s.len() > n {
+                    // KSS's behaviour is not documented in what we could read; a silent cut
+                    // would hide the mistake, so the interpreter stops (an assumption).
+                    return Err(self.err(format!(
+                        "the string \"{s}\" ({} characters) does not fit a CHAR[{n}] \
+                         (krlkit assumes KSS refuses it rather than cut it; StrCopy cuts)",
+                        s.len()
+                    )));
+                }
                 let mut v = Value::char_array(s.as_bytes(), n);
                 if let Value::Array { dims: d, .. } = &mut v {
                     *d = dims;
@@ -1865,6 +1885,27 @@ impl<'p> Machine<'p> {
         })
     }
 
+    /// `v` as an INT value, or the overflow error for `what` when it leaves the 32-bit range.
+    fn int_value(&self, v: i64, what: impl FnOnce() -> String) -> R<Value> {
+        if (super::value::INT_MIN..=super::value::INT_MAX).contains(&v) {
+            Ok(Value::Int(v))
+        } else {
+            Err(self.int_overflow(format!("{} = {v}", what())))
+        }
+    }
+
+    /// KRL's INT is 32-bit. Whether KSS stops or wraps on overflow is not documented in what we
+    /// could read; the interpreter stops, as for any value out of its range (an assumption,
+    /// stated in the message).
+    fn int_overflow(&self, what: String) -> Stop {
+        self.err(format!(
+            "value range exceeded: {what} is outside INT ({} to {}; KRL's INT is 32-bit, and \
+             krlkit assumes KSS stops here rather than wrap)",
+            super::value::INT_MIN,
+            super::value::INT_MAX
+        ))
+    }
+
     pub(crate) fn eval_bool(&mut self, e: &Expr) -> R<bool> {
         match self.eval(e)? {
             Value::Bool(b) => Ok(b),
@@ -1913,12 +1954,21 @@ impl<'p> Machine<'p> {
 
     pub(crate) fn eval(&mut self, e: &Expr) -> R<Value> {
         Ok(match &e.kind {
-            ExprKind::Int(i) => Value::Int(*i),
+            ExprKind::Int(i) => {
+                if !(super::value::INT_MIN..=super::value::INT_MAX).contains(i) {
+                    return Err(self.int_overflow(format!("the literal {i}")));
+                }
+                Value::Int(*i)
+            }
             ExprKind::Real(r) => Value::Real(*r),
             ExprKind::Bool(b) => Value::Bool(*b),
             ExprKind::Char(c) => Value::Char(u8::try_from(*c as u32).unwrap_or(b'?')),
             ExprKind::Str(s) => Value::Str(s.clone()),
-            ExprKind::Bits(b) | ExprKind::Hex(b) => Value::Int(*b as i64),
+            // A bit or hex literal is a 32-bit pattern: 'HFFFFFFFF' is -1.
+            ExprKind::Bits(b) | ExprKind::Hex(b) => match u32::try_from(*b) {
+                Ok(bits) => Value::Int(i64::from(bits as i32)),
+                Err(_) => return Err(self.int_overflow(format!("the literal {b:#x}"))),
+            },
             ExprKind::Enum(n) => Value::Enum(n.to_ascii_uppercase()),
             ExprKind::Name(_) | ExprKind::Member { .. } | ExprKind::Index { .. } => {
                 let p = self.place_of(e)?;
@@ -1928,12 +1978,19 @@ impl<'p> Machine<'p> {
                 Some(v) => v,
                 None => return Err(self.err(format!("{} returns no value", name.text))),
             },
+            // The one INT whose digits alone do not fit: -2147483648.
+            ExprKind::Unary {
+                op: UnaryOp::Neg,
+                operand,
+            } if matches!(operand.kind, ExprKind::Int(i) if i == -super::value::INT_MIN) => {
+                Value::Int(super::value::INT_MIN)
+            }
             ExprKind::Unary { op, operand } => {
                 let v = self.eval(operand)?;
                 match (op, v) {
                     (UnaryOp::Not, Value::Bool(b)) => Value::Bool(!b),
                     (UnaryOp::BNot, Value::Int(i)) => Value::Int(!i),
-                    (UnaryOp::Neg, Value::Int(i)) => Value::Int(-i),
+                    (UnaryOp::Neg, Value::Int(i)) => self.int_value(-i, || format!("-({i})"))?,
                     (UnaryOp::Neg, Value::Real(r)) => Value::Real(-r),
                     (UnaryOp::Pos, v @ (Value::Int(_) | Value::Real(_))) => v,
                     (op, v) => {
@@ -1990,17 +2047,21 @@ impl<'p> Machine<'p> {
                 ))
             })?,
             B::Add | B::Sub | B::Mul | B::Div => match (&a, &b) {
-                (Value::Int(x), Value::Int(y)) => Value::Int(match op {
-                    B::Add => x.wrapping_add(*y),
-                    B::Sub => x.wrapping_sub(*y),
-                    B::Mul => x.wrapping_mul(*y),
-                    _ => {
-                        if *y == 0 {
-                            return Err(self.err("division by zero"));
+                (Value::Int(x), Value::Int(y)) => {
+                    // Both are in the 32-bit range, so the i64 result is exact.
+                    let (r, sign) = match op {
+                        B::Add => (x + y, "+"),
+                        B::Sub => (x - y, "-"),
+                        B::Mul => (x * y, "*"),
+                        _ => {
+                            if *y == 0 {
+                                return Err(self.err("division by zero"));
+                            }
+                            (x / y, "/")
                         }
-                        x / y
-                    }
-                }),
+                    };
+                    self.int_value(r, || format!("{x} {sign} {y}"))?
+                }
                 _ => match (num(&a), num(&b)) {
                     (Some(x), Some(y)) => Value::Real(match op {
                         B::Add => x + y,

@@ -2,6 +2,10 @@
 
 use std::collections::HashMap;
 
+/// KRL's INT range (32-bit two's complement).
+pub const INT_MIN: i64 = i32::MIN as i64;
+pub const INT_MAX: i64 = i32::MAX as i64;
+
 /// A KRL runtime value. Arrays are flattened row-major with 1-based KRL indices mapped to 0-based
 /// offsets; CHAR arrays double as strings (NUL-terminated when shorter than the array).
 #[derive(Debug, Clone, PartialEq)]
