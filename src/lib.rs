@@ -16,6 +16,7 @@ pub mod generate;
 pub mod interp;
 pub mod lint;
 pub mod lsp;
+pub mod report;
 pub mod sema;
 pub mod sim;
 pub mod spec;

@@ -37,6 +37,8 @@ pub enum Command {
     Run(RunArgs),
     /// Decode or encode an SRCI RaStatusWord.
     Srci(SrciArgs),
+    /// Write the HTML dry-run report of a `krlkit run --trace` file.
+    Report(ReportArgs),
     /// Language server over stdin/stdout, for editors (VS Code, Neovim, Helix, Zed).
     Lsp,
     /// Format KRL files in place: blanks and word case only; protected lines untouched.
@@ -243,6 +245,9 @@ pub struct RunArgs {
     /// Write a JSON Lines trace of motions, MM_ calls and the end, as the run goes.
     #[arg(long, value_name = "FILE")]
     pub trace: Option<PathBuf>,
+    /// Write the dry-run report: one self-contained HTML page (tool path, timeline, coverage).
+    #[arg(long, value_name = "FILE.html")]
+    pub report: Option<PathBuf>,
     /// Most statements the run may execute before it is stopped as an endless loop.
     #[arg(long, value_name = "N", default_value_t = crate::interp::Options::default().step_limit)]
     pub step_limit: u64,
@@ -261,6 +266,15 @@ pub struct RunArgs {
     /// TRUE, as on the controller).
     #[arg(long = "input", value_name = "N[=on|off|out:M|not:M]")]
     pub inputs: Vec<crate::interp::InputSetting>,
+}
+
+#[derive(Debug, Args)]
+pub struct ReportArgs {
+    /// A trace written by `krlkit run --trace`.
+    pub trace: PathBuf,
+    /// The HTML page to write.
+    #[arg(short, long, value_name = "FILE.html")]
+    pub out: PathBuf,
 }
 
 #[derive(Debug, Args)]

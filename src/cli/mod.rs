@@ -9,6 +9,7 @@ mod inplace;
 mod lsp;
 mod outputs;
 mod parse;
+mod report;
 mod rules;
 mod run;
 mod sim;
@@ -63,6 +64,7 @@ pub fn main() -> ExitCode {
         Command::Sim(a) => sim::run(a),
         Command::Run(a) => run::run(a),
         Command::Srci(a) => srci::run(a),
+        Command::Report(a) => report::run(a),
         Command::Lsp => lsp::run(),
         Command::Fmt(a) => fmt::run(a),
     };

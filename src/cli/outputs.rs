@@ -1,8 +1,11 @@
 //! The one check every output option goes through before any work starts: the output must not
 //! be one of the command's inputs (under any name: symlink, hard link, `./`), and must be a
-//! path a file can be written to.
+//! path a file can be written to; and the one way a single output file is written (atomically).
 
+use std::io::Write;
 use std::path::Path;
+
+use anyhow::Context;
 
 /// `option` (e.g. `-o`) names `out`; `inputs` are what the command reads, each with what it is
 /// (`"input program"` …). Returns the message to print when `out` cannot be used.
@@ -34,6 +37,31 @@ pub(super) fn check(option: &str, out: &Path, inputs: &[(&str, &Path)]) -> Resul
             ));
         }
     }
+    Ok(())
+}
+
+/// Write to a temporary file in the target's directory, then rename it into place.
+pub(super) fn write_atomically(path: &Path, bytes: &[u8]) -> anyhow::Result<()> {
+    let dir = path
+        .parent()
+        .filter(|d| !d.as_os_str().is_empty())
+        .unwrap_or(Path::new("."));
+    let mut tmp = tempfile::NamedTempFile::new_in(dir)
+        .with_context(|| format!("cannot write in {}", dir.display()))?;
+    tmp.write_all(bytes)
+        .with_context(|| format!("cannot write {}", path.display()))?;
+    // A temporary file is private (0600); the output gets the permissions of the file it
+    // replaces, or the usual ones for a new file.
+    #[cfg(unix)]
+    {
+        use std::os::unix::fs::PermissionsExt;
+        let mode = std::fs::metadata(path).map_or(0o644, |m| m.permissions().mode());
+        tmp.as_file()
+            .set_permissions(std::fs::Permissions::from_mode(mode))
+            .with_context(|| format!("cannot write {}", path.display()))?;
+    }
+    tmp.persist(path)
+        .map_err(|e| anyhow::anyhow!("cannot write {}: {}", path.display(), e.error))?;
     Ok(())
 }
 

@@ -166,7 +166,20 @@ pub fn run(args: RunArgs) -> anyhow::Result<Outcome> {
             return Ok(Outcome::Failure);
         }
     }
-    if let Some(trace) = &args.trace {
+    let outputs: Vec<(&str, &Path)> = [("--trace", &args.trace), ("--report", &args.report)]
+        .into_iter()
+        .filter_map(|(o, p)| Some((o, p.as_deref()?)))
+        .collect();
+    if let [(_, a), (_, b)] = outputs.as_slice()
+        && a == b
+    {
+        eprintln!(
+            "error: --trace and --report both name {}\n  help: write them to two files",
+            a.display()
+        );
+        return Ok(Outcome::Failure);
+    }
+    for (option, out) in &outputs {
         let mut inputs: Vec<(&str, &Path)> =
             files.iter().map(|f| ("input file", f.as_path())).collect();
         inputs[0].0 = "program";
@@ -176,7 +189,7 @@ pub fn run(args: RunArgs) -> anyhow::Result<Outcome> {
             package_files(dir, &mut pkg, &mut Vec::new());
         }
         inputs.extend(pkg.iter().map(|p| ("package file", p.as_path())));
-        if let Err(msg) = super::outputs::check("--trace", trace, &inputs) {
+        if let Err(msg) = super::outputs::check(option, out, &inputs) {
             eprintln!("{msg}");
             return Ok(Outcome::Failure);
         }
@@ -266,6 +279,16 @@ pub fn run(args: RunArgs) -> anyhow::Result<Outcome> {
     {
         eprintln!("error: cannot write the trace {}: {e}", path.display());
         return Ok(Outcome::Failure);
+    }
+    if let Some(path) = &args.report {
+        // The page of the very trace `--trace` writes, so `krlkit report` gives the same one.
+        let mut trace = String::new();
+        for e in &result.events {
+            trace.push_str(&e.to_json_line());
+            trace.push('\n');
+        }
+        let html = crate::report::from_trace(&trace)?;
+        super::outputs::write_atomically(path, html.as_bytes())?;
     }
     if let End::Error(e) = &result.end {
         eprintln!("error: {e}");

@@ -85,7 +85,7 @@ pub fn run(args: TranspileArgs) -> anyhow::Result<Outcome> {
 
     let t = transpile::transpile(target, src, dat, &options);
     match &args.out {
-        Some(out) => write_atomically(out, t.text.as_bytes())?,
+        Some(out) => super::outputs::write_atomically(out, t.text.as_bytes())?,
         None => std::io::stdout().lock().write_all(t.text.as_bytes())?,
     }
     let errors: usize = t.reports.iter().map(|r| r.count(Severity::Error)).sum();
@@ -231,19 +231,4 @@ fn channels_beside(program: &Path) -> Vec<EkiChannel> {
         .collect();
     xml.sort();
     xml.iter().filter_map(|p| read_channel(p).ok()).collect()
-}
-
-/// Write to a temporary file in the target's directory, then rename it into place.
-fn write_atomically(path: &Path, bytes: &[u8]) -> anyhow::Result<()> {
-    let dir = path
-        .parent()
-        .filter(|d| !d.as_os_str().is_empty())
-        .unwrap_or(Path::new("."));
-    let mut tmp = tempfile::NamedTempFile::new_in(dir)
-        .with_context(|| format!("cannot write in {}", dir.display()))?;
-    tmp.write_all(bytes)
-        .with_context(|| format!("cannot write {}", path.display()))?;
-    tmp.persist(path)
-        .map_err(|e| anyhow::anyhow!("cannot write {}: {}", path.display(), e.error))?;
-    Ok(())
 }

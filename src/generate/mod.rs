@@ -32,6 +32,8 @@ pub const XML_DIR: &str = "xml/Config/User/Common/EthernetKRL";
 pub const INSTALL_PATH: &str = "krl/INSTALL.md";
 /// Name of the helper + global data module.
 pub const COMM_MODULE: &str = "MM_Comm";
+/// The package's modules besides the catalog's subprograms.
+pub const PACKAGE_MODULES: &[&str] = &[COMM_MODULE];
 /// Where the Kawasaki package goes, relative to the output directory.
 pub const AS_DIR: &str = "as";
 /// The Kawasaki AS file (all programs and the data section; load it into the controller).

@@ -117,6 +117,78 @@ pub fn relative(cur: &Value, rel: &Value, in_tool: bool) -> Option<Value> {
     Some(with_frame(cur, frame(&composed)))
 }
 
+/// The rotation part of a KUKA frame's A, B, C (degrees): the tool's X, Y, Z axes are its
+/// columns.
+pub(crate) fn rotation(a: f64, b: f64, c: f64) -> [[f64; 3]; 3] {
+    let m = matrix([0.0, 0.0, 0.0, a, b, c]);
+    [
+        [m[0][0], m[0][1], m[0][2]],
+        [m[1][0], m[1][1], m[1][2]],
+        [m[2][0], m[2][1], m[2][2]],
+    ]
+}
+
+type V3 = [f64; 3];
+
+fn sub(p: V3, q: V3) -> V3 {
+    [p[0] - q[0], p[1] - q[1], p[2] - q[2]]
+}
+
+fn cross(u: V3, v: V3) -> V3 {
+    [
+        u[1] * v[2] - u[2] * v[1],
+        u[2] * v[0] - u[0] * v[2],
+        u[0] * v[1] - u[1] * v[0],
+    ]
+}
+
+fn dot(u: V3, v: V3) -> f64 {
+    u[0] * v[0] + u[1] * v[1] + u[2] * v[2]
+}
+
+/// The circle through `s`, `a`, `e`: centre and unit normal, oriented so that turning about it
+/// goes from `s` through `a` to `e`. `None` when the points are on one line.
+fn circle(s: V3, a: V3, e: V3) -> Option<(V3, V3)> {
+    let (u, v) = (sub(a, s), sub(e, s));
+    let n = cross(u, v);
+    let nn = dot(n, n);
+    if nn < 1e-12 {
+        return None;
+    }
+    // Circumcentre of the triangle s, a, e.
+    let (w1, w2) = (cross(n, u), cross(v, n));
+    let (uu, vv) = (dot(u, u), dot(v, v));
+    let centre = [0, 1, 2].map(|i| s[i] + (vv * w1[i] + uu * w2[i]) / (2.0 * nn));
+    let l = nn.sqrt();
+    Some((centre, [n[0] / l, n[1] / l, n[2] / l]))
+}
+
+/// `p` turned by `angle` degrees about the axis through `centre` along unit `k` (Rodrigues).
+fn turn(p: V3, centre: V3, k: V3, angle: f64) -> V3 {
+    let r = sub(p, centre);
+    let (sin, cos) = angle.to_radians().sin_cos();
+    let kxr = cross(k, r);
+    let kr = dot(k, r);
+    [0, 1, 2].map(|i| centre[i] + r[i] * cos + kxr[i] * sin + k[i] * kr * (1.0 - cos))
+}
+
+/// Points along the arc from `s` through `a` to `e` (`n` segments, both ends included), or
+/// `None` when the three points are on one line.
+pub(crate) fn arc_points(s: V3, a: V3, e: V3, n: usize) -> Option<Vec<V3>> {
+    let (centre, k) = circle(s, a, e)?;
+    let (rs, re) = (sub(s, centre), sub(e, centre));
+    let mut sweep = dot(k, cross(rs, re)).atan2(dot(rs, re)).to_degrees();
+    if sweep <= 0.0 {
+        sweep += 360.0;
+    }
+    let n = n.max(1);
+    Some(
+        (0..=n)
+            .map(|i| turn(s, centre, k, sweep * i as f64 / n as f64))
+            .collect(),
+    )
+}
+
 /// Where `CIRC aux, end, CA angle` stops: `start` turned by `angle` degrees about the centre of
 /// the circle through `start`, `aux` and `end`, in the direction start → aux → end (aux fields
 /// it lacks are the start's); X, Y, Z from the arc, everything else from `end`. `None` when the
@@ -124,47 +196,17 @@ pub fn relative(cur: &Value, rel: &Value, in_tool: bool) -> Option<Value> {
 pub fn circ_end(start: &Value, aux: &Value, end: &Value, angle: f64) -> Option<Value> {
     let s = get(start)?;
     let e = get(end)?;
-    let a: Vec<f64> = (0..3)
-        .map(|i| {
-            aux.field(CART_FIELDS[i])
-                .and_then(|x| x.as_f64())
-                .unwrap_or(s[i])
-        })
-        .collect();
-    let sub = |p: &[f64], q: &[f64]| [p[0] - q[0], p[1] - q[1], p[2] - q[2]];
-    let cross = |u: [f64; 3], v: [f64; 3]| {
-        [
-            u[1] * v[2] - u[2] * v[1],
-            u[2] * v[0] - u[0] * v[2],
-            u[0] * v[1] - u[1] * v[0],
-        ]
-    };
-    let dot = |u: [f64; 3], v: [f64; 3]| u[0] * v[0] + u[1] * v[1] + u[2] * v[2];
-    let (u, v) = (sub(&a, &s[..3]), sub(&e[..3], &s[..3]));
-    let n = cross(u, v);
-    let nn = dot(n, n);
-    if nn < 1e-12 {
-        return None;
-    }
-    // Circumcentre of the triangle start, aux, end.
-    let w1 = cross(n, u);
-    let w2 = cross(v, n);
-    let (uu, vv) = (dot(u, u), dot(v, v));
-    let centre: Vec<f64> = (0..3)
-        .map(|i| s[i] + (vv * w1[i] + uu * w2[i]) / (2.0 * nn))
-        .collect();
-    let r = sub(&s[..3], &centre);
-    let k = {
-        let l = nn.sqrt();
-        [n[0] / l, n[1] / l, n[2] / l]
-    };
-    // Rodrigues: turn r about k.
-    let (sin, cos) = angle.to_radians().sin_cos();
-    let kxr = cross(k, r);
-    let kr = dot(k, r);
+    let a = [0, 1, 2].map(|i| {
+        aux.field(CART_FIELDS[i])
+            .and_then(|x| x.as_f64())
+            .unwrap_or(s[i])
+    });
+    let s3 = [s[0], s[1], s[2]];
+    let (centre, k) = circle(s3, a, [e[0], e[1], e[2]])?;
+    let p = turn(s3, centre, k, angle);
     let mut out = e;
     for i in 0..3 {
-        out[i] = clean(centre[i] + r[i] * cos + kxr[i] * sin + k[i] * kr * (1.0 - cos));
+        out[i] = clean(p[i]);
     }
     Some(with_frame(end, out))
 }
@@ -250,6 +292,46 @@ mod tests {
         assert!(close(&back, [10.0, -10.0, 5.0, 30.0, 0.0, 0.0]), "{back:?}");
         let line = pose([40.0, 0.0, 5.0, 0.0, 0.0, 0.0]);
         assert!(circ_end(&start, &end, &line, 90.0).is_none());
+    }
+
+    #[test]
+    fn arc_points_run_from_start_through_aux_to_end() {
+        let p = arc_points([0.0, 0.0, 5.0], [10.0, 10.0, 5.0], [20.0, 0.0, 5.0], 4).unwrap();
+        let want = [
+            [0.0, 0.0],
+            [10.0 - 50f64.sqrt(), 50f64.sqrt()],
+            [10.0, 10.0],
+            [10.0 + 50f64.sqrt(), 50f64.sqrt()],
+            [20.0, 0.0],
+        ];
+        for (q, w) in p.iter().zip(want) {
+            assert!(
+                (q[0] - w[0]).abs() < 1e-9 && (q[1] - w[1]).abs() < 1e-9,
+                "{p:?}"
+            );
+            assert!((q[2] - 5.0).abs() < 1e-9);
+        }
+        // The long way round when the auxiliary point says so.
+        let long = arc_points([0.0, 0.0, 0.0], [10.0, -10.0, 0.0], [10.0, 10.0, 0.0], 3).unwrap();
+        assert!(
+            (long[1][1] + 10.0).abs() < 1e-9 && (long[1][0] - 10.0).abs() < 1e-9,
+            "{long:?}"
+        );
+        assert!(arc_points([0.0; 3], [1.0, 0.0, 0.0], [2.0, 0.0, 0.0], 4).is_none());
+    }
+
+    #[test]
+    fn rotation_columns_are_the_tool_axes() {
+        // B = 180: the tool's Z points down, X backwards.
+        let r = rotation(0.0, 180.0, 0.0);
+        let z = [r[0][2], r[1][2], r[2][2]];
+        let x = [r[0][0], r[1][0], r[2][0]];
+        assert!(
+            (z[2] + 1.0).abs() < 1e-12 && (x[0] + 1.0).abs() < 1e-12,
+            "{r:?}"
+        );
+        let r = rotation(90.0, 0.0, 0.0);
+        assert!((r[1][0] - 1.0).abs() < 1e-12, "A turns X towards Y: {r:?}");
     }
 
     #[test]

@@ -382,14 +382,13 @@ impl<'p> Machine<'p> {
 
     pub(crate) fn run_main(mut self) -> RunResult {
         for m in &self.prog.modules {
-            self.events.push(Record {
-                t_ms: 0.0,
-                at: None,
-                event: Event::Source {
+            self.emit_at(
+                None,
+                Event::Source {
                     file: m.name.clone(),
                     text: m.text.clone(),
                 },
-            });
+            );
         }
         let end = match self.prog.entry() {
             None => End::Error(RuntimeError {
@@ -1356,43 +1355,40 @@ impl<'p> Machine<'p> {
             }
         }
         // The auxiliary point of a circle, absolute (a relative one is taken from the start).
+        let start = self.globals.get(act).cloned().unwrap_or(Value::Int(0));
         let aux_abs = match (&aux, axis) {
             (Some(aux), false) if m.relative => {
-                let start = self.globals.get(act).cloned().unwrap_or(Value::Int(0));
                 Some(super::frame::relative(&start, aux, in_tool).unwrap_or_else(|| aux.clone()))
             }
             (Some(aux), false) => Some(aux.clone()),
             _ => None,
         };
+        // For the trace: a point on the arc between start and end (the auxiliary point, or the
+        // middle of a `CA` arc, which need not pass the auxiliary point).
+        let mut on_arc = aux_abs.clone();
+        if let (Some(ca), Some(aux)) = (&m.ca, &aux_abs) {
+            // `CIRC aux, end, CA angle`: the arc through the start, the auxiliary point and the
+            // end point, followed for `angle` degrees from the start; the orientation is the
+            // end point's.
+            let angle = self.eval_real(ca)?;
+            let on_line = || self.err("CIRC: the start, auxiliary and end points are on one line");
+            on_arc =
+                Some(super::frame::circ_end(&start, aux, &cur, angle / 2.0).ok_or_else(on_line)?);
+            cur = super::frame::circ_end(&start, aux, &cur, angle).ok_or_else(on_line)?;
+        }
         // Fields the auxiliary point lacks are the start's.
-        let aux_point: Option<Vec<(String, f64)>> = aux_abs.map(|a| {
-            let start = self.globals.get(act);
+        let aux_point: Option<Vec<(String, f64)>> = on_arc.map(|a| {
             CART_FIELDS[..3]
                 .iter()
                 .map(|n| {
                     let v = a
                         .field(n)
-                        .or_else(|| start.and_then(|p| p.field(n)))
+                        .or_else(|| start.field(n))
                         .and_then(|v| v.as_f64());
                     (n.to_string(), v.unwrap_or(0.0))
                 })
                 .collect()
         });
-        if let (Some(ca), Some(aux), false) = (&m.ca, &aux, axis) {
-            // `CIRC aux, end, CA angle`: the arc through the start, the auxiliary point and the
-            // end point, followed for `angle` degrees from the start; the orientation is the
-            // end point's.
-            let angle = self.eval_real(ca)?;
-            let start = self.globals.get(act).cloned().unwrap_or(Value::Int(0));
-            let aux = if m.relative {
-                super::frame::relative(&start, aux, in_tool).unwrap_or_else(|| aux.clone())
-            } else {
-                aux.clone()
-            };
-            cur = super::frame::circ_end(&start, &aux, &cur, angle).ok_or_else(|| {
-                self.err("CIRC: the start, auxiliary and end points are on one line")
-            })?;
-        }
         let kind = match m.kind {
             MotionKind::Ptp => "PTP",
             MotionKind::Lin => "LIN",

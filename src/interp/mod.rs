@@ -22,7 +22,7 @@ mod builtins;
 mod cast;
 mod eki;
 mod format;
-mod frame;
+pub(crate) mod frame;
 mod machine;
 pub mod package;
 mod program;

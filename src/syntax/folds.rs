@@ -59,16 +59,18 @@ fn line(
         let rest = &text[title_start..end];
         let rest = rest.find(";%").map_or(rest, |i| &rest[..i]);
         let lead = rest.len() - rest.trim_start().len();
-        let title = Span::new(title_start + lead, title_start + rest.trim_end().len());
+        let tail = rest.trim_end().len();
+        // A title of blanks only is empty (its start would pass its end).
+        let title = if lead <= tail {
+            Span::new(title_start + lead, title_start + tail)
+        } else {
+            Span::empty(title_start)
+        };
         open.push(all.len());
         all.push(Fold {
             open: span,
             close: None,
-            title: if title.start <= title.end {
-                title
-            } else {
-                Span::empty(title_start)
-            },
+            title,
         });
     } else if word.eq_ignore_ascii_case("ENDFOLD") {
         match open.pop() {
@@ -81,6 +83,12 @@ fn line(
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn a_title_of_blanks_is_empty() {
+        let (folds, _) = folds(";FOLD   \n;ENDFOLD\n");
+        assert_eq!(folds[0].title.start, folds[0].title.end);
+    }
 
     #[test]
     fn nested_folds_titles_and_strays() {
