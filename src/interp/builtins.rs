@@ -199,13 +199,13 @@ pub(crate) fn call(m: &mut Machine, name: &str, args: &[Option<Expr>]) -> R<Opti
         "CWRITE" | "CREAD" | "FORWARD" | "INVERSE" => {
             return Err(m.err(format!("{name} is not supported by krlkit run")));
         }
-        // Variables start at their zero value here, so every declared one is initialised.
+        // #DECLARED while any part was never assigned (a CHAR array counts as assigned).
         "VARSTATE" => {
             let name = text(m, 0)?;
-            Value::Enum(if m.is_variable(name.trim()) {
-                "INITIALIZED".into()
-            } else {
-                "UNKNOWN".into()
+            Value::Enum(match m.variable_assigned(name.trim()) {
+                Some(true) => "INITIALIZED".into(),
+                Some(false) => "DECLARED".into(),
+                None => "UNKNOWN".into(),
             })
         }
         _ => return m.form_function(&up, args),

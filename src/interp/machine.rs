@@ -633,11 +633,15 @@ impl<'p> Machine<'p> {
             if init_dims.contains(&0) {
                 init_dims.iter_mut().for_each(|d| *d = (*d).max(1));
             }
-            let mut value = self.types().default_value(&ty, &init_dims);
-            if let Some(e) = &v.init {
-                let iv = self.eval(e)?;
-                value = self.coerce(value, iv)?;
-            }
+            let value = match &v.init {
+                Some(e) => {
+                    let iv = self.eval(e)?;
+                    let zero = self.types().default_value(&ty, &init_dims);
+                    self.coerce(zero, iv)?
+                }
+                // Declared, not assigned: reading it is an error until something is assigned.
+                None => self.types().unset_value(&ty, &init_dims),
+            };
             match local {
                 Some(fi) => {
                     self.frames[fi].vars.insert(name, Slot::Own(value));
@@ -1314,6 +1318,16 @@ impl<'p> Machine<'p> {
         } else {
             ("$POS_ACT", &CART_FIELDS)
         };
+        // A position variable must hold its coordinates (an aggregate may leave some out).
+        if let Value::Struc { .. } = &target
+            && let Some(f) = names
+                .iter()
+                .find(|f| matches!(target.field(f), Some(Value::Unset(_))))
+        {
+            return Err(self.err(format!(
+                "the motion target's {f} was never assigned (KSS stops with \"value invalid\")"
+            )));
+        }
         let mut cur = self.globals.get(act).cloned().unwrap_or(Value::Int(0));
         let fields: Vec<(String, Value)> = match &target {
             Value::Struc { fields, .. } | Value::Partial(fields) => fields.clone(),
@@ -1484,8 +1498,15 @@ impl<'p> Machine<'p> {
     }
 
     /// Whether `name` is a variable (or signal) visible here.
-    pub(crate) fn is_variable(&self, name: &str) -> bool {
-        self.lookup_root(name).is_ok()
+    /// `Some(true)` when the variable `name` is fully assigned, `Some(false)` when a part of it
+    /// never was, `None` when there is no such variable (`VARSTATE`).
+    pub(crate) fn variable_assigned(&self, name: &str) -> Option<bool> {
+        let place = self.lookup_root(name).ok()?;
+        Some(match self.read_place(&place) {
+            Ok(v) => !v.has_unset(),
+            // Signals (groups, constants) always have a value.
+            Err(_) => true,
+        })
     }
 
     pub(crate) fn place_of(&mut self, e: &Expr) -> R<Place> {
@@ -1792,6 +1813,23 @@ impl<'p> Machine<'p> {
     /// Convert `v` to the type of `target` (KRL assignment rules).
     pub(crate) fn coerce(&self, target: Value, v: Value) -> R<Value> {
         Ok(match (target, v) {
+            // An unassigned place takes the value as its type would.
+            (Value::Unset(t), v) => {
+                let zero = self.types().default_value(&t, &[]);
+                return match v {
+                    Value::Unset(_) => Ok(Value::Unset(t)),
+                    v => self.coerce(zero, v),
+                };
+            }
+            // Copying a composite copies its unassigned parts as unassigned.
+            (
+                t @ (Value::Int(_)
+                | Value::Real(_)
+                | Value::Bool(_)
+                | Value::Char(_)
+                | Value::Enum(_)),
+                Value::Unset(_),
+            ) => Value::Unset(scalar_type(&t)),
             (Value::Int(_), Value::Int(i)) => {
                 if !(super::value::INT_MIN..=super::value::INT_MAX).contains(&i) {
                     return Err(self.int_overflow(format!("the value {i}")));
@@ -1881,6 +1919,23 @@ impl<'p> Machine<'p> {
         })
     }
 
+    /// Reading a variable (or element, or member) that was never assigned. KSS stops such a
+    /// read too (message 1422, "value invalid", as public notes on KSS 8.x describe it).
+    fn unassigned(&self, e: &Expr) -> Stop {
+        let text = self
+            .prog
+            .modules
+            .get(self.loc.0)
+            .and_then(|m| m.text.get(e.span.start as usize..e.span.end as usize))
+            .map(str::trim)
+            .filter(|t| !t.is_empty() && t.len() <= 80)
+            .unwrap_or("a variable");
+        self.err(format!(
+            "`{text}` is read before anything was assigned to it (KSS stops with \"value \
+             invalid\"; give it a value in its declaration or assign one first)"
+        ))
+    }
+
     /// `v` as an INT value, or the overflow error for `what` when it leaves the 32-bit range.
     fn int_value(&self, v: i64, what: impl FnOnce() -> String) -> R<Value> {
         if (super::value::INT_MIN..=super::value::INT_MAX).contains(&v) {
@@ -1968,7 +2023,10 @@ impl<'p> Machine<'p> {
             ExprKind::Enum(n) => Value::Enum(n.to_ascii_uppercase()),
             ExprKind::Name(_) | ExprKind::Member { .. } | ExprKind::Index { .. } => {
                 let p = self.place_of(e)?;
-                self.read_value(&p)?
+                match self.read_value(&p)? {
+                    Value::Unset(_) => return Err(self.unassigned(e)),
+                    v => v,
+                }
             }
             ExprKind::Call { name, args } => match self.call(&name.text, args, true)? {
                 Some(v) => v,
@@ -2201,9 +2259,23 @@ pub(crate) fn io_array(key: &str) -> Option<&'static str> {
     }
 }
 
+/// The type of a scalar value.
+fn scalar_type(v: &Value) -> BaseType {
+    match v {
+        Value::Int(_) => BaseType::Int,
+        Value::Real(_) => BaseType::Real,
+        Value::Bool(_) => BaseType::Bool,
+        Value::Char(_) => BaseType::Char,
+        Value::Enum(_) => BaseType::Enum(String::new()),
+        Value::Unset(t) => t.clone(),
+        _ => BaseType::Int,
+    }
+}
+
 pub(crate) fn to_json(v: &Value) -> serde_json::Value {
     use serde_json::json;
     match v {
+        Value::Unset(_) => serde_json::Value::Null,
         Value::Int(i) => json!(i),
         Value::Real(r) => json!(r),
         Value::Bool(b) => json!(b),
