@@ -12,7 +12,7 @@ use std::collections::HashSet;
 use std::io::{self, Read};
 use std::path::{Path, PathBuf};
 
-use crate::syntax::{Decoded, decode};
+use crate::syntax::{Decoded, decode_owned};
 
 /// A path that could not be walked or read. Carries the path so the user sees which one.
 #[derive(Debug, thiserror::Error)]
@@ -280,13 +280,34 @@ pub fn sibling_dat(program: &Path) -> Option<PathBuf> {
     found.into_iter().next()
 }
 
+/// The path that stands for stdin (`-`).
+pub fn is_stdin(path: &Path) -> bool {
+    path.as_os_str() == "-"
+}
+
+/// `paths` without `-`, and whether `-` was among them.
+pub fn split_stdin(paths: &[PathBuf]) -> (Vec<PathBuf>, bool) {
+    let stdin = paths.iter().any(|p| is_stdin(p));
+    (
+        paths.iter().filter(|p| !is_stdin(p)).cloned().collect(),
+        stdin,
+    )
+}
+
+/// Read all of stdin and decode it.
+pub fn read_stdin() -> io::Result<Decoded> {
+    let mut bytes = Vec::new();
+    io::stdin().lock().read_to_end(&mut bytes)?;
+    Ok(decode_owned(bytes))
+}
+
 /// Read and decode one candidate. `Ok(None)`: a walked file whose content is not KRL.
 pub fn load(candidate: &Candidate) -> Result<Option<Decoded>, FileError> {
     let bytes = read_regular(&candidate.path).map_err(|source| FileError {
         path: candidate.path.clone(),
         source,
     })?;
-    let decoded = decode(&bytes);
+    let decoded = decode_owned(bytes);
     if candidate.origin == Origin::Walked && !looks_like_krl(&decoded.text) {
         return Ok(None);
     }

@@ -145,6 +145,14 @@ impl Editor {
                 if let Some(at) = &s.at {
                     params["position"] = self.cursor(file, at);
                 }
+                if method == "textDocument/codeAction" {
+                    let at = params["position"].take();
+                    params["range"] = json!({ "start": at, "end": at });
+                    params["context"] = json!({ "diagnostics": [] });
+                }
+                if method == "textDocument/formatting" {
+                    params["options"] = json!({ "tabSize": 2, "insertSpaces": true });
+                }
                 let mut answer = self.client.request(method, params);
                 match s.view.as_deref() {
                     Some("labels") => {

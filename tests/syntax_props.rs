@@ -68,6 +68,11 @@ proptest! {
     }
 
     #[test]
+    fn the_outline_reports_exactly_what_the_tree_does(text in krl_ish()) {
+        prop_assert_eq!(krlkit::syntax::diagnostics(&text), parse(&text).diagnostics);
+    }
+
+    #[test]
     fn krl_like_text_round_trips(text in krl_ish()) {
         let p = parse(&text);
         prop_assert_eq!(p.root().print(&text), text.clone());
@@ -186,4 +191,33 @@ fn failing_named_fields_are_not_retried_as_calls() {
             p.diagnostics[0].message
         );
     }
+}
+
+/// `krlkit parse` reads diagnostics from an outline; on every KRL file of the repository they
+/// are the full parse's.
+#[test]
+fn outline_diagnostics_agree_on_every_repository_file() {
+    fn walk(dir: &std::path::Path, out: &mut Vec<std::path::PathBuf>) {
+        for e in std::fs::read_dir(dir).unwrap().map(Result::unwrap) {
+            let p = e.path();
+            if p.is_dir() {
+                walk(&p, out);
+            } else if krlkit::files::has_krl_extension(&p) {
+                out.push(p);
+            }
+        }
+    }
+    let root = std::path::Path::new(env!("CARGO_MANIFEST_DIR"));
+    let mut files = Vec::new();
+    walk(&root.join("tests/fixtures"), &mut files);
+    walk(&root.join("krl"), &mut files);
+    assert!(files.len() > 100);
+    let mut with_errors = 0;
+    for f in files {
+        let text = decode(&std::fs::read(&f).unwrap()).text;
+        let full = parse(&text).diagnostics;
+        with_errors += usize::from(!full.is_empty());
+        assert_eq!(krlkit::syntax::diagnostics(&text), full, "{}", f.display());
+    }
+    assert!(with_errors > 10, "the files must include broken ones");
 }

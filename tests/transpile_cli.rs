@@ -45,14 +45,14 @@ fn untranslatable_construct_exit_1_output_still_written() {
     let (code, out, err) = krlkit(&["transpile", "broken.src", "--to", "kawasaki", "-o", out_arg]);
     assert_eq!(code, 1, "{err}");
     // With -o the findings go to stdout, rustc-style.
-    assert!(out.contains("error[TR001]: TRIGGER"), "{out}");
+    assert!(out.contains("error[TR001]: $ADVANCE"), "{out}");
     assert!(
         out.contains("info[TR003]: variable `Approach_Position_Left`"),
         "{out}"
     );
     assert!(out.contains(" --> broken.src:4:3"), "{out}");
     let written = std::fs::read_to_string(&out_path).expect("output written");
-    assert!(written.contains("; [TR001] TRIGGER WHEN DISTANCE=0 DELAY=0 DO $OUT[3]=TRUE"));
+    assert!(written.contains("; [TR001] $ADVANCE = 3"));
     assert!(written.contains("LMOVE .approach_po_n4q"), "{written}");
     assert!(written.contains(";   variable Approach_Position_Left -> approach_po_n4q"));
     // Nothing else was left in the directory (the temporary file was renamed).
@@ -121,7 +121,7 @@ fn concise_findings_on_stderr_when_the_program_goes_to_stdout() {
     assert_eq!(code, 1);
     assert!(out.starts_with(".PROGRAM broken()"), "{out}");
     assert!(
-        err.contains("broken.src:4:3: error[TR001] TRIGGER"),
+        err.contains("broken.src:4:3: error[TR001] $ADVANCE"),
         "{err}"
     );
     assert!(!out.contains("error[TR001]"));

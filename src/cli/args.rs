@@ -13,11 +13,34 @@ use clap::{Args, Parser, Subcommand, ValueEnum};
 pub struct Cli {
     #[command(subcommand)]
     pub command: Command,
+    /// Colour in diagnostics: `auto` colours when stderr/stdout is a terminal (and NO_COLOR is
+    /// unset).
+    #[arg(long, global = true, value_enum, value_name = "WHEN", default_value_t = ColorChoice::Auto)]
+    pub color: ColorChoice,
+    /// Print only findings and errors: no summary or progress lines.
+    #[arg(short, long, global = true, conflicts_with = "verbose")]
+    pub quiet: bool,
+    /// Also say what is being done (files found, files skipped, where outputs go).
+    #[arg(short, long, global = true)]
+    pub verbose: bool,
+}
+
+#[derive(Debug, Clone, Copy, PartialEq, Eq, ValueEnum)]
+pub enum ColorChoice {
+    Auto,
+    Always,
+    Never,
+}
+
+#[derive(Debug, Clone, Copy, PartialEq, Eq, ValueEnum)]
+pub enum RulesFormat {
+    Human,
+    Json,
 }
 
 #[derive(Debug, Subcommand)]
 pub enum Command {
-    /// Write the controller package (KRL + EKI XML) for a spec.
+    /// Write the controller package for a spec: KUKA (KRL + EKI XML), Kawasaki AS, or both.
     Gen(GenArgs),
     /// Write a commented starter spec (the default spec, every key explained).
     Init(InitArgs),
@@ -26,7 +49,7 @@ pub enum Command {
     /// Syntax only: report syntax errors, or print the lossless tree.
     Parse(ParseArgs),
     /// List the lint rules.
-    Rules,
+    Rules(RulesArgs),
     /// Explain one rule: what, why, example, fix.
     Rule(RuleArgs),
     /// Translate a KRL program to another robot language.
@@ -43,6 +66,32 @@ pub enum Command {
     Lsp,
     /// Format KRL files in place: blanks and word case only; protected lines untouched.
     Fmt(FmtArgs),
+    /// Print a shell completion script (e.g. `krlkit completions bash > /etc/bash_completion.d/krlkit`).
+    Completions(CompletionsArgs),
+    /// Print the man page (roff): `krlkit man > krlkit.1`, `krlkit man check` for one command.
+    Man(ManArgs),
+}
+
+#[derive(Debug, Args)]
+pub struct RulesArgs {
+    /// Output format: a table, or one JSON document with every rule's code, name, severity,
+    /// summary and explanation.
+    #[arg(long, value_enum, default_value_t = RulesFormat::Human)]
+    pub format: RulesFormat,
+}
+
+#[derive(Debug, Args)]
+pub struct CompletionsArgs {
+    /// The shell to complete for.
+    #[arg(value_enum)]
+    pub shell: clap_complete::Shell,
+}
+
+#[derive(Debug, Args)]
+pub struct ManArgs {
+    /// A subcommand whose page to print (default: the page of krlkit itself).
+    #[arg(value_name = "COMMAND")]
+    pub command: Option<String>,
 }
 
 #[derive(Debug, Args)]
@@ -56,7 +105,7 @@ pub struct FmtArgs {
     /// Write nothing; print a unified diff of what would change (exit 1 if anything would).
     #[arg(long)]
     pub diff: bool,
-    /// Config file with a [fmt] table (default: ./krlkit.toml if present).
+    /// Config file with a [fmt] table (default: ./.krlkit.toml or ./krlkit.toml if present).
     #[arg(long)]
     pub config: Option<PathBuf>,
     /// The name to report for `-` (stdin).
@@ -76,20 +125,22 @@ pub struct GenArgs {
     /// Spec file (TOML). Without it, the embedded default spec is used.
     #[arg(long)]
     pub spec: Option<PathBuf>,
-    /// Output directory.
-    #[arg(long, default_value = "mm_package")]
+    /// Package folder: written with `krl/`, `xml/` (KUKA) and `as/` (Kawasaki) inside, replaced
+    /// atomically.
+    #[arg(long, value_name = "DIR", default_value = "mm_package")]
     pub out: PathBuf,
     /// Which robot package to write.
     #[arg(long, value_enum, default_value_t = Target::Kuka)]
     pub target: Target,
-    /// Write nothing; exit 1 if DIR differs from what would be generated.
+    /// Write nothing; exit 1 if the --out DIR differs from what would be generated (differing,
+    /// missing or stale files).
     #[arg(long)]
     pub check: bool,
 }
 
 #[derive(Debug, Args)]
 pub struct InitArgs {
-    /// Where to write the spec.
+    /// Where to write the spec; `-` prints it.
     #[arg(default_value = "krlkit.toml")]
     pub file: PathBuf,
     /// Overwrite an existing file.
@@ -108,9 +159,14 @@ pub enum CheckFormat {
 
 #[derive(Debug, Args)]
 pub struct CheckArgs {
-    /// Files or directories (walked recursively).
+    /// Files or directories (walked recursively); `-` reads one file from stdin.
     #[arg(required = true)]
     pub paths: Vec<PathBuf>,
+    /// The name diagnostics give the file read from `-` (stdin), e.g. the path an editor has open.
+    #[arg(long, value_name = "NAME")]
+    pub stdin_filename: Option<String>,
+    /// How to print findings: rustc-style, one line each, JSON, SARIF 2.1.0, or GitHub
+    /// workflow commands.
     #[arg(long, value_enum, default_value_t = CheckFormat::Human)]
     pub format: CheckFormat,
     /// EKI XML config to cross-check MM_Init_Socket against.
@@ -119,6 +175,10 @@ pub struct CheckArgs {
     /// Config file with a [lint] section (default: ./krlkit.toml if present).
     #[arg(long)]
     pub config: Option<PathBuf>,
+    /// Apply the fixes rules declare safe, in place (atomically, encoding and line endings
+    /// kept; a fix that would add a syntax error is skipped), then report what is left.
+    #[arg(long)]
+    pub fix: bool,
 }
 
 #[derive(Debug, Clone, Copy, PartialEq, Eq, ValueEnum)]
@@ -129,9 +189,13 @@ pub enum ParseFormat {
 
 #[derive(Debug, Args)]
 pub struct ParseArgs {
-    /// Files or directories (walked recursively).
+    /// Files or directories (walked recursively); `-` reads one file from stdin.
     #[arg(required = true)]
     pub paths: Vec<PathBuf>,
+    /// The name diagnostics give the file read from `-` (stdin).
+    #[arg(long, value_name = "NAME")]
+    pub stdin_filename: Option<String>,
+    /// How to print syntax errors: rustc-style, or one JSON document.
     #[arg(long, value_enum, default_value_t = ParseFormat::Human)]
     pub format: ParseFormat,
     /// Print the lossless syntax tree of one file as JSON.
@@ -153,13 +217,19 @@ pub enum TranspileTarget {
 
 #[derive(Debug, Args)]
 pub struct TranspileArgs {
-    /// The KRL program (.src); its .dat beside it is read too.
+    /// The KRL program (.src); its .dat beside it is read too. `-` reads the program from stdin
+    /// (no .dat).
     pub file: PathBuf,
+    /// The target language: Kawasaki AS, or a Python script for the Flexiv RDK.
     #[arg(long, value_enum)]
     pub to: TranspileTarget,
-    /// Output file, written atomically (default: stdout, and the diagnostics go to stderr).
+    /// Output file, written atomically (default, or `-`: stdout, and the diagnostics go to
+    /// stderr).
     #[arg(short, long)]
     pub out: Option<PathBuf>,
+    /// The name diagnostics give the program read from `-` (stdin).
+    #[arg(long, value_name = "NAME")]
+    pub stdin_filename: Option<String>,
     /// Spec whose vision server address (IP, port) MM_Init_Socket translates to.
     #[arg(long)]
     pub spec: Option<PathBuf>,
@@ -167,6 +237,8 @@ pub struct TranspileArgs {
     /// by MM_Init_Socket beside the program).
     #[arg(long)]
     pub eki_xml: Option<PathBuf>,
+    /// How to print findings: rustc-style, one line each, JSON, SARIF 2.1.0, or GitHub
+    /// workflow commands.
     #[arg(long, value_enum, default_value_t = CheckFormat::Human)]
     pub format: CheckFormat,
     /// $IN[n] becomes input INPUT_OFFSET+n: the controller's I/O configuration (kawasaki:
@@ -217,7 +289,8 @@ pub enum SimCommand {
 
 #[derive(Debug, Args)]
 pub struct ServeArgs {
-    #[arg(long, default_value = "127.0.0.1:50000")]
+    /// Address and port to listen on (IP:PORT; loopback unless --allow-remote).
+    #[arg(long, value_name = "ADDR", default_value = "127.0.0.1:50000")]
     pub listen: String,
     /// Scenario file (TOML).
     #[arg(long)]
@@ -229,6 +302,7 @@ pub struct ServeArgs {
 
 #[derive(Debug, Args)]
 pub struct RunArgs {
+    /// The KRL program to run (.src); its .dat beside it is loaded too.
     pub program: PathBuf,
     /// Directory holding the generated package (a `krlkit gen --out` directory, or any directory
     /// of .src/.dat/.xml files). Default: the package generated in memory from --spec.
@@ -286,9 +360,34 @@ pub struct SrciArgs {
 #[derive(Debug, Subcommand)]
 pub enum SrciCommand {
     /// Decode a 32-bit RaStatusWord.
-    Decode { word: String },
+    Decode {
+        /// The word: decimal, or hex with 0x (e.g. 0x00010203).
+        word: String,
+    },
     /// Encode FIELD=VALUE pairs into a RaStatusWord.
-    Encode { fields: Vec<String> },
+    #[command(after_help = srci_fields_help())]
+    Encode {
+        /// FIELD=VALUE pairs: a flag takes true/false (or 1/0), an enum its value's name or
+        /// number; fields not given are 0.
+        #[arg(value_name = "FIELD=VALUE")]
+        fields: Vec<String>,
+    },
+}
+
+/// The fields `srci encode` accepts, from the SRCI table.
+fn srci_fields_help() -> String {
+    use crate::srci::{FIELDS, FieldKind};
+    let mut out = String::from("Fields (bit: name = values):\n");
+    for f in FIELDS {
+        let values = match f.kind {
+            FieldKind::Flag => "true|false".to_string(),
+            FieldKind::Enum { values, .. } => {
+                values.iter().map(|(_, n)| *n).collect::<Vec<_>>().join("|")
+            }
+        };
+        out.push_str(&format!("  {:>2}: {} = {values}\n", f.bit, f.name));
+    }
+    out
 }
 
 #[cfg(test)]
@@ -299,5 +398,24 @@ mod tests {
     #[test]
     fn cli_definition_is_consistent() {
         Cli::command().debug_assert();
+    }
+
+    /// Every argument and option of every command says what it is for.
+    #[test]
+    fn every_argument_has_help() {
+        fn walk(cmd: &clap::Command, path: &str, missing: &mut Vec<String>) {
+            for a in cmd.get_arguments() {
+                let id = a.get_id().as_str();
+                if a.get_help().is_none() && !matches!(id, "help" | "version") {
+                    missing.push(format!("{path} {id}"));
+                }
+            }
+            for sub in cmd.get_subcommands() {
+                walk(sub, &format!("{path} {}", sub.get_name()), missing);
+            }
+        }
+        let mut missing = Vec::new();
+        walk(&Cli::command(), "krlkit", &mut missing);
+        assert!(missing.is_empty(), "arguments without help: {missing:?}");
     }
 }

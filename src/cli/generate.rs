@@ -55,7 +55,9 @@ pub fn run(args: GenArgs) -> anyhow::Result<Outcome> {
             args.out.join(p).display()
         );
     }
-    println!("wrote {} files to {}", files.len(), args.out.display());
+    if !super::ui::quiet() {
+        println!("wrote {} files to {}", files.len(), args.out.display());
+    }
     Ok(Outcome::Success)
 }
 

@@ -3,6 +3,18 @@ use super::args::InitArgs;
 use crate::spec::DEFAULT_SPEC_TOML;
 
 pub fn run(args: InitArgs) -> anyhow::Result<Outcome> {
+    if crate::files::is_stdin(&args.file) {
+        print!("{DEFAULT_SPEC_TOML}");
+        return Ok(Outcome::Success);
+    }
+    if args.file.is_dir() {
+        eprintln!(
+            "{}: error: is a directory\n  help: name the spec file, e.g. `krlkit init {}`",
+            args.file.display(),
+            args.file.join("krlkit.toml").display()
+        );
+        return Ok(Outcome::Failure);
+    }
     if args.file.exists() && !args.force {
         eprintln!(
             "{}: error: file exists\n  help: pass --force to overwrite it",
@@ -17,6 +29,8 @@ pub fn run(args: InitArgs) -> anyhow::Result<Outcome> {
         );
         return Ok(Outcome::Failure);
     }
-    println!("wrote {}", args.file.display());
+    if !super::ui::quiet() {
+        println!("wrote {}", args.file.display());
+    }
     Ok(Outcome::Success)
 }

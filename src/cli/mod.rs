@@ -2,6 +2,7 @@
 
 mod args;
 mod check;
+mod fix;
 mod fmt;
 mod generate;
 mod init;
@@ -15,6 +16,7 @@ mod run;
 mod sim;
 mod srci;
 mod transpile;
+mod ui;
 
 use std::process::ExitCode;
 
@@ -53,12 +55,13 @@ pub fn main() -> ExitCode {
             return ExitCode::from(code);
         }
     };
+    ui::init(cli.color, cli.quiet, cli.verbose);
     let result = match cli.command {
         Command::Gen(a) => generate::run(a),
         Command::Init(a) => init::run(a),
         Command::Check(a) => check::run(a),
         Command::Parse(a) => parse::run(a),
-        Command::Rules => rules::list(),
+        Command::Rules(a) => rules::list(a),
         Command::Rule(a) => rules::explain(a),
         Command::Transpile(a) => transpile::run(a),
         Command::Sim(a) => sim::run(a),
@@ -67,6 +70,13 @@ pub fn main() -> ExitCode {
         Command::Report(a) => report::run(a),
         Command::Lsp => lsp::run(),
         Command::Fmt(a) => fmt::run(a),
+        Command::Completions(a) => {
+            use clap::CommandFactory;
+            let mut cmd = Cli::command();
+            clap_complete::generate(a.shell, &mut cmd, "krlkit", &mut std::io::stdout());
+            Ok(Outcome::Success)
+        }
+        Command::Man(a) => man(a),
     };
     match result {
         Ok(outcome) => outcome.into(),
@@ -75,4 +85,25 @@ pub fn main() -> ExitCode {
             Outcome::Failure.into()
         }
     }
+}
+
+/// `krlkit man [COMMAND]`: the roff man page of krlkit or of one subcommand.
+fn man(args: args::ManArgs) -> anyhow::Result<Outcome> {
+    use clap::CommandFactory;
+    let root = Cli::command();
+    let cmd = match &args.command {
+        None => root,
+        Some(name) => match root.find_subcommand(name) {
+            Some(sub) => {
+                let full: &'static str = format!("krlkit-{name}").leak();
+                sub.clone().name(full)
+            }
+            None => {
+                eprintln!("error: no command `{name}` (krlkit --help lists them)");
+                return Ok(Outcome::Failure);
+            }
+        },
+    };
+    clap_mangen::Man::new(cmd).render(&mut std::io::stdout())?;
+    Ok(Outcome::Success)
 }

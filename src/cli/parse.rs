@@ -18,16 +18,38 @@ pub fn run(args: ParseArgs) -> anyhow::Result<Outcome> {
     if args.tree {
         return tree(&args);
     }
-    let walk = files::walk(&args.paths);
+    let (paths, stdin) = files::split_stdin(&args.paths);
+    let walk = files::walk(&paths);
     for s in &walk.skipped {
         eprintln!("warning: {s}");
     }
+    if super::ui::verbose() {
+        for c in &walk.found {
+            eprintln!("parsing {}", c.path.display());
+        }
+    }
     let walk_errors = walk.errors;
-    let results: Vec<Result<Option<Checked>, FileError>> = walk
-        .found
-        .par_iter()
-        .map(|c| check(c, args.format))
-        .collect();
+    let mut results: Vec<Result<Option<Checked>, FileError>> = Vec::new();
+    if stdin {
+        let name = args
+            .stdin_filename
+            .clone()
+            .unwrap_or_else(|| "<stdin>".into());
+        results.push(
+            files::read_stdin()
+                .map(|d| Some(checked(name, d.text, args.format)))
+                .map_err(|source| FileError {
+                    path: "-".into(),
+                    source,
+                }),
+        );
+    }
+    results.extend(
+        walk.found
+            .par_iter()
+            .map(|c| check(c, args.format))
+            .collect::<Vec<_>>(),
+    );
 
     let mut failed = !walk_errors.is_empty();
     for e in &walk_errors {
@@ -55,6 +77,7 @@ pub fn run(args: ParseArgs) -> anyhow::Result<Outcome> {
     let mut stdout = std::io::stdout().lock();
     match args.format {
         ParseFormat::Json => writeln!(stdout, "{}", render::json::render(&reports))?,
+        ParseFormat::Human if super::ui::quiet() => write!(stdout, "{human}")?,
         ParseFormat::Human => {
             write!(stdout, "{human}")?;
             let files = reports.len();
@@ -92,27 +115,34 @@ fn check(candidate: &Candidate, format: ParseFormat) -> Result<Option<Checked>, 
     let Some(decoded) = files::load(candidate)? else {
         return Ok(None);
     };
-    let parse = syntax::parse(&decoded.text);
-    let path = candidate.path.display().to_string();
-    if parse.diagnostics.is_empty() {
-        return Ok(Some(Checked {
+    Ok(Some(checked(
+        candidate.path.display().to_string(),
+        decoded.text,
+        format,
+    )))
+}
+
+fn checked(path: String, text: String, format: ParseFormat) -> Checked {
+    let diagnostics = syntax::diagnostics(&text);
+    if diagnostics.is_empty() {
+        return Checked {
             report: FileReport {
                 path,
                 text: String::new(),
                 diagnostics: Vec::new(),
             },
             human: String::new(),
-        }));
+        };
     }
     let report = FileReport {
         path,
-        text: decoded.text,
-        diagnostics: parse.diagnostics,
+        text,
+        diagnostics,
     };
     let mut human = String::new();
     let report = match format {
         ParseFormat::Human => {
-            render::human::render(&report, &mut human);
+            render::human::render_with(&report, &mut human, &super::ui::renderer(true));
             // Human output is already rendered; keep only what the summary needs.
             FileReport {
                 text: String::new(),
@@ -121,7 +151,7 @@ fn check(candidate: &Candidate, format: ParseFormat) -> Result<Option<Checked>, 
         }
         ParseFormat::Json => report,
     };
-    Ok(Some(Checked { report, human }))
+    Checked { report, human }
 }
 
 fn tree(args: &ParseArgs) -> anyhow::Result<Outcome> {
@@ -132,7 +162,15 @@ fn tree(args: &ParseArgs) -> anyhow::Result<Outcome> {
         path: path.clone(),
         origin: files::Origin::Named,
     };
-    let decoded = match files::load(&candidate) {
+    let loaded = if files::is_stdin(path) {
+        files::read_stdin().map(Some).map_err(|source| FileError {
+            path: "-".into(),
+            source,
+        })
+    } else {
+        files::load(&candidate)
+    };
+    let decoded = match loaded {
         Ok(Some(d)) => d,
         Ok(None) => anyhow::bail!("{}: not a KRL file", path.display()),
         Err(e) => {
@@ -142,13 +180,19 @@ fn tree(args: &ParseArgs) -> anyhow::Result<Outcome> {
         }
     };
     let parse = syntax::parse(&decoded.text);
-    let mut stdout = std::io::stdout().lock();
-    writeln!(stdout, "{}", parse.to_json_tree(&decoded.text))?;
+    let mut stdout = std::io::BufWriter::new(std::io::stdout().lock());
+    parse.write_json_tree(&decoded.text, &mut stdout)?;
+    writeln!(stdout)?;
+    stdout.flush()?;
+    drop(stdout);
     if parse.diagnostics.is_empty() {
         return Ok(Outcome::Success);
     }
     let report = FileReport {
-        path: path.display().to_string(),
+        path: match (&args.stdin_filename, files::is_stdin(path)) {
+            (Some(n), true) => n.clone(),
+            _ => path.display().to_string(),
+        },
         text: decoded.text,
         diagnostics: parse.diagnostics,
     };

@@ -1,5 +1,5 @@
 use super::Outcome;
-use super::args::RuleArgs;
+use super::args::{RuleArgs, RulesArgs, RulesFormat};
 use crate::diag::Severity;
 use crate::lint::{self, RULES};
 use crate::transpile::rules as tr;
@@ -24,7 +24,23 @@ fn all() -> Vec<(
     v
 }
 
-pub fn list() -> anyhow::Result<Outcome> {
+pub fn list(args: RulesArgs) -> anyhow::Result<Outcome> {
+    if args.format == RulesFormat::Json {
+        let rules: Vec<serde_json::Value> = all()
+            .into_iter()
+            .map(|(code, name, severity, summary, doc)| {
+                serde_json::json!({
+                    "code": code,
+                    "name": name,
+                    "severity": severity.as_str(),
+                    "summary": summary,
+                    "doc": doc,
+                })
+            })
+            .collect();
+        println!("{}", serde_json::json!({ "rules": rules }));
+        return Ok(Outcome::Success);
+    }
     let mut out = String::from("code    severity  name                          summary\n");
     for (code, name, severity, summary, _) in all() {
         out.push_str(&format!(
@@ -43,8 +59,12 @@ pub fn explain(args: RuleArgs) -> anyhow::Result<Outcome> {
     let code = args.code.trim();
     match all().into_iter().find(|r| r.0.eq_ignore_ascii_case(code)) {
         Some((code, name, severity, summary, doc)) => {
+            let fix = match lint::fix_of(code) {
+                Some(what) => format!("yes: {what}; `krlkit check --fix` applies safe fixes"),
+                None => "none".to_owned(),
+            };
             println!(
-                "# {code} {name} ({})\n\n{summary}\n\n{doc}",
+                "# {code} {name} ({})\n\n{summary}\n\n{doc}\n\n## Automatic fix\n{fix}",
                 severity.as_str()
             );
             Ok(Outcome::Success)

@@ -66,8 +66,9 @@ impl TraceSink for JsonLines {
 }
 
 fn read_text(path: &Path) -> anyhow::Result<String> {
-    let bytes = std::fs::read(path).with_context(|| format!("cannot read {}", path.display()))?;
-    Ok(crate::syntax::decode(&bytes).text)
+    let bytes = crate::files::read_regular(path)
+        .with_context(|| format!("cannot read {}", path.display()))?;
+    Ok(crate::syntax::decode_owned(bytes).text)
 }
 
 fn has_ext(p: &Path, ext: &str) -> bool {

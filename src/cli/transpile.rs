@@ -21,7 +21,16 @@ use crate::lint::{self, EkiChannel};
 use crate::transpile::flexiv::{self, FlexivOptions, JointMap, RdkVersion};
 use crate::transpile::{self, Options, SignalMap, Source, Target, VisionServer};
 
-pub fn run(args: TranspileArgs) -> anyhow::Result<Outcome> {
+pub fn run(mut args: TranspileArgs) -> anyhow::Result<Outcome> {
+    if args.out.as_deref().is_some_and(crate::files::is_stdin) {
+        args.out = None;
+    }
+    let stdin = crate::files::is_stdin(&args.file);
+    let name = match (&args.stdin_filename, stdin) {
+        (Some(n), true) => n.clone(),
+        (None, true) => "<stdin>".to_string(),
+        _ => args.file.display().to_string(),
+    };
     let target = match args.to {
         TranspileTarget::Kawasaki => Target::Kawasaki,
         TranspileTarget::Flexiv => Target::Flexiv,
@@ -33,7 +42,11 @@ pub fn run(args: TranspileArgs) -> anyhow::Result<Outcome> {
             return Ok(Outcome::Failure);
         }
     };
-    let dat_path = crate::files::sibling_dat(&args.file);
+    let dat_path = if stdin {
+        None
+    } else {
+        crate::files::sibling_dat(&args.file)
+    };
     if let Some(out) = &args.out {
         let mut inputs: Vec<(&str, &Path)> = vec![("input program", &args.file)];
         inputs.extend(dat_path.as_deref().map(|d| ("program's .dat", d)));
@@ -44,7 +57,16 @@ pub fn run(args: TranspileArgs) -> anyhow::Result<Outcome> {
             return Ok(Outcome::Failure);
         }
     }
-    let src = read_source(&args.file)?;
+    let src = if stdin {
+        Source {
+            path: name.clone(),
+            text: crate::files::read_stdin()
+                .context("cannot read stdin")?
+                .text,
+        }
+    } else {
+        read_source(&args.file)?
+    };
     let dat = match dat_path {
         Some(p) => Some(read_source(&p)?),
         None => None,
@@ -80,6 +102,7 @@ pub fn run(args: TranspileArgs) -> anyhow::Result<Outcome> {
             options.channels = vec![read_channel(path)?];
             options.channels_given = true;
         }
+        None if stdin => {}
         None => options.channels = channels_beside(&args.file),
     }
 
@@ -97,11 +120,10 @@ pub fn run(args: TranspileArgs) -> anyhow::Result<Outcome> {
     } else {
         std::io::stderr().lock().write_all(rendered.as_bytes())?;
     }
-    if args.format == CheckFormat::Human {
+    if args.format == CheckFormat::Human && !super::ui::quiet() {
         let c = t.coverage.total();
         eprintln!(
-            "{}: {errors} error{}, {warnings} warning{}, {infos} renamed; {} of {} constructs translated ({} approximately)",
-            args.file.display(),
+            "{name}: {errors} error{}, {warnings} warning{}, {infos} renamed; {} of {} constructs translated ({} approximately)",
             plural(errors),
             plural(warnings),
             c.exact + c.approximate,
@@ -182,10 +204,11 @@ fn render_reports(reports: &[FileReport], format: CheckFormat) -> String {
 }
 
 fn read_source(path: &Path) -> anyhow::Result<Source> {
-    let bytes = std::fs::read(path).with_context(|| format!("cannot read {}", path.display()))?;
+    let bytes = crate::files::read_regular(path)
+        .with_context(|| format!("cannot read {}", path.display()))?;
     Ok(Source {
         path: path.display().to_string(),
-        text: crate::syntax::decode(&bytes).text,
+        text: crate::syntax::decode_owned(bytes).text,
     })
 }
 

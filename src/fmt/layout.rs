@@ -26,12 +26,6 @@ pub(super) struct Line<'a> {
     pub column1: bool,
 }
 
-#[derive(Clone, Copy, PartialEq, Eq)]
-enum Fold {
-    Open,
-    Close,
-}
-
 /// The lines of `parse`, in order, covering the text exactly once.
 pub(super) fn lines<'a>(text: &str, parse: &'a Parse, indent_folds: bool, out: &mut Vec<Line<'a>>) {
     out.clear();
@@ -178,18 +172,6 @@ fn fill_gaps(text: &str, lines: &mut Vec<Line<'_>>) {
     *lines = filled;
 }
 
-/// A comment-only line that opens or closes a fold.
-fn fold_of(node: Node<'_>) -> Option<(Fold, crate::syntax::Token)> {
-    if node.kind != NodeKind::CommentLine {
-        return None;
-    }
-    node.children().find_map(|e| match e {
-        Element::Token(t) if t.kind == TokenKind::FoldOpen => Some((Fold::Open, t)),
-        Element::Token(t) if t.kind == TokenKind::FoldClose => Some((Fold::Close, t)),
-        _ => None,
-    })
-}
-
 /// Inline-form metadata: `;FOLD … ;%{PE}…`, `;FOLD … ;%{h}`, `;%{E}` … all carry `%{`.
 fn has_inline_form_mark(node: Node<'_>, text: &str) -> bool {
     node.children().any(|e| {
@@ -200,42 +182,32 @@ fn has_inline_form_mark(node: Node<'_>, text: &str) -> bool {
 }
 
 fn mark_folds(text: &str, lines: &mut [Line<'_>], indent_folds: bool) {
-    let mut stack: Vec<(usize, bool)> = Vec::new();
-    // (+1 at open+1, -1 at close) for user folds; protected ranges for inline forms.
-    let mut level_delta = vec![0i32; lines.len() + 1];
-    let mut protect: Vec<(usize, usize)> = Vec::new();
-    for i in 0..lines.len() {
-        let Some(node) = lines[i].node else {
-            continue;
-        };
-        let inline = has_inline_form_mark(node, text);
-        if inline {
-            lines[i].protected = true;
+    for l in lines.iter_mut() {
+        if l.node.is_some_and(|n| has_inline_form_mark(n, text)) {
+            l.protected = true;
         }
-        match fold_of(node) {
-            Some((Fold::Open, _)) => stack.push((i, inline)),
-            Some((Fold::Close, _)) => {
-                if let Some((open, inline_open)) = stack.pop() {
-                    if inline_open {
-                        protect.push((open, i));
-                    } else {
-                        level_delta[open + 1] += 1;
-                        level_delta[i] -= 1;
-                    }
+    }
+    let ends: Vec<u32> = lines.iter().map(|l| l.span.end).collect();
+    let line_of = |at: u32| ends.partition_point(|&end| end <= at);
+    // +1 after a user fold's line, -1 at its `;ENDFOLD`.
+    let mut level_delta = vec![0i32; lines.len() + 1];
+    for fold in crate::syntax::folds::folds(text).0 {
+        let open = line_of(fold.open.start);
+        let inline = text[fold.open.range()].contains("%{");
+        let close = fold.close.map(|c| line_of(c.start));
+        match (inline, close) {
+            // An inline form, or one that never closes: everything through its end stays.
+            (true, close) => {
+                let end = close.unwrap_or(lines.len() - 1).min(lines.len() - 1);
+                for l in &mut lines[open.min(end)..=end] {
+                    l.protected = true;
                 }
             }
-            None => {}
-        }
-    }
-    // An inline form that never closes: everything after its metadata line stays as it is.
-    for &(open, inline) in &stack {
-        if inline {
-            protect.push((open, lines.len() - 1));
-        }
-    }
-    for (a, b) in protect {
-        for l in &mut lines[a..=b] {
-            l.protected = true;
+            (false, Some(close)) if close > open => {
+                level_delta[open + 1] += 1;
+                level_delta[close] -= 1;
+            }
+            _ => {}
         }
     }
     if indent_folds {

@@ -20,6 +20,8 @@
 //! - [`check_equivalent`]`(before, after)`: re-parses both and checks what the formatter
 //!   promises (no new syntax error, the same tokens up to blanks and word case); the CLI runs it
 //!   on every file before writing and refuses a file that fails.
+//! - [`apply_safe_fixes`]`(text, &diagnostics) -> `[`Applied`]: the safe fixes of the findings,
+//!   each kept only if it overlaps no other and adds no syntax error (`check --fix`).
 //! - [`case_edits`]: the token edits that upper-case keywords, built-in types and built-ins
 //!   (the `KRL005` fix).
 //!
@@ -33,11 +35,13 @@
 //!   encoding and BOM are the caller's to keep (the CLI re-encodes with the file's encoding).
 //! - Idempotent: `format(format(x)) == format(x)`; never panics.
 
+mod fix;
 mod layout;
 mod options;
 mod render;
 mod verify;
 
+pub use fix::{Applied, apply_safe_fixes};
 pub use options::{Case, FmtOptions, Spacing};
 pub use verify::{Equivalence, case_edits, check_equivalent};
 
@@ -112,6 +116,9 @@ fn for_each_line<'t>(
     let mut renderer = Renderer::default();
     let mut buf = String::with_capacity(256);
     let mut blank_run = 0usize;
+    // The previous line ends in a lone CR as emitted: an emptied line after it ending in LF
+    // would fuse with it into one CRLF, so such a blank line keeps its blanks.
+    let mut after_cr = false;
     // DECL lines waiting for the end of their run to be aligned: (original, rendered, gap).
     let mut run: Vec<(&'t str, String, DeclGap)> = Vec::new();
     for line in &lines {
@@ -120,6 +127,7 @@ fn for_each_line<'t>(
             flush_run(&mut run, &mut f);
             blank_run = 0;
             f(orig, None);
+            after_cr = orig.ends_with('\r');
             continue;
         };
         if line.blank {
@@ -139,9 +147,15 @@ fn for_each_line<'t>(
             Some(gap) => run.push((orig, buf.clone(), gap)),
             None => {
                 flush_run(&mut run, &mut f);
-                f(orig, Some(&buf));
+                if after_cr && buf.starts_with('\n') {
+                    f(orig, None);
+                } else {
+                    f(orig, Some(&buf));
+                }
             }
         }
+        // Every kept line keeps its own ending.
+        after_cr = orig.ends_with('\r');
     }
     flush_run(&mut run, &mut f);
 }
@@ -164,5 +178,17 @@ fn flush_run<'t>(
         line.extend(std::iter::repeat_n(' ', pad));
         line.push_str(&s[g.end..]);
         f(orig, Some(&line));
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn a_blank_line_after_a_lone_cr_keeps_its_blanks() {
+        let text = "DEF main(a:IN, b:OUT)\r  \nDEF main(a:IN, b:OUT)\r\n";
+        let out = format_text(text, &FmtOptions::default());
+        assert_eq!(out.text, text);
     }
 }

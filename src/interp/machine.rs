@@ -794,7 +794,7 @@ impl<'p> Machine<'p> {
             .is_some();
         if is_mm {
             self.emit(Event::Call {
-                name: routine.name.text.clone(),
+                name: routine.name.text.to_string(),
             });
         }
         if self.frames.len() > 200 {
@@ -804,7 +804,7 @@ impl<'p> Machine<'p> {
         let saved_scope = self.declared_scope.take();
         let mut frame = Frame::new(mi, vars);
         frame.call_site = (!self.frames.is_empty()).then_some(saved_loc);
-        frame.mm = is_mm.then(|| routine.name.text.clone());
+        frame.mm = is_mm.then(|| routine.name.text.to_string());
         self.frames.push(frame);
         let fi = self.frames.len() - 1;
         let result = (|| -> R<Option<Value>> {
@@ -850,7 +850,7 @@ impl<'p> Machine<'p> {
                         && let Some(Slot::Alias(place)) = frame.vars.get(&p.name.key())
                         && let Ok(v) = self.read_value(place)
                     {
-                        out.push((p.name.text.clone(), to_json(&v)));
+                        out.push((p.name.text.to_string(), to_json(&v)));
                     }
                 }
             }
@@ -859,7 +859,7 @@ impl<'p> Machine<'p> {
                 _ => None,
             };
             self.emit(Event::Return {
-                name: routine.name.text.clone(),
+                name: routine.name.text.to_string(),
                 out,
                 status,
             });
@@ -1054,7 +1054,7 @@ impl<'p> Machine<'p> {
                 });
             }
             StmtKind::Exit => return Ok(Flow::Exit),
-            StmtKind::Goto { label } => return Ok(Flow::Goto(label.text.clone())),
+            StmtKind::Goto { label } => return Ok(Flow::Goto(label.text.to_string())),
             StmtKind::Label { .. } | StmtKind::Continue => {}
             StmtKind::WaitSec { time } => {
                 let t = self.eval_real(time)?;
@@ -1522,7 +1522,7 @@ impl<'p> Machine<'p> {
                         field.text
                     )));
                 }
-                p.path.push(Seg::Field(field.text.to_ascii_uppercase()));
+                p.path.push(Seg::Field(field.key()));
                 Ok(p)
             }
             ExprKind::Index { base, indices } => {
@@ -2061,7 +2061,7 @@ impl<'p> Machine<'p> {
                 for (n, fe) in fields {
                     let v = self.eval(fe)?;
                     match n {
-                        Some(n) => vals.push((n.text.to_ascii_uppercase(), v)),
+                        Some(n) => vals.push((n.key(), v)),
                         None => return Err(self.err("positional aggregates are not supported")),
                     }
                 }

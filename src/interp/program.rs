@@ -117,7 +117,7 @@ impl Program {
                     let m = modules.iter().find(|m| {
                         m.text
                             .get(s.span.start as usize..s.span.end as usize)
-                            .is_some_and(|t| t.contains(&f.ty.text))
+                            .is_some_and(|t| t.contains(f.ty.text.as_str()))
                     });
                     RuntimeError {
                         file: m.map(|m| m.name.clone()).unwrap_or_default(),
@@ -143,7 +143,7 @@ impl Program {
                         }
                     }
                 }
-                fields.push((f.name.text.clone(), ty, dims));
+                fields.push((f.name.text.to_string(), ty, dims));
             }
             types.strucs.insert(
                 s.name.key(),

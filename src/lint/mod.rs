@@ -31,7 +31,7 @@ use rayon::prelude::*;
 
 pub use config::{ConfigError, LintConfig};
 pub use eki_xml::EkiChannel;
-pub use registry::{Check, RULES, Rule, nearest_code, rule};
+pub use registry::{Check, FIXES, RULES, Rule, fix_of, nearest_code, rule};
 pub use session::{Affected, Session};
 
 use crate::diag::{Diagnostic, FileReport, LineIndex};
@@ -225,15 +225,17 @@ fn mm_relevant(ast: &SourceFile) -> bool {
         .map(|r| r.body.as_slice())
         .chain(std::iter::once(ast.top_level.as_slice()));
     for body in bodies {
+        let writes_flag = |target: &crate::syntax::ast::Expr| {
+            walk::root_var(target).is_some_and(|v| v.is("$FLAG"))
+                && matches!(target.kind, ExprKind::Index { .. })
+        };
         walk::each_stmt(body, &mut |s| {
             found |= match &s.kind {
                 StmtKind::Call { name, .. } => {
                     name.text.len() >= 3 && name.text[..3].eq_ignore_ascii_case("MM_")
                 }
-                StmtKind::Assign { target, .. } | StmtKind::Pulse { signal: target, .. } => {
-                    walk::root_var(target).is_some_and(|v| v.is("$FLAG"))
-                        && matches!(target.kind, ExprKind::Index { .. })
-                }
+                StmtKind::Assign { target, .. } => writes_flag(target),
+                StmtKind::Pulse { signal, .. } => writes_flag(signal),
                 _ => false,
             }
         });

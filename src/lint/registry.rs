@@ -35,6 +35,7 @@ pub static RULES: &[&Rule] = &[
     &rules::krl002::RULE,
     &rules::krl003::RULE,
     &rules::krl004::RULE,
+    &rules::krl005::RULE,
     &rules::mm001::RULE,
     &rules::mm002::RULE,
     &rules::mm003::RULE,
@@ -47,6 +48,25 @@ pub static RULES: &[&Rule] = &[
     &rules::mm010::RULE,
     &rules::mm011::RULE,
 ];
+
+/// The rules that attach a fix to their findings, and what it does (shown by `krlkit rule`).
+/// `check --fix` applies the safe ones.
+pub static FIXES: &[(&str, &str)] = &[
+    (
+        "KRL003",
+        "renames the main routine (or the DEFDAT) to the file name; safe when the old name \
+         appears nowhere else in the file, otherwise offered as unsafe (not applied)",
+    ),
+    ("KRL005", "upper-cases the words (safe)"),
+];
+
+/// What the automatic fix of `code` does, if it has one.
+pub fn fix_of(code: &str) -> Option<&'static str> {
+    FIXES
+        .iter()
+        .find(|(c, _)| c.eq_ignore_ascii_case(code))
+        .map(|(_, d)| *d)
+}
 
 /// The rule with this code (case-insensitive).
 pub fn rule(code: &str) -> Option<&'static Rule> {

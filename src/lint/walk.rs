@@ -28,7 +28,7 @@ pub fn own_exprs(s: &Stmt) -> Vec<&Expr> {
         StmtKind::For { from, to, step, .. } => {
             v.push(from);
             v.push(to);
-            v.extend(step.iter());
+            v.extend(step.as_deref());
         }
         StmtKind::WaitSec { time } => v.push(time),
         StmtKind::Return { value } => v.extend(value.iter()),
@@ -54,7 +54,7 @@ pub fn own_exprs(s: &Stmt) -> Vec<&Expr> {
         } => {
             v.push(position);
             v.push(delay);
-            v.extend(prio.iter());
+            v.extend(prio.as_deref());
         }
         StmtKind::Pulse {
             signal,

@@ -5,18 +5,21 @@
 use lsp_server::{ErrorCode, Request, ResponseError};
 use lsp_types::request::{self as req, Request as _};
 use lsp_types::{
-    CompletionOptions, CompletionParams, CompletionResponse, DocumentSymbolParams,
-    DocumentSymbolResponse, FoldingRange, FoldingRangeParams, FoldingRangeProviderCapability,
-    Hover, HoverContents, HoverParams, HoverProviderCapability, MarkupContent, MarkupKind, OneOf,
-    ServerCapabilities, SignatureHelp, SignatureHelpOptions, SignatureHelpParams,
-    TextDocumentIdentifier, TextDocumentPositionParams,
+    CodeAction, CodeActionKind, CodeActionOptions, CodeActionOrCommand, CodeActionParams,
+    CodeActionProviderCapability, CodeActionResponse, CompletionOptions, CompletionParams,
+    CompletionResponse, DocumentSymbolParams, DocumentSymbolResponse, FoldingRange,
+    FoldingRangeParams, FoldingRangeProviderCapability, Hover, HoverContents, HoverParams,
+    HoverProviderCapability, MarkupContent, MarkupKind, OneOf, ServerCapabilities, SignatureHelp,
+    SignatureHelpOptions, SignatureHelpParams, TextDocumentIdentifier, TextDocumentPositionParams,
+    TextEdit, Uri, WorkspaceEdit,
 };
 use serde_json::Value;
 
 use super::cursor::{self, Place};
 use super::position::Lines;
 use super::server::Server;
-use super::{mm, outline, paths};
+use super::{diagnostics, mm, outline, paths};
+use crate::diag::{Applicability, Edit};
 use crate::lint::context::Parsed;
 
 pub fn capabilities() -> ServerCapabilities {
@@ -33,6 +36,12 @@ pub fn capabilities() -> ServerCapabilities {
         }),
         document_symbol_provider: Some(OneOf::Left(true)),
         folding_range_provider: Some(FoldingRangeProviderCapability::Simple(true)),
+        code_action_provider: Some(CodeActionProviderCapability::Options(CodeActionOptions {
+            code_action_kinds: Some(vec![CodeActionKind::QUICKFIX, fix_all()]),
+            ..CodeActionOptions::default()
+        })),
+        document_formatting_provider: Some(OneOf::Left(true)),
+        document_range_formatting_provider: Some(OneOf::Left(true)),
         ..ServerCapabilities::default()
     }
 }
@@ -52,6 +61,15 @@ pub fn dispatch(s: &mut Server, r: Request) -> Option<Result<Value, ResponseErro
         }
         req::FoldingRangeRequest::METHOD => {
             call::<req::FoldingRangeRequest>(params, |p| folding_ranges(s, p))
+        }
+        req::CodeActionRequest::METHOD => {
+            call::<req::CodeActionRequest>(params, |p| code_actions(s, p))
+        }
+        req::Formatting::METHOD => {
+            call::<req::Formatting>(params, |p| formatting(s, &p.text_document, None))
+        }
+        req::RangeFormatting::METHOD => {
+            call::<req::RangeFormatting>(params, |p| formatting(s, &p.text_document, Some(p.range)))
         }
         // Not LSP: how many files still wait for a check (tests and editors' status bars).
         STATUS => Ok(serde_json::json!({
@@ -173,4 +191,92 @@ fn folding_ranges(s: &Server, p: FoldingRangeParams) -> Option<Vec<FoldingRange>
     let f = file(s, &p.text_document)?;
     let lines = Lines::new(&f.text);
     Some(outline::folding_ranges(&lines, &f.ast))
+}
+
+/// `source.fixAll.krlkit`: every safe fix of the file at once.
+fn fix_all() -> CodeActionKind {
+    CodeActionKind::new("source.fixAll.krlkit")
+}
+
+fn text_edits(lines: &Lines, edits: &[Edit]) -> Vec<TextEdit> {
+    edits
+        .iter()
+        .map(|e| TextEdit::new(lines.range(e.span), e.replacement.clone()))
+        .collect()
+}
+
+fn workspace_edit(uri: &Uri, edits: Vec<TextEdit>) -> WorkspaceEdit {
+    WorkspaceEdit {
+        changes: Some([(uri.clone(), edits)].into_iter().collect()),
+        ..WorkspaceEdit::default()
+    }
+}
+
+/// The fixes the rules attached to the findings in the range (quick fixes), and all safe fixes
+/// of the file together (`source.fixAll.krlkit`). Nothing here decides what a fix is.
+fn code_actions(s: &Server, p: CodeActionParams) -> Option<CodeActionResponse> {
+    let f = file(s, &p.text_document)?;
+    let lines = Lines::new(&f.text);
+    let want = lines.span(p.range);
+    let found = s.findings.get(&f.path)?;
+    let wanted = |k: &CodeActionKind| {
+        p.context.only.as_ref().is_none_or(|only| {
+            only.iter().any(|o| {
+                k.as_str() == o.as_str() || k.as_str().starts_with(&format!("{}.", o.as_str()))
+            })
+        })
+    };
+    let uri = &p.text_document.uri;
+    let mut out: CodeActionResponse = Vec::new();
+    if wanted(&CodeActionKind::QUICKFIX) {
+        for d in found {
+            let Some(fix) = &d.fix else { continue };
+            if d.span.start > want.end || want.start > d.span.end {
+                continue;
+            }
+            out.push(CodeActionOrCommand::CodeAction(CodeAction {
+                title: fix.title.clone(),
+                kind: Some(CodeActionKind::QUICKFIX),
+                diagnostics: Some(vec![diagnostics::convert(&lines, d)]),
+                edit: Some(workspace_edit(uri, text_edits(&lines, &fix.edits))),
+                is_preferred: Some(fix.applicability == Applicability::Safe),
+                ..CodeAction::default()
+            }));
+        }
+    }
+    if wanted(&fix_all()) {
+        let mut edits: Vec<Edit> = Vec::new();
+        for fix in found.iter().filter_map(|d| d.fix.as_ref()) {
+            if fix.applicability == Applicability::Safe
+                && !crate::diag::fix::overlaps(&edits, &fix.edits)
+            {
+                edits.extend(fix.edits.iter().cloned());
+            }
+        }
+        if !edits.is_empty() {
+            edits.sort_by_key(|e| (e.span.start, e.span.end));
+            out.push(CodeActionOrCommand::CodeAction(CodeAction {
+                title: "Apply every safe krlkit fix".into(),
+                kind: Some(fix_all()),
+                edit: Some(workspace_edit(uri, text_edits(&lines, &edits))),
+                ..CodeAction::default()
+            }));
+        }
+    }
+    Some(out)
+}
+
+/// `krlkit fmt` on the document (or the lines of a range), with the workspace's `[fmt]` options.
+fn formatting(
+    s: &Server,
+    doc: &TextDocumentIdentifier,
+    range: Option<lsp_types::Range>,
+) -> Option<Vec<TextEdit>> {
+    let f = file(s, doc)?;
+    let lines = Lines::new(&f.text);
+    let edits = match range {
+        None => crate::fmt::format_edits(&f.text, &s.ws.fmt),
+        Some(r) => crate::fmt::format_range(&f.text, lines.span(r).range(), &s.ws.fmt),
+    };
+    Some(text_edits(&lines, &edits))
 }

@@ -26,7 +26,7 @@ mod outline;
 mod paths;
 mod position;
 mod server;
-mod workspace;
+pub(crate) mod workspace;
 
 pub use documents::{Document, Documents};
 pub use position::Lines;

@@ -20,7 +20,7 @@ struct Entry {
 
 fn decl_entries(d: &Decl, out: &mut Vec<Entry>) {
     for v in &d.vars {
-        let mut detail = d.ty.name.text.clone();
+        let mut detail = d.ty.name.text.to_string();
         if !v.dims.is_empty() {
             detail.push_str("[]");
         }
@@ -28,7 +28,7 @@ fn decl_entries(d: &Decl, out: &mut Vec<Entry>) {
             detail = format!("GLOBAL {detail}");
         }
         out.push(Entry {
-            name: v.name.text.clone(),
+            name: v.name.text.to_string(),
             detail: Some(detail),
             kind: if d.constant {
                 SymbolKind::CONSTANT
@@ -51,7 +51,7 @@ fn definition_entry(d: &Definition, out: &mut Vec<Entry>) {
         Definition::Channel(c) => (&c.name, SymbolKind::VARIABLE, c.span, "CHANNEL"),
     };
     out.push(Entry {
-        name: name.text.clone(),
+        name: name.text.to_string(),
         detail: Some(detail.into()),
         kind,
         span,
@@ -87,7 +87,7 @@ pub fn document_symbols(lines: &Lines, file: &SourceFile) -> Vec<DocumentSymbol>
             detail = format!("GLOBAL {detail}");
         }
         entries.push(Entry {
-            name: r.name.text.clone(),
+            name: r.name.text.to_string(),
             detail: Some(detail),
             kind,
             span: r.span,
@@ -101,7 +101,7 @@ pub fn document_symbols(lines: &Lines, file: &SourceFile) -> Vec<DocumentSymbol>
     }
     if let Some(dat) = &file.dat {
         entries.push(Entry {
-            name: dat.name.text.clone(),
+            name: dat.name.text.to_string(),
             detail: Some(
                 if dat.public {
                     "DEFDAT PUBLIC"

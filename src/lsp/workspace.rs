@@ -11,6 +11,7 @@ use rayon::prelude::*;
 
 use crate::diag::FileReport;
 use crate::files;
+use crate::fmt::FmtOptions;
 use crate::lint::{self, Affected, EkiChannel, Input, LintConfig, Session, context::Parsed};
 
 /// Config files looked for in the workspace root, first found wins.
@@ -19,6 +20,8 @@ pub const CONFIG_NAMES: [&str; 2] = [".krlkit.toml", "krlkit.toml"];
 pub struct Workspace {
     pub root: Option<PathBuf>,
     session: Session,
+    /// The `[fmt]` options of the same config file.
+    pub fmt: FmtOptions,
 }
 
 /// What went wrong while loading, for the editor's log (never fatal).
@@ -50,15 +53,15 @@ impl Workspace {
             }
             None => (Vec::new(), Vec::new()),
         };
-        let config = match read_config(root.as_deref()) {
+        let (config, fmt) = match read_config(root.as_deref()) {
             Ok(c) => c,
             Err(e) => {
                 problems.push(e);
-                LintConfig::default()
+                Default::default()
             }
         };
         let session = Session::new(inputs, channels, false, config);
-        (Workspace { root, session }, problems)
+        (Workspace { root, session, fmt }, problems)
     }
 
     /// Files whose text the editor now owns (opened or changed).
@@ -98,8 +101,9 @@ impl Workspace {
     /// Read the config again; an error leaves the defaults in force and is returned.
     pub fn reload_config(&mut self) -> Result<(), String> {
         let result = read_config(self.root.as_deref());
-        self.session
-            .set_config(result.as_ref().cloned().unwrap_or_default());
+        let (lint, fmt) = result.clone().unwrap_or_default();
+        self.session.set_config(lint);
+        self.fmt = fmt;
         result.map(|_| ())
     }
 
@@ -124,16 +128,20 @@ impl Workspace {
     }
 }
 
-/// The `[lint]` section of the root's config file, or the defaults when there is none.
-fn read_config(root: Option<&Path>) -> Result<LintConfig, String> {
+/// The `[lint]` and `[fmt]` tables of the root's config file, or the defaults without one.
+fn read_config(root: Option<&Path>) -> Result<(LintConfig, FmtOptions), String> {
     let Some(path) =
         root.and_then(|r| CONFIG_NAMES.iter().map(|n| r.join(n)).find(|p| p.is_file()))
     else {
-        return Ok(LintConfig::default());
+        return Ok(Default::default());
     };
     let text = std::fs::read_to_string(&path)
         .map_err(|e| format!("cannot read config {}: {e}", path.display()))?;
-    LintConfig::from_toml(&path.display().to_string(), &text).map_err(|e| e.to_string())
+    let name = path.display().to_string();
+    Ok((
+        LintConfig::from_toml(&name, &text).map_err(|e| e.to_string())?,
+        FmtOptions::from_toml(&name, &text).map_err(|e| e.to_string())?,
+    ))
 }
 
 /// True for the files whose change means reading the config or the channels again.

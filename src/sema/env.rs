@@ -165,7 +165,7 @@ fn load(text: &str) -> Env {
     for e in raw.variables {
         match one_statement(&e.decl) {
             Some(StmtKind::Decl(d)) if d.vars.len() == 1 => env.variables.push(EnvVariable {
-                decl: d,
+                decl: *d,
                 meta: meta(&e),
             }),
             _ => env.rejected.push(e.decl),

@@ -6,7 +6,7 @@
 //! too, because it is what turns a misspelt keyword (`PTPP P1`, read as a declaration of type
 //! `PTPP`) into the error it is.
 
-use super::build::Builder;
+use super::build::{Builder, Checkpoint};
 use super::cst::{Child, NodeKind, SyntaxTree};
 use super::parser::SYNTAX_ERROR;
 use crate::diag::{Diagnostic, Span};
@@ -203,6 +203,8 @@ struct Frame {
     mark: usize,
     /// Routines only: a statement has been seen, so declarations are no longer allowed.
     in_statements: bool,
+    /// Outline builds: everything after the opening line, dropped when the block closes.
+    after_opener: Checkpoint,
 }
 
 /// What a line is to the declaration-before-statement rule.
@@ -235,7 +237,7 @@ pub(crate) struct Assembler {
 }
 
 /// The span of a line node's code (first to last non-trivia child).
-fn code_span(b: &Builder, line: Child) -> Span {
+pub(crate) fn code_span(b: &Builder, line: Child) -> Span {
     let Child::Node(id) = line else {
         return b.span_of(line);
     };
@@ -278,13 +280,15 @@ impl Assembler {
 
     fn open(&mut self, b: &mut Builder, block: Block, line: Child) {
         let anchor = code_span(b, line);
+        let mark = b.mark();
+        b.push(line);
         self.stack.push(Frame {
             block,
             anchor,
-            mark: b.mark(),
+            mark,
             in_statements: false,
+            after_opener: b.checkpoint(),
         });
-        b.push(line);
     }
 
     /// Pop the top frame into its parent; `report` says whether a missing end is an error.
@@ -312,6 +316,9 @@ impl Assembler {
                 (Some(f), Some(l)) => b.span_of(*f).cover(b.span_of(*l)),
                 _ => Span::empty(0),
             };
+            if b.is_outline() {
+                b.rollback(frame.after_opener);
+            }
             let node = b.finish(frame.mark, frame.block.node_kind(), span);
             b.push(node);
         }
@@ -325,13 +332,26 @@ impl Assembler {
         diagnostics: &mut Vec<Diagnostic>,
     ) {
         self.check_declaration_order(b, node, role, diagnostics);
+        // Closing blocks drops an outline's nodes built since they opened, this line's too:
+        // `fresh` builds it again after closing.
+        let line = b
+            .is_outline()
+            .then(|| (kind_of(b, node), b.span_of(node), code_span(b, node)));
+        let fresh = |b: &mut Builder, node: Child| match line {
+            Some((Some(kind), span, code)) => b.compact_line(kind, span, code),
+            _ => node,
+        };
         match role {
+            // An outline keeps no plain lines: no later diagnostic looks at them.
+            Role::None if b.is_outline() => b.forget(node),
             Role::None => b.push(node),
             Role::Open(block) => {
+                let mut node = node;
                 if block.is_module() {
                     while !self.stack.is_empty() {
                         self.close_top(b, true, diagnostics);
                     }
+                    node = fresh(b, node);
                 } else if self.stack.len() >= MAX_BLOCK_DEPTH {
                     // Every later stage walks blocks recursively; hostile nesting must not
                     // overflow their stacks. The line stays in the tree, unnested.
@@ -341,7 +361,7 @@ impl Assembler {
                 }
                 self.open(b, block, node);
             }
-            Role::Close(block) => self.close(b, block, node, diagnostics),
+            Role::Close(block) => self.close(b, block, node, &fresh, diagnostics),
             Role::Else => {
                 if self.stack.last().is_some_and(|f| f.block == Block::If) {
                     b.push(node);
@@ -350,12 +370,14 @@ impl Assembler {
                 }
             }
             Role::Case | Role::Default => {
+                let mut node = node;
                 if self
                     .stack
                     .last()
                     .is_some_and(|f| f.block == Block::Case || f.block == Block::Default)
                 {
                     self.close_top(b, false, diagnostics);
+                    node = fresh(b, node);
                 }
                 if self.stack.last().is_some_and(|f| f.block == Block::Switch) {
                     let block = if role == Role::Case {
@@ -461,6 +483,7 @@ impl Assembler {
         b: &mut Builder,
         block: Block,
         node: Child,
+        fresh: &dyn Fn(&mut Builder, Child) -> Child,
         diagnostics: &mut Vec<Diagnostic>,
     ) {
         // Find the innermost matching frame without crossing a module boundary.
@@ -479,6 +502,7 @@ impl Assembler {
                 while self.stack.len() > i + 1 {
                     self.close_top(b, true, diagnostics);
                 }
+                let node = fresh(b, node);
                 b.push(node);
                 self.close_top(b, false, diagnostics);
             }

@@ -12,6 +12,12 @@ pub(crate) struct Builder<'t> {
     pub(crate) text: &'t str,
     tree: SyntaxTree,
     stack: Vec<Child>,
+    /// Diagnostics only (see [`Builder::outline`]): the parser and the block assembler drop
+    /// what no later diagnostic can look at.
+    outline: bool,
+    /// Whether finishing a node fills uncovered bytes with gap tokens (off while an outline
+    /// assembles blocks, whose lines it no longer holds).
+    fill_gaps: bool,
 }
 
 /// Lengths to roll back to.
@@ -33,7 +39,40 @@ impl<'t> Builder<'t> {
             text,
             tree,
             stack: Vec::with_capacity(256),
+            outline: false,
+            fill_gaps: true,
         }
+    }
+
+    /// A builder for diagnostics only: the tree it ends with is an outline (lines reduced to
+    /// their code span, finished blocks to their opening line), so memory stays proportional to
+    /// the open blocks, not to the file.
+    pub(crate) fn outline(text: &'t str) -> Self {
+        Builder {
+            text,
+            tree: SyntaxTree::default(),
+            stack: Vec::with_capacity(256),
+            outline: true,
+            fill_gaps: true,
+        }
+    }
+
+    pub(crate) fn set_fill_gaps(&mut self, on: bool) {
+        self.fill_gaps = on;
+    }
+
+    /// A line of an outline: its kind and span, and one token over its code (so the line's
+    /// code span is what it was).
+    pub(crate) fn compact_line(&mut self, kind: NodeKind, span: Span, code: Span) -> Child {
+        let mark = self.mark();
+        if !code.is_empty() {
+            self.push_token(TokenKind::Keyword, code.start as usize, code.end as usize);
+        }
+        self.finish(mark, kind, span)
+    }
+
+    pub(crate) fn is_outline(&self) -> bool {
+        self.outline
     }
 
     pub(crate) fn token(kind: TokenKind, start: usize, end: usize) -> Child {
@@ -78,6 +117,17 @@ impl<'t> Builder<'t> {
         self.stack.truncate(cp.stack);
         self.tree.nodes.truncate(cp.nodes);
         self.tree.children.truncate(cp.children);
+    }
+
+    /// Drop `child`, the last node built (or a token), and what it holds.
+    pub(crate) fn forget(&mut self, child: Child) {
+        if let Child::Node(id) = child
+            && id as usize + 1 == self.tree.nodes.len()
+        {
+            let first = self.tree.nodes[id as usize].first;
+            self.tree.nodes.truncate(id as usize);
+            self.tree.children.truncate(first as usize);
+        }
     }
 
     pub(crate) fn span_of(&self, child: Child) -> Span {
@@ -126,7 +176,7 @@ impl<'t> Builder<'t> {
 
     fn place(&mut self, child: Child, pos: usize) -> usize {
         let s = self.span_of(child);
-        if (s.start as usize) > pos {
+        if (s.start as usize) > pos && self.fill_gaps {
             gap_tokens(self.text, pos, s.start as usize, &mut self.tree.children);
         }
         self.tree.children.push(child);
@@ -134,7 +184,7 @@ impl<'t> Builder<'t> {
     }
 
     fn seal(&mut self, kind: NodeKind, span: Span, first: usize, pos: usize) -> Child {
-        if (span.end as usize) > pos {
+        if (span.end as usize) > pos && self.fill_gaps {
             gap_tokens(self.text, pos, span.end as usize, &mut self.tree.children);
         }
         let id = self.tree.nodes.len() as u32;

@@ -440,27 +440,21 @@ impl<'a> Node<'a> {
     }
 
     /// The contract's `--tree` JSON: nodes `{"kind","children"}`, tokens `{"kind","text"}`.
-    pub fn write_json(&self, text: &str, out: &mut String) {
-        out.push_str("{\"kind\":\"");
-        out.push_str(&format!("{:?}", self.kind));
-        out.push_str("\",\"children\":[");
+    pub fn write_json(&self, text: &str, out: &mut impl std::io::Write) -> std::io::Result<()> {
+        write!(out, "{{\"kind\":\"{:?}\",\"children\":[", self.kind)?;
         for (i, child) in self.children().enumerate() {
             if i > 0 {
-                out.push(',');
+                out.write_all(b",")?;
             }
             match child {
-                Element::Node(n) => n.write_json(text, out),
+                Element::Node(n) => n.write_json(text, out)?,
                 Element::Token(t) => {
-                    out.push_str("{\"kind\":\"");
-                    out.push_str(&format!("{:?}", t.kind));
-                    out.push_str("\",\"text\":");
-                    out.push_str(
-                        &serde_json::to_string(t.text(text)).unwrap_or_else(|_| "\"\"".into()),
-                    );
-                    out.push('}');
+                    write!(out, "{{\"kind\":\"{:?}\",\"text\":", t.kind)?;
+                    serde_json::to_writer(&mut *out, t.text(text))?;
+                    out.write_all(b"}")?;
                 }
             }
         }
-        out.push_str("]}");
+        out.write_all(b"]}")
     }
 }

@@ -64,5 +64,5 @@ mod line;
 mod parser;
 
 pub use cst::{Children, Element, Node, NodeKind, SyntaxTree, Token, TokenKind};
-pub use decode::{Decoded, TextEncoding, decode, encode_as};
-pub use parser::{Parse, SYNTAX_ERROR, parse};
+pub use decode::{Decoded, TextEncoding, decode, decode_owned, encode_as};
+pub use parser::{Parse, SYNTAX_ERROR, diagnostics, parse};

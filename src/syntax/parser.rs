@@ -6,7 +6,7 @@
 //! blocks. A line that does not parse becomes an `Error` node plus one `KRL001`; the next line
 //! starts fresh.
 
-use super::blocks::{Assembler, Role};
+use super::blocks::{Assembler, Role, code_span};
 use super::build::Builder;
 use super::cst::{Child, Node, NodeKind, SyntaxTree, TokenKind};
 use super::line::parse_code;
@@ -30,9 +30,20 @@ impl Parse {
 
     /// The contract's `--tree` JSON.
     pub fn to_json_tree(&self, text: &str) -> String {
-        let mut out = String::with_capacity(text.len() * 8);
-        self.root().write_json(text, &mut out);
-        out
+        let mut out = Vec::new();
+        self.write_json_tree(text, &mut out)
+            .expect("writing to memory does not fail");
+        String::from_utf8(out).expect("JSON is UTF-8")
+    }
+
+    /// The `--tree` JSON, written as the tree is walked (nothing the size of the output is
+    /// built in memory).
+    pub fn write_json_tree(
+        &self,
+        text: &str,
+        out: &mut impl std::io::Write,
+    ) -> std::io::Result<()> {
+        self.root().write_json(text, out)
     }
 
     /// The typed AST (see [`super::ast`]).
@@ -61,6 +72,43 @@ pub fn parse(text: &str) -> Parse {
     let tree = asm.finish(b, &mut diagnostics);
     diagnostics.sort_by_key(|d| d.span.start);
     Parse { tree, diagnostics }
+}
+
+/// The diagnostics [`parse`] would report, without keeping the tree: memory grows with the
+/// deepest open block, not with the file (what `krlkit parse` needs).
+pub fn diagnostics(text: &str) -> Vec<Diagnostic> {
+    let mut diagnostics = Vec::new();
+    let mut b = Builder::outline(text);
+    let mut asm = Assembler::new();
+    let bytes = text.as_bytes();
+    let mut start = 0;
+    while start < bytes.len() {
+        let (content_end, line_end) = line_bounds(bytes, start);
+        let cp = b.checkpoint();
+        let (line, role) = parse_line(&mut b, start, content_end, line_end, &mut diagnostics);
+        start = line_end;
+        let Child::Node(id) = line else { continue };
+        let kind = b.kind_of(id);
+        if matches!(
+            kind,
+            NodeKind::BlankLine | NodeKind::CommentLine | NodeKind::HeaderLine
+        ) {
+            b.rollback(cp);
+            continue;
+        }
+        // The line as the assembler sees it: its kind, span and code span.
+        let span = b.span_of(line);
+        let code = code_span(&b, line);
+        b.rollback(cp);
+        b.set_fill_gaps(false);
+        let line = b.compact_line(kind, span, code);
+        asm.push(&mut b, line, role, &mut diagnostics);
+        b.set_fill_gaps(true);
+    }
+    b.set_fill_gaps(false);
+    drop(asm.finish(b, &mut diagnostics));
+    diagnostics.sort_by_key(|d| d.span.start);
+    diagnostics
 }
 
 /// End of the line's content and end of the line including its terminator.

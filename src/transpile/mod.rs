@@ -13,6 +13,7 @@
 
 pub mod flexiv;
 pub mod front;
+pub mod ir;
 pub mod kawasaki;
 pub mod orientation;
 pub mod rules;
@@ -109,7 +110,14 @@ pub fn transpile(
         dat.map(|d| front::Parsed::new(d.path, d.text)),
     );
     let (text, mut report) = match target {
-        Target::Kawasaki => kawasaki::translate(&program, options),
+        Target::Kawasaki => {
+            let (mut model, vision) = ir::lower::lower(&program, options);
+            ir::flow::resolve(&mut model);
+            let (text, mut report, produced) =
+                kawasaki::render(&program, &model, vision.as_ref(), options);
+            report.coverage = coverage(&model, &report, &produced);
+            (text, report)
+        }
         Target::Flexiv => flexiv::translate(&program, options),
     };
     trim_spans(&mut report.src, &program.src.text);
@@ -134,6 +142,35 @@ pub fn transpile(
         reports,
         coverage: report.coverage,
     }
+}
+
+/// The coverage table from the program's constructs and the findings: a construct is as good
+/// as the worst finding that starts inside it (renames do not count).
+fn coverage(
+    model: &ir::Program,
+    report: &front::report::Report,
+    _produced: &[crate::diag::Span],
+) -> Coverage {
+    use front::report::{FileId, Outcome};
+    let mut c = Coverage::default();
+    for k in &model.constructs {
+        let findings = match k.file {
+            FileId::Src => &report.src,
+            FileId::Dat => &report.dat,
+        };
+        let mut o = Outcome::Exact;
+        for d in findings {
+            if d.span.start >= k.span.start && d.span.start < k.span.end.max(k.span.start + 1) {
+                o = o.max(match d.code {
+                    rules::UNTRANSLATABLE => Outcome::Untranslated,
+                    rules::APPROXIMATE => Outcome::Approximate,
+                    _ => Outcome::Exact,
+                });
+            }
+        }
+        c.record(k.kind, o);
+    }
+    c
 }
 
 /// Statement spans cover their whole lines; findings point at the code, not at the

@@ -4,6 +4,7 @@ pub mod krl001;
 pub mod krl002;
 pub mod krl003;
 pub mod krl004;
+pub mod krl005;
 pub mod mm001;
 pub mod mm002;
 pub mod mm003;

@@ -57,7 +57,7 @@ fn is_expr(el: &Element) -> bool {
 impl<'t> Cx<'t> {
     fn ident(&self, t: &Token) -> Ident {
         Ident {
-            text: t.text(self.text).to_string(),
+            text: t.text(self.text).into(),
             span: t.span,
         }
     }
@@ -125,7 +125,7 @@ impl<'t> Cx<'t> {
             .find(|t| t.kind == T::Ident)
             .map(|t| self.ident(t))
             .unwrap_or_else(|| Ident {
-                text: String::new(),
+                text: CompactString::default(),
                 span: node.span,
             });
         TypeRef {
@@ -269,7 +269,7 @@ impl<'t> Cx<'t> {
             kind: RoutineKind::Def,
             global: false,
             name: Ident {
-                text: String::new(),
+                text: CompactString::default(),
                 span: node.span,
             },
             return_type: None,
@@ -312,7 +312,7 @@ impl<'t> Cx<'t> {
             .find(|t| t.kind == T::Ident)
             .map(|t| self.ident(t))
             .unwrap_or_else(|| Ident {
-                text: String::new(),
+                text: CompactString::default(),
                 span: p.span,
             });
         ParamDecl {
@@ -339,7 +339,7 @@ impl<'t> Cx<'t> {
             .and_then(|h| h.tokens().find(|t| t.kind == T::Ident))
             .map(|t| self.ident(t))
             .unwrap_or_else(|| Ident {
-                text: String::new(),
+                text: CompactString::default(),
                 span: node.span,
             });
         let public = header.is_some_and(|h| h.has_keyword(self.text, "PUBLIC"));
@@ -354,7 +354,7 @@ impl<'t> Cx<'t> {
         let mut body = Vec::new();
         for s in stmts {
             match s.kind {
-                StmtKind::Decl(d) => decls.push(d),
+                StmtKind::Decl(d) => decls.push(*d),
                 StmtKind::Definition(d) => definitions.push(d),
                 _ => body.push(s),
             }
@@ -454,9 +454,9 @@ impl<'t> Cx<'t> {
                 let step = parts.next();
                 StmtKind::For {
                     var,
-                    from,
-                    to,
-                    step,
+                    from: Box::new(from),
+                    to: Box::new(to),
+                    step: step.map(Box::new),
                     body: self.body(inner(&lines, K::EndforLine)),
                 }
             }
@@ -574,15 +574,15 @@ impl<'t> Cx<'t> {
                 if name.is("PULSE") && args.len() == 3 && args.iter().all(Option::is_some) {
                     let mut a = args.into_iter().flatten();
                     StmtKind::Pulse {
-                        signal: a.next()?,
-                        level: a.next()?,
-                        duration: a.next()?,
+                        signal: Box::new(a.next()?),
+                        level: Box::new(a.next()?),
+                        duration: Box::new(a.next()?),
                     }
                 } else {
                     StmtKind::Call { name, args }
                 }
             }
-            K::MotionStmt => StmtKind::Motion(self.motion(node, &sig)?),
+            K::MotionStmt => StmtKind::Motion(Box::new(self.motion(node, &sig)?)),
             K::WaitForStmt => StmtKind::WaitFor {
                 cond: first_expr()?,
             },
@@ -638,8 +638,8 @@ impl<'t> Cx<'t> {
                     .find(|n| matches!(n.kind, K::CallStmt | K::AssignStmt))?;
                 StmtKind::InterruptDecl {
                     global: node.has_keyword(text, "GLOBAL"),
-                    number: e.next()?,
-                    condition: e.next()?,
+                    number: Box::new(e.next()?),
+                    condition: Box::new(e.next()?),
                     handler: Box::new(Stmt {
                         kind: self.stmt_kind(handler)?,
                         span: handler.span,
@@ -657,14 +657,14 @@ impl<'t> Cx<'t> {
                     } else {
                         TriggerKind::Distance
                     },
-                    position: e.next()?,
+                    position: Box::new(e.next()?),
                     onstart: node.has_keyword(text, "ONSTART"),
-                    delay: e.next()?,
+                    delay: Box::new(e.next()?),
                     action: Box::new(Stmt {
                         kind: self.stmt_kind(action)?,
                         span: action.span,
                     }),
-                    prio: e.next(),
+                    prio: e.next().map(Box::new),
                 }
             }
             K::AnalogStmt => {
@@ -684,12 +684,12 @@ impl<'t> Cx<'t> {
                         .collect(),
                 };
                 if node.has_keyword(text, "ANOUT") {
-                    StmtKind::AnOut(analog)
+                    StmtKind::AnOut(Box::new(analog))
                 } else {
-                    StmtKind::AnIn(analog)
+                    StmtKind::AnIn(Box::new(analog))
                 }
             }
-            K::DeclStmt => StmtKind::Decl(self.decl(node)),
+            K::DeclStmt => StmtKind::Decl(Box::new(self.decl(node))),
             K::StrucDecl => {
                 let mut idents = node.tokens().filter(|t| t.kind == T::Ident);
                 let name = self.ident(idents.next()?);
@@ -740,8 +740,8 @@ impl<'t> Cx<'t> {
                 StmtKind::Definition(Definition::Signal(SignalDecl {
                     global: node.has_keyword(text, "GLOBAL"),
                     name,
-                    from: e.next()?,
-                    to: e.next(),
+                    from: Box::new(e.next()?),
+                    to: e.next().map(Box::new),
                     span: node.span,
                 }))
             }
@@ -758,7 +758,7 @@ impl<'t> Cx<'t> {
                 StmtKind::Definition(Definition::Channel(ChannelDecl {
                     name,
                     device,
-                    param: ids.get(2).map(|e| self.expr(e)),
+                    param: ids.get(2).map(|e| Box::new(self.expr(e))),
                     span: node.span,
                 }))
             }
@@ -775,7 +775,7 @@ impl<'t> Cx<'t> {
                     .map(|t| self.ident(t))?;
                 StmtKind::Definition(Definition::Ext(ExtDecl {
                     kind,
-                    return_type: node.child(K::TypeRef).map(|t| self.type_ref(t)),
+                    return_type: node.child(K::TypeRef).map(|t| Box::new(self.type_ref(t))),
                     name,
                     params: node
                         .nodes()
@@ -792,7 +792,7 @@ impl<'t> Cx<'t> {
                 }))
             }
             K::ImportDecl => StmtKind::Definition(Definition::Import(ImportDecl {
-                ty: self.type_ref(node.child(K::TypeRef)?),
+                ty: Box::new(self.type_ref(node.child(K::TypeRef)?)),
                 name: node
                     .tokens()
                     .find(|t| t.kind == T::Ident)
@@ -979,7 +979,7 @@ fn split_declarations(stmts: Vec<Stmt>) -> (Vec<Decl>, Vec<Definition>, Vec<Stmt
     let mut in_head = true;
     for s in stmts {
         match s.kind {
-            StmtKind::Decl(d) if in_head => decls.push(d),
+            StmtKind::Decl(d) if in_head => decls.push(*d),
             StmtKind::Definition(d) if in_head => definitions.push(d),
             kind => {
                 in_head = false;

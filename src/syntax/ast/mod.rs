@@ -11,12 +11,17 @@ pub mod walk;
 pub use lower::lower;
 pub use walk::each_stmt;
 
+pub use compact_str::CompactString;
+
 use crate::diag::Span;
 
 /// A name as written, with its span. KRL names are case-insensitive.
+///
+/// `text` is a [`CompactString`]: KRL names are at most 24 bytes, which it holds inline, so a
+/// name costs no heap allocation (it derefs to `&str`).
 #[derive(Debug, Clone, PartialEq)]
 pub struct Ident {
-    pub text: String,
+    pub text: CompactString,
     pub span: Span,
 }
 
@@ -28,7 +33,7 @@ impl Ident {
 
     /// The canonical (upper-case) form, for map keys.
     pub fn key(&self) -> String {
-        self.text.to_ascii_uppercase()
+        self.text.as_str().to_ascii_uppercase()
     }
 
     /// True for `$` system variables.
@@ -171,8 +176,8 @@ pub struct EnumDecl {
 pub struct SignalDecl {
     pub global: bool,
     pub name: Ident,
-    pub from: Expr,
-    pub to: Option<Expr>,
+    pub from: Box<Expr>,
+    pub to: Option<Box<Expr>>,
     pub span: Span,
 }
 
@@ -181,7 +186,7 @@ pub struct SignalDecl {
 pub struct ChannelDecl {
     pub name: Ident,
     pub device: Ident,
-    pub param: Option<Expr>,
+    pub param: Option<Box<Expr>>,
     pub span: Span,
 }
 
@@ -196,7 +201,7 @@ pub enum ExtKind {
 #[derive(Debug, Clone, PartialEq)]
 pub struct ExtDecl {
     pub kind: ExtKind,
-    pub return_type: Option<TypeRef>,
+    pub return_type: Option<Box<TypeRef>>,
     pub name: Ident,
     pub params: Vec<ExtParam>,
     pub span: Span,
@@ -211,7 +216,7 @@ pub struct ExtParam {
 /// `IMPORT type name IS /R1/module..var`.
 #[derive(Debug, Clone, PartialEq)]
 pub struct ImportDecl {
-    pub ty: TypeRef,
+    pub ty: Box<TypeRef>,
     pub name: Ident,
     pub dims: Vec<Option<Expr>>,
     pub path: String,
@@ -247,9 +252,9 @@ pub enum StmtKind {
     },
     For {
         var: Ident,
-        from: Expr,
-        to: Expr,
-        step: Option<Expr>,
+        from: Box<Expr>,
+        to: Box<Expr>,
+        step: Option<Box<Expr>>,
         body: Vec<Stmt>,
     },
     While {
@@ -287,7 +292,7 @@ pub enum StmtKind {
     },
     Continue,
     OnErrorProceed,
-    Motion(Motion),
+    Motion(Box<Motion>),
     /// `SPLINE … ENDSPLINE` or `PTP_SPLINE … ENDSPLINE`.
     Spline {
         ptp: bool,
@@ -309,32 +314,32 @@ pub enum StmtKind {
     /// `[GLOBAL] INTERRUPT DECL n WHEN cond DO handler`.
     InterruptDecl {
         global: bool,
-        number: Expr,
-        condition: Expr,
+        number: Box<Expr>,
+        condition: Box<Expr>,
         handler: Box<Stmt>,
     },
     /// `TRIGGER WHEN DISTANCE|PATH = x [ONSTART] DELAY = t DO action [PRIO = p]`.
     Trigger {
         kind: TriggerKind,
-        position: Expr,
+        position: Box<Expr>,
         onstart: bool,
-        delay: Expr,
+        delay: Box<Expr>,
         action: Box<Stmt>,
-        prio: Option<Expr>,
+        prio: Option<Box<Expr>>,
     },
     /// `PULSE(signal, level, duration)`.
     Pulse {
-        signal: Expr,
-        level: Expr,
-        duration: Expr,
+        signal: Box<Expr>,
+        level: Box<Expr>,
+        duration: Box<Expr>,
     },
     Brake {
         fast: bool,
     },
     Resume,
-    AnIn(Analog),
-    AnOut(Analog),
-    Decl(Decl),
+    AnIn(Box<Analog>),
+    AnOut(Box<Analog>),
+    Decl(Box<Decl>),
     Definition(Definition),
     /// A line that did not parse (a `KRL001` was reported for it).
     Error {
@@ -345,6 +350,10 @@ pub enum StmtKind {
         text: String,
     },
 }
+
+// Large variants are boxed so the frequent statements stay small (a 50 MB file has millions).
+const _: () = assert!(std::mem::size_of::<Stmt>() <= 152);
+const _: () = assert!(std::mem::size_of::<Expr>() <= 72);
 
 #[derive(Debug, Clone, PartialEq)]
 pub struct Case {

@@ -74,7 +74,7 @@ mod tests {
         let mut out = Vec::new();
         each_stmt(&file.routines[0].body, &mut |s| {
             if let StmtKind::Call { name, .. } = &s.kind {
-                out.push(name.text.clone());
+                out.push(name.text.to_string());
             }
         });
         out

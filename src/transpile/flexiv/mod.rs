@@ -257,7 +257,7 @@ impl<'p> Tx<'p> {
         self.assumed.insert(
             py,
             Assumed {
-                krl: id.text.clone(),
+                krl: id.text.to_string(),
                 what,
             },
         );
@@ -490,7 +490,7 @@ impl<'p> Tx<'p> {
             .unwrap_or("main")
             .to_owned();
         let id = Ident {
-            text: stem,
+            text: stem.into(),
             span: Span::empty(0),
         };
         let name = self.routine_name(&id);

@@ -143,7 +143,7 @@ impl<'p> Tx<'p> {
                 to,
                 step,
                 body,
-            } => self.for_loop(var, from, to, step.as_ref(), body, s.span),
+            } => self.for_loop(var, from, to, step.as_deref(), body, s.span),
             StmtKind::While { cond, body } => {
                 let c = self.expr(cond)?;
                 self.settle();
@@ -580,7 +580,8 @@ impl<'p> Tx<'p> {
             return self.system_assign(sys, target, value, span);
         }
         if let ExprKind::Name(id) = &target.kind
-            && ilf::is_selector(self.prog, self.routine_key(), id)
+            && ilf::is_selector(id)
+            && self.var(&id.text).is_none()
         {
             return self.ilf_assign(id, value, span);
         }

@@ -10,11 +10,14 @@ use crate::syntax::ast::{Expr, ExprKind, Ident, Stmt, StmtKind};
 /// The inline-form selector variables (`*_ACT`), upper case.
 pub const SELECTORS: [&str; 3] = ["FDAT_ACT", "PDAT_ACT", "LDAT_ACT"];
 
-/// Whether `target = …` selects inline-form motion data (and the program does not declare a
+/// The `.dat` types of inline-form motion records (and the editor's last suggestion): no
+/// target holds them; where `*_ACT` selects one, its fields are what counts.
+pub const RECORD_TYPES: [&str; 4] = ["PDAT", "LDAT", "FDAT", "BASIS_SUGG_T"];
+
+/// Whether `target = …` names an inline-form selector (when the program does not declare a
 /// variable of that name itself).
-pub fn is_selector(program: &Program, routine: Option<&str>, target: &Ident) -> bool {
+pub fn is_selector(target: &Ident) -> bool {
     SELECTORS.contains(&target.key().as_str())
-        && program.symbols.lookup(routine, &target.text).is_none()
 }
 
 /// The numeric fields of a `.dat` record such as `DECL FDAT FP1={TOOL_NO 1,BASE_NO 0,…}`

@@ -8,6 +8,7 @@ pub mod fail;
 pub mod ilf;
 pub mod kinds;
 pub mod literal;
+pub mod model;
 pub mod names;
 pub mod report;
 pub mod symbols;

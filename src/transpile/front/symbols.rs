@@ -221,7 +221,7 @@ impl Symbols {
             return;
         };
         let var = Var {
-            name: sig.name.text.clone(),
+            name: sig.name.text.to_string(),
             ty: Ty::Signal(range),
             dims: 0,
             scope: if routine.is_some() {
@@ -247,7 +247,7 @@ impl Symbols {
         let global = scope == Scope::Global || d.global;
         for v in &d.vars {
             let var = Var {
-                name: v.name.text.clone(),
+                name: v.name.text.to_string(),
                 ty: ty.clone(),
                 dims: v.dims.len(),
                 scope: if global { Scope::Global } else { scope },
@@ -279,7 +279,7 @@ impl Symbols {
             locals.insert(
                 p.name.key(),
                 Var {
-                    name: p.name.text.clone(),
+                    name: p.name.text.to_string(),
                     ty: Ty::Real,
                     dims: usize::from(p.array),
                     scope: Scope::Param(p.dir.unwrap_or(ParamDir::In)),
@@ -308,7 +308,7 @@ impl Symbols {
         self.routines.insert(
             key,
             RoutineInfo {
-                name: r.name.text.clone(),
+                name: r.name.text.to_string(),
                 kind: r.kind,
                 return_ty,
             },

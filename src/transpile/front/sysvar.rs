@@ -38,7 +38,11 @@ pub enum Sys<'a> {
     ApoCdis,
     /// `$APO.CPTP` (%).
     ApoCptp,
-    /// `$APO.CVEL` (%), `$APO.CORI` (deg).
+    /// `$APO.CVEL` (%).
+    ApoCvel,
+    /// `$APO.CORI` (deg).
+    ApoCori,
+    /// Another `$APO` member.
     ApoOther,
     Tool,
     Base,
@@ -119,6 +123,8 @@ pub fn classify(e: &Expr) -> Option<Sys<'_>> {
                 ("$ACC", _) => Sys::AccCp,
                 ("$APO", "CDIS") => Sys::ApoCdis,
                 ("$APO", "CPTP") => Sys::ApoCptp,
+                ("$APO", "CVEL") => Sys::ApoCvel,
+                ("$APO", "CORI") => Sys::ApoCori,
                 ("$APO", _) => Sys::ApoOther,
                 ("$LOAD", _) => Sys::Load,
                 _ => Sys::Other(e),

@@ -1,20 +1,20 @@
-//! Expressions: KRL operators, names, system variables, literals and functions in AS spelling.
+//! Expressions and places in AS spelling: explicit parentheses, sigils, signals, timers,
+//! literal poses converted to O,A,T.
 
 use super::format::{self, num, with_sigil};
 use super::{R, Tx, fail};
 use crate::diag::Span;
-use crate::syntax::ast::{BinaryOp, Expr, ExprKind, Ident, UnaryOp};
-use crate::transpile::front::literal::{self, AggError, AggKind, Aggregate};
 use crate::transpile::front::report::FileId;
-use crate::transpile::front::symbols::{Bank, Ty};
-use crate::transpile::front::sysvar::{self, Sys};
+use crate::transpile::ir::{
+    Aggregate, Bank, BinaryOp, Builtin, Component, Expr, ExprKind, IoPlace, Place, Ty, UnaryOp,
+};
 use crate::transpile::orientation::abc_to_oat;
 
 /// Binding strength of an AS expression, to decide where parentheses go.
-const ATOM: u8 = 10;
+pub(super) const ATOM: u8 = 10;
 const UNARY: u8 = 8;
 const MUL: u8 = 7;
-const ADD: u8 = 6;
+pub(super) const ADD: u8 = 6;
 const CMP: u8 = 4;
 const LOGIC: u8 = 2;
 
@@ -36,15 +36,7 @@ impl Rendered {
     }
 }
 
-/// A signal test: the signed signal number as `SIG`/`SWAIT` take it.
-pub(super) struct SignalTest {
-    pub number: String,
-}
-
-/// KRL built-in functions with the same meaning and name in AS.
-const SAME_FUNCTIONS: [&str; 7] = ["ABS", "SQRT", "SIN", "COS", "TAN", "ACOS", "ATAN2"];
-
-impl<'p> Tx<'p> {
+impl<'a> Tx<'a> {
     /// An expression in a value context.
     pub(super) fn expr(&mut self, e: &Expr) -> R<String> {
         Ok(self.render(e)?.text)
@@ -65,33 +57,38 @@ impl<'p> Tx<'p> {
             }
             ExprKind::Bits(v) => Ok(Rendered::atom(format!("^B{v:b}"))),
             ExprKind::Hex(v) => Ok(Rendered::atom(format!("^H{v:X}"))),
-            ExprKind::Enum(name) => self.enum_value(name, e.span).map(Rendered::atom),
-            ExprKind::Invalid(t) => fail(
+            ExprKind::Enum { ordinal, .. } => Ok(Rendered::atom(ordinal.to_string())),
+            ExprKind::Place(p) => self.place_value(p, &e.ty, e.span),
+            ExprKind::Unary(op, a) => self.unary(*op, a, e),
+            ExprKind::Binary(op, a, b) => self.binary(*op, a, b, e),
+            ExprKind::Aggregate(a) => Ok(Rendered::atom(self.literal(a, e.span, FileId::Src)?)),
+            ExprKind::Builtin(b, args) => self.builtin(*b, args, e.span),
+            ExprKind::Io(io) => match self.signal(io)? {
+                Sig::One(n) => Ok(Rendered::atom(format!("SIG({n})"))),
+                Sig::Bits(first, w) => Ok(Rendered::atom(format!("BITS({first},{w})"))),
+            },
+            ExprKind::Timer(i) => {
+                let i = self.expr(i)?;
+                Ok(Rendered {
+                    text: format!("TIMER({i})*1000"),
+                    prec: MUL,
+                    op: Some("*"),
+                })
+            }
+            ExprKind::TimerFlag(i) => {
+                let i = self.expr(i)?;
+                Ok(Rendered {
+                    text: format!("TIMER({i}) >= 0"),
+                    prec: CMP,
+                    op: Some(">="),
+                })
+            }
+            ExprKind::Param(p) => fail(
                 e.span,
-                format!("`{t}` is not a valid literal"),
-                "fix the literal in the KRL source",
+                format!("reading {} back has no AS equivalent", p.krl()),
+                "keep the value in a variable where the program sets it",
             ),
-            ExprKind::Name(_) | ExprKind::Index { .. } | ExprKind::Member { .. } => {
-                self.place_value(e)
-            }
-            ExprKind::Call { name, args } => self.function(name, args, e.span),
-            ExprKind::Unary { op, operand } => self.unary(*op, operand, e),
-            ExprKind::Binary { op, lhs, rhs } => self.binary(*op, lhs, rhs, e),
-            ExprKind::Aggregate { .. } => {
-                let a = self.literal_value(e)?;
-                Ok(Rendered::atom(a))
-            }
-        }
-    }
-
-    fn enum_value(&mut self, name: &str, span: Span) -> R<String> {
-        match self.prog.symbols.enum_value(name) {
-            Some((_, ordinal)) => Ok(ordinal.to_string()),
-            None => fail(
-                span,
-                format!("enum value `#{name}` belongs to no ENUM declared in this program"),
-                "replace it with its number, or declare the ENUM in the program or its .dat",
-            ),
+            ExprKind::NullFrame => Ok(Rendered::atom("NULL".into())),
         }
     }
 
@@ -99,7 +96,7 @@ impl<'p> Tx<'p> {
         if op == UnaryOp::Not
             && let Some(t) = self.signal_test(whole)
         {
-            return Ok(Rendered::atom(format!("SIG({})", t?.number)));
+            return Ok(Rendered::atom(format!("SIG({})", t?)));
         }
         let inner = self.render(operand)?;
         let wrap = |r: Rendered| {
@@ -112,7 +109,6 @@ impl<'p> Tx<'p> {
         let text = match op {
             UnaryOp::Not => format!("NOT {}", wrap(inner)),
             UnaryOp::Neg => format!("-{}", wrap(inner)),
-            UnaryOp::Pos => return Ok(inner),
             UnaryOp::BNot => {
                 return fail(
                     whole.span,
@@ -132,7 +128,7 @@ impl<'p> Tx<'p> {
         if matches!(op, BinaryOp::Eq | BinaryOp::Ne)
             && let Some(t) = self.signal_test(whole)
         {
-            return Ok(Rendered::atom(format!("SIG({})", t?.number)));
+            return Ok(Rendered::atom(format!("SIG({})", t?)));
         }
         if let Some(r) = self.timer_compare(op, lhs, rhs) {
             return r;
@@ -140,7 +136,7 @@ impl<'p> Tx<'p> {
         let (sym, prec): (&'static str, u8) = match op {
             BinaryOp::Geo => ("+", ADD),
             BinaryOp::Mul => ("*", MUL),
-            BinaryOp::Div => ("/", MUL),
+            BinaryOp::Div | BinaryOp::IntDiv => ("/", MUL),
             BinaryOp::Add => ("+", ADD),
             BinaryOp::Sub => ("-", ADD),
             BinaryOp::And => ("AND", LOGIC),
@@ -173,7 +169,7 @@ impl<'p> Tx<'p> {
             }
         };
         let text = format!("{} {sym} {}", side(l, false), side(r, true));
-        if op == BinaryOp::Div && self.ty_of(lhs) == Ty::Int && self.ty_of(rhs) == Ty::Int {
+        if op == BinaryOp::IntDiv {
             // KRL divides integers with truncation; AS `/` is real division.
             return Ok(Rendered::atom(format!("INT({text})")));
         }
@@ -182,22 +178,6 @@ impl<'p> Tx<'p> {
             prec,
             op: Some(sym),
         })
-    }
-
-    /// A REAL rounded to the nearest whole number, halves away from zero, as KRL rounds a REAL
-    /// assigned to an INT. AS has no confirmed ROUND; with INT truncating (the assumption KRL
-    /// integer division already relies on), `INT(2*x) - INT(x)` is exactly that rounding.
-    pub(super) fn rounded(&mut self, value: &Expr) -> R<String> {
-        if let Some(v) = literal::number(value) {
-            return Ok(num(v.round()));
-        }
-        let r = self.render(value)?;
-        let twice = if r.prec == ATOM {
-            format!("2*{}", r.text)
-        } else {
-            format!("2*({})", r.text)
-        };
-        Ok(format!("INT({twice}) - INT({})", r.text))
     }
 
     /// `$TIMER[n] > 500` (ms) → `TIMER(n) > 0.5` (s).
@@ -211,12 +191,12 @@ impl<'p> Tx<'p> {
             BinaryOp::Ne => "<>",
             _ => return None,
         };
-        let (timer, value, flipped) = match (sysvar::classify(lhs), sysvar::classify(rhs)) {
-            (Some(Sys::Timer(i)), _) => (i, rhs, false),
-            (_, Some(Sys::Timer(i))) => (i, lhs, true),
+        let (timer, value, flipped) = match (&lhs.kind, &rhs.kind) {
+            (ExprKind::Timer(i), _) => (i, rhs, false),
+            (_, ExprKind::Timer(i)) => (i, lhs, true),
             _ => return None,
         };
-        let ms = literal::number(value)?;
+        let ms = value.number()?;
         Some((|| {
             let t = format!("TIMER({})", self.expr(timer)?);
             let v = num(ms / 1000.0);
@@ -233,65 +213,57 @@ impl<'p> Tx<'p> {
         })())
     }
 
-    /// `$IN[3]`, `NOT $IN[3]`, `$IN[3] == FALSE`, `$FLAG[2]`, a one-bit SIGNAL name … as a
-    /// signed signal number; `None` if `e` is not a signal test.
-    pub(super) fn signal_test(&mut self, e: &Expr) -> Option<R<SignalTest>> {
+    /// `$IN[3]`, `NOT $IN[3]`, `$IN[3] == FALSE`, `$FLAG[2]`, a one-bit SIGNAL … as a signed
+    /// signal number; `None` if `e` is not a signal test.
+    pub(super) fn signal_test(&mut self, e: &Expr) -> Option<R<String>> {
         match &e.kind {
-            ExprKind::Unary {
-                op: UnaryOp::Not,
-                operand,
-            } => {
-                let t = self.signal_test(operand)?;
-                Some(t.map(negate))
+            ExprKind::Unary(UnaryOp::Not, a) => {
+                let t = self.signal_test(a)?;
+                Some(t.map(|t| negate(&t)))
             }
-            ExprKind::Binary {
-                op: op @ (BinaryOp::Eq | BinaryOp::Ne),
-                lhs,
-                rhs,
-            } => {
-                let (sig, b) = match (&lhs.kind, &rhs.kind) {
-                    (_, ExprKind::Bool(b)) => (lhs, *b),
-                    (ExprKind::Bool(b), _) => (rhs, *b),
+            ExprKind::Binary(op @ (BinaryOp::Eq | BinaryOp::Ne), a, b) => {
+                let (sig, v) = match (&a.kind, &b.kind) {
+                    (_, ExprKind::Bool(v)) => (a, *v),
+                    (ExprKind::Bool(v), _) => (b, *v),
                     _ => return None,
                 };
                 let t = self.signal_test(sig)?;
-                let positive = b == (*op == BinaryOp::Eq);
-                Some(t.map(|t| if positive { t } else { negate(t) }))
+                let positive = v == (*op == BinaryOp::Eq);
+                Some(t.map(|t| if positive { t } else { negate(&t) }))
             }
-            _ => {
-                let number = self.signal_number(e)?;
-                Some(number.map(|number| SignalTest { number }))
-            }
+            ExprKind::Io(io) => match self.signal(io) {
+                Ok(Sig::One(n)) => Some(Ok(n)),
+                Ok(Sig::Bits(..)) => None,
+                Err(f) => Some(Err(f)),
+            },
+            _ => None,
         }
     }
 
-    /// The AS signal number of `$IN[n]`, `$OUT[n]`, `$FLAG[n]` or a one-bit SIGNAL name.
-    pub(super) fn signal_number(&mut self, e: &Expr) -> Option<R<String>> {
+    /// The AS signal of an I/O place.
+    pub(super) fn signal(&mut self, io: &IoPlace) -> R<Sig> {
         let s = self.opts.signals;
-        match sysvar::classify(e) {
-            Some(Sys::In(i)) => return Some(self.offset(s.input_offset, i)),
-            Some(Sys::Out(i)) => return Some(self.offset(s.output_offset, i)),
-            Some(Sys::Flag(i)) => return Some(self.offset(s.flag_offset, i)),
-            Some(_) => return None,
-            None => {}
-        }
-        if let ExprKind::Name(id) = &e.kind
-            && let Some(v) = self.var(&id.text)
-            && let Ty::Signal(r) = v.ty
-            && r.width() == 1
-        {
-            let off = match r.bank {
-                Bank::In => s.input_offset,
-                Bank::Out => s.output_offset,
-            };
-            return Some(Ok((off + r.from).to_string()));
-        }
-        None
+        Ok(match io {
+            IoPlace::In(i) => Sig::One(self.offset(s.input_offset, i)?),
+            IoPlace::Out(i) => Sig::One(self.offset(s.output_offset, i)?),
+            IoPlace::Flag(i) => Sig::One(self.offset(s.flag_offset, i)?),
+            IoPlace::Signal(r) => {
+                let off = match r.bank {
+                    Bank::In => s.input_offset,
+                    Bank::Out => s.output_offset,
+                };
+                if r.width() == 1 {
+                    Sig::One((off + r.from).to_string())
+                } else {
+                    Sig::Bits(off + r.from, r.width())
+                }
+            }
+        })
     }
 
     /// `offset + index` as AS source (folded when the index is a literal).
     pub(super) fn offset(&mut self, offset: i64, index: &Expr) -> R<String> {
-        if let Some(n) = literal::integer(index) {
+        if let Some(n) = index.integer() {
             return Ok((offset + n).to_string());
         }
         let i = self.render(index)?;
@@ -302,179 +274,133 @@ impl<'p> Tx<'p> {
         })
     }
 
-    /// A name, indexed element or member read as a value.
-    fn place_value(&mut self, e: &Expr) -> R<Rendered> {
-        if let Some(sys) = sysvar::classify(e) {
-            return self.system_value(sys, e);
-        }
-        match &e.kind {
-            ExprKind::Name(id) => self.name_value(id),
-            ExprKind::Index { base, indices } => {
-                let ExprKind::Name(id) = &base.kind else {
-                    return fail(
-                        e.span,
-                        "indexing a computed value has no AS equivalent",
-                        "assign the value to a variable first",
-                    );
+    /// A place read as a value.
+    fn place_value(&mut self, p: &Place, ty: &Ty, span: Span) -> R<Rendered> {
+        match p {
+            Place::Component(base, c) => {
+                let f = match c {
+                    Component::Pose(0) => "DX",
+                    Component::Pose(1) => "DY",
+                    Component::Pose(2) => "DZ",
+                    Component::Pose(_) => {
+                        return fail(
+                            span,
+                            format!(
+                                "the orientation component `{}` of a pose has no direct AS reading (AS uses O,A,T)",
+                                c.krl()
+                            ),
+                            "DECOMPOSE the pose into an array and convert O,A,T to A,B,C by hand",
+                        );
+                    }
+                    Component::Axis(_) => {
+                        return fail(
+                            span,
+                            format!(
+                                "reading one axis ({}) of a joint value has no direct AS reading",
+                                c.krl()
+                            ),
+                            "DECOMPOSE the joint value into an array and read the element",
+                        );
+                    }
+                    _ => {
+                        return fail(
+                            span,
+                            format!("component `{}` has no AS counterpart", c.krl()),
+                            "drop the status/turn or external axis",
+                        );
+                    }
                 };
-                let v = self.var(&id.text);
-                if v.is_some_and(|v| v.is_string()) {
-                    let s = self.var_text(id)?;
-                    return match indices.as_slice() {
-                        [None] | [] => Ok(Rendered::atom(s)),
+                let b = self.place_text(base, &Ty::Pose, span)?;
+                Ok(Rendered::atom(format!("{f}({b})")))
+            }
+            Place::Member(_, f) => fail(
+                span,
+                format!("structure member `.{f}` has no AS equivalent"),
+                "split the structure into separate variables",
+            ),
+            _ => Ok(Rendered::atom(self.place_text(p, ty, span)?)),
+        }
+    }
+
+    /// A variable, element or string as AS writes it (scope dot, type sigil); `ty` is the type
+    /// of the value read or written.
+    pub(super) fn place_text(&mut self, p: &Place, ty: &Ty, span: Span) -> R<String> {
+        match p {
+            Place::Var(v) => {
+                let var = self.ir.var(*v);
+                let vty = var.ty.clone();
+                if let Ty::Struc(s) | Ty::Other(s) = &vty
+                    && !s.is_empty()
+                {
+                    return fail(
+                        span,
+                        format!("`{}` has type {s}, which has no AS equivalent", var.name),
+                        "split the structure into separate variables (reals, strings, poses)",
+                    );
+                }
+                let (n, local) = self.var_name(*v, span);
+                let n = if local { format!(".{n}") } else { n };
+                Ok(with_sigil(&n, &vty))
+            }
+            Place::Temp(t) => {
+                let n = self.temp_name(*t);
+                let tty = self
+                    .rt
+                    .as_ref()
+                    .and_then(|r| self.ir.routine(r.id).temps.get(t.0 as usize))
+                    .cloned()
+                    .unwrap_or_else(|| ty.clone());
+                Ok(with_sigil(&n, &tty))
+            }
+            Place::Index(base, idx) => {
+                let is_string = matches!(&**base, Place::Var(v) if self.ir.var(*v).ty == Ty::Char);
+                let b = self.place_text(base, ty, span)?;
+                if is_string {
+                    return match idx.as_slice() {
+                        [None] | [] => Ok(b),
                         [Some(i)] => {
                             let i = self.expr(i)?;
-                            Ok(Rendered::atom(format!("$MID({s},{i},1)")))
+                            Ok(format!("$MID({b},{i},1)"))
                         }
                         _ => fail(
-                            e.span,
+                            span,
                             "a two-dimensional CHAR array has no AS equivalent",
                             "use one string variable per row",
                         ),
                     };
                 }
-                let name = self.var_text(id)?;
-                let idx = self.indices(indices)?;
-                Ok(Rendered::atom(format!("{name}[{idx}]")))
-            }
-            ExprKind::Member { base, field } => self.member_value(base, field, e.span),
-            _ => unreachable!("place_value is only called on places"),
-        }
-    }
-
-    pub(super) fn indices(&mut self, indices: &[Option<Expr>]) -> R<String> {
-        let mut v = Vec::new();
-        for i in indices {
-            v.push(match i {
-                Some(i) => self.expr(i)?,
-                None => String::new(),
-            });
-        }
-        Ok(v.join(","))
-    }
-
-    fn name_value(&mut self, id: &Ident) -> R<Rendered> {
-        if let Some(v) = self.var(&id.text)
-            && let Ty::Signal(r) = v.ty
-        {
-            let off = match r.bank {
-                Bank::In => self.opts.signals.input_offset,
-                Bank::Out => self.opts.signals.output_offset,
-            };
-            return Ok(Rendered::atom(if r.width() == 1 {
-                format!("SIG({})", off + r.from)
-            } else {
-                format!("BITS({},{})", off + r.from, r.width())
-            }));
-        }
-        if self.var(&id.text).is_none()
-            && self.prog.symbols.enum_value(&id.text).is_none()
-            && super::mm::package_global(&id.text).is_none()
-        {
-            // A constant or variable from elsewhere (e.g. $config.dat).
-            self.assume(id, "a number");
-        }
-        Ok(Rendered::atom(self.var_text(id)?))
-    }
-
-    /// A variable with its scope dot and type sigil (`.#j`, `$s`, `count`).
-    pub(super) fn var_text(&mut self, id: &Ident) -> R<String> {
-        let ty = self.var(&id.text).map(|v| v.ty.clone());
-        if let Some(Ty::Struc(s) | Ty::Other(s)) = &ty
-            && !s.is_empty()
-        {
-            return fail(
-                id.span,
-                format!("`{}` has type {s}, which has no AS equivalent", id.text),
-                "split the structure into separate variables (reals, strings, poses)",
-            );
-        }
-        let (name, local) = self.var_name(id);
-        let name = if local { format!(".{name}") } else { name };
-        Ok(with_sigil(&name, &ty.unwrap_or(Ty::Real)))
-    }
-
-    fn member_value(&mut self, base: &Expr, field: &Ident, span: Span) -> R<Rendered> {
-        if let ExprKind::Name(id) = &base.kind
-            && self.var(&id.text).is_some_and(|v| v.ty == Ty::Pose)
-        {
-            let f = match field.key().as_str() {
-                "X" => "DX",
-                "Y" => "DY",
-                "Z" => "DZ",
-                _ => {
-                    return fail(
-                        span,
-                        format!(
-                            "the orientation component `{}` of a pose has no direct AS reading (AS uses O,A,T)",
-                            field.text
-                        ),
-                        "DECOMPOSE the pose into an array and convert O,A,T to A,B,C by hand",
-                    );
+                let mut v = Vec::new();
+                for i in idx {
+                    v.push(match i {
+                        Some(i) => self.expr(i)?,
+                        None => String::new(),
+                    });
                 }
-            };
-            let p = self.var_text(id)?;
-            return Ok(Rendered::atom(format!("{f}({p})")));
-        }
-        fail(
-            span,
-            format!("structure member `.{}` has no AS equivalent", field.text),
-            "split the structure into separate variables",
-        )
-    }
-
-    fn system_value(&mut self, sys: Sys, e: &Expr) -> R<Rendered> {
-        if let Some(t) = self.signal_test(e) {
-            return Ok(Rendered::atom(format!("SIG({})", t?.number)));
-        }
-        match sys {
-            Sys::Timer(i) => {
-                let i = self.expr(i)?;
-                Ok(Rendered {
-                    text: format!("TIMER({i})*1000"),
-                    prec: MUL,
-                    op: Some("*"),
-                })
+                Ok(format!("{b}[{}]", v.join(",")))
             }
-            Sys::NullFrame => Ok(Rendered::atom("NULL".into())),
-            Sys::PosAct | Sys::AxisAct => fail(
-                e.span,
-                "the current position inside an expression needs a HERE statement first",
-                "assign $POS_ACT/$AXIS_ACT to a variable first (translated to HERE)",
-            ),
-            _ => fail(
-                e.span,
-                format!(
-                    "system variable `{}` has no AS equivalent",
-                    self.prog.src.slice(e.span)
-                ),
-                "port this by hand",
-            ),
+            Place::Component(..) | Place::Member(..) => {
+                let r = self.place_value(p, ty, span)?;
+                Ok(r.text)
+            }
         }
     }
 
-    fn function(&mut self, name: &Ident, args: &[Option<Expr>], span: Span) -> R<Rendered> {
-        let key = name.key();
-        let mut rendered = Vec::new();
-        let arg = |tx: &mut Tx<'p>, a: &Option<Expr>| -> R<Rendered> {
-            match a {
-                Some(a) => tx.render(a),
-                None => fail(
-                    span,
-                    "an omitted argument has no AS equivalent",
-                    "pass a value",
-                ),
-            }
-        };
-        if SAME_FUNCTIONS.contains(&key.as_str()) {
-            for a in args {
-                rendered.push(arg(self, a)?.text);
-            }
-            return Ok(Rendered::atom(format!("{key}({})", rendered.join(","))));
+    fn builtin(&mut self, b: Builtin, args: &[Expr], span: Span) -> R<Rendered> {
+        let mut v = Vec::new();
+        for a in args {
+            v.push(self.render(a)?);
         }
-        match (key.as_str(), args) {
-            ("INV_POS", [a]) => {
-                let r = arg(self, a)?;
+        let name = match b {
+            Builtin::Abs => "ABS",
+            Builtin::Sqrt => "SQRT",
+            Builtin::Sin => "SIN",
+            Builtin::Cos => "COS",
+            Builtin::Tan => "TAN",
+            Builtin::Acos => "ACOS",
+            Builtin::Atan2 => "ATAN2",
+            Builtin::StrLen => "LEN",
+            Builtin::InvPos => {
+                let r = v.pop().ok_or_else(|| arg_missing(span))?;
                 let t = if r.prec < UNARY {
                     format!("-({})", r.text)
                 } else {
@@ -486,129 +412,123 @@ impl<'p> Tx<'p> {
                     op: None,
                 });
             }
-            ("STRLEN", [a]) => {
-                let r = arg(self, a)?;
-                return Ok(Rendered::atom(format!("LEN({})", r.text)));
+            Builtin::Round => {
+                // AS has no confirmed ROUND; with INT truncating (the assumption KRL integer
+                // division already relies on), `INT(2*x) - INT(x)` rounds halves away from 0.
+                let r = v.pop().ok_or_else(|| arg_missing(span))?;
+                let twice = if r.prec == ATOM {
+                    format!("2*{}", r.text)
+                } else {
+                    format!("2*({})", r.text)
+                };
+                return Ok(Rendered {
+                    text: format!("INT({twice}) - INT({})", r.text),
+                    prec: ADD,
+                    op: Some("-"),
+                });
             }
-            _ => {}
-        }
-        if self
-            .prog
-            .symbols
-            .routine(&name.text)
-            .is_some_and(|r| r.kind == crate::syntax::ast::RoutineKind::Deffct)
-        {
-            return fail(
-                span,
-                format!(
-                    "function `{}` is called inside an expression; AS programs return values only through parameters",
-                    name.text
-                ),
-                format!(
-                    "assign the call to a variable on its own line first (`x = {}(…)` translates to CALL)",
-                    name.text
-                ),
-            );
-        }
-        fail(
-            span,
-            format!("function `{}` has no AS equivalent", name.text),
-            "compute the value another way, or port the function as a program with an output parameter",
-        )
+        };
+        let texts: Vec<String> = v.into_iter().map(|r| r.text).collect();
+        Ok(Rendered::atom(format!("{name}({})", texts.join(","))))
     }
 
-    /// A pose or joint literal (complete aggregate) as an AS value: `TRANS(…)` or `#PPOINT(…)`.
-    pub(super) fn literal_value(&mut self, e: &Expr) -> R<String> {
-        let a = self.aggregate(e)?;
-        let values = self.literal_values(&a, FileId::Src)?;
-        Ok(match a.kind {
-            AggKind::Pose => format!("TRANS({})", values.join(",")),
-            AggKind::Axis => format!("#PPOINT({})", values.join(",")),
+    /// A pose or axis literal as an AS value: `TRANS(…)` or `#PPOINT(…)`.
+    pub(super) fn literal(&mut self, a: &Aggregate, span: Span, file: FileId) -> R<String> {
+        let values = self.literal_values(a, span, file)?;
+        Ok(if a.axis {
+            format!("#PPOINT({})", values.join(","))
+        } else {
+            format!("TRANS({})", values.join(","))
         })
-    }
-
-    pub(super) fn aggregate(&mut self, e: &Expr) -> R<Aggregate> {
-        match literal::aggregate(e) {
-            Ok(a) => Ok(a),
-            Err(AggError::NotLiteral(span, what)) => fail(
-                span,
-                format!("{what}; only literal poses can be converted to AS"),
-                "compute the pose with TRANS() by hand, or use literal values",
-            ),
-            Err(AggError::UnknownField(span, what)) => fail(
-                span,
-                format!("{what} in a pose/axis literal has no AS counterpart"),
-                "port this value by hand",
-            ),
-            Err(AggError::NotPoseOrAxis) => fail(
-                e.span,
-                "a structure literal has no AS equivalent (only poses and joint values do)",
-                "split the structure into separate variables",
-            ),
-        }
     }
 
     /// The values of a complete literal: X Y Z O A T [JT7] or J1..J6 [JT7]. Status/turn and
     /// external axes are reported where they are lost or approximated.
-    pub(super) fn literal_values(&mut self, a: &Aggregate, file: FileId) -> R<Vec<String>> {
-        if !a.is_complete() {
-            let want = match a.kind {
-                AggKind::Pose => "X, Y, Z, A, B and C",
-                AggKind::Axis => "A1 to A6",
+    pub(super) fn literal_values(
+        &mut self,
+        a: &Aggregate,
+        span: Span,
+        file: FileId,
+    ) -> R<Vec<String>> {
+        if !a.complete() {
+            let want = if a.axis {
+                "A1 to A6"
+            } else {
+                "X, Y, Z, A, B and C"
             };
             return fail(
-                a.span,
+                span,
                 format!(
                     "an incomplete literal (KRL keeps the missing components of the current value); AS needs all of {want}"
                 ),
                 "write every component",
             );
         }
-        let m: Vec<f64> = a.main.iter().map(|v| v.unwrap_or(0.0)).collect();
-        let mut out: Vec<String> = match a.kind {
-            AggKind::Pose => {
-                let (o, aa, t) = abc_to_oat(m[3], m[4], m[5]);
-                vec![
-                    num(m[0]),
-                    num(m[1]),
-                    num(m[2]),
-                    format::angle(o),
-                    format::angle(aa),
-                    format::angle(t),
-                ]
+        let Some(m) = a.numbers() else {
+            // Computed positions with literal angles still convert.
+            if !a.axis
+                && let Some(abc) = (3..6)
+                    .map(|i| a.get(a.main(i)).and_then(Expr::number))
+                    .collect::<Option<Vec<f64>>>()
+            {
+                let (o, aa, t) = abc_to_oat(abc[0], abc[1], abc[2]);
+                let mut out = Vec::new();
+                for i in 0..3 {
+                    out.push(self.expr(a.get(a.main(i)).expect("complete"))?);
+                }
+                out.extend([format::angle(o), format::angle(aa), format::angle(t)]);
+                self.status_turn(a, span, file);
+                return Ok(out);
             }
-            AggKind::Axis => m.iter().map(|v| num(*v)).collect(),
-        };
-        if a.kind == AggKind::Pose && (a.s.is_some() || a.t.is_some()) {
-            let st: Vec<String> = [("S", a.s), ("T", a.t)]
-                .iter()
-                .filter_map(|(n, v)| v.map(|v| format!("{n} {v}")))
-                .collect();
-            self.rep.approximate(
-                file,
-                a.span,
-                format!(
-                    "status/turn ({}) have no AS counterpart; the controller picks the arm configuration",
-                    st.join(", ")
-                ),
-                "if this is a PTP target, check the configuration and set LEFTY/RIGHTY, ABOVE/BELOW, UWRIST/DWRIST before the move",
+            return fail(
+                span,
+                "a pose or joint value with computed components; only literal values can be converted to AS",
+                "compute the pose with TRANS() by hand, or use literal values",
             );
-        }
-        let ext: Vec<(usize, f64)> = a.ext_used().filter(|(_, v)| *v != 0.0).collect();
-        match ext.as_slice() {
+        };
+        let mut out: Vec<String> = if a.axis {
+            m.iter().map(|v| num(*v)).collect()
+        } else {
+            let (o, aa, t) = abc_to_oat(m[3], m[4], m[5]);
+            vec![
+                num(m[0]),
+                num(m[1]),
+                num(m[2]),
+                format::angle(o),
+                format::angle(aa),
+                format::angle(t),
+            ]
+        };
+        self.status_turn(a, span, file);
+        let ext = match a.ext() {
+            Ok(e) => e,
+            Err(at) => {
+                return fail(
+                    at,
+                    "an external axis value that is not a number literal",
+                    "use literal values",
+                );
+            }
+        };
+        let used: Vec<(usize, f64)> = ext
+            .iter()
+            .enumerate()
+            .filter_map(|(i, v)| v.filter(|x| *x != 0.0).map(|x| (i + 1, x)))
+            .collect();
+        match used.as_slice() {
             [] => {}
             [(1, v)] => {
                 out.push(num(*v));
                 self.rep.approximate(
                     file,
-                    a.span,
+                    span,
                     "external axis E1 becomes the 7th value (JT7)",
                     "check that the robot's external axis is JT7 with the same unit",
                 );
             }
             _ => {
                 return fail(
-                    a.span,
+                    span,
                     "external axes beyond E1 have no AS counterpart in a pose or joint value",
                     "move the external axes with their own program, or drop them",
                 );
@@ -617,20 +537,48 @@ impl<'p> Tx<'p> {
         Ok(out)
     }
 
-    /// The static type of an expression, as far as it can be known.
-    pub(super) fn ty_of(&self, e: &Expr) -> Ty {
-        crate::transpile::front::types::ty_of(&self.prog.symbols, self.routine_key(), e)
+    fn status_turn(&mut self, a: &Aggregate, span: Span, file: FileId) {
+        let (s, t) = a.status_turn();
+        if !a.axis && (s.is_some() || t.is_some()) {
+            let st: Vec<String> = [("S", s), ("T", t)]
+                .iter()
+                .filter_map(|(n, v)| v.map(|v| format!("{n} {v}")))
+                .collect();
+            self.rep.approximate(
+                file,
+                span,
+                format!(
+                    "status/turn ({}) have no AS counterpart; the controller picks the arm configuration",
+                    st.join(", ")
+                ),
+                "if this is a PTP target, check the configuration and set LEFTY/RIGHTY, ABOVE/BELOW, UWRIST/DWRIST before the move",
+            );
+        }
     }
 }
 
-fn negate(t: SignalTest) -> SignalTest {
-    let number = match t.number.strip_prefix('-') {
-        Some(n) if n.chars().all(|c| c.is_ascii_digit()) => n.to_owned(),
-        _ if t.number.chars().all(|c| c.is_ascii_digit()) => format!("-{}", t.number),
-        _ => match t.number.strip_prefix("-(") {
-            Some(inner) if t.number.ends_with(')') => inner[..inner.len() - 1].to_owned(),
-            _ => format!("-({})", t.number),
+/// An AS signal: one (`SIG(n)`, `SIGNAL n`) or a group (`BITS(first, width)`).
+pub(super) enum Sig {
+    One(String),
+    Bits(i64, i64),
+}
+
+fn arg_missing(span: Span) -> super::Fail {
+    super::Fail {
+        span,
+        message: "a built-in function without its argument".into(),
+        help: "pass the argument".into(),
+    }
+}
+
+/// The signed signal number negated.
+pub(super) fn negate(n: &str) -> String {
+    match n.strip_prefix('-') {
+        Some(rest) if rest.chars().all(|c| c.is_ascii_digit()) => rest.to_owned(),
+        _ if n.chars().all(|c| c.is_ascii_digit()) => format!("-{n}"),
+        _ => match n.strip_prefix("-(") {
+            Some(inner) if n.ends_with(')') => inner[..inner.len() - 1].to_owned(),
+            _ => format!("-({n})"),
         },
-    };
-    SignalTest { number }
+    }
 }

@@ -1,6 +1,6 @@
 //! How AS spells values: numbers, sigils, pose and joint literals.
 
-use crate::transpile::front::symbols::Ty;
+use crate::transpile::ir::Ty;
 
 /// A number as AS source: integers without a decimal point, others in the shortest form that
 /// reads back to the same value.

@@ -11,12 +11,8 @@ use super::format::{self, num};
 use super::{R, Tx, fail};
 use crate::catalog::{AsKind, Direction, KawasakiCommand, Subprogram, catalog};
 use crate::diag::Span;
-use crate::syntax::ast::{Expr, ExprKind, Ident};
-use crate::transpile::front::literal;
 use crate::transpile::front::report::FileId;
-use crate::transpile::front::symbols::Ty;
-use crate::transpile::front::sysvar::{self, Sys};
-use crate::transpile::front::walk::root_name;
+use crate::transpile::ir::{Arg, ExprKind, Place, Ty};
 
 /// KUKA package globals and the Kawasaki globals that hold the same data. `MM_UserData` and
 /// `MM_Plan_Results` hold the data of one selected point on KUKA; Kawasaki keeps them per
@@ -41,33 +37,9 @@ pub(super) fn package_global(name: &str) -> Option<&'static str> {
         .map(|(_, a)| *a)
 }
 
-impl<'p> Tx<'p> {
-    pub(super) fn mm_call(&mut self, name: &Ident, args: &[Option<Expr>], span: Span) -> R<()> {
+impl<'a> Tx<'a> {
+    pub(super) fn mm_call(&mut self, sub: &'static Subprogram, args: &[Arg], span: Span) -> R<()> {
         let cat = catalog();
-        let Some(sub) = cat.subprogram(&name.text) else {
-            return fail(
-                name.span,
-                format!(
-                    "`{}` is not a routine of the Mech-Mind interface",
-                    name.text
-                ),
-                "check the name (krlkit check reports the nearest one)",
-            );
-        };
-        if args.len() != sub.params.len()
-            && !(sub.params.is_empty() && args.iter().all(Option::is_none))
-        {
-            return fail(
-                span,
-                format!(
-                    "`{}` takes {} arguments, this call passes {}",
-                    sub.name,
-                    sub.params.len(),
-                    args.len()
-                ),
-                format!("call it as {}", sub.signature()),
-            );
-        }
         match sub.name.as_str() {
             "MM_Get_PlanJps" | "MM_Get_PlanPose" => return self.plan_point(sub, args, span),
             // KUKA splits "get the custom data" and "select one point"; Kawasaki's
@@ -100,13 +72,13 @@ impl<'p> Tx<'p> {
         &mut self,
         sub: &'static Subprogram,
         k: &'static KawasakiCommand,
-        args: &[Option<Expr>],
+        args: &[Arg],
         span: Span,
     ) -> R<()> {
         let mut rendered = Vec::new();
         let mut used = vec![false; sub.params.len()];
         let mut prelude: Vec<String> = Vec::new();
-        let mut server: Option<crate::transpile::VisionServer> = None;
+        let mut server: Option<&crate::transpile::VisionServer> = None;
         for p in &k.params {
             // The KUKA parameter this one takes its value from, if the called routine has it
             // (MM_Get_DyPose borrows mm_get_pose, whose .speed it lacks).
@@ -118,7 +90,7 @@ impl<'p> Tx<'p> {
             if let Some(i) = kuka_index {
                 let kp = sub.params[i].ident();
                 used[i] = true;
-                let Some(Some(arg)) = args.get(i) else {
+                let Some(arg) = args.get(i).filter(|a| a.value.is_some()) else {
                     return fail(
                         span,
                         format!("argument {kp} is omitted"),
@@ -128,7 +100,7 @@ impl<'p> Tx<'p> {
                 rendered.push(self.mm_arg(p.kind, p.dir, arg, &mut prelude)?);
                 if p.dir == Direction::In
                     && p.has_range()
-                    && let Some(v) = literal::number(arg)
+                    && let Some(v) = arg.value.as_ref().and_then(|v| v.number())
                     && !p.in_range(v)
                 {
                     self.rep.approximate(
@@ -147,13 +119,7 @@ impl<'p> Tx<'p> {
                 }
             } else if let Some(key) = &p.spec {
                 if server.is_none() {
-                    server = Some(crate::transpile::front::vision::resolve(
-                        self.opts,
-                        sub,
-                        args,
-                        span,
-                        "mm_init_skt",
-                    )?);
+                    server = self.vision;
                 }
                 let s = server.as_ref().map(|s| (s.ip, s.port));
                 let v = s.and_then(|(ip, port)| spec_value(key, ip, port));
@@ -194,7 +160,10 @@ impl<'p> Tx<'p> {
             match q.dir {
                 Direction::In => dropped_inputs.push(q.ident().to_owned()),
                 Direction::Out => {
-                    let Some(Some(arg)) = args.get(i) else {
+                    let Some(arg) = args.get(i) else {
+                        continue;
+                    };
+                    let Some(place) = &arg.place else {
                         continue;
                     };
                     match DROPPED_OUTPUTS
@@ -202,13 +171,13 @@ impl<'p> Tx<'p> {
                         .find(|(n, _)| n.eq_ignore_ascii_case(q.ident()))
                     {
                         Some((n, v)) => {
-                            let ty = self.ty_of(arg);
-                            let t = self.place_text(arg, &ty)?;
+                            let ty = self.place_ty(place);
+                            let t = self.place_text(place, &ty, arg.span)?;
                             after.push(format!("{t} = {}", num(*v)));
                             self.rep.approximate(
                                 FileId::Src,
                                 arg.span,
-                                format!("{} has no {n}; {} is set to {} after the call (all data arrive in one call)", k.name, self.prog.src.slice(arg.span), num(*v)),
+                                format!("{} has no {n}; {} is set to {} after the call (all data arrive in one call)", k.name, self.src.src.slice(arg.span), num(*v)),
                                 "a loop that fetches further batches runs once; check that one call returns all points you need",
                             );
                         }
@@ -267,30 +236,23 @@ impl<'p> Tx<'p> {
         &mut self,
         kind: AsKind,
         dir: Direction,
-        arg: &Expr,
+        arg: &Arg,
         prelude: &mut Vec<String>,
     ) -> R<String> {
+        let Some(value) = &arg.value else {
+            return fail(arg.span, "an omitted argument", "pass every argument");
+        };
         match (kind, dir) {
             (AsKind::Joint, Direction::In) => {
-                match sysvar::classify(arg) {
-                    Some(Sys::AxisAct) => {
-                        let tmp = self.scratch("mm_here");
-                        prelude.push(format!("HERE {}", format::with_sigil(&tmp, &Ty::Joint)));
-                        return Ok(format::with_sigil(&tmp, &Ty::Joint));
-                    }
-                    Some(_) => {}
-                    None => {
-                        if let ExprKind::Aggregate { .. } = arg.kind {
-                            let v = self.literal_value(arg)?;
-                            let tmp = self.scratch("mm_joints");
-                            let t = format::with_sigil(&tmp, &Ty::Joint);
-                            prelude.push(format!("POINT {t} = {v}"));
-                            return Ok(t);
-                        }
-                        if root_name(arg).is_some() {
-                            return self.place_text(arg, &Ty::Joint);
-                        }
-                    }
+                if let ExprKind::Aggregate(a) = &value.kind {
+                    let v = self.literal(a, value.span, FileId::Src)?;
+                    let tmp = self.scratch("mm_joints");
+                    let t = format::with_sigil(&tmp, &Ty::Joint);
+                    prelude.push(format!("POINT {t} = {v}"));
+                    return Ok(t);
+                }
+                if let ExprKind::Place(p) = &value.kind {
+                    return self.place_text(p, &Ty::Joint, arg.span);
                 }
                 fail(
                     arg.span,
@@ -299,39 +261,39 @@ impl<'p> Tx<'p> {
                 )
             }
             (_, Direction::Out) => {
-                if root_name(arg).is_none() || sysvar::classify(arg).is_some() {
+                let Some(place) = &arg.place else {
                     return fail(
                         arg.span,
                         "an output argument must be a variable",
                         "pass a variable",
                     );
-                }
+                };
                 let ty = as_ty(kind);
-                let t = self.place_text(arg, &ty)?;
+                let t = self.place_text(place, &ty, arg.span)?;
                 Ok(if kind == AsKind::Pose {
                     format::param_sigil(&t, &ty)
                 } else {
                     t
                 })
             }
-            (AsKind::Pose, Direction::In) => self.call_arg(arg),
-            _ => self.expr(arg),
+            (AsKind::Pose, Direction::In) => {
+                if let Some(p) = &arg.place {
+                    let t = self.place_text(p, &Ty::Pose, arg.span)?;
+                    return Ok(format::param_sigil(&t, &Ty::Pose));
+                }
+                self.expr(value)
+            }
+            _ => self.expr(value),
         }
     }
 
     /// The KUKA argument named `param`, rendered as a value.
-    fn kuka_arg(
-        &mut self,
-        sub: &Subprogram,
-        args: &[Option<Expr>],
-        param: &str,
-        span: Span,
-    ) -> R<String> {
+    fn kuka_arg(&mut self, sub: &Subprogram, args: &[Arg], param: &str, span: Span) -> R<String> {
         let i = sub
             .params
             .iter()
             .position(|p| p.ident().eq_ignore_ascii_case(param));
-        match i.and_then(|i| args.get(i)).and_then(Option::as_ref) {
+        match i.and_then(|i| args.get(i)).and_then(|a| a.value.as_ref()) {
             Some(a) => self.expr(a),
             None => fail(
                 span,
@@ -343,15 +305,15 @@ impl<'p> Tx<'p> {
 
     /// `MM_Get_PlanJps` / `MM_Get_PlanPose`: Kawasaki has no command; the waypoint is read
     /// from the `vis_*` globals mm_get_plandata filled.
-    fn plan_point(&mut self, sub: &'static Subprogram, args: &[Option<Expr>], span: Span) -> R<()> {
+    fn plan_point(&mut self, sub: &'static Subprogram, args: &[Arg], span: Span) -> R<()> {
         let joints = sub.name == "MM_Get_PlanJps";
         let serial = self.kuka_arg(sub, args, "Serial", span)?;
-        let arg = |name: &str| {
+        let arg = |name: &str| -> Option<(Place, Span)> {
             sub.params
                 .iter()
                 .position(|p| p.ident().eq_ignore_ascii_case(name))
                 .and_then(|i| args.get(i))
-                .and_then(Option::as_ref)
+                .and_then(|a| a.place.clone().map(|p| (p, a.span)))
         };
         let (target_param, ty, parts) = if joints {
             (
@@ -386,14 +348,14 @@ impl<'p> Tx<'p> {
         {
             global(g, span)?;
         }
-        let Some(target) = arg(target_param) else {
+        let Some((target, at)) = arg(target_param) else {
             return fail(
                 span,
                 format!("argument {target_param} is missing"),
                 "pass every argument",
             );
         };
-        let t = self.place_text(target, &ty)?;
+        let t = self.place_text(&target, &ty, at)?;
         let values: Vec<String> = parts.iter().map(|g| format!("{g}[{serial}]")).collect();
         let value = if joints {
             format!("#PPOINT({})", values.join(","))
@@ -406,9 +368,9 @@ impl<'p> Tx<'p> {
             ("MM_ToolNum", "vis_pos_tool"),
             ("MM_Speed", "vis_pos_spd"),
         ] {
-            if let Some(a) = arg(kuka) {
-                let ty = self.ty_of(a);
-                let t = self.place_text(a, &ty)?;
+            if let Some((a, at)) = arg(kuka) {
+                let ty = self.place_ty(&a);
+                let t = self.place_text(&a, &ty, at)?;
                 self.line(format!("{t} = {global_name}[{serial}]"));
             }
         }
@@ -420,8 +382,8 @@ impl<'p> Tx<'p> {
     /// same way, from the per-point Kawasaki globals, when the program reads them.
     /// `vision_move`: the data exist only for Vision Move waypoints (plan data).
     fn copy_point_data(&mut self, serial: &str, vision_move: bool, span: Span) -> R<()> {
-        let user = self.prog.uses_name("MM_UserData");
-        let plan = vision_move && self.prog.uses_name("MM_Plan_Results");
+        let user = self.src.uses_name("MM_UserData");
+        let plan = vision_move && self.src.uses_name("MM_Plan_Results");
         if !user && !plan {
             return Ok(());
         }

@@ -1,0 +1,66 @@
+//! Peak memory and wall time of `krlkit check`, `parse`, `parse --tree` and `transpile` on one
+//! generated 50 MB KRL file and on 20 MB of blank lines: `cargo bench --bench memory` (runs
+//! the release binary; `MEMORY_BENCH_MB=10` for a smaller file). Prints, does not assert.
+
+use std::path::Path;
+use std::process::{Command, Stdio};
+use std::time::Instant;
+
+#[path = "../tests/memory_bounds.rs"]
+#[allow(dead_code)]
+mod memory_bounds;
+
+fn run(args: &[&str], cwd: &Path) -> (f64, u64) {
+    let start = Instant::now();
+    #[allow(clippy::zombie_processes)] // reaped by wait4 below, which also gives its rusage
+    let child = Command::new(env!("CARGO_BIN_EXE_krlkit"))
+        .args(args)
+        .current_dir(cwd)
+        .stdout(Stdio::null())
+        .stderr(Stdio::null())
+        .spawn()
+        .expect("run krlkit");
+    let mut status = 0;
+    // SAFETY: an all-zero rusage is valid; wait4 fills it for our own child.
+    let mut usage: libc::rusage = unsafe { std::mem::zeroed() };
+    let pid = child.id() as libc::pid_t;
+    let r = unsafe { libc::wait4(pid, &mut status, 0, &mut usage) };
+    assert_eq!(r, pid);
+    (start.elapsed().as_secs_f64(), usage.ru_maxrss as u64 / 1024)
+}
+
+fn main() {
+    let mb: usize = std::env::var("MEMORY_BENCH_MB")
+        .ok()
+        .and_then(|v| v.parse().ok())
+        .unwrap_or(50);
+    let dir = tempfile::tempdir().expect("temp dir");
+    std::fs::write(
+        dir.path().join("big.src"),
+        memory_bounds::big_program(mb << 20),
+    )
+    .expect("write");
+    std::fs::write(
+        dir.path().join("blank.src"),
+        "\n".repeat((mb * 2 / 5) << 20),
+    )
+    .expect("write");
+    for file in ["big.src", "blank.src"] {
+        let size = std::fs::metadata(dir.path().join(file))
+            .expect("size")
+            .len()
+            >> 20;
+        for args in [
+            &["check", file][..],
+            &["parse", file],
+            &["parse", "--tree", file],
+            &["transpile", file, "--to", "kawasaki"],
+        ] {
+            let (secs, rss_mb) = run(args, dir.path());
+            println!(
+                "{:<40} {size:>4} MB file: {secs:>6.2} s, peak RSS {rss_mb:>5} MB",
+                args.join(" ")
+            );
+        }
+    }
+}

@@ -1,0 +1,775 @@
+//! Expressions: names resolved, types computed, system variables by meaning, and every call of
+//! a function hoisted into a temporary before the expression (in the interpreter's evaluation
+//! order: left to right, `AND`/`OR` short-circuit, operands a call may change read before it).
+
+use std::collections::BTreeSet;
+
+use super::{L, Lower, fail};
+use crate::diag::Span;
+use crate::syntax::ast::{self, ExprKind as A};
+use crate::transpile::front::model::Layout;
+use crate::transpile::front::sysvar::{self, Sys};
+use crate::transpile::ir::why::KukaOnly;
+use crate::transpile::ir::{
+    Aggregate, Arg, BinaryOp, Block, Builtin, Callee, Component, Expr, ExprKind, IoPlace,
+    MotionParam, Op, Place, RoutineKind, Scope, Stmt, Ty, UnaryOp, Why,
+};
+
+impl<'p> Lower<'p> {
+    /// `e` as a value; ops it needs first (calls, position reads, advance-run stops) go to
+    /// `pre`.
+    pub(super) fn expr(&mut self, e: &ast::Expr, pre: &mut Block) -> L<Expr> {
+        let span = e.span;
+        let lit = |kind: ExprKind, ty: Ty| Ok(Expr::new(kind, ty, span));
+        match &e.kind {
+            A::Int(i) => lit(ExprKind::Int(*i), Ty::Int),
+            A::Real(r) => lit(ExprKind::Real(*r), Ty::Real),
+            A::Bool(b) => lit(ExprKind::Bool(*b), Ty::Bool),
+            A::Char(c) => lit(ExprKind::Char(*c), Ty::Char),
+            A::Str(s) => lit(ExprKind::Str(s.clone()), Ty::Char),
+            A::Bits(b) => lit(ExprKind::Bits(*b), Ty::Int),
+            A::Hex(h) => lit(ExprKind::Hex(*h), Ty::Int),
+            A::Enum(name) => match self.model.enum_value(name) {
+                Some((ty, ordinal)) => lit(
+                    ExprKind::Enum {
+                        name: name.clone(),
+                        ordinal,
+                    },
+                    Ty::Enum(ty),
+                ),
+                None => fail(Why::UnknownEnum(name.clone()), span),
+            },
+            A::Invalid(t) => fail(Why::InvalidLiteral(t.clone()), span),
+            A::Name(_) | A::Index { .. } | A::Member { .. } => self.place_value(e, pre),
+            A::Call { name, args } => self.function(name, args, span, pre),
+            A::Unary { op, operand } => {
+                let v = self.expr(operand, pre)?;
+                Ok(match op {
+                    ast::UnaryOp::Pos => v,
+                    ast::UnaryOp::Neg => {
+                        let ty = v.ty.clone();
+                        Expr::new(ExprKind::Unary(UnaryOp::Neg, Box::new(v)), ty, span)
+                    }
+                    ast::UnaryOp::Not => {
+                        Expr::new(ExprKind::Unary(UnaryOp::Not, Box::new(v)), Ty::Bool, span)
+                    }
+                    ast::UnaryOp::BNot => {
+                        Expr::new(ExprKind::Unary(UnaryOp::BNot, Box::new(v)), Ty::Int, span)
+                    }
+                })
+            }
+            A::Binary { op, lhs, rhs } => self.binary(*op, lhs, rhs, span, pre),
+            A::Aggregate { .. } => {
+                let a = self.aggregate(e, None, pre)?;
+                let ty = if a.axis { Ty::Joint } else { Ty::Pose };
+                Ok(Expr::new(ExprKind::Aggregate(Box::new(a)), ty, span))
+            }
+        }
+    }
+
+    /// Several expressions evaluated in order: when a later one calls a function, earlier ones
+    /// it may change are read into temporaries first.
+    pub(super) fn seq(&mut self, items: &[&ast::Expr], pre: &mut Block) -> L<Vec<Expr>> {
+        let mut done: Vec<Expr> = Vec::new();
+        for e in items {
+            let mut p = Block::new();
+            let v = self.expr(e, &mut p)?;
+            if has_call(&p) {
+                let writes = self.call_writes(&p);
+                for d in &mut done {
+                    if self.affected(d, &writes) {
+                        let t = self.temp(d.ty.clone());
+                        let span = d.span;
+                        let old = std::mem::replace(
+                            d,
+                            Expr::new(ExprKind::Place(Place::Temp(t)), d.ty.clone(), span),
+                        );
+                        pre.push(Stmt {
+                            op: Op::Assign {
+                                place: Place::Temp(t),
+                                value: old,
+                            },
+                            span,
+                        });
+                    }
+                }
+            }
+            pre.extend(p);
+            done.push(v);
+        }
+        Ok(done)
+    }
+
+    fn binary(
+        &mut self,
+        op: ast::BinaryOp,
+        lhs: &ast::Expr,
+        rhs: &ast::Expr,
+        span: Span,
+        pre: &mut Block,
+    ) -> L<Expr> {
+        use ast::BinaryOp as B;
+        if matches!(op, B::And | B::Or) {
+            let mut pl = Block::new();
+            let l = self.expr(lhs, &mut pl)?;
+            let mut pr = Block::new();
+            let r = self.expr(rhs, &mut pr)?;
+            pre.extend(pl);
+            if has_call(&pr) {
+                // The right side runs only when the left does not decide: KRL short-circuits.
+                let t = self.temp(Ty::Bool);
+                let tv = || Expr::new(ExprKind::Place(Place::Temp(t)), Ty::Bool, span);
+                pre.push(Stmt {
+                    op: Op::Assign {
+                        place: Place::Temp(t),
+                        value: l,
+                    },
+                    span,
+                });
+                pr.push(Stmt {
+                    op: Op::Assign {
+                        place: Place::Temp(t),
+                        value: r,
+                    },
+                    span,
+                });
+                let cond = if op == B::And {
+                    tv()
+                } else {
+                    Expr::new(
+                        ExprKind::Unary(UnaryOp::Not, Box::new(tv())),
+                        Ty::Bool,
+                        span,
+                    )
+                };
+                pre.push(Stmt {
+                    op: Op::If {
+                        cond,
+                        then: pr,
+                        els: Vec::new(),
+                        else_at: None,
+                        end: span.start,
+                    },
+                    span,
+                });
+                return Ok(tv());
+            }
+            pre.extend(pr);
+            let o = if op == B::And {
+                BinaryOp::And
+            } else {
+                BinaryOp::Or
+            };
+            return Ok(Expr::new(
+                ExprKind::Binary(o, Box::new(l), Box::new(r)),
+                Ty::Bool,
+                span,
+            ));
+        }
+        // `p : {X 0, Y 0, Z -50}`: an aggregate operand of `:` is a frame; missing parts are 0.
+        let frame_operand = |this: &mut Self, e: &ast::Expr, pre: &mut Block| -> L<Expr> {
+            if op == B::Geo && matches!(e.kind, A::Aggregate { .. }) {
+                let mut a = this.aggregate(e, Some(Layout::Pose), pre)?;
+                for i in 0..6 {
+                    let c = Component::Pose(i);
+                    if a.get(c).is_none() {
+                        a.fields
+                            .push((c, Expr::new(ExprKind::Int(0), Ty::Int, e.span)));
+                    }
+                }
+                a.fields.sort_by_key(|(c, _)| component_order(*c));
+                return Ok(Expr::new(
+                    ExprKind::Aggregate(Box::new(a)),
+                    Ty::Pose,
+                    e.span,
+                ));
+            }
+            this.expr(e, pre)
+        };
+        let (l, r) = if op == B::Geo {
+            let mut pl = Block::new();
+            let l = frame_operand(self, lhs, &mut pl)?;
+            let mut pr = Block::new();
+            let r = frame_operand(self, rhs, &mut pr)?;
+            let mut v = vec![l];
+            if has_call(&pr) {
+                let writes = self.call_writes(&pr);
+                if self.affected(&v[0], &writes) {
+                    let t = self.temp(Ty::Pose);
+                    let l = v.remove(0);
+                    pl.push(Stmt {
+                        op: Op::Assign {
+                            place: Place::Temp(t),
+                            value: l,
+                        },
+                        span,
+                    });
+                    v.push(Expr::new(ExprKind::Place(Place::Temp(t)), Ty::Pose, span));
+                }
+            }
+            pre.extend(pl);
+            pre.extend(pr);
+            (v.remove(0), r)
+        } else {
+            let mut v = self.seq(&[lhs, rhs], pre)?;
+            let r = v.pop().expect("two");
+            (v.pop().expect("two"), r)
+        };
+        let (o, ty) = match op {
+            B::Geo => (BinaryOp::Geo, Ty::Pose),
+            B::Add | B::Sub | B::Mul | B::Div => {
+                let ty = match (&l.ty, &r.ty) {
+                    (Ty::Int, Ty::Int) => Ty::Int,
+                    (Ty::Char, _) => Ty::Char,
+                    _ => Ty::Real,
+                };
+                let o = match op {
+                    B::Add => BinaryOp::Add,
+                    B::Sub => BinaryOp::Sub,
+                    B::Mul => BinaryOp::Mul,
+                    _ if ty == Ty::Int => BinaryOp::IntDiv,
+                    _ => BinaryOp::Div,
+                };
+                (o, ty)
+            }
+            B::BAnd => (BinaryOp::BAnd, Ty::Int),
+            B::BOr => (BinaryOp::BOr, Ty::Int),
+            B::BExor => (BinaryOp::BExor, Ty::Int),
+            B::Exor => (BinaryOp::Exor, Ty::Bool),
+            B::Eq => (BinaryOp::Eq, Ty::Bool),
+            B::Ne => (BinaryOp::Ne, Ty::Bool),
+            B::Lt => (BinaryOp::Lt, Ty::Bool),
+            B::Gt => (BinaryOp::Gt, Ty::Bool),
+            B::Le => (BinaryOp::Le, Ty::Bool),
+            B::Ge => (BinaryOp::Ge, Ty::Bool),
+            B::And | B::Or => unreachable!("handled above"),
+        };
+        Ok(Expr::new(
+            ExprKind::Binary(o, Box::new(l), Box::new(r)),
+            ty,
+            span,
+        ))
+    }
+
+    /// The globals the calls among `ops` may assign (`None`: any) and the roots of their OUT
+    /// arguments.
+    fn call_writes(
+        &mut self,
+        ops: &Block,
+    ) -> (
+        Option<BTreeSet<String>>,
+        BTreeSet<crate::transpile::ir::VarId>,
+    ) {
+        let mut names = Some(BTreeSet::new());
+        let mut roots = BTreeSet::new();
+        let mut calls = Vec::new();
+        crate::transpile::ir::visit::each_op(ops, &mut |op| {
+            if let Op::Call { callee, args, .. } = op {
+                calls.push(callee.clone());
+                for a in args {
+                    if let Some(r) = a.place.as_ref().and_then(Place::root) {
+                        roots.insert(r);
+                    }
+                }
+            }
+        });
+        for c in calls {
+            let w = match &c {
+                Callee::Routine(r) => {
+                    let name = self.out.routine(*r).name.clone();
+                    self.may_write(&name)
+                }
+                Callee::External { .. } => None,
+                Callee::Mm(_) => Some(BTreeSet::from(["MM_LAST_STATUS".to_owned()])),
+            };
+            names = match (names, w) {
+                (Some(mut a), Some(b)) => {
+                    a.extend(b);
+                    Some(a)
+                }
+                _ => None,
+            };
+        }
+        (names, roots)
+    }
+
+    /// Whether `e` reads a variable the calls described by `writes` may change.
+    fn affected(
+        &self,
+        e: &Expr,
+        writes: &(
+            Option<BTreeSet<String>>,
+            BTreeSet<crate::transpile::ir::VarId>,
+        ),
+    ) -> bool {
+        let mut hit = false;
+        crate::transpile::ir::visit::each_expr(e, &mut |x| {
+            if let ExprKind::Place(p) = &x.kind
+                && let Some(v) = p.root()
+            {
+                let var = self.out.var(v);
+                let global = matches!(var.scope, Scope::Global | Scope::Package | Scope::Assumed);
+                let written = writes.1.contains(&v)
+                    || (global
+                        && writes
+                            .0
+                            .as_ref()
+                            .is_none_or(|w| w.contains(&var.name.to_ascii_uppercase())));
+                hit |= written;
+            }
+        });
+        hit
+    }
+
+    /// An advance-run stop before what reads the robot's state, unless `CONTINUE` came before.
+    pub(super) fn stop(&mut self, span: Span, pre: &mut Block) {
+        if self.rt.as_ref().is_some_and(|r| r.continued) {
+            return;
+        }
+        if !matches!(pre.last().map(|s| &s.op), Some(Op::AdvanceStop { .. })) {
+            pre.push(Stmt {
+                op: Op::AdvanceStop { needed: true },
+                span,
+            });
+        }
+    }
+
+    /// A name, element or member read as a value.
+    fn place_value(&mut self, e: &ast::Expr, pre: &mut Block) -> L<Expr> {
+        let span = e.span;
+        // `$POS_ACT.Z`, `$AXIS_ACT.A1`: the current position read first.
+        if let A::Member { base, field } = &e.kind
+            && let Some(s @ (Sys::PosAct | Sys::AxisAct)) = sysvar::classify(base)
+        {
+            let b = self.read_position(matches!(s, Sys::AxisAct), base.span, pre);
+            return self.member(b, field, span);
+        }
+        if let Some(s) = sysvar::classify(e) {
+            return self.system_value(s, e, pre);
+        }
+        match &e.kind {
+            A::Name(id) => {
+                if let Some(v) = self.var(&id.text) {
+                    let var = self.out.var(v);
+                    if let Ty::Signal(r) = var.ty {
+                        if r.bank == crate::transpile::ir::Bank::In {
+                            self.stop(span, pre);
+                        }
+                        let ty = if r.width() == 1 { Ty::Bool } else { Ty::Int };
+                        return Ok(Expr::new(ExprKind::Io(IoPlace::Signal(r)), ty, span));
+                    }
+                    let ty = var.ty.clone();
+                    return Ok(Expr::new(ExprKind::Place(Place::Var(v)), ty, span));
+                }
+                if let Some(v) = self.package_var(id) {
+                    let ty = self.out.var(v).ty.clone();
+                    return Ok(Expr::new(ExprKind::Place(Place::Var(v)), ty, span));
+                }
+                let v = self.assumed_var(id, Ty::Real, "a number");
+                let ty = self.out.var(v).ty.clone();
+                Ok(Expr::new(ExprKind::Place(Place::Var(v)), ty, span))
+            }
+            A::Index { .. } | A::Member { .. } => {
+                let (p, ty) = self.place(e, pre, false)?;
+                Ok(Expr::new(ExprKind::Place(p), ty, span))
+            }
+            _ => unreachable!("place_value is called on places"),
+        }
+    }
+
+    /// A place (assignment target or value), and the type it holds. `write`: an assignment
+    /// target (an undeclared name is assumed from the value later).
+    pub(super) fn place(&mut self, e: &ast::Expr, pre: &mut Block, write: bool) -> L<(Place, Ty)> {
+        let span = e.span;
+        match &e.kind {
+            A::Name(id) => {
+                if let Some(v) = self.var(&id.text) {
+                    return Ok((Place::Var(v), self.out.var(v).ty.clone()));
+                }
+                if let Some(v) = self.package_var(id) {
+                    return Ok((Place::Var(v), self.out.var(v).ty.clone()));
+                }
+                let _ = write;
+                let v = self.assumed_var(id, Ty::Real, "a number");
+                Ok((Place::Var(v), self.out.var(v).ty.clone()))
+            }
+            A::Index { base, indices } => {
+                let A::Name(id) = &base.kind else {
+                    return fail(Why::ComputedIndex, span);
+                };
+                let v = match self.var(&id.text) {
+                    Some(v) => v,
+                    None => match self.package_var(id) {
+                        Some(v) => v,
+                        None => {
+                            let v = self.assumed_var(id, Ty::Real, "an array of numbers");
+                            self.out.vars[v.0 as usize].dims =
+                                self.out.var(v).dims.max(indices.len());
+                            v
+                        }
+                    },
+                };
+                let ty = self.out.var(v).ty.clone();
+                let mut idx = Vec::new();
+                let present: Vec<&ast::Expr> = indices.iter().flatten().collect();
+                let mut lowered = self.seq(&present, pre)?.into_iter();
+                for i in indices {
+                    idx.push(match i {
+                        Some(_) => lowered.next(),
+                        None => None,
+                    });
+                }
+                Ok((Place::Index(Box::new(Place::Var(v)), idx), ty))
+            }
+            A::Member { base, field } => {
+                let (b, ty) = self.place(base, pre, write)?;
+                match &ty {
+                    Ty::Pose | Ty::Joint => {
+                        let layout = if ty == Ty::Pose {
+                            Layout::Pose
+                        } else {
+                            Layout::Axis
+                        };
+                        let Some(c) = self.model.component(layout, &field.text) else {
+                            return fail(Why::Component(field.text.to_string()), field.span);
+                        };
+                        let cty = match c {
+                            Component::Status | Component::Turn => Ty::Int,
+                            _ => Ty::Real,
+                        };
+                        Ok((Place::Component(Box::new(b), c), cty))
+                    }
+                    _ => Ok((Place::Member(Box::new(b), field.text.to_string()), Ty::Real)),
+                }
+            }
+            _ => fail(Why::AssignTarget, span),
+        }
+    }
+
+    fn member(&mut self, base: Expr, field: &ast::Ident, span: Span) -> L<Expr> {
+        let ExprKind::Place(p) = base.kind else {
+            return fail(Why::ComputedIndex, span);
+        };
+        let layout = if base.ty == Ty::Joint {
+            Layout::Axis
+        } else {
+            Layout::Pose
+        };
+        let Some(c) = self.model.component(layout, &field.text) else {
+            return fail(Why::Component(field.text.to_string()), field.span);
+        };
+        Ok(Expr::new(
+            ExprKind::Place(Place::Component(Box::new(p), c)),
+            Ty::Real,
+            span,
+        ))
+    }
+
+    /// The current position read into a temporary (after an advance-run stop).
+    pub(super) fn read_position(&mut self, joints: bool, span: Span, pre: &mut Block) -> Expr {
+        self.stop(span, pre);
+        let ty = if joints { Ty::Joint } else { Ty::Pose };
+        let t = self.temp(ty.clone());
+        pre.push(Stmt {
+            op: Op::ReadPos {
+                place: Place::Temp(t),
+                joints,
+            },
+            span,
+        });
+        Expr::new(ExprKind::Place(Place::Temp(t)), ty, span)
+    }
+
+    fn system_value(&mut self, s: Sys, e: &ast::Expr, pre: &mut Block) -> L<Expr> {
+        let span = e.span;
+        let text = self.src.src.slice(span).trim().to_owned();
+        let index = |this: &mut Self, i: &ast::Expr, pre: &mut Block| -> L<Box<Expr>> {
+            Ok(Box::new(this.expr(i, pre)?))
+        };
+        Ok(match s {
+            Sys::In(i) => {
+                self.stop(span, pre);
+                let i = index(self, i, pre)?;
+                Expr::new(ExprKind::Io(IoPlace::In(i)), Ty::Bool, span)
+            }
+            Sys::Out(i) | Sys::OutC(i) => {
+                let i = index(self, i, pre)?;
+                Expr::new(ExprKind::Io(IoPlace::Out(i)), Ty::Bool, span)
+            }
+            Sys::Flag(i) => {
+                let i = index(self, i, pre)?;
+                Expr::new(ExprKind::Io(IoPlace::Flag(i)), Ty::Bool, span)
+            }
+            Sys::Timer(i) => Expr::new(ExprKind::Timer(index(self, i, pre)?), Ty::Int, span),
+            Sys::TimerFlag(i) => {
+                Expr::new(ExprKind::TimerFlag(index(self, i, pre)?), Ty::Bool, span)
+            }
+            Sys::PosAct => self.read_position(false, span, pre),
+            Sys::AxisAct => self.read_position(true, span, pre),
+            Sys::NullFrame => Expr::new(ExprKind::NullFrame, Ty::Pose, span),
+            Sys::VelCp => Expr::new(ExprKind::Param(MotionParam::VelCp), Ty::Real, span),
+            Sys::ApoCdis => Expr::new(ExprKind::Param(MotionParam::ApoCdis), Ty::Real, span),
+            Sys::ApoCptp => Expr::new(ExprKind::Param(MotionParam::ApoCptp), Ty::Real, span),
+            Sys::ApoCvel => Expr::new(ExprKind::Param(MotionParam::ApoCvel), Ty::Real, span),
+            Sys::ApoCori => Expr::new(ExprKind::Param(MotionParam::ApoCori), Ty::Real, span),
+            Sys::CycFlag(_) => return fail(Why::CycFlag, span),
+            _ => return fail(Why::SystemVariable(text), span),
+        })
+    }
+
+    /// A function call inside an expression.
+    fn function(
+        &mut self,
+        name: &ast::Ident,
+        args: &[Option<ast::Expr>],
+        span: Span,
+        pre: &mut Block,
+    ) -> L<Expr> {
+        let key = name.key();
+        let builtin = match key.as_str() {
+            "ABS" => Some((Builtin::Abs, Ty::Real)),
+            "SQRT" => Some((Builtin::Sqrt, Ty::Real)),
+            "SIN" => Some((Builtin::Sin, Ty::Real)),
+            "COS" => Some((Builtin::Cos, Ty::Real)),
+            "TAN" => Some((Builtin::Tan, Ty::Real)),
+            "ACOS" => Some((Builtin::Acos, Ty::Real)),
+            "ATAN2" => Some((Builtin::Atan2, Ty::Real)),
+            "STRLEN" => Some((Builtin::StrLen, Ty::Int)),
+            "INV_POS" => Some((Builtin::InvPos, Ty::Pose)),
+            _ => None,
+        };
+        if let Some((b, ty)) = builtin
+            && self.model.routine(&name.text).is_none()
+        {
+            let present: Vec<&ast::Expr> = match args.iter().map(Option::as_ref).collect() {
+                Some(v) => v,
+                None => return fail(Why::OmittedArgument, span),
+            };
+            let v = self.seq(&present, pre)?;
+            let ty = match (b, v.first().map(|a| &a.ty)) {
+                (Builtin::Abs, Some(Ty::Int)) => Ty::Int,
+                _ => ty,
+            };
+            return Ok(Expr::new(ExprKind::Builtin(b, v), ty, span));
+        }
+        if let Some(r) = self.out.routine_named(&name.text) {
+            if self.out.routine(r).kind != RoutineKind::Deffct {
+                return fail(Why::NotAFunction(name.text.to_string()), span);
+            }
+            let args = self.call_args(Some(r), name, args, span, pre)?;
+            let ty = self.out.routine(r).ret.clone().unwrap_or(Ty::Real);
+            let t = self.temp(ty.clone());
+            pre.push(Stmt {
+                op: Op::Call {
+                    callee: Callee::Routine(r),
+                    args,
+                    ret: Some(Place::Temp(t)),
+                },
+                span,
+            });
+            return Ok(Expr::new(ExprKind::Place(Place::Temp(t)), ty, span));
+        }
+        if let Some(family) = KukaOnly::of(&key) {
+            return fail(Why::KukaRoutine(name.text.to_string(), family), span);
+        }
+        // A function of another module.
+        let args = self.call_args(None, name, args, span, pre)?;
+        let t = self.temp(Ty::Real);
+        pre.push(Stmt {
+            op: Op::Call {
+                callee: Callee::External {
+                    name: name.text.to_string(),
+                    span: name.span,
+                    function: true,
+                },
+                args,
+                ret: Some(Place::Temp(t)),
+            },
+            span,
+        });
+        Ok(Expr::new(ExprKind::Place(Place::Temp(t)), Ty::Real, span))
+    }
+
+    /// The arguments of a call of `routine` (None: another module's), in order; OUT arguments
+    /// must be variables.
+    pub(super) fn call_args(
+        &mut self,
+        routine: Option<crate::transpile::ir::RoutineId>,
+        name: &ast::Ident,
+        args: &[Option<ast::Expr>],
+        span: Span,
+        pre: &mut Block,
+    ) -> L<Vec<Arg>> {
+        let params: Option<Vec<crate::transpile::ir::Param>> =
+            routine.map(|r| self.out.routine(r).params.clone());
+        if let Some(p) = &params {
+            let header_ok = routine.is_some_and(|r| self.out.routine(r).header_error.is_none());
+            if p.len() != args.len() && header_ok {
+                return fail(
+                    Why::Arity {
+                        name: name.text.to_string(),
+                        takes: p.len(),
+                        given: args.len(),
+                    },
+                    span,
+                );
+            }
+        }
+        let present: Vec<&ast::Expr> = args.iter().flatten().collect();
+        let mut values = self.seq(&present, pre)?.into_iter();
+        let mut out = Vec::new();
+        for (i, a) in args.iter().enumerate() {
+            let is_out = params
+                .as_ref()
+                .and_then(|p| p.get(i))
+                .is_some_and(|p| p.dir == crate::transpile::ir::ParamDir::Out);
+            let Some(a) = a else {
+                out.push(Arg {
+                    value: None,
+                    place: None,
+                    out: is_out,
+                    span,
+                });
+                continue;
+            };
+            let value = values.next().expect("one value per present argument");
+            let place = match &value.kind {
+                ExprKind::Place(p) if !matches!(p, Place::Temp(_)) => Some(p.clone()),
+                _ => None,
+            };
+            if is_out && place.is_none() {
+                return fail(Why::OutArgument, a.span);
+            }
+            out.push(Arg {
+                value: Some(value),
+                place,
+                out: is_out,
+                span: a.span,
+            });
+        }
+        Ok(out)
+    }
+
+    /// A pose or axis aggregate; `want`: the layout the context needs (a field that does not
+    /// belong to it is an error).
+    pub(super) fn aggregate(
+        &mut self,
+        e: &ast::Expr,
+        want: Option<Layout>,
+        pre: &mut Block,
+    ) -> L<Aggregate> {
+        let A::Aggregate { fields, type_name } = &e.kind else {
+            return fail(Why::Aggregate("not an aggregate".into()), e.span);
+        };
+        let layout = match (self.model.layout_of_aggregate(e), want) {
+            (Some(l), _) => l,
+            (None, Some(w)) if type_name.is_none() && fields.is_empty() => w,
+            (None, _) => {
+                return fail(
+                    Why::Structure(
+                        type_name
+                            .as_ref()
+                            .map_or_else(|| "STRUC".to_owned(), |t| t.key()),
+                    ),
+                    e.span,
+                );
+            }
+        };
+        let mut out = Vec::new();
+        for (name, value) in fields {
+            let Some(name) = name else {
+                return fail(
+                    Why::Aggregate(
+                        "a value without a field name in a pose/axis literal has no counterpart"
+                            .into(),
+                    ),
+                    value.span,
+                );
+            };
+            let Some(c) = self.model.component(layout, &name.text) else {
+                return fail(
+                    Why::Aggregate(format!(
+                        "field `{}` in a pose/axis literal has no counterpart",
+                        name.text
+                    )),
+                    name.span,
+                );
+            };
+            let v = self.expr(value, pre)?;
+            if !v.ty.is_numeric() {
+                return fail(
+                    Why::Aggregate(format!("{} is not a number", name.text)),
+                    value.span,
+                );
+            }
+            out.push((c, v));
+        }
+        Ok(Aggregate {
+            axis: layout == Layout::Axis,
+            fields: out,
+        })
+    }
+
+    /// `value` lowered for a target of type `ty`: aggregates of the target's kind, a REAL
+    /// rounded for an INT, an undeclared axis name assumed axis values.
+    pub(super) fn value_for(&mut self, ty: &Ty, value: &ast::Expr, pre: &mut Block) -> L<Expr> {
+        let span = value.span;
+        if let (Ty::Pose | Ty::Joint, A::Aggregate { .. }) = (ty, &value.kind) {
+            let want = if *ty == Ty::Pose {
+                Layout::Pose
+            } else {
+                Layout::Axis
+            };
+            let a = self.aggregate(value, Some(want), pre)?;
+            return Ok(Expr::new(
+                ExprKind::Aggregate(Box::new(a)),
+                ty.clone(),
+                span,
+            ));
+        }
+        if let (Ty::Joint, A::Name(id)) = (ty, &value.kind)
+            && self.var(&id.text).is_none()
+            && sysvar::classify(value).is_none()
+            && self.package_var(id).is_none()
+        {
+            let v = self.assumed_var(id, Ty::Joint, "axis values (E6AXIS)");
+            return Ok(Expr::new(ExprKind::Place(Place::Var(v)), Ty::Joint, span));
+        }
+        let v = self.expr(value, pre)?;
+        if *ty == Ty::Int && v.ty == Ty::Real {
+            if let Some(n) = v.number() {
+                return Ok(Expr::new(ExprKind::Int(round(n)), Ty::Int, span));
+            }
+            return Ok(Expr::new(
+                ExprKind::Builtin(Builtin::Round, vec![v]),
+                Ty::Int,
+                span,
+            ));
+        }
+        Ok(v)
+    }
+}
+
+/// KRL rounds half away from zero.
+fn round(v: f64) -> i64 {
+    v.round() as i64
+}
+
+/// X Y Z A B C, then S T, then E1…E6.
+fn component_order(c: Component) -> usize {
+    match c {
+        Component::Pose(i) | Component::Axis(i) => i,
+        Component::Status => 6,
+        Component::Turn => 7,
+        Component::Ext(i) => 8 + i,
+    }
+}
+
+/// Whether `ops` call a routine (directly or in a nested block).
+pub(super) fn has_call(ops: &Block) -> bool {
+    let mut found = false;
+    crate::transpile::ir::visit::each_op(ops, &mut |op| {
+        found |= matches!(op, Op::Call { .. });
+    });
+    found
+}

@@ -1,0 +1,732 @@
+//! KRL (the parsed program and what its names mean) → the program model.
+//!
+//! One pass over the AST: variables first (so every name has an id), then each routine's
+//! statements (`stmt.rs`), expressions with calls hoisted (`expr.rs`), motions and motion
+//! parameters (`motion.rs`), calls, `MM_*` and interrupts (`call.rs`), then the `.dat`
+//! values. What cannot be expressed in any target becomes [`Op::Unsupported`]; the motion
+//! parameters each motion uses are left for [`super::flow`].
+
+mod call;
+mod expr;
+mod motion;
+mod stmt;
+
+use std::collections::{BTreeSet, HashMap};
+
+use super::{
+    Block, Construct, Datum, Expr, Finding, LabelId, LoopId, Op, Program, Routine, RoutineId,
+    RoutineKind, Scope, Stmt, TempId, Ty, Var, VarId, Why,
+};
+use crate::diag::Span;
+use crate::syntax::ast::{self, StmtKind};
+use crate::transpile::Options;
+use crate::transpile::VisionServer;
+use crate::transpile::front::model::{Model, VarInfo, VarKind};
+use crate::transpile::front::report::FileId;
+use crate::transpile::front::{self, walk};
+
+/// Lower `program` (parsed, with its names resolved by `model`).
+pub fn lower(program: &front::Program, options: &Options) -> (Program, Option<VisionServer>) {
+    let model = Model::new(program);
+    let mut l = Lower {
+        src: program,
+        model,
+        opts: options,
+        out: Program::default(),
+        vars: HashMap::new(),
+        rt: None,
+        next_spline: 0,
+        vision: None,
+        writes: HashMap::new(),
+        moves: HashMap::new(),
+    };
+    l.run();
+    (l.out, l.vision)
+}
+
+/// A failure: why, and where to report it.
+pub(super) type L<T> = Result<T, (Why, Span)>;
+
+pub(super) fn fail<T>(why: Why, at: Span) -> L<T> {
+    Err((why, at))
+}
+
+/// The routine being lowered.
+struct Ctx {
+    id: RoutineId,
+    /// Upper-case KRL name ("" for statements outside any DEF).
+    key: String,
+    temps: Vec<Ty>,
+    /// Enclosing loops, innermost last.
+    loops: Vec<LoopId>,
+    next_loop: u32,
+    labels: HashMap<String, LabelId>,
+    label_names: Vec<(String, Span)>,
+    /// `CONTINUE` came before the statement being lowered: it does not stop the advance run.
+    continued: bool,
+    /// `TRIGGER`s waiting for the next motion.
+    triggers: Vec<PendingTrigger>,
+    /// Inside a `SPLINE` block: its id and `WITH` values.
+    spline: Option<SplineCtx>,
+    /// Declared locals with their dimensions.
+    locals: Vec<(VarId, Vec<Option<Expr>>)>,
+}
+
+/// A `TRIGGER` waiting for the next motion: its action, before the motion or after it.
+struct PendingTrigger {
+    at: super::TriggerAt,
+    action: Block,
+    span: Span,
+}
+
+#[derive(Clone)]
+struct SplineCtx {
+    id: super::SplineId,
+    with: Vec<(super::MotionParam, super::ParamValue)>,
+}
+
+pub(super) struct Lower<'p> {
+    src: &'p front::Program,
+    model: Model<'p>,
+    opts: &'p Options,
+    out: Program,
+    /// (routine key or "", upper-case name) → id; package and assumed names under "".
+    vars: HashMap<(String, String), VarId>,
+    rt: Option<Ctx>,
+    next_spline: u32,
+    vision: Option<VisionServer>,
+    /// Upper-case routine name → upper-case global names it may assign (itself or through the
+    /// routines of the file it calls); `None`: unknown (it calls another module).
+    writes: HashMap<String, Option<BTreeSet<String>>>,
+    /// Upper-case routine name → whether it moves the robot (itself or through calls).
+    moves: HashMap<String, bool>,
+}
+
+impl<'p> Lower<'p> {
+    fn run(&mut self) {
+        let src = self.src;
+        for g in self.model.globals() {
+            self.add_var(String::new(), g, Scope::Global);
+        }
+        // Routines first (ids for calls), then their bodies.
+        for r in &src.src.ast.routines {
+            self.declare_routine(r);
+        }
+        self.collect_interrupts();
+        for (i, r) in src.src.ast.routines.iter().enumerate() {
+            self.routine(RoutineId(i as u32), r);
+        }
+        if !src.src.ast.top_level.is_empty() {
+            self.top_level();
+        }
+        self.data();
+    }
+
+    // ----- findings, constructs ----------------------------------------------------------
+
+    pub(super) fn approx(
+        &mut self,
+        span: Span,
+        message: impl Into<String>,
+        help: impl Into<String>,
+    ) {
+        self.approx_in(FileId::Src, span, message, help);
+    }
+
+    fn approx_in(
+        &mut self,
+        file: FileId,
+        span: Span,
+        message: impl Into<String>,
+        help: impl Into<String>,
+    ) {
+        self.out.findings.push(Finding {
+            file,
+            span,
+            message: message.into(),
+            help: help.into(),
+        });
+    }
+
+    pub(super) fn construct(&mut self, kind: &'static str, span: Span) {
+        self.out.constructs.push(Construct {
+            kind,
+            span,
+            file: FileId::Src,
+        });
+    }
+
+    /// Change the kind of the construct just recorded (assignments that set I/O, calls of
+    /// `MM_*` …).
+    pub(super) fn kind(&mut self, kind: &'static str) {
+        if let Some(c) = self.out.constructs.last_mut() {
+            c.kind = kind;
+        }
+    }
+
+    // ----- variables ---------------------------------------------------------------------
+
+    fn add_var(&mut self, routine: String, v: VarInfo, scope: Scope) -> VarId {
+        let id = VarId(self.out.vars.len() as u32);
+        let key = (routine, v.name.to_ascii_uppercase());
+        self.out.vars.push(Var {
+            name: v.name,
+            ty: v.ty,
+            dims: v.dims,
+            scope,
+            constant: v.constant,
+            decl: v.decl,
+            file: v.file,
+        });
+        self.vars.insert(key, id);
+        id
+    }
+
+    /// The variable `name` as seen from here, if the program declares it.
+    pub(super) fn var(&self, name: &str) -> Option<VarId> {
+        let key = name.to_ascii_uppercase();
+        if let Some(rt) = &self.rt
+            && let Some(v) = self.vars.get(&(rt.key.clone(), key.clone()))
+        {
+            return Some(*v);
+        }
+        self.vars
+            .get(&(String::new(), key))
+            .copied()
+            .filter(|v| matches!(self.out.var(*v).scope, Scope::Global))
+    }
+
+    /// A global of the generated KUKA package (`MM_Last_Status` …), typed by the catalog.
+    pub(super) fn package_var(&mut self, id: &ast::Ident) -> Option<VarId> {
+        let g = crate::catalog::catalog().global(&id.text)?;
+        let key = (String::new(), id.key());
+        if let Some(v) = self.vars.get(&key) {
+            return Some(*v);
+        }
+        let ty = match g.ty.to_ascii_uppercase().as_str() {
+            "INT" => Ty::Int,
+            "BOOL" => Ty::Bool,
+            "E6POS" | "FRAME" | "POS" => Ty::Pose,
+            "E6AXIS" | "AXIS" => Ty::Joint,
+            _ => Ty::Real,
+        };
+        let dims = usize::from(g.name.contains('[') || g.ty.contains('['));
+        let info = VarInfo {
+            name: g.name.split('[').next().unwrap_or(&g.name).to_owned(),
+            ty,
+            dims,
+            kind: VarKind::Global,
+            constant: false,
+            decl: id.span,
+            file: FileId::Src,
+        };
+        Some(self.add_var(String::new(), info, Scope::Package))
+    }
+
+    /// A name the program does not declare: its type assumed from its use, reported once.
+    pub(super) fn assumed_var(&mut self, id: &ast::Ident, ty: Ty, what: &str) -> VarId {
+        let key = (String::new(), id.key());
+        if let Some(v) = self.vars.get(&key) {
+            return *v;
+        }
+        self.approx(
+            id.span,
+            format!(
+                "`{}` is not declared in this program or its .dat; assumed {what}",
+                id.text
+            ),
+            "declare it (e.g. in the .dat), or check its value and type in the translation",
+        );
+        let info = VarInfo {
+            name: id.text.to_string(),
+            ty,
+            dims: 0,
+            kind: VarKind::Global,
+            constant: false,
+            decl: id.span,
+            file: FileId::Src,
+        };
+        self.add_var(String::new(), info, Scope::Assumed)
+    }
+
+    /// A temporary of the current routine.
+    pub(super) fn temp(&mut self, ty: Ty) -> TempId {
+        match &mut self.rt {
+            Some(rt) => {
+                rt.temps.push(ty);
+                TempId(rt.temps.len() as u32 - 1)
+            }
+            None => TempId(0),
+        }
+    }
+
+    pub(super) fn new_loop(&mut self) -> LoopId {
+        match &mut self.rt {
+            Some(rt) => {
+                rt.next_loop += 1;
+                LoopId(rt.next_loop - 1)
+            }
+            None => LoopId(0),
+        }
+    }
+
+    pub(super) fn label(&mut self, name: &ast::Ident) -> LabelId {
+        let Some(rt) = &mut self.rt else {
+            return LabelId(0);
+        };
+        if let Some(l) = rt.labels.get(&name.key()) {
+            return *l;
+        }
+        let l = LabelId(rt.label_names.len() as u32);
+        rt.labels.insert(name.key(), l);
+        rt.label_names.push((name.text.to_string(), name.span));
+        l
+    }
+
+    // ----- routines ----------------------------------------------------------------------
+
+    fn declare_routine(&mut self, r: &ast::Routine) {
+        let key = r.name.key();
+        for v in self.model.locals(&r.name.text) {
+            let id = RoutineId(self.out.routines.len() as u32);
+            let scope = match v.kind {
+                VarKind::Param(_) => Scope::Param(id),
+                _ => Scope::Local(id),
+            };
+            self.add_var(key.clone(), v, scope);
+        }
+        let sig = self.model.routine(&r.name.text);
+        let kind = match r.kind {
+            ast::RoutineKind::Def => RoutineKind::Def,
+            ast::RoutineKind::Deffct => RoutineKind::Deffct,
+        };
+        let assigned = walk::assigned_names(&r.body);
+        let params = r
+            .params
+            .iter()
+            .filter_map(|p| {
+                let var = *self.vars.get(&(key.clone(), p.name.key()))?;
+                let dir = match p.dir.unwrap_or(ast::ParamDir::In) {
+                    ast::ParamDir::In => super::ParamDir::In,
+                    ast::ParamDir::Out => super::ParamDir::Out,
+                };
+                let v = self.out.var(var);
+                let mut dims = v.dims.max(usize::from(p.array));
+                if v.ty == Ty::Char {
+                    dims = dims.saturating_sub(1);
+                }
+                Some(super::Param {
+                    var,
+                    dir,
+                    array: dims,
+                    assigned: assigned.contains(&p.name.key()),
+                })
+            })
+            .collect();
+        self.out.routines.push(Routine {
+            name: r.name.text.to_string(),
+            name_span: r.name.span,
+            kind,
+            ret: sig.and_then(|s| s.ret),
+            params,
+            locals: Vec::new(),
+            temps: Vec::new(),
+            labels: Vec::new(),
+            body: Vec::new(),
+            closed: r.closed,
+            header_error: self.header_syntax_error(r),
+            span: r.span,
+            end: front::end_line_start(&self.src.src.text, r.span),
+            synthetic: false,
+        });
+    }
+
+    /// The line of `r`'s header when the parser reported a syntax error on it.
+    fn header_syntax_error(&self, r: &ast::Routine) -> Option<Span> {
+        let first = r
+            .decls
+            .iter()
+            .map(|d| d.span.start)
+            .chain(r.body.iter().map(|s| s.span.start))
+            .min()
+            .unwrap_or(r.span.end);
+        let d =
+            self.src.src.parse.diagnostics.iter().find(|d| {
+                d.code == "KRL001" && d.span.start >= r.span.start && d.span.start < first
+            })?;
+        let text = &self.src.src.text;
+        let at = (d.span.start as usize).min(text.len());
+        let from = text[..at].rfind(['\n', '\r']).map_or(0, |i| i + 1);
+        let to = text[at..].find(['\n', '\r']).map_or(text.len(), |i| at + i);
+        Some(Span::new(from, to))
+    }
+
+    fn enter(&mut self, id: RoutineId, key: String) {
+        self.rt = Some(Ctx {
+            id,
+            key,
+            temps: Vec::new(),
+            loops: Vec::new(),
+            next_loop: 0,
+            labels: HashMap::new(),
+            label_names: Vec::new(),
+            continued: false,
+            triggers: Vec::new(),
+            spline: None,
+            locals: Vec::new(),
+        });
+    }
+
+    fn routine(&mut self, id: RoutineId, r: &ast::Routine) {
+        let key = r.name.key();
+        let kind = self.out.routine(id).kind;
+        self.enter(id, key.clone());
+        let header = match kind {
+            RoutineKind::Def => "routine DEF",
+            RoutineKind::Deffct => "routine DEFFCT",
+        };
+        let line = first_line(&self.src.src.text, r.span);
+        self.construct(header, line);
+        if !r.closed {
+            self.approx(
+                r.name.span,
+                format!(
+                    "`{}` has no END; translated up to the end of the file",
+                    r.name.text
+                ),
+                "close the routine with END",
+            );
+        }
+        // Labels in source order, so their ids follow the text.
+        walk::each_stmt(&r.body, &mut |s| {
+            if let StmtKind::Label { name } = &s.kind {
+                self.label(name);
+            }
+        });
+        let mut body = Block::new();
+        if let Some(at) = self.out.routine(id).header_error {
+            body.push(Stmt {
+                op: Op::Unsupported {
+                    why: Why::HeaderSyntaxError,
+                    at,
+                },
+                span: at,
+            });
+        }
+        for d in &r.decls {
+            self.body_decl(d, d.span, &mut body);
+        }
+        self.block_into(&r.body, &mut body);
+        self.finish_triggers(&mut body);
+        let rt = self.rt.take().expect("in a routine");
+        let out = &mut self.out.routines[id.0 as usize];
+        out.body = body;
+        out.temps = rt.temps;
+        out.locals = rt.locals;
+        out.labels = rt.label_names;
+    }
+
+    /// Statements outside any DEF: one routine named after the file.
+    fn top_level(&mut self) {
+        let src = self.src;
+        let stem = std::path::Path::new(&src.src.path)
+            .file_stem()
+            .and_then(|s| s.to_str())
+            .unwrap_or("main")
+            .to_owned();
+        let id = RoutineId(self.out.routines.len() as u32);
+        self.out.routines.push(Routine {
+            name: stem,
+            name_span: Span::empty(0),
+            kind: RoutineKind::Def,
+            ret: None,
+            params: Vec::new(),
+            locals: Vec::new(),
+            temps: Vec::new(),
+            labels: Vec::new(),
+            body: Vec::new(),
+            closed: true,
+            header_error: None,
+            span: Span::new(0, src.src.text.len()),
+            end: src.src.text.len() as u32,
+            synthetic: true,
+        });
+        self.out.top_level = Some(id);
+        self.enter(id, String::new());
+        let mut body = Block::new();
+        self.block_into(&src.src.ast.top_level, &mut body);
+        self.finish_triggers(&mut body);
+        let rt = self.rt.take().expect("in a routine");
+        let out = &mut self.out.routines[id.0 as usize];
+        out.body = body;
+        out.temps = rt.temps;
+        out.labels = rt.label_names;
+    }
+
+    // ----- what routines do (for hoisting and advance-run stops) -------------------------
+
+    /// The globals a call of `name` may assign; `None` when unknown.
+    pub(super) fn may_write(&mut self, name: &str) -> Option<BTreeSet<String>> {
+        let key = name.to_ascii_uppercase();
+        if let Some(w) = self.writes.get(&key) {
+            return w.clone();
+        }
+        // Recursion: assume nothing more while the routine is being looked at.
+        self.writes.insert(key.clone(), Some(BTreeSet::new()));
+        let src = self.src;
+        let result = match src.src.ast.routine(name) {
+            None => None,
+            Some(r) => {
+                let mut set = BTreeSet::new();
+                let mut unknown = false;
+                let mut callees = Vec::new();
+                walk::each_stmt(&r.body, &mut |s| match &s.kind {
+                    StmtKind::Assign { target, value } => {
+                        if let Some(id) = walk::root_name(target) {
+                            set.insert(id.key());
+                        }
+                        expr_calls(value, &mut callees);
+                    }
+                    StmtKind::Call { name, args } => {
+                        callees.push(name.text.to_string());
+                        for a in args.iter().flatten() {
+                            if let Some(id) = walk::root_name(a) {
+                                set.insert(id.key());
+                            }
+                        }
+                    }
+                    _ => {}
+                });
+                for c in callees {
+                    if c.to_ascii_uppercase().starts_with("MM_") {
+                        set.insert("MM_LAST_STATUS".into());
+                        continue;
+                    }
+                    match self.may_write(&c) {
+                        Some(w) => set.extend(w),
+                        None => unknown = true,
+                    }
+                }
+                // Locals and parameters of the routine are not the caller's business.
+                let locals: BTreeSet<String> = self
+                    .model
+                    .locals(name)
+                    .into_iter()
+                    .map(|v| v.name.to_ascii_uppercase())
+                    .collect();
+                set.retain(|n| !locals.contains(n));
+                (!unknown).then_some(set)
+            }
+        };
+        self.writes.insert(key, result.clone());
+        result
+    }
+
+    /// Whether a call of `name` may move the robot.
+    pub(super) fn routine_moves(&mut self, name: &str) -> bool {
+        let key = name.to_ascii_uppercase();
+        if let Some(m) = self.moves.get(&key) {
+            return *m;
+        }
+        self.moves.insert(key.clone(), false);
+        let src = self.src;
+        let result = match src.src.ast.routine(name) {
+            // Another module's routine, or a package routine: it may.
+            None => !key.starts_with("MM_") || key == "MM_CALIB",
+            Some(r) => {
+                let mut moves = false;
+                let mut callees = Vec::new();
+                walk::each_stmt(&r.body, &mut |s| match &s.kind {
+                    StmtKind::Motion(_) | StmtKind::Spline { .. } => moves = true,
+                    StmtKind::Call { name, .. } => callees.push(name.text.to_string()),
+                    StmtKind::Assign { value, .. } => expr_calls(value, &mut callees),
+                    _ => {}
+                });
+                moves
+                    || callees.iter().any(|c| {
+                        let k = c.to_ascii_uppercase();
+                        k != "BAS" && KNOWN_STILL.iter().all(|s| *s != k) && self.routine_moves(c)
+                    })
+            }
+        };
+        self.moves.insert(key, result);
+        result
+    }
+
+    // ----- the .dat ----------------------------------------------------------------------
+
+    fn data(&mut self) {
+        let src = self.src;
+        if let Some(dat) = &src.dat
+            && let Some(m) = &dat.ast.dat
+        {
+            self.dat_module(m, FileId::Dat, &dat.text);
+        }
+        if let Some(m) = &src.src.ast.dat {
+            self.dat_module(m, FileId::Src, &src.src.text);
+        }
+        // GLOBAL declarations inside routines are globals without a value here.
+        for r in &src.src.ast.routines {
+            let mut decls: Vec<&ast::Decl> = r.decls.iter().filter(|d| d.global).collect();
+            walk::each_stmt(&r.body, &mut |s| {
+                if let StmtKind::Decl(d) = &s.kind
+                    && d.global
+                {
+                    decls.push(d);
+                }
+            });
+            for d in decls {
+                for v in &d.vars {
+                    if let Some(id) = self.vars.get(&(String::new(), v.name.key())).copied() {
+                        let dims = self.data_dims(&v.dims);
+                        self.out.uninit_globals.push((id, dims));
+                    }
+                }
+            }
+        }
+    }
+
+    fn data_dims(&mut self, dims: &[Option<ast::Expr>]) -> Vec<Option<Expr>> {
+        let mut pre = Block::new();
+        dims.iter()
+            .map(|d| d.as_ref().and_then(|d| self.expr(d, &mut pre).ok()))
+            .collect()
+    }
+
+    fn dat_module(&mut self, m: &ast::DatModule, file: FileId, text: &str) {
+        for d in &m.decls {
+            for v in &d.vars {
+                let Some(id) = self.vars.get(&(String::new(), v.name.key())).copied() else {
+                    continue;
+                };
+                let Some(init) = &v.init else {
+                    let dims = self.data_dims(&v.dims);
+                    self.out.uninit_globals.push((id, dims));
+                    continue;
+                };
+                if let Ty::Other(t) = &self.out.var(id).ty
+                    && crate::transpile::front::ilf::RECORD_TYPES.contains(&t.as_str())
+                {
+                    self.data_construct("data (inline-form)", d.span, file);
+                    continue;
+                }
+                self.data_construct("data", d.span, file);
+                let value = self.data_value(id, init, file);
+                self.out.data.push(Datum {
+                    var: id,
+                    index: None,
+                    value,
+                    span: d.span,
+                    file,
+                });
+            }
+        }
+        for s in &m.body {
+            let StmtKind::Assign { target, value } = &s.kind else {
+                continue;
+            };
+            let (name, index) = match &target.kind {
+                ast::ExprKind::Name(n) => (n, None),
+                ast::ExprKind::Index { base, indices } => {
+                    let ast::ExprKind::Name(n) = &base.kind else {
+                        continue;
+                    };
+                    let idx: Option<Vec<i64>> = indices
+                        .iter()
+                        .filter_map(|i| i.as_ref())
+                        .map(crate::transpile::front::literal::integer)
+                        .collect();
+                    let Some(idx) = idx else { continue };
+                    (n, Some(idx))
+                }
+                _ => continue,
+            };
+            let Some(id) = self.vars.get(&(String::new(), name.key())).copied() else {
+                continue;
+            };
+            self.data_construct("data", s.span, file);
+            let value = self.data_value(id, value, file);
+            self.out.data.push(Datum {
+                var: id,
+                index,
+                value,
+                span: s.span,
+                file,
+            });
+        }
+        let _ = text;
+    }
+
+    fn data_construct(&mut self, kind: &'static str, span: Span, file: FileId) {
+        self.out.constructs.push(Construct { kind, span, file });
+    }
+
+    /// A `.dat` value: lowered as an expression (no calls), findings in `file`.
+    fn data_value(&mut self, var: VarId, init: &ast::Expr, file: FileId) -> Result<Expr, Why> {
+        let before = self.out.findings.len();
+        let mut pre = Block::new();
+        let ty = self.out.var(var).ty.clone();
+        let r = self.value_for(&ty, init, &mut pre);
+        // Findings about .dat values point into the .dat.
+        for f in &mut self.out.findings[before..] {
+            f.file = file;
+        }
+        match r {
+            Ok(e) if pre.is_empty() => Ok(e),
+            Ok(_) => Err(Why::Aggregate(
+                "a .dat value that calls a function has no counterpart".into(),
+            )),
+            Err((why, _)) => Err(why),
+        }
+    }
+}
+
+/// Routines of the KUKA runtime that never move the robot.
+const KNOWN_STILL: [&str; 8] = [
+    "MSGNOTIFY",
+    "MSGQUIT",
+    "MSGSTATE",
+    "MM_GET_STATUS",
+    "MM_INIT_SOCKET",
+    "STRLEN",
+    "SWRITE",
+    "SREAD",
+];
+
+/// Names of routines called inside an expression.
+fn expr_calls(e: &ast::Expr, out: &mut Vec<String>) {
+    match &e.kind {
+        ast::ExprKind::Call { name, args } => {
+            out.push(name.text.to_string());
+            for a in args.iter().flatten() {
+                expr_calls(a, out);
+            }
+        }
+        ast::ExprKind::Index { base, indices } => {
+            expr_calls(base, out);
+            for i in indices.iter().flatten() {
+                expr_calls(i, out);
+            }
+        }
+        ast::ExprKind::Member { base, .. } => expr_calls(base, out),
+        ast::ExprKind::Unary { operand, .. } => expr_calls(operand, out),
+        ast::ExprKind::Binary { lhs, rhs, .. } => {
+            expr_calls(lhs, out);
+            expr_calls(rhs, out);
+        }
+        ast::ExprKind::Aggregate { fields, .. } => {
+            for (_, v) in fields {
+                expr_calls(v, out);
+            }
+        }
+        _ => {}
+    }
+}
+
+/// The first line of `span` (a block statement's own line).
+pub(super) fn first_line(text: &str, span: Span) -> Span {
+    let start = span.start as usize;
+    let rest = text.get(start..span.end as usize).unwrap_or("");
+    let len = rest.find(['\n', '\r']).unwrap_or(rest.len());
+    Span::new(start, start + len)
+}

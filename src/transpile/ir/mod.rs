@@ -1,0 +1,1057 @@
+//! The target-neutral program model every backend renders: what a KRL program does, decided
+//! once.
+//!
+//! [`lower`] builds it from the parsed program and the semantic questions it asks through
+//! [`crate::transpile::front::model`]; [`flow`] then resolves, per motion, the speed, blending
+//! and frames in force (or says why they are unknown) and drops advance-run stops where no
+//! motion can be running; [`goto`] turns jumps into loops for targets without `GOTO`.
+//!
+//! Invariants (what a renderer may rely on):
+//! - Expressions hold no user calls: every call of a routine of the program is an
+//!   [`Op::Call`] whose result goes to a temporary, in the order the KRL interpreter evaluates
+//!   (left to right, `AND`/`OR` short-circuit), with operands a call may change read before it.
+//! - A motion's speed kind follows its path kind ([`Move`]): joint paths carry a percentage,
+//!   Cartesian paths m/s; its blending and frames are values or `Unknown` with the reason.
+//! - Where KRL stops the advance run (a wait, a read of `$IN`/`$POS_ACT`, a write of `$OUT`
+//!   after a motion), an [`Op::AdvanceStop`] stands before the statement.
+//! - Every KRL statement becomes ops or an [`Op::Unsupported`] with its reason; none is dropped.
+//! - Loops have identities ([`LoopId`]); `EXIT` is a `Break` of one of them.
+
+pub mod flow;
+pub mod goto;
+pub mod lower;
+pub mod visit;
+pub mod why;
+
+use crate::catalog::Subprogram;
+use crate::diag::Span;
+use crate::transpile::front::report::FileId;
+
+pub use why::Why;
+
+/// A variable of the program (declared, a parameter, a package global, or assumed).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, PartialOrd, Ord, Hash)]
+pub struct VarId(pub u32);
+
+/// A temporary minted by the lowering (hoisted call results, snapshots, pose reads), local to
+/// its routine.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, PartialOrd, Ord, Hash)]
+pub struct TempId(pub u32);
+
+/// A loop's identity within its routine.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, PartialOrd, Ord, Hash)]
+pub struct LoopId(pub u32);
+
+/// A label's identity within its routine.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, PartialOrd, Ord, Hash)]
+pub struct LabelId(pub u32);
+
+/// A routine of the program (index into [`Program::routines`]).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, PartialOrd, Ord, Hash)]
+pub struct RoutineId(pub u32);
+
+/// A group of motions that were one KRL spline (a `SPLINE … ENDSPLINE` block or one `SLIN`).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, PartialOrd, Ord, Hash)]
+pub struct SplineId(pub u32);
+
+/// The type of a value as the targets care about it.
+#[derive(Debug, Clone, PartialEq)]
+pub enum Ty {
+    Int,
+    Real,
+    Bool,
+    /// `CHAR`: a string when it is an array.
+    Char,
+    /// `E6POS`, `POS`, `FRAME`.
+    Pose,
+    /// `E6AXIS`, `AXIS`.
+    Joint,
+    /// A user `ENUM` type (upper-case name).
+    Enum(String),
+    /// A user `STRUC` type (upper-case name).
+    Struc(String),
+    /// A `SIGNAL` name.
+    Signal(SignalRange),
+    /// A KUKA structure no target holds (upper-case name: `LOAD`, `PDAT` …).
+    Other(String),
+}
+
+impl Ty {
+    pub fn is_numeric(&self) -> bool {
+        matches!(self, Ty::Int | Ty::Real | Ty::Bool | Ty::Enum(_))
+    }
+}
+
+/// Which I/O bank a `SIGNAL` declaration names.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Bank {
+    In,
+    Out,
+}
+
+/// `SIGNAL name $OUT[from] [TO $OUT[to]]` with literal numbers.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub struct SignalRange {
+    pub bank: Bank,
+    pub from: i64,
+    pub to: i64,
+}
+
+impl SignalRange {
+    pub fn width(&self) -> i64 {
+        self.to - self.from + 1
+    }
+}
+
+/// Where a variable lives.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Scope {
+    /// `.dat` globals, GLOBAL declarations: visible to every routine.
+    Global,
+    /// A local of the routine.
+    Local(RoutineId),
+    /// A parameter of the routine.
+    Param(RoutineId),
+    /// A global of the generated KUKA package (`MM_Last_Status`, `Do_Port` …).
+    Package,
+    /// Not declared in the program or its `.dat` (e.g. from `$config.dat`): its type was
+    /// assumed from how it is used.
+    Assumed,
+}
+
+/// One variable.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Var {
+    /// As first written in the KRL.
+    pub name: String,
+    pub ty: Ty,
+    /// Number of array dimensions (a `CHAR` string's length counts as one).
+    pub dims: usize,
+    pub scope: Scope,
+    pub constant: bool,
+    /// Where the name is declared (the first use for assumed names), and in which file.
+    pub decl: Span,
+    pub file: FileId,
+}
+
+/// The translated program.
+#[derive(Debug, Clone, Default)]
+pub struct Program {
+    pub vars: Vec<Var>,
+    pub routines: Vec<Routine>,
+    /// Statements outside any DEF (a `.sub` fragment), as one routine named after the file.
+    pub top_level: Option<RoutineId>,
+    /// The values of the `.dat` (and the DEFDAT of the `.src`).
+    pub data: Vec<Datum>,
+    /// Globals declared without a value, in declaration order (targets that need a value give
+    /// them their type's zero value).
+    pub uninit_globals: Vec<(VarId, Vec<Option<Expr>>)>,
+    /// Every `INTERRUPT DECL` of the file.
+    pub interrupts: Vec<InterruptDecl>,
+    /// Every KRL construct, for the coverage table.
+    pub constructs: Vec<Construct>,
+    /// Target-independent findings (TR002) decided while lowering.
+    pub findings: Vec<Finding>,
+}
+
+impl Program {
+    pub fn var(&self, v: VarId) -> &Var {
+        &self.vars[v.0 as usize]
+    }
+
+    pub fn routine(&self, r: RoutineId) -> &Routine {
+        &self.routines[r.0 as usize]
+    }
+
+    /// The routine a KRL name calls (case-insensitive).
+    pub fn routine_named(&self, name: &str) -> Option<RoutineId> {
+        self.routines
+            .iter()
+            .position(|r| r.name.eq_ignore_ascii_case(name))
+            .map(|i| RoutineId(i as u32))
+    }
+}
+
+/// A KRL construct counted in the coverage table: a statement (its own first line for blocks),
+/// a routine header or a `.dat` value.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Construct {
+    pub kind: &'static str,
+    pub span: Span,
+    pub file: FileId,
+}
+
+/// A finding decided by the lowering (target-independent wording).
+#[derive(Debug, Clone, PartialEq)]
+pub struct Finding {
+    pub file: FileId,
+    pub span: Span,
+    pub message: String,
+    pub help: String,
+}
+
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum RoutineKind {
+    Def,
+    Deffct,
+}
+
+/// A parameter's passing.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum ParamDir {
+    In,
+    Out,
+}
+
+#[derive(Debug, Clone, PartialEq)]
+pub struct Param {
+    pub var: VarId,
+    pub dir: ParamDir,
+    /// Whole-array parameter (`name[]`, `name[,]`): its number of dimensions.
+    pub array: usize,
+    /// An IN parameter the routine assigns (targets that pass by reference must copy it).
+    pub assigned: bool,
+}
+
+/// One routine.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Routine {
+    pub name: String,
+    pub name_span: Span,
+    pub kind: RoutineKind,
+    pub ret: Option<Ty>,
+    pub params: Vec<Param>,
+    /// Declared locals (parameters excluded) with their array dimensions.
+    pub locals: Vec<(VarId, Vec<Option<Expr>>)>,
+    /// Temporaries: their types, by [`TempId`].
+    pub temps: Vec<Ty>,
+    /// Labels: their KRL names and where they first appear, by [`LabelId`].
+    pub labels: Vec<(String, Span)>,
+    pub body: Block,
+    /// False when the file ended before `END`.
+    pub closed: bool,
+    /// The DEF line did not parse (its parameters are missing from the tree).
+    pub header_error: Option<Span>,
+    pub span: Span,
+    /// Where the `END` line starts (comments before it stay inside).
+    pub end: u32,
+    /// Statements outside any DEF.
+    pub synthetic: bool,
+}
+
+pub type Block = Vec<Stmt>;
+
+/// One operation, with the KRL statement it comes from.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Stmt {
+    pub op: Op,
+    /// The KRL statement (several ops may share it).
+    pub span: Span,
+}
+
+/// What a program does.
+#[derive(Debug, Clone, PartialEq)]
+pub enum Op {
+    /// `place = value`.
+    Assign {
+        place: Place,
+        value: Expr,
+    },
+    /// A call; `ret` receives a function's value.
+    Call {
+        callee: Callee,
+        args: Vec<Arg>,
+        ret: Option<Place>,
+    },
+    /// The current Cartesian pose (`$POS_ACT`) or axis values (`$AXIS_ACT`) read into `place`.
+    ReadPos {
+        place: Place,
+        joints: bool,
+    },
+    Move(Box<Move>),
+    /// Motion parameters (`$VEL.CP`, `$APO.CDIS` …, `BAS(#VEL_PTP)` …).
+    SetParam {
+        param: MotionParam,
+        value: ParamValue,
+    },
+    /// `BAS(#INITMOV)`: the controller's motion defaults (from BAS.DAT).
+    MotionDefaults,
+    /// `$TOOL = …` / `$BASE = …`.
+    SetFrame {
+        which: FrameKind,
+        frame: FrameRef,
+    },
+    /// `$LOAD = …` (mass in kg, centre of mass in mm).
+    SetLoad(Load),
+    /// `$OV_PRO = …` (percent).
+    SetOverride(Expr),
+    SetIo {
+        io: IoPlace,
+        value: Expr,
+        when: IoTiming,
+    },
+    /// `PULSE(signal, level, seconds)`.
+    Pulse {
+        io: IoPlace,
+        level: Expr,
+        seconds: Expr,
+    },
+    /// `$TIMER[n] = ms`, `$TIMER_STOP[n] = stopped`.
+    Timer {
+        index: Expr,
+        op: TimerOp,
+    },
+    Wait(Wait),
+    /// KRL stops the advance run here: the previous motion has ended (targets with a look-ahead
+    /// must wait for it). `needed` is false only before [`flow::resolve`] has dropped the stops
+    /// where no motion can be running.
+    AdvanceStop {
+        needed: bool,
+    },
+    If {
+        cond: Expr,
+        then: Block,
+        els: Block,
+        /// Offsets of the `ELSE` and `ENDIF` lines.
+        else_at: Option<u32>,
+        end: u32,
+    },
+    Switch {
+        selector: Expr,
+        cases: Vec<Case>,
+        default: Option<(Block, u32)>,
+        end: u32,
+    },
+    Loop {
+        id: LoopId,
+        kind: LoopKind,
+        body: Block,
+        end: u32,
+    },
+    /// Leave the loop `id` (an enclosing one).
+    Break(LoopId),
+    /// Start the next pass of the loop `id` (made only by [`goto`]).
+    Continue(LoopId),
+    Goto(LabelId),
+    Label(LabelId),
+    /// `RETURN` (with a function's value).
+    Return(Option<Expr>),
+    /// `HALT`: stop until the operator continues.
+    Halt,
+    /// `BRAKE` (`F`: fast).
+    Brake {
+        fast: bool,
+    },
+    /// `INTERRUPT ON|OFF|ENABLE|DISABLE [n]` (no number: all of the file's).
+    Interrupt {
+        action: InterruptAction,
+        number: Option<i64>,
+    },
+    /// An `INTERRUPT DECL` where it stands (index into [`Program::interrupts`]).
+    InterruptDecl(usize),
+    /// `MsgNotify` & co.: a message text for the operator.
+    Message {
+        routine: String,
+        text: Expr,
+    },
+    /// A construct no target can express; TR001 at `at`, its KRL text kept where it stood.
+    Unsupported {
+        why: Why,
+        at: Span,
+    },
+    /// A statement with nothing to do in the targets, kept as a comment: `note` says why (for
+    /// inline-form bookkeeping such as `$BWDSTART`, `CONTINUE`, labels); `None`: a finding
+    /// (TR002) made for it explains.
+    Keep {
+        note: Option<&'static str>,
+    },
+}
+
+#[derive(Debug, Clone, PartialEq)]
+pub struct Case {
+    pub values: Vec<Expr>,
+    pub body: Block,
+    pub span: Span,
+}
+
+#[derive(Debug, Clone, PartialEq)]
+pub enum LoopKind {
+    /// `FOR var = from TO to STEP step` (bounds evaluated once, before the loop).
+    For {
+        var: Place,
+        from: Expr,
+        to: Expr,
+        step: Option<Expr>,
+    },
+    /// Test before each pass.
+    While(Expr),
+    /// Test after each pass; the loop ends when it holds.
+    Until(Expr),
+    /// Left only by `Break`/`RETURN`/`GOTO`.
+    Forever,
+}
+
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum InterruptAction {
+    On,
+    Off,
+    Enable,
+    Disable,
+}
+
+/// `INTERRUPT DECL n WHEN condition DO handler`.
+#[derive(Debug, Clone, PartialEq)]
+pub struct InterruptDecl {
+    pub number: i64,
+    pub global: bool,
+    /// The watched condition, or why it is not one a target can watch.
+    pub condition: Result<Expr, Why>,
+    /// The handler routine (a call without arguments), or why not.
+    pub handler: Result<Callee, Why>,
+    /// KUKA's standard stop-message interrupt (`$STOPMESS` → `IR_STOPM`) of every INI fold.
+    pub stop_messages: bool,
+    pub span: Span,
+}
+
+// ----- places and expressions -----------------------------------------------------------
+
+/// Something a value can be stored in.
+#[derive(Debug, Clone, PartialEq)]
+pub enum Place {
+    Var(VarId),
+    Temp(TempId),
+    /// `a[i, j]`; a whole array `a[]` has `None` indices.
+    Index(Box<Place>, Vec<Option<Expr>>),
+    /// One component of a pose or axis value (`p.X`, `j.A1`).
+    Component(Box<Place>, Component),
+    /// A member of a structure no target holds (`gripper.force`).
+    Member(Box<Place>, String),
+}
+
+impl Place {
+    /// The variable at the root, if any.
+    pub fn root(&self) -> Option<VarId> {
+        match self {
+            Place::Var(v) => Some(*v),
+            Place::Temp(_) => None,
+            Place::Index(b, _) | Place::Component(b, _) | Place::Member(b, _) => b.root(),
+        }
+    }
+}
+
+/// A component of a pose (X … C, S, T) or axis value (A1 … A6), or an external axis.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Component {
+    /// X Y Z A B C (0..6) of a pose.
+    Pose(usize),
+    /// A1 … A6 (0..6) of an axis value.
+    Axis(usize),
+    /// E1 … E6 (0..6).
+    Ext(usize),
+    Status,
+    Turn,
+}
+
+impl Component {
+    pub fn krl(self) -> String {
+        match self {
+            Component::Pose(i) => ["X", "Y", "Z", "A", "B", "C"][i].to_string(),
+            Component::Axis(i) => format!("A{}", i + 1),
+            Component::Ext(i) => format!("E{}", i + 1),
+            Component::Status => "S".into(),
+            Component::Turn => "T".into(),
+        }
+    }
+}
+
+#[derive(Debug, Clone, PartialEq)]
+pub struct Expr {
+    pub kind: ExprKind,
+    pub ty: Ty,
+    pub span: Span,
+}
+
+#[derive(Debug, Clone, PartialEq)]
+pub enum ExprKind {
+    Int(i64),
+    Real(f64),
+    Bool(bool),
+    Char(char),
+    Str(String),
+    /// `'B1010'`.
+    Bits(u64),
+    /// `'HFF'`.
+    Hex(u64),
+    /// A value of a user ENUM: its 1-based ordinal.
+    Enum {
+        name: String,
+        ordinal: usize,
+    },
+    /// A value read from a place.
+    Place(Place),
+    Unary(UnaryOp, Box<Expr>),
+    Binary(BinaryOp, Box<Expr>, Box<Expr>),
+    /// A pose or axis aggregate (`{X 1, Y 2, …}`, `{A1 45}`): its components in the order
+    /// written. `complete`: every main component is given (X…C, or A1…A6); otherwise KRL keeps
+    /// the missing ones from the value it is assigned to (or the current position for a motion
+    /// target, or 0 as an operand of `:`).
+    Aggregate(Box<Aggregate>),
+    /// A KRL built-in function with a counterpart on the targets.
+    Builtin(Builtin, Vec<Expr>),
+    /// A digital input, output or flag read.
+    Io(IoPlace),
+    /// `$TIMER[n]` in milliseconds.
+    Timer(Box<Expr>),
+    /// `$TIMER_FLAG[n]`.
+    TimerFlag(Box<Expr>),
+    /// A motion parameter read back (`$VEL.CP`, `$APO.CDIS` …).
+    Param(MotionParam),
+    /// `$NULLFRAME`.
+    NullFrame,
+}
+
+impl Expr {
+    pub fn new(kind: ExprKind, ty: Ty, span: Span) -> Expr {
+        Expr { kind, ty, span }
+    }
+
+    /// A literal number's value (signs and `+ - *` of literals folded).
+    pub fn number(&self) -> Option<f64> {
+        match &self.kind {
+            ExprKind::Int(i) => Some(*i as f64),
+            ExprKind::Real(r) => Some(*r),
+            ExprKind::Unary(UnaryOp::Neg, e) => e.number().map(|v| -v),
+            ExprKind::Binary(op, a, b) => {
+                let (a, b) = (a.number()?, b.number()?);
+                match op {
+                    BinaryOp::Add => Some(a + b),
+                    BinaryOp::Sub => Some(a - b),
+                    BinaryOp::Mul => Some(a * b),
+                    _ => None,
+                }
+            }
+            _ => None,
+        }
+    }
+
+    /// A literal integer (e.g. a signal number).
+    pub fn integer(&self) -> Option<i64> {
+        let v = self.number()?;
+        (v.fract() == 0.0 && v.abs() < 1e15).then_some(v as i64)
+    }
+}
+
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum UnaryOp {
+    Not,
+    /// `B_NOT`.
+    BNot,
+    Neg,
+}
+
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum BinaryOp {
+    /// The geometric operator `:` (the right frame expressed in the left one).
+    Geo,
+    Mul,
+    /// Real division.
+    Div,
+    /// `INT / INT`: truncated towards zero, as KRL divides integers.
+    IntDiv,
+    Add,
+    Sub,
+    And,
+    Or,
+    Exor,
+    BAnd,
+    BOr,
+    BExor,
+    Eq,
+    Ne,
+    Lt,
+    Gt,
+    Le,
+    Ge,
+}
+
+/// KRL built-ins every target has.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Builtin {
+    Abs,
+    Sqrt,
+    Sin,
+    Cos,
+    Tan,
+    Acos,
+    Atan2,
+    StrLen,
+    /// `INV_POS(f)`.
+    InvPos,
+    /// A REAL assigned to an INT: rounded half away from zero, as KRL does.
+    Round,
+}
+
+/// A pose or axis aggregate.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Aggregate {
+    /// Axis values (A1…A6) rather than a pose (X…C).
+    pub axis: bool,
+    pub fields: Vec<(Component, Expr)>,
+}
+
+impl Aggregate {
+    /// The value of a component, if given.
+    pub fn get(&self, c: Component) -> Option<&Expr> {
+        self.fields.iter().find(|(k, _)| *k == c).map(|(_, e)| e)
+    }
+
+    /// Every main component (X…C or A1…A6) is given.
+    pub fn complete(&self) -> bool {
+        (0..6).all(|i| self.get(self.main(i)).is_some())
+    }
+
+    /// Main component `i` of this aggregate's kind.
+    pub fn main(&self, i: usize) -> Component {
+        if self.axis {
+            Component::Axis(i)
+        } else {
+            Component::Pose(i)
+        }
+    }
+
+    /// The main components as numbers, when every one is given as a literal number.
+    pub fn numbers(&self) -> Option<[f64; 6]> {
+        let mut v = [0.0; 6];
+        for (i, slot) in v.iter_mut().enumerate() {
+            *slot = self.get(self.main(i))?.number()?;
+        }
+        Some(v)
+    }
+
+    /// E1…E6 given as numbers (`None` where absent; an error if one is not a literal).
+    pub fn ext(&self) -> Result<[Option<f64>; 6], Span> {
+        let mut v = [None; 6];
+        for (c, e) in &self.fields {
+            if let Component::Ext(i) = c {
+                v[*i] = Some(e.number().ok_or(e.span)?);
+            }
+        }
+        Ok(v)
+    }
+
+    /// S and T, when given as literal integers.
+    pub fn status_turn(&self) -> (Option<i64>, Option<i64>) {
+        (
+            self.get(Component::Status).and_then(Expr::integer),
+            self.get(Component::Turn).and_then(Expr::integer),
+        )
+    }
+}
+
+// ----- I/O ------------------------------------------------------------------------------
+
+/// A digital signal.
+#[derive(Debug, Clone, PartialEq)]
+pub enum IoPlace {
+    /// `$IN[n]`.
+    In(Box<Expr>),
+    /// `$OUT[n]`.
+    Out(Box<Expr>),
+    /// `$FLAG[n]`.
+    Flag(Box<Expr>),
+    /// A `SIGNAL` name: one bit, or a group read/written as a number (LSB first).
+    Signal(SignalRange),
+}
+
+/// When an output switches relative to the motions around it.
+#[derive(Debug, Clone, PartialEq)]
+pub enum IoTiming {
+    /// Where the statement stands (after an [`Op::AdvanceStop`] unless `CONTINUE` came before).
+    Now,
+    /// Without stopping the advance run (after `CONTINUE`): KRL switches as the advance run
+    /// passes, while the previous motion may still be running.
+    Ahead,
+    /// `$OUT_C`: when the main run reaches the point of the statement.
+    PathEnd,
+    /// A `TRIGGER`'s action, placed before the motion starts or after it ends.
+    Trigger(TriggerAt),
+}
+
+#[derive(Debug, Clone, PartialEq)]
+pub enum TimerOp {
+    /// Set to a value in milliseconds.
+    Set(Expr),
+    /// `$TIMER_STOP[n] = value`: TRUE stops, FALSE starts.
+    Stop(Expr),
+}
+
+#[derive(Debug, Clone, PartialEq)]
+pub enum Wait {
+    /// `WAIT SEC t`.
+    Seconds(Expr),
+    /// `WAIT FOR cond` (cond holds no calls).
+    Until(Expr),
+    /// One polling period (inside a loop that re-evaluates a condition with calls).
+    Poll,
+}
+
+// ----- calls ----------------------------------------------------------------------------
+
+#[derive(Debug, Clone)]
+pub enum Callee {
+    /// A routine of this program.
+    Routine(RoutineId),
+    /// A routine of another module (translated separately); `function`: used for its value.
+    External {
+        name: String,
+        span: Span,
+        function: bool,
+    },
+    /// A routine of the Mech-Mind interface.
+    Mm(&'static Subprogram),
+}
+
+impl PartialEq for Callee {
+    fn eq(&self, other: &Callee) -> bool {
+        match (self, other) {
+            (Callee::Routine(a), Callee::Routine(b)) => a == b,
+            (
+                Callee::External {
+                    name: a,
+                    function: f,
+                    ..
+                },
+                Callee::External {
+                    name: b,
+                    function: g,
+                    ..
+                },
+            ) => a.eq_ignore_ascii_case(b) && f == g,
+            (Callee::Mm(a), Callee::Mm(b)) => a.name == b.name,
+            _ => false,
+        }
+    }
+}
+
+/// One argument; omitted arguments (`f(1, , 3)`) are `None` values.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Arg {
+    pub value: Option<Expr>,
+    /// The argument is a variable the callee may write back (OUT parameter, or any variable
+    /// where the passing is by reference).
+    pub place: Option<Place>,
+    /// The parameter is OUT.
+    pub out: bool,
+    pub span: Span,
+}
+
+// ----- motions --------------------------------------------------------------------------
+
+/// A value known at translation time, or why not.
+#[derive(Debug, Clone, PartialEq)]
+pub enum Known<T> {
+    Is(T),
+    Unknown(Because),
+}
+
+impl<T> Known<T> {
+    pub fn known(&self) -> Option<&T> {
+        match self {
+            Known::Is(v) => Some(v),
+            Known::Unknown(_) => None,
+        }
+    }
+}
+
+/// Why a motion parameter is not known where a motion uses it.
+#[derive(Debug, Clone, PartialEq, Eq, PartialOrd, Ord)]
+pub enum Because {
+    /// Nothing in the program sets it before this point.
+    NeverSet,
+    /// The routine (named) sets it to a value not known here.
+    SetIn(String),
+    /// Paths into this point leave different values.
+    PathsDisagree,
+    /// A routine that may be called from elsewhere: its caller's value.
+    Caller,
+    /// Not resolved yet (only before [`flow::resolve`] runs).
+    Pending,
+}
+
+impl Because {
+    /// A phrase: "because …".
+    pub fn describe(&self) -> String {
+        match self {
+            Because::NeverSet => "it is not set in this program".into(),
+            Because::SetIn(r) => format!("`{r}`, called before, sets it to a value not known here"),
+            Because::PathsDisagree => "the paths that lead here set different values".into(),
+            Because::Caller => "it is whatever the caller set".into(),
+            Because::Pending => "it was not resolved".into(),
+        }
+    }
+}
+
+/// A motion parameter's value.
+#[derive(Debug, Clone, PartialEq)]
+pub enum ParamValue {
+    /// A number in the parameter's KRL unit.
+    Num(f64),
+    /// A value computed at run time, held in a temporary of the routine that set it.
+    Temp(TempId),
+    /// The controller's default (`BAS(#INITMOV)`: BAS.DAT's values).
+    Default,
+}
+
+/// The KRL motion parameters a program sets.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, PartialOrd, Ord, Hash)]
+pub enum MotionParam {
+    /// `$VEL.CP` (m/s).
+    VelCp,
+    /// `$VEL_AXIS[i]` / `BAS(#VEL_PTP)` (% of maximum; all axes alike).
+    VelPtp,
+    /// `$VEL.ORI1/2` (deg/s).
+    VelOri,
+    /// `$ACC.CP` (m/s²).
+    AccCp,
+    /// `$ACC_AXIS[i]` / `BAS(#ACC_PTP)` (%).
+    AccPtp,
+    /// `BAS(#ACC_CP)`: the path acceleration as a percentage of the default.
+    AccCpPct,
+    /// `$APO.CDIS` (mm).
+    ApoCdis,
+    /// `$APO.CPTP` (%).
+    ApoCptp,
+    /// `$APO.CVEL` (%).
+    ApoCvel,
+    /// `$APO.CORI` (deg).
+    ApoCori,
+}
+
+impl MotionParam {
+    pub const ALL: [MotionParam; 10] = [
+        MotionParam::VelCp,
+        MotionParam::VelPtp,
+        MotionParam::VelOri,
+        MotionParam::AccCp,
+        MotionParam::AccPtp,
+        MotionParam::AccCpPct,
+        MotionParam::ApoCdis,
+        MotionParam::ApoCptp,
+        MotionParam::ApoCvel,
+        MotionParam::ApoCori,
+    ];
+
+    pub fn krl(self) -> &'static str {
+        match self {
+            MotionParam::VelCp => "$VEL.CP",
+            MotionParam::VelPtp => "$VEL_AXIS",
+            MotionParam::VelOri => "$VEL.ORI",
+            MotionParam::AccCp => "$ACC.CP",
+            MotionParam::AccPtp => "$ACC_AXIS",
+            MotionParam::AccCpPct => "BAS(#ACC_CP)",
+            MotionParam::ApoCdis => "$APO.CDIS",
+            MotionParam::ApoCptp => "$APO.CPTP",
+            MotionParam::ApoCvel => "$APO.CVEL",
+            MotionParam::ApoCori => "$APO.CORI",
+        }
+    }
+}
+
+/// A percentage of the axes' maximum speed.
+#[derive(Debug, Clone, PartialEq)]
+pub struct JointPct(pub ParamValue);
+
+/// A path speed in m/s.
+#[derive(Debug, Clone, PartialEq)]
+pub struct CartMps(pub ParamValue);
+
+/// The speed of one motion: its kind follows the path's.
+#[derive(Debug, Clone, PartialEq)]
+pub enum Speed {
+    Joint(Known<JointPct>),
+    Cart(Known<CartMps>),
+}
+
+/// The speed set most recently before a motion, of either kind (targets with one speed
+/// register hold this one).
+#[derive(Debug, Clone, PartialEq)]
+pub enum SpeedSetting {
+    Joint(ParamValue),
+    Cart(ParamValue),
+}
+
+/// How a motion ends.
+#[derive(Debug, Clone, PartialEq)]
+pub enum Blend {
+    /// Exact stop.
+    Exact,
+    /// `C_DIS` (and `C_SPL`): blended within `$APO.CDIS` mm.
+    Distance(Known<ParamValue>),
+    /// `C_PTP`: within `$APO.CPTP` % of the axis path (`cdis`: the distance in force, which
+    /// targets that blend by distance use).
+    Percent {
+        pct: Known<ParamValue>,
+        cdis: Known<ParamValue>,
+    },
+    /// `C_VEL`: when the speed falls to `$APO.CVEL` %.
+    Velocity {
+        pct: Known<ParamValue>,
+        cdis: Known<ParamValue>,
+    },
+    /// `C_ORI`: within `$APO.CORI` degrees of orientation.
+    Orientation {
+        deg: Known<ParamValue>,
+        cdis: Known<ParamValue>,
+    },
+}
+
+/// `$TOOL`/`$BASE`.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum FrameKind {
+    Tool,
+    Base,
+}
+
+/// A tool or base frame.
+#[derive(Debug, Clone, PartialEq)]
+pub enum FrameRef {
+    /// `$NULLFRAME` (`TOOL_DATA[0]`): the flange / the world.
+    Null,
+    /// `$WORLD` or `$ROBROOT` as a base.
+    World,
+    /// Entry `n` of `TOOL_DATA`/`BASE_DATA` (KUKA machine data).
+    Table(Expr),
+    /// A frame given as a value (a variable or literal).
+    Value(Expr),
+}
+
+impl FrameRef {
+    /// Two references that are the same frame whatever the program does in between.
+    fn same(&self, other: &FrameRef) -> bool {
+        match (self, other) {
+            (FrameRef::Null, FrameRef::Null) | (FrameRef::World, FrameRef::World) => true,
+            (FrameRef::Table(a), FrameRef::Table(b)) => {
+                a.integer().is_some() && a.integer() == b.integer()
+            }
+            (FrameRef::Value(a), FrameRef::Value(b)) => matches!(
+                (&a.kind, &b.kind),
+                (ExprKind::Aggregate(x), ExprKind::Aggregate(y)) if x.numbers().is_some() && x == y
+            ),
+            _ => false,
+        }
+    }
+}
+
+/// The frames a motion's target is expressed in.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Frames {
+    pub tool: Known<FrameRef>,
+    pub base: Known<FrameRef>,
+}
+
+/// `$LOAD`: mass (kg) and centre of mass (mm), from a value or `LOAD_DATA[n]`.
+#[derive(Debug, Clone, PartialEq)]
+pub enum Load {
+    /// `$LOAD = LOAD_DATA[n]` (machine data).
+    Table(Expr),
+    /// Mass and centre of mass given (missing parts 0); `inertia`: inertia was given too.
+    Value {
+        mass: Expr,
+        cm: Box<[Option<Expr>; 3]>,
+        inertia: bool,
+    },
+    /// Only the mass (`$LOAD.M = …`).
+    Mass(Expr),
+}
+
+/// A motion target.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Target {
+    pub expr: Expr,
+    /// Axis values (E6AXIS) rather than a pose.
+    pub joints: bool,
+    /// The value was written in the program (a literal here or a `.dat` value): axis values in
+    /// KUKA's joint convention, poses in KUKA's angles.
+    pub literal: bool,
+}
+
+/// A relative motion's offset (`{X 10}`, `{A6 90}`): the components given.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Delta {
+    pub fields: Vec<(Component, Expr)>,
+    pub span: Span,
+}
+
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum TriggerAt {
+    /// At the start point (`DISTANCE=0`, `PATH … ONSTART`).
+    Start,
+    /// At the end point (`DISTANCE=1`, `PATH`).
+    End,
+}
+
+/// One motion: the speed's kind follows the path's kind.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Move {
+    pub path: Path,
+    pub blend: Blend,
+    pub frames: Frames,
+    /// The speed most recently set before this motion (either kind).
+    pub latest_speed: Known<SpeedSetting>,
+    /// Part of a KRL spline (approximated by plain motions).
+    pub spline: Option<SplineId>,
+    /// `WITH` values (and a spline block's): in force for this motion only.
+    pub with: Vec<(MotionParam, ParamValue)>,
+    /// The KRL motion statement (`PTP`, `LIN_REL`, `SLIN` …), for messages.
+    pub krl: &'static str,
+}
+
+impl Move {
+    /// This motion's speed.
+    pub fn speed(&self) -> Speed {
+        match &self.path {
+            Path::Joint { speed, .. } | Path::JointRel { speed, .. } => Speed::Joint(speed.clone()),
+            Path::Linear { speed, .. }
+            | Path::Circular { speed, .. }
+            | Path::LinearRel { speed, .. } => Speed::Cart(speed.clone()),
+        }
+    }
+}
+
+#[derive(Debug, Clone, PartialEq)]
+pub enum Path {
+    /// PTP (to a pose or to axis values).
+    Joint { to: Target, speed: Known<JointPct> },
+    /// LIN.
+    Linear { to: Target, speed: Known<CartMps> },
+    /// CIRC through `via`.
+    Circular {
+        via: Target,
+        to: Target,
+        speed: Known<CartMps>,
+    },
+    /// PTP_REL with axis offsets.
+    JointRel {
+        delta: Delta,
+        speed: Known<JointPct>,
+    },
+    /// LIN_REL (and PTP_REL with Cartesian offsets, a joint move in KRL: `joint`).
+    LinearRel {
+        delta: Delta,
+        in_tool: bool,
+        joint: bool,
+        speed: Known<CartMps>,
+    },
+}
+
+/// One value of the `.dat`.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Datum {
+    pub var: VarId,
+    /// `x[2] = …` in the DEFDAT body: the literal indices (empty for a whole CHAR array).
+    pub index: Option<Vec<i64>>,
+    pub value: Result<Expr, Why>,
+    /// The declaration or assignment.
+    pub span: Span,
+    pub file: FileId,
+}

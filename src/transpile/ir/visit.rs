@@ -1,0 +1,95 @@
+//! Walking the program model: every op of a block (nested blocks included), every
+//! sub-expression of an expression.
+
+use super::{Block, Expr, ExprKind, IoPlace, LoopKind, Op, Place};
+
+/// The blocks nested directly in `op`.
+pub fn children(op: &Op) -> Vec<&Block> {
+    match op {
+        Op::If { then, els, .. } => vec![then, els],
+        Op::Switch { cases, default, .. } => {
+            let mut v: Vec<&Block> = cases.iter().map(|c| &c.body).collect();
+            if let Some((d, _)) = default {
+                v.push(d);
+            }
+            v
+        }
+        Op::Loop { body, .. } => vec![body],
+        _ => Vec::new(),
+    }
+}
+
+/// Calls `f` on every op, depth-first in order.
+pub fn each_op<'a>(block: &'a Block, f: &mut impl FnMut(&'a Op)) {
+    for s in block {
+        f(&s.op);
+        for c in children(&s.op) {
+            each_op(c, f);
+        }
+    }
+}
+
+/// Calls `f` on `e` and every expression inside it.
+pub fn each_expr<'a>(e: &'a Expr, f: &mut impl FnMut(&'a Expr)) {
+    f(e);
+    match &e.kind {
+        ExprKind::Place(p) => place_exprs(p, f),
+        ExprKind::Unary(_, a) | ExprKind::Timer(a) | ExprKind::TimerFlag(a) => each_expr(a, f),
+        ExprKind::Binary(_, a, b) => {
+            each_expr(a, f);
+            each_expr(b, f);
+        }
+        ExprKind::Aggregate(a) => {
+            for (_, v) in &a.fields {
+                each_expr(v, f);
+            }
+        }
+        ExprKind::Builtin(_, args) => {
+            for a in args {
+                each_expr(a, f);
+            }
+        }
+        ExprKind::Io(io) => io_exprs(io, f),
+        _ => {}
+    }
+}
+
+fn place_exprs<'a>(p: &'a Place, f: &mut impl FnMut(&'a Expr)) {
+    match p {
+        Place::Var(_) | Place::Temp(_) => {}
+        Place::Index(b, idx) => {
+            place_exprs(b, f);
+            for i in idx.iter().flatten() {
+                each_expr(i, f);
+            }
+        }
+        Place::Component(b, _) | Place::Member(b, _) => place_exprs(b, f),
+    }
+}
+
+fn io_exprs<'a>(io: &'a IoPlace, f: &mut impl FnMut(&'a Expr)) {
+    match io {
+        IoPlace::In(i) | IoPlace::Out(i) | IoPlace::Flag(i) => each_expr(i, f),
+        IoPlace::Signal(_) => {}
+    }
+}
+
+/// Whether a block contains a loop exit of `id` or a motion (for loop shaping).
+pub fn any_op(block: &Block, pred: &mut impl FnMut(&Op) -> bool) -> bool {
+    let mut hit = false;
+    each_op(block, &mut |op| hit |= pred(op));
+    hit
+}
+
+/// The loop kind's expressions (for walkers that look at conditions).
+pub fn loop_exprs(kind: &LoopKind) -> Vec<&Expr> {
+    match kind {
+        LoopKind::For { from, to, step, .. } => {
+            let mut v = vec![from, to];
+            v.extend(step.as_ref());
+            v
+        }
+        LoopKind::While(c) | LoopKind::Until(c) => vec![c],
+        LoopKind::Forever => Vec::new(),
+    }
+}

@@ -1,0 +1,233 @@
+//! Why a construct cannot be translated to any target: the reason is decided once, in the
+//! lowering; each backend adds its own help text (an exhaustive `match` over [`Why`]).
+
+/// A construct with no faithful equivalent in any target.
+#[derive(Debug, Clone, PartialEq)]
+pub enum Why {
+    /// The line does not parse (KRL001).
+    SyntaxError,
+    /// The DEF line does not parse.
+    HeaderSyntaxError,
+    /// `REPEAT` without `UNTIL`.
+    RepeatWithoutUntil,
+    /// `EXIT` outside a loop.
+    ExitOutsideLoop,
+    /// `CONFIRM`.
+    Confirm,
+    /// `$ADVANCE`.
+    Advance,
+    /// `ON_ERROR_PROCEED`.
+    OnErrorProceed,
+    /// `TIME_BLOCK`.
+    TimeBlock,
+    /// `SKIP … ENDSKIP`.
+    Skip,
+    /// `RESUME`.
+    Resume,
+    /// `ANIN`/`ANOUT`.
+    Analog,
+    /// A statement kept as text by the parser (e.g. `CONST_VEL`): its keyword.
+    Other(String),
+    /// `CIRC … CA angle`.
+    CircAngle,
+    /// A system variable with no counterpart (its text).
+    SystemVariable(String),
+    /// A system variable that cannot be written (`$IN`, …): its text.
+    ReadOnly(String),
+    /// `$CYCFLAG`.
+    CycFlag,
+    /// `$ORI_TYPE`/`$CIRC_TYPE`.
+    PathType,
+    /// `$ROBROOT`/`$WORLD` changed.
+    CellFrame,
+    /// `$ACC.CP` / `$ACC.ORI` (m/s², deg/s²): no target takes path accelerations.
+    PathAcceleration,
+    /// A KUKA built-in routine with no counterpart: its name and the family (see
+    /// [`KukaOnly`]).
+    KukaRoutine(String, KukaOnly),
+    /// `MsgDialog`/`MsgLoop`: a dialog with answers.
+    Dialog(String),
+    /// A function called inside an expression that is a DEF.
+    NotAFunction(String),
+    /// A routine of this file called with the wrong number of arguments.
+    Arity {
+        name: String,
+        takes: usize,
+        given: usize,
+    },
+    /// An omitted argument.
+    OmittedArgument,
+    /// An OUT argument that is not a variable.
+    OutArgument,
+    /// `BAS(#…)` with an unknown command (its name).
+    Bas(String),
+    /// `BAS` without a command or value.
+    BasArguments,
+    /// An `MM_` name that is not in the interface.
+    NotMm(String),
+    /// An `MM_` call with the wrong number of arguments.
+    MmArity {
+        name: String,
+        signature: String,
+        given: usize,
+    },
+    /// An enum value no user ENUM declares.
+    UnknownEnum(String),
+    /// A literal that does not fit its type.
+    InvalidLiteral(String),
+    /// A user STRUC or KUKA structure value (type name).
+    Structure(String),
+    /// A pose/axis aggregate field that is not a number literal, or unknown: what.
+    Aggregate(String),
+    /// A component assignment of a pose or axis value that is not X/Y/Z/A1…A6 (its name).
+    Component(String),
+    /// Indexing something that is not a variable.
+    ComputedIndex,
+    /// An assignment target that is not a variable, element or member.
+    AssignTarget,
+    /// A motion target that is not a pose or axis value (its type).
+    MotionTarget(String),
+    /// A relative motion whose offset is not a literal aggregate.
+    RelativeOffset,
+    /// A relative CIRC.
+    RelativeCirc,
+    /// `SPL`/`SCIRC` outside a spline block? (SPL alone is not valid KRL.)
+    SplOutsideSpline,
+    /// A `PULSE` of something that is not an output or flag.
+    PulseSignal,
+    /// A `PULSE` level that is not a literal.
+    PulseLevel,
+    /// An interrupt number that is not a literal.
+    InterruptNumber,
+    /// `INTERRUPT ON n` with no declaration of `n` in the file.
+    NoInterruptDecl(i64),
+    /// An interrupt whose condition is not one signal (or its negation).
+    InterruptCondition,
+    /// An interrupt handler that is not a call without arguments.
+    InterruptHandler,
+    /// A function RETURN without a value.
+    ReturnWithoutValue,
+    /// `$TIMER_FLAG` written.
+    TimerFlag,
+    /// The vision server's address is unknown (message from the resolver, help).
+    VisionServer { message: String, help: String },
+    /// A `GOTO` into a block or to a label the target cannot reach structurally.
+    Goto,
+    /// A DEFFCT called inside a `WAIT FOR` condition.
+    WaitCall,
+    /// `$LOAD` given in a form that is not mass and centre of mass.
+    Load,
+    /// A message routine without text.
+    MessageText,
+    /// `B_NOT` (no bitwise NOT in AS; in Python only on integers).
+    BitwiseNot,
+}
+
+/// Families of KUKA built-ins without counterparts.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum KukaOnly {
+    /// EthernetKRL (`EKI_*`).
+    Eki,
+    /// `CWRITE`/`CREAD`.
+    Channel,
+    /// `COPEN`/`CCLOSE`.
+    Serial,
+    /// `SWRITE`.
+    Swrite,
+    /// `SREAD`.
+    Sread,
+    /// `StrCopy`.
+    StrCopy,
+    /// `StrAdd`.
+    StrAdd,
+    /// `StrClear`.
+    StrClear,
+    /// `Set_KrlMsg`, `Set_KrlDlg`, `Clear_KrlMsg`.
+    KrlMsg,
+    /// `FORWARD`/`INVERSE`.
+    Kinematics,
+}
+
+impl KukaOnly {
+    /// The family of a KUKA built-in (upper-case name), if it is one without counterpart.
+    pub fn of(key: &str) -> Option<KukaOnly> {
+        Some(match key {
+            k if k.starts_with("EKI_") => KukaOnly::Eki,
+            "CWRITE" | "CREAD" => KukaOnly::Channel,
+            "COPEN" | "CCLOSE" => KukaOnly::Serial,
+            "SWRITE" => KukaOnly::Swrite,
+            "SREAD" => KukaOnly::Sread,
+            "STRCOPY" => KukaOnly::StrCopy,
+            "STRADD" => KukaOnly::StrAdd,
+            "STRCLEAR" => KukaOnly::StrClear,
+            "SET_KRLMSG" | "SET_KRLDLG" | "CLEAR_KRLMSG" => KukaOnly::KrlMsg,
+            "FORWARD" | "INVERSE" => KukaOnly::Kinematics,
+            _ => return None,
+        })
+    }
+}
+
+impl Why {
+    /// The finding's message, the same for every target.
+    pub fn message(&self) -> String {
+        match self {
+            Why::SyntaxError => "this line does not parse (KRL001), so it cannot be translated".into(),
+            Why::HeaderSyntaxError => "this DEF line does not parse (KRL001), so the routine's name and parameters cannot be translated".into(),
+            Why::RepeatWithoutUntil => "REPEAT without UNTIL".into(),
+            Why::ExitOutsideLoop => "EXIT outside a loop".into(),
+            Why::Confirm => "CONFIRM (acknowledging a KUKA message) has no counterpart".into(),
+            Why::Advance => "$ADVANCE (advance-run depth) has no counterpart".into(),
+            Why::OnErrorProceed => "ON_ERROR_PROCEED has no counterpart".into(),
+            Why::TimeBlock => "TIME_BLOCK has no counterpart".into(),
+            Why::Skip => "SKIP … ENDSKIP (advance-run skip) has no counterpart".into(),
+            Why::Resume => "RESUME (leaving an interrupt routine into the main program) has no counterpart".into(),
+            Why::Analog => "cyclic analog I/O (ANIN/ANOUT) has no counterpart".into(),
+            Why::Other(w) => format!("`{w}` has no counterpart"),
+            Why::CircAngle => "CIRC with a circular angle (CA) has no counterpart".into(),
+            Why::SystemVariable(s) => format!("system variable `{s}` has no counterpart"),
+            Why::ReadOnly(s) => format!("`{s}` cannot be written"),
+            Why::CycFlag => "cyclic flags ($CYCFLAG, evaluated by the submit interpreter) have no counterpart".into(),
+            Why::PathType => "$ORI_TYPE/$CIRC_TYPE (orientation control) have no counterpart".into(),
+            Why::CellFrame => "changing $ROBROOT/$WORLD has no counterpart".into(),
+            Why::PathAcceleration => "a path acceleration in m/s² ($ACC.CP/ORI) has no counterpart (targets set accelerations as percentages or not at all)".into(),
+            Why::KukaRoutine(n, _) => format!("`{n}` has no counterpart"),
+            Why::Dialog(n) => format!("{n} (a dialog with answers) has no direct counterpart"),
+            Why::NotAFunction(n) => format!("`{n}` is a DEF, not a function"),
+            Why::Arity { name, takes, given } => format!("`{name}` takes {takes} arguments, this call passes {given}"),
+            Why::OmittedArgument => "an omitted argument has no counterpart".into(),
+            Why::OutArgument => "an OUT argument must be a variable".into(),
+            Why::Bas(w) => format!("BAS(#{w}) has no counterpart"),
+            Why::BasArguments => "BAS without a command or value".into(),
+            Why::NotMm(n) => format!("`{n}` is not a routine of the Mech-Mind interface"),
+            Why::MmArity { name, given, signature } => {
+                let takes = signature.matches(',').count() + usize::from(!signature.ends_with("()"));
+                format!("`{name}` takes {takes} arguments, this call passes {given}")
+            }
+            Why::UnknownEnum(n) => format!("enum value `#{n}` belongs to no ENUM declared in this program"),
+            Why::InvalidLiteral(t) => format!("`{t}` is not a valid literal"),
+            Why::Structure(t) => format!("a value of type {t} has no counterpart"),
+            Why::Aggregate(w) => w.clone(),
+            Why::Component(c) => format!("assigning the component `{c}` alone has no counterpart"),
+            Why::ComputedIndex => "indexing a computed value has no counterpart".into(),
+            Why::AssignTarget => "this assignment target has no counterpart".into(),
+            Why::MotionTarget(t) => format!("a motion target of type {t} has no counterpart"),
+            Why::RelativeOffset => "a relative motion whose offset is not a literal has no counterpart".into(),
+            Why::RelativeCirc => "a relative CIRC has no counterpart".into(),
+            Why::SplOutsideSpline => "a spline segment (SPL) outside a SPLINE block".into(),
+            Why::PulseSignal => "PULSE of this signal has no counterpart".into(),
+            Why::PulseLevel => "a PULSE to a computed level has no counterpart".into(),
+            Why::InterruptNumber => "an interrupt number that is not a literal has no counterpart".into(),
+            Why::NoInterruptDecl(n) => format!("no INTERRUPT DECL {n} in this file"),
+            Why::InterruptCondition => "its condition is not a single signal ($IN, $OUT, $FLAG or a one-bit SIGNAL), which is all a target can watch".into(),
+            Why::InterruptHandler => "its handler is not a call of a routine without arguments".into(),
+            Why::ReturnWithoutValue => "a function RETURN without a value".into(),
+            Why::TimerFlag => "$TIMER_FLAG cannot be written".into(),
+            Why::VisionServer { message, .. } => message.clone(),
+            Why::Goto => "this GOTO cannot be expressed with the target's loops".into(),
+            Why::WaitCall => "a function called inside a WAIT FOR condition has no counterpart".into(),
+            Why::Load => "this $LOAD value is not a mass with a centre of mass".into(),
+            Why::MessageText => "a message without text".into(),
+            Why::BitwiseNot => "B_NOT (bitwise NOT) has no confirmed counterpart".into(),
+        }
+    }
+}

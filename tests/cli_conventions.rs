@@ -1,0 +1,158 @@
+//! Conventions of cargo/ruff-style CLIs: `-` for stdin/stdout, --color, -q/-v, completions,
+//! man page, JSON rule list, help on every option.
+
+use std::io::Write;
+use std::process::{Command, Output, Stdio};
+
+fn krlkit(args: &[&str], stdin: &str) -> Output {
+    let dir = tempfile::tempdir().unwrap();
+    let mut child = Command::new(env!("CARGO_BIN_EXE_krlkit"))
+        .args(args)
+        .current_dir(dir.path())
+        .env_remove("NO_COLOR")
+        .stdin(Stdio::piped())
+        .stdout(Stdio::piped())
+        .stderr(Stdio::piped())
+        .spawn()
+        .unwrap();
+    child
+        .stdin
+        .take()
+        .unwrap()
+        .write_all(stdin.as_bytes())
+        .unwrap();
+    child.wait_with_output().unwrap()
+}
+
+fn out(o: &Output) -> String {
+    String::from_utf8_lossy(&o.stdout).into_owned()
+}
+
+fn err(o: &Output) -> String {
+    String::from_utf8_lossy(&o.stderr).into_owned()
+}
+
+const BROKEN: &str = "DEF a()\n  x = \nEND\n";
+
+#[test]
+fn dash_reads_stdin_and_stdin_filename_names_it() {
+    let o = krlkit(
+        &[
+            "check",
+            "-",
+            "--stdin-filename",
+            "R1/a.src",
+            "--format",
+            "concise",
+        ],
+        BROKEN,
+    );
+    assert_eq!(o.status.code(), Some(1));
+    assert_eq!(
+        out(&o),
+        "R1/a.src:2:6: error[KRL001] expected expression, found end of line\n"
+    );
+    let o = krlkit(&["parse", "-"], BROKEN);
+    assert_eq!(o.status.code(), Some(1));
+    assert!(out(&o).contains("--> <stdin>:2:6"), "{}", out(&o));
+    let o = krlkit(&["parse", "--tree", "-"], "DEF a()\nEND\n");
+    assert_eq!(o.status.code(), Some(0), "{}", err(&o));
+    assert!(out(&o).starts_with("{\"kind\":\"SourceFile\""));
+    let o = krlkit(
+        &[
+            "transpile",
+            "-",
+            "--to",
+            "kawasaki",
+            "-o",
+            "-",
+            "--stdin-filename",
+            "p.src",
+        ],
+        "DEF p()\n  $OUT[1] = TRUE\nEND\n",
+    );
+    assert_eq!(o.status.code(), Some(0), "{}", err(&o));
+    assert!(out(&o).contains(".PROGRAM p()"), "{}", out(&o));
+    assert!(err(&o).starts_with("p.src: 0 errors"), "{}", err(&o));
+}
+
+#[test]
+fn init_dash_prints_the_spec_and_init_dir_says_it_is_one() {
+    let o = krlkit(&["init", "-"], "");
+    assert_eq!(o.status.code(), Some(0));
+    assert_eq!(out(&o), krlkit::spec::DEFAULT_SPEC_TOML);
+    let o = krlkit(&["init", "."], "");
+    assert_eq!(o.status.code(), Some(2));
+    assert!(err(&o).contains(".: error: is a directory"), "{}", err(&o));
+}
+
+#[test]
+fn color_quiet_and_verbose() {
+    let o = krlkit(&["check", "-", "--color", "always"], BROKEN);
+    assert!(out(&o).contains("\x1b["), "colour when asked: {}", out(&o));
+    let o = krlkit(&["check", "-"], BROKEN);
+    assert!(!out(&o).contains('\x1b'), "no colour into a pipe");
+    assert!(err(&o).contains("1 file checked"));
+    let o = krlkit(&["check", "-q", "-"], BROKEN);
+    assert_eq!(o.status.code(), Some(1));
+    assert!(out(&o).contains("KRL001"));
+    assert!(err(&o).is_empty(), "quiet: {}", err(&o));
+    let dir = tempfile::tempdir().unwrap();
+    std::fs::write(dir.path().join("a.src"), BROKEN).unwrap();
+    let o = Command::new(env!("CARGO_BIN_EXE_krlkit"))
+        .args(["parse", "-v", "."])
+        .current_dir(dir.path())
+        .output()
+        .unwrap();
+    assert!(err(&o).contains("parsing ./a.src"), "{}", err(&o));
+}
+
+#[test]
+fn completions_man_page_and_rules_as_json() {
+    let o = krlkit(&["completions", "bash"], "");
+    assert_eq!(o.status.code(), Some(0));
+    assert!(out(&o).contains("_krlkit()"), "{}", out(&o));
+    let o = krlkit(&["man"], "");
+    assert!(out(&o).contains(".TH krlkit 1"), "{}", out(&o));
+    let o = krlkit(&["man", "check"], "");
+    assert!(out(&o).contains(".TH krlkit-check 1"), "{}", out(&o));
+    let o = krlkit(&["rules", "--format", "json"], "");
+    let v: serde_json::Value = serde_json::from_str(&out(&o)).unwrap();
+    let codes: Vec<&str> = v["rules"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .map(|r| r["code"].as_str().unwrap())
+        .collect();
+    assert!(codes.contains(&"KRL001") && codes.contains(&"MM006") && codes.contains(&"TR001"));
+}
+
+#[test]
+fn help_says_what_the_docs_promise() {
+    let o = krlkit(&["srci", "encode", "--help"], "");
+    let h = out(&o);
+    assert!(
+        h.contains("IsMoving = true|false") && h.contains("RaSequenceState = IDLE"),
+        "{h}"
+    );
+    let o = krlkit(&["gen", "--help"], "");
+    let h = out(&o);
+    assert!(h.contains("Kawasaki AS"), "{h}");
+    assert!(h.contains("exit 1 if the --out DIR differs"), "{h}");
+    let o = krlkit(&["--help"], "");
+    assert!(out(&o).contains("--color <WHEN>"), "{}", out(&o));
+}
+
+/// `cargo install` builds a lean binary; symbols for profiling live in their own profile.
+#[test]
+fn release_is_lean_and_profiling_keeps_symbols() {
+    let manifest: toml::Table = toml::from_str(
+        &std::fs::read_to_string(concat!(env!("CARGO_MANIFEST_DIR"), "/Cargo.toml")).unwrap(),
+    )
+    .unwrap();
+    let profiles = &manifest["profile"];
+    assert_eq!(profiles["release"]["debug"].as_bool(), Some(false));
+    assert_eq!(profiles["release"]["strip"].as_str(), Some("debuginfo"));
+    assert_eq!(profiles["profiling"]["inherits"].as_str(), Some("release"));
+    assert_eq!(profiles["profiling"]["debug"].as_integer(), Some(1));
+}
