@@ -69,12 +69,6 @@ fn bench(c: &mut Criterion) {
 
 criterion_group!(benches, bench);
 
-/// On-CPU nanoseconds of this thread (Linux `schedstat`).
-fn cpu_ns() -> Option<u64> {
-    let s = std::fs::read_to_string("/proc/thread-self/schedstat").ok()?;
-    s.split_whitespace().next()?.parse().ok()
-}
-
 fn cpu_throughput(iters: usize) {
     let opts = FmtOptions::default();
     let sets: Vec<(String, Vec<String>)> = match std::env::var("FMT_CPU_DIR") {
@@ -94,7 +88,7 @@ fn cpu_throughput(iters: usize) {
     };
     for (name, texts) in sets {
         let bytes: usize = texts.iter().map(String::len).sum();
-        let before = cpu_ns();
+        let before = sample::cpu_ns();
         let mut changed = 0;
         for _ in 0..iters {
             changed = texts
@@ -102,7 +96,7 @@ fn cpu_throughput(iters: usize) {
                 .filter(|t| format_text(std::hint::black_box(t), &opts).changed)
                 .count();
         }
-        match (before, cpu_ns()) {
+        match (before, sample::cpu_ns()) {
             (Some(a), Some(b)) if b > a => {
                 let secs = (b - a) as f64 / 1e9;
                 println!(

@@ -50,13 +50,6 @@ fn bench(c: &mut Criterion) {
 
 criterion_group!(benches, bench);
 
-/// On-CPU nanoseconds of this thread (Linux `schedstat`), so a loaded machine does not skew the
-/// figure the way wall time does.
-fn cpu_ns() -> Option<u64> {
-    let s = std::fs::read_to_string("/proc/thread-self/schedstat").ok()?;
-    s.split_whitespace().next()?.parse().ok()
-}
-
 /// `PARSE_CPU_ITERS=20 cargo bench --bench parse`: parse the synthetic file N times on one
 /// thread and print MB per CPU-second, then exit (no criterion run).
 fn cpu_throughput(iters: usize) {
@@ -69,7 +62,7 @@ fn cpu_throughput(iters: usize) {
             .map(|d| d.text)
             .collect();
         let bytes: usize = texts.iter().map(String::len).sum();
-        let before = cpu_ns();
+        let before = sample::cpu_ns();
         let mut clean = 0;
         for _ in 0..iters {
             clean = texts
@@ -77,7 +70,7 @@ fn cpu_throughput(iters: usize) {
                 .filter(|t| krlkit::syntax::parse(t).diagnostics.is_empty())
                 .count();
         }
-        if let (Some(a), Some(b)) = (before, cpu_ns()) {
+        if let (Some(a), Some(b)) = (before, sample::cpu_ns()) {
             let secs = (b - a) as f64 / 1e9;
             println!(
                 "dir: {} files, {bytes} bytes x {iters} in {secs:.3} CPU-s = {:.1} MB/s per core; {clean} files without diagnostics",
@@ -88,14 +81,14 @@ fn cpu_throughput(iters: usize) {
         return;
     }
     let big = synthetic(400);
-    let before = cpu_ns();
+    let before = sample::cpu_ns();
     let mut diags = 0;
     for _ in 0..iters {
         diags += krlkit::syntax::parse(std::hint::black_box(&big))
             .diagnostics
             .len();
     }
-    match (before, cpu_ns()) {
+    match (before, sample::cpu_ns()) {
         (Some(a), Some(b)) if b > a => {
             let secs = (b - a) as f64 / 1e9;
             let mb = (big.len() * iters) as f64 / 1e6;

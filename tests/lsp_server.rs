@@ -25,6 +25,8 @@ struct Step {
     old: Option<String>,
     new: Option<String>,
     view: Option<String>,
+    new_name: Option<String>,
+    query: Option<String>,
 }
 
 /// LSP position (UTF-16 columns) of byte `offset`, computed independently of the server.
@@ -141,7 +143,16 @@ impl Editor {
                 json!("written")
             }
             method => {
-                let mut params = json!({ "textDocument": self.doc(file) });
+                let mut params = match &s.query {
+                    Some(q) => json!({ "query": q }),
+                    None => json!({ "textDocument": self.doc(file) }),
+                };
+                if let Some(n) = &s.new_name {
+                    params["newName"] = json!(n);
+                }
+                if method == "textDocument/references" {
+                    params["context"] = json!({ "includeDeclaration": true });
+                }
                 if let Some(at) = &s.at {
                     params["position"] = self.cursor(file, at);
                 }
@@ -155,10 +166,19 @@ impl Editor {
                 }
                 let mut answer = self.client.request(method, params);
                 match s.view.as_deref() {
-                    Some("labels") => {
+                    Some(v) if v.starts_with("labels") => {
+                        let prefix = v.strip_prefix("labels:").unwrap_or("").to_lowercase();
                         answer = answer
                             .as_array()
-                            .map(|a| a.iter().map(|i| i["label"].clone()).collect())
+                            .map(|a| {
+                                a.iter()
+                                    .map(|i| i["label"].clone())
+                                    .filter(|l| {
+                                        l.as_str()
+                                            .is_some_and(|l| l.to_lowercase().starts_with(&prefix))
+                                    })
+                                    .collect()
+                            })
                             .unwrap_or_default();
                     }
                     Some(label) => {

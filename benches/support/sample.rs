@@ -1,4 +1,4 @@
-//! A realistic synthetic controller file shared by the parse and fmt benchmarks.
+//! Shared by the parse and fmt benchmarks: a realistic synthetic controller file and a CPU clock.
 
 /// A typical mix: headers, folds with inline-form metadata, motions, logic, DAT aggregates.
 /// Compared with a corpus of 993 real controller files it has about the same bytes per line
@@ -27,4 +27,11 @@ pub fn synthetic(routines: usize) -> String {
     }
     s.push_str("ENDDAT\r\n");
     s
+}
+
+/// On-CPU nanoseconds of this thread (Linux `schedstat`), so a loaded machine does not skew the
+/// figure the way wall time does.
+pub fn cpu_ns() -> Option<u64> {
+    let s = std::fs::read_to_string("/proc/thread-self/schedstat").ok()?;
+    s.split_whitespace().next()?.parse().ok()
 }

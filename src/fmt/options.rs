@@ -89,18 +89,8 @@ impl FmtOptions {
     /// Read the `[fmt]` table of a TOML document (other tables belong to other stages). Every
     /// error names the line; an unknown key names the nearest known one.
     pub fn from_toml(path: &str, text: &str) -> Result<FmtOptions, ConfigError> {
-        let err = |needle: &str, message: String| ConfigError {
-            path: path.to_owned(),
-            line: line_of(text, needle),
-            message,
-        };
-        let value: toml::Table = text.parse().map_err(|e: toml::de::Error| ConfigError {
-            path: path.to_owned(),
-            line: e
-                .span()
-                .map_or(0, |s| text[..s.start].lines().count().max(1)),
-            message: e.message().to_owned(),
-        })?;
+        let err = |needle: &str, message: String| ConfigError::at(path, text, needle, message);
+        let value = crate::lint::config::parse_toml(path, text)?;
         let mut opts = FmtOptions::default();
         let Some(fmt) = value.get("fmt") else {
             return Ok(opts);
@@ -169,12 +159,6 @@ fn nearest_key(key: &str) -> &'static str {
         .map(|k| (crate::catalog::edit_distance(key, k), *k))
         .min()
         .map_or(KEYS[0], |(_, k)| k)
-}
-
-fn line_of(text: &str, needle: &str) -> usize {
-    text.lines()
-        .position(|l| l.contains(needle))
-        .map_or(0, |i| i + 1)
 }
 
 #[cfg(test)]

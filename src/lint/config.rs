@@ -32,18 +32,8 @@ pub struct ConfigError {
 impl LintConfig {
     /// Parse the `[lint]` section of a TOML document.
     pub fn from_toml(path: &str, text: &str) -> Result<LintConfig, ConfigError> {
-        let err = |needle: &str, message: String| ConfigError {
-            path: path.to_owned(),
-            line: line_of(text, needle),
-            message,
-        };
-        let value: toml::Table = text.parse().map_err(|e: toml::de::Error| ConfigError {
-            path: path.to_owned(),
-            line: e
-                .span()
-                .map_or(0, |s| text[..s.start].lines().count().max(1)),
-            message: e.message().to_owned(),
-        })?;
+        let err = |needle: &str, message: String| ConfigError::at(path, text, needle, message);
+        let value = parse_toml(path, text)?;
         let mut cfg = LintConfig::default();
         let Some(lint) = value.get("lint") else {
             return Ok(cfg);
@@ -107,6 +97,29 @@ fn line_of(text: &str, needle: &str) -> usize {
     text.lines()
         .position(|l| l.contains(needle))
         .map_or(0, |i| i + 1)
+}
+
+impl ConfigError {
+    /// An error located at the first line of `text` that mentions `needle`.
+    pub fn at(path: &str, text: &str, needle: &str, message: String) -> ConfigError {
+        ConfigError {
+            path: path.to_owned(),
+            line: line_of(text, needle),
+            message,
+        }
+    }
+}
+
+/// The config file as a TOML table; a syntax error names its line. Shared by every stage that
+/// reads a table of it (`[lint]` here, `[fmt]` in `fmt::FmtOptions`).
+pub fn parse_toml(path: &str, text: &str) -> Result<toml::Table, ConfigError> {
+    text.parse().map_err(|e: toml::de::Error| ConfigError {
+        path: path.to_owned(),
+        line: e
+            .span()
+            .map_or(0, |s| text[..s.start].lines().count().max(1)),
+        message: e.message().to_owned(),
+    })
 }
 
 #[cfg(test)]

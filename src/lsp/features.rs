@@ -13,6 +13,10 @@ use lsp_types::{
     SignatureHelpOptions, SignatureHelpParams, TextDocumentIdentifier, TextDocumentPositionParams,
     TextEdit, Uri, WorkspaceEdit,
 };
+use lsp_types::{
+    GotoDefinitionParams, GotoDefinitionResponse, Location, PrepareRenameResponse, ReferenceParams,
+    RenameOptions, RenameParams, WorkspaceSymbolParams, WorkspaceSymbolResponse,
+};
 use serde_json::Value;
 
 use super::cursor::{self, Place};
@@ -21,6 +25,7 @@ use super::server::Server;
 use super::{diagnostics, mm, outline, paths};
 use crate::diag::{Applicability, Edit};
 use crate::lint::context::Parsed;
+use crate::sema::Resolved;
 
 pub fn capabilities() -> ServerCapabilities {
     ServerCapabilities {
@@ -41,6 +46,13 @@ pub fn capabilities() -> ServerCapabilities {
             ..CodeActionOptions::default()
         })),
         document_formatting_provider: Some(OneOf::Left(true)),
+        definition_provider: Some(OneOf::Left(true)),
+        references_provider: Some(OneOf::Left(true)),
+        rename_provider: Some(OneOf::Right(RenameOptions {
+            prepare_provider: Some(true),
+            work_done_progress_options: Default::default(),
+        })),
+        workspace_symbol_provider: Some(OneOf::Left(true)),
         document_range_formatting_provider: Some(OneOf::Left(true)),
         ..ServerCapabilities::default()
     }
@@ -61,6 +73,15 @@ pub fn dispatch(s: &mut Server, r: Request) -> Option<Result<Value, ResponseErro
         }
         req::FoldingRangeRequest::METHOD => {
             call::<req::FoldingRangeRequest>(params, |p| folding_ranges(s, p))
+        }
+        req::GotoDefinition::METHOD => call::<req::GotoDefinition>(params, |p| definition(s, p)),
+        req::References::METHOD => call::<req::References>(params, |p| references(s, p)),
+        req::PrepareRenameRequest::METHOD => {
+            return Some(prepare_rename(s, params));
+        }
+        req::Rename::METHOD => return Some(rename(s, params)),
+        req::WorkspaceSymbolRequest::METHOD => {
+            call::<req::WorkspaceSymbolRequest>(params, |p| workspace_symbols(s, p))
         }
         req::CodeActionRequest::METHOD => {
             call::<req::CodeActionRequest>(params, |p| code_actions(s, p))
@@ -142,6 +163,19 @@ fn hover(s: &Server, p: HoverParams) -> Option<Hover> {
             }
         }
     }
+    // What the name under the cursor is, from the model (not for the catalog's own names).
+    let model = s.ws.model();
+    if let Some(fid) = model.file_id(&f.path)
+        && let Some((span, r)) = model.at(fid, offset as u32)
+        && let Some(text) = model.describe(r)
+        && !(parts.len() == 1
+            && range.is_some()
+            && matches!(r, Resolved::Routine(_))
+            && mm::subprogram(&f.text[span.range()]).is_some())
+    {
+        parts.push(text);
+        range.get_or_insert(lines.range(span));
+    }
     // The rule behind each finding under the cursor.
     if let Some(found) = s.findings.get(&f.path) {
         for d in found
@@ -163,11 +197,22 @@ fn hover(s: &Server, p: HoverParams) -> Option<Hover> {
 }
 
 fn completion(s: &Server, p: CompletionParams) -> Option<CompletionResponse> {
-    let (_, lines, offset) = at(s, &p.text_document_position)?;
+    let (f, lines, offset) = at(s, &p.text_document_position)?;
     if cursor::context(&lines, offset).0 != Place::Code {
         return None;
     }
-    Some(CompletionResponse::Array(mm::completions()))
+    let mut items = mm::completions();
+    let model = s.ws.model();
+    if let Some(fid) = model.file_id(&f.path) {
+        // The package's own DEFs, if it is in the workspace, are the catalog's snippets.
+        items.extend(
+            model
+                .completions(fid, offset as u32)
+                .into_iter()
+                .filter(|i| mm::subprogram(&i.label).is_none()),
+        );
+    }
+    Some(CompletionResponse::Array(items))
 }
 
 fn signature_help(s: &Server, p: SignatureHelpParams) -> Option<SignatureHelp> {
@@ -175,8 +220,105 @@ fn signature_help(s: &Server, p: SignatureHelpParams) -> Option<SignatureHelp> {
     let (Place::Code, Some(call)) = cursor::context(&lines, offset) else {
         return None;
     };
-    let sub = mm::subprogram(&f.text[call.name.range()])?;
-    Some(mm::signature_help(sub, call.arg))
+    let name = &f.text[call.name.range()];
+    if let Some(sub) = mm::subprogram(name) {
+        return Some(mm::signature_help(sub, call.arg));
+    }
+    let model = s.ws.model();
+    model.signature_help(model.file_id(&f.path)?, offset as u32, name, call.arg)
+}
+
+/// The model's answer at a position: the file id, the name's span and what it resolves to.
+fn resolve_at(
+    s: &Server,
+    p: &TextDocumentPositionParams,
+) -> Option<(crate::sema::FileId, crate::diag::Span, Resolved)> {
+    let (f, _, offset) = at(s, p)?;
+    let model = s.ws.model();
+    let fid = model.file_id(&f.path)?;
+    let (span, r) = model.at(fid, offset as u32)?;
+    Some((fid, span, r))
+}
+
+fn definition(s: &Server, p: GotoDefinitionParams) -> Option<GotoDefinitionResponse> {
+    let (_, _, r) = resolve_at(s, &p.text_document_position_params)?;
+    let model = s.ws.model();
+    let loc = model.sema.declaration(r)?;
+    let uri_of = |path: &str| s.uri(path);
+    Some(GotoDefinitionResponse::Scalar(
+        model.location(loc, &uri_of)?,
+    ))
+}
+
+fn references(s: &Server, p: ReferenceParams) -> Option<Vec<Location>> {
+    let (_, _, r) = resolve_at(s, &p.text_document_position)?;
+    let model = s.ws.model();
+    let uri_of = |path: &str| s.uri(path);
+    Some(
+        model
+            .occurrences(r, p.context.include_declaration)
+            .into_iter()
+            .filter_map(|l| model.location(l, &uri_of))
+            .collect(),
+    )
+}
+
+fn request_failed(message: String) -> ResponseError {
+    ResponseError {
+        code: ErrorCode::RequestFailed as i32,
+        message,
+        data: None,
+    }
+}
+
+/// The name's range when it can be renamed, else an error saying why.
+fn prepare_rename(s: &Server, params: Value) -> Result<Value, ResponseError> {
+    let p: TextDocumentPositionParams =
+        serde_json::from_value(params).map_err(|e| ResponseError {
+            code: ErrorCode::InvalidParams as i32,
+            message: format!("invalid parameters for textDocument/prepareRename: {e}"),
+            data: None,
+        })?;
+    let Some((fid, span, _)) = resolve_at(s, &p) else {
+        return Ok(Value::Null);
+    };
+    let model = s.ws.model();
+    let f = &model.files[fid.index()];
+    let name = &f.text[span.range()];
+    let uri_of = |path: &str| s.uri(path);
+    // Renaming to the same name checks everything but the new name.
+    model
+        .rename(fid, span.start, name, &uri_of)
+        .map_err(|why| request_failed(format!("cannot rename: {why}")))?;
+    let range = Lines::new(&f.text).range(span);
+    serde_json::to_value(PrepareRenameResponse::Range(range))
+        .map_err(|e| request_failed(e.to_string()))
+}
+
+fn rename(s: &Server, params: Value) -> Result<Value, ResponseError> {
+    let p: RenameParams = serde_json::from_value(params).map_err(|e| ResponseError {
+        code: ErrorCode::InvalidParams as i32,
+        message: format!("invalid parameters for textDocument/rename: {e}"),
+        data: None,
+    })?;
+    let tdp = &p.text_document_position;
+    let (f, _, offset) = at(s, tdp).ok_or_else(|| request_failed("unknown document".into()))?;
+    let model = s.ws.model();
+    let fid = model
+        .file_id(&f.path)
+        .ok_or_else(|| request_failed("unknown document".into()))?;
+    let uri_of = |path: &str| s.uri(path);
+    let edit = model
+        .rename(fid, offset as u32, &p.new_name, &uri_of)
+        .map_err(|why| request_failed(format!("cannot rename: {why}")))?;
+    serde_json::to_value(edit).map_err(|e| request_failed(e.to_string()))
+}
+
+fn workspace_symbols(s: &Server, p: WorkspaceSymbolParams) -> Option<WorkspaceSymbolResponse> {
+    let uri_of = |path: &str| s.uri(path);
+    Some(WorkspaceSymbolResponse::Flat(
+        s.ws.model().workspace_symbols(&p.query, &uri_of),
+    ))
 }
 
 fn document_symbols(s: &Server, p: DocumentSymbolParams) -> Option<DocumentSymbolResponse> {

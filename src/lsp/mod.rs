@@ -2,13 +2,16 @@
 //!
 //! A thin layer: positions, encodings and the protocol live here; what is known about KRL comes
 //! from the linter (findings, via one incremental [`crate::lint::Session`] over the workspace),
-//! the catalog (the `MM_*` interface) and the syntax tree (outline, folds).
+//! the semantic model (names), the catalog (the `MM_*` interface), the formatter and the syntax
+//! tree (outline, folds).
 //!
 //! - `server`: the message loop, debounced analysis, publishing findings;
 //! - `features`: capabilities and request handlers;
 //! - `documents`: open documents, kept exactly as the editor sent them;
 //! - `workspace`: the opened folder (files from disk in any encoding, config, EKI channels);
 //! - `position`: byte offsets ↔ UTF-16 positions; `paths`: URIs ↔ file names;
+//! - `names`: hover, definition, references, rename, completion and signatures of names, all
+//!   asked of the semantic model ([`crate::sema`]);
 //! - `diagnostics`, `mm`, `outline`, `cursor`: findings, the `MM_*` interface, the outline and
 //!   folds, and what is under the cursor, in LSP shapes.
 //!
@@ -22,6 +25,7 @@ mod diagnostics;
 mod documents;
 mod features;
 mod mm;
+mod names;
 mod outline;
 mod paths;
 mod position;

@@ -481,7 +481,8 @@ impl Server {
         self.docs.get(id).map(|d| d.text.as_str())
     }
 
-    fn uri(&self, id: &str) -> Option<Uri> {
+    /// The URI of a file: an open document's own, else the file's.
+    pub(super) fn uri(&self, id: &str) -> Option<Uri> {
         match self.docs.get(id) {
             Some(d) => Some(d.uri.clone()),
             None => paths::uri_of(id),

@@ -9,6 +9,7 @@ use std::path::{Path, PathBuf};
 
 use rayon::prelude::*;
 
+use super::names::Model;
 use crate::diag::FileReport;
 use crate::files;
 use crate::fmt::FmtOptions;
@@ -121,6 +122,14 @@ impl Workspace {
 
     pub fn file(&self, id: &str) -> Option<&Parsed> {
         self.session.file(id)
+    }
+
+    /// The semantic model with the files it was built from.
+    pub fn model(&self) -> Model<'_> {
+        Model {
+            sema: self.session.sema(),
+            files: self.session.files(),
+        }
     }
 
     pub fn files(&self) -> &[Parsed] {

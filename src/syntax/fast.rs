@@ -56,6 +56,18 @@ fn is_idc(b: u8) -> bool {
     b.is_ascii_alphanumeric() || b == b'_' || b == b'$'
 }
 
+/// A KRL keyword: a word that starts a statement or a block, an operator word, a motion or
+/// approximation keyword. The grammar reads some of these as names where context allows;
+/// tools that create names (rename) refuse them all.
+pub fn is_keyword(word: &str) -> bool {
+    let any = |list: &[&str]| list.iter().any(|k| k.eq_ignore_ascii_case(word));
+    any(&RESERVED)
+        || any(&NOT_A_TYPE)
+        || any(&MOTION)
+        || any(&APPROX)
+        || any(super::line::STATEMENT_WORDS)
+}
+
 /// Words `ident` must not be (the grammar's `reserved`).
 const RESERVED: [&str; 13] = [
     "AND", "OR", "NOT", "EXOR", "B_AND", "B_OR", "B_EXOR", "B_NOT", "THEN", "DO", "TO", "STEP",

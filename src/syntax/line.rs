@@ -103,7 +103,7 @@ fn global_decl(code: &str, base: usize) -> Option<LineError> {
 }
 
 /// Words that can start a statement other than a declaration, assignment, call or label.
-const STATEMENT_WORDS: &[&str] = &[
+pub(super) const STATEMENT_WORDS: &[&str] = &[
     "ANIN",
     "ANOUT",
     "BRAKE",
