@@ -156,3 +156,21 @@ fn release_is_lean_and_profiling_keeps_symbols() {
     assert_eq!(profiles["profiling"]["inherits"].as_str(), Some("release"));
     assert_eq!(profiles["profiling"]["debug"].as_integer(), Some(1));
 }
+
+/// NUL and ESC from a file never reach the terminal raw, in any output format.
+#[test]
+fn control_characters_are_escaped_in_every_format() {
+    let text = "DEF a()\n  x = \u{1b}[31mRED\u{0} +\nEND\n";
+    for format in ["human", "concise", "github", "json", "sarif"] {
+        let o = krlkit(
+            &["check", "-", "--format", format, "--color", "never"],
+            text,
+        );
+        let shown = out(&o);
+        assert!(shown.contains("KRL001"), "{format}: {shown}");
+        assert!(
+            !shown.contains('\u{1b}') && !shown.contains('\u{0}'),
+            "{format}: {shown:?}"
+        );
+    }
+}

@@ -320,3 +320,61 @@ fn catalog_globals_are_declared_with_the_limit_sizes() {
         assert!(text.contains(&decl), "missing `{decl}`");
     }
 }
+
+/// The committed reference output of the other codec × interface variants
+/// (`tests/fixtures/gen_variants/<codec>_<interface>/`, each with its `krlkit.toml`): no drift,
+/// and each is the variant its name says.
+#[test]
+fn committed_variant_outputs_have_no_drift() {
+    let dir = Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/fixtures/gen_variants");
+    let mut names: Vec<String> = std::fs::read_dir(&dir)
+        .unwrap()
+        .map(|e| e.unwrap().path())
+        .filter(|p| p.is_dir())
+        .map(|p| p.file_name().unwrap().to_string_lossy().into_owned())
+        .collect();
+    names.sort();
+    assert_eq!(
+        names,
+        ["ascii_2.x", "hex-be_1.x", "hex-le_1.x", "hex-le_2.x"]
+    );
+    for name in names {
+        let root = dir.join(&name);
+        let text = std::fs::read_to_string(root.join("krlkit.toml")).unwrap();
+        let spec = Spec::parse(&text, &name).unwrap();
+        assert_eq!(format!("{}_{}", spec.codec, spec.interface), name);
+        let files = generate::generate(&spec).unwrap();
+        let drift = generate::check(&root, &files);
+        assert!(
+            drift.is_clean(),
+            "{name}: differs from `krlkit gen --spec {name}/krlkit.toml --out {name}`: {drift:?}"
+        );
+    }
+}
+
+/// HEX packages use fixed RAW BYTE records of the frame size in both directions, as
+/// Mech-Mind's shipped XML does (660 bytes for batches up to 20).
+#[test]
+fn hex_xml_has_byte_records_of_the_frame_size() {
+    for (batch, size) in [(20, "660"), (5, "660"), (30, "980")] {
+        let spec = Spec::parse(&format!("codec = \"hex-le\"\nbatch_size = {batch}"), "x").unwrap();
+        let files = generate::generate(&spec).unwrap();
+        let (attrs, _) = parse_xml(&xml_of(&files, &spec));
+        let elements: Vec<_> = attrs
+            .iter()
+            .filter(|(e, a, _)| e == "ELEMENT" && (a == "Type" || a == "Size"))
+            .map(|(_, a, v)| (a.as_str(), v.as_str()))
+            .collect();
+        assert_eq!(
+            elements,
+            [
+                ("Type", "BYTE"),
+                ("Size", size),
+                ("Type", "BYTE"),
+                ("Size", size)
+            ],
+            "batch {batch}"
+        );
+        assert!(!attrs.iter().any(|(_, a, _)| a == "EOS"));
+    }
+}

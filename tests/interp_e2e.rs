@@ -15,10 +15,11 @@ mod interp_support;
 use std::collections::{BTreeMap, BTreeSet};
 use std::path::Path;
 
-use interp_support::{Case, check_invariants, render, root, run, scenario_of};
-use krlkit::catalog::catalog;
+use interp_support::{Case, behaviour, check_invariants, render, root, run, scenario_of};
+use krlkit::catalog::{Interface, catalog};
 use krlkit::interp::Event;
 use krlkit::sim::Scenario;
+use krlkit::spec::Spec;
 
 /// Status codes that mean "it worked" for a subprogram: the success codes of its commands,
 /// or (for local copies and settings) any success code or 0.
@@ -84,6 +85,142 @@ fn every_subprogram_end_to_end() {
     ] {
         let n = i64::from(cat.package_code(code));
         assert!(all.contains(&n), "no case ends in {code} ({n})");
+    }
+}
+
+/// The specs of the HEX packages of the 1.x interface.
+fn hex_specs() -> Vec<Spec> {
+    ["hex-le", "hex-be"]
+        .iter()
+        .map(|c| Spec::parse(&format!("codec = \"{c}\""), c).unwrap())
+        .collect()
+}
+
+/// Every case and example runs with the HEX packages exactly as with the ASCII one: the same
+/// calls, OUT values and status codes (error paths included), motion targets, messages,
+/// replies, globals and outputs.
+#[test]
+fn hex_packages_behave_like_the_ascii_package() {
+    let mut cases: Vec<Case> = Vec::new();
+    let dir = root().join("tests/fixtures/interp/e2e");
+    let mut paths: Vec<_> = std::fs::read_dir(&dir)
+        .unwrap()
+        .map(|e| e.unwrap().path())
+        .filter(|p| p.extension().is_some_and(|x| x == "src"))
+        .collect();
+    paths.sort();
+    cases.extend(paths.into_iter().map(Case::from_directives));
+    let examples = root().join("krl/examples");
+    let mut paths: Vec<_> = std::fs::read_dir(&examples)
+        .unwrap()
+        .map(|e| e.unwrap().path())
+        .filter(|p| p.extension().is_some_and(|x| x.eq_ignore_ascii_case("src")))
+        .collect();
+    paths.sort();
+    for p in paths {
+        let mut case = Case::new(p);
+        case.scenario = Some(root().join("tests/fixtures/scenarios/examples.toml"));
+        cases.push(case);
+    }
+    assert!(cases.len() >= 29, "{} cases", cases.len());
+    for case in cases {
+        let name = case.program.display().to_string();
+        let ascii = run(&case);
+        check_invariants(&name, &case, &ascii);
+        let want = behaviour(&ascii);
+        for spec in hex_specs() {
+            let codec = spec.codec;
+            let case = case.clone().with_spec(spec);
+            let hex = run(&case);
+            check_invariants(&name, &case, &hex);
+            let got = behaviour(&hex);
+            let first = want.iter().zip(&got).position(|(a, b)| a != b);
+            assert!(
+                want == got,
+                "{name} ({codec}) differs from ASCII at {first:?}: {:?} vs {:?}",
+                first.map(|i| &want[i]),
+                first.map(|i| &got[i])
+            );
+        }
+    }
+}
+
+/// Whether `status` means success for the 2.x subprogram `name`.
+fn is_success_v2(name: &str, status: i64) -> bool {
+    let cat = catalog();
+    let Some(sub) = cat.subprogram_in(Interface::V2, name) else {
+        return false;
+    };
+    let own = sub.success_codes();
+    if !own.is_empty() {
+        return own.iter().any(|c| i64::from(*c) == status);
+    }
+    status == 0
+        || cat
+            .commands_of(Interface::V2)
+            .any(|c| c.success.map(i64::from) == Some(status))
+}
+
+/// The 2.x package, ASCII and HEX, runs every case of `e2e/v2/` (the snapshot is the ASCII
+/// run; the HEX runs must behave the same); every 2.x subprogram succeeds somewhere and every
+/// package status code (but SEND_FAILED) occurs.
+#[test]
+fn every_v2_subprogram_end_to_end() {
+    let ascii = Spec::parse("interface = \"2.x\"", "v2").unwrap();
+    let hex = Spec::parse("interface = \"2.x\"\ncodec = \"hex-le\"", "v2").unwrap();
+    let be = Spec::parse("interface = \"2.x\"\ncodec = \"hex-be\"", "v2").unwrap();
+    let mut seen: BTreeMap<String, BTreeSet<i64>> = BTreeMap::new();
+    insta::glob!("fixtures/interp/e2e/v2/*.src", |path| {
+        let name = format!("v2/{}", path.file_stem().unwrap().to_string_lossy());
+        let case = Case::from_directives(path.to_path_buf()).with_spec(ascii.clone());
+        let outcome = run(&case);
+        check_invariants(&name, &case, &outcome);
+        for r in &outcome.result.events {
+            if let Event::Return {
+                name,
+                status: Some(s),
+                ..
+            } = &r.event
+            {
+                seen.entry(name.clone()).or_default().insert(*s);
+            }
+        }
+        let want = behaviour(&outcome);
+        for spec in [&hex, &be] {
+            let case = case.clone().with_spec(spec.clone());
+            let other = run(&case);
+            check_invariants(&name, &case, &other);
+            assert_eq!(
+                want,
+                behaviour(&other),
+                "{name}: {} differs from ASCII",
+                spec.codec
+            );
+        }
+        insta::assert_snapshot!(render(&outcome, outcome.addr.as_deref()));
+    });
+    let cat = catalog();
+    for sub in cat.subprograms_of(Interface::V2) {
+        let statuses = seen.get(&sub.name).cloned().unwrap_or_default();
+        assert!(
+            statuses.iter().any(|s| is_success_v2(&sub.name, *s)),
+            "2.x {} never ran successfully end to end (statuses seen: {statuses:?})",
+            sub.name
+        );
+    }
+    let all: BTreeSet<i64> = seen.values().flatten().copied().collect();
+    for code in [
+        "NO_CONNECTION",
+        "REPLY_TIMEOUT",
+        "BAD_REPLY",
+        "WRONG_ECHO",
+        "TOO_MANY_POINTS",
+        "BAD_SERIAL",
+        "BAD_ARGUMENT",
+        "WRONG_DATA_KIND",
+    ] {
+        let n = i64::from(cat.package_code(code));
+        assert!(all.contains(&n), "no 2.x case ends in {code} ({n})");
     }
 }
 

@@ -36,12 +36,12 @@ proptest! {
         for m in msgs {
             let reply = match decode(&m) {
                 Ok(req) => {
-                    let r = state.handle(&req);
+                    let r = state.handle(&req).text();
                     let echo = req.command.to_string();
                     prop_assert!(r.starts_with(&format!("{echo},")), "{m:?} -> {r:?}");
                     r
                 }
-                Err(DecodeError::NoCommand) => "0,3002".into(),
+                Err(DecodeError::NoCommand) => "0,3002".to_string(),
                 Err(DecodeError::BadField(c)) => format!("{c},3002"),
             };
             prop_assert!(reply.is_ascii() && !reply.contains(['\r', '\n']));

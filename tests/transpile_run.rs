@@ -482,7 +482,7 @@ fn for_kawasaki(s: &Scenario) -> Scenario {
         }
     }
     k.calibration.iter_mut().for_each(|c| convert(&mut c.pose));
-    k.server.vision_move_layout = krlkit::sim::scenario::PlanLayout::Kawasaki;
+    k.server.vision_move_layout = Some(krlkit::sim::scenario::PlanLayout::Kawasaki);
     k.server.decimals = 9;
     k
 }

@@ -54,6 +54,53 @@ impl FromStr for Interface {
     }
 }
 
+/// Wire encoding of requests and replies.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, Deserialize)]
+pub enum Codec {
+    /// Comma-separated decimal text, one message per CR (EKI RAW STREAM, EOS 13).
+    #[serde(rename = "ascii")]
+    Ascii,
+    /// 4-byte little-endian fields, int32 or float32 (EKI RAW BYTE): Mech-Vision's KUKA default.
+    #[serde(rename = "hex-le")]
+    HexLe,
+    /// 4-byte big-endian fields (EKI RAW BYTE; the package swaps the bytes of every field).
+    #[serde(rename = "hex-be")]
+    HexBe,
+}
+
+impl Codec {
+    pub const ALL: [Codec; 3] = [Codec::Ascii, Codec::HexLe, Codec::HexBe];
+
+    pub fn as_str(self) -> &'static str {
+        match self {
+            Codec::Ascii => "ascii",
+            Codec::HexLe => "hex-le",
+            Codec::HexBe => "hex-be",
+        }
+    }
+
+    pub fn is_hex(self) -> bool {
+        self != Codec::Ascii
+    }
+}
+
+impl fmt::Display for Codec {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        f.write_str(self.as_str())
+    }
+}
+
+impl FromStr for Codec {
+    type Err = String;
+
+    fn from_str(s: &str) -> Result<Codec, String> {
+        Codec::ALL
+            .into_iter()
+            .find(|c| c.as_str() == s)
+            .ok_or_else(|| format!("unknown codec `{s}` (use \"ascii\", \"hex-le\" or \"hex-be\")"))
+    }
+}
+
 /// Whether a catalog entry restricted to `only` (None: every version) belongs to `iface`.
 pub(crate) fn applies(only: Option<Interface>, iface: Interface) -> bool {
     only.is_none_or(|v| v == iface)
@@ -64,6 +111,13 @@ pub(crate) fn applies(only: Option<Interface>, iface: Interface) -> bool {
 pub enum HexKind {
     Int32,
     Float32,
+}
+
+/// The number a float32 field stands for, as a 64-bit float: the one its shortest round-trip
+/// decimal names (`95.7806`, not `95.78060150146484`), so a value that travelled as float32
+/// reads as the same number as one that travelled as text.
+pub fn float32_value(x: f32) -> f64 {
+    format!("{x}").parse::<f64>().unwrap_or(f64::from(x))
 }
 
 /// The `[hex]` table: field kinds and frame sizes.

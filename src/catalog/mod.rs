@@ -12,7 +12,7 @@ use std::sync::OnceLock;
 use serde::Deserialize;
 
 use interface::applies;
-pub use interface::{Hex, HexKind, Interface};
+pub use interface::{Codec, Hex, HexKind, Interface, float32_value};
 pub use kawasaki::{
     AsKind, AsParam, GlobalOrigin, KawasakiCommand, KawasakiGlobal, KawasakiLimits, VisionMoveField,
 };

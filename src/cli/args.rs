@@ -298,6 +298,12 @@ pub struct ServeArgs {
     /// Allow a non-loopback listen address (a real robot cell); loopback only by default.
     #[arg(long)]
     pub allow_remote: bool,
+    /// Wire format (overrides the scenario's `[server] codec`): ascii, hex-le or hex-be.
+    #[arg(long, value_name = "CODEC")]
+    pub codec: Option<crate::catalog::Codec>,
+    /// Interface version (overrides the scenario's `interface`): 1.x or 2.x.
+    #[arg(long, value_name = "VERSION")]
+    pub interface: Option<crate::catalog::Interface>,
 }
 
 #[derive(Debug, Args)]

@@ -14,7 +14,7 @@ pub fn run(args: SimArgs) -> anyhow::Result<Outcome> {
 }
 
 fn serve(args: ServeArgs) -> anyhow::Result<Outcome> {
-    let scenario = match &args.scenario {
+    let mut scenario = match &args.scenario {
         None => Scenario::default_embedded(),
         Some(path) => {
             let text = std::fs::read_to_string(path)
@@ -22,6 +22,12 @@ fn serve(args: ServeArgs) -> anyhow::Result<Outcome> {
             Scenario::from_toml_str(&text, &path.display().to_string())?
         }
     };
+    if let Some(iface) = args.interface {
+        scenario = scenario.with_interface(iface).map_err(anyhow::Error::msg)?;
+    }
+    if let Some(codec) = args.codec {
+        scenario.server.codec = codec;
+    }
     let addrs: Vec<SocketAddr> = args
         .listen
         .to_socket_addrs()
@@ -90,8 +96,13 @@ fn summary(s: &Scenario) -> String {
             if v.do_list.is_some() { "yes" } else { "no" }
         )
     });
+    let wire = match s.server.codec {
+        crate::catalog::Codec::Ascii => "ascii".to_string(),
+        hex => format!("{hex}, {}-byte replies", s.server.hex_reply_bytes()),
+    };
     format!(
-        "projects: {}; viz: {viz}; calibration points: {}; faults: {}; batch {}",
+        "interface {}, {wire}; projects: {}; viz: {viz}; calibration points: {}; faults: {}; batch {}",
+        s.interface,
         if projects.is_empty() {
             "none".to_string()
         } else {

@@ -1,5 +1,6 @@
 //! The EthernetKRL channel file (`<channel>.xml`), written with quick-xml per the EKI 2.2
-//! schema: EXTERNAL IP/PORT, INTERNAL ALIVE flag, RAW STREAM receive/send elements ending in CR.
+//! schema: EXTERNAL IP/PORT, INTERNAL ALIVE flag, RAW receive/send elements: STREAM ending in
+//! CR for the ASCII codec, fixed-size BYTE records for HEX (as Mech-Mind's shipped XML).
 
 use quick_xml::Writer;
 use quick_xml::events::{BytesDecl, BytesEnd, BytesStart, BytesText, Event};
@@ -18,8 +19,11 @@ pub fn record_sizes(spec: &Spec) -> (u32, u32) {
 
 /// The channel XML for `spec` (LF line endings; the package writer converts them).
 pub fn channel_xml(spec: &Spec) -> String {
-    debug_assert_eq!(spec.codec, Codec::Ascii);
     let (rx_size, tx_size) = record_sizes(spec);
+    let (kind, eos) = match spec.codec {
+        Codec::Ascii => ("STREAM", Some(EOS)),
+        Codec::HexLe | Codec::HexBe => ("BYTE", None),
+    };
     let mut w = Writer::new_with_indent(Vec::new(), b' ', 2);
     // Writing into a Vec cannot fail; the results are ignored for that reason only.
     let _ = w.write_event(Event::Decl(BytesDecl::new("1.0", Some("utf-8"), None)));
@@ -39,28 +43,18 @@ pub fn channel_xml(spec: &Spec) -> String {
 
     let recv_flag = spec.receive_flag.to_string();
     let rx = rx_size.to_string();
-    raw_section(
-        &mut w,
-        "RECEIVE",
-        &[
-            ("Tag", RX_TAG),
-            ("Type", "STREAM"),
-            ("Set_Flag", recv_flag.as_str()),
-            ("Size", rx.as_str()),
-            ("EOS", EOS),
-        ],
-    );
+    let mut rx_attrs = vec![
+        ("Tag", RX_TAG),
+        ("Type", kind),
+        ("Set_Flag", recv_flag.as_str()),
+        ("Size", rx.as_str()),
+    ];
+    rx_attrs.extend(eos.map(|e| ("EOS", e)));
+    raw_section(&mut w, "RECEIVE", &rx_attrs);
     let tx = tx_size.to_string();
-    raw_section(
-        &mut w,
-        "SEND",
-        &[
-            ("Tag", TX_TAG),
-            ("Type", "STREAM"),
-            ("Size", tx.as_str()),
-            ("EOS", EOS),
-        ],
-    );
+    let mut tx_attrs = vec![("Tag", TX_TAG), ("Type", kind), ("Size", tx.as_str())];
+    tx_attrs.extend(eos.map(|e| ("EOS", e)));
+    raw_section(&mut w, "SEND", &tx_attrs);
     let _ = w.write_event(Event::End(BytesEnd::new("ETHERNETKRL")));
     let mut s = String::from_utf8(w.into_inner()).unwrap_or_default();
     s.push('\n');

@@ -15,6 +15,7 @@ struct Install<'a> {
     krl_dir: &'a str,
     xml_dir: &'a str,
     xml_file: String,
+    routine_assumptions: Vec<String>,
 }
 
 #[derive(Template)]
@@ -40,6 +41,7 @@ pub fn render(spec: &Spec, pkg: &Package) -> askama::Result<String> {
         krl_dir: KRL_DIR,
         xml_dir: XML_DIR,
         xml_file: spec.xml_file_name(),
+        routine_assumptions: super::view::routine_assumptions(spec),
     }
     .render()
 }

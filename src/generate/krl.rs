@@ -22,6 +22,7 @@ routine_templates! {
     InitSocket => "krl/init_socket.src",
     Simple => "krl/simple.src",
     Batch => "krl/batch.src",
+    BatchAll => "krl/batch_all.src",
     StartVis => "krl/start_vis.src",
     StartViz => "krl/start_viz.src",
     GetPose => "krl/get_pose.src",
@@ -31,6 +32,10 @@ routine_templates! {
     GetDyData => "krl/get_dy_data.src",
     GetDyPose => "krl/get_dypose.src",
     GetPlanData => "krl/get_plandata.src",
+    GetPlanDataV2 => "krl/get_plandata_v2.src",
+    GetProperty => "krl/get_property.src",
+    GetNotify => "krl/get_notify.src",
+    GetWobj => "krl/get_wobj.src",
     GetPlanJps => "krl/get_planjps.src",
     GetPlanPose => "krl/get_planpose.src",
     Calib => "krl/calib.src",
@@ -54,6 +59,9 @@ pub fn render_routine(r: &Routine, p: &Package) -> askama::Result<String> {
         "MM_Init_Socket" => InitSocket { r, p }.render(),
         "MM_Start_Vis" => StartVis { r, p }.render(),
         "MM_Start_Viz" => StartViz { r, p }.render(),
+        "MM_Get_VisData" | "MM_Get_VizData" | "MM_Get_VisPath" if r.fetch_all => {
+            BatchAll { r, p }.render()
+        }
         "MM_Get_VisData" | "MM_Get_VizData" | "MM_Get_VisPath" => Batch { r, p }.render(),
         "MM_Get_Pose" => GetPose { r, p }.render(),
         "MM_Get_Jps" => GetJps { r, p }.render(),
@@ -61,12 +69,17 @@ pub fn render_routine(r: &Routine, p: &Package) -> askama::Result<String> {
         "MM_Set_DoList" => SetDoList { r, p }.render(),
         "MM_Get_Dy_Data" => GetDyData { r, p }.render(),
         "MM_Get_DyPose" => GetDyPose { r, p }.render(),
+        "MM_Get_PlanData" if r.alt_cmd != 0 => GetPlanDataV2 { r, p }.render(),
         "MM_Get_PlanData" => GetPlanData { r, p }.render(),
+        "MM_Get_Property" => GetProperty { r, p }.render(),
+        "MM_Get_Notify" => GetNotify { r, p }.render(),
+        "MM_Get_Wobj" => GetWobj { r, p }.render(),
         "MM_Get_PlanJps" => GetPlanJps { r, p }.render(),
         "MM_Get_PlanPose" => GetPlanPose { r, p }.render(),
         "MM_CALIB" => Calib { r, p }.render(),
         // Send the IN arguments, store the status: MM_Switch_Model, MM_Set_Branch,
-        // MM_Set_Index, MM_Get_Status, MM_Set_BoxSize, MM_Set_Pos.
+        // MM_Set_Index, MM_Get_Status, MM_Set_BoxSize, MM_Set_Pos, MM_Stop_Viz,
+        // MM_Set_Property.
         _ => Simple { r, p }.render(),
     }
 }

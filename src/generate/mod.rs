@@ -8,6 +8,7 @@
 
 pub mod as_check;
 pub mod as_view;
+mod hex_view;
 mod install;
 mod kawasaki;
 mod krl;
@@ -66,8 +67,6 @@ pub enum GenError {
     },
     #[error("{0}")]
     Io(String),
-    #[error("{0}")]
-    Unsupported(String),
 }
 
 impl GeneratedFile {
@@ -89,12 +88,6 @@ fn krl_file(name: &str, ext: &str, text: &str, eol: LineEnding) -> GeneratedFile
 /// Render the whole package for `spec`, in a fixed order (helper module, then the routines in
 /// catalog order, then XML and install note).
 pub fn generate(spec: &Spec) -> Result<Vec<GeneratedFile>, GenError> {
-    if spec.codec != crate::spec::Codec::Ascii || spec.interface != crate::catalog::Interface::V1 {
-        return Err(GenError::Unsupported(format!(
-            "the KUKA package for codec {} and interface {} is not generated yet (issue 14)",
-            spec.codec, spec.interface
-        )));
-    }
     let pkg = Package::new(spec);
     let eol = spec.line_endings;
     let render_err = |file: &str| {
@@ -115,7 +108,11 @@ pub fn generate(spec: &Spec) -> Result<Vec<GeneratedFile>, GenError> {
             eol,
         ),
     ];
-    for sp in catalog().subprograms.iter().filter(|s| spec.emits(&s.name)) {
+    for sp in catalog()
+        .subprograms_of(spec.interface)
+        .iter()
+        .filter(|s| spec.emits(&s.name))
+    {
         let r = Routine::new(sp, spec);
         let text = krl::render_routine(&r, &pkg).map_err(render_err(&sp.name))?;
         files.push(krl_file(&sp.name, "src", &text, eol));

@@ -1,8 +1,10 @@
 //! View models: everything the KRL templates print, computed here from the catalog and the
 //! spec, so the templates hold layout only.
 
-use crate::catalog::{Param, Subprogram, catalog};
+use crate::catalog::{Interface, Param, Subprogram, catalog};
 use crate::spec::Spec;
+
+use super::hex_view::{self, HexCase};
 
 /// Package-defined status codes, looked up by symbolic name in the catalog.
 #[derive(Debug, Clone)]
@@ -42,9 +44,9 @@ pub struct GlobalDecl {
     pub meaning: String,
 }
 
-fn global_decls() -> Vec<GlobalDecl> {
+fn global_decls(iface: Interface) -> Vec<GlobalDecl> {
     catalog()
-        .globals_of(crate::catalog::Interface::V1)
+        .globals_of(iface)
         .map(|g| GlobalDecl {
             decl: match g.size {
                 Some(n) => format!("DECL GLOBAL {} {}[{n}]", g.ty, g.name),
@@ -67,6 +69,23 @@ pub struct Package {
     pub timer: u32,
     pub append_cr: bool,
     pub batch_size: u32,
+    /// The interface version the routines implement.
+    pub interface: Interface,
+    pub v2: bool,
+    /// HEX framing: 4-byte fields in fixed frames (EKI RAW BYTE), packed with CAST_TO/CAST_FROM.
+    pub hex: bool,
+    /// HEX big-endian: every 4-byte field is byte-swapped after packing and before unpacking.
+    pub big_endian: bool,
+    /// HEX: the reply decoder, one case per reply layout of the commands the routines send.
+    pub hex_cases: Vec<HexCase>,
+    /// Fields of a HEX frame (frame bytes / 4).
+    pub frame_fields: u32,
+    /// Commands whose reply has no status field (601): MM_Exchange returns 0 for them.
+    pub no_status_cmds: Vec<u32>,
+    /// Where the 8th field of a batch point is stored: `MM_Pt_Speed` (1.x) or `MM_Pt_Tool` (2.x).
+    pub pt_eighth: &'static str,
+    /// Fields a request has at most (`MM_Tx_Fld`).
+    pub tx_fields: u32,
     /// Bytes of the receive buffer (= EKI receive record size).
     pub rx_size: u32,
     /// Bytes of the send buffer (= EKI send record size).
@@ -123,15 +142,36 @@ impl Package {
     pub fn new(spec: &Spec) -> Package {
         let cat = catalog();
         let l = &cat.limits;
+        let iface = spec.interface;
+        let hex = spec.codec.is_hex();
+        let plan_results_len = cat.plan_results_len_in(iface);
+        let frame_fields = cat.hex_frame_bytes(spec.batch_size) / 4;
         let field_cap = [
             BATCH_HEADER_FIELDS + POINT_FIELDS * spec.batch_size,
             2 + l.do_list_len,
-            PLAN_FIXED_FIELDS + l.plan_results_len + 1 + l.user_data_len,
+            PLAN_FIXED_FIELDS + plan_results_len + 1 + l.user_data_len,
             DY_FIXED_FIELDS + l.user_data_len,
+            if hex { frame_fields } else { 0 },
         ]
         .into_iter()
         .max()
         .unwrap_or_default();
+        let sent: Vec<u32> = cat
+            .subprograms_of(iface)
+            .iter()
+            .filter(|s| spec.emits(&s.name))
+            .flat_map(|s| s.commands.iter().copied())
+            .collect();
+        let mut no_status_cmds: Vec<u32> = sent
+            .iter()
+            .copied()
+            .filter(|c| {
+                cat.command_in(iface, *c)
+                    .is_some_and(|c| c.reply.first().is_none_or(|f| f != "status"))
+            })
+            .collect();
+        no_status_cmds.sort_unstable();
+        no_status_cmds.dedup();
         let package_codes = cat
             .statuses
             .iter()
@@ -153,16 +193,37 @@ impl Package {
             timer: spec.timer,
             append_cr: spec.append_cr,
             batch_size: spec.batch_size,
+            interface: iface,
+            v2: iface == Interface::V2,
+            hex,
+            big_endian: spec.codec == crate::spec::Codec::HexBe,
+            hex_cases: if hex {
+                hex_view::decoder(&sent, iface, spec.receive_size())
+            } else {
+                Vec::new()
+            },
+            frame_fields,
+            no_status_cmds,
+            tx_fields: MAX_REQUEST_FIELDS,
+            pt_eighth: match iface {
+                Interface::V1 => "MM_Pt_Speed",
+                Interface::V2 => "MM_Pt_Tool",
+            },
             rx_size: spec.receive_size(),
-            tx_size: MAX_REQUEST_FIELDS * (l.ascii_bytes_per_point / POINT_FIELDS),
+            // HEX requests are padded to the frame in both directions.
+            tx_size: if hex {
+                spec.receive_size()
+            } else {
+                MAX_REQUEST_FIELDS * (l.ascii_bytes_per_point / POINT_FIELDS)
+            },
             field_cap,
             point_cap: l.point_capacity,
             user_data_len: l.user_data_len,
-            plan_results_len: l.plan_results_len,
+            plan_results_len,
             do_list_len: l.do_list_len,
             out_max: l.out_max,
             package_codes,
-            globals: global_decls(),
+            globals: global_decls(iface),
             channel_len: 32,
             kind_joints: 1,
             kind_tcp: 2,
@@ -182,21 +243,72 @@ impl Package {
 
 /// The unverified assumptions the generated package makes (also listed in INSTALL.md).
 pub fn assumptions(spec: &Spec) -> Vec<String> {
-    let cr = if spec.append_cr {
-        "the KRL appends CR (13) to every request itself (append_cr = true)"
+    let cat = catalog();
+    let mut out: Vec<String> = Vec::new();
+    if spec.codec.is_hex() {
+        let order = match spec.codec {
+            crate::spec::Codec::HexBe => "big-endian (the package swaps the bytes of every field)",
+            _ => "little-endian",
+        };
+        out.push(format!(
+            "[U] Mech-Vision is set to HEX {order}; requests and replies are {}-byte frames (a 102 reply of {} points), zero-padded",
+            spec.receive_size(),
+            spec.batch_size.max(cat.hex.frame_min_points)
+        ));
+        out.push(format!("[U] HEX field kinds: {}", cat.hex.assumption));
+        out.push("[U] EKI_Send(channel, buffer, length) sends the whole frame, zeros included (EthernetKRL 3.x; on EKI 2.2 a RAW BYTE element is assumed to send its Size)".into());
+        out.push("[U] a HEX reply whose status field is not a 4-digit code (1000..9999) is garbled (BAD_REPLY); a reply shorter than the frame never completes the EKI record (REPLY_TIMEOUT)".into());
     } else {
-        "EKI appends the STREAM end string (CR) to every request (append_cr = false)"
-    };
-    vec![
-        "[U] Mech-Vision is set to ASCII format; replies end in CR; EKI_GetString may or may not strip it (both parse)".into(),
-        format!("[U] {cr}"),
-        "[U] EKI_Send on a RAW STREAM sends the CHAR array up to its first NUL (buffers are cleared with StrClear first)".into(),
+        let cr = if spec.append_cr {
+            "the KRL appends CR (13) to every request itself (append_cr = true)"
+        } else {
+            "EKI appends the STREAM end string (CR) to every request (append_cr = false)"
+        };
+        out.push("[U] Mech-Vision is set to ASCII format; replies end in CR; EKI_GetString may or may not strip it (both parse)".into());
+        out.push(format!("[U] {cr}"));
+        out.push("[U] EKI_Send on a RAW STREAM sends the CHAR array up to its first NUL (buffers are cleared with StrClear first)".into());
+    }
+    if spec.interface == Interface::V2 {
+        out.push("[U] 2.x interface: signatures from a public note compiled from Mech-Mind's 2.2.1 KUKA page (the vendor page itself was not read); MM_Get_VisData, MM_Get_VizData and MM_Get_VisPath repeat their command until the server reports all sent".into());
+    }
+    out.extend([
         "[U] flange pose = $BASE:$POS_ACT:INV_POS($TOOL), i.e. in WORLD (equal to ROBROOT on a fixed robot)".into(),
         "[U] returned E6POS targets only get X,Y,Z,A,B,C; S, T and E1..E6 of the caller's variable are left untouched".into(),
-        format!("[U] Do_Port entries are $OUT numbers; entries outside 1..{} (0, -1) switch nothing; outputs are not cleared first", catalog().limits.out_max),
+        format!("[U] Do_Port entries are $OUT numbers; entries outside 1..{} (0, -1) switch nothing; outputs are not cleared first", cat.limits.out_max),
         "[U] MM_CALIB moves the flange (TOOL and BASE = $NULLFRAME during the move); E1 is written to the target's E1 and not sent".into(),
         format!("[U] $TIMER[{}] is reserved for the package", spec.timer),
-    ]
+    ]);
+    out
+}
+
+/// The catalog's unverified facts about the emitted routines and the commands they send, one
+/// line each (`[U] MM_Set_DoList: ...`), for the install note.
+pub fn routine_assumptions(spec: &Spec) -> Vec<String> {
+    let cat = catalog();
+    let iface = spec.interface;
+    let mut out = Vec::new();
+    let mut commands: Vec<u32> = Vec::new();
+    for sp in cat
+        .subprograms_of(iface)
+        .iter()
+        .filter(|s| spec.emits(&s.name))
+    {
+        if let Some(src) = &sp.source {
+            out.push(format!("[U] {} signature: {src}", sp.name));
+        }
+        if let Some(a) = &sp.assumption {
+            out.push(format!("[U] {}: {a}", sp.name));
+        }
+        commands.extend(&sp.commands);
+    }
+    commands.sort_unstable();
+    commands.dedup();
+    for c in commands {
+        if let Some(a) = cat.command_in(iface, c).and_then(|c| c.assumption.as_ref()) {
+            out.push(format!("[U] command {c}: {a}"));
+        }
+    }
+    out
 }
 
 /// One `MM_*` routine as the templates see it.
@@ -229,6 +341,21 @@ pub struct Routine {
     pub kind: String,
     /// Fields of a full reply (echo + reply fields of the catalog).
     pub reply_len: usize,
+    /// The second command of a routine with a `Resource` choice (2.x MM_Get_DoList: 106,
+    /// MM_Get_PlanData: 111) and its success code; 0 otherwise.
+    pub alt_cmd: u32,
+    pub alt_ok: u32,
+    /// The output that receives the 8th field of a point (`MM_Speed` in 1.x, `MM_ToolId` in
+    /// 2.x), empty when the routine has none.
+    pub eighth_out: String,
+    /// 2.x batch fetches repeat their command until the server reports all sent.
+    pub fetch_all: bool,
+    /// Waypoint replies (210, 111): fields before the Vision Move data (echo included) of the
+    /// first and the second command, and the 1-based field of the speed in the second's reply
+    /// (0 when its layout has none: 2.x 111).
+    pub plan_fixed: u32,
+    pub alt_plan_fixed: u32,
+    pub alt_speed_at: u32,
 }
 
 fn krl_num(x: f64) -> String {
@@ -290,8 +417,17 @@ impl Routine {
     pub fn new(sp: &Subprogram, spec: &Spec) -> Routine {
         let cat = catalog();
         let codes = Codes::from_catalog();
+        let iface = sp.interface;
         let cmd = sp.commands.first().copied().unwrap_or(0);
-        let ok = cat.command(cmd).and_then(|c| c.success).unwrap_or(0);
+        let ok = cat
+            .command_in(iface, cmd)
+            .and_then(|c| c.success)
+            .unwrap_or(0);
+        let alt_cmd = sp.commands.get(1).copied().unwrap_or(0);
+        let alt_ok = cat
+            .command_in(iface, alt_cmd)
+            .and_then(|c| c.success)
+            .unwrap_or(0);
         let params = sp
             .params
             .iter()
@@ -336,7 +472,16 @@ impl Routine {
         }
         let mut status = Vec::new();
         if cmd != 0 {
-            status.push(format!("{ok} OK"));
+            if alt_cmd != 0 {
+                status.push(format!("{ok} or {alt_ok} OK"));
+            } else if cat
+                .command_in(iface, cmd)
+                .is_some_and(|c| c.reply.first().is_none_or(|f| f != "status"))
+            {
+                status.push("0 OK".into());
+            } else {
+                status.push(format!("{ok} OK"));
+            }
             status.push("server codes (catalog)".into());
             status.push(format!("{} NO_CONNECTION", codes.no_connection));
             status.push(format!("{} SEND_FAILED", codes.send_failed));
@@ -379,8 +524,14 @@ impl Routine {
         if let Some(a) = &sp.assumption {
             header.push(format!("[U] {a}"));
         }
+        if let Some(src) = &sp.source {
+            header.push(format!("[U] signature: {src}"));
+        }
         for c in &sp.commands {
-            if let Some(a) = cat.command(*c).and_then(|c| c.assumption.as_ref()) {
+            if let Some(a) = cat
+                .command_in(iface, *c)
+                .and_then(|c| c.assumption.as_ref())
+            {
                 header.push(format!("[U] {a}"));
             }
         }
@@ -415,8 +566,38 @@ impl Routine {
         } else {
             "2".to_string()
         };
-        let reply_len = cat.command(cmd).map_or(0, |c| 1 + c.reply.len());
+        let reply_len = cat.command_in(iface, cmd).map_or(0, |c| 1 + c.reply.len());
+        let eighth_out = ["MM_Speed", "MM_ToolId"]
+            .into_iter()
+            .find(|n| sp.param(n).is_some())
+            .unwrap_or_default()
+            .to_string();
+        let fetch_all = iface == Interface::V2 && matches!(cmd, 102 | 105 | 205);
+        // Echo + reply fields + record fields before the Vision Move data.
+        let plan_fixed_of = |code: u32| {
+            cat.command_in(iface, code).map_or(0, |c| {
+                let before = c
+                    .record
+                    .iter()
+                    .position(|f| f == "plan_results...")
+                    .unwrap_or(c.record.len());
+                (1 + c.reply.len() + before) as u32
+            })
+        };
+        let alt_speed_at = cat.command_in(iface, alt_cmd).map_or(0, |c| {
+            c.record
+                .iter()
+                .position(|f| f == "speed")
+                .map_or(0, |i| (2 + c.reply.len() + i) as u32)
+        });
         Routine {
+            plan_fixed: plan_fixed_of(cmd),
+            alt_plan_fixed: plan_fixed_of(alt_cmd),
+            alt_speed_at,
+            alt_cmd,
+            alt_ok,
+            eighth_out,
+            fetch_all,
             tx,
             locals,
             vispos,

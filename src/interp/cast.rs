@@ -193,10 +193,7 @@ fn decode(like: &Value, bytes: &[u8]) -> Result<(Value, usize), String> {
     })
 }
 
-/// The 64-bit REAL of a float32: the number its shortest round-trip decimal names.
-pub(crate) fn real_from_f32(x: f32) -> f64 {
-    format!("{x}").parse::<f64>().unwrap_or(f64::from(x))
-}
+use crate::catalog::float32_value as real_from_f32;
 
 #[cfg(test)]
 mod tests {

@@ -788,10 +788,13 @@ impl<'p> Machine<'p> {
                 vars.insert(p.name.key(), s);
             }
         }
-        // Only the interface's subprograms are traced, not the package's internal helpers.
-        let is_mm = crate::catalog::catalog()
-            .subprogram(&routine.name.text)
-            .is_some();
+        // Only the interface's subprograms (of either version) are traced, not the package's
+        // internal helpers.
+        let is_mm = crate::catalog::Interface::ALL.into_iter().any(|i| {
+            crate::catalog::catalog()
+                .subprogram_in(i, &routine.name.text)
+                .is_some()
+        });
         if is_mm {
             self.emit(Event::Call {
                 name: routine.name.text.to_string(),

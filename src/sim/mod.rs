@@ -1,5 +1,6 @@
 //! The fake Mech-Mind vision server (`krlkit sim serve`): a loopback test double that speaks
-//! the ASCII Standard Interface protocol (1.x dialect) and answers from a TOML scenario.
+//! the Standard Interface protocol (ASCII or HEX framing; the 1.x or 2.x interface) and
+//! answers from a TOML scenario.
 //!
 //! ```no_run
 //! use krlkit::sim::{Scenario, Server};
@@ -12,15 +13,19 @@
 //! ```
 //!
 //! Modules: [`scenario`] (the TOML format, checked with located errors; see `SCENARIO.md`),
-//! [`protocol`] (the [`protocol::Codec`] that frames, decodes and encodes; lenient decoding,
-//! reply formatting), [`state`] (the per-command state machine), [`server`] (TCP sessions,
+//! [`protocol`] (the [`protocol::Codec`] that frames, decodes and encodes; the ASCII format,
+//! lenient decoding, typed replies), [`hex`] (the HEX format: 4-byte int32/float32 fields,
+//! zero padding), [`state`] (the per-command state machine, per interface version), [`server`] (TCP sessions,
 //! faults, request log), [`clock`] (the time Notify
 //! messages expire on: wall time, or a manual clock in tests).
 //!
-//! Wire handling: a message ends at CR (LF is accepted as a terminator too, so `\r\n` yields
-//! one message plus an ignored empty one); fields are split on `,` and trimmed of spaces and
-//! tabs; numbers may be `1`, `1.0`, `-0`, `1.5E3`; integer fields must be integral. Empty
-//! messages are ignored. Replies end in CR. Several commands per connection and a connection
+//! Wire handling (ASCII): a message ends at CR (LF is accepted as a terminator too, so `\r\n` yields
+//! one message plus an ignored empty one), or, without a terminator, once no byte came for
+//! `ascii_unterminated_ms` (50 ms; Mech-Mind's 1.x clients send `cmd,...,` without CR and the
+//! vendor's server takes what one read delivers); fields are split on `,` and trimmed of spaces and
+//! tabs; one trailing `,` is allowed; numbers may be `1`, `1.0`, `-0`, `1.5E3`; integer fields must be integral. Empty
+//! messages are ignored. Replies end in CR. HEX (`codec = "hex-le"`/`"hex-be"`): see [`hex`];
+//! requests of 64 or 660 bytes, replies padded to the KUKA frame (660 bytes). Several commands per connection and a connection
 //! per command both work; state persists across connections.
 //!
 //! Clients are served concurrently, each connection in its own session (input buffer, idle
@@ -50,13 +55,15 @@
 //! - 210 formats 1/3 return joints, 2/4 TCP; Vision Move data (20 values) only for formats
 //!   3/4 on Vision Move waypoints; custom values (count, then values) only on Vision Move
 //!   waypoints, other waypoints end with count 0.
-//! - 206 takes no argument (1.x) and answers 2011 before 201 or without a DO list.
-//! - 106 takes the project ID only (no 2.x gripper sections); it answers 1020 before that
+//! - 206 takes no argument in 1.x and the number of gripper sections in 2.x (the list does not
+//!   depend on it); it answers 2011 before 201 or without a DO list.
+//! - 106 takes the project ID only in 1.x (project and gripper sections in 2.x); it answers 1020 before that
 //!   project's 101 and 1008 when the project has no DO list.
 //! - 111 (project, pose kind) returns one waypoint of the project's path per call and shares
-//!   105's cursor; its Vision Move data always has the Kawasaki 1.8.3 layout (21 values) and
-//!   comes on Vision Move waypoints only, whatever the pose kind; no custom values. 210 uses
-//!   the layout of `[server] vision_move_layout` (KUKA 1.x, 20 values, by default). Data
+//!   105's cursor; its Vision Move data always has the 21-value layout (1.8.3/2.x) and
+//!   comes on Vision Move waypoints only, whatever the pose kind; no custom values; the 1.x
+//!   (seed 001) layout has the speed after the tool, the 2.x one does not. 210 uses
+//!   the layout of `[server] vision_move_layout` (default: KUKA 1.x, 20 values, in 1.x; 21 in 2.x). Data
 //!   given in the other layout is converted field by field (the catalog's
 //!   `[[vision_move_field]]`); fields the given layout lacks are 0.
 //! - 207/208 look up `read` and `write` lines of the scenario's `property_config`
@@ -74,11 +81,17 @@
 //!   after the last point the reply has done = 1 and zeros; 1 or 2 before any 0 answers 7001.
 //! - Faults: `status`, `garbage` and `drop` answer without touching the state; `wrong_echo`
 //!   and a bare `delay_ms` answer normally (the state advances).
-//! - Only dialect v1 is implemented; a v2 scenario is rejected when loaded. Only the ASCII
-//!   framing is implemented (no HEX); 202 and the 2.x-only commands (100, 104, 200, 503-507)
-//!   answer 3001 because the catalog does not list them.
+//! - Interface 2.x (`interface = "2.x"`): the 8th field of 102/105/205 points is the tool ID
+//!   (`tool`, default 0), 901 answers `901,9100,1,<1 with a [viz]>,1`, 202 stops Mech-Viz
+//!   (2104), 502 answers 3001. In 1.x, 202 answers 3001 (the KUKA 1.x interface has no
+//!   wrapper and the 1.x success code is unsettled: 2101 or 2104). The 2.x-only commands 100,
+//!   104, 200, 503-507 answer 3001 in both because the catalog does not list them.
+//! - HEX: the speed of a point or waypoint travels as an int32 (rounded); custom values,
+//!   Vision Move data and step parameter values as float32 [U, catalog `[hex]`]. A garbage
+//!   reply is the echo field followed by the garbage text's bytes, padded.
 
 pub mod clock;
+pub mod hex;
 pub mod protocol;
 pub mod scenario;
 pub mod server;

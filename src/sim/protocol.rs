@@ -1,9 +1,10 @@
 //! The wire format: how a connection's byte stream is cut into messages ([`Codec`]), lenient
-//! request parsing and reply formatting. The server (`server.rs`) owns sockets and sessions and
-//! asks a codec for every framing and encoding question, so another wire format (HEX records)
-//! plugs in without touching connection handling or the state machine.
+//! request parsing and reply building. The server (`server.rs`) owns sockets and sessions and
+//! asks a codec for every framing and encoding question; this file has the ASCII format,
+//! `hex.rs` the HEX one. Replies are typed ([`Reply`]: int and real fields), so one reply
+//! goes out as text or as 4-byte fields alike.
 
-use std::fmt::Write as _;
+use std::time::Duration;
 
 /// One unit a codec cut from the front of a connection's input.
 #[derive(Debug, Clone, PartialEq, Eq)]
@@ -18,27 +19,48 @@ pub enum Frame {
 /// A wire format, one value per connection (it may keep per-connection state).
 pub trait Codec: Send {
     /// Take the next complete message (or an oversized run of input) from the front of `input`.
-    /// Input that is no message at all (the ASCII format's empty lines) is dropped here, so
-    /// every [`Frame::Message`] is a request that gets a reply.
+    /// Input that is no message at all (the ASCII format's empty lines, HEX padding) is dropped
+    /// here, so every [`Frame::Message`] is a request that gets a reply.
     fn next_frame(&mut self, input: &mut Vec<u8>) -> Option<Frame>;
+    /// How long input that `next_frame` left in `input` may wait for more bytes before
+    /// [`Codec::flush`] takes it as it is (`None`: it waits for more bytes however long).
+    fn pending_wait(&self, _input: &[u8]) -> Option<Duration> {
+        None
+    }
+    /// Take what is left in `input` as a message after [`Codec::pending_wait`] passed quietly.
+    fn flush(&mut self, _input: &mut Vec<u8>) -> Option<Frame> {
+        None
+    }
     /// Decode one message.
     fn decode(&self, message: &[u8]) -> Result<Request, DecodeError>;
-    /// The bytes that carry one reply line (`echo,field,...`) on the wire.
-    fn encode(&self, reply: &str) -> Vec<u8>;
+    /// The bytes that carry one reply on the wire.
+    fn encode(&self, reply: &Reply) -> Vec<u8>;
     /// The message as text for the request log.
     fn show(&self, message: &[u8]) -> String;
 }
 
 /// The ASCII format: messages end at CR (LF accepted too); blank messages are ignored; replies
-/// end in CR.
+/// end in CR. A message without a terminator (what Mech-Mind's 1.x clients send: `cmd,...,`)
+/// is taken once `unterminated` passed without further input (the vendor's server takes what
+/// one read delivers); a zero `unterminated` waits for the terminator.
 #[derive(Debug, Clone)]
 pub struct AsciiCodec {
     max_message_bytes: usize,
+    unterminated: Duration,
 }
 
 impl AsciiCodec {
     pub fn new(max_message_bytes: usize) -> AsciiCodec {
-        AsciiCodec { max_message_bytes }
+        AsciiCodec {
+            max_message_bytes,
+            unterminated: Duration::ZERO,
+        }
+    }
+
+    /// Also take a message without terminator after `quiet` without further input.
+    pub fn with_unterminated(mut self, quiet: Duration) -> AsciiCodec {
+        self.unterminated = quiet;
+        self
     }
 }
 
@@ -61,13 +83,21 @@ impl Codec for AsciiCodec {
         (input.len() > max).then(|| Frame::Oversized(std::mem::take(input)))
     }
 
+    fn pending_wait(&self, input: &[u8]) -> Option<Duration> {
+        (!self.unterminated.is_zero() && !blank(input)).then_some(self.unterminated)
+    }
+
+    fn flush(&mut self, input: &mut Vec<u8>) -> Option<Frame> {
+        let message = std::mem::take(input);
+        (!blank(&message)).then_some(Frame::Message(message))
+    }
+
     fn decode(&self, message: &[u8]) -> Result<Request, DecodeError> {
         decode(String::from_utf8_lossy(message).trim_matches([' ', '\t']))
     }
 
-    fn encode(&self, reply: &str) -> Vec<u8> {
-        let mut bytes = Vec::with_capacity(reply.len() + 1);
-        bytes.extend_from_slice(reply.as_bytes());
+    fn encode(&self, reply: &Reply) -> Vec<u8> {
+        let mut bytes = reply.text().into_bytes();
         bytes.push(b'\r');
         bytes
     }
@@ -94,9 +124,12 @@ pub enum DecodeError {
 }
 
 /// Parse one message (without its terminator). Accepts spaces around fields, `1`, `1.0`,
-/// `-0`, `1.5E3`; rejects empty fields, `nan`, `inf` and anything else.
+/// `-0`, `1.5E3` and one trailing `,` (Mech-Mind's 1.x clients end requests with one);
+/// rejects other empty fields, `nan`, `inf` and anything else.
 pub fn decode(message: &str) -> Result<Request, DecodeError> {
-    let mut fields = message.split(',');
+    let trimmed = message.trim_end_matches([' ', '\t']);
+    let body = trimmed.strip_suffix(',').unwrap_or(trimmed);
+    let mut fields = body.split(',');
     let command = fields
         .next()
         .and_then(number)
@@ -129,29 +162,60 @@ pub fn as_int(v: f64) -> Option<i64> {
     (v.fract() == 0.0 && v.abs() < 1e15).then_some(v as i64)
 }
 
-/// Builds a reply line: `echo,field,field,...` (the caller appends the CR on the wire).
-#[derive(Debug, Clone)]
+/// One reply field, typed as it travels in HEX (int32 or float32).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub enum Field {
+    Int(i64),
+    /// A pose, joint or data value: decimals in ASCII, float32 in HEX.
+    Real(f64),
+    /// The speed of a point or waypoint: decimals in ASCII, an int32 in HEX (the settled
+    /// layout, protocol reference 1.2.0), rounded.
+    Speed(f64),
+}
+
+/// A reply: the echo and typed fields, or an injected garbage text. ASCII renders it as
+/// `echo,field,...`; HEX as 4-byte fields.
+#[derive(Debug, Clone, PartialEq)]
 pub struct Reply {
-    text: String,
-    decimals: usize,
+    pub echo: i64,
+    pub fields: Vec<Field>,
+    /// Decimals of real fields in ASCII.
+    pub decimals: u8,
+    /// A garbage reply (an injected fault): this text instead of the fields.
+    pub garbage: Option<String>,
 }
 
 impl Reply {
     pub fn new(echo: i64, decimals: u8) -> Reply {
         Reply {
-            text: echo.to_string(),
-            decimals: usize::from(decimals),
+            echo,
+            fields: Vec::new(),
+            decimals,
+            garbage: None,
+        }
+    }
+
+    /// A garbage reply to command `echo`: ASCII sends the text as it is, HEX the echo and then
+    /// the text's bytes.
+    pub fn garbage(echo: i64, text: &str) -> Reply {
+        Reply {
+            garbage: Some(text.to_string()),
+            ..Reply::new(echo, 0)
         }
     }
 
     pub fn int(mut self, v: i64) -> Reply {
-        let _ = write!(self.text, ",{v}");
+        self.fields.push(Field::Int(v));
         self
     }
 
     pub fn real(mut self, v: f64) -> Reply {
-        self.text.push(',');
-        self.text.push_str(&format_real(v, self.decimals));
+        self.fields.push(Field::Real(v));
+        self
+    }
+
+    pub fn speed(mut self, v: f64) -> Reply {
+        self.fields.push(Field::Speed(v));
         self
     }
 
@@ -163,12 +227,27 @@ impl Reply {
         vs.iter().fold(self, |r, v| r.int(*v))
     }
 
-    pub fn text(&self) -> &str {
-        &self.text
+    /// The same reply with another number in the echo field.
+    pub fn with_echo(mut self, echo: i64) -> Reply {
+        self.echo = echo;
+        self
     }
 
-    pub fn into_text(self) -> String {
-        self.text
+    /// The reply as a line without CR: `echo,field,...`, reals with the reply's decimals.
+    pub fn text(&self) -> String {
+        if let Some(g) = &self.garbage {
+            return g.clone();
+        }
+        let mut text = self.echo.to_string();
+        let decimals = usize::from(self.decimals);
+        for f in &self.fields {
+            text.push(',');
+            match f {
+                Field::Int(v) => text.push_str(&v.to_string()),
+                Field::Real(v) | Field::Speed(v) => text.push_str(&format_real(*v, decimals)),
+            }
+        }
+        text
     }
 }
 
@@ -198,6 +277,15 @@ mod tests {
     }
 
     #[test]
+    fn a_trailing_comma_ends_the_request() {
+        let r = decode("103,1,2,").unwrap();
+        assert_eq!((r.command, r.args), (103, vec![1.0, 2.0]));
+        assert_eq!(decode("901,").unwrap().args, Vec::<f64>::new());
+        assert_eq!(decode("103,1,,"), Err(DecodeError::BadField(103)));
+        assert_eq!(decode(","), Err(DecodeError::NoCommand));
+    }
+
+    #[test]
     fn rejects_non_numbers() {
         assert_eq!(decode("abc,1"), Err(DecodeError::NoCommand));
         assert_eq!(decode("101.5"), Err(DecodeError::NoCommand));
@@ -222,6 +310,7 @@ mod tests {
         );
         assert_eq!(c.next_frame(&mut input), None);
         assert_eq!(input, b"10");
+        assert_eq!(c.pending_wait(&input), None, "CR framing only by default");
         input.extend_from_slice(b"1234567");
         assert!(matches!(
             c.next_frame(&mut input),
@@ -230,8 +319,37 @@ mod tests {
         assert!(input.is_empty());
         let mut long = b"123456789\r".to_vec();
         assert!(matches!(c.next_frame(&mut long), Some(Frame::Oversized(_))));
-        assert_eq!(c.encode("901,1101"), b"901,1101\r");
+        let reply = Reply::new(901, 4).int(1101);
+        assert_eq!(c.encode(&reply), b"901,1101\r");
         assert_eq!(c.decode(b" 901 ").unwrap().command, 901);
+    }
+
+    #[test]
+    fn unterminated_messages_are_taken_after_a_quiet_time() {
+        let quiet = Duration::from_millis(30);
+        let mut c = AsciiCodec::new(64).with_unterminated(quiet);
+        let mut input = b"102,1,".to_vec();
+        assert_eq!(c.next_frame(&mut input), None);
+        assert_eq!(c.pending_wait(&input), Some(quiet));
+        assert_eq!(
+            c.flush(&mut input),
+            Some(Frame::Message(b"102,1,".to_vec()))
+        );
+        assert!(input.is_empty());
+        let mut spaces = b"  ".to_vec();
+        assert_eq!(c.pending_wait(&spaces), None);
+        assert_eq!(c.flush(&mut spaces), None);
+    }
+
+    #[test]
+    fn replies_render_typed_fields() {
+        let r = Reply::new(102, 4)
+            .int(1100)
+            .reals(&[95.78061, -0.0])
+            .speed(37.5);
+        assert_eq!(r.text(), "102,1100,95.7806,0,37.5");
+        assert_eq!(r.clone().with_echo(105).text(), "105,1100,95.7806,0,37.5");
+        assert_eq!(Reply::garbage(102, "102,abc").text(), "102,abc");
     }
 
     #[test]

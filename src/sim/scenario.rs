@@ -10,7 +10,7 @@ use std::fmt;
 use serde::Deserialize;
 use toml::Spanned;
 
-use crate::catalog::catalog;
+use crate::catalog::{Codec, Interface, catalog};
 use crate::diag::LineIndex;
 
 const DEFAULT_SCENARIO: &str = include_str!("default_scenario.toml");
@@ -22,7 +22,9 @@ const MAX_DELAY_MS: u64 = 600_000;
 pub struct Scenario {
     /// Where it came from (a file path or `<embedded default>`), for messages.
     pub source: String,
-    pub dialect: Dialect,
+    /// The interface version the server speaks (`interface = "1.x"`, or the older
+    /// `dialect = "v1"`): command layouts, success codes, the 8th point field.
+    pub interface: Interface,
     pub server: ServerSettings,
     pub projects: Vec<Project>,
     pub viz: Option<Viz>,
@@ -30,11 +32,21 @@ pub struct Scenario {
     pub faults: Vec<Fault>,
 }
 
+/// The older spelling of the interface version (`dialect = "v1"` is `interface = "1.x"`).
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Deserialize)]
 #[serde(rename_all = "lowercase")]
 pub enum Dialect {
     V1,
     V2,
+}
+
+impl Dialect {
+    pub fn interface(self) -> Interface {
+        match self {
+            Dialect::V1 => Interface::V1,
+            Dialect::V2 => Interface::V2,
+        }
+    }
 }
 
 #[derive(Debug, Clone, Deserialize)]
@@ -55,9 +67,29 @@ pub struct ServerSettings {
     /// Clients served at once; a further connection is refused (closed and logged).
     #[serde(default = "default_max_clients")]
     pub max_clients: usize,
-    /// The Vision Move data layout of 210 formats 3/4 (111 always sends the Kawasaki one).
+    /// The Vision Move data layout of 210 formats 3/4 (111 always sends the Kawasaki one);
+    /// default: the KUKA layout in 1.x, the 21-value one in 2.x (see [`Scenario::plan_layout`]).
     #[serde(default)]
-    pub vision_move_layout: PlanLayout,
+    pub vision_move_layout: Option<PlanLayout>,
+    /// Wire format: ASCII text or HEX fields.
+    #[serde(default = "default_codec")]
+    pub codec: Codec,
+    /// HEX replies are zero-padded to this many bytes; default: the KUKA frame of the batch
+    /// (`4 × (5 + 8 × max(batch, 20))`, 660 bytes); 0 sends the fields only.
+    #[serde(default)]
+    pub hex_reply_bytes: Option<usize>,
+    /// ASCII: a request without CR is taken after this many quiet milliseconds (Mech-Mind's 1.x
+    /// clients send `cmd,...,` without CR); 0 waits for the CR.
+    #[serde(default = "default_unterminated_ms")]
+    pub ascii_unterminated_ms: u64,
+}
+
+impl ServerSettings {
+    /// Bytes HEX replies are padded to.
+    pub fn hex_reply_bytes(&self) -> usize {
+        self.hex_reply_bytes
+            .unwrap_or_else(|| catalog().hex_frame_bytes(self.batch) as usize)
+    }
 }
 
 /// A layout of the Vision Move data, as the catalog's `[[vision_move_field]]` list defines it.
@@ -71,6 +103,12 @@ pub enum PlanLayout {
     Kawasaki,
 }
 
+fn default_codec() -> Codec {
+    Codec::Ascii
+}
+fn default_unterminated_ms() -> u64 {
+    50
+}
 fn default_batch() -> u32 {
     catalog().limits.batch_default
 }
@@ -97,7 +135,10 @@ impl Default for ServerSettings {
             idle_timeout_ms: default_idle_timeout_ms(),
             max_message_bytes: default_max_message_bytes(),
             max_clients: default_max_clients(),
-            vision_move_layout: PlanLayout::default(),
+            vision_move_layout: None,
+            codec: default_codec(),
+            hex_reply_bytes: None,
+            ascii_unterminated_ms: default_unterminated_ms(),
         }
     }
 }
@@ -165,6 +206,9 @@ pub struct VisionPoint {
     pub label: i64,
     #[serde(default = "default_speed")]
     pub speed: f64,
+    /// Tool ID: the 8th field of a point in 2.x (1.x sends the speed there).
+    #[serde(default)]
+    pub tool: i64,
     /// Custom port values returned by 110.
     #[serde(default)]
     pub custom: Vec<f64>,
@@ -347,6 +391,8 @@ impl std::error::Error for ScenarioError {}
 struct RawScenario {
     #[serde(default)]
     dialect: Option<Spanned<Dialect>>,
+    #[serde(default)]
+    interface: Option<Spanned<Interface>>,
     #[serde(default)]
     server: Option<Spanned<ServerSettings>>,
     #[serde(default, rename = "project")]
@@ -656,16 +702,21 @@ impl Scenario {
         })?;
         let cat = catalog();
 
-        let dialect = match raw.dialect {
-            None => Dialect::V1,
-            Some(d) if *d.get_ref() == Dialect::V1 => Dialect::V1,
-            Some(d) => {
+        let interface = match (&raw.interface, &raw.dialect) {
+            (Some(i), Some(d)) if d.get_ref().interface() != *i.get_ref() => {
                 return Err(ck.error(
                     d.span(),
-                    "dialect \"v2\" (Mech-Mind 2.x replies) is not implemented by this server",
-                    "use `dialect = \"v1\"` (the 1.x protocol the generated package speaks)",
+                    format!(
+                        "`dialect` names interface {} but `interface` is {}",
+                        d.get_ref().interface(),
+                        i.get_ref()
+                    ),
+                    "remove `dialect` (the older spelling of `interface`)",
                 ));
             }
+            (Some(i), _) => *i.get_ref(),
+            (None, Some(d)) => d.get_ref().interface(),
+            (None, None) => Interface::V1,
         };
 
         let server = match raw.server {
@@ -712,6 +763,33 @@ impl Scenario {
                             "use 1 to {MAX_CLIENTS_LIMIT} clients (default {})",
                             default_max_clients()
                         ),
+                    ));
+                }
+                if let Some(n) = settings.hex_reply_bytes
+                    && n != 0
+                    && !(64..=cat.limits.eki_raw_size_max as usize).contains(&n)
+                {
+                    return Err(ck.error_key(
+                        s.span(),
+                        "hex_reply_bytes",
+                        format!("`hex_reply_bytes = {n}` is out of range"),
+                        format!(
+                            "use 0 (unpadded) or 64 to {} bytes (default: the KUKA frame of \
+                             the batch, {} bytes)",
+                            cat.limits.eki_raw_size_max,
+                            cat.hex_frame_bytes(settings.batch)
+                        ),
+                    ));
+                }
+                if settings.ascii_unterminated_ms > MAX_DELAY_MS {
+                    return Err(ck.error_key(
+                        s.span(),
+                        "ascii_unterminated_ms",
+                        format!(
+                            "`ascii_unterminated_ms = {}` is out of range",
+                            settings.ascii_unterminated_ms
+                        ),
+                        format!("use 0 (wait for CR) to {MAX_DELAY_MS} milliseconds"),
                     ));
                 }
                 if settings.idle_timeout_ms == 0 {
@@ -856,15 +934,18 @@ impl Scenario {
 
         for f in &raw.faults {
             let fault = f.get_ref();
-            if cat.command(fault.command).is_none() {
+            if cat.command_in(interface, fault.command).is_none() {
                 let known: Vec<String> = cat
-                    .commands_of(crate::catalog::Interface::V1)
+                    .commands_of(interface)
                     .map(|c| c.code.to_string())
                     .collect();
                 return Err(ck.error_key(
                     f.span(),
                     "command",
-                    format!("fault for unknown command {}", fault.command),
+                    format!(
+                        "fault for unknown command {} (interface {interface})",
+                        fault.command
+                    ),
                     format!("use one of the catalog's commands: {}", known.join(", ")),
                 ));
             }
@@ -915,7 +996,7 @@ impl Scenario {
 
         Ok(Scenario {
             source: path.to_string(),
-            dialect,
+            interface,
             server,
             projects,
             viz,
@@ -926,6 +1007,34 @@ impl Scenario {
                 .collect(),
             faults: raw.faults.into_iter().map(Spanned::into_inner).collect(),
         })
+    }
+
+    /// The same scenario served as interface `iface` (`krlkit sim serve --interface`); fails
+    /// when a fault names a command that version does not have.
+    pub fn with_interface(mut self, iface: Interface) -> Result<Scenario, String> {
+        if let Some(f) = self
+            .faults
+            .iter()
+            .find(|f| catalog().command_in(iface, f.command).is_none())
+        {
+            return Err(format!(
+                "{}: a fault names command {}, which interface {iface} does not have",
+                self.source, f.command
+            ));
+        }
+        self.interface = iface;
+        Ok(self)
+    }
+
+    /// The Vision Move data layout of 210 formats 3/4: as set, else the KUKA 1.x layout (20
+    /// values) in 1.x and the 21-value one in 2.x.
+    pub fn plan_layout(&self) -> PlanLayout {
+        self.server
+            .vision_move_layout
+            .unwrap_or(match self.interface {
+                Interface::V1 => PlanLayout::Kuka,
+                Interface::V2 => PlanLayout::Kawasaki,
+            })
     }
 
     pub fn project(&self, id: i64) -> Option<&Project> {

@@ -17,10 +17,11 @@ use std::sync::{Arc, Mutex, MutexGuard};
 use std::thread::{self, JoinHandle};
 use std::time::{Duration, Instant, SystemTime};
 
-use crate::catalog::catalog;
+use crate::catalog::{Codec as Wire, Interface, catalog};
 
 use super::clock::{Clock, SystemClock};
-use super::protocol::{AsciiCodec, Codec, DecodeError, Frame, Request};
+use super::hex::{ByteOrder, HexCodec};
+use super::protocol::{AsciiCodec, Codec, DecodeError, Frame, Reply, Request};
 use super::scenario::{Fault, Scenario, ServerSettings};
 use super::state::{State, codes};
 
@@ -102,6 +103,7 @@ struct Shared {
     stop: AtomicBool,
     started: Instant,
     settings: ServerSettings,
+    interface: Interface,
     /// TCP connections accepted so far (refused ones included).
     connections: AtomicU64,
     log: Mutex<Log>,
@@ -148,7 +150,7 @@ impl Shared {
             command: request.as_ref().map(|r| r.command),
             name: request
                 .as_ref()
-                .and_then(|r| catalog().command(r.command))
+                .and_then(|r| catalog().command_in(self.interface, r.command))
                 .map(|c| c.name.clone()),
             args: request.map(|r| r.args).unwrap_or_default(),
             reply,
@@ -217,6 +219,7 @@ impl Server {
             stop: AtomicBool::new(false),
             started: Instant::now(),
             settings: scenario.server.clone(),
+            interface: scenario.interface,
             connections: AtomicU64::new(0),
             log: Mutex::new(Log::default()),
             observer: Mutex::new(observer),
@@ -375,8 +378,24 @@ struct Session<'s> {
 
 impl<'s> Session<'s> {
     fn new(shared: &'s Shared, stream: TcpStream, peer: SocketAddr, connection: u64) -> Self {
+        let settings = &shared.settings;
+        let hex = |order| -> Box<dyn Codec> {
+            Box::new(HexCodec::new(
+                order,
+                shared.interface,
+                settings.hex_reply_bytes(),
+            ))
+        };
+        let codec: Box<dyn Codec> = match settings.codec {
+            Wire::Ascii => Box::new(
+                AsciiCodec::new(settings.max_message_bytes)
+                    .with_unterminated(Duration::from_millis(settings.ascii_unterminated_ms)),
+            ),
+            Wire::HexLe => hex(ByteOrder::Little),
+            Wire::HexBe => hex(ByteOrder::Big),
+        };
         Session {
-            codec: Box::new(AsciiCodec::new(shared.settings.max_message_bytes)),
+            codec,
             shared,
             stream,
             peer,
@@ -399,8 +418,22 @@ impl<'s> Session<'s> {
         // Restarted by complete messages only: bytes that never make one do not keep a
         // session open.
         let mut last_message = Instant::now();
+        let mut last_input = Instant::now();
         loop {
-            while let Some(frame) = self.codec.next_frame(&mut input) {
+            loop {
+                let frame = match self.codec.next_frame(&mut input) {
+                    Some(f) => f,
+                    // Input the codec takes without a terminator once it stayed quiet.
+                    None => match self.codec.pending_wait(&input) {
+                        Some(quiet) if last_input.elapsed() >= quiet => {
+                            match self.codec.flush(&mut input) {
+                                Some(f) => f,
+                                None => break,
+                            }
+                        }
+                        _ => break,
+                    },
+                };
                 let next = match frame {
                     Frame::Message(m) => self.message(&m),
                     Frame::Oversized(bytes) => self.oversized(&bytes),
@@ -417,16 +450,22 @@ impl<'s> Session<'s> {
             if idle_left.is_zero() {
                 return;
             }
-            if self
-                .stream
-                .set_read_timeout(Some(idle_left.min(MAX_READ_WAIT)))
-                .is_err()
-            {
+            let quiet_left = self.codec.pending_wait(&input).map(|q| {
+                q.saturating_sub(last_input.elapsed())
+                    .max(Duration::from_millis(1))
+            });
+            let wait = idle_left
+                .min(MAX_READ_WAIT)
+                .min(quiet_left.unwrap_or(MAX_READ_WAIT));
+            if self.stream.set_read_timeout(Some(wait)).is_err() {
                 return;
             }
             match self.stream.read(&mut chunk) {
                 Ok(0) => return,
-                Ok(n) => input.extend_from_slice(&chunk[..n]),
+                Ok(n) => {
+                    input.extend_from_slice(&chunk[..n]);
+                    last_input = Instant::now();
+                }
                 Err(e)
                     if matches!(
                         e.kind(),
@@ -443,12 +482,12 @@ impl<'s> Session<'s> {
 
     fn oversized(&mut self, bytes: &[u8]) -> Next {
         let max = self.shared.settings.max_message_bytes;
-        let reply = format!("0,{}", codes().invalid_format);
+        let reply = Reply::new(0, 0).int(i64::from(codes().invalid_format));
         let shown = self.codec.show(&bytes[..bytes.len().min(64)]);
         self.record(Entry {
             raw: format!("{shown}..."),
             request: None,
-            reply: Some(reply.clone()),
+            reply: Some(reply.text()),
             note: Some(format!(
                 "message longer than {max} bytes without a terminator; connection closed"
             )),
@@ -466,15 +505,18 @@ impl<'s> Session<'s> {
                     DecodeError::NoCommand => (None, 0),
                     DecodeError::BadField(c) => (Some(c), c),
                 };
-                let reply = format!("{echo},{}", codes().invalid_format);
+                let reply = Reply::new(i64::from(echo), 0).int(i64::from(codes().invalid_format));
                 self.record(Entry {
                     raw,
                     request: cmd.map(|c| Request {
                         command: c,
                         args: Vec::new(),
                     }),
-                    reply: Some(reply.clone()),
-                    note: Some("not a comma-separated list of numbers".into()),
+                    reply: Some(reply.text()),
+                    note: Some(match self.shared.settings.codec {
+                        Wire::Ascii => "not a comma-separated list of numbers".into(),
+                        _ => "not a request of 4-byte fields (command, then int32/float32)".into(),
+                    }),
                 });
                 return self.send(&reply);
             }
@@ -485,7 +527,7 @@ impl<'s> Session<'s> {
             self.record(Entry {
                 raw,
                 request: Some(req),
-                reply: Some(reply.clone()),
+                reply: Some(reply.text()),
                 note: None,
             });
             return self.send(&reply);
@@ -497,7 +539,7 @@ impl<'s> Session<'s> {
         self.record(Entry {
             raw,
             request: Some(req),
-            reply: reply.clone(),
+            reply: reply.as_ref().map(Reply::text),
             note: Some(note),
         });
         match reply {
@@ -510,7 +552,10 @@ impl<'s> Session<'s> {
     fn fault_for(&self, req: &Request) -> Option<Fault> {
         // Only catalog commands are counted (faults can only name those), so a client cycling
         // through arbitrary numbers cannot grow the map.
-        let occurrence = if catalog().command(req.command).is_some() {
+        let occurrence = if catalog()
+            .command_in(self.shared.interface, req.command)
+            .is_some()
+        {
             let mut occurrences = lock(&self.shared.occurrences);
             let count = occurrences.entry(req.command).or_insert(0);
             *count = count.saturating_add(1);
@@ -527,7 +572,7 @@ impl<'s> Session<'s> {
     }
 
     /// The reply (None = drop the connection) and a description of an injected fault.
-    fn apply(&self, fault: &Fault, req: &Request) -> (Option<String>, String) {
+    fn apply(&self, fault: &Fault, req: &Request) -> (Option<Reply>, String) {
         let delay = if fault.delay_ms > 0 {
             format!("delayed {} ms", fault.delay_ms)
         } else {
@@ -545,18 +590,19 @@ impl<'s> Session<'s> {
         if fault.drop {
             return (None, join("fault: connection dropped".into()));
         }
+        let echo = i64::from(req.command);
         if let Some(status) = fault.status {
-            let reply = format!("{},{status}", req.command);
+            let reply = Reply::new(echo, 0).int(i64::from(status));
             return (Some(reply), join(format!("fault: forced status {status}")));
         }
         if let Some(g) = &fault.garbage {
-            return (Some(g.clone()), join("fault: garbage reply".into()));
+            let reply = Reply::garbage(echo, g);
+            return (Some(reply), join("fault: garbage reply".into()));
         }
         let reply = lock(&self.shared.state).handle(req);
-        if let Some(echo) = fault.wrong_echo {
-            let rest = reply.find(',').map_or("", |i| &reply[i..]);
-            let wrong = format!("{echo}{rest}");
-            return (Some(wrong), join(format!("fault: wrong echo {echo}")));
+        if let Some(wrong) = fault.wrong_echo {
+            let reply = reply.with_echo(wrong);
+            return (Some(reply), join(format!("fault: wrong echo {wrong}")));
         }
         (Some(reply), join(String::new()))
     }
@@ -573,7 +619,7 @@ impl<'s> Session<'s> {
         true
     }
 
-    fn send(&mut self, reply: &str) -> Next {
+    fn send(&mut self, reply: &Reply) -> Next {
         let bytes = self.codec.encode(reply);
         match self
             .stream

@@ -7,7 +7,7 @@ use std::collections::{HashMap, VecDeque};
 use std::sync::{Arc, OnceLock};
 use std::time::Duration;
 
-use crate::catalog::catalog;
+use crate::catalog::{Interface, catalog};
 
 use super::clock::{Clock, SystemClock};
 use super::protocol::{Reply, Request, as_int};
@@ -39,12 +39,13 @@ pub enum Cmd {
     GetPlanWaypoint,
     SetBoxSize,
     SetExternalMove,
+    StopViz,
     GetNotify,
     Calibrate,
     GetStatus,
 }
 
-const COMMANDS: [(Cmd, &str); 20] = [
+const COMMANDS: [(Cmd, &str); 21] = [
     (Cmd::StartVision, "start_vision"),
     (Cmd::GetVisionResult, "get_vision_result"),
     (Cmd::SwitchRecipe, "switch_recipe"),
@@ -62,6 +63,7 @@ const COMMANDS: [(Cmd, &str); 20] = [
     (Cmd::GetPlanWaypoint, "get_plan_waypoint"),
     (Cmd::SetBoxSize, "set_box_size"),
     (Cmd::SetExternalMove, "set_external_move"),
+    (Cmd::StopViz, "stop_viz"),
     (Cmd::GetNotify, "get_notify"),
     (Cmd::Calibrate, "calibrate"),
     (Cmd::GetStatus, "get_status"),
@@ -101,26 +103,37 @@ pub struct Codes {
     pub no_config_id: u32,
 }
 
-/// The resolved codes.
+/// The resolved codes of the 1.x interface (the codes the framing itself answers, 3001 and
+/// 3002, are the same in every version).
+pub fn codes() -> &'static Codes {
+    codes_in(Interface::V1)
+}
+
+/// The resolved codes of an interface version: the commands it has and their success codes.
 ///
 /// # Panics
 /// If a name is missing from the catalog (a build defect the tests catch).
-pub fn codes() -> &'static Codes {
-    static CODES: OnceLock<Codes> = OnceLock::new();
-    CODES.get_or_init(|| {
+pub fn codes_in(iface: Interface) -> &'static Codes {
+    static CODES: [OnceLock<Codes>; 2] = [OnceLock::new(), OnceLock::new()];
+    let slot = match iface {
+        Interface::V1 => &CODES[0],
+        Interface::V2 => &CODES[1],
+    };
+    slot.get_or_init(|| {
         let cat = catalog();
         let st = |n: &str| {
-            cat.status_named(n)
-                .unwrap_or_else(|| panic!("catalog has no status named {n}"))
+            cat.status_named_in(iface, n)
+                .unwrap_or_else(|| panic!("catalog has no {iface} status named {n}"))
                 .code
         };
         let mut commands = HashMap::new();
         let mut success = HashMap::new();
         let mut arity = HashMap::new();
         for (cmd, name) in COMMANDS {
-            let c = cat
-                .command_named(name)
-                .unwrap_or_else(|| panic!("catalog has no command named {name}"));
+            // A command the version lacks (502 in 2.x, 202 in 1.x) is answered 3001.
+            let Some(c) = cat.command_named_in(iface, name) else {
+                continue;
+            };
             commands.insert(c.code, cmd);
             if !c.request.iter().any(|f| f.ends_with("...")) {
                 arity.insert(cmd, c.request.len());
@@ -260,13 +273,17 @@ impl State {
         Reply::new(i64::from(echo), self.scenario.server.decimals)
     }
 
-    fn status(&self, echo: u32, status: u32) -> String {
-        self.reply(echo).int(i64::from(status)).into_text()
+    fn status(&self, echo: u32, status: u32) -> Reply {
+        self.reply(echo).int(i64::from(status))
     }
 
-    /// The reply line (without CR) to one request.
-    pub fn handle(&mut self, req: &Request) -> String {
-        let c = codes();
+    fn codes(&self) -> &'static Codes {
+        codes_in(self.scenario.interface)
+    }
+
+    /// The reply to one request (`Reply::text` is its ASCII line).
+    pub fn handle(&mut self, req: &Request) -> Reply {
+        let c = self.codes();
         let Some(cmd) = c.command(req.command) else {
             return self.status(req.command, c.invalid_command);
         };
@@ -276,8 +293,9 @@ impl State {
         }
     }
 
-    fn dispatch(&mut self, cmd: Cmd, req: &Request) -> Result<String, u32> {
-        let c = codes();
+    fn dispatch(&mut self, cmd: Cmd, req: &Request) -> Result<Reply, u32> {
+        let c = self.codes();
+        let v2 = self.scenario.interface == Interface::V2;
         let a = &req.args;
         // The catalog's request layout decides the field count; the destructuring below
         // repeats it for the compiler (the tests check the two agree).
@@ -350,10 +368,12 @@ impl State {
                     .int(n as i64)
                     .int(0);
                 for p in &proj.points[start..start + n] {
-                    r = r.reals(&p.pose).int(p.label).real(p.speed);
+                    r = r.reals(&p.pose).int(p.label);
+                    // The 8th field: speed in 1.x, tool ID in 2.x.
+                    r = if v2 { r.int(p.tool) } else { r.speed(p.speed) };
                 }
                 self.project_state(project).cursor = start + n;
-                Ok(r.into_text())
+                Ok(r)
             }
             Cmd::SwitchRecipe => {
                 let [project, recipe] = fields::<2>(a)?;
@@ -412,8 +432,7 @@ impl State {
                     .int(p.custom.len() as i64)
                     .reals(&p.pose)
                     .int(p.label)
-                    .reals(&p.custom)
-                    .into_text();
+                    .reals(&p.custom);
                 self.project_state(project).cursor = cursor + 1;
                 Ok(text)
             }
@@ -497,7 +516,12 @@ impl State {
                 Ok(text)
             }
             Cmd::GetDoList => {
-                fields::<0>(a)?;
+                // 2.x sends the number of gripper sections; the DO list does not depend on it.
+                if v2 {
+                    fields::<1>(a)?;
+                } else {
+                    fields::<0>(a)?;
+                }
                 let list = self
                     .scenario
                     .viz
@@ -508,11 +532,14 @@ impl State {
                 Ok(self
                     .reply(echo)
                     .int(i64::from(ok))
-                    .ints(&padded_do_list(list))
-                    .into_text())
+                    .ints(&padded_do_list(list)))
             }
             Cmd::GetVisionDoList => {
-                let [project] = fields::<1>(a)?;
+                let project = if v2 {
+                    fields::<2>(a)?[0]
+                } else {
+                    fields::<1>(a)?[0]
+                };
                 let project = int(project)?;
                 self.triggered(project)?;
                 let list = self
@@ -523,8 +550,7 @@ impl State {
                 Ok(self
                     .reply(echo)
                     .int(i64::from(ok))
-                    .ints(&padded_do_list(list))
-                    .into_text())
+                    .ints(&padded_do_list(list)))
             }
             Cmd::GetVisionPlanWaypoint => {
                 let [project, kind] = fields::<2>(a)?;
@@ -546,14 +572,17 @@ impl State {
                     .int(i64::from(w.vision_move))
                     .reals(values)
                     .int(w.motion)
-                    .int(w.tool)
-                    .real(w.speed);
-                // 111 is a 1.8.3 command: its Vision Move data has the Kawasaki layout.
+                    .int(w.tool);
+                // The 1.8.3 layout has the speed; 2.x (2.2.1 page) does not.
+                if !v2 {
+                    r = r.speed(w.speed);
+                }
+                // 111 is a 1.8.3/2.x command: its Vision Move data has the 21-value layout.
                 if w.vision_move {
                     r = r.reals(&w.plan_results(PlanLayout::Kawasaki));
                 }
                 self.project_state(project).path_cursor = cursor + 1;
-                Ok(r.into_text())
+                Ok(r)
             }
             Cmd::GetVizProperty => {
                 let [config] = fields::<1>(a)?;
@@ -570,7 +599,7 @@ impl State {
                     .get(&(line.step, line.key.clone()))
                     .copied()
                     .unwrap_or(line.value);
-                Ok(self.reply(echo).int(i64::from(ok)).real(value).into_text())
+                Ok(self.reply(echo).int(i64::from(ok)).real(value))
             }
             Cmd::SetVizProperty => {
                 let [config] = fields::<1>(a)?;
@@ -599,7 +628,7 @@ impl State {
                     Some(n) if n.at <= now => self.notices.pop_front().map_or(0, |n| n.message),
                     _ => 0,
                 };
-                Ok(self.reply(echo).int(message).into_text())
+                Ok(self.reply(echo).int(message))
             }
             Cmd::GetPlanWaypoint => {
                 let [format] = fields::<1>(a)?;
@@ -622,17 +651,17 @@ impl State {
                     .reals(values)
                     .int(w.motion)
                     .int(w.tool)
-                    .real(w.speed);
+                    .speed(w.speed);
                 if w.vision_move {
                     if with_plan {
-                        r = r.reals(&w.plan_results(self.scenario.server.vision_move_layout));
+                        r = r.reals(&w.plan_results(self.scenario.plan_layout()));
                     }
                     r = r.int(w.custom.len() as i64).reals(&w.custom);
                 } else {
                     r = r.int(0);
                 }
                 self.viz.cursor = cursor + 1;
-                Ok(r.into_text())
+                Ok(r)
             }
             Cmd::SetBoxSize => {
                 let [project, l, w, h] = fields::<4>(a)?;
@@ -670,11 +699,22 @@ impl State {
                 Ok(match points.get(next) {
                     Some(p) => r.int(0).reals(&p.pose).reals(&p.joints),
                     None => r.int(1).reals(&[0.0; 12]),
-                }
-                .into_text())
+                })
             }
             Cmd::GetStatus => {
                 fields::<0>(a)?;
+                let r = self.status(echo, ok);
+                // 2.x: Mech-Vision open, Mech-Viz open (a Viz project is configured), cameras.
+                Ok(if v2 {
+                    r.ints(&[1, i64::from(self.scenario.viz.is_some()), 1])
+                } else {
+                    r
+                })
+            }
+            Cmd::StopViz => {
+                fields::<0>(a)?;
+                self.scenario.viz.as_ref().ok_or(c.viz_no_project)?;
+                self.viz.started = false;
                 Ok(self.status(echo, ok))
             }
         }
@@ -705,7 +745,7 @@ impl State {
 
     /// The state of a known, triggered project, or the status to reply.
     fn triggered(&self, project: i64) -> Result<&ProjectState, u32> {
-        let c = codes();
+        let c = self.codes();
         self.scenario.project(project).ok_or(c.project_not_found)?;
         self.projects
             .get(&project)
@@ -714,7 +754,7 @@ impl State {
     }
 
     fn started_viz(&self) -> Result<&super::scenario::Viz, u32> {
-        let c = codes();
+        let c = self.codes();
         let viz = self.scenario.viz.as_ref().ok_or(c.viz_no_project)?;
         if !self.viz.started {
             return Err(c.viz_no_result);
@@ -737,7 +777,7 @@ impl State {
         cursor: usize,
         joints: bool,
         (empty, mismatch): (u32, u32),
-    ) -> Result<String, u32> {
+    ) -> Result<Reply, u32> {
         let n = self.batch_len(path.len(), cursor);
         if n == 0 {
             return Err(empty);
@@ -757,13 +797,12 @@ impl State {
             .int(i64::from(all))
             .int(n as i64)
             .int(vis_pos);
+        let v2 = self.scenario.interface == Interface::V2;
         for w in batch {
-            r = r
-                .reals(w.values(joints).unwrap_or(&[]))
-                .int(w.label)
-                .real(w.speed);
+            r = r.reals(w.values(joints).unwrap_or(&[])).int(w.label);
+            r = if v2 { r.int(w.tool) } else { r.speed(w.speed) };
         }
-        Ok(r.into_text())
+        Ok(r)
     }
 }
 
@@ -793,41 +832,101 @@ mod tests {
 
     #[test]
     fn every_command_and_status_name_resolves_in_the_catalog() {
-        let c = codes();
-        assert_eq!(c.commands.len(), COMMANDS.len());
-        for (cmd, name) in COMMANDS {
-            let code = catalog().command_named(name).map(|c| c.code);
-            assert_eq!(code.and_then(|n| c.command(n)), Some(cmd), "{name}");
+        for iface in Interface::ALL {
+            let c = codes_in(iface);
+            for (cmd, name) in COMMANDS {
+                let code = catalog().command_named_in(iface, name).map(|c| c.code);
+                assert_eq!(code.and_then(|n| c.command(n)), code.map(|_| cmd), "{name}");
+            }
+            assert_eq!(c.invalid_format, 3002);
+            assert_eq!(c.project_not_found, 1011);
         }
-        assert_eq!(c.invalid_format, 3002);
-        assert_eq!(c.project_not_found, 1011);
+        assert_eq!(codes_in(Interface::V1).commands.len(), COMMANDS.len() - 1);
+        assert_eq!(codes_in(Interface::V2).commands.len(), COMMANDS.len() - 1);
+        assert!(codes_in(Interface::V1).command(202).is_none());
+        assert!(codes_in(Interface::V2).command(502).is_none());
     }
 
     #[test]
     fn every_fixed_request_layout_of_the_catalog_is_the_one_served() {
-        let mut state = State::new(Scenario::default_embedded());
-        let bad = codes().invalid_format.to_string();
-        let mut fixed = 0;
-        for (cmd, name) in COMMANDS {
-            let Some(n) = codes().arity(cmd) else {
-                continue;
-            };
-            fixed += 1;
-            let code = catalog().command_named(name).map_or(0, |c| c.code);
-            let ask = |state: &mut State, len: usize| {
-                state.handle(&Request {
-                    command: code,
-                    args: vec![1.0; len],
-                })
-            };
-            let reply = ask(&mut state, n);
-            assert_ne!(
-                reply.split(',').nth(1),
-                Some(bad.as_str()),
-                "{name}: {reply}"
+        for (iface, text) in [
+            (Interface::V1, "interface = \"1.x\"\n"),
+            (Interface::V2, "interface = \"2.x\"\n"),
+        ] {
+            let mut sc = String::from(text);
+            sc.push_str(
+                Scenario::default_text()
+                    .replace("dialect = \"v1\"", "")
+                    .as_str(),
             );
-            assert_eq!(ask(&mut state, n + 1), format!("{code},{bad}"), "{name}");
+            let mut state = State::new(Scenario::from_toml_str(&sc, "x").unwrap());
+            let c = codes_in(iface);
+            let bad = c.invalid_format.to_string();
+            let mut fixed = 0;
+            for (cmd, name) in COMMANDS {
+                let Some(n) = c.arity(cmd) else {
+                    continue;
+                };
+                fixed += 1;
+                let code = catalog()
+                    .command_named_in(iface, name)
+                    .map_or(0, |c| c.code);
+                let ask = |state: &mut State, len: usize| {
+                    state
+                        .handle(&Request {
+                            command: code,
+                            args: vec![1.0; len],
+                        })
+                        .text()
+                };
+                let reply = ask(&mut state, n);
+                assert_ne!(
+                    reply.split(',').nth(1),
+                    Some(bad.as_str()),
+                    "{iface} {name}: {reply}"
+                );
+                assert_eq!(ask(&mut state, n + 1), format!("{code},{bad}"), "{name}");
+            }
+            assert_eq!(fixed, c.commands.len() - 2, "all but 101 and 201");
         }
-        assert_eq!(fixed, COMMANDS.len() - 2, "all but 101 and 201");
+    }
+
+    #[test]
+    fn version_differences_are_served() {
+        let text = |iface: &str| {
+            format!(
+                "interface = \"{iface}\"\n{}",
+                Scenario::default_text().replace("dialect = \"v1\"", "")
+            )
+        };
+        let ask = |state: &mut State, command: u32, args: &[f64]| {
+            state
+                .handle(&Request {
+                    command,
+                    args: args.to_vec(),
+                })
+                .text()
+        };
+        let mut v1 = State::new(Scenario::from_toml_str(&text("1.x"), "x").unwrap());
+        let mut v2 = State::new(Scenario::from_toml_str(&text("2.x"), "x").unwrap());
+        assert_eq!(ask(&mut v1, 901, &[]), "901,1101");
+        assert_eq!(ask(&mut v2, 901, &[]), "901,9100,1,1,1");
+        assert_eq!(ask(&mut v1, 202, &[]), "202,3001");
+        assert_eq!(ask(&mut v2, 202, &[]), "202,2104");
+        assert_eq!(ask(&mut v2, 502, &[0.0; 6]), "502,3001");
+        assert_eq!(ask(&mut v1, 502, &[0.0; 6]), "502,2107");
+        // The 8th field of a point: speed (1.x) or tool ID (2.x).
+        for s in [&mut v1, &mut v2] {
+            assert_eq!(
+                ask(s, 101, &[1.0, 1.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0]),
+                "101,1102"
+            );
+        }
+        let eighth = |r: String| r.split(',').nth(12).map(str::to_string);
+        let speed = Scenario::default_embedded().projects[0].points[0].speed;
+        assert_eq!(eighth(ask(&mut v1, 102, &[1.0])), Some(format!("{speed}")));
+        assert_eq!(eighth(ask(&mut v2, 102, &[1.0])), Some("0".into()));
+        // 2.x 206 carries the number of gripper sections.
+        assert_eq!(ask(&mut v2, 206, &[]), "206,3002");
     }
 }

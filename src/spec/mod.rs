@@ -9,60 +9,13 @@ use std::net::Ipv4Addr;
 
 pub use error::SpecError;
 
-pub use crate::catalog::Interface;
 use crate::catalog::catalog;
+pub use crate::catalog::{Codec, Interface};
 use crate::diag::LineIndex;
 use raw::RawSpec;
 
 /// The commented default spec that `krlkit init` writes; parsing it yields [`Spec::default`].
 pub const DEFAULT_SPEC_TOML: &str = include_str!("../../templates/spec/krlkit.toml");
-
-/// Wire encoding of requests and replies.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, serde::Deserialize)]
-pub enum Codec {
-    /// Comma-separated decimal text, one message per CR (EKI RAW STREAM, EOS 13).
-    #[serde(rename = "ascii")]
-    Ascii,
-    /// 4-byte little-endian fields, int32 or float32 (EKI RAW BYTE): Mech-Vision's KUKA default.
-    #[serde(rename = "hex-le")]
-    HexLe,
-    /// 4-byte big-endian fields (EKI RAW BYTE; the package swaps the bytes of every field).
-    #[serde(rename = "hex-be")]
-    HexBe,
-}
-
-impl Codec {
-    pub const ALL: [Codec; 3] = [Codec::Ascii, Codec::HexLe, Codec::HexBe];
-
-    pub fn as_str(self) -> &'static str {
-        match self {
-            Codec::Ascii => "ascii",
-            Codec::HexLe => "hex-le",
-            Codec::HexBe => "hex-be",
-        }
-    }
-
-    pub fn is_hex(self) -> bool {
-        self != Codec::Ascii
-    }
-}
-
-impl std::fmt::Display for Codec {
-    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
-        f.write_str(self.as_str())
-    }
-}
-
-impl std::str::FromStr for Codec {
-    type Err = String;
-
-    fn from_str(s: &str) -> Result<Codec, String> {
-        Codec::ALL
-            .into_iter()
-            .find(|c| c.as_str() == s)
-            .ok_or_else(|| format!("unknown codec `{s}` (use \"ascii\", \"hex-le\" or \"hex-be\")"))
-    }
-}
 
 #[derive(Debug, Clone, Copy, PartialEq, Eq, serde::Deserialize)]
 pub enum LineEnding {

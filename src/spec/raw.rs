@@ -145,21 +145,34 @@ impl RawSpec {
 
         let server_ip = match &self.server_ip {
             None => default::SERVER_IP,
-            Some(ip) => ip.get_ref().parse().map_err(|_| {
-                cx.err(
-                    ip.span().start,
-                    format!("`server_ip` = \"{}\" is not an IPv4 address", ip.get_ref()),
-                    "write the vision PC's address as four dotted numbers, e.g. \"192.168.1.121\""
-                        .into(),
-                )
-            })?,
+            Some(ip) => {
+                let addr: std::net::Ipv4Addr = ip.get_ref().parse().map_err(|_| {
+                    cx.err(
+                        ip.span().start,
+                        format!("`server_ip` = \"{}\" is not an IPv4 address", ip.get_ref()),
+                        "write the vision PC's address as four dotted numbers, e.g. \"192.168.1.121\""
+                            .into(),
+                    )
+                })?;
+                if addr.is_unspecified() || addr.is_broadcast() || addr.is_multicast() {
+                    return Err(cx.err(
+                        ip.span().start,
+                        format!(
+                            "`server_ip` = \"{addr}\" is not an address the robot can connect to (it names {} hosts, not the vision PC)",
+                            if addr.is_unspecified() { "any or no" } else { "many" }
+                        ),
+                        "write the vision PC's own address, e.g. \"192.168.1.121\"".into(),
+                    ));
+                }
+                addr
+            }
         };
 
         let server_port = cx.int_in(
             &self.server_port,
             "server_port",
             1,
-            65534,
+            65535,
             u32::from(default::SERVER_PORT),
         )? as u16;
         let (fmin, fmax) = (lim.flag_min, lim.flag_max);
@@ -301,7 +314,13 @@ fn select_subprograms(
                          `interface = \"{o}\"`"
                     ),
                     (Some(s), _) => format!("did you mean `{}`?", s.name),
-                    (None, _) => "use names from `krlkit rules` / the catalog, or \"all\"".into(),
+                    (None, _) => format!(
+                        "valid names: {}, or \"all\"",
+                        subs.iter()
+                            .map(|s| s.name.as_str())
+                            .collect::<Vec<_>>()
+                            .join(", ")
+                    ),
                 };
                 return Err(cx.err(
                     item.span().start,

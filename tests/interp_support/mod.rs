@@ -34,6 +34,8 @@ pub struct Case {
     pub scenario_extra: String,
     /// Digital inputs (`krlkit run --input` settings).
     pub inputs: Vec<InputSetting>,
+    /// The spec the package is generated from; the server speaks its codec and interface.
+    pub spec: Spec,
 }
 
 impl Case {
@@ -47,7 +49,14 @@ impl Case {
             library: Vec::new(),
             scenario_extra: String::new(),
             inputs: Vec::new(),
+            spec: Spec::default(),
         }
+    }
+
+    /// The same case with the package of `spec` (and a server speaking its codec and interface).
+    pub fn with_spec(mut self, spec: Spec) -> Case {
+        self.spec = spec;
+        self
     }
 
     /// Read `; e2e: key = value` lines at the top of the program (before the DEF line).
@@ -56,7 +65,12 @@ impl Case {
     pub fn from_directives(program: PathBuf) -> Case {
         let text = std::fs::read_to_string(&program).expect("program readable");
         let mut case = Case::new(program.clone());
-        let support = program.parent().unwrap().join("support");
+        // The shared helpers beside the program, or beside its folder (e2e/v2/ uses e2e/support/).
+        let dir = program.parent().unwrap();
+        let support = [dir.join("support"), dir.join("../support")]
+            .into_iter()
+            .find(|d| d.is_dir())
+            .unwrap_or_else(|| dir.join("support"));
         if let Ok(rd) = std::fs::read_dir(&support) {
             let mut files: Vec<PathBuf> = rd.map(|e| e.unwrap().path()).collect();
             files.sort();
@@ -147,7 +161,7 @@ pub fn scenario_of(case: &Case) -> Scenario {
 /// Run the case; the request log is taken once the server has answered (or given up on)
 /// every request the program sent, so delayed replies are in it too.
 pub fn run(case: &Case) -> Outcome {
-    let package = interp::package::generated(&Spec::default()).expect("default package");
+    let package = interp::package::generated(&case.spec).expect("package");
     let program = load(case, &package);
     if case.server_absent {
         let addr = closed_port();
@@ -158,7 +172,11 @@ pub fn run(case: &Case) -> Outcome {
             addr: Some(addr),
         };
     }
-    let server = Server::start(scenario_of(case), "127.0.0.1:0").expect("server starts");
+    let mut scenario = scenario_of(case)
+        .with_interface(case.spec.interface)
+        .unwrap_or_else(|e| panic!("{e}"));
+    scenario.server.codec = case.spec.codec;
+    let server = Server::start(scenario, "127.0.0.1:0").expect("server starts");
     let result = interp::run(
         &program,
         &options(server.addr().to_string(), case, &package),
@@ -310,6 +328,48 @@ fn event(e: &Event) -> Option<String> {
     })
 }
 
+/// What a run did, exactly (no rounding, no times): calls with their OUT values and status,
+/// motion targets, messages, the end, the replies the server sent, the shown globals and the
+/// outputs. Two packages behave alike when these are equal.
+pub fn behaviour(o: &Outcome) -> Vec<String> {
+    let mut out: Vec<String> = o
+        .result
+        .events
+        .iter()
+        .filter_map(|r| match &r.event {
+            Event::Motion { kind, target, .. } => Some(format!("{kind} {target:?}")),
+            Event::Call { name } => Some(format!("call {name}")),
+            Event::Return { name, out, status } => {
+                Some(format!("return {name} {status:?} {out:?}"))
+            }
+            Event::Message { text } => Some(format!("message {text}")),
+            Event::End {
+                status, message, ..
+            } => Some(format!("end {status} {message:?}")),
+            _ => None,
+        })
+        .collect();
+    for r in &o.requests {
+        out.push(format!(
+            "request {:?} -> {:?} [{:?}]",
+            r.command, r.reply, r.note
+        ));
+    }
+    let mut globals: Vec<_> = o
+        .result
+        .globals
+        .iter()
+        .filter(|(k, _)| shown_global(k))
+        .collect();
+    globals.sort_by(|a, b| a.0.cmp(b.0));
+    out.extend(globals.into_iter().map(|(k, v)| format!("{k} = {v:?}")));
+    out.push(format!("outputs {:?}", o.result.outputs));
+    match &o.addr {
+        Some(a) => out.into_iter().map(|l| l.replace(a, "<vision>")).collect(),
+        None => out,
+    }
+}
+
 /// Globals a snapshot shows: the program's own (no `MM_` prefix) and the catalog's globals.
 fn shown_global(name: &str) -> bool {
     !name.starts_with("MM_")
@@ -360,7 +420,12 @@ pub fn render(o: &Outcome, addr_to_hide: Option<&str>) -> String {
 /// Status codes a subprogram may legitimately report: the catalog's table (server and package
 /// codes) and 0 for local operations.
 pub fn documented_status(code: i64) -> bool {
-    code == 0 || u32::try_from(code).is_ok_and(|c| catalog().status(c).is_some())
+    documented_status_in(krlkit::catalog::Interface::V1, code)
+}
+
+/// Like [`documented_status`], in the status table of an interface version.
+pub fn documented_status_in(iface: krlkit::catalog::Interface, code: i64) -> bool {
+    code == 0 || u32::try_from(code).is_ok_and(|c| catalog().status_in(iface, c).is_some())
 }
 
 /// Checks every case must pass whatever it does.
@@ -386,7 +451,7 @@ pub fn check_invariants(name: &str, case: &Case, o: &Outcome) {
                 assert_eq!(open.pop(), Some(n.as_str()), "{name}: unbalanced trace");
                 let st = status.unwrap_or_else(|| panic!("{name}: {n} returned no status"));
                 assert!(
-                    documented_status(st),
+                    documented_status_in(case.spec.interface, st),
                     "{name}: {n} ended in undocumented status {st}"
                 );
             }
@@ -402,7 +467,9 @@ pub fn check_invariants(name: &str, case: &Case, o: &Outcome) {
         );
         for q in &o.requests {
             assert!(
-                q.command.is_some() && !q.note.as_deref().unwrap_or("").contains("not a comma"),
+                q.command.is_some()
+                    && !q.note.as_deref().unwrap_or("").contains("not a comma")
+                    && !q.note.as_deref().unwrap_or("").contains("4-byte fields"),
                 "{name}: the package sent a malformed request: {q}"
             );
         }

@@ -12,7 +12,10 @@ pub fn render(report: &FileReport, out: &mut String) {
         let (line, col) = index.line_col(&report.text, d.span.start as usize);
         out.push_str(&format!(
             "{}:{line}:{col}: {}[{}] {}\n",
-            report.path, d.severity, d.code, d.message
+            super::visible(&report.path),
+            d.severity,
+            d.code,
+            super::visible(&d.message).replace(['\r', '\n'], " ")
         ));
     }
 }

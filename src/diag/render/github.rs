@@ -34,7 +34,8 @@ pub fn render(report: &FileReport, out: &mut String) {
 
 /// Escaping of a command's message (GitHub's `escapeData`).
 pub fn escape_data(s: &str) -> String {
-    s.replace('%', "%25")
+    super::visible(s)
+        .replace('%', "%25")
         .replace('\r', "%0D")
         .replace('\n', "%0A")
 }
@@ -52,5 +53,6 @@ mod tests {
     fn escapes() {
         assert_eq!(escape_data("a%b\r\nc"), "a%25b%0D%0Ac");
         assert_eq!(escape_property("C:\\x,y"), "C%3A\\x%2Cy");
+        assert_eq!(escape_data("a\u{1b}[31m\0"), "a\\u{1b}[31m\\u{0}");
     }
 }
