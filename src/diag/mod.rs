@@ -101,6 +101,20 @@ pub struct Diagnostic {
     /// Optional: the change that would resolve it, as data (see [`fix`]).
     #[serde(skip_serializing_if = "Option::is_none")]
     pub fix: Option<Fix>,
+    /// Other places that explain the finding (a first declaration, the config it disagrees
+    /// with); editors show them as related locations.
+    #[serde(skip_serializing_if = "Vec::is_empty")]
+    pub related: Vec<Related>,
+}
+
+/// A place in another (or the same) file that explains a finding.
+#[derive(Debug, Clone, PartialEq, Eq, Serialize)]
+pub struct Related {
+    /// The file, as paths are written in reports.
+    pub path: String,
+    /// Byte range into that file's decoded text.
+    pub span: Span,
+    pub message: String,
 }
 
 impl Diagnostic {
@@ -117,6 +131,7 @@ impl Diagnostic {
             message: message.into(),
             help: None,
             fix: None,
+            related: Vec::new(),
         }
     }
 
@@ -135,6 +150,20 @@ impl Diagnostic {
 
     pub fn with_fix(mut self, fix: Fix) -> Diagnostic {
         self.fix = Some(fix);
+        self
+    }
+
+    pub fn with_related(
+        mut self,
+        path: impl Into<String>,
+        span: Span,
+        message: impl Into<String>,
+    ) -> Diagnostic {
+        self.related.push(Related {
+            path: path.into(),
+            span,
+            message: message.into(),
+        });
         self
     }
 }

@@ -471,6 +471,26 @@ impl Server {
         }
     }
 
+    /// A location in any file: a workspace file's text as analysed, else the file read from
+    /// disk (an EKI XML a finding points to).
+    pub(super) fn locate(
+        &self,
+        path: &str,
+        span: crate::diag::Span,
+    ) -> Option<lsp_types::Location> {
+        let uri = self.uri(path)?;
+        let range = match self.ws.file(path) {
+            Some(f) => super::position::Lines::new(&f.text).range(span),
+            None => {
+                let text = std::fs::read(path)
+                    .map(|b| crate::syntax::decode(&b).text)
+                    .unwrap_or_default();
+                super::position::Lines::new(&text).range(span)
+            }
+        };
+        Some(lsp_types::Location::new(uri, range))
+    }
+
     /// The text the server analysed for a file (after [`Server::flush`], the editor's text).
     pub fn analysed_text(&self, id: &str) -> Option<&str> {
         self.ws.file(id).map(|f| f.text.as_str())
@@ -490,7 +510,7 @@ impl Server {
     }
 
     fn publish(&mut self, id: &str, report: crate::diag::FileReport) {
-        let diags = diagnostics::of_report(&report);
+        let diags = diagnostics::of_report(&report, &|path, span| self.locate(path, span));
         self.findings.insert(id.to_owned(), report.diagnostics);
         // Nothing new to say (a clean file that was clean, or unchanged findings).
         if self

@@ -1,4 +1,4 @@
-use crate::diag::{Diagnostic, Severity};
+use crate::diag::{Diagnostic, Severity, Span};
 use crate::lint::context::FileCtx;
 use crate::lint::registry::{Check, Rule};
 use crate::lint::walk;
@@ -46,12 +46,14 @@ fn check(ctx: &FileCtx, out: &mut Vec<Diagnostic>) {
                     names.join(", ")
                 ),
             };
-            out.push(
-                Diagnostic::error(RULE.code, xml.span, msg).with_help(format!(
-                    "use the channel name `{}`",
-                    near.map_or(names[0], |c| c.name.as_str())
-                )),
-            );
+            let mut d = Diagnostic::error(RULE.code, xml.span, msg).with_help(format!(
+                "use the channel name `{}`",
+                near.map_or(names[0], |c| c.name.as_str())
+            ));
+            if let Some(ch) = near {
+                d = d.with_related(&ch.path, Span::empty(0), "the EKI channel's config");
+            }
+            out.push(d);
             continue;
         };
         for (i, what, want) in [
@@ -74,7 +76,8 @@ fn check(ctx: &FileCtx, out: &mut Vec<Diagnostic>) {
                         arg.span,
                         format!("{what} flag {got} does not match the EKI config `{}`, which sets flag {want}", ch.path),
                     )
-                    .with_help(format!("pass {want}")),
+                    .with_help(format!("pass {want}"))
+                    .with_related(&ch.path, Span::empty(0), "the EKI channel's config"),
                 );
             }
         }
