@@ -150,8 +150,11 @@ mod tests {
     fn reads_the_interface_version() {
         let c = LintConfig::from_toml("k.toml", "interface = \"2.x\"\n").unwrap();
         assert_eq!(c.interface, Some(Interface::V2));
-        let c = LintConfig::from_toml("k.toml", "interface = \"2.x\"\n[lint]\ninterface = \"1.x\"\n")
-            .unwrap();
+        let c = LintConfig::from_toml(
+            "k.toml",
+            "interface = \"2.x\"\n[lint]\ninterface = \"1.x\"\n",
+        )
+        .unwrap();
         assert_eq!(c.interface, Some(Interface::V1), "[lint] first");
         let e = LintConfig::from_toml("k.toml", "[lint]\ninterface = \"3\"\n").unwrap_err();
         assert_eq!(e.line, 2);

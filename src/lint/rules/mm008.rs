@@ -1,6 +1,6 @@
 use crate::catalog::Direction;
-use crate::diag::{Diagnostic, Severity, Span};
 use crate::catalog::Interface;
+use crate::diag::{Diagnostic, Severity, Span};
 use crate::lint::context::{FileCtx, subprogram};
 use crate::lint::registry::{Check, Rule};
 use crate::lint::walk;
