@@ -396,8 +396,11 @@ fn every_catalog_assumption_is_in_the_install_note() {
     let of = |t: &toml::Table, iface: &str| text(t, "interface").is_none_or(|i| i == iface);
     for codec in ["ascii", "hex-le", "hex-be"] {
         for (iface, subs) in [("1.x", "subprogram"), ("2.x", "subprogram_v2")] {
-            let spec =
-                Spec::parse(&format!("codec = \"{codec}\"\ninterface = \"{iface}\""), "x").unwrap();
+            let spec = Spec::parse(
+                &format!("codec = \"{codec}\"\ninterface = \"{iface}\""),
+                "x",
+            )
+            .unwrap();
             let files = generate::generate(&spec).unwrap();
             let note = files
                 .iter()
@@ -433,10 +436,15 @@ fn every_catalog_assumption_is_in_the_install_note() {
                 let hex = raw["hex"].as_table().unwrap();
                 facts.extend(text(hex, "assumption"));
             }
-            assert!(facts.len() >= 4, "{codec} {iface}: only {} facts found", facts.len());
+            assert!(
+                facts.len() >= 4,
+                "{codec} {iface}: only {} facts found",
+                facts.len()
+            );
             for fact in facts {
                 assert!(
-                    note.lines().any(|l| l.starts_with("- [U] ") && l.contains(&fact)),
+                    note.lines()
+                        .any(|l| l.starts_with("- [U] ") && l.contains(&fact)),
                     "{codec} {iface}: INSTALL.md does not list the unverified fact `{fact}`"
                 );
             }

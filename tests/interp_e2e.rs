@@ -377,7 +377,12 @@ fn v2_examples_run_for_every_codec() {
             let case = case.clone().with_spec(spec.clone());
             let other = run(&case);
             check_invariants(&name, &case, &other);
-            assert_eq!(want, behaviour(&other), "2.x {name}: {} differs from ASCII", spec.codec);
+            assert_eq!(
+                want,
+                behaviour(&other),
+                "2.x {name}: {} differs from ASCII",
+                spec.codec
+            );
         }
         insta::assert_snapshot!(
             format!("example_v2_{name}"),

@@ -153,6 +153,15 @@ fn calls_are_checked_against_the_interface_version() {
     assert_eq!(code, 1);
     insta::assert_snapshot!("v1_calls_against_2x_package", out);
     // The 2.x examples beside the committed 2.x package lint clean with it.
-    let (code, out, _) = krlkit(&["check", "../gen_variants/ascii_2.x/krl", "--format", "concise"]);
-    assert_eq!((code, out.as_str()), (0, ""), "2.x examples with their package");
+    let (code, out, _) = krlkit(&[
+        "check",
+        "../gen_variants/ascii_2.x/krl",
+        "--format",
+        "concise",
+    ]);
+    assert_eq!(
+        (code, out.as_str()),
+        (0, ""),
+        "2.x examples with their package"
+    );
 }
