@@ -328,6 +328,10 @@ pub struct RunArgs {
     /// Write the dry-run report: one self-contained HTML page (tool path, timeline, coverage).
     #[arg(long, value_name = "FILE.html")]
     pub report: Option<PathBuf>,
+    /// The operating mode `$MODE_OP` reads during the run.
+    #[arg(long, value_name = "MODE", default_value = "T1",
+          value_parser = ["T1", "T2", "AUT", "EX"], ignore_case = true)]
+    pub mode_op: String,
     /// Most statements the run may execute before it is stopped as an endless loop.
     #[arg(long, value_name = "N", default_value_t = crate::interp::Options::default().step_limit)]
     pub step_limit: u64,
