@@ -28,6 +28,9 @@ pub struct SyntaxCtx<'a> {
     pub stem: String,
     /// Extension, lower case (`src`, `dat`, `sub`, or empty).
     pub ext: String,
+    /// KRL005's edits when computed from the tree before it was lowered (else KRL005 parses
+    /// the text again).
+    pub case_edits: Option<Vec<crate::diag::Edit>>,
 }
 
 impl<'a> SyntaxCtx<'a> {
@@ -50,6 +53,7 @@ impl<'a> SyntaxCtx<'a> {
             syntax_errors,
             stem: part(p.file_stem()),
             ext: part(p.extension()),
+            case_edits: None,
         }
     }
 }
