@@ -14,6 +14,7 @@ use lsp_server::{Message, Notification, Request, RequestId};
 use serde_json::{Value, json};
 
 #[path = "support/sample.rs"]
+#[allow(dead_code)] // each bench uses part of it
 mod sample;
 #[path = "support/tree.rs"]
 #[allow(dead_code)] // each bench uses part of it

@@ -2,6 +2,10 @@
 
 use std::collections::HashMap;
 
+/// KRL's INT range (32-bit two's complement).
+pub const INT_MIN: i64 = i32::MIN as i64;
+pub const INT_MAX: i64 = i32::MAX as i64;
+
 /// A KRL runtime value. Arrays are flattened row-major with 1-based KRL indices mapped to 0-based
 /// offsets; CHAR arrays double as strings (NUL-terminated when shorter than the array).
 #[derive(Debug, Clone, PartialEq)]
@@ -24,6 +28,9 @@ pub enum Value {
     },
     /// An untyped aggregate (`{X 1, Y 2}`): merged into a typed value on assignment.
     Partial(Vec<(String, Value)>),
+    /// A scalar of this type that was declared but never assigned: reading it is an error, as
+    /// on the controller. (CHAR arrays start as empty strings instead.)
+    Unset(BaseType),
 }
 
 impl Value {
@@ -38,6 +45,7 @@ impl Value {
             Value::Array { .. } => "array".into(),
             Value::Struc { ty, .. } => ty.clone(),
             Value::Partial(_) => "aggregate".into(),
+            Value::Unset(t) => format!("unassigned {}", t.name()),
         }
     }
 
@@ -87,6 +95,18 @@ impl Value {
         }
     }
 
+    /// Whether any part of the value was never assigned.
+    pub fn has_unset(&self) -> bool {
+        match self {
+            Value::Unset(_) => true,
+            Value::Array { items, .. } => items.iter().any(Value::has_unset),
+            Value::Struc { fields, .. } | Value::Partial(fields) => {
+                fields.iter().any(|(_, v)| v.has_unset())
+            }
+            _ => false,
+        }
+    }
+
     pub fn as_f64(&self) -> Option<f64> {
         match self {
             Value::Int(i) => Some(*i as f64),
@@ -115,6 +135,18 @@ pub enum BaseType {
     Char,
     Enum(String),
     Struc(String),
+}
+
+impl BaseType {
+    pub fn name(&self) -> &str {
+        match self {
+            BaseType::Int => "INT",
+            BaseType::Real => "REAL",
+            BaseType::Bool => "BOOL",
+            BaseType::Char => "CHAR",
+            BaseType::Enum(n) | BaseType::Struc(n) => n,
+        }
+    }
 }
 
 #[derive(Debug, Clone, PartialEq)]
@@ -347,6 +379,37 @@ impl Types {
                 },
                 None => Value::Int(0),
             },
+        }
+    }
+
+    /// The value of a declaration without an initialiser: every scalar unassigned (reading it
+    /// is an error until something is assigned), except that CHAR arrays start as empty
+    /// strings (builtins such as SWRITE and EKI_GetString write into them).
+    pub fn unset_value(&self, ty: &BaseType, dims: &[usize]) -> Value {
+        if !dims.is_empty() {
+            if *ty == BaseType::Char {
+                return self.default_value(ty, dims);
+            }
+            let n: usize = dims.iter().product();
+            let item = self.unset_value(ty, &[]);
+            return Value::Array {
+                dims: dims.to_vec(),
+                items: vec![item; n],
+            };
+        }
+        match ty {
+            BaseType::Struc(s) => match self.strucs.get(s) {
+                Some(def) => Value::Struc {
+                    ty: s.clone(),
+                    fields: def
+                        .fields
+                        .iter()
+                        .map(|(n, t, d)| (n.clone(), self.unset_value(t, d)))
+                        .collect(),
+                },
+                None => Value::Int(0),
+            },
+            t => Value::Unset(t.clone()),
         }
     }
 

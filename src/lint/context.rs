@@ -9,7 +9,7 @@ use std::sync::OnceLock;
 use super::eki_xml::EkiChannel;
 use super::flow::FlowResult;
 use super::walk;
-use crate::catalog::{Subprogram, catalog};
+use crate::catalog::{Interface, Subprogram, catalog};
 use crate::diag::{Diagnostic, LineIndex};
 use crate::sema::{
     ConstValue, FileId, Loc, Resolved, RoutineId, Scope, Sema, SymbolId, SymbolKind, Ty, TyKind,
@@ -148,6 +148,8 @@ pub struct Project {
     pub channels_given: bool,
     /// Flags owned by an EKI channel the program uses (alive and receive), by flag number.
     pub owned_flags: HashMap<i64, &'static str>,
+    /// The interface version calls are checked against, and why.
+    pub interface: super::interface::Selected,
 }
 
 impl Project {
@@ -156,9 +158,10 @@ impl Project {
         channels: Vec<EkiChannel>,
         channels_given: bool,
         asts: impl Iterator<Item = &'a SourceFile>,
+        interface: super::interface::Selected,
     ) -> Project {
         let sockets: Vec<InitSocket> = asts.flat_map(init_sockets).collect();
-        Project::of_sockets(channels, channels_given, &sockets)
+        Project::of_sockets(channels, channels_given, &sockets, interface)
     }
 
     /// The same from the `MM_Init_Socket` calls of the files, in file order (no tree needed).
@@ -166,11 +169,13 @@ impl Project {
         channels: Vec<EkiChannel>,
         channels_given: bool,
         sockets: impl IntoIterator<Item = &'a InitSocket>,
+        interface: super::interface::Selected,
     ) -> Project {
         let mut p = Project {
             channels,
             channels_given,
             owned_flags: HashMap::new(),
+            interface,
         };
         for s in sockets {
             s.owned_flags(&p.channels, &mut p.owned_flags);
@@ -316,7 +321,16 @@ impl<'p> FileCtx<'p> {
         self.ast
             .into_iter()
             .flat_map(|a| a.routines.iter())
-            .filter(|r| subprogram(&r.name.text).is_none())
+            .filter(|r| {
+                Interface::ALL
+                    .into_iter()
+                    .all(|i| subprogram(i, &r.name.text).is_none())
+            })
+    }
+
+    /// The interface subprogram called `name` in the version the program is checked against.
+    pub fn subprogram(&self, name: &str) -> Option<&'static Subprogram> {
+        subprogram(self.project.interface.version, name)
     }
 
     /// The model's id of a routine of this file's AST.
@@ -389,10 +403,7 @@ impl<'p> FileCtx<'p> {
     }
 }
 
-/// The catalog subprogram called `name` (case-insensitive).
-pub fn subprogram(name: &str) -> Option<&'static Subprogram> {
-    catalog()
-        .subprograms
-        .iter()
-        .find(|s| s.name.eq_ignore_ascii_case(name))
+/// The catalog subprogram called `name` (case-insensitive) in interface `iface`.
+pub fn subprogram(iface: Interface, name: &str) -> Option<&'static Subprogram> {
+    catalog().subprogram_in(iface, name)
 }

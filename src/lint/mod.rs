@@ -20,6 +20,7 @@ pub mod config;
 pub mod context;
 pub mod eki_xml;
 mod flow;
+pub mod interface;
 pub mod registry;
 mod rules;
 mod session;
@@ -182,6 +183,7 @@ pub fn lint_workspace(
         channels,
         channels_given,
         rest.iter().filter_map(|(_, a)| a.as_ref()),
+        interface::select(config.interface, &sema),
     );
     let reports: Vec<FileReport> = rest
         .into_par_iter()

@@ -122,6 +122,7 @@ impl Session {
             channels,
             self.project.channels_given,
             self.meta.iter().flat_map(|m| &m.sockets),
+            super::interface::select(self.config.interface, &self.sema),
         );
     }
 
@@ -205,6 +206,8 @@ impl Session {
 
     pub fn set_config(&mut self, config: LintConfig) {
         self.config = config;
+        // The config may name the interface version.
+        self.refresh();
     }
 
     pub fn set_channels(&mut self, channels: Vec<EkiChannel>, channels_given: bool) {

@@ -1,9 +1,10 @@
 //! Translating KRL programs to other robot languages.
 //!
-//! Layout: [`front`] is target-independent (symbols and types, system variables by meaning,
-//! literal poses, comments, deterministic renaming, findings and coverage); each target is a
-//! backend module that walks the AST with it and writes its language ([`kawasaki`]: Kawasaki AS,
-//! [`flexiv`]: a Flexiv RDK Python script).
+//! Layout: [`front`] loads the program and answers what names mean (through `src/sema`);
+//! [`ir`] lowers it once into a target-neutral program model (hoisted calls, typed motions,
+//! explicit advance-run stops) and resolves the motion parameters by dataflow; each target is
+//! a renderer of that model ([`kawasaki`]: Kawasaki AS, [`flexiv`]: a Flexiv RDK Python script)
+//! that decides no KRL semantics.
 //! [`orientation`] holds the Euler-angle conversions, [`rules`] the diagnostic codes TR001–TR003.
 //!
 //! Invariants: translation never fails and never panics on user input: what cannot be
@@ -109,17 +110,13 @@ pub fn transpile(
         front::Parsed::new(src.path, src.text),
         dat.map(|d| front::Parsed::new(d.path, d.text)),
     );
-    let (text, mut report) = match target {
-        Target::Kawasaki => {
-            let (mut model, vision) = ir::lower::lower(&program, options);
-            ir::flow::resolve(&mut model);
-            let (text, mut report, produced) =
-                kawasaki::render(&program, &model, vision.as_ref(), options);
-            report.coverage = coverage(&model, &report, &produced);
-            (text, report)
-        }
-        Target::Flexiv => flexiv::translate(&program, options),
+    let (mut model, vision) = ir::lower::lower(&program, options);
+    ir::flow::resolve(&mut model);
+    let (text, mut report, produced) = match target {
+        Target::Kawasaki => kawasaki::render(&program, &model, vision.as_ref(), options),
+        Target::Flexiv => flexiv::render(&program, &model, vision.as_ref(), options),
     };
+    report.coverage = coverage(&model, &report, &produced);
     trim_spans(&mut report.src, &program.src.text);
     if let Some(dat) = &program.dat {
         trim_spans(&mut report.dat, &dat.text);

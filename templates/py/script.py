@@ -77,6 +77,10 @@ class KRL:
     vel_ptp = DEFAULT_PTP
     # $APO.CDIS in mm: the zoneRadius of blended moves.
     apo_cdis = 0.0
+    # $APO.CPTP (%), $APO.CVEL (%), $APO.CORI (deg): kept for reading back; zoneRadius is a distance.
+    apo_cptp = 0.0
+    apo_cvel = 0.0
+    apo_cori = 0.0
     # $BASE: the reference frame of Cartesian targets.
     base = WORLD
 
@@ -143,19 +147,39 @@ def zone_code(mm):
     return "Z%d" % min(ZONES, key=lambda z: (abs(z - mm), z))
 
 
-def move_l(p, zone="Z0"):
+def move_l(p, zone="Z0", vel=None):
     """LIN (and PTP to a pose, see the header): MoveL to a KUKA pose, then wait for it."""
     robot.ExecutePrimitive(
-        "MoveL", {"target": to_coord(p), "vel": KRL.vel_cp, "zoneRadius": zone}
+        "MoveL",
+        {"target": to_coord(p), "vel": KRL.vel_cp if vel is None else vel, "zoneRadius": zone},
+    )
+    wait_reached()
+
+
+def move_l_path(points, zone="Z0", vel=None):
+    """A KRL spline's points: one MoveL to the last through the others as waypoints."""
+    robot.ExecutePrimitive(
+        "MoveL",
+        {
+            "target": to_coord(points[-1]),
+            "waypoints": [to_coord(p) for p in points[:-1]],
+            "vel": KRL.vel_cp if vel is None else vel,
+            "zoneRadius": zone,
+        },
     )
     wait_reached()
 {%- if s.move_ptp %}
 
 
-def move_ptp(p, zone="Z0"):
+def move_ptp(p, zone="Z0", vel=None):
     """PTP to a pose: MovePTP [?] (--ptp moveptp: the robot's software has it), then wait."""
     robot.ExecutePrimitive(
-        "MovePTP", {"target": to_coord(p), "jntVelScale": KRL.vel_ptp, "zoneRadius": zone}
+        "MovePTP",
+        {
+            "target": to_coord(p),
+            "jntVelScale": KRL.vel_ptp if vel is None else vel,
+            "zoneRadius": zone,
+        },
     )
     wait_reached()
 {%- endif %}
@@ -167,25 +191,31 @@ def to_jpos(j):
     return flexivrdk.JPos([{{ j }}])
 
 
-def move_j(j):
+def move_j(j, vel=None):
     """PTP to axis values: MoveJ to the mapped joints, then wait for it."""
-    robot.ExecutePrimitive("MoveJ", {"target": to_jpos(j), "jntVelScale": KRL.vel_ptp})
+    robot.ExecutePrimitive(
+        "MoveJ", {"target": to_jpos(j), "jntVelScale": KRL.vel_ptp if vel is None else vel}
+    )
     wait_reached()
 {%- endif %}
 
 
-def move_rel(offset, tool, zone="Z0"):
+def move_rel(offset, tool, zone="Z0", vel=None):
     """LIN_REL: in the tool frame a MoveL relative to the current TCP (["TRAJ", "START"]);
-    in the base frame the offset is added to the current TCP position."""
+    in the base frame the offset is added to the current TCP position in the base (KRL.base)."""
     if tool:
         robot.ExecutePrimitive(
             "MoveL",
-            {"target": to_coord(offset, ["TRAJ", "START"]), "vel": KRL.vel_cp, "zoneRadius": zone},
+            {
+                "target": to_coord(offset, ["TRAJ", "START"]),
+                "vel": KRL.vel_cp if vel is None else vel,
+                "zoneRadius": zone,
+            },
         )
         wait_reached()
     else:
-        p = pos_act()
-        move_l(p._replace(x=p.x + offset.x, y=p.y + offset.y, z=p.z + offset.z), zone)
+        p = pos_in_base()
+        move_l(p._replace(x=p.x + offset.x, y=p.y + offset.y, z=p.z + offset.z), zone, vel)
 
 
 def set_out(port, value):
@@ -263,6 +293,14 @@ def pos_act():
     return pose_from_flexiv(robot.states().tcp_pose)
 
 
+def pos_in_base():
+    """The TCP pose in the base frame KRL.base (a work coordinate's pose read from the robot [?])."""
+    if KRL.base == WORLD:
+        return pos_act()
+    work = pose_from_flexiv(flexivrdk.WorkCoord(robot).pose(KRL.base[1]))
+    return frame_mul(frame_inv(work), pos_act())
+
+
 def flange_pose():
     """The flange pose in WORLD [?] (RobotStates.flange_pose)."""
     return pose_from_flexiv(robot.states().flange_pose)
@@ -322,6 +360,36 @@ def frame_inv(p):
     return _pose(m, *t)
 
 
+# KRL timers $TIMER[n] (ms): n -> [value when last set or stopped, monotonic start or None].
+_timers = {}
+
+
+def timer_get(n):
+    """$TIMER[n] in ms (a timer counts while it is not stopped)."""
+    value, start = _timers.get(n, [0.0, None])
+    if start is not None:
+        value += (time.monotonic() - start) * 1000.0
+    return int(value)
+
+
+def timer_set(n, ms):
+    """$TIMER[n] = ms."""
+    t = _timers.setdefault(n, [0.0, None])
+    t[0] = float(ms)
+    if t[1] is not None:
+        t[1] = time.monotonic()
+
+
+def timer_stop(n, stopped):
+    """$TIMER_STOP[n] = stopped (KRL timers start stopped)."""
+    t = _timers.setdefault(n, [0.0, None])
+    if stopped and t[1] is not None:
+        t[0] += (time.monotonic() - t[1]) * 1000.0
+        t[1] = None
+    elif not stopped and t[1] is None:
+        t[1] = time.monotonic()
+
+
 def to_int(x):
     """A REAL assigned to an INT: KRL rounds half away from zero."""
     return int(math.floor(x + 0.5)) if x >= 0 else -int(math.floor(-x + 0.5))
@@ -334,17 +402,18 @@ def to_int(x):
 {{ s.program }}
 
 def main():
+{%- match s.entry %}
+{%- when Some(entry) %}
     global robot
     robot = connect(robot_serial())
     try:
-{%- match s.entry %}
-{%- when Some(entry) %}
         {{ entry }}()
-{%- when None %}
-        sys.exit("{{ s.source }} has no routine to start")
-{%- endmatch %}
     finally:
         robot.Stop()
+{%- when None %}
+    # Nothing to run: end before connecting to (and enabling) the robot.
+    sys.exit("{{ s.source }} has no routine to start")
+{%- endmatch %}
 
 
 if __name__ == "__main__":

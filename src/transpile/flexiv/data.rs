@@ -3,143 +3,82 @@
 
 use super::expr::ADD;
 use super::{R, Tx};
-use crate::syntax::ast::{DatModule, Decl, DeclVar, Expr, StmtKind};
-use crate::transpile::front::Parsed;
-use crate::transpile::front::literal;
-use crate::transpile::front::report::{FileId, Outcome};
-use crate::transpile::front::symbols::Ty;
+use crate::transpile::ir::{Datum, Expr, ExprKind, Ty};
 
-/// KUKA inline-form data types: motion records (used where `*_ACT` is set) and the editor's
-/// last suggestion; nothing of their own in the script.
-const ILF_TYPES: [&str; 4] = ["PDAT", "LDAT", "FDAT", "BASIS_SUGG_T"];
-
-impl<'p> Tx<'p> {
+impl<'a> Tx<'a> {
     pub(super) fn data_globals(&mut self) {
-        let prog = self.prog;
-        if let Some(dat) = &prog.dat
-            && let Some(m) = &dat.ast.dat
-        {
-            self.dat_module(dat, m, FileId::Dat);
-        }
-        if let Some(m) = &prog.src.ast.dat {
-            self.dat_module(&prog.src, m, FileId::Src);
-        }
-        // GLOBAL declarations inside routines live at module level too.
-        for r in &prog.src.ast.routines {
-            let mut decls: Vec<&'p Decl> = r.decls.iter().filter(|d| d.global).collect();
-            crate::transpile::front::walk::each_stmt(&r.body, &mut |s| {
-                if let StmtKind::Decl(d) = &s.kind
-                    && d.global
-                {
-                    decls.push(d);
-                }
-            });
-            for d in decls {
-                for v in &d.vars {
-                    self.global_default(v);
-                }
-            }
-        }
-    }
-
-    fn dat_module(&mut self, file: &'p Parsed, m: &'p DatModule, id: FileId) {
-        for d in &m.decls {
-            for v in &d.vars {
-                match &v.init {
-                    Some(init) => self.data_value(file, id, d, v, init),
-                    None => self.global_default(v),
-                }
-            }
-        }
-        for s in &m.body {
-            let StmtKind::Assign { target, value } = &s.kind else {
-                continue;
-            };
-            let mark = self.rep.mark();
-            let start = self.lines.len();
-            if let Err(f) = self.assign(target, value, s.span) {
-                self.lines.truncate(start);
-                self.rep.untranslatable(id, f.span, f.message, f.help);
-                self.keep_data(file, s.span);
-            }
-            let lines: Vec<String> = self.lines.drain(start..).collect();
-            self.globals.extend(lines);
-            let o = self.rep.outcome_since(mark);
-            self.rep.coverage.record("data", o);
-        }
-    }
-
-    fn global_ty(&self, name: &str) -> Ty {
-        self.prog
-            .symbols
-            .globals
-            .get(&name.to_ascii_uppercase())
-            .map(|v| v.ty.clone())
-            .unwrap_or(Ty::Real)
-    }
-
-    /// A global declared without a value: its type's zero value.
-    fn global_default(&mut self, v: &DeclVar) {
-        let ty = self.global_ty(&v.name.text);
-        if let Some(value) = self.zero_value(&ty, &v.dims) {
-            let (n, _) = self.var_name(&v.name);
-            self.globals.push(format!("{n} = {value}"));
-        }
-    }
-
-    fn data_value(&mut self, file: &'p Parsed, id: FileId, d: &Decl, v: &DeclVar, init: &Expr) {
-        let mark = self.rep.mark();
-        let ty = self.global_ty(&v.name.text);
-        if let Ty::Other(t) = &ty
-            && ILF_TYPES.contains(&t.as_str())
-        {
-            self.rep
-                .coverage
-                .record("data (inline-form)", Outcome::Exact);
-            return;
-        }
-        match self.data_expr(&ty, init, id) {
-            Ok(value) => {
-                let (n, _) = self.var_name(&v.name);
+        let ir = self.ir;
+        for (v, dims) in &ir.uninit_globals {
+            let var = ir.var(*v);
+            if let Some(value) = self.zero_value(&var.ty, dims) {
+                let (n, _) = self.var_name(*v, var.decl);
                 self.globals.push(format!("{n} = {value}"));
             }
+        }
+        for d in &ir.data {
+            self.datum(d);
+        }
+    }
+
+    fn datum(&mut self, d: &'a Datum) {
+        let var = self.ir.var(d.var);
+        let (n, _) = self.var_name(d.var, var.decl);
+        let name = match &d.index {
+            Some(i) if !i.is_empty() => {
+                let idx: String = i.iter().map(|k| format!("[{k}]")).collect();
+                format!("{n}{idx}")
+            }
+            _ => n.clone(),
+        };
+        let start = self.lines.len();
+        let r = match &d.value {
+            Ok(v) => self.data_expr(&var.ty, v, d.file),
+            Err(why) => super::fail(d.span, why.message(), super::help::help(why)),
+        };
+        self.lines.truncate(start);
+        match r {
+            Ok(value) => {
+                self.globals.push(format!("{name} = {value}"));
+                self.produced.push(d.span);
+            }
             Err(f) => {
-                self.rep.untranslatable(id, f.span, f.message, f.help);
-                self.keep_data(file, d.span);
-                // Defined, so a use fails where it is, with the name in the message.
-                let (n, _) = self.var_name(&v.name);
-                self.globals
-                    .push(format!("{n} = None  # [TR001] see \"Data not translated\""));
+                self.rep.untranslatable(d.file, f.span, f.message, f.help);
+                let file = match d.file {
+                    crate::transpile::front::report::FileId::Src => &self.src.src,
+                    crate::transpile::front::report::FileId::Dat => {
+                        self.src.dat.as_ref().unwrap_or(&self.src.src)
+                    }
+                };
+                let text = file.slice(d.span).trim().to_owned();
+                for l in text.split(['\n', '\r']).filter(|l| !l.trim().is_empty()) {
+                    self.data_kept
+                        .push(format!("# [TR001] {}", super::format::ascii(l.trim())));
+                }
+                if d.index.is_none() {
+                    // Defined, so a use fails where it is, with the name in the message.
+                    self.globals
+                        .push(format!("{n} = None  # [TR001] see \"Data not translated\""));
+                }
             }
         }
-        let o = self.rep.outcome_since(mark);
-        self.rep.coverage.record("data", o);
     }
 
-    fn keep_data(&mut self, file: &Parsed, span: crate::diag::Span) {
-        let text = file.slice(span).trim().to_owned();
-        for l in text.split(['\n', '\r']).filter(|l| !l.trim().is_empty()) {
-            self.data_kept
-                .push(format!("# [TR001] {}", super::format::ascii(l.trim())));
-        }
-    }
-
-    fn data_expr(&mut self, ty: &Ty, value: &Expr, id: FileId) -> R<String> {
-        match ty {
-            Ty::Struc(t) | Ty::Other(t) => super::fail(
+    fn data_expr(
+        &mut self,
+        ty: &Ty,
+        value: &Expr,
+        file: crate::transpile::front::report::FileId,
+    ) -> R<String> {
+        match (ty, &value.kind) {
+            (Ty::Struc(t) | Ty::Other(t), _) => super::fail(
                 value.span,
                 format!("a value of type {t} has no translation"),
                 "split the structure into separate variables (numbers, strings, poses)",
             ),
-            Ty::Signal(_) => super::fail(value.span, "a signal has no value to store", "remove it"),
-            Ty::Pose | Ty::Joint => {
-                let a = self.aggregate(value)?;
-                let values = self.literal_values(&a, id)?;
-                Ok(match a.kind {
-                    literal::AggKind::Pose => format!("Pose({})", values.join(", ")),
-                    literal::AggKind::Axis => format!("Axis({})", values.join(", ")),
-                })
+            (Ty::Signal(_), _) => {
+                super::fail(value.span, "a signal has no value to store", "remove it")
             }
+            (_, ExprKind::Aggregate(a)) => self.literal(a, value.span, file),
             _ => self.expr(value),
         }
     }
@@ -164,7 +103,7 @@ impl<'p> Tx<'p> {
         let mut sizes = Vec::new();
         for d in dims {
             let d = d.as_ref()?;
-            sizes.push(match literal::integer(d) {
+            sizes.push(match d.integer() {
                 Some(n) => (n + 1).to_string(),
                 None => {
                     let r = self.render(d).ok()?;

@@ -1,91 +1,14 @@
-//! I/O, flags, waits, HALT and messages.
+//! I/O, flags, timers, waits and HALT.
 
-use super::expr::{CMP, NOT, PORTS};
+use super::expr::{CMP, NOT};
 use super::{R, Tx, fail};
 use crate::diag::{LineIndex, Span};
-use crate::syntax::ast::{Expr, ExprKind, Ident, UnaryOp};
-use crate::transpile::front::ilf;
 use crate::transpile::front::report::FileId;
-use crate::transpile::front::symbols::{Bank, SignalRange};
-use crate::transpile::front::sysvar::Sys;
+use crate::transpile::ir::{Bank, Expr, ExprKind, IoPlace, IoTiming, TimerOp, UnaryOp, Wait};
 
-impl<'p> Tx<'p> {
-    /// Assignment to a system variable.
-    pub(super) fn system_assign(
-        &mut self,
-        sys: Sys,
-        target: &Expr,
-        value: &Expr,
-        span: Span,
-    ) -> R<()> {
-        let fx = self.fx;
-        match sys {
-            Sys::Out(i) => {
-                self.kind("I/O");
-                let p = self.port(fx.output_offset, i)?;
-                let v = self.bool_value(value)?;
-                self.line(format!("set_out({}, {v})", p.text));
-                Ok(())
-            }
-            Sys::OutC(i) => {
-                self.kind("I/O");
-                let p = self.port(fx.output_offset, i)?;
-                let v = self.bool_value(value)?;
-                self.rep.approximate(
-                    FileId::Src,
-                    span,
-                    "$OUT_C (set when the robot reaches the point) is set after the previous move has ended",
-                    "the output now switches when the robot has arrived, not as it arrives",
-                );
-                self.line(format!("set_out({}, {v})", p.text));
-                Ok(())
-            }
-            Sys::Flag(i) => {
-                self.kind("flag");
-                let i = self.expr(i)?;
-                let v = self.expr(value)?;
-                self.line(format!("FLAG[{i}] = {v}"));
-                Ok(())
-            }
-            Sys::In(_) => fail(
-                target.span,
-                "inputs cannot be written",
-                "write an output instead",
-            ),
-            Sys::CycFlag(_) => fail(
-                target.span,
-                "cyclic flags ($CYCFLAG, evaluated by the submit interpreter) have no counterpart",
-                "compute the condition where it is needed",
-            ),
-            Sys::Timer(_) | Sys::TimerStop(_) | Sys::TimerFlag(_) => {
-                self.kind("timer");
-                fail(
-                    target.span,
-                    "KRL timers ($TIMER) have no counterpart in the script",
-                    "measure time with time.monotonic() by hand",
-                )
-            }
-            Sys::Other(e) if ilf::is_bookkeeping(e) => {
-                self.kind("inline-form data");
-                let text = super::format::ascii(self.prog.src.slice(span).trim());
-                self.line(format!(
-                    "# {text} (KUKA inline-form bookkeeping, nothing to do here)"
-                ));
-                Ok(())
-            }
-            Sys::Other(e) => fail(
-                e.span,
-                format!(
-                    "system variable `{}` has no translation",
-                    self.prog.src.slice(e.span)
-                ),
-                "port by hand",
-            ),
-            _ => self.motion_param_assign(sys, value, span),
-        }
-    }
-
-    /// A value written to an output: `True`/`False` literals as they are, others as bool().
+impl<'a> Tx<'a> {
+    /// A value written to an output: `True`/`False` literals as they are, others as they are
+    /// computed.
     fn bool_value(&mut self, value: &Expr) -> R<String> {
         Ok(match &value.kind {
             ExprKind::Bool(b) => if *b { "True" } else { "False" }.to_owned(),
@@ -93,92 +16,76 @@ impl<'p> Tx<'p> {
         })
     }
 
-    /// Assignment to a name declared with SIGNAL.
-    pub(super) fn signal_assign(&mut self, r: SignalRange, value: &Expr, span: Span) -> R<()> {
-        self.kind("I/O");
-        if r.bank == Bank::In {
-            return fail(span, "inputs cannot be written", "write an output instead");
-        }
-        let first = r.from + self.fx.output_offset;
-        let last = r.to + self.fx.output_offset;
-        if first < 0 || last >= PORTS {
-            return fail(
+    pub(super) fn set_io(
+        &mut self,
+        io: &IoPlace,
+        value: &Expr,
+        when: &IoTiming,
+        span: Span,
+    ) -> R<()> {
+        let fx = self.fx;
+        match when {
+            IoTiming::Now | IoTiming::Trigger(_) => {}
+            IoTiming::Ahead => self.rep.approximate(
+                FileId::Src,
                 span,
-                format!(
-                    "the signal's outputs map to Flexiv ports {first}-{last}, outside the robot's {PORTS} digital ports"
-                ),
-                "set --output-offset, or port by hand",
-            );
+                "after CONTINUE the output switches after the previous move has ended (the script waits for every move), not while it runs",
+                "check when the output must switch",
+            ),
+            IoTiming::PathEnd => self.rep.approximate(
+                FileId::Src,
+                span,
+                "$OUT_C (set when the robot reaches the point) is set after the previous move has ended",
+                "the output now switches when the robot has arrived, not as it arrives",
+            ),
         }
-        if r.width() == 1 {
-            let v = self.bool_value(value)?;
-            self.line(format!("set_out({first}, {v})"));
-        } else {
-            let v = self.expr(value)?;
-            self.line(format!("set_out_bits({first}, {}, {v})", r.width()));
-        }
-        Ok(())
-    }
-
-    /// `WAIT FOR cond`: poll until it holds. The previous move has ended already (every move
-    /// waits for reachedTarget), as KRL's advance-run stop ensures.
-    pub(super) fn wait_for(&mut self, cond: &Expr) -> R<()> {
-        let test = match &cond.kind {
-            ExprKind::Unary {
-                op: UnaryOp::Not,
-                operand,
-            } => self.render(operand)?.text,
-            _ => {
-                let c = self.render(cond)?;
-                let t = c.at(NOT);
-                // Comparisons read better negated in place, negations without their `not`.
-                match (c.prec, negate_comparison(&c.text)) {
-                    (CMP, Some(n)) => n,
-                    (NOT, _) if c.text.starts_with("not ") => c.text["not ".len()..].to_owned(),
-                    _ => format!("not {t}"),
+        match io {
+            IoPlace::Out(i) => {
+                let p = self.port(fx.output_offset, i)?;
+                let v = self.bool_value(value)?;
+                self.line(format!("set_out({}, {v})", p.text));
+            }
+            IoPlace::Flag(i) => {
+                let i = self.expr(i)?;
+                let v = self.expr(value)?;
+                self.line(format!("FLAG[{i}] = {v}"));
+            }
+            IoPlace::In(_) => {
+                return fail(span, "inputs cannot be written", "write an output instead");
+            }
+            IoPlace::Signal(r) => {
+                if r.bank == Bank::In {
+                    return fail(span, "inputs cannot be written", "write an output instead");
+                }
+                let (first, _) = self.signal_ports(*r, span)?;
+                if r.width() == 1 {
+                    let v = self.bool_value(value)?;
+                    self.line(format!("set_out({first}, {v})"));
+                } else {
+                    let v = self.expr(value)?;
+                    self.line(format!("set_out_bits({first}, {}, {v})", r.width()));
                 }
             }
-        };
-        self.line(format!("while {test}:"));
-        self.line("    time.sleep(POLL)");
-        Ok(())
-    }
-
-    pub(super) fn wait_sec(&mut self, time: &Expr) -> R<()> {
-        let t = self.expr(time)?;
-        self.line(format!("time.sleep({t})"));
-        Ok(())
-    }
-
-    pub(super) fn halt(&mut self, span: Span) -> R<()> {
-        let line = LineIndex::new(&self.prog.src.text).line_of(span.start as usize) + 1;
-        let at = format!(
-            "{}:{line}",
-            super::file_name(&self.prog.src.path).replace('"', "")
-        );
-        self.rep.approximate(
-            FileId::Src,
-            span,
-            "HALT waits for Enter at the console (there is no teach pendant); without a console the script stops the robot and ends",
-            "run the script in a terminal, or handle the stop in Python",
-        );
-        self.line(format!("halt({})", super::format::string(&at)));
+        }
         Ok(())
     }
 
     pub(super) fn pulse(
         &mut self,
-        signal: &Expr,
+        io: &IoPlace,
         level: &Expr,
-        duration: &Expr,
+        seconds: &Expr,
         span: Span,
     ) -> R<()> {
         let fx = self.fx;
-        let port = match crate::transpile::front::sysvar::classify(signal) {
-            Some(Sys::Out(i)) => self.port(fx.output_offset, i)?,
+        let port = match io {
+            IoPlace::Out(i) => self.port(fx.output_offset, i)?.text,
+            IoPlace::Signal(r) if r.bank == Bank::Out && r.width() == 1 => {
+                self.signal_ports(*r, span)?.0.to_string()
+            }
             _ => {
                 return fail(
-                    signal.span,
+                    span,
                     "PULSE of this signal has no translation",
                     "pulse an output ($OUT[n])",
                 );
@@ -194,7 +101,7 @@ impl<'p> Tx<'p> {
                 );
             }
         };
-        let t = self.expr(duration)?;
+        let t = self.expr(seconds)?;
         self.rep.approximate(
             FileId::Src,
             span,
@@ -206,49 +113,74 @@ impl<'p> Tx<'p> {
         } else {
             ("False", "True")
         };
-        self.line(format!("set_out({}, {a})", port.text));
+        self.line(format!("set_out({port}, {a})"));
         self.line(format!("time.sleep({t})"));
-        self.line(format!("set_out({}, {b})", port.text));
+        self.line(format!("set_out({port}, {b})"));
         Ok(())
     }
 
-    /// KUKA message routines: notification texts become print().
-    pub(super) fn message_call(
-        &mut self,
-        name: &Ident,
-        args: &[Option<Expr>],
-        span: Span,
-    ) -> Option<R<()>> {
-        let key = name.key();
-        match key.as_str() {
-            "MSGNOTIFY" | "MSGQUIT" | "MSGSTATE" => {
-                let text = match args.first() {
-                    Some(Some(a)) => self.expr(a),
-                    _ => return Some(fail(span, "a message without text", "pass the text")),
-                };
-                Some(text.map(|t| {
-                    self.rep.approximate(
-                        FileId::Src,
-                        span,
-                        format!(
-                            "{} becomes print (no message window, no acknowledgement)",
-                            name.text
-                        ),
-                        "use input() where the operator must confirm",
-                    );
-                    self.line(format!("print({t})"));
-                }))
+    /// `$TIMER[n] = ms`, `$TIMER_STOP[n] = …`: the script's own millisecond timers.
+    pub(super) fn timer(&mut self, index: &Expr, op: &TimerOp) -> R<()> {
+        let i = self.expr(index)?;
+        match op {
+            TimerOp::Set(v) => {
+                let v = self.expr(v)?;
+                self.line(format!("timer_set({i}, {v})"));
             }
-            "MSGDIALOG" | "MSGLOOP" => Some(fail(
-                span,
-                format!(
-                    "{} (a dialog with answers) has no direct translation",
-                    name.text
-                ),
-                "ask with input() and test the answer",
-            )),
-            _ => None,
+            TimerOp::Stop(v) => {
+                let v = self.bool_value(v)?;
+                self.line(format!("timer_stop({i}, {v})"));
+            }
         }
+        Ok(())
+    }
+
+    /// `WAIT SEC t`, `WAIT FOR cond` (polled). The previous move has ended already (every move
+    /// waits for reachedTarget), as KRL's advance-run stop ensures.
+    pub(super) fn wait(&mut self, w: &Wait) -> R<()> {
+        match w {
+            Wait::Seconds(t) => {
+                let t = self.expr(t)?;
+                self.line(format!("time.sleep({t})"));
+            }
+            Wait::Poll => self.line("time.sleep(POLL)"),
+            Wait::Until(cond) => {
+                let test = match &cond.kind {
+                    ExprKind::Unary(UnaryOp::Not, operand) => self.render(operand)?.text,
+                    _ => {
+                        let c = self.render(cond)?;
+                        let t = c.at(NOT);
+                        // Comparisons read better negated in place, negations without `not`.
+                        match (c.prec, negate_comparison(&c.text)) {
+                            (CMP, Some(n)) => n,
+                            (NOT, _) if c.text.starts_with("not ") => {
+                                c.text["not ".len()..].to_owned()
+                            }
+                            _ => format!("not {t}"),
+                        }
+                    }
+                };
+                self.line(format!("while {test}:"));
+                self.line("    time.sleep(POLL)");
+            }
+        }
+        Ok(())
+    }
+
+    pub(super) fn halt(&mut self, span: Span) -> R<()> {
+        let line = LineIndex::new(&self.src.src.text).line_of(span.start as usize) + 1;
+        let at = format!(
+            "{}:{line}",
+            super::file_name(&self.src.src.path).replace('"', "")
+        );
+        self.rep.approximate(
+            FileId::Src,
+            span,
+            "HALT waits for Enter at the console (there is no teach pendant); without a console the script stops the robot and ends",
+            "run the script in a terminal, or handle the stop in Python",
+        );
+        self.line(format!("halt({})", super::format::string(&at)));
+        Ok(())
     }
 }
 

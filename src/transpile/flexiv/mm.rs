@@ -6,14 +6,10 @@
 
 use super::client::{method_name, supported};
 use super::{R, Tx, fail};
-use crate::catalog::{Direction, catalog};
+use crate::catalog::{Direction, Subprogram};
 use crate::diag::Span;
-use crate::syntax::ast::{Expr, ExprKind, Ident};
-use crate::transpile::front::literal;
 use crate::transpile::front::report::FileId;
-use crate::transpile::front::sysvar::{self, Sys};
-use crate::transpile::front::vision;
-use crate::transpile::front::walk::root_name;
+use crate::transpile::ir::{Arg, ExprKind};
 
 /// KUKA package globals and the client attributes that hold the same data.
 const GLOBALS: [(&str, &str); 4] = [
@@ -31,33 +27,8 @@ pub(super) fn package_global(name: &str) -> Option<&'static str> {
         .map(|(_, a)| *a)
 }
 
-impl<'p> Tx<'p> {
-    pub(super) fn mm_call(&mut self, name: &Ident, args: &[Option<Expr>], span: Span) -> R<()> {
-        let cat = catalog();
-        let Some(sub) = cat.subprogram(&name.text) else {
-            return fail(
-                name.span,
-                format!(
-                    "`{}` is not a routine of the Mech-Mind interface",
-                    name.text
-                ),
-                "check the name (krlkit check reports the nearest one)",
-            );
-        };
-        if args.len() != sub.params.len()
-            && !(sub.params.is_empty() && args.iter().all(Option::is_none))
-        {
-            return fail(
-                span,
-                format!(
-                    "`{}` takes {} arguments, this call passes {}",
-                    sub.name,
-                    sub.params.len(),
-                    args.len()
-                ),
-                format!("call it as {}", sub.signature()),
-            );
-        }
+impl<'a> Tx<'a> {
+    pub(super) fn mm_call(&mut self, sub: &'static Subprogram, args: &[Arg], span: Span) -> R<()> {
         if !supported(sub) {
             return fail(
                 span,
@@ -72,13 +43,19 @@ impl<'p> Tx<'p> {
         let mut ins = Vec::new();
         let mut places = Vec::new();
         if sub.name == "MM_Init_Socket" {
-            let server = vision::resolve(self.opts, sub, args, span, "mm.init_socket")?;
+            let Some(server) = self.vision else {
+                return fail(
+                    span,
+                    "the vision server's IP address and port are unknown",
+                    "pass --spec krlkit.toml or --eki-xml FILE",
+                );
+            };
             let time_out = sub
                 .params
                 .iter()
                 .position(|p| p.ident() == "Time_Out")
                 .and_then(|i| args.get(i))
-                .and_then(Option::as_ref);
+                .and_then(|a| a.value.as_ref());
             let Some(time_out) = time_out else {
                 return fail(span, "argument Time_Out is omitted", "pass every argument");
             };
@@ -88,7 +65,7 @@ impl<'p> Tx<'p> {
             self.server_used = Some(format!("{}:{} ({})", server.ip, server.port, server.origin));
         } else {
             for (p, a) in sub.params.iter().zip(args) {
-                let Some(a) = a else {
+                let Some(value) = &a.value else {
                     return fail(
                         span,
                         format!("argument {} is omitted", p.ident()),
@@ -96,33 +73,24 @@ impl<'p> Tx<'p> {
                     );
                 };
                 match p.dir {
-                    Direction::In if p.ty == "E6AXIS" => ins.push(self.mm_joints(a)?),
-                    Direction::In => ins.push(self.expr(a)?),
+                    // `$AXIS_ACT`: None, for which the client sends the robot's current joints.
+                    Direction::In if matches!(value.kind, ExprKind::Current { joints: true }) => {
+                        ins.push("None".into())
+                    }
+                    Direction::In => ins.push(self.expr(value)?),
                     Direction::Out => {
-                        if root_name(a).is_none() || sysvar::classify(a).is_some() {
+                        let Some(place) = &a.place else {
                             return fail(
                                 a.span,
                                 "an OUT argument must be a variable",
                                 "pass a variable",
                             );
-                        }
-                        if self
-                            .var(&root_name(a).map(|r| r.text.clone()).unwrap_or_default())
-                            .is_none()
-                            && let Some(r) = root_name(a)
-                        {
-                            let what = match p.ty.as_str() {
-                                "E6POS" => "a pose (E6POS)",
-                                "E6AXIS" => "axis values (E6AXIS)",
-                                _ => "a number",
-                            };
-                            self.assume(r, what);
-                        }
-                        places.push(self.place(a)?.0);
+                        };
+                        places.push(self.target(place, a.span, true)?);
                     }
                 }
             }
-            self.current_pose_caveats(&sub.name, args, span);
+            self.current_pose_caveats(sub, args, span);
         }
         self.mm_used.insert(sub.name.clone());
         let call = format!("{method}({})", ins.join(", "));
@@ -130,44 +98,27 @@ impl<'p> Tx<'p> {
         Ok(())
     }
 
-    /// An E6AXIS argument: a variable or literal as it is; `$AXIS_ACT` as None, for which the
-    /// client sends the robot's current joints.
-    fn mm_joints(&mut self, a: &Expr) -> R<String> {
-        if let Some(Sys::AxisAct) = sysvar::classify(a) {
-            return Ok("None".into());
-        }
-        if let ExprKind::Name(id) = &a.kind
-            && self.var(&id.text).is_none()
-        {
-            self.assume(id, "axis values (E6AXIS)");
-        }
-        self.expr(a)
-    }
-
     /// Requests that carry the robot's current joints send six of a Rizon's seven; the
     /// current flange pose comes from RobotStates.
-    fn current_pose_caveats(&mut self, name: &str, args: &[Option<Expr>], span: Span) {
+    fn current_pose_caveats(&mut self, sub: &Subprogram, args: &[Arg], span: Span) {
         // The SendPos_Type that sends the current joints, and the one that sends MM_J (the
         // catalog's meaning of SendPos_Type; `$AXIS_ACT` as MM_J also means the current joints).
-        let (current, given) = match name {
+        let (current, given) = match sub.name.as_str() {
             "MM_Start_Vis" => (1, 3),
             "MM_Start_Viz" => (1, 2),
             _ => return,
         };
-        let Some(at) = catalog()
-            .subprogram(name)
-            .and_then(|s| s.params.iter().position(|p| p.ident() == "SendPos_Type"))
-        else {
+        let Some(at) = sub.params.iter().position(|p| p.ident() == "SendPos_Type") else {
             return;
         };
         let axis_act_arg = args
             .last()
-            .and_then(Option::as_ref)
-            .is_some_and(|a| matches!(sysvar::classify(a), Some(Sys::AxisAct)));
+            .and_then(|a| a.value.as_ref())
+            .is_some_and(|a| matches!(a.kind, ExprKind::Current { joints: true }));
         let sends_current = match args
             .get(at)
-            .and_then(Option::as_ref)
-            .and_then(literal::integer)
+            .and_then(|a| a.value.as_ref())
+            .and_then(|v| v.integer())
         {
             Some(t) => t == current || (axis_act_arg && t == given),
             None => true,
@@ -187,6 +138,7 @@ impl<'p> Tx<'p> {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::catalog::catalog;
 
     #[test]
     fn package_globals_are_catalog_globals() {

@@ -1,20 +1,26 @@
-//! KRL → a Flexiv RDK Python script, following the mapping of the reference notes (§3.7).
+//! The program model → a Flexiv RDK Python script, following the mapping of the reference
+//! notes (§3.7).
 //!
+//! A renderer: the KRL decisions are in the model; this module spells them in Python and
+//! reports what the RDK cannot do. Jumps are first turned into loops ([`crate::transpile::ir::goto`]).
 //! One `.src` (+ `.dat`) becomes one runnable Python 3 script: a header with the assumptions
-//! and the name map, the runtime (connect, motion, I/O helpers; `templates/py/script.py`), the
-//! Mech-Mind client when the program calls `MM_*` routines (`client.rs`), the `.dat` globals as
-//! module-level variables, one Python function per DEF/DEFFCT, and `main()`, which connects and
-//! runs the program's first routine.
+//! and the name map, the runtime (connect, motion, I/O and timer helpers;
+//! `templates/py/script.py`), the Mech-Mind client when the program calls `MM_*` routines
+//! (`client.rs`), the `.dat` globals as module-level variables, one Python function per
+//! routine, and `main()`, which runs the program's first routine (and exits before connecting
+//! when there is none).
 //!
 //! Values keep KUKA's units inside the program (poses in mm and degrees as an immutable
 //! `Pose`, so assignment copies as in KRL); the motion helpers convert to Flexiv's units. OUT
 //! parameters are returned: a function returns its OUT parameters in order, and a call assigns
-//! them back (`a, b = f(x, a, b)`); a DEFFCT returns its value first.
+//! them back (`a, b = f(x, a, b)`); a DEFFCT returns its value first. Motion settings live in
+//! the runtime (`KRL.vel_cp` …) as KRL keeps them, so a value a called routine set is used.
 
 pub mod client;
 mod data;
 mod expr;
 mod format;
+mod help;
 mod io;
 mod mm;
 mod motion;
@@ -28,68 +34,80 @@ use std::collections::{BTreeMap, BTreeSet, HashMap};
 pub use options::{Api, FlexivOptions, JointMap, JointSource, PtpPrimitive, RdkVersion};
 
 use super::Options;
-use super::front::Program;
+use super::VisionServer;
+use super::front::Program as Source;
 use super::front::comments::{self, CommentQueue};
 use super::front::names::{Namespace, Renamed};
-use super::front::report::{FileId, Outcome, Report};
-use super::front::symbols::{Scope, Var};
+use super::front::report::{FileId, Report};
+use super::ir::{self, LoopId, RoutineId, RoutineKind, Scope, TempId, VarId};
 use crate::diag::Span;
-use crate::syntax::ast::{Ident, ParamDir, Routine, RoutineKind, Stmt, StmtKind};
 use names::NAME_RULES;
 
 pub(super) use super::front::{Fail, R, fail};
 
-/// Translate `program`; the findings are not yet sorted.
-pub fn translate(program: &Program, options: &Options) -> (String, Report) {
-    let mut tx = Tx::new(program, options);
+/// Render `program`; the findings are not yet sorted. `produced`: the statements that wrote
+/// something.
+pub fn render(
+    src: &Source,
+    program: &ir::Program,
+    vision: Option<&VisionServer>,
+    options: &Options,
+) -> (String, Report, Vec<Span>) {
+    // Python has no GOTO: jumps become loops first.
+    let mut structured = program.clone();
+    for r in &mut structured.routines {
+        ir::goto::structure(r);
+    }
+    let mut tx = Tx::new(src, &structured, vision, options);
     tx.run();
     let text = tx.assemble();
-    (text, tx.rep)
+    (text, tx.rep, tx.produced)
 }
 
-/// The routine being translated.
+/// The routine being rendered.
 struct Rt {
-    /// Upper-case KRL name (empty for statements outside any DEF).
-    key: String,
     kind: RoutineKind,
     /// Python names of the OUT parameters, in order (returned by every `return`).
     outs: Vec<String>,
     /// Module-level names this function assigns (declared `global`).
     globals: BTreeSet<String>,
-    /// Loops around the statement being translated.
-    loops: usize,
-    /// Temporaries made up so far (`_sel`, `_out`), for unique names.
-    temps: usize,
+    /// Temporaries named so far.
+    temps: HashMap<TempId, String>,
+    /// Enclosing loops, innermost last.
+    loops: Vec<LoopId>,
+    /// Loops left or restarted from a nested loop: their flags.
+    flags: HashMap<(LoopId, bool), String>,
+    /// Per loop being rendered: the outer loops left (false) or restarted (true) from inside.
+    pending: Vec<BTreeSet<(LoopId, bool)>>,
+    /// Counter for made-up names.
+    made: usize,
+    /// The tool (`switch_tool` argument) and work frame (`KRL.base`) known to be in force.
+    tool: Option<String>,
+    base: Option<String>,
 }
 
-/// An undeclared name the program uses: defined as `None` at module level with a TR002.
+/// An undeclared name the program uses: defined as `None` at module level.
 struct Assumed {
     krl: String,
     what: &'static str,
 }
 
-pub(super) struct Tx<'p> {
-    prog: &'p Program,
-    opts: &'p Options,
-    fx: &'p FlexivOptions,
+pub(super) struct Tx<'a> {
+    src: &'a Source,
+    ir: &'a ir::Program,
+    fx: &'a FlexivOptions,
+    vision: Option<&'a VisionServer>,
     rep: Report,
     /// Routines and globals share the module's namespace.
     module_ns: Namespace,
-    locals_ns: HashMap<String, Namespace>,
+    locals_ns: HashMap<RoutineId, Namespace>,
     /// Every rename, in the order found, with what kind of name it is.
     renamed: Vec<(&'static str, Renamed)>,
     comments: CommentQueue,
     lines: Vec<String>,
     depth: usize,
     rt: Option<Rt>,
-    /// The coverage kind and report mark of the statement being translated.
-    pending: Option<(&'static str, (usize, usize))>,
-    /// `$APO.CDIS` (or an inline form's APO_DIST) last set, as Python; `None`: not set yet.
-    apo_cdis: Option<String>,
-    /// The tool (`switch_tool` argument) and work frame (`KRL.base`) known to be in force.
-    tool_set: Option<String>,
-    base_set: Option<String>,
-    /// Python name → undeclared KRL name, reported once each.
+    /// Python name → undeclared KRL name.
     assumed: BTreeMap<String, Assumed>,
     /// Routines of other modules the program calls (Python names).
     externals: BTreeSet<String>,
@@ -106,15 +124,23 @@ pub(super) struct Tx<'p> {
     functions: Vec<String>,
     /// The function `main()` calls.
     entry: Option<String>,
+    /// KRL statements that wrote at least one line.
+    produced: Vec<Span>,
 }
 
-impl<'p> Tx<'p> {
-    fn new(prog: &'p Program, opts: &'p Options) -> Tx<'p> {
-        let comments = CommentQueue::new(comments::collect(&prog.src.parse.root(), &prog.src.text));
+impl<'a> Tx<'a> {
+    fn new(
+        src: &'a Source,
+        ir: &'a ir::Program,
+        vision: Option<&'a VisionServer>,
+        opts: &'a Options,
+    ) -> Tx<'a> {
+        let comments = CommentQueue::new(comments::collect(&src.src.parse.root(), &src.src.text));
         Tx {
-            prog,
-            opts,
+            src,
+            ir,
             fx: &opts.flexiv,
+            vision,
             rep: Report::default(),
             module_ns: Namespace::default(),
             locals_ns: HashMap::new(),
@@ -123,10 +149,6 @@ impl<'p> Tx<'p> {
             lines: Vec::new(),
             depth: 0,
             rt: None,
-            pending: None,
-            apo_cdis: None,
-            tool_set: None,
-            base_set: None,
             assumed: BTreeMap::new(),
             externals: BTreeSet::new(),
             mm_used: BTreeSet::new(),
@@ -136,32 +158,45 @@ impl<'p> Tx<'p> {
             data_kept: Vec::new(),
             functions: Vec::new(),
             entry: None,
+            produced: Vec::new(),
         }
     }
 
     fn run(&mut self) {
-        let prog = self.prog;
+        let ir = self.ir;
+        for f in &ir.findings {
+            self.rep.approximate(f.file, f.span, &f.message, &f.help);
+        }
         // Names of everything declared, in declaration order, so TR003 points at declarations
         // and names made up later never take a user's.
-        for r in &prog.src.ast.routines {
-            self.routine_name(&r.name);
+        for r in &ir.routines {
+            if !r.synthetic {
+                self.routine_name(&r.name, r.name_span);
+            }
         }
         self.name_globals();
         self.data_globals();
-        for r in &prog.src.ast.routines {
-            self.routine(r);
+        for (i, r) in ir.routines.iter().enumerate() {
+            if !r.synthetic {
+                self.routine(RoutineId(i as u32));
+            }
         }
-        if !prog.src.ast.top_level.is_empty() {
-            self.top_level();
+        if let Some(t) = ir.top_level {
+            self.routine(t);
         }
-        if let Some(first) = prog.src.ast.routines.first() {
-            if first.params.is_empty() {
-                self.entry = self.module_ns.get(&first.name.text).map(str::to_owned);
-            } else {
-                self.note(format!(
-                    "{} takes parameters, so main() does not start it; call it from your own code",
-                    first.name.text
-                ));
+        let first = ir.routines.iter().position(|r| !r.synthetic);
+        match first {
+            Some(i) if ir.routines[i].params.is_empty() => {
+                self.entry = self.module_ns.get(&ir.routines[i].name).map(str::to_owned);
+            }
+            Some(i) => self.note(format!(
+                "{} takes parameters, so main() does not start it; call it from your own code",
+                ir.routines[i].name
+            )),
+            None => {
+                if let Some(t) = ir.top_level {
+                    self.entry = self.module_ns.get(&ir.routine(t).name).map(str::to_owned);
+                }
             }
         }
     }
@@ -184,50 +219,96 @@ impl<'p> Tx<'p> {
         self.renamed.push((kind, r));
     }
 
-    /// The Python name of a routine (DEF/DEFFCT of this file or of another module).
-    fn routine_name(&mut self, id: &Ident) -> String {
-        let (name, r) = self.module_ns.name(&id.text, &NAME_RULES);
-        self.note_rename("routine", FileId::Src, id.span, r);
+    /// The Python name of a routine (of this file or of another module).
+    fn routine_name(&mut self, krl: &str, span: Span) -> String {
+        let (name, r) = self.module_ns.name(krl, &NAME_RULES);
+        self.note_rename("routine", FileId::Src, span, r);
         name
     }
 
     fn name_globals(&mut self) {
-        let prog = self.prog;
-        let mut globals: Vec<&Var> = prog.symbols.globals.values().collect();
-        globals.sort_by_key(|v| (v.span.start, v.name.to_ascii_uppercase()));
-        for v in globals {
-            let file = prog.decl_file(v);
-            let (_, r) = self.module_ns.name(&v.name, &NAME_RULES);
-            let span = prog.name_span(file, v);
-            self.note_rename("variable", file, span, r);
+        let ir = self.ir;
+        for v in &ir.vars {
+            if v.scope == Scope::Global {
+                let (_, r) = self.module_ns.name(&v.name, &NAME_RULES);
+                self.note_rename("variable", v.file, v.decl, r);
+            }
         }
     }
 
-    /// The current routine's key (upper case), if inside one.
-    fn routine_key(&self) -> Option<&str> {
-        self.rt.as_ref().map(|r| r.key.as_str())
+    /// The Python spelling of a variable, and whether it lives at module level.
+    fn var_name(&mut self, v: VarId, used_at: Span) -> (String, bool) {
+        let var = self.ir.var(v);
+        match var.scope {
+            Scope::Local(r) | Scope::Param(r) => {
+                let ns = self.locals_ns.entry(r).or_default();
+                let (n, ren) = ns.name(&var.name, &NAME_RULES);
+                self.note_rename("variable", FileId::Src, used_at, ren);
+                (n, false)
+            }
+            Scope::Package => match mm::package_global(&var.name) {
+                Some(g) => (g.to_owned(), false),
+                None => {
+                    let (n, ren) = self.module_ns.name(&var.name, &NAME_RULES);
+                    self.note_rename("variable", FileId::Src, used_at, ren);
+                    (n, true)
+                }
+            },
+            Scope::Global => {
+                let (n, ren) = self.module_ns.name(&var.name, &NAME_RULES);
+                self.note_rename("variable", FileId::Src, used_at, ren);
+                (n, true)
+            }
+            Scope::Assumed => {
+                let (n, ren) = self.module_ns.name(&var.name, &NAME_RULES);
+                self.note_rename("variable", FileId::Src, used_at, ren);
+                if !self.assumed.contains_key(&n) {
+                    let what = match &var.ty {
+                        ir::Ty::Pose => "a pose (E6POS)",
+                        ir::Ty::Joint => "axis values (E6AXIS)",
+                        ir::Ty::Char => "a string",
+                        _ if var.dims > 0 => "an array",
+                        _ => "a number",
+                    };
+                    self.assumed.insert(
+                        n.clone(),
+                        Assumed {
+                            krl: var.name.clone(),
+                            what,
+                        },
+                    );
+                }
+                (n, true)
+            }
+        }
     }
 
-    /// The variable `name` as seen from here.
-    fn var(&self, name: &str) -> Option<&'p Var> {
-        let prog = self.prog;
-        prog.symbols.lookup(self.routine_key(), name)
+    /// A temporary's name, minted on first use (starts with `_`, which no translated KRL name
+    /// does).
+    fn temp_name(&mut self, t: TempId) -> String {
+        if let Some(n) = self.rt.as_ref().and_then(|r| r.temps.get(&t)) {
+            return n.clone();
+        }
+        let n = self.made("t");
+        if let Some(rt) = &mut self.rt {
+            rt.temps.insert(t, n.clone());
+        }
+        n
     }
 
-    /// The Python spelling of a declared or assumed variable, and whether it lives at module
-    /// level.
-    fn var_name(&mut self, id: &Ident) -> (String, bool) {
-        let local = self.var(&id.text).is_some_and(|v| v.scope != Scope::Global);
-        if local {
-            let key = self.routine_key().unwrap_or("").to_owned();
-            let ns = self.locals_ns.entry(key).or_default();
-            let (n, r) = ns.name(&id.text, &NAME_RULES);
-            self.note_rename("variable", FileId::Src, id.span, r);
-            (n, false)
+    /// A name the translator needs (`_base`, `_base2`, …).
+    fn made(&mut self, base: &str) -> String {
+        let n = match &mut self.rt {
+            Some(rt) => {
+                rt.made += 1;
+                rt.made
+            }
+            None => 1,
+        };
+        if n == 1 {
+            format!("_{base}")
         } else {
-            let (n, r) = self.module_ns.name(&id.text, &NAME_RULES);
-            self.note_rename("variable", FileId::Src, id.span, r);
-            (n, true)
+            format!("_{base}{n}")
         }
     }
 
@@ -238,52 +319,10 @@ impl<'p> Tx<'p> {
         }
     }
 
-    /// The type of an undeclared name, assumed from how it is used; reported once per name.
-    /// The script defines it as `None`, so a run stops where it is used until it is defined.
-    fn assume(&mut self, id: &Ident, what: &'static str) {
-        let (py, _) = self.module_ns.name(&id.text, &NAME_RULES);
-        if self.assumed.contains_key(&py) {
-            return;
-        }
-        self.rep.approximate(
-            FileId::Src,
-            id.span,
-            format!(
-                "`{}` is not declared in this program or its .dat; assumed {what}, defined as None at the top of the program",
-                id.text
-            ),
-            "declare it (e.g. in the .dat), or set its value where the script defines it",
-        );
-        self.assumed.insert(
-            py,
-            Assumed {
-                krl: id.text.to_string(),
-                what,
-            },
-        );
-    }
-
     fn note(&mut self, text: impl Into<String>) {
         let t = text.into();
         if !self.notes.contains(&t) {
             self.notes.push(t);
-        }
-    }
-
-    /// A temporary name for the translator's own use (starts with `_`, which no translated KRL
-    /// name does).
-    fn temp(&mut self, base: &str) -> String {
-        let n = match &mut self.rt {
-            Some(rt) => {
-                rt.temps += 1;
-                rt.temps
-            }
-            None => 1,
-        };
-        if n == 1 {
-            format!("_{base}")
-        } else {
-            format!("_{base}{n}")
         }
     }
 
@@ -310,9 +349,11 @@ impl<'p> Tx<'p> {
         }
     }
 
-    /// The original KRL of `span`, one comment line per source line, tagged with `code`.
+    /// The original KRL of the lines of `span`, one comment line per source line, tagged with
+    /// `code`.
     fn keep_as_comment(&mut self, code: &str, span: Span) {
-        let text = self.prog.src.slice(span).to_owned();
+        let span = crate::transpile::kawasaki::whole_lines(&self.src.src.text, span);
+        let text = self.src.src.slice(span).to_owned();
         for l in text.split(['\n', '\r']) {
             let l = l.trim();
             if !l.is_empty() {
@@ -323,62 +364,46 @@ impl<'p> Tx<'p> {
         self.comments.before(span.end);
     }
 
-    // ----- coverage ----------------------------------------------------------------------
-
-    /// Record the pending construct's outcome (from the findings since it started).
-    fn settle(&mut self) {
-        if let Some((kind, mark)) = self.pending.take() {
-            let o = self.rep.outcome_since(mark);
-            self.rep.coverage.record(kind, o);
-        }
-    }
-
-    /// Override the coverage kind of the statement being translated.
-    fn kind(&mut self, kind: &'static str) {
-        if let Some(p) = &mut self.pending {
-            p.0 = kind;
-        }
-    }
-
     // ----- routines ----------------------------------------------------------------------
 
-    fn new_rt(key: String, kind: RoutineKind) -> Rt {
-        Rt {
-            key,
-            kind,
-            outs: Vec::new(),
-            globals: BTreeSet::new(),
-            loops: 0,
-            temps: 0,
-        }
-    }
-
-    fn routine(&mut self, r: &'p Routine) {
+    fn routine(&mut self, id: RoutineId) {
+        let ir = self.ir;
+        let r = ir.routine(id);
         // Comments before the DEF line go above the function.
         self.lines.clear();
         self.depth = 0;
         self.flush_comments(r.span.start);
         let before = std::mem::take(&mut self.lines);
-        let key = r.name.key();
-        let name = self.module_ns.get(&r.name.text).unwrap_or("").to_owned();
-        self.rt = Some(Self::new_rt(key.clone(), r.kind));
+        let name = if r.synthetic {
+            self.routine_name(&r.name, r.name_span)
+        } else {
+            self.module_ns.get(&r.name).unwrap_or("").to_owned()
+        };
+        self.rt = Some(Rt {
+            kind: r.kind,
+            outs: Vec::new(),
+            globals: BTreeSet::new(),
+            temps: HashMap::new(),
+            loops: Vec::new(),
+            flags: HashMap::new(),
+            pending: Vec::new(),
+            made: 0,
+            tool: None,
+            base: None,
+        });
         // Locals first (parameters, then declarations), so made-up names never take a user's.
-        let prog = self.prog;
-        if let Some(locals) = prog.symbols.locals.get(&key) {
-            let mut vars: Vec<&Var> = locals.values().collect();
-            vars.sort_by_key(|v| (v.span.start, v.name.to_ascii_uppercase()));
-            for v in vars {
-                let ns = self.locals_ns.entry(key.clone()).or_default();
+        for v in &ir.vars {
+            if matches!(v.scope, Scope::Param(x) | Scope::Local(x) if x == id) {
+                let ns = self.locals_ns.entry(id).or_default();
                 let (_, ren) = ns.name(&v.name, &NAME_RULES);
-                let span = prog.name_span(FileId::Src, v);
-                self.note_rename("variable", FileId::Src, span, ren);
+                self.note_rename("variable", v.file, v.decl, ren);
             }
         }
         let mut params = Vec::new();
         let mut outs = Vec::new();
         for p in &r.params {
-            let (n, _) = self.var_name(&p.name);
-            if p.dir == Some(ParamDir::Out) {
+            let (n, _) = self.var_name(p.var, ir.var(p.var).decl);
+            if p.dir == ir::ParamDir::Out {
                 outs.push(n.clone());
             }
             params.push(n);
@@ -388,39 +413,21 @@ impl<'p> Tx<'p> {
         }
         self.depth = 1;
         // Comments before the declarations stay before the locals' values.
-        if let Some(d) = r.decls.first() {
-            self.flush_comments(d.span.start);
+        if let Some(first) = r.locals.iter().map(|(v, _)| ir.var(*v).decl.start).min() {
+            self.flush_comments(first);
         }
         self.local_defaults(r);
-        self.stmts(&r.body);
+        let start = self.lines.len();
+        self.block(&r.body);
         self.flush_comments(r.span.end);
-        if !outs.is_empty() && r.kind == RoutineKind::Def && !ends_with_return(&r.body) {
+        let ends_with_return = matches!(r.body.last().map(|s| &s.op), Some(ir::Op::Return(_)));
+        if !outs.is_empty() && r.kind == RoutineKind::Def && !ends_with_return {
             self.line(format!("return {}", outs.join(", ")));
         }
         if !has_code(&self.lines) {
             self.line("pass");
         }
-        let kind = match r.kind {
-            RoutineKind::Def => "routine DEF",
-            RoutineKind::Deffct => "routine DEFFCT",
-        };
-        if !r.closed {
-            self.rep.approximate(
-                FileId::Src,
-                r.name.span,
-                format!(
-                    "`{}` has no END; translated up to the end of the file",
-                    r.name.text
-                ),
-                "close the routine with END",
-            );
-        }
-        let o = if r.closed {
-            Outcome::Exact
-        } else {
-            Outcome::Approximate
-        };
-        self.rep.coverage.record(kind, o);
+        let _ = start;
         let body = std::mem::take(&mut self.lines);
         let globals = self.rt.take().map(|rt| rt.globals).unwrap_or_default();
         let mut f = before;
@@ -434,85 +441,31 @@ impl<'p> Tx<'p> {
         self.depth = 0;
     }
 
-    /// Locals start with their declared value, or the type's zero value (KRL leaves them
-    /// undefined; Python needs a value to bind).
-    fn local_defaults(&mut self, r: &'p Routine) {
-        let mut decls: Vec<&'p crate::syntax::ast::Decl> = r.decls.iter().collect();
-        super::front::walk::each_stmt(&r.body, &mut |s: &'p Stmt| {
-            if let StmtKind::Decl(d) = &s.kind {
-                decls.push(d);
+    /// Locals start with their type's zero value (KRL leaves them undefined; Python needs a
+    /// value to bind); declared values are assigned where the routine's statements say.
+    fn local_defaults(&mut self, r: &'a ir::Routine) {
+        // Locals the routine assigns before anything else need no zero value.
+        let mut first: BTreeSet<VarId> = BTreeSet::new();
+        for s in &r.body {
+            match &s.op {
+                ir::Op::Assign {
+                    place: ir::Place::Var(v),
+                    ..
+                } => {
+                    first.insert(*v);
+                }
+                _ => break,
             }
-        });
-        let in_section = r.decls.len();
-        for (i, d) in decls.into_iter().enumerate() {
-            if d.global {
+        }
+        for (v, dims) in &r.locals {
+            if first.contains(v) {
                 continue;
             }
-            for v in &d.vars {
-                let Some(var) = self.var(&v.name.text) else {
-                    continue;
-                };
-                if matches!(var.scope, Scope::Param(_)) {
-                    continue;
-                }
-                match (&v.init, i < in_section) {
-                    (Some(init), true) => {
-                        self.pending = Some(("assignment", self.rep.mark()));
-                        let target = crate::syntax::ast::Expr {
-                            kind: crate::syntax::ast::ExprKind::Name(v.name.clone()),
-                            span: v.name.span,
-                        };
-                        if let Err(f) = self.assign(&target, init, d.span) {
-                            self.rep
-                                .untranslatable(FileId::Src, f.span, f.message, f.help);
-                            self.keep_as_comment("TR001", d.span);
-                        }
-                        self.settle();
-                    }
-                    _ => {
-                        let ty = var.ty.clone();
-                        if let Some(value) = self.zero_value(&ty, &v.dims) {
-                            let (n, _) = self.var_name(&v.name);
-                            self.line(format!("{n} = {value}"));
-                        }
-                    }
-                }
+            let ty = self.ir.var(*v).ty.clone();
+            if let Some(value) = self.zero_value(&ty, dims) {
+                let (n, _) = self.var_name(*v, self.ir.var(*v).decl);
+                self.line(format!("{n} = {value}"));
             }
-        }
-    }
-
-    /// Statements outside any DEF (a `.sub` fragment): one function named after the file.
-    fn top_level(&mut self) {
-        let prog = self.prog;
-        let stem = std::path::Path::new(&prog.src.path)
-            .file_stem()
-            .and_then(|s| s.to_str())
-            .unwrap_or("main")
-            .to_owned();
-        let id = Ident {
-            text: stem.into(),
-            span: Span::empty(0),
-        };
-        let name = self.routine_name(&id);
-        self.rt = Some(Self::new_rt(String::new(), RoutineKind::Def));
-        self.lines.clear();
-        self.depth = 1;
-        self.stmts(&prog.src.ast.top_level);
-        if !has_code(&self.lines) {
-            self.line("pass");
-        }
-        let body = std::mem::take(&mut self.lines);
-        let globals = self.rt.take().map(|rt| rt.globals).unwrap_or_default();
-        let mut f = vec![format!("def {name}():")];
-        if !globals.is_empty() {
-            let g: Vec<&str> = globals.iter().map(String::as_str).collect();
-            f.push(format!("    global {}", g.join(", ")));
-        }
-        f.extend(body);
-        self.functions.push(f.join("\n"));
-        self.depth = 0;
-        if self.entry.is_none() && prog.src.ast.routines.is_empty() {
-            self.entry = Some(name);
         }
     }
 
@@ -604,7 +557,8 @@ impl<'p> Tx<'p> {
                     .join("/Z")
             ),
             "  MoveJ/MovePTP take the joint speed as \"jntVelScale\" (percent);".into(),
-            "  RobotStates.q is in radians and .flange_pose / .tcp_pose are [x, y, z, qw, qx, qy, qz].".into(),
+            "  RobotStates.q is in radians and .flange_pose / .tcp_pose are [x, y, z, qw, qx, qy, qz];".into(),
+            "  WorkCoord(robot).pose(name) gives a work frame in WORLD as [x, y, z, qw, qx, qy, qz].".into(),
         ];
         if let Some(origin) = &self.server_used {
             v.push(format!("Vision server: {origin}."));
@@ -631,11 +585,6 @@ fn has_code(lines: &[String]) -> bool {
         let t = l.trim();
         !t.is_empty() && !t.starts_with('#')
     })
-}
-
-/// Whether a routine body ends in RETURN (no implicit return is needed after it).
-fn ends_with_return(body: &[Stmt]) -> bool {
-    matches!(body.last().map(|s| &s.kind), Some(StmtKind::Return { .. }))
 }
 
 fn offset_text(offset: i64) -> String {

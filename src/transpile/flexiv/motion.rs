@@ -1,16 +1,15 @@
-//! Motions and motion parameters: MoveL/MoveJ/MovePTP, vel, zoneRadius, tools and work
-//! frames, `BAS(…)` and the data of KUKA inline forms (PDAT/LDAT/FDAT).
+//! Motions and motion parameters: MoveL/MoveJ/MovePTP (spline segments as one MoveL through
+//! waypoints), zoneRadius, the runtime's motion settings (`KRL.vel_cp` …), tools and work
+//! frames.
 
-use super::format::num;
+use super::format::{self, num};
 use super::{R, Tx, fail};
 use crate::diag::Span;
-use crate::syntax::ast::{Approx, Expr, ExprKind, Ident, Motion, MotionKind};
-use crate::transpile::front::ilf;
-use crate::transpile::front::literal::{self, AggKind};
 use crate::transpile::front::report::FileId;
-use crate::transpile::front::symbols::Ty;
-use crate::transpile::front::sysvar::{self, Sys};
-use crate::transpile::front::walk::root_name;
+use crate::transpile::ir::{
+    Because, Blend, Component, Delta, Expr, ExprKind, FrameKind, FrameRef, Known, MotionParam,
+    Move, Op, ParamValue, Path, Stmt, Target,
+};
 
 /// Blending radii (mm) assumed to have a zoneRadius code `Z<mm>`: unverified (the reference
 /// notes know "Z0" and "Z50" from public examples); stated in the script's header.
@@ -33,23 +32,42 @@ pub fn zone_code(mm: f64) -> String {
 /// Flexiv's tool names are set up in Flexiv Elements; the translation assumes these names.
 const FLANGE_TOOL: &str = "Flange";
 
-impl<'p> Tx<'p> {
-    /// Static knowledge of the tool and work frame in force ends at block boundaries.
-    pub(super) fn forget_frames(&mut self) {
-        self.tool_set = None;
-        self.base_set = None;
+impl<'a> Tx<'a> {
+    fn param_text(&mut self, v: &ParamValue) -> String {
+        match v {
+            ParamValue::Num(x) => num(*x),
+            ParamValue::Temp(t) => self.temp_name(*t),
+            ParamValue::Default => "DEFAULT_VEL".into(),
+        }
     }
 
-    /// The zoneRadius argument for a motion with KRL approximation `approx` (`None`: the
-    /// default "Z0", an exact stop).
-    fn zone_for(&mut self, approx: Option<Approx>, span: Span) -> Option<String> {
-        let a = approx?;
-        let (zone, known) = match &self.apo_cdis {
-            Some(v) => match v.parse::<f64>() {
-                Ok(mm) => (super::format::string(&zone_code(mm)), format!("{} mm", v)),
-                Err(_) => (format!("zone_code({v})"), "$APO.CDIS".to_owned()),
-            },
-            None => {
+    /// The zoneRadius argument for a motion (`None`: the default "Z0", an exact stop).
+    fn zone_for(&mut self, m: &Move, span: Span) -> Option<String> {
+        let (cdis, what) = match &m.blend {
+            Blend::Exact => return None,
+            Blend::Distance(d) => (d, "C_DIS"),
+            Blend::Percent { cdis, .. } => (
+                cdis,
+                "C_PTP (percent of the axis path, taken as the distance $APO.CDIS)",
+            ),
+            Blend::Velocity { cdis, .. } => (
+                cdis,
+                "C_VEL (percent of the speed, taken as the distance $APO.CDIS)",
+            ),
+            Blend::Orientation { cdis, .. } => (
+                cdis,
+                "C_ORI (orientation angle, taken as the distance $APO.CDIS)",
+            ),
+        };
+        let (zone, known) = match cdis {
+            Known::Is(ParamValue::Num(mm)) => {
+                (format::string(&zone_code(*mm)), format!("{} mm", num(*mm)))
+            }
+            Known::Is(ParamValue::Temp(t)) => {
+                let n = self.temp_name(*t);
+                (format!("zone_code({n})"), "$APO.CDIS".to_owned())
+            }
+            Known::Is(ParamValue::Default) | Known::Unknown(Because::NeverSet) => {
                 self.rep.approximate(
                     FileId::Src,
                     span,
@@ -58,13 +76,11 @@ impl<'p> Tx<'p> {
                 );
                 return None;
             }
-        };
-        let what = match a {
-            Approx::Dis => "C_DIS",
-            Approx::Ptp => "C_PTP (percent of the axis path, taken as the distance $APO.CDIS)",
-            Approx::Vel => "C_VEL (percent of the speed, taken as the distance $APO.CDIS)",
-            Approx::Ori => "C_ORI (orientation angle, taken as the distance $APO.CDIS)",
-            Approx::Spl => "C_SPL (taken as the distance $APO.CDIS)",
+            // Set by a called routine or on another path: the value the script keeps.
+            Known::Unknown(_) => (
+                "zone_code(KRL.apo_cdis)".to_owned(),
+                "$APO.CDIS as the program last set it".to_owned(),
+            ),
         };
         self.rep.approximate(
             FileId::Src,
@@ -77,95 +93,69 @@ impl<'p> Tx<'p> {
         Some(zone)
     }
 
-    fn zone_arg(zone: Option<String>) -> String {
-        zone.map(|z| format!(", {z}")).unwrap_or_default()
+    /// `, vel=…` when a WITH clause gives this motion its own speed.
+    fn with_speed(&mut self, m: &Move, param: MotionParam, name: &str) -> String {
+        match m.with.iter().rev().find(|(p, _)| *p == param) {
+            Some((_, v)) => {
+                let v = self.param_text(v);
+                format!(", {name}={v}")
+            }
+            None => String::new(),
+        }
     }
 
-    pub(super) fn motion(&mut self, m: &Motion, span: Span) -> R<()> {
-        use MotionKind as K;
-        if let Some(ca) = &m.ca {
-            return fail(
-                ca.span,
-                "CIRC with a circular angle (CA) has no Flexiv counterpart",
-                "replace the arc by LIN moves",
-            );
-        }
-        match m.kind {
-            K::Spl => {
-                return fail(
-                    span,
-                    "a spline segment (SPL) has no Flexiv counterpart here",
-                    "replace it by LIN moves, and check the path",
-                );
-            }
-            K::Circ | K::Scirc => {
-                return fail(
-                    span,
-                    "circular motions have no verified Flexiv primitive (MoveL with a waypoint would be two straight lines)",
-                    "replace the arc by LIN moves through points on it",
-                );
-            }
-            _ => {}
-        }
-        if m.relative {
-            return self.relative_motion(m, span);
-        }
-        let (target, ty) = self.motion_target(&m.target)?;
-        if !m.with.is_empty() {
-            self.rep.approximate(
-                FileId::Src,
+    pub(super) fn motion(&mut self, m: &'a Move, span: Span) -> R<()> {
+        let zone_arg = |z: Option<String>| z.map(|z| format!(", {z}")).unwrap_or_default();
+        match &m.path {
+            Path::Circular { .. } => fail(
                 span,
-                "the WITH clause (motion-local system variables) is not carried over",
-                "set KRL.vel_cp before the move instead",
-            );
-        }
-        if matches!(m.kind, K::Sptp | K::Slin) {
-            self.rep.approximate(
-                FileId::Src,
-                span,
-                "a spline motion becomes a plain move (MoveL/MoveJ)",
-                "check the path at this point",
-            );
-        }
-        let ptp = matches!(m.kind, K::Ptp | K::Sptp);
-        match (ptp, &ty) {
-            (false, Ty::Pose) => {
-                let z = self.zone_for(m.approx, span);
-                self.line(format!("move_l({target}{})", Self::zone_arg(z)));
+                "circular motions have no verified Flexiv primitive (MoveL with a waypoint would be two straight lines)",
+                "replace the arc by LIN moves through points on it",
+            ),
+            Path::Linear { to, .. } => {
+                if to.joints {
+                    return fail(
+                        to.expr.span,
+                        "LIN to axis values has no counterpart (MoveL needs a Cartesian target)",
+                        "move to a pose (E6POS)",
+                    );
+                }
+                let t = self.motion_target(to)?;
+                let z = self.zone_for(m, span);
+                let vel = self.with_speed(m, MotionParam::VelCp, "vel");
+                self.line(format!("move_l({t}{}{vel})", zone_arg(z)));
+                Ok(())
             }
-            (false, _) => {
-                return fail(
-                    m.target.span,
-                    "LIN to axis values has no counterpart (MoveL needs a Cartesian target)",
-                    "move to a pose (E6POS)",
-                );
-            }
-            (true, Ty::Pose) => {
-                let z = self.zone_for(m.approx, span);
+            Path::Joint { to, .. } if !to.joints => {
+                let t = self.motion_target(to)?;
+                let z = self.zone_for(m, span);
                 match self.fx.ptp {
                     super::PtpPrimitive::MoveL => {
                         self.rep.approximate(
                             FileId::Src,
                             span,
-                            "PTP to a pose becomes MoveL: the path is a straight line (KUKA interpolates the axes) and the speed is $VEL.CP (KRL.vel_cp, m/s)",
+                            "PTP to a pose becomes MoveL: the path is a straight line (KUKA interpolates the axes) and the speed is $VEL.CP (KRL.vel_cp, m/s), not the PTP percentage",
                             "check the path for collisions, or use --ptp moveptp if the robot's software has MovePTP",
                         );
-                        self.line(format!("move_l({target}{})", Self::zone_arg(z)));
+                        self.line(format!("move_l({t}{})", zone_arg(z)));
                     }
                     super::PtpPrimitive::MovePtp => {
-                        self.line(format!("move_ptp({target}{})", Self::zone_arg(z)));
+                        let vel = self.with_speed(m, MotionParam::VelPtp, "vel");
+                        self.line(format!("move_ptp({t}{}{vel})", zone_arg(z)));
                     }
                 }
+                Ok(())
             }
-            (true, _) => {
+            Path::Joint { to, .. } => {
                 if self.fx.joint_map.is_none() {
                     return fail(
-                        m.target.span,
+                        to.expr.span,
                         "PTP to axis values: a Rizon has seven joints, KUKA six, so the values have no meaning on the Rizon without a joint map",
                         "give --joint-map (e.g. A1,A2,0,A3,A4,A5,A6), or teach the pose on the Rizon and move there with MoveJ",
                     );
                 }
-                if m.approx.is_some() {
+                let t = self.motion_target(to)?;
+                if !matches!(m.blend, Blend::Exact) {
                     self.rep.approximate(
                         FileId::Src,
                         span,
@@ -175,142 +165,187 @@ impl<'p> Tx<'p> {
                 }
                 self.rep.approximate(
                     FileId::Src,
-                    m.target.span,
+                    to.expr.span,
                     "KUKA axis values become Rizon joints by the joint map; the same numbers give a different pose on a different arm",
                     "check every joint target on the robot at low speed",
                 );
-                self.line(format!("move_j({target})"));
+                let vel = self.with_speed(m, MotionParam::VelPtp, "vel");
+                self.line(format!("move_j({t}{vel})"));
+                Ok(())
             }
-        }
-        Ok(())
-    }
-
-    /// A motion target: a pose or axis variable, a literal, or pose arithmetic.
-    fn motion_target(&mut self, e: &Expr) -> R<(String, Ty)> {
-        match &e.kind {
-            ExprKind::Aggregate { .. } => {
-                let a = self.aggregate(e)?;
-                let t = self.literal(e)?;
-                Ok((
-                    t,
-                    if a.kind == AggKind::Axis {
-                        Ty::Joint
-                    } else {
-                        Ty::Pose
-                    },
-                ))
-            }
-            ExprKind::Name(id) if sysvar::classify(e).is_none() => {
-                let ty = match self.var(&id.text) {
-                    Some(v) => v.ty.clone(),
-                    None => {
-                        let home = id.key().starts_with("HOME") || id.key().starts_with("XHOME");
-                        let (ty, what) = if home {
-                            (Ty::Joint, "axis values (E6AXIS, like KUKA's HOME)")
-                        } else {
-                            (Ty::Pose, "a pose (E6POS)")
-                        };
-                        self.assume(id, what);
-                        ty
-                    }
-                };
-                self.motion_var(e, ty)
-            }
-            ExprKind::Index { .. } if sysvar::classify(e).is_none() => {
-                let ty = match root_name(e).and_then(|id| self.var(&id.text)) {
-                    Some(v) => v.ty.clone(),
-                    None => Ty::Pose,
-                };
-                self.motion_var(e, ty)
-            }
-            _ => {
-                let ty = self.ty_of(e);
-                let t = self.expr(e)?;
-                Ok((t, ty))
-            }
-        }
-    }
-
-    fn motion_var(&mut self, e: &Expr, ty: Ty) -> R<(String, Ty)> {
-        match ty {
-            Ty::Pose | Ty::Joint => Ok((self.expr(e)?, ty)),
-            other => fail(
-                e.span,
-                format!("a motion target of type {other:?} has no translation"),
-                "move to a pose (E6POS) or axis values (E6AXIS)",
-            ),
-        }
-    }
-
-    /// `LIN_REL {Z -50} #TOOL` → a MoveL relative to the current TCP.
-    fn relative_motion(&mut self, m: &Motion, span: Span) -> R<()> {
-        if m.kind != MotionKind::Lin {
-            return fail(
-                span,
+            Path::JointRel { delta, .. } => fail(
+                delta.span,
                 "this relative motion has no counterpart",
                 "compute the target pose and move to it",
-            );
+            ),
+            Path::LinearRel {
+                delta,
+                in_tool,
+                joint,
+                ..
+            } => {
+                let d = self.offset(delta)?;
+                if *joint {
+                    self.rep.approximate(
+                        FileId::Src,
+                        span,
+                        "PTP_REL with a Cartesian offset becomes a MoveL (a straight line; KUKA interpolates the axes)",
+                        "check the path for collisions",
+                    );
+                }
+                let world = matches!(m.frames.base, Known::Is(FrameRef::Null | FrameRef::World))
+                    || matches!(m.frames.base, Known::Unknown(Because::NeverSet));
+                if !in_tool && !world {
+                    self.rep.approximate(
+                        FileId::Src,
+                        span,
+                        "LIN_REL in a base: the offset is added in the work coordinate KRL.base, whose pose the script reads from the robot (WorkCoord.pose [?])",
+                        "check the move at reduced speed",
+                    );
+                }
+                let z = self.zone_for(m, span);
+                let vel = self.with_speed(m, MotionParam::VelCp, "vel");
+                self.line(format!(
+                    "move_rel(Pose({}), {}{}{vel})",
+                    d.join(", "),
+                    if *in_tool { "True" } else { "False" },
+                    zone_arg(z)
+                ));
+                Ok(())
+            }
         }
-        let a = self.aggregate(&m.target)?;
-        if a.kind != AggKind::Pose
-            || a.main[3..].iter().any(|v| v.is_some_and(|v| v != 0.0))
-            || a.ext_used().next().is_some()
-        {
-            return fail(
-                m.target.span,
-                "a relative move with orientation or external-axis changes has no verified counterpart",
-                "split it into a position change and a separate reorientation",
-            );
-        }
-        let d: Vec<String> = a.main[..3].iter().map(|v| num(v.unwrap_or(0.0))).collect();
-        let tool = m
-            .frame
-            .as_deref()
-            .is_some_and(|f| f.eq_ignore_ascii_case("TOOL"));
-        if !tool {
-            self.rep.approximate(
-                FileId::Src,
-                span,
-                "LIN_REL in the base frame adds the offset to the TCP position in WORLD; KUKA adds it in $BASE",
-                "check that the base frame is the world frame here",
-            );
-        }
-        let z = self.zone_for(m.approx, span);
-        self.line(format!(
-            "move_rel(Pose({}), {}{})",
-            d.join(", "),
-            if tool { "True" } else { "False" },
-            Self::zone_arg(z)
-        ));
-        Ok(())
     }
 
-    /// `$VEL.CP`, `$VEL_AXIS[i]`, `$ACC…`, `$APO…`, `$TOOL`, `$BASE`, `$OV_PRO`, … = value.
-    pub(super) fn motion_param_assign(&mut self, sys: Sys, value: &Expr, span: Span) -> R<()> {
-        match sys {
-            Sys::VelCp => {
-                self.kind("speed");
-                let v = self.expr(value)?;
-                self.line(format!("KRL.vel_cp = {v}"));
+    /// `LIN_REL`/`PTP_REL` offsets: X, Y, Z only.
+    fn offset(&mut self, d: &Delta) -> R<Vec<String>> {
+        let mut v = vec!["0".to_owned(), "0".to_owned(), "0".to_owned()];
+        for (c, e) in &d.fields {
+            match c {
+                Component::Pose(i @ 0..=2) => v[*i] = self.expr(e)?,
+                Component::Pose(_) if e.number() == Some(0.0) => {}
+                _ => {
+                    return fail(
+                        d.span,
+                        "a relative move with orientation or external-axis changes has no verified counterpart",
+                        "split it into a position change and a separate reorientation",
+                    );
+                }
             }
-            Sys::VelAxis(_) => {
-                self.kind("speed");
-                let v = self.expr(value)?;
+        }
+        Ok(v)
+    }
+
+    /// A motion target: a variable, a literal, or pose arithmetic.
+    fn motion_target(&mut self, t: &Target) -> R<String> {
+        match &t.expr.kind {
+            ExprKind::Aggregate(a) => self.literal(a, t.expr.span, FileId::Src),
+            _ => self.expr(&t.expr),
+        }
+    }
+
+    /// How many stmts from `b[0]` on are the linear motions of one spline (two or more).
+    pub(super) fn spline_run(&self, b: &[Stmt]) -> Option<usize> {
+        let id = match &b.first()?.op {
+            Op::Move(m) => m.spline?,
+            _ => return None,
+        };
+        let n = b
+            .iter()
+            .take_while(|s| {
+                matches!(&s.op, Op::Move(m) if m.spline == Some(id)
+                    && matches!(&m.path, Path::Linear { to, .. } if !to.joints))
+            })
+            .count();
+        (n >= 2).then_some(n)
+    }
+
+    /// The linear segments of one spline: one MoveL through the points as waypoints.
+    pub(super) fn spline_group(&mut self, g: &'a [Stmt]) {
+        let span = g[0].span;
+        self.flush_comments(span.start);
+        let start = self.lines.len();
+        let mut points = Vec::new();
+        let mut r = Ok(());
+        for s in g {
+            if let Op::Move(m) = &s.op
+                && let Path::Linear { to, .. } = &m.path
+            {
+                match self.motion_target(to) {
+                    Ok(t) => points.push(t),
+                    Err(f) => {
+                        r = Err(f);
+                        break;
+                    }
+                }
+            }
+        }
+        let last = match &g.last().map(|s| &s.op) {
+            Some(Op::Move(m)) => m,
+            _ => unreachable!("a spline run ends with a motion"),
+        };
+        match r {
+            Ok(()) => {
+                let z = self.zone_for(last, g[g.len() - 1].span);
+                let vel = self.with_speed(last, MotionParam::VelCp, "vel");
                 self.rep.approximate(
                     FileId::Src,
                     span,
-                    "a per-axis speed ($VEL_AXIS) becomes one joint speed (jntVelScale) for all joints",
-                    "check that all axes use the same percentage",
+                    format!(
+                        "the {} spline points become one MoveL through them as waypoints (straight segments, blended by the robot)",
+                        points.len()
+                    ),
+                    "check the path between the points at reduced speed",
                 );
-                self.line(format!("KRL.vel_ptp = {v}"));
+                let zone = z.map(|z| format!(", {z}")).unwrap_or_default();
+                self.line(format!("move_l_path([{}]{zone}{vel})", points.join(", ")));
+                for s in g {
+                    self.produced.push(s.span);
+                }
             }
-            Sys::VelOri | Sys::AccCp | Sys::AccAxis(_) => {
-                self.kind(if matches!(sys, Sys::VelOri) {
-                    "speed"
-                } else {
-                    "acceleration"
-                });
-                self.expr(value)?;
+            Err(f) => {
+                self.lines.truncate(start);
+                self.rep
+                    .untranslatable(FileId::Src, f.span, f.message, f.help);
+                for s in g {
+                    self.keep_as_comment("TR001", s.span);
+                }
+            }
+        }
+    }
+
+    pub(super) fn set_param(&mut self, p: MotionParam, v: &ParamValue, span: Span) -> R<()> {
+        match p {
+            MotionParam::VelCp | MotionParam::VelPtp | MotionParam::ApoCdis => {
+                let f = super::expr::param_field(p).unwrap_or("vel_cp");
+                let v = match v {
+                    ParamValue::Default if p == MotionParam::VelPtp => "DEFAULT_PTP".to_owned(),
+                    v => self.param_text(v),
+                };
+                self.line(format!("KRL.{f} = {v}"));
+            }
+            MotionParam::ApoCptp | MotionParam::ApoCvel | MotionParam::ApoCori => {
+                let f = super::expr::param_field(p).unwrap_or("apo_cptp");
+                let v = self.param_text(v);
+                let which = match p {
+                    MotionParam::ApoCptp => "C_PTP",
+                    MotionParam::ApoCvel => "C_VEL",
+                    _ => "C_ORI",
+                };
+                self.rep.approximate(
+                    FileId::Src,
+                    span,
+                    format!(
+                        "zoneRadius is a distance: {} is kept (KRL.{f}) but {which} moves blend by $APO.CDIS",
+                        p.krl()
+                    ),
+                    "check the blending of these moves",
+                );
+                self.line(format!("KRL.{f} = {v}"));
+            }
+            MotionParam::VelOri
+            | MotionParam::AccCp
+            | MotionParam::AccPtp
+            | MotionParam::AccCpPct => {
                 self.rep.approximate(
                     FileId::Src,
                     span,
@@ -319,95 +354,33 @@ impl<'p> Tx<'p> {
                 );
                 self.keep_as_comment("TR002", span);
             }
-            Sys::ApoCdis => {
-                self.kind("approximation");
-                let v = self.expr(value)?;
-                self.line(format!("KRL.apo_cdis = {v}"));
-                self.apo_cdis = Some(v);
-            }
-            Sys::ApoCptp | Sys::ApoOther => {
-                self.kind("approximation");
-                self.expr(value)?;
-                let text = super::format::ascii(self.prog.src.slice(span).trim());
-                self.line(format!("# {text} (only $APO.CDIS sets the zoneRadius)"));
-            }
-            Sys::Tool | Sys::Base => {
-                self.kind("tool/base");
-                self.frame_assign(matches!(sys, Sys::Tool), value, span)?;
-            }
-            Sys::OvPro => {
-                self.kind("override");
-                let v = match literal::integer(value) {
-                    Some(n) => n.to_string(),
-                    None => format!("to_int({})", self.expr(value)?),
-                };
-                self.line(format!("robot.SetVelocityScale({v})"));
-            }
-            Sys::Load => {
-                return fail(
-                    span,
-                    "$LOAD: the payload is part of the tool on a Flexiv robot",
-                    "set mass, centre of mass and inertia in the tool (Flexiv Elements or ToolParams)",
-                );
-            }
-            Sys::Advance => {
-                return fail(
-                    span,
-                    "$ADVANCE (advance-run depth) has no counterpart: the script waits for every move",
-                    "remove it",
-                );
-            }
-            Sys::PathType => {
-                return fail(
-                    span,
-                    "$ORI_TYPE/$CIRC_TYPE (orientation control) have no counterpart",
-                    "check the orientation along the path by hand",
-                );
-            }
-            Sys::CellFrame => {
-                return fail(
-                    span,
-                    "changing $ROBROOT/$WORLD has no counterpart",
-                    "express the poses in the robot's world frame",
-                );
-            }
-            _ => {
-                return fail(
-                    span,
-                    "this system variable cannot be set in the script",
-                    "port by hand",
-                );
-            }
         }
         Ok(())
     }
 
-    /// `$TOOL = …` / `$BASE = …`.
-    fn frame_assign(&mut self, tool: bool, value: &Expr, span: Span) -> R<()> {
-        let data = if tool { "TOOL_DATA" } else { "BASE_DATA" };
-        if let ExprKind::Index { base, indices } = &value.kind
-            && let ExprKind::Name(id) = &base.kind
-            && id.is(data)
-            && let [Some(i)] = indices.as_slice()
-        {
-            return self.frame_data(i, tool, span);
-        }
-        if let Some(Sys::NullFrame) = sysvar::classify(value) {
-            return self.null_frame(tool, span);
-        }
-        fail(
-            value.span,
-            format!(
-                "a {} given as a value has no counterpart: Flexiv selects {} defined on the robot",
-                if tool { "tool" } else { "base" },
-                if tool { "tools" } else { "work coordinates" }
+    pub(super) fn set_frame(&mut self, which: FrameKind, frame: &FrameRef, span: Span) -> R<()> {
+        let tool = which == FrameKind::Tool;
+        match frame {
+            FrameRef::Null => self.null_frame(tool, span),
+            FrameRef::World if !tool => {
+                self.set_base("WORLD".into());
+                Ok(())
+            }
+            FrameRef::Table(i) => self.frame_data(i, tool, span),
+            FrameRef::World | FrameRef::Value(_) => fail(
+                span,
+                format!(
+                    "a {} given as a value has no counterpart: Flexiv selects {} defined on the robot",
+                    if tool { "tool" } else { "base" },
+                    if tool { "tools" } else { "work coordinates" }
+                ),
+                if tool {
+                    "define the tool in Flexiv Elements and call switch_tool(name)"
+                } else {
+                    "define a work coordinate in Flexiv Elements and set KRL.base = [\"WORK\", name]"
+                },
             ),
-            if tool {
-                "define the tool in Flexiv Elements and call switch_tool(name)"
-            } else {
-                "define a work coordinate in Flexiv Elements and set KRL.base = [\"WORK\", name]"
-            },
-        )
+        }
     }
 
     fn null_frame(&mut self, tool: bool, span: Span) -> R<()> {
@@ -418,7 +391,7 @@ impl<'p> Tx<'p> {
                 format!("$TOOL = $NULLFRAME switches to the tool \"{FLANGE_TOOL}\", assumed to be the robot's flange tool [?]"),
                 "check the tool name in Flexiv Elements",
             );
-            self.set_tool(super::format::string(FLANGE_TOOL));
+            self.set_tool(format::string(FLANGE_TOOL));
         } else {
             self.set_base("WORLD".into());
         }
@@ -428,21 +401,18 @@ impl<'p> Tx<'p> {
     /// `TOOL_DATA[n]` → the robot's tool `tool_data_n`; `BASE_DATA[n]` → work coordinate
     /// `base_data_n`. Both must be defined on the robot.
     fn frame_data(&mut self, index: &Expr, tool: bool, span: Span) -> R<()> {
-        if literal::integer(index) == Some(0) {
-            return self.null_frame(tool, span);
-        }
         let (krl, prefix) = if tool {
             ("TOOL_DATA", "tool_data_")
         } else {
             ("BASE_DATA", "base_data_")
         };
-        let name = match literal::integer(index) {
-            Some(n) => super::format::string(&format!("{prefix}{n}")),
+        let name = match index.integer() {
+            Some(n) => format::string(&format!("{prefix}{n}")),
             None => format!("\"{prefix}%d\" % {}", self.render(index)?.at(12)),
         };
-        let i = match literal::integer(index) {
+        let i = match index.integer() {
             Some(n) => n.to_string(),
-            None => self.prog.src.slice(index.span).trim().to_owned(),
+            None => self.src.src.slice(index.span).trim().to_owned(),
         };
         if tool {
             self.rep.approximate(
@@ -470,129 +440,54 @@ impl<'p> Tx<'p> {
         Ok(())
     }
 
+    /// `switch_tool` stops the robot: not again for the tool already in force.
     fn set_tool(&mut self, name: String) {
-        if self.tool_set.as_ref() == Some(&name) {
+        if self.rt.as_ref().and_then(|r| r.tool.as_ref()) == Some(&name) {
             return;
         }
         self.line(format!("switch_tool({name})"));
-        self.tool_set = Some(name);
+        if let Some(rt) = &mut self.rt {
+            rt.tool = Some(name);
+        }
     }
 
     fn set_base(&mut self, frame: String) {
-        if self.base_set.as_ref() == Some(&frame) {
+        if self.rt.as_ref().and_then(|r| r.base.as_ref()) == Some(&frame) {
             return;
         }
         self.line(format!("KRL.base = {frame}"));
-        self.base_set = Some(frame);
+        if let Some(rt) = &mut self.rt {
+            rt.base = Some(frame);
+        }
     }
 
-    /// `BAS(#…, value)`, the KUKA inline-form helper.
-    pub(super) fn bas(&mut self, args: &[Option<Expr>], span: Span) -> R<()> {
-        let Some(Some(Expr {
-            kind: ExprKind::Enum(what),
-            ..
-        })) = args.first()
-        else {
-            return fail(span, "BAS without a command", "port by hand");
-        };
-        let value = args.get(1).and_then(Option::as_ref);
-        fn need<'e>(v: Option<&'e Expr>, what: &str, span: Span) -> R<&'e Expr> {
-            v.ok_or_else(|| super::Fail {
+    /// What is known of the tool and base in force ends at block boundaries and calls.
+    pub(super) fn forget_frames(&mut self) {
+        if let Some(rt) = &mut self.rt {
+            rt.tool = None;
+            rt.base = None;
+        }
+    }
+
+    /// `$AXIS_ACT` read back as KUKA axes (needs a joint map that gives every axis a joint).
+    pub(super) fn axis_act(&mut self, span: Span) -> R<String> {
+        match &self.fx.joint_map {
+            Some(m) if m.invertible() => Ok("axis_act()".into()),
+            _ => fail(
                 span,
-                message: format!("BAS(#{what}) without a value"),
-                help: "pass the value".into(),
-            })
+                "$AXIS_ACT: a Rizon has seven joints, KUKA six; without a joint map that gives every axis one joint they cannot be read as KUKA axes",
+                "give --joint-map (e.g. A1,A2,0,A3,A4,A5,A6), or read robot.states().q yourself",
+            ),
         }
-        match what.to_ascii_uppercase().as_str() {
-            "INITMOV" => {
-                self.kind("speed");
-                self.rep.approximate(
-                    FileId::Src,
-                    span,
-                    "BAS(#INITMOV) sets KUKA's motion defaults from BAS.DAT; the script uses DEFAULT_VEL (m/s) and DEFAULT_PTP (%) instead",
-                    "set the speeds you want after this line",
-                );
-                self.line("KRL.initmov()");
-            }
-            "VEL_PTP" | "PTP_PARAMS" => {
-                self.kind("speed");
-                let v = self.expr(need(value, what, span)?)?;
-                self.line(format!("KRL.vel_ptp = {v}"));
-            }
-            "VEL_CP" | "CP_PARAMS" => {
-                self.kind("speed");
-                let v = self.expr(need(value, what, span)?)?;
-                self.line(format!("KRL.vel_cp = {v}"));
-            }
-            "ACC_PTP" | "ACC_CP" => {
-                self.kind("acceleration");
-                self.rep.approximate(
-                    FileId::Src,
-                    span,
-                    format!(
-                        "BAS(#{what}) is not carried over; the robot uses its default accelerations"
-                    ),
-                    "set MoveL's acc in move_l by hand if it matters",
-                );
-                self.keep_as_comment("TR002", span);
-            }
-            "TOOL" | "BASE" => {
-                self.kind("tool/base");
-                let tool = what.eq_ignore_ascii_case("TOOL");
-                self.frame_data(need(value, what, span)?, tool, span)?;
-            }
-            "FRAMES" | "PTP_DAT" | "CP_DAT" => {
-                // Applies FDAT_ACT / PDAT_ACT / LDAT_ACT, translated where they were set.
-                self.kind("speed");
-            }
-            _ => {
-                return fail(
-                    span,
-                    format!("BAS(#{what}) has no translation"),
-                    "set KRL.vel_cp, KRL.vel_ptp or the tool explicitly",
-                );
-            }
-        }
-        Ok(())
     }
 
-    /// `FDAT_ACT = FP1`, `PDAT_ACT = PPDAT1`, `LDAT_ACT = LCPDAT1` (inline-form motion data):
-    /// tool and base become switch_tool/KRL.base, a path blending distance the zoneRadius of
-    /// later blended moves.
-    pub(super) fn ilf_assign(&mut self, target: &Ident, value: &Expr, span: Span) -> R<()> {
-        self.kind("inline-form data");
-        let key = target.key();
-        let Some(fields) = ilf::dat_record(self.prog, value) else {
-            self.rep.approximate(
-                FileId::Src,
-                value.span,
-                format!(
-                    "{key} = {}: the motion data record is not in this program's .dat, so its settings are not carried over",
-                    self.prog.src.slice(value.span)
-                ),
-                "translate the program together with its .dat",
-            );
-            self.keep_as_comment("TR002", span);
-            return Ok(());
-        };
-        if key == "FDAT_ACT" {
-            for (field, tool) in [("TOOL_NO", true), ("BASE_NO", false)] {
-                if let Some(n) = ilf::field(&fields, field) {
-                    let idx = Expr {
-                        kind: ExprKind::Int(n as i64),
-                        span: value.span,
-                    };
-                    self.frame_data(&idx, tool, value.span)?;
-                }
-            }
-        } else if key == "LDAT_ACT"
-            && let Some(d) = ilf::field(&fields, "APO_DIST")
-        {
-            let v = num(d);
-            self.line(format!("KRL.apo_cdis = {v}"));
-            self.apo_cdis = Some(v);
-        }
-        Ok(())
+    pub(super) fn pos_act_caveat(&mut self, span: Span) {
+        self.rep.approximate(
+            FileId::Src,
+            span,
+            "$POS_ACT becomes the robot's TCP pose in WORLD (RobotStates.tcp_pose); KUKA's is relative to $BASE",
+            "check that the base frame is the world frame where the program reads the position",
+        );
     }
 }
 

@@ -97,7 +97,7 @@ pub const SCRIPT_NAMES: [&str; 28] = [
 ];
 
 /// More names the script defines.
-const SCRIPT_NAMES_2: [&str; 8] = [
+const SCRIPT_NAMES_2: [&str; 13] = [
     "to_int",
     "pose_from_flexiv",
     "axis_act",
@@ -106,6 +106,11 @@ const SCRIPT_NAMES_2: [&str; 8] = [
     "frame_mul",
     "frame_inv",
     "kuka_out",
+    "move_l_path",
+    "pos_in_base",
+    "timer_get",
+    "timer_set",
+    "timer_stop",
 ];
 
 pub fn is_reserved(name: &str) -> bool {

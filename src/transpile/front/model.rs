@@ -1,13 +1,16 @@
 //! The one interface through which the lowering asks what names mean: variables (type,
 //! scope, declaration), routine signatures, enum values, and the layouts of KUKA's built-in
-//! pose and axis types. Nothing else in the transpiler resolves names or knows a built-in
-//! structure, so moving to the workspace-wide semantic model changes this file only.
+//! pose and axis types — all answered by the workspace's semantic model ([`crate::sema`]) over
+//! the program's `.src` and `.dat`. Nothing else in the transpiler resolves a name or knows a
+//! built-in structure.
 
 use crate::diag::Span;
-use crate::syntax::ast::{self, Expr, ExprKind};
+use crate::sema::{
+    self, Position, Resolved, RoutineId, Scope, SymbolKind, TyKind, TypeDefKind, TypeId,
+};
+use crate::syntax::ast::{self, Definition, Expr, ExprKind, StmtKind};
 use crate::transpile::front::Program;
 use crate::transpile::front::report::FileId;
-use crate::transpile::front::symbols::{self, Symbols};
 use crate::transpile::ir::{self, Bank, Component, SignalRange, Ty};
 
 /// A variable as the lowering sees it.
@@ -52,73 +55,219 @@ pub enum Layout {
 /// What names mean in one program (its `.src` and `.dat`).
 pub struct Model<'p> {
     program: &'p Program,
-    symbols: &'p Symbols,
+    sema: &'p sema::Sema,
+    /// The types whose fields define a pose and an axis value (`E6POS`, `E6AXIS`).
+    pose: Option<TypeId>,
+    axis: Option<TypeId>,
 }
 
-const POSE_FIELDS: [&str; 6] = ["X", "Y", "Z", "A", "B", "C"];
-const AXIS_FIELDS: [&str; 6] = ["A1", "A2", "A3", "A4", "A5", "A6"];
-const EXT_FIELDS: [&str; 6] = ["E1", "E2", "E3", "E4", "E5", "E6"];
+/// The `.src` is file 0 of the model, the `.dat` file 1.
+const SRC: sema::FileId = sema::FileId(0);
 
 impl<'p> Model<'p> {
     pub fn new(program: &'p Program) -> Model<'p> {
+        let sema = &program.analysis.sema;
+        let at = sema.position(SRC, 0);
+        let ty = |name: &str| match sema.lookup_type(at, name) {
+            Resolved::Type(t) => Some(t),
+            _ => None,
+        };
         Model {
             program,
-            symbols: &program.symbols,
+            sema,
+            pose: ty("E6POS"),
+            axis: ty("E6AXIS"),
         }
     }
 
-    fn info(&self, v: &symbols::Var) -> VarInfo {
-        let file = self.program.decl_file(v);
-        VarInfo {
-            name: v.name.clone(),
-            ty: ty(&v.ty),
-            dims: v.dims,
-            kind: match v.scope {
-                symbols::Scope::Global => VarKind::Global,
-                symbols::Scope::Local => VarKind::Local,
-                symbols::Scope::Param(d) => VarKind::Param(dir(d)),
+    /// Where lookups from inside `routine` (upper-case name; `None`: module level) start.
+    fn position(&self, routine: Option<&str>) -> Position {
+        let mut at = self.sema.position(SRC, 0);
+        at.routine = routine.and_then(|r| self.routine_id(r));
+        at
+    }
+
+    fn routine_id(&self, name: &str) -> Option<RoutineId> {
+        self.sema.file(SRC).routines.iter().copied().find(|r| {
+            self.sema
+                .name(self.sema.routine(*r).name)
+                .eq_ignore_ascii_case(name)
+        })
+    }
+
+    /// Whether a file of the model is the program's `.src` or `.dat`.
+    fn file_id(&self, f: sema::FileId) -> Option<FileId> {
+        match f.0 {
+            0 => Some(FileId::Src),
+            1 if self.program.dat.is_some() => Some(FileId::Dat),
+            _ => None,
+        }
+    }
+
+    /// The program's view of a symbol; `None` for what the program does not declare (the
+    /// KSS environment, other files).
+    fn info(&self, s: sema::SymbolId) -> Option<VarInfo> {
+        let sym = self.sema.symbol(s);
+        let decl = sym.decl?;
+        let file = self.file_id(decl.file)?;
+        let name = self.sema.name(sym.name).to_owned();
+        let kind = match sym.scope {
+            Scope::Routine(r) => match sym.kind {
+                SymbolKind::Parameter => {
+                    let p = self
+                        .sema
+                        .routine(r)
+                        .params
+                        .iter()
+                        .find(|p| p.symbol == s)
+                        .and_then(|p| p.dir);
+                    VarKind::Param(match p {
+                        Some(ast::ParamDir::Out) => ir::ParamDir::Out,
+                        _ => ir::ParamDir::In,
+                    })
+                }
+                _ => VarKind::Local,
             },
-            constant: v.constant,
-            decl: self.program.name_span(file, v),
+            Scope::System => return None,
+            _ => VarKind::Global,
+        };
+        let ty = if sym.kind == SymbolKind::Signal {
+            match self.signal_range(file, decl.span) {
+                Some(r) => Ty::Signal(r),
+                None => return None,
+            }
+        } else {
+            self.ty(sym.ty)
+        };
+        // A parameter is declared where the DEF line names it.
+        let decl_span = match (sym.scope, sym.kind) {
+            (Scope::Routine(r), SymbolKind::Parameter) => {
+                let index = self.sema.routine(r).index as usize;
+                self.program
+                    .src
+                    .ast
+                    .routines
+                    .get(index)
+                    .and_then(|a| a.params.iter().find(|p| p.name.is(&name)))
+                    .map_or(decl.span, |p| p.name.span)
+            }
+            _ => decl.span,
+        };
+        Some(VarInfo {
+            name,
+            ty,
+            dims: usize::from(sym.ty.dims),
+            kind,
+            constant: sym.kind == SymbolKind::Constant,
+            decl: decl_span,
             file,
+        })
+    }
+
+    /// The transpiler's type of a model type (arrays: their element type).
+    fn ty(&self, t: sema::Ty) -> Ty {
+        match t.kind {
+            TyKind::Int => Ty::Int,
+            TyKind::Real => Ty::Real,
+            TyKind::Bool => Ty::Bool,
+            TyKind::Char | TyKind::Str(_) => Ty::Char,
+            TyKind::Enum(id) => Ty::Enum(self.type_name(id)),
+            TyKind::Struc(id) => match self.layout_of_id(id) {
+                Some(Layout::Pose) => Ty::Pose,
+                Some(Layout::Axis) => Ty::Joint,
+                None if self.sema.type_def(id).scope == Scope::System => {
+                    Ty::Other(self.type_name(id))
+                }
+                None => Ty::Struc(self.type_name(id)),
+            },
+            // An undeclared name's type is assumed from its use; a number by default.
+            TyKind::EnumLit(_) | TyKind::Aggregate | TyKind::Unknown => Ty::Real,
+        }
+    }
+
+    fn type_name(&self, id: TypeId) -> String {
+        self.sema
+            .name(self.sema.type_def(id).name)
+            .to_ascii_uppercase()
+    }
+
+    /// Whether the STRUC `id` holds a pose or axis values: its fields are those of `E6POS` or
+    /// `E6AXIS` (POS, FRAME, AXIS have a subset).
+    fn layout_of_id(&self, id: TypeId) -> Option<Layout> {
+        let names = |t: TypeId| -> Vec<String> {
+            self.sema
+                .fields(t)
+                .iter()
+                .map(|f| self.sema.name(f.name).to_ascii_uppercase())
+                .collect()
+        };
+        let fields = names(id);
+        if fields.is_empty() {
+            return None;
+        }
+        let within = |of: Option<TypeId>| {
+            of.is_some_and(|t| {
+                let big = names(t);
+                fields.len() >= 6 && fields.iter().all(|f| big.contains(f))
+            })
+        };
+        if Some(id) == self.pose || within(self.pose) {
+            Some(Layout::Pose)
+        } else if Some(id) == self.axis || within(self.axis) {
+            Some(Layout::Axis)
+        } else {
+            None
         }
     }
 
     /// The variable `name` as seen from inside `routine` (locals shadow globals).
     pub fn var(&self, routine: Option<&str>, name: &str) -> Option<VarInfo> {
-        self.symbols.lookup(routine, name).map(|v| self.info(v))
+        match self.sema.lookup_var(self.position(routine), name) {
+            Resolved::Symbol(s) => self.info(s),
+            _ => None,
+        }
     }
 
-    /// Every global, in declaration order.
+    /// Every global of the program, in declaration order (`.dat` first, then the `.src`).
     pub fn globals(&self) -> Vec<VarInfo> {
-        let mut v: Vec<&symbols::Var> = self.symbols.globals.values().collect();
+        let mut v: Vec<VarInfo> = self
+            .sema
+            .symbols()
+            .filter(|(_, s)| !matches!(s.scope, Scope::Routine(_) | Scope::System))
+            .filter_map(|(id, _)| self.info(id))
+            .collect();
         v.sort_by_key(|v| {
             (
-                self.program.decl_file(v),
-                v.span.start,
+                v.file != FileId::Dat,
+                v.decl.start,
                 v.name.to_ascii_uppercase(),
             )
         });
-        v.into_iter().map(|v| self.info(v)).collect()
+        v
     }
 
     /// The parameters and locals of `routine`, in declaration order.
     pub fn locals(&self, routine: &str) -> Vec<VarInfo> {
-        let Some(l) = self.symbols.locals.get(&routine.to_ascii_uppercase()) else {
+        let Some(r) = self.routine_id(routine) else {
             return Vec::new();
         };
-        let mut v: Vec<&symbols::Var> = l.values().collect();
-        v.sort_by_key(|v| (v.span.start, v.name.to_ascii_uppercase()));
-        v.into_iter().map(|v| self.info(v)).collect()
+        let mut v: Vec<VarInfo> = self
+            .sema
+            .symbols()
+            .filter(|(_, s)| s.scope == Scope::Routine(r))
+            .filter_map(|(id, _)| self.info(id))
+            .collect();
+        v.sort_by_key(|v| (v.decl.start, v.name.to_ascii_uppercase()));
+        v
     }
 
     /// The routine of the program called `name`.
     pub fn routine(&self, name: &str) -> Option<Signature> {
-        let info = self.symbols.routine(name)?;
-        let r = self.program.src.ast.routine(name)?;
+        let id = self.routine_id(name)?;
+        let r = self.sema.routine(id);
         Some(Signature {
-            name: info.name.clone(),
-            kind: match info.kind {
+            name: self.sema.name(r.name).to_owned(),
+            kind: match r.kind {
                 ast::RoutineKind::Def => ir::RoutineKind::Def,
                 ast::RoutineKind::Deffct => ir::RoutineKind::Deffct,
             },
@@ -126,29 +275,68 @@ impl<'p> Model<'p> {
                 .params
                 .iter()
                 .map(|p| {
-                    (
-                        p.name.text.to_string(),
-                        dir(p.dir.unwrap_or(ast::ParamDir::In)),
-                        p.array,
-                    )
+                    let dir = match p.dir {
+                        Some(ast::ParamDir::Out) => ir::ParamDir::Out,
+                        _ => ir::ParamDir::In,
+                    };
+                    (self.sema.name(p.name).to_owned(), dir, p.array)
                 })
                 .collect(),
-            ret: info.return_ty.as_ref().map(ty),
+            ret: r.ret.map(|t| self.ty(t)),
         })
     }
 
-    /// The enum type and 1-based ordinal of `#name`, if exactly one user enum has it.
+    /// The enum type and 1-based ordinal of `#name`, if exactly one ENUM of the program has it.
     pub fn enum_value(&self, name: &str) -> Option<(String, usize)> {
-        self.symbols
-            .enum_value(name)
-            .map(|(t, i)| (t.to_owned(), i))
+        let mut found = Vec::new();
+        for (e, routine) in self.enum_names() {
+            let at = self.position(routine.as_deref());
+            let Resolved::Type(t) = self.sema.lookup_type(at, &e) else {
+                continue;
+            };
+            if let TypeDefKind::Enum(values) = &self.sema.type_def(t).kind
+                && let Some(i) = values
+                    .iter()
+                    .position(|v| self.sema.name(*v).eq_ignore_ascii_case(name))
+            {
+                found.push((self.type_name(t), i + 1));
+            }
+        }
+        found.dedup();
+        (found.len() == 1).then(|| found.remove(0))
+    }
+
+    /// The names of the ENUMs the program declares, with the routine that declares them.
+    fn enum_names(&self) -> Vec<(String, Option<String>)> {
+        let mut out = Vec::new();
+        for f in std::iter::once(&self.program.src).chain(&self.program.dat) {
+            for d in f.ast.dat.iter().flat_map(|d| d.definitions.iter()) {
+                if let Definition::Enum(e) = d {
+                    out.push((e.name.text.to_string(), None));
+                }
+            }
+            for r in &f.ast.routines {
+                let own = r
+                    .definitions
+                    .iter()
+                    .chain(r.body.iter().filter_map(|s| match &s.kind {
+                        StmtKind::Definition(d) => Some(d),
+                        _ => None,
+                    }));
+                for d in own {
+                    if let Definition::Enum(e) = d {
+                        out.push((e.name.text.to_string(), Some(r.name.text.to_string())));
+                    }
+                }
+            }
+        }
+        out
     }
 
     /// The built-in value a type name stands for (`E6POS` → pose).
     pub fn layout_of_type(&self, type_name: &str) -> Option<Layout> {
-        match type_name.to_ascii_uppercase().as_str() {
-            "E6POS" | "POS" | "FRAME" => Some(Layout::Pose),
-            "E6AXIS" | "AXIS" => Some(Layout::Axis),
+        match self.sema.lookup_type(self.position(None), type_name) {
+            Resolved::Type(t) => self.layout_of_id(t),
             _ => None,
         }
     }
@@ -161,81 +349,119 @@ impl<'p> Model<'p> {
         if let Some(t) = type_name {
             return self.layout_of_type(&t.text);
         }
-        let named = |names: &[&str]| {
+        let main = |layout: Layout, f: &str| {
+            matches!(
+                self.component(layout, f),
+                Some(Component::Pose(_) | Component::Axis(_))
+            )
+        };
+        let named = |layout: Layout| {
             fields
                 .iter()
-                .any(|(f, _)| f.as_ref().is_some_and(|f| names.iter().any(|n| f.is(n))))
+                .any(|(f, _)| f.as_ref().is_some_and(|f| main(layout, &f.text)))
         };
-        if named(&AXIS_FIELDS) {
+        if named(Layout::Axis) {
             Some(Layout::Axis)
-        } else if named(&POSE_FIELDS) {
+        } else if named(Layout::Pose) {
             Some(Layout::Pose)
         } else {
             None
         }
     }
 
-    /// The component a field name selects in a value of `layout`.
+    /// The component a field name selects in a value of `layout`: the first six fields of
+    /// `E6POS`/`E6AXIS` are the main components, then status, turn and external axes.
     pub fn component(&self, layout: Layout, field: &str) -> Option<Component> {
+        let t = match layout {
+            Layout::Pose => self.pose,
+            Layout::Axis => self.axis,
+        }?;
+        let fields = self.sema.fields(t);
+        let i = fields
+            .iter()
+            .position(|f| self.sema.name(f.name).eq_ignore_ascii_case(field))?;
         let key = field.to_ascii_uppercase();
-        let main = match layout {
-            Layout::Pose => &POSE_FIELDS,
-            Layout::Axis => &AXIS_FIELDS,
-        };
-        if let Some(i) = main.iter().position(|f| *f == key) {
+        if i < 6 {
             return Some(match layout {
                 Layout::Pose => Component::Pose(i),
                 Layout::Axis => Component::Axis(i),
             });
         }
-        if let Some(i) = EXT_FIELDS.iter().position(|f| *f == key) {
-            return Some(Component::Ext(i));
-        }
-        match (layout, key.as_str()) {
-            (Layout::Pose, "S") => Some(Component::Status),
-            (Layout::Pose, "T") => Some(Component::Turn),
-            _ => None,
+        match key.as_str() {
+            "S" => Some(Component::Status),
+            "T" => Some(Component::Turn),
+            _ => key
+                .strip_prefix('E')
+                .and_then(|n| n.parse::<usize>().ok())
+                .filter(|n| (1..=6).contains(n))
+                .map(|n| Component::Ext(n - 1)),
         }
     }
 
-    /// The `SIGNAL` range of `$IN[n]`/`$OUT[n]` expressions with literal numbers.
-    pub fn signal_range(&self, routine: Option<&str>, name: &str) -> Option<SignalRange> {
-        match self.symbols.lookup(routine, name)?.ty {
-            symbols::Ty::Signal(r) => Some(signal(r)),
-            _ => None,
+    /// The range of the `SIGNAL` declaration whose name is at `name` in `file`.
+    fn signal_range(&self, file: FileId, name: Span) -> Option<SignalRange> {
+        let f = match file {
+            FileId::Src => &self.program.src,
+            FileId::Dat => self.program.dat.as_ref()?,
+        };
+        let mut found = None;
+        let mut look = |d: &Definition| {
+            if let Definition::Signal(s) = d
+                && s.name.span == name
+            {
+                found = signal(s);
+            }
+        };
+        for d in f.ast.dat.iter().flat_map(|d| d.definitions.iter()) {
+            look(d);
         }
+        for r in &f.ast.routines {
+            r.definitions.iter().for_each(&mut look);
+            crate::transpile::front::walk::each_stmt(&r.body, &mut |s| {
+                if let StmtKind::Definition(d) = &s.kind {
+                    look(d);
+                }
+            });
+        }
+        found
     }
 }
 
-fn dir(d: ast::ParamDir) -> ir::ParamDir {
-    match d {
-        ast::ParamDir::In => ir::ParamDir::In,
-        ast::ParamDir::Out => ir::ParamDir::Out,
-    }
+/// `SIGNAL name $OUT[from] [TO $OUT[to]]` with literal numbers.
+fn signal(s: &ast::SignalDecl) -> Option<SignalRange> {
+    let (bank, from) = io_literal(&s.from)?;
+    let to = match &s.to {
+        Some(t) => {
+            let (b, n) = io_literal(t)?;
+            (b == bank && n >= from).then_some(n)?
+        }
+        None => from,
+    };
+    Some(SignalRange { bank, from, to })
 }
 
-fn signal(r: symbols::SignalRange) -> SignalRange {
-    SignalRange {
-        bank: match r.bank {
-            symbols::Bank::In => Bank::In,
-            symbols::Bank::Out => Bank::Out,
-        },
-        from: r.from,
-        to: r.to,
-    }
-}
-
-fn ty(t: &symbols::Ty) -> Ty {
-    match t {
-        symbols::Ty::Int => Ty::Int,
-        symbols::Ty::Real => Ty::Real,
-        symbols::Ty::Bool => Ty::Bool,
-        symbols::Ty::Char => Ty::Char,
-        symbols::Ty::Pose => Ty::Pose,
-        symbols::Ty::Joint => Ty::Joint,
-        symbols::Ty::Enum(e) => Ty::Enum(e.clone()),
-        symbols::Ty::Struc(s) => Ty::Struc(s.clone()),
-        symbols::Ty::Signal(r) => Ty::Signal(signal(*r)),
-        symbols::Ty::Other(o) => Ty::Other(o.clone()),
+/// `$IN[n]` / `$OUT[n]` with a literal `n`.
+fn io_literal(e: &Expr) -> Option<(Bank, i64)> {
+    let ExprKind::Index { base, indices } = &e.kind else {
+        return None;
+    };
+    let ExprKind::Name(id) = &base.kind else {
+        return None;
+    };
+    let bank = if id.is("$IN") {
+        Bank::In
+    } else if id.is("$OUT") {
+        Bank::Out
+    } else {
+        return None;
+    };
+    match indices.as_slice() {
+        [
+            Some(Expr {
+                kind: ExprKind::Int(n),
+                ..
+            }),
+        ] => Some((bank, *n)),
+        _ => None,
     }
 }

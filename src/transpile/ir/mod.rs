@@ -508,6 +508,11 @@ pub enum ExprKind {
     Param(MotionParam),
     /// `$NULLFRAME`.
     NullFrame,
+    /// The current position passed as it is to a Mech-Mind routine (`$POS_ACT`, or
+    /// `$AXIS_ACT` with `joints`): targets whose client reads it themselves need no value.
+    Current {
+        joints: bool,
+    },
 }
 
 impl Expr {

@@ -123,6 +123,10 @@ pub enum Why {
     BitwiseNot,
 }
 
+/// Where the target's own connect call is named in [`Why::VisionServer`]'s help (each backend
+/// puts its name there).
+pub const INIT_CALL: &str = "{init_call}";
+
 /// Families of KUKA built-ins without counterparts.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub enum KukaOnly {

@@ -89,6 +89,11 @@ impl<'a> Tx<'a> {
                 "keep the value in a variable where the program sets it",
             ),
             ExprKind::NullFrame => Ok(Rendered::atom("NULL".into())),
+            ExprKind::Current { .. } => fail(
+                e.span,
+                "the current position inside an expression needs a HERE statement first",
+                "assign $POS_ACT/$AXIS_ACT to a variable first (translated to HERE)",
+            ),
         }
     }
 

@@ -78,7 +78,9 @@ pub(super) fn help(why: &Why) -> String {
         }
         Why::ReturnWithoutValue => "return a value".into(),
         Why::TimerFlag => "compare TIMER(n) with the limit where the flag is read".into(),
-        Why::VisionServer { help, .. } => help.clone(),
+        Why::VisionServer { help, .. } => {
+            help.replace(crate::transpile::ir::why::INIT_CALL, "mm_init_skt")
+        }
         Why::Goto => "restructure the jump".into(),
         Why::WaitCall => "assign the function's value to a variable and wait on that".into(),
         Why::Load => "set the payload with WEIGHT mass, cx, cy, cz".into(),

@@ -244,6 +244,11 @@ impl<'a> Tx<'a> {
         };
         match (kind, dir) {
             (AsKind::Joint, Direction::In) => {
+                if let ExprKind::Current { .. } = &value.kind {
+                    let tmp = self.scratch("mm_here");
+                    prelude.push(format!("HERE {}", format::with_sigil(&tmp, &Ty::Joint)));
+                    return Ok(format::with_sigil(&tmp, &Ty::Joint));
+                }
                 if let ExprKind::Aggregate(a) = &value.kind {
                     let v = self.literal(a, value.span, FileId::Src)?;
                     let tmp = self.scratch("mm_joints");
@@ -277,6 +282,11 @@ impl<'a> Tx<'a> {
                 })
             }
             (AsKind::Pose, Direction::In) => {
+                if let ExprKind::Current { .. } = &value.kind {
+                    let tmp = self.scratch("mm_here_p");
+                    prelude.push(format!("HERE {tmp}"));
+                    return Ok(format::param_sigil(&tmp, &Ty::Pose));
+                }
                 if let Some(p) = &arg.place {
                     let t = self.place_text(p, &Ty::Pose, arg.span)?;
                     return Ok(format::param_sigil(&t, &Ty::Pose));

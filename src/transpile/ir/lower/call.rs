@@ -6,6 +6,7 @@ use crate::catalog::catalog;
 use crate::diag::Span;
 use crate::syntax::ast::{self, StmtKind};
 use crate::transpile::front::ilf;
+use crate::transpile::front::sysvar::Sys;
 use crate::transpile::front::walk;
 use crate::transpile::ir::why::KukaOnly;
 use crate::transpile::ir::{
@@ -107,7 +108,7 @@ impl<'p> Lower<'p> {
                 sub,
                 args,
                 span,
-                "the target's socket set-up",
+                crate::transpile::ir::why::INIT_CALL,
             );
             match server {
                 Ok(s) => self.vision = Some(s),
@@ -124,8 +125,20 @@ impl<'p> Lower<'p> {
         }
         let mut out = Vec::new();
         let args = if sub.params.is_empty() { &[][..] } else { args };
-        let present: Vec<&ast::Expr> = args.iter().flatten().collect();
-        let mut values = self.seq(&present, ops)?.into_iter();
+        let mut lowered = Vec::new();
+        for a in args.iter().flatten() {
+            lowered.push(match crate::transpile::front::sysvar::classify(a) {
+                // The current position as an argument: the package (or client) reads it.
+                Some(s @ (Sys::PosAct | Sys::AxisAct)) => {
+                    self.stop(a.span, ops);
+                    let joints = matches!(s, Sys::AxisAct);
+                    let ty = if joints { Ty::Joint } else { Ty::Pose };
+                    Expr::new(ExprKind::Current { joints }, ty, a.span)
+                }
+                _ => self.expr(a, ops)?,
+            });
+        }
+        let mut values = lowered.into_iter();
         for (p, a) in sub.params.iter().zip(args) {
             let is_out = p.dir == crate::catalog::Direction::Out;
             let Some(a) = a else {
