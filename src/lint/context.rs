@@ -27,6 +27,9 @@ pub struct SyntaxCtx<'a> {
     pub stem: String,
     /// Extension, lower case (`src`, `dat`, `sub`, or empty).
     pub ext: String,
+    /// KRL005's edits when computed from the tree before it was lowered (else KRL005 parses
+    /// the text again).
+    pub case_edits: Option<Vec<crate::diag::Edit>>,
 }
 
 impl<'a> SyntaxCtx<'a> {
@@ -49,6 +52,7 @@ impl<'a> SyntaxCtx<'a> {
             syntax_errors,
             stem: part(p.file_stem()),
             ext: part(p.extension()),
+            case_edits: None,
         }
     }
 }
