@@ -124,6 +124,7 @@ impl Session {
             self.meta.iter().flat_map(|m| &m.sockets),
             super::interface::select(self.config.interface, &self.sema),
         );
+        self.project.learn_environment(&self.sema);
     }
 
     /// The model's files unchanged.
