@@ -68,7 +68,9 @@ fn check(ctx: &FileCtx, out: &mut Vec<Diagnostic>) {
 fn remove_declaration(text: &str, name: Span, display: &str) -> Option<Fix> {
     let (start, end) = (name.start as usize, name.end as usize);
     let line_start = text[..start].rfind(['\n', '\r']).map_or(0, |i| i + 1);
-    let line_end = text[end..].find(['\n', '\r']).map_or(text.len(), |i| end + i);
+    let line_end = text[end..]
+        .find(['\n', '\r'])
+        .map_or(text.len(), |i| end + i);
     let line = &text[line_start..line_end];
     if line.contains('"') {
         return None;
@@ -100,12 +102,12 @@ fn remove_declaration(text: &str, name: Span, display: &str) -> Option<Fix> {
         let next = text[elem_end + 1..code_end]
             .find(|c: char| c != ' ' && c != '\t')
             .map_or(code_end, |i| elem_end + 1 + i);
-        Span::new(start as u32, next as u32)
+        Span::new(start, next)
     } else if has_prev {
         // `a, b` → `a`: from the comma before, keeping what follows the element.
         let comma = line_start + before.len() - 1;
         let trimmed = text[start..elem_end].trim_end_matches([' ', '\t']);
-        Span::new(comma as u32, (start + trimmed.len()) as u32)
+        Span::new(comma, start + trimmed.len())
     } else {
         // The only name: the whole line with its line ending.
         let rest = &text[line_end..];
@@ -114,7 +116,7 @@ fn remove_declaration(text: &str, name: Span, display: &str) -> Option<Fix> {
         } else {
             usize::from(!rest.is_empty())
         };
-        Span::new(line_start as u32, (line_end + eol) as u32)
+        Span::new(line_start, line_end + eol)
     };
     Some(Fix::new(
         format!("Remove the declaration of `{display}`"),
