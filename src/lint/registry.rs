@@ -67,6 +67,11 @@ pub static FIXES: &[(&str, &str)] = &[
          appears nowhere else in the file, otherwise offered as unsafe (not applied)",
     ),
     ("KRL005", "upper-cases the words (safe)"),
+    (
+        "KRL016",
+        "deletes the unused declaration (its line, or the name and its comma from a list); \
+         offered in editors, never applied by `check --fix`",
+    ),
 ];
 
 /// What the automatic fix of `code` does, if it has one.
