@@ -36,6 +36,7 @@ pub static RULES: &[&Rule] = &[
     &rules::krl003::RULE,
     &rules::krl004::RULE,
     &rules::krl005::RULE,
+    &rules::krl006::RULE,
     &rules::krl010::RULE,
     &rules::krl011::RULE,
     &rules::krl012::RULE,
