@@ -1,8 +1,6 @@
 use crate::diag::{Diagnostic, Severity};
 use crate::lint::context::FileCtx;
 use crate::lint::registry::{Check, Rule};
-use crate::sema::Resolved;
-use crate::syntax::ast::ExtKind;
 
 pub static RULE: Rule = Rule {
     code: "KRL013",
@@ -15,18 +13,7 @@ pub static RULE: Rule = Rule {
 
 fn check(ctx: &FileCtx, out: &mut Vec<Diagnostic>) {
     let sema = ctx.sema;
-    for c in sema.calls(ctx.id) {
-        if !matches!(c.target, Resolved::Routine(_) | Resolved::Ext(_)) {
-            continue;
-        }
-        if let Resolved::Ext(x) = c.target
-            && matches!(sema.ext(x).kind, ExtKind::Extp | ExtKind::Extfctp)
-        {
-            continue;
-        }
-        let Some(sig) = sema.callable(c.target) else {
-            continue;
-        };
+    for (c, sig, _) in super::user_calls(ctx) {
         let want = sig.params.len();
         let got = c.arg_count();
         if got > want && !sig.variadic {

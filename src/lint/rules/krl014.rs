@@ -2,7 +2,7 @@ use crate::diag::{Diagnostic, Severity};
 use crate::lint::context::FileCtx;
 use crate::lint::registry::{Check, Rule};
 use crate::sema::{ArgForm, Resolved, SymbolKind, TyKind, assignable};
-use crate::syntax::ast::{ExtKind, ParamDir};
+use crate::syntax::ast::ParamDir;
 
 pub static RULE: Rule = Rule {
     code: "KRL014",
@@ -15,22 +15,9 @@ pub static RULE: Rule = Rule {
 
 fn check(ctx: &FileCtx, out: &mut Vec<Diagnostic>) {
     let sema = ctx.sema;
-    for c in sema.calls(ctx.id) {
-        if !matches!(c.target, Resolved::Routine(_) | Resolved::Ext(_)) {
-            continue;
-        }
-        // An EXT declaration does not tell a CHAR array from a CHAR (KUKA's own write `CHAR :IN`
-        // for a `CHAR[]` parameter), and EXTP/EXTFCTP link elsewhere: neither is judged as such.
-        let ext = match c.target {
-            Resolved::Ext(x) => Some(sema.ext(x).kind),
-            _ => None,
-        };
-        if matches!(ext, Some(ExtKind::Extp | ExtKind::Extfctp)) {
-            continue;
-        }
-        let Some(sig) = sema.callable(c.target) else {
-            continue;
-        };
+    // An EXT declaration does not tell a CHAR array from a CHAR (KUKA's own write `CHAR :IN`
+    // for a `CHAR[]` parameter): for an EXT, a CHAR parameter is not judged as such.
+    for (c, sig, ext) in super::user_calls(ctx) {
         let callee = sema.name(c.name);
         for (i, (arg, p)) in c.args().zip(&sig.params).enumerate() {
             if arg.form == ArgForm::Omitted {

@@ -30,7 +30,8 @@ pub mod mm011;
 use super::context::FileCtx;
 use super::walk;
 use crate::catalog::Subprogram;
-use crate::syntax::ast::{Expr, Ident, Routine, StmtKind};
+use crate::sema::{CallInfo, Resolved, Signature};
+use crate::syntax::ast::{Expr, ExtKind, Ident, Routine, StmtKind};
 
 /// A call to a catalog subprogram in a user routine.
 pub struct MmCall<'a> {
@@ -69,4 +70,25 @@ pub fn well_formed_calls<'a>(ctx: &FileCtx<'a>) -> Vec<MmCall<'a>> {
                 || (c.sub.params.is_empty() && c.args.iter().all(Option::is_none))
         })
         .collect()
+}
+
+/// Calls of the workspace's routines and of EXT/EXTFCT declarations, with the signature they
+/// are checked against (KRL013, KRL014) and, for an EXT, its kind. EXTP/EXTFCTP link elsewhere
+/// and are not judged.
+pub fn user_calls<'a>(
+    ctx: &FileCtx<'a>,
+) -> impl Iterator<Item = (CallInfo<'a>, Signature, Option<ExtKind>)> + 'a {
+    let sema = ctx.sema;
+    sema.calls(ctx.id).filter_map(move |c| {
+        let ext = match c.target {
+            Resolved::Routine(_) => None,
+            Resolved::Ext(x) => Some(sema.ext(x).kind),
+            _ => return None,
+        };
+        if matches!(ext, Some(ExtKind::Extp | ExtKind::Extfctp)) {
+            return None;
+        }
+        let sig = sema.callable(c.target)?;
+        Some((c, sig, ext))
+    })
 }
