@@ -64,7 +64,9 @@ fn every_subprogram_end_to_end() {
     for sub in &cat.subprograms {
         let statuses = seen.get(&sub.name).cloned().unwrap_or_default();
         assert!(
-            statuses.iter().any(|s| is_success_in(Interface::V1, &sub.name, *s)),
+            statuses
+                .iter()
+                .any(|s| is_success_in(Interface::V1, &sub.name, *s)),
             "{} never ran successfully end to end (statuses seen: {statuses:?})",
             sub.name
         );
@@ -186,7 +188,9 @@ fn every_v2_subprogram_end_to_end() {
     for sub in cat.subprograms_of(Interface::V2) {
         let statuses = seen.get(&sub.name).cloned().unwrap_or_default();
         assert!(
-            statuses.iter().any(|s| is_success_in(Interface::V2, &sub.name, *s)),
+            statuses
+                .iter()
+                .any(|s| is_success_in(Interface::V2, &sub.name, *s)),
             "2.x {} never ran successfully end to end (statuses seen: {statuses:?})",
             sub.name
         );
@@ -298,7 +302,10 @@ fn run_example(dir: &Path, name: &str, spec: Spec) -> (Case, interp_support::Out
             ..
         } = e
         {
-            assert!(is_success_in(iface, sub, *s), "{iface} {name}: {sub} ended in {s}");
+            assert!(
+                is_success_in(iface, sub, *s),
+                "{iface} {name}: {sub} ended in {s}"
+            );
         }
     }
     assert_motions(name, &case, &outcome);

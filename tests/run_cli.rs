@@ -560,8 +560,11 @@ fn pick_runs_alike_with_every_codec_and_interface() {
             let variant = format!("{codec}_{iface}");
             let committed = root().join("tests/fixtures/gen_variants").join(&variant);
             let spec = dir.path().join(format!("{variant}.toml"));
-            std::fs::write(&spec, format!("codec = \"{codec}\"\ninterface = \"{iface}\"\n"))
-                .unwrap();
+            std::fs::write(
+                &spec,
+                format!("codec = \"{codec}\"\ninterface = \"{iface}\"\n"),
+            )
+            .unwrap();
             let mut packages = vec![vec!["--spec".to_string(), spec.display().to_string()]];
             if committed.is_dir() {
                 packages.push(vec!["--package".into(), committed.display().to_string()]);

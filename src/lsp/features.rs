@@ -146,7 +146,9 @@ fn hover(s: &Server, p: HoverParams) -> Option<Hover> {
     let mut range = None;
     if let (Place::Code, call) = cursor::context(&lines, offset) {
         let word = cursor::word_at(&f.text, offset);
-        match word.and_then(|w| mm::subprogram(s.ws.interface(), &f.text[w.range()]).map(|sub| (w, sub))) {
+        match word
+            .and_then(|w| mm::subprogram(s.ws.interface(), &f.text[w.range()]).map(|sub| (w, sub)))
+        {
             // On the name of an MM_ subprogram: the whole signature.
             Some((w, sub)) => {
                 parts.push(mm::hover(sub, None));

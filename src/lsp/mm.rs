@@ -145,9 +145,16 @@ mod tests {
     fn the_interface_version_picks_the_signatures() {
         let v2 = subprogram(Interface::V2, "mm_start_vis").unwrap();
         assert!(hover(v2, None).contains("MM_Status"), "{}", hover(v2, None));
-        assert!(!hover(subprogram(Interface::V1, "MM_Start_Vis").unwrap(), None).contains("MM_Status"));
+        assert!(
+            !hover(subprogram(Interface::V1, "MM_Start_Vis").unwrap(), None).contains("MM_Status")
+        );
         assert!(subprogram(Interface::V1, "MM_Stop_Viz").is_none());
-        let labels = |i| completions(i).into_iter().map(|c| c.label).collect::<Vec<_>>();
+        let labels = |i| {
+            completions(i)
+                .into_iter()
+                .map(|c| c.label)
+                .collect::<Vec<_>>()
+        };
         assert!(labels(Interface::V2).contains(&"MM_Stop_Viz".to_string()));
         assert!(!labels(Interface::V2).contains(&"MM_Set_Pos".to_string()));
         assert!(labels(Interface::V1).contains(&"MM_Set_Pos".to_string()));
@@ -155,7 +162,7 @@ mod tests {
 
     #[test]
     fn hover_names_meaning_unit_and_range() {
-        let sub = subprogram("mm_init_socket").unwrap();
+        let sub = subprogram(Interface::V1, "mm_init_socket").unwrap();
         let text = hover(sub, Some(3));
         assert!(text.contains("**Time_Out** `IN INT`"), "{text}");
         assert!(text.contains("Unit: s"), "{text}");
