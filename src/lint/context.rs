@@ -3,7 +3,7 @@
 //! calls come from [`crate::sema`]. The syntax tree stays available in the model phase only for
 //! files the Mech-Mind rules look at (they call an `MM_` routine or write a `$FLAG`).
 
-use std::collections::HashMap;
+use std::collections::{HashMap, HashSet};
 use std::sync::OnceLock;
 
 use super::eki_xml::EkiChannel;
@@ -12,7 +12,8 @@ use super::walk;
 use crate::catalog::{Interface, Subprogram, catalog};
 use crate::diag::{Diagnostic, LineIndex};
 use crate::sema::{
-    ConstValue, FileId, Loc, Resolved, RoutineId, Scope, Sema, SymbolId, SymbolKind, Ty, TyKind,
+    Access, ConstValue, FileId, Loc, NameId, Resolved, RobotId, RoutineId, Scope, Sema, SymbolId,
+    SymbolKind, Ty, TyKind, UseKind,
 };
 use crate::syntax::ast::{Expr, ExprKind, Routine, SourceFile, StmtKind};
 
@@ -27,6 +28,9 @@ pub struct SyntaxCtx<'a> {
     pub stem: String,
     /// Extension, lower case (`src`, `dat`, `sub`, or empty).
     pub ext: String,
+    /// KRL005's edits when computed from the tree before it was lowered (else KRL005 parses
+    /// the text again).
+    pub case_edits: Option<Vec<crate::diag::Edit>>,
 }
 
 impl<'a> SyntaxCtx<'a> {
@@ -49,6 +53,7 @@ impl<'a> SyntaxCtx<'a> {
             syntax_errors,
             stem: part(p.file_stem()),
             ext: part(p.extension()),
+            case_edits: None,
         }
     }
 }
@@ -88,9 +93,11 @@ impl Texts for Vec<Parsed> {
 pub struct Parsed {
     pub path: String,
     pub text: String,
-    /// The parser's KRL001 findings (the syntax tree is dropped once lowered).
+    /// The parser's KRL001 findings.
     pub syntax_errors: Vec<Diagnostic>,
-    pub ast: SourceFile,
+    /// The syntax tree, unless dropped to save memory (a workspace's trees take about 13 times
+    /// its text); [`Parsed::tree`] parses the text again then.
+    pub ast: Option<SourceFile>,
     /// File name without extension, lower case (`$config` for `$config.dat`).
     pub stem: String,
     /// Extension, lower case (`src`, `dat`, `sub`, or empty).
@@ -113,7 +120,15 @@ impl Parsed {
             path,
             text,
             syntax_errors: parse.diagnostics,
-            ast,
+            ast: Some(ast),
+        }
+    }
+
+    /// The syntax tree: the kept one, else the text parsed again (the same tree).
+    pub fn tree(&self) -> std::borrow::Cow<'_, SourceFile> {
+        match &self.ast {
+            Some(ast) => std::borrow::Cow::Borrowed(ast),
+            None => std::borrow::Cow::Owned(crate::syntax::parse(&self.text).ast(&self.text)),
         }
     }
 
@@ -138,6 +153,10 @@ pub struct Project {
     pub channels_given: bool,
     /// Flags owned by an EKI channel the program uses (alive and receive), by flag number.
     pub owned_flags: HashMap<i64, &'static str>,
+    /// Names KUKA's own files (system, technology packages, templates) use without the
+    /// workspace declaring them, per robot: they exist on that controller (an installed
+    /// technology package, say), so user code may use them too.
+    pub environment: HashSet<(RobotId, NameId)>,
     /// The interface version calls are checked against, and why.
     pub interface: super::interface::Selected,
 }
@@ -150,22 +169,58 @@ impl Project {
         asts: impl Iterator<Item = &'a SourceFile>,
         interface: super::interface::Selected,
     ) -> Project {
+        let sockets: Vec<InitSocket> = asts.flat_map(init_sockets).collect();
+        Project::of_sockets(channels, channels_given, &sockets, interface)
+    }
+
+    /// The same from the `MM_Init_Socket` calls of the files, in file order (no tree needed).
+    pub fn of_sockets<'a>(
+        channels: Vec<EkiChannel>,
+        channels_given: bool,
+        sockets: impl IntoIterator<Item = &'a InitSocket>,
+        interface: super::interface::Selected,
+    ) -> Project {
         let mut p = Project {
             channels,
             channels_given,
             owned_flags: HashMap::new(),
+            environment: HashSet::new(),
             interface,
         };
-        for ast in asts {
-            owned_flags(&p.channels, ast, &mut p.owned_flags);
+        for s in sockets {
+            s.owned_flags(&p.channels, &mut p.owned_flags);
         }
         p
     }
+
+    /// Learn [`Project::environment`] from the model.
+    pub fn learn_environment(&mut self, sema: &Sema) {
+        self.environment.clear();
+        for (id, f) in sema.files().filter(|(_, f)| f.vendor) {
+            for (i, u) in sema.uses(id).iter().enumerate() {
+                if u.kind != UseKind::Type
+                    && u.access != Access::Mention
+                    && sema.resolution(id, i) == Resolved::Unresolved
+                {
+                    self.environment.insert((f.robot, sema.use_name(u)));
+                }
+            }
+        }
+    }
 }
 
-/// Flags the channel owns: from the XML named by an `MM_Init_Socket` call, else from the flag
-/// arguments of the `MM_Init_Socket` calls themselves.
-fn owned_flags(channels: &[EkiChannel], ast: &SourceFile, flags: &mut HashMap<i64, &'static str>) {
+/// One `MM_Init_Socket` call, as far as the channel facts need it: the XML name and the flag
+/// numbers where they are literals.
+#[derive(Debug, Clone, PartialEq, Eq)]
+pub struct InitSocket {
+    pub xml: Option<String>,
+    pub alive: Option<i64>,
+    pub receive: Option<i64>,
+}
+
+/// The `MM_Init_Socket` calls of a file, in order.
+pub fn init_sockets(ast: &SourceFile) -> Vec<InitSocket> {
+    let mut out = Vec::new();
     for r in &ast.routines {
         walk::each_stmt(&r.body, &mut |s| {
             let StmtKind::Call { name, args } = &s.kind else {
@@ -175,19 +230,34 @@ fn owned_flags(channels: &[EkiChannel], ast: &SourceFile, flags: &mut HashMap<i6
                 return;
             }
             let arg = |i: usize| args.get(i).and_then(|a| a.as_ref());
-            let xml = arg(0).and_then(|e| match &e.kind {
-                ExprKind::Str(s) => Some(s.as_str()),
-                _ => None,
+            let num = |i| arg(i).and_then(walk::literal_number).map(|v| v as i64);
+            out.push(InitSocket {
+                xml: arg(0).and_then(|e| match &e.kind {
+                    ExprKind::Str(s) => Some(s.clone()),
+                    _ => None,
+                }),
+                alive: num(1),
+                receive: num(2),
             });
-            if let Some(ch) = xml.and_then(|x| channels.iter().find(|c| c.name == x)) {
-                flags.extend(ch.alive_flag.map(|v| (v, "alive")));
-                flags.extend(ch.receive_flag.map(|v| (v, "receive")));
-            } else {
-                let num = |i| arg(i).and_then(walk::literal_number).map(|v| v as i64);
-                flags.extend(num(1).map(|v| (v, "alive")));
-                flags.extend(num(2).map(|v| (v, "receive")));
-            }
         });
+    }
+    out
+}
+
+impl InitSocket {
+    /// Flags the channel owns: from the XML the call names, else from its flag arguments.
+    fn owned_flags(&self, channels: &[EkiChannel], flags: &mut HashMap<i64, &'static str>) {
+        let channel = self
+            .xml
+            .as_deref()
+            .and_then(|x| channels.iter().find(|c| c.name == x));
+        if let Some(ch) = channel {
+            flags.extend(ch.alive_flag.map(|v| (v, "alive")));
+            flags.extend(ch.receive_flag.map(|v| (v, "receive")));
+        } else {
+            flags.extend(self.alive.map(|v| (v, "alive")));
+            flags.extend(self.receive.map(|v| (v, "receive")));
+        }
     }
 }
 
@@ -269,6 +339,17 @@ impl<'p> FileCtx<'p> {
     /// Whether names the model cannot find could be declared in files that were not given.
     pub fn workspace_complete(&self) -> bool {
         self.sema.robot(self.sema.file(self.id).robot).is_complete()
+    }
+
+    /// A file of KUKA's system software or a technology package (see `FileInfo::vendor`).
+    pub fn is_vendor(&self) -> bool {
+        self.sema.file(self.id).vendor
+    }
+
+    /// A name KUKA's own files use undeclared: it exists on this controller.
+    pub fn in_environment(&self, name: NameId) -> bool {
+        let robot = self.sema.file(self.id).robot;
+        self.project.environment.contains(&(robot, name))
     }
 
     /// Routines of this file that are the user's code (not the MM package's own subprograms).

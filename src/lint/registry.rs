@@ -36,6 +36,15 @@ pub static RULES: &[&Rule] = &[
     &rules::krl003::RULE,
     &rules::krl004::RULE,
     &rules::krl005::RULE,
+    &rules::krl010::RULE,
+    &rules::krl011::RULE,
+    &rules::krl012::RULE,
+    &rules::krl013::RULE,
+    &rules::krl014::RULE,
+    &rules::krl015::RULE,
+    &rules::krl016::RULE,
+    &rules::krl017::RULE,
+    &rules::krl018::RULE,
     &rules::mm001::RULE,
     &rules::mm002::RULE,
     &rules::mm003::RULE,
@@ -58,6 +67,11 @@ pub static FIXES: &[(&str, &str)] = &[
          appears nowhere else in the file, otherwise offered as unsafe (not applied)",
     ),
     ("KRL005", "upper-cases the words (safe)"),
+    (
+        "KRL016",
+        "deletes the unused declaration (its line, or the name and its comma from a list); \
+         offered in editors, never applied by `check --fix`",
+    ),
 ];
 
 /// What the automatic fix of `code` does, if it has one.

@@ -71,6 +71,8 @@ pub(crate) struct Scopes {
 #[derive(Debug)]
 pub(crate) struct FileData {
     pub id: FileId,
+    /// The workspace source it came from ([`SemaInput::group`]).
+    pub group: u32,
     pub info: FileInfo,
     /// `$config.dat` or another system data list (`DEFDAT $…`): its declarations are robot-wide.
     pub robot_wide: bool,
@@ -125,17 +127,59 @@ fn under(dir: &str, root: &str) -> bool {
 fn robot_root(config_path: &str) -> String {
     let comps = components(config_path);
     let dir = &comps[..comps.len().saturating_sub(1)];
-    let is_robot = |c: &&str| {
-        let b = c.as_bytes();
-        b.len() >= 2 && (b[0] == b'R' || b[0] == b'r') && b[1..].iter().all(u8::is_ascii_digit)
-    };
-    if let Some(i) = dir.iter().rposition(is_robot) {
+    // A backup's root holds `KRC` beside `C` (templates) and `am.ini`: start from there.
+    if let Some(k) = dir.iter().rposition(|c| c.eq_ignore_ascii_case("KRC"))
+        && dir[k + 1..]
+            .first()
+            .is_some_and(|c| c.eq_ignore_ascii_case("STEU") || is_robot_folder(c))
+    {
+        return lower_join(&dir[..k]);
+    }
+    if let Some(i) = dir.iter().rposition(|c| is_robot_folder(c)) {
         return lower_join(&dir[..i]);
     }
+
+    // `R1/System/$config.dat`, and `STEU/$config.dat` (the controller's own, beside `R1`).
     match dir.last() {
-        Some(last) if last.eq_ignore_ascii_case("System") => lower_join(&dir[..dir.len() - 1]),
+        Some(last) if last.eq_ignore_ascii_case("System") || last.eq_ignore_ascii_case("STEU") => {
+            lower_join(&dir[..dir.len() - 1])
+        }
         _ => lower_join(dir),
     }
+}
+
+/// `R1`, `R2` …: a robot's folder in a controller's `KRC` tree.
+fn is_robot_folder(c: &str) -> bool {
+    let b = c.as_bytes();
+    b.len() >= 2 && (b[0] == b'R' || b[0] == b'r') && b[1..].iter().all(u8::is_ascii_digit)
+}
+
+fn is_vendor(comps: &[&str]) -> bool {
+    let in_folder = comps[..comps.len().saturating_sub(1)].iter().any(|c| {
+        ["System", "TP", "STEU", "Mada", "Template"]
+            .iter()
+            .any(|v| c.eq_ignore_ascii_case(v))
+    });
+    // KUKA's system modules, also when copied out of their folder.
+    let stem = comps
+        .last()
+        .map_or("", |f| f.split('.').next().unwrap_or(f));
+    let system_module = [
+        "bas",
+        "ir_stopm",
+        "sps",
+        "masref_main",
+        "masref_user",
+        "collmonlib",
+        "msglib",
+        "tm_bib",
+        "tm_useraction",
+        "p00",
+        "colldetect_useraction",
+    ]
+    .iter()
+    .any(|m| stem.eq_ignore_ascii_case(m));
+    in_folder || system_module
 }
 
 fn is_config_path(path: &str) -> bool {
@@ -144,10 +188,68 @@ fn is_config_path(path: &str) -> bool {
         .is_some_and(|f| f.eq_ignore_ascii_case("$config.dat"))
 }
 
+/// One file of [`Sema::update`]: unchanged since the model was built (its id there), or new or
+/// changed.
+#[derive(Debug)]
+pub enum Update {
+    Keep(FileId),
+    New(Box<SemaInput>),
+}
+
+/// A file on its way into the model: its summary with the file's own name indices (`Raw`) or
+/// already with the model's (`Interned`, from the model being updated).
+struct Source {
+    path: String,
+    group: u32,
+    summary: FileSummary,
+    interned: bool,
+}
+
 impl Sema {
     /// Build the model of a workspace from its files' summaries.
     pub fn build(inputs: Vec<SemaInput>, am_ini: &[AmIni]) -> Sema {
-        let mut names = Names::default();
+        let sources = inputs
+            .into_iter()
+            .map(|i| Source {
+                path: i.path,
+                group: i.group,
+                summary: i.summary,
+                interned: false,
+            })
+            .collect();
+        Sema::assemble(Names::default(), sources, am_ini)
+    }
+
+    /// The model after files were added, changed, removed or reordered: `files` lists the new
+    /// workspace in order. Unchanged files keep their summaries and the name table is kept, so
+    /// only the changed files are summarised again and nothing is copied (the language server
+    /// after each edit). Gives the same files, scopes and resolutions as [`Sema::build`] of the
+    /// same summaries; only [`NameId`] numbers may differ.
+    pub fn update(&mut self, files: Vec<Update>, am_ini: &[AmIni]) {
+        let names = std::mem::take(&mut self.names);
+        let old = std::mem::take(&mut self.files);
+        let mut old: Vec<Option<FileData>> = old.into_iter().map(Some).collect();
+        let sources = files
+            .into_iter()
+            .filter_map(|u| match u {
+                Update::Keep(id) => old.get_mut(id.index())?.take().map(|f| Source {
+                    path: f.info.path,
+                    group: f.group,
+                    summary: f.s,
+                    interned: true,
+                }),
+                Update::New(i) => Some(Source {
+                    path: i.path,
+                    group: i.group,
+                    summary: i.summary,
+                    interned: false,
+                }),
+            })
+            .collect();
+        *self = Sema::assemble(names, sources, am_ini);
+    }
+
+    fn assemble(mut names: Names, inputs: Vec<Source>, am_ini: &[AmIni]) -> Sema {
         let mut b = Builder {
             sema: Sema {
                 names: Names::default(),
@@ -172,10 +274,16 @@ impl Sema {
         // Modules: same robot, same folder, same stem.
         let mut module_of: FxHashMap<(u32, String, String), ModuleId> = FxHashMap::default();
         for (i, input) in inputs.into_iter().enumerate() {
-            let SemaInput { path, summary, .. } = input;
+            let Source {
+                path,
+                group,
+                summary,
+                interned,
+            } = input;
             let kind = FileKind::of(&path);
             let robot = robot_of[i];
             let comps = components(&path);
+            let vendor = is_vendor(&comps);
             let file_name = comps.last().copied().unwrap_or("");
             let stem = file_name.split('.').next().unwrap_or(file_name);
             let dir = lower_join(&comps[..comps.len().saturating_sub(1)]);
@@ -218,13 +326,17 @@ impl Sema {
             } else {
                 m.src = Some(file);
             }
+            let s = if interned {
+                summary
+            } else {
+                intern(&mut names, summary)
+            };
             let robot_wide = is_config
-                || summary
-                    .dat
-                    .is_some_and(|(n, _, _)| summary.names[n as usize].starts_with('$'));
-            let s = intern(&mut names, summary);
+                || s.dat
+                    .is_some_and(|(n, _, _)| names.text(NameId(n)).starts_with('$'));
             b.sema.files.push(FileData {
                 id: file,
+                group,
                 robot_wide,
                 info: FileInfo {
                     path,
@@ -233,6 +345,7 @@ impl Sema {
                     robot,
                     routines: Vec::new(),
                     is_config,
+                    vendor,
                 },
                 s,
                 resolved: Vec::new(),
@@ -260,7 +373,7 @@ impl Sema {
 }
 
 /// Give each file its robot.
-fn partition(inputs: &[SemaInput], am_ini: &[AmIni]) -> (Vec<RobotId>, Vec<Robot>) {
+fn partition(inputs: &[Source], am_ini: &[AmIni]) -> (Vec<RobotId>, Vec<Robot>) {
     let mut robots: Vec<(u32, Robot)> = Vec::new();
     let mut robot_of = vec![RobotId(0); inputs.len()];
     let mut groups: Vec<u32> = inputs.iter().map(|i| i.group).collect();
@@ -279,9 +392,10 @@ fn partition(inputs: &[SemaInput], am_ini: &[AmIni]) -> (Vec<RobotId>, Vec<Robot
             .iter()
             .map(|&i| robot_root(&inputs[i].path))
             .collect();
+        roots.sort();
         roots.dedup();
-        if roots.len() <= 1 {
-            roots = vec![String::new()];
+        if roots.is_empty() {
+            roots.push(String::new());
         }
         let first = robots.len();
         for r in &roots {
@@ -598,11 +712,15 @@ impl Builder {
             && let Some(prev) = self.table(other).vars.get(&name).copied()
         {
             let first = self.sema.symbols[prev.index()].decl;
-            self.duplicate(name, first, here.expect("declared"), false, true);
+            self.ambiguous_symbol(prev, id);
+            if let Some(h) = here {
+                self.duplicate(name, first, h, false, true);
+            }
             return;
         }
         match self.table(scope).vars.get(&name).copied() {
             Some(prev) => {
+                self.ambiguous_symbol(prev, id);
                 let first = self.sema.symbols[prev.index()].decl;
                 let global = robot_wide(scope).is_some();
                 if let Some(h) = here {
@@ -613,6 +731,13 @@ impl Builder {
                 self.table(scope).vars.insert(name, id);
             }
         }
+    }
+
+    /// Two declarations of one name: which one a use means is not certain, so neither type is
+    /// judged.
+    fn ambiguous_symbol(&mut self, a: SymbolId, b: SymbolId) {
+        self.sema.symbols[a.index()].unverified = true;
+        self.sema.symbols[b.index()].unverified = true;
     }
 
     fn items(&mut self, file: FileId) {
@@ -716,6 +841,8 @@ impl Builder {
             type_ids.push(id);
             match self.table(scope).types.get(&name).copied() {
                 Some(prev) => {
+                    self.sema.types[prev.index()].unverified = true;
+                    self.sema.types[id.index()].unverified = true;
                     let first = self.sema.types[prev.index()].decl;
                     let global = matches!(scope, Scope::Global(_) | Scope::Config(_));
                     self.duplicate(name, first, here, false, global);
