@@ -45,8 +45,11 @@ fn trace_lines(path: &Path) -> Vec<String> {
         .collect()
 }
 
+/// A motion's kind and its target's fields in order.
+type Motion = (String, Vec<(String, f64)>);
+
 /// `{"event":"motion","kind":K,"target":{...}}` with the target's keys in order.
-fn motion(line: &str) -> Option<(String, Vec<(String, f64)>)> {
+fn motion(line: &str) -> Option<Motion> {
     let v: serde_json::Value = serde_json::from_str(line).expect("each line is JSON");
     if v["event"] != "motion" {
         return None;
@@ -550,7 +553,7 @@ fn pick_runs_alike_with_every_codec_and_interface() {
     let path = root().join("tests/fixtures/scenarios/examples.toml");
     let text = std::fs::read_to_string(&path).unwrap();
     let dir = tempfile::tempdir().unwrap();
-    let mut reference: Option<Vec<(String, Vec<(String, f64)>)>> = None;
+    let mut reference: Option<Vec<Motion>> = None;
     for iface in Interface::ALL {
         let program = match iface {
             Interface::V1 => "krl/examples/vision_pick.src",
