@@ -336,7 +336,13 @@ fn committed_variant_outputs_have_no_drift() {
     names.sort();
     assert_eq!(
         names,
-        ["ascii_2.x", "hex-be_1.x", "hex-le_1.x", "hex-le_2.x"]
+        [
+            "ascii_2.x",
+            "hex-be_1.x",
+            "hex-be_2.x",
+            "hex-le_1.x",
+            "hex-le_2.x"
+        ]
     );
     for name in names {
         let root = dir.join(&name);

@@ -21,11 +21,11 @@ use krlkit::interp::Event;
 use krlkit::sim::Scenario;
 use krlkit::spec::Spec;
 
-/// Status codes that mean "it worked" for a subprogram: the success codes of its commands,
-/// or (for local copies and settings) any success code or 0.
-fn is_success(name: &str, status: i64) -> bool {
+/// Status codes that mean "it worked" for a subprogram of `iface`: the success codes of its
+/// commands, or (for local copies and settings) any success code of the version or 0.
+fn is_success_in(iface: Interface, name: &str, status: i64) -> bool {
     let cat = catalog();
-    let Some(sub) = cat.subprogram(name) else {
+    let Some(sub) = cat.subprogram_in(iface, name) else {
         return false;
     };
     let own = sub.success_codes();
@@ -34,8 +34,7 @@ fn is_success(name: &str, status: i64) -> bool {
     }
     status == 0
         || cat
-            .commands
-            .iter()
+            .commands_of(iface)
             .any(|c| c.success.map(i64::from) == Some(status))
 }
 
@@ -65,7 +64,9 @@ fn every_subprogram_end_to_end() {
     for sub in &cat.subprograms {
         let statuses = seen.get(&sub.name).cloned().unwrap_or_default();
         assert!(
-            statuses.iter().any(|s| is_success(&sub.name, *s)),
+            statuses
+                .iter()
+                .any(|s| is_success_in(Interface::V1, &sub.name, *s)),
             "{} never ran successfully end to end (statuses seen: {statuses:?})",
             sub.name
         );
@@ -145,22 +146,6 @@ fn hex_packages_behave_like_the_ascii_package() {
     }
 }
 
-/// Whether `status` means success for the 2.x subprogram `name`.
-fn is_success_v2(name: &str, status: i64) -> bool {
-    let cat = catalog();
-    let Some(sub) = cat.subprogram_in(Interface::V2, name) else {
-        return false;
-    };
-    let own = sub.success_codes();
-    if !own.is_empty() {
-        return own.iter().any(|c| i64::from(*c) == status);
-    }
-    status == 0
-        || cat
-            .commands_of(Interface::V2)
-            .any(|c| c.success.map(i64::from) == Some(status))
-}
-
 /// The 2.x package, ASCII and HEX, runs every case of `e2e/v2/` (the snapshot is the ASCII
 /// run; the HEX runs must behave the same); every 2.x subprogram succeeds somewhere and every
 /// package status code (but SEND_FAILED) occurs.
@@ -203,7 +188,9 @@ fn every_v2_subprogram_end_to_end() {
     for sub in cat.subprograms_of(Interface::V2) {
         let statuses = seen.get(&sub.name).cloned().unwrap_or_default();
         assert!(
-            statuses.iter().any(|s| is_success_v2(&sub.name, *s)),
+            statuses
+                .iter()
+                .any(|s| is_success_in(Interface::V2, &sub.name, *s)),
             "2.x {} never ran successfully end to end (statuses seen: {statuses:?})",
             sub.name
         );
@@ -277,35 +264,52 @@ fn expected_motions(example: &str, sc: &Scenario) -> Vec<(&'static str, Vec<f64>
 #[test]
 fn examples_run_against_the_examples_scenario() {
     let dir = root().join("krl/examples");
-    let mut names: Vec<String> = std::fs::read_dir(&dir)
+    let names = programs_in(&dir);
+    assert!(names.len() >= 7, "{names:?}");
+    for name in names {
+        let (_, outcome) = run_example(&dir, &name, Spec::default());
+        insta::assert_snapshot!(
+            format!("example_{name}"),
+            render(&outcome, outcome.addr.as_deref())
+        );
+    }
+}
+
+/// The names of the `.src` programs in `dir`, sorted.
+fn programs_in(dir: &Path) -> Vec<String> {
+    let mut names: Vec<String> = std::fs::read_dir(dir)
         .unwrap()
         .map(|e| e.unwrap().path())
         .filter(|p| p.extension().is_some_and(|x| x.eq_ignore_ascii_case("src")))
         .map(|p| p.file_stem().unwrap().to_string_lossy().into_owned())
         .collect();
     names.sort();
-    assert!(names.len() >= 7, "{names:?}");
-    for name in names {
-        let mut case = Case::new(dir.join(format!("{name}.src")));
-        case.scenario = Some(root().join("tests/fixtures/scenarios/examples.toml"));
-        let outcome = run(&case);
-        check_invariants(&name, &case, &outcome);
-        for e in outcome.result.events.iter().map(|r| &r.event) {
-            if let Event::Return {
-                name: sub,
-                status: Some(s),
-                ..
-            } = e
-            {
-                assert!(is_success(sub, *s), "{name}: {sub} ended in {s}");
-            }
+    names
+}
+
+/// Runs example `name` of `dir` with the package of `spec` against the examples scenario:
+/// every call must succeed and the motions must be the ones the example must make.
+fn run_example(dir: &Path, name: &str, spec: Spec) -> (Case, interp_support::Outcome) {
+    let iface = spec.interface;
+    let mut case = Case::new(dir.join(format!("{name}.src"))).with_spec(spec);
+    case.scenario = Some(root().join("tests/fixtures/scenarios/examples.toml"));
+    let outcome = run(&case);
+    check_invariants(name, &case, &outcome);
+    for e in outcome.result.events.iter().map(|r| &r.event) {
+        if let Event::Return {
+            name: sub,
+            status: Some(s),
+            ..
+        } = e
+        {
+            assert!(
+                is_success_in(iface, sub, *s),
+                "{iface} {name}: {sub} ended in {s}"
+            );
         }
-        assert_motions(&name, &case, &outcome);
-        insta::assert_snapshot!(
-            format!("example_{name}"),
-            render(&outcome, outcome.addr.as_deref())
-        );
     }
+    assert_motions(name, &case, &outcome);
+    (case, outcome)
 }
 
 /// The run's motion targets are the ones the example must make against its scenario.
@@ -335,19 +339,8 @@ fn assert_motions(name: &str, case: &Case, outcome: &interp_support::Outcome) {
 #[test]
 fn v2_examples_run_for_every_codec() {
     let dir = root().join("tests/fixtures/gen_variants/ascii_2.x/krl/examples");
-    let mut names: Vec<String> = std::fs::read_dir(&dir)
-        .unwrap()
-        .map(|e| e.unwrap().path())
-        .filter(|p| p.extension().is_some_and(|x| x.eq_ignore_ascii_case("src")))
-        .map(|p| p.file_stem().unwrap().to_string_lossy().into_owned())
-        .collect();
-    names.sort();
-    let v1: Vec<String> = std::fs::read_dir(root().join("krl/examples"))
-        .unwrap()
-        .map(|e| e.unwrap().path())
-        .filter(|p| p.extension().is_some_and(|x| x.eq_ignore_ascii_case("src")))
-        .map(|p| p.file_stem().unwrap().to_string_lossy().into_owned())
-        .collect();
+    let names = programs_in(&dir);
+    let v1 = programs_in(&root().join("krl/examples"));
     assert!(
         v1.iter().all(|n| names.contains(n)),
         "every 1.x example has a 2.x version: {v1:?} vs {names:?}"
@@ -357,21 +350,7 @@ fn v2_examples_run_for_every_codec() {
         .map(|c| Spec::parse(&format!("codec = \"{c}\"\ninterface = \"2.x\""), c).unwrap())
         .collect();
     for name in names {
-        let mut case = Case::new(dir.join(format!("{name}.src"))).with_spec(specs[0].clone());
-        case.scenario = Some(root().join("tests/fixtures/scenarios/examples.toml"));
-        let outcome = run(&case);
-        check_invariants(&name, &case, &outcome);
-        for e in outcome.result.events.iter().map(|r| &r.event) {
-            if let Event::Return {
-                name: sub,
-                status: Some(s),
-                ..
-            } = e
-            {
-                assert!(is_success_v2(sub, *s), "2.x {name}: {sub} ended in {s}");
-            }
-        }
-        assert_motions(&name, &case, &outcome);
+        let (case, outcome) = run_example(&dir, &name, specs[0].clone());
         let want = behaviour(&outcome);
         for spec in &specs[1..] {
             let case = case.clone().with_spec(spec.clone());

@@ -45,8 +45,11 @@ fn trace_lines(path: &Path) -> Vec<String> {
         .collect()
 }
 
+/// A motion's kind and its target's fields in order.
+type Motion = (String, Vec<(String, f64)>);
+
 /// `{"event":"motion","kind":K,"target":{...}}` with the target's keys in order.
-fn motion(line: &str) -> Option<(String, Vec<(String, f64)>)> {
+fn motion(line: &str) -> Option<Motion> {
     let v: serde_json::Value = serde_json::from_str(line).expect("each line is JSON");
     if v["event"] != "motion" {
         return None;
@@ -538,4 +541,67 @@ fn the_end_event_carries_the_exit_code() {
         "{}",
         stdout(&out)
     );
+}
+
+/// `krlkit run` with the package of every codec × interface (generated from `--spec`, and the
+/// committed reference output of the variants with `--package`) against `sim serve`'s server
+/// speaking that codec and version: the pick example (its 2.x form for 2.x) ends normally,
+/// every call returns its success status, and the motion trace is the ASCII 1.x run's.
+#[test]
+fn pick_runs_alike_with_every_codec_and_interface() {
+    use krlkit::catalog::{Codec, Interface};
+    let path = root().join("tests/fixtures/scenarios/examples.toml");
+    let text = std::fs::read_to_string(&path).unwrap();
+    let dir = tempfile::tempdir().unwrap();
+    let mut reference: Option<Vec<Motion>> = None;
+    for iface in Interface::ALL {
+        let program = match iface {
+            Interface::V1 => "krl/examples/vision_pick.src",
+            Interface::V2 => "tests/fixtures/gen_variants/ascii_2.x/krl/examples/vision_pick.src",
+        };
+        for codec in Codec::ALL {
+            let variant = format!("{codec}_{iface}");
+            let committed = root().join("tests/fixtures/gen_variants").join(&variant);
+            let spec = dir.path().join(format!("{variant}.toml"));
+            std::fs::write(
+                &spec,
+                format!("codec = \"{codec}\"\ninterface = \"{iface}\"\n"),
+            )
+            .unwrap();
+            let mut packages = vec![vec!["--spec".to_string(), spec.display().to_string()]];
+            if committed.is_dir() {
+                packages.push(vec!["--package".into(), committed.display().to_string()]);
+            }
+            for package in packages {
+                let mut sc = Scenario::from_toml_str(&text, "examples.toml")
+                    .unwrap()
+                    .with_interface(iface)
+                    .unwrap();
+                sc.server.codec = codec;
+                let server = Server::start(sc, "127.0.0.1:0").unwrap();
+                let trace = dir.path().join("trace.jsonl");
+                let addr = server.addr().to_string();
+                let mut args = vec!["run", program, "--vision", &addr];
+                args.extend(package.iter().map(String::as_str));
+                args.extend(["--trace", trace.to_str().unwrap()]);
+                let out = krlkit(&args);
+                let what = format!("{variant} {}", package[0]);
+                assert_eq!(out.status.code(), Some(0), "{what}: {}", stderr(&out));
+                let lines = trace_lines(&trace);
+                for l in &lines {
+                    let v: serde_json::Value = serde_json::from_str(l).unwrap();
+                    if v["event"] == "return" && v["name"] != "MM_Init_Socket" {
+                        let s = v["status"].as_i64().unwrap();
+                        assert!((1100..1200).contains(&s), "{what}: {l}");
+                    }
+                }
+                let motions: Vec<_> = lines.iter().filter_map(|l| motion(l)).collect();
+                assert_eq!(motions.len(), 9, "{what}");
+                match &reference {
+                    None => reference = Some(motions),
+                    Some(r) => assert_eq!(r, &motions, "{what}: motions differ from ascii_1.x"),
+                }
+            }
+        }
+    }
 }

@@ -373,3 +373,22 @@ fn flexiv_vision_server_from_spec_or_eki_xml_or_tr001() {
         "{out}"
     );
 }
+
+/// A 2.x program is refused with the reason: its calls are the 2.x forms (and 2.x-only
+/// routines), while the targets' packages implement the 1.x interface.
+#[test]
+fn calls_of_the_2x_interface_are_named() {
+    let program = "../gen_variants/ascii_2.x/krl/examples/viz_cycle.src";
+    for to in ["kawasaki", "flexiv"] {
+        let (code, _, err) = krlkit(&["transpile", program, "--to", to, "--format", "concise"]);
+        assert_eq!(code, 1, "{to}: {err}");
+        assert!(
+            err.contains("`MM_Start_Viz` takes 2 arguments, this call passes 3 (the 2.x form;"),
+            "{to}: {err}"
+        );
+        assert!(
+            err.contains("`MM_Stop_Viz` is a routine of the 2.x interface"),
+            "{to}: {err}"
+        );
+    }
+}

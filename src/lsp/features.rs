@@ -146,7 +146,9 @@ fn hover(s: &Server, p: HoverParams) -> Option<Hover> {
     let mut range = None;
     if let (Place::Code, call) = cursor::context(&lines, offset) {
         let word = cursor::word_at(&f.text, offset);
-        match word.and_then(|w| mm::subprogram(&f.text[w.range()]).map(|sub| (w, sub))) {
+        match word
+            .and_then(|w| mm::subprogram(s.ws.interface(), &f.text[w.range()]).map(|sub| (w, sub)))
+        {
             // On the name of an MM_ subprogram: the whole signature.
             Some((w, sub)) => {
                 parts.push(mm::hover(sub, None));
@@ -155,7 +157,7 @@ fn hover(s: &Server, p: HoverParams) -> Option<Hover> {
             // In its argument list: the parameter under the cursor.
             None => {
                 if let Some(c) = call
-                    && let Some(sub) = mm::subprogram(&f.text[c.name.range()])
+                    && let Some(sub) = mm::subprogram(s.ws.interface(), &f.text[c.name.range()])
                 {
                     parts.push(mm::hover(sub, Some(c.arg)));
                     range = word.map(|w| lines.range(w));
@@ -171,7 +173,7 @@ fn hover(s: &Server, p: HoverParams) -> Option<Hover> {
         && !(parts.len() == 1
             && range.is_some()
             && matches!(r, Resolved::Routine(_))
-            && mm::subprogram(&f.text[span.range()]).is_some())
+            && mm::subprogram(s.ws.interface(), &f.text[span.range()]).is_some())
     {
         parts.push(text);
         range.get_or_insert(lines.range(span));
@@ -201,7 +203,7 @@ fn completion(s: &Server, p: CompletionParams) -> Option<CompletionResponse> {
     if cursor::context(&lines, offset).0 != Place::Code {
         return None;
     }
-    let mut items = mm::completions();
+    let mut items = mm::completions(s.ws.interface());
     let model = s.ws.model();
     if let Some(fid) = model.file_id(&f.path) {
         // The package's own DEFs, if it is in the workspace, are the catalog's snippets.
@@ -209,7 +211,7 @@ fn completion(s: &Server, p: CompletionParams) -> Option<CompletionResponse> {
             model
                 .completions(fid, offset as u32)
                 .into_iter()
-                .filter(|i| mm::subprogram(&i.label).is_none()),
+                .filter(|i| mm::subprogram(s.ws.interface(), &i.label).is_none()),
         );
     }
     Some(CompletionResponse::Array(items))
@@ -221,7 +223,7 @@ fn signature_help(s: &Server, p: SignatureHelpParams) -> Option<SignatureHelp> {
         return None;
     };
     let name = &f.text[call.name.range()];
-    if let Some(sub) = mm::subprogram(name) {
+    if let Some(sub) = mm::subprogram(s.ws.interface(), name) {
         return Some(mm::signature_help(sub, call.arg));
     }
     let model = s.ws.model();

@@ -6,10 +6,11 @@ use lsp_types::{
     ParameterInformation, ParameterLabel, SignatureHelp, SignatureInformation,
 };
 
-use crate::catalog::{Param, Subprogram, catalog};
+use crate::catalog::{Interface, Param, Subprogram, catalog};
 
-pub fn subprogram(name: &str) -> Option<&'static Subprogram> {
-    catalog().subprogram(name)
+/// The subprogram called `name` in the interface version the workspace is checked against.
+pub fn subprogram(iface: Interface, name: &str) -> Option<&'static Subprogram> {
+    catalog().subprogram_in(iface, name)
 }
 
 fn markdown(value: String) -> Documentation {
@@ -64,10 +65,10 @@ pub fn hover(sub: &Subprogram, arg: Option<usize>) -> String {
     s
 }
 
-/// Every subprogram as a snippet: `MM_Get_Pose(${1:Pos_Num}, ${2:Pose}, …)`.
-pub fn completions() -> Vec<CompletionItem> {
+/// Every subprogram of `iface` as a snippet: `MM_Get_Pose(${1:Pos_Num}, ${2:Pose}, …)`.
+pub fn completions(iface: Interface) -> Vec<CompletionItem> {
     catalog()
-        .subprograms
+        .subprograms_of(iface)
         .iter()
         .map(|sub| {
             let args: Vec<String> = sub
@@ -121,7 +122,10 @@ mod tests {
 
     #[test]
     fn parameter_labels_point_into_the_signature() {
-        for sub in &catalog().subprograms {
+        for sub in Interface::ALL
+            .into_iter()
+            .flat_map(|i| catalog().subprograms_of(i))
+        {
             let help = signature_help(sub, 0);
             let sig = &help.signatures[0];
             for (p, info) in sub.params.iter().zip(sig.parameters.as_ref().unwrap()) {
@@ -136,9 +140,29 @@ mod tests {
         }
     }
 
+    /// A 2.x workspace gets the 2.x signatures and routines, a 1.x one the seed's.
+    #[test]
+    fn the_interface_version_picks_the_signatures() {
+        let v2 = subprogram(Interface::V2, "mm_start_vis").unwrap();
+        assert!(hover(v2, None).contains("MM_Status"), "{}", hover(v2, None));
+        assert!(
+            !hover(subprogram(Interface::V1, "MM_Start_Vis").unwrap(), None).contains("MM_Status")
+        );
+        assert!(subprogram(Interface::V1, "MM_Stop_Viz").is_none());
+        let labels = |i| {
+            completions(i)
+                .into_iter()
+                .map(|c| c.label)
+                .collect::<Vec<_>>()
+        };
+        assert!(labels(Interface::V2).contains(&"MM_Stop_Viz".to_string()));
+        assert!(!labels(Interface::V2).contains(&"MM_Set_Pos".to_string()));
+        assert!(labels(Interface::V1).contains(&"MM_Set_Pos".to_string()));
+    }
+
     #[test]
     fn hover_names_meaning_unit_and_range() {
-        let sub = subprogram("mm_init_socket").unwrap();
+        let sub = subprogram(Interface::V1, "mm_init_socket").unwrap();
         let text = hover(sub, Some(3));
         assert!(text.contains("**Time_Out** `IN INT`"), "{text}");
         assert!(text.contains("Unit: s"), "{text}");

@@ -135,6 +135,11 @@ impl Workspace {
     pub fn files(&self) -> &[Parsed] {
         self.session.files()
     }
+
+    /// The interface version `MM_` calls are checked against (config, else detected, else 1.x).
+    pub fn interface(&self) -> crate::catalog::Interface {
+        self.session.project().interface.version
+    }
 }
 
 /// The `[lint]` and `[fmt]` tables of the root's config file, or the defaults without one.

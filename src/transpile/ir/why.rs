@@ -205,10 +205,12 @@ impl Why {
             Why::OutArgument => "an OUT argument must be a variable".into(),
             Why::Bas(w) => format!("BAS(#{w}) has no counterpart"),
             Why::BasArguments => "BAS without a command or value".into(),
+            Why::NotMm(n) if v2_form(n, None) => format!("`{n}` is a routine of the 2.x interface; the transpilers translate calls of the 1.x interface (seed 000)"),
             Why::NotMm(n) => format!("`{n}` is not a routine of the Mech-Mind interface"),
             Why::MmArity { name, given, signature } => {
                 let takes = signature.matches(',').count() + usize::from(!signature.ends_with("()"));
-                arity(name, takes, *given)
+                let v2 = if v2_form(name, Some(*given)) { " (the 2.x form; the transpilers translate calls of the 1.x interface)" } else { "" };
+                format!("{}{v2}", arity(name, takes, *given))
             }
             Why::UnknownEnum(n) => format!("enum value `#{n}` belongs to no ENUM declared in this program"),
             Why::InvalidLiteral(t) => format!("`{t}` is not a valid literal"),
@@ -237,6 +239,13 @@ impl Why {
             Why::BitwiseNot => "B_NOT (bitwise NOT) has no confirmed counterpart".into(),
         }
     }
+}
+
+/// Whether `name` (with `args` arguments, when given) is a call in the 2.x interface's form.
+fn v2_form(name: &str, args: Option<usize>) -> bool {
+    crate::catalog::catalog()
+        .subprogram_in(crate::catalog::Interface::V2, name)
+        .is_some_and(|s| args.is_none_or(|n| s.params.len() == n))
 }
 
 fn arity(name: &str, takes: usize, given: usize) -> String {
