@@ -54,7 +54,10 @@ fn sh_blocks(readme: &str) -> Vec<Block> {
         while i < lines.len() && lines[i].trim_end() != "```" {
             // A continued line (`\` at its end) is one command.
             let l = lines[i].trim_end();
-            if let Some(prev) = commands.last_mut().filter(|p: &&mut String| p.ends_with('\\')) {
+            if let Some(prev) = commands
+                .last_mut()
+                .filter(|p: &&mut String| p.ends_with('\\'))
+            {
                 prev.pop();
                 prev.push_str(l.trim_start());
             } else if !l.trim().is_empty() {
@@ -243,7 +246,10 @@ fn free_addr() -> String {
 /// Runs one block's commands; the failures, described.
 fn run_block(block: &Block) -> (Vec<String>, usize) {
     let dir = workspace(block);
-    let has_server = block.commands.iter().any(|c| c.contains("krlkit sim serve"));
+    let has_server = block
+        .commands
+        .iter()
+        .any(|c| c.contains("krlkit sim serve"));
     let addr = if has_server {
         free_addr()
     } else {
@@ -320,12 +326,17 @@ fn every_readme_command_block_runs_as_printed() {
 fn comments_and_announced_exit_codes_are_read() {
     assert_eq!(
         split_comment("krlkit fmt --diff a.src   # print a diff (exit 1: it would change)"),
-        ("krlkit fmt --diff a.src", "print a diff (exit 1: it would change)")
+        (
+            "krlkit fmt --diff a.src",
+            "print a diff (exit 1: it would change)"
+        )
     );
     assert_eq!(expected_exit("print a diff (exit 1: it would change)"), 1);
     assert_eq!(expected_exit("CI: exit 1 if pkg/ differs"), 0);
     assert_eq!(expected_exit("list files that would change (exit 1)"), 0);
-    let blocks = sh_blocks("<!-- readme-test: not run: needs npm -->\n```sh\nnpm i \\\n  x\n```\n\n```sh\nkrlkit rules\n```\n");
+    let blocks = sh_blocks(
+        "<!-- readme-test: not run: needs npm -->\n```sh\nnpm i \\\n  x\n```\n\n```sh\nkrlkit rules\n```\n",
+    );
     assert_eq!(blocks.len(), 2);
     assert_eq!(blocks[0].not_run.as_deref(), Some("needs npm"));
     assert_eq!(blocks[0].commands, ["npm i x"]);

@@ -373,3 +373,46 @@ fn flexiv_vision_server_from_spec_or_eki_xml_or_tr001() {
         "{out}"
     );
 }
+
+/// A parameter named twice (KSS refuses such a module) is a TR001 at the repeat and never a
+/// Python `def f(a, a)` (a SyntaxError) or an AS `.PROGRAM f(.a,.a)`: the repeat is left out,
+/// the command exits 1, and the script still compiles.
+#[test]
+fn duplicate_parameter_names_are_tr001_and_the_output_stays_valid() {
+    let dir = tempfile::tempdir().expect("tempdir");
+    for (to, file) in [("flexiv", "dup.py"), ("kawasaki", "dup.as")] {
+        let out_path = dir.path().join(file);
+        let out_arg = out_path.to_str().expect("utf-8 path");
+        let (code, out, err) = krlkit(&["transpile", "dup_params.src", "--to", to, "-o", out_arg]);
+        assert_eq!(code, 1, "{to}: {out}{err}");
+        assert_eq!(
+            out.matches("error[TR001]: parameter `").count(),
+            2,
+            "{to}: {out}"
+        );
+        assert!(out.contains(" --> dup_params.src:7:24"), "{to}: {out}");
+        assert!(out.contains("  --> dup_params.src:12:17"), "{to}: {out}");
+        let written = std::fs::read_to_string(&out_path).expect("output written");
+        assert!(
+            !written.contains("(a, a)") && !written.contains("(.a,.a)"),
+            "{written}"
+        );
+        if to == "kawasaki" {
+            assert_eq!(
+                krlkit::transpile::kawasaki::check::check(&written),
+                Vec::<String>::new()
+            );
+        }
+    }
+    let py = dir.path().join("dup.py");
+    let compiled = Command::new("python3")
+        .args(["-m", "py_compile"])
+        .arg(&py)
+        .output()
+        .expect("python3");
+    assert!(
+        compiled.status.success(),
+        "{}",
+        String::from_utf8_lossy(&compiled.stderr)
+    );
+}

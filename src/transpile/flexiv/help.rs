@@ -8,6 +8,7 @@ pub(super) fn help(why: &Why) -> String {
         Why::SyntaxError | Why::HeaderSyntaxError => {
             "fix the syntax error (krlkit check) and translate again".into()
         }
+        Why::DuplicateParam(_) => "give each parameter its own name and translate again".into(),
         Why::RepeatWithoutUntil => "close the loop with UNTIL".into(),
         Why::ExitOutsideLoop => "remove it".into(),
         Why::Confirm => "remove it".into(),

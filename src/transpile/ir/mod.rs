@@ -230,8 +230,9 @@ pub struct Routine {
     pub body: Block,
     /// False when the file ended before `END`.
     pub closed: bool,
-    /// The DEF line did not parse (its parameters are missing from the tree).
-    pub header_error: Option<Span>,
+    /// The DEF line did not parse (its parameters are missing from the tree), or names a
+    /// parameter twice (the repeat is left out of `params`).
+    pub header_error: Option<(Why, Span)>,
     pub span: Span,
     /// Where the `END` line starts (comments before it stay inside).
     pub end: u32,

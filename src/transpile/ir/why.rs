@@ -8,6 +8,8 @@ pub enum Why {
     SyntaxError,
     /// The DEF line does not parse.
     HeaderSyntaxError,
+    /// A parameter named twice on the DEF line (KSS refuses the module; Python and AS too).
+    DuplicateParam(String),
     /// `REPEAT` without `UNTIL`.
     RepeatWithoutUntil,
     /// `EXIT` outside a loop.
@@ -177,6 +179,7 @@ impl Why {
         match self {
             Why::SyntaxError => "this line does not parse (KRL001), so it cannot be translated".into(),
             Why::HeaderSyntaxError => "this DEF line does not parse (KRL001), so the routine's name and parameters cannot be translated".into(),
+            Why::DuplicateParam(p) => format!("parameter `{p}` is named twice on the DEF line, so the routine's parameters cannot be translated (the repeat is left out)"),
             Why::RepeatWithoutUntil => "REPEAT without UNTIL".into(),
             Why::ExitOutsideLoop => "EXIT outside a loop".into(),
             Why::Confirm => "CONFIRM (acknowledging a KUKA message) has no counterpart".into(),

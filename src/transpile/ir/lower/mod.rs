@@ -301,10 +301,17 @@ impl<'p> Lower<'p> {
             ast::RoutineKind::Deffct => RoutineKind::Deffct,
         };
         let assigned = walk::assigned_names(&r.body);
+        let mut seen = std::collections::HashSet::new();
+        let mut duplicate = None;
         let params = r
             .params
             .iter()
             .filter_map(|p| {
+                if !seen.insert(p.name.key()) {
+                    duplicate
+                        .get_or_insert((Why::DuplicateParam(p.name.text.to_string()), p.name.span));
+                    return None;
+                }
                 let var = *self.vars.get(&(key.clone(), p.name.key()))?;
                 let dir = match p.dir.unwrap_or(ast::ParamDir::In) {
                     ast::ParamDir::In => super::ParamDir::In,
@@ -334,7 +341,10 @@ impl<'p> Lower<'p> {
             labels: Vec::new(),
             body: Vec::new(),
             closed: r.closed,
-            header_error: self.header_syntax_error(r),
+            header_error: self
+                .header_syntax_error(r)
+                .map(|at| (Why::HeaderSyntaxError, at))
+                .or(duplicate),
             span: r.span,
             end: front::end_line_start(&self.src.src.text, r.span),
             synthetic: false,
@@ -404,12 +414,9 @@ impl<'p> Lower<'p> {
             }
         });
         let mut body = Block::new();
-        if let Some(at) = self.out.routine(id).header_error {
+        if let Some((why, at)) = self.out.routine(id).header_error.clone() {
             body.push(Stmt {
-                op: Op::Unsupported {
-                    why: Why::HeaderSyntaxError,
-                    at,
-                },
+                op: Op::Unsupported { why, at },
                 span: at,
             });
         }
