@@ -270,6 +270,7 @@ pub fn assumptions(spec: &Spec) -> Vec<String> {
     }
     if spec.interface == Interface::V2 {
         out.push("[U] 2.x interface: signatures from a public note compiled from Mech-Mind's 2.2.1 KUKA page (the vendor page itself was not read); MM_Get_VisData, MM_Get_VizData and MM_Get_VisPath repeat their command until the server reports all sent".into());
+        out.push("[U] 2.x status codes: the 2.x table (codes that exist or mean something else only in 2.x) is the same note's copy of the vendor's 2.2.1 status page; the package passes them on as the server sends them".into());
     }
     out.extend([
         "[U] flange pose = $BASE:$POS_ACT:INV_POS($TOOL), i.e. in WORLD (equal to ROBROOT on a fixed robot)".into(),
@@ -306,6 +307,15 @@ pub fn routine_assumptions(spec: &Spec) -> Vec<String> {
     for c in commands {
         if let Some(a) = cat.command_in(iface, c).and_then(|c| c.assumption.as_ref()) {
             out.push(format!("[U] command {c}: {a}"));
+        }
+    }
+    // The package's own codes are krlkit's decisions, listed with their meaning above.
+    for s in cat
+        .statuses_of(iface)
+        .filter(|s| s.origin != crate::catalog::Origin::Package)
+    {
+        if let Some(a) = &s.assumption {
+            out.push(format!("[U] status {}: {a}", s.code));
         }
     }
     out

@@ -11,6 +11,7 @@ mod bas;
 mod forms;
 mod interrupt;
 mod signals;
+mod submit;
 mod watch;
 
 use super::eki::Eki;
@@ -145,6 +146,10 @@ pub(crate) struct Machine<'p> {
     /// package). Cleared inside the routines it calls.
     declared_scope: Option<usize>,
     motions: u64,
+    /// While the submit routine runs (see `submit.rs`).
+    in_submit: bool,
+    /// The last word the submit routine wrote.
+    srci_word: Option<u32>,
     /// What the `WAIT FOR` check under way reads (see `watch.rs`).
     reads: Option<watch::Reads>,
     /// What the current iteration of an idle polling loop reads.
@@ -196,10 +201,13 @@ impl<'p> Machine<'p> {
             writes: 0,
             motions: 0,
             declared_scope: None,
+            in_submit: false,
+            srci_word: None,
             reads: None,
             loop_reads: None,
         };
         m.init_system();
+        m.init_robot_state();
         m
     }
 
@@ -317,7 +325,6 @@ impl<'p> Machine<'p> {
         put("$ACT_TOOL", Value::Int(-1));
         put("$ACT_BASE", Value::Int(-1));
         put("$IPO_MODE", Value::Enum("BASE".into()));
-        put("$MODE_OP", Value::Enum("T1".into()));
         let load = t.default_value(&BaseType::Struc("LOAD".into()), &[]);
         put("$LOAD", load.clone());
         put(
@@ -401,32 +408,38 @@ impl<'p> Machine<'p> {
                 line: 1,
                 message: "no DEF to run".into(),
             }),
-            Some((mi, ri)) => match self.init_dats().and_then(|_| {
-                let r = &self.prog.modules[mi].ast.routines[ri];
-                if !r.params.is_empty() {
-                    self.loc = (mi, r.span.start);
-                    return Err(self.err(format!(
-                        "{} takes parameters; the program to run must not",
-                        r.name.text
-                    )));
+            Some((mi, ri)) => {
+                match self
+                    .init_dats()
+                    .and_then(|_| self.submit_cycle())
+                    .and_then(|_| {
+                        let r = &self.prog.modules[mi].ast.routines[ri];
+                        if !r.params.is_empty() {
+                            self.loc = (mi, r.span.start);
+                            return Err(self.err(format!(
+                                "{} takes parameters; the program to run must not",
+                                r.name.text
+                            )));
+                        }
+                        self.call_routine(mi, ri, &[]).map(|_| ())
+                    }) {
+                    Ok(()) => End::Normal,
+                    Err(Stop::Halt { file, line }) => End::Halt { file, line },
+                    Err(Stop::Error(e)) => End::Error(e),
+                    Err(Stop::Resume { file, line, .. }) => End::Error(RuntimeError {
+                        file,
+                        line,
+                        message: "RESUME found no routine to return to".into(),
+                    }),
                 }
-                self.call_routine(mi, ri, &[]).map(|_| ())
-            }) {
-                Ok(()) => End::Normal,
-                Err(Stop::Halt { file, line }) => End::Halt { file, line },
-                Err(Stop::Error(e)) => End::Error(e),
-                Err(Stop::Resume { file, line, .. }) => End::Error(RuntimeError {
-                    file,
-                    line,
-                    message: "RESUME found no routine to return to".into(),
-                }),
-            },
+            }
         };
         self.eki.close_all();
         let end = match (end, self.expire_pulses(true)) {
             (End::Normal, Err(Stop::Error(e))) => End::Error(e),
             (end, _) => end,
         };
+        let end = self.submit_at_end(end);
         let (status, message) = match &end {
             End::Normal => ("ok".to_string(), None),
             End::Halt { file, line } => ("halt".to_string(), Some(format!("{file}:{line}: HALT"))),
@@ -670,6 +683,9 @@ impl<'p> Machine<'p> {
                 self.opts.max_time_ms / 1000.0
             )));
         }
+        if self.in_submit {
+            return Ok(());
+        }
         self.expire_pulses(false)?;
         self.flush_eki_io();
         self.poll_interrupts()
@@ -700,6 +716,10 @@ impl<'p> Machine<'p> {
     /// Trace a changed I/O bit (1-based `n`), and the inputs that follow it when it is an
     /// output.
     fn io_changed(&mut self, signal: &'static str, n: usize, value: bool) {
+        // The submit routine's outputs are its word, traced as such.
+        if self.in_submit {
+            return;
+        }
         self.emit(Event::Io {
             signal,
             index: n,
@@ -1438,11 +1458,16 @@ impl<'p> Machine<'p> {
                 self.opts.max_motions
             )));
         }
+        // The submit interpreter sees the robot move, then stand still at the target.
+        self.set_phase(submit::Phase::Moving);
+        self.submit_cycle()?;
         self.emit(Event::Motion {
             kind,
             target,
             aux: aux_point,
         });
+        self.set_phase(submit::Phase::Running);
+        self.submit_cycle()?;
         // A trigger's action uses the names of the module that programmed it, even when the
         // next motion is made elsewhere (MM_CALIB's).
         for (module, t) in std::mem::take(&mut self.pending_triggers) {

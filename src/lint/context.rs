@@ -9,7 +9,7 @@ use std::sync::OnceLock;
 use super::eki_xml::EkiChannel;
 use super::flow::FlowResult;
 use super::walk;
-use crate::catalog::{Subprogram, catalog};
+use crate::catalog::{Interface, Subprogram, catalog};
 use crate::diag::{Diagnostic, LineIndex};
 use crate::sema::{
     ConstValue, FileId, Loc, Resolved, RoutineId, Scope, Sema, SymbolId, SymbolKind, Ty, TyKind,
@@ -27,6 +27,9 @@ pub struct SyntaxCtx<'a> {
     pub stem: String,
     /// Extension, lower case (`src`, `dat`, `sub`, or empty).
     pub ext: String,
+    /// KRL005's edits when computed from the tree before it was lowered (else KRL005 parses
+    /// the text again).
+    pub case_edits: Option<Vec<crate::diag::Edit>>,
 }
 
 impl<'a> SyntaxCtx<'a> {
@@ -49,6 +52,7 @@ impl<'a> SyntaxCtx<'a> {
             syntax_errors,
             stem: part(p.file_stem()),
             ext: part(p.extension()),
+            case_edits: None,
         }
     }
 }
@@ -138,6 +142,8 @@ pub struct Project {
     pub channels_given: bool,
     /// Flags owned by an EKI channel the program uses (alive and receive), by flag number.
     pub owned_flags: HashMap<i64, &'static str>,
+    /// The interface version calls are checked against, and why.
+    pub interface: super::interface::Selected,
 }
 
 impl Project {
@@ -146,11 +152,13 @@ impl Project {
         channels: Vec<EkiChannel>,
         channels_given: bool,
         asts: impl Iterator<Item = &'a SourceFile>,
+        interface: super::interface::Selected,
     ) -> Project {
         let mut p = Project {
             channels,
             channels_given,
             owned_flags: HashMap::new(),
+            interface,
         };
         for ast in asts {
             owned_flags(&p.channels, ast, &mut p.owned_flags);
@@ -272,7 +280,16 @@ impl<'p> FileCtx<'p> {
         self.ast
             .into_iter()
             .flat_map(|a| a.routines.iter())
-            .filter(|r| subprogram(&r.name.text).is_none())
+            .filter(|r| {
+                Interface::ALL
+                    .into_iter()
+                    .all(|i| subprogram(i, &r.name.text).is_none())
+            })
+    }
+
+    /// The interface subprogram called `name` in the version the program is checked against.
+    pub fn subprogram(&self, name: &str) -> Option<&'static Subprogram> {
+        subprogram(self.project.interface.version, name)
     }
 
     /// The model's id of a routine of this file's AST.
@@ -345,10 +362,7 @@ impl<'p> FileCtx<'p> {
     }
 }
 
-/// The catalog subprogram called `name` (case-insensitive).
-pub fn subprogram(name: &str) -> Option<&'static Subprogram> {
-    catalog()
-        .subprograms
-        .iter()
-        .find(|s| s.name.eq_ignore_ascii_case(name))
+/// The catalog subprogram called `name` (case-insensitive) in interface `iface`.
+pub fn subprogram(iface: Interface, name: &str) -> Option<&'static Subprogram> {
+    catalog().subprogram_in(iface, name)
 }

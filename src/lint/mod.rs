@@ -20,6 +20,7 @@ pub mod config;
 pub mod context;
 pub mod eki_xml;
 mod flow;
+pub mod interface;
 pub mod registry;
 mod rules;
 mod session;
@@ -143,9 +144,14 @@ pub fn lint_workspace(
         .into_par_iter()
         .map(|f| {
             let parse = crate::syntax::parse(&f.text);
+            // Before lowering, so that the tree, the formatter's lines and the AST are never
+            // all held at once (one file may be 50 MB).
+            let case_edits = (!config.disabled.contains(rules::krl005::RULE.code))
+                .then(|| crate::fmt::case_edits_in(&f.text, &parse));
             let ast = parse.ast(&f.text);
             drop(parse.tree);
-            let cx = SyntaxCtx::new(&f.path, &f.text, &ast, &parse.diagnostics);
+            let mut cx = SyntaxCtx::new(&f.path, &f.text, &ast, &parse.diagnostics);
+            cx.case_edits = case_edits;
             let mut findings = Vec::new();
             for rule in RULES {
                 if let Check::Syntax(check) = rule.check {
@@ -182,6 +188,7 @@ pub fn lint_workspace(
         channels,
         channels_given,
         rest.iter().filter_map(|(_, a)| a.as_ref()),
+        interface::select(config.interface, &sema),
     );
     let reports: Vec<FileReport> = rest
         .into_par_iter()

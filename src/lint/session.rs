@@ -106,6 +106,7 @@ impl Session {
                 .zip(&self.meta)
                 .filter(|(_, m)| m.mm)
                 .map(|(f, _)| &f.ast),
+            super::interface::select(self.config.interface, &self.sema),
         );
     }
 

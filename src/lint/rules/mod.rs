@@ -17,7 +17,7 @@ pub mod mm009;
 pub mod mm010;
 pub mod mm011;
 
-use super::context::{FileCtx, subprogram};
+use super::context::FileCtx;
 use super::walk;
 use crate::catalog::Subprogram;
 use crate::syntax::ast::{Expr, Ident, Routine, StmtKind};
@@ -36,7 +36,7 @@ pub fn mm_calls<'a>(ctx: &FileCtx<'a>) -> Vec<MmCall<'a>> {
     for r in ctx.user_routines() {
         walk::each_stmt(&r.body, &mut |s| {
             if let StmtKind::Call { name, args } = &s.kind
-                && let Some(sub) = subprogram(&name.text)
+                && let Some(sub) = ctx.subprogram(&name.text)
             {
                 v.push(MmCall {
                     routine: r,
