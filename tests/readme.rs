@@ -5,10 +5,11 @@
 //! (`my_pick.src`, `cell.src`, `path/to/robot/backup`, …, from `tests/fixtures/readme/`). Every
 //! line must exit 0, or the code its comment announces as `(exit N: why)`. A `krlkit sim serve` line
 //! is started in the background (what "terminal 1" or a trailing `&` means) and waited for; the
-//! one liberty taken is its port: the block's `127.0.0.1:50000` becomes a free port, so parallel
-//! runs do not collide. A line that is not a `krlkit` command (cargo, npm, python3 …) is run
-//! only if the block is marked `<!-- readme-test: not run: REASON -->` just above it, and then it
-//! is not run: the reason says what covers it instead.
+//! one liberty taken is its port: the address it listens on (`127.0.0.1:50000` by default)
+//! becomes a free port throughout the block, so parallel runs do not collide. Besides `krlkit`,
+//! a block may use a few shell utilities (`printf … > spec.toml`); any other command (cargo, npm,
+//! python3 …) needs `<!-- readme-test: not run: REASON -->` just above the block, and is then
+//! not run: the reason says what covers it instead.
 
 use std::io::Read;
 use std::net::{TcpListener, TcpStream};
@@ -20,6 +21,8 @@ const MARKER: &str = "<!-- readme-test: not run:";
 /// What a debug build may need for the slowest README command (a run against the fake server).
 const COMMAND_DEADLINE: Duration = Duration::from_secs(120);
 const DEFAULT_ADDR: &str = "127.0.0.1:50000";
+/// Commands every `sh` has that README blocks may use to set a scene (`printf … > spec.toml`).
+const SHELL_UTILITIES: [&str; 5] = ["printf", "echo", "mkdir", "cp", "cat"];
 
 struct Block {
     /// 1-based line of the opening fence in README.md.
@@ -238,6 +241,20 @@ fn start_server(dir: &Path, command: &str, addr: &str) -> Server {
     Server(child)
 }
 
+/// Where a `krlkit sim serve` command listens.
+fn listen_addr(command: &str) -> String {
+    let mut words = command.split_whitespace();
+    while let Some(w) = words.next() {
+        if w == "--listen" {
+            return words.next().unwrap_or(DEFAULT_ADDR).to_string();
+        }
+        if let Some(a) = w.strip_prefix("--listen=") {
+            return a.to_string();
+        }
+    }
+    DEFAULT_ADDR.to_string()
+}
+
 fn free_addr() -> String {
     let l = TcpListener::bind("127.0.0.1:0").unwrap();
     l.local_addr().unwrap().to_string()
@@ -246,20 +263,29 @@ fn free_addr() -> String {
 /// Runs one block's commands; the failures, described.
 fn run_block(block: &Block) -> (Vec<String>, usize) {
     let dir = workspace(block);
-    let has_server = block
+    // Each address a server of the block listens on, and the free one it gets instead.
+    let addrs: Vec<(String, String)> = block
         .commands
         .iter()
-        .any(|c| c.contains("krlkit sim serve"));
-    let addr = if has_server {
-        free_addr()
-    } else {
-        DEFAULT_ADDR.to_string()
-    };
+        .filter(|c| c.starts_with("krlkit sim serve"))
+        .map(|c| (listen_addr(split_comment(c).0), free_addr()))
+        .collect();
     let mut servers = Vec::new();
     let mut failures = Vec::new();
     let mut ran = 0;
     for line in &block.commands {
         let (command, comment) = split_comment(line);
+        let program = command.split_whitespace().next().unwrap_or("");
+        if SHELL_UTILITIES.contains(&program) {
+            let (code, output) = run(dir.path(), command);
+            if code != Some(0) {
+                failures.push(format!(
+                    "README.md:{}: `{command}` exited {code:?}\n{output}",
+                    block.line
+                ));
+            }
+            continue;
+        }
         if !command.starts_with("krlkit ") {
             if block.not_run.is_none() {
                 failures.push(format!(
@@ -269,14 +295,15 @@ fn run_block(block: &Block) -> (Vec<String>, usize) {
             }
             continue;
         }
-        let mut command = command
-            .trim_end_matches('&')
-            .trim()
-            .replace(DEFAULT_ADDR, &addr);
+        let mut command = command.trim_end_matches('&').trim().to_string();
+        if command.starts_with("krlkit sim serve") && !command.contains("--listen") {
+            command.push_str(&format!(" --listen {DEFAULT_ADDR}"));
+        }
+        for (from, to) in &addrs {
+            command = command.replace(from.as_str(), to);
+        }
         if command.starts_with("krlkit sim serve") {
-            if !command.contains("--listen") {
-                command.push_str(&format!(" --listen {addr}"));
-            }
+            let addr = listen_addr(&command);
             servers.push(start_server(dir.path(), &command, &addr));
             ran += 1;
             continue;
