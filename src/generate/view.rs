@@ -78,6 +78,9 @@ pub struct Package {
     pub big_endian: bool,
     /// HEX: the reply decoder, one case per reply layout of the commands the routines send.
     pub hex_cases: Vec<HexCase>,
+    /// HEX: the INT locals of `MM_Parse_Hex` (`N`, `K` only when a case uses them: an unused
+    /// local is a KRL016 finding in the generated package).
+    pub hex_parse_locals: &'static str,
     /// Fields of a HEX frame (frame bytes / 4).
     pub frame_fields: u32,
     /// Commands whose reply has no status field (601): MM_Exchange returns 0 for them.
@@ -172,6 +175,11 @@ impl Package {
             .collect();
         no_status_cmds.sort_unstable();
         no_status_cmds.dedup();
+        let hex_cases = if hex {
+            hex_view::decoder(&sent, iface, spec.receive_size())
+        } else {
+            Vec::new()
+        };
         let package_codes = cat
             .statuses
             .iter()
@@ -197,11 +205,8 @@ impl Package {
             v2: iface == Interface::V2,
             hex,
             big_endian: spec.codec == crate::spec::Codec::HexBe,
-            hex_cases: if hex {
-                hex_view::decoder(&sent, iface, spec.receive_size())
-            } else {
-                Vec::new()
-            },
+            hex_parse_locals: hex_view::parse_locals(&hex_cases),
+            hex_cases,
             frame_fields,
             no_status_cmds,
             tx_fields: MAX_REQUEST_FIELDS,

@@ -3,7 +3,7 @@
 //! calls come from [`crate::sema`]. The syntax tree stays available in the model phase only for
 //! files the Mech-Mind rules look at (they call an `MM_` routine or write a `$FLAG`).
 
-use std::collections::HashMap;
+use std::collections::{HashMap, HashSet};
 use std::sync::OnceLock;
 
 use super::eki_xml::EkiChannel;
@@ -12,7 +12,8 @@ use super::walk;
 use crate::catalog::{Interface, Subprogram, catalog};
 use crate::diag::{Diagnostic, LineIndex};
 use crate::sema::{
-    ConstValue, FileId, Loc, Resolved, RoutineId, Scope, Sema, SymbolId, SymbolKind, Ty, TyKind,
+    Access, ConstValue, FileId, Loc, NameId, Resolved, RobotId, RoutineId, Scope, Sema, SymbolId,
+    SymbolKind, Ty, TyKind, UseKind,
 };
 use crate::syntax::ast::{Expr, ExprKind, Routine, SourceFile, StmtKind};
 
@@ -142,6 +143,10 @@ pub struct Project {
     pub channels_given: bool,
     /// Flags owned by an EKI channel the program uses (alive and receive), by flag number.
     pub owned_flags: HashMap<i64, &'static str>,
+    /// Names KUKA's own files (system, technology packages, templates) use without the
+    /// workspace declaring them, per robot: they exist on that controller (an installed
+    /// technology package, say), so user code may use them too.
+    pub environment: HashSet<(RobotId, NameId)>,
     /// The interface version calls are checked against, and why.
     pub interface: super::interface::Selected,
 }
@@ -158,12 +163,28 @@ impl Project {
             channels,
             channels_given,
             owned_flags: HashMap::new(),
+            environment: HashSet::new(),
             interface,
         };
         for ast in asts {
             owned_flags(&p.channels, ast, &mut p.owned_flags);
         }
         p
+    }
+
+    /// Learn [`Project::environment`] from the model.
+    pub fn learn_environment(&mut self, sema: &Sema) {
+        self.environment.clear();
+        for (id, f) in sema.files().filter(|(_, f)| f.vendor) {
+            for (i, u) in sema.uses(id).iter().enumerate() {
+                if u.kind != UseKind::Type
+                    && u.access != Access::Mention
+                    && sema.resolution(id, i) == Resolved::Unresolved
+                {
+                    self.environment.insert((f.robot, sema.use_name(u)));
+                }
+            }
+        }
     }
 }
 
@@ -273,6 +294,17 @@ impl<'p> FileCtx<'p> {
     /// Whether names the model cannot find could be declared in files that were not given.
     pub fn workspace_complete(&self) -> bool {
         self.sema.robot(self.sema.file(self.id).robot).is_complete()
+    }
+
+    /// A file of KUKA's system software or a technology package (see `FileInfo::vendor`).
+    pub fn is_vendor(&self) -> bool {
+        self.sema.file(self.id).vendor
+    }
+
+    /// A name KUKA's own files use undeclared: it exists on this controller.
+    pub fn in_environment(&self, name: NameId) -> bool {
+        let robot = self.sema.file(self.id).robot;
+        self.project.environment.contains(&(robot, name))
     }
 
     /// Routines of this file that are the user's code (not the MM package's own subprograms).

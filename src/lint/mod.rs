@@ -73,9 +73,8 @@ impl LintOutcome {
             return None;
         }
         Some(
-            "no $config.dat among the files checked: names and routines not declared in them \
-             may be declared in files not given, so KRL010 and KRL011 are not reported \
-             (check the whole robot: its KRC folder or its backup .zip)"
+            "no $config.dat among the files: undeclared names and routines may be declared in \
+             files not given, so KRL010/KRL011 are off (check the robot's KRC folder or backup .zip)"
                 .to_owned(),
         )
     }
@@ -184,12 +183,13 @@ pub fn lint_workspace(
         rest.push((p.findings, p.ast));
     }
     let sema = Sema::build(inputs, &am_ini);
-    let project = Project::new(
+    let mut project = Project::new(
         channels,
         channels_given,
         rest.iter().filter_map(|(_, a)| a.as_ref()),
         interface::select(config.interface, &sema),
     );
+    project.learn_environment(&sema);
     let reports: Vec<FileReport> = rest
         .into_par_iter()
         .enumerate()

@@ -108,6 +108,7 @@ impl Session {
                 .map(|(f, _)| &f.ast),
             super::interface::select(self.config.interface, &self.sema),
         );
+        self.project.learn_environment(&self.sema);
     }
 
     /// Add a file, or replace the one with the same path; only this file is parsed.

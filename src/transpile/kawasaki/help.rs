@@ -5,10 +5,10 @@ use crate::transpile::ir::why::KukaOnly;
 
 pub(super) fn help(why: &Why) -> String {
     match why {
+        Why::DuplicateParameter(_) => "give each parameter its own name and translate again".into(),
         Why::SyntaxError | Why::HeaderSyntaxError => {
             "fix the syntax error (krlkit check) and translate again".into()
         }
-        Why::DuplicateParam(_) => "give each parameter its own name and translate again".into(),
         Why::RepeatWithoutUntil => "close the loop with UNTIL".into(),
         Why::ExitOutsideLoop => "remove it".into(),
         Why::Confirm => "remove it, or acknowledge on the teach pendant".into(),

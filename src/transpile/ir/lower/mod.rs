@@ -307,12 +307,13 @@ impl<'p> Lower<'p> {
             .params
             .iter()
             .filter_map(|p| {
-                if !seen.insert(p.name.key()) {
-                    duplicate
-                        .get_or_insert((Why::DuplicateParam(p.name.text.to_string()), p.name.span));
+                let var = *self.vars.get(&(key.clone(), p.name.key()))?;
+                // A repeated name would make a header no target accepts (`def f(x, x)`):
+                // the routine keeps one parameter of that name and the header is reported.
+                if !seen.insert(var) {
+                    duplicate.get_or_insert((p.name.text.to_string(), p.name.span));
                     return None;
                 }
-                let var = *self.vars.get(&(key.clone(), p.name.key()))?;
                 let dir = match p.dir.unwrap_or(ast::ParamDir::In) {
                     ast::ParamDir::In => super::ParamDir::In,
                     ast::ParamDir::Out => super::ParamDir::Out,
@@ -341,10 +342,8 @@ impl<'p> Lower<'p> {
             labels: Vec::new(),
             body: Vec::new(),
             closed: r.closed,
-            header_error: self
-                .header_syntax_error(r)
-                .map(|at| (Why::HeaderSyntaxError, at))
-                .or(duplicate),
+            header_error: self.header_syntax_error(r),
+            duplicate_param: duplicate,
             span: r.span,
             end: front::end_line_start(&self.src.src.text, r.span),
             synthetic: false,
@@ -414,9 +413,21 @@ impl<'p> Lower<'p> {
             }
         });
         let mut body = Block::new();
-        if let Some((why, at)) = self.out.routine(id).header_error.clone() {
+        if let Some(at) = self.out.routine(id).header_error {
             body.push(Stmt {
-                op: Op::Unsupported { why, at },
+                op: Op::Unsupported {
+                    why: Why::HeaderSyntaxError,
+                    at,
+                },
+                span: at,
+            });
+        }
+        if let Some((name, at)) = self.out.routine(id).duplicate_param.clone() {
+            body.push(Stmt {
+                op: Op::Unsupported {
+                    why: Why::DuplicateParameter(name),
+                    at,
+                },
                 span: at,
             });
         }
@@ -454,6 +465,7 @@ impl<'p> Lower<'p> {
             body: Vec::new(),
             closed: true,
             header_error: None,
+            duplicate_param: None,
             span: Span::new(0, src.src.text.len()),
             end: src.src.text.len() as u32,
             synthetic: true,
