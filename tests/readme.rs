@@ -2,7 +2,7 @@
 //!
 //! Each block runs in a fresh temporary folder holding a copy of what the README refers to
 //! (`krl/`, `xml/`, `as/`, `tests/fixtures/`) plus the reader's own files the examples name
-//! (`my_pick.src`, `cell.src`, `path/to/robot/backup`, …, from `tests/fixtures/readme/`). Every
+//! (`my_pick.src`, `cell.src`, `path/to/robot/backup` and its `backup.zip`, …). Every
 //! line must exit 0, or the code its comment announces as `(exit N: why)`. A `krlkit sim serve` line
 //! is started in the background (what "terminal 1" or a trailing `&` means) and waited for; the
 //! one liberty taken is its port: the address it listens on (`127.0.0.1:50000` by default)
@@ -115,6 +115,20 @@ fn copy_tree(from: &Path, to: &Path) {
     }
 }
 
+fn add_to_zip(zip: &mut zip::ZipWriter<std::fs::File>, from: &Path, name: &str) {
+    if from.is_dir() {
+        for e in std::fs::read_dir(from).unwrap() {
+            let e = e.unwrap();
+            let child = format!("{name}/{}", e.file_name().to_string_lossy());
+            add_to_zip(zip, &e.path(), &child);
+        }
+    } else {
+        zip.start_file(name, zip::write::SimpleFileOptions::default())
+            .unwrap();
+        std::io::Write::write_all(zip, &std::fs::read(from).unwrap()).unwrap();
+    }
+}
+
 /// A folder with what the README refers to, as a reader's checkout plus their own files.
 fn workspace(block: &Block) -> tempfile::TempDir {
     let dir = tempfile::tempdir().unwrap();
@@ -137,6 +151,11 @@ fn workspace(block: &Block) -> tempfile::TempDir {
     for (name, from) in placeholders {
         copy_tree(&from, &dir.path().join(name));
     }
+    // A controller archive of the same backup.
+    let file = std::fs::File::create(dir.path().join("backup.zip")).unwrap();
+    let mut zip = zip::ZipWriter::new(file);
+    add_to_zip(&mut zip, &r.join("krl"), "KRC/R1");
+    zip.finish().unwrap();
     // The spec a block uses without writing it is the one `krlkit init` writes.
     let text = block.commands.join("\n");
     if text.contains("krlkit.toml") && !text.contains("krlkit init") {
