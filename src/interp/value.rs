@@ -257,17 +257,40 @@ impl Types {
         })
     }
 
-    /// The zero value of a type (KRL leaves variables uninitialised; we start them at zero).
+    /// The zero value of a type (for system variables and built-ins that start with a value).
     pub fn default_value(&self, ty: &BaseType, dims: &[usize]) -> Value {
+        self.initial_value(ty, dims, false)
+    }
+
+    /// The value of a declaration without an initialiser: every scalar unassigned (reading it
+    /// is an error until something is assigned), except that CHAR arrays start as empty
+    /// strings (builtins such as SWRITE and EKI_GetString write into them).
+    pub fn unset_value(&self, ty: &BaseType, dims: &[usize]) -> Value {
+        self.initial_value(ty, dims, true)
+    }
+
+    fn initial_value(&self, ty: &BaseType, dims: &[usize], unset: bool) -> Value {
         if !dims.is_empty() {
             let n: usize = dims.iter().product();
-            let item = self.default_value(ty, &[]);
+            let item = self.initial_value(ty, &[], unset && *ty != BaseType::Char);
             return Value::Array {
                 dims: dims.to_vec(),
                 items: vec![item; n],
             };
         }
         match ty {
+            BaseType::Struc(s) => match self.strucs.get(s) {
+                Some(def) => Value::Struc {
+                    ty: s.clone(),
+                    fields: def
+                        .fields
+                        .iter()
+                        .map(|(n, t, d)| (n.clone(), self.initial_value(t, d, unset)))
+                        .collect(),
+                },
+                None => Value::Int(0),
+            },
+            t if unset => Value::Unset(t.clone()),
             BaseType::Int => Value::Int(0),
             BaseType::Real => Value::Real(0.0),
             BaseType::Bool => Value::Bool(false),
@@ -278,48 +301,6 @@ impl Types {
                     .and_then(|v| v.first().cloned())
                     .unwrap_or_default(),
             ),
-            BaseType::Struc(s) => match self.strucs.get(s) {
-                Some(def) => Value::Struc {
-                    ty: s.clone(),
-                    fields: def
-                        .fields
-                        .iter()
-                        .map(|(n, t, d)| (n.clone(), self.default_value(t, d)))
-                        .collect(),
-                },
-                None => Value::Int(0),
-            },
-        }
-    }
-
-    /// The value of a declaration without an initialiser: every scalar unassigned (reading it
-    /// is an error until something is assigned), except that CHAR arrays start as empty
-    /// strings (builtins such as SWRITE and EKI_GetString write into them).
-    pub fn unset_value(&self, ty: &BaseType, dims: &[usize]) -> Value {
-        if !dims.is_empty() {
-            if *ty == BaseType::Char {
-                return self.default_value(ty, dims);
-            }
-            let n: usize = dims.iter().product();
-            let item = self.unset_value(ty, &[]);
-            return Value::Array {
-                dims: dims.to_vec(),
-                items: vec![item; n],
-            };
-        }
-        match ty {
-            BaseType::Struc(s) => match self.strucs.get(s) {
-                Some(def) => Value::Struc {
-                    ty: s.clone(),
-                    fields: def
-                        .fields
-                        .iter()
-                        .map(|(n, t, d)| (n.clone(), self.unset_value(t, d)))
-                        .collect(),
-                },
-                None => Value::Int(0),
-            },
-            t => Value::Unset(t.clone()),
         }
     }
 
