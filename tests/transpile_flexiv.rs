@@ -149,7 +149,10 @@ fn variants() -> Vec<(&'static str, FlexivOptions)> {
         (
             "joints",
             FlexivOptions {
-                joint_map: Some(krlkit::transpile::flexiv::options::joint_map("A1,A2,0,A3,A4,A5,A6").expect("map")),
+                joint_map: Some(
+                    krlkit::transpile::flexiv::options::joint_map("A1,A2,0,A3,A4,A5,A6")
+                        .expect("map"),
+                ),
                 ptp: PtpPrimitive::MovePtp,
                 input_offset: 0,
                 output_offset: -16,

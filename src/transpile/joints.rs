@@ -181,7 +181,11 @@ mod tests {
                 .unwrap_err()
                 .contains("7 entries")
         );
-        for bad in ["A1,A2,0,A3,A4,A5,A7", "A1,A2,x,A3,A4,A5,A6", "A1,A2,0,A3,A4,A5,A6*2"] {
+        for bad in [
+            "A1,A2,0,A3,A4,A5,A7",
+            "A1,A2,x,A3,A4,A5,A6",
+            "A1,A2,0,A3,A4,A5,A6*2",
+        ] {
             assert!(JointMap::parse(bad, 7, "Rizon", "").is_err(), "{bad}");
         }
     }

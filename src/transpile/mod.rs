@@ -192,10 +192,9 @@ fn silent(
         .filter(|k| k.file == FileId::Src && !k.kind.starts_with("routine"))
         .filter(|k| !produced.iter().any(|p| overlaps(p, &k.span)))
         .filter(|k| {
-            !report
-                .src
-                .iter()
-                .any(|d| d.span.start >= k.span.start && d.span.start < k.span.end.max(k.span.start + 1))
+            !report.src.iter().any(|d| {
+                d.span.start >= k.span.start && d.span.start < k.span.end.max(k.span.start + 1)
+            })
         })
         .map(|k| k.span)
         .collect()

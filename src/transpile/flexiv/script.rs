@@ -79,9 +79,7 @@ pub(super) fn render(tx: &Tx<'_>, program: String) -> String {
         (1..=6)
             .filter_map(|a| m.joint_of(a))
             .map(|(i, s)| match s {
-                JointSource::Axis {
-                    negate, offset, ..
-                } => {
+                JointSource::Axis { negate, offset, .. } => {
                     let q = match offset {
                         0.0 => format!("q[{i}]"),
                         o => format!("(q[{i}] - {})", format::real(o)),

@@ -593,7 +593,9 @@ pub(super) fn negate_number(v: &str) -> String {
     {
         return rest.to_owned();
     }
-    if v.chars().all(|c| c.is_ascii_alphanumeric() || c == '.' || c == '_') {
+    if v.chars()
+        .all(|c| c.is_ascii_alphanumeric() || c == '.' || c == '_')
+    {
         return format!("-{v}");
     }
     format!("-({v})")

@@ -6,11 +6,11 @@ use super::format::num;
 use super::{R, Tx, fail};
 use crate::diag::Span;
 use crate::transpile::front::report::FileId;
-use crate::transpile::joints::JointSource;
 use crate::transpile::ir::{
-    Aggregate, Because, Blend, CartMps, Component, Delta, Expr, ExprKind, FrameKind, FrameRef, JointPct,
-    Known, Load, MotionParam, Move, ParamValue, Path, SpeedSetting, Target, Ty,
+    Aggregate, Because, Blend, CartMps, Component, Delta, Expr, ExprKind, FrameKind, FrameRef,
+    JointPct, Known, Load, MotionParam, Move, ParamValue, Path, SpeedSetting, Target, Ty,
 };
+use crate::transpile::joints::JointSource;
 
 /// The ACCURACY (mm) used for an exact stop and, with a warning, for blending whose distance
 /// is not known.
@@ -310,7 +310,10 @@ impl<'a> Tx<'a> {
             let Some((joint, source)) = map.joint_of(*i as u8 + 1) else {
                 return fail(
                     e.span,
-                    format!("the joint map {map} gives axis A{} no single Kawasaki joint", i + 1),
+                    format!(
+                        "the joint map {map} gives axis A{} no single Kawasaki joint",
+                        i + 1
+                    ),
                     "give a joint map in which the axis drives one joint",
                 );
             };
@@ -375,7 +378,11 @@ impl<'a> Tx<'a> {
     fn target(&mut self, t: &Target) -> R<String> {
         // A `.dat` value written in KUKA's joint convention: reported at the move as well.
         if t.joints && t.literal && self.opts.joint_map.is_none() {
-            return fail(t.expr.span, super::expr::NO_JOINT_MAP, super::expr::JOINT_MAP_HELP);
+            return fail(
+                t.expr.span,
+                super::expr::NO_JOINT_MAP,
+                super::expr::JOINT_MAP_HELP,
+            );
         }
         match &t.expr.kind {
             ExprKind::Aggregate(a) if a.axis && !a.complete() && self.opts.joint_map.is_some() => {
