@@ -908,7 +908,7 @@ fn vision_variants_run_like_the_krl_original() {
 fn every_fixture_runs_or_stops_at_a_located_error() {
     // Translated as they are (TR001 lines stay comments), with no vision server: the AS either
     // runs to its end or fails with the file and line of the statement that cannot run.
-    let expected: [(&str, &str); 20] = [
+    let expected: [(&str, &str); 21] = [
         ("advance_stops", "advance_stops.as:19: WAIT still waiting"),
         (
             "base_offsets",
@@ -919,6 +919,7 @@ fn every_fixture_runs_or_stops_at_a_located_error() {
         ("calls_in_expressions", "done"),
         ("control", "done"),
         ("depal_plan", "PAUSE at depal_plan.as:20"),
+        ("dup_params", "done"),
         ("flexiv_pick", "flexiv_pick.as:13: SWAIT 1001 still waiting"),
         (
             "gripper_check",

@@ -249,20 +249,20 @@ pub struct TranspileArgs {
     /// port n-1 by default).
     #[arg(long, allow_negative_numbers = true)]
     pub output_offset: Option<i64>,
-    /// Kawasaki: $FLAG[n] becomes internal signal FLAG_OFFSET+n.
-    #[arg(long, default_value_t = 2000, allow_negative_numbers = true)]
-    pub flag_offset: i64,
-    /// Flexiv: the RDK version whose Python API the script uses (1.6 to 1.9).
-    #[arg(long, value_name = "VERSION", default_value = "1.6")]
-    pub rdk: String,
-    /// Flexiv: the robot's serial number (default: the script reads it from its first argument
-    /// or FLEXIV_ROBOT_SN).
+    /// Kawasaki only: $FLAG[n] becomes internal signal FLAG_OFFSET+n (default 2000).
+    #[arg(long, allow_negative_numbers = true)]
+    pub flag_offset: Option<i64>,
+    /// Flexiv only: the RDK version whose Python API the script uses, 1.6 to 1.9 (default 1.6).
+    #[arg(long, value_name = "VERSION")]
+    pub rdk: Option<String>,
+    /// Flexiv only: the robot's serial number (default: the script reads it from its first
+    /// argument or FLEXIV_ROBOT_SN).
     #[arg(long, value_name = "SN")]
     pub serial: Option<String>,
-    /// Flexiv: what PTP to a Cartesian pose becomes: MoveL (a straight line, reported) or
-    /// MovePTP (if the robot's software has it).
-    #[arg(long, value_enum, default_value_t = PtpPrimitive::Movel)]
-    pub ptp: PtpPrimitive,
+    /// Flexiv only: what PTP to a Cartesian pose becomes: MoveL (a straight line, reported;
+    /// the default) or MovePTP (if the robot's software has it).
+    #[arg(long, value_enum)]
+    pub ptp: Option<PtpPrimitive>,
     /// KUKA axes to the target's joints (Kawasaki: six, e.g. A1,-A2+90,A3-90,A4,A5,A6; Flexiv:
     /// the Rizon's seven, e.g. A1,A2,0,A3,A4,A5,A6): per joint a KUKA axis, optionally negated
     /// and shifted by degrees, or a fixed angle; without it axis values written in the program
@@ -330,6 +330,10 @@ pub struct RunArgs {
     /// Write the dry-run report: one self-contained HTML page (tool path, timeline, coverage).
     #[arg(long, value_name = "FILE.html")]
     pub report: Option<PathBuf>,
+    /// The operating mode `$MODE_OP` reads during the run.
+    #[arg(long, value_name = "MODE", default_value = "T1",
+          value_parser = ["T1", "T2", "AUT", "EX"], ignore_case = true)]
+    pub mode_op: String,
     /// Most statements the run may execute before it is stopped as an endless loop.
     #[arg(long, value_name = "N", default_value_t = crate::interp::Options::default().step_limit)]
     pub step_limit: u64,

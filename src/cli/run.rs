@@ -129,6 +129,7 @@ pub fn run(args: RunArgs) -> anyhow::Result<Outcome> {
     let mut files = program_files(&args.program)?;
     let mut options = Options {
         vision: args.vision.clone(),
+        mode_op: args.mode_op.clone(),
         step_limit: args.step_limit,
         time_scale: args.time_scale,
         inputs: args
@@ -253,6 +254,9 @@ pub fn run(args: RunArgs) -> anyhow::Result<Outcome> {
             return Ok(Outcome::Failure);
         }
     };
+    // A package generated with `srci_status = true` has the status packer: run it as the
+    // submit interpreter would.
+    options.submit = interp::Submit::srci_packer(&program);
     let mut trace = match &args.trace {
         Some(path) => Some(JsonLines {
             out: std::io::BufWriter::new(

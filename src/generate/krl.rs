@@ -3,6 +3,7 @@
 
 use askama::Template;
 
+use super::srci::{Packer, Step};
 use super::view::{Package, Routine};
 
 macro_rules! routine_templates {
@@ -51,6 +52,23 @@ struct CommSrc<'a> {
 #[template(path = "krl/comm.dat", escape = "none")]
 struct CommDat<'a> {
     p: &'a Package,
+}
+
+#[derive(Template)]
+#[template(path = "krl/srci_status.src", escape = "none")]
+struct SrciSrc<'a> {
+    p: &'a Packer,
+}
+
+#[derive(Template)]
+#[template(path = "krl/srci_status.dat", escape = "none")]
+struct SrciDat<'a> {
+    p: &'a Packer,
+}
+
+/// The SRCI status packer's `.src` and `.dat`.
+pub fn render_srci(p: &Packer) -> askama::Result<(String, String)> {
+    Ok((SrciSrc { p }.render()?, SrciDat { p }.render()?))
 }
 
 /// Render one routine. The routine's shape is chosen by name; names come from the catalog.

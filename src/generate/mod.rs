@@ -14,6 +14,7 @@ mod kawasaki;
 mod krl;
 pub mod marker;
 mod output;
+pub mod srci;
 pub mod view;
 mod writer;
 
@@ -34,7 +35,7 @@ pub const INSTALL_PATH: &str = "krl/INSTALL.md";
 /// Name of the helper + global data module.
 pub const COMM_MODULE: &str = "MM_Comm";
 /// The package's modules besides the catalog's subprograms.
-pub const PACKAGE_MODULES: &[&str] = &[COMM_MODULE];
+pub const PACKAGE_MODULES: &[&str] = &[COMM_MODULE, srci::SRCI_MODULE];
 /// Where the Kawasaki package goes, relative to the output directory.
 pub const AS_DIR: &str = "as";
 /// The Kawasaki AS file (all programs and the data section; load it into the controller).
@@ -116,6 +117,12 @@ pub fn generate(spec: &Spec) -> Result<Vec<GeneratedFile>, GenError> {
         let r = Routine::new(sp, spec);
         let text = krl::render_routine(&r, &pkg).map_err(render_err(&sp.name))?;
         files.push(krl_file(&sp.name, "src", &text, eol));
+    }
+    if spec.srci_status {
+        let packer = srci::Packer::new(spec);
+        let (src, dat) = krl::render_srci(&packer).map_err(render_err(srci::SRCI_MODULE))?;
+        files.push(krl_file(srci::SRCI_MODULE, "src", &src, eol));
+        files.push(krl_file(srci::SRCI_MODULE, "dat", &dat, eol));
     }
     files.push(GeneratedFile::new(
         PathBuf::from(XML_DIR).join(spec.xml_file_name()),

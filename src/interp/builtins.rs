@@ -70,15 +70,15 @@ pub(crate) fn call(m: &mut Machine, name: &str, args: &[Option<Expr>]) -> R<Opti
         "STRCLEAR" => {
             let p = m.arg_place(args, 0, name)?;
             let len = char_len(m, &p)?;
-            m.assign(&p, Value::Str(String::new()))?;
-            let _ = len;
+            m.assign(&p, Value::char_array(b"", len))?;
             Value::Bool(true)
         }
         "STRCOPY" => {
             let p = m.arg_place(args, 0, name)?;
             let src = text(m, 1)?;
             let len = char_len(m, &p)?;
-            m.assign(&p, Value::Str(src.clone()))?;
+            // StrCopy cuts what does not fit and says so (FALSE), unlike an assignment.
+            m.assign(&p, Value::char_array(src.as_bytes(), len))?;
             Value::Bool(src.len() <= len)
         }
         "STRADD" => {
@@ -87,7 +87,7 @@ pub(crate) fn call(m: &mut Machine, name: &str, args: &[Option<Expr>]) -> R<Opti
             let add = text(m, 1)?;
             let len = char_len(m, &p)?;
             let joined = format!("{cur}{add}");
-            m.assign(&p, Value::Str(joined.clone()))?;
+            m.assign(&p, Value::char_array(joined.as_bytes(), len))?;
             Value::Int(joined.len().min(len) as i64)
         }
         "STRCOMP" => {
@@ -199,13 +199,13 @@ pub(crate) fn call(m: &mut Machine, name: &str, args: &[Option<Expr>]) -> R<Opti
         "CWRITE" | "CREAD" | "FORWARD" | "INVERSE" => {
             return Err(m.err(format!("{name} is not supported by krlkit run")));
         }
-        // Variables start at their zero value here, so every declared one is initialised.
+        // #DECLARED while any part was never assigned (a CHAR array counts as assigned).
         "VARSTATE" => {
             let name = text(m, 0)?;
-            Value::Enum(if m.is_variable(name.trim()) {
-                "INITIALIZED".into()
-            } else {
-                "UNKNOWN".into()
+            Value::Enum(match m.variable_assigned(name.trim()) {
+                Some(true) => "INITIALIZED".into(),
+                Some(false) => "DECLARED".into(),
+                None => "UNKNOWN".into(),
             })
         }
         _ => return m.form_function(&up, args),
@@ -324,7 +324,11 @@ fn sread(m: &mut Machine, args: &[Option<Expr>]) -> R<Value> {
             Scanned::Int(i) => Value::Int(i),
             Scanned::Real(r) => Value::Real(r),
             Scanned::Char(c) => Value::Char(c),
-            Scanned::Text(t) => Value::Str(t),
+            // A %s field fills the target as far as it goes.
+            Scanned::Text(t) => match char_len(m, &p) {
+                Ok(len) => Value::char_array(t.as_bytes(), len),
+                Err(_) => Value::Str(t),
+            },
         };
         m.assign(&p, v)?;
     }

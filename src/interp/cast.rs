@@ -183,6 +183,12 @@ fn decode(like: &Value, bytes: &[u8]) -> Result<(Value, usize), String> {
                 used,
             )
         }
+        // KUKA's EKI manual: variables read with CAST_FROM must be initialised beforehand.
+        Value::Unset(_) => {
+            return Err(
+                "it was never assigned (CAST_FROM needs its variables initialised first)".into(),
+            );
+        }
         other => return Err(format!("{} variables are not supported", other.kind_name())),
     })
 }

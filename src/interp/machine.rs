@@ -11,6 +11,7 @@ mod bas;
 mod forms;
 mod interrupt;
 mod signals;
+mod submit;
 mod watch;
 
 use super::eki::Eki;
@@ -145,6 +146,10 @@ pub(crate) struct Machine<'p> {
     /// package). Cleared inside the routines it calls.
     declared_scope: Option<usize>,
     motions: u64,
+    /// While the submit routine runs (see `submit.rs`).
+    in_submit: bool,
+    /// The last word the submit routine wrote.
+    srci_word: Option<u32>,
     /// What the `WAIT FOR` check under way reads (see `watch.rs`).
     reads: Option<watch::Reads>,
     /// What the current iteration of an idle polling loop reads.
@@ -196,10 +201,13 @@ impl<'p> Machine<'p> {
             writes: 0,
             motions: 0,
             declared_scope: None,
+            in_submit: false,
+            srci_word: None,
             reads: None,
             loop_reads: None,
         };
         m.init_system();
+        m.init_robot_state();
         m
     }
 
@@ -317,7 +325,6 @@ impl<'p> Machine<'p> {
         put("$ACT_TOOL", Value::Int(-1));
         put("$ACT_BASE", Value::Int(-1));
         put("$IPO_MODE", Value::Enum("BASE".into()));
-        put("$MODE_OP", Value::Enum("T1".into()));
         let load = t.default_value(&BaseType::Struc("LOAD".into()), &[]);
         put("$LOAD", load.clone());
         put(
@@ -401,32 +408,38 @@ impl<'p> Machine<'p> {
                 line: 1,
                 message: "no DEF to run".into(),
             }),
-            Some((mi, ri)) => match self.init_dats().and_then(|_| {
-                let r = &self.prog.modules[mi].ast.routines[ri];
-                if !r.params.is_empty() {
-                    self.loc = (mi, r.span.start);
-                    return Err(self.err(format!(
-                        "{} takes parameters; the program to run must not",
-                        r.name.text
-                    )));
+            Some((mi, ri)) => {
+                match self
+                    .init_dats()
+                    .and_then(|_| self.submit_cycle())
+                    .and_then(|_| {
+                        let r = &self.prog.modules[mi].ast.routines[ri];
+                        if !r.params.is_empty() {
+                            self.loc = (mi, r.span.start);
+                            return Err(self.err(format!(
+                                "{} takes parameters; the program to run must not",
+                                r.name.text
+                            )));
+                        }
+                        self.call_routine(mi, ri, &[]).map(|_| ())
+                    }) {
+                    Ok(()) => End::Normal,
+                    Err(Stop::Halt { file, line }) => End::Halt { file, line },
+                    Err(Stop::Error(e)) => End::Error(e),
+                    Err(Stop::Resume { file, line, .. }) => End::Error(RuntimeError {
+                        file,
+                        line,
+                        message: "RESUME found no routine to return to".into(),
+                    }),
                 }
-                self.call_routine(mi, ri, &[]).map(|_| ())
-            }) {
-                Ok(()) => End::Normal,
-                Err(Stop::Halt { file, line }) => End::Halt { file, line },
-                Err(Stop::Error(e)) => End::Error(e),
-                Err(Stop::Resume { file, line, .. }) => End::Error(RuntimeError {
-                    file,
-                    line,
-                    message: "RESUME found no routine to return to".into(),
-                }),
-            },
+            }
         };
         self.eki.close_all();
         let end = match (end, self.expire_pulses(true)) {
             (End::Normal, Err(Stop::Error(e))) => End::Error(e),
             (end, _) => end,
         };
+        let end = self.submit_at_end(end);
         let (status, message) = match &end {
             End::Normal => ("ok".to_string(), None),
             End::Halt { file, line } => ("halt".to_string(), Some(format!("{file}:{line}: HALT"))),
@@ -546,13 +559,14 @@ impl<'p> Machine<'p> {
             for d in &dat.definitions {
                 if let Definition::Signal(sig) = d {
                     self.loc = (mi, sig.span.start);
-                    let scope = m.scope.clone();
-                    self.declare_dat_signal(sig, &scope)?;
+                    let scope = (!sig.global && !m.config).then(|| m.scope.clone());
+                    self.declare_dat_signal(sig, scope.as_deref())?;
                 }
             }
             for d in &dat.decls {
                 self.loc = (mi, d.span.start);
-                let global = d.global;
+                // `$config.dat`'s declarations are visible everywhere, GLOBAL or not.
+                let global = d.global || m.config;
                 let scope = m.scope.clone();
                 self.declare(
                     d,
@@ -633,11 +647,15 @@ impl<'p> Machine<'p> {
             if init_dims.contains(&0) {
                 init_dims.iter_mut().for_each(|d| *d = (*d).max(1));
             }
-            let mut value = self.types().default_value(&ty, &init_dims);
-            if let Some(e) = &v.init {
-                let iv = self.eval(e)?;
-                value = self.coerce(value, iv)?;
-            }
+            let value = match &v.init {
+                Some(e) => {
+                    let iv = self.eval(e)?;
+                    let zero = self.types().default_value(&ty, &init_dims);
+                    self.coerce(zero, iv)?
+                }
+                // Declared, not assigned: reading it is an error until something is assigned.
+                None => self.types().unset_value(&ty, &init_dims),
+            };
             match local {
                 Some(fi) => {
                     self.frames[fi].vars.insert(name, Slot::Own(value));
@@ -665,6 +683,9 @@ impl<'p> Machine<'p> {
                  wait for an input that never comes?)",
                 self.opts.max_time_ms / 1000.0
             )));
+        }
+        if self.in_submit {
+            return Ok(());
         }
         self.expire_pulses(false)?;
         self.flush_eki_io();
@@ -696,6 +717,10 @@ impl<'p> Machine<'p> {
     /// Trace a changed I/O bit (1-based `n`), and the inputs that follow it when it is an
     /// output.
     fn io_changed(&mut self, signal: &'static str, n: usize, value: bool) {
+        // The submit routine's outputs are its word, traced as such.
+        if self.in_submit {
+            return;
+        }
         self.emit(Event::Io {
             signal,
             index: n,
@@ -1317,6 +1342,16 @@ impl<'p> Machine<'p> {
         } else {
             ("$POS_ACT", &CART_FIELDS)
         };
+        // A position variable must hold its coordinates (an aggregate may leave some out).
+        if let Value::Struc { .. } = &target
+            && let Some(f) = names
+                .iter()
+                .find(|f| matches!(target.field(f), Some(Value::Unset(_))))
+        {
+            return Err(self.err(format!(
+                "the motion target's {f} was never assigned (KSS stops with \"value invalid\")"
+            )));
+        }
         let mut cur = self.globals.get(act).cloned().unwrap_or(Value::Int(0));
         let fields: Vec<(String, Value)> = match &target {
             Value::Struc { fields, .. } | Value::Partial(fields) => fields.clone(),
@@ -1424,11 +1459,16 @@ impl<'p> Machine<'p> {
                 self.opts.max_motions
             )));
         }
+        // The submit interpreter sees the robot move, then stand still at the target.
+        self.set_phase(submit::Phase::Moving);
+        self.submit_cycle()?;
         self.emit(Event::Motion {
             kind,
             target,
             aux: aux_point,
         });
+        self.set_phase(submit::Phase::Running);
+        self.submit_cycle()?;
         // A trigger's action uses the names of the module that programmed it, even when the
         // next motion is made elsewhere (MM_CALIB's).
         for (module, t) in std::mem::take(&mut self.pending_triggers) {
@@ -1487,8 +1527,15 @@ impl<'p> Machine<'p> {
     }
 
     /// Whether `name` is a variable (or signal) visible here.
-    pub(crate) fn is_variable(&self, name: &str) -> bool {
-        self.lookup_root(name).is_ok()
+    /// `Some(true)` when the variable `name` is fully assigned, `Some(false)` when a part of it
+    /// never was, `None` when there is no such variable (`VARSTATE`).
+    pub(crate) fn variable_assigned(&self, name: &str) -> Option<bool> {
+        let place = self.lookup_root(name).ok()?;
+        Some(match self.read_place(&place) {
+            Ok(v) => !v.has_unset(),
+            // Signals (groups, constants) always have a value.
+            Err(_) => true,
+        })
     }
 
     pub(crate) fn place_of(&mut self, e: &Expr) -> R<Place> {
@@ -1795,8 +1842,36 @@ impl<'p> Machine<'p> {
     /// Convert `v` to the type of `target` (KRL assignment rules).
     pub(crate) fn coerce(&self, target: Value, v: Value) -> R<Value> {
         Ok(match (target, v) {
-            (Value::Int(_), Value::Int(i)) => Value::Int(i),
-            (Value::Int(_), Value::Real(r)) => Value::Int(r.round() as i64),
+            // An unassigned place takes the value as its type would.
+            (Value::Unset(t), v) => {
+                let zero = self.types().default_value(&t, &[]);
+                return match v {
+                    Value::Unset(_) => Ok(Value::Unset(t)),
+                    v => self.coerce(zero, v),
+                };
+            }
+            // Copying a composite copies its unassigned parts as unassigned.
+            (
+                t @ (Value::Int(_)
+                | Value::Real(_)
+                | Value::Bool(_)
+                | Value::Char(_)
+                | Value::Enum(_)),
+                Value::Unset(_),
+            ) => Value::Unset(scalar_type(&t)),
+            (Value::Int(_), Value::Int(i)) => {
+                if !(super::value::INT_MIN..=super::value::INT_MAX).contains(&i) {
+                    return Err(self.int_overflow(format!("the value {i}")));
+                }
+                Value::Int(i)
+            }
+            (Value::Int(_), Value::Real(r)) => {
+                let i = r.round();
+                if !(super::value::INT_MIN as f64..=super::value::INT_MAX as f64).contains(&i) {
+                    return Err(self.int_overflow(format!("the REAL {r} as an INT")));
+                }
+                Value::Int(i as i64)
+            }
             (Value::Int(_), Value::Char(c)) => Value::Int(c as i64),
             (Value::Real(_), Value::Int(i)) => Value::Real(i as f64),
             (Value::Real(_), Value::Real(r)) => Value::Real(r),
@@ -1809,6 +1884,15 @@ impl<'p> Machine<'p> {
                 if matches!(items.first(), Some(Value::Char(_))) =>
             {
                 let n = items.len();
+                if s.len() > n {
+                    // KSS's behaviour is not documented in what we could read; a silent cut
+                    // would hide the mistake, so the interpreter stops (an assumption).
+                    return Err(self.err(format!(
+                        "the string \"{s}\" ({} characters) does not fit a CHAR[{n}] \
+                         (krlkit assumes KSS refuses it rather than cut it; StrCopy cuts)",
+                        s.len()
+                    )));
+                }
                 let mut v = Value::char_array(s.as_bytes(), n);
                 if let Value::Array { dims: d, .. } = &mut v {
                     *d = dims;
@@ -1864,6 +1948,44 @@ impl<'p> Machine<'p> {
         })
     }
 
+    /// Reading a variable (or element, or member) that was never assigned. KSS stops such a
+    /// read too (message 1422, "value invalid", as public notes on KSS 8.x describe it).
+    fn unassigned(&self, e: &Expr) -> Stop {
+        let text = self
+            .prog
+            .modules
+            .get(self.loc.0)
+            .and_then(|m| m.text.get(e.span.start as usize..e.span.end as usize))
+            .map(str::trim)
+            .filter(|t| !t.is_empty() && t.len() <= 80)
+            .unwrap_or("a variable");
+        self.err(format!(
+            "`{text}` is read before anything was assigned to it (KSS stops with \"value \
+             invalid\"; give it a value in its declaration or assign one first)"
+        ))
+    }
+
+    /// `v` as an INT value, or the overflow error for `what` when it leaves the 32-bit range.
+    fn int_value(&self, v: i64, what: impl FnOnce() -> String) -> R<Value> {
+        if (super::value::INT_MIN..=super::value::INT_MAX).contains(&v) {
+            Ok(Value::Int(v))
+        } else {
+            Err(self.int_overflow(format!("{} = {v}", what())))
+        }
+    }
+
+    /// KRL's INT is 32-bit. Whether KSS stops or wraps on overflow is not documented in what we
+    /// could read; the interpreter stops, as for any value out of its range (an assumption,
+    /// stated in the message).
+    fn int_overflow(&self, what: String) -> Stop {
+        self.err(format!(
+            "value range exceeded: {what} is outside INT ({} to {}; KRL's INT is 32-bit, and \
+             krlkit assumes KSS stops here rather than wrap)",
+            super::value::INT_MIN,
+            super::value::INT_MAX
+        ))
+    }
+
     pub(crate) fn eval_bool(&mut self, e: &Expr) -> R<bool> {
         match self.eval(e)? {
             Value::Bool(b) => Ok(b),
@@ -1912,27 +2034,46 @@ impl<'p> Machine<'p> {
 
     pub(crate) fn eval(&mut self, e: &Expr) -> R<Value> {
         Ok(match &e.kind {
-            ExprKind::Int(i) => Value::Int(*i),
+            ExprKind::Int(i) => {
+                if !(super::value::INT_MIN..=super::value::INT_MAX).contains(i) {
+                    return Err(self.int_overflow(format!("the literal {i}")));
+                }
+                Value::Int(*i)
+            }
             ExprKind::Real(r) => Value::Real(*r),
             ExprKind::Bool(b) => Value::Bool(*b),
             ExprKind::Char(c) => Value::Char(u8::try_from(*c as u32).unwrap_or(b'?')),
             ExprKind::Str(s) => Value::Str(s.clone()),
-            ExprKind::Bits(b) | ExprKind::Hex(b) => Value::Int(*b as i64),
+            // A bit or hex literal is a 32-bit pattern: 'HFFFFFFFF' is -1.
+            ExprKind::Bits(b) | ExprKind::Hex(b) => match u32::try_from(*b) {
+                Ok(bits) => Value::Int(i64::from(bits as i32)),
+                Err(_) => return Err(self.int_overflow(format!("the literal {b:#x}"))),
+            },
             ExprKind::Enum(n) => Value::Enum(n.to_ascii_uppercase()),
             ExprKind::Name(_) | ExprKind::Member { .. } | ExprKind::Index { .. } => {
                 let p = self.place_of(e)?;
-                self.read_value(&p)?
+                match self.read_value(&p)? {
+                    Value::Unset(_) => return Err(self.unassigned(e)),
+                    v => v,
+                }
             }
             ExprKind::Call { name, args } => match self.call(&name.text, args, true)? {
                 Some(v) => v,
                 None => return Err(self.err(format!("{} returns no value", name.text))),
             },
+            // The one INT whose digits alone do not fit: -2147483648.
+            ExprKind::Unary {
+                op: UnaryOp::Neg,
+                operand,
+            } if matches!(operand.kind, ExprKind::Int(i) if i == -super::value::INT_MIN) => {
+                Value::Int(super::value::INT_MIN)
+            }
             ExprKind::Unary { op, operand } => {
                 let v = self.eval(operand)?;
                 match (op, v) {
                     (UnaryOp::Not, Value::Bool(b)) => Value::Bool(!b),
                     (UnaryOp::BNot, Value::Int(i)) => Value::Int(!i),
-                    (UnaryOp::Neg, Value::Int(i)) => Value::Int(-i),
+                    (UnaryOp::Neg, Value::Int(i)) => self.int_value(-i, || format!("-({i})"))?,
                     (UnaryOp::Neg, Value::Real(r)) => Value::Real(-r),
                     (UnaryOp::Pos, v @ (Value::Int(_) | Value::Real(_))) => v,
                     (op, v) => {
@@ -1989,17 +2130,21 @@ impl<'p> Machine<'p> {
                 ))
             })?,
             B::Add | B::Sub | B::Mul | B::Div => match (&a, &b) {
-                (Value::Int(x), Value::Int(y)) => Value::Int(match op {
-                    B::Add => x.wrapping_add(*y),
-                    B::Sub => x.wrapping_sub(*y),
-                    B::Mul => x.wrapping_mul(*y),
-                    _ => {
-                        if *y == 0 {
-                            return Err(self.err("division by zero"));
+                (Value::Int(x), Value::Int(y)) => {
+                    // Both are in the 32-bit range, so the i64 result is exact.
+                    let (r, sign) = match op {
+                        B::Add => (x + y, "+"),
+                        B::Sub => (x - y, "-"),
+                        B::Mul => (x * y, "*"),
+                        _ => {
+                            if *y == 0 {
+                                return Err(self.err("division by zero"));
+                            }
+                            (x / y, "/")
                         }
-                        x / y
-                    }
-                }),
+                    };
+                    self.int_value(r, || format!("{x} {sign} {y}"))?
+                }
                 _ => match (num(&a), num(&b)) {
                     (Some(x), Some(y)) => Value::Real(match op {
                         B::Add => x + y,
@@ -2143,9 +2288,23 @@ pub(crate) fn io_array(key: &str) -> Option<&'static str> {
     }
 }
 
+/// The type of a scalar value.
+fn scalar_type(v: &Value) -> BaseType {
+    match v {
+        Value::Int(_) => BaseType::Int,
+        Value::Real(_) => BaseType::Real,
+        Value::Bool(_) => BaseType::Bool,
+        Value::Char(_) => BaseType::Char,
+        Value::Enum(_) => BaseType::Enum(String::new()),
+        Value::Unset(t) => t.clone(),
+        _ => BaseType::Int,
+    }
+}
+
 pub(crate) fn to_json(v: &Value) -> serde_json::Value {
     use serde_json::json;
     match v {
+        Value::Unset(_) => serde_json::Value::Null,
         Value::Int(i) => json!(i),
         Value::Real(r) => json!(r),
         Value::Bool(b) => json!(b),

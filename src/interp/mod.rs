@@ -80,6 +80,35 @@ pub struct Options {
     /// Most motions one run may make: a cell program that loops forever (picking the same
     /// scenario again and again) ends here with a clear error instead of filling memory.
     pub max_motions: u64,
+    /// `$MODE_OP` for the whole run: `T1` (default), `T2`, `AUT`, `EX`, or `INVALID`.
+    pub mode_op: String,
+    /// A routine the submit interpreter runs (the SRCI status packer), and the signal it
+    /// writes its word to: run at the start, as each motion starts and ends, and at the end;
+    /// each new word is an [`Event::Srci`].
+    pub submit: Option<Submit>,
+}
+
+/// The submit interpreter's routine (see [`Options::submit`]).
+#[derive(Debug, Clone, PartialEq, Eq)]
+pub struct Submit {
+    pub routine: String,
+    /// A signal group declared in the routine's module (its `.dat`), read after each run.
+    pub signal: String,
+}
+
+impl Submit {
+    /// The SRCI status packer `krlkit gen` writes with `srci_status = true`, if the program
+    /// has it.
+    pub fn srci_packer(program: &Program) -> Option<Submit> {
+        use crate::generate::srci::{SRCI_MODULE, SRCI_SIGNAL};
+        program
+            .global_routines
+            .contains_key(&SRCI_MODULE.to_ascii_uppercase())
+            .then(|| Submit {
+                routine: SRCI_MODULE.to_string(),
+                signal: SRCI_SIGNAL.to_string(),
+            })
+    }
 }
 
 impl Default for Options {
@@ -95,6 +124,8 @@ impl Default for Options {
             max_wait_ms: 3_600_000.0,
             max_time_ms: 3_600_000.0,
             max_motions: 50_000,
+            mode_op: "T1".into(),
+            submit: None,
         }
     }
 }

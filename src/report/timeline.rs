@@ -483,9 +483,16 @@ fn srci_lanes(x: &X, rows: &[SrciRow], entries: &[Entry], next: &mut usize) -> V
                 l.d = level_line(x, false, &changes);
             }
             FieldKind::Enum { .. } => {
-                for (i, (t, w)) in words.iter().enumerate() {
-                    let v = f.get(*w);
-                    let t_next = words.get(i + 1).map_or(x.end, |n| n.0);
+                // One bar per run of the same value.
+                let mut runs: Vec<(f64, u32)> = Vec::new();
+                for (t, w) in &words {
+                    if runs.last().is_none_or(|r| r.1 != f.get(*w)) {
+                        runs.push((*t, f.get(*w)));
+                    }
+                }
+                for (i, (t, v)) in runs.iter().enumerate() {
+                    let (t, v) = (t, *v);
+                    let t_next = runs.get(i + 1).map_or(x.end, |n| n.0);
                     let w_px = (x.at(t_next) - x.at(*t)).max(1.5);
                     let name = f.value_name(v).unwrap_or("undefined");
                     l.bars.push(Bar {

@@ -61,6 +61,10 @@ pub struct Spec {
     pub line_endings: LineEnding,
     /// Seconds the Kawasaki `calibrate` settles after each move (it has no WaitTime parameter).
     pub calib_wait: u32,
+    /// Emit the SRCI status packer (`SRCI_Status.src`/`.dat`).
+    pub srci_status: bool,
+    /// First of the 32 outputs the packer writes the RaStatusWord to (`$OUT[n]` = bit 0).
+    pub srci_output: u32,
 }
 
 /// Valid `$TIMER` indices (KSS 8.x has `$TIMER[1..64]`).

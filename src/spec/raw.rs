@@ -23,6 +23,8 @@ pub(crate) const KEYS: &[&str] = &[
     "subprograms",
     "line_endings",
     "calib_wait",
+    "srci_status",
+    "srci_output",
 ];
 
 pub(crate) fn nearest_key(key: &str) -> Option<&'static str> {
@@ -51,6 +53,8 @@ pub(crate) struct RawSpec {
     subprograms: Option<Spanned<Vec<Spanned<String>>>>,
     line_endings: Option<LineEnding>,
     calib_wait: Option<Spanned<i64>>,
+    srci_status: Option<bool>,
+    srci_output: Option<Spanned<i64>>,
 }
 
 /// Defaults for keys a spec leaves out. They equal the values in the default spec file (a test
@@ -66,6 +70,8 @@ mod default {
     pub const TIMER: u32 = 64;
     /// Seconds; the vendor default of MM_CALIB's WaitTime.
     pub const CALIB_WAIT: u32 = 2;
+    /// `$OUT[993]`..`$OUT[1024]`: a placeholder; map the group to the fieldbus.
+    pub const SRCI_OUTPUT: u32 = 993;
 }
 
 struct Ctx<'a> {
@@ -239,6 +245,14 @@ impl RawSpec {
         )?;
 
         let calib_wait = cx.int_in(&self.calib_wait, "calib_wait", 1, 60, default::CALIB_WAIT)?;
+        // 32 outputs from `srci_output` on, all within $OUT[1..out_max].
+        let srci_output = cx.int_in(
+            &self.srci_output,
+            "srci_output",
+            1,
+            i64::from(lim.out_max) - 31,
+            default::SRCI_OUTPUT,
+        )?;
 
         let subprograms = match &self.subprograms {
             None => catalog()
@@ -265,6 +279,8 @@ impl RawSpec {
             subprograms,
             line_endings: self.line_endings.unwrap_or(LineEnding::Crlf),
             calib_wait,
+            srci_status: self.srci_status.unwrap_or(false),
+            srci_output,
         };
         if spec.receive_size() > lim.eki_raw_size_max {
             let at = self

@@ -3,6 +3,10 @@
 //!
 //! Bit layout: bits 0–7 and 13–18 are flags, bits 8–9 the `RaSequenceState` enum, bits 10–12 the
 //! `OperationMode` enum, bits 19–31 reserved (must be zero).
+//!
+//! [`FIELDS`] is the one statement of the word: `krlkit srci decode|encode` read it, and so does
+//! the KUKA status packer `krlkit gen` writes (each field says where a KUKA controller takes it
+//! from, [`Kuka`], per reference §2.5), so the packer has no bit table of its own.
 
 use std::fmt;
 
@@ -23,6 +27,33 @@ pub struct Field {
     pub bit: u32,
     pub kind: FieldKind,
     pub meaning: &'static str,
+    /// Where a KUKA KRC takes the field from.
+    pub kuka: Kuka,
+}
+
+/// How a KUKA controller's submit interpreter derives a field from system variables
+/// (reference §2.5).
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Kuka {
+    /// A flag that is set exactly while this KRL condition holds.
+    When(&'static str),
+    /// An enum taken from an ENUM system variable: `(KRL value, field value)` pairs; any other
+    /// value gives `otherwise`.
+    Map {
+        var: &'static str,
+        values: &'static [(&'static str, u32)],
+        otherwise: Otherwise,
+    },
+    /// No KUKA system variable tells it: always `value`, for the reason given.
+    Constant { value: u32, why: &'static str },
+}
+
+/// What a [`Kuka::Map`] field is when the variable has none of the mapped values.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Otherwise {
+    Value(u32),
+    /// Keep the value the field had before (e.g. while the mode selector is being turned).
+    KeepLast,
 }
 
 impl Field {
@@ -64,22 +95,63 @@ const OPERATION_MODES: &[(u32, &str)] = &[
 
 /// The defined fields, in bit order.
 pub const FIELDS: &[Field] = &[
-    flag("IsMoving", 0, "axes are physically moving"),
+    flag(
+        "IsMoving",
+        0,
+        "axes are physically moving",
+        Kuka::When("NOT $ROB_STOPPED"),
+    ),
     flag(
         "PrimarySequencePaused",
         1,
         "move commands of the primary sequence are not being processed",
+        Kuka::When("$PRO_STATE1 == #P_STOP"),
     ),
-    flag("InPrimaryPos", 2, "robot is on the primary sequence"),
-    flag("SecondarySequenceActive", 3, "secondary sequence is active"),
-    flag("IsBlending", 4, "blending between two move commands"),
+    flag(
+        "InPrimaryPos",
+        2,
+        "robot is on the primary sequence",
+        Kuka::When("$ON_PATH"),
+    ),
+    flag(
+        "SecondarySequenceActive",
+        3,
+        "secondary sequence is active",
+        Kuka::Constant {
+            value: 0,
+            why: "a secondary (jog) command queue is the SRCI server's own; KRL has no variable for it",
+        },
+    ),
+    flag(
+        "IsBlending",
+        4,
+        "blending between two move commands",
+        Kuka::Constant {
+            value: 0,
+            why: "no system variable tells that an approximated transition is active",
+        },
+    ),
     flag(
         "ErrorPending",
         5,
         "an error needs acknowledgement by the client",
+        Kuka::When("$STOPMESS"),
     ),
-    flag("RestartInProgress", 6, "the robot controller is restarting"),
-    flag("Enabled", 7, "robot arm power state"),
+    flag(
+        "RestartInProgress",
+        6,
+        "the robot controller is restarting",
+        Kuka::Constant {
+            value: 0,
+            why: "a controller restart cannot be observed from KRL",
+        },
+    ),
+    flag(
+        "Enabled",
+        7,
+        "robot arm power state",
+        Kuka::When("$PERI_RDY"),
+    ),
     Field {
         name: "RaSequenceState",
         bit: 8,
@@ -88,6 +160,11 @@ pub const FIELDS: &[Field] = &[
             values: SEQUENCE_STATES,
         },
         meaning: "sequence state of the robot arm",
+        kuka: Kuka::Map {
+            var: "$PRO_STATE1",
+            values: &[("P_ACTIVE", 1), ("P_STOP", 2)],
+            otherwise: Otherwise::Value(0),
+        },
     },
     Field {
         name: "OperationMode",
@@ -97,37 +174,75 @@ pub const FIELDS: &[Field] = &[
             values: OPERATION_MODES,
         },
         meaning: "operation mode",
+        kuka: Kuka::Map {
+            var: "$MODE_OP",
+            values: &[("T1", 1), ("T2", 2), ("AUT", 3), ("EX", 4)],
+            otherwise: Otherwise::KeepLast,
+        },
     },
     flag(
         "CollisionDetectedEnabled",
         13,
         "collision detection is enabled",
+        Kuka::Constant {
+            value: 0,
+            why: "collision monitoring has no single state variable (unverified: $TORQMON...)",
+        },
     ),
     flag(
         "CollisionDetected",
         14,
         "a collision was detected during collision detection",
+        Kuka::Constant {
+            value: 0,
+            why: "no single system variable reports a detected collision",
+        },
     ),
     flag(
         "RestartRequested",
         15,
         "the robot controller requests a restart",
+        Kuka::Constant {
+            value: 0,
+            why: "only after SRCI writes of software limits or system variables, which this packer does not serve",
+        },
     ),
-    flag("Accelerating", 16, "robot arm is accelerating (optional)"),
-    flag("Decelerating", 17, "robot arm is decelerating (optional)"),
+    flag(
+        "Accelerating",
+        16,
+        "robot arm is accelerating (optional)",
+        Kuka::Constant {
+            value: 0,
+            why: "optional, not derived: announce it as unsupported in ExchangeConfiguration",
+        },
+    ),
+    flag(
+        "Decelerating",
+        17,
+        "robot arm is decelerating (optional)",
+        Kuka::Constant {
+            value: 0,
+            why: "optional, not derived: announce it as unsupported in ExchangeConfiguration",
+        },
+    ),
     flag(
         "ConstantVelocity",
         18,
         "robot arm moves at constant velocity (optional)",
+        Kuka::Constant {
+            value: 0,
+            why: "optional, not derived: announce it as unsupported in ExchangeConfiguration",
+        },
     ),
 ];
 
-const fn flag(name: &'static str, bit: u32, meaning: &'static str) -> Field {
+const fn flag(name: &'static str, bit: u32, meaning: &'static str, kuka: Kuka) -> Field {
     Field {
         name,
         bit,
         kind: FieldKind::Flag,
         meaning,
+        kuka,
     }
 }
 
@@ -331,6 +446,26 @@ mod tests {
                 .map(|f| format!("{}={}", f.field.name, f.value))
                 .collect();
             assert_eq!(encode(&assignments).unwrap(), w);
+        }
+    }
+
+    #[test]
+    fn kuka_sources_fit_their_fields() {
+        for f in FIELDS {
+            match f.kuka {
+                Kuka::When(cond) => {
+                    assert_eq!(f.kind, FieldKind::Flag, "{}", f.name);
+                    assert!(cond.contains('$'), "{}: {cond}", f.name);
+                }
+                Kuka::Map { values, .. } => {
+                    for (_, v) in values {
+                        assert!(f.value_name(*v).is_some(), "{}: {v}", f.name);
+                    }
+                }
+                Kuka::Constant { value, why } => {
+                    assert!(value < (1 << f.width()) && !why.is_empty(), "{}", f.name);
+                }
+            }
         }
     }
 

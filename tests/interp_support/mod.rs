@@ -229,15 +229,26 @@ pub fn value(v: &Value) -> String {
         Value::Char(c) => format!("{:?}", *c as char),
         Value::Enum(e) => format!("#{e}"),
         Value::Str(s) => format!("{s:?}"),
+        // Declared, never assigned.
+        Value::Unset(_) => "?".into(),
         Value::Array { items, .. } => {
             if matches!(items.first(), Some(Value::Char(_))) {
                 return format!("{:?}", v.as_text().unwrap_or_default());
             }
+            // A trailing run of zeros folds to `0 xN`, of unassigned entries to `? xN`.
+            let unset = |x: &Value| matches!(x, Value::Unset(_));
             let used = items
                 .iter()
                 .rposition(|x| !is_default(x))
                 .map_or(0, |i| i + 1);
-            let mut parts: Vec<String> = items[..used].iter().map(value).collect();
+            let set = items[..used]
+                .iter()
+                .rposition(|x| !unset(x))
+                .map_or(0, |i| i + 1);
+            let mut parts: Vec<String> = items[..set].iter().map(value).collect();
+            if set < used {
+                parts.push(format!("? x{}", used - set));
+            }
             if used < items.len() {
                 parts.push(format!("0 x{}", items.len() - used));
             }
@@ -246,7 +257,10 @@ pub fn value(v: &Value) -> String {
         Value::Struc { fields, .. } | Value::Partial(fields) => {
             let parts: Vec<String> = fields
                 .iter()
-                .filter(|(n, x)| MAIN_FIELDS.contains(&n.as_str()) || !is_default(x))
+                .filter(|(n, x)| {
+                    MAIN_FIELDS.contains(&n.as_str())
+                        || !(is_default(x) || matches!(x, Value::Unset(_)))
+                })
                 .map(|(n, x)| format!("{n} {}", value(x)))
                 .collect();
             format!("{{{}}}", parts.join(", "))
@@ -262,7 +276,8 @@ fn json_value(v: &serde_json::Value) -> String {
             let mut fields: Vec<(&String, &serde_json::Value)> = m
                 .iter()
                 .filter(|(k, x)| {
-                    MAIN_FIELDS.contains(&k.as_str()) || x.as_f64().is_none_or(|f| f != 0.0)
+                    MAIN_FIELDS.contains(&k.as_str())
+                        || !(x.is_null() || x.as_f64().is_some_and(|f| f == 0.0))
                 })
                 .collect();
             fields.sort_by_key(|(k, _)| order(k));
