@@ -1010,13 +1010,16 @@ fn as_speeds(a: &As) -> Vec<(&'static str, String, String)> {
     out
 }
 
+/// An AS motion instruction, its speed and its ACCURACY.
+type MotionRow = (&'static str, &'static str, &'static str);
+
 #[test]
 fn issue_fixtures_move_like_the_krl_original() {
     // The regression fixtures of the translator's motion semantics: same targets, outputs and
     // requests as the KRL run, and per motion the speed of its own kind and the blending KRL
     // uses (written out from the KRL semantics; `?` marks a value the translation reports as
     // unknown with a TR002).
-    let expect: [(&str, &[(&str, &str, &str)]); 4] = [
+    let expect: [(&str, &[MotionRow]); 4] = [
         (
             "speed_kinds",
             &[
