@@ -57,8 +57,20 @@ fn options() -> Options {
 }
 
 fn translate(src: &Path) -> Translation {
+    translate_to(Target::Kawasaki, src, &options())
+}
+
+fn translate_to(target: Target, src: &Path, options: &Options) -> Translation {
     let dat = krlkit::files::sibling_dat(src).map(|d| source(&d));
-    transpile::transpile(Target::Kawasaki, source(src), dat, &options())
+    transpile::transpile(target, source(src), dat, options)
+}
+
+/// A fixture's `; joint-map: MAP` line: the Kawasaki joint map it is also translated with.
+fn joint_map_of(src: &Path) -> Option<String> {
+    let text = source(src).text;
+    text.lines()
+        .find_map(|l| l.trim().strip_prefix("; joint-map:"))
+        .map(|m| m.trim().to_owned())
 }
 
 fn concise_text(reports: &[FileReport]) -> String {
@@ -111,6 +123,23 @@ fn fixtures_translate_to_sound_as() {
             insta::assert_snapshot!(format!("{stem}.as"), t.text);
             insta::assert_snapshot!(format!("{stem}.findings"), concise_text(&t.reports));
         });
+        if let Some(map) = joint_map_of(src) {
+            let opts = Options {
+                joint_map: Some(krlkit::transpile::kawasaki::joint_map(&map).expect("joint map")),
+                ..options()
+            };
+            let mapped = translate_to(Target::Kawasaki, src, &opts);
+            insta::with_settings!({
+                snapshot_path => "fixtures/transpile/snapshots",
+                prepend_module_to_snapshot => false,
+            }, {
+                insta::assert_snapshot!(format!("{stem}.mapped.as"), mapped.text);
+                insta::assert_snapshot!(format!("{stem}.mapped.findings"), concise_text(&mapped.reports));
+            });
+            for p in check(&mapped.text) {
+                failures.push(format!("{stem} (mapped): {p}"));
+            }
+        }
         for p in check(&t.text) {
             failures.push(format!("{stem}: {p}"));
         }
@@ -151,10 +180,38 @@ fn untranslated_but_kept(stem: &str, t: &Translation) -> Vec<String> {
     out
 }
 
+/// Nothing is dropped silently: every statement of every fixture writes a line in each target or
+/// has a finding at its place.
+#[test]
+fn every_statement_is_translated_or_reported() {
+    let mut failures = Vec::new();
+    for src in programs() {
+        let text = source(&src).text;
+        for target in [Target::Kawasaki, Target::Flexiv] {
+            let t = translate_to(target, &src, &options());
+            for span in &t.silent {
+                let line = LineIndex::new(&text).line_of(span.start as usize);
+                failures.push(format!(
+                    "{} ({target:?}) line {}: `{}` was dropped without a finding",
+                    src.display(),
+                    line + 1,
+                    text.lines().nth(line).unwrap_or("").trim()
+                ));
+            }
+        }
+    }
+    assert!(failures.is_empty(), "{}", failures.join("\n"));
+}
+
 #[test]
 fn constructs_of_the_mapping_appear() {
     // Spot checks against the mapping table (reference §1.10), independent of the snapshots.
-    let t = |name: &str| translate(&dir().join(name)).text;
+    // The cells' axis values are copied one to one only with a joint map that says so.
+    let opts = Options {
+        joint_map: Some(krlkit::transpile::kawasaki::joint_map("A1,A2,A3,A4,A5,A6").expect("map")),
+        ..options()
+    };
+    let t = |name: &str| translate_to(Target::Kawasaki, &dir().join(name), &opts).text;
     let pick = t("pick_cycle.src");
     for want in [
         "CALL mm_init_skt(192,168,1,121,50000)",

@@ -21,7 +21,7 @@ use krlkit::catalog::catalog;
 use krlkit::diag::render::concise;
 use krlkit::diag::{FileReport, LineIndex};
 use krlkit::sim::{Scenario, Server};
-use krlkit::transpile::flexiv::{FlexivOptions, JointMap, PtpPrimitive, RdkVersion};
+use krlkit::transpile::flexiv::{FlexivOptions, PtpPrimitive, RdkVersion};
 use krlkit::transpile::{self, Options, Source, Target, Translation, VisionServer};
 
 fn root() -> PathBuf {
@@ -149,7 +149,10 @@ fn variants() -> Vec<(&'static str, FlexivOptions)> {
         (
             "joints",
             FlexivOptions {
-                joint_map: Some("A1,A2,0,A3,A4,A5,A6".parse::<JointMap>().expect("map")),
+                joint_map: Some(
+                    krlkit::transpile::flexiv::options::joint_map("A1,A2,0,A3,A4,A5,A6")
+                        .expect("map"),
+                ),
                 ptp: PtpPrimitive::MovePtp,
                 input_offset: 0,
                 output_offset: -16,

@@ -263,8 +263,10 @@ pub struct TranspileArgs {
     /// the default) or MovePTP (if the robot's software has it).
     #[arg(long, value_enum)]
     pub ptp: Option<PtpPrimitive>,
-    /// Flexiv: KUKA axes to the Rizon's seven joints, e.g. A1,A2,0,A3,A4,A5,A6 (A1..A6 or a
-    /// fixed angle in degrees per joint); without it PTP to axis values is not translated.
+    /// KUKA axes to the target's joints (Kawasaki: six, e.g. A1,-A2+90,A3-90,A4,A5,A6; Flexiv:
+    /// the Rizon's seven, e.g. A1,A2,0,A3,A4,A5,A6): per joint a KUKA axis, optionally negated
+    /// and shifted by degrees, or a fixed angle; without it axis values written in the program
+    /// are not translated.
     #[arg(long, value_name = "MAP")]
     pub joint_map: Option<String>,
 }

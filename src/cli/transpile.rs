@@ -18,7 +18,8 @@ use super::args::{CheckFormat, PtpPrimitive, TranspileArgs, TranspileTarget};
 use crate::diag::render::sarif::RuleMeta;
 use crate::diag::{FileReport, Severity, render};
 use crate::lint::{self, EkiChannel};
-use crate::transpile::flexiv::{self, FlexivOptions, JointMap, RdkVersion};
+use crate::transpile::flexiv::{self, FlexivOptions, RdkVersion};
+use crate::transpile::kawasaki;
 use crate::transpile::{self, Options, SignalMap, Source, Target, VisionServer};
 
 pub fn run(mut args: TranspileArgs) -> anyhow::Result<Outcome> {
@@ -39,12 +40,22 @@ pub fn run(mut args: TranspileArgs) -> anyhow::Result<Outcome> {
         eprintln!("error: {msg}");
         return Ok(Outcome::Failure);
     }
-    let flexiv = match flexiv_options(&args) {
+    let flexiv = match flexiv_options(&args, target) {
         Ok(f) => f,
         Err(msg) => {
             eprintln!("error: {msg}");
             return Ok(Outcome::Failure);
         }
+    };
+    let joint_map = match (&args.joint_map, target) {
+        (Some(m), Target::Kawasaki) => match kawasaki::joint_map(m) {
+            Ok(m) => Some(m),
+            Err(msg) => {
+                eprintln!("error: {msg}");
+                return Ok(Outcome::Failure);
+            }
+        },
+        _ => None,
     };
     let dat_path = if stdin {
         None
@@ -83,6 +94,7 @@ pub fn run(mut args: TranspileArgs) -> anyhow::Result<Outcome> {
             flag_offset: args.flag_offset.unwrap_or(defaults.flag_offset),
         },
         flexiv,
+        joint_map,
         ..Options::default()
     };
     if let Some(spec) = &args.spec {
@@ -167,8 +179,9 @@ fn foreign_option(args: &TranspileArgs) -> Option<String> {
     ))
 }
 
-/// The Flexiv backend's options from the arguments.
-fn flexiv_options(args: &TranspileArgs) -> Result<FlexivOptions, String> {
+/// The Flexiv backend's options from the arguments (the joint map only for Flexiv, whose robot
+/// has seven joints).
+fn flexiv_options(args: &TranspileArgs, target: Target) -> Result<FlexivOptions, String> {
     let mut f = FlexivOptions {
         rdk: match &args.rdk {
             Some(v) => v.parse::<RdkVersion>()?,
@@ -180,8 +193,10 @@ fn flexiv_options(args: &TranspileArgs) -> Result<FlexivOptions, String> {
         },
         ..FlexivOptions::default()
     };
-    if let Some(m) = &args.joint_map {
-        f.joint_map = Some(m.parse::<JointMap>()?);
+    if let Some(m) = &args.joint_map
+        && target == Target::Flexiv
+    {
+        f.joint_map = Some(flexiv::options::joint_map(m)?);
     }
     if let Some(sn) = &args.serial {
         if sn.trim().is_empty() || sn.chars().any(|c| c.is_control() || !c.is_ascii()) {

@@ -15,6 +15,7 @@
 pub mod flexiv;
 pub mod front;
 pub mod ir;
+pub mod joints;
 pub mod kawasaki;
 pub mod orientation;
 pub mod rules;
@@ -78,6 +79,9 @@ pub struct Options {
     pub channels_given: bool,
     /// The Flexiv backend's settings.
     pub flexiv: flexiv::FlexivOptions,
+    /// Kawasaki: KUKA axes → JT1…JT6 (`--joint-map`); without it axis values written in the
+    /// program are TR001 (Flexiv's seven-joint map is in `flexiv`).
+    pub joint_map: Option<joints::JointMap>,
 }
 
 /// One input file.
@@ -97,6 +101,9 @@ pub struct Translation {
     /// Findings of the `.src` and, when given, the `.dat`, in that order.
     pub reports: Vec<FileReport>,
     pub coverage: Coverage,
+    /// Statements of the `.src` that wrote nothing and have no finding: dropped silently (a
+    /// defect; tests require it empty).
+    pub silent: Vec<crate::diag::Span>,
 }
 
 /// Translate a KRL program (its `.src` and optional `.dat`) to `target`.
@@ -123,7 +130,8 @@ pub fn transpile(
             .map_or(crate::diag::Span::new(0, 0), |r| r.name_span);
         report_structure(&text, at, &mut report);
     }
-    report.coverage = coverage(&model, &report, &produced);
+    report.coverage = coverage(&model, &report);
+    let silent = silent(&model, &report, &produced);
     trim_spans(&mut report.src, &program.src.text);
     if let Some(dat) = &program.dat {
         trim_spans(&mut report.dat, &dat.text);
@@ -145,6 +153,7 @@ pub fn transpile(
         text,
         reports,
         coverage: report.coverage,
+        silent,
     }
 }
 
@@ -166,11 +175,7 @@ fn report_structure(text: &str, at: crate::diag::Span, report: &mut front::repor
 
 /// The coverage table from the program's constructs and the findings: a construct is as good
 /// as the worst finding that starts inside it (renames do not count).
-fn coverage(
-    model: &ir::Program,
-    report: &front::report::Report,
-    _produced: &[crate::diag::Span],
-) -> Coverage {
+fn coverage(model: &ir::Program, report: &front::report::Report) -> Coverage {
     use front::report::{FileId, Outcome};
     let mut c = Coverage::default();
     for k in &model.constructs {
@@ -191,6 +196,31 @@ fn coverage(
         c.record(k.kind, o);
     }
     c
+}
+
+/// The `.src` statements that wrote no line and have no finding inside them (routine headers
+/// and `.dat` values are rendered with their routine or data section).
+fn silent(
+    model: &ir::Program,
+    report: &front::report::Report,
+    produced: &[crate::diag::Span],
+) -> Vec<crate::diag::Span> {
+    use front::report::FileId;
+    let overlaps = |a: &crate::diag::Span, b: &crate::diag::Span| {
+        a.start < b.end.max(b.start + 1) && b.start < a.end.max(a.start + 1)
+    };
+    model
+        .constructs
+        .iter()
+        .filter(|k| k.file == FileId::Src && !k.kind.starts_with("routine"))
+        .filter(|k| !produced.iter().any(|p| overlaps(p, &k.span)))
+        .filter(|k| {
+            !report.src.iter().any(|d| {
+                d.span.start >= k.span.start && d.span.start < k.span.end.max(k.span.start + 1)
+            })
+        })
+        .map(|k| k.span)
+        .collect()
 }
 
 /// Statement spans cover their whole lines; findings point at the code, not at the

@@ -108,6 +108,26 @@ impl As {
                 self.robot.pose = t;
                 (*instr, V::Pose(t))
             }
+            Move::Drive(args) => {
+                if !(2..=3).contains(&args.len()) {
+                    return Err("DRIVE takes a joint, degrees and an optional speed".into());
+                }
+                let joint = self.eval(&args[0])?.num()?;
+                let deg = self.eval(&args[1])?.num()?;
+                if let Some(s) = args.get(2) {
+                    let s = self.eval(s)?.num()?;
+                    if !(s > 0.0 && s <= 100.0) {
+                        return Err(format!("DRIVE speed {s} is not a percentage"));
+                    }
+                }
+                if joint.fract() != 0.0 || !(1.0..=6.0).contains(&joint) {
+                    return Err(format!("DRIVE joint {joint}: JT1 to JT6"));
+                }
+                let mut j = self.robot.joints;
+                j[joint as usize - 1] += deg;
+                self.robot.joints = j;
+                ("DRIVE", V::Joint(j))
+            }
             Move::Home(n) => {
                 let n = match n {
                     Some(e) => self.eval(e)?.num()?,

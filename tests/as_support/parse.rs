@@ -378,6 +378,8 @@ pub enum Move {
     /// DRAW/TDRAW dx, dy, dz [, rx, ry, rz [, speed]].
     Draw(&'static str, Vec<Option<Expr>>),
     Home(Option<Expr>),
+    /// DRIVE joint, degrees [, speed %].
+    Drive(Vec<Expr>),
 }
 
 #[derive(Debug, Clone)]
@@ -897,6 +899,7 @@ impl Compiler {
                 Op::Move(Move::Depart(kw(&head), d))
             }
             "DRAW" | "TDRAW" => Op::Move(Move::Draw(kw(&head), p.sparse_list()?)),
+            "DRIVE" => Op::Move(Move::Drive(p.list()?)),
             "HOME" => {
                 let n = if p.at_end() { None } else { Some(p.expr()?) };
                 p.end()?;

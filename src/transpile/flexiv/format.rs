@@ -1,16 +1,6 @@
 //! How Python spells values: numbers, string literals, ASCII comments.
 
-/// A number computed by the translator (pose components, converted units): integers without a
-/// decimal point, others in the shortest form that reads back to the same value.
-pub fn num(v: f64) -> String {
-    if v == 0.0 {
-        return "0".into();
-    }
-    if v.fract() == 0.0 && v.abs() < 1e15 {
-        return format!("{}", v as i64);
-    }
-    format!("{v}")
-}
+pub use crate::transpile::front::literal::num;
 
 /// A KRL REAL literal as a Python float literal (`20.0`, `0.25`, `1e-7`).
 pub fn real(v: f64) -> String {

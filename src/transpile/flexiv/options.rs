@@ -6,6 +6,8 @@
 use std::fmt;
 use std::str::FromStr;
 
+pub use crate::transpile::joints::{JointMap, JointSource};
+
 /// The Flexiv RDK release the script is written for. Supported: 1.6 (the seed's API) up to
 /// 1.9; 2.x (joint groups) has a different `ExecutePrimitive`/`primitive_states` shape.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, PartialOrd, Ord)]
@@ -86,90 +88,9 @@ pub enum PtpPrimitive {
     MovePtp,
 }
 
-/// Where one Rizon joint's value comes from.
-#[derive(Debug, Clone, Copy, PartialEq)]
-pub enum JointSource {
-    /// KUKA axis A1..A6 (1-based).
-    Axis(u8),
-    /// A fixed angle in degrees.
-    Fixed(f64),
-}
-
-/// KUKA's six axes → the Rizon's seven joints (degrees), e.g. `A1,A2,0,A3,A4,A5,A6`.
-#[derive(Debug, Clone, PartialEq)]
-pub struct JointMap(pub [JointSource; 7]);
-
-impl JointMap {
-    /// The Rizon joint (0-based) that carries KUKA axis `axis` (1-based), if exactly one does.
-    pub fn joint_of(&self, axis: u8) -> Option<usize> {
-        let mut it = self
-            .0
-            .iter()
-            .enumerate()
-            .filter(|(_, s)| **s == JointSource::Axis(axis))
-            .map(|(i, _)| i);
-        let first = it.next()?;
-        it.next().is_none().then_some(first)
-    }
-
-    /// Every KUKA axis is carried by exactly one joint, so joints can be read back as axes.
-    pub fn invertible(&self) -> bool {
-        (1..=6).all(|a| self.joint_of(a).is_some())
-    }
-}
-
-impl fmt::Display for JointMap {
-    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
-        let parts: Vec<String> = self
-            .0
-            .iter()
-            .map(|s| match s {
-                JointSource::Axis(a) => format!("A{a}"),
-                JointSource::Fixed(v) => super::format::num(*v),
-            })
-            .collect();
-        f.write_str(&parts.join(","))
-    }
-}
-
-impl FromStr for JointMap {
-    type Err = String;
-
-    fn from_str(s: &str) -> Result<JointMap, String> {
-        let items: Vec<&str> = s.split(',').map(str::trim).collect();
-        if items.len() != 7 {
-            return Err(format!(
-                "the joint map needs 7 entries (one per Rizon joint), `{s}` has {}; e.g. A1,A2,0,A3,A4,A5,A6",
-                items.len()
-            ));
-        }
-        let mut out = [JointSource::Fixed(0.0); 7];
-        for (i, it) in items.iter().enumerate() {
-            let upper = it.to_ascii_uppercase();
-            out[i] = if let Some(n) = upper.strip_prefix('A') {
-                match n.parse::<u8>() {
-                    Ok(a @ 1..=6) => JointSource::Axis(a),
-                    _ => {
-                        return Err(format!(
-                            "joint {} of the map: `{it}` is neither A1..A6 nor a number of degrees",
-                            i + 1
-                        ));
-                    }
-                }
-            } else {
-                match it.parse::<f64>() {
-                    Ok(v) if v.is_finite() => JointSource::Fixed(v),
-                    _ => {
-                        return Err(format!(
-                            "joint {} of the map: `{it}` is neither A1..A6 nor a number of degrees",
-                            i + 1
-                        ));
-                    }
-                }
-            };
-        }
-        Ok(JointMap(out))
-    }
+/// The joint map for a Rizon's seven joints, e.g. `A1,A2,0,A3,A4,A5,A6`.
+pub fn joint_map(s: &str) -> Result<JointMap, String> {
+    JointMap::parse(s, 7, "Rizon", "A1,A2,0,A3,A4,A5,A6")
 }
 
 /// Options of the Flexiv backend.
@@ -225,24 +146,5 @@ mod tests {
         assert!("1.5".parse::<RdkVersion>().is_err());
         assert!("one".parse::<RdkVersion>().is_err());
         assert!("1.6.x".parse::<RdkVersion>().is_err());
-    }
-
-    #[test]
-    fn joint_maps() {
-        let m: JointMap = "A1, A2, 0, a3, A4, A5, A6".parse().unwrap();
-        assert_eq!(m.0[2], JointSource::Fixed(0.0));
-        assert_eq!(m.joint_of(3), Some(3));
-        assert!(m.invertible());
-        assert_eq!(m.to_string(), "A1,A2,0,A3,A4,A5,A6");
-        let partial: JointMap = "A1,A2,0,A3,A4,A5,-30.5".parse().unwrap();
-        assert!(!partial.invertible());
-        assert!(
-            "A1,A2"
-                .parse::<JointMap>()
-                .unwrap_err()
-                .contains("7 entries")
-        );
-        assert!("A1,A2,0,A3,A4,A5,A7".parse::<JointMap>().is_err());
-        assert!("A1,A2,x,A3,A4,A5,A6".parse::<JointMap>().is_err());
     }
 }

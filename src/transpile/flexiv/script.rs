@@ -53,19 +53,41 @@ pub(super) fn render(tx: &Tx<'_>, program: String) -> String {
         .to_ascii_lowercase();
     let joints = fx.joint_map.as_ref().map(|m| {
         m.0.iter()
-            .map(|s| match s {
-                JointSource::Axis(a) => format!("j.a{a}"),
-                JointSource::Fixed(v) => {
-                    let t = format::num(*v);
-                    if t.contains('.') { t } else { format!("{t}.0") }
+            .map(|s| match *s {
+                JointSource::Axis {
+                    axis,
+                    negate,
+                    offset,
+                } => {
+                    let a = if negate {
+                        format!("-j.a{axis}")
+                    } else {
+                        format!("j.a{axis}")
+                    };
+                    match offset {
+                        0.0 => a,
+                        o => format!("{a} + {}", format::real(o)),
+                    }
                 }
+                JointSource::Fixed(v) => format::real(v),
             })
             .collect::<Vec<_>>()
             .join(", ")
     });
+    // The inverse: a KUKA axis from the one joint that carries it.
     let axes = fx.joint_map.as_ref().filter(|m| m.invertible()).map(|m| {
         (1..=6)
-            .map(|a| format!("q[{}]", m.joint_of(a).unwrap_or(0)))
+            .filter_map(|a| m.joint_of(a))
+            .map(|(i, s)| match s {
+                JointSource::Axis { negate, offset, .. } => {
+                    let q = match offset {
+                        0.0 => format!("q[{i}]"),
+                        o => format!("(q[{i}] - {})", format::real(o)),
+                    };
+                    if negate { format!("-{q}") } else { q }
+                }
+                JointSource::Fixed(_) => format!("q[{i}]"),
+            })
             .collect::<Vec<_>>()
             .join(", ")
     });

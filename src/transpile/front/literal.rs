@@ -1,5 +1,6 @@
 //! Literal numbers in the AST (signs and `+ - *` of literals folded): signal and interrupt
-//! numbers, `.dat` indices, trigger positions, inline-form record fields.
+//! numbers, `.dat` indices, trigger positions, inline-form record fields; and a number's
+//! shortest text for the targets.
 
 use crate::syntax::ast::{BinaryOp, Expr, ExprKind, UnaryOp};
 
@@ -33,4 +34,16 @@ pub fn number(e: &Expr) -> Option<f64> {
 pub fn integer(e: &Expr) -> Option<i64> {
     let v = number(e)?;
     (v.fract() == 0.0 && v.abs() < 1e15).then_some(v as i64)
+}
+
+/// A number as both targets write it: integers without a fraction, `-0` as `0`, else Rust's
+/// shortest round-trip text.
+pub fn num(v: f64) -> String {
+    if v == 0.0 {
+        return "0".into();
+    }
+    if v.fract() == 0.0 && v.abs() < 1e15 {
+        return format!("{}", v as i64);
+    }
+    format!("{v}")
 }

@@ -492,7 +492,13 @@ impl<'a> Tx<'a> {
             );
         };
         let mut out: Vec<String> = if a.axis {
-            m.iter().map(|v| num(*v)).collect()
+            let Some(map) = &self.opts.joint_map else {
+                return fail(span, NO_JOINT_MAP, JOINT_MAP_HELP);
+            };
+            self.note(format!(
+                "KUKA axis values -> JT1..JT6 by the joint map {map} (--joint-map)"
+            ));
+            map.apply(&m).into_iter().map(num).collect()
         } else {
             let (o, aa, t) = abc_to_oat(m[3], m[4], m[5]);
             vec![
@@ -562,6 +568,10 @@ impl<'a> Tx<'a> {
     }
 }
 
+/// Why axis values written in the program are not copied.
+pub(super) const NO_JOINT_MAP: &str = "KUKA axis values: Kawasaki's joint zeros and directions differ, so the same numbers are another posture; without a joint map they are not translated";
+pub(super) const JOINT_MAP_HELP: &str = "give --joint-map (per Kawasaki joint the KUKA axis, negated and shifted as the two arms need, e.g. A1,-A2+90,A3-90,A4,A5,A6), or teach the point on the Kawasaki";
+
 /// An AS signal: one (`SIG(n)`, `SIGNAL n`) or a group (`BITS(first, width)`).
 pub(super) enum Sig {
     One(String),
@@ -574,6 +584,21 @@ fn arg_missing(span: Span) -> super::Fail {
         message: "a built-in function without its argument".into(),
         help: "pass the argument".into(),
     }
+}
+
+/// A rendered number or expression negated (`90` → `-90`, `-.a` → `.a`, `.a+1` → `-(.a+1)`).
+pub(super) fn negate_number(v: &str) -> String {
+    if let Some(rest) = v.strip_prefix('-')
+        && !rest.contains(['+', '-', '*', '/', ' '])
+    {
+        return rest.to_owned();
+    }
+    if v.chars()
+        .all(|c| c.is_ascii_alphanumeric() || c == '.' || c == '_')
+    {
+        return format!("-{v}");
+    }
+    format!("-({v})")
 }
 
 /// The signed signal number negated.

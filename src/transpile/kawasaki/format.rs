@@ -2,17 +2,7 @@
 
 use crate::transpile::ir::Ty;
 
-/// A number as AS source: integers without a decimal point, others in the shortest form that
-/// reads back to the same value.
-pub fn num(v: f64) -> String {
-    if v == 0.0 {
-        return "0".into();
-    }
-    if v.fract() == 0.0 && v.abs() < 1e15 {
-        return format!("{}", v as i64);
-    }
-    format!("{v}")
-}
+pub use crate::transpile::front::literal::num;
 
 /// An angle computed by a conversion: rounded to 1e-6 degrees so float dust does not show.
 pub fn angle(v: f64) -> String {

@@ -128,7 +128,10 @@ impl<'a> Tx<'a> {
     pub(super) fn wait(&mut self, w: &Wait) -> R<()> {
         match w {
             Wait::Seconds(t) => {
-                if t.number() != Some(0.0) {
+                if t.number() == Some(0.0) {
+                    // Only KRL's advance-run stop: the BREAK before it where a motion runs.
+                    self.line("; WAIT SEC 0 (stops KRL's advance run)");
+                } else {
                     let t = self.expr(t)?;
                     self.line(format!("TWAIT {t}"));
                 }

@@ -33,6 +33,11 @@ use crate::diag::Span;
 
 pub(super) use super::front::{Fail, R, fail};
 
+/// The joint map for a Kawasaki arm's six joints, e.g. `A1,-A2+90,A3-90,A4,A5,A6`.
+pub fn joint_map(s: &str) -> Result<super::joints::JointMap, String> {
+    super::joints::JointMap::parse(s, 6, "Kawasaki", "A1,A2,A3,A4,A5,A6")
+}
+
 /// AS identifier rules: at most 15 characters (sigils and the local `.` not counted).
 pub const NAME_RULES: NameRules = NameRules {
     max_len: 15,

@@ -7,9 +7,10 @@ use super::{R, Tx, fail};
 use crate::diag::Span;
 use crate::transpile::front::report::FileId;
 use crate::transpile::ir::{
-    Because, Blend, CartMps, Component, Delta, Expr, ExprKind, FrameKind, FrameRef, JointPct,
-    Known, Load, MotionParam, Move, ParamValue, Path, SpeedSetting, Target, Ty,
+    Aggregate, Because, Blend, CartMps, Component, Delta, Expr, ExprKind, FrameKind, FrameRef,
+    JointPct, Known, Load, MotionParam, Move, ParamValue, Path, SpeedSetting, Target, Ty,
 };
+use crate::transpile::joints::JointSource;
 
 /// The ACCURACY (mm) used for an exact stop and, with a warning, for blending whose distance
 /// is not known.
@@ -177,7 +178,9 @@ impl<'a> Tx<'a> {
             }
         }
         self.set_accuracy(accuracy);
-        let one_shot = needed.filter(|n| Some(n) != latest.as_ref());
+        // DRIVE carries its own speed.
+        let drive = matches!(m.path, Path::JointRel { .. });
+        let one_shot = needed.filter(|n| !drive && Some(n) != latest.as_ref());
         let circle = matches!(m.path, Path::Circular { .. });
         match (&one_shot, circle) {
             (Some(s), false) => self.line(s.text(false)),
@@ -199,7 +202,14 @@ impl<'a> Tx<'a> {
     /// The motion lines (`JMOVE p`, `C1MOVE a` + `C2MOVE b`, `DRAW …`).
     fn targets(&mut self, m: &Move, span: Span) -> R<Vec<String>> {
         Ok(match &m.path {
-            Path::Joint { to, .. } => vec![format!("JMOVE {}", self.target(to)?)],
+            Path::Joint { to, .. } => {
+                let t = self.target(to)?;
+                // A partial axis value: its preparation lines, then the move.
+                let mut lines: Vec<String> = t.lines().map(str::to_owned).collect();
+                let last = lines.pop().unwrap_or_default();
+                lines.push(format!("JMOVE {last}"));
+                lines
+            }
             Path::Linear { to, .. } => vec![format!("LMOVE {}", self.target(to)?)],
             Path::Circular { via, to, .. } => vec![
                 format!("C1MOVE {}", self.target(via)?),
@@ -223,14 +233,126 @@ impl<'a> Tx<'a> {
                 let instr = if *in_tool { "TDRAW" } else { "DRAW" };
                 vec![format!("{instr} {}", d.join(","))]
             }
-            Path::JointRel { delta, .. } => {
-                return fail(
-                    delta.span,
-                    "this relative motion has no AS equivalent",
-                    "compute the target (e.g. #PPOINT or SHIFT/TRANS) and move to it",
-                );
-            }
+            Path::JointRel { delta, speed } => self.drive(delta, speed, span)?,
         })
+    }
+
+    /// `PTP {A1 45}`: KRL keeps the axes not given from the previous target. The robot's joints
+    /// where the previous motion ended (`BREAK`, `HERE`, `DECOMPOSE`) supply the joints whose
+    /// axis is not given; the lines before the move, then the target.
+    fn partial_axes(&mut self, a: &Aggregate, span: Span) -> R<Vec<String>> {
+        let Some(map) = self.opts.joint_map.clone() else {
+            return fail(span, super::expr::NO_JOINT_MAP, super::expr::JOINT_MAP_HELP);
+        };
+        let mut given = [None; 6];
+        for (c, e) in &a.fields {
+            match (c, e.number()) {
+                (Component::Axis(i), Some(v)) => given[*i] = Some(v),
+                _ => {
+                    return fail(
+                        e.span,
+                        "an incomplete axis value with computed or external-axis components",
+                        "write the axes as numbers, or every axis",
+                    );
+                }
+            }
+        }
+        let here = self.scratch("here");
+        let parts = self.scratch("here_j");
+        let joint = super::format::with_sigil(&here, &Ty::Joint);
+        let mut values = Vec::new();
+        for (k, src) in map.0.iter().enumerate() {
+            values.push(match *src {
+                JointSource::Axis { axis, .. } if given[usize::from(axis) - 1].is_some() => {
+                    let mut a6 = [0.0; 6];
+                    a6[usize::from(axis) - 1] = given[usize::from(axis) - 1].unwrap_or(0.0);
+                    num(src.value(&a6))
+                }
+                JointSource::Axis { .. } => format!("{parts}[{k}]"),
+                JointSource::Fixed(v) => num(v),
+            });
+        }
+        self.rep.approximate(
+            FileId::Src,
+            span,
+            "the axes not given stay where the previous motion ended: AS reads them there (BREAK, HERE), so that motion is not blended",
+            "write every axis to keep the blending",
+        );
+        self.note(format!(
+            "KUKA axis values -> JT1..JT6 by the joint map {map} (--joint-map)"
+        ));
+        Ok(vec![
+            "BREAK".into(),
+            format!("HERE {joint}"),
+            format!("DECOMPOSE {parts}[0] = {joint}"),
+            format!("#PPOINT({})", values.join(",")),
+        ])
+    }
+
+    /// `PTP_REL {A6 90}`: one `DRIVE joint, degrees, speed` per axis, through the joint map.
+    fn drive(&mut self, d: &Delta, speed: &Known<JointPct>, span: Span) -> R<Vec<String>> {
+        let Some(map) = &self.opts.joint_map else {
+            return fail(
+                d.span,
+                "a relative axis move: which Kawasaki joint turns, and in which direction, needs a joint map",
+                super::expr::JOINT_MAP_HELP,
+            );
+        };
+        let mut moves = Vec::new();
+        for (c, e) in &d.fields {
+            let Component::Axis(i) = c else {
+                return fail(
+                    d.span,
+                    "a relative axis move with external axes has no AS equivalent",
+                    "move the external axis on its own",
+                );
+            };
+            let Some((joint, source)) = map.joint_of(*i as u8 + 1) else {
+                return fail(
+                    e.span,
+                    format!(
+                        "the joint map {map} gives axis A{} no single Kawasaki joint",
+                        i + 1
+                    ),
+                    "give a joint map in which the axis drives one joint",
+                );
+            };
+            let v = self.expr(e)?;
+            let v = match source {
+                crate::transpile::joints::JointSource::Axis { negate: true, .. } => {
+                    super::expr::negate_number(&v)
+                }
+                _ => v,
+            };
+            moves.push((joint + 1, v));
+        }
+        let pct = match speed {
+            Known::Is(JointPct(v)) => self.param_text(v, 1.0),
+            Known::Unknown(b) => {
+                self.rep.approximate(
+                    FileId::Src,
+                    span,
+                    format!(
+                        "the axis speed of this move is not known here ({}); DRIVE gets {INIT_SPEED} %",
+                        b.describe()
+                    ),
+                    "set $VEL_AXIS / BAS(#VEL_PTP) before the move, or edit the DRIVE speed",
+                );
+                INIT_SPEED.to_owned()
+            }
+        };
+        if moves.len() > 1 {
+            self.rep.approximate(
+                FileId::Src,
+                span,
+                "the axes move one after the other (one DRIVE each), not together",
+                "check the path for collisions",
+            );
+        }
+        Ok(moves
+            .into_iter()
+            .map(|(j, v)| format!("DRIVE {j},{v},{pct}"))
+            .collect())
     }
 
     /// `DRAW`/`TDRAW` values: X, Y, Z only.
@@ -254,7 +376,18 @@ impl<'a> Tx<'a> {
 
     /// A motion target: a pose or joint variable, a literal, or pose arithmetic.
     fn target(&mut self, t: &Target) -> R<String> {
+        // A `.dat` value written in KUKA's joint convention: reported at the move as well.
+        if t.joints && t.literal && self.opts.joint_map.is_none() {
+            return fail(
+                t.expr.span,
+                super::expr::NO_JOINT_MAP,
+                super::expr::JOINT_MAP_HELP,
+            );
+        }
         match &t.expr.kind {
+            ExprKind::Aggregate(a) if a.axis && !a.complete() && self.opts.joint_map.is_some() => {
+                Ok(self.partial_axes(a, t.expr.span)?.join("\n"))
+            }
             ExprKind::Aggregate(a) => self.literal(a, t.expr.span, FileId::Src),
             ExprKind::Place(p) => {
                 let ty = if t.joints { Ty::Joint } else { Ty::Pose };
