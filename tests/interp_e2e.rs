@@ -300,24 +300,92 @@ fn examples_run_against_the_examples_scenario() {
                 assert!(is_success(sub, *s), "{name}: {sub} ended in {s}");
             }
         }
-        let motions: Vec<(String, Vec<f64>)> = outcome
-            .result
-            .events
-            .iter()
-            .filter_map(|r| match &r.event {
-                Event::Motion { kind, target, .. } => {
-                    Some((kind.clone(), target.iter().map(|(_, v)| *v).collect()))
-                }
-                _ => None,
-            })
-            .collect();
-        let expected: Vec<(String, Vec<f64>)> = expected_motions(&name, &scenario_of(&case))
-            .into_iter()
-            .map(|(k, v)| (k.to_string(), v))
-            .collect();
-        assert_eq!(motions, expected, "{name}: motion targets");
+        assert_motions(&name, &case, &outcome);
         insta::assert_snapshot!(
             format!("example_{name}"),
+            render(&outcome, outcome.addr.as_deref())
+        );
+    }
+}
+
+/// The run's motion targets are the ones the example must make against its scenario.
+fn assert_motions(name: &str, case: &Case, outcome: &interp_support::Outcome) {
+    let motions: Vec<(String, Vec<f64>)> = outcome
+        .result
+        .events
+        .iter()
+        .filter_map(|r| match &r.event {
+            Event::Motion { kind, target, .. } => {
+                Some((kind.clone(), target.iter().map(|(_, v)| *v).collect()))
+            }
+            _ => None,
+        })
+        .collect();
+    let expected: Vec<(String, Vec<f64>)> = expected_motions(name, &scenario_of(case))
+        .into_iter()
+        .map(|(k, v)| (k.to_string(), v))
+        .collect();
+    assert_eq!(motions, expected, "{name}: motion targets");
+}
+
+/// The 2.x versions of the examples (beside the committed 2.x reference package,
+/// `tests/fixtures/gen_variants/ascii_2.x/krl/examples/`) run against the same scenario
+/// served as 2.x, with the ASCII, HEX little- and big-endian packages: every call succeeds,
+/// the motions are the 1.x examples' motions, and the HEX runs behave exactly as the ASCII one.
+#[test]
+fn v2_examples_run_for_every_codec() {
+    let dir = root().join("tests/fixtures/gen_variants/ascii_2.x/krl/examples");
+    let mut names: Vec<String> = std::fs::read_dir(&dir)
+        .unwrap()
+        .map(|e| e.unwrap().path())
+        .filter(|p| p.extension().is_some_and(|x| x.eq_ignore_ascii_case("src")))
+        .map(|p| p.file_stem().unwrap().to_string_lossy().into_owned())
+        .collect();
+    names.sort();
+    let v1: Vec<String> = std::fs::read_dir(root().join("krl/examples"))
+        .unwrap()
+        .map(|e| e.unwrap().path())
+        .filter(|p| p.extension().is_some_and(|x| x.eq_ignore_ascii_case("src")))
+        .map(|p| p.file_stem().unwrap().to_string_lossy().into_owned())
+        .collect();
+    assert!(
+        v1.iter().all(|n| names.contains(n)),
+        "every 1.x example has a 2.x version: {v1:?} vs {names:?}"
+    );
+    let specs: Vec<Spec> = ["ascii", "hex-le", "hex-be"]
+        .iter()
+        .map(|c| Spec::parse(&format!("codec = \"{c}\"\ninterface = \"2.x\""), c).unwrap())
+        .collect();
+    for name in names {
+        let mut case = Case::new(dir.join(format!("{name}.src"))).with_spec(specs[0].clone());
+        case.scenario = Some(root().join("tests/fixtures/scenarios/examples.toml"));
+        let outcome = run(&case);
+        check_invariants(&name, &case, &outcome);
+        for e in outcome.result.events.iter().map(|r| &r.event) {
+            if let Event::Return {
+                name: sub,
+                status: Some(s),
+                ..
+            } = e
+            {
+                assert!(is_success_v2(sub, *s), "2.x {name}: {sub} ended in {s}");
+            }
+        }
+        assert_motions(&name, &case, &outcome);
+        let want = behaviour(&outcome);
+        for spec in &specs[1..] {
+            let case = case.clone().with_spec(spec.clone());
+            let other = run(&case);
+            check_invariants(&name, &case, &other);
+            assert_eq!(
+                want,
+                behaviour(&other),
+                "2.x {name}: {} differs from ASCII",
+                spec.codec
+            );
+        }
+        insta::assert_snapshot!(
+            format!("example_v2_{name}"),
             render(&outcome, outcome.addr.as_deref())
         );
     }

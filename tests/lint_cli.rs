@@ -135,3 +135,33 @@ fn rule_explain_and_unknown() {
     assert_eq!(code, 2);
     assert!(err.contains("MM006"), "{err}");
 }
+
+/// 2.x calls are errors against the 1.x interface (the default), clean when the config names
+/// 2.x or the checked files hold a 2.x package; 1.x calls against a 2.x package are named as
+/// the other version's.
+#[test]
+fn calls_are_checked_against_the_interface_version() {
+    let (code, out, _) = krlkit(&["check", "v2/cell.src", "--format", "concise"]);
+    assert_eq!(code, 1);
+    insta::assert_snapshot!("v2_cell_against_1x", out);
+    let (code, out, _) = krlkit(&["check", "v2/cell.src", "--config", "v2/v2.toml"]);
+    assert_eq!(code, 0, "{out}");
+    let package = "../gen_variants/hex-le_2.x/krl";
+    let (code, out, _) = krlkit(&["check", "v2/cell.src", package]);
+    assert_eq!(code, 0, "detected from the package: {out}");
+    let (code, out, _) = krlkit(&["check", "v2/old_calls.src", package, "--format", "concise"]);
+    assert_eq!(code, 1);
+    insta::assert_snapshot!("v1_calls_against_2x_package", out);
+    // The 2.x examples beside the committed 2.x package lint clean with it.
+    let (code, out, _) = krlkit(&[
+        "check",
+        "../gen_variants/ascii_2.x/krl",
+        "--format",
+        "concise",
+    ]);
+    assert_eq!(
+        (code, out.as_str()),
+        (0, ""),
+        "2.x examples with their package"
+    );
+}

@@ -1,5 +1,6 @@
-//! Peak memory of `krlkit parse` on a large file stays a small multiple of the file (the
-//! outline parse keeps no tree; `--tree` streams its JSON). Measured as the child's peak RSS.
+//! Peak memory of `krlkit parse` and `krlkit check` on a large file stays a multiple of the file
+//! (the outline parse keeps no tree; `--tree` streams its JSON; `check` never holds the tree,
+//! the formatter's lines and the AST at once). Measured as the child's peak RSS.
 //! The figures for 50 MB release builds come from `cargo bench --bench memory`.
 
 #![cfg(target_os = "linux")]
@@ -67,4 +68,25 @@ fn parse_keeps_memory_near_the_file_size() {
     // Before streaming: the JSON was built in memory, 29x the file.
     let tree = peak_rss(&["parse", "--tree", "big.src"], dir.path()).saturating_sub(base);
     assert!(tree < 14 * size as u64, "parse --tree: {} MB", tree >> 20);
+}
+
+#[test]
+fn check_keeps_memory_near_the_file_size() {
+    let dir = tempfile::tempdir().unwrap();
+    let size = 4 << 20;
+    std::fs::write(dir.path().join("big.src"), big_program(size)).unwrap();
+    std::fs::write(dir.path().join("blank.src"), "\n".repeat(size)).unwrap();
+    let base = peak_rss(&["rules"], dir.path());
+    // Before: 38x the file (a second parse for KRL005 beside the AST, statement vectors grown
+    // by doubling) and 100x for blank lines (the formatter's line list).
+    for (file, factor) in [("big.src", 32), ("blank.src", 64)] {
+        let check = peak_rss(&["check", file], dir.path()).saturating_sub(base);
+        eprintln!("check {file}: {} MB", check >> 20);
+        assert!(
+            check < factor * size as u64,
+            "check {file}: {} MB above base for a {} MB file",
+            check >> 20,
+            size >> 20
+        );
+    }
 }

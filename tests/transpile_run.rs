@@ -898,10 +898,11 @@ fn vision_variants_run_like_the_krl_original() {
 fn every_fixture_runs_or_stops_at_a_located_error() {
     // Translated as they are (TR001 lines stay comments), with no vision server: the AS either
     // runs to its end or fails with the file and line of the statement that cannot run.
-    let expected: [(&str, &str); 13] = [
+    let expected: [(&str, &str); 14] = [
         ("bin_pick", "bin_pick.as:21: SWAIT 1003,-1005 still waiting"),
         ("control", "done"),
         ("depal_plan", "PAUSE at depal_plan.as:19"),
+        ("dup_params", "done"),
         ("flexiv_pick", "flexiv_pick.as:12: SWAIT 1001 still waiting"),
         (
             "gripper_check",

@@ -249,20 +249,20 @@ pub struct TranspileArgs {
     /// port n-1 by default).
     #[arg(long, allow_negative_numbers = true)]
     pub output_offset: Option<i64>,
-    /// Kawasaki: $FLAG[n] becomes internal signal FLAG_OFFSET+n.
-    #[arg(long, default_value_t = 2000, allow_negative_numbers = true)]
-    pub flag_offset: i64,
-    /// Flexiv: the RDK version whose Python API the script uses (1.6 to 1.9).
-    #[arg(long, value_name = "VERSION", default_value = "1.6")]
-    pub rdk: String,
-    /// Flexiv: the robot's serial number (default: the script reads it from its first argument
-    /// or FLEXIV_ROBOT_SN).
+    /// Kawasaki only: $FLAG[n] becomes internal signal FLAG_OFFSET+n (default 2000).
+    #[arg(long, allow_negative_numbers = true)]
+    pub flag_offset: Option<i64>,
+    /// Flexiv only: the RDK version whose Python API the script uses, 1.6 to 1.9 (default 1.6).
+    #[arg(long, value_name = "VERSION")]
+    pub rdk: Option<String>,
+    /// Flexiv only: the robot's serial number (default: the script reads it from its first
+    /// argument or FLEXIV_ROBOT_SN).
     #[arg(long, value_name = "SN")]
     pub serial: Option<String>,
-    /// Flexiv: what PTP to a Cartesian pose becomes: MoveL (a straight line, reported) or
-    /// MovePTP (if the robot's software has it).
-    #[arg(long, value_enum, default_value_t = PtpPrimitive::Movel)]
-    pub ptp: PtpPrimitive,
+    /// Flexiv only: what PTP to a Cartesian pose becomes: MoveL (a straight line, reported;
+    /// the default) or MovePTP (if the robot's software has it).
+    #[arg(long, value_enum)]
+    pub ptp: Option<PtpPrimitive>,
     /// Flexiv: KUKA axes to the Rizon's seven joints, e.g. A1,A2,0,A3,A4,A5,A6 (A1..A6 or a
     /// fixed angle in degrees per joint); without it PTP to axis values is not translated.
     #[arg(long, value_name = "MAP")]

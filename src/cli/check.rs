@@ -1,20 +1,22 @@
 //! `krlkit check PATH... [--format …] [--eki-xml FILE] [--config FILE]`.
 //!
-//! Files are found and read in parallel, linted together as one program tree, then rendered in
-//! input order. An unreadable file or a bad config is named on stderr and gives exit 2; the files
-//! that could be read are still checked and reported.
+//! Files are found and read in parallel (folders walked, KUKA backup `.zip`s read in place),
+//! linted together as one workspace, then rendered in input order. An unreadable file, a corrupt
+//! archive or a bad config is named on stderr and gives exit 2; the files that could be read are
+//! still checked and reported. The summary line names the files, modules and routines read and
+//! the KSS version of a backup's `am.ini`.
 
 use std::io::Write;
 use std::path::{Path, PathBuf};
 
 use anyhow::Context;
-use rayon::prelude::*;
 
 use super::Outcome;
 use super::args::{CheckArgs, CheckFormat};
 use crate::diag::{FileReport, Severity, render};
 use crate::files;
-use crate::lint::{self, EkiChannel, Input, LintConfig};
+use crate::lint::{self, EkiChannel, LintConfig};
+use crate::sema::{SourceKind, Workspace, WorkspaceFile};
 
 pub fn run(args: CheckArgs) -> anyhow::Result<Outcome> {
     let config = match load_config(args.config.as_deref()) {
@@ -33,35 +35,30 @@ pub fn run(args: CheckArgs) -> anyhow::Result<Outcome> {
     };
 
     let (paths, stdin) = files::split_stdin(&args.paths);
-    let walk = files::walk(&paths);
-    for s in &walk.skipped {
+    // Folders, files and backup archives (read in place), one workspace source per path.
+    let mut ws = Workspace::load(&paths);
+    for s in &ws.skipped {
         eprintln!("warning: {s}");
     }
     if super::ui::verbose() {
-        for c in &walk.found {
-            eprintln!("checking {}", c.path.display());
+        for f in &ws.files {
+            eprintln!("checking {}", f.path);
         }
     }
-    let walk_errors = walk.errors;
-    let loaded: Vec<_> = walk
-        .found
-        .par_iter()
-        .map(|c| files::load(c).map(|d| d.map(|d| (c.path.display().to_string(), d.text))))
-        .collect();
-    let mut failed = !walk_errors.is_empty();
-    for e in &walk_errors {
+    let mut failed = !ws.errors.is_empty();
+    for e in &ws.errors {
         eprintln!("error: cannot read {e}");
     }
-    let mut inputs = Vec::new();
     if stdin {
         let name = args
             .stdin_filename
             .clone()
             .unwrap_or_else(|| "<stdin>".into());
         match files::read_stdin() {
-            Ok(d) => inputs.push(Input {
+            Ok(d) => ws.files.push(WorkspaceFile {
                 path: name,
                 text: d.text,
+                group: paths.len() as u32,
             }),
             Err(e) => {
                 eprintln!("error: cannot read stdin: {e}");
@@ -69,23 +66,51 @@ pub fn run(args: CheckArgs) -> anyhow::Result<Outcome> {
             }
         }
     }
-    for result in loaded {
-        match result {
-            Ok(Some((path, text))) => inputs.push(Input { path, text }),
-            Ok(None) => {}
-            Err(e) => {
-                eprintln!("error: cannot read {e}");
-                failed = true;
-            }
-        }
-    }
-
-    let mut reports = lint::lint(inputs, channels.clone(), channels_given, &config);
+    // Files read from an archive are not written back by --fix.
+    let archived: Vec<u32> = ws
+        .sources
+        .iter()
+        .enumerate()
+        .filter(|(_, s)| s.kind == SourceKind::Archive)
+        .map(|(g, _)| g as u32)
+        .collect();
+    let groups: std::collections::HashMap<String, u32> =
+        ws.files.iter().map(|f| (f.path.clone(), f.group)).collect();
+    let am_ini = ws.am_ini.clone();
+    let mut outcome = lint::lint_workspace(ws, channels.clone(), channels_given, &config);
     if args.fix {
-        let fixed = super::fix::apply(&reports);
+        let in_archive = |r: &FileReport| groups.get(&r.path).is_some_and(|g| archived.contains(g));
+        if outcome.reports.iter().any(in_archive) {
+            eprintln!("warning: files inside an archive are not fixed (unpack it to fix them)");
+        }
+        let fixable: Vec<FileReport> = outcome
+            .reports
+            .iter()
+            .map(|r| {
+                let mut r = r.clone();
+                if in_archive(&r) {
+                    r.diagnostics.retain(|d| d.fix.is_none());
+                }
+                r
+            })
+            .collect();
+        let fixed = super::fix::apply(&fixable);
         failed |= fixed.failed;
         if fixed.applied > 0 {
-            reports = lint::lint(fixed.inputs, channels, channels_given, &config);
+            let ws = Workspace {
+                files: fixed
+                    .inputs
+                    .into_iter()
+                    .map(|i| WorkspaceFile {
+                        group: groups.get(&i.path).copied().unwrap_or(0),
+                        path: i.path,
+                        text: i.text,
+                    })
+                    .collect(),
+                am_ini,
+                ..Workspace::default()
+            };
+            outcome = lint::lint_workspace(ws, channels, channels_given, &config);
         }
         eprintln!(
             "fixed {} finding{} in {} file{}{}",
@@ -99,20 +124,21 @@ pub fn run(args: CheckArgs) -> anyhow::Result<Outcome> {
             }
         );
     }
+    let reports = &outcome.reports;
     let errors: usize = reports.iter().map(|r| r.count(Severity::Error)).sum();
     let warnings: usize = reports.iter().map(|r| r.count(Severity::Warning)).sum();
     let mut out = String::new();
     match args.format {
         CheckFormat::Human => {
             let renderer = super::ui::renderer(true);
-            for r in &reports {
+            for r in reports {
                 render::human::render_with(r, &mut out, &renderer);
             }
         }
-        CheckFormat::Concise => each(&reports, &mut out, render::concise::render),
-        CheckFormat::Github => each(&reports, &mut out, render::github::render),
-        CheckFormat::Json => out = render::json::render(&reports) + "\n",
-        CheckFormat::Sarif => out = render::sarif::render(&reports) + "\n",
+        CheckFormat::Concise => each(reports, &mut out, render::concise::render),
+        CheckFormat::Github => each(reports, &mut out, render::github::render),
+        CheckFormat::Json => out = render::json::render(reports) + "\n",
+        CheckFormat::Sarif => out = render::sarif::render(reports) + "\n",
     }
     std::io::stdout().lock().write_all(out.as_bytes())?;
     if args.format == CheckFormat::Human && !super::ui::quiet() {
@@ -120,9 +146,21 @@ pub fn run(args: CheckArgs) -> anyhow::Result<Outcome> {
         if files == 0 && !failed {
             eprintln!("warning: no KRL files found");
         }
+        if let Some(note) = outcome.incomplete_note() {
+            eprintln!("note: {note}");
+        }
+        let stats = outcome.stats;
+        let kss = outcome
+            .kss_version()
+            .map(|v| format!("; KSS {v}"))
+            .unwrap_or_default();
         eprintln!(
-            "{files} file{} checked: {errors} error{}, {warnings} warning{}",
+            "{files} file{} checked ({} module{}, {} routine{}{kss}): {errors} error{}, {warnings} warning{}",
             plural(files),
+            stats.modules,
+            plural(stats.modules),
+            stats.routines,
+            plural(stats.routines),
             plural(errors),
             plural(warnings)
         );

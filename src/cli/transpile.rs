@@ -35,6 +35,10 @@ pub fn run(mut args: TranspileArgs) -> anyhow::Result<Outcome> {
         TranspileTarget::Kawasaki => Target::Kawasaki,
         TranspileTarget::Flexiv => Target::Flexiv,
     };
+    if let Some(msg) = foreign_option(&args) {
+        eprintln!("error: {msg}");
+        return Ok(Outcome::Failure);
+    }
     let flexiv = match flexiv_options(&args) {
         Ok(f) => f,
         Err(msg) => {
@@ -76,7 +80,7 @@ pub fn run(mut args: TranspileArgs) -> anyhow::Result<Outcome> {
         signals: SignalMap {
             output_offset: args.output_offset.unwrap_or(defaults.output_offset),
             input_offset: args.input_offset.unwrap_or(defaults.input_offset),
-            flag_offset: args.flag_offset,
+            flag_offset: args.flag_offset.unwrap_or(defaults.flag_offset),
         },
         flexiv,
         ..Options::default()
@@ -138,12 +142,39 @@ pub fn run(mut args: TranspileArgs) -> anyhow::Result<Outcome> {
     })
 }
 
-/// The Flexiv backend's options from the arguments (checked also for `--to kawasaki`, so a
-/// typo is never silently ignored).
+/// An option given for the other target: refused, because a user who passes it expects it to
+/// change the output and it would silently change nothing.
+fn foreign_option(args: &TranspileArgs) -> Option<String> {
+    let (given, target, other): (&[(&str, bool)], _, _) = match args.to {
+        TranspileTarget::Kawasaki => (
+            &[
+                ("--rdk", args.rdk.is_some()),
+                ("--serial", args.serial.is_some()),
+                ("--ptp", args.ptp.is_some()),
+            ],
+            "kawasaki",
+            "flexiv",
+        ),
+        TranspileTarget::Flexiv => (
+            &[("--flag-offset", args.flag_offset.is_some())],
+            "flexiv",
+            "kawasaki",
+        ),
+    };
+    let (flag, _) = given.iter().find(|(_, set)| *set)?;
+    Some(format!(
+        "{flag} applies to `--to {other}` only; it has no effect with `--to {target}` (remove it)"
+    ))
+}
+
+/// The Flexiv backend's options from the arguments.
 fn flexiv_options(args: &TranspileArgs) -> Result<FlexivOptions, String> {
     let mut f = FlexivOptions {
-        rdk: args.rdk.parse::<RdkVersion>()?,
-        ptp: match args.ptp {
+        rdk: match &args.rdk {
+            Some(v) => v.parse::<RdkVersion>()?,
+            None => RdkVersion::default(),
+        },
+        ptp: match args.ptp.unwrap_or(PtpPrimitive::Movel) {
             PtpPrimitive::Movel => flexiv::PtpPrimitive::MoveL,
             PtpPrimitive::Moveptp => flexiv::PtpPrimitive::MovePtp,
         },

@@ -43,7 +43,7 @@ mod verify;
 
 pub use fix::{Applied, apply_safe_fixes};
 pub use options::{Case, FmtOptions, Spacing};
-pub use verify::{Equivalence, case_edits, check_equivalent};
+pub use verify::{Equivalence, case_edits, case_edits_in, check_equivalent};
 
 use crate::diag::{Edit, Span};
 use crate::syntax::{Parse, parse};

@@ -92,10 +92,15 @@ fn same(a_text: &str, a: &Tok, b_text: &str, b: &Tok) -> bool {
 /// Token edits that upper-case the keywords, built-in types and built-ins of every line the
 /// formatter may touch (protected lines are left alone), in order.
 pub fn case_edits(text: &str) -> Vec<Edit> {
-    let parsed = parse(text);
+    case_edits_in(text, &parse(text))
+}
+
+/// [`case_edits`] of a file already parsed (`check` computes them from the tree it lowers,
+/// before the AST exists, rather than parsing the file a second time).
+pub fn case_edits_in(text: &str, parsed: &Parse) -> Vec<Edit> {
     let opts = FmtOptions::default();
     let mut lines = Vec::new();
-    layout::lines(text, &parsed, false, &mut lines);
+    layout::code_lines(text, parsed, &mut lines);
     let mut renderer = Renderer::default();
     let mut edits = Vec::new();
     for line in lines.iter().filter(|l| !l.protected) {

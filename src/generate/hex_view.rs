@@ -26,6 +26,24 @@ pub struct HexCase {
     pub lines: Vec<String>,
 }
 
+/// The INT locals `MM_Parse_Hex` declares: `Cmd`, and `N` / `K` when a case uses them.
+pub fn parse_locals(cases: &[HexCase]) -> &'static str {
+    let lines = || {
+        cases
+            .iter()
+            .flat_map(|c| c.lines.iter())
+            .map(|l| l.trim_start())
+    };
+    let n = lines().any(|l| l.starts_with("N = "));
+    let k = lines().any(|l| l.starts_with("FOR K = "));
+    match (n, k) {
+        (true, true) => "Cmd, N, K",
+        (true, false) => "Cmd, N",
+        (false, true) => "Cmd, K",
+        (false, false) => "Cmd",
+    }
+}
+
 fn kind_arg(name: &str) -> u32 {
     match catalog().hex.kind(name) {
         Some(HexKind::Float32) => KIND_REAL,

@@ -78,6 +78,9 @@ pub struct Package {
     pub big_endian: bool,
     /// HEX: the reply decoder, one case per reply layout of the commands the routines send.
     pub hex_cases: Vec<HexCase>,
+    /// HEX: the INT locals of `MM_Parse_Hex` (`N`, `K` only when a case uses them: an unused
+    /// local is a KRL016 finding in the generated package).
+    pub hex_parse_locals: &'static str,
     /// Fields of a HEX frame (frame bytes / 4).
     pub frame_fields: u32,
     /// Commands whose reply has no status field (601): MM_Exchange returns 0 for them.
@@ -177,6 +180,11 @@ impl Package {
             .collect();
         no_status_cmds.sort_unstable();
         no_status_cmds.dedup();
+        let hex_cases = if hex {
+            hex_view::decoder(&sent, iface, spec.receive_size())
+        } else {
+            Vec::new()
+        };
         let package_codes = cat
             .statuses
             .iter()
@@ -202,11 +210,8 @@ impl Package {
             v2: iface == Interface::V2,
             hex,
             big_endian: spec.codec == crate::spec::Codec::HexBe,
-            hex_cases: if hex {
-                hex_view::decoder(&sent, iface, spec.receive_size())
-            } else {
-                Vec::new()
-            },
+            hex_parse_locals: hex_view::parse_locals(&hex_cases),
+            hex_cases,
             frame_fields,
             no_status_cmds,
             tx_fields: MAX_REQUEST_FIELDS,
@@ -275,6 +280,7 @@ pub fn assumptions(spec: &Spec) -> Vec<String> {
     }
     if spec.interface == Interface::V2 {
         out.push("[U] 2.x interface: signatures from a public note compiled from Mech-Mind's 2.2.1 KUKA page (the vendor page itself was not read); MM_Get_VisData, MM_Get_VizData and MM_Get_VisPath repeat their command until the server reports all sent".into());
+        out.push("[U] 2.x status codes: the 2.x table (codes that exist or mean something else only in 2.x) is the same note's copy of the vendor's 2.2.1 status page; the package passes them on as the server sends them".into());
     }
     out.extend([
         "[U] flange pose = $BASE:$POS_ACT:INV_POS($TOOL), i.e. in WORLD (equal to ROBROOT on a fixed robot)".into(),
@@ -311,6 +317,15 @@ pub fn routine_assumptions(spec: &Spec) -> Vec<String> {
     for c in commands {
         if let Some(a) = cat.command_in(iface, c).and_then(|c| c.assumption.as_ref()) {
             out.push(format!("[U] command {c}: {a}"));
+        }
+    }
+    // The package's own codes are krlkit's decisions, listed with their meaning above.
+    for s in cat
+        .statuses_of(iface)
+        .filter(|s| s.origin != crate::catalog::Origin::Package)
+    {
+        if let Some(a) = &s.assumption {
+            out.push(format!("[U] status {}: {a}", s.code));
         }
     }
     out

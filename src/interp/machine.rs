@@ -565,13 +565,14 @@ impl<'p> Machine<'p> {
             for d in &dat.definitions {
                 if let Definition::Signal(sig) = d {
                     self.loc = (mi, sig.span.start);
-                    let scope = m.scope.clone();
-                    self.declare_dat_signal(sig, &scope)?;
+                    let scope = (!sig.global && !m.config).then(|| m.scope.clone());
+                    self.declare_dat_signal(sig, scope.as_deref())?;
                 }
             }
             for d in &dat.decls {
                 self.loc = (mi, d.span.start);
-                let global = d.global;
+                // `$config.dat`'s declarations are visible everywhere, GLOBAL or not.
+                let global = d.global || m.config;
                 let scope = m.scope.clone();
                 self.declare(
                     d,

@@ -1,21 +1,26 @@
-//! Loading: the program file, its .dat and every package file, parsed once, with a routine
-//! registry and the type table built from all of them.
+//! Loading: the program file, its .dat and every package file, parsed once and modelled by
+//! `sema` (which `.src` and `.dat` form one module, which data list is `$config.dat`), with a
+//! routine registry and the type table built from all of them and the KSS environment.
 
 use std::collections::HashMap;
 
 use crate::diag::LineIndex;
-use crate::syntax::ast::{Definition, SourceFile, StmtKind};
+use crate::sema::{Analysis, FileId};
+use crate::syntax::ast::{Definition, EnumDecl, SourceFile, StmtKind, StrucDecl};
 
 use super::RuntimeError;
-use super::value::{BaseType, StrucDef, Types};
+use super::value::{BaseType, Types};
 
 /// One loaded file.
 #[derive(Debug)]
 pub struct Module {
     /// Display name used in error locations (usually the path).
     pub name: String,
-    /// Upper-case file stem: a `.src` and its `.dat` share it and form one scope.
+    /// The module's name (upper case), unique among the loaded modules: a `.src` and its `.dat`
+    /// share it when the model pairs them (one name in one folder).
     pub scope: String,
+    /// `$config.dat`: its declarations are visible everywhere, GLOBAL or not.
+    pub config: bool,
     pub text: String,
     pub lines: LineIndex,
     pub ast: SourceFile,
@@ -38,39 +43,58 @@ pub struct Program {
     pub(crate) local_routines: HashMap<(String, String), (usize, usize)>,
 }
 
-fn scope_of(name: &str) -> String {
-    let file = name.rsplit(['/', '\\']).next().unwrap_or(name);
-    let stem = file.split('.').next().unwrap_or(file);
-    stem.to_ascii_uppercase()
-}
-
 impl Program {
     /// Parse `(name, text)` files. A file with syntax errors is refused with its first error.
     pub fn load(files: Vec<(String, String)>) -> Result<Program, RuntimeError> {
+        let analysis = Analysis::new(files);
+        let sema = &analysis.sema;
+        // One scope name per model module; a second module of one name (another folder) is
+        // told apart by its folder.
+        let mut scope_names: HashMap<crate::sema::ModuleId, String> = HashMap::new();
+        let mut taken: HashMap<String, crate::sema::ModuleId> = HashMap::new();
+        for (i, f) in analysis.files.iter().enumerate() {
+            let info = sema.file(FileId(i as u32));
+            if scope_names.contains_key(&info.module) {
+                continue;
+            }
+            let name = sema
+                .name(sema.module(info.module).name)
+                .to_ascii_uppercase();
+            let unique = match taken.get(&name) {
+                Some(other) if *other != info.module => {
+                    let dir = f.path.rsplit_once(['/', '\\']).map_or("", |(d, _)| d);
+                    format!("{}/{name}", dir.to_ascii_uppercase())
+                }
+                _ => name,
+            };
+            taken.entry(unique.clone()).or_insert(info.module);
+            scope_names.insert(info.module, unique);
+        }
         let mut modules = Vec::new();
-        for (name, text) in files {
-            let parse = crate::syntax::parse(&text);
-            let lines = LineIndex::new(&text);
-            if let Some(d) = parse.diagnostics.first() {
+        for (i, f) in analysis.files.into_iter().enumerate() {
+            let lines = LineIndex::new(&f.text);
+            if let Some(d) = f.syntax_errors.first() {
                 return Err(RuntimeError {
-                    file: name.clone(),
+                    file: f.path,
                     line: lines.line_of(d.span.start as usize) + 1,
                     message: format!("syntax error: {}", d.message),
                 });
             }
-            let ast = parse.ast(&text);
+            let info = analysis.sema.file(FileId(i as u32));
             modules.push(Module {
-                scope: scope_of(&name),
-                name,
-                text,
+                scope: scope_names[&info.module].clone(),
+                config: info.is_config,
+                name: f.path,
+                text: f.text,
                 lines,
-                ast,
+                ast: f.ast,
             });
         }
         let mut types = Types::builtin();
         let mut global_routines = HashMap::new();
         let mut local_routines = HashMap::new();
-        let mut defs: Vec<&Definition> = Vec::new();
+        // Every ENUM and STRUC with the module it is written in.
+        let mut defs: Vec<(usize, &Definition)> = Vec::new();
         for (mi, m) in modules.iter().enumerate() {
             for (ri, r) in m.ast.routines.iter().enumerate() {
                 let key = r.name.key();
@@ -81,78 +105,35 @@ impl Program {
                 if r.global || ri == 0 {
                     global_routines.entry(key).or_insert((mi, ri));
                 }
-                defs.extend(r.definitions.iter());
-                defs.extend(body_definitions(&r.body));
+                defs.extend(r.definitions.iter().map(|d| (mi, d)));
+                defs.extend(body_definitions(&r.body).into_iter().map(|d| (mi, d)));
             }
             if let Some(dat) = &m.ast.dat {
-                defs.extend(dat.definitions.iter());
+                defs.extend(dat.definitions.iter().map(|d| (mi, d)));
             }
         }
-        // ENUMs first so STRUC fields can name them.
-        for d in &defs {
-            if let Definition::Enum(e) = d {
-                types
-                    .enums
-                    .insert(e.name.key(), e.values.iter().map(|v| v.key()).collect());
-            }
-        }
-        let strucs: Vec<_> = defs
+        let enums: Vec<&EnumDecl> = defs
             .iter()
-            .filter_map(|d| match d {
-                Definition::Struc(s) => Some(s),
+            .filter_map(|(_, d)| match d {
+                Definition::Enum(e) => Some(e),
                 _ => None,
             })
             .collect();
-        // Register names before fields so STRUCs may nest in any order.
-        for s in &strucs {
-            types.strucs.entry(s.name.key()).or_insert(StrucDef {
-                name: s.name.key(),
-                fields: vec![],
-            });
-        }
-        for s in &strucs {
-            let mut fields = Vec::new();
-            for f in &s.fields {
-                let ty = types.base_type(&f.ty.text).ok_or_else(|| {
-                    let m = modules.iter().find(|m| {
-                        m.text
-                            .get(s.span.start as usize..s.span.end as usize)
-                            .is_some_and(|t| t.contains(f.ty.text.as_str()))
-                    });
-                    RuntimeError {
-                        file: m.map(|m| m.name.clone()).unwrap_or_default(),
-                        line: m.map(|m| m.line_of(s.span.start)).unwrap_or(0),
-                        message: format!("unknown type `{}` in STRUC {}", f.ty.text, s.name.text),
-                    }
-                })?;
-                let mut dims = Vec::new();
-                for d in &f.dims {
-                    match d.as_ref().map(|e| &e.kind) {
-                        Some(crate::syntax::ast::ExprKind::Int(n)) if *n > 0 => {
-                            dims.push(*n as usize)
-                        }
-                        _ => {
-                            return Err(RuntimeError {
-                                file: String::new(),
-                                line: 0,
-                                message: format!(
-                                    "STRUC {}: field {} needs a constant dimension",
-                                    s.name.text, f.name.text
-                                ),
-                            });
-                        }
-                    }
-                }
-                fields.push((f.name.text.to_string(), ty, dims));
+        let (strucs, struc_modules): (Vec<&StrucDecl>, Vec<usize>) = defs
+            .iter()
+            .filter_map(|(mi, d)| match d {
+                Definition::Struc(s) => Some((s, *mi)),
+                _ => None,
+            })
+            .unzip();
+        types.define(&enums, &strucs).map_err(|(i, message)| {
+            let m = &modules[struc_modules[i]];
+            RuntimeError {
+                file: m.name.clone(),
+                line: m.line_of(strucs[i].span.start),
+                message,
             }
-            types.strucs.insert(
-                s.name.key(),
-                StrucDef {
-                    name: s.name.key(),
-                    fields,
-                },
-            );
-        }
+        })?;
         Ok(Program {
             modules,
             types,

@@ -2,6 +2,9 @@
 
 use std::collections::HashMap;
 
+use crate::sema::env::EnvTypeDecl;
+use crate::syntax::ast::{EnumDecl, ExprKind, StrucDecl};
+
 /// KRL's INT range (32-bit two's complement).
 pub const INT_MIN: i64 = i32::MIN as i64;
 pub const INT_MAX: i64 = i32::MAX as i64;
@@ -165,173 +168,80 @@ pub struct Types {
 
 const FRAME6: [&str; 6] = ["X", "Y", "Z", "A", "B", "C"];
 const AXES: [&str; 6] = ["A1", "A2", "A3", "A4", "A5", "A6"];
-const EXT: [&str; 6] = ["E1", "E2", "E3", "E4", "E5", "E6"];
 
 impl Types {
+    /// The KSS environment's STRUC and ENUM types, as `kss.toml` (`sema::env`) writes them.
     pub fn builtin() -> Types {
         let mut t = Types::default();
-        let reals = |names: &[&str]| -> Vec<(String, BaseType, Vec<usize>)> {
-            names
-                .iter()
-                .map(|n| (n.to_string(), BaseType::Real, vec![]))
-                .collect()
-        };
-        let ints = |names: &[&str]| -> Vec<(String, BaseType, Vec<usize>)> {
-            names
-                .iter()
-                .map(|n| (n.to_string(), BaseType::Int, vec![]))
-                .collect()
-        };
-        let mut add = |name: &str, fields: Vec<(String, BaseType, Vec<usize>)>| {
-            t.strucs.insert(
-                name.into(),
+        let env = crate::sema::env();
+        let mut enums = Vec::new();
+        let mut strucs = Vec::new();
+        for ty in &env.types {
+            match &ty.decl {
+                EnvTypeDecl::Enum(e) => enums.push(e),
+                EnvTypeDecl::Struc(s) => strucs.push(s),
+            }
+        }
+        let defined = t.define(&enums, &strucs);
+        debug_assert!(defined.is_ok(), "kss.toml types: {defined:?}");
+        t
+    }
+
+    /// Add ENUM and STRUC definitions (replacing built-ins of the same name). On a field whose
+    /// type is unknown or whose dimension is not a positive literal: the index of its STRUC in
+    /// `strucs` and the message.
+    pub fn define(
+        &mut self,
+        enums: &[&EnumDecl],
+        strucs: &[&StrucDecl],
+    ) -> Result<(), (usize, String)> {
+        // ENUMs first so STRUC fields can name them.
+        for e in enums {
+            self.enums
+                .insert(e.name.key(), e.values.iter().map(|v| v.key()).collect());
+        }
+        // Register names before fields so STRUCs may nest in any order.
+        for s in strucs {
+            self.strucs.entry(s.name.key()).or_insert(StrucDef {
+                name: s.name.key(),
+                fields: vec![],
+            });
+        }
+        for (i, s) in strucs.iter().enumerate() {
+            let mut fields = Vec::new();
+            for f in &s.fields {
+                let ty = self.base_type(&f.ty.text).ok_or_else(|| {
+                    (
+                        i,
+                        format!("unknown type `{}` in STRUC {}", f.ty.text, s.name.text),
+                    )
+                })?;
+                let mut dims = Vec::new();
+                for d in &f.dims {
+                    match d.as_ref().map(|e| &e.kind) {
+                        Some(ExprKind::Int(n)) if *n > 0 => dims.push(*n as usize),
+                        _ => {
+                            return Err((
+                                i,
+                                format!(
+                                    "STRUC {}: field {} needs a constant dimension",
+                                    s.name.text, f.name.text
+                                ),
+                            ));
+                        }
+                    }
+                }
+                fields.push((f.name.text.to_string(), ty, dims));
+            }
+            self.strucs.insert(
+                s.name.key(),
                 StrucDef {
-                    name: name.into(),
+                    name: s.name.key(),
                     fields,
                 },
             );
-        };
-        add("FRAME", reals(&FRAME6));
-        let mut pos = reals(&FRAME6);
-        pos.extend(ints(&["S", "T"]));
-        add("POS", pos.clone());
-        let mut e6pos = pos;
-        e6pos.extend(reals(&EXT));
-        add("E6POS", e6pos);
-        add("AXIS", reals(&AXES));
-        let mut e6axis = reals(&AXES);
-        e6axis.extend(reals(&EXT));
-        add("E6AXIS", e6axis);
-        let mut eki = ints(&["Buff", "Read", "Msg_No"]);
-        eki.push(("Connected".into(), BaseType::Bool, vec![]));
-        eki.extend(ints(&["Counter"]));
-        add("EKI_STATUS", eki);
-        add(
-            "STATE_T",
-            vec![
-                ("RET1".into(), BaseType::Enum("CMD_STAT".into()), vec![]),
-                ("HITS".into(), BaseType::Int, vec![]),
-                ("LENGTH".into(), BaseType::Int, vec![]),
-            ],
-        );
-        add("VEL_CP_T", reals(&["CP", "ORI1", "ORI2"]));
-        add("APO_T", reals(&["CDIS", "CPTP", "CORI", "CVEL"]));
-        // Motion data of the inline forms (`PDAT_ACT = PDEFAULT`, `FDAT_ACT = FHOME`, ...).
-        let en = |field: &str, ty: &str| (field.to_string(), BaseType::Enum(ty.into()), vec![]);
-        let mut pdat = reals(&["VEL", "ACC", "APO_DIST"]);
-        pdat.push(en("APO_MODE", "APO_MODE_T"));
-        pdat.extend(reals(&["GEAR_JERK"]));
-        pdat.extend(ints(&["EXAX_IGN"]));
-        add("PDAT", pdat);
-        let mut ldat = reals(&["VEL", "ACC", "APO_DIST", "APO_FAC", "AXIS_VEL", "AXIS_ACC"]);
-        ldat.push(en("ORI_TYP", "ORI_TYPE"));
-        ldat.push(en("CIRC_TYP", "CIRC_TYPE"));
-        ldat.extend(reals(&["JERK_FAC", "GEAR_JERK"]));
-        ldat.extend(ints(&["EXAX_IGN"]));
-        add("LDAT", ldat);
-        let mut fdat = ints(&["TOOL_NO", "BASE_NO"]);
-        fdat.push(en("IPO_FRAME", "IPO_MODE"));
-        fdat.push(("POINT2".into(), BaseType::Char, vec![24]));
-        fdat.push(("TQ_STATE".into(), BaseType::Bool, vec![]));
-        add("FDAT", fdat);
-        // The inline forms' record of the last motion's parameters (every template .dat has one).
-        let text = |names: &[&str]| -> Vec<(String, BaseType, Vec<usize>)> {
-            names
-                .iter()
-                .map(|n| (n.to_string(), BaseType::Char, vec![24]))
-                .collect()
-        };
-        add(
-            "BASIS_SUGG_T",
-            text(&[
-                "POINT1",
-                "POINT2",
-                "CP_PARAMS",
-                "PTP_PARAMS",
-                "CONT",
-                "CP_VEL",
-                "PTP_VEL",
-                "SYNC_PARAMS",
-                "SPL_NAME",
-                "A_PARAMS",
-            ]),
-        );
-        // User messages (KUKA's KrlMsg interface: Set_KrlMsg, Set_KrlDlg, ...).
-        let chars = |name: &str, n: usize| (name.to_string(), BaseType::Char, vec![n]);
-        add(
-            "KRLMSG_T",
-            vec![
-                chars("MODUL", 24),
-                ("NR".into(), BaseType::Int, vec![]),
-                chars("MSG_TXT", 80),
-            ],
-        );
-        add(
-            "KRLMSGPAR_T",
-            vec![
-                en("PAR_TYPE", "KRLMSGPARTYPE_T"),
-                chars("PAR_TXT", 26),
-                ("PAR_INT".into(), BaseType::Int, vec![]),
-                ("PAR_REAL".into(), BaseType::Real, vec![]),
-                ("PAR_BOOL".into(), BaseType::Bool, vec![]),
-            ],
-        );
-        add(
-            "KRLMSGOPT_T",
-            ["VL_STOP", "CLEAR_P_RESET", "CLEAR_P_SAW", "LOG_TO_DB"]
-                .iter()
-                .map(|n| (n.to_string(), BaseType::Bool, vec![]))
-                .collect(),
-        );
-        add(
-            "KRLMSGDLGSK_T",
-            vec![en("SK_TYPE", "KRLMSGPARTYPE_T"), chars("SK_TXT", 10)],
-        );
-        add("INERTIA", reals(&["X", "Y", "Z"]));
-        add("JERK_STRUC", reals(&["CP", "ORI"]));
-        add(
-            "LOAD",
-            vec![
-                ("M".into(), BaseType::Real, vec![]),
-                ("CM".into(), BaseType::Struc("FRAME".into()), vec![]),
-                ("J".into(), BaseType::Struc("INERTIA".into()), vec![]),
-            ],
-        );
-        for (name, values) in [
-            ("APO_MODE_T", &["CDIS", "CPTP"][..]),
-            ("ORI_TYPE", &["VAR", "CONSTANT", "JOINT"][..]),
-            ("CIRC_TYPE", &["BASE", "PATH"][..]),
-            ("IPO_MODE", &["BASE", "TCP"][..]),
-            ("MODE_OP", &["T1", "T2", "AUT", "EX", "INVALID"][..]),
-            ("KRLMSGPARTYPE_T", &["VALUE", "KEY", "EMPTY"][..]),
-            ("VAR_STATE", &["DECLARED", "INITIALIZED", "UNKNOWN"][..]),
-            (
-                "EKRLMSGTYPE",
-                &["NOTIFY", "STATE", "QUIT", "WAITING", "DIALOG"][..],
-            ),
-        ] {
-            t.enums
-                .insert(name.into(), values.iter().map(|s| s.to_string()).collect());
         }
-        t.enums.insert(
-            "CMD_STAT".into(),
-            [
-                "CMD_OK",
-                "CMD_TIMEOUT",
-                "DATA_OK",
-                "DATA_BLK",
-                "DATA_END",
-                "CMD_ABORT",
-                "CMD_REJ",
-                "CMD_SYN",
-                "DATA_TYP",
-                "FMT_ERR",
-            ]
-            .iter()
-            .map(|s| s.to_string())
-            .collect(),
-        );
-        t
+        Ok(())
     }
 
     pub fn base_type(&self, name: &str) -> Option<BaseType> {

@@ -1,15 +1,19 @@
-//! The `[lint]` section of `krlkit.toml`: rules to disable and severity overrides.
+//! The `[lint]` section of `krlkit.toml`: rules to disable, severity overrides, and the
+//! Mech-Mind interface version calls are checked against.
 //!
 //! ```toml
 //! [lint]
 //! disable = ["MM008"]
+//! interface = "2.x"
 //! [lint.severity]
 //! MM011 = "error"
 //! ```
-//! Other sections belong to other stages and are ignored here.
+//! A spec's top-level `interface` key (the package the same `krlkit.toml` generates) counts too,
+//! `[lint] interface` first. Other sections belong to other stages and are ignored here.
 
 use std::collections::{HashMap, HashSet};
 
+use crate::catalog::Interface;
 use crate::diag::Severity;
 
 use super::registry;
@@ -18,6 +22,9 @@ use super::registry;
 pub struct LintConfig {
     pub disabled: HashSet<&'static str>,
     pub severity: HashMap<&'static str, Severity>,
+    /// The interface version `MM_` calls are checked against; `None`: detected from the
+    /// package routines among the checked files, else 1.x.
+    pub interface: Option<Interface>,
 }
 
 /// A problem in the config, with the line it is on (1-based; 0 when unknown).
@@ -35,6 +42,15 @@ impl LintConfig {
         let err = |needle: &str, message: String| ConfigError::at(path, text, needle, message);
         let value = parse_toml(path, text)?;
         let mut cfg = LintConfig::default();
+        let interface = |v: &toml::Value, key: &str| -> Result<Interface, ConfigError> {
+            v.as_str()
+                .ok_or_else(|| format!("`{key}` must be \"1.x\" or \"2.x\""))
+                .and_then(|s| s.parse::<Interface>())
+                .map_err(|m| err(key, m))
+        };
+        if let Some(v) = value.get("interface") {
+            cfg.interface = Some(interface(v, "interface")?);
+        }
         let Some(lint) = value.get("lint") else {
             return Ok(cfg);
         };
@@ -81,10 +97,14 @@ impl LintConfig {
                         cfg.severity.insert(code(c)?, s);
                     }
                 }
+                "interface" => cfg.interface = Some(interface(v, "interface")?),
                 other => {
                     return Err(err(
                         other,
-                        format!("unknown key `lint.{other}` (expected `disable` or `severity`)"),
+                        format!(
+                            "unknown key `lint.{other}` (expected `disable`, `severity` or \
+                             `interface`)"
+                        ),
                     ));
                 }
             }
@@ -125,6 +145,21 @@ pub fn parse_toml(path: &str, text: &str) -> Result<toml::Table, ConfigError> {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn reads_the_interface_version() {
+        let c = LintConfig::from_toml("k.toml", "interface = \"2.x\"\n").unwrap();
+        assert_eq!(c.interface, Some(Interface::V2));
+        let c = LintConfig::from_toml(
+            "k.toml",
+            "interface = \"2.x\"\n[lint]\ninterface = \"1.x\"\n",
+        )
+        .unwrap();
+        assert_eq!(c.interface, Some(Interface::V1), "[lint] first");
+        let e = LintConfig::from_toml("k.toml", "[lint]\ninterface = \"3\"\n").unwrap_err();
+        assert_eq!(e.line, 2);
+        assert!(e.message.contains("1.x"), "{e}");
+    }
 
     #[test]
     fn reads_lint_section() {

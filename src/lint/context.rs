@@ -3,16 +3,17 @@
 //! calls come from [`crate::sema`]. The syntax tree stays available in the model phase only for
 //! files the Mech-Mind rules look at (they call an `MM_` routine or write a `$FLAG`).
 
-use std::collections::HashMap;
+use std::collections::{HashMap, HashSet};
 use std::sync::OnceLock;
 
 use super::eki_xml::EkiChannel;
 use super::flow::FlowResult;
 use super::walk;
-use crate::catalog::{Subprogram, catalog};
+use crate::catalog::{Interface, Subprogram, catalog};
 use crate::diag::{Diagnostic, LineIndex};
 use crate::sema::{
-    ConstValue, FileId, Loc, Resolved, RoutineId, Scope, Sema, SymbolId, SymbolKind, Ty, TyKind,
+    Access, ConstValue, FileId, Loc, NameId, Resolved, RobotId, RoutineId, Scope, Sema, SymbolId,
+    SymbolKind, Ty, TyKind, UseKind,
 };
 use crate::syntax::ast::{Expr, ExprKind, Routine, SourceFile, StmtKind};
 
@@ -27,6 +28,9 @@ pub struct SyntaxCtx<'a> {
     pub stem: String,
     /// Extension, lower case (`src`, `dat`, `sub`, or empty).
     pub ext: String,
+    /// KRL005's edits when computed from the tree before it was lowered (else KRL005 parses
+    /// the text again).
+    pub case_edits: Option<Vec<crate::diag::Edit>>,
 }
 
 impl<'a> SyntaxCtx<'a> {
@@ -49,6 +53,7 @@ impl<'a> SyntaxCtx<'a> {
             syntax_errors,
             stem: part(p.file_stem()),
             ext: part(p.extension()),
+            case_edits: None,
         }
     }
 }
@@ -138,6 +143,12 @@ pub struct Project {
     pub channels_given: bool,
     /// Flags owned by an EKI channel the program uses (alive and receive), by flag number.
     pub owned_flags: HashMap<i64, &'static str>,
+    /// Names KUKA's own files (system, technology packages, templates) use without the
+    /// workspace declaring them, per robot: they exist on that controller (an installed
+    /// technology package, say), so user code may use them too.
+    pub environment: HashSet<(RobotId, NameId)>,
+    /// The interface version calls are checked against, and why.
+    pub interface: super::interface::Selected,
 }
 
 impl Project {
@@ -146,16 +157,34 @@ impl Project {
         channels: Vec<EkiChannel>,
         channels_given: bool,
         asts: impl Iterator<Item = &'a SourceFile>,
+        interface: super::interface::Selected,
     ) -> Project {
         let mut p = Project {
             channels,
             channels_given,
             owned_flags: HashMap::new(),
+            environment: HashSet::new(),
+            interface,
         };
         for ast in asts {
             owned_flags(&p.channels, ast, &mut p.owned_flags);
         }
         p
+    }
+
+    /// Learn [`Project::environment`] from the model.
+    pub fn learn_environment(&mut self, sema: &Sema) {
+        self.environment.clear();
+        for (id, f) in sema.files().filter(|(_, f)| f.vendor) {
+            for (i, u) in sema.uses(id).iter().enumerate() {
+                if u.kind != UseKind::Type
+                    && u.access != Access::Mention
+                    && sema.resolution(id, i) == Resolved::Unresolved
+                {
+                    self.environment.insert((f.robot, sema.use_name(u)));
+                }
+            }
+        }
     }
 }
 
@@ -267,12 +296,32 @@ impl<'p> FileCtx<'p> {
         self.sema.robot(self.sema.file(self.id).robot).is_complete()
     }
 
+    /// A file of KUKA's system software or a technology package (see `FileInfo::vendor`).
+    pub fn is_vendor(&self) -> bool {
+        self.sema.file(self.id).vendor
+    }
+
+    /// A name KUKA's own files use undeclared: it exists on this controller.
+    pub fn in_environment(&self, name: NameId) -> bool {
+        let robot = self.sema.file(self.id).robot;
+        self.project.environment.contains(&(robot, name))
+    }
+
     /// Routines of this file that are the user's code (not the MM package's own subprograms).
     pub fn user_routines(&self) -> impl Iterator<Item = &'p Routine> {
         self.ast
             .into_iter()
             .flat_map(|a| a.routines.iter())
-            .filter(|r| subprogram(&r.name.text).is_none())
+            .filter(|r| {
+                Interface::ALL
+                    .into_iter()
+                    .all(|i| subprogram(i, &r.name.text).is_none())
+            })
+    }
+
+    /// The interface subprogram called `name` in the version the program is checked against.
+    pub fn subprogram(&self, name: &str) -> Option<&'static Subprogram> {
+        subprogram(self.project.interface.version, name)
     }
 
     /// The model's id of a routine of this file's AST.
@@ -345,10 +394,7 @@ impl<'p> FileCtx<'p> {
     }
 }
 
-/// The catalog subprogram called `name` (case-insensitive).
-pub fn subprogram(name: &str) -> Option<&'static Subprogram> {
-    catalog()
-        .subprograms
-        .iter()
-        .find(|s| s.name.eq_ignore_ascii_case(name))
+/// The catalog subprogram called `name` (case-insensitive) in interface `iface`.
+pub fn subprogram(iface: Interface, name: &str) -> Option<&'static Subprogram> {
+    catalog().subprogram_in(iface, name)
 }

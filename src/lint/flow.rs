@@ -16,7 +16,7 @@
 use std::cell::RefCell;
 use std::collections::{HashMap, HashSet};
 
-use super::context::{FileCtx, subprogram};
+use super::context::FileCtx;
 use super::walk;
 use crate::catalog::{Direction, catalog};
 use crate::diag::{Diagnostic, Severity};
@@ -34,10 +34,17 @@ pub struct FlowResult {
 
 const ALL: u64 = u64::MAX;
 
+/// The bit of an interface subprogram in call sets: its place among the 1.x names followed by
+/// the 2.x-only ones (27 names, so a version's calls fit one `u64`).
 fn bit(name: &str) -> u64 {
-    catalog()
-        .subprograms
-        .iter()
+    let cat = catalog();
+    let v1 = &cat.subprograms;
+    v1.iter()
+        .chain(
+            cat.subprograms_v2
+                .iter()
+                .filter(|s| !v1.iter().any(|o| o.name == s.name)),
+        )
         .position(|s| s.name.eq_ignore_ascii_case(name))
         .map_or(0, |i| 1u64 << i)
 }
@@ -314,7 +321,7 @@ impl<'s, 'c, 'p> Walker<'s, 'c, 'p> {
     }
 
     fn call(&mut self, name: &'s Ident, args: &'s [Option<Expr>], mut st: State) -> State {
-        let Some(sp) = subprogram(&name.text) else {
+        let Some(sp) = self.sh.ctx.subprogram(&name.text) else {
             if let Some(r) = self.sh.local_routine(name) {
                 if self.record {
                     let slot = self.callsites.remove(&r).unwrap_or_else(State::dead);
@@ -481,7 +488,7 @@ fn later_calls(sh: &Shared, stmts: &[Stmt], mut later: u64, out: &mut HashMap<u3
     for s in stmts.iter().rev() {
         later = match &s.kind {
             StmtKind::Call { name, .. } => {
-                if subprogram(&name.text).is_some() {
+                if sh.ctx.subprogram(&name.text).is_some() {
                     out.insert(name.span.start, later);
                     later | bit(&name.text)
                 } else if let Some(r) = sh.local_routine(name) {
@@ -529,7 +536,7 @@ fn calls_in(sh: &Shared, stmts: &[Stmt]) -> u64 {
     for s in stmts {
         match &s.kind {
             StmtKind::Call { name, .. } => {
-                if subprogram(&name.text).is_some() {
+                if sh.ctx.subprogram(&name.text).is_some() {
                     bits |= bit(&name.text);
                 } else if let Some(r) = sh.local_routine(name) {
                     bits |= sh.summary(r).may;

@@ -20,6 +20,7 @@ pub mod config;
 pub mod context;
 pub mod eki_xml;
 mod flow;
+pub mod interface;
 pub mod registry;
 mod rules;
 mod session;
@@ -72,9 +73,8 @@ impl LintOutcome {
             return None;
         }
         Some(
-            "no $config.dat among the files checked: names and routines not declared in them \
-             may be declared in files not given, so KRL010 and KRL011 are not reported \
-             (check the whole robot: its KRC folder or its backup .zip)"
+            "no $config.dat among the files: undeclared names and routines may be declared in \
+             files not given, so KRL010/KRL011 are off (check the robot's KRC folder or backup .zip)"
                 .to_owned(),
         )
     }
@@ -143,9 +143,14 @@ pub fn lint_workspace(
         .into_par_iter()
         .map(|f| {
             let parse = crate::syntax::parse(&f.text);
+            // Before lowering, so that the tree, the formatter's lines and the AST are never
+            // all held at once (one file may be 50 MB).
+            let case_edits = (!config.disabled.contains(rules::krl005::RULE.code))
+                .then(|| crate::fmt::case_edits_in(&f.text, &parse));
             let ast = parse.ast(&f.text);
             drop(parse.tree);
-            let cx = SyntaxCtx::new(&f.path, &f.text, &ast, &parse.diagnostics);
+            let mut cx = SyntaxCtx::new(&f.path, &f.text, &ast, &parse.diagnostics);
+            cx.case_edits = case_edits;
             let mut findings = Vec::new();
             for rule in RULES {
                 if let Check::Syntax(check) = rule.check {
@@ -178,11 +183,13 @@ pub fn lint_workspace(
         rest.push((p.findings, p.ast));
     }
     let sema = Sema::build(inputs, &am_ini);
-    let project = Project::new(
+    let mut project = Project::new(
         channels,
         channels_given,
         rest.iter().filter_map(|(_, a)| a.as_ref()),
+        interface::select(config.interface, &sema),
     );
+    project.learn_environment(&sema);
     let reports: Vec<FileReport> = rest
         .into_par_iter()
         .enumerate()

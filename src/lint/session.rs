@@ -106,7 +106,9 @@ impl Session {
                 .zip(&self.meta)
                 .filter(|(_, m)| m.mm)
                 .map(|(f, _)| &f.ast),
+            super::interface::select(self.config.interface, &self.sema),
         );
+        self.project.learn_environment(&self.sema);
     }
 
     /// Add a file, or replace the one with the same path; only this file is parsed.

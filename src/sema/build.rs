@@ -125,17 +125,59 @@ fn under(dir: &str, root: &str) -> bool {
 fn robot_root(config_path: &str) -> String {
     let comps = components(config_path);
     let dir = &comps[..comps.len().saturating_sub(1)];
-    let is_robot = |c: &&str| {
-        let b = c.as_bytes();
-        b.len() >= 2 && (b[0] == b'R' || b[0] == b'r') && b[1..].iter().all(u8::is_ascii_digit)
-    };
-    if let Some(i) = dir.iter().rposition(is_robot) {
+    // A backup's root holds `KRC` beside `C` (templates) and `am.ini`: start from there.
+    if let Some(k) = dir.iter().rposition(|c| c.eq_ignore_ascii_case("KRC"))
+        && dir[k + 1..]
+            .first()
+            .is_some_and(|c| c.eq_ignore_ascii_case("STEU") || is_robot_folder(c))
+    {
+        return lower_join(&dir[..k]);
+    }
+    if let Some(i) = dir.iter().rposition(|c| is_robot_folder(c)) {
         return lower_join(&dir[..i]);
     }
+
+    // `R1/System/$config.dat`, and `STEU/$config.dat` (the controller's own, beside `R1`).
     match dir.last() {
-        Some(last) if last.eq_ignore_ascii_case("System") => lower_join(&dir[..dir.len() - 1]),
+        Some(last) if last.eq_ignore_ascii_case("System") || last.eq_ignore_ascii_case("STEU") => {
+            lower_join(&dir[..dir.len() - 1])
+        }
         _ => lower_join(dir),
     }
+}
+
+/// `R1`, `R2` …: a robot's folder in a controller's `KRC` tree.
+fn is_robot_folder(c: &str) -> bool {
+    let b = c.as_bytes();
+    b.len() >= 2 && (b[0] == b'R' || b[0] == b'r') && b[1..].iter().all(u8::is_ascii_digit)
+}
+
+fn is_vendor(comps: &[&str]) -> bool {
+    let in_folder = comps[..comps.len().saturating_sub(1)].iter().any(|c| {
+        ["System", "TP", "STEU", "Mada", "Template"]
+            .iter()
+            .any(|v| c.eq_ignore_ascii_case(v))
+    });
+    // KUKA's system modules, also when copied out of their folder.
+    let stem = comps
+        .last()
+        .map_or("", |f| f.split('.').next().unwrap_or(f));
+    let system_module = [
+        "bas",
+        "ir_stopm",
+        "sps",
+        "masref_main",
+        "masref_user",
+        "collmonlib",
+        "msglib",
+        "tm_bib",
+        "tm_useraction",
+        "p00",
+        "colldetect_useraction",
+    ]
+    .iter()
+    .any(|m| stem.eq_ignore_ascii_case(m));
+    in_folder || system_module
 }
 
 fn is_config_path(path: &str) -> bool {
@@ -176,6 +218,7 @@ impl Sema {
             let kind = FileKind::of(&path);
             let robot = robot_of[i];
             let comps = components(&path);
+            let vendor = is_vendor(&comps);
             let file_name = comps.last().copied().unwrap_or("");
             let stem = file_name.split('.').next().unwrap_or(file_name);
             let dir = lower_join(&comps[..comps.len().saturating_sub(1)]);
@@ -233,6 +276,7 @@ impl Sema {
                     robot,
                     routines: Vec::new(),
                     is_config,
+                    vendor,
                 },
                 s,
                 resolved: Vec::new(),
@@ -279,9 +323,10 @@ fn partition(inputs: &[SemaInput], am_ini: &[AmIni]) -> (Vec<RobotId>, Vec<Robot
             .iter()
             .map(|&i| robot_root(&inputs[i].path))
             .collect();
+        roots.sort();
         roots.dedup();
-        if roots.len() <= 1 {
-            roots = vec![String::new()];
+        if roots.is_empty() {
+            roots.push(String::new());
         }
         let first = robots.len();
         for r in &roots {
@@ -598,11 +643,15 @@ impl Builder {
             && let Some(prev) = self.table(other).vars.get(&name).copied()
         {
             let first = self.sema.symbols[prev.index()].decl;
-            self.duplicate(name, first, here.expect("declared"), false, true);
+            self.ambiguous_symbol(prev, id);
+            if let Some(h) = here {
+                self.duplicate(name, first, h, false, true);
+            }
             return;
         }
         match self.table(scope).vars.get(&name).copied() {
             Some(prev) => {
+                self.ambiguous_symbol(prev, id);
                 let first = self.sema.symbols[prev.index()].decl;
                 let global = robot_wide(scope).is_some();
                 if let Some(h) = here {
@@ -613,6 +662,13 @@ impl Builder {
                 self.table(scope).vars.insert(name, id);
             }
         }
+    }
+
+    /// Two declarations of one name: which one a use means is not certain, so neither type is
+    /// judged.
+    fn ambiguous_symbol(&mut self, a: SymbolId, b: SymbolId) {
+        self.sema.symbols[a.index()].unverified = true;
+        self.sema.symbols[b.index()].unverified = true;
     }
 
     fn items(&mut self, file: FileId) {
@@ -716,6 +772,8 @@ impl Builder {
             type_ids.push(id);
             match self.table(scope).types.get(&name).copied() {
                 Some(prev) => {
+                    self.sema.types[prev.index()].unverified = true;
+                    self.sema.types[id.index()].unverified = true;
                     let first = self.sema.types[prev.index()].decl;
                     let global = matches!(scope, Scope::Global(_) | Scope::Config(_));
                     self.duplicate(name, first, here, false, global);

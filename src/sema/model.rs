@@ -47,6 +47,10 @@ pub struct FileInfo {
     pub routines: Vec<RoutineId>,
     /// `$config.dat` (its declarations are visible everywhere).
     pub is_config: bool,
+    /// A file of KUKA's system software, a technology package or a template (a folder
+    /// `System`, `TP`, `STEU`, `Mada` or `Template` on its path): it loads on every controller,
+    /// and what it names exists there even when the files declaring it were not given.
+    pub vendor: bool,
 }
 
 /// One robot: the files that share a `$config.dat` and one global scope. A folder or backup

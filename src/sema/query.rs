@@ -588,7 +588,15 @@ impl Sema {
             Term::Aggregate => Ty::scalar(TyKind::Aggregate),
             Term::TypedAggregate(u) => ty_of_type(&self.types, resolved[u as usize], 0),
             Term::Var { use_ix, proj, len } => {
-                let mut ty = self.ty_of_resolved(resolved[use_ix as usize]);
+                let r = resolved[use_ix as usize];
+                // Facts for rules: a symbol whose declaration is uncertain is not judged.
+                if file.is_some()
+                    && let Resolved::Symbol(s) = r
+                    && self.symbols[s.index()].unverified
+                {
+                    return Ty::UNKNOWN;
+                }
+                let mut ty = self.ty_of_resolved(r);
                 for p in &proj[..len as usize] {
                     ty = match *p {
                         Proj::Index(n) => ty.index(n as usize),
@@ -635,7 +643,9 @@ impl Sema {
             }
             Term::Decl(i) => file
                 .and_then(|f| f.decl_symbols.get(i as usize))
-                .map_or(Ty::UNKNOWN, |s| self.symbols[s.index()].ty),
+                .map(|s| &self.symbols[s.index()])
+                .filter(|s| !s.unverified)
+                .map_or(Ty::UNKNOWN, |s| s.ty),
             Term::Unknown => Ty::UNKNOWN,
         }
     }

@@ -682,7 +682,11 @@ impl<'a> Summarizer<'a> {
             StmtKind::Assign { target, value } => {
                 let t = self.expr(target, Access::Write);
                 let v = self.expr(value, Access::Read);
-                self.assign(s.span, t, v);
+                self.assign(
+                    Span::new(target.span.start as usize, value.span.end as usize),
+                    t,
+                    v,
+                );
             }
             StmtKind::Call { name, args } => {
                 self.call(name, args);
@@ -1056,6 +1060,10 @@ struct Ends {
 /// Whether a DEFFCT body can reach ENDFCT without RETURN. GOTO and lines that did not parse
 /// make the answer unknown: then `false` (never reported).
 fn falls_off_end(body: &[Stmt]) -> bool {
+    // An empty function is a stub or a template, not a forgotten RETURN.
+    if body.is_empty() {
+        return false;
+    }
     let mut unknown = false;
     ast::each_stmt(body, &mut |s| {
         unknown |= matches!(
@@ -1094,7 +1102,8 @@ fn stmt_ends(s: &Stmt) -> Ends {
         exits: false,
     };
     match &s.kind {
-        StmtKind::Return { .. } => falls(false),
+        // HALT: the program stops there (integrators write `DEFAULT HALT` for "cannot happen").
+        StmtKind::Return { .. } | StmtKind::Halt => falls(false),
         StmtKind::Exit => Ends {
             falls: false,
             exits: true,
@@ -1111,8 +1120,14 @@ fn stmt_ends(s: &Stmt) -> Ends {
             }
         }
         StmtKind::Switch { cases, default, .. } => {
+            // Without DEFAULT a SWITCH falls through, unless every CASE names ENUM values:
+            // then it is taken to cover the ENUM (the model does not know it here).
+            let enum_cases = !cases.is_empty()
+                && cases
+                    .iter()
+                    .all(|c| c.values.iter().all(|v| matches!(v.kind, ExprKind::Enum(_))));
             let mut out = Ends {
-                falls: default.is_none(),
+                falls: default.is_none() && !enum_cases,
                 exits: false,
             };
             for b in cases

@@ -92,13 +92,12 @@ impl<'p> Machine<'p> {
         }
     }
 
-    /// Declare the signals of a DEFDAT as globals (`GLOBAL`) or in the module's scope.
-    pub(super) fn declare_dat_signal(&mut self, s: &SignalDecl, scope: &str) -> R<()> {
+    /// Declare a signal of a data list: module-wide under `scope`, else visible everywhere.
+    pub(super) fn declare_dat_signal(&mut self, s: &SignalDecl, scope: Option<&str>) -> R<()> {
         let place = self.signal_place(s)?;
-        let key = if s.global {
-            s.name.key()
-        } else {
-            format!("{scope}::{}", s.name.key())
+        let key = match scope {
+            None => s.name.key(),
+            Some(scope) => format!("{scope}::{}", s.name.key()),
         };
         self.signals.insert(key, place);
         Ok(())

@@ -13,7 +13,14 @@ pub static RULE: Rule = Rule {
 
 fn check(ctx: &SyntaxCtx, out: &mut Vec<Diagnostic>) {
     let text = ctx.text;
-    let edits = crate::fmt::case_edits(text);
+    let computed;
+    let edits = match &ctx.case_edits {
+        Some(edits) => edits,
+        None => {
+            computed = crate::fmt::case_edits(text);
+            &computed
+        }
+    };
     let Some(first) = edits.first() else {
         return;
     };
@@ -28,6 +35,9 @@ fn check(ctx: &SyntaxCtx, out: &mut Vec<Diagnostic>) {
             .with_help(
                 "write keywords, built-in types and built-ins in upper case (`krlkit check --fix`)",
             )
-            .with_fix(Fix::safe("Upper-case keywords and built-ins", edits)),
+            .with_fix(Fix::safe(
+                "Upper-case keywords and built-ins",
+                edits.clone(),
+            )),
     );
 }

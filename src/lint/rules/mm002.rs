@@ -1,3 +1,4 @@
+use crate::catalog::{Interface, catalog};
 use crate::diag::{Diagnostic, Severity};
 use crate::lint::context::FileCtx;
 use crate::lint::registry::{Check, Rule};
@@ -22,18 +23,38 @@ fn check(ctx: &FileCtx, out: &mut Vec<Diagnostic>) {
             c.args.len()
         };
         if got != want {
+            let chosen = &ctx.project.interface;
+            // The call has the other version's form (e.g. a 1.x MM_Start_Vis against a 2.x
+            // package): say which.
+            let other = Interface::ALL.into_iter().find(|&i| {
+                i != chosen.version
+                    && catalog()
+                        .subprogram_in(i, &c.sub.name)
+                        .is_some_and(|s| s.params.len() == got)
+            });
+            let help = match other {
+                Some(o) => format!(
+                    "this is the {o} form; the program is checked against the {} interface \
+                     ({}), whose signature is {}",
+                    chosen.version,
+                    chosen.why,
+                    c.sub.signature()
+                ),
+                None => format!("signature: {}", c.sub.signature()),
+            };
             out.push(
                 Diagnostic::error(
                     RULE.code,
                     c.name.span,
                     format!(
-                        "`{}` takes {want} argument{}, but {got} {} given",
+                        "`{}` takes {want} argument{} in the {} interface, but {got} {} given",
                         c.sub.name,
                         if want == 1 { "" } else { "s" },
+                        chosen.version,
                         if got == 1 { "is" } else { "are" }
                     ),
                 )
-                .with_help(format!("signature: {}", c.sub.signature())),
+                .with_help(help),
             );
         }
     }

@@ -5,6 +5,15 @@ pub mod krl002;
 pub mod krl003;
 pub mod krl004;
 pub mod krl005;
+pub mod krl010;
+pub mod krl011;
+pub mod krl012;
+pub mod krl013;
+pub mod krl014;
+pub mod krl015;
+pub mod krl016;
+pub mod krl017;
+pub mod krl018;
 pub mod mm001;
 pub mod mm002;
 pub mod mm003;
@@ -17,7 +26,7 @@ pub mod mm009;
 pub mod mm010;
 pub mod mm011;
 
-use super::context::{FileCtx, subprogram};
+use super::context::FileCtx;
 use super::walk;
 use crate::catalog::Subprogram;
 use crate::syntax::ast::{Expr, Ident, Routine, StmtKind};
@@ -36,7 +45,7 @@ pub fn mm_calls<'a>(ctx: &FileCtx<'a>) -> Vec<MmCall<'a>> {
     for r in ctx.user_routines() {
         walk::each_stmt(&r.body, &mut |s| {
             if let StmtKind::Call { name, args } = &s.kind
-                && let Some(sub) = subprogram(&name.text)
+                && let Some(sub) = ctx.subprogram(&name.text)
             {
                 v.push(MmCall {
                     routine: r,

@@ -293,7 +293,7 @@ impl<'t> Cx<'t> {
                 r.params = list.nodes().map(|p| self.param(p)).collect();
             }
         }
-        let mut stmts = Vec::new();
+        let mut stmts = Vec::with_capacity(statements(node.nodes().skip(1)));
         for child in node.nodes().skip(1) {
             if child.kind != K::EndLine {
                 self.stmt_into(child, &mut stmts);
@@ -343,7 +343,7 @@ impl<'t> Cx<'t> {
                 span: node.span,
             });
         let public = header.is_some_and(|h| h.has_keyword(self.text, "PUBLIC"));
-        let mut stmts = Vec::new();
+        let mut stmts = Vec::with_capacity(statements(node.nodes().skip(1)));
         for child in node.nodes().skip(1) {
             if child.kind != K::EnddatLine {
                 self.stmt_into(child, &mut stmts);
@@ -372,7 +372,7 @@ impl<'t> Cx<'t> {
     // ---- statements ---------------------------------------------------------------------------
 
     fn body(&self, nodes: &[Node]) -> Vec<Stmt> {
-        let mut out = Vec::new();
+        let mut out = Vec::with_capacity(statements(nodes.iter().copied()));
         for n in nodes {
             self.stmt_into(*n, &mut out);
         }
@@ -972,20 +972,28 @@ fn binary_op(op: &str) -> BinaryOp {
 }
 
 /// Declarations up to the first executable statement go to the routine's declaration part.
-fn split_declarations(stmts: Vec<Stmt>) -> (Vec<Decl>, Vec<Definition>, Vec<Stmt>) {
+/// The body stays in `stmts`' buffer (a routine can hold millions of statements: no copy).
+fn split_declarations(mut stmts: Vec<Stmt>) -> (Vec<Decl>, Vec<Definition>, Vec<Stmt>) {
+    let head = stmts
+        .iter()
+        .position(|s| !matches!(s.kind, StmtKind::Decl(_) | StmtKind::Definition(_)))
+        .unwrap_or(stmts.len());
     let mut decls = Vec::new();
     let mut definitions = Vec::new();
-    let mut body = Vec::new();
-    let mut in_head = true;
-    for s in stmts {
+    for s in stmts.drain(..head) {
         match s.kind {
-            StmtKind::Decl(d) if in_head => decls.push(*d),
-            StmtKind::Definition(d) if in_head => definitions.push(d),
-            kind => {
-                in_head = false;
-                body.push(Stmt { kind, span: s.span });
-            }
+            StmtKind::Decl(d) => decls.push(*d),
+            StmtKind::Definition(d) => definitions.push(d),
+            _ => {} // the head holds only declarations
         }
     }
-    (decls, definitions, body)
+    (decls, definitions, stmts)
+}
+
+/// How many statements `nodes` can lower to (trivia lines give none): statement vectors are
+/// allocated once at their size, since a routine may hold millions of them.
+fn statements<'a>(nodes: impl Iterator<Item = Node<'a>>) -> usize {
+    nodes
+        .filter(|n| !matches!(n.kind, K::BlankLine | K::CommentLine | K::HeaderLine))
+        .count()
 }

@@ -232,6 +232,8 @@ pub struct Routine {
     pub closed: bool,
     /// The DEF line did not parse (its parameters are missing from the tree).
     pub header_error: Option<Span>,
+    /// The first parameter whose name the DEF line already gave (kept once in `params`).
+    pub duplicate_param: Option<(String, Span)>,
     pub span: Span,
     /// Where the `END` line starts (comments before it stay inside).
     pub end: u32,

@@ -8,6 +8,8 @@ pub enum Why {
     SyntaxError,
     /// The DEF line does not parse.
     HeaderSyntaxError,
+    /// A parameter name given twice in one DEF line (the controller refuses the module).
+    DuplicateParameter(String),
     /// `REPEAT` without `UNTIL`.
     RepeatWithoutUntil,
     /// `EXIT` outside a loop.
@@ -177,6 +179,7 @@ impl Why {
         match self {
             Why::SyntaxError => "this line does not parse (KRL001), so it cannot be translated".into(),
             Why::HeaderSyntaxError => "this DEF line does not parse (KRL001), so the routine's name and parameters cannot be translated".into(),
+            Why::DuplicateParameter(name) => format!("parameter `{name}` is declared twice in this DEF line (the controller refuses the module), so the routine's parameters cannot be translated"),
             Why::RepeatWithoutUntil => "REPEAT without UNTIL".into(),
             Why::ExitOutsideLoop => "EXIT outside a loop".into(),
             Why::Confirm => "CONFIRM (acknowledging a KUKA message) has no counterpart".into(),
@@ -197,7 +200,7 @@ impl Why {
             Why::KukaRoutine(n, _) => format!("`{n}` has no counterpart"),
             Why::Dialog(n) => format!("{n} (a dialog with answers) has no direct counterpart"),
             Why::NotAFunction(n) => format!("`{n}` is a DEF, not a function"),
-            Why::Arity { name, takes, given } => format!("`{name}` takes {takes} arguments, this call passes {given}"),
+            Why::Arity { name, takes, given } => arity(name, *takes, *given),
             Why::OmittedArgument => "an omitted argument has no counterpart".into(),
             Why::OutArgument => "an OUT argument must be a variable".into(),
             Why::Bas(w) => format!("BAS(#{w}) has no counterpart"),
@@ -205,7 +208,7 @@ impl Why {
             Why::NotMm(n) => format!("`{n}` is not a routine of the Mech-Mind interface"),
             Why::MmArity { name, given, signature } => {
                 let takes = signature.matches(',').count() + usize::from(!signature.ends_with("()"));
-                format!("`{name}` takes {takes} arguments, this call passes {given}")
+                arity(name, takes, *given)
             }
             Why::UnknownEnum(n) => format!("enum value `#{n}` belongs to no ENUM declared in this program"),
             Why::InvalidLiteral(t) => format!("`{t}` is not a valid literal"),
@@ -234,4 +237,9 @@ impl Why {
             Why::BitwiseNot => "B_NOT (bitwise NOT) has no confirmed counterpart".into(),
         }
     }
+}
+
+fn arity(name: &str, takes: usize, given: usize) -> String {
+    let s = if takes == 1 { "" } else { "s" };
+    format!("`{name}` takes {takes} argument{s}, this call passes {given}")
 }

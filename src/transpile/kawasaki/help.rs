@@ -5,6 +5,7 @@ use crate::transpile::ir::why::KukaOnly;
 
 pub(super) fn help(why: &Why) -> String {
     match why {
+        Why::DuplicateParameter(_) => "give each parameter its own name and translate again".into(),
         Why::SyntaxError | Why::HeaderSyntaxError => {
             "fix the syntax error (krlkit check) and translate again".into()
         }

@@ -301,11 +301,19 @@ impl<'p> Lower<'p> {
             ast::RoutineKind::Deffct => RoutineKind::Deffct,
         };
         let assigned = walk::assigned_names(&r.body);
+        let mut seen = std::collections::HashSet::new();
+        let mut duplicate = None;
         let params = r
             .params
             .iter()
             .filter_map(|p| {
                 let var = *self.vars.get(&(key.clone(), p.name.key()))?;
+                // A repeated name would make a header no target accepts (`def f(x, x)`):
+                // the routine keeps one parameter of that name and the header is reported.
+                if !seen.insert(var) {
+                    duplicate.get_or_insert((p.name.text.to_string(), p.name.span));
+                    return None;
+                }
                 let dir = match p.dir.unwrap_or(ast::ParamDir::In) {
                     ast::ParamDir::In => super::ParamDir::In,
                     ast::ParamDir::Out => super::ParamDir::Out,
@@ -335,6 +343,7 @@ impl<'p> Lower<'p> {
             body: Vec::new(),
             closed: r.closed,
             header_error: self.header_syntax_error(r),
+            duplicate_param: duplicate,
             span: r.span,
             end: front::end_line_start(&self.src.src.text, r.span),
             synthetic: false,
@@ -413,6 +422,15 @@ impl<'p> Lower<'p> {
                 span: at,
             });
         }
+        if let Some((name, at)) = self.out.routine(id).duplicate_param.clone() {
+            body.push(Stmt {
+                op: Op::Unsupported {
+                    why: Why::DuplicateParameter(name),
+                    at,
+                },
+                span: at,
+            });
+        }
         for d in &r.decls {
             self.body_decl(d, d.span, &mut body);
         }
@@ -447,6 +465,7 @@ impl<'p> Lower<'p> {
             body: Vec::new(),
             closed: true,
             header_error: None,
+            duplicate_param: None,
             span: Span::new(0, src.src.text.len()),
             end: src.src.text.len() as u32,
             synthetic: true,

@@ -1,0 +1,54 @@
+use crate::diag::{Diagnostic, Severity};
+use crate::lint::context::FileCtx;
+use crate::lint::registry::{Check, Rule};
+use crate::lint::text::nearest;
+use crate::sema::Resolved;
+
+pub static RULE: Rule = Rule {
+    code: "KRL011",
+    name: "unknown-routine",
+    severity: Severity::Error,
+    summary: "A call reaches no routine: none of the module, no GLOBAL one, no EXT and no KSS built-in",
+    doc: "## What it checks\nEvery call (a statement, a function in an expression, an interrupt's handler, a trigger's action) must reach a routine: a DEF/DEFFCT of the calling module, a GLOBAL DEF/DEFFCT or the main routine of another module of the robot, an `EXT`/`EXTFCT` declaration, or a KSS built-in (math and string functions, EthernetKRL, MsgLib, `BAS` …; see `krlkit rule KRL011` and the environment data). The help names the nearest routine.\n\nOnly reported when the whole robot is checked (a `$config.dat` among the files); calls of `MM_` names are left to MM001. Routines that KUKA's own files (system folder, technology packages, templates) call without a declaration in the workspace exist on that controller and are not reported either, and KUKA's own files are not checked.\n\n## Why it matters\nThe module does not link: the controller reports an unresolved subprogram when the program is selected.\n\n## Example\n```krl\nDEF cell()\n  pick_part()\nEND\nDEF pickpart()\nEND\n```\n\n## Fix\nCall the routine by its name, make it GLOBAL, or declare it with `EXT` where it is called.",
+    check: Check::Model(check),
+};
+
+fn check(ctx: &FileCtx, out: &mut Vec<Diagnostic>) {
+    // KUKA's own files load on the controller; what they name exists there.
+    if !ctx.workspace_complete() || ctx.is_vendor() {
+        return;
+    }
+    let sema = ctx.sema;
+    for c in sema.calls(ctx.id) {
+        if c.target != Resolved::Unresolved {
+            continue;
+        }
+        let name = sema.name(c.name);
+        if (name.len() >= 3 && name[..3].eq_ignore_ascii_case("MM_")) || ctx.in_environment(c.name)
+        {
+            continue;
+        }
+        let mut d = Diagnostic::error(
+            RULE.code,
+            c.span,
+            format!(
+                "`{name}` is not a routine of this module, a GLOBAL routine, an EXT declaration or a KSS built-in"
+            ),
+        );
+        let visible = sema.visible(ctx.id, c.span.start);
+        let candidates = visible
+            .iter()
+            .filter(|(_, r)| {
+                matches!(
+                    r,
+                    Resolved::Routine(_) | Resolved::Ext(_) | Resolved::Builtin(_)
+                )
+            })
+            .map(|(n, _)| sema.name(*n));
+        d = match nearest(name, candidates) {
+            Some(n) => d.with_help(format!("did you mean `{n}`?")),
+            None => d.with_help("define it, make it GLOBAL, or declare it with EXT"),
+        };
+        out.push(d);
+    }
+}
