@@ -165,7 +165,10 @@ fn check(o: &Opened, vision: u64, targets: u64) {
 /// browser laid them out.
 fn axis_fit(ticks: &Value) -> (f64, f64) {
     let t = ticks.as_array().unwrap();
-    assert!(t.len() >= 2, "fewer than two grid labels on an axis: {ticks}");
+    assert!(
+        t.len() >= 2,
+        "fewer than two grid labels on an axis: {ticks}"
+    );
     let (p0, v0) = (t[0][0].as_f64().unwrap(), t[0][1].as_f64().unwrap());
     let (p1, v1) = (
         t[t.len() - 1][0].as_f64().unwrap(),

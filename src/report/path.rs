@@ -425,7 +425,7 @@ pub fn build(entries: &[Entry]) -> PathModel {
             view(
                 (id, name, hn, vn),
                 &proj,
-                (lo, hi),
+                lo,
                 &drawn,
                 &vision,
                 motions.len(),
@@ -443,7 +443,7 @@ pub fn build(entries: &[Entry]) -> PathModel {
 fn view(
     (id, name, hn, vn): (&'static str, &str, &'static str, &'static str),
     proj: &Projection,
-    (lo, hi): ([f64; 3], [f64; 3]),
+    lo: [f64; 3],
     drawn: &[Drawn],
     vision: &[VisionRow],
     motion_count: usize,

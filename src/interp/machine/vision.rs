@@ -24,8 +24,8 @@ impl Machine<'_> {
     fn stored_poses(&self) -> Vec<VisionPose> {
         let kind = self.global_int("MM_PT_KIND");
         let tcp = kind == Some(KIND_TCP.into());
-        let plan_tcp =
-            kind == Some(KIND_PLAN.into()) && self.global_int("MM_PLAN_JPS_POS") == Some(KIND_TCP.into());
+        let plan_tcp = kind == Some(KIND_PLAN.into())
+            && self.global_int("MM_PLAN_JPS_POS") == Some(KIND_TCP.into());
         if !(tcp || plan_tcp) {
             return Vec::new();
         }
