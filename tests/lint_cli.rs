@@ -60,9 +60,15 @@ fn sarif_format() {
         results[0]["locations"][0]["physicalLocation"]["region"]["startLine"],
         6
     );
-    assert_eq!(
-        results[0]["locations"][0]["physicalLocation"]["artifactLocation"]["uri"],
-        "pick.src"
+    let location = &results[0]["locations"][0]["physicalLocation"]["artifactLocation"];
+    assert_eq!(location["uri"], "pick.src");
+    assert_eq!(location["uriBaseId"], "SRCROOT");
+    let base = run["originalUriBaseIds"]["SRCROOT"]["uri"]
+        .as_str()
+        .expect("base");
+    assert!(
+        base.starts_with("file:///") && base.ends_with('/'),
+        "{base}"
     );
 }
 

@@ -75,6 +75,7 @@ fn neovim_shows_diagnostics_and_jumps_to_definitions() {
     found.sort();
     let expected = [
         (3, "KRL003"),
+        (4, "KRL016"),
         (5, "MM003"),
         (5, "MM010"),
         (7, "MM001"),

@@ -22,6 +22,7 @@ struct Step {
     action: String,
     file: Option<String>,
     at: Option<String>,
+    to: Option<String>,
     old: Option<String>,
     new: Option<String>,
     view: Option<String>,
@@ -156,12 +157,16 @@ impl Editor {
                 if let Some(at) = &s.at {
                     params["position"] = self.cursor(file, at);
                 }
-                if method == "textDocument/codeAction" {
+                if method == "textDocument/codeAction" || method == "textDocument/rangeFormatting" {
                     let at = params["position"].take();
-                    params["range"] = json!({ "start": at, "end": at });
+                    let to = s.to.as_ref().map_or(at.clone(), |to| self.cursor(file, to));
+                    params.as_object_mut().unwrap().remove("position");
+                    params["range"] = json!({ "start": at, "end": to });
+                }
+                if method == "textDocument/codeAction" {
                     params["context"] = json!({ "diagnostics": [] });
                 }
-                if method == "textDocument/formatting" {
+                if method.ends_with("ormatting") {
                     params["options"] = json!({ "tabSize": 2, "insertSpaces": true });
                 }
                 let mut answer = self.client.request(method, params);

@@ -48,45 +48,46 @@ fn peak_rss(args: &[&str], cwd: &Path) -> u64 {
     u64::try_from(usage.ru_maxrss).unwrap() * 1024
 }
 
-#[test]
-fn parse_keeps_memory_near_the_file_size() {
+/// A folder with `big.src` (a program of `size` bytes) and `blank.src` (`size` blank lines),
+/// and the peak RSS of a krlkit run that reads no file.
+fn inputs(size: usize) -> (tempfile::TempDir, u64) {
     let dir = tempfile::tempdir().unwrap();
-    let size = 8 << 20;
     std::fs::write(dir.path().join("big.src"), big_program(size)).unwrap();
     std::fs::write(dir.path().join("blank.src"), "\n".repeat(size)).unwrap();
     let base = peak_rss(&["rules"], dir.path());
+    (dir, base)
+}
+
+/// Run krlkit with `args` in `dir`: its peak RSS above `base` is below `factor` times `size`.
+fn assert_below(args: &[&str], dir: &Path, base: u64, factor: u64, size: usize) {
+    let rss = peak_rss(args, dir).saturating_sub(base);
+    assert!(
+        rss < factor * size as u64,
+        "{}: {} MB above base for a {} MB file",
+        args.join(" "),
+        rss >> 20,
+        size >> 20
+    );
+}
+
+#[test]
+fn parse_keeps_memory_near_the_file_size() {
+    let size = 8 << 20;
+    let (dir, base) = inputs(size);
+    // Before the outline parse: 10.6x the file (big), 56x (blank lines).
     for file in ["big.src", "blank.src"] {
-        // Before the outline parse: 10.6x the file (big), 56x (blank lines).
-        let parse = peak_rss(&["parse", file], dir.path()).saturating_sub(base);
-        assert!(
-            parse < 4 * size as u64,
-            "parse {file}: {} MB above base for an {} MB file",
-            parse >> 20,
-            size >> 20
-        );
+        assert_below(&["parse", file], dir.path(), base, 4, size);
     }
     // Before streaming: the JSON was built in memory, 29x the file.
-    let tree = peak_rss(&["parse", "--tree", "big.src"], dir.path()).saturating_sub(base);
-    assert!(tree < 14 * size as u64, "parse --tree: {} MB", tree >> 20);
+    assert_below(&["parse", "--tree", "big.src"], dir.path(), base, 14, size);
 }
 
 #[test]
 fn check_keeps_memory_near_the_file_size() {
-    let dir = tempfile::tempdir().unwrap();
     let size = 4 << 20;
-    std::fs::write(dir.path().join("big.src"), big_program(size)).unwrap();
-    std::fs::write(dir.path().join("blank.src"), "\n".repeat(size)).unwrap();
-    let base = peak_rss(&["rules"], dir.path());
+    let (dir, base) = inputs(size);
     // Before: 38x the file (a second parse for KRL005 beside the AST, statement vectors grown
-    // by doubling) and 100x for blank lines (the formatter's line list).
-    for (file, factor) in [("big.src", 32), ("blank.src", 64)] {
-        let check = peak_rss(&["check", file], dir.path()).saturating_sub(base);
-        eprintln!("check {file}: {} MB", check >> 20);
-        assert!(
-            check < factor * size as u64,
-            "check {file}: {} MB above base for a {} MB file",
-            check >> 20,
-            size >> 20
-        );
-    }
+    // by doubling) and 100x for blank lines (the formatter's line list). Now 27x and 56x.
+    assert_below(&["check", "big.src"], dir.path(), base, 32, size);
+    assert_below(&["check", "blank.src"], dir.path(), base, 64, size);
 }

@@ -157,14 +157,24 @@ fn deep_block_nesting_is_an_error_not_a_crash() {
     std::thread::Builder::new()
         .stack_size(2 << 20)
         .spawn(move || {
-            for text in [text, unclosed] {
+            for (text, unclosed_blocks) in [(text, 0), (unclosed, 39)] {
                 let p = parse(&text);
                 assert_eq!(p.root().print(&text), text);
-                assert!(
+                // One finding for the construct, not one per line or level (it was 9,922).
+                let too_deep = p
+                    .diagnostics
+                    .iter()
+                    .filter(|d| d.message.contains("nested more than"))
+                    .count();
+                assert_eq!(too_deep, 1);
+                // Only the blocks kept open within the limit are reported as not closed.
+                assert_eq!(
+                    p.diagnostics.len(),
+                    1 + unclosed_blocks,
+                    "{:?}",
                     p.diagnostics
-                        .iter()
-                        .any(|d| d.message.contains("nested more than"))
                 );
+                assert_eq!(krlkit::syntax::diagnostics(&text), p.diagnostics);
                 let _ = p.ast(&text);
                 let _ = p.to_json_tree(&text);
                 let report = krlkit::lint::lint_text("deep.src", &text);

@@ -138,7 +138,10 @@ pub fn run(args: CheckArgs) -> anyhow::Result<Outcome> {
         CheckFormat::Concise => each(reports, &mut out, render::concise::render),
         CheckFormat::Github => each(reports, &mut out, render::github::render),
         CheckFormat::Json => out = render::json::render(reports) + "\n",
-        CheckFormat::Sarif => out = render::sarif::render(reports) + "\n",
+        CheckFormat::Sarif => {
+            let root = std::env::current_dir().ok();
+            out = render::sarif::render(reports, root.as_deref()) + "\n";
+        }
     }
     std::io::stdout().lock().write_all(out.as_bytes())?;
     if args.format == CheckFormat::Human && !super::ui::quiet() {

@@ -228,7 +228,8 @@ fn render_reports(reports: &[FileReport], format: CheckFormat) -> String {
                     doc: r.doc,
                 })
                 .collect();
-            out = render::sarif::render_with_rules(reports, &rules) + "\n";
+            let root = std::env::current_dir().ok();
+            out = render::sarif::render_with_rules(reports, &rules, root.as_deref()) + "\n";
         }
     }
     out

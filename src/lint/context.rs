@@ -93,9 +93,11 @@ impl Texts for Vec<Parsed> {
 pub struct Parsed {
     pub path: String,
     pub text: String,
-    /// The parser's KRL001 findings (the syntax tree is dropped once lowered).
+    /// The parser's KRL001 findings.
     pub syntax_errors: Vec<Diagnostic>,
-    pub ast: SourceFile,
+    /// The syntax tree, unless dropped to save memory (a workspace's trees take about 13 times
+    /// its text); [`Parsed::tree`] parses the text again then.
+    pub ast: Option<SourceFile>,
     /// File name without extension, lower case (`$config` for `$config.dat`).
     pub stem: String,
     /// Extension, lower case (`src`, `dat`, `sub`, or empty).
@@ -118,7 +120,15 @@ impl Parsed {
             path,
             text,
             syntax_errors: parse.diagnostics,
-            ast,
+            ast: Some(ast),
+        }
+    }
+
+    /// The syntax tree: the kept one, else the text parsed again (the same tree).
+    pub fn tree(&self) -> std::borrow::Cow<'_, SourceFile> {
+        match &self.ast {
+            Some(ast) => std::borrow::Cow::Borrowed(ast),
+            None => std::borrow::Cow::Owned(crate::syntax::parse(&self.text).ast(&self.text)),
         }
     }
 
@@ -159,6 +169,17 @@ impl Project {
         asts: impl Iterator<Item = &'a SourceFile>,
         interface: super::interface::Selected,
     ) -> Project {
+        let sockets: Vec<InitSocket> = asts.flat_map(init_sockets).collect();
+        Project::of_sockets(channels, channels_given, &sockets, interface)
+    }
+
+    /// The same from the `MM_Init_Socket` calls of the files, in file order (no tree needed).
+    pub fn of_sockets<'a>(
+        channels: Vec<EkiChannel>,
+        channels_given: bool,
+        sockets: impl IntoIterator<Item = &'a InitSocket>,
+        interface: super::interface::Selected,
+    ) -> Project {
         let mut p = Project {
             channels,
             channels_given,
@@ -166,8 +187,8 @@ impl Project {
             environment: HashSet::new(),
             interface,
         };
-        for ast in asts {
-            owned_flags(&p.channels, ast, &mut p.owned_flags);
+        for s in sockets {
+            s.owned_flags(&p.channels, &mut p.owned_flags);
         }
         p
     }
@@ -188,9 +209,18 @@ impl Project {
     }
 }
 
-/// Flags the channel owns: from the XML named by an `MM_Init_Socket` call, else from the flag
-/// arguments of the `MM_Init_Socket` calls themselves.
-fn owned_flags(channels: &[EkiChannel], ast: &SourceFile, flags: &mut HashMap<i64, &'static str>) {
+/// One `MM_Init_Socket` call, as far as the channel facts need it: the XML name and the flag
+/// numbers where they are literals.
+#[derive(Debug, Clone, PartialEq, Eq)]
+pub struct InitSocket {
+    pub xml: Option<String>,
+    pub alive: Option<i64>,
+    pub receive: Option<i64>,
+}
+
+/// The `MM_Init_Socket` calls of a file, in order.
+pub fn init_sockets(ast: &SourceFile) -> Vec<InitSocket> {
+    let mut out = Vec::new();
     for r in &ast.routines {
         walk::each_stmt(&r.body, &mut |s| {
             let StmtKind::Call { name, args } = &s.kind else {
@@ -200,19 +230,34 @@ fn owned_flags(channels: &[EkiChannel], ast: &SourceFile, flags: &mut HashMap<i6
                 return;
             }
             let arg = |i: usize| args.get(i).and_then(|a| a.as_ref());
-            let xml = arg(0).and_then(|e| match &e.kind {
-                ExprKind::Str(s) => Some(s.as_str()),
-                _ => None,
+            let num = |i| arg(i).and_then(walk::literal_number).map(|v| v as i64);
+            out.push(InitSocket {
+                xml: arg(0).and_then(|e| match &e.kind {
+                    ExprKind::Str(s) => Some(s.clone()),
+                    _ => None,
+                }),
+                alive: num(1),
+                receive: num(2),
             });
-            if let Some(ch) = xml.and_then(|x| channels.iter().find(|c| c.name == x)) {
-                flags.extend(ch.alive_flag.map(|v| (v, "alive")));
-                flags.extend(ch.receive_flag.map(|v| (v, "receive")));
-            } else {
-                let num = |i| arg(i).and_then(walk::literal_number).map(|v| v as i64);
-                flags.extend(num(1).map(|v| (v, "alive")));
-                flags.extend(num(2).map(|v| (v, "receive")));
-            }
         });
+    }
+    out
+}
+
+impl InitSocket {
+    /// Flags the channel owns: from the XML the call names, else from its flag arguments.
+    fn owned_flags(&self, channels: &[EkiChannel], flags: &mut HashMap<i64, &'static str>) {
+        let channel = self
+            .xml
+            .as_deref()
+            .and_then(|x| channels.iter().find(|c| c.name == x));
+        if let Some(ch) = channel {
+            flags.extend(ch.alive_flag.map(|v| (v, "alive")));
+            flags.extend(ch.receive_flag.map(|v| (v, "receive")));
+        } else {
+            flags.extend(self.alive.map(|v| (v, "alive")));
+            flags.extend(self.receive.map(|v| (v, "receive")));
+        }
     }
 }
 

@@ -36,6 +36,7 @@ pub static RULES: &[&Rule] = &[
     &rules::krl003::RULE,
     &rules::krl004::RULE,
     &rules::krl005::RULE,
+    &rules::krl006::RULE,
     &rules::krl010::RULE,
     &rules::krl011::RULE,
     &rules::krl012::RULE,
@@ -67,6 +68,11 @@ pub static FIXES: &[(&str, &str)] = &[
          appears nowhere else in the file, otherwise offered as unsafe (not applied)",
     ),
     ("KRL005", "upper-cases the words (safe)"),
+    (
+        "KRL016",
+        "deletes the unused declaration (its line, or the name and its comma from a list); \
+         offered in editors, never applied by `check --fix`",
+    ),
 ];
 
 /// What the automatic fix of `code` does, if it has one.

@@ -1,16 +1,17 @@
 //! A lint run kept alive between edits (the language server): every file stays parsed and
 //! summarised, one file can be replaced or removed (only it is parsed again; the model is
-//! rebuilt from the summaries), and files are checked on demand. It runs the same rules on the
+//! updated in place, [`Sema::update`], keeping the other files' summaries), and files are
+//! checked on demand. It runs the same rules on the
 //! same model as [`super::lint`], so the editor and `check` cannot disagree.
 
 use std::collections::HashMap;
 
 use rayon::prelude::*;
 
-use super::context::{FileCtx, Parsed, Project, SyntaxCtx};
+use super::context::{FileCtx, InitSocket, Parsed, Project, SyntaxCtx, init_sockets};
 use super::{Check, EkiChannel, Input, LintConfig, RULES, finish, mm_relevant, run};
 use crate::diag::FileReport;
-use crate::sema::{FileId, FileSummary, Sema, SemaInput};
+use crate::sema::{FileId, FileSummary, Sema, SemaInput, Update};
 
 /// Which files' findings an edit may have changed, besides the edited files themselves.
 #[derive(Debug, Clone, PartialEq, Eq)]
@@ -21,13 +22,14 @@ pub enum Affected {
     Files(Vec<String>),
 }
 
-/// What the session keeps of one file besides its parse.
+/// What the session keeps of one file besides its parse (its summary lives in the model).
 struct Meta {
-    summary: FileSummary,
     /// What other files' findings can depend on (see [`FileSummary::interface`]).
     interface: String,
     /// The Mech-Mind rules look at it.
     mm: bool,
+    /// Its `MM_Init_Socket` calls (the EKI facts, without the tree).
+    sockets: Vec<InitSocket>,
 }
 
 /// Invariant: a file's findings depend only on its own text, the other file of its module,
@@ -44,71 +46,92 @@ pub struct Session {
     config: LintConfig,
 }
 
-fn entry(i: Input) -> (Parsed, Meta) {
-    let parsed = Parsed::new(i.path, i.text);
-    let summary = FileSummary::of(&parsed.ast);
+/// A file parsed, what the session keeps of it, and its summary for the model. The syntax
+/// tree is kept only if `keep_tree` (files being edited); others are parsed again when checked.
+fn entry(i: Input, keep_tree: bool) -> (Parsed, Meta, FileSummary) {
+    let mut parsed = Parsed::new(i.path, i.text);
+    let ast = parsed.ast.take().unwrap_or_default();
+    let summary = FileSummary::of(&ast);
+    let mm = mm_relevant(&ast);
     let meta = Meta {
         interface: summary.interface(),
-        mm: mm_relevant(&parsed.ast),
-        summary,
+        sockets: if mm { init_sockets(&ast) } else { Vec::new() },
+        mm,
     };
-    (parsed, meta)
+    if keep_tree {
+        parsed.ast = Some(ast);
+    }
+    (parsed, meta, summary)
 }
 
 impl Session {
-    /// Parse every input (in parallel) and build the model.
+    /// Parse every input (in parallel) and build the model. The syntax trees are not kept.
     pub fn new(
         inputs: Vec<Input>,
         channels: Vec<EkiChannel>,
         channels_given: bool,
         config: LintConfig,
     ) -> Session {
-        let (files, meta): (Vec<Parsed>, Vec<Meta>) = inputs.into_par_iter().map(entry).unzip();
+        let fresh: Vec<(Parsed, Meta, FileSummary)> =
+            inputs.into_par_iter().map(|i| entry(i, false)).collect();
+        let mut files = Vec::with_capacity(fresh.len());
+        let mut meta = Vec::with_capacity(fresh.len());
+        let mut summaries = Vec::with_capacity(fresh.len());
+        for (f, m, summary) in fresh {
+            summaries.push(SemaInput {
+                path: f.path.clone(),
+                group: 0,
+                summary,
+            });
+            files.push(f);
+            meta.push(m);
+        }
         let mut s = Session {
             files,
             meta,
             index: HashMap::new(),
-            sema: Sema::build(Vec::new(), &[]),
-            project: Project::default(),
+            sema: Sema::build(summaries, &[]),
+            project: Project {
+                channels,
+                channels_given,
+                ..Project::default()
+            },
             config,
         };
-        s.project.channels = channels;
-        s.project.channels_given = channels_given;
-        s.rebuild();
+        s.refresh();
         s
     }
 
-    /// Rebuild the model and the lint facts from the summaries (no file is parsed again).
-    fn rebuild(&mut self) {
+    /// Bring the model up to date: `files` says, for each file in order, whether it is the
+    /// model's file of that id or new.
+    fn update(&mut self, files: Vec<Update>) {
+        self.sema.update(files, &[]);
+        self.refresh();
+    }
+
+    /// The index and the lint facts, after the model changed.
+    fn refresh(&mut self) {
         self.index = self
             .files
             .iter()
             .enumerate()
             .map(|(i, f)| (f.path.clone(), i))
             .collect();
-        let inputs = self
-            .files
-            .iter()
-            .zip(&self.meta)
-            .map(|(f, m)| SemaInput {
-                path: f.path.clone(),
-                group: 0,
-                summary: m.summary.clone(),
-            })
-            .collect();
-        self.sema = Sema::build(inputs, &[]);
         let channels = std::mem::take(&mut self.project.channels);
-        self.project = Project::new(
+        self.project = Project::of_sockets(
             channels,
             self.project.channels_given,
-            self.files
-                .iter()
-                .zip(&self.meta)
-                .filter(|(_, m)| m.mm)
-                .map(|(f, _)| &f.ast),
+            self.meta.iter().flat_map(|m| &m.sockets),
             super::interface::select(self.config.interface, &self.sema),
         );
         self.project.learn_environment(&self.sema);
+    }
+
+    /// The model's files unchanged.
+    fn keep_all(&self) -> Vec<Update> {
+        (0..self.files.len())
+            .map(|i| Update::Keep(FileId(i as u32)))
+            .collect()
     }
 
     /// Add a file, or replace the one with the same path; only this file is parsed.
@@ -116,30 +139,39 @@ impl Session {
         self.set_files(vec![input])
     }
 
-    /// Add or replace several files at once (one rebuild of the model). Says which other
-    /// files' findings may have changed.
+    /// Add or replace several files at once (one update of the model; their syntax trees are
+    /// kept). Says which other files' findings may have changed.
     pub fn set_files(&mut self, inputs: Vec<Input>) -> Affected {
-        let fresh: Vec<(Parsed, Meta)> = inputs.into_par_iter().map(entry).collect();
+        let fresh: Vec<(Parsed, Meta, FileSummary)> =
+            inputs.into_par_iter().map(|i| entry(i, true)).collect();
         let flags_before = self.project.owned_flags.clone();
         let mut changed: Vec<String> = Vec::new();
         let mut all = false;
-        for (f, m) in fresh {
+        let mut update = self.keep_all();
+        for (f, m, summary) in fresh {
             changed.push(f.path.clone());
+            let new = Update::New(Box::new(SemaInput {
+                path: f.path.clone(),
+                group: 0,
+                summary,
+            }));
             match self.index.get(&f.path) {
                 Some(&i) => {
                     all |= self.meta[i].interface != m.interface;
                     self.files[i] = f;
                     self.meta[i] = m;
+                    update[i] = new;
                 }
                 None => {
                     all = true;
                     self.index.insert(f.path.clone(), self.files.len());
                     self.files.push(f);
                     self.meta.push(m);
+                    update.push(new);
                 }
             }
         }
-        self.rebuild();
+        self.update(update);
         if all || self.project.owned_flags != flags_before {
             return Affected::All;
         }
@@ -160,24 +192,29 @@ impl Session {
     }
 
     pub fn remove_file(&mut self, path: &str) {
-        if !self.index.contains_key(path) {
+        let Some(&i) = self.index.get(path) else {
             return;
-        }
-        if let Some(i) = self.files.iter().position(|f| f.path == path) {
-            self.files.remove(i);
-            self.meta.remove(i);
-        }
-        self.rebuild();
+        };
+        self.files.remove(i);
+        self.meta.remove(i);
+        // The model still has the old ids: every file but the i-th, in order.
+        let update = (0..=self.files.len())
+            .filter(|&k| k != i)
+            .map(|k| Update::Keep(FileId(k as u32)))
+            .collect();
+        self.update(update);
     }
 
     pub fn set_config(&mut self, config: LintConfig) {
         self.config = config;
+        // The config may name the interface version.
+        self.refresh();
     }
 
     pub fn set_channels(&mut self, channels: Vec<EkiChannel>, channels_given: bool) {
         self.project.channels = channels;
         self.project.channels_given = channels_given;
-        self.rebuild();
+        self.update(self.keep_all());
     }
 
     /// The parsed file at `path`.
@@ -201,14 +238,15 @@ impl Session {
 
     fn check_index(&self, i: usize) -> FileReport {
         let p = &self.files[i];
-        let cx = SyntaxCtx::new(&p.path, &p.text, &p.ast, &p.syntax_errors);
+        let tree = p.tree();
+        let cx = SyntaxCtx::new(&p.path, &p.text, &tree, &p.syntax_errors);
         let mut findings = Vec::new();
         for rule in RULES {
             if let Check::Syntax(check) = rule.check {
                 run(rule, &self.config, &mut findings, |out| check(&cx, out));
             }
         }
-        let ast = self.meta[i].mm.then_some(&p.ast);
+        let ast = self.meta[i].mm.then_some(&*tree);
         let ctx = FileCtx::new(
             &self.sema,
             FileId(i as u32),

@@ -325,14 +325,15 @@ fn document_symbols(s: &Server, p: DocumentSymbolParams) -> Option<DocumentSymbo
     let f = file(s, &p.text_document)?;
     let lines = Lines::new(&f.text);
     Some(DocumentSymbolResponse::Nested(outline::document_symbols(
-        &lines, &f.ast,
+        &lines,
+        &f.tree(),
     )))
 }
 
 fn folding_ranges(s: &Server, p: FoldingRangeParams) -> Option<Vec<FoldingRange>> {
     let f = file(s, &p.text_document)?;
     let lines = Lines::new(&f.text);
-    Some(outline::folding_ranges(&lines, &f.ast))
+    Some(outline::folding_ranges(&lines, &f.tree()))
 }
 
 /// `source.fixAll.krlkit`: every safe fix of the file at once.

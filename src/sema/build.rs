@@ -71,6 +71,8 @@ pub(crate) struct Scopes {
 #[derive(Debug)]
 pub(crate) struct FileData {
     pub id: FileId,
+    /// The workspace source it came from ([`SemaInput::group`]).
+    pub group: u32,
     pub info: FileInfo,
     /// `$config.dat` or another system data list (`DEFDAT $…`): its declarations are robot-wide.
     pub robot_wide: bool,
@@ -186,10 +188,68 @@ fn is_config_path(path: &str) -> bool {
         .is_some_and(|f| f.eq_ignore_ascii_case("$config.dat"))
 }
 
+/// One file of [`Sema::update`]: unchanged since the model was built (its id there), or new or
+/// changed.
+#[derive(Debug)]
+pub enum Update {
+    Keep(FileId),
+    New(Box<SemaInput>),
+}
+
+/// A file on its way into the model: its summary with the file's own name indices (`Raw`) or
+/// already with the model's (`Interned`, from the model being updated).
+struct Source {
+    path: String,
+    group: u32,
+    summary: FileSummary,
+    interned: bool,
+}
+
 impl Sema {
     /// Build the model of a workspace from its files' summaries.
     pub fn build(inputs: Vec<SemaInput>, am_ini: &[AmIni]) -> Sema {
-        let mut names = Names::default();
+        let sources = inputs
+            .into_iter()
+            .map(|i| Source {
+                path: i.path,
+                group: i.group,
+                summary: i.summary,
+                interned: false,
+            })
+            .collect();
+        Sema::assemble(Names::default(), sources, am_ini)
+    }
+
+    /// The model after files were added, changed, removed or reordered: `files` lists the new
+    /// workspace in order. Unchanged files keep their summaries and the name table is kept, so
+    /// only the changed files are summarised again and nothing is copied (the language server
+    /// after each edit). Gives the same files, scopes and resolutions as [`Sema::build`] of the
+    /// same summaries; only [`NameId`] numbers may differ.
+    pub fn update(&mut self, files: Vec<Update>, am_ini: &[AmIni]) {
+        let names = std::mem::take(&mut self.names);
+        let old = std::mem::take(&mut self.files);
+        let mut old: Vec<Option<FileData>> = old.into_iter().map(Some).collect();
+        let sources = files
+            .into_iter()
+            .filter_map(|u| match u {
+                Update::Keep(id) => old.get_mut(id.index())?.take().map(|f| Source {
+                    path: f.info.path,
+                    group: f.group,
+                    summary: f.s,
+                    interned: true,
+                }),
+                Update::New(i) => Some(Source {
+                    path: i.path,
+                    group: i.group,
+                    summary: i.summary,
+                    interned: false,
+                }),
+            })
+            .collect();
+        *self = Sema::assemble(names, sources, am_ini);
+    }
+
+    fn assemble(mut names: Names, inputs: Vec<Source>, am_ini: &[AmIni]) -> Sema {
         let mut b = Builder {
             sema: Sema {
                 names: Names::default(),
@@ -214,7 +274,12 @@ impl Sema {
         // Modules: same robot, same folder, same stem.
         let mut module_of: FxHashMap<(u32, String, String), ModuleId> = FxHashMap::default();
         for (i, input) in inputs.into_iter().enumerate() {
-            let SemaInput { path, summary, .. } = input;
+            let Source {
+                path,
+                group,
+                summary,
+                interned,
+            } = input;
             let kind = FileKind::of(&path);
             let robot = robot_of[i];
             let comps = components(&path);
@@ -261,13 +326,17 @@ impl Sema {
             } else {
                 m.src = Some(file);
             }
+            let s = if interned {
+                summary
+            } else {
+                intern(&mut names, summary)
+            };
             let robot_wide = is_config
-                || summary
-                    .dat
-                    .is_some_and(|(n, _, _)| summary.names[n as usize].starts_with('$'));
-            let s = intern(&mut names, summary);
+                || s.dat
+                    .is_some_and(|(n, _, _)| names.text(NameId(n)).starts_with('$'));
             b.sema.files.push(FileData {
                 id: file,
+                group,
                 robot_wide,
                 info: FileInfo {
                     path,
@@ -304,7 +373,7 @@ impl Sema {
 }
 
 /// Give each file its robot.
-fn partition(inputs: &[SemaInput], am_ini: &[AmIni]) -> (Vec<RobotId>, Vec<Robot>) {
+fn partition(inputs: &[Source], am_ini: &[AmIni]) -> (Vec<RobotId>, Vec<Robot>) {
     let mut robots: Vec<(u32, Robot)> = Vec::new();
     let mut robot_of = vec![RobotId(0); inputs.len()];
     let mut groups: Vec<u32> = inputs.iter().map(|i| i.group).collect();

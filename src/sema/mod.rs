@@ -65,7 +65,7 @@ mod summary;
 mod ty;
 pub mod workspace;
 
-pub use build::{AmIni, Position, Sema, SemaInput};
+pub use build::{AmIni, Position, Sema, SemaInput, Update};
 pub use env::{Env, KssVersion, env};
 pub use ids::{
     BuiltinId, ExtId, FileId, Loc, ModuleId, NameId, RobotId, RoutineId, SymbolId, TypeId,

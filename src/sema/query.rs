@@ -394,7 +394,8 @@ impl Sema {
     }
 
     /// Names visible at `offset` (for completion): locals first, then the module's, the
-    /// robot's, `$config.dat`'s, and the system's; each name once, as the lookup would find it.
+    /// robot's, `$config.dat`'s, and the system's; each name once, as the lookup would find it;
+    /// alphabetical within each scope (the same answer however the model was built).
     pub fn visible(&self, file: FileId, offset: u32) -> Vec<(NameId, Resolved)> {
         let at = self.position(file, offset);
         let s = &self.scopes;
@@ -417,23 +418,23 @@ impl Sema {
                 }
             };
             let mut vars: Vec<_> = t.vars.iter().collect();
-            vars.sort_by_key(|(n, _)| **n);
+            vars.sort_by_key(|(n, _)| self.names.key(**n));
             for (n, v) in vars {
                 add(*n, Resolved::Symbol(*v));
             }
             let mut routines: Vec<_> = t.routines.iter().collect();
-            routines.sort_by_key(|(n, _)| **n);
+            routines.sort_by_key(|(n, _)| self.names.key(**n));
             for (n, r) in routines {
                 add(*n, Resolved::Routine(*r));
             }
             let mut exts: Vec<_> = t.exts.iter().collect();
-            exts.sort_by_key(|(n, _)| **n);
+            exts.sort_by_key(|(n, _)| self.names.key(**n));
             for (n, x) in exts {
                 add(*n, Resolved::Ext(*x));
             }
         }
         let mut builtins: Vec<_> = s.builtins.iter().collect();
-        builtins.sort_by_key(|(n, _)| **n);
+        builtins.sort_by_key(|(n, _)| self.names.key(**n));
         for (n, b) in builtins {
             if seen.insert(*n, ()).is_none() {
                 out.push((*n, Resolved::Builtin(*b)));

@@ -249,3 +249,76 @@ fn completion_lists_locals_first() {
     assert!(names.contains(&"$OUT"));
     assert!(names.contains(&"SIN"));
 }
+
+/// A place as (file path, offset): comparable across models.
+type Place = (String, u32);
+
+/// Every use of every file with the place of its declaration.
+fn resolutions(s: &Sema) -> Vec<(Place, Option<Place>)> {
+    let mut out = Vec::new();
+    for i in 0..s.files.len() {
+        let f = FileId(i as u32);
+        for (k, u) in s.uses(f).iter().enumerate() {
+            let decl = s
+                .declaration(s.resolution(f, k))
+                .map(|l| (s.file(l.file).path.clone(), l.span.start));
+            out.push(((s.file(f).path.clone(), u.span.start), decl));
+        }
+    }
+    out
+}
+
+fn inputs(files: &[(&str, &str)]) -> Vec<SemaInput> {
+    files
+        .iter()
+        .map(|(p, t)| SemaInput {
+            path: p.to_string(),
+            group: 0,
+            summary: FileSummary::of(&crate::syntax::parse(t).ast(t)),
+        })
+        .collect()
+}
+
+#[test]
+fn an_update_resolves_as_a_fresh_build() {
+    let before = [
+        ("R1/System/$config.dat", CONFIG),
+        (
+            "R1/Program/cell.src",
+            "DEF cell()\nDECL INT local\nlocal = cfg_count\npick()\nEND\n",
+        ),
+        ("R1/Program/pick.src", "DEF pick()\nEND\n"),
+        ("R1/Program/gone.src", "GLOBAL DEF gone()\nEND\n"),
+    ];
+    let after = [
+        ("R1/System/$config.dat", CONFIG),
+        // Changed: a new local, a call into another module, a name new to the model.
+        (
+            "R1/Program/cell.src",
+            "DEF cell()\nDECL INT local, fresh_name\nlocal = cfg_count + fresh_name\npick()\ngone()\nEND\n",
+        ),
+        ("R1/Program/pick.src", "DEF pick()\nEND\n"),
+        ("R1/Program/new.src", "GLOBAL DEF gone()\nspeed = 1\nEND\n"),
+    ];
+    let mut updated = Sema::build(inputs(&before), &[]);
+    // The config and pick are kept, cell is changed, gone is replaced by new.
+    let changes = inputs(&after)
+        .into_iter()
+        .enumerate()
+        .map(|(i, input)| match i {
+            0 | 2 => Update::Keep(FileId(i as u32)),
+            _ => Update::New(Box::new(input)),
+        })
+        .collect();
+    updated.update(changes, &[]);
+    let rebuilt = Sema::build(inputs(&after), &[]);
+    assert_eq!(resolutions(&updated), resolutions(&rebuilt));
+    assert_eq!(updated.stats(), rebuilt.stats());
+    let names = |s: &Sema, f: u32| -> Vec<String> {
+        s.visible(FileId(1), s.uses(FileId(f))[0].span.start)
+            .into_iter()
+            .map(|(n, _)| s.names.text(n).to_owned())
+            .collect()
+    };
+    assert_eq!(names(&updated, 1), names(&rebuilt, 1));
+}

@@ -234,6 +234,19 @@ fn part(kind: NodeKind) -> Part {
 /// lines above them, from its frame's mark.
 pub(crate) struct Assembler {
     stack: Vec<Frame>,
+    /// Openers past [`MAX_BLOCK_DEPTH`] still open: kept as plain lines, like the `ELSE`s and
+    /// closers that belong to them, so hostile nesting is one finding, not one per line.
+    too_deep: usize,
+}
+
+/// A line that opens, continues or closes nothing.
+fn plain(b: &mut Builder, node: Child) {
+    // An outline keeps no plain lines: no later diagnostic looks at them.
+    if b.is_outline() {
+        b.forget(node);
+    } else {
+        b.push(node);
+    }
 }
 
 /// The span of a line node's code (first to last non-trivia child).
@@ -275,7 +288,10 @@ fn kind_of(b: &Builder, line: Child) -> Option<NodeKind> {
 
 impl Assembler {
     pub(crate) fn new() -> Self {
-        Assembler { stack: Vec::new() }
+        Assembler {
+            stack: Vec::new(),
+            too_deep: 0,
+        }
     }
 
     fn open(&mut self, b: &mut Builder, block: Block, line: Child) {
@@ -341,10 +357,21 @@ impl Assembler {
             Some((Some(kind), span, code)) => b.compact_line(kind, span, code),
             _ => node,
         };
+        let module_line =
+            matches!(role, Role::Open(block) | Role::Close(block) if block.is_module());
+        if self.too_deep > 0 && !module_line {
+            // Inside blocks nested past the limit (already reported once): their lines stay
+            // in the tree, unnested and unjudged.
+            match role {
+                Role::Open(_) => self.too_deep += 1,
+                Role::Close(_) => self.too_deep -= 1,
+                _ => {}
+            }
+            return plain(b, node);
+        }
+        self.too_deep = 0;
         match role {
-            // An outline keeps no plain lines: no later diagnostic looks at them.
-            Role::None if b.is_outline() => b.forget(node),
-            Role::None => b.push(node),
+            Role::None => plain(b, node),
             Role::Open(block) => {
                 let mut node = node;
                 if block.is_module() {
@@ -357,6 +384,7 @@ impl Assembler {
                     // overflow their stacks. The line stays in the tree, unnested.
                     let what = format!("blocks nested more than {MAX_BLOCK_DEPTH} deep");
                     self.unexpected(b, node, &what, diagnostics);
+                    self.too_deep = 1;
                     return;
                 }
                 self.open(b, block, node);

@@ -116,6 +116,13 @@ pub fn transpile(
         Target::Kawasaki => kawasaki::render(&program, &model, vision.as_ref(), options),
         Target::Flexiv => flexiv::render(&program, &model, vision.as_ref(), options),
     };
+    if target == Target::Kawasaki {
+        let at = model
+            .routines
+            .first()
+            .map_or(crate::diag::Span::new(0, 0), |r| r.name_span);
+        report_structure(&text, at, &mut report);
+    }
     report.coverage = coverage(&model, &report, &produced);
     trim_spans(&mut report.src, &program.src.text);
     if let Some(dat) = &program.dat {
@@ -138,6 +145,22 @@ pub fn transpile(
         text,
         reports,
         coverage: report.coverage,
+    }
+}
+
+/// The promise is "loads on the controller": AS text that fails the structural check is a
+/// renderer defect, and it fails the command (TR001 at the program's first routine) instead of
+/// reaching the robot.
+fn report_structure(text: &str, at: crate::diag::Span, report: &mut front::report::Report) {
+    for problem in kawasaki::check::check(text) {
+        report.untranslatable(
+            front::report::FileId::Src,
+            at,
+            format!(
+                "the translated AS fails krlkit's structural check ({problem}): a translator defect"
+            ),
+            "do not load this output; report the program that produced it",
+        );
     }
 }
 
@@ -183,5 +206,31 @@ fn trim_spans(diagnostics: &mut [crate::diag::Diagnostic], text: &str) {
                 d.span = crate::diag::Span::new(from, from + code.len());
             }
         }
+    }
+}
+
+#[cfg(test)]
+mod structure_tests {
+    use super::*;
+
+    #[test]
+    fn unsound_as_fails_the_translation() {
+        let mut report = front::report::Report::default();
+        report_structure(
+            ".PROGRAM a()\n  IF x THEN\n.END\n",
+            crate::diag::Span::new(4, 5),
+            &mut report,
+        );
+        assert_eq!(report.src.len(), 1, "{:?}", report.src);
+        assert_eq!(report.src[0].code, rules::UNTRANSLATABLE);
+        assert!(report.src[0].message.contains("structural check"));
+
+        let mut report = front::report::Report::default();
+        report_structure(
+            ".PROGRAM a()\n  HOME\n.END\n",
+            crate::diag::Span::new(4, 5),
+            &mut report,
+        );
+        assert!(report.src.is_empty(), "{:?}", report.src);
     }
 }

@@ -1,6 +1,13 @@
 //! SARIF 2.1.0: one run, the rule metadata (the lint registry's, or the caller's), one result
 //! per finding.
+//!
+//! Artifact locations are URIs, as SARIF requires (§3.4.3): a relative path is a percent-encoded
+//! relative reference against the `SRCROOT` base (the working directory, named in
+//! `originalUriBaseIds` when known), an absolute path a `file://` URI.
 
+use std::path::Path;
+
+use percent_encoding::{AsciiSet, NON_ALPHANUMERIC, utf8_percent_encode};
 use serde_json::{Value, json};
 
 use crate::diag::{FileReport, LineIndex, Severity};
@@ -26,9 +33,35 @@ pub struct RuleMeta<'a> {
     pub doc: &'a str,
 }
 
-/// The whole SARIF log for `reports` with the lint rules' metadata (paths are used as
-/// relative URIs, `\` turned into `/`).
-pub fn render(reports: &[FileReport]) -> String {
+/// The base relative artifact URIs are resolved against.
+pub const SRCROOT: &str = "SRCROOT";
+
+/// Bytes a path segment keeps as they are (RFC 3986 unreserved characters); `/` separates
+/// segments. Everything else is percent-encoded as UTF-8.
+const SEGMENT: &AsciiSet = &NON_ALPHANUMERIC
+    .remove(b'-')
+    .remove(b'.')
+    .remove(b'_')
+    .remove(b'~')
+    .remove(b'/');
+
+/// The `artifactLocation` of a file named `path` as the user gave it (`\` read as `/`).
+pub fn artifact_location(path: &str) -> Value {
+    let slashed = path.replace('\\', "/");
+    if Path::new(path).is_absolute()
+        && let Ok(url) = url::Url::from_file_path(path)
+    {
+        return json!({ "uri": url.as_str() });
+    }
+    let relative = slashed.strip_prefix("./").unwrap_or(&slashed);
+    // `:` is encoded too, so a first segment never reads as a scheme (`a:b.src`).
+    let uri = utf8_percent_encode(relative, SEGMENT).to_string();
+    json!({ "uri": uri, "uriBaseId": SRCROOT })
+}
+
+/// The whole SARIF log for `reports` with the lint rules' metadata; `root` is the directory
+/// relative paths start from (the working directory), named as `SRCROOT` when given.
+pub fn render(reports: &[FileReport], root: Option<&Path>) -> String {
     let rules: Vec<RuleMeta> = RULES
         .iter()
         .map(|r| RuleMeta {
@@ -39,11 +72,15 @@ pub fn render(reports: &[FileReport]) -> String {
             doc: r.doc,
         })
         .collect();
-    render_with_rules(reports, &rules)
+    render_with_rules(reports, &rules, root)
 }
 
-/// The whole SARIF log for `reports` with the metadata of `rules`.
-pub fn render_with_rules(reports: &[FileReport], rule_meta: &[RuleMeta]) -> String {
+/// The whole SARIF log for `reports` with the metadata of `rules` (`root` as for [`render`]).
+pub fn render_with_rules(
+    reports: &[FileReport],
+    rule_meta: &[RuleMeta],
+    root: Option<&Path>,
+) -> String {
     let rules: Vec<Value> = rule_meta
         .iter()
         .map(|r| {
@@ -63,8 +100,7 @@ pub fn render_with_rules(reports: &[FileReport], rule_meta: &[RuleMeta]) -> Stri
             continue;
         }
         let index = LineIndex::new(&report.text);
-        let uri = report.path.replace('\\', "/");
-        let uri = uri.strip_prefix("./").unwrap_or(&uri).to_owned();
+        let location = artifact_location(&report.path);
         for d in &report.diagnostics {
             let (line, col) = index.line_col(&report.text, d.span.start as usize);
             let (end_line, end_col) = index.line_col(&report.text, d.span.end as usize);
@@ -81,7 +117,7 @@ pub fn render_with_rules(reports: &[FileReport], rule_meta: &[RuleMeta]) -> Stri
                 "message": { "text": text },
                 "locations": [{
                     "physicalLocation": {
-                        "artifactLocation": { "uri": uri },
+                        "artifactLocation": location,
                         "region": {
                             "startLine": line,
                             "startColumn": col,
@@ -93,18 +129,22 @@ pub fn render_with_rules(reports: &[FileReport], rule_meta: &[RuleMeta]) -> Stri
             }));
         }
     }
+    let mut run = json!({
+        "tool": { "driver": {
+            "name": "krlkit",
+            "version": env!("CARGO_PKG_VERSION"),
+            "informationUri": "https://github.com/krlkit/krlkit",
+            "rules": rules,
+        }},
+        "results": results,
+    });
+    if let Some(base) = root.and_then(|r| url::Url::from_directory_path(r).ok()) {
+        run["originalUriBaseIds"] = json!({ SRCROOT: { "uri": base.as_str() } });
+    }
     let log = json!({
         "$schema": SCHEMA,
         "version": "2.1.0",
-        "runs": [{
-            "tool": { "driver": {
-                "name": "krlkit",
-                "version": env!("CARGO_PKG_VERSION"),
-                "informationUri": "https://github.com/krlkit/krlkit",
-                "rules": rules,
-            }},
-            "results": results,
-        }]
+        "runs": [run],
     });
     serde_json::to_string_pretty(&log).unwrap_or_default()
 }
@@ -114,4 +154,91 @@ fn first_paragraph(doc: &str) -> String {
     let body = doc.strip_prefix("## What it checks\n").unwrap_or(doc);
     let para = body.split("\n\n").next().unwrap_or(body);
     para.lines().collect::<Vec<_>>().join(" ")
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use std::path::PathBuf;
+
+    /// Resolve an artifact location as a SARIF consumer does.
+    fn resolve(location: &Value, root: &url::Url) -> PathBuf {
+        let uri = location["uri"].as_str().expect("uri");
+        let url = match location.get("uriBaseId") {
+            Some(base) => {
+                assert_eq!(base, SRCROOT);
+                assert!(url::Url::parse(uri).is_err(), "relative reference: {uri}");
+                root.join(uri).expect("joins the base")
+            }
+            None => url::Url::parse(uri).expect("absolute URI"),
+        };
+        assert_eq!(url.scheme(), "file");
+        url.to_file_path().expect("a file path")
+    }
+
+    #[test]
+    fn artifact_uris_are_percent_encoded_and_resolve_to_the_file() {
+        let root = PathBuf::from("/work/cell 1");
+        let base = url::Url::from_directory_path(&root).unwrap();
+        for name in [
+            "pick.src",
+            "./pick.src",
+            "R1/Program/pick.src",
+            "my programs/pick #2.src",
+            "100%/a?b.src",
+            "a:b.src",
+            "Zelle_Größe/prüfen.src",
+            "[x]{y} 'z'.dat",
+            "../other/x.src",
+            "<stdin>",
+        ] {
+            let location = artifact_location(name);
+            let uri = location["uri"].as_str().unwrap();
+            assert!(
+                uri.bytes().all(|b| b.is_ascii_graphic() && b != b'\\'),
+                "{name} -> {uri}"
+            );
+            let want = root.join(name.strip_prefix("./").unwrap_or(name));
+            let want: PathBuf = want.components().collect();
+            let got = resolve(&location, &base);
+            // `..` is resolved by the URL, not by the path join.
+            if name.starts_with("../") {
+                assert_eq!(got, PathBuf::from("/work/other/x.src"));
+            } else {
+                assert_eq!(got, want, "{name} -> {uri}");
+            }
+        }
+        let abs = artifact_location("/srv/krc/R1/my pick.src");
+        assert_eq!(abs["uri"], "file:///srv/krc/R1/my%20pick.src");
+        assert!(abs.get("uriBaseId").is_none());
+        assert_eq!(
+            resolve(&abs, &base),
+            PathBuf::from("/srv/krc/R1/my pick.src")
+        );
+    }
+
+    #[test]
+    fn the_log_names_the_base_when_the_root_is_known() {
+        let report = FileReport {
+            path: "a b.src".into(),
+            text: "x\n".into(),
+            diagnostics: vec![crate::diag::Diagnostic::error(
+                "KRL001",
+                crate::diag::Span::new(0, 1),
+                "m",
+            )],
+        };
+        let log: Value = serde_json::from_str(&render(
+            std::slice::from_ref(&report),
+            Some(Path::new("/w")),
+        ))
+        .unwrap();
+        let run = &log["runs"][0];
+        assert_eq!(run["originalUriBaseIds"][SRCROOT]["uri"], "file:///w/");
+        let location = &run["results"][0]["locations"][0]["physicalLocation"]["artifactLocation"];
+        assert_eq!(location["uri"], "a%20b.src");
+        assert_eq!(location["uriBaseId"], SRCROOT);
+        let log: Value = serde_json::from_str(&render(&[report], None)).unwrap();
+        assert!(log["runs"][0].get("originalUriBaseIds").is_none());
+    }
 }

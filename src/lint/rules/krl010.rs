@@ -19,6 +19,7 @@ fn check(ctx: &FileCtx, out: &mut Vec<Diagnostic>) {
         return;
     }
     let sema = ctx.sema;
+    let mut suggestions: rustc_hash::FxHashMap<(Option<usize>, usize), String> = Default::default();
     for (i, u) in sema.uses(ctx.id).iter().enumerate() {
         if u.kind != UseKind::Var
             || u.access == Access::Mention
@@ -35,18 +36,24 @@ fn check(ctx: &FileCtx, out: &mut Vec<Diagnostic>) {
         if sema.lookup_call(at, name) != Resolved::Unresolved {
             continue;
         }
-        let mut d = Diagnostic::error(RULE.code, u.span, format!("`{name}` is not declared"));
-        let visible = sema.visible(ctx.id, u.span.start);
-        let candidates = visible
-            .iter()
-            .filter(|(_, r)| matches!(r, Resolved::Symbol(_)))
-            .map(|(n, _)| sema.name(*n));
-        match nearest(name, candidates) {
-            Some(n) => d = d.with_help(format!("did you mean `{n}`?")),
-            None => d = d.with_help(
-                "declare it in the routine, in the module's .dat, or GLOBAL in a PUBLIC data list",
-            ),
-        }
-        out.push(d);
+        let d = Diagnostic::error(RULE.code, u.span, format!("`{name}` is not declared"));
+        // One search per name and routine: a file can use one undeclared name hundreds of
+        // times, and each search walks every visible name.
+        let help = suggestions
+            .entry((at.routine.map(|r| r.index()), sema.use_name(u).index()))
+            .or_insert_with(|| {
+                let visible = sema.visible(ctx.id, u.span.start);
+                let candidates = visible
+                    .iter()
+                    .filter(|(_, r)| matches!(r, Resolved::Symbol(_)))
+                    .map(|(n, _)| sema.name(*n));
+                match nearest(name, candidates) {
+                    Some(n) => format!("did you mean `{n}`?"),
+                    None => "declare it in the routine, in the module's .dat, or GLOBAL in a \
+                             PUBLIC data list"
+                        .to_owned(),
+                }
+            });
+        out.push(d.with_help(help.clone()));
     }
 }

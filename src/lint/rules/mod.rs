@@ -5,6 +5,7 @@ pub mod krl002;
 pub mod krl003;
 pub mod krl004;
 pub mod krl005;
+pub mod krl006;
 pub mod krl010;
 pub mod krl011;
 pub mod krl012;
