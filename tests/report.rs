@@ -10,6 +10,8 @@ use quick_xml::events::Event;
 
 use krlkit::report;
 
+mod report_support;
+
 fn fixture(name: &str) -> String {
     let p = Path::new(env!("CARGO_MANIFEST_DIR"))
         .join("tests/fixtures/report")
@@ -153,7 +155,8 @@ fn page_is_well_formed_self_contained_and_marks_every_pose() {
         );
         assert_eq!(page.target_marks.get(v), Some(&drawn), "{v}");
     }
-    assert_eq!(model.path.vision.len(), 2);
+    // Three poses received (one never fetched), two of them fetched and moved to.
+    assert_eq!(model.path.vision.len(), 3);
     // Each drawing has a title and a text description, and a table behind it.
     assert!(page.elements["title"] >= 4 && page.elements["desc"] >= 4);
     assert!(page.elements["table"] >= 5);
@@ -172,4 +175,40 @@ fn the_same_trace_gives_the_same_page() {
 fn a_bad_trace_is_an_error_naming_the_line() {
     let e = report::from_trace("{\"event\":\"end\",\"status\":\"ok\"}\n{oops\n").unwrap_err();
     assert!(e.to_string().contains("line 2"), "{e}");
+}
+
+/// The page marks every pose the vision server sent, also the ones the program never fetched:
+/// `first_only.src` takes the first pose of each of the three batches of the examples
+/// scenario's project 1 (nine poses).
+#[test]
+fn every_pose_the_server_sent_is_marked_even_unfetched_ones() {
+    let trace = report_support::trace_of(
+        "tests/fixtures/report/first_only.src",
+        "tests/fixtures/scenarios/examples.toml",
+    );
+    let model = report::build(&report::trace::parse(&trace).unwrap());
+    assert_eq!(model.path.motions.len(), 3);
+    let got: Vec<(Vec<f64>, Option<String>)> = model
+        .path
+        .vision
+        .iter()
+        .map(|v| {
+            let pose = v.values.iter().map(|x| x.parse().unwrap()).collect();
+            (pose, v.label.clone())
+        })
+        .collect();
+    let want: Vec<(Vec<f64>, Option<String>)> =
+        report_support::scenario_poses("tests/fixtures/scenarios/examples.toml", 1)
+            .into_iter()
+            .map(|(pose, label)| (pose, Some(label.to_string())))
+            .collect();
+    assert_eq!(want.len(), 9);
+    assert_eq!(got, want);
+    // The fetched ones are linked to their motions; the others have none.
+    let moved: Vec<usize> = model.path.motions.iter().filter_map(|m| m.vision).collect();
+    assert_eq!(moved, [1, 5, 9]);
+    let page = read_page(&report::render(&model).unwrap());
+    for v in ["front", "side", "top"] {
+        assert_eq!(page.vision_marks.get(v), Some(&9), "{v}");
+    }
 }

@@ -140,6 +140,11 @@ pub const DY_FIXED_FIELDS: u32 = 11;
 pub const BATCH_HEADER_FIELDS: u32 = 5;
 /// Fields per point in a 102/105/205 reply.
 pub const POINT_FIELDS: u32 = 8;
+/// `MM_Pt_Kind` of stored TCP poses (also the `Jps_Pos` value asking for TCP waypoints), and
+/// of stored path-planning waypoints (then `MM_Plan_Jps_Pos` says joints or TCP). The
+/// interpreter reads the store with these to trace the poses the vision server sent.
+pub const KIND_TCP: u32 = 2;
+pub const KIND_PLAN: u32 = 4;
 
 impl Package {
     pub fn new(spec: &Spec) -> Package {
@@ -231,9 +236,9 @@ impl Package {
             globals: global_decls(iface),
             channel_len: 32,
             kind_joints: 1,
-            kind_tcp: 2,
+            kind_tcp: KIND_TCP,
             kind_custom: 3,
-            kind_plan: 4,
+            kind_plan: KIND_PLAN,
             dy_fixed: DY_FIXED_FIELDS,
             plan_fixed: PLAN_FIXED_FIELDS,
             batch_header: BATCH_HEADER_FIELDS,

@@ -12,12 +12,15 @@ mod forms;
 mod interrupt;
 mod signals;
 mod submit;
+mod vision;
 mod watch;
 
 use super::eki::Eki;
 use super::program::Program;
 use super::value::{AXIS_FIELDS, BaseType, CART_FIELDS, Types, Value};
-use super::{End, Event, Location, Options, Record, RunResult, RuntimeError, TraceSink, WaitKind};
+use super::{
+    End, Event, Location, Options, Record, RunResult, RuntimeError, TraceSink, VisionPose, WaitKind,
+};
 
 /// Where a value lives: the target of assignments and OUT parameters.
 #[derive(Debug, Clone, PartialEq)]
@@ -149,6 +152,8 @@ pub(crate) struct Machine<'p> {
     /// While the submit routine runs (see `submit.rs`).
     in_submit: bool,
     /// The last word the submit routine wrote.
+    /// The point store's poses as last traced (an [`Event::Vision`] when they change).
+    traced_poses: Vec<VisionPose>,
     srci_word: Option<u32>,
     /// What the `WAIT FOR` check under way reads (see `watch.rs`).
     reads: Option<watch::Reads>,
@@ -203,6 +208,7 @@ impl<'p> Machine<'p> {
             declared_scope: None,
             in_submit: false,
             srci_word: None,
+            traced_poses: Vec::new(),
             reads: None,
             loop_reads: None,
         };
@@ -882,6 +888,7 @@ impl<'p> Machine<'p> {
                 Some(Value::Int(i)) => Some(*i),
                 _ => None,
             };
+            self.trace_stored_poses(&routine.name.text);
             self.emit(Event::Return {
                 name: routine.name.text.to_string(),
                 out,

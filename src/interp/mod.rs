@@ -241,6 +241,13 @@ pub enum Event {
         kind: WaitKind,
         ms: f64,
     },
+    /// After an `MM_*` routine, the Cartesian poses in the package's point store changed: every
+    /// pose the vision server sent that the program can fetch (TCP points of a vision result,
+    /// TCP waypoints of a path plan), whether or not the program fetches them.
+    Vision {
+        routine: String,
+        poses: Vec<VisionPose>,
+    },
     /// The SRCI RaStatusWord the status packer writes changed (see [`Options::submit`]).
     Srci {
         word: u32,
@@ -265,6 +272,13 @@ pub enum Event {
         /// The exit code of `krlkit run` for this run ([`exit_code`]).
         exit: i32,
     },
+}
+
+/// A pose in the package's point store: `X, Y, Z, A, B, C` and the label of a vision point.
+#[derive(Debug, Clone, PartialEq)]
+pub struct VisionPose {
+    pub pose: [f64; 6],
+    pub label: Option<i64>,
 }
 
 /// Receives trace records the moment the run makes them, so a trace file is written as the run
@@ -383,6 +397,22 @@ impl Event {
             } => json!({"event": "io", "signal": signal, "index": index, "value": value}),
             Event::Wait { kind, ms } => {
                 json!({"event": "wait", "kind": kind.as_str(), "ms": trace_ms(*ms)})
+            }
+            Event::Vision { routine, poses } => {
+                let poses: Vec<J> = poses
+                    .iter()
+                    .map(|p| {
+                        let mut m = Map::new();
+                        for (k, x) in value::CART_FIELDS.iter().zip(p.pose) {
+                            m.insert(k.to_string(), json!(x));
+                        }
+                        if let Some(l) = p.label {
+                            m.insert("label".into(), json!(l));
+                        }
+                        J::Object(m)
+                    })
+                    .collect();
+                json!({"event": "vision", "routine": routine, "poses": poses})
             }
             Event::Srci { word } => json!({"event": "srci", "word": word}),
             Event::Source { file, text } => json!({"event": "source", "file": file, "text": text}),

@@ -96,6 +96,8 @@ pub struct Mark {
     pub family: &'static str,
     pub x: String,
     pub y: String,
+    /// `X Y Z A B C` of the target, for tools that read the page (`data-values`).
+    pub values: String,
     pub title: String,
     /// The tool's X, Y, Z axes projected: line ends relative to the mark.
     pub glyph: Vec<GlyphAxis>,
@@ -113,6 +115,8 @@ pub struct VisionMark {
     pub n: usize,
     pub x: String,
     pub y: String,
+    /// `X Y Z A B C` of the pose (`data-values`).
+    pub values: String,
     pub label: String,
     pub title: String,
 }
@@ -181,6 +185,11 @@ fn same_pose(a: &Pose, b: &Pose) -> bool {
     a.iter().zip(b).all(|(x, y)| (x - y).abs() < 1e-3)
 }
 
+/// `X Y Z A B C`, numbers only.
+fn pose_attr(p: &Pose) -> String {
+    pose_values(p).join(" ")
+}
+
 fn pose_text(p: &Pose) -> String {
     format!(
         "X {} Y {} Z {} A {} B {} C {}",
@@ -229,30 +238,42 @@ pub fn motions(entries: &[Entry]) -> Vec<MotionRow> {
         .collect()
 }
 
-/// Every distinct Cartesian pose an `MM_` routine returned (in an OUT parameter), in the
-/// order the program first received it.
+/// Every distinct Cartesian pose the vision server sent, in the order the program first
+/// received it: the package's point store after an `MM_` routine (`vision` events: also the
+/// poses the program never fetches) and the poses `MM_` routines returned in OUT parameters.
 pub fn vision_poses(entries: &[Entry]) -> Vec<VisionRow> {
     let mut rows: Vec<VisionRow> = Vec::new();
     for e in entries {
-        let Kind::Return { name, out, .. } = &e.kind else {
-            continue;
+        let (name, received): (&str, Vec<(Pose, Option<String>)>) = match &e.kind {
+            Kind::Return { name, out, .. } => {
+                let label = label_of(out);
+                let poses = out.values().filter_map(pose_of);
+                (name, poses.map(|p| (p, label.clone())).collect())
+            }
+            Kind::Vision { routine, poses } => (
+                routine,
+                poses
+                    .iter()
+                    .map(|(p, l)| (*p, l.map(|l| l.to_string())))
+                    .collect(),
+            ),
+            _ => continue,
         };
-        let label = label_of(out);
-        for v in out.values() {
-            let Some(pose) = pose_of(v) else { continue };
-            if rows
-                .iter()
-                .any(|r| same_pose(&r.pose, &pose) && r.label == label)
-            {
+        for (pose, label) in received {
+            let known = rows.iter().any(|r| {
+                same_pose(&r.pose, &pose)
+                    && (r.label == label || r.label.is_none() || label.is_none())
+            });
+            if known {
                 continue;
             }
             let place = at(e);
             rows.push(VisionRow {
                 n: rows.len() + 1,
                 values: pose_values(&pose),
-                label: label.clone(),
+                label,
                 fetched: if place.is_empty() {
-                    name.clone()
+                    name.to_string()
                 } else {
                     format!("{name} at {place}")
                 },
@@ -404,7 +425,7 @@ pub fn build(entries: &[Entry]) -> PathModel {
             view(
                 (id, name, hn, vn),
                 &proj,
-                (lo, hi),
+                lo,
                 &drawn,
                 &vision,
                 motions.len(),
@@ -422,22 +443,27 @@ pub fn build(entries: &[Entry]) -> PathModel {
 fn view(
     (id, name, hn, vn): (&'static str, &str, &'static str, &'static str),
     proj: &Projection,
-    (lo, hi): ([f64; 3], [f64; 3]),
+    lo: [f64; 3],
     drawn: &[Drawn],
     vision: &[VisionRow],
     motion_count: usize,
 ) -> View {
     let (pw, ph) = (VIEW_W - LEFT - RIGHT, VIEW_H - TOP - BOTTOM);
-    // About one labelled grid line per 60 px across and 40 px up.
-    let per = |i: usize, px_per_tick: f64| ((hi[i] - lo[i]) * proj.scale / px_per_tick) as usize;
-    let grid_h = ticks(lo[proj.h], hi[proj.h], per(proj.h, 60.0).clamp(1, 8))
+    // Grid lines over the whole plot (not only the drawn extent, so a flat axis still gets two
+    // labels to read the scale from), about one per 60 px across and 40 px up.
+    let (vis_lo_h, vis_lo_v) = (
+        proj.lo_h + (LEFT - proj.x0) / proj.scale,
+        proj.lo_v + (proj.y0 - TOP - ph) / proj.scale,
+    );
+    let (vis_hi_h, vis_hi_v) = (vis_lo_h + pw / proj.scale, vis_lo_v + ph / proj.scale);
+    let grid_h = ticks(vis_lo_h, vis_hi_h, (pw / 60.0) as usize)
         .into_iter()
         .map(|t| GridLine {
             at: px(proj.xy(&axis_point(proj, t, lo[proj.v])).0),
             label: num(t, 3),
         })
         .collect();
-    let grid_v = ticks(lo[proj.v], hi[proj.v], per(proj.v, 40.0).clamp(1, 8))
+    let grid_v = ticks(vis_lo_v, vis_hi_v, (ph / 40.0) as usize)
         .into_iter()
         .map(|t| GridLine {
             at: px(proj.xy(&axis_point(proj, lo[proj.h], t)).1),
@@ -497,6 +523,7 @@ fn view(
                 family: m.family,
                 x: px(x),
                 y: px(y),
+                values: pose_attr(&d.pose),
                 title: format!(
                     "motion {}: {} at {}{vision}\n{}",
                     m.n,
@@ -530,6 +557,7 @@ fn view(
                 n: v.n,
                 x: px(x),
                 y: px(y),
+                values: pose_attr(&v.pose),
                 title: format!(
                     "vision pose {}{}: {}\nfrom {}; {moved}",
                     v.n,

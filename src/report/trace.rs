@@ -44,6 +44,11 @@ pub enum Kind {
         kind: String,
         ms: f64,
     },
+    /// The poses the vision server sent, as the package stored them after `routine`.
+    Vision {
+        routine: String,
+        poses: Vec<(Pose, Option<i64>)>,
+    },
     Srci {
         word: u32,
     },
@@ -155,6 +160,17 @@ fn kind_of(v: &J) -> Result<Option<Kind>, String> {
             kind: string(v, "kind").ok_or_else(|| need("kind"))?,
             ms: num(v, "ms").ok_or_else(|| need("ms"))?,
         },
+        "vision" => Kind::Vision {
+            routine: string(v, "routine").ok_or_else(|| need("routine"))?,
+            poses: v
+                .get("poses")
+                .and_then(J::as_array)
+                .ok_or_else(|| need("poses"))?
+                .iter()
+                .map(|p| Some((pose_of(p)?, p.get("label").and_then(J::as_i64))))
+                .collect::<Option<Vec<_>>>()
+                .ok_or_else(|| need("poses"))?,
+        },
         "srci" => Kind::Srci {
             word: v
                 .get("word")
@@ -228,10 +244,11 @@ mod tests {
 
 {"event":"future_kind","t":3}
 {"event":"io","signal":"$OUT","index":5,"value":true,"t":3}
+{"event":"vision","routine":"MM_Get_VisData","t":3,"poses":[{"X":1,"Y":2,"Z":3,"A":4,"B":5,"C":6,"label":7},{"X":1,"Y":2,"Z":3,"A":4,"B":5,"C":6}]}
 {"event":"end","status":"ok","message":null,"steps":3,"time_ms":3,"t":3}
 "#;
         let e = parse(text).unwrap();
-        assert_eq!(e.len(), 6);
+        assert_eq!(e.len(), 7);
         assert_eq!(e[1].t, 1.5);
         assert_eq!(e[1].line, Some(2));
         assert!(matches!(
@@ -248,7 +265,9 @@ mod tests {
                 ..
             }
         ));
-        assert!(matches!(&e[5].kind, Kind::End { message: None, .. }));
+        assert!(matches!(&e[5].kind, Kind::Vision { poses, .. }
+            if poses == &vec![([1.0, 2.0, 3.0, 4.0, 5.0, 6.0], Some(7)), ([1.0, 2.0, 3.0, 4.0, 5.0, 6.0], None)]));
+        assert!(matches!(&e[6].kind, Kind::End { message: None, .. }));
     }
 
     #[test]

@@ -323,6 +323,7 @@ fn event(e: &Event) -> Option<String> {
         Event::Io { .. }
         | Event::Wait { .. }
         | Event::Srci { .. }
+        | Event::Vision { .. }
         | Event::Source { .. }
         | Event::Coverage { .. } => return None,
     })
