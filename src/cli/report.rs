@@ -9,8 +9,14 @@ pub fn run(args: ReportArgs) -> anyhow::Result<Outcome> {
         eprintln!("{msg}");
         return Ok(Outcome::Failure);
     }
-    let text = match std::fs::read_to_string(&args.trace) {
-        Ok(t) => t,
+    // read_regular: a FIFO or device named as the trace is refused, not waited on forever.
+    let text = match crate::files::read_regular(&args.trace).map(String::from_utf8) {
+        Ok(Ok(t)) => t,
+        Ok(Err(_)) => {
+            eprintln!("error: {} is not UTF-8 text", args.trace.display());
+            eprintln!("  help: pass a file written by `krlkit run --trace`");
+            return Ok(Outcome::Failure);
+        }
         Err(e) => {
             eprintln!("error: cannot read {}: {e}", args.trace.display());
             return Ok(Outcome::Failure);
