@@ -592,7 +592,14 @@ impl Routine {
             .find(|n| sp.param(n).is_some())
             .unwrap_or_default()
             .to_string();
-        let fetch_all = iface == Interface::V2 && matches!(cmd, 102 | 105 | 205);
+        // Paged point replies (a count and an all-sent flag, per the catalog): 2.x routines
+        // fetch every batch themselves.
+        let fetch_all = iface == Interface::V2
+            && cat.command_in(iface, cmd).is_some_and(|c| {
+                ["all_sent", "count"]
+                    .iter()
+                    .all(|f| c.reply.iter().any(|r| r == f))
+            });
         // Echo + reply fields + record fields before the Vision Move data.
         let plan_fixed_of = |code: u32| {
             cat.command_in(iface, code).map_or(0, |c| {
