@@ -8,7 +8,9 @@ use std::collections::HashMap;
 
 use rayon::prelude::*;
 
-use super::context::{FileCtx, InitSocket, Parsed, Project, SyntaxCtx, init_sockets};
+use super::context::{
+    FileCtx, InitSocket, Parsed, Project, SyntaxCtx, SyntaxFacts, init_sockets,
+};
 use super::{Check, EkiChannel, Input, LintConfig, RULES, finish, mm_relevant, run};
 use crate::diag::FileReport;
 use crate::sema::{FileId, FileSummary, Sema, SemaInput, Update};
@@ -239,7 +241,8 @@ impl Session {
     fn check_index(&self, i: usize) -> FileReport {
         let p = &self.files[i];
         let tree = p.tree();
-        let cx = SyntaxCtx::new(&p.path, &p.text, &tree, &p.syntax_errors);
+        let facts = SyntaxFacts::of(&tree);
+        let cx = SyntaxCtx::new(&p.path, &p.text, &facts, &p.syntax_errors);
         let mut findings = Vec::new();
         for rule in RULES {
             if let Check::Syntax(check) = rule.check {
