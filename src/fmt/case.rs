@@ -58,7 +58,10 @@ impl CaseEdits {
         if !protected {
             let edits = &mut self.edits;
             case_changes(&mut self.renderer, node, text, &self.opts, |t| {
-                edits.push((node.span, Edit::new(t.span, t.text(text).to_ascii_uppercase())));
+                edits.push((
+                    node.span,
+                    Edit::new(t.span, t.text(text).to_ascii_uppercase()),
+                ));
             });
         }
     }
@@ -84,7 +87,10 @@ impl CaseEdits {
         for fold in crate::syntax::folds::folds(text).0 {
             if text[fold.open.range()].contains("%{") {
                 let close = fold.close.map(|c| c.start);
-                protect(&|l: Span| close.is_none_or(|c| l.start <= c), fold.open.start);
+                protect(
+                    &|l: Span| close.is_none_or(|c| l.start <= c),
+                    fold.open.start,
+                );
             }
         }
         for d in diagnostics {

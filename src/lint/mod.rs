@@ -1,10 +1,11 @@
 //! The linter: checks KRL programs against the KRL rules and the Mech-Mind interface catalog.
 //!
 //! Pipeline, streamed so that a whole controller fits in little memory:
-//! 1. every file is parsed in parallel; the syntax rules (KRL001–KRL004) run on its tree, the
-//!    file is summarised for the semantic model ([`crate::sema::FileSummary`]) and the tree is
-//!    dropped — except for files the Mech-Mind rules look at (those calling an `MM_` routine
-//!    or writing a `$FLAG`);
+//! 1. every file is parsed in parallel, one piece at a time ([`crate::syntax::parse_pieces`]):
+//!    each piece is lowered, summarised for the semantic model ([`crate::sema::SummaryBuilder`])
+//!    and dropped, and the syntax rules (KRL001–KRL006) run on what the pieces showed; only the
+//!    files the Mech-Mind rules look at (those calling an `MM_` routine or writing a `$FLAG`)
+//!    keep their AST;
 //! 2. the workspace model is built ([`crate::sema::Sema`]: robots, modules, scopes, every name
 //!    resolved, types);
 //! 3. the model rules run on every file in parallel ([`context::FileCtx`]).
@@ -243,8 +244,8 @@ type Pieces = (
 fn pieces(text: &str, config: &LintConfig, keep: bool) -> Option<Pieces> {
     let mut lowerer = PieceLowerer::new(text);
     let mut facts = SyntaxFacts::default();
-    let mut case = (!config.disabled.contains(rules::krl005::RULE.code))
-        .then(crate::fmt::CaseEdits::default);
+    let mut case =
+        (!config.disabled.contains(rules::krl005::RULE.code)).then(crate::fmt::CaseEdits::default);
     let mut file = keep.then(FileBuilder::default);
     let mut summary = SummaryBuilder::default();
     let mut followed = true;
@@ -277,8 +278,10 @@ fn pieces(text: &str, config: &LintConfig, keep: bool) -> Option<Pieces> {
 fn mentions_mm(text: &str) -> bool {
     let b = text.as_bytes();
     memchr::memchr_iter(b'_', b).any(|i| i >= 2 && b[i - 2..i].eq_ignore_ascii_case(b"MM"))
-        || memchr::memchr_iter(b'$', b)
-            .any(|i| b.get(i + 1..i + 5).is_some_and(|w| w.eq_ignore_ascii_case(b"FLAG")))
+        || memchr::memchr_iter(b'$', b).any(|i| {
+            b.get(i + 1..i + 5)
+                .is_some_and(|w| w.eq_ignore_ascii_case(b"FLAG"))
+        })
 }
 
 /// Whether the Mech-Mind rules need the file's tree: it calls an `MM_` routine or writes a

@@ -8,9 +8,7 @@ use std::collections::HashMap;
 
 use rayon::prelude::*;
 
-use super::context::{
-    FileCtx, InitSocket, Parsed, Project, SyntaxCtx, SyntaxFacts, init_sockets,
-};
+use super::context::{FileCtx, InitSocket, Parsed, Project, SyntaxCtx, SyntaxFacts, init_sockets};
 use super::{Check, EkiChannel, Input, LintConfig, RULES, finish, mm_relevant, run};
 use crate::diag::FileReport;
 use crate::sema::{FileId, FileSummary, Sema, SemaInput, Update};

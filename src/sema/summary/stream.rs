@@ -2,7 +2,9 @@
 //! AST whole: each statement is summarised and dropped.
 
 use super::{FileSummary, NONE, RoutineItem, Summarizer, stmt_ends};
-use crate::syntax::ast::{self, DatModule, Definition, Lowered, Routine, RoutineKind, Stmt, StmtKind};
+use crate::syntax::ast::{
+    self, DatModule, Definition, Lowered, Routine, RoutineKind, Stmt, StmtKind,
+};
 
 /// The routine or data list being summarised.
 enum Open {
