@@ -11,10 +11,13 @@ use super::Machine;
 impl Machine<'_> {
     pub(super) fn motion_settings(&self, m: &Motion) -> MotionSettings {
         let num = |v: Option<&Value>| v.and_then(Value::as_f64);
-        let sys = |name: &str, field: &str| num(self.globals.get(name).and_then(|v| v.field(field)));
+        let sys =
+            |name: &str, field: &str| num(self.globals.get(name).and_then(|v| v.field(field)));
         let speed = if matches!(m.kind, MotionKind::Ptp | MotionKind::Sptp) {
             let axes = match self.globals.get("$VEL_AXIS") {
-                Some(Value::Array { items, .. }) => items.iter().take(6).map(|v| num(Some(v))).collect(),
+                Some(Value::Array { items, .. }) => {
+                    items.iter().take(6).map(|v| num(Some(v))).collect()
+                }
                 _ => Vec::new(),
             };
             let lowest = axes.iter().flatten().copied().reduce(f64::min);
@@ -50,7 +53,12 @@ impl Machine<'_> {
             let v = self.globals.get(name);
             CART_FIELDS
                 .iter()
-                .map(|f| (f.to_string(), num(v.and_then(|v| v.field(f))).unwrap_or(0.0)))
+                .map(|f| {
+                    (
+                        f.to_string(),
+                        num(v.and_then(|v| v.field(f))).unwrap_or(0.0),
+                    )
+                })
                 .collect()
         };
         MotionSettings {
