@@ -129,7 +129,7 @@ pub struct Motion {
 
 #[derive(Debug, Clone)]
 pub enum Step {
-    Move(Motion),
+    Move(Box<Motion>),
     /// An output (KUKA number) changed; the KRL statement's line (KRL runs only).
     Out(i64, bool, Option<usize>),
     /// `WAIT SEC`, seconds.
@@ -234,7 +234,7 @@ pub fn krl_steps(r: &RunResult) -> Vec<Step> {
                     _ => "LIN",
                 };
                 let s = settings.speed;
-                out.push(Step::Move(Motion {
+                out.push(Step::Move(Box::new(Motion {
                     kind,
                     target: if axis { Pose::Axis(v) } else { Pose::kuka(&v) },
                     speed: match s.kind {
@@ -248,7 +248,7 @@ pub fn krl_steps(r: &RunResult) -> Vec<Step> {
                     base: Pose::kuka(&six(&settings.base)),
                     tool: Pose::kuka(&six(&settings.tool)),
                     line: rec.at.as_ref().map(|a| a.line),
-                }));
+                })));
             }
             KrlEvent::Io {
                 signal: "$OUT",
@@ -432,7 +432,7 @@ pub fn as_steps(a: &As) -> Vec<Step> {
                     other => panic!("motion to {other:?}"),
                 };
                 let acc = acc_once.take().or(acc_always);
-                out.push(Step::Move(Motion {
+                out.push(Step::Move(Box::new(Motion {
                     kind,
                     target,
                     speed: once.take().or(always).unwrap_or(Speed::Joint(None)),
@@ -440,7 +440,7 @@ pub fn as_steps(a: &As) -> Vec<Step> {
                     base: kawasaki_pose(&base),
                     tool: kawasaki_pose(&tool),
                     line: None,
-                }));
+                })));
             }
             AsEvent::Signal(s) => {
                 for n in s {
@@ -615,7 +615,7 @@ pub fn flexiv_steps(calls: &[serde_json::Value]) -> Vec<Step> {
                 for w in p["waypoints"].as_array().into_iter().flatten() {
                     let pos = nums(&w["position"]);
                     let ori = nums(&w["orientation"]);
-                    out.push(Step::Move(Motion {
+                    out.push(Step::Move(Box::new(Motion {
                         kind,
                         target: Pose::Cart(
                             [pos[0] * 1000.0, pos[1] * 1000.0, pos[2] * 1000.0],
@@ -626,13 +626,13 @@ pub fn flexiv_steps(calls: &[serde_json::Value]) -> Vec<Step> {
                         base: base.clone(),
                         tool: tool.clone(),
                         line: None,
-                    }));
+                    })));
                 }
                 let blend = match p["zoneRadius"].as_str() {
                     None | Some("Z0") => Blend::Exact,
                     Some(z) => Blend::Zone(z.to_string()),
                 };
-                out.push(Step::Move(Motion {
+                out.push(Step::Move(Box::new(Motion {
                     kind,
                     target,
                     speed,
@@ -640,7 +640,7 @@ pub fn flexiv_steps(calls: &[serde_json::Value]) -> Vec<Step> {
                     base: base.clone(),
                     tool: tool.clone(),
                     line: None,
-                }));
+                })));
             }
             _ => {}
         }
