@@ -15,7 +15,8 @@ use std::process::{Command, Stdio};
 
 /// One routine of `n` blocks of motions, branches, loops, waits, I/O and comments.
 fn one_long_routine(n: usize) -> String {
-    let mut s = String::from("DEF long()\r\n  DECL INT i, n\r\n  DECL REAL x\r\n  DECL E6POS p\r\n");
+    let mut s =
+        String::from("DEF long()\r\n  DECL INT i, n\r\n  DECL REAL x\r\n  DECL E6POS p\r\n");
     for k in 0..n {
         write!(
             s,
