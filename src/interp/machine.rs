@@ -10,6 +10,7 @@ use crate::syntax::ast::{
 mod bas;
 mod forms;
 mod interrupt;
+mod settings;
 mod signals;
 mod submit;
 mod vision;
@@ -1537,10 +1538,12 @@ impl<'p> Machine<'p> {
         // The submit interpreter sees the robot move, then stand still at the target.
         self.set_phase(submit::Phase::Moving);
         self.submit_cycle()?;
+        let settings = self.motion_settings(m);
         self.emit(Event::Motion {
             kind,
             target,
             aux: aux_point,
+            settings,
         });
         self.set_phase(submit::Phase::Running);
         self.submit_cycle()?;
