@@ -128,6 +128,23 @@ pub struct Command {
     pub assumption: Option<String>,
 }
 
+impl Command {
+    /// A paged reply: it says whether every point has been sent (`all_sent`), so it may carry
+    /// more points or values than the robot-side package can store (TOO_MANY_POINTS).
+    pub fn is_paged(&self) -> bool {
+        self.has_reply_field("all_sent")
+    }
+
+    /// A paged reply that also counts its points: a 2.x routine fetches every batch itself.
+    pub fn is_counted_pages(&self) -> bool {
+        self.is_paged() && self.has_reply_field("count")
+    }
+
+    fn has_reply_field(&self, field: &str) -> bool {
+        self.reply.iter().any(|r| r == field)
+    }
+}
+
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Deserialize)]
 #[serde(rename_all = "lowercase")]
 pub enum Direction {

@@ -519,7 +519,7 @@ impl Routine {
             status.push(format!("{} BAD_SERIAL", codes.bad_serial));
             status.push(format!("{} WRONG_DATA_KIND", codes.wrong_data_kind));
         }
-        if matches!(cmd, 102 | 105 | 110 | 205 | 210) {
+        if cat.command_in(iface, cmd).is_some_and(|c| c.is_paged()) {
             status.push(format!("{} TOO_MANY_POINTS", codes.too_many_points));
         }
         if sp.name == "MM_Set_DoList" {
@@ -595,11 +595,9 @@ impl Routine {
         // Paged point replies (a count and an all-sent flag, per the catalog): 2.x routines
         // fetch every batch themselves.
         let fetch_all = iface == Interface::V2
-            && cat.command_in(iface, cmd).is_some_and(|c| {
-                ["all_sent", "count"]
-                    .iter()
-                    .all(|f| c.reply.iter().any(|r| r == f))
-            });
+            && cat
+                .command_in(iface, cmd)
+                .is_some_and(|c| c.is_counted_pages());
         // Echo + reply fields + record fields before the Vision Move data.
         let plan_fixed_of = |code: u32| {
             cat.command_in(iface, code).map_or(0, |c| {

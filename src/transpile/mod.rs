@@ -177,22 +177,22 @@ fn report_structure(text: &str, at: crate::diag::Span, report: &mut front::repor
 /// as the worst finding that starts inside it (renames do not count).
 fn coverage(model: &ir::Program, report: &front::report::Report) -> Coverage {
     use front::report::{FileId, Outcome};
+    let src = Starts::new(&report.src);
+    let dat = Starts::new(&report.dat);
     let mut c = Coverage::default();
     for k in &model.constructs {
-        let findings = match k.file {
-            FileId::Src => &report.src,
-            FileId::Dat => &report.dat,
+        let starts = match k.file {
+            FileId::Src => &src,
+            FileId::Dat => &dat,
         };
-        let mut o = Outcome::Exact;
-        for d in findings {
-            if d.span.start >= k.span.start && d.span.start < k.span.end.max(k.span.start + 1) {
-                o = o.max(match d.code {
-                    rules::UNTRANSLATABLE => Outcome::Untranslated,
-                    rules::APPROXIMATE => Outcome::Approximate,
-                    _ => Outcome::Exact,
-                });
-            }
-        }
+        let [untranslated, approximate, _] = starts.inside(k.span);
+        let o = if untranslated > 0 {
+            Outcome::Untranslated
+        } else if approximate > 0 {
+            Outcome::Approximate
+        } else {
+            Outcome::Exact
+        };
         c.record(k.kind, o);
     }
     c
@@ -206,21 +206,92 @@ fn silent(
     produced: &[crate::diag::Span],
 ) -> Vec<crate::diag::Span> {
     use front::report::FileId;
-    let overlaps = |a: &crate::diag::Span, b: &crate::diag::Span| {
-        a.start < b.end.max(b.start + 1) && b.start < a.end.max(a.start + 1)
-    };
+    let findings = Starts::new(&report.src);
+    let produced = Covered::new(produced);
     model
         .constructs
         .iter()
         .filter(|k| k.file == FileId::Src && !k.kind.starts_with("routine"))
-        .filter(|k| !produced.iter().any(|p| overlaps(p, &k.span)))
-        .filter(|k| {
-            !report.src.iter().any(|d| {
-                d.span.start >= k.span.start && d.span.start < k.span.end.max(k.span.start + 1)
-            })
-        })
+        .filter(|k| !produced.overlaps(k.span))
+        .filter(|k| findings.inside(k.span)[2] == 0)
         .map(|k| k.span)
         .collect()
+}
+
+/// An empty span still claims the byte it starts at.
+fn end_of(span: crate::diag::Span) -> u32 {
+    span.end.max(span.start + 1)
+}
+
+/// Where the findings of one file start, sorted, with running counts, so "which findings start
+/// inside this construct" is two binary searches instead of a scan of every finding (a scan
+/// per construct made a 50 MB program's translation quadratic).
+struct Starts {
+    starts: Vec<u32>,
+    /// `counts[i]`: among the first `i` starts, how many are TR001, TR002, and any finding.
+    counts: Vec<[u32; 3]>,
+}
+
+impl Starts {
+    fn new(findings: &[crate::diag::Diagnostic]) -> Starts {
+        let mut by_start: Vec<(u32, &str)> =
+            findings.iter().map(|d| (d.span.start, d.code)).collect();
+        by_start.sort_unstable();
+        let mut counts = Vec::with_capacity(by_start.len() + 1);
+        let mut running = [0u32; 3];
+        counts.push(running);
+        for &(_, code) in &by_start {
+            match code {
+                rules::UNTRANSLATABLE => running[0] += 1,
+                rules::APPROXIMATE => running[1] += 1,
+                _ => {}
+            }
+            running[2] += 1;
+            counts.push(running);
+        }
+        Starts {
+            starts: by_start.into_iter().map(|(s, _)| s).collect(),
+            counts,
+        }
+    }
+
+    /// TR001s, TR002s and all findings that start inside `span`.
+    fn inside(&self, span: crate::diag::Span) -> [u32; 3] {
+        let from = self.starts.partition_point(|&s| s < span.start);
+        let to = self.starts.partition_point(|&s| s < end_of(span));
+        let (a, b) = (self.counts[from], self.counts[to.max(from)]);
+        [b[0] - a[0], b[1] - a[1], b[2] - a[2]]
+    }
+}
+
+/// The spans that wrote output, sorted by start, with the furthest end among each prefix.
+struct Covered {
+    starts: Vec<u32>,
+    furthest: Vec<u32>,
+}
+
+impl Covered {
+    fn new(spans: &[crate::diag::Span]) -> Covered {
+        let mut sorted: Vec<(u32, u32)> = spans.iter().map(|s| (s.start, end_of(*s))).collect();
+        sorted.sort_unstable();
+        let mut furthest = Vec::with_capacity(sorted.len());
+        let mut max = 0;
+        for &(_, end) in &sorted {
+            max = max.max(end);
+            furthest.push(max);
+        }
+        Covered {
+            starts: sorted.into_iter().map(|(s, _)| s).collect(),
+            furthest,
+        }
+    }
+
+    /// Whether any of the spans overlaps `span`: one that starts before `span` ends reaches
+    /// past its start.
+    fn overlaps(&self, span: crate::diag::Span) -> bool {
+        let before = self.starts.partition_point(|&s| s < end_of(span));
+        before > 0 && self.furthest[before - 1] > span.start
+    }
 }
 
 /// Statement spans cover their whole lines; findings point at the code, not at the

@@ -2,7 +2,7 @@
 
 use super::expr::{CMP, NOT};
 use super::{R, Tx, fail};
-use crate::diag::{LineIndex, Span};
+use crate::diag::Span;
 use crate::transpile::front::report::FileId;
 use crate::transpile::ir::{Bank, Expr, ExprKind, IoPlace, IoTiming, TimerOp, UnaryOp, Wait};
 
@@ -168,7 +168,7 @@ impl<'a> Tx<'a> {
     }
 
     pub(super) fn halt(&mut self, span: Span) -> R<()> {
-        let line = LineIndex::new(&self.src.src.text).line_of(span.start as usize) + 1;
+        let line = self.src.src.line(span.start);
         let at = format!(
             "{}:{line}",
             super::file_name(&self.src.src.path).replace('"', "")

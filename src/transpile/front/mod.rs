@@ -26,6 +26,8 @@ pub struct Parsed {
     pub text: String,
     pub parse: Parse,
     pub ast: SourceFile,
+    /// Built on the first [`Parsed::line`] (building one per question was quadratic).
+    lines: std::cell::OnceCell<crate::diag::LineIndex>,
 }
 
 impl Parsed {
@@ -38,7 +40,16 @@ impl Parsed {
             text,
             parse,
             ast,
+            lines: std::cell::OnceCell::new(),
         }
+    }
+
+    /// The 1-based line of a byte offset.
+    pub fn line(&self, offset: u32) -> usize {
+        let lines = self
+            .lines
+            .get_or_init(|| crate::diag::LineIndex::new(&self.text));
+        lines.line_of(offset as usize) + 1
     }
 
     /// The source text of a span.
@@ -52,17 +63,23 @@ impl Parsed {
 pub struct Program {
     pub src: Parsed,
     pub dat: Option<Parsed>,
-    pub analysis: crate::sema::Analysis,
+    pub sema: crate::sema::Sema,
 }
 
 impl Program {
+    /// The model is built from the files' own trees: `sema::Analysis` would parse them a second
+    /// time and keep a second tree of each, which doubled the memory of a large program.
     pub fn new(src: Parsed, dat: Option<Parsed>) -> Program {
-        let mut files = vec![(src.path.clone(), src.text.clone())];
-        if let Some(d) = &dat {
-            files.push((d.path.clone(), d.text.clone()));
-        }
-        let analysis = crate::sema::Analysis::new(files);
-        Program { src, dat, analysis }
+        let inputs = std::iter::once(&src)
+            .chain(&dat)
+            .map(|f| crate::sema::SemaInput {
+                path: f.path.clone(),
+                group: 0,
+                summary: crate::sema::FileSummary::of(&f.ast),
+            })
+            .collect();
+        let sema = crate::sema::Sema::build(inputs, &[]);
+        Program { src, dat, sema }
     }
 
     /// Whether the program's text names `name` (an identifier token, any case).

@@ -4,6 +4,9 @@
 //! the program's `.src` and `.dat`. Nothing else in the transpiler resolves a name or knows a
 //! built-in structure.
 
+use std::cell::OnceCell;
+use std::collections::{BTreeMap, HashMap};
+
 use crate::diag::Span;
 use crate::sema::{
     self, Position, Resolved, RoutineId, Scope, SymbolKind, TyKind, TypeDefKind, TypeId,
@@ -53,12 +56,22 @@ pub enum Layout {
 }
 
 /// What names mean in one program (its `.src` and `.dat`).
+///
+/// Answers that would scan the whole program are indexed once (a scan per routine, call or
+/// use made large programs quadratic).
 pub struct Model<'p> {
     program: &'p Program,
     sema: &'p sema::Sema,
     /// The types whose fields define a pose and an axis value (`E6POS`, `E6AXIS`).
     pose: Option<TypeId>,
     axis: Option<TypeId>,
+    /// The `.src`'s routines by upper-case name (the first of a name).
+    routines: HashMap<String, RoutineId>,
+    /// Each routine's parameters and locals.
+    symbols_of: HashMap<RoutineId, Vec<sema::SymbolId>>,
+    enums: OnceCell<Vec<(String, Option<String>)>>,
+    /// `SIGNAL` declarations by the span of their name.
+    signals: OnceCell<BTreeMap<(FileId, Span), Option<SignalRange>>>,
 }
 
 /// The `.src` is file 0 of the model, the `.dat` file 1.
@@ -66,17 +79,32 @@ const SRC: sema::FileId = sema::FileId(0);
 
 impl<'p> Model<'p> {
     pub fn new(program: &'p Program) -> Model<'p> {
-        let sema = &program.analysis.sema;
+        let sema = &program.sema;
         let at = sema.position(SRC, 0);
         let ty = |name: &str| match sema.lookup_type(at, name) {
             Resolved::Type(t) => Some(t),
             _ => None,
         };
+        let mut routines = HashMap::new();
+        for &r in &sema.file(SRC).routines {
+            let name = sema.name(sema.routine(r).name).to_ascii_uppercase();
+            routines.entry(name).or_insert(r);
+        }
+        let mut symbols_of: HashMap<RoutineId, Vec<sema::SymbolId>> = HashMap::new();
+        for (id, s) in sema.symbols() {
+            if let Scope::Routine(r) = s.scope {
+                symbols_of.entry(r).or_default().push(id);
+            }
+        }
         Model {
             program,
             sema,
             pose: ty("E6POS"),
             axis: ty("E6AXIS"),
+            routines,
+            symbols_of,
+            enums: OnceCell::new(),
+            signals: OnceCell::new(),
         }
     }
 
@@ -88,11 +116,7 @@ impl<'p> Model<'p> {
     }
 
     fn routine_id(&self, name: &str) -> Option<RoutineId> {
-        self.sema.file(SRC).routines.iter().copied().find(|r| {
-            self.sema
-                .name(self.sema.routine(*r).name)
-                .eq_ignore_ascii_case(name)
-        })
+        self.routines.get(&name.to_ascii_uppercase()).copied()
     }
 
     /// Whether a file of the model is the program's `.src` or `.dat`.
@@ -252,10 +276,11 @@ impl<'p> Model<'p> {
             return Vec::new();
         };
         let mut v: Vec<VarInfo> = self
-            .sema
-            .symbols()
-            .filter(|(_, s)| s.scope == Scope::Routine(r))
-            .filter_map(|(id, _)| self.info(id))
+            .symbols_of
+            .get(&r)
+            .into_iter()
+            .flatten()
+            .filter_map(|&id| self.info(id))
             .collect();
         v.sort_by_key(|v| (v.decl.start, v.name.to_ascii_uppercase()));
         v
@@ -289,9 +314,9 @@ impl<'p> Model<'p> {
     /// The enum type and 1-based ordinal of `#name`, if exactly one ENUM of the program has it.
     pub fn enum_value(&self, name: &str) -> Option<(String, usize)> {
         let mut found = Vec::new();
-        for (e, routine) in self.enum_names() {
+        for (e, routine) in self.enums.get_or_init(|| self.enum_names()) {
             let at = self.position(routine.as_deref());
-            let Resolved::Type(t) = self.sema.lookup_type(at, &e) else {
+            let Resolved::Type(t) = self.sema.lookup_type(at, e) else {
                 continue;
             };
             if let TypeDefKind::Enum(values) = &self.sema.type_def(t).kind
@@ -400,28 +425,35 @@ impl<'p> Model<'p> {
 
     /// The range of the `SIGNAL` declaration whose name is at `name` in `file`.
     fn signal_range(&self, file: FileId, name: Span) -> Option<SignalRange> {
-        let f = match file {
-            FileId::Src => &self.program.src,
-            FileId::Dat => self.program.dat.as_ref()?,
-        };
-        let mut found = None;
-        let mut look = |d: &Definition| {
-            if let Definition::Signal(s) = d
-                && s.name.span == name
-            {
-                found = signal(s);
-            }
-        };
-        for d in f.ast.dat.iter().flat_map(|d| d.definitions.iter()) {
-            look(d);
-        }
-        for r in &f.ast.routines {
-            r.definitions.iter().for_each(&mut look);
-            crate::transpile::front::walk::each_stmt(&r.body, &mut |s| {
-                if let StmtKind::Definition(d) = &s.kind {
-                    look(d);
+        let signals = self.signals.get_or_init(|| self.signal_decls());
+        signals.get(&(file, name)).copied().flatten()
+    }
+
+    /// Every `SIGNAL` declaration of the program, by file and the span of its name.
+    fn signal_decls(&self) -> BTreeMap<(FileId, Span), Option<SignalRange>> {
+        let mut found = BTreeMap::new();
+        let files = [
+            (FileId::Src, Some(&self.program.src)),
+            (FileId::Dat, self.program.dat.as_ref()),
+        ];
+        for (file, f) in files {
+            let Some(f) = f else { continue };
+            let mut look = |d: &Definition| {
+                if let Definition::Signal(s) = d {
+                    found.insert((file, s.name.span), signal(s));
                 }
-            });
+            };
+            for d in f.ast.dat.iter().flat_map(|d| d.definitions.iter()) {
+                look(d);
+            }
+            for r in &f.ast.routines {
+                r.definitions.iter().for_each(&mut look);
+                crate::transpile::front::walk::each_stmt(&r.body, &mut |s| {
+                    if let StmtKind::Definition(d) = &s.kind {
+                        look(d);
+                    }
+                });
+            }
         }
         found
     }

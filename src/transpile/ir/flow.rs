@@ -344,7 +344,7 @@ impl Walker<'_> {
                 return match kind {
                     LoopKind::Forever => breaks,
                     // The test runs at the head (and, for REPEAT, after the body).
-                    LoopKind::While(_) | LoopKind::For { .. } => join_opt(Some(head), breaks),
+                    LoopKind::While(_) | LoopKind::For(_) => join_opt(Some(head), breaks),
                     LoopKind::Until(_) => {
                         let end = self.block(body, Some(head.clone()));
                         join_opt(end, breaks)
@@ -480,9 +480,8 @@ pub fn resolve(p: &mut Program) {
     for _ in 0..16 {
         let mut changed = false;
         for i in 0..n {
-            let mut body = p.routines[i].body.clone();
             let entry = State::uniform(|| Fact::Entry, false);
-            let (exit, _) = walk_routine(&mut body, entry, &summaries, &moves);
+            let (exit, _) = walk_routine(&mut p.routines[i].body, entry, &summaries, &moves);
             let exit = exit.unwrap_or_else(|| State::uniform(|| Fact::Entry, false));
             if summaries[i].exit != exit {
                 summaries[i].exit = exit;
@@ -528,8 +527,7 @@ pub fn resolve(p: &mut Program) {
             let Some(entry) = entry.clone() else {
                 continue;
             };
-            let mut body = p.routines[i].body.clone();
-            let (_, cs) = walk_routine(&mut body, entry, &summaries, &moves);
+            let (_, cs) = walk_routine(&mut p.routines[i].body, entry, &summaries, &moves);
             for (c, st) in cs {
                 let slot = &mut calls[c.0 as usize];
                 *slot = join_opt(slot.take(), Some(st));
@@ -549,12 +547,13 @@ pub fn resolve(p: &mut Program) {
         }
         entries = next;
     }
+    // The walks above wrote provisional facts into the model (walking a copy instead doubled
+    // the memory of a large routine); this last walk overwrites every one of them.
     for (i, entry) in entries.into_iter().enumerate() {
         let entry = entry.unwrap_or_else(|| caller_state.clone());
-        let mut body = std::mem::take(&mut p.routines[i].body);
-        walk_routine(&mut body, entry, &summaries, &moves);
-        drop_stops(&mut body);
-        p.routines[i].body = body;
+        let body = &mut p.routines[i].body;
+        walk_routine(body, entry, &summaries, &moves);
+        drop_stops(body);
     }
 }
 

@@ -378,19 +378,23 @@ pub struct Case {
 
 #[derive(Debug, Clone, PartialEq)]
 pub enum LoopKind {
-    /// `FOR var = from TO to STEP step` (bounds evaluated once, before the loop).
-    For {
-        var: Place,
-        from: Expr,
-        to: Expr,
-        step: Option<Expr>,
-    },
+    /// `FOR var = from TO to STEP step` (bounds evaluated once, before the loop). Boxed: it is
+    /// the largest loop kind and every [`Op`] would carry its size.
+    For(Box<ForLoop>),
     /// Test before each pass.
     While(Expr),
     /// Test after each pass; the loop ends when it holds.
     Until(Expr),
     /// Left only by `Break`/`RETURN`/`GOTO`.
     Forever,
+}
+
+#[derive(Debug, Clone, PartialEq)]
+pub struct ForLoop {
+    pub var: Place,
+    pub from: Expr,
+    pub to: Expr,
+    pub step: Option<Expr>,
 }
 
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]

@@ -84,9 +84,9 @@ pub fn any_op(block: &Block, pred: &mut impl FnMut(&Op) -> bool) -> bool {
 /// The loop kind's expressions (for walkers that look at conditions).
 pub fn loop_exprs(kind: &LoopKind) -> Vec<&Expr> {
     match kind {
-        LoopKind::For { from, to, step, .. } => {
-            let mut v = vec![from, to];
-            v.extend(step.as_ref());
+        LoopKind::For(f) => {
+            let mut v = vec![&f.from, &f.to];
+            v.extend(f.step.as_ref());
             v
         }
         LoopKind::While(c) | LoopKind::Until(c) => vec![c],

@@ -9,8 +9,8 @@ use crate::transpile::front::kinds::category;
 use crate::transpile::front::sysvar::{self, Sys};
 use crate::transpile::front::{end_line_start, walk};
 use crate::transpile::ir::{
-    Bank, Block, Case, Expr, ExprKind, InterruptAction, IoPlace, IoTiming, LoopKind, Op, Place,
-    RoutineKind, Scope, Stmt, TimerOp, Ty, UnaryOp, Wait, Why,
+    Bank, Block, Case, Expr, ExprKind, ForLoop, InterruptAction, IoPlace, IoTiming, LoopKind, Op,
+    Place, RoutineKind, Scope, Stmt, TimerOp, Ty, UnaryOp, Wait, Why,
 };
 
 impl<'p> Lower<'p> {
@@ -217,12 +217,12 @@ impl<'p> Lower<'p> {
                     ops,
                     Op::Loop {
                         id,
-                        kind: LoopKind::For {
+                        kind: LoopKind::For(Box::new(ForLoop {
                             var: place,
                             from,
                             to,
                             step,
-                        },
+                        })),
                         body,
                         end,
                     },
