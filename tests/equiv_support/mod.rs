@@ -735,7 +735,12 @@ fn motion_differs(k: &Motion, t: &Motion, brand: Brand, skip: &[Aspect]) -> Opti
             bad.push(format!("blending {:?} vs {:?}", k.blend, t.blend));
         }
     }
-    for (what, a, b) in [("base", &k.base, &t.base), ("tool", &k.tool, &t.tool)] {
+    // An axis target goes to the same joints whatever the frames.
+    let frames = match k.target {
+        Pose::Cart(..) => vec![("base", &k.base, &t.base), ("tool", &k.tool, &t.tool)],
+        Pose::Axis(_) => Vec::new(),
+    };
+    for (what, a, b) in frames {
         let d = a.distance(b);
         if d.is_nan() || d > 1e-6 {
             bad.push(format!("{what} {a:?} vs {b:?}"));
