@@ -3,7 +3,8 @@
 //! diagnostics being published, and the time to answer hover and go-to-definition in it.
 //! The server runs in process (its message loop without the stdio threads); the debounce is 0.
 //! Then `krlkit lsp` itself is started on the same folder and its resident memory is printed
-//! once it has checked every file. Run: `cargo bench --bench lsp`
+//! once it has checked every file; `LSP_BENCH_WORKSPACE=<folder>` measures that folder too (a
+//! real backup). Run: `cargo bench --bench lsp`
 //! (`-- --warm-up-time 1 --measurement-time 5` for a short run).
 
 use std::path::Path;
@@ -200,7 +201,8 @@ fn server_memory(root: &Path) {
             .unwrap_or_default()
     };
     println!(
-        "memory: krlkit lsp, every file checked after {:.2} s: VmRSS {}, VmHWM (peak) {}",
+        "memory: krlkit lsp on {}, every file checked after {:.2} s: VmRSS {}, VmHWM (peak) {}",
+        root.display(),
         ready.as_secs_f64(),
         field("VmRSS:"),
         field("VmHWM:")
@@ -276,4 +278,11 @@ fn main() {
     c.final_summary();
     drop(s);
     server_memory(&root);
+    if let Some(real) = std::env::var_os("LSP_BENCH_WORKSPACE") {
+        server_memory(
+            &Path::new(&real)
+                .canonicalize()
+                .expect("LSP_BENCH_WORKSPACE"),
+        );
+    }
 }

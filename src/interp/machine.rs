@@ -1,10 +1,10 @@
 //! The executor: scopes, places (for OUT parameters), statements and expressions.
 
-use std::collections::HashMap;
+use compact_str::CompactString;
 
 use crate::syntax::ast::{
-    BinaryOp, Decl, Definition, Expr, ExprKind, Motion, MotionKind, ParamDir, Routine, RoutineKind,
-    Stmt, StmtKind, UnaryOp,
+    BinaryOp, Decl, Definition, Expr, ExprKind, Ident, Motion, MotionKind, ParamDir, Routine,
+    RoutineKind, Stmt, StmtKind, UnaryOp,
 };
 
 mod bas;
@@ -17,7 +17,9 @@ mod vision;
 mod watch;
 
 use super::eki::Eki;
+use super::globals::Globals;
 use super::program::Program;
+use super::resolve::{Binding, MODULE_LEVEL, canonical};
 use super::value::{AXIS_FIELDS, BaseType, CART_FIELDS, Types, Value};
 use super::{
     End, Event, Location, Options, Record, RunResult, RuntimeError, TraceSink, VisionPose, WaitKind,
@@ -30,16 +32,20 @@ pub(crate) struct Place {
     path: Vec<Seg>,
 }
 
+impl Place {
+    fn root(root: Root) -> Place {
+        Place { root, path: vec![] }
+    }
+}
+
 #[derive(Debug, Clone, PartialEq)]
 enum Root {
-    Global(String),
-    Local(usize, String),
-    /// A SIGNAL group: bits `lo..=hi` (0-based offsets) of a BOOL array global.
-    Group {
-        array: String,
-        lo: usize,
-        hi: usize,
-    },
+    /// A slot of [`Globals`].
+    Global(usize),
+    /// Frame index, slot in the frame.
+    Local(usize, usize),
+    /// A SIGNAL group: bits `lo..=hi` (0-based offsets) of a BOOL array global (its slot).
+    Group { array: usize, lo: usize, hi: usize },
     /// `SIGNAL name FALSE` (or TRUE).
     Const(bool),
 }
@@ -47,7 +53,8 @@ enum Root {
 #[derive(Debug, Clone, PartialEq)]
 enum Seg {
     Index(usize),
-    Field(String),
+    /// As written (fields match case-insensitively).
+    Field(CompactString),
 }
 
 #[derive(Debug)]
@@ -59,7 +66,14 @@ enum Slot {
 #[derive(Debug)]
 struct Frame {
     module: usize,
-    vars: HashMap<String, Slot>,
+    /// The routine running (its index in the program's routines), `None` for a DEFDAT body.
+    routine: Option<usize>,
+    /// By slot: the routine's layout (`resolve::RoutineInfo::locals`), then `extra`.
+    vars: Vec<Option<Slot>>,
+    /// Names declared here that the layout lacks, with slots after the layout's.
+    extra: Vec<String>,
+    /// How many slots the layout has.
+    layout: usize,
     /// Where the routine was called from (`None`: the program's main routine, a DEFDAT body).
     call_site: Option<(usize, u32)>,
     /// The `MM_*` subprogram this frame runs, when it is one of the interface's.
@@ -69,10 +83,13 @@ struct Frame {
 }
 
 impl Frame {
-    fn new(module: usize, vars: HashMap<String, Slot>) -> Frame {
+    fn new(module: usize, routine: Option<usize>, vars: Vec<Option<Slot>>) -> Frame {
         Frame {
             module,
+            routine,
+            layout: vars.len(),
             vars,
+            extra: Vec::new(),
             call_site: None,
             mm: None,
             loops: Vec::new(),
@@ -121,7 +138,9 @@ pub(crate) type R<T> = Result<T, Stop>;
 pub(crate) struct Machine<'p> {
     pub(crate) prog: &'p Program,
     pub(crate) opts: &'p Options,
-    globals: HashMap<String, Value>,
+    globals: Globals,
+    /// Slots of the system variables the machine itself reads or watches.
+    sys: SysSlots,
     frames: Vec<Frame>,
     /// Current module and byte offset, for error locations.
     loc: (usize, u32),
@@ -139,7 +158,7 @@ pub(crate) struct Machine<'p> {
     pending_triggers: Vec<(usize, Stmt)>,
     interrupts: interrupt::Interrupts,
     /// SIGNAL names of the DEFDATs, keyed like globals (`NAME` or `SCOPE::NAME`).
-    signals: HashMap<String, Place>,
+    signals: rustc_hash::FxHashMap<String, Place>,
     /// Outputs a PULSE will set back.
     pulses: Vec<signals::Pulse>,
     message_handles: i64,
@@ -164,6 +183,24 @@ pub(crate) struct Machine<'p> {
 
 const TIMERS: usize = 64;
 
+#[cfg(test)]
+thread_local! {
+    /// Name lookups made by name on this thread (the tests of `resolve.rs` count them).
+    pub(crate) static BY_NAME: std::cell::Cell<u64> = const { std::cell::Cell::new(0) };
+}
+
+/// Slots of system variables with side effects on read or write.
+#[derive(Debug, Default, Clone, Copy)]
+struct SysSlots {
+    timer: usize,
+    timer_flag: usize,
+    timer_stop: usize,
+    input: usize,
+    in_home: usize,
+    tool: usize,
+    base: usize,
+}
+
 /// Globals the interpreter predefines (like `$config.dat`); not reported in [`RunResult::globals`].
 const BUILTIN_GLOBALS: [&str; 11] = [
     "HOME",
@@ -184,7 +221,8 @@ impl<'p> Machine<'p> {
         let mut m = Machine {
             prog,
             opts,
-            globals: HashMap::new(),
+            globals: prog.resolved.globals.clone(),
+            sys: SysSlots::default(),
             frames: Vec::new(),
             loc: (0, 0),
             clock_ms: 0.0,
@@ -201,7 +239,7 @@ impl<'p> Machine<'p> {
             steps: 0,
             pending_triggers: Vec::new(),
             interrupts: interrupt::Interrupts::default(),
-            signals: HashMap::new(),
+            signals: Default::default(),
             pulses: Vec::new(),
             message_handles: 0,
             writes: 0,
@@ -215,6 +253,16 @@ impl<'p> Machine<'p> {
         };
         m.init_system();
         m.init_robot_state();
+        let mut slot = |k: &str| m.globals.intern(k);
+        m.sys = SysSlots {
+            timer: slot("$TIMER"),
+            timer_flag: slot("$TIMER_FLAG"),
+            timer_stop: slot("$TIMER_STOP"),
+            input: slot("$IN"),
+            in_home: slot("$IN_HOME"),
+            tool: slot("$TOOL"),
+            base: slot("$BASE"),
+        };
         m
     }
 
@@ -252,7 +300,7 @@ impl<'p> Machine<'p> {
         let t = self.prog.types.clone();
         let bools = |n: usize| t.default_value(&BaseType::Bool, &[n]);
         let mut put = |k: &str, v: Value| {
-            self.globals.insert(k.to_string(), v);
+            self.globals.insert(k, v);
         };
         put("$FLAG", bools(1024));
         put("$OUT", bools(super::IO_COUNT));
@@ -479,8 +527,8 @@ impl<'p> Machine<'p> {
         let globals = self
             .globals
             .iter()
-            .filter(|(k, _)| !k.starts_with('$') && !BUILTIN_GLOBALS.contains(&k.as_str()))
-            .map(|(k, v)| (k.clone(), v.clone()))
+            .filter(|(k, _)| !k.starts_with('$') && !BUILTIN_GLOBALS.contains(k))
+            .map(|(k, v)| (k.to_string(), v.clone()))
             .collect();
         let outputs = match self.globals.get("$OUT") {
             Some(Value::Array { items, .. }) => items
@@ -593,7 +641,7 @@ impl<'p> Machine<'p> {
             let Some(dat) = &self.prog.modules[mi].ast.dat else {
                 continue;
             };
-            self.frames.push(Frame::new(mi, HashMap::new()));
+            self.frames.push(Frame::new(mi, None, Vec::new()));
             let r = self.exec_block(&dat.body);
             self.frames.pop();
             r?;
@@ -625,15 +673,15 @@ impl<'p> Machine<'p> {
                     None => dims.push(0),
                 }
             }
-            let name = v.name.key();
-            if let Some(fi) = local {
+            let local = local.map(|fi| (fi, self.decl_slot(fi, &v.name)));
+            if let Some((fi, i)) = local {
                 // A parameter keeps its caller-provided value/alias; IN values get the declared type.
-                if let Some(slot) = self.frames[fi].vars.get_mut(&name) {
+                if let Some(slot) = self.frames[fi].vars[i].as_mut() {
                     if let Slot::Own(val) = slot {
                         let mut target = self.prog.types.default_value(&ty, &fixed(&dims, val));
                         let incoming = std::mem::replace(val, Value::Int(0));
                         target = self.coerce(target, incoming)?;
-                        if let Some(Slot::Own(val)) = self.frames[fi].vars.get_mut(&name) {
+                        if let Some(Slot::Own(val)) = self.frames[fi].vars[i].as_mut() {
                             *val = target;
                         }
                     }
@@ -664,12 +712,8 @@ impl<'p> Machine<'p> {
                 None => self.types().unset_value(&ty, &init_dims),
             };
             match local {
-                Some(fi) => {
-                    self.frames[fi].vars.insert(name, Slot::Own(value));
-                }
-                None => {
-                    self.globals.insert(key(&name), value);
-                }
+                Some((fi, i)) => self.frames[fi].vars[i] = Some(Slot::Own(value)),
+                None => self.globals.insert(&key(&v.name.key()), value),
             }
         }
         Ok(())
@@ -762,13 +806,41 @@ impl<'p> Machine<'p> {
     // ---------------------------------------------------------------- routines
 
     fn find_routine(&self, name: &str) -> Option<(usize, usize)> {
-        let key = name.to_ascii_uppercase();
-        let scope = &self.prog.modules[self.cur_module()].scope;
         self.prog
-            .local_routines
-            .get(&(scope.clone(), key.clone()))
-            .or_else(|| self.prog.global_routines.get(&key))
-            .copied()
+            .find_routine(self.cur_module(), &name.to_ascii_uppercase())
+    }
+
+    /// The slot of local `key` in frame `fi`, if the frame has one of that name.
+    fn local_slot(&self, fi: usize, key: &str) -> Option<usize> {
+        let f = self.frames.get(fi)?;
+        if let Some(r) = f.routine
+            && let Some(&i) = self.prog.routine_info(r).locals.get(key)
+        {
+            return Some(i as usize);
+        }
+        f.extra.iter().position(|k| k == key).map(|i| f.layout + i)
+    }
+
+    /// The slot in frame `fi` that the declaration of `name` fills.
+    fn decl_slot(&mut self, fi: usize, name: &Ident) -> usize {
+        let f = &self.frames[fi];
+        if let Some(Binding::Local { routine, slot }) = self.prog.binding(f.module, name.span)
+            && f.routine == Some(routine as usize)
+        {
+            return slot as usize;
+        }
+        self.local_slot_or_new(fi, &name.key())
+    }
+
+    /// The slot of local `key` in frame `fi`, made when the frame has none of that name.
+    fn local_slot_or_new(&mut self, fi: usize, key: &str) -> usize {
+        if let Some(i) = self.local_slot(fi, key) {
+            return i;
+        }
+        let f = &mut self.frames[fi];
+        f.extra.push(key.to_string());
+        f.vars.push(None);
+        f.vars.len() - 1
     }
 
     fn cur_module(&self) -> usize {
@@ -788,7 +860,11 @@ impl<'p> Machine<'p> {
                 args.len()
             )));
         }
-        let mut vars = HashMap::new();
+        let prog: &'p Program = self.prog;
+        let id = prog.routine_id(mi, ri);
+        let info = prog.routine_info(id);
+        let mut vars: Vec<Option<Slot>> = Vec::new();
+        vars.resize_with(info.locals.len(), || None);
         for (i, p) in routine.params.iter().enumerate() {
             let arg = args.get(i).and_then(|a| a.as_ref());
             let slot = match (p.dir, arg) {
@@ -813,16 +889,12 @@ impl<'p> Machine<'p> {
                 }
             };
             if let Some(s) = slot {
-                vars.insert(p.name.key(), s);
+                vars[info.params[i] as usize] = Some(s);
             }
         }
         // Only the interface's subprograms (of either version) are traced, not the package's
         // internal helpers.
-        let is_mm = crate::catalog::Interface::ALL.into_iter().any(|i| {
-            crate::catalog::catalog()
-                .subprogram_in(i, &routine.name.text)
-                .is_some()
-        });
+        let is_mm = info.is_mm;
         if is_mm {
             self.emit(Event::Call {
                 name: routine.name.text.to_string(),
@@ -833,7 +905,7 @@ impl<'p> Machine<'p> {
         }
         let saved_loc = self.loc;
         let saved_scope = self.declared_scope.take();
-        let mut frame = Frame::new(mi, vars);
+        let mut frame = Frame::new(mi, Some(id), vars);
         frame.call_site = (!self.frames.is_empty()).then_some(saved_loc);
         frame.mm = is_mm.then(|| routine.name.text.to_string());
         self.frames.push(frame);
@@ -850,8 +922,8 @@ impl<'p> Machine<'p> {
                 self.loc = (mi, d.span.start);
                 self.declare(d, |n| n.to_string(), Some(fi))?;
             }
-            for p in &routine.params {
-                if !self.frames[fi].vars.contains_key(&p.name.key()) {
+            for (p, &slot) in routine.params.iter().zip(&info.params) {
+                if self.frames[fi].vars[slot as usize].is_none() {
                     return Err(self.err(format!(
                         "parameter {} of {} has no declaration",
                         p.name.text, routine.name.text
@@ -876,9 +948,9 @@ impl<'p> Machine<'p> {
         if is_mm {
             let mut out = Vec::new();
             if let Some(frame) = &frame {
-                for p in &routine.params {
+                for (p, &slot) in routine.params.iter().zip(&info.params) {
                     if p.dir == Some(ParamDir::Out)
-                        && let Some(Slot::Alias(place)) = frame.vars.get(&p.name.key())
+                        && let Some(Some(Slot::Alias(place))) = frame.vars.get(slot as usize)
                         && let Ok(v) = self.read_value(place)
                     {
                         out.push((p.name.text.to_string(), to_json(&v)));
@@ -903,13 +975,9 @@ impl<'p> Machine<'p> {
                     routine.name.text
                 )));
             };
-            let rt = routine
-                .return_type
-                .as_ref()
-                .and_then(|t| self.prog.base_type(&t.name.text));
-            return match rt {
+            return match &info.ret {
                 Some(t) => {
-                    let target = self.types().default_value(&t, &fixed(&[], &v));
+                    let target = self.types().default_value(t, &fixed(&[], &v));
                     Ok(Some(self.coerce(target, v)?))
                 }
                 None => Ok(Some(v)),
@@ -976,7 +1044,7 @@ impl<'p> Machine<'p> {
                 self.assign(&place, v)?;
             }
             StmtKind::Call { name, args } => {
-                self.call(name.text.as_str(), args, false)?;
+                self.call(name, args, false)?;
             }
             StmtKind::If {
                 cond,
@@ -1458,7 +1526,7 @@ impl<'p> Machine<'p> {
                 )
             })
             .collect();
-        self.globals.insert(act.to_string(), cur);
+        self.globals.insert(act, cur);
         self.writes += 1;
         self.motions += 1;
         if self.motions > self.opts.max_motions {
@@ -1492,48 +1560,99 @@ impl<'p> Machine<'p> {
 
     // ---------------------------------------------------------------- places
 
+    /// The place a name denotes here, by name: the routine frame's local, a SIGNAL, the
+    /// module's data, robot-wide data and system variables.
     fn lookup_root(&self, name: &str) -> R<Place> {
-        let mut key = name.to_ascii_uppercase();
-        // `$OUT_C` sets outputs at the motion's end; motions are done before the next
-        // statement runs, so it is `$OUT`. The robot is always where its last motion put it,
-        // so the measured position and the position at an interrupt are the commanded one.
-        match key.as_str() {
-            "$OUT_C" => key = "$OUT".into(),
-            "$POS_ACT_MES" | "$POS_INT" => key = "$POS_ACT".into(),
-            "$AXIS_ACT_MEAS" | "$AXIS_INT" => key = "$AXIS_ACT".into(),
-            _ => {}
-        }
+        #[cfg(test)]
+        BY_NAME.with(|n| n.set(n.get() + 1));
+        let upper = name.to_ascii_uppercase();
+        let key = canonical(&upper);
         if let Some((fi, f)) = self.frames.iter().enumerate().next_back()
             && self.declared_scope.is_none_or(|m| m == f.module)
-            && let Some(slot) = f.vars.get(&key)
+            && let Some(i) = self.local_slot(fi, key)
+            && let Some(slot) = &f.vars[i]
         {
             return Ok(match slot {
-                Slot::Own(_) => Place {
-                    root: Root::Local(fi, key),
-                    path: vec![],
-                },
+                Slot::Own(_) => Place::root(Root::Local(fi, i)),
                 Slot::Alias(p) => p.clone(),
             });
         }
         let scoped = format!("{}::{key}", self.prog.modules[self.cur_module()].scope);
-        for k in [&scoped, &key] {
+        for k in [scoped.as_str(), key] {
             if let Some(p) = self.signals.get(k) {
                 return Ok(p.clone());
             }
         }
-        if self.globals.contains_key(&scoped) {
-            return Ok(Place {
-                root: Root::Global(scoped),
-                path: vec![],
-            });
-        }
-        if self.globals.contains_key(&key) {
-            return Ok(Place {
-                root: Root::Global(key),
-                path: vec![],
-            });
+        for k in [scoped.as_str(), key] {
+            if let Some(slot) = self.globals.slot(k)
+                && self.globals.at(slot).is_some()
+            {
+                return Ok(Place::root(Root::Global(slot)));
+            }
         }
         Err(self.err(format!("unknown variable `{name}`")))
+    }
+
+    /// The value of a name use bound at load, when reading it has no side effect (no
+    /// recording under way, no system variable computed when read, no SIGNAL).
+    fn read_bound(&self, id: &Ident) -> Option<&Value> {
+        if self.reads.is_some() || self.loop_reads.is_some() || self.declared_scope.is_some() {
+            return None;
+        }
+        let b = self.prog.binding(self.cur_module(), id.span)?;
+        let f = self.frames.last()?;
+        let here = f.routine.map_or(MODULE_LEVEL, |r| r as u32);
+        match b {
+            Binding::Local { routine, slot } if routine == here => {
+                match f.vars.get(slot as usize)?.as_ref()? {
+                    Slot::Own(v) => Some(v),
+                    Slot::Alias(_) => None,
+                }
+            }
+            Binding::Global {
+                routine,
+                scoped,
+                plain,
+            } if routine == here && f.extra.is_empty() => {
+                let (k, v) = [scoped, plain]
+                    .into_iter()
+                    .find_map(|s| Some((s as usize, self.globals.at(s as usize)?)))?;
+                let sys = &self.sys;
+                let computed = [sys.timer, sys.timer_flag, sys.input, sys.in_home].contains(&k);
+                (!computed).then_some(v)
+            }
+            _ => None,
+        }
+    }
+
+    /// The place a name use bound at load denotes, when the binding applies here (see
+    /// `resolve.rs`); `None`: ask by name.
+    fn bound_place(&self, id: &Ident) -> Option<Place> {
+        if self.declared_scope.is_some() {
+            return None;
+        }
+        let b = self.prog.binding(self.cur_module(), id.span)?;
+        let fi = self.frames.len().checked_sub(1)?;
+        let f = &self.frames[fi];
+        let here = f.routine.map_or(MODULE_LEVEL, |r| r as u32);
+        match b {
+            Binding::Local { routine, slot } if routine == here => {
+                match f.vars.get(slot as usize)?.as_ref()? {
+                    Slot::Own(_) => Some(Place::root(Root::Local(fi, slot as usize))),
+                    Slot::Alias(p) => Some(p.clone()),
+                }
+            }
+            Binding::Global {
+                routine,
+                scoped,
+                plain,
+            } if routine == here && f.extra.is_empty() => [scoped, plain]
+                .into_iter()
+                .map(|s| s as usize)
+                .find(|&s| self.globals.at(s).is_some())
+                .map(|s| Place::root(Root::Global(s))),
+            _ => None,
+        }
     }
 
     /// Whether `name` is a variable (or signal) visible here.
@@ -1550,7 +1669,10 @@ impl<'p> Machine<'p> {
 
     pub(crate) fn place_of(&mut self, e: &Expr) -> R<Place> {
         match &e.kind {
-            ExprKind::Name(id) => self.lookup_root(&id.text),
+            ExprKind::Name(id) => match self.bound_place(id) {
+                Some(p) => Ok(p),
+                None => self.lookup_root(&id.text),
+            },
             ExprKind::Member { base, field } => {
                 let mut p = self.place_of(base)?;
                 let v = self.read_place(&p)?;
@@ -1561,7 +1683,7 @@ impl<'p> Machine<'p> {
                         field.text
                     )));
                 }
-                p.path.push(Seg::Field(field.key()));
+                p.path.push(Seg::Field(field.text.clone()));
                 Ok(p)
             }
             ExprKind::Index { base, indices } => {
@@ -1576,13 +1698,12 @@ impl<'p> Machine<'p> {
                         None => return Err(self.err("empty index")),
                     }
                 }
-                let dims = match self.read_place(&p)? {
-                    Value::Array { dims, .. } => dims.clone(),
+                let flat = match self.read_place(&p)? {
+                    Value::Array { dims, .. } => self.flat_index(dims, &idx)?,
                     other => {
                         return Err(self.err(format!("{} is not an array", other.kind_name())));
                     }
                 };
-                let flat = self.flat_index(&dims, &idx)?;
                 p.path.push(Seg::Index(flat));
                 Ok(p)
             }
@@ -1610,8 +1731,8 @@ impl<'p> Machine<'p> {
 
     fn root_ref(&self, root: &Root) -> Option<&Value> {
         match root {
-            Root::Global(k) => self.globals.get(k),
-            Root::Local(fi, k) => match self.frames.get(*fi)?.vars.get(k)? {
+            Root::Global(k) => self.globals.at(*k),
+            Root::Local(fi, k) => match self.frames.get(*fi)?.vars.get(*k)?.as_ref()? {
                 Slot::Own(v) => Some(v),
                 Slot::Alias(_) => None,
             },
@@ -1639,10 +1760,11 @@ impl<'p> Machine<'p> {
 
     pub(crate) fn read_value(&mut self, p: &Place) -> R<Value> {
         self.note_read(&p.root, &p.path);
+        let sys = self.sys;
         match &p.root {
-            Root::Global(k) if k == "$TIMER" || k == "$TIMER_FLAG" => self.sync_timers(),
-            Root::Global(k) | Root::Group { array: k, .. } if k == "$IN" => self.sync_inputs(),
-            Root::Global(k) if k == "$IN_HOME" => return Ok(Value::Bool(self.in_home())),
+            Root::Global(k) if *k == sys.timer || *k == sys.timer_flag => self.sync_timers(),
+            Root::Global(k) | Root::Group { array: k, .. } if *k == sys.input => self.sync_inputs(),
+            Root::Global(k) if *k == sys.in_home => return Ok(Value::Bool(self.in_home())),
             _ => {}
         }
         if let Some(v) = self.read_signal(&p.root)? {
@@ -1660,6 +1782,9 @@ impl<'p> Machine<'p> {
 
     pub(crate) fn assign(&mut self, p: &Place, v: Value) -> R<()> {
         self.writes += 1;
+        if self.assign_scalar(p, &v) {
+            return Ok(());
+        }
         if let Some(Value::Int(_) | Value::Bool(_)) = self.read_signal(&p.root)? {
             let v = match v {
                 Value::Real(r) => Value::Int(r.round() as i64),
@@ -1671,7 +1796,7 @@ impl<'p> Machine<'p> {
         let current = self.read_place(p)?.clone();
         let io = match (&p.root, p.path.as_slice(), &current) {
             (Root::Global(k), [Seg::Index(i)], Value::Bool(old)) => {
-                io_array(k).map(|a| (a, i + 1, *old))
+                io_array(self.globals.name(*k)).map(|a| (a, i + 1, *old))
             }
             _ => None,
         };
@@ -1682,12 +1807,16 @@ impl<'p> Machine<'p> {
             self.io_changed(array, n, *b);
         }
         let frames_before = match &p.root {
-            Root::Global(k) if k == "$TOOL" || k == "$BASE" => Some(self.tool_base()),
+            Root::Global(k) if *k == self.sys.tool || *k == self.sys.base => Some(self.tool_base()),
             _ => None,
         };
         let root = match &p.root {
-            Root::Global(k) => self.globals.get_mut(k),
-            Root::Local(fi, k) => match self.frames.get_mut(*fi).and_then(|f| f.vars.get_mut(k)) {
+            Root::Global(k) => self.globals.at_mut(*k),
+            Root::Local(fi, k) => match self
+                .frames
+                .get_mut(*fi)
+                .and_then(|f| f.vars.get_mut(*k)?.as_mut())
+            {
                 Some(Slot::Own(v)) => Some(v),
                 _ => None,
             },
@@ -1716,12 +1845,61 @@ impl<'p> Machine<'p> {
         }
         *slot = new;
         if let Root::Global(k) = &p.root {
-            self.after_system_write(k.clone(), &p.path);
+            self.after_system_write(*k, &p.path);
         }
         if let Some((old_base, old_tool)) = frames_before {
             self.follow_frames(&old_base, &old_tool);
         }
         Ok(())
+    }
+
+    /// A scalar into a scalar of the program's own data (no I/O, timer or frame to follow),
+    /// where KRL's assignment rules keep the value as it is; `false`: not done, assign in
+    /// full.
+    fn assign_scalar(&mut self, p: &Place, v: &Value) -> bool {
+        let plain = match p.root {
+            Root::Local(..) => true,
+            Root::Global(k) => !self.globals.name(k).starts_with('$'),
+            _ => false,
+        };
+        if !plain {
+            return false;
+        }
+        let Some(slot) = self.place_mut(p) else {
+            return false;
+        };
+        match (slot, v) {
+            (Value::Int(x), Value::Int(i))
+                if (super::value::INT_MIN..=super::value::INT_MAX).contains(i) =>
+            {
+                *x = *i
+            }
+            (Value::Real(x), Value::Real(r)) => *x = *r,
+            (Value::Real(x), Value::Int(i)) => *x = *i as f64,
+            (Value::Bool(x), Value::Bool(b)) => *x = *b,
+            _ => return false,
+        }
+        true
+    }
+
+    /// The value at `p`, to change it.
+    fn place_mut(&mut self, p: &Place) -> Option<&mut Value> {
+        let mut v = match &p.root {
+            Root::Global(k) => self.globals.at_mut(*k)?,
+            Root::Local(fi, k) => match self.frames.get_mut(*fi)?.vars.get_mut(*k)?.as_mut()? {
+                Slot::Own(v) => v,
+                Slot::Alias(_) => return None,
+            },
+            Root::Group { .. } | Root::Const(_) => return None,
+        };
+        for s in &p.path {
+            v = match (s, v) {
+                (Seg::Index(i), Value::Array { items, .. }) => items.get_mut(*i)?,
+                (Seg::Field(f), v) => v.field_mut(f)?,
+                _ => return None,
+            };
+        }
+        Some(v)
     }
 
     /// Inputs linked to outputs (`--input N=out:M`) take the outputs' current values.
@@ -1784,7 +1962,7 @@ impl<'p> Machine<'p> {
         if let Some(pos) = self.globals.get("$POS_ACT")
             && let Some(moved) = super::frame::rebase(pos, (old_base, old_tool), (&base, &tool))
         {
-            self.globals.insert("$POS_ACT".into(), moved);
+            self.globals.insert("$POS_ACT", moved);
         }
     }
 
@@ -1815,13 +1993,13 @@ impl<'p> Machine<'p> {
         }
     }
 
-    fn after_system_write(&mut self, key: String, path: &[Seg]) {
+    fn after_system_write(&mut self, slot: usize, path: &[Seg]) {
         let Some(Seg::Index(i)) = path.first() else {
             return;
         };
         let n = i + 1;
-        match key.as_str() {
-            "$TIMER" => {
+        match slot {
+            s if s == self.sys.timer => {
                 if let Some(Value::Array { items, .. }) = self.globals.get("$TIMER")
                     && let Some(Value::Int(v)) = items.get(*i)
                 {
@@ -1831,7 +2009,7 @@ impl<'p> Machine<'p> {
                     t.start = now;
                 }
             }
-            "$TIMER_STOP" => {
+            s if s == self.sys.timer_stop => {
                 if let Some(Value::Array { items, .. }) = self.globals.get("$TIMER_STOP")
                     && let Some(Value::Bool(stop)) = items.get(*i)
                 {
@@ -2060,6 +2238,12 @@ impl<'p> Machine<'p> {
                 Err(_) => return Err(self.int_overflow(format!("the literal {b:#x}"))),
             },
             ExprKind::Enum(n) => Value::Enum(n.to_ascii_uppercase()),
+            ExprKind::Name(id) if let Some(v) = self.read_bound(id) => {
+                return match v {
+                    Value::Unset(_) => Err(self.unassigned(e)),
+                    v => Ok(v.clone()),
+                };
+            }
             ExprKind::Name(_) | ExprKind::Member { .. } | ExprKind::Index { .. } => {
                 let p = self.place_of(e)?;
                 match self.read_value(&p)? {
@@ -2067,7 +2251,7 @@ impl<'p> Machine<'p> {
                     v => v,
                 }
             }
-            ExprKind::Call { name, args } => match self.call(&name.text, args, true)? {
+            ExprKind::Call { name, args } => match self.call(name, args, true)? {
                 Some(v) => v,
                 None => return Err(self.err(format!("{} returns no value", name.text))),
             },
@@ -2094,7 +2278,7 @@ impl<'p> Machine<'p> {
                     }
                 }
             }
-            ExprKind::Binary { op, lhs, rhs } => self.binary(*op, lhs, rhs)?,
+            ExprKind::Binary { op, lhs, rhs } => return self.binary(*op, lhs, rhs),
             ExprKind::Aggregate { type_name, fields } => {
                 let mut vals = Vec::new();
                 for (n, fe) in fields {
@@ -2120,16 +2304,37 @@ impl<'p> Machine<'p> {
         })
     }
 
+    /// An operand: what [`Machine::eval`] gives, with literals and bound variables read here
+    /// (most operands are; this saves a call and a copy of the result for each).
+    #[inline]
+    fn operand(&mut self, e: &Expr) -> R<Value> {
+        match &e.kind {
+            ExprKind::Int(i) if (super::value::INT_MIN..=super::value::INT_MAX).contains(i) => {
+                Ok(Value::Int(*i))
+            }
+            ExprKind::Real(r) => Ok(Value::Real(*r)),
+            ExprKind::Name(id) => match self.read_bound(id) {
+                Some(Value::Unset(_)) => Err(self.unassigned(e)),
+                Some(v) => Ok(v.clone()),
+                None => self.eval(e),
+            },
+            _ => self.eval(e),
+        }
+    }
+
     fn binary(&mut self, op: BinaryOp, lhs: &Expr, rhs: &Expr) -> R<Value> {
         use BinaryOp as B;
-        let a = self.eval(lhs)?;
+        let a = self.operand(lhs)?;
         // Short-circuit so guards like `(i <= n) AND (a[i] > 0)` do not fault.
         match (op, &a) {
             (B::And, Value::Bool(false)) => return Ok(Value::Bool(false)),
             (B::Or, Value::Bool(true)) => return Ok(Value::Bool(true)),
             _ => {}
         }
-        let b = self.eval(rhs)?;
+        let b = self.operand(rhs)?;
+        if let Some(v) = plain_arithmetic(op, &a, &b) {
+            return Ok(v);
+        }
         let num = |v: &Value| v.as_f64();
         Ok(match op {
             B::Geo => super::frame::compose(&a, &b).ok_or_else(|| {
@@ -2232,11 +2437,16 @@ impl<'p> Machine<'p> {
     }
 
     /// A call of a user routine or a built-in; `want_value` for calls inside expressions.
-    fn call(&mut self, name: &str, args: &[Option<Expr>], want_value: bool) -> R<Option<Value>> {
+    fn call(&mut self, id: &Ident, args: &[Option<Expr>], want_value: bool) -> R<Option<Value>> {
+        let name = id.text.as_str();
         if name.len() > 4 && name[..4].eq_ignore_ascii_case("EKI_") {
             self.note_external();
         }
-        if let Some((mi, ri)) = self.find_routine(name) {
+        let target = match self.prog.binding(self.cur_module(), id.span) {
+            Some(Binding::Call(target)) => target.map(|(m, r)| (m as usize, r as usize)),
+            _ => self.find_routine(name),
+        };
+        if let Some((mi, ri)) = target {
             let r = self.call_routine(mi, ri, args)?;
             if want_value && r.is_none() {
                 return Err(self.err(format!("{name} is a DEF, not a DEFFCT")));
@@ -2269,9 +2479,49 @@ impl<'p> Machine<'p> {
         }
     }
 
-    pub(crate) fn globals_mut(&mut self) -> &mut HashMap<String, Value> {
+    pub(crate) fn globals_mut(&mut self) -> &mut Globals {
         &mut self.globals
     }
+}
+
+/// `a op b` for two INTs or two REALs where it gives a value (no overflow, no division by
+/// zero): what [`Machine::binary`] gives, without its general dispatch. `None`: ask it.
+fn plain_arithmetic(op: BinaryOp, a: &Value, b: &Value) -> Option<Value> {
+    use BinaryOp as B;
+    Some(match (a, b) {
+        (Value::Int(x), Value::Int(y)) => {
+            let (x, y) = (*x, *y);
+            match op {
+                B::Add | B::Sub | B::Mul | B::Div => {
+                    let r = match op {
+                        B::Add => x + y,
+                        B::Sub => x - y,
+                        B::Mul => x * y,
+                        _ if y != 0 => x / y,
+                        _ => return None,
+                    };
+                    if !(super::value::INT_MIN..=super::value::INT_MAX).contains(&r) {
+                        return None;
+                    }
+                    Value::Int(r)
+                }
+                B::Eq => Value::Bool(x == y),
+                B::Ne => Value::Bool(x != y),
+                B::Lt => Value::Bool(x < y),
+                B::Gt => Value::Bool(x > y),
+                B::Le => Value::Bool(x <= y),
+                B::Ge => Value::Bool(x >= y),
+                _ => return None,
+            }
+        }
+        (Value::Real(x), Value::Real(y)) => match op {
+            B::Add => Value::Real(x + y),
+            B::Sub => Value::Real(x - y),
+            B::Mul => Value::Real(x * y),
+            _ => return None,
+        },
+        _ => return None,
+    })
 }
 
 /// Dimensions to declare for an IN parameter declared `x[]`: take them from the incoming value.

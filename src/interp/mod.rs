@@ -23,9 +23,11 @@ mod cast;
 mod eki;
 mod format;
 pub(crate) mod frame;
+mod globals;
 mod machine;
 pub mod package;
 mod program;
+mod resolve;
 pub mod summary;
 mod value;
 

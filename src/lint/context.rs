@@ -102,11 +102,25 @@ pub struct Parsed {
     pub stem: String,
     /// Extension, lower case (`src`, `dat`, `sub`, or empty).
     pub ext: String,
+    /// KRL005's edits, for a file being edited ([`Parsed::edited`]): checking it then does not
+    /// parse the text a second time.
+    pub case_edits: Option<Vec<crate::diag::Edit>>,
 }
 
 impl Parsed {
     pub fn new(path: String, text: String) -> Parsed {
+        Parsed::parse(path, text, false)
+    }
+
+    /// A file the editor is changing: parsed with KRL005's edits, which need the syntax tree
+    /// before it is lowered.
+    pub fn edited(path: String, text: String) -> Parsed {
+        Parsed::parse(path, text, true)
+    }
+
+    fn parse(path: String, text: String, case_edits: bool) -> Parsed {
         let parse = crate::syntax::parse(&text);
+        let case_edits = case_edits.then(|| crate::fmt::case_edits_in(&text, &parse));
         let ast = parse.ast(&text);
         let p = std::path::Path::new(&path);
         let part = |s: Option<&std::ffi::OsStr>| {
@@ -121,6 +135,7 @@ impl Parsed {
             text,
             syntax_errors: parse.diagnostics,
             ast: Some(ast),
+            case_edits,
         }
     }
 

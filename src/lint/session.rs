@@ -49,7 +49,11 @@ pub struct Session {
 /// A file parsed, what the session keeps of it, and its summary for the model. The syntax
 /// tree is kept only if `keep_tree` (files being edited); others are parsed again when checked.
 fn entry(i: Input, keep_tree: bool) -> (Parsed, Meta, FileSummary) {
-    let mut parsed = Parsed::new(i.path, i.text);
+    let mut parsed = if keep_tree {
+        Parsed::edited(i.path, i.text)
+    } else {
+        Parsed::new(i.path, i.text)
+    };
     let ast = parsed.ast.take().unwrap_or_default();
     let summary = FileSummary::of(&ast);
     let mm = mm_relevant(&ast);
@@ -98,6 +102,7 @@ impl Session {
             },
             config,
         };
+        s.reindex();
         s.refresh();
         s
     }
@@ -109,14 +114,18 @@ impl Session {
         self.refresh();
     }
 
-    /// The index and the lint facts, after the model changed.
-    fn refresh(&mut self) {
+    /// Path → index, after files were removed (adding keeps it up to date).
+    fn reindex(&mut self) {
         self.index = self
             .files
             .iter()
             .enumerate()
             .map(|(i, f)| (f.path.clone(), i))
             .collect();
+    }
+
+    /// The lint facts, after the model changed.
+    fn refresh(&mut self) {
         let channels = std::mem::take(&mut self.project.channels);
         self.project = Project::of_sockets(
             channels,
@@ -197,6 +206,7 @@ impl Session {
         };
         self.files.remove(i);
         self.meta.remove(i);
+        self.reindex();
         // The model still has the old ids: every file but the i-th, in order.
         let update = (0..=self.files.len())
             .filter(|&k| k != i)
@@ -239,7 +249,8 @@ impl Session {
     fn check_index(&self, i: usize) -> FileReport {
         let p = &self.files[i];
         let tree = p.tree();
-        let cx = SyntaxCtx::new(&p.path, &p.text, &tree, &p.syntax_errors);
+        let mut cx = SyntaxCtx::new(&p.path, &p.text, &tree, &p.syntax_errors);
+        cx.case_edits = p.case_edits.clone();
         let mut findings = Vec::new();
         for rule in RULES {
             if let Check::Syntax(check) = rule.check {

@@ -55,6 +55,7 @@
 //! - Deterministic: the same files in the same order give the same ids.
 
 mod build;
+mod edit;
 pub mod env;
 mod ids;
 mod model;
