@@ -10,6 +10,7 @@ use crate::syntax::ast::{
 mod bas;
 mod forms;
 mod interrupt;
+mod scalar;
 mod settings;
 mod signals;
 mod submit;
@@ -24,17 +25,24 @@ use super::value::{AXIS_FIELDS, BaseType, CART_FIELDS, Types, Value};
 use super::{
     End, Event, Location, Options, Record, RunResult, RuntimeError, TraceSink, VisionPose, WaitKind,
 };
+use scalar::Scalar;
 
 /// Where a value lives: the target of assignments and OUT parameters.
 #[derive(Debug, Clone, PartialEq)]
 pub(crate) struct Place {
     root: Root,
-    path: Vec<Seg>,
+    path: Path,
 }
+
+/// Element indices and fields below a root: rarely more than two, kept inline.
+type Path = smallvec::SmallVec<[Seg; 2]>;
 
 impl Place {
     fn root(root: Root) -> Place {
-        Place { root, path: vec![] }
+        Place {
+            root,
+            path: Path::new(),
+        }
     }
 }
 
@@ -1691,7 +1699,7 @@ impl<'p> Machine<'p> {
                 if indices.iter().all(|i| i.is_none()) {
                     return Ok(p);
                 }
-                let mut idx = Vec::new();
+                let mut idx = smallvec::SmallVec::<[i64; 3]>::new();
                 for i in indices {
                     match i {
                         Some(e) => idx.push(self.eval_int(e)?),
@@ -2175,6 +2183,9 @@ impl<'p> Machine<'p> {
     }
 
     pub(crate) fn eval_bool(&mut self, e: &Expr) -> R<bool> {
+        if let Some(Scalar::Bool(b)) = self.scalar(e) {
+            return Ok(b);
+        }
         match self.eval(e)? {
             Value::Bool(b) => Ok(b),
             v => Err(self.err(format!("expected BOOL, found {}", v.kind_name()))),
@@ -2182,6 +2193,11 @@ impl<'p> Machine<'p> {
     }
 
     pub(crate) fn eval_int(&mut self, e: &Expr) -> R<i64> {
+        match self.scalar(e) {
+            Some(Scalar::Int(i)) => return Ok(i),
+            Some(Scalar::Real(r)) => return Ok(r.round() as i64),
+            _ => {}
+        }
         match self.eval(e)? {
             Value::Int(i) => Ok(i),
             Value::Real(r) => Ok(r.round() as i64),
@@ -2278,7 +2294,12 @@ impl<'p> Machine<'p> {
                     }
                 }
             }
-            ExprKind::Binary { op, lhs, rhs } => return self.binary(*op, lhs, rhs),
+            ExprKind::Binary { op, lhs, rhs } => {
+                return match self.scalar(e) {
+                    Some(v) => Ok(v.value()),
+                    None => self.binary(*op, lhs, rhs),
+                };
+            }
             ExprKind::Aggregate { type_name, fields } => {
                 let mut vals = Vec::new();
                 for (n, fe) in fields {
@@ -2332,9 +2353,6 @@ impl<'p> Machine<'p> {
             _ => {}
         }
         let b = self.operand(rhs)?;
-        if let Some(v) = plain_arithmetic(op, &a, &b) {
-            return Ok(v);
-        }
         let num = |v: &Value| v.as_f64();
         Ok(match op {
             B::Geo => super::frame::compose(&a, &b).ok_or_else(|| {
@@ -2482,46 +2500,6 @@ impl<'p> Machine<'p> {
     pub(crate) fn globals_mut(&mut self) -> &mut Globals {
         &mut self.globals
     }
-}
-
-/// `a op b` for two INTs or two REALs where it gives a value (no overflow, no division by
-/// zero): what [`Machine::binary`] gives, without its general dispatch. `None`: ask it.
-fn plain_arithmetic(op: BinaryOp, a: &Value, b: &Value) -> Option<Value> {
-    use BinaryOp as B;
-    Some(match (a, b) {
-        (Value::Int(x), Value::Int(y)) => {
-            let (x, y) = (*x, *y);
-            match op {
-                B::Add | B::Sub | B::Mul | B::Div => {
-                    let r = match op {
-                        B::Add => x + y,
-                        B::Sub => x - y,
-                        B::Mul => x * y,
-                        _ if y != 0 => x / y,
-                        _ => return None,
-                    };
-                    if !(super::value::INT_MIN..=super::value::INT_MAX).contains(&r) {
-                        return None;
-                    }
-                    Value::Int(r)
-                }
-                B::Eq => Value::Bool(x == y),
-                B::Ne => Value::Bool(x != y),
-                B::Lt => Value::Bool(x < y),
-                B::Gt => Value::Bool(x > y),
-                B::Le => Value::Bool(x <= y),
-                B::Ge => Value::Bool(x >= y),
-                _ => return None,
-            }
-        }
-        (Value::Real(x), Value::Real(y)) => match op {
-            B::Add => Value::Real(x + y),
-            B::Sub => Value::Real(x - y),
-            B::Mul => Value::Real(x * y),
-            _ => return None,
-        },
-        _ => return None,
-    })
 }
 
 /// Dimensions to declare for an IN parameter declared `x[]`: take them from the incoming value.
