@@ -105,25 +105,21 @@ impl Frame {
     }
 }
 
-/// Why execution of a block stopped early.
+/// Why execution of a block stopped early. Boxed, so that a result that did not stop is
+/// small (most statements and expressions do not).
 pub(crate) enum Stop {
-    Error(RuntimeError),
-    Halt {
-        file: String,
-        line: usize,
-    },
+    Error(Box<RuntimeError>),
+    /// Where the HALT was.
+    Halt(Box<RuntimeError>),
     /// `RESUME` in an interrupt routine: abandon the routines called since the level (call
     /// depth) where the interrupt was declared; that level continues after its current call.
-    Resume {
-        depth: usize,
-        file: String,
-        line: usize,
-    },
+    /// The depth, and where the RESUME was.
+    Resume(Box<(usize, RuntimeError)>),
 }
 
 impl From<RuntimeError> for Stop {
     fn from(e: RuntimeError) -> Stop {
-        Stop::Error(e)
+        Stop::Error(Box::new(e))
     }
 }
 
@@ -160,6 +156,8 @@ pub(crate) struct Machine<'p> {
     sink: Option<&'p mut (dyn TraceSink + 'p)>,
     /// Per module, per 0-based line: statements run there.
     hits: Vec<Vec<u64>>,
+    /// (module, offset, 0-based line) of statements run lately, by offset.
+    line_cache: Vec<(usize, u32, usize)>,
     messages: Vec<String>,
     steps: u64,
     /// TRIGGER actions waiting for the next motion.
@@ -190,6 +188,7 @@ pub(crate) struct Machine<'p> {
 }
 
 const TIMERS: usize = 64;
+const LINE_CACHE: usize = 256;
 
 #[cfg(test)]
 thread_local! {
@@ -243,6 +242,7 @@ impl<'p> Machine<'p> {
                 .iter()
                 .map(|m| vec![0; m.lines.line_count()])
                 .collect(),
+            line_cache: vec![(usize::MAX, 0, 0); LINE_CACHE],
             messages: Vec::new(),
             steps: 0,
             pending_triggers: Vec::new(),
@@ -285,7 +285,7 @@ impl<'p> Machine<'p> {
     }
 
     pub(crate) fn err(&self, message: impl Into<String>) -> Stop {
-        Stop::Error(self.error(message))
+        Stop::Error(Box::new(self.error(message)))
     }
 
     pub(crate) fn error(&self, message: impl Into<String>) -> RuntimeError {
@@ -487,11 +487,14 @@ impl<'p> Machine<'p> {
                         self.call_routine(mi, ri, &[]).map(|_| ())
                     }) {
                     Ok(()) => End::Normal,
-                    Err(Stop::Halt { file, line }) => End::Halt { file, line },
-                    Err(Stop::Error(e)) => End::Error(e),
-                    Err(Stop::Resume { file, line, .. }) => End::Error(RuntimeError {
-                        file,
-                        line,
+                    Err(Stop::Halt(h)) => End::Halt {
+                        file: h.file,
+                        line: h.line,
+                    },
+                    Err(Stop::Error(e)) => End::Error(*e),
+                    Err(Stop::Resume(r)) => End::Error(RuntimeError {
+                        file: r.1.file,
+                        line: r.1.line,
                         message: "RESUME found no routine to return to".into(),
                     }),
                 }
@@ -499,7 +502,7 @@ impl<'p> Machine<'p> {
         };
         self.eki.close_all();
         let end = match (end, self.expire_pulses(true)) {
-            (End::Normal, Err(Stop::Error(e))) => End::Error(e),
+            (End::Normal, Err(Stop::Error(e))) => End::Error(*e),
             (end, _) => end,
         };
         let end = self.submit_at_end(end);
@@ -949,7 +952,7 @@ impl<'p> Machine<'p> {
         self.declared_scope = saved_scope;
         let result = match result {
             // The routine called from the interrupt's level is abandoned; that level goes on.
-            Err(Stop::Resume { depth, .. }) if self.frames.len() == depth => Ok(None),
+            Err(Stop::Resume(r)) if self.frames.len() == r.0 => Ok(None),
             other => other,
         };
         let ret = result?;
@@ -1038,10 +1041,17 @@ impl<'p> Machine<'p> {
     fn exec(&mut self, s: &Stmt) -> R<Flow> {
         self.loc = (self.cur_module(), s.span.start);
         let (mi, off) = self.loc;
-        if let Some(h) = self.prog.modules.get(mi).and_then(|m| {
-            let line = m.lines.line_of(off as usize);
-            self.hits.get_mut(mi)?.get_mut(line)
-        }) {
+        // The statements of a loop come round again: their lines are remembered.
+        let cached = &mut self.line_cache[(off as usize ^ mi.wrapping_mul(31)) % LINE_CACHE];
+        let line = match *cached {
+            (m, o, line) if m == mi && o == off => Some(line),
+            _ => self.prog.modules.get(mi).map(|m| {
+                let line = m.lines.line_of(off as usize);
+                *cached = (mi, off, line);
+                line
+            }),
+        };
+        if let Some(h) = line.and_then(|l| self.hits.get_mut(mi)?.get_mut(l)) {
             *h += 1;
         }
         self.tick()?;
@@ -1184,10 +1194,7 @@ impl<'p> Machine<'p> {
             StmtKind::Halt => {
                 let e = self.error("HALT");
                 self.message(format!("{}:{}: HALT", e.file, e.line));
-                return Err(Stop::Halt {
-                    file: e.file,
-                    line: e.line,
-                });
+                return Err(Stop::Halt(Box::new(e)));
             }
             StmtKind::Return { value } => {
                 let v = match value {
@@ -1833,7 +1840,7 @@ impl<'p> Machine<'p> {
         let mut slot = match root {
             Some(r) => r,
             None => {
-                return Err(Stop::Error(RuntimeError {
+                return Err(Stop::from(RuntimeError {
                     file: String::new(),
                     line: 0,
                     message: "dangling reference".into(),
