@@ -8,7 +8,7 @@ use std::collections::HashMap;
 
 use rayon::prelude::*;
 
-use super::context::{FileCtx, InitSocket, Parsed, Project, SyntaxCtx, init_sockets};
+use super::context::{FileCtx, InitSocket, Parsed, Project, SyntaxCtx, SyntaxFacts, init_sockets};
 use super::{Check, EkiChannel, Input, LintConfig, RULES, finish, mm_relevant, run};
 use crate::diag::FileReport;
 use crate::sema::{FileId, FileSummary, Sema, SemaInput, Update};
@@ -249,7 +249,8 @@ impl Session {
     fn check_index(&self, i: usize) -> FileReport {
         let p = &self.files[i];
         let tree = p.tree();
-        let mut cx = SyntaxCtx::new(&p.path, &p.text, &tree, &p.syntax_errors);
+        let facts = SyntaxFacts::of(&tree);
+        let mut cx = SyntaxCtx::new(&p.path, &p.text, &facts, &p.syntax_errors);
         cx.case_edits = p.case_edits.clone();
         let mut findings = Vec::new();
         for rule in RULES {
