@@ -154,13 +154,13 @@ const CASES: &[Case] = &[
         // translations write their own conservative defaults, which every motion runs at.
         kawasaki: &[by(
             EVERY_LINE,
-            Aspect::Speed,
+            Aspect::InitSpeed,
             8,
             "AS gets conservative defaults",
         )],
         flexiv: &[by(
             EVERY_LINE,
-            Aspect::Speed,
+            Aspect::InitSpeed,
             8,
             "the script uses DEFAULT_VEL",
         )],

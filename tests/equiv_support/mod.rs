@@ -662,6 +662,11 @@ pub enum Aspect {
     Target,
     /// The whole motion: the statement is not translated (TR001).
     Motion,
+    /// The speed where KRL's is krlkit's `BAS(#INITMOV)` default (100 %, 2 m/s): the
+    /// translations write their own defaults for it.
+    InitSpeed,
+    /// Every `WAIT SEC` (with [`EVERY_LINE`]: a routine whose wait time is not translated).
+    Waits,
     /// When the outputs the statement at the line sets switch (a TRIGGER's action runs
     /// before or after the motion instead of on the path): they are compared in their own
     /// order, not among the motions.
@@ -735,7 +740,12 @@ fn motion_differs(k: &Motion, t: &Motion, brand: Brand, skip: &[Aspect]) -> Opti
             bad.push(format!("blending {:?} vs {:?}", k.blend, t.blend));
         }
     }
-    for (what, a, b) in [("base", &k.base, &t.base), ("tool", &k.tool, &t.tool)] {
+    // An axis target goes to the same joints whatever the frames.
+    let frames = match k.target {
+        Pose::Cart(..) => vec![("base", &k.base, &t.base), ("tool", &k.tool, &t.tool)],
+        Pose::Axis(_) => Vec::new(),
+    };
+    for (what, a, b) in frames {
         let d = a.distance(b);
         if d.is_nan() || d > 1e-6 {
             bad.push(format!("{what} {a:?} vs {b:?}"));
@@ -744,7 +754,8 @@ fn motion_differs(k: &Motion, t: &Motion, brand: Brand, skip: &[Aspect]) -> Opti
     (!bad.is_empty()).then(|| bad.join("; "))
 }
 
-/// Takes the motions of [`Aspect::Motion`] exclusions out of the KRL run, and the outputs of
+/// Takes the motions of [`Aspect::Motion`] exclusions out of the KRL run, the waits of an
+/// [`Aspect::Waits`] exclusion out of both, and the outputs of
 /// [`Aspect::OutputTiming`] exclusions out of both runs: the KRL run's
 /// output changes made at an excluded line, and the same changes, in the same order, from the
 /// translation's run (an error if it lacks them).
@@ -763,10 +774,12 @@ fn moved_outputs(
         .filter(|e| e.aspect == Aspect::Motion)
         .map(|e| e.line)
         .collect();
+    let waits = excluded.iter().any(|e| e.aspect == Aspect::Waits);
     let (mut k, mut moved) = (Vec::new(), Vec::new());
     for s in krl {
         match s {
             Step::Move(m) if m.line.is_some_and(|l| dropped.contains(&l)) => {}
+            Step::Wait(_) if waits => {}
             Step::Out(n, v, Some(l)) if lines.contains(l) => moved.push((*n, *v)),
             _ => k.push(s.clone()),
         }
@@ -775,6 +788,7 @@ fn moved_outputs(
     let mut want = moved.iter().peekable();
     for s in target {
         match (s, want.peek()) {
+            (Step::Wait(_), _) if waits => {}
             (Step::Out(n, v, _), Some((m, w))) if n == m && v == w => {
                 want.next();
             }
@@ -856,6 +870,12 @@ pub fn compare(
                         ));
                     }
                     skip.push(Aspect::Blend);
+                }
+                if skip.contains(&Aspect::InitSpeed)
+                    && matches!(a.speed, Speed::Joint(Some(v)) if v == 100.0)
+                        | matches!(a.speed, Speed::Cp(Some(v)) if v == 2.0)
+                {
+                    skip.push(Aspect::Speed);
                 }
                 motion_differs(a, b, brand, &skip)
             }
