@@ -36,7 +36,7 @@ pub use options::{Api, FlexivOptions, JointMap, JointSource, PtpPrimitive, RdkVe
 use super::Options;
 use super::VisionServer;
 use super::front::Program as Source;
-use super::front::comments::{self, CommentQueue};
+use super::front::comments::CommentQueue;
 use super::front::names::{Home, Namer};
 use super::front::report::Report;
 use super::ir::{self, LoopId, RoutineId, RoutineKind, Scope, TempId, VarId};
@@ -99,7 +99,7 @@ pub(super) struct Tx<'a> {
     vision: Option<&'a VisionServer>,
     rep: Report,
     names: Namer<'a>,
-    comments: CommentQueue,
+    comments: CommentQueue<'a>,
     lines: Vec<String>,
     depth: usize,
     rt: Option<Rt>,
@@ -131,7 +131,7 @@ impl<'a> Tx<'a> {
         vision: Option<&'a VisionServer>,
         opts: &'a Options,
     ) -> Tx<'a> {
-        let comments = CommentQueue::new(comments::collect(&src.src.parse.root(), &src.src.text));
+        let comments = CommentQueue::new(&src.src.comments);
         Tx {
             src,
             ir,

@@ -25,7 +25,7 @@ use std::collections::HashMap;
 use super::Options;
 use super::VisionServer;
 use super::front::Program as Source;
-use super::front::comments::{self, CommentQueue};
+use super::front::comments::CommentQueue;
 use super::front::names::{Home, NameRules, Namer};
 use super::front::report::{FileId, Report};
 use super::ir::{self, LoopId, RoutineId, RoutineKind, TempId, Ty, VarId};
@@ -91,7 +91,7 @@ pub(super) struct Tx<'a> {
     vision: Option<&'a VisionServer>,
     rep: Report,
     names: Namer<'a>,
-    comments: CommentQueue,
+    comments: CommentQueue<'a>,
     programs: Vec<ProgramOut>,
     lines: Vec<String>,
     depth: usize,
@@ -112,7 +112,7 @@ impl<'a> Tx<'a> {
         vision: Option<&'a VisionServer>,
         opts: &'a Options,
     ) -> Tx<'a> {
-        let comments = CommentQueue::new(comments::collect(&src.src.parse.root(), &src.src.text));
+        let comments = CommentQueue::new(&src.src.comments);
         Tx {
             src,
             ir,
