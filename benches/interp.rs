@@ -14,8 +14,8 @@ const LOCALS: &str = "DEF locals()
   sum = 0
   r = 0.0
   FOR i = 1 TO 20000
-    sum = sum + i MOD 7
-    a[i MOD 100 + 1] = sum
+    sum = sum + i - (i / 7) * 7
+    a[i - (i / 100) * 100 + 1] = sum
     IF sum > 100000 THEN
       sum = 0
     ENDIF

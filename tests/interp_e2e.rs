@@ -38,6 +38,40 @@ fn is_success_in(iface: Interface, name: &str, status: i64) -> bool {
             .any(|c| c.success.map(i64::from) == Some(status))
 }
 
+/// Every subprogram of `iface` ran successfully in some case, and every failure the package can
+/// report itself shows up somewhere, except SEND_FAILED (the connection would have to break
+/// between connect and send).
+fn assert_coverage(iface: Interface, seen: &BTreeMap<String, BTreeSet<i64>>) {
+    let cat = catalog();
+    for sub in cat.subprograms_of(iface) {
+        let statuses = seen.get(&sub.name).cloned().unwrap_or_default();
+        assert!(
+            statuses.iter().any(|s| is_success_in(iface, &sub.name, *s)),
+            "{} {} never ran successfully end to end (statuses seen: {statuses:?})",
+            iface.as_str(),
+            sub.name
+        );
+    }
+    let all: BTreeSet<i64> = seen.values().flatten().copied().collect();
+    for code in [
+        "NO_CONNECTION",
+        "REPLY_TIMEOUT",
+        "BAD_REPLY",
+        "WRONG_ECHO",
+        "TOO_MANY_POINTS",
+        "BAD_SERIAL",
+        "BAD_ARGUMENT",
+        "WRONG_DATA_KIND",
+    ] {
+        let n = i64::from(cat.package_code(code));
+        assert!(
+            all.contains(&n),
+            "no {} case ends in {code} ({n})",
+            iface.as_str()
+        );
+    }
+}
+
 #[test]
 fn every_subprogram_end_to_end() {
     // Subprogram → statuses it returned, over all cases.
@@ -60,33 +94,7 @@ fn every_subprogram_end_to_end() {
         insta::assert_snapshot!(render(&outcome, outcome.addr.as_deref()));
     });
 
-    let cat = catalog();
-    for sub in &cat.subprograms {
-        let statuses = seen.get(&sub.name).cloned().unwrap_or_default();
-        assert!(
-            statuses
-                .iter()
-                .any(|s| is_success_in(Interface::V1, &sub.name, *s)),
-            "{} never ran successfully end to end (statuses seen: {statuses:?})",
-            sub.name
-        );
-    }
-    // Every failure the package can report itself shows up somewhere, except SEND_FAILED
-    // (the connection would have to break between connect and send).
-    let all: BTreeSet<i64> = seen.values().flatten().copied().collect();
-    for code in [
-        "NO_CONNECTION",
-        "REPLY_TIMEOUT",
-        "BAD_REPLY",
-        "WRONG_ECHO",
-        "TOO_MANY_POINTS",
-        "BAD_SERIAL",
-        "BAD_ARGUMENT",
-        "WRONG_DATA_KIND",
-    ] {
-        let n = i64::from(cat.package_code(code));
-        assert!(all.contains(&n), "no case ends in {code} ({n})");
-    }
+    assert_coverage(Interface::V1, &seen);
 }
 
 /// The specs of the HEX packages of the 1.x interface.
@@ -184,31 +192,7 @@ fn every_v2_subprogram_end_to_end() {
         }
         insta::assert_snapshot!(render(&outcome, outcome.addr.as_deref()));
     });
-    let cat = catalog();
-    for sub in cat.subprograms_of(Interface::V2) {
-        let statuses = seen.get(&sub.name).cloned().unwrap_or_default();
-        assert!(
-            statuses
-                .iter()
-                .any(|s| is_success_in(Interface::V2, &sub.name, *s)),
-            "2.x {} never ran successfully end to end (statuses seen: {statuses:?})",
-            sub.name
-        );
-    }
-    let all: BTreeSet<i64> = seen.values().flatten().copied().collect();
-    for code in [
-        "NO_CONNECTION",
-        "REPLY_TIMEOUT",
-        "BAD_REPLY",
-        "WRONG_ECHO",
-        "TOO_MANY_POINTS",
-        "BAD_SERIAL",
-        "BAD_ARGUMENT",
-        "WRONG_DATA_KIND",
-    ] {
-        let n = i64::from(cat.package_code(code));
-        assert!(all.contains(&n), "no 2.x case ends in {code} ({n})");
-    }
+    assert_coverage(Interface::V2, &seen);
 }
 
 #[test]

@@ -19,6 +19,7 @@ use quick_xml::events::Event as X;
 
 use crate::syntax::ast::Expr;
 
+use super::globals::Globals;
 use super::machine::{Machine, R};
 use super::value::Value;
 
@@ -225,7 +226,7 @@ impl Eki {
 
     /// Read what has arrived (waiting up to `wait` for the first bytes), split it into records,
     /// and set the configured flags.
-    pub(crate) fn pump(&mut self, globals: &mut HashMap<String, Value>, wait: Duration) {
+    pub(crate) fn pump(&mut self, globals: &mut Globals, wait: Duration) {
         let mut waited = false;
         for c in self.channels.values_mut() {
             let Some(s) = &mut c.stream else { continue };
@@ -270,7 +271,7 @@ impl Eki {
 impl Channel {
     fn split_records(
         &mut self,
-        globals: &mut HashMap<String, Value>,
+        globals: &mut Globals,
         changes: &mut Vec<(&'static str, usize, bool)>,
     ) {
         let Some(el) = self.cfg.receive.first().cloned() else {
@@ -307,7 +308,7 @@ impl Channel {
 }
 
 fn set_flag(
-    globals: &mut HashMap<String, Value>,
+    globals: &mut Globals,
     changes: &mut Vec<(&'static str, usize, bool)>,
     var: &'static str,
     n: Option<usize>,
@@ -375,7 +376,7 @@ fn load_config(m: &Machine, name: &str) -> R<ChannelConfig> {
 }
 
 fn m_err_never() -> super::machine::Stop {
-    super::machine::Stop::Error(super::RuntimeError {
+    super::machine::Stop::from(super::RuntimeError {
         file: String::new(),
         line: 0,
         message: "EKI channel vanished".into(),

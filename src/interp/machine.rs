@@ -1,44 +1,59 @@
 //! The executor: scopes, places (for OUT parameters), statements and expressions.
 
-use std::collections::HashMap;
+use compact_str::CompactString;
 
 use crate::syntax::ast::{
-    BinaryOp, Decl, Definition, Expr, ExprKind, Motion, MotionKind, ParamDir, Routine, RoutineKind,
-    Stmt, StmtKind, UnaryOp,
+    BinaryOp, Decl, Definition, Expr, ExprKind, Ident, Motion, MotionKind, ParamDir, Routine,
+    RoutineKind, Stmt, StmtKind, UnaryOp,
 };
 
 mod bas;
 mod forms;
 mod interrupt;
+mod scalar;
+mod settings;
 mod signals;
 mod submit;
 mod vision;
 mod watch;
 
 use super::eki::Eki;
+use super::globals::Globals;
 use super::program::Program;
+use super::resolve::{Binding, MODULE_LEVEL, canonical};
 use super::value::{AXIS_FIELDS, BaseType, CART_FIELDS, Types, Value};
 use super::{
     End, Event, Location, Options, Record, RunResult, RuntimeError, TraceSink, VisionPose, WaitKind,
 };
+use scalar::Scalar;
 
 /// Where a value lives: the target of assignments and OUT parameters.
 #[derive(Debug, Clone, PartialEq)]
 pub(crate) struct Place {
     root: Root,
-    path: Vec<Seg>,
+    path: Path,
+}
+
+/// Element indices and fields below a root: rarely more than two, kept inline.
+type Path = smallvec::SmallVec<[Seg; 2]>;
+
+impl Place {
+    fn root(root: Root) -> Place {
+        Place {
+            root,
+            path: Path::new(),
+        }
+    }
 }
 
 #[derive(Debug, Clone, PartialEq)]
 enum Root {
-    Global(String),
-    Local(usize, String),
-    /// A SIGNAL group: bits `lo..=hi` (0-based offsets) of a BOOL array global.
-    Group {
-        array: String,
-        lo: usize,
-        hi: usize,
-    },
+    /// A slot of [`Globals`].
+    Global(usize),
+    /// Frame index, slot in the frame.
+    Local(usize, usize),
+    /// A SIGNAL group: bits `lo..=hi` (0-based offsets) of a BOOL array global (its slot).
+    Group { array: usize, lo: usize, hi: usize },
     /// `SIGNAL name FALSE` (or TRUE).
     Const(bool),
 }
@@ -46,7 +61,8 @@ enum Root {
 #[derive(Debug, Clone, PartialEq)]
 enum Seg {
     Index(usize),
-    Field(String),
+    /// As written (fields match case-insensitively).
+    Field(CompactString),
 }
 
 #[derive(Debug)]
@@ -58,7 +74,14 @@ enum Slot {
 #[derive(Debug)]
 struct Frame {
     module: usize,
-    vars: HashMap<String, Slot>,
+    /// The routine running (its index in the program's routines), `None` for a DEFDAT body.
+    routine: Option<usize>,
+    /// By slot: the routine's layout (`resolve::RoutineInfo::locals`), then `extra`.
+    vars: Vec<Option<Slot>>,
+    /// Names declared here that the layout lacks, with slots after the layout's.
+    extra: Vec<String>,
+    /// How many slots the layout has.
+    layout: usize,
     /// Where the routine was called from (`None`: the program's main routine, a DEFDAT body).
     call_site: Option<(usize, u32)>,
     /// The `MM_*` subprogram this frame runs, when it is one of the interface's.
@@ -68,10 +91,13 @@ struct Frame {
 }
 
 impl Frame {
-    fn new(module: usize, vars: HashMap<String, Slot>) -> Frame {
+    fn new(module: usize, routine: Option<usize>, vars: Vec<Option<Slot>>) -> Frame {
         Frame {
             module,
+            routine,
+            layout: vars.len(),
             vars,
+            extra: Vec::new(),
             call_site: None,
             mm: None,
             loops: Vec::new(),
@@ -79,25 +105,21 @@ impl Frame {
     }
 }
 
-/// Why execution of a block stopped early.
+/// Why execution of a block stopped early. Boxed, so that a result that did not stop is
+/// small (most statements and expressions do not).
 pub(crate) enum Stop {
-    Error(RuntimeError),
-    Halt {
-        file: String,
-        line: usize,
-    },
+    Error(Box<RuntimeError>),
+    /// Where the HALT was.
+    Halt(Box<RuntimeError>),
     /// `RESUME` in an interrupt routine: abandon the routines called since the level (call
     /// depth) where the interrupt was declared; that level continues after its current call.
-    Resume {
-        depth: usize,
-        file: String,
-        line: usize,
-    },
+    /// The depth, and where the RESUME was.
+    Resume(Box<(usize, RuntimeError)>),
 }
 
 impl From<RuntimeError> for Stop {
     fn from(e: RuntimeError) -> Stop {
-        Stop::Error(e)
+        Stop::Error(Box::new(e))
     }
 }
 
@@ -120,7 +142,9 @@ pub(crate) type R<T> = Result<T, Stop>;
 pub(crate) struct Machine<'p> {
     pub(crate) prog: &'p Program,
     pub(crate) opts: &'p Options,
-    globals: HashMap<String, Value>,
+    globals: Globals,
+    /// Slots of the system variables the machine itself reads or watches.
+    sys: SysSlots,
     frames: Vec<Frame>,
     /// Current module and byte offset, for error locations.
     loc: (usize, u32),
@@ -132,13 +156,15 @@ pub(crate) struct Machine<'p> {
     sink: Option<&'p mut (dyn TraceSink + 'p)>,
     /// Per module, per 0-based line: statements run there.
     hits: Vec<Vec<u64>>,
+    /// (module, offset, 0-based line) of statements run lately, by offset.
+    line_cache: Vec<(usize, u32, usize)>,
     messages: Vec<String>,
     steps: u64,
     /// TRIGGER actions waiting for the next motion.
     pending_triggers: Vec<(usize, Stmt)>,
     interrupts: interrupt::Interrupts,
     /// SIGNAL names of the DEFDATs, keyed like globals (`NAME` or `SCOPE::NAME`).
-    signals: HashMap<String, Place>,
+    signals: rustc_hash::FxHashMap<String, Place>,
     /// Outputs a PULSE will set back.
     pulses: Vec<signals::Pulse>,
     message_handles: i64,
@@ -162,6 +188,25 @@ pub(crate) struct Machine<'p> {
 }
 
 const TIMERS: usize = 64;
+const LINE_CACHE: usize = 256;
+
+#[cfg(test)]
+thread_local! {
+    /// Name lookups made by name on this thread (the tests of `resolve.rs` count them).
+    pub(crate) static BY_NAME: std::cell::Cell<u64> = const { std::cell::Cell::new(0) };
+}
+
+/// Slots of system variables with side effects on read or write.
+#[derive(Debug, Default, Clone, Copy)]
+struct SysSlots {
+    timer: usize,
+    timer_flag: usize,
+    timer_stop: usize,
+    input: usize,
+    in_home: usize,
+    tool: usize,
+    base: usize,
+}
 
 /// Globals the interpreter predefines (like `$config.dat`); not reported in [`RunResult::globals`].
 const BUILTIN_GLOBALS: [&str; 11] = [
@@ -183,7 +228,8 @@ impl<'p> Machine<'p> {
         let mut m = Machine {
             prog,
             opts,
-            globals: HashMap::new(),
+            globals: prog.resolved.globals.clone(),
+            sys: SysSlots::default(),
             frames: Vec::new(),
             loc: (0, 0),
             clock_ms: 0.0,
@@ -196,11 +242,12 @@ impl<'p> Machine<'p> {
                 .iter()
                 .map(|m| vec![0; m.lines.line_count()])
                 .collect(),
+            line_cache: vec![(usize::MAX, 0, 0); LINE_CACHE],
             messages: Vec::new(),
             steps: 0,
             pending_triggers: Vec::new(),
             interrupts: interrupt::Interrupts::default(),
-            signals: HashMap::new(),
+            signals: Default::default(),
             pulses: Vec::new(),
             message_handles: 0,
             writes: 0,
@@ -214,6 +261,16 @@ impl<'p> Machine<'p> {
         };
         m.init_system();
         m.init_robot_state();
+        let mut slot = |k: &str| m.globals.intern(k);
+        m.sys = SysSlots {
+            timer: slot("$TIMER"),
+            timer_flag: slot("$TIMER_FLAG"),
+            timer_stop: slot("$TIMER_STOP"),
+            input: slot("$IN"),
+            in_home: slot("$IN_HOME"),
+            tool: slot("$TOOL"),
+            base: slot("$BASE"),
+        };
         m
     }
 
@@ -228,7 +285,7 @@ impl<'p> Machine<'p> {
     }
 
     pub(crate) fn err(&self, message: impl Into<String>) -> Stop {
-        Stop::Error(self.error(message))
+        Stop::Error(Box::new(self.error(message)))
     }
 
     pub(crate) fn error(&self, message: impl Into<String>) -> RuntimeError {
@@ -251,7 +308,7 @@ impl<'p> Machine<'p> {
         let t = self.prog.types.clone();
         let bools = |n: usize| t.default_value(&BaseType::Bool, &[n]);
         let mut put = |k: &str, v: Value| {
-            self.globals.insert(k.to_string(), v);
+            self.globals.insert(k, v);
         };
         put("$FLAG", bools(1024));
         put("$OUT", bools(super::IO_COUNT));
@@ -430,11 +487,14 @@ impl<'p> Machine<'p> {
                         self.call_routine(mi, ri, &[]).map(|_| ())
                     }) {
                     Ok(()) => End::Normal,
-                    Err(Stop::Halt { file, line }) => End::Halt { file, line },
-                    Err(Stop::Error(e)) => End::Error(e),
-                    Err(Stop::Resume { file, line, .. }) => End::Error(RuntimeError {
-                        file,
-                        line,
+                    Err(Stop::Halt(h)) => End::Halt {
+                        file: h.file,
+                        line: h.line,
+                    },
+                    Err(Stop::Error(e)) => End::Error(*e),
+                    Err(Stop::Resume(r)) => End::Error(RuntimeError {
+                        file: r.1.file,
+                        line: r.1.line,
                         message: "RESUME found no routine to return to".into(),
                     }),
                 }
@@ -442,7 +502,7 @@ impl<'p> Machine<'p> {
         };
         self.eki.close_all();
         let end = match (end, self.expire_pulses(true)) {
-            (End::Normal, Err(Stop::Error(e))) => End::Error(e),
+            (End::Normal, Err(Stop::Error(e))) => End::Error(*e),
             (end, _) => end,
         };
         let end = self.submit_at_end(end);
@@ -478,8 +538,8 @@ impl<'p> Machine<'p> {
         let globals = self
             .globals
             .iter()
-            .filter(|(k, _)| !k.starts_with('$') && !BUILTIN_GLOBALS.contains(&k.as_str()))
-            .map(|(k, v)| (k.clone(), v.clone()))
+            .filter(|(k, _)| !k.starts_with('$') && !BUILTIN_GLOBALS.contains(k))
+            .map(|(k, v)| (k.to_string(), v.clone()))
             .collect();
         let outputs = match self.globals.get("$OUT") {
             Some(Value::Array { items, .. }) => items
@@ -592,7 +652,7 @@ impl<'p> Machine<'p> {
             let Some(dat) = &self.prog.modules[mi].ast.dat else {
                 continue;
             };
-            self.frames.push(Frame::new(mi, HashMap::new()));
+            self.frames.push(Frame::new(mi, None, Vec::new()));
             let r = self.exec_block(&dat.body);
             self.frames.pop();
             r?;
@@ -624,15 +684,15 @@ impl<'p> Machine<'p> {
                     None => dims.push(0),
                 }
             }
-            let name = v.name.key();
-            if let Some(fi) = local {
+            let local = local.map(|fi| (fi, self.decl_slot(fi, &v.name)));
+            if let Some((fi, i)) = local {
                 // A parameter keeps its caller-provided value/alias; IN values get the declared type.
-                if let Some(slot) = self.frames[fi].vars.get_mut(&name) {
+                if let Some(slot) = self.frames[fi].vars[i].as_mut() {
                     if let Slot::Own(val) = slot {
                         let mut target = self.prog.types.default_value(&ty, &fixed(&dims, val));
                         let incoming = std::mem::replace(val, Value::Int(0));
                         target = self.coerce(target, incoming)?;
-                        if let Some(Slot::Own(val)) = self.frames[fi].vars.get_mut(&name) {
+                        if let Some(Slot::Own(val)) = self.frames[fi].vars[i].as_mut() {
                             *val = target;
                         }
                     }
@@ -663,12 +723,8 @@ impl<'p> Machine<'p> {
                 None => self.types().unset_value(&ty, &init_dims),
             };
             match local {
-                Some(fi) => {
-                    self.frames[fi].vars.insert(name, Slot::Own(value));
-                }
-                None => {
-                    self.globals.insert(key(&name), value);
-                }
+                Some((fi, i)) => self.frames[fi].vars[i] = Some(Slot::Own(value)),
+                None => self.globals.insert(&key(&v.name.key()), value),
             }
         }
         Ok(())
@@ -761,13 +817,41 @@ impl<'p> Machine<'p> {
     // ---------------------------------------------------------------- routines
 
     fn find_routine(&self, name: &str) -> Option<(usize, usize)> {
-        let key = name.to_ascii_uppercase();
-        let scope = &self.prog.modules[self.cur_module()].scope;
         self.prog
-            .local_routines
-            .get(&(scope.clone(), key.clone()))
-            .or_else(|| self.prog.global_routines.get(&key))
-            .copied()
+            .find_routine(self.cur_module(), &name.to_ascii_uppercase())
+    }
+
+    /// The slot of local `key` in frame `fi`, if the frame has one of that name.
+    fn local_slot(&self, fi: usize, key: &str) -> Option<usize> {
+        let f = self.frames.get(fi)?;
+        if let Some(r) = f.routine
+            && let Some(&i) = self.prog.routine_info(r).locals.get(key)
+        {
+            return Some(i as usize);
+        }
+        f.extra.iter().position(|k| k == key).map(|i| f.layout + i)
+    }
+
+    /// The slot in frame `fi` that the declaration of `name` fills.
+    fn decl_slot(&mut self, fi: usize, name: &Ident) -> usize {
+        let f = &self.frames[fi];
+        if let Some(Binding::Local { routine, slot }) = self.prog.binding(f.module, name.span)
+            && f.routine == Some(routine as usize)
+        {
+            return slot as usize;
+        }
+        self.local_slot_or_new(fi, &name.key())
+    }
+
+    /// The slot of local `key` in frame `fi`, made when the frame has none of that name.
+    fn local_slot_or_new(&mut self, fi: usize, key: &str) -> usize {
+        if let Some(i) = self.local_slot(fi, key) {
+            return i;
+        }
+        let f = &mut self.frames[fi];
+        f.extra.push(key.to_string());
+        f.vars.push(None);
+        f.vars.len() - 1
     }
 
     fn cur_module(&self) -> usize {
@@ -787,7 +871,11 @@ impl<'p> Machine<'p> {
                 args.len()
             )));
         }
-        let mut vars = HashMap::new();
+        let prog: &'p Program = self.prog;
+        let id = prog.routine_id(mi, ri);
+        let info = prog.routine_info(id);
+        let mut vars: Vec<Option<Slot>> = Vec::new();
+        vars.resize_with(info.locals.len(), || None);
         for (i, p) in routine.params.iter().enumerate() {
             let arg = args.get(i).and_then(|a| a.as_ref());
             let slot = match (p.dir, arg) {
@@ -812,16 +900,12 @@ impl<'p> Machine<'p> {
                 }
             };
             if let Some(s) = slot {
-                vars.insert(p.name.key(), s);
+                vars[info.params[i] as usize] = Some(s);
             }
         }
         // Only the interface's subprograms (of either version) are traced, not the package's
         // internal helpers.
-        let is_mm = crate::catalog::Interface::ALL.into_iter().any(|i| {
-            crate::catalog::catalog()
-                .subprogram_in(i, &routine.name.text)
-                .is_some()
-        });
+        let is_mm = info.is_mm;
         if is_mm {
             self.emit(Event::Call {
                 name: routine.name.text.to_string(),
@@ -832,7 +916,7 @@ impl<'p> Machine<'p> {
         }
         let saved_loc = self.loc;
         let saved_scope = self.declared_scope.take();
-        let mut frame = Frame::new(mi, vars);
+        let mut frame = Frame::new(mi, Some(id), vars);
         frame.call_site = (!self.frames.is_empty()).then_some(saved_loc);
         frame.mm = is_mm.then(|| routine.name.text.to_string());
         self.frames.push(frame);
@@ -849,8 +933,8 @@ impl<'p> Machine<'p> {
                 self.loc = (mi, d.span.start);
                 self.declare(d, |n| n.to_string(), Some(fi))?;
             }
-            for p in &routine.params {
-                if !self.frames[fi].vars.contains_key(&p.name.key()) {
+            for (p, &slot) in routine.params.iter().zip(&info.params) {
+                if self.frames[fi].vars[slot as usize].is_none() {
                     return Err(self.err(format!(
                         "parameter {} of {} has no declaration",
                         p.name.text, routine.name.text
@@ -868,16 +952,16 @@ impl<'p> Machine<'p> {
         self.declared_scope = saved_scope;
         let result = match result {
             // The routine called from the interrupt's level is abandoned; that level goes on.
-            Err(Stop::Resume { depth, .. }) if self.frames.len() == depth => Ok(None),
+            Err(Stop::Resume(r)) if self.frames.len() == r.0 => Ok(None),
             other => other,
         };
         let ret = result?;
         if is_mm {
             let mut out = Vec::new();
             if let Some(frame) = &frame {
-                for p in &routine.params {
+                for (p, &slot) in routine.params.iter().zip(&info.params) {
                     if p.dir == Some(ParamDir::Out)
-                        && let Some(Slot::Alias(place)) = frame.vars.get(&p.name.key())
+                        && let Some(Some(Slot::Alias(place))) = frame.vars.get(slot as usize)
                         && let Ok(v) = self.read_value(place)
                     {
                         out.push((p.name.text.to_string(), to_json(&v)));
@@ -902,13 +986,9 @@ impl<'p> Machine<'p> {
                     routine.name.text
                 )));
             };
-            let rt = routine
-                .return_type
-                .as_ref()
-                .and_then(|t| self.prog.base_type(&t.name.text));
-            return match rt {
+            return match &info.ret {
                 Some(t) => {
-                    let target = self.types().default_value(&t, &fixed(&[], &v));
+                    let target = self.types().default_value(t, &fixed(&[], &v));
                     Ok(Some(self.coerce(target, v)?))
                 }
                 None => Ok(Some(v)),
@@ -961,10 +1041,17 @@ impl<'p> Machine<'p> {
     fn exec(&mut self, s: &Stmt) -> R<Flow> {
         self.loc = (self.cur_module(), s.span.start);
         let (mi, off) = self.loc;
-        if let Some(h) = self.prog.modules.get(mi).and_then(|m| {
-            let line = m.lines.line_of(off as usize);
-            self.hits.get_mut(mi)?.get_mut(line)
-        }) {
+        // The statements of a loop come round again: their lines are remembered.
+        let cached = &mut self.line_cache[(off as usize ^ mi.wrapping_mul(31)) % LINE_CACHE];
+        let line = match *cached {
+            (m, o, line) if m == mi && o == off => Some(line),
+            _ => self.prog.modules.get(mi).map(|m| {
+                let line = m.lines.line_of(off as usize);
+                *cached = (mi, off, line);
+                line
+            }),
+        };
+        if let Some(h) = line.and_then(|l| self.hits.get_mut(mi)?.get_mut(l)) {
             *h += 1;
         }
         self.tick()?;
@@ -975,7 +1062,7 @@ impl<'p> Machine<'p> {
                 self.assign(&place, v)?;
             }
             StmtKind::Call { name, args } => {
-                self.call(name.text.as_str(), args, false)?;
+                self.call(name, args, false)?;
             }
             StmtKind::If {
                 cond,
@@ -1107,10 +1194,7 @@ impl<'p> Machine<'p> {
             StmtKind::Halt => {
                 let e = self.error("HALT");
                 self.message(format!("{}:{}: HALT", e.file, e.line));
-                return Err(Stop::Halt {
-                    file: e.file,
-                    line: e.line,
-                });
+                return Err(Stop::Halt(Box::new(e)));
             }
             StmtKind::Return { value } => {
                 let v = match value {
@@ -1457,7 +1541,7 @@ impl<'p> Machine<'p> {
                 )
             })
             .collect();
-        self.globals.insert(act.to_string(), cur);
+        self.globals.insert(act, cur);
         self.writes += 1;
         self.motions += 1;
         if self.motions > self.opts.max_motions {
@@ -1469,10 +1553,12 @@ impl<'p> Machine<'p> {
         // The submit interpreter sees the robot move, then stand still at the target.
         self.set_phase(submit::Phase::Moving);
         self.submit_cycle()?;
+        let settings = self.motion_settings(m);
         self.emit(Event::Motion {
             kind,
             target,
             aux: aux_point,
+            settings,
         });
         self.set_phase(submit::Phase::Running);
         self.submit_cycle()?;
@@ -1489,48 +1575,99 @@ impl<'p> Machine<'p> {
 
     // ---------------------------------------------------------------- places
 
+    /// The place a name denotes here, by name: the routine frame's local, a SIGNAL, the
+    /// module's data, robot-wide data and system variables.
     fn lookup_root(&self, name: &str) -> R<Place> {
-        let mut key = name.to_ascii_uppercase();
-        // `$OUT_C` sets outputs at the motion's end; motions are done before the next
-        // statement runs, so it is `$OUT`. The robot is always where its last motion put it,
-        // so the measured position and the position at an interrupt are the commanded one.
-        match key.as_str() {
-            "$OUT_C" => key = "$OUT".into(),
-            "$POS_ACT_MES" | "$POS_INT" => key = "$POS_ACT".into(),
-            "$AXIS_ACT_MEAS" | "$AXIS_INT" => key = "$AXIS_ACT".into(),
-            _ => {}
-        }
+        #[cfg(test)]
+        BY_NAME.with(|n| n.set(n.get() + 1));
+        let upper = name.to_ascii_uppercase();
+        let key = canonical(&upper);
         if let Some((fi, f)) = self.frames.iter().enumerate().next_back()
             && self.declared_scope.is_none_or(|m| m == f.module)
-            && let Some(slot) = f.vars.get(&key)
+            && let Some(i) = self.local_slot(fi, key)
+            && let Some(slot) = &f.vars[i]
         {
             return Ok(match slot {
-                Slot::Own(_) => Place {
-                    root: Root::Local(fi, key),
-                    path: vec![],
-                },
+                Slot::Own(_) => Place::root(Root::Local(fi, i)),
                 Slot::Alias(p) => p.clone(),
             });
         }
         let scoped = format!("{}::{key}", self.prog.modules[self.cur_module()].scope);
-        for k in [&scoped, &key] {
+        for k in [scoped.as_str(), key] {
             if let Some(p) = self.signals.get(k) {
                 return Ok(p.clone());
             }
         }
-        if self.globals.contains_key(&scoped) {
-            return Ok(Place {
-                root: Root::Global(scoped),
-                path: vec![],
-            });
-        }
-        if self.globals.contains_key(&key) {
-            return Ok(Place {
-                root: Root::Global(key),
-                path: vec![],
-            });
+        for k in [scoped.as_str(), key] {
+            if let Some(slot) = self.globals.slot(k)
+                && self.globals.at(slot).is_some()
+            {
+                return Ok(Place::root(Root::Global(slot)));
+            }
         }
         Err(self.err(format!("unknown variable `{name}`")))
+    }
+
+    /// The value of a name use bound at load, when reading it has no side effect (no
+    /// recording under way, no system variable computed when read, no SIGNAL).
+    fn read_bound(&self, id: &Ident) -> Option<&Value> {
+        if self.reads.is_some() || self.loop_reads.is_some() || self.declared_scope.is_some() {
+            return None;
+        }
+        let b = self.prog.binding(self.cur_module(), id.span)?;
+        let f = self.frames.last()?;
+        let here = f.routine.map_or(MODULE_LEVEL, |r| r as u32);
+        match b {
+            Binding::Local { routine, slot } if routine == here => {
+                match f.vars.get(slot as usize)?.as_ref()? {
+                    Slot::Own(v) => Some(v),
+                    Slot::Alias(_) => None,
+                }
+            }
+            Binding::Global {
+                routine,
+                scoped,
+                plain,
+            } if routine == here && f.extra.is_empty() => {
+                let (k, v) = [scoped, plain]
+                    .into_iter()
+                    .find_map(|s| Some((s as usize, self.globals.at(s as usize)?)))?;
+                let sys = &self.sys;
+                let computed = [sys.timer, sys.timer_flag, sys.input, sys.in_home].contains(&k);
+                (!computed).then_some(v)
+            }
+            _ => None,
+        }
+    }
+
+    /// The place a name use bound at load denotes, when the binding applies here (see
+    /// `resolve.rs`); `None`: ask by name.
+    fn bound_place(&self, id: &Ident) -> Option<Place> {
+        if self.declared_scope.is_some() {
+            return None;
+        }
+        let b = self.prog.binding(self.cur_module(), id.span)?;
+        let fi = self.frames.len().checked_sub(1)?;
+        let f = &self.frames[fi];
+        let here = f.routine.map_or(MODULE_LEVEL, |r| r as u32);
+        match b {
+            Binding::Local { routine, slot } if routine == here => {
+                match f.vars.get(slot as usize)?.as_ref()? {
+                    Slot::Own(_) => Some(Place::root(Root::Local(fi, slot as usize))),
+                    Slot::Alias(p) => Some(p.clone()),
+                }
+            }
+            Binding::Global {
+                routine,
+                scoped,
+                plain,
+            } if routine == here && f.extra.is_empty() => [scoped, plain]
+                .into_iter()
+                .map(|s| s as usize)
+                .find(|&s| self.globals.at(s).is_some())
+                .map(|s| Place::root(Root::Global(s))),
+            _ => None,
+        }
     }
 
     /// Whether `name` is a variable (or signal) visible here.
@@ -1547,7 +1684,10 @@ impl<'p> Machine<'p> {
 
     pub(crate) fn place_of(&mut self, e: &Expr) -> R<Place> {
         match &e.kind {
-            ExprKind::Name(id) => self.lookup_root(&id.text),
+            ExprKind::Name(id) => match self.bound_place(id) {
+                Some(p) => Ok(p),
+                None => self.lookup_root(&id.text),
+            },
             ExprKind::Member { base, field } => {
                 let mut p = self.place_of(base)?;
                 let v = self.read_place(&p)?;
@@ -1558,7 +1698,7 @@ impl<'p> Machine<'p> {
                         field.text
                     )));
                 }
-                p.path.push(Seg::Field(field.key()));
+                p.path.push(Seg::Field(field.text.clone()));
                 Ok(p)
             }
             ExprKind::Index { base, indices } => {
@@ -1566,20 +1706,19 @@ impl<'p> Machine<'p> {
                 if indices.iter().all(|i| i.is_none()) {
                     return Ok(p);
                 }
-                let mut idx = Vec::new();
+                let mut idx = smallvec::SmallVec::<[i64; 3]>::new();
                 for i in indices {
                     match i {
                         Some(e) => idx.push(self.eval_int(e)?),
                         None => return Err(self.err("empty index")),
                     }
                 }
-                let dims = match self.read_place(&p)? {
-                    Value::Array { dims, .. } => dims.clone(),
+                let flat = match self.read_place(&p)? {
+                    Value::Array { dims, .. } => self.flat_index(dims, &idx)?,
                     other => {
                         return Err(self.err(format!("{} is not an array", other.kind_name())));
                     }
                 };
-                let flat = self.flat_index(&dims, &idx)?;
                 p.path.push(Seg::Index(flat));
                 Ok(p)
             }
@@ -1607,8 +1746,8 @@ impl<'p> Machine<'p> {
 
     fn root_ref(&self, root: &Root) -> Option<&Value> {
         match root {
-            Root::Global(k) => self.globals.get(k),
-            Root::Local(fi, k) => match self.frames.get(*fi)?.vars.get(k)? {
+            Root::Global(k) => self.globals.at(*k),
+            Root::Local(fi, k) => match self.frames.get(*fi)?.vars.get(*k)?.as_ref()? {
                 Slot::Own(v) => Some(v),
                 Slot::Alias(_) => None,
             },
@@ -1636,10 +1775,11 @@ impl<'p> Machine<'p> {
 
     pub(crate) fn read_value(&mut self, p: &Place) -> R<Value> {
         self.note_read(&p.root, &p.path);
+        let sys = self.sys;
         match &p.root {
-            Root::Global(k) if k == "$TIMER" || k == "$TIMER_FLAG" => self.sync_timers(),
-            Root::Global(k) | Root::Group { array: k, .. } if k == "$IN" => self.sync_inputs(),
-            Root::Global(k) if k == "$IN_HOME" => return Ok(Value::Bool(self.in_home())),
+            Root::Global(k) if *k == sys.timer || *k == sys.timer_flag => self.sync_timers(),
+            Root::Global(k) | Root::Group { array: k, .. } if *k == sys.input => self.sync_inputs(),
+            Root::Global(k) if *k == sys.in_home => return Ok(Value::Bool(self.in_home())),
             _ => {}
         }
         if let Some(v) = self.read_signal(&p.root)? {
@@ -1657,6 +1797,9 @@ impl<'p> Machine<'p> {
 
     pub(crate) fn assign(&mut self, p: &Place, v: Value) -> R<()> {
         self.writes += 1;
+        if self.assign_scalar(p, &v) {
+            return Ok(());
+        }
         if let Some(Value::Int(_) | Value::Bool(_)) = self.read_signal(&p.root)? {
             let v = match v {
                 Value::Real(r) => Value::Int(r.round() as i64),
@@ -1668,7 +1811,7 @@ impl<'p> Machine<'p> {
         let current = self.read_place(p)?.clone();
         let io = match (&p.root, p.path.as_slice(), &current) {
             (Root::Global(k), [Seg::Index(i)], Value::Bool(old)) => {
-                io_array(k).map(|a| (a, i + 1, *old))
+                io_array(self.globals.name(*k)).map(|a| (a, i + 1, *old))
             }
             _ => None,
         };
@@ -1679,12 +1822,16 @@ impl<'p> Machine<'p> {
             self.io_changed(array, n, *b);
         }
         let frames_before = match &p.root {
-            Root::Global(k) if k == "$TOOL" || k == "$BASE" => Some(self.tool_base()),
+            Root::Global(k) if *k == self.sys.tool || *k == self.sys.base => Some(self.tool_base()),
             _ => None,
         };
         let root = match &p.root {
-            Root::Global(k) => self.globals.get_mut(k),
-            Root::Local(fi, k) => match self.frames.get_mut(*fi).and_then(|f| f.vars.get_mut(k)) {
+            Root::Global(k) => self.globals.at_mut(*k),
+            Root::Local(fi, k) => match self
+                .frames
+                .get_mut(*fi)
+                .and_then(|f| f.vars.get_mut(*k)?.as_mut())
+            {
                 Some(Slot::Own(v)) => Some(v),
                 _ => None,
             },
@@ -1693,7 +1840,7 @@ impl<'p> Machine<'p> {
         let mut slot = match root {
             Some(r) => r,
             None => {
-                return Err(Stop::Error(RuntimeError {
+                return Err(Stop::from(RuntimeError {
                     file: String::new(),
                     line: 0,
                     message: "dangling reference".into(),
@@ -1713,12 +1860,61 @@ impl<'p> Machine<'p> {
         }
         *slot = new;
         if let Root::Global(k) = &p.root {
-            self.after_system_write(k.clone(), &p.path);
+            self.after_system_write(*k, &p.path);
         }
         if let Some((old_base, old_tool)) = frames_before {
             self.follow_frames(&old_base, &old_tool);
         }
         Ok(())
+    }
+
+    /// A scalar into a scalar of the program's own data (no I/O, timer or frame to follow),
+    /// where KRL's assignment rules keep the value as it is; `false`: not done, assign in
+    /// full.
+    fn assign_scalar(&mut self, p: &Place, v: &Value) -> bool {
+        let plain = match p.root {
+            Root::Local(..) => true,
+            Root::Global(k) => !self.globals.name(k).starts_with('$'),
+            _ => false,
+        };
+        if !plain {
+            return false;
+        }
+        let Some(slot) = self.place_mut(p) else {
+            return false;
+        };
+        match (slot, v) {
+            (Value::Int(x), Value::Int(i))
+                if (super::value::INT_MIN..=super::value::INT_MAX).contains(i) =>
+            {
+                *x = *i
+            }
+            (Value::Real(x), Value::Real(r)) => *x = *r,
+            (Value::Real(x), Value::Int(i)) => *x = *i as f64,
+            (Value::Bool(x), Value::Bool(b)) => *x = *b,
+            _ => return false,
+        }
+        true
+    }
+
+    /// The value at `p`, to change it.
+    fn place_mut(&mut self, p: &Place) -> Option<&mut Value> {
+        let mut v = match &p.root {
+            Root::Global(k) => self.globals.at_mut(*k)?,
+            Root::Local(fi, k) => match self.frames.get_mut(*fi)?.vars.get_mut(*k)?.as_mut()? {
+                Slot::Own(v) => v,
+                Slot::Alias(_) => return None,
+            },
+            Root::Group { .. } | Root::Const(_) => return None,
+        };
+        for s in &p.path {
+            v = match (s, v) {
+                (Seg::Index(i), Value::Array { items, .. }) => items.get_mut(*i)?,
+                (Seg::Field(f), v) => v.field_mut(f)?,
+                _ => return None,
+            };
+        }
+        Some(v)
     }
 
     /// Inputs linked to outputs (`--input N=out:M`) take the outputs' current values.
@@ -1781,7 +1977,7 @@ impl<'p> Machine<'p> {
         if let Some(pos) = self.globals.get("$POS_ACT")
             && let Some(moved) = super::frame::rebase(pos, (old_base, old_tool), (&base, &tool))
         {
-            self.globals.insert("$POS_ACT".into(), moved);
+            self.globals.insert("$POS_ACT", moved);
         }
     }
 
@@ -1812,13 +2008,13 @@ impl<'p> Machine<'p> {
         }
     }
 
-    fn after_system_write(&mut self, key: String, path: &[Seg]) {
+    fn after_system_write(&mut self, slot: usize, path: &[Seg]) {
         let Some(Seg::Index(i)) = path.first() else {
             return;
         };
         let n = i + 1;
-        match key.as_str() {
-            "$TIMER" => {
+        match slot {
+            s if s == self.sys.timer => {
                 if let Some(Value::Array { items, .. }) = self.globals.get("$TIMER")
                     && let Some(Value::Int(v)) = items.get(*i)
                 {
@@ -1828,7 +2024,7 @@ impl<'p> Machine<'p> {
                     t.start = now;
                 }
             }
-            "$TIMER_STOP" => {
+            s if s == self.sys.timer_stop => {
                 if let Some(Value::Array { items, .. }) = self.globals.get("$TIMER_STOP")
                     && let Some(Value::Bool(stop)) = items.get(*i)
                 {
@@ -1994,6 +2190,9 @@ impl<'p> Machine<'p> {
     }
 
     pub(crate) fn eval_bool(&mut self, e: &Expr) -> R<bool> {
+        if let Some(Scalar::Bool(b)) = self.scalar(e) {
+            return Ok(b);
+        }
         match self.eval(e)? {
             Value::Bool(b) => Ok(b),
             v => Err(self.err(format!("expected BOOL, found {}", v.kind_name()))),
@@ -2001,6 +2200,11 @@ impl<'p> Machine<'p> {
     }
 
     pub(crate) fn eval_int(&mut self, e: &Expr) -> R<i64> {
+        match self.scalar(e) {
+            Some(Scalar::Int(i)) => return Ok(i),
+            Some(Scalar::Real(r)) => return Ok(r.round() as i64),
+            _ => {}
+        }
         match self.eval(e)? {
             Value::Int(i) => Ok(i),
             Value::Real(r) => Ok(r.round() as i64),
@@ -2057,6 +2261,12 @@ impl<'p> Machine<'p> {
                 Err(_) => return Err(self.int_overflow(format!("the literal {b:#x}"))),
             },
             ExprKind::Enum(n) => Value::Enum(n.to_ascii_uppercase()),
+            ExprKind::Name(id) if let Some(v) = self.read_bound(id) => {
+                return match v {
+                    Value::Unset(_) => Err(self.unassigned(e)),
+                    v => Ok(v.clone()),
+                };
+            }
             ExprKind::Name(_) | ExprKind::Member { .. } | ExprKind::Index { .. } => {
                 let p = self.place_of(e)?;
                 match self.read_value(&p)? {
@@ -2064,7 +2274,7 @@ impl<'p> Machine<'p> {
                     v => v,
                 }
             }
-            ExprKind::Call { name, args } => match self.call(&name.text, args, true)? {
+            ExprKind::Call { name, args } => match self.call(name, args, true)? {
                 Some(v) => v,
                 None => return Err(self.err(format!("{} returns no value", name.text))),
             },
@@ -2091,7 +2301,12 @@ impl<'p> Machine<'p> {
                     }
                 }
             }
-            ExprKind::Binary { op, lhs, rhs } => self.binary(*op, lhs, rhs)?,
+            ExprKind::Binary { op, lhs, rhs } => {
+                return match self.scalar(e) {
+                    Some(v) => Ok(v.value()),
+                    None => self.binary(*op, lhs, rhs),
+                };
+            }
             ExprKind::Aggregate { type_name, fields } => {
                 let mut vals = Vec::new();
                 for (n, fe) in fields {
@@ -2117,16 +2332,34 @@ impl<'p> Machine<'p> {
         })
     }
 
+    /// An operand: what [`Machine::eval`] gives, with literals and bound variables read here
+    /// (most operands are; this saves a call and a copy of the result for each).
+    #[inline]
+    fn operand(&mut self, e: &Expr) -> R<Value> {
+        match &e.kind {
+            ExprKind::Int(i) if (super::value::INT_MIN..=super::value::INT_MAX).contains(i) => {
+                Ok(Value::Int(*i))
+            }
+            ExprKind::Real(r) => Ok(Value::Real(*r)),
+            ExprKind::Name(id) => match self.read_bound(id) {
+                Some(Value::Unset(_)) => Err(self.unassigned(e)),
+                Some(v) => Ok(v.clone()),
+                None => self.eval(e),
+            },
+            _ => self.eval(e),
+        }
+    }
+
     fn binary(&mut self, op: BinaryOp, lhs: &Expr, rhs: &Expr) -> R<Value> {
         use BinaryOp as B;
-        let a = self.eval(lhs)?;
+        let a = self.operand(lhs)?;
         // Short-circuit so guards like `(i <= n) AND (a[i] > 0)` do not fault.
         match (op, &a) {
             (B::And, Value::Bool(false)) => return Ok(Value::Bool(false)),
             (B::Or, Value::Bool(true)) => return Ok(Value::Bool(true)),
             _ => {}
         }
-        let b = self.eval(rhs)?;
+        let b = self.operand(rhs)?;
         let num = |v: &Value| v.as_f64();
         Ok(match op {
             B::Geo => super::frame::compose(&a, &b).ok_or_else(|| {
@@ -2229,11 +2462,16 @@ impl<'p> Machine<'p> {
     }
 
     /// A call of a user routine or a built-in; `want_value` for calls inside expressions.
-    fn call(&mut self, name: &str, args: &[Option<Expr>], want_value: bool) -> R<Option<Value>> {
+    fn call(&mut self, id: &Ident, args: &[Option<Expr>], want_value: bool) -> R<Option<Value>> {
+        let name = id.text.as_str();
         if name.len() > 4 && name[..4].eq_ignore_ascii_case("EKI_") {
             self.note_external();
         }
-        if let Some((mi, ri)) = self.find_routine(name) {
+        let target = match self.prog.binding(self.cur_module(), id.span) {
+            Some(Binding::Call(target)) => target.map(|(m, r)| (m as usize, r as usize)),
+            _ => self.find_routine(name),
+        };
+        if let Some((mi, ri)) = target {
             let r = self.call_routine(mi, ri, args)?;
             if want_value && r.is_none() {
                 return Err(self.err(format!("{name} is a DEF, not a DEFFCT")));
@@ -2266,7 +2504,7 @@ impl<'p> Machine<'p> {
         }
     }
 
-    pub(crate) fn globals_mut(&mut self) -> &mut HashMap<String, Value> {
+    pub(crate) fn globals_mut(&mut self) -> &mut Globals {
         &mut self.globals
     }
 }

@@ -23,9 +23,11 @@ mod cast;
 mod eki;
 mod format;
 pub(crate) mod frame;
+mod globals;
 mod machine;
 pub mod package;
 mod program;
+mod resolve;
 pub mod summary;
 mod value;
 
@@ -213,6 +215,8 @@ pub enum Event {
         target: Vec<(String, f64)>,
         /// The auxiliary point of a circular motion (`CIRC`, `SCIRC`), absolute, `X,Y,Z`.
         aux: Option<Vec<(String, f64)>>,
+        /// What the robot runs the motion with: speed, blending, tool and base in force.
+        settings: MotionSettings,
     },
     /// Entry into an `MM_*` routine.
     Call {
@@ -274,6 +278,67 @@ pub enum Event {
     },
 }
 
+/// The motion settings in force for one motion (after its `WITH` clause), as a robot would
+/// run it.
+#[derive(Debug, Clone, PartialEq)]
+pub struct MotionSettings {
+    pub speed: MotionSpeed,
+    /// `None`: an exact stop (no approximation clause).
+    pub approx: Option<Approximation>,
+    /// `$BASE` and `$TOOL`, `X,Y,Z,A,B,C`.
+    pub base: Vec<(String, f64)>,
+    pub tool: Vec<(String, f64)>,
+}
+
+/// The speed a motion runs at: PTP/SPTP (and `_REL`) move the axes at a percentage of their
+/// maximum (`$VEL_AXIS`; the lowest of A1–A6 when they differ, `BAS(#PTP_VEL)` sets all six),
+/// the others the path at `$VEL.CP` m/s.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct MotionSpeed {
+    pub kind: SpeedKind,
+    /// `None` until the program sets it (krlkit's cold start has 0, which no robot runs).
+    pub value: Option<f64>,
+}
+
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum SpeedKind {
+    /// Percent of the axes' maximum speed.
+    Joint,
+    /// Path speed in m/s.
+    Cp,
+}
+
+impl SpeedKind {
+    pub fn as_str(self) -> &'static str {
+        match self {
+            SpeedKind::Joint => "joint",
+            SpeedKind::Cp => "cp",
+        }
+    }
+}
+
+/// A motion's approximation: `C_PTP` (`$APO.CPTP` %), `C_DIS` and `C_SPL` (`$APO.CDIS` mm),
+/// `C_VEL` (`$APO.CVEL` %), `C_ORI` (`$APO.CORI` degrees), with the value in force.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Approximation {
+    pub kind: &'static str,
+    pub value: f64,
+}
+
+impl MotionSettings {
+    fn to_json(&self) -> serde_json::Value {
+        use serde_json::json;
+        let approx = self
+            .approx
+            .as_ref()
+            .map(|a| json!({"kind": a.kind, "value": a.value}));
+        json!({
+            "speed": {"kind": self.speed.kind.as_str(), "value": self.speed.value},
+            "approx": approx,
+        })
+    }
+}
+
 /// A pose in the package's point store: `X, Y, Z, A, B, C` and the label of a vision point.
 #[derive(Debug, Clone, PartialEq)]
 pub struct VisionPose {
@@ -323,11 +388,18 @@ impl Record {
     /// ms) and, when known, `file` and `line`. Keys are sorted, except that a motion target
     /// (and aux point) keeps its natural order (`X,Y,Z,A,B,C` or `A1…A6`).
     pub fn to_json_line(&self) -> String {
-        let Event::Motion { kind, target, aux } = &self.event else {
+        let Event::Motion {
+            kind,
+            target,
+            aux,
+            settings,
+        } = &self.event
+        else {
             return self.to_json().to_string();
         };
         let json = |v: serde_json::Value| v.to_string();
-        let mut parts = Vec::new();
+        let s = settings.to_json();
+        let mut parts = vec![format!("\"approx\":{}", json(s["approx"].clone()))];
         if let Some(aux) = aux {
             parts.push(format!("\"aux\":{}", ordered(aux)));
         }
@@ -335,10 +407,17 @@ impl Record {
         if let Some(at) = &self.at {
             parts.push(format!("\"file\":{}", json(serde_json::json!(at.file))));
         }
+        // The frames before the target, which stays last (readers split the line at it).
+        parts.push(format!(
+            "\"frames\":{{\"base\":{},\"tool\":{}}}",
+            ordered(&settings.base),
+            ordered(&settings.tool)
+        ));
         parts.push(format!("\"kind\":{}", json(serde_json::json!(kind))));
         if let Some(at) = &self.at {
             parts.push(format!("\"line\":{}", at.line));
         }
+        parts.push(format!("\"speed\":{}", json(s["speed"].clone())));
         parts.push(format!(
             "\"t\":{}",
             json(serde_json::json!(trace_ms(self.t_ms)))
@@ -374,8 +453,16 @@ impl Event {
             J::Object(m)
         };
         match self {
-            Event::Motion { kind, target, aux } => {
-                let mut v = json!({"event": "motion", "kind": kind, "target": pairs(target)});
+            Event::Motion {
+                kind,
+                target,
+                aux,
+                settings,
+            } => {
+                let s = settings.to_json();
+                let mut v = json!({"event": "motion", "kind": kind, "target": pairs(target),
+                    "speed": s["speed"], "approx": s["approx"],
+                    "frames": {"base": pairs(&settings.base), "tool": pairs(&settings.tool)}});
                 if let Some(aux) = aux {
                     v["aux"] = pairs(aux);
                 }

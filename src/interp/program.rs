@@ -4,11 +4,12 @@
 
 use std::collections::HashMap;
 
-use crate::diag::LineIndex;
+use crate::diag::{LineIndex, Span};
 use crate::sema::{Analysis, FileId};
 use crate::syntax::ast::{Definition, EnumDecl, SourceFile, StmtKind, StrucDecl};
 
 use super::RuntimeError;
+use super::resolve::{self, Binding, Resolution, RoutineInfo};
 use super::value::{BaseType, Types};
 
 /// One loaded file.
@@ -41,6 +42,8 @@ pub struct Program {
     pub(crate) global_routines: HashMap<String, (usize, usize)>,
     /// (scope, upper-case name) → (module, routine) for every routine.
     pub(crate) local_routines: HashMap<(String, String), (usize, usize)>,
+    /// Every name use bound to its slot or routine (see `resolve.rs`).
+    pub(crate) resolved: Resolution,
 }
 
 impl Program {
@@ -134,12 +137,50 @@ impl Program {
                 message,
             }
         })?;
+        let mut resolved = resolve::resolve(&analysis.sema, &modules, |mi, key| {
+            find_routine(&local_routines, &global_routines, &modules[mi].scope, key)
+        });
+        for (mi, m) in modules.iter().enumerate() {
+            for (ri, r) in m.ast.routines.iter().enumerate() {
+                let info = &mut resolved.routines[resolved.routine_ids[mi][ri] as usize];
+                info.ret = r
+                    .return_type
+                    .as_ref()
+                    .and_then(|t| types.base_type(&t.name.text));
+            }
+        }
         Ok(Program {
             modules,
             types,
             global_routines,
             local_routines,
+            resolved,
         })
+    }
+
+    /// The routine a call of `key` (upper case) from module `mi` reaches: the module's own,
+    /// else a GLOBAL one or a module's first.
+    pub(crate) fn find_routine(&self, mi: usize, key: &str) -> Option<(usize, usize)> {
+        find_routine(
+            &self.local_routines,
+            &self.global_routines,
+            &self.modules[mi].scope,
+            key,
+        )
+    }
+
+    /// What the name at `span` of module `mi`'s text was bound to at load.
+    pub(crate) fn binding(&self, mi: usize, span: Span) -> Option<Binding> {
+        self.resolved.uses.get(mi)?.get(span)
+    }
+
+    /// The routine-wide index of routine `ri` of module `mi`.
+    pub(crate) fn routine_id(&self, mi: usize, ri: usize) -> usize {
+        self.resolved.routine_ids[mi][ri] as usize
+    }
+
+    pub(crate) fn routine_info(&self, id: usize) -> &RoutineInfo {
+        &self.resolved.routines[id]
     }
 
     /// The first DEF of the first module: what `krlkit run` starts.
@@ -151,6 +192,18 @@ impl Program {
     pub(crate) fn base_type(&self, name: &str) -> Option<BaseType> {
         self.types.base_type(name)
     }
+}
+
+fn find_routine(
+    local: &HashMap<(String, String), (usize, usize)>,
+    global: &HashMap<String, (usize, usize)>,
+    scope: &str,
+    key: &str,
+) -> Option<(usize, usize)> {
+    local
+        .get(&(scope.to_string(), key.to_string()))
+        .or_else(|| global.get(key))
+        .copied()
 }
 
 fn body_definitions(body: &[crate::syntax::ast::Stmt]) -> Vec<&Definition> {

@@ -245,6 +245,16 @@ impl Types {
     }
 
     pub fn base_type(&self, name: &str) -> Option<BaseType> {
+        for (n, t) in [
+            ("INT", BaseType::Int),
+            ("REAL", BaseType::Real),
+            ("BOOL", BaseType::Bool),
+            ("CHAR", BaseType::Char),
+        ] {
+            if name.eq_ignore_ascii_case(n) {
+                return Some(t);
+            }
+        }
         let up = name.to_ascii_uppercase();
         Some(match up.as_str() {
             "INT" => BaseType::Int,

@@ -28,27 +28,61 @@ pub fn lines(text: &str) -> impl Iterator<Item = (usize, &str)> {
 
 /// Levenshtein distance over chars, case-insensitive.
 pub fn edit_distance(a: &str, b: &str) -> usize {
-    let a: Vec<char> = a.chars().map(|c| c.to_ascii_uppercase()).collect();
-    let b: Vec<char> = b.chars().map(|c| c.to_ascii_uppercase()).collect();
-    let mut prev: Vec<usize> = (0..=b.len()).collect();
-    for (i, ca) in a.iter().enumerate() {
-        let mut cur = vec![i + 1; b.len() + 1];
-        for (j, cb) in b.iter().enumerate() {
-            let cost = usize::from(ca != cb);
-            cur[j + 1] = (prev[j] + cost).min(prev[j + 1] + 1).min(cur[j] + 1);
-        }
-        prev = cur;
-    }
-    prev[b.len()]
+    distance_within(a, b, usize::MAX).unwrap_or(usize::MAX)
 }
 
-/// The candidate nearest to `name`, if reasonably near (at most a third of its length away).
+/// [`edit_distance`] if it is at most `max`, else `None` — found without finishing the table
+/// when the lengths differ by more, or a whole row is already further (a search over thousands
+/// of names mostly stops there).
+pub fn distance_within(a: &str, b: &str, max: usize) -> Option<usize> {
+    let (la, lb) = (a.chars().count(), b.chars().count());
+    if la.abs_diff(lb) > max {
+        return None;
+    }
+    // Two rows of the table; on the stack for names (KRL allows 24 characters).
+    const SHORT: usize = 32;
+    let mut stack = [[0usize; SHORT + 1]; 2];
+    let mut heap;
+    let [p, c] = &mut stack;
+    let (mut prev, mut cur): (&mut [usize], &mut [usize]) = if lb <= SHORT {
+        (&mut p[..=lb], &mut c[..=lb])
+    } else {
+        heap = (vec![0; lb + 1], vec![0; lb + 1]);
+        (&mut heap.0, &mut heap.1)
+    };
+    for (j, v) in prev.iter_mut().enumerate() {
+        *v = j;
+    }
+    for (i, ca) in a.chars().map(|c| c.to_ascii_uppercase()).enumerate() {
+        cur[0] = i + 1;
+        let mut row_min = cur[0];
+        for (j, cb) in b.chars().map(|c| c.to_ascii_uppercase()).enumerate() {
+            let cost = usize::from(ca != cb);
+            cur[j + 1] = (prev[j] + cost).min(prev[j + 1] + 1).min(cur[j] + 1);
+            row_min = row_min.min(cur[j + 1]);
+        }
+        if row_min > max {
+            return None;
+        }
+        std::mem::swap(&mut prev, &mut cur);
+    }
+    Some(prev[lb]).filter(|&d| d <= max)
+}
+
+/// How far a candidate may be from `name` to be suggested: a third of its length, at least 2.
+pub fn near_enough(name: &str) -> usize {
+    name.len().div_ceil(3).max(2)
+}
+
+/// The candidate nearest to `name`, if reasonably near ([`near_enough`]); of equally near
+/// ones the first in text order.
 pub fn nearest<'a>(name: &str, candidates: impl IntoIterator<Item = &'a str>) -> Option<&'a str> {
-    let best = candidates
+    let max = near_enough(name);
+    candidates
         .into_iter()
-        .map(|c| (edit_distance(name, c), c))
-        .min()?;
-    (best.0 <= name.len().div_ceil(3).max(2)).then_some(best.1)
+        .filter_map(|c| Some((distance_within(name, c, max)?, c)))
+        .min()
+        .map(|(_, c)| c)
 }
 
 #[cfg(test)]
@@ -71,5 +105,22 @@ mod tests {
             Some("MM_Get_VisData")
         );
         assert_eq!(nearest("MM_Foo", ["MM_Get_VisData"]), None);
+        assert_eq!(nearest("cnt", ["CNX", "cNt2", "count"]), Some("CNX"));
+        for (a, b) in [
+            ("kitten", "sitting"),
+            ("", "abc"),
+            ("äb", "AB"),
+            ("XP12", "FP120"),
+            (
+                "a_name_longer_than_32_characters_x",
+                "A_NAME_LONGER_THAN_32_CHARACTERS",
+            ),
+        ] {
+            let d = edit_distance(a, b);
+            assert_eq!(distance_within(a, b, d), Some(d));
+            if d > 0 {
+                assert_eq!(distance_within(a, b, d - 1), None);
+            }
+        }
     }
 }

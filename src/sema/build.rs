@@ -101,7 +101,7 @@ pub struct Sema {
     pub(crate) builtins: Vec<Builtin>,
     pub(crate) scopes: Scopes,
     pub(crate) duplicates: Vec<Duplicate>,
-    pub(crate) refs: OnceLock<super::query::RefIndex>,
+    pub(crate) refs: super::query::RefIndex,
 }
 
 /// Path pieces, `/` or `\` separated.
@@ -224,18 +224,26 @@ impl Sema {
     /// workspace in order. Unchanged files keep their summaries and the name table is kept, so
     /// only the changed files are summarised again and nothing is copied (the language server
     /// after each edit). Gives the same files, scopes and resolutions as [`Sema::build`] of the
-    /// same summaries; only [`NameId`] numbers may differ.
+    /// same summaries; only [`NameId`] numbers may differ. A file edited inside its bodies,
+    /// declaring what it declared before, is updated in place (`edit.rs`).
     pub fn update(&mut self, files: Vec<Update>, am_ini: &[AmIni]) {
+        if let Err(files) = self.update_in_place(files, am_ini) {
+            self.rebuild(files, am_ini);
+        }
+    }
+
+    /// [`Sema::update`] by assembling the model again.
+    pub(super) fn rebuild(&mut self, files: Vec<Update>, am_ini: &[AmIni]) {
         let names = std::mem::take(&mut self.names);
         let old = std::mem::take(&mut self.files);
         let mut old: Vec<Option<FileData>> = old.into_iter().map(Some).collect();
         let sources = files
             .into_iter()
             .filter_map(|u| match u {
-                Update::Keep(id) => old.get_mut(id.index())?.take().map(|f| Source {
-                    path: f.info.path,
+                Update::Keep(id) => old.get_mut(id.index())?.as_mut().map(|f| Source {
+                    path: std::mem::take(&mut f.info.path),
                     group: f.group,
-                    summary: f.s,
+                    summary: std::mem::take(&mut f.s),
                     interned: true,
                 }),
                 Update::New(i) => Some(Source {
@@ -246,7 +254,10 @@ impl Sema {
                 }),
             })
             .collect();
-        *self = Sema::assemble(names, sources, am_ini);
+        let before = std::mem::replace(self, Sema::assemble(names, sources, am_ini));
+        // Freeing the old model's tables takes longer than an edit's own work on a big
+        // workspace (a language server is waiting to publish): another thread does it.
+        rayon::spawn(move || drop((before, old)));
     }
 
     fn assemble(mut names: Names, inputs: Vec<Source>, am_ini: &[AmIni]) -> Sema {
@@ -263,7 +274,7 @@ impl Sema {
                 builtins: Vec::new(),
                 scopes: Scopes::default(),
                 duplicates: Vec::new(),
-                refs: OnceLock::new(),
+                refs: Default::default(),
             },
         };
         let (robot_of, robots) = partition(&inputs, am_ini);
@@ -450,7 +461,7 @@ fn partition(inputs: &[Source], am_ini: &[AmIni]) -> (Vec<RobotId>, Vec<Robot>) 
 }
 
 /// Replace a summary's per-file name indices by model [`NameId`]s.
-fn intern(names: &mut Names, mut s: FileSummary) -> FileSummary {
+pub(super) fn intern(names: &mut Names, mut s: FileSummary) -> FileSummary {
     let map: Vec<u32> = s.names.iter().map(|n| names.intern(n).0).collect();
     let m = |i: &mut u32| *i = map[*i as usize];
     for u in &mut s.uses {
@@ -1045,7 +1056,7 @@ fn literal_sizes(dims: &[Option<crate::syntax::ast::Expr>]) -> Sizes {
 }
 
 /// Resolve every use of one file.
-fn resolve_file(scopes: &Scopes, f: &FileData) -> Vec<Resolved> {
+pub(super) fn resolve_file(scopes: &Scopes, f: &FileData) -> Vec<Resolved> {
     f.s.uses
         .iter()
         .map(|u| {

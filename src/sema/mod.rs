@@ -55,6 +55,7 @@
 //! - Deterministic: the same files in the same order give the same ids.
 
 mod build;
+mod edit;
 pub mod env;
 mod ids;
 mod model;
@@ -77,7 +78,7 @@ pub use model::{
 pub use names::Names;
 pub use query::{ArgInfo, AssignInfo, CallInfo};
 pub use scope::Scope;
-pub use summary::{Access, ArgForm, ConstValue, FileSummary, Use, UseKind};
+pub use summary::{Access, ArgForm, ConstValue, FileSummary, SummaryBuilder, Use, UseKind};
 pub use ty::{Field, Ty, TyKind, TypeDef, TypeDefKind, TypeFacts, assignable};
 pub use workspace::{LoadError, Source, SourceKind, Workspace, WorkspaceFile};
 

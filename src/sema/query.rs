@@ -1,6 +1,8 @@
 //! Queries: what clients (lint rules, the language server, the transpiler, the interpreter)
 //! ask the model.
 
+use std::sync::OnceLock;
+
 use rustc_hash::FxHashMap;
 
 use super::build::{FileData, Position, Sema, ty_of_type};
@@ -17,11 +19,13 @@ use crate::catalog::catalog;
 use crate::diag::Span;
 use crate::syntax::ast::Expr;
 
-/// Who uses what, built on the first `references`/`callers` query.
+/// Who uses what, each half built on its first query (`references`, `callers`): after every
+/// edit a rule asks for the callers of the file's routines, and the symbols' half, by far the
+/// larger, is not needed for that.
 #[derive(Debug, Default)]
 pub(crate) struct RefIndex {
-    symbols: FxHashMap<SymbolId, Vec<(FileId, u32)>>,
-    routines: FxHashMap<RoutineId, Vec<(FileId, u32)>>,
+    symbols: OnceLock<FxHashMap<SymbolId, Vec<(FileId, u32)>>>,
+    routines: OnceLock<FxHashMap<RoutineId, Vec<(FileId, u32)>>>,
 }
 
 /// A call as the model records it (for rules): the callee use, and per argument how it was
@@ -338,30 +342,32 @@ impl Sema {
         }
     }
 
-    fn ref_index(&self) -> &RefIndex {
-        self.refs.get_or_init(|| {
-            let mut idx = RefIndex::default();
-            for f in &self.files {
-                for (i, r) in f.resolved.iter().enumerate() {
-                    match r {
-                        Resolved::Symbol(s) => {
-                            idx.symbols.entry(*s).or_default().push((f.id, i as u32))
-                        }
-                        Resolved::Routine(r) => {
-                            idx.routines.entry(*r).or_default().push((f.id, i as u32))
-                        }
-                        _ => {}
-                    }
+    /// Where each symbol (`pick`) or routine is used: (file, use index) lists.
+    fn uses_of<K: std::hash::Hash + Eq>(
+        &self,
+        pick: impl Fn(Resolved) -> Option<K>,
+    ) -> FxHashMap<K, Vec<(FileId, u32)>> {
+        let mut idx: FxHashMap<K, Vec<(FileId, u32)>> = FxHashMap::default();
+        for f in &self.files {
+            for (i, r) in f.resolved.iter().enumerate() {
+                if let Some(k) = pick(*r) {
+                    idx.entry(k).or_default().push((f.id, i as u32));
                 }
             }
-            idx
-        })
+        }
+        idx
     }
 
     /// Every use of a symbol in the workspace (declarations not included).
     pub fn references(&self, symbol: SymbolId) -> Vec<Reference> {
-        self.ref_index()
+        self.refs
             .symbols
+            .get_or_init(|| {
+                self.uses_of(|r| match r {
+                    Resolved::Symbol(s) => Some(s),
+                    _ => None,
+                })
+            })
             .get(&symbol)
             .into_iter()
             .flatten()
@@ -377,8 +383,14 @@ impl Sema {
 
     /// Every call of a routine in the workspace.
     pub fn callers(&self, routine: RoutineId) -> Vec<CallSite> {
-        self.ref_index()
+        self.refs
             .routines
+            .get_or_init(|| {
+                self.uses_of(|r| match r {
+                    Resolved::Routine(r) => Some(r),
+                    _ => None,
+                })
+            })
             .get(&routine)
             .into_iter()
             .flatten()
@@ -441,6 +453,49 @@ impl Sema {
             }
         }
         out
+    }
+
+    /// The variables [`Sema::visible`] lists (as `Resolved::Symbol`) in `file` outside its
+    /// routines — of the module, GLOBAL, `$config.dat` and the system — in no order. Inside a
+    /// routine the visible variables are its own ([`Sema::routine_scope`]) and those of this
+    /// list it does not hide, so a search over every visible name ("did you mean") can walk
+    /// the long list once per file instead of once per routine.
+    pub fn visible_vars_outside(&self, file: FileId) -> Vec<NameId> {
+        let f = &self.files[file.index()].info;
+        let s = &self.scopes;
+        let tables = [
+            &s.module[f.module.index()],
+            &s.global[f.robot.index()],
+            &s.config[f.robot.index()],
+            &s.system,
+        ];
+        let mut out = Vec::new();
+        for (k, t) in tables.iter().enumerate() {
+            out.extend(t.vars.keys().copied().filter(|n| {
+                !tables[..k].iter().any(|e| {
+                    e.vars.contains_key(n) || e.routines.contains_key(n) || e.exts.contains_key(n)
+                })
+            }));
+        }
+        out
+    }
+
+    /// The names a routine declares itself (parameters, DECLs), which hide the module's and
+    /// the robot's, in no order; a variable as [`Sema::visible`] gives it.
+    pub fn routine_scope(&self, routine: RoutineId) -> Vec<(NameId, Resolved)> {
+        let t = &self.scopes.routine[routine.index()];
+        let vars = t.vars.iter().map(|(n, v)| (*n, Resolved::Symbol(*v)));
+        let routines = t
+            .routines
+            .iter()
+            .filter(|(n, _)| !t.vars.contains_key(*n))
+            .map(|(n, r)| (*n, Resolved::Routine(*r)));
+        let exts = t
+            .exts
+            .iter()
+            .filter(|(n, _)| !t.vars.contains_key(*n) && !t.routines.contains_key(*n))
+            .map(|(n, x)| (*n, Resolved::Ext(*x)));
+        vars.chain(routines).chain(exts).collect()
     }
 
     // -------------------------------------------------------------- signatures

@@ -322,3 +322,150 @@ fn an_update_resolves_as_a_fresh_build() {
     };
     assert_eq!(names(&updated, 1), names(&rebuilt, 1));
 }
+
+/// `visible_vars_outside` + `routine_scope` give exactly the variables `visible` lists, in and
+/// outside routines, with names hidden by nearer tables (a routine's DECL over the module's, a
+/// module routine over a GLOBAL variable, a routine parameter over `$config.dat`).
+#[test]
+fn visible_vars_split_agrees_with_visible() {
+    let a = analysis(&[
+        ("R1/System/$config.dat", CONFIG),
+        (
+            "R1/Program/cell.src",
+            "DEF cell()\nDECL INT counter, own\nown = 1\nEND\nDEF helper(cfg_count:IN)\nDECL INT cfg_count\nEND\nDEF shared_name()\nEND\n",
+        ),
+        (
+            "R1/Program/cell.dat",
+            "DEFDAT cell\nDECL INT counter = 1\nENDDAT\n",
+        ),
+        (
+            "R1/Program/lib.dat",
+            "DEFDAT lib PUBLIC\nDECL GLOBAL INT shared_name, lib_count\nENDDAT\n",
+        ),
+    ]);
+    let f = a.sema.file_id("R1/Program/cell.src").unwrap();
+    let text = &a.file(f).text;
+    let outside = a.sema.visible_vars_outside(f);
+    for offset in (0..text.len() as u32).step_by(7) {
+        let mut want: Vec<NameId> = a
+            .sema
+            .visible(f, offset)
+            .into_iter()
+            .filter(|(_, r)| matches!(r, Resolved::Symbol(_)))
+            .map(|(n, _)| n)
+            .collect();
+        let own = a
+            .sema
+            .routine_at(f, offset)
+            .map(|r| a.sema.routine_scope(r))
+            .unwrap_or_default();
+        let mut got: Vec<NameId> = own
+            .iter()
+            .filter(|(_, r)| matches!(r, Resolved::Symbol(_)))
+            .map(|(n, _)| *n)
+            .chain(
+                outside
+                    .iter()
+                    .copied()
+                    .filter(|n| !own.iter().any(|(o, _)| o == n)),
+            )
+            .collect();
+        want.sort();
+        got.sort();
+        assert_eq!(got, want, "at {offset}");
+        assert!(!got.is_empty());
+    }
+    let shared = a.sema.names.get("shared_name").unwrap();
+    assert!(!outside.contains(&shared), "hidden by the module's routine");
+}
+
+/// Everything of the model an edit can change, printed.
+fn model_dump(s: &Sema) -> String {
+    let files: Vec<_> = s
+        .files
+        .iter()
+        .map(|f| {
+            (
+                &f.info,
+                &f.resolved,
+                &f.decl_symbols,
+                &f.type_ids,
+                &f.ext_ids,
+                &f.s,
+            )
+        })
+        .collect();
+    format!(
+        "{files:?}\n{:?}\n{:?}\n{:?}\n{:?}\n{:?}\n{:?}\n{}",
+        s.routines,
+        s.symbols,
+        s.types,
+        s.exts,
+        s.duplicates,
+        s.modules,
+        s.names.len()
+    )
+}
+
+/// An edit inside routine bodies updates the model in place, and the result is the model
+/// rebuilt: declarations after the edit moved (DECLs, parameters without a DECL, a STRUC's
+/// fields, duplicates), the file's uses resolved again. An edit of a declaration is rebuilt.
+#[test]
+fn an_edit_in_place_gives_the_rebuilt_model() {
+    let cell = "DEF cell()\nDECL INT n\nn = 1\nEND\nDEF helper(x:IN, y:OUT)\nDECL INT y, y\nDECL point_t p\ny = x + counter\nEND\nDEFFCT INT f()\nn2 = 1\nENDFCT\n";
+    let dat =
+        "DEFDAT cell\nSTRUC point_t REAL px, py\nDECL INT counter = 1\nEXT lib(INT:IN)\nENDDAT\n";
+    let files = [
+        ("R1/System/$config.dat", CONFIG),
+        ("R1/Program/cell.src", cell),
+        ("R1/Program/cell.dat", dat),
+    ];
+    let edits = [
+        (
+            1,
+            cell.replace("n = 1\n", "n = 1\nn = counter + 2\nmissing = 3\n"),
+            true,
+        ),
+        (
+            1,
+            cell.replace("DEFFCT INT f()\n", "DEFFCT INT f()\nRETURN 1\n"),
+            true,
+        ),
+        (
+            2,
+            dat.replace("DEFDAT cell\n", "DEFDAT cell\n; moved\n"),
+            true,
+        ),
+        (1, cell.replace("DECL INT n\n", "DECL REAL n\n"), false),
+        (2, dat.replace("counter = 1", "counter = 2"), false),
+    ];
+    for (i, text, in_place) in edits {
+        let mut a = Sema::build(inputs(&files), &[]);
+        let mut b = Sema::build(inputs(&files), &[]);
+        let mut changed = files;
+        changed[i].1 = &text;
+        let updates = |s: &Sema| -> Vec<Update> {
+            (0..s.files.len())
+                .map(|k| match k == i {
+                    true => Update::New(Box::new(inputs(&changed).swap_remove(k))),
+                    false => Update::Keep(FileId(k as u32)),
+                })
+                .collect()
+        };
+        let u = updates(&a);
+        assert_eq!(a.update_in_place(u, &[]).is_ok(), in_place, "{text}");
+        if !in_place {
+            a.update(updates(&b), &[]);
+        }
+        b.rebuild(updates(&b), &[]);
+        assert_eq!(model_dump(&a), model_dump(&b), "{text}");
+        // And both answer like a model built from the new files.
+        let c = Sema::build(inputs(&changed), &[]);
+        let f = FileId(1);
+        assert_eq!(a.stats(), c.stats());
+        assert_eq!(
+            a.uses(f).iter().map(|u| u.span).collect::<Vec<_>>(),
+            c.uses(f).iter().map(|u| u.span).collect::<Vec<_>>()
+        );
+    }
+}

@@ -9,6 +9,15 @@ Environment:
                       JPos.q; 1.7 and later: SetDigitalOutputs(dict), JPos.q_m)
   FLEXIV_STUB_INPUTS  digital input ports that read True, e.g. "9,10" (default: none)
   FLEXIV_STUB_FAULT   "1": the robot starts with a fault that ClearFault clears
+  FLEXIV_STUB_WORK    JSON {"name": [x, y, z, rx, ry, rz]} (m, Euler ZYX degrees as a Coord
+                      lists them): the work coordinates WorkCoord(robot).pose(name) reads
+  FLEXIV_STUB_FAST    "1": time.sleep does not sleep but advances time.monotonic and is
+                      recorded as {"call": "sleep", "sec": s} (equivalence runs)
+
+The joints (RobotStates.q) follow the MoveJ targets (JPos in degrees); the TCP pose
+(RobotStates.tcp_pose) follows the MoveL/MovePTP targets (in WORLD, in a work
+coordinate, or relative to the start in the tool), so a script that reads it back sees where
+the robot went.
 """
 
 import atexit
@@ -17,6 +26,8 @@ import json
 import math
 import os
 
+import time
+
 _RDK = tuple(int(x) for x in os.environ.get("FLEXIV_STUB_RDK", "1.6").split(".")[:2])
 _LOG = []
 _PORTS = 18
@@ -24,6 +35,93 @@ _PORTS = 18
 
 def _record(call, **args):
     _LOG.append(dict(call=call, **args))
+
+
+if os.environ.get("FLEXIV_STUB_FAST") == "1":
+    _clock = [time.monotonic()]
+
+    def _sleep(sec):
+        _record("sleep", sec=sec)
+        _clock[0] += sec
+
+    time.sleep = _sleep
+    time.monotonic = lambda: _clock[0]
+
+_WORK = json.loads(os.environ.get("FLEXIV_STUB_WORK", "{}"))
+
+
+def _rot(rx, ry, rz):
+    """Euler ZYX degrees (listed rx, ry, rz) as a rotation matrix."""
+    a, b, c = math.radians(rz), math.radians(ry), math.radians(rx)
+    ca, sa, cb, sb, cc, sc = math.cos(a), math.sin(a), math.cos(b), math.sin(b), math.cos(c), math.sin(c)
+    return [
+        [ca * cb, ca * sb * sc - sa * cc, ca * sb * cc + sa * sc],
+        [sa * cb, sa * sb * sc + ca * cc, sa * sb * cc - ca * sc],
+        [-sb, cb * sc, cb * cc],
+    ]
+
+
+def _frame(pos, ori):
+    return (list(pos), _rot(*ori))
+
+
+def _mul(f, g):
+    (p, r), (q, s) = f, g
+    m = [[sum(r[i][k] * s[k][j] for k in range(3)) for j in range(3)] for i in range(3)]
+    t = [p[i] + sum(r[i][k] * q[k] for k in range(3)) for i in range(3)]
+    return (t, m)
+
+
+def _quat(f):
+    """[x, y, z, qw, qx, qy, qz] of a frame."""
+    t, m = f
+    tr = m[0][0] + m[1][1] + m[2][2]
+    if tr > 0:
+        s = math.sqrt(tr + 1.0) * 2
+        q = [0.25 * s, (m[2][1] - m[1][2]) / s, (m[0][2] - m[2][0]) / s, (m[1][0] - m[0][1]) / s]
+    elif m[0][0] > m[1][1] and m[0][0] > m[2][2]:
+        s = math.sqrt(1.0 + m[0][0] - m[1][1] - m[2][2]) * 2
+        q = [(m[2][1] - m[1][2]) / s, 0.25 * s, (m[0][1] + m[1][0]) / s, (m[0][2] + m[2][0]) / s]
+    elif m[1][1] > m[2][2]:
+        s = math.sqrt(1.0 + m[1][1] - m[0][0] - m[2][2]) * 2
+        q = [(m[0][2] - m[2][0]) / s, (m[0][1] + m[1][0]) / s, 0.25 * s, (m[1][2] + m[2][1]) / s]
+    else:
+        s = math.sqrt(1.0 + m[2][2] - m[0][0] - m[1][1]) * 2
+        q = [(m[1][0] - m[0][1]) / s, (m[0][2] + m[2][0]) / s, (m[1][2] + m[2][1]) / s, 0.25 * s]
+    return list(t) + q
+
+
+def _work(name):
+    if name not in _WORK:
+        raise KeyError("work coordinate %r is not defined on this robot" % name)
+    v = _WORK[name]
+    return _frame(v[:3], v[3:])
+
+
+_TCP = [_frame([0.5, 0.0, 0.3], [180.0, 0.0, 0.0])]
+_Q = [[0.0, -0.7, 0.0, 1.57, 0.0, 0.7, 0.0]]
+
+
+def _moved(target):
+    """The TCP after a move to `target` (a Coord)."""
+    f = _frame(target.position, target.orientation)
+    kind, name = target.ref_frame
+    if kind == "WORLD":
+        _TCP[0] = f
+    elif kind == "WORK":
+        _TCP[0] = _mul(_work(name), f)
+    elif kind == "TRAJ" and name == "START":
+        _TCP[0] = _mul(_TCP[0], f)
+    else:
+        raise ValueError("ref_frame %r is not modelled" % (target.ref_frame,))
+
+
+class WorkCoord:
+    def __init__(self, robot):
+        self._robot = robot
+
+    def pose(self, name):
+        return _quat(_work(name))
 
 
 @atexit.register
@@ -78,13 +176,15 @@ class JPos:
 def _json(v):
     if hasattr(v, "to_json"):
         return v.to_json()
+    if isinstance(v, (list, tuple)):
+        return [_json(x) for x in v]
     return v
 
 
 class RobotStates:
     def __init__(self):
-        self.q = [0.0, -0.7, 0.0, 1.57, 0.0, 0.7, 0.0]
-        self.tcp_pose = [0.5, 0.0, 0.3, 0.0, 1.0, 0.0, 0.0]
+        self.q = list(_Q[0])
+        self.tcp_pose = _quat(_TCP[0])
         self.flange_pose = [0.5, 0.0, 0.4, 0.0, 1.0, 0.0, 0.0]
 
 
@@ -139,6 +239,11 @@ class Robot:
         if properties is not None and _RDK >= (1, 7):
             raise TypeError("RDK 1.7+ has no properties argument")
         _record("ExecutePrimitive", primitive=name, params={k: _json(v) for k, v in params.items()})
+        if isinstance(params.get("target"), Coord):
+            _moved(params["target"])
+        elif isinstance(params.get("target"), JPos):
+            j = params["target"]
+            _Q[0] = [math.radians(v) for v in (j.q_m if _RDK >= (1, 7) else j.q)]
 
     def primitive_states(self):
         return {"reachedTarget": 1}

@@ -233,8 +233,8 @@ impl<'p> Machine<'p> {
     /// `$TOOL`/`$BASE` changes move `$POS_ACT` into the new frames.
     fn set_sys(&mut self, name: &str, fields: &[&str], v: Value) -> R<()> {
         let place = Place {
-            root: Root::Global(name.to_string()),
-            path: fields.iter().map(|f| Seg::Field(f.to_string())).collect(),
+            root: Root::Global(self.globals.intern(name)),
+            path: fields.iter().map(|f| Seg::Field((*f).into())).collect(),
         };
         self.assign(&place, v)
     }
@@ -242,8 +242,8 @@ impl<'p> Machine<'p> {
     fn set_axes(&mut self, name: &str, v: f64) -> R<()> {
         for i in 0..AXES {
             let place = Place {
-                root: Root::Global(name.to_string()),
-                path: vec![Seg::Index(i)],
+                root: Root::Global(self.globals.intern(name)),
+                path: smallvec::smallvec![Seg::Index(i)],
             };
             self.assign(&place, Value::Real(v))?;
         }

@@ -12,7 +12,7 @@
 
 use crate::syntax::ast::{Expr, ExprKind, SignalDecl};
 
-use super::{Frame, Machine, Place, R, Root, Seg, Slot};
+use super::{Machine, Place, R, Root, Seg, Slot};
 use crate::interp::value::Value;
 
 /// Widest signal group (bits): a KRL INT has 32.
@@ -38,7 +38,7 @@ impl<'p> Machine<'p> {
             }
             return Ok(Place {
                 root: Root::Const(b),
-                path: vec![],
+                path: Default::default(),
             });
         }
         let first = self.signal_bit(s, &s.from)?;
@@ -47,7 +47,7 @@ impl<'p> Machine<'p> {
         };
         let last = self.signal_bit(s, to)?;
         let (array, lo, hi) = match (&first.0.root, &last.0.root) {
-            (Root::Global(a), Root::Global(b)) if a == b => (a.clone(), first.1, last.1),
+            (Root::Global(a), Root::Global(b)) if a == b => (*a, first.1, last.1),
             _ => {
                 return Err(self.err(format!(
                     "SIGNAL {}: both ends of a group must be bits of the same I/O array",
@@ -63,7 +63,7 @@ impl<'p> Machine<'p> {
         }
         Ok(Place {
             root: Root::Group { array, lo, hi },
-            path: vec![],
+            path: Default::default(),
         })
     }
 
@@ -106,8 +106,9 @@ impl<'p> Machine<'p> {
     /// Declare a signal of a routine: a local name for the place.
     pub(super) fn declare_local_signal(&mut self, s: &SignalDecl, frame: usize) -> R<()> {
         let place = self.signal_place(s)?;
-        if let Some(Frame { vars, .. }) = self.frames.get_mut(frame) {
-            vars.insert(s.name.key(), Slot::Alias(place));
+        if frame < self.frames.len() {
+            let i = self.local_slot_or_new(frame, &s.name.key());
+            self.frames[frame].vars[i] = Some(Slot::Alias(place));
         }
         Ok(())
     }
@@ -116,7 +117,7 @@ impl<'p> Machine<'p> {
     pub(super) fn read_signal(&self, root: &Root) -> R<Option<Value>> {
         Ok(match root {
             Root::Group { array, lo, hi } => {
-                let items = self.bool_array(array)?;
+                let items = self.bool_array(*array)?;
                 let mut n: i64 = 0;
                 for (bit, i) in (*lo..=*hi).enumerate() {
                     if matches!(items.get(i), Some(Value::Bool(true))) {
@@ -145,9 +146,11 @@ impl<'p> Machine<'p> {
                     }
                 };
                 let (lo, hi) = (*lo, *hi);
-                let traced = super::io_array(array);
-                let Some(Value::Array { items, .. }) = self.globals.get_mut(array) else {
-                    return Err(self.err(format!("{array} is not an I/O array")));
+                let (array, name) = (*array, self.globals.name(*array));
+                let traced = super::io_array(name);
+                let not_io = format!("{name} is not an I/O array");
+                let Some(Value::Array { items, .. }) = self.globals.at_mut(array) else {
+                    return Err(self.err(not_io));
                 };
                 let mut changed = Vec::new();
                 for (bit, i) in (lo..=hi).enumerate() {
@@ -173,10 +176,10 @@ impl<'p> Machine<'p> {
         }
     }
 
-    fn bool_array(&self, name: &str) -> R<&[Value]> {
-        match self.globals.get(name) {
+    fn bool_array(&self, slot: usize) -> R<&[Value]> {
+        match self.globals.at(slot) {
             Some(Value::Array { items, .. }) => Ok(items),
-            _ => Err(self.err(format!("{name} is not an I/O array"))),
+            _ => Err(self.err(format!("{} is not an I/O array", self.globals.name(slot)))),
         }
     }
 

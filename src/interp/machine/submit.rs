@@ -26,15 +26,15 @@ impl Machine<'_> {
     /// The state variables at the start of a run.
     pub(super) fn init_robot_state(&mut self) {
         let mode = self.opts.mode_op.to_ascii_uppercase();
-        self.globals.insert("$MODE_OP".into(), Value::Enum(mode));
+        self.globals.insert("$MODE_OP", Value::Enum(mode));
         self.globals
-            .insert("$PRO_STATE0".into(), Value::Enum("P_ACTIVE".into()));
+            .insert("$PRO_STATE0", Value::Enum("P_ACTIVE".into()));
         for (k, v) in [
             ("$NEAR_POSRET", true),
             ("$ROB_STOPPED", true),
             ("$PRO_MOVE", false),
         ] {
-            self.globals.insert(k.into(), Value::Bool(v));
+            self.globals.insert(k, Value::Bool(v));
         }
         self.set_phase(Phase::Running);
     }
@@ -47,12 +47,11 @@ impl Machine<'_> {
             Phase::Halted | Phase::Failed => ("P_STOP", false),
         };
         self.globals
-            .insert("$PRO_STATE1".into(), Value::Enum(state.into()));
-        self.globals
-            .insert("$ROB_STOPPED".into(), Value::Bool(!moving));
-        self.globals.insert("$PRO_MOVE".into(), Value::Bool(moving));
+            .insert("$PRO_STATE1", Value::Enum(state.into()));
+        self.globals.insert("$ROB_STOPPED", Value::Bool(!moving));
+        self.globals.insert("$PRO_MOVE", Value::Bool(moving));
         if matches!(phase, Phase::Failed) {
-            self.globals.insert("$STOPMESS".into(), Value::Bool(true));
+            self.globals.insert("$STOPMESS", Value::Bool(true));
         }
     }
 
@@ -110,7 +109,7 @@ impl Machine<'_> {
             End::Error(_) => Phase::Failed,
         });
         match (self.submit_cycle(), end) {
-            (Err(Stop::Error(e)), End::Normal) => End::Error(e),
+            (Err(Stop::Error(e)), End::Normal) => End::Error(*e),
             (_, end) => end,
         }
     }

@@ -38,11 +38,11 @@ impl<'p> Machine<'p> {
         }
         let (key, index) = match root {
             // Only system variables can change while the program waits.
-            Root::Global(k) if k.starts_with('$') => match path.first() {
-                Some(Seg::Index(i)) => (k.as_str(), Some(*i)),
-                _ => (k.as_str(), None),
+            Root::Global(k) if self.globals.name(*k).starts_with('$') => match path.first() {
+                Some(Seg::Index(i)) => (self.globals.name(*k), Some(*i)),
+                _ => (self.globals.name(*k), None),
             },
-            Root::Group { array, .. } => (array.as_str(), None),
+            Root::Group { array, .. } => (self.globals.name(*array), None),
             _ => return,
         };
         if let Some(r) = &mut self.reads {
@@ -124,6 +124,6 @@ impl<'p> Machine<'p> {
         let mut e = self.error_at(at, message);
         e.message
             .push_str(&format!(" (in {callee}, at {}:{})", inner.file, inner.line));
-        super::Stop::Error(e)
+        super::Stop::from(e)
     }
 }

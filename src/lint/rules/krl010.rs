@@ -1,8 +1,10 @@
 use crate::diag::{Diagnostic, Severity};
 use crate::lint::context::FileCtx;
 use crate::lint::registry::{Check, Rule};
-use crate::lint::text::nearest;
-use crate::sema::{Access, Resolved, UseKind};
+use rustc_hash::FxHashMap;
+
+use crate::lint::text::{distance_within, near_enough};
+use crate::sema::{Access, FileId, NameId, Resolved, RoutineId, Sema, UseKind};
 
 pub static RULE: Rule = Rule {
     code: "KRL010",
@@ -19,7 +21,7 @@ fn check(ctx: &FileCtx, out: &mut Vec<Diagnostic>) {
         return;
     }
     let sema = ctx.sema;
-    let mut suggestions: rustc_hash::FxHashMap<(Option<usize>, usize), String> = Default::default();
+    let mut near = Near::new(sema, ctx.id);
     for (i, u) in sema.uses(ctx.id).iter().enumerate() {
         if u.kind != UseKind::Var
             || u.access == Access::Mention
@@ -37,23 +39,78 @@ fn check(ctx: &FileCtx, out: &mut Vec<Diagnostic>) {
             continue;
         }
         let d = Diagnostic::error(RULE.code, u.span, format!("`{name}` is not declared"));
-        // One search per name and routine: a file can use one undeclared name hundreds of
-        // times, and each search walks every visible name.
-        let help = suggestions
-            .entry((at.routine.map(|r| r.index()), sema.use_name(u).index()))
-            .or_insert_with(|| {
-                let visible = sema.visible(ctx.id, u.span.start);
-                let candidates = visible
-                    .iter()
-                    .filter(|(_, r)| matches!(r, Resolved::Symbol(_)))
-                    .map(|(n, _)| sema.name(*n));
-                match nearest(name, candidates) {
-                    Some(n) => format!("did you mean `{n}`?"),
-                    None => "declare it in the routine, in the module's .dat, or GLOBAL in a \
-                             PUBLIC data list"
-                        .to_owned(),
-                }
-            });
-        out.push(d.with_help(help.clone()));
+        let help = match near.suggest(at.routine, sema.use_name(u)) {
+            Some(n) => format!("did you mean `{n}`?"),
+            None => "declare it in the routine, in the module's .dat, or GLOBAL in a PUBLIC \
+                     data list"
+                .to_owned(),
+        };
+        out.push(d.with_help(help));
+    }
+}
+
+/// The nearest visible variable to an undeclared name ([`crate::lint::text::nearest`] over what
+/// [`crate::sema::Sema::visible`] lists as variables there), searched without walking every
+/// visible name for each routine: a file can use undeclared names in hundreds of routines, and
+/// the module's, the robot's and the system's names — thousands — are the same for all of them.
+struct Near<'s> {
+    sema: &'s Sema,
+    file: FileId,
+    /// The variables visible outside the file's routines (built at the first search).
+    outside: Option<Vec<(NameId, &'s str)>>,
+    /// Per undeclared name: the names of `outside` near enough, nearest first.
+    near_outside: FxHashMap<NameId, Vec<(usize, &'s str, NameId)>>,
+    /// Per routine and name: the answer.
+    answers: FxHashMap<(Option<RoutineId>, NameId), Option<&'s str>>,
+}
+
+impl<'s> Near<'s> {
+    fn new(sema: &'s Sema, file: FileId) -> Near<'s> {
+        Near {
+            sema,
+            file,
+            outside: None,
+            near_outside: FxHashMap::default(),
+            answers: FxHashMap::default(),
+        }
+    }
+
+    fn suggest(&mut self, routine: Option<RoutineId>, name: NameId) -> Option<&'s str> {
+        if let Some(a) = self.answers.get(&(routine, name)) {
+            return *a;
+        }
+        let (sema, id) = (self.sema, self.file);
+        let text = sema.name(name);
+        let max = near_enough(text);
+        let outside = self.outside.get_or_insert_with(|| {
+            sema.visible_vars_outside(id)
+                .into_iter()
+                .map(|n| (n, sema.name(n)))
+                .collect()
+        });
+        let far = self.near_outside.entry(name).or_insert_with(|| {
+            let mut v: Vec<_> = outside
+                .iter()
+                .filter_map(|&(n, s)| Some((distance_within(text, s, max)?, s, n)))
+                .collect();
+            v.sort_unstable();
+            v
+        });
+        let own = routine.map(|r| sema.routine_scope(r)).unwrap_or_default();
+        let mine = own
+            .iter()
+            .filter(|(_, r)| matches!(r, Resolved::Symbol(_)))
+            .filter_map(|(n, _)| {
+                let s = sema.name(*n);
+                Some((distance_within(text, s, max)?, s))
+            })
+            .min();
+        let theirs = far
+            .iter()
+            .find(|(_, _, n)| !own.iter().any(|(o, _)| o == n))
+            .map(|&(d, s, _)| (d, s));
+        let answer = mine.into_iter().chain(theirs).min().map(|(_, s)| s);
+        self.answers.insert((routine, name), answer);
+        answer
     }
 }

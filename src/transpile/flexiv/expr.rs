@@ -354,7 +354,9 @@ impl<'a> Tx<'a> {
             Place::Temp(t) => Ok(Target::Plain(self.temp_name(*t))),
             Place::Index(base, idx) => {
                 let string = matches!(&**base, Place::Var(v) if self.ir.var(*v).ty == Ty::Char);
-                let Target::Plain(b) = self.target(base, span, write && string)? else {
+                // A whole array (`a[]`, an OUT argument) is assigned by name, like a string.
+                let whole = idx.iter().all(Option::is_none);
+                let Target::Plain(b) = self.target(base, span, write && (string || whole))? else {
                     return fail(
                         span,
                         "indexing a component has no translation",

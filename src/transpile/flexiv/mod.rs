@@ -31,6 +31,7 @@ mod stmt;
 
 use std::collections::{BTreeMap, BTreeSet, HashMap};
 
+pub use motion::zone_code;
 pub use options::{Api, FlexivOptions, JointMap, JointSource, PtpPrimitive, RdkVersion};
 
 use super::Options;

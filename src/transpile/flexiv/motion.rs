@@ -93,6 +93,30 @@ impl<'a> Tx<'a> {
         Some(zone)
     }
 
+    /// A TR002 where nothing in the program sets the speed this motion runs at (neither
+    /// before it nor in its WITH clause): the script moves at its default, the KUKA robot at
+    /// whatever its controller holds.
+    fn speed_never_set(&mut self, m: &Move, span: Span) {
+        let (never, param, what) = match &m.path {
+            Path::Joint { speed, .. } | Path::JointRel { speed, .. } => (
+                matches!(speed, Known::Unknown(Because::NeverSet)),
+                MotionParam::VelPtp,
+                "the PTP speed ($VEL_AXIS) is not set in this program; the script moves at KRL.vel_ptp, DEFAULT_PTP % until the program sets one",
+            ),
+            Path::Linear { speed, .. }
+            | Path::Circular { speed, .. }
+            | Path::LinearRel { speed, .. } => (
+                matches!(speed, Known::Unknown(Because::NeverSet)),
+                MotionParam::VelCp,
+                "the path speed ($VEL.CP) is not set in this program; the script moves at KRL.vel_cp, DEFAULT_VEL m/s until the program sets one",
+            ),
+        };
+        if never && !m.with.iter().any(|(p, _)| *p == param) {
+            self.rep
+                .approximate(FileId::Src, span, what, "set the speed before the move");
+        }
+    }
+
     /// `, vel=…` when a WITH clause gives this motion its own speed.
     fn with_speed(&mut self, m: &Move, param: MotionParam, name: &str) -> String {
         match m.with.iter().rev().find(|(p, _)| *p == param) {
@@ -122,6 +146,7 @@ impl<'a> Tx<'a> {
                 }
                 let t = self.motion_target(to)?;
                 let z = self.zone_for(m, span);
+                self.speed_never_set(m, span);
                 let vel = self.with_speed(m, MotionParam::VelCp, "vel");
                 self.line(format!("move_l({t}{}{vel})", zone_arg(z)));
                 Ok(())
@@ -140,6 +165,7 @@ impl<'a> Tx<'a> {
                         self.line(format!("move_l({t}{})", zone_arg(z)));
                     }
                     super::PtpPrimitive::MovePtp => {
+                        self.speed_never_set(m, span);
                         let vel = self.with_speed(m, MotionParam::VelPtp, "vel");
                         self.line(format!("move_ptp({t}{}{vel})", zone_arg(z)));
                     }
@@ -169,6 +195,7 @@ impl<'a> Tx<'a> {
                     "KUKA axis values become Rizon joints by the joint map; the same numbers give a different pose on a different arm",
                     "check every joint target on the robot at low speed",
                 );
+                self.speed_never_set(m, span);
                 let vel = self.with_speed(m, MotionParam::VelPtp, "vel");
                 self.line(format!("move_j({t}{vel})"));
                 Ok(())
@@ -204,6 +231,7 @@ impl<'a> Tx<'a> {
                     );
                 }
                 let z = self.zone_for(m, span);
+                self.speed_never_set(m, span);
                 let vel = self.with_speed(m, MotionParam::VelCp, "vel");
                 self.line(format!(
                     "move_rel(Pose({}), {}{}{vel})",

@@ -1,0 +1,312 @@
+//! Every runnable transpile fixture moves the same on every target: the KRL original runs on
+//! krlkit's interpreter, its AS translation on the test AS interpreter and its Flexiv
+//! translation on the stub `flexivrdk`, all in the same cell (`equiv_support`), and the runs
+//! must have the same motions (target, kind, speed kind and value, blending, base and tool
+//! frames), output changes and waits in the same order. Where a translation reports that it
+//! does not keep something (TR002 at the line), the test leaves exactly that out, and says so
+//! below; a fixture is left out only with the reason.
+
+mod as_support;
+mod equiv_support;
+
+use equiv_support::{
+    Aspect, Brand, EVERY_LINE, Excluded, Program, as_steps, compare, findings, flexiv_steps,
+    krl_steps, python, run_as, run_flexiv, to_as, to_flexiv,
+};
+
+/// A runnable fixture: the `$IN` inputs that are on, and what each target leaves out.
+struct Case {
+    name: &'static str,
+    inputs: &'static [usize],
+    kawasaki: &'static [Excluded],
+    flexiv: &'static [Excluded],
+}
+
+/// Leave `aspect` out at `line`, where a finding says `finding`.
+const fn ex(line: usize, aspect: Aspect, finding: &'static str) -> Excluded {
+    by(line, aspect, line, finding)
+}
+
+/// Leave `aspect` out at `line`, because of a finding at line `because` saying `finding`.
+const fn by(line: usize, aspect: Aspect, because: usize, finding: &'static str) -> Excluded {
+    Excluded {
+        line,
+        aspect,
+        because,
+        finding,
+    }
+}
+
+/// The runnable fixtures. Not here: `dup_params` and `untranslatable` (TR001: the routines
+/// and calls that matter are not translated), `motions` (a JT7 value the test AS interpreter
+/// does not model), `taught`, `io_waits` (they need values the cell does not define), and the
+/// vision cells (`pick_cycle`, `bin_pick`, `depal_plan`, `vision_variants`, `flexiv_pick`,
+/// `gripper_check`, `advance_stops`, `viz_depal`), whose AS runs are compared with the KRL
+/// runs in `transpile_run.rs`.
+const CASES: &[Case] = &[
+    Case {
+        name: "speed_kinds",
+        inputs: &[],
+        // Line 4: the program sets only $VEL.CP before the first PTP; KRL's joint speed is
+        // not set (null), AS moves at the SPEED ALWAYS in force, with a TR002.
+        kawasaki: &[ex(
+            4,
+            Aspect::Speed,
+            "the speed of this motion is not known here",
+        )],
+        // Line 4: the same unset PTP speed; the script moves at its default (KRL.vel_ptp).
+        flexiv: &[ex(4, Aspect::Speed, "the PTP speed ($VEL_AXIS) is not set")],
+    },
+    Case {
+        name: "blend_after_call",
+        inputs: &[],
+        // Lines 9, 13, 14: `pick_some()` may set $APO.CDIS, which is not known after the call:
+        // ACCURACY 1 (no blending). Line 13: the PTP speed is never set (KRL: none), AS moves
+        // at the SPEED ALWAYS in force.
+        kawasaki: &[
+            ex(9, Aspect::Blend, "changes the blending distance"),
+            ex(
+                13,
+                Aspect::Speed,
+                "the speed of this motion is not known here",
+            ),
+        ],
+        // Line 13: the PTP speed is never set; the script moves at its default.
+        flexiv: &[ex(
+            13,
+            Aspect::Speed,
+            "the PTP speed ($VEL_AXIS) is not set",
+        )],
+    },
+    Case {
+        name: "calls_in_expressions",
+        inputs: &[],
+        kawasaki: &[],
+        flexiv: &[],
+    },
+    Case {
+        name: "spline_trigger",
+        inputs: &[],
+        // Lines 5, 9: the PTP speed is never set (KRL: none), AS moves at the SPEED ALWAYS in
+        // force. Lines 7, 8: the spline's points become LMOVEs blended by $APO.CDIS (KRL
+        // passes them on one continuous path: no approximation clause of their own). Lines 11,
+        // 13: the TRIGGER actions switch the output before/after the motion, not on the path.
+        kawasaki: &[
+            ex(
+                5,
+                Aspect::Speed,
+                "the speed of this motion is not known here",
+            ),
+            ex(
+                9,
+                Aspect::Speed,
+                "the speed of this motion is not known here",
+            ),
+            by(
+                7,
+                Aspect::Blend,
+                6,
+                "a SPLINE block becomes plain LIN/CIRC motions",
+            ),
+            by(
+                8,
+                Aspect::Blend,
+                6,
+                "a SPLINE block becomes plain LIN/CIRC motions",
+            ),
+            ex(
+                11,
+                Aspect::OutputTiming,
+                "the action runs before the next motion starts",
+            ),
+            ex(
+                13,
+                Aspect::OutputTiming,
+                "the action runs after the next motion has ended",
+            ),
+        ],
+        flexiv: &[
+            ex(5, Aspect::Speed, "the PTP speed ($VEL_AXIS) is not set"),
+            ex(9, Aspect::Speed, "the PTP speed ($VEL_AXIS) is not set"),
+            ex(7, Aspect::Blend, "spline points become one MoveL"),
+            by(
+                8,
+                Aspect::Blend,
+                6,
+                "a SPLINE block becomes plain LIN/CIRC motions",
+            ),
+            ex(
+                11,
+                Aspect::OutputTiming,
+                "the action runs before the next motion starts",
+            ),
+            ex(
+                13,
+                Aspect::OutputTiming,
+                "the action runs after the next motion has ended",
+            ),
+        ],
+    },
+    Case {
+        name: "pallet_pattern",
+        inputs: &[],
+        // BAS(#INITMOV) (line 8) sets KUKA's default speeds (krlkit: 100 %, 2 m/s); the
+        // translations write their own conservative defaults, which every motion runs at.
+        kawasaki: &[by(
+            EVERY_LINE,
+            Aspect::InitSpeed,
+            8,
+            "AS gets conservative defaults",
+        )],
+        flexiv: &[by(
+            EVERY_LINE,
+            Aspect::InitSpeed,
+            8,
+            "the script uses DEFAULT_VEL",
+        )],
+    },
+    Case {
+        name: "base_offsets",
+        inputs: &[],
+        kawasaki: &[],
+        flexiv: &[],
+    },
+    Case {
+        name: "joint_targets",
+        inputs: &[],
+        kawasaki: &[],
+        // Lines 10, 11: a partial axis literal and PTP_REL are not translated (TR001), so the
+        // script makes neither motion, and line 13, which moves to where the robot is, goes
+        // to where line 9 left it.
+        flexiv: &[
+            ex(10, Aspect::Motion, "an incomplete literal"),
+            ex(
+                11,
+                Aspect::Motion,
+                "this relative motion has no counterpart",
+            ),
+            by(13, Aspect::Target, 10, "an incomplete literal"),
+        ],
+    },
+    Case {
+        name: "control",
+        inputs: &[],
+        kawasaki: &[],
+        flexiv: &[],
+    },
+    Case {
+        name: "python_names",
+        inputs: &[],
+        kawasaki: &[],
+        // Lines 29, 31: $VEL.CP is never set (KRL: none); the script moves at its default.
+        flexiv: &[
+            ex(29, Aspect::Speed, "the path speed ($VEL.CP) is not set"),
+            ex(31, Aspect::Speed, "the path speed ($VEL.CP) is not set"),
+        ],
+    },
+];
+
+#[test]
+fn every_runnable_fixture_moves_the_same_on_every_target() {
+    let py = python();
+    let mut failures = Vec::new();
+    for case in CASES {
+        let p = Program::fixture(case.name);
+        let krl = krl_run(&p, case.inputs);
+        let t = to_as(&p);
+        let f = findings(&t);
+        let r = run_as(&t.text, case.inputs)
+            .and_then(|a| compare(&krl, &as_steps(&a), Brand::Kawasaki, &f, case.kawasaki));
+        if let Err(e) = r {
+            failures.push(format!("{} (AS): {e}\n{}", case.name, t.text));
+        }
+        let Some(py) = py else { continue };
+        let t = to_flexiv(&p);
+        let f = findings(&t);
+        let r = run_flexiv(py, &t.text, case.inputs)
+            .and_then(|calls| compare(&krl, &flexiv_steps(&calls), Brand::Flexiv, &f, case.flexiv));
+        if let Err(e) = r {
+            failures.push(format!("{} (Flexiv): {e}", case.name));
+        }
+    }
+    assert!(failures.is_empty(), "{}", failures.join("\n\n"));
+}
+
+fn krl_run(p: &Program, inputs: &[usize]) -> Vec<equiv_support::Step> {
+    let r = equiv_support::run_krl(p, inputs);
+    assert!(
+        matches!(r.end, krlkit::interp::End::Normal),
+        "{}: the KRL run ended with {:?}",
+        p.name,
+        r.end
+    );
+    krl_steps(&r)
+}
+
+/// The comparison fails for a translation that moves differently: each edit below is a
+/// renderer defect (a wrong speed, a lost frame selection, lost blending, an output too
+/// early), and each must be caught.
+#[test]
+fn a_broken_translation_is_caught() {
+    let as_cases: [(&str, &str, &str); 4] = [
+        (
+            "speed_kinds",
+            "SPEED 200 MM/S ALWAYS",
+            "SPEED 250 MM/S ALWAYS",
+        ),
+        ("base_offsets", "BASE base_data[3]", "BASE base_data[2]"),
+        (
+            "blend_after_call",
+            "ACCURACY 10 ALWAYS",
+            "ACCURACY 1 ALWAYS",
+        ),
+        // The output switches off before the wait instead of after it.
+        (
+            "pallet_pattern",
+            "TWAIT 0.1\n  SIGNAL -3",
+            "SIGNAL -3\n  TWAIT 0.1",
+        ),
+    ];
+    for (name, from, to) in as_cases {
+        let p = Program::fixture(name);
+        let krl = krl_run(&p, &[]);
+        let t = to_as(&p);
+        assert!(t.text.contains(from), "{name}: `{from}` not in\n{}", t.text);
+        let broken = t.text.replacen(from, to, 1);
+        let case = CASES.iter().find(|c| c.name == name).expect("a case");
+        let r = run_as(&broken, &[]).and_then(|a| {
+            compare(
+                &krl,
+                &as_steps(&a),
+                Brand::Kawasaki,
+                &findings(&t),
+                case.kawasaki,
+            )
+        });
+        assert!(r.is_err(), "{name}: `{from}` -> `{to}` was not caught");
+    }
+    let Some(py) = python() else { return };
+    let flexiv_cases: [(&str, &str, &str); 3] = [
+        ("speed_kinds", "KRL.vel_cp = 0.2", "KRL.vel_cp = 0.25"),
+        ("base_offsets", "\"base_data_3\"", "\"base_data_2\""),
+        ("blend_after_call", "\"Z10\"", "\"Z0\""),
+    ];
+    for (name, from, to) in flexiv_cases {
+        let p = Program::fixture(name);
+        let krl = krl_run(&p, &[]);
+        let t = to_flexiv(&p);
+        assert!(t.text.contains(from), "{name}: `{from}` not in the script");
+        let broken = t.text.replacen(from, to, 1);
+        let case = CASES.iter().find(|c| c.name == name).expect("a case");
+        let r = run_flexiv(py, &broken, &[]).and_then(|calls| {
+            compare(
+                &krl,
+                &flexiv_steps(&calls),
+                Brand::Flexiv,
+                &findings(&t),
+                case.flexiv,
+            )
+        });
+        assert!(r.is_err(), "{name}: `{from}` -> `{to}` was not caught");
+    }
+}

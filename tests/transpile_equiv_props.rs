@@ -1,0 +1,108 @@
+//! Property: a random straight-line KRL program — PTP/LIN to random poses and axis values,
+//! random `$VEL.CP` and `BAS(#VEL_PTP)` speeds, `$APO.CDIS` blending, `$BASE`/`$TOOL` from
+//! `BASE_DATA`/`TOOL_DATA`, `$OUT` writes, `WAIT SEC`, calls of a small routine that switches
+//! an output around a wait — translates to AS and Flexiv Python without TR001, and the
+//! translations' runs (test AS interpreter, Flexiv stub) match the KRL run on krlkit's
+//! interpreter motion by motion: target, kind, speed kind and value, blending, base and tool
+//! frames, and the order of outputs and waits (`equiv_support::compare`, nothing excluded).
+//! The program sets its speeds and blending distance first, so no TR002 excuses a difference.
+
+mod as_support;
+mod equiv_support;
+
+use equiv_support::{
+    Brand, Program, as_steps, compare, findings, flexiv_steps, krl_steps, python, run_as,
+    run_flexiv, run_krl, to_as, to_flexiv,
+};
+use proptest::prelude::*;
+
+fn num(x: f64) -> String {
+    format!("{x:.1}")
+}
+
+fn pose() -> impl Strategy<Value = String> {
+    (
+        (200i32..800, -400i32..400, 100i32..900),
+        (-180i32..180, -80i32..80, -180i32..180),
+    )
+        .prop_map(|((x, y, z), (a, b, c))| format!("{{X {x}, Y {y}, Z {z}, A {a}, B {b}, C {c}}}"))
+}
+
+fn axes() -> impl Strategy<Value = String> {
+    prop::collection::vec(-170i32..170, 6).prop_map(|v| {
+        let f: Vec<String> = v
+            .iter()
+            .enumerate()
+            .map(|(i, x)| format!("A{} {x}", i + 1))
+            .collect();
+        format!("{{{}}}", f.join(", "))
+    })
+}
+
+fn blend() -> impl Strategy<Value = &'static str> {
+    prop_oneof![Just(""), Just(" C_DIS")]
+}
+
+fn statement() -> impl Strategy<Value = String> {
+    prop_oneof![
+        (pose(), blend()).prop_map(|(p, b)| format!("PTP {p}{b}")),
+        (pose(), blend()).prop_map(|(p, b)| format!("LIN {p}{b}")),
+        axes().prop_map(|a| format!("PTP {a}")),
+        (5i32..=100).prop_map(|v| format!("$VEL.CP = {}", num(f64::from(v) / 100.0))),
+        (1i32..=100).prop_map(|v| format!("BAS(#VEL_PTP, {v})")),
+        (0i32..=120).prop_map(|d| format!("$APO.CDIS = {d}")),
+        (1usize..=8).prop_map(|n| format!("$BASE = BASE_DATA[{n}]")),
+        (1usize..=8).prop_map(|n| format!("$TOOL = TOOL_DATA[{n}]")),
+        (1i32..=15, any::<bool>())
+            .prop_map(|(n, v)| format!("$OUT[{n}] = {}", if v { "TRUE" } else { "FALSE" })),
+        (1i32..=10).prop_map(|t| format!("WAIT SEC {}", num(f64::from(t) / 10.0))),
+        Just("helper()".to_string()),
+    ]
+}
+
+fn program(body: &[String]) -> Program {
+    let mut src =
+        String::from("DEF prop()\n  $VEL.CP = 0.5\n  BAS(#VEL_PTP, 50)\n  $APO.CDIS = 10\n");
+    for s in body {
+        src.push_str(&format!("  {s}\n"));
+    }
+    src.push_str(
+        "END\n\nDEF helper()\n  $OUT[16] = TRUE\n  WAIT SEC 0.2\n  $OUT[16] = FALSE\nEND\n",
+    );
+    Program {
+        name: "prop".into(),
+        src,
+        dat: None,
+    }
+}
+
+proptest! {
+    // Each case runs python3 once: a dozen cases keep the test to a few seconds in debug.
+    #![proptest_config(ProptestConfig::with_cases(12))]
+
+    #[test]
+    fn straight_line_programs_move_the_same_on_every_target(
+        body in prop::collection::vec(statement(), 1..14)
+    ) {
+        let p = program(&body);
+        let r = run_krl(&p, &[]);
+        prop_assert!(matches!(r.end, krlkit::interp::End::Normal), "KRL: {:?}\n{}", r.end, p.src);
+        let krl = krl_steps(&r);
+
+        let t = to_as(&p);
+        let f = findings(&t);
+        prop_assert!(f.iter().all(|(c, ..)| c != "TR001"), "AS: {f:?}\n{}", p.src);
+        let got = run_as(&t.text, &[])
+            .and_then(|a| compare(&krl, &as_steps(&a), Brand::Kawasaki, &f, &[]));
+        prop_assert!(got.is_ok(), "AS: {}\n{}\n{}", got.unwrap_err(), p.src, t.text);
+
+        if let Some(py) = python() {
+            let t = to_flexiv(&p);
+            let f = findings(&t);
+            prop_assert!(f.iter().all(|(c, ..)| c != "TR001"), "Flexiv: {f:?}\n{}", p.src);
+            let got = run_flexiv(py, &t.text, &[])
+                .and_then(|calls| compare(&krl, &flexiv_steps(&calls), Brand::Flexiv, &f, &[]));
+            prop_assert!(got.is_ok(), "Flexiv: {}\n{}", got.unwrap_err(), p.src);
+        }
+    }
+}
