@@ -1,6 +1,7 @@
-//! Peak memory and wall time of `krlkit check`, `parse`, `parse --tree` and `transpile` on one
-//! generated 50 MB KRL file and on 20 MB of blank lines: `cargo bench --bench memory` (runs
-//! the release binary; `MEMORY_BENCH_MB=10` for a smaller file). Prints, does not assert.
+//! Peak memory and wall time of `krlkit check`, `parse`, `parse --tree` and `transpile` (both
+//! targets) on one generated 50 MB KRL file and on 20 MB of blank lines:
+//! `cargo bench --bench memory` (runs the release binary; `MEMORY_BENCH_MB=10` for a smaller
+//! file). Prints, does not assert.
 
 use std::path::Path;
 use std::process::{Command, Stdio};
@@ -55,6 +56,7 @@ fn main() {
             &["parse", file],
             &["parse", "--tree", file],
             &["transpile", file, "--to", "kawasaki"],
+            &["transpile", file, "--to", "flexiv"],
         ] {
             let (secs, rss_mb) = run(args, dir.path());
             println!(

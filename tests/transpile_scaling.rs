@@ -1,7 +1,8 @@
 //! `krlkit transpile` does work in proportion to the program: a program four times larger
-//! takes about four times the CPU time, not sixteen. A ratio of two runs of the same binary on
-//! the same machine, so it holds on a slow or loaded machine where a time limit would not; the
-//! wall-time and memory figures for a 50 MB file come from `cargo bench --bench memory`.
+//! takes about four times the CPU time and the memory, not sixteen. Ratios of two runs of the
+//! same binary on the same machine, so they hold on a slow or loaded machine where a time limit
+//! would not; the wall-time and memory figures for a 50 MB file come from
+//! `cargo bench --bench memory`.
 //!
 //! Before: one scan of every finding per construct (and of every written span per statement)
 //! made a 50 MB program run for more than 17 minutes; a line index built per `HALT`, a scan of
@@ -54,8 +55,8 @@ fn many_routines(n: usize) -> String {
     s
 }
 
-/// CPU time (user + system) of one run of krlkit, in seconds.
-fn cpu_seconds(args: &[&str], cwd: &Path) -> f64 {
+/// CPU time (user + system, in seconds) and peak resident set (in bytes) of one run of krlkit.
+fn usage(args: &[&str], cwd: &Path) -> (f64, f64) {
     #[allow(clippy::zombie_processes)] // reaped by wait4 below, which also gives its rusage
     let child = Command::new(env!("CARGO_BIN_EXE_krlkit"))
         .args(args)
@@ -71,21 +72,30 @@ fn cpu_seconds(args: &[&str], cwd: &Path) -> f64 {
     let r = unsafe { libc::wait4(pid, &mut status, 0, &mut usage) };
     assert_eq!(r, pid);
     let secs = |t: libc::timeval| t.tv_sec as f64 + t.tv_usec as f64 / 1e6;
-    secs(usage.ru_utime) + secs(usage.ru_stime)
+    let cpu = secs(usage.ru_utime) + secs(usage.ru_stime);
+    (cpu, usage.ru_maxrss as f64 * 1024.0)
 }
 
-/// Translating the program of size `4 * n` costs well under 16 times the program of size `n`.
+/// Translating the program of size `4 * n` costs well under 16 times the program of size `n`
+/// in CPU time, and in memory above what krlkit needs for no file.
 fn assert_linear(name: &str, program: fn(usize) -> String, n: usize) {
     let dir = tempfile::tempdir().unwrap();
     std::fs::write(dir.path().join("small.src"), program(n)).unwrap();
     std::fs::write(dir.path().join("large.src"), program(4 * n)).unwrap();
+    let (_, base) = usage(&["rules"], dir.path());
     for target in ["kawasaki", "flexiv"] {
-        let run = |file: &str| cpu_seconds(&["transpile", file, "--to", target], dir.path());
-        let (small, large) = (run("small.src"), run("large.src"));
+        let run = |file: &str| usage(&["transpile", file, "--to", target], dir.path());
+        let ((small, small_rss), (large, large_rss)) = (run("small.src"), run("large.src"));
         let ratio = large / small.max(0.01);
         assert!(
             ratio < 7.0,
             "{name} --to {target}: 4x the program took {ratio:.1}x the CPU time ({small:.2} s, {large:.2} s)"
+        );
+        let (small_mb, large_mb) = ((small_rss - base) / 1e6, (large_rss - base) / 1e6);
+        assert!(
+            large_mb < 7.0 * small_mb.max(1.0),
+            "{name} --to {target}: 4x the program took {:.1}x the memory ({small_mb:.0} MB, {large_mb:.0} MB above base)",
+            large_mb / small_mb.max(1.0)
         );
     }
 }

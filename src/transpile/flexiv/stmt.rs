@@ -567,8 +567,8 @@ impl<'a> Tx<'a> {
             Callee::Routine(r) => {
                 let routine = self.ir.routine(*r);
                 let name = self
-                    .module_ns
-                    .get(&routine.name)
+                    .names
+                    .routine_of(&routine.name)
                     .unwrap_or(&routine.name)
                     .to_owned();
                 let deffct = routine.kind == RoutineKind::Deffct;
