@@ -232,20 +232,12 @@ fn failing_named_fields_are_not_retried_as_calls() {
 /// with the full parse.
 #[test]
 fn outline_diagnostics_agree_on_every_repository_file() {
-    fn walk(dir: &std::path::Path, out: &mut Vec<std::path::PathBuf>) {
-        for e in std::fs::read_dir(dir).unwrap().map(Result::unwrap) {
-            let p = e.path();
-            if p.is_dir() {
-                walk(&p, out);
-            } else if krlkit::files::has_krl_extension(&p) {
-                out.push(p);
-            }
-        }
-    }
     let root = std::path::Path::new(env!("CARGO_MANIFEST_DIR"));
-    let mut files = Vec::new();
-    walk(&root.join("tests/fixtures"), &mut files);
-    walk(&root.join("krl"), &mut files);
+    let files: Vec<_> = krlkit::files::walk(&[root.join("tests/fixtures"), root.join("krl")])
+        .found
+        .into_iter()
+        .map(|c| c.path)
+        .collect();
     assert!(files.len() > 100);
     let mut with_errors = 0;
     for f in files {

@@ -398,23 +398,11 @@ mod tests {
         assert!(mentions_mm(text) || !mm_relevant(&ast), "{path}");
     }
 
-    fn krl_files(dir: &std::path::Path, out: &mut Vec<std::path::PathBuf>) {
-        for e in std::fs::read_dir(dir).unwrap().map(Result::unwrap) {
-            let p = e.path();
-            if p.is_dir() {
-                krl_files(&p, out);
-            } else if crate::files::has_krl_extension(&p) {
-                out.push(p);
-            }
-        }
-    }
-
-    fn agrees_on(dir: &std::path::Path) -> usize {
-        let mut files = Vec::new();
-        krl_files(dir, &mut files);
+    fn agrees_on(dirs: &[std::path::PathBuf]) -> usize {
+        let files = crate::files::walk(dirs).found;
         for f in &files {
-            let text = crate::syntax::decode(&std::fs::read(f).unwrap()).text;
-            agrees(&f.display().to_string(), &text);
+            let text = crate::syntax::decode(&std::fs::read(&f.path).unwrap()).text;
+            agrees(&f.path.display().to_string(), &text);
         }
         files.len()
     }
@@ -422,7 +410,7 @@ mod tests {
     #[test]
     fn the_streamed_first_pass_is_the_trees_on_every_repository_file() {
         let root = std::path::Path::new(env!("CARGO_MANIFEST_DIR"));
-        assert!(agrees_on(&root.join("tests/fixtures")) + agrees_on(&root.join("krl")) > 100);
+        assert!(agrees_on(&[root.join("tests/fixtures"), root.join("krl")]) > 100);
     }
 
     /// `KRLKIT_CORPUS=/path/to/corpus cargo test --lib streamed_first_pass_on_the_corpus -- --ignored`
@@ -430,6 +418,6 @@ mod tests {
     #[ignore = "needs KRLKIT_CORPUS=<folder of real controller files>"]
     fn the_streamed_first_pass_is_the_trees_on_the_corpus() {
         let dir = std::env::var("KRLKIT_CORPUS").expect("set KRLKIT_CORPUS");
-        assert!(agrees_on(std::path::Path::new(&dir)) > 0);
+        assert!(agrees_on(&[dir.into()]) > 0);
     }
 }

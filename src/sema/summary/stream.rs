@@ -192,23 +192,11 @@ mod tests {
 
     #[test]
     fn the_streamed_summary_is_the_whole_files_on_every_repository_file() {
-        fn walk(dir: &std::path::Path, out: &mut Vec<std::path::PathBuf>) {
-            for e in std::fs::read_dir(dir).unwrap().map(Result::unwrap) {
-                let p = e.path();
-                if p.is_dir() {
-                    walk(&p, out);
-                } else if crate::files::has_krl_extension(&p) {
-                    out.push(p);
-                }
-            }
-        }
         let root = std::path::Path::new(env!("CARGO_MANIFEST_DIR"));
-        let mut files = Vec::new();
-        walk(&root.join("tests/fixtures"), &mut files);
-        walk(&root.join("krl"), &mut files);
+        let files = crate::files::walk(&[root.join("tests/fixtures"), root.join("krl")]).found;
         assert!(files.len() > 100);
         for f in files {
-            same(&crate::syntax::decode(&std::fs::read(&f).unwrap()).text);
+            same(&crate::syntax::decode(&std::fs::read(&f.path).unwrap()).text);
         }
     }
 
