@@ -37,12 +37,13 @@ const fn by(line: usize, aspect: Aspect, because: usize, finding: &'static str) 
     }
 }
 
-/// The runnable fixtures. Not here: `dup_params` and `untranslatable` (TR001: the routines
-/// and calls that matter are not translated), `motions` (a JT7 value the test AS interpreter
-/// does not model), `taught`, `io_waits` (they need values the cell does not define), and the
-/// vision cells (`pick_cycle`, `bin_pick`, `depal_plan`, `vision_variants`, `flexiv_pick`,
-/// `gripper_check`, `advance_stops`, `viz_depal`), whose AS runs are compared with the KRL
-/// runs in `transpile_run.rs`.
+/// The runnable fixtures without a vision server. Not here: `dup_params` and
+/// `untranslatable` (TR001: the routines and calls that matter are not translated), `motions`
+/// (a JT7 value the test AS interpreter does not model), `taught` (AS needs `#xhome`, which
+/// KUKA's controller defines), `io_waits` and `viz_depal` (they read variables before
+/// anything assigns them), `flexiv_pick` (a vision cell with no KRL run to compare), and the
+/// vision cells `pick_cycle`, `bin_pick`, `depal_plan`, `vision_variants`, which
+/// `transpile_run.rs` compares on both targets against the fake vision server.
 const CASES: &[Case] = &[
     Case {
         name: "speed_kinds",
@@ -187,6 +188,19 @@ const CASES: &[Case] = &[
             ),
             by(13, Aspect::Target, 10, "an incomplete literal"),
         ],
+    },
+    Case {
+        name: "advance_stops",
+        // $IN[3]: the output before the timer wait; $IN[7]: out of the loop at once.
+        inputs: &[3, 7],
+        kawasaki: &[],
+        flexiv: &[],
+    },
+    Case {
+        name: "gripper_check",
+        inputs: &[5],
+        kawasaki: &[],
+        flexiv: &[],
     },
     Case {
         name: "control",

@@ -478,6 +478,16 @@ const fn initmov(line: usize) -> Excluded {
         "AS gets conservative defaults",
     )
 }
+/// `BAS(#INITMOV)` at `line`: the script's own default speeds (Flexiv).
+const fn flexiv_initmov(line: usize) -> Excluded {
+    by(
+        EVERY_LINE,
+        Aspect::InitSpeed,
+        line,
+        "the script uses DEFAULT_VEL",
+    )
+}
+
 /// `MM_CALIB`'s wait time (line 42) is not passed to the AS `calibrate`, which waits its own.
 const VISION_VARIANTS: &[Excluded] = &[by(EVERY_LINE, Aspect::Waits, 42, "WaitTime")];
 const SPEED_KINDS: &[Excluded] = &[by(
@@ -575,6 +585,52 @@ fn assert_same_run(name: &str, krl: &KrlRun, run: &AsRun, printed: &[usize]) {
             assert_eq!(a.args, k.args, "{name}: {} vs {}", a.raw, k.raw);
         }
     }
+}
+
+/// The Flexiv translation of `name` runs on the stub `flexivrdk` against the fake vision server
+/// with `scenario` (the KUKA cell: the script keeps KUKA's pose convention) and `$IN` inputs,
+/// and matches the KRL run step by step (`equiv_support::compare`, leaving out `excluded`),
+/// with the same requests to the vision server (but for the commands `untranslated` that only
+/// an untranslated statement sends). Without python3 this is skipped.
+fn assert_same_flexiv_run(
+    name: &str,
+    krl: &KrlRun,
+    scenario: Scenario,
+    inputs: &[usize],
+    excluded: &[Excluded],
+    untranslated: &[u32],
+) {
+    let Some(py) = equiv_support::python() else {
+        return;
+    };
+    let server = Server::start(scenario, "127.0.0.1:0").expect("server starts");
+    let p = equiv_support::Program::fixture(name);
+    let t = equiv_support::to_flexiv_for(
+        &p,
+        Some(VisionServer {
+            ip: "127.0.0.1".parse().expect("ip"),
+            port: server.addr().port(),
+            origin: "test server".into(),
+        }),
+    );
+    let findings = equiv_support::findings(&t);
+    let calls = equiv_support::run_flexiv(py, &t.text, inputs)
+        .unwrap_or_else(|e| panic!("{name} (Flexiv): {e}"));
+    equiv_support::compare(
+        &equiv_support::krl_steps(&krl.r),
+        &equiv_support::flexiv_steps(&calls),
+        equiv_support::Brand::Flexiv,
+        &findings,
+        excluded,
+    )
+    .unwrap_or_else(|e| panic!("{name} (Flexiv): {e}"));
+    let mut want = commands(&krl.requests);
+    want.retain(|c| !c.is_some_and(|c| untranslated.contains(&c)));
+    assert_eq!(
+        commands(&server.requests()),
+        want,
+        "{name} (Flexiv): requests"
+    );
 }
 
 // ----- cells ---------------------------------------------------------------------------------
@@ -723,6 +779,14 @@ fn pick_cycle_runs_like_the_krl_original() {
     assert_eq!(run.end, End::Done, "{}", run.text);
     assert_same_run("pick_cycle", &krl, &run, &[]);
     assert_eq!(literals_converted(&krl, &run, "pick_cycle"), 4);
+    assert_same_flexiv_run(
+        "pick_cycle",
+        &krl,
+        sc.clone(),
+        &[10, 11],
+        &[flexiv_initmov(9)],
+        &[],
+    );
 
     // Approach, pick, retreat per pose: the pick is the pose as received.
     let picks: Vec<[f64; 6]> = run
@@ -753,6 +817,14 @@ fn bin_pick_runs_like_the_krl_original() {
     // Motions 2 and 17 (each cycle's first) are the literal with general angles.
     assert_same_run("bin_pick", &krl, &run, &[2, 17]);
     assert_eq!(literals_converted(&krl, &run, "bin_pick"), 5);
+    assert_same_flexiv_run(
+        "bin_pick",
+        &krl,
+        sc.clone(),
+        &[3, 4],
+        &[flexiv_initmov(10)],
+        &[],
+    );
     let g = dat_globals(&krl, &run, "bin_pick");
     assert!(g.contains(&("picked".into(), 6.0, Some(6.0))), "{g:?}");
     assert!(g.contains(&("err_code".into(), 0.0, Some(0.0))), "{g:?}");
@@ -964,6 +1036,23 @@ fn depal_plan_runs_like_the_krl_original() {
     let run = run_as(&fixture("depal_plan"), Some(for_kawasaki(&sc)), &[]);
     assert_eq!(run.end, End::Done, "{}", run.text);
     assert_same_run("depal_plan", &krl, &run, &[]);
+    // Line 26: LIN to axis values has no Flexiv counterpart (TR001): not made.
+    assert_same_flexiv_run(
+        "depal_plan",
+        &krl,
+        sc.clone(),
+        &[],
+        &[
+            flexiv_initmov(10),
+            by(
+                26,
+                Aspect::Motion,
+                26,
+                "LIN to axis values has no counterpart",
+            ),
+        ],
+        &[],
+    );
     let g = dat_globals(&krl, &run, "depal_plan");
     for (name, v) in [
         ("to_pick", 3.0),
@@ -1001,6 +1090,28 @@ fn vision_variants_run_like_the_krl_original() {
     let run = run_as(&fixture("vision_variants"), Some(for_kawasaki(&sc)), &[]);
     assert_eq!(run.end, End::Done, "{}", run.text);
     assert_same_run("vision_variants", &krl, &run, &[]);
+    // Line 42: MM_CALIB is not translated for Flexiv (TR001): its motions and waits are not
+    // made. Lines 9, 19, 30, 39: the speed is not set (KRL: none); the script's default.
+    assert_same_flexiv_run(
+        "vision_variants",
+        &krl,
+        sc.clone(),
+        &[],
+        &[
+            by(42, Aspect::Motion, 42, "`MM_CALIB` moves the robot"),
+            by(9, Aspect::Speed, 9, "the PTP speed ($VEL_AXIS) is not set"),
+            by(19, Aspect::Speed, 19, "the path speed ($VEL.CP) is not set"),
+            by(
+                30,
+                Aspect::Speed,
+                30,
+                "the PTP speed ($VEL_AXIS) is not set",
+            ),
+            by(39, Aspect::Speed, 39, "the path speed ($VEL.CP) is not set"),
+        ],
+        // MM_CALIB's calibration requests.
+        &[701],
+    );
     let g = dat_globals(&krl, &run, "vision_variants");
     for (name, v) in [
         ("dy_num", 2.0),
