@@ -184,14 +184,6 @@ fn run_as(src: &Path, scenario: Option<Scenario>, inputs: &[i64]) -> AsRun {
     run_as_edited(src, scenario, inputs, &|t| t.to_string())
 }
 
-fn first_program(text: &str) -> String {
-    text.lines()
-        .find_map(|l| l.strip_prefix(".PROGRAM "))
-        .and_then(|h| h.split('(').next())
-        .expect("a program")
-        .to_string()
-}
-
 struct KrlRun {
     r: RunResult,
     requests: Vec<RequestLog>,
@@ -454,20 +446,10 @@ fn krl_outputs(krl: &KrlRun) -> Vec<i64> {
     krl.r.outputs.iter().map(|n| *n as i64).collect()
 }
 
-use equiv_support::{Aspect, EVERY_LINE, Excluded};
+use equiv_support::{Aspect, EVERY_LINE, Excluded, by, first_program};
 
-/// Leave `aspect` out at `line`, because of a finding at line `because` saying `finding`.
-const fn by(line: usize, aspect: Aspect, because: usize, finding: &'static str) -> Excluded {
-    Excluded {
-        line,
-        aspect,
-        because,
-        finding,
-    }
-}
-
-// What the AS translations report they do not keep (see `transpile_equiv.rs` for the same
-// fixtures on both targets).
+// What the AS translations of the cells report they do not keep (`transpile_equiv.rs` has the
+// fixtures without vision, on both targets).
 /// `BAS(#INITMOV)` at `line`: KUKA's default speeds (krlkit: 100 %, 2 m/s) become AS's
 /// conservative defaults until the program sets its own.
 const fn initmov(line: usize) -> Excluded {
@@ -490,60 +472,6 @@ const fn flexiv_initmov(line: usize) -> Excluded {
 
 /// `MM_CALIB`'s wait time (line 42) is not passed to the AS `calibrate`, which waits its own.
 const VISION_VARIANTS: &[Excluded] = &[by(EVERY_LINE, Aspect::Waits, 42, "WaitTime")];
-const SPEED_KINDS: &[Excluded] = &[by(
-    4,
-    Aspect::Speed,
-    4,
-    "the speed of this motion is not known",
-)];
-const BLEND_AFTER_CALL: &[Excluded] = &[
-    by(9, Aspect::Blend, 9, "changes the blending distance"),
-    by(
-        13,
-        Aspect::Speed,
-        13,
-        "the speed of this motion is not known here",
-    ),
-];
-const SPLINE_TRIGGER: &[Excluded] = &[
-    by(
-        5,
-        Aspect::Speed,
-        5,
-        "the speed of this motion is not known here",
-    ),
-    by(
-        9,
-        Aspect::Speed,
-        9,
-        "the speed of this motion is not known here",
-    ),
-    by(
-        7,
-        Aspect::Blend,
-        6,
-        "a SPLINE block becomes plain LIN/CIRC motions",
-    ),
-    by(
-        8,
-        Aspect::Blend,
-        6,
-        "a SPLINE block becomes plain LIN/CIRC motions",
-    ),
-    by(
-        11,
-        Aspect::OutputTiming,
-        11,
-        "the action runs before the next motion starts",
-    ),
-    by(
-        13,
-        Aspect::OutputTiming,
-        13,
-        "the action runs after the next motion has ended",
-    ),
-];
-
 /// Every check that compares a finished AS run with the KRL original (`.dat` results too
 /// where the program has them).
 fn assert_same_run(name: &str, krl: &KrlRun, run: &AsRun, printed: &[usize]) {
@@ -552,9 +480,6 @@ fn assert_same_run(name: &str, krl: &KrlRun, run: &AsRun, printed: &[usize]) {
     // and waits in order (`transpile_equiv.rs` does this for the fixtures without vision).
     let excluded = match name {
         "vision_variants" => VISION_VARIANTS,
-        "speed_kinds" => SPEED_KINDS,
-        "blend_after_call" => BLEND_AFTER_CALL,
-        "spline_trigger" => SPLINE_TRIGGER,
         "pallet_pattern" => &[initmov(8)],
         "pick_cycle" => &[initmov(9)],
         "bin_pick" | "depal_plan" => &[initmov(10)],
@@ -1204,29 +1129,5 @@ fn every_fixture_runs_or_stops_at_a_located_error() {
             continue;
         }
         assert!(got.starts_with(want), "{name}: {got}");
-    }
-}
-
-#[test]
-fn issue_fixtures_move_like_the_krl_original() {
-    // The regression fixtures of the translator's motion semantics: same targets, outputs and
-    // requests as the KRL run, and per motion the speed of its own kind and value, the
-    // blending and the frames of the KRL trace (`assert_same_run`; what a TR002 says is not
-    // kept is listed with the exclusions above).
-    for name in [
-        "speed_kinds",
-        "blend_after_call",
-        "calls_in_expressions",
-        "spline_trigger",
-    ] {
-        let krl = run_krl(&fixture(name), None, &[]);
-        assert!(
-            matches!(krl.r.end, interp::End::Normal),
-            "{name}: {:?}",
-            krl.r.end
-        );
-        let run = run_as(&fixture(name), None, &[]);
-        assert_eq!(run.end, End::Done, "{name}: {}", run.text);
-        assert_same_run(name, &krl, &run, &[]);
     }
 }

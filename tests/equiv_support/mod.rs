@@ -338,7 +338,8 @@ pub fn findings(t: &Translation) -> Vec<(String, usize, String)> {
 
 // ----- AS ------------------------------------------------------------------------------------
 
-fn first_program(text: &str) -> String {
+/// The name of the first `.PROGRAM` of an AS text (the one a run starts).
+pub fn first_program(text: &str) -> String {
     text.lines()
         .find_map(|l| l.strip_prefix(".PROGRAM "))
         .and_then(|h| h.split('(').next())
@@ -690,6 +691,21 @@ pub struct Excluded {
     pub because: usize,
     /// Part of the message of that finding.
     pub finding: &'static str,
+}
+
+/// Leave `aspect` out at `line`, because of a finding at line `because` saying `finding`.
+pub const fn by(line: usize, aspect: Aspect, because: usize, finding: &'static str) -> Excluded {
+    Excluded {
+        line,
+        aspect,
+        because,
+        finding,
+    }
+}
+
+/// Leave `aspect` out at `line`, where a finding says `finding`.
+pub const fn ex(line: usize, aspect: Aspect, finding: &'static str) -> Excluded {
+    by(line, aspect, line, finding)
 }
 
 /// [`Excluded::line`] for an exclusion that holds at every motion.
