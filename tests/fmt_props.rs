@@ -165,7 +165,44 @@ proptest! {
     }
 
     #[test]
+    fn case_edits_by_piece_are_the_trees(text in file()) {
+        prop_assert_eq!(case_edits_by_piece(&text), krlkit::fmt::case_edits(&text));
+    }
+
+    #[test]
     fn any_text_never_panics_and_is_equivalent(text in "\\PC{0,200}", opts in options()) {
         promises(&text, &opts)?;
     }
+}
+
+/// KRL005's edits as `check` gathers them, one piece of the file at a time.
+fn case_edits_by_piece(text: &str) -> Vec<krlkit::diag::Edit> {
+    let mut edits = krlkit::fmt::CaseEdits::default();
+    let diagnostics = krlkit::syntax::parse_pieces(text, |p| edits.add(p, text));
+    edits.finish(text, &diagnostics)
+}
+
+#[test]
+fn case_edits_by_piece_are_the_trees_on_every_repository_file() {
+    fn walk(dir: &std::path::Path, out: &mut Vec<std::path::PathBuf>) {
+        for e in std::fs::read_dir(dir).unwrap().map(Result::unwrap) {
+            let p = e.path();
+            if p.is_dir() {
+                walk(&p, out);
+            } else if krlkit::files::has_krl_extension(&p) {
+                out.push(p);
+            }
+        }
+    }
+    let root = std::path::Path::new(env!("CARGO_MANIFEST_DIR"));
+    let mut files = Vec::new();
+    walk(&root.join("tests/fixtures"), &mut files);
+    let mut with_edits = 0;
+    for f in files {
+        let text = krlkit::syntax::decode(&std::fs::read(&f).unwrap()).text;
+        let whole = krlkit::fmt::case_edits(&text);
+        with_edits += usize::from(!whole.is_empty());
+        assert_eq!(case_edits_by_piece(&text), whole, "{}", f.display());
+    }
+    assert!(with_edits > 10);
 }

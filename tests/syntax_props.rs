@@ -51,6 +51,18 @@ fn krl_ish() -> impl Strategy<Value = String> {
         Just("'"),
         Just("ä"),
         Just("\u{0}"),
+        Just("DEFDAT "),
+        Just("ENDDAT"),
+        Just("DEFFCT INT "),
+        Just("ENDFCT"),
+        Just("ELSE"),
+        Just("DECL INT "),
+        Just("STRUC s INT a"),
+        Just("RETURN"),
+        Just("LOOP"),
+        Just("ENDLOOP"),
+        Just("GLOBAL "),
+        Just("a()"),
     ];
     prop::collection::vec(piece, 0..60).prop_map(|v| v.concat())
 }
@@ -70,6 +82,14 @@ proptest! {
     #[test]
     fn the_outline_reports_exactly_what_the_tree_does(text in krl_ish()) {
         prop_assert_eq!(krlkit::syntax::diagnostics(&text), parse(&text).diagnostics);
+    }
+
+    #[test]
+    fn pieces_lower_to_the_trees_ast(text in krl_ish()) {
+        let p = parse(&text);
+        let (ast, diagnostics) = krlkit::syntax::ast::lower_pieces(&text);
+        prop_assert_eq!(ast, p.ast(&text));
+        prop_assert_eq!(diagnostics, p.diagnostics);
     }
 
     #[test]
@@ -203,8 +223,8 @@ fn failing_named_fields_are_not_retried_as_calls() {
     }
 }
 
-/// `krlkit parse` reads diagnostics from an outline; on every KRL file of the repository they
-/// are the full parse's.
+/// `krlkit parse` reads diagnostics from an outline and `check` lowers files piece by piece;
+/// on every KRL file of the repository both agree with the full parse.
 #[test]
 fn outline_diagnostics_agree_on_every_repository_file() {
     fn walk(dir: &std::path::Path, out: &mut Vec<std::path::PathBuf>) {
@@ -228,6 +248,9 @@ fn outline_diagnostics_agree_on_every_repository_file() {
         let full = parse(&text).diagnostics;
         with_errors += usize::from(!full.is_empty());
         assert_eq!(krlkit::syntax::diagnostics(&text), full, "{}", f.display());
+        let (ast, diagnostics) = krlkit::syntax::ast::lower_pieces(&text);
+        assert_eq!(diagnostics, full, "{}", f.display());
+        assert_eq!(ast, parse(&text).ast(&text), "{}", f.display());
     }
     assert!(with_errors > 10, "the files must include broken ones");
 }

@@ -51,7 +51,7 @@ fn build<'a>(
     mark_diagnostics(parse, out);
 }
 
-fn is_block(kind: NodeKind) -> bool {
+pub(super) fn is_block(kind: NodeKind) -> bool {
     use NodeKind::*;
     matches!(
         kind,
@@ -189,7 +189,7 @@ fn fill_gaps(text: &str, lines: &mut Vec<Line<'_>>) {
 }
 
 /// Inline-form metadata: `;FOLD … ;%{PE}…`, `;FOLD … ;%{h}`, `;%{E}` … all carry `%{`.
-fn has_inline_form_mark(node: Node<'_>, text: &str) -> bool {
+pub(super) fn has_inline_form_mark(node: Node<'_>, text: &str) -> bool {
     node.children().any(|e| {
         matches!(e, Element::Token(t)
             if matches!(t.kind, TokenKind::Comment | TokenKind::FoldOpen | TokenKind::FoldClose)

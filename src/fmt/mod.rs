@@ -35,12 +35,14 @@
 //!   encoding and BOM are the caller's to keep (the CLI re-encodes with the file's encoding).
 //! - Idempotent: `format(format(x)) == format(x)`; never panics.
 
+mod case;
 mod fix;
 mod layout;
 mod options;
 mod render;
 mod verify;
 
+pub use case::CaseEdits;
 pub use fix::{Applied, apply_safe_fixes};
 pub use options::{Case, FmtOptions, Spacing};
 pub use verify::{Equivalence, case_edits, case_edits_in, check_equivalent};

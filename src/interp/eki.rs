@@ -376,7 +376,7 @@ fn load_config(m: &Machine, name: &str) -> R<ChannelConfig> {
 }
 
 fn m_err_never() -> super::machine::Stop {
-    super::machine::Stop::Error(super::RuntimeError {
+    super::machine::Stop::from(super::RuntimeError {
         file: String::new(),
         line: 0,
         message: "EKI channel vanished".into(),

@@ -10,6 +10,7 @@ use crate::syntax::ast::{
 mod bas;
 mod forms;
 mod interrupt;
+mod scalar;
 mod settings;
 mod signals;
 mod submit;
@@ -24,17 +25,24 @@ use super::value::{AXIS_FIELDS, BaseType, CART_FIELDS, Types, Value};
 use super::{
     End, Event, Location, Options, Record, RunResult, RuntimeError, TraceSink, VisionPose, WaitKind,
 };
+use scalar::Scalar;
 
 /// Where a value lives: the target of assignments and OUT parameters.
 #[derive(Debug, Clone, PartialEq)]
 pub(crate) struct Place {
     root: Root,
-    path: Vec<Seg>,
+    path: Path,
 }
+
+/// Element indices and fields below a root: rarely more than two, kept inline.
+type Path = smallvec::SmallVec<[Seg; 2]>;
 
 impl Place {
     fn root(root: Root) -> Place {
-        Place { root, path: vec![] }
+        Place {
+            root,
+            path: Path::new(),
+        }
     }
 }
 
@@ -97,25 +105,21 @@ impl Frame {
     }
 }
 
-/// Why execution of a block stopped early.
+/// Why execution of a block stopped early. Boxed, so that a result that did not stop is
+/// small (most statements and expressions do not).
 pub(crate) enum Stop {
-    Error(RuntimeError),
-    Halt {
-        file: String,
-        line: usize,
-    },
+    Error(Box<RuntimeError>),
+    /// Where the HALT was.
+    Halt(Box<RuntimeError>),
     /// `RESUME` in an interrupt routine: abandon the routines called since the level (call
     /// depth) where the interrupt was declared; that level continues after its current call.
-    Resume {
-        depth: usize,
-        file: String,
-        line: usize,
-    },
+    /// The depth, and where the RESUME was.
+    Resume(Box<(usize, RuntimeError)>),
 }
 
 impl From<RuntimeError> for Stop {
     fn from(e: RuntimeError) -> Stop {
-        Stop::Error(e)
+        Stop::Error(Box::new(e))
     }
 }
 
@@ -152,6 +156,8 @@ pub(crate) struct Machine<'p> {
     sink: Option<&'p mut (dyn TraceSink + 'p)>,
     /// Per module, per 0-based line: statements run there.
     hits: Vec<Vec<u64>>,
+    /// (module, offset, 0-based line) of statements run lately, by offset.
+    line_cache: Vec<(usize, u32, usize)>,
     messages: Vec<String>,
     steps: u64,
     /// TRIGGER actions waiting for the next motion.
@@ -182,6 +188,7 @@ pub(crate) struct Machine<'p> {
 }
 
 const TIMERS: usize = 64;
+const LINE_CACHE: usize = 256;
 
 #[cfg(test)]
 thread_local! {
@@ -235,6 +242,7 @@ impl<'p> Machine<'p> {
                 .iter()
                 .map(|m| vec![0; m.lines.line_count()])
                 .collect(),
+            line_cache: vec![(usize::MAX, 0, 0); LINE_CACHE],
             messages: Vec::new(),
             steps: 0,
             pending_triggers: Vec::new(),
@@ -277,7 +285,7 @@ impl<'p> Machine<'p> {
     }
 
     pub(crate) fn err(&self, message: impl Into<String>) -> Stop {
-        Stop::Error(self.error(message))
+        Stop::Error(Box::new(self.error(message)))
     }
 
     pub(crate) fn error(&self, message: impl Into<String>) -> RuntimeError {
@@ -479,11 +487,14 @@ impl<'p> Machine<'p> {
                         self.call_routine(mi, ri, &[]).map(|_| ())
                     }) {
                     Ok(()) => End::Normal,
-                    Err(Stop::Halt { file, line }) => End::Halt { file, line },
-                    Err(Stop::Error(e)) => End::Error(e),
-                    Err(Stop::Resume { file, line, .. }) => End::Error(RuntimeError {
-                        file,
-                        line,
+                    Err(Stop::Halt(h)) => End::Halt {
+                        file: h.file,
+                        line: h.line,
+                    },
+                    Err(Stop::Error(e)) => End::Error(*e),
+                    Err(Stop::Resume(r)) => End::Error(RuntimeError {
+                        file: r.1.file,
+                        line: r.1.line,
                         message: "RESUME found no routine to return to".into(),
                     }),
                 }
@@ -491,7 +502,7 @@ impl<'p> Machine<'p> {
         };
         self.eki.close_all();
         let end = match (end, self.expire_pulses(true)) {
-            (End::Normal, Err(Stop::Error(e))) => End::Error(e),
+            (End::Normal, Err(Stop::Error(e))) => End::Error(*e),
             (end, _) => end,
         };
         let end = self.submit_at_end(end);
@@ -941,7 +952,7 @@ impl<'p> Machine<'p> {
         self.declared_scope = saved_scope;
         let result = match result {
             // The routine called from the interrupt's level is abandoned; that level goes on.
-            Err(Stop::Resume { depth, .. }) if self.frames.len() == depth => Ok(None),
+            Err(Stop::Resume(r)) if self.frames.len() == r.0 => Ok(None),
             other => other,
         };
         let ret = result?;
@@ -1030,10 +1041,17 @@ impl<'p> Machine<'p> {
     fn exec(&mut self, s: &Stmt) -> R<Flow> {
         self.loc = (self.cur_module(), s.span.start);
         let (mi, off) = self.loc;
-        if let Some(h) = self.prog.modules.get(mi).and_then(|m| {
-            let line = m.lines.line_of(off as usize);
-            self.hits.get_mut(mi)?.get_mut(line)
-        }) {
+        // The statements of a loop come round again: their lines are remembered.
+        let cached = &mut self.line_cache[(off as usize ^ mi.wrapping_mul(31)) % LINE_CACHE];
+        let line = match *cached {
+            (m, o, line) if m == mi && o == off => Some(line),
+            _ => self.prog.modules.get(mi).map(|m| {
+                let line = m.lines.line_of(off as usize);
+                *cached = (mi, off, line);
+                line
+            }),
+        };
+        if let Some(h) = line.and_then(|l| self.hits.get_mut(mi)?.get_mut(l)) {
             *h += 1;
         }
         self.tick()?;
@@ -1176,10 +1194,7 @@ impl<'p> Machine<'p> {
             StmtKind::Halt => {
                 let e = self.error("HALT");
                 self.message(format!("{}:{}: HALT", e.file, e.line));
-                return Err(Stop::Halt {
-                    file: e.file,
-                    line: e.line,
-                });
+                return Err(Stop::Halt(Box::new(e)));
             }
             StmtKind::Return { value } => {
                 let v = match value {
@@ -1691,7 +1706,7 @@ impl<'p> Machine<'p> {
                 if indices.iter().all(|i| i.is_none()) {
                     return Ok(p);
                 }
-                let mut idx = Vec::new();
+                let mut idx = smallvec::SmallVec::<[i64; 3]>::new();
                 for i in indices {
                     match i {
                         Some(e) => idx.push(self.eval_int(e)?),
@@ -1825,7 +1840,7 @@ impl<'p> Machine<'p> {
         let mut slot = match root {
             Some(r) => r,
             None => {
-                return Err(Stop::Error(RuntimeError {
+                return Err(Stop::from(RuntimeError {
                     file: String::new(),
                     line: 0,
                     message: "dangling reference".into(),
@@ -2175,6 +2190,9 @@ impl<'p> Machine<'p> {
     }
 
     pub(crate) fn eval_bool(&mut self, e: &Expr) -> R<bool> {
+        if let Some(Scalar::Bool(b)) = self.scalar(e) {
+            return Ok(b);
+        }
         match self.eval(e)? {
             Value::Bool(b) => Ok(b),
             v => Err(self.err(format!("expected BOOL, found {}", v.kind_name()))),
@@ -2182,6 +2200,11 @@ impl<'p> Machine<'p> {
     }
 
     pub(crate) fn eval_int(&mut self, e: &Expr) -> R<i64> {
+        match self.scalar(e) {
+            Some(Scalar::Int(i)) => return Ok(i),
+            Some(Scalar::Real(r)) => return Ok(r.round() as i64),
+            _ => {}
+        }
         match self.eval(e)? {
             Value::Int(i) => Ok(i),
             Value::Real(r) => Ok(r.round() as i64),
@@ -2278,7 +2301,12 @@ impl<'p> Machine<'p> {
                     }
                 }
             }
-            ExprKind::Binary { op, lhs, rhs } => return self.binary(*op, lhs, rhs),
+            ExprKind::Binary { op, lhs, rhs } => {
+                return match self.scalar(e) {
+                    Some(v) => Ok(v.value()),
+                    None => self.binary(*op, lhs, rhs),
+                };
+            }
             ExprKind::Aggregate { type_name, fields } => {
                 let mut vals = Vec::new();
                 for (n, fe) in fields {
@@ -2332,9 +2360,6 @@ impl<'p> Machine<'p> {
             _ => {}
         }
         let b = self.operand(rhs)?;
-        if let Some(v) = plain_arithmetic(op, &a, &b) {
-            return Ok(v);
-        }
         let num = |v: &Value| v.as_f64();
         Ok(match op {
             B::Geo => super::frame::compose(&a, &b).ok_or_else(|| {
@@ -2482,46 +2507,6 @@ impl<'p> Machine<'p> {
     pub(crate) fn globals_mut(&mut self) -> &mut Globals {
         &mut self.globals
     }
-}
-
-/// `a op b` for two INTs or two REALs where it gives a value (no overflow, no division by
-/// zero): what [`Machine::binary`] gives, without its general dispatch. `None`: ask it.
-fn plain_arithmetic(op: BinaryOp, a: &Value, b: &Value) -> Option<Value> {
-    use BinaryOp as B;
-    Some(match (a, b) {
-        (Value::Int(x), Value::Int(y)) => {
-            let (x, y) = (*x, *y);
-            match op {
-                B::Add | B::Sub | B::Mul | B::Div => {
-                    let r = match op {
-                        B::Add => x + y,
-                        B::Sub => x - y,
-                        B::Mul => x * y,
-                        _ if y != 0 => x / y,
-                        _ => return None,
-                    };
-                    if !(super::value::INT_MIN..=super::value::INT_MAX).contains(&r) {
-                        return None;
-                    }
-                    Value::Int(r)
-                }
-                B::Eq => Value::Bool(x == y),
-                B::Ne => Value::Bool(x != y),
-                B::Lt => Value::Bool(x < y),
-                B::Gt => Value::Bool(x > y),
-                B::Le => Value::Bool(x <= y),
-                B::Ge => Value::Bool(x >= y),
-                _ => return None,
-            }
-        }
-        (Value::Real(x), Value::Real(y)) => match op {
-            B::Add => Value::Real(x + y),
-            B::Sub => Value::Real(x - y),
-            B::Mul => Value::Real(x * y),
-            _ => return None,
-        },
-        _ => return None,
-    })
 }
 
 /// Dimensions to declare for an IN parameter declared `x[]`: take them from the incoming value.

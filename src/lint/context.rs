@@ -15,13 +15,17 @@ use crate::sema::{
     Access, ConstValue, FileId, Loc, NameId, Resolved, RobotId, RoutineId, Scope, Sema, SymbolId,
     SymbolKind, Ty, TyKind, UseKind,
 };
-use crate::syntax::ast::{Expr, ExprKind, Routine, SourceFile, StmtKind};
+use crate::syntax::ast::{
+    DatModule, Decl, Definition, Expr, ExprKind, Ident, Lowered, Routine, SourceFile, Stmt,
+    StmtKind,
+};
 
-/// One file while its syntax tree is held (first pass).
+/// One file in the first pass. Its AST may never have been whole (a big file is lowered and
+/// summarised one statement at a time): what the rules need from it is in `facts`.
 pub struct SyntaxCtx<'a> {
     pub path: &'a str,
     pub text: &'a str,
-    pub ast: &'a SourceFile,
+    pub facts: &'a SyntaxFacts,
     /// The parser's KRL001 findings.
     pub syntax_errors: &'a [Diagnostic],
     /// File name without extension, lower case (`$config` for `$config.dat`).
@@ -37,7 +41,7 @@ impl<'a> SyntaxCtx<'a> {
     pub fn new(
         path: &'a str,
         text: &'a str,
-        ast: &'a SourceFile,
+        facts: &'a SyntaxFacts,
         syntax_errors: &'a [Diagnostic],
     ) -> SyntaxCtx<'a> {
         let p = std::path::Path::new(path);
@@ -49,11 +53,135 @@ impl<'a> SyntaxCtx<'a> {
         SyntaxCtx {
             path,
             text,
-            ast,
+            facts,
             syntax_errors,
             stem: part(p.file_stem()),
             ext: part(p.extension()),
             case_edits: None,
+        }
+    }
+}
+
+/// What the syntax rules need from a file's AST, gathered from the whole AST ([`SyntaxFacts::of`])
+/// or one lowered piece at a time ([`SyntaxFacts::add`]).
+#[derive(Debug, Default)]
+pub struct SyntaxFacts {
+    /// Names the file declares (routines, parameters, variables, types, fields, enum values,
+    /// SIGNALs, IMPORTs, labels, the DEFDAT) that are longer than KRL allows (KRL002).
+    pub long_names: Vec<Ident>,
+    /// The first routine's name (KRL003).
+    pub first_routine: Option<Ident>,
+    /// The first data list's name (KRL003).
+    pub dat: Option<Ident>,
+    /// Where [`SyntaxFacts::add`] is: 0 top level, 1 a routine, 2 the first data list, 3 a
+    /// later one (which the AST drops).
+    open: u8,
+}
+
+impl SyntaxFacts {
+    pub fn of(ast: &SourceFile) -> SyntaxFacts {
+        let mut f = SyntaxFacts::default();
+        for r in &ast.routines {
+            f.routine(r);
+            for d in &r.decls {
+                f.decl(d);
+            }
+            for d in &r.definitions {
+                f.definition(d);
+            }
+            walk::each_stmt(&r.body, &mut |s| f.declares(s));
+        }
+        if let Some(d) = &ast.dat {
+            f.data_list(d);
+            for x in &d.decls {
+                f.decl(x);
+            }
+            for x in &d.definitions {
+                f.definition(x);
+            }
+        }
+        f
+    }
+
+    pub fn add(&mut self, event: &Lowered) {
+        match event {
+            Lowered::Routine(r) => {
+                self.routine(r);
+                self.open = 1;
+            }
+            Lowered::Dat(d) if self.dat.is_none() => {
+                self.data_list(d);
+                self.open = 2;
+            }
+            Lowered::Dat(_) => self.open = 3,
+            Lowered::Stmt(s) if self.open == 1 => {
+                walk::each_stmt(std::slice::from_ref(s), &mut |s| self.declares(s))
+            }
+            Lowered::Stmt(s) if self.open == 2 => match &s.kind {
+                StmtKind::Decl(d) => self.decl(d),
+                StmtKind::Definition(d) => self.definition(d),
+                _ => {}
+            },
+            Lowered::Close { .. } => self.open = 0,
+            Lowered::Stmt(_) | Lowered::Header(_) => {}
+        }
+    }
+
+    fn name(&mut self, n: &Ident) {
+        let max = catalog().limits.krl_identifier_max;
+        if n.text.chars().count() > max && !n.is_system() {
+            self.long_names.push(n.clone());
+        }
+    }
+
+    fn routine(&mut self, r: &Routine) {
+        if self.first_routine.is_none() {
+            self.first_routine = Some(r.name.clone());
+        }
+        self.name(&r.name);
+        for p in &r.params {
+            self.name(&p.name);
+        }
+    }
+
+    fn data_list(&mut self, d: &DatModule) {
+        self.dat = Some(d.name.clone());
+        self.name(&d.name);
+    }
+
+    /// What one statement of a routine declares (not what nested ones do).
+    fn declares(&mut self, s: &Stmt) {
+        match &s.kind {
+            StmtKind::Decl(d) => self.decl(d),
+            StmtKind::Definition(d) => self.definition(d),
+            StmtKind::Label { name } => self.name(name),
+            _ => {}
+        }
+    }
+
+    fn decl(&mut self, d: &Decl) {
+        for v in &d.vars {
+            self.name(&v.name);
+        }
+    }
+
+    fn definition(&mut self, d: &Definition) {
+        match d {
+            Definition::Struc(s) => {
+                self.name(&s.name);
+                for f in &s.fields {
+                    self.name(&f.name);
+                }
+            }
+            Definition::Enum(e) => {
+                self.name(&e.name);
+                for v in &e.values {
+                    self.name(v);
+                }
+            }
+            Definition::Signal(s) => self.name(&s.name),
+            Definition::Import(i) => self.name(&i.name),
+            Definition::Channel(_) | Definition::Ext(_) => {}
         }
     }
 }

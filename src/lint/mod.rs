@@ -1,10 +1,11 @@
 //! The linter: checks KRL programs against the KRL rules and the Mech-Mind interface catalog.
 //!
 //! Pipeline, streamed so that a whole controller fits in little memory:
-//! 1. every file is parsed in parallel; the syntax rules (KRL001–KRL004) run on its tree, the
-//!    file is summarised for the semantic model ([`crate::sema::FileSummary`]) and the tree is
-//!    dropped — except for files the Mech-Mind rules look at (those calling an `MM_` routine
-//!    or writing a `$FLAG`);
+//! 1. every file is parsed in parallel, one piece at a time ([`crate::syntax::parse_pieces`]):
+//!    each piece is lowered, summarised for the semantic model ([`crate::sema::SummaryBuilder`])
+//!    and dropped, and the syntax rules (KRL001–KRL006) run on what the pieces showed; only the
+//!    files the Mech-Mind rules look at (those calling an `MM_` routine or writing a `$FLAG`)
+//!    keep their AST;
 //! 2. the workspace model is built ([`crate::sema::Sema`]: robots, modules, scopes, every name
 //!    resolved, types);
 //! 3. the model rules run on every file in parallel ([`context::FileCtx`]).
@@ -36,9 +37,12 @@ pub use registry::{Check, FIXES, RULES, Rule, fix_of, nearest_code, rule};
 pub use session::{Affected, Session};
 
 use crate::diag::{Diagnostic, FileReport, LineIndex};
-use crate::sema::{FileId, FileSummary, KssVersion, Sema, SemaInput, Stats, Workspace};
-use crate::syntax::ast::{ExprKind, SourceFile, StmtKind};
-use context::{FileCtx, FileText, Project, SyntaxCtx};
+use crate::sema::{
+    FileId, FileSummary, KssVersion, Sema, SemaInput, Stats, SummaryBuilder, Workspace,
+    WorkspaceFile,
+};
+use crate::syntax::ast::{ExprKind, FileBuilder, PieceLowerer, SourceFile, StmtKind};
+use context::{FileCtx, FileText, Project, SyntaxCtx, SyntaxFacts};
 
 /// One file to check: the path as the user should see it and its decoded text.
 #[derive(Debug, Clone)]
@@ -141,38 +145,7 @@ pub fn lint_workspace(
     let Workspace { files, am_ini, .. } = ws;
     let pass1: Vec<Pass1> = files
         .into_par_iter()
-        .map(|f| {
-            let parse = crate::syntax::parse(&f.text);
-            // Before lowering, so that the tree, the formatter's lines and the AST are never
-            // all held at once (one file may be 50 MB).
-            let case_edits = (!config.disabled.contains(rules::krl005::RULE.code))
-                .then(|| crate::fmt::case_edits_in(&f.text, &parse));
-            let ast = parse.ast(&f.text);
-            drop(parse.tree);
-            let mut cx = SyntaxCtx::new(&f.path, &f.text, &ast, &parse.diagnostics);
-            cx.case_edits = case_edits;
-            let mut findings = Vec::new();
-            for rule in RULES {
-                if let Check::Syntax(check) = rule.check {
-                    run(rule, config, &mut findings, |out| check(&cx, out));
-                }
-            }
-            let summary = FileSummary::of(&ast);
-            let keep = mm_relevant(&ast);
-            Pass1 {
-                input: SemaInput {
-                    path: f.path.clone(),
-                    group: f.group,
-                    summary,
-                },
-                text: FileText {
-                    path: f.path,
-                    text: f.text,
-                },
-                findings,
-                ast: keep.then_some(ast),
-            }
-        })
+        .map(|f| first_pass(f, config))
         .collect();
     let mut texts = Vec::with_capacity(pass1.len());
     let mut inputs = Vec::with_capacity(pass1.len());
@@ -220,6 +193,95 @@ pub fn lint_workspace(
             })
             .collect(),
     }
+}
+
+/// The first pass over one file: parsed and lowered one piece at a time (see
+/// [`crate::syntax::parse_pieces`]), so neither its tree nor, unless the Mech-Mind rules need
+/// it, its AST is ever held whole (one file may be 50 MB); the syntax rules run on what the
+/// pieces showed, and the file is summarised for the model.
+fn first_pass(f: WorkspaceFile, config: &LintConfig) -> Pass1 {
+    // Only a file that names an `MM_` routine or `$FLAG` can need its AST in the model pass.
+    let keep = mentions_mm(&f.text);
+    let (diagnostics, facts, case_edits, ast, summary) = match pieces(&f.text, config, keep) {
+        Some(p) => p,
+        None => pieces(&f.text, config, true).expect("a whole AST is always summarised"),
+    };
+    let mut cx = SyntaxCtx::new(&f.path, &f.text, &facts, &diagnostics);
+    cx.case_edits = case_edits;
+    let mut findings = Vec::new();
+    for rule in RULES {
+        if let Check::Syntax(check) = rule.check {
+            run(rule, config, &mut findings, |out| check(&cx, out));
+        }
+    }
+    Pass1 {
+        input: SemaInput {
+            path: f.path.clone(),
+            group: f.group,
+            summary,
+        },
+        text: FileText {
+            path: f.path,
+            text: f.text,
+        },
+        findings,
+        ast: ast.filter(mm_relevant),
+    }
+}
+
+/// What the first pass learns from one file's pieces: the parser's findings, the syntax
+/// rules' facts, KRL005's edits (unless KRL005 is off), the AST if `keep`, and the summary.
+/// `None` when the file's order is one the summary cannot be streamed in (then call again
+/// with `keep`).
+type Pieces = (
+    Vec<Diagnostic>,
+    SyntaxFacts,
+    Option<Vec<crate::diag::Edit>>,
+    Option<SourceFile>,
+    FileSummary,
+);
+
+fn pieces(text: &str, config: &LintConfig, keep: bool) -> Option<Pieces> {
+    let mut lowerer = PieceLowerer::new(text);
+    let mut facts = SyntaxFacts::default();
+    let mut case =
+        (!config.disabled.contains(rules::krl005::RULE.code)).then(crate::fmt::CaseEdits::default);
+    let mut file = keep.then(FileBuilder::default);
+    let mut summary = SummaryBuilder::default();
+    let mut followed = true;
+    let diagnostics = crate::syntax::parse_pieces(text, |piece| {
+        if let Some(case) = &mut case {
+            case.add(piece, text);
+        }
+        lowerer.lower(piece, |event| {
+            facts.add(&event);
+            match &mut file {
+                Some(file) => file.add(event),
+                None => followed &= followed && summary.add(event),
+            }
+        });
+    });
+    if !followed {
+        return None;
+    }
+    let case_edits = case.map(|c| c.finish(text, &diagnostics));
+    let ast = file.map(FileBuilder::finish);
+    let summary = match &ast {
+        Some(ast) => FileSummary::of(ast),
+        None => summary.finish(),
+    };
+    Some((diagnostics, facts, case_edits, ast, summary))
+}
+
+/// Whether `text` has `MM_` or `$FLAG` anywhere (any case): else no statement of it can call
+/// an `MM_` routine or write a `$FLAG`.
+fn mentions_mm(text: &str) -> bool {
+    let b = text.as_bytes();
+    memchr::memchr_iter(b'_', b).any(|i| i >= 2 && b[i - 2..i].eq_ignore_ascii_case(b"MM"))
+        || memchr::memchr_iter(b'$', b).any(|i| {
+            b.get(i + 1..i + 5)
+                .is_some_and(|w| w.eq_ignore_ascii_case(b"FLAG"))
+        })
 }
 
 /// Whether the Mech-Mind rules need the file's tree: it calls an `MM_` routine or writes a
@@ -297,5 +359,71 @@ fn finish(path: &str, text: &str, mut diagnostics: Vec<Diagnostic>) -> FileRepor
         // Moved in once every file is checked (rules read every file's text until then).
         text: String::new(),
         diagnostics,
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// The first pass from pieces (streamed, and with the whole AST kept) against the tree:
+    /// parser findings, syntax facts, KRL005 edits, summary, the AST.
+    fn agrees(path: &str, text: &str) {
+        let parse = crate::syntax::parse(text);
+        let ast = parse.ast(text);
+        let whole = format!(
+            "{:?}",
+            (
+                &parse.diagnostics,
+                SyntaxFacts::of(&ast),
+                Some(crate::fmt::case_edits_in(text, &parse)),
+                FileSummary::of(&ast),
+            )
+        );
+        for keep in [false, true] {
+            let (d, facts, edits, kept, summary) = pieces(text, &LintConfig::default(), keep)
+                .or_else(|| pieces(text, &LintConfig::default(), true))
+                .unwrap();
+            let streamed = format!("{:?}", (d, facts, edits, summary));
+            assert!(streamed == whole, "{path} (keep {keep})");
+            assert!(kept.is_none_or(|kept| kept == ast), "{path}");
+        }
+        // A file that does not mention them can give the Mech-Mind rules nothing.
+        assert!(mentions_mm(text) || !mm_relevant(&ast), "{path}");
+    }
+
+    fn krl_files(dir: &std::path::Path, out: &mut Vec<std::path::PathBuf>) {
+        for e in std::fs::read_dir(dir).unwrap().map(Result::unwrap) {
+            let p = e.path();
+            if p.is_dir() {
+                krl_files(&p, out);
+            } else if crate::files::has_krl_extension(&p) {
+                out.push(p);
+            }
+        }
+    }
+
+    fn agrees_on(dir: &std::path::Path) -> usize {
+        let mut files = Vec::new();
+        krl_files(dir, &mut files);
+        for f in &files {
+            let text = crate::syntax::decode(&std::fs::read(f).unwrap()).text;
+            agrees(&f.display().to_string(), &text);
+        }
+        files.len()
+    }
+
+    #[test]
+    fn the_streamed_first_pass_is_the_trees_on_every_repository_file() {
+        let root = std::path::Path::new(env!("CARGO_MANIFEST_DIR"));
+        assert!(agrees_on(&root.join("tests/fixtures")) + agrees_on(&root.join("krl")) > 100);
+    }
+
+    /// `KRLKIT_CORPUS=/path/to/corpus cargo test --lib streamed_first_pass_on_the_corpus -- --ignored`
+    #[test]
+    #[ignore = "needs KRLKIT_CORPUS=<folder of real controller files>"]
+    fn the_streamed_first_pass_is_the_trees_on_the_corpus() {
+        let dir = std::env::var("KRLKIT_CORPUS").expect("set KRLKIT_CORPUS");
+        assert!(agrees_on(std::path::Path::new(&dir)) > 0);
     }
 }

@@ -8,7 +8,7 @@ use std::collections::HashMap;
 
 use rayon::prelude::*;
 
-use super::context::{FileCtx, InitSocket, Parsed, Project, SyntaxCtx, init_sockets};
+use super::context::{FileCtx, InitSocket, Parsed, Project, SyntaxCtx, SyntaxFacts, init_sockets};
 use super::{Check, EkiChannel, Input, LintConfig, RULES, finish, mm_relevant, run};
 use crate::diag::FileReport;
 use crate::sema::{FileId, FileSummary, Sema, SemaInput, Update};
@@ -249,7 +249,8 @@ impl Session {
     fn check_index(&self, i: usize) -> FileReport {
         let p = &self.files[i];
         let tree = p.tree();
-        let mut cx = SyntaxCtx::new(&p.path, &p.text, &tree, &p.syntax_errors);
+        let facts = SyntaxFacts::of(&tree);
+        let mut cx = SyntaxCtx::new(&p.path, &p.text, &facts, &p.syntax_errors);
         cx.case_edits = p.case_edits.clone();
         let mut findings = Vec::new();
         for rule in RULES {
@@ -342,6 +343,58 @@ mod tests {
         assert_eq!(body, Affected::Files(vec!["a.dat".into()]));
         let decl = s.set_file(input("a.src", "DEF a()\r\nDECL INT j\r\nj = 2\r\nEND\r\n"));
         assert_eq!(decl, Affected::All);
+    }
+
+    /// After edits — inside a body (the model updated in place) and of a declaration (rebuilt)
+    /// — every file's findings, messages and help included, are what `check` gives for the
+    /// same files.
+    #[test]
+    fn findings_after_edits_equal_a_fresh_check() {
+        let config = input(
+            "R1/System/$config.dat",
+            "DEFDAT $CONFIG\r\nDECL INT shared, counter\r\nENDDAT\r\n",
+        );
+        let cell = "DEF cell()\r\nDECL INT count\r\ncount = 1\r\ncnt = shared\r\nhelper(count)\r\nEND\r\nDEF helper(x:IN)\r\nDECL INT x, local\r\nlocl = x + countr\r\nEND\r\n";
+        let dat = input(
+            "R1/Program/cell.dat",
+            "DEFDAT cell\r\nDECL INT unused_one\r\nENDDAT\r\n",
+        );
+        let mut s = Session::new(
+            vec![
+                config.clone(),
+                input("R1/Program/cell.src", cell),
+                dat.clone(),
+            ],
+            Vec::new(),
+            false,
+            LintConfig::default(),
+        );
+        for text in [
+            cell.replace("count = 1\r\n", "count = 1\r\nsharde = 2\r\ncount = 3\r\n"),
+            cell.replace("locl = x", "local = x"),
+            cell.replace("DECL INT count\r\n", "DECL INT count, cnt\r\n"),
+            cell.replace("DEF helper(x:IN)", "DEF helper(x:IN, y:OUT)"),
+        ] {
+            let edited = input("R1/Program/cell.src", &text);
+            s.set_file(edited.clone());
+            let files = vec![config.clone(), edited, dat.clone()];
+            let fresh = super::super::lint(files, Vec::new(), false, &LintConfig::default());
+            let report = |r: &FileReport| format!("{:?}", r.diagnostics);
+            for f in &fresh {
+                assert_eq!(
+                    report(&s.check(&f.path).unwrap()),
+                    report(f),
+                    "{}:\n{text}",
+                    f.path
+                );
+            }
+            assert!(fresh.iter().any(|f| f.diagnostics.iter().any(|d| {
+                d.code == "KRL010"
+                    && d.help
+                        .as_deref()
+                        .is_some_and(|h| h.contains("did you mean"))
+            })));
+        }
     }
 
     #[test]

@@ -78,7 +78,7 @@ pub use model::{
 pub use names::Names;
 pub use query::{ArgInfo, AssignInfo, CallInfo};
 pub use scope::Scope;
-pub use summary::{Access, ArgForm, ConstValue, FileSummary, Use, UseKind};
+pub use summary::{Access, ArgForm, ConstValue, FileSummary, SummaryBuilder, Use, UseKind};
 pub use ty::{Field, Ty, TyKind, TypeDef, TypeDefKind, TypeFacts, assignable};
 pub use workspace::{LoadError, Source, SourceKind, Workspace, WorkspaceFile};
 

@@ -4,9 +4,12 @@
 //! stage 2 ([`super::build`]), once every file's items are known, so `check` can drop each
 //! file's syntax tree as soon as its summary is made.
 
-use std::hash::{Hash, Hasher};
+use compact_str::CompactString;
+use rustc_hash::FxHashMap;
 
-use rustc_hash::{FxHashMap, FxHasher};
+mod stream;
+
+pub use stream::SummaryBuilder;
 
 use super::ty::Sizes;
 use crate::diag::Span;
@@ -276,9 +279,7 @@ impl FileSummary {
         }
         s.owner = NONE;
         s.block(&file.top_level);
-        let Summarizer { mut out, spell, .. } = s;
-        out.names = spell.into_iter().map(Box::from).collect();
-        out
+        s.finish()
     }
 
     /// One expression on its own (for type queries on any expression): its root term is the
@@ -289,9 +290,7 @@ impl FileSummary {
             ..Summarizer::default()
         };
         s.expr(e, Access::Read);
-        let Summarizer { mut out, spell, .. } = s;
-        out.names = spell.into_iter().map(Box::from).collect();
-        out
+        s.finish()
     }
 
     /// What other files can depend on, without positions: declarations (routines and their
@@ -386,47 +385,36 @@ impl FileSummary {
     }
 }
 
-/// A name compared without regard to ASCII case.
-#[derive(Clone, Copy)]
-struct Caseless<'a>(&'a str);
-
-impl PartialEq for Caseless<'_> {
-    fn eq(&self, other: &Self) -> bool {
-        self.0.eq_ignore_ascii_case(other.0)
-    }
-}
-
-impl Eq for Caseless<'_> {}
-
-impl Hash for Caseless<'_> {
-    fn hash<H: Hasher>(&self, state: &mut H) {
-        let mut h = FxHasher::default();
-        for b in self.0.bytes() {
-            h.write_u8(b.to_ascii_uppercase());
-        }
-        state.write_u64(h.finish());
-    }
-}
-
+/// Names are owned (not borrowed from the AST) so that a file can be summarised one statement
+/// at a time and each statement dropped ([`SummaryBuilder`]).
 #[derive(Default)]
-struct Summarizer<'a> {
+struct Summarizer {
     out: FileSummary,
-    ids: FxHashMap<Caseless<'a>, u32>,
-    spell: Vec<&'a str>,
+    /// Upper-case name → id.
+    ids: FxHashMap<CompactString, u32>,
+    spell: Vec<Box<str>>,
     owner: u32,
 }
 
-impl<'a> Summarizer<'a> {
-    fn name(&mut self, text: &'a str) -> u32 {
+impl Summarizer {
+    fn name(&mut self, text: &str) -> u32 {
+        let mut key = CompactString::from(text);
+        key.make_ascii_uppercase();
         let next = self.spell.len() as u32;
-        let id = *self.ids.entry(Caseless(text)).or_insert(next);
+        let id = *self.ids.entry(key).or_insert(next);
         if id == next {
-            self.spell.push(text);
+            self.spell.push(text.into());
         }
         id
     }
 
-    fn use_of(&mut self, id: &'a Ident, kind: UseKind, access: Access) -> u32 {
+    fn finish(self) -> FileSummary {
+        let Summarizer { mut out, spell, .. } = self;
+        out.names = spell;
+        out
+    }
+
+    fn use_of(&mut self, id: &Ident, kind: UseKind, access: Access) -> u32 {
         let name = self.name(&id.text);
         self.out.uses.push(Use {
             name,
@@ -443,7 +431,7 @@ impl<'a> Summarizer<'a> {
         (self.out.terms.len() - 1) as u32
     }
 
-    fn type_ref(&mut self, t: &'a TypeRef, var_dims: &'a [Option<Expr>]) -> TypeRefItem {
+    fn type_ref(&mut self, t: &TypeRef, var_dims: &[Option<Expr>]) -> TypeRefItem {
         let use_ix = self.use_of(&t.name, UseKind::Type, Access::Name);
         self.sized(use_ix, &t.dims, var_dims)
     }
@@ -452,8 +440,8 @@ impl<'a> Summarizer<'a> {
     fn sized(
         &mut self,
         use_ix: u32,
-        type_dims: &'a [Option<Expr>],
-        var_dims: &'a [Option<Expr>],
+        type_dims: &[Option<Expr>],
+        var_dims: &[Option<Expr>],
     ) -> TypeRefItem {
         let mut sizes = [0u32; 3];
         let mut n = 0usize;
@@ -473,7 +461,21 @@ impl<'a> Summarizer<'a> {
         }
     }
 
-    fn routine(&mut self, index: u32, r: &'a ast::Routine) {
+    fn routine(&mut self, index: u32, r: &ast::Routine) {
+        let mut item = self.routine_head(index, r);
+        item.missing_return = r.kind == RoutineKind::Deffct && r.closed && falls_off_end(&r.body);
+        self.out.routines.push(item);
+        for d in &r.decls {
+            self.decl(d, false);
+        }
+        for d in &r.definitions {
+            self.definition(d);
+        }
+        self.block(&r.body);
+    }
+
+    /// A routine's own item (its uses: the return type), without `missing_return`.
+    fn routine_head(&mut self, index: u32, r: &ast::Routine) -> RoutineItem {
         self.owner = index;
         let name = self.name(&r.name.text);
         let params = r
@@ -487,8 +489,7 @@ impl<'a> Summarizer<'a> {
             })
             .collect();
         let ret = r.return_type.as_ref().map(|t| self.type_ref(t, &[]));
-        let missing_return = r.kind == RoutineKind::Deffct && r.closed && falls_off_end(&r.body);
-        self.out.routines.push(RoutineItem {
+        RoutineItem {
             name,
             name_span: r.name.span,
             span: r.span,
@@ -496,18 +497,11 @@ impl<'a> Summarizer<'a> {
             global: r.global,
             params,
             ret,
-            missing_return,
-        });
-        for d in &r.decls {
-            self.decl(d, false);
+            missing_return: false,
         }
-        for d in &r.definitions {
-            self.definition(d);
-        }
-        self.block(&r.body);
     }
 
-    fn decl(&mut self, d: &'a Decl, in_dat: bool) {
+    fn decl(&mut self, d: &Decl, in_dat: bool) {
         let ty_use = self.use_of(&d.ty.name, UseKind::Type, Access::Name);
         for v in &d.vars {
             let ty = self.sized(ty_use, &d.ty.dims, &v.dims);
@@ -556,7 +550,7 @@ impl<'a> Summarizer<'a> {
         }
     }
 
-    fn definition(&mut self, d: &'a Definition) {
+    fn definition(&mut self, d: &Definition) {
         match d {
             Definition::Struc(s) => {
                 let name = self.name(&s.name.text);
@@ -670,13 +664,13 @@ impl<'a> Summarizer<'a> {
         }
     }
 
-    fn block(&mut self, stmts: &'a [Stmt]) {
+    fn block(&mut self, stmts: &[Stmt]) {
         for s in stmts {
             self.stmt(s);
         }
     }
 
-    fn stmt(&mut self, s: &'a Stmt) {
+    fn stmt(&mut self, s: &Stmt) {
         let (mark, facts) = (self.out.terms.len(), self.facts());
         match &s.kind {
             StmtKind::Assign { target, value } => {
@@ -817,7 +811,7 @@ impl<'a> Summarizer<'a> {
     }
 
     /// REPEAT: the body, then the UNTIL condition.
-    fn block_then(&mut self, s: &'a Stmt, until: Option<&'a Expr>) {
+    fn block_then(&mut self, s: &Stmt, until: Option<&Expr>) {
         s.for_each_body(|b| self.block(b));
         if let Some(u) = until {
             self.expr(u, Access::Read);
@@ -825,7 +819,7 @@ impl<'a> Summarizer<'a> {
     }
 
     /// Words of a line that did not parse: each may name a variable.
-    fn mentions(&mut self, text: &'a str, span: Span) {
+    fn mentions(&mut self, text: &str, span: Span) {
         let bytes = text.as_bytes();
         let mut i = 0;
         while i < bytes.len() {
@@ -847,7 +841,7 @@ impl<'a> Summarizer<'a> {
         }
     }
 
-    fn mention(&mut self, word: &'a str, span: Span) {
+    fn mention(&mut self, word: &str, span: Span) {
         let name = self.name(word);
         self.out.uses.push(Use {
             name,
@@ -858,7 +852,7 @@ impl<'a> Summarizer<'a> {
         });
     }
 
-    fn call(&mut self, name: &'a Ident, args: &'a [Option<Expr>]) -> u32 {
+    fn call(&mut self, name: &Ident, args: &[Option<Expr>]) -> u32 {
         let use_ix = self.use_of(name, UseKind::Call, Access::Name);
         if name.is("VARSTATE")
             && let Some(Some(Expr {
@@ -905,7 +899,7 @@ impl<'a> Summarizer<'a> {
     }
 
     /// The type term of `e`, recording every name it uses.
-    fn expr(&mut self, e: &'a Expr, access: Access) -> u32 {
+    fn expr(&mut self, e: &Expr, access: Access) -> u32 {
         let t = match &e.kind {
             ExprKind::Int(_) | ExprKind::Bits(_) | ExprKind::Hex(_) => Term::Int,
             ExprKind::Real(_) => Term::Real,

@@ -7,7 +7,7 @@
 //! `PTPP`) into the error it is.
 
 use super::build::{Builder, Checkpoint};
-use super::cst::{Child, NodeKind, SyntaxTree};
+use super::cst::{Child, Node, NodeKind, SyntaxTree};
 use super::parser::SYNTAX_ERROR;
 use crate::diag::{Diagnostic, Span};
 
@@ -204,7 +204,20 @@ struct Frame {
     /// Routines only: a statement has been seen, so declarations are no longer allowed.
     in_statements: bool,
     /// Outline builds: everything after the opening line, dropped when the block closes.
+    /// Piece builds (module frames): the items handed out, dropped after each line.
     after_opener: Checkpoint,
+    /// Piece builds: the end of the last item handed out and dropped (the block's span still
+    /// covers it).
+    drained_end: u32,
+}
+
+/// What a piece handed out by a piece build is (see [`super::parser::Piece`]).
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub(crate) enum PieceKind {
+    Open,
+    OpenDat,
+    Item,
+    Close,
 }
 
 /// What a line is to the declaration-before-statement rule.
@@ -237,15 +250,18 @@ pub(crate) struct Assembler {
     /// Openers past [`MAX_BLOCK_DEPTH`] still open: kept as plain lines, like the `ELSE`s and
     /// closers that belong to them, so hostile nesting is one finding, not one per line.
     too_deep: usize,
+    /// Piece builds: the finished pieces (node ids) not yet handed out, in text order.
+    pieces: Option<Vec<(PieceKind, u32)>>,
 }
 
 /// A line that opens, continues or closes nothing.
-fn plain(b: &mut Builder, node: Child) {
+fn plain(asm: &mut Assembler, b: &mut Builder, node: Child) {
     // An outline keeps no plain lines: no later diagnostic looks at them.
     if b.is_outline() {
         b.forget(node);
     } else {
         b.push(node);
+        asm.finished(PieceKind::Item, node);
     }
 }
 
@@ -291,6 +307,49 @@ impl Assembler {
         Assembler {
             stack: Vec::new(),
             too_deep: 0,
+            pieces: None,
+        }
+    }
+
+    /// An assembler for a piece build: every line or block finished directly inside a module
+    /// (or at top level) is recorded, to be handed out by [`Assembler::hand_out`].
+    pub(crate) fn for_pieces() -> Self {
+        Assembler {
+            pieces: Some(Vec::new()),
+            ..Assembler::new()
+        }
+    }
+
+    /// Record `node` as a finished piece if it sits directly inside a module or at top level.
+    fn finished(&mut self, kind: PieceKind, node: Child) {
+        let Some(pieces) = &mut self.pieces else {
+            return;
+        };
+        let Child::Node(id) = node else { return };
+        let direct = self.stack.last().is_none_or(|f| f.block.is_module());
+        if kind != PieceKind::Item || direct {
+            pieces.push((kind, id));
+        }
+    }
+
+    /// Hand the recorded pieces to `f`, then drop what no open block needs any more: with no
+    /// block open everything, inside a module everything after its first line.
+    pub(crate) fn hand_out(&mut self, b: &mut Builder, f: &mut dyn FnMut(PieceKind, Node<'_>)) {
+        let Some(pieces) = &mut self.pieces else {
+            return;
+        };
+        for (kind, id) in pieces.drain(..) {
+            f(kind, b.view(id));
+        }
+        match self.stack.last_mut() {
+            None => b.rollback(Checkpoint::START),
+            Some(frame) if frame.block.is_module() => {
+                if let Some(last) = b.pending(frame.after_opener.stack()).last() {
+                    frame.drained_end = frame.drained_end.max(b.span_of(*last).end);
+                    b.rollback(frame.after_opener);
+                }
+            }
+            Some(_) => {}
         }
     }
 
@@ -298,12 +357,18 @@ impl Assembler {
         let anchor = code_span(b, line);
         let mark = b.mark();
         b.push(line);
+        if block == Block::Dat {
+            self.finished(PieceKind::OpenDat, line);
+        } else if block.is_module() {
+            self.finished(PieceKind::Open, line);
+        }
         self.stack.push(Frame {
             block,
             anchor,
             mark,
             in_statements: false,
             after_opener: b.checkpoint(),
+            drained_end: 0,
         });
     }
 
@@ -328,15 +393,31 @@ impl Assembler {
                 );
             }
             let lines = b.pending(frame.mark);
-            let span = match (lines.first(), lines.last()) {
+            let mut span = match (lines.first(), lines.last()) {
                 (Some(f), Some(l)) => b.span_of(*f).cover(b.span_of(*l)),
                 _ => Span::empty(0),
             };
+            span.end = span.end.max(frame.drained_end);
             if b.is_outline() {
                 b.rollback(frame.after_opener);
             }
+            // A piece build's module holds only its first and last lines: the items between
+            // are gone, and must not come back as gap tokens.
+            let drained = self.pieces.is_some() && frame.block.is_module();
+            if drained {
+                b.set_fill_gaps(false);
+            }
             let node = b.finish(frame.mark, frame.block.node_kind(), span);
+            if drained {
+                b.set_fill_gaps(true);
+            }
             b.push(node);
+            let kind = if frame.block.is_module() {
+                PieceKind::Close
+            } else {
+                PieceKind::Item
+            };
+            self.finished(kind, node);
         }
     }
 
@@ -367,11 +448,11 @@ impl Assembler {
                 Role::Close(_) => self.too_deep -= 1,
                 _ => {}
             }
-            return plain(b, node);
+            return plain(self, b, node);
         }
         self.too_deep = 0;
         match role {
-            Role::None => plain(b, node),
+            Role::None => plain(self, b, node),
             Role::Open(block) => {
                 let mut node = node;
                 if block.is_module() {
@@ -504,6 +585,7 @@ impl Assembler {
             what.to_string(),
         ));
         b.push(node);
+        self.finished(PieceKind::Item, node);
     }
 
     fn close(
@@ -547,14 +629,19 @@ impl Assembler {
         }
     }
 
+    /// Close every block still open (each a "not closed" finding).
+    pub(crate) fn close_all(&mut self, b: &mut Builder, diagnostics: &mut Vec<Diagnostic>) {
+        while !self.stack.is_empty() {
+            self.close_top(b, true, diagnostics);
+        }
+    }
+
     pub(crate) fn finish(
         mut self,
         mut b: Builder,
         diagnostics: &mut Vec<Diagnostic>,
     ) -> SyntaxTree {
-        while !self.stack.is_empty() {
-            self.close_top(&mut b, true, diagnostics);
-        }
+        self.close_all(&mut b, diagnostics);
         let root = b.finish(0, NodeKind::SourceFile, Span::new(0, b.text.len()));
         b.into_tree(root)
     }

@@ -28,6 +28,20 @@ pub(crate) struct Checkpoint {
     children: usize,
 }
 
+impl Checkpoint {
+    /// The builder's stack length at the checkpoint.
+    pub(crate) fn stack(&self) -> usize {
+        self.stack
+    }
+
+    /// Nothing built yet (to drop everything once no piece is pending).
+    pub(crate) const START: Checkpoint = Checkpoint {
+        stack: 0,
+        nodes: 0,
+        children: 0,
+    };
+}
+
 impl<'t> Builder<'t> {
     pub(crate) fn new(text: &'t str) -> Self {
         // Real controller files average 0.34 children and 0.08 nodes per byte (at most 0.8 and
@@ -46,6 +60,19 @@ impl<'t> Builder<'t> {
             outline: false,
             fill_gaps: true,
         }
+    }
+
+    /// A builder for [`super::parser::parse_pieces`]: the tree only ever holds the open blocks
+    /// and the pieces not yet handed out, so nothing is reserved for the whole file.
+    pub(crate) fn pieces(text: &'t str) -> Self {
+        let mut b = Builder::outline(text);
+        b.outline = false;
+        b
+    }
+
+    /// The node `id` as a view (to hand out a piece before its storage is reused).
+    pub(crate) fn view(&self, id: u32) -> super::cst::Node<'_> {
+        self.tree.node(id)
     }
 
     /// A builder for diagnostics only: the tree it ends with is an outline (lines reduced to

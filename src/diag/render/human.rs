@@ -11,6 +11,10 @@ pub fn render(report: &FileReport, out: &mut String) {
 
 /// Like [`render`], with a caller-chosen renderer (e.g. `Renderer::styled()` for a terminal).
 pub fn render_with(report: &FileReport, out: &mut String, renderer: &Renderer) {
+    if report.diagnostics.is_empty() {
+        // No line index (4 bytes a line) for a file with nothing to show.
+        return;
+    }
     let index = LineIndex::new(&report.text);
     for d in &report.diagnostics {
         out.push_str(&render_one(report, &index, d, renderer));

@@ -243,7 +243,7 @@ impl<'p> Machine<'p> {
         for i in 0..AXES {
             let place = Place {
                 root: Root::Global(self.globals.intern(name)),
-                path: vec![Seg::Index(i)],
+                path: smallvec::smallvec![Seg::Index(i)],
             };
             self.assign(&place, Value::Real(v))?;
         }

@@ -51,11 +51,7 @@ impl<'p> Machine<'p> {
             return self.err("RESUME is only allowed in an interrupt routine");
         }
         let e = self.error("RESUME");
-        Stop::Resume {
-            depth: self.interrupts.handling_depth,
-            file: e.file,
-            line: e.line,
-        }
+        Stop::Resume(Box::new((self.interrupts.handling_depth, e)))
     }
 
     pub(super) fn interrupt_decl(&mut self, number: &Expr, cond: &Expr, handler: &Stmt) -> R<()> {

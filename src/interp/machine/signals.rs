@@ -38,7 +38,7 @@ impl<'p> Machine<'p> {
             }
             return Ok(Place {
                 root: Root::Const(b),
-                path: vec![],
+                path: Default::default(),
             });
         }
         let first = self.signal_bit(s, &s.from)?;
@@ -63,7 +63,7 @@ impl<'p> Machine<'p> {
         }
         Ok(Place {
             root: Root::Group { array, lo, hi },
-            path: vec![],
+            path: Default::default(),
         })
     }
 

@@ -109,7 +109,7 @@ impl Machine<'_> {
             End::Error(_) => Phase::Failed,
         });
         match (self.submit_cycle(), end) {
-            (Err(Stop::Error(e)), End::Normal) => End::Error(e),
+            (Err(Stop::Error(e)), End::Normal) => End::Error(*e),
             (_, end) => end,
         }
     }

@@ -124,6 +124,6 @@ impl<'p> Machine<'p> {
         let mut e = self.error_at(at, message);
         e.message
             .push_str(&format!(" (in {callee}, at {}:{})", inner.file, inner.line));
-        super::Stop::Error(e)
+        super::Stop::from(e)
     }
 }

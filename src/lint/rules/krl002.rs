@@ -2,8 +2,6 @@ use crate::catalog::catalog;
 use crate::diag::{Diagnostic, Severity};
 use crate::lint::context::SyntaxCtx;
 use crate::lint::registry::{Check, Rule};
-use crate::lint::walk;
-use crate::syntax::ast::{Decl, Definition, Ident, StmtKind};
 
 pub static RULE: Rule = Rule {
     code: "KRL002",
@@ -16,45 +14,8 @@ pub static RULE: Rule = Rule {
 
 fn check(ctx: &SyntaxCtx, out: &mut Vec<Diagnostic>) {
     let max = catalog().limits.krl_identifier_max;
-    let mut names: Vec<&Ident> = Vec::new();
-    let ast = ctx.ast;
-    let mut decls: Vec<&Decl> = Vec::new();
-    let mut defs: Vec<&Definition> = Vec::new();
-    for r in &ast.routines {
-        names.push(&r.name);
-        names.extend(r.params.iter().map(|p| &p.name));
-        decls.extend(&r.decls);
-        defs.extend(&r.definitions);
-        walk::each_stmt(&r.body, &mut |s| match &s.kind {
-            StmtKind::Decl(d) => decls.push(d),
-            StmtKind::Definition(d) => defs.push(d),
-            StmtKind::Label { name } => names.push(name),
-            _ => {}
-        });
-    }
-    if let Some(dat) = &ast.dat {
-        names.push(&dat.name);
-        decls.extend(&dat.decls);
-        defs.extend(&dat.definitions);
-    }
-    for d in decls {
-        names.extend(d.vars.iter().map(|v| &v.name));
-    }
-    for d in defs {
-        match d {
-            Definition::Struc(s) => {
-                names.push(&s.name);
-                names.extend(s.fields.iter().map(|f| &f.name));
-            }
-            Definition::Enum(e) => {
-                names.push(&e.name);
-                names.extend(&e.values);
-            }
-            Definition::Signal(s) => names.push(&s.name),
-            Definition::Import(i) => names.push(&i.name),
-            Definition::Channel(_) | Definition::Ext(_) => {}
-        }
-    }
+    // The facts list only the declared names longer than `max` (`SyntaxFacts::name`).
+    let names = &ctx.facts.long_names;
     for n in names {
         let len = n.text.chars().count();
         if len > max && !n.is_system() {

@@ -14,13 +14,13 @@ pub static RULE: Rule = Rule {
 fn check(ctx: &SyntaxCtx, out: &mut Vec<Diagnostic>) {
     let f = ctx;
     let (name, what) = if f.ext == "dat" {
-        match &f.ast.dat {
-            Some(d) => (&d.name, "DEFDAT"),
+        match &f.facts.dat {
+            Some(d) => (d, "DEFDAT"),
             None => return,
         }
     } else {
-        match f.ast.routines.first() {
-            Some(r) => (&r.name, "main routine"),
+        match &f.facts.first_routine {
+            Some(r) => (r, "main routine"),
             None => return,
         }
     };

@@ -1,8 +1,10 @@
+use rustc_hash::FxHashMap;
+
 use crate::diag::{Diagnostic, Severity};
 use crate::lint::context::FileCtx;
 use crate::lint::registry::{Check, Rule};
 use crate::lint::text::nearest;
-use crate::sema::Resolved;
+use crate::sema::{NameId, Resolved, RoutineId};
 
 pub static RULE: Rule = Rule {
     code: "KRL011",
@@ -19,6 +21,8 @@ fn check(ctx: &FileCtx, out: &mut Vec<Diagnostic>) {
         return;
     }
     let sema = ctx.sema;
+    let mut suggestions: FxHashMap<(Option<RoutineId>, NameId), Option<&str>> =
+        FxHashMap::default();
     for c in sema.calls(ctx.id) {
         if c.target != Resolved::Unresolved {
             continue;
@@ -35,17 +39,22 @@ fn check(ctx: &FileCtx, out: &mut Vec<Diagnostic>) {
                 "`{name}` is not a routine of this module, a GLOBAL routine, an EXT declaration or a KSS built-in"
             ),
         );
-        let visible = sema.visible(ctx.id, c.span.start);
-        let candidates = visible
-            .iter()
-            .filter(|(_, r)| {
-                matches!(
-                    r,
-                    Resolved::Routine(_) | Resolved::Ext(_) | Resolved::Builtin(_)
-                )
-            })
-            .map(|(n, _)| sema.name(*n));
-        d = match nearest(name, candidates) {
+        // One search per name and routine: each walks every visible name.
+        let at = sema.position(ctx.id, c.span.start);
+        let near = *suggestions.entry((at.routine, c.name)).or_insert_with(|| {
+            let visible = sema.visible(ctx.id, c.span.start);
+            let candidates = visible
+                .iter()
+                .filter(|(_, r)| {
+                    matches!(
+                        r,
+                        Resolved::Routine(_) | Resolved::Ext(_) | Resolved::Builtin(_)
+                    )
+                })
+                .map(|(n, _)| sema.name(*n));
+            nearest(name, candidates)
+        });
+        d = match near {
             Some(n) => d.with_help(format!("did you mean `{n}`?")),
             None => d.with_help("define it, make it GLOBAL, or declare it with EXT"),
         };

@@ -25,8 +25,8 @@ pub fn lower(parse: &Parse, text: &str) -> SourceFile {
     file
 }
 
-struct Cx<'t> {
-    text: &'t str,
+pub(super) struct Cx<'t> {
+    pub(super) text: &'t str,
 }
 
 fn is_punct(text: &str, el: &Element, p: &str) -> bool {
@@ -264,21 +264,37 @@ impl<'t> Cx<'t> {
     // ---- modules ----------------------------------------------------------------------------
 
     fn routine(&self, node: Node) -> Routine {
-        let header = node.nodes().next();
+        let closed = node.nodes().last().is_some_and(|n| n.kind == K::EndLine);
+        let mut r = self.routine_head(node.nodes().next(), node.span, closed);
+        let mut stmts = Vec::with_capacity(statements(node.nodes().skip(1)));
+        for child in node.nodes().skip(1) {
+            if child.kind != K::EndLine {
+                self.stmt_into(child, &mut stmts);
+            }
+        }
+        let (decls, definitions, body) = split_declarations(stmts);
+        r.decls = decls;
+        r.definitions = definitions;
+        r.body = body;
+        r
+    }
+
+    /// A routine from its first line (`header`), without declarations or statements.
+    pub(super) fn routine_head(&self, header: Option<Node>, span: Span, closed: bool) -> Routine {
         let mut r = Routine {
             kind: RoutineKind::Def,
             global: false,
             name: Ident {
                 text: CompactString::default(),
-                span: node.span,
+                span,
             },
             return_type: None,
             params: Vec::new(),
             decls: Vec::new(),
             definitions: Vec::new(),
             body: Vec::new(),
-            closed: node.nodes().last().is_some_and(|n| n.kind == K::EndLine),
-            span: node.span,
+            closed,
+            span,
         };
         if let Some(h) = header {
             r.global = h.has_keyword(self.text, "GLOBAL");
@@ -293,16 +309,6 @@ impl<'t> Cx<'t> {
                 r.params = list.nodes().map(|p| self.param(p)).collect();
             }
         }
-        let mut stmts = Vec::with_capacity(statements(node.nodes().skip(1)));
-        for child in node.nodes().skip(1) {
-            if child.kind != K::EndLine {
-                self.stmt_into(child, &mut stmts);
-            }
-        }
-        let (decls, definitions, body) = split_declarations(stmts);
-        r.decls = decls;
-        r.definitions = definitions;
-        r.body = body;
         r
     }
 
@@ -334,38 +340,36 @@ impl<'t> Cx<'t> {
     }
 
     fn dat(&self, node: Node) -> DatModule {
-        let header = node.nodes().next();
-        let name = header
-            .and_then(|h| h.tokens().find(|t| t.kind == T::Ident))
-            .map(|t| self.ident(t))
-            .unwrap_or_else(|| Ident {
-                text: CompactString::default(),
-                span: node.span,
-            });
-        let public = header.is_some_and(|h| h.has_keyword(self.text, "PUBLIC"));
         let mut stmts = Vec::with_capacity(statements(node.nodes().skip(1)));
         for child in node.nodes().skip(1) {
             if child.kind != K::EnddatLine {
                 self.stmt_into(child, &mut stmts);
             }
         }
-        let mut decls = Vec::new();
-        let mut definitions = Vec::new();
-        let mut body = Vec::new();
+        let mut dat = self.dat_head(node.nodes().next(), node.span);
         for s in stmts {
-            match s.kind {
-                StmtKind::Decl(d) => decls.push(*d),
-                StmtKind::Definition(d) => definitions.push(d),
-                _ => body.push(s),
-            }
+            dat.add(s);
         }
+        dat
+    }
+
+    /// A data list from its first line (`header`), without declarations or statements.
+    pub(super) fn dat_head(&self, header: Option<Node>, span: Span) -> DatModule {
+        let name = header
+            .and_then(|h| h.tokens().find(|t| t.kind == T::Ident))
+            .map(|t| self.ident(t))
+            .unwrap_or_else(|| Ident {
+                text: CompactString::default(),
+                span,
+            });
+        let public = header.is_some_and(|h| h.has_keyword(self.text, "PUBLIC"));
         DatModule {
             name,
             public,
-            decls,
-            definitions,
-            body,
-            span: node.span,
+            decls: Vec::new(),
+            definitions: Vec::new(),
+            body: Vec::new(),
+            span,
         }
     }
 
@@ -380,7 +384,7 @@ impl<'t> Cx<'t> {
     }
 
     /// Lower one line or block node; trivia lines add nothing.
-    fn stmt_into(&self, node: Node, out: &mut Vec<Stmt>) {
+    pub(super) fn stmt_into(&self, node: Node, out: &mut Vec<Stmt>) {
         if let Some(kind) = self.stmt_kind(node) {
             out.push(Stmt {
                 kind,
@@ -973,7 +977,7 @@ fn binary_op(op: &str) -> BinaryOp {
 
 /// Declarations up to the first executable statement go to the routine's declaration part.
 /// The body stays in `stmts`' buffer (a routine can hold millions of statements: no copy).
-fn split_declarations(mut stmts: Vec<Stmt>) -> (Vec<Decl>, Vec<Definition>, Vec<Stmt>) {
+pub(super) fn split_declarations(mut stmts: Vec<Stmt>) -> (Vec<Decl>, Vec<Definition>, Vec<Stmt>) {
     let head = stmts
         .iter()
         .position(|s| !matches!(s.kind, StmtKind::Decl(_) | StmtKind::Definition(_)))

@@ -6,9 +6,11 @@
 //! Names compare case-insensitively in KRL: use [`Ident::is`] rather than `==` on text.
 
 mod lower;
+mod pieces;
 pub mod walk;
 
 pub use lower::lower;
+pub use pieces::{FileBuilder, Lowered, PieceLowerer, lower_pieces};
 pub use walk::each_stmt;
 
 pub use compact_str::CompactString;
@@ -117,6 +119,18 @@ pub struct DatModule {
     /// Assignments and other statements inside the DEFDAT (e.g. `name[]="text"`).
     pub body: Vec<Stmt>,
     pub span: Span,
+}
+
+impl DatModule {
+    /// Place one statement of the data list: declarations and definitions in their lists,
+    /// anything else in the body.
+    pub fn add(&mut self, s: Stmt) {
+        match s.kind {
+            StmtKind::Decl(d) => self.decls.push(*d),
+            StmtKind::Definition(d) => self.definitions.push(d),
+            _ => self.body.push(s),
+        }
+    }
 }
 
 /// `[GLOBAL] DECL [CONST] type a, b[3], c = value` (the `DECL` keyword is optional).
