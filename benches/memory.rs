@@ -1,9 +1,9 @@
-//! Peak memory and wall time of `krlkit check`, `parse`, `parse --tree` and `transpile` on one
-//! generated 50 MB KRL file and on 20 MB of blank lines: `cargo bench --bench memory` (runs
-//! the release binary; `MEMORY_BENCH_MB=10` for a smaller file). Prints, does not assert.
+//! Peak memory and wall time of `krlkit check`, `parse`, `parse --tree` and `transpile` (both
+//! targets) on one generated 50 MB KRL file and on 20 MB of blank lines:
+//! `cargo bench --bench memory` (runs the release binary; `MEMORY_BENCH_MB=10` for a smaller
+//! file). Prints, does not assert.
 
 use std::path::Path;
-use std::process::{Command, Stdio};
 use std::time::Instant;
 
 #[path = "../tests/memory_bounds.rs"]
@@ -12,20 +12,7 @@ mod memory_bounds;
 
 fn run(args: &[&str], cwd: &Path) -> (f64, u64) {
     let start = Instant::now();
-    #[allow(clippy::zombie_processes)] // reaped by wait4 below, which also gives its rusage
-    let child = Command::new(env!("CARGO_BIN_EXE_krlkit"))
-        .args(args)
-        .current_dir(cwd)
-        .stdout(Stdio::null())
-        .stderr(Stdio::null())
-        .spawn()
-        .expect("run krlkit");
-    let mut status = 0;
-    // SAFETY: an all-zero rusage is valid; wait4 fills it for our own child.
-    let mut usage: libc::rusage = unsafe { std::mem::zeroed() };
-    let pid = child.id() as libc::pid_t;
-    let r = unsafe { libc::wait4(pid, &mut status, 0, &mut usage) };
-    assert_eq!(r, pid);
+    let usage = memory_bounds::usage(args, cwd);
     (start.elapsed().as_secs_f64(), usage.ru_maxrss as u64 / 1024)
 }
 
@@ -55,6 +42,7 @@ fn main() {
             &["parse", file],
             &["parse", "--tree", file],
             &["transpile", file, "--to", "kawasaki"],
+            &["transpile", file, "--to", "flexiv"],
         ] {
             let (secs, rss_mb) = run(args, dir.path());
             println!(

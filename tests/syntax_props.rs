@@ -89,7 +89,11 @@ proptest! {
         let p = parse(&text);
         let (ast, diagnostics) = krlkit::syntax::ast::lower_pieces(&text);
         prop_assert_eq!(ast, p.ast(&text));
-        prop_assert_eq!(diagnostics, p.diagnostics);
+        prop_assert_eq!(&diagnostics, &p.diagnostics);
+        let mut json = Vec::new();
+        let streamed = krlkit::syntax::write_json_tree(&text, &mut json).unwrap();
+        prop_assert_eq!(String::from_utf8(json).unwrap(), p.to_json_tree(&text));
+        prop_assert_eq!(streamed, diagnostics);
     }
 
     #[test]
@@ -223,8 +227,9 @@ fn failing_named_fields_are_not_retried_as_calls() {
     }
 }
 
-/// `krlkit parse` reads diagnostics from an outline and `check` lowers files piece by piece;
-/// on every KRL file of the repository both agree with the full parse.
+/// `krlkit parse` reads diagnostics from an outline, `check` lowers files piece by piece and
+/// `parse --tree` writes them piece by piece; on every KRL file of the repository all agree
+/// with the full parse.
 #[test]
 fn outline_diagnostics_agree_on_every_repository_file() {
     fn walk(dir: &std::path::Path, out: &mut Vec<std::path::PathBuf>) {
@@ -251,6 +256,13 @@ fn outline_diagnostics_agree_on_every_repository_file() {
         let (ast, diagnostics) = krlkit::syntax::ast::lower_pieces(&text);
         assert_eq!(diagnostics, full, "{}", f.display());
         assert_eq!(ast, parse(&text).ast(&text), "{}", f.display());
+        let mut json = Vec::new();
+        krlkit::syntax::write_json_tree(&text, &mut json).unwrap();
+        assert!(
+            String::from_utf8(json).unwrap() == parse(&text).to_json_tree(&text),
+            "{}",
+            f.display()
+        );
     }
     assert!(with_errors > 10, "the files must include broken ones");
 }

@@ -179,13 +179,12 @@ fn tree(args: &ParseArgs) -> anyhow::Result<Outcome> {
             return Ok(Outcome::Failure);
         }
     };
-    let parse = syntax::parse(&decoded.text);
     let mut stdout = std::io::BufWriter::new(std::io::stdout().lock());
-    parse.write_json_tree(&decoded.text, &mut stdout)?;
+    let diagnostics = syntax::write_json_tree(&decoded.text, &mut stdout)?;
     writeln!(stdout)?;
     stdout.flush()?;
     drop(stdout);
-    if parse.diagnostics.is_empty() {
+    if diagnostics.is_empty() {
         return Ok(Outcome::Success);
     }
     let report = FileReport {
@@ -194,7 +193,7 @@ fn tree(args: &ParseArgs) -> anyhow::Result<Outcome> {
             _ => path.display().to_string(),
         },
         text: decoded.text,
-        diagnostics: parse.diagnostics,
+        diagnostics,
     };
     let mut human = String::new();
     render::human::render(&report, &mut human);

@@ -367,7 +367,7 @@ mod tests {
     use super::*;
 
     /// The first pass from pieces (streamed, and with the whole AST kept) against the tree:
-    /// parser findings, syntax facts, KRL005 edits, summary, the AST.
+    /// parser findings, syntax facts, KRL005 edits, summary, the AST (and `parse --tree`).
     fn agrees(path: &str, text: &str) {
         let parse = crate::syntax::parse(text);
         let ast = parse.ast(text);
@@ -388,6 +388,12 @@ mod tests {
             assert!(streamed == whole, "{path} (keep {keep})");
             assert!(kept.is_none_or(|kept| kept == ast), "{path}");
         }
+        let mut json = Vec::new();
+        crate::syntax::write_json_tree(text, &mut json).unwrap();
+        assert!(
+            json == parse.to_json_tree(text).into_bytes(),
+            "{path}: --tree"
+        );
         // A file that does not mention them can give the Mech-Mind rules nothing.
         assert!(mentions_mm(text) || !mm_relevant(&ast), "{path}");
     }

@@ -125,6 +125,88 @@ pub fn parse_pieces(text: &str, mut f: impl FnMut(Piece<'_>)) -> Vec<Diagnostic>
     diagnostics
 }
 
+/// The `--tree` JSON of [`Parse::write_json_tree`], written piece by piece as the file is
+/// parsed ([`parse_pieces`]): memory follows the largest block, not the file. Returns the
+/// diagnostics [`parse`] reports.
+pub fn write_json_tree(
+    text: &str,
+    out: &mut impl std::io::Write,
+) -> std::io::Result<Vec<Diagnostic>> {
+    out.write_all(b"{\"kind\":\"SourceFile\",\"children\":[")?;
+    let mut json = JsonPieces {
+        first: [true, true],
+        depth: 0,
+        seen: 0,
+    };
+    let mut result = Ok(());
+    let diagnostics = parse_pieces(text, |piece| {
+        if result.is_ok() {
+            result = json.piece(piece, text, out);
+        }
+    });
+    result?;
+    out.write_all(b"]}")?;
+    Ok(diagnostics)
+}
+
+/// Where [`write_json_tree`] is.
+struct JsonPieces {
+    /// Whether the open list (the file's, the open module's) has no child yet.
+    first: [bool; 2],
+    depth: usize,
+    /// Where the last piece ended (a `Close` node repeats its first line).
+    seen: u32,
+}
+
+impl JsonPieces {
+    fn child(
+        &mut self,
+        node: Node<'_>,
+        text: &str,
+        out: &mut impl std::io::Write,
+    ) -> std::io::Result<()> {
+        if !std::mem::take(&mut self.first[self.depth]) {
+            out.write_all(b",")?;
+        }
+        self.seen = node.span.end;
+        node.write_json(text, out)
+    }
+
+    fn piece(
+        &mut self,
+        piece: Piece<'_>,
+        text: &str,
+        out: &mut impl std::io::Write,
+    ) -> std::io::Result<()> {
+        match piece {
+            Piece::Open { line, data } => {
+                if !std::mem::take(&mut self.first[0]) {
+                    out.write_all(b",")?;
+                }
+                let kind = if data {
+                    NodeKind::DatModule
+                } else {
+                    NodeKind::Routine
+                };
+                write!(out, "{{\"kind\":\"{kind:?}\",\"children\":[")?;
+                self.depth = 1;
+                self.first[1] = true;
+                self.child(line, text, out)
+            }
+            Piece::Item(node) => self.child(node, text, out),
+            Piece::Close(node) => {
+                let seen = self.seen;
+                for n in node.nodes().filter(|n| n.span.start >= seen) {
+                    self.child(n, text, out)?;
+                }
+                self.depth = 0;
+                self.seen = node.span.end;
+                out.write_all(b"]}")
+            }
+        }
+    }
+}
+
 /// The diagnostics [`parse`] would report, without keeping the tree: memory grows with the
 /// deepest open block, not with the file (what `krlkit parse` needs).
 pub fn diagnostics(text: &str) -> Vec<Diagnostic> {

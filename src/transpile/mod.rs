@@ -113,11 +113,12 @@ pub fn transpile(
     dat: Option<Source>,
     options: &Options,
 ) -> Translation {
-    let program = front::Program::new(
+    let mut program = front::Program::new(
         front::Parsed::new(src.path, src.text),
         dat.map(|d| front::Parsed::new(d.path, d.text)),
     );
     let (mut model, vision) = ir::lower::lower(&program, options);
+    program.release_syntax();
     ir::flow::resolve(&mut model);
     let (text, mut report, produced) = match target {
         Target::Kawasaki => kawasaki::render(&program, &model, vision.as_ref(), options),

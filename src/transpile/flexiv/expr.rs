@@ -478,18 +478,12 @@ impl<'a> Tx<'a> {
 
     /// S and T are dropped: a Rizon resolves its posture (7 joints) itself.
     pub(super) fn status_turn(&mut self, a: &Aggregate, span: Span, file: FileId) {
-        let (s, t) = a.status_turn();
-        if !a.axis && (s.is_some() || t.is_some()) {
-            let st: Vec<String> = [("S", s), ("T", t)]
-                .iter()
-                .filter_map(|(n, v)| v.map(|v| format!("{n} {v}")))
-                .collect();
+        if let Some(st) = a.status_turn_text() {
             self.rep.approximate(
                 file,
                 span,
                 format!(
-                    "status/turn ({}) have no Flexiv counterpart and are dropped; the Rizon chooses its own posture",
-                    st.join(", ")
+                    "status/turn ({st}) have no Flexiv counterpart and are dropped; the Rizon chooses its own posture"
                 ),
                 "if a PTP to this pose must reach it in a particular arm configuration, check the motion on the robot",
             );

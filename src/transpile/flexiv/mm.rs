@@ -12,20 +12,12 @@ use crate::transpile::front::report::FileId;
 use crate::transpile::ir::{Arg, ExprKind};
 
 /// KUKA package globals and the client attributes that hold the same data.
-const GLOBALS: [(&str, &str); 4] = [
+pub(super) const GLOBALS: [(&str, &str); 4] = [
     ("MM_Last_Status", "mm.last_status"),
     ("Do_Port", "mm.do_port"),
     ("MM_UserData", "mm.user_data"),
     ("MM_Plan_Results", "mm.plan_results"),
 ];
-
-/// The client attribute of a KUKA package global, if `name` is one.
-pub(super) fn package_global(name: &str) -> Option<&'static str> {
-    GLOBALS
-        .iter()
-        .find(|(k, _)| k.eq_ignore_ascii_case(name))
-        .map(|(_, a)| *a)
-}
 
 impl<'a> Tx<'a> {
     pub(super) fn mm_call(&mut self, sub: &'static Subprogram, args: &[Arg], span: Span) -> R<()> {

@@ -37,9 +37,9 @@ pub use options::{Api, FlexivOptions, JointMap, JointSource, PtpPrimitive, RdkVe
 use super::Options;
 use super::VisionServer;
 use super::front::Program as Source;
-use super::front::comments::{self, CommentQueue};
-use super::front::names::{Namespace, Renamed};
-use super::front::report::{FileId, Report};
+use super::front::comments::CommentQueue;
+use super::front::names::{Home, Namer};
+use super::front::report::Report;
 use super::ir::{self, LoopId, RoutineId, RoutineKind, Scope, TempId, VarId};
 use crate::diag::Span;
 use names::NAME_RULES;
@@ -99,12 +99,8 @@ pub(super) struct Tx<'a> {
     fx: &'a FlexivOptions,
     vision: Option<&'a VisionServer>,
     rep: Report,
-    /// Routines and globals share the module's namespace.
-    module_ns: Namespace,
-    locals_ns: HashMap<RoutineId, Namespace>,
-    /// Every rename, in the order found, with what kind of name it is.
-    renamed: Vec<(&'static str, Renamed)>,
-    comments: CommentQueue,
+    names: Namer<'a>,
+    comments: CommentQueue<'a>,
     lines: Vec<String>,
     depth: usize,
     rt: Option<Rt>,
@@ -136,16 +132,14 @@ impl<'a> Tx<'a> {
         vision: Option<&'a VisionServer>,
         opts: &'a Options,
     ) -> Tx<'a> {
-        let comments = CommentQueue::new(comments::collect(&src.src.parse.root(), &src.src.text));
+        let comments = CommentQueue::new(&src.src.comments);
         Tx {
             src,
             ir,
             fx: &opts.flexiv,
             vision,
             rep: Report::default(),
-            module_ns: Namespace::default(),
-            locals_ns: HashMap::new(),
-            renamed: Vec::new(),
+            names: Namer::new(&NAME_RULES, ir),
             comments,
             lines: Vec::new(),
             depth: 0,
@@ -175,7 +169,7 @@ impl<'a> Tx<'a> {
                 self.routine_name(&r.name, r.name_span);
             }
         }
-        self.name_globals();
+        self.names.declare_globals(&mut self.rep);
         self.data_globals();
         for (i, r) in ir.routines.iter().enumerate() {
             if !r.synthetic {
@@ -188,7 +182,10 @@ impl<'a> Tx<'a> {
         let first = ir.routines.iter().position(|r| !r.synthetic);
         match first {
             Some(i) if ir.routines[i].params.is_empty() => {
-                self.entry = self.module_ns.get(&ir.routines[i].name).map(str::to_owned);
+                self.entry = self
+                    .names
+                    .routine_of(&ir.routines[i].name)
+                    .map(str::to_owned);
             }
             Some(i) => self.note(format!(
                 "{} takes parameters, so main() does not start it; call it from your own code",
@@ -196,7 +193,10 @@ impl<'a> Tx<'a> {
             )),
             None => {
                 if let Some(t) = ir.top_level {
-                    self.entry = self.module_ns.get(&ir.routine(t).name).map(str::to_owned);
+                    self.entry = self
+                        .names
+                        .routine_of(&ir.routine(t).name)
+                        .map(str::to_owned);
                 }
             }
         }
@@ -204,84 +204,32 @@ impl<'a> Tx<'a> {
 
     // ----- names -------------------------------------------------------------------------
 
-    fn note_rename(&mut self, kind: &'static str, file: FileId, span: Span, r: Option<Renamed>) {
-        let Some(r) = r else { return };
-        let why: Vec<String> = r.reasons.iter().map(|x| x.describe(&NAME_RULES)).collect();
-        self.rep.renamed(
-            file,
-            span,
-            format!(
-                "{kind} `{}` is renamed `{}` in Python ({})",
-                r.krl,
-                r.target,
-                why.join(", ")
-            ),
-        );
-        self.renamed.push((kind, r));
-    }
-
     /// The Python name of a routine (of this file or of another module).
     fn routine_name(&mut self, krl: &str, span: Span) -> String {
-        let (name, r) = self.module_ns.name(krl, &NAME_RULES);
-        self.note_rename("routine", FileId::Src, span, r);
-        name
-    }
-
-    fn name_globals(&mut self) {
-        let ir = self.ir;
-        for v in &ir.vars {
-            if v.scope == Scope::Global {
-                let (_, r) = self.module_ns.name(&v.name, &NAME_RULES);
-                self.note_rename("variable", v.file, v.decl, r);
-            }
-        }
+        self.names.routine(&mut self.rep, krl, span)
     }
 
     /// The Python spelling of a variable, and whether it lives at module level.
     fn var_name(&mut self, v: VarId, used_at: Span) -> (String, bool) {
+        let (n, home) = self.names.var(&mut self.rep, v, used_at);
         let var = self.ir.var(v);
-        match var.scope {
-            Scope::Local(r) | Scope::Param(r) => {
-                let ns = self.locals_ns.entry(r).or_default();
-                let (n, ren) = ns.name(&var.name, &NAME_RULES);
-                self.note_rename("variable", FileId::Src, used_at, ren);
-                (n, false)
-            }
-            Scope::Package => match mm::package_global(&var.name) {
-                Some(g) => (g.to_owned(), false),
-                None => {
-                    let (n, ren) = self.module_ns.name(&var.name, &NAME_RULES);
-                    self.note_rename("variable", FileId::Src, used_at, ren);
-                    (n, true)
-                }
-            },
-            Scope::Global => {
-                let (n, ren) = self.module_ns.name(&var.name, &NAME_RULES);
-                self.note_rename("variable", FileId::Src, used_at, ren);
-                (n, true)
-            }
-            Scope::Assumed => {
-                let (n, ren) = self.module_ns.name(&var.name, &NAME_RULES);
-                self.note_rename("variable", FileId::Src, used_at, ren);
-                if !self.assumed.contains_key(&n) {
-                    let what = match &var.ty {
-                        ir::Ty::Pose => "a pose (E6POS)",
-                        ir::Ty::Joint => "axis values (E6AXIS)",
-                        ir::Ty::Char => "a string",
-                        _ if var.dims > 0 => "an array",
-                        _ => "a number",
-                    };
-                    self.assumed.insert(
-                        n.clone(),
-                        Assumed {
-                            krl: var.name.clone(),
-                            what,
-                        },
-                    );
-                }
-                (n, true)
-            }
+        if var.scope == Scope::Assumed && !self.assumed.contains_key(&n) {
+            let what = match &var.ty {
+                ir::Ty::Pose => "a pose (E6POS)",
+                ir::Ty::Joint => "axis values (E6AXIS)",
+                ir::Ty::Char => "a string",
+                _ if var.dims > 0 => "an array",
+                _ => "a number",
+            };
+            self.assumed.insert(
+                n.clone(),
+                Assumed {
+                    krl: var.name.clone(),
+                    what,
+                },
+            );
         }
+        (n, home == Home::Global)
     }
 
     /// A temporary's name, minted on first use (starts with `_`, which no translated KRL name
@@ -378,7 +326,7 @@ impl<'a> Tx<'a> {
         let name = if r.synthetic {
             self.routine_name(&r.name, r.name_span)
         } else {
-            self.module_ns.get(&r.name).unwrap_or("").to_owned()
+            self.names.routine_of(&r.name).unwrap_or("").to_owned()
         };
         self.rt = Some(Rt {
             kind: r.kind,
@@ -393,13 +341,7 @@ impl<'a> Tx<'a> {
             base: None,
         });
         // Locals first (parameters, then declarations), so made-up names never take a user's.
-        for v in &ir.vars {
-            if matches!(v.scope, Scope::Param(x) | Scope::Local(x) if x == id) {
-                let ns = self.locals_ns.entry(id).or_default();
-                let (_, ren) = ns.name(&v.name, &NAME_RULES);
-                self.note_rename("variable", v.file, v.decl, ren);
-            }
-        }
+        self.names.declare_locals(&mut self.rep, id);
         let mut params = Vec::new();
         let mut outs = Vec::new();
         for p in &r.params {
@@ -567,14 +509,9 @@ impl<'a> Tx<'a> {
         for n in &self.notes {
             v.push(n.clone());
         }
-        if !self.renamed.is_empty() {
-            v.push("Name map (KRL -> Python):".into());
-            let mut seen = BTreeSet::new();
-            for (kind, r) in &self.renamed {
-                if seen.insert((kind, r.krl.to_ascii_uppercase(), r.target.clone())) {
-                    v.push(format!("  {kind} {} -> {}", r.krl, r.target));
-                }
-            }
+        if let Some((title, entries)) = self.names.name_map() {
+            v.push(title);
+            v.extend(entries.iter().map(|e| format!("  {e}")));
         }
         v.iter().map(|l| format::ascii(l)).collect()
     }

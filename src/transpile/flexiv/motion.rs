@@ -7,8 +7,8 @@ use super::{R, Tx, fail};
 use crate::diag::Span;
 use crate::transpile::front::report::FileId;
 use crate::transpile::ir::{
-    Because, Blend, Component, Delta, Expr, ExprKind, FrameKind, FrameRef, Known, MotionParam,
-    Move, Op, ParamValue, Path, Stmt, Target,
+    Because, Blend, Delta, Expr, ExprKind, FrameKind, FrameRef, Known, MotionParam, Move, Op,
+    ParamValue, Path, Stmt, Target,
 };
 
 /// Blending radii (mm) assumed to have a zoneRadius code `Z<mm>`: unverified (the reference
@@ -246,21 +246,16 @@ impl<'a> Tx<'a> {
 
     /// `LIN_REL`/`PTP_REL` offsets: X, Y, Z only.
     fn offset(&mut self, d: &Delta) -> R<Vec<String>> {
-        let mut v = vec!["0".to_owned(), "0".to_owned(), "0".to_owned()];
-        for (c, e) in &d.fields {
-            match c {
-                Component::Pose(i @ 0..=2) => v[*i] = self.expr(e)?,
-                Component::Pose(_) if e.number() == Some(0.0) => {}
-                _ => {
-                    return fail(
-                        d.span,
-                        "a relative move with orientation or external-axis changes has no verified counterpart",
-                        "split it into a position change and a separate reorientation",
-                    );
-                }
-            }
-        }
-        Ok(v)
+        let Some(xyz) = d.position() else {
+            return fail(
+                d.span,
+                "a relative move with orientation or external-axis changes has no verified counterpart",
+                "split it into a position change and a separate reorientation",
+            );
+        };
+        xyz.iter()
+            .map(|e| e.map_or(Ok("0".to_owned()), |e| self.expr(e)))
+            .collect()
     }
 
     /// A motion target: a variable, a literal, or pose arithmetic.

@@ -125,6 +125,10 @@ pub fn is_reserved(name: &str) -> bool {
 pub const NAME_RULES: NameRules = NameRules {
     max_len: 64,
     is_reserved,
+    language: "Python",
+    routine: "routine",
+    routines_with_globals: true,
+    package: &super::mm::GLOBALS,
 };
 
 #[cfg(test)]

@@ -5,8 +5,8 @@ use super::{R, Tx, fail, has_code};
 use crate::diag::Span;
 use crate::transpile::front::report::FileId;
 use crate::transpile::ir::{
-    Arg, Block, Callee, Component, Expr, ExprKind, ForLoop, LoopId, LoopKind, Op, Place,
-    RoutineKind, Stmt, Ty,
+    Arg, Block, Callee, Component, Expr, ExprKind, LoopId, LoopKind, Op, Place, RoutineKind, Stmt,
+    Ty,
 };
 
 impl<'a> Tx<'a> {
@@ -298,12 +298,7 @@ impl<'a> Tx<'a> {
     fn loop_(&mut self, id: LoopId, kind: &'a LoopKind, body: &'a Block, end: u32) -> R<()> {
         let head = match kind {
             LoopKind::For(f) => {
-                let ForLoop {
-                    var,
-                    from,
-                    to,
-                    step,
-                } = &**f;
+                let (var, from, to, step) = (&f.var, &f.from, &f.to, &f.step);
                 let Target::Plain(v) = self.target(var, from.span, true)? else {
                     return fail(from.span, "a FOR variable must be a name", "use a name");
                 };
@@ -567,8 +562,8 @@ impl<'a> Tx<'a> {
             Callee::Routine(r) => {
                 let routine = self.ir.routine(*r);
                 let name = self
-                    .module_ns
-                    .get(&routine.name)
+                    .names
+                    .routine_of(&routine.name)
                     .unwrap_or(&routine.name)
                     .to_owned();
                 let deffct = routine.kind == RoutineKind::Deffct;

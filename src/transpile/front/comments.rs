@@ -38,13 +38,13 @@ pub fn collect(root: &Node, text: &str) -> Vec<Comment> {
 
 /// Hands out comments in source order as a translator moves through the file.
 #[derive(Debug, Default)]
-pub struct CommentQueue {
-    comments: Vec<Comment>,
+pub struct CommentQueue<'a> {
+    comments: &'a [Comment],
     next: usize,
 }
 
-impl CommentQueue {
-    pub fn new(comments: Vec<Comment>) -> CommentQueue {
+impl<'a> CommentQueue<'a> {
+    pub fn new(comments: &'a [Comment]) -> CommentQueue<'a> {
         CommentQueue { comments, next: 0 }
     }
 

@@ -16,16 +16,25 @@ pub mod walk;
 
 pub use fail::{Fail, R, fail};
 
-use crate::diag::Span;
-use crate::syntax::ast::SourceFile;
-use crate::syntax::{Parse, TokenKind};
+use std::collections::HashSet;
 
-/// One input file, parsed.
+use crate::diag::{Diagnostic, Span};
+use crate::syntax::TokenKind;
+use crate::syntax::ast::SourceFile;
+
+/// One input file, parsed. The lossless tree is not kept (it was a seventh of a large
+/// translation's memory): what the translator needs of it is read out here.
 pub struct Parsed {
     pub path: String,
     pub text: String,
-    pub parse: Parse,
+    /// Released after lowering ([`Program::release_syntax`]): renderers read text only.
     pub ast: SourceFile,
+    /// The parser's findings (KRL001).
+    pub syntax_errors: Vec<Diagnostic>,
+    /// Every comment, in source order.
+    pub comments: Vec<comments::Comment>,
+    /// Every identifier of the text, upper case.
+    names: HashSet<String>,
     /// Built on the first [`Parsed::line`] (building one per question was quadratic).
     lines: std::cell::OnceCell<crate::diag::LineIndex>,
 }
@@ -35,11 +44,26 @@ impl Parsed {
         let text = text.into();
         let parse = crate::syntax::parse(&text);
         let ast = parse.ast(&text);
+        let comments = comments::collect(&parse.root(), &text);
+        let mut names = HashSet::new();
+        let mut upper = String::new();
+        parse.root().walk_tokens(&mut |t| {
+            if t.kind == TokenKind::Ident {
+                upper.clear();
+                upper.push_str(t.text(&text));
+                upper.make_ascii_uppercase();
+                if !names.contains(&upper) {
+                    names.insert(upper.clone());
+                }
+            }
+        });
         Parsed {
             path: path.into(),
+            syntax_errors: parse.diagnostics,
             text,
-            parse,
             ast,
+            comments,
+            names,
             lines: std::cell::OnceCell::new(),
         }
     }
@@ -84,14 +108,17 @@ impl Program {
 
     /// Whether the program's text names `name` (an identifier token, any case).
     pub fn uses_name(&self, name: &str) -> bool {
-        let text = &self.src.text;
-        let mut found = false;
-        self.src.parse.root().walk_tokens(&mut |t| {
-            if t.kind == TokenKind::Ident && t.text(text).eq_ignore_ascii_case(name) {
-                found = true;
-            }
-        });
-        found
+        self.src.names.contains(&name.to_ascii_uppercase())
+    }
+
+    /// Drops the syntax trees and the semantic model once the program is lowered: the
+    /// renderers read text and comments only, and a large program's tree and model were a
+    /// third of its translation's memory.
+    pub fn release_syntax(&mut self) {
+        for f in std::iter::once(&mut self.src).chain(&mut self.dat) {
+            f.ast = SourceFile::default();
+        }
+        self.sema = crate::sema::Sema::build(Vec::new(), &[]);
     }
 }
 

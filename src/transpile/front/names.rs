@@ -4,8 +4,16 @@
 //! replaced, reserved words suffixed, long names cut and given a short hash of the full name),
 //! so the same KRL name becomes the same target name in every file. Only when two different
 //! names of one namespace would still meet does the later one (in source order) get a counter.
+//!
+//! [`Namer`] names everything of one translation (routines, globals, each routine's parameters,
+//! locals and labels) and records the renames (TR003 and the output's name map); the targets
+//! differ only in their [`NameRules`], which are data.
 
-use std::collections::{BTreeMap, HashMap};
+use std::collections::{BTreeMap, BTreeSet, HashMap};
+
+use crate::diag::Span;
+use crate::transpile::front::report::{FileId, Report};
+use crate::transpile::ir::{self, RoutineId, Scope, VarId};
 
 /// A target language's identifier rules.
 #[derive(Debug, Clone, Copy)]
@@ -14,6 +22,14 @@ pub struct NameRules {
     pub max_len: usize,
     /// Whether a lower-case name is a reserved word of the target.
     pub is_reserved: fn(&str) -> bool,
+    /// The language's name in findings and the name map (`AS`, `Python`).
+    pub language: &'static str,
+    /// What a routine is called in the target (`program`, `routine`).
+    pub routine: &'static str,
+    /// Routines and globals share one namespace (a Python module); otherwise each has its own.
+    pub routines_with_globals: bool,
+    /// Globals of the generated KUKA package → the target's spelling of them.
+    pub package: &'static [(&'static str, &'static str)],
 }
 
 /// Why a name had to change.
@@ -161,6 +177,205 @@ impl Namespace {
     }
 }
 
+/// The target's spelling of a global of the KUKA package, if it has one.
+pub fn package_name(rules: &NameRules, krl: &str) -> Option<&'static str> {
+    let found = rules
+        .package
+        .iter()
+        .find(|(k, _)| k.eq_ignore_ascii_case(krl));
+    found.map(|(_, t)| *t)
+}
+
+/// Where a named variable lives in the target.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Home {
+    /// A parameter or local of its routine.
+    Local,
+    /// A global of the translation (module level).
+    Global,
+    /// A global of the target's Mech-Mind package, spelled by [`NameRules::package`].
+    Package,
+}
+
+/// The names of one translation under one target's rules.
+pub struct Namer<'a> {
+    rules: &'static NameRules,
+    ir: &'a ir::Program,
+    routines: Namespace,
+    globals: Namespace,
+    locals: HashMap<RoutineId, Namespace>,
+    labels: HashMap<RoutineId, Namespace>,
+    /// Each routine's parameters and locals, in declaration order.
+    vars_of: HashMap<RoutineId, Vec<VarId>>,
+    /// Every rename, in the order found, with what kind of name it is.
+    renamed: Vec<(&'static str, Renamed)>,
+}
+
+impl<'a> Namer<'a> {
+    pub fn new(rules: &'static NameRules, ir: &'a ir::Program) -> Namer<'a> {
+        let mut vars_of: HashMap<RoutineId, Vec<VarId>> = HashMap::new();
+        for (i, v) in ir.vars.iter().enumerate() {
+            if let Scope::Param(r) | Scope::Local(r) = v.scope {
+                vars_of.entry(r).or_default().push(VarId(i as u32));
+            }
+        }
+        Namer {
+            rules,
+            ir,
+            routines: Namespace::default(),
+            globals: Namespace::default(),
+            locals: HashMap::new(),
+            labels: HashMap::new(),
+            vars_of,
+            renamed: Vec::new(),
+        }
+    }
+
+    pub fn rules(&self) -> &'static NameRules {
+        self.rules
+    }
+
+    fn globals_ns(&mut self) -> &mut Namespace {
+        if self.rules.routines_with_globals {
+            &mut self.routines
+        } else {
+            &mut self.globals
+        }
+    }
+
+    /// A TR003 for a name that had to change (`kind`: `variable`, `label` …).
+    fn note(
+        &mut self,
+        rep: &mut Report,
+        kind: &'static str,
+        file: FileId,
+        span: Span,
+        r: Option<Renamed>,
+    ) {
+        let Some(r) = r else { return };
+        let why: Vec<String> = r.reasons.iter().map(|x| x.describe(self.rules)).collect();
+        rep.renamed(
+            file,
+            span,
+            format!(
+                "{kind} `{}` is renamed `{}` in {} ({})",
+                r.krl,
+                r.target,
+                self.rules.language,
+                why.join(", ")
+            ),
+        );
+        self.renamed.push((kind, r));
+    }
+
+    /// The target name of a routine (of this file or of another module).
+    pub fn routine(&mut self, rep: &mut Report, krl: &str, span: Span) -> String {
+        let (name, r) = self.routines.name(krl, self.rules);
+        self.note(rep, self.rules.routine, FileId::Src, span, r);
+        name
+    }
+
+    /// The target name given to a routine before.
+    pub fn routine_of(&self, krl: &str) -> Option<&str> {
+        self.routines.get(krl)
+    }
+
+    /// Names the globals in declaration order, so TR003 points at their declarations.
+    pub fn declare_globals(&mut self, rep: &mut Report) {
+        let (ir, rules) = (self.ir, self.rules);
+        for v in &ir.vars {
+            if v.scope == Scope::Global {
+                let (_, r) = self.globals_ns().name(&v.name, rules);
+                self.note(rep, "variable", v.file, v.decl, r);
+            }
+        }
+    }
+
+    /// Names the parameters and locals of `id` (parameters, then declarations), so TR003
+    /// points at their declarations and made-up names never take a user's.
+    pub fn declare_locals(&mut self, rep: &mut Report, id: RoutineId) {
+        let ir = self.ir;
+        for v in self.vars_of.get(&id).cloned().unwrap_or_default() {
+            let var = ir.var(v);
+            let (_, r) = self
+                .locals
+                .entry(id)
+                .or_default()
+                .name(&var.name, self.rules);
+            self.note(rep, "variable", var.file, var.decl, r);
+        }
+    }
+
+    /// Names the labels of `id` in source order.
+    pub fn declare_labels(&mut self, rep: &mut Report, id: RoutineId) {
+        let ir = self.ir;
+        for (krl, span) in &ir.routine(id).labels {
+            let (_, r) = self.labels.entry(id).or_default().name(krl, self.rules);
+            self.note(rep, "label", FileId::Src, *span, r);
+        }
+    }
+
+    /// A variable's target name (without sigils) and where it lives.
+    pub fn var(&mut self, rep: &mut Report, v: VarId, used_at: Span) -> (String, Home) {
+        let (ir, rules) = (self.ir, self.rules);
+        let var = ir.var(v);
+        let (ns, home) = match var.scope {
+            Scope::Local(r) | Scope::Param(r) => (self.locals.entry(r).or_default(), Home::Local),
+            Scope::Package => {
+                if let Some(g) = package_name(rules, &var.name) {
+                    return (g.to_owned(), Home::Package);
+                }
+                (self.globals_ns(), Home::Global)
+            }
+            Scope::Global | Scope::Assumed => (self.globals_ns(), Home::Global),
+        };
+        let (n, r) = ns.name(&var.name, rules);
+        self.note(rep, "variable", FileId::Src, used_at, r);
+        (n, home)
+    }
+
+    /// A global's target name, without a finding (its declaration had one).
+    pub fn global(&mut self, krl: &str) -> String {
+        let rules = self.rules;
+        self.globals_ns().name(krl, rules).0
+    }
+
+    /// A label of the KRL routine `id`.
+    pub fn label(&mut self, id: RoutineId, krl: &str) -> String {
+        self.labels.entry(id).or_default().name(krl, self.rules).0
+    }
+
+    /// A label the translator needs in routine `id`.
+    pub fn fresh_label(&mut self, id: RoutineId, base: &str) -> String {
+        let max = self.rules.max_len;
+        self.labels.entry(id).or_default().fresh(base, max)
+    }
+
+    /// A local the translator needs in routine `id` (without sigils).
+    pub fn fresh_local(&mut self, id: RoutineId, base: &str) -> String {
+        let max = self.rules.max_len;
+        self.locals.entry(id).or_default().fresh(base, max)
+    }
+
+    /// The name map for the output's header: a title, then `kind krl -> target` per rename.
+    pub fn name_map(&self) -> Option<(String, Vec<String>)> {
+        if self.renamed.is_empty() {
+            return None;
+        }
+        let mut seen = BTreeSet::new();
+        let entries = self
+            .renamed
+            .iter()
+            .filter(|(kind, r)| seen.insert((*kind, r.krl.to_ascii_uppercase(), r.target.clone())))
+            .map(|(kind, r)| format!("{kind} {} -> {}", r.krl, r.target))
+            .collect();
+        Some((
+            format!("Name map (KRL -> {}):", self.rules.language),
+            entries,
+        ))
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -169,6 +384,10 @@ mod tests {
         NameRules {
             max_len: 15,
             is_reserved: |n| matches!(n, "speed" | "home"),
+            language: "AS",
+            routine: "program",
+            routines_with_globals: false,
+            package: &[],
         }
     }
 

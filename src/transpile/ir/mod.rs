@@ -657,6 +657,20 @@ impl Aggregate {
             self.get(Component::Turn).and_then(Expr::integer),
         )
     }
+
+    /// The status and turn of a pose literal as KRL writes them (`S 2, T 35`), when given:
+    /// no target has them (each robot picks its own arm configuration).
+    pub fn status_turn_text(&self) -> Option<String> {
+        let (s, t) = self.status_turn();
+        if self.axis || (s.is_none() && t.is_none()) {
+            return None;
+        }
+        let st: Vec<String> = [("S", s), ("T", t)]
+            .iter()
+            .filter_map(|(n, v)| v.map(|v| format!("{n} {v}")))
+            .collect();
+        Some(st.join(", "))
+    }
 }
 
 // ----- I/O ------------------------------------------------------------------------------
@@ -991,6 +1005,22 @@ pub struct Target {
 pub struct Delta {
     pub fields: Vec<(Component, Expr)>,
     pub span: Span,
+}
+
+impl Delta {
+    /// The X, Y, Z offsets (`None`: not given, i.e. 0), or `None` when the offset also turns
+    /// or moves external axes (a literal 0 for A, B, C does not count).
+    pub fn position(&self) -> Option<[Option<&Expr>; 3]> {
+        let mut xyz = [None; 3];
+        for (c, e) in &self.fields {
+            match c {
+                Component::Pose(i @ 0..=2) => xyz[*i] = Some(e),
+                Component::Pose(_) if e.number() == Some(0.0) => {}
+                _ => return None,
+            }
+        }
+        Some(xyz)
+    }
 }
 
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]

@@ -549,18 +549,12 @@ impl<'a> Tx<'a> {
     }
 
     fn status_turn(&mut self, a: &Aggregate, span: Span, file: FileId) {
-        let (s, t) = a.status_turn();
-        if !a.axis && (s.is_some() || t.is_some()) {
-            let st: Vec<String> = [("S", s), ("T", t)]
-                .iter()
-                .filter_map(|(n, v)| v.map(|v| format!("{n} {v}")))
-                .collect();
+        if let Some(st) = a.status_turn_text() {
             self.rep.approximate(
                 file,
                 span,
                 format!(
-                    "status/turn ({}) have no AS counterpart; the controller picks the arm configuration",
-                    st.join(", ")
+                    "status/turn ({st}) have no AS counterpart; the controller picks the arm configuration"
                 ),
                 "if this is a PTP target, check the configuration and set LEFTY/RIGHTY, ABOVE/BELOW, UWRIST/DWRIST before the move",
             );

@@ -11,6 +11,7 @@ use super::format::{self, num};
 use super::{R, Tx, fail};
 use crate::catalog::{AsKind, Direction, KawasakiCommand, Subprogram, catalog};
 use crate::diag::Span;
+use crate::transpile::front::names::package_name;
 use crate::transpile::front::report::FileId;
 use crate::transpile::ir::{Arg, ExprKind, Place, Ty};
 
@@ -18,7 +19,7 @@ use crate::transpile::ir::{Arg, ExprKind, Place, Ty};
 /// `MM_Plan_Results` hold the data of one selected point on KUKA; Kawasaki keeps them per
 /// point (`vis_custom_data[i,j]`, `vis_plan_result[i,j]`), so the translation fills AS copies
 /// with these names where KUKA selects the point.
-const GLOBALS: [(&str, &str); 4] = [
+pub(super) const GLOBALS: [(&str, &str); 4] = [
     ("MM_Last_Status", "mm_status"),
     ("Do_Port", "mm_do_list"),
     ("MM_UserData", "mm_userdata"),
@@ -28,14 +29,6 @@ const GLOBALS: [(&str, &str); 4] = [
 /// KUKA output parameters without a Kawasaki counterpart, and the value they get: Kawasaki
 /// programs deliver everything in one call, so there is never a further batch.
 const DROPPED_OUTPUTS: [(&str, f64); 1] = [("Last_Data", 1.0)];
-
-/// The AS name of a KUKA package global, if `name` is one.
-pub(super) fn package_global(name: &str) -> Option<&'static str> {
-    GLOBALS
-        .iter()
-        .find(|(k, _)| k.eq_ignore_ascii_case(name))
-        .map(|(_, a)| *a)
-}
 
 impl<'a> Tx<'a> {
     pub(super) fn mm_call(&mut self, sub: &'static Subprogram, args: &[Arg], span: Span) -> R<()> {
@@ -407,8 +400,9 @@ impl<'a> Tx<'a> {
             global(g, span)?;
         }
         let k = self.scratch("mm_k");
-        let user_to = package_global("MM_UserData").unwrap_or("mm_userdata");
-        let plan_to = package_global("MM_Plan_Results").unwrap_or("mm_plan_results");
+        let user_to = package_name(&super::NAME_RULES, "MM_UserData").unwrap_or("mm_userdata");
+        let plan_to =
+            package_name(&super::NAME_RULES, "MM_Plan_Results").unwrap_or("mm_plan_results");
         if user {
             self.zero_loop(&k, user_to, cat.limits.user_data_len);
         }

@@ -20,15 +20,15 @@ mod mm;
 mod motion;
 mod stmt;
 
-use std::collections::{BTreeSet, HashMap};
+use std::collections::HashMap;
 
 use super::Options;
 use super::VisionServer;
 use super::front::Program as Source;
-use super::front::comments::{self, CommentQueue};
-use super::front::names::{NameRules, Namespace, Renamed};
+use super::front::comments::CommentQueue;
+use super::front::names::{Home, NameRules, Namer};
 use super::front::report::{FileId, Report};
-use super::ir::{self, LoopId, RoutineId, RoutineKind, Scope, TempId, Ty, VarId};
+use super::ir::{self, LoopId, RoutineId, RoutineKind, TempId, Ty, VarId};
 use crate::diag::Span;
 
 pub(super) use super::front::{Fail, R, fail};
@@ -42,6 +42,10 @@ pub fn joint_map(s: &str) -> Result<super::joints::JointMap, String> {
 pub const NAME_RULES: NameRules = NameRules {
     max_len: 15,
     is_reserved: keywords::is_reserved,
+    language: "AS",
+    routine: "program",
+    routines_with_globals: false,
+    package: &mm::GLOBALS,
 };
 
 /// Render `program`; the findings are not yet sorted. `produced`: the statements that wrote
@@ -86,13 +90,8 @@ pub(super) struct Tx<'a> {
     opts: &'a Options,
     vision: Option<&'a VisionServer>,
     rep: Report,
-    programs_ns: Namespace,
-    globals_ns: Namespace,
-    locals_ns: HashMap<RoutineId, Namespace>,
-    labels_ns: HashMap<RoutineId, Namespace>,
-    /// Every rename, in the order found, with what kind of name it is.
-    renamed: Vec<(&'static str, Renamed)>,
-    comments: CommentQueue,
+    names: Namer<'a>,
+    comments: CommentQueue<'a>,
     programs: Vec<ProgramOut>,
     lines: Vec<String>,
     depth: usize,
@@ -113,18 +112,14 @@ impl<'a> Tx<'a> {
         vision: Option<&'a VisionServer>,
         opts: &'a Options,
     ) -> Tx<'a> {
-        let comments = CommentQueue::new(comments::collect(&src.src.parse.root(), &src.src.text));
+        let comments = CommentQueue::new(&src.src.comments);
         Tx {
             src,
             ir,
             opts,
             vision,
             rep: Report::default(),
-            programs_ns: Namespace::default(),
-            globals_ns: Namespace::default(),
-            locals_ns: HashMap::new(),
-            labels_ns: HashMap::new(),
-            renamed: Vec::new(),
+            names: Namer::new(&NAME_RULES, ir),
             comments,
             programs: Vec::new(),
             lines: Vec::new(),
@@ -149,7 +144,7 @@ impl<'a> Tx<'a> {
                 self.name_program(&r.name, r.name_span);
             }
         }
-        self.name_globals();
+        self.names.declare_globals(&mut self.rep);
         for (i, r) in ir.routines.iter().enumerate() {
             if !r.synthetic {
                 self.routine(RoutineId(i as u32));
@@ -163,63 +158,15 @@ impl<'a> Tx<'a> {
 
     // ----- names -------------------------------------------------------------------------
 
-    fn note_rename(&mut self, kind: &'static str, file: FileId, span: Span, r: Option<Renamed>) {
-        let Some(r) = r else { return };
-        let why: Vec<String> = r.reasons.iter().map(|x| x.describe(&NAME_RULES)).collect();
-        self.rep.renamed(
-            file,
-            span,
-            format!(
-                "{kind} `{}` is renamed `{}` in AS ({})",
-                r.krl,
-                r.target,
-                why.join(", ")
-            ),
-        );
-        self.renamed.push((kind, r));
-    }
-
     /// The AS name of a program (a routine of the file or of another module).
     fn name_program(&mut self, krl: &str, span: Span) -> String {
-        let (name, r) = self.programs_ns.name(krl, &NAME_RULES);
-        self.note_rename("program", FileId::Src, span, r);
-        name
-    }
-
-    fn name_globals(&mut self) {
-        let ir = self.ir;
-        for v in &ir.vars {
-            if v.scope == Scope::Global {
-                let (_, r) = self.globals_ns.name(&v.name, &NAME_RULES);
-                self.note_rename("variable", v.file, v.decl, r);
-            }
-        }
+        self.names.routine(&mut self.rep, krl, span)
     }
 
     /// A variable's AS spelling without sigils, and whether it is local (gets a `.`).
     fn var_name(&mut self, v: VarId, used_at: Span) -> (String, bool) {
-        let var = self.ir.var(v);
-        match var.scope {
-            Scope::Local(r) | Scope::Param(r) => {
-                let ns = self.locals_ns.entry(r).or_default();
-                let (n, ren) = ns.name(&var.name, &NAME_RULES);
-                self.note_rename("variable", FileId::Src, used_at, ren);
-                (n, true)
-            }
-            Scope::Package => match mm::package_global(&var.name) {
-                Some(g) => (g.to_owned(), false),
-                None => {
-                    let (n, ren) = self.globals_ns.name(&var.name, &NAME_RULES);
-                    self.note_rename("variable", FileId::Src, used_at, ren);
-                    (n, false)
-                }
-            },
-            Scope::Global | Scope::Assumed => {
-                let (n, ren) = self.globals_ns.name(&var.name, &NAME_RULES);
-                self.note_rename("variable", FileId::Src, used_at, ren);
-                (n, false)
-            }
-        }
+        let (n, home) = self.names.var(&mut self.rep, v, used_at);
+        (n, home == Home::Local)
     }
 
     /// A temporary's name (with its `.`), minted on first use.
@@ -241,29 +188,20 @@ impl<'a> Tx<'a> {
     /// A label the translator needs (e.g. after a loop left with a jump).
     fn fresh_label(&mut self, base: &str) -> String {
         let id = self.routine_id();
-        self.labels_ns
-            .entry(id)
-            .or_default()
-            .fresh(base, NAME_RULES.max_len)
+        self.names.fresh_label(id, base)
     }
 
     /// A label of the KRL program.
     fn label_name(&mut self, l: ir::LabelId) -> String {
         let id = self.routine_id();
-        let krl = self.ir.routine(id).labels[l.0 as usize].0.clone();
-        let ns = self.labels_ns.entry(id).or_default();
-        ns.name(&krl, &NAME_RULES).0
+        let krl = &self.ir.routine(id).labels[l.0 as usize].0;
+        self.names.label(id, krl)
     }
 
     /// A local variable the translator needs, rendered with its `.`.
     fn fresh_local(&mut self, base: &str) -> String {
         let id = self.routine_id();
-        let n = self
-            .locals_ns
-            .entry(id)
-            .or_default()
-            .fresh(base, NAME_RULES.max_len);
-        format!(".{n}")
+        format!(".{}", self.names.fresh_local(id, base))
     }
 
     /// A scratch local for the translator's own use, the same one for `base` throughout the
@@ -338,7 +276,7 @@ impl<'a> Tx<'a> {
         let name = if r.synthetic {
             self.name_program(&r.name, r.name_span)
         } else {
-            self.programs_ns.get(&r.name).unwrap_or("").to_owned()
+            self.names.routine_of(&r.name).unwrap_or("").to_owned()
         };
         self.rt = Some(Rt {
             id,
@@ -351,15 +289,8 @@ impl<'a> Tx<'a> {
         });
         // Locals first (parameters, then declarations), then labels, so made-up names never
         // take a user's.
-        for (i, v) in ir.vars.iter().enumerate() {
-            if matches!(v.scope, Scope::Param(x) | Scope::Local(x) if x == id) {
-                let ns = self.locals_ns.entry(id).or_default();
-                let (_, ren) = ns.name(&v.name, &NAME_RULES);
-                self.note_rename("variable", v.file, v.decl, ren);
-                let _ = i;
-            }
-        }
-        self.name_labels(id);
+        self.names.declare_locals(&mut self.rep, id);
+        self.names.declare_labels(&mut self.rep, id);
         let mut params: Vec<String> = Vec::new();
         let mut copies: Vec<String> = Vec::new();
         for p in &r.params {
@@ -396,33 +327,6 @@ impl<'a> Tx<'a> {
         let body = std::mem::take(&mut self.lines);
         self.programs.push(ProgramOut { header, body });
         self.rt = None;
-    }
-
-    /// The routine's labels, in source order, so TR003 points at them.
-    fn name_labels(&mut self, id: RoutineId) {
-        let r = self.ir.routine(id);
-        for (krl, span) in &r.labels {
-            let ns = self.labels_ns.entry(id).or_default();
-            let (_, ren) = ns.name(krl, &NAME_RULES);
-            if let Some(ren) = ren {
-                let why: Vec<String> = ren
-                    .reasons
-                    .iter()
-                    .map(|x| x.describe(&NAME_RULES))
-                    .collect();
-                self.rep.renamed(
-                    FileId::Src,
-                    *span,
-                    format!(
-                        "label `{}` is renamed `{}` in AS ({})",
-                        ren.krl,
-                        ren.target,
-                        why.join(", ")
-                    ),
-                );
-                self.renamed.push(("label", ren));
-            }
-        }
     }
 
     // ----- assembly ----------------------------------------------------------------------
@@ -481,14 +385,9 @@ impl<'a> Tx<'a> {
             v.push("; Data not translated:".into());
             v.extend(self.data.kept.iter().cloned());
         }
-        if !self.renamed.is_empty() {
-            v.push("; Name map (KRL -> AS):".into());
-            let mut seen = BTreeSet::new();
-            for (kind, r) in &self.renamed {
-                if seen.insert((kind, r.krl.to_ascii_uppercase(), r.target.clone())) {
-                    v.push(format!(";   {kind} {} -> {}", r.krl, r.target));
-                }
-            }
+        if let Some((title, entries)) = self.names.name_map() {
+            v.push(format!("; {title}"));
+            v.extend(entries.iter().map(|e| format!(";   {e}")));
         }
         v
     }

@@ -357,21 +357,16 @@ impl<'a> Tx<'a> {
 
     /// `DRAW`/`TDRAW` values: X, Y, Z only.
     fn draw_values(&mut self, d: &Delta) -> R<Vec<String>> {
-        let mut v = vec!["0".to_owned(), "0".to_owned(), "0".to_owned()];
-        for (c, e) in &d.fields {
-            match c {
-                Component::Pose(i @ 0..=2) => v[*i] = self.expr(e)?,
-                Component::Pose(_) if e.number() == Some(0.0) => {}
-                _ => {
-                    return fail(
-                        d.span,
-                        "a relative move with orientation or external-axis changes has no confirmed AS equivalent",
-                        "split it into a DRAW/TDRAW for the position and a separate reorientation",
-                    );
-                }
-            }
-        }
-        Ok(v)
+        let Some(xyz) = d.position() else {
+            return fail(
+                d.span,
+                "a relative move with orientation or external-axis changes has no confirmed AS equivalent",
+                "split it into a DRAW/TDRAW for the position and a separate reorientation",
+            );
+        };
+        xyz.iter()
+            .map(|e| e.map_or(Ok("0".to_owned()), |e| self.expr(e)))
+            .collect()
     }
 
     /// A motion target: a pose or joint variable, a literal, or pose arithmetic.

@@ -5,8 +5,8 @@ use super::{R, Tx, fail};
 use crate::diag::Span;
 use crate::transpile::front::report::FileId;
 use crate::transpile::ir::{
-    self, Arg, Block, Callee, Component, Expr, ExprKind, ForLoop, LoopId, LoopKind, Op, Place,
-    RoutineKind, Stmt, Ty,
+    self, Arg, Block, Callee, Component, Expr, ExprKind, LoopId, LoopKind, Op, Place, RoutineKind,
+    Stmt, Ty,
 };
 
 impl<'a> Tx<'a> {
@@ -239,12 +239,7 @@ impl<'a> Tx<'a> {
     fn loop_(&mut self, id: LoopId, kind: &'a LoopKind, body: &'a Block, end: u32) -> R<()> {
         let (head, close) = match kind {
             LoopKind::For(f) => {
-                let ForLoop {
-                    var,
-                    from,
-                    to,
-                    step,
-                } = &**f;
+                let (var, from, to, step) = (&f.var, &f.from, &f.to, &f.step);
                 let v = self.place_text(var, &Ty::Int, from.span)?;
                 let (a, b) = (self.expr(from)?, self.expr(to)?);
                 let step = match step {
@@ -460,8 +455,8 @@ impl<'a> Tx<'a> {
             Callee::Routine(r) => {
                 let routine = self.ir.routine(*r);
                 let name = self
-                    .programs_ns
-                    .get(&routine.name)
+                    .names
+                    .routine_of(&routine.name)
                     .unwrap_or(&routine.name)
                     .to_owned();
                 (

@@ -360,7 +360,7 @@ impl<'p> Lower<'p> {
             .min()
             .unwrap_or(r.span.end);
         let d =
-            self.src.src.parse.diagnostics.iter().find(|d| {
+            self.src.src.syntax_errors.iter().find(|d| {
                 d.code == "KRL001" && d.span.start >= r.span.start && d.span.start < first
             })?;
         let text = &self.src.src.text;
@@ -437,6 +437,7 @@ impl<'p> Lower<'p> {
         self.block_into(&r.body, &mut body);
         self.finish_triggers(&mut body);
         let rt = self.rt.take().expect("in a routine");
+        body.shrink_to_fit();
         let out = &mut self.out.routines[id.0 as usize];
         out.body = body;
         out.temps = rt.temps;
@@ -476,6 +477,7 @@ impl<'p> Lower<'p> {
         self.block_into(&src.src.ast.top_level, &mut body);
         self.finish_triggers(&mut body);
         let rt = self.rt.take().expect("in a routine");
+        body.shrink_to_fit();
         let out = &mut self.out.routines[id.0 as usize];
         out.body = body;
         out.temps = rt.temps;

@@ -32,6 +32,8 @@ impl<'p> Lower<'p> {
         let mut out = Block::new();
         self.block_into(body, &mut out);
         self.finish_triggers(&mut out);
+        // Blocks grow by doubling: up to half of a large program's model was spare capacity.
+        out.shrink_to_fit();
         if let Some(rt) = &mut self.rt {
             rt.continued = saved.unwrap_or(false);
             rt.triggers = saved_triggers;
