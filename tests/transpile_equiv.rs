@@ -10,8 +10,8 @@ mod as_support;
 mod equiv_support;
 
 use equiv_support::{
-    Aspect, Brand, EVERY_LINE, Excluded, Program, as_steps, compare, findings, flexiv_steps,
-    krl_steps, python, run_as, run_flexiv, to_as, to_flexiv,
+    Aspect, Brand, EVERY_LINE, Excluded, Program, as_steps, by, compare, ex, findings,
+    flexiv_steps, krl_steps, python, run_as, run_flexiv, to_as, to_flexiv,
 };
 
 /// A runnable fixture: the `$IN` inputs that are on, and what each target leaves out.
@@ -22,40 +22,38 @@ struct Case {
     flexiv: &'static [Excluded],
 }
 
-/// Leave `aspect` out at `line`, where a finding says `finding`.
-const fn ex(line: usize, aspect: Aspect, finding: &'static str) -> Excluded {
-    by(line, aspect, line, finding)
-}
+// What the findings say (parts of their messages).
+const AS_SPEED_UNKNOWN: &str = "the speed of this motion is not known here";
+const PTP_UNSET: &str = "the PTP speed ($VEL_AXIS) is not set";
+const SPLINE: &str = "a SPLINE block becomes plain LIN/CIRC motions";
+/// spline_trigger's TRIGGERs switch the glue output before / after the motion, not on the path.
+const TRIGGER_ON: Excluded = ex(
+    11,
+    Aspect::OutputTiming,
+    "the action runs before the next motion starts",
+);
+const TRIGGER_OFF: Excluded = ex(
+    13,
+    Aspect::OutputTiming,
+    "the action runs after the next motion has ended",
+);
 
-/// Leave `aspect` out at `line`, because of a finding at line `because` saying `finding`.
-const fn by(line: usize, aspect: Aspect, because: usize, finding: &'static str) -> Excluded {
-    Excluded {
-        line,
-        aspect,
-        because,
-        finding,
-    }
-}
-
-/// The runnable fixtures. Not here: `dup_params` and `untranslatable` (TR001: the routines
-/// and calls that matter are not translated), `motions` (a JT7 value the test AS interpreter
-/// does not model), `taught`, `io_waits` (they need values the cell does not define), and the
-/// vision cells (`pick_cycle`, `bin_pick`, `depal_plan`, `vision_variants`, `flexiv_pick`,
-/// `gripper_check`, `advance_stops`, `viz_depal`), whose AS runs are compared with the KRL
-/// runs in `transpile_run.rs`.
+/// The runnable fixtures without a vision server. Not here: `dup_params` and
+/// `untranslatable` (TR001: the routines and calls that matter are not translated), `motions`
+/// (a JT7 value the test AS interpreter does not model), `taught` (AS needs `#xhome`, which
+/// KUKA's controller defines), `io_waits` and `viz_depal` (they read variables before
+/// anything assigns them), `flexiv_pick` (a vision cell with no KRL run to compare), and the
+/// vision cells `pick_cycle`, `bin_pick`, `depal_plan`, `vision_variants`, which
+/// `transpile_run.rs` compares on both targets against the fake vision server.
 const CASES: &[Case] = &[
     Case {
         name: "speed_kinds",
         inputs: &[],
         // Line 4: the program sets only $VEL.CP before the first PTP; KRL's joint speed is
         // not set (null), AS moves at the SPEED ALWAYS in force, with a TR002.
-        kawasaki: &[ex(
-            4,
-            Aspect::Speed,
-            "the speed of this motion is not known here",
-        )],
+        kawasaki: &[ex(4, Aspect::Speed, AS_SPEED_UNKNOWN)],
         // Line 4: the same unset PTP speed; the script moves at its default (KRL.vel_ptp).
-        flexiv: &[ex(4, Aspect::Speed, "the PTP speed ($VEL_AXIS) is not set")],
+        flexiv: &[ex(4, Aspect::Speed, PTP_UNSET)],
     },
     Case {
         name: "blend_after_call",
@@ -65,18 +63,10 @@ const CASES: &[Case] = &[
         // at the SPEED ALWAYS in force.
         kawasaki: &[
             ex(9, Aspect::Blend, "changes the blending distance"),
-            ex(
-                13,
-                Aspect::Speed,
-                "the speed of this motion is not known here",
-            ),
+            ex(13, Aspect::Speed, AS_SPEED_UNKNOWN),
         ],
         // Line 13: the PTP speed is never set; the script moves at its default.
-        flexiv: &[ex(
-            13,
-            Aspect::Speed,
-            "the PTP speed ($VEL_AXIS) is not set",
-        )],
+        flexiv: &[ex(13, Aspect::Speed, PTP_UNSET)],
     },
     Case {
         name: "calls_in_expressions",
@@ -92,59 +82,20 @@ const CASES: &[Case] = &[
         // passes them on one continuous path: no approximation clause of their own). Lines 11,
         // 13: the TRIGGER actions switch the output before/after the motion, not on the path.
         kawasaki: &[
-            ex(
-                5,
-                Aspect::Speed,
-                "the speed of this motion is not known here",
-            ),
-            ex(
-                9,
-                Aspect::Speed,
-                "the speed of this motion is not known here",
-            ),
-            by(
-                7,
-                Aspect::Blend,
-                6,
-                "a SPLINE block becomes plain LIN/CIRC motions",
-            ),
-            by(
-                8,
-                Aspect::Blend,
-                6,
-                "a SPLINE block becomes plain LIN/CIRC motions",
-            ),
-            ex(
-                11,
-                Aspect::OutputTiming,
-                "the action runs before the next motion starts",
-            ),
-            ex(
-                13,
-                Aspect::OutputTiming,
-                "the action runs after the next motion has ended",
-            ),
+            ex(5, Aspect::Speed, AS_SPEED_UNKNOWN),
+            ex(9, Aspect::Speed, AS_SPEED_UNKNOWN),
+            by(7, Aspect::Blend, 6, SPLINE),
+            by(8, Aspect::Blend, 6, SPLINE),
+            TRIGGER_ON,
+            TRIGGER_OFF,
         ],
         flexiv: &[
-            ex(5, Aspect::Speed, "the PTP speed ($VEL_AXIS) is not set"),
-            ex(9, Aspect::Speed, "the PTP speed ($VEL_AXIS) is not set"),
+            ex(5, Aspect::Speed, PTP_UNSET),
+            ex(9, Aspect::Speed, PTP_UNSET),
             ex(7, Aspect::Blend, "spline points become one MoveL"),
-            by(
-                8,
-                Aspect::Blend,
-                6,
-                "a SPLINE block becomes plain LIN/CIRC motions",
-            ),
-            ex(
-                11,
-                Aspect::OutputTiming,
-                "the action runs before the next motion starts",
-            ),
-            ex(
-                13,
-                Aspect::OutputTiming,
-                "the action runs after the next motion has ended",
-            ),
+            by(8, Aspect::Blend, 6, SPLINE),
+            TRIGGER_ON,
+            TRIGGER_OFF,
         ],
     },
     Case {
@@ -187,6 +138,19 @@ const CASES: &[Case] = &[
             ),
             by(13, Aspect::Target, 10, "an incomplete literal"),
         ],
+    },
+    Case {
+        name: "advance_stops",
+        // $IN[3]: the output before the timer wait; $IN[7]: out of the loop at once.
+        inputs: &[3, 7],
+        kawasaki: &[],
+        flexiv: &[],
+    },
+    Case {
+        name: "gripper_check",
+        inputs: &[5],
+        kawasaki: &[],
+        flexiv: &[],
     },
     Case {
         name: "control",

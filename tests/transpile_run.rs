@@ -184,14 +184,6 @@ fn run_as(src: &Path, scenario: Option<Scenario>, inputs: &[i64]) -> AsRun {
     run_as_edited(src, scenario, inputs, &|t| t.to_string())
 }
 
-fn first_program(text: &str) -> String {
-    text.lines()
-        .find_map(|l| l.strip_prefix(".PROGRAM "))
-        .and_then(|h| h.split('(').next())
-        .expect("a program")
-        .to_string()
-}
-
 struct KrlRun {
     r: RunResult,
     requests: Vec<RequestLog>,
@@ -454,20 +446,10 @@ fn krl_outputs(krl: &KrlRun) -> Vec<i64> {
     krl.r.outputs.iter().map(|n| *n as i64).collect()
 }
 
-use equiv_support::{Aspect, EVERY_LINE, Excluded};
+use equiv_support::{Aspect, EVERY_LINE, Excluded, by, first_program};
 
-/// Leave `aspect` out at `line`, because of a finding at line `because` saying `finding`.
-const fn by(line: usize, aspect: Aspect, because: usize, finding: &'static str) -> Excluded {
-    Excluded {
-        line,
-        aspect,
-        because,
-        finding,
-    }
-}
-
-// What the AS translations report they do not keep (see `transpile_equiv.rs` for the same
-// fixtures on both targets).
+// What the AS translations of the cells report they do not keep (`transpile_equiv.rs` has the
+// fixtures without vision, on both targets).
 /// `BAS(#INITMOV)` at `line`: KUKA's default speeds (krlkit: 100 %, 2 m/s) become AS's
 /// conservative defaults until the program sets its own.
 const fn initmov(line: usize) -> Excluded {
@@ -478,62 +460,18 @@ const fn initmov(line: usize) -> Excluded {
         "AS gets conservative defaults",
     )
 }
+/// `BAS(#INITMOV)` at `line`: the script's own default speeds (Flexiv).
+const fn flexiv_initmov(line: usize) -> Excluded {
+    by(
+        EVERY_LINE,
+        Aspect::InitSpeed,
+        line,
+        "the script uses DEFAULT_VEL",
+    )
+}
+
 /// `MM_CALIB`'s wait time (line 42) is not passed to the AS `calibrate`, which waits its own.
 const VISION_VARIANTS: &[Excluded] = &[by(EVERY_LINE, Aspect::Waits, 42, "WaitTime")];
-const SPEED_KINDS: &[Excluded] = &[by(
-    4,
-    Aspect::Speed,
-    4,
-    "the speed of this motion is not known",
-)];
-const BLEND_AFTER_CALL: &[Excluded] = &[
-    by(9, Aspect::Blend, 9, "changes the blending distance"),
-    by(
-        13,
-        Aspect::Speed,
-        13,
-        "the speed of this motion is not known here",
-    ),
-];
-const SPLINE_TRIGGER: &[Excluded] = &[
-    by(
-        5,
-        Aspect::Speed,
-        5,
-        "the speed of this motion is not known here",
-    ),
-    by(
-        9,
-        Aspect::Speed,
-        9,
-        "the speed of this motion is not known here",
-    ),
-    by(
-        7,
-        Aspect::Blend,
-        6,
-        "a SPLINE block becomes plain LIN/CIRC motions",
-    ),
-    by(
-        8,
-        Aspect::Blend,
-        6,
-        "a SPLINE block becomes plain LIN/CIRC motions",
-    ),
-    by(
-        11,
-        Aspect::OutputTiming,
-        11,
-        "the action runs before the next motion starts",
-    ),
-    by(
-        13,
-        Aspect::OutputTiming,
-        13,
-        "the action runs after the next motion has ended",
-    ),
-];
-
 /// Every check that compares a finished AS run with the KRL original (`.dat` results too
 /// where the program has them).
 fn assert_same_run(name: &str, krl: &KrlRun, run: &AsRun, printed: &[usize]) {
@@ -542,9 +480,6 @@ fn assert_same_run(name: &str, krl: &KrlRun, run: &AsRun, printed: &[usize]) {
     // and waits in order (`transpile_equiv.rs` does this for the fixtures without vision).
     let excluded = match name {
         "vision_variants" => VISION_VARIANTS,
-        "speed_kinds" => SPEED_KINDS,
-        "blend_after_call" => BLEND_AFTER_CALL,
-        "spline_trigger" => SPLINE_TRIGGER,
         "pallet_pattern" => &[initmov(8)],
         "pick_cycle" => &[initmov(9)],
         "bin_pick" | "depal_plan" => &[initmov(10)],
@@ -575,6 +510,52 @@ fn assert_same_run(name: &str, krl: &KrlRun, run: &AsRun, printed: &[usize]) {
             assert_eq!(a.args, k.args, "{name}: {} vs {}", a.raw, k.raw);
         }
     }
+}
+
+/// The Flexiv translation of `name` runs on the stub `flexivrdk` against the fake vision server
+/// with `scenario` (the KUKA cell: the script keeps KUKA's pose convention) and `$IN` inputs,
+/// and matches the KRL run step by step (`equiv_support::compare`, leaving out `excluded`),
+/// with the same requests to the vision server (but for the commands `untranslated` that only
+/// an untranslated statement sends). Without python3 this is skipped.
+fn assert_same_flexiv_run(
+    name: &str,
+    krl: &KrlRun,
+    scenario: Scenario,
+    inputs: &[usize],
+    excluded: &[Excluded],
+    untranslated: &[u32],
+) {
+    let Some(py) = equiv_support::python() else {
+        return;
+    };
+    let server = Server::start(scenario, "127.0.0.1:0").expect("server starts");
+    let p = equiv_support::Program::fixture(name);
+    let t = equiv_support::to_flexiv_for(
+        &p,
+        Some(VisionServer {
+            ip: "127.0.0.1".parse().expect("ip"),
+            port: server.addr().port(),
+            origin: "test server".into(),
+        }),
+    );
+    let findings = equiv_support::findings(&t);
+    let calls = equiv_support::run_flexiv(py, &t.text, inputs)
+        .unwrap_or_else(|e| panic!("{name} (Flexiv): {e}"));
+    equiv_support::compare(
+        &equiv_support::krl_steps(&krl.r),
+        &equiv_support::flexiv_steps(&calls),
+        equiv_support::Brand::Flexiv,
+        &findings,
+        excluded,
+    )
+    .unwrap_or_else(|e| panic!("{name} (Flexiv): {e}"));
+    let mut want = commands(&krl.requests);
+    want.retain(|c| !c.is_some_and(|c| untranslated.contains(&c)));
+    assert_eq!(
+        commands(&server.requests()),
+        want,
+        "{name} (Flexiv): requests"
+    );
 }
 
 // ----- cells ---------------------------------------------------------------------------------
@@ -723,6 +704,14 @@ fn pick_cycle_runs_like_the_krl_original() {
     assert_eq!(run.end, End::Done, "{}", run.text);
     assert_same_run("pick_cycle", &krl, &run, &[]);
     assert_eq!(literals_converted(&krl, &run, "pick_cycle"), 4);
+    assert_same_flexiv_run(
+        "pick_cycle",
+        &krl,
+        sc.clone(),
+        &[10, 11],
+        &[flexiv_initmov(9)],
+        &[],
+    );
 
     // Approach, pick, retreat per pose: the pick is the pose as received.
     let picks: Vec<[f64; 6]> = run
@@ -753,6 +742,14 @@ fn bin_pick_runs_like_the_krl_original() {
     // Motions 2 and 17 (each cycle's first) are the literal with general angles.
     assert_same_run("bin_pick", &krl, &run, &[2, 17]);
     assert_eq!(literals_converted(&krl, &run, "bin_pick"), 5);
+    assert_same_flexiv_run(
+        "bin_pick",
+        &krl,
+        sc.clone(),
+        &[3, 4],
+        &[flexiv_initmov(10)],
+        &[],
+    );
     let g = dat_globals(&krl, &run, "bin_pick");
     assert!(g.contains(&("picked".into(), 6.0, Some(6.0))), "{g:?}");
     assert!(g.contains(&("err_code".into(), 0.0, Some(0.0))), "{g:?}");
@@ -964,6 +961,23 @@ fn depal_plan_runs_like_the_krl_original() {
     let run = run_as(&fixture("depal_plan"), Some(for_kawasaki(&sc)), &[]);
     assert_eq!(run.end, End::Done, "{}", run.text);
     assert_same_run("depal_plan", &krl, &run, &[]);
+    // Line 26: LIN to axis values has no Flexiv counterpart (TR001): not made.
+    assert_same_flexiv_run(
+        "depal_plan",
+        &krl,
+        sc.clone(),
+        &[],
+        &[
+            flexiv_initmov(10),
+            by(
+                26,
+                Aspect::Motion,
+                26,
+                "LIN to axis values has no counterpart",
+            ),
+        ],
+        &[],
+    );
     let g = dat_globals(&krl, &run, "depal_plan");
     for (name, v) in [
         ("to_pick", 3.0),
@@ -1001,6 +1015,28 @@ fn vision_variants_run_like_the_krl_original() {
     let run = run_as(&fixture("vision_variants"), Some(for_kawasaki(&sc)), &[]);
     assert_eq!(run.end, End::Done, "{}", run.text);
     assert_same_run("vision_variants", &krl, &run, &[]);
+    // Line 42: MM_CALIB is not translated for Flexiv (TR001): its motions and waits are not
+    // made. Lines 9, 19, 30, 39: the speed is not set (KRL: none); the script's default.
+    assert_same_flexiv_run(
+        "vision_variants",
+        &krl,
+        sc.clone(),
+        &[],
+        &[
+            by(42, Aspect::Motion, 42, "`MM_CALIB` moves the robot"),
+            by(9, Aspect::Speed, 9, "the PTP speed ($VEL_AXIS) is not set"),
+            by(19, Aspect::Speed, 19, "the path speed ($VEL.CP) is not set"),
+            by(
+                30,
+                Aspect::Speed,
+                30,
+                "the PTP speed ($VEL_AXIS) is not set",
+            ),
+            by(39, Aspect::Speed, 39, "the path speed ($VEL.CP) is not set"),
+        ],
+        // MM_CALIB's calibration requests.
+        &[701],
+    );
     let g = dat_globals(&krl, &run, "vision_variants");
     for (name, v) in [
         ("dy_num", 2.0),
@@ -1093,29 +1129,5 @@ fn every_fixture_runs_or_stops_at_a_located_error() {
             continue;
         }
         assert!(got.starts_with(want), "{name}: {got}");
-    }
-}
-
-#[test]
-fn issue_fixtures_move_like_the_krl_original() {
-    // The regression fixtures of the translator's motion semantics: same targets, outputs and
-    // requests as the KRL run, and per motion the speed of its own kind and value, the
-    // blending and the frames of the KRL trace (`assert_same_run`; what a TR002 says is not
-    // kept is listed with the exclusions above).
-    for name in [
-        "speed_kinds",
-        "blend_after_call",
-        "calls_in_expressions",
-        "spline_trigger",
-    ] {
-        let krl = run_krl(&fixture(name), None, &[]);
-        assert!(
-            matches!(krl.r.end, interp::End::Normal),
-            "{name}: {:?}",
-            krl.r.end
-        );
-        let run = run_as(&fixture(name), None, &[]);
-        assert_eq!(run.end, End::Done, "{name}: {}", run.text);
-        assert_same_run(name, &krl, &run, &[]);
     }
 }

@@ -1825,39 +1825,10 @@ impl<'p> Machine<'p> {
             Root::Global(k) if *k == self.sys.tool || *k == self.sys.base => Some(self.tool_base()),
             _ => None,
         };
-        let root = match &p.root {
-            Root::Global(k) => self.globals.at_mut(*k),
-            Root::Local(fi, k) => match self
-                .frames
-                .get_mut(*fi)
-                .and_then(|f| f.vars.get_mut(*k)?.as_mut())
-            {
-                Some(Slot::Own(v)) => Some(v),
-                _ => None,
-            },
-            Root::Group { .. } | Root::Const(_) => None,
+        // `read_place` found it above, and nothing since moved it.
+        let Some(slot) = self.place_mut(p) else {
+            return Err(self.err("invalid access"));
         };
-        let mut slot = match root {
-            Some(r) => r,
-            None => {
-                return Err(Stop::from(RuntimeError {
-                    file: String::new(),
-                    line: 0,
-                    message: "dangling reference".into(),
-                }));
-            }
-        };
-        for s in &p.path {
-            let next = match (s, slot) {
-                (Seg::Index(i), Value::Array { items, .. }) => items.get_mut(*i),
-                (Seg::Field(f), v) => v.field_mut(f),
-                _ => None,
-            };
-            slot = match next {
-                Some(n) => n,
-                None => return Err(self.err("invalid access")),
-            };
-        }
         *slot = new;
         if let Root::Global(k) = &p.root {
             self.after_system_write(*k, &p.path);

@@ -132,8 +132,8 @@ pub enum Step {
     Move(Box<Motion>),
     /// An output (KUKA number) changed; the KRL statement's line (KRL runs only).
     Out(i64, bool, Option<usize>),
-    /// `WAIT SEC`, seconds.
-    Wait(f64),
+    /// `WAIT SEC`, seconds; the KRL statement's line (KRL runs only).
+    Wait(f64, Option<usize>),
 }
 
 fn describe(s: &Step) -> String {
@@ -147,7 +147,7 @@ fn describe(s: &Step) -> String {
             m.line.map(|l| format!(" (line {l})")).unwrap_or_default()
         ),
         Step::Out(n, v, _) => format!("OUT[{n}] = {v}"),
-        Step::Wait(t) => format!("WAIT {t} s"),
+        Step::Wait(t, _) => format!("WAIT {t} s"),
     }
 }
 
@@ -218,7 +218,10 @@ fn six(fields: &[(String, f64)]) -> [f64; 6] {
 /// The steps of a KRL run.
 pub fn krl_steps(r: &RunResult) -> Vec<Step> {
     let mut out = Vec::new();
+    // Inside an `MM_*` routine, what it does belongs to the program's call.
+    let mut call: Option<usize> = None;
     for rec in &r.events {
+        let line = call.or(rec.at.as_ref().map(|a| a.line));
         match &rec.event {
             KrlEvent::Motion {
                 kind,
@@ -247,22 +250,20 @@ pub fn krl_steps(r: &RunResult) -> Vec<Step> {
                     },
                     base: Pose::kuka(&six(&settings.base)),
                     tool: Pose::kuka(&six(&settings.tool)),
-                    line: rec.at.as_ref().map(|a| a.line),
+                    line,
                 })));
             }
             KrlEvent::Io {
                 signal: "$OUT",
                 index,
                 value,
-            } => out.push(Step::Out(
-                *index as i64,
-                *value,
-                rec.at.as_ref().map(|a| a.line),
-            )),
+            } => out.push(Step::Out(*index as i64, *value, line)),
             KrlEvent::Wait {
                 kind: WaitKind::Sec,
                 ms,
-            } => out.push(Step::Wait(ms / 1000.0)),
+            } => out.push(Step::Wait(ms / 1000.0, line)),
+            KrlEvent::Call { .. } => call = rec.at.as_ref().map(|a| a.line),
+            KrlEvent::Return { .. } => call = None,
             _ => {}
         }
     }
@@ -297,8 +298,14 @@ pub fn to_as(p: &Program) -> Translation {
 /// The Flexiv translation: PTP to a pose as MovePTP (so it keeps its joint speed), axis values
 /// mapped A1,A2,0,A3…A6 onto the Rizon's seven joints.
 pub fn to_flexiv(p: &Program) -> Translation {
+    to_flexiv_for(p, None)
+}
+
+/// [`to_flexiv`] with `MM_Init_Socket` connecting to `server`.
+pub fn to_flexiv_for(p: &Program, server: Option<transpile::VisionServer>) -> Translation {
     let (src, dat) = sources(p);
     let options = Options {
+        server,
         flexiv: FlexivOptions {
             ptp: PtpPrimitive::MovePtp,
             joint_map: Some(
@@ -331,7 +338,8 @@ pub fn findings(t: &Translation) -> Vec<(String, usize, String)> {
 
 // ----- AS ------------------------------------------------------------------------------------
 
-fn first_program(text: &str) -> String {
+/// The name of the first `.PROGRAM` of an AS text (the one a run starts).
+pub fn first_program(text: &str) -> String {
     text.lines()
         .find_map(|l| l.strip_prefix(".PROGRAM "))
         .and_then(|h| h.split('(').next())
@@ -449,7 +457,7 @@ pub fn as_steps(a: &As) -> Vec<Step> {
                     }
                 }
             }
-            AsEvent::Twait(t) => out.push(Step::Wait(*t)),
+            AsEvent::Twait(t) => out.push(Step::Wait(*t, None)),
             _ => {}
         }
     }
@@ -567,7 +575,7 @@ pub fn flexiv_steps(calls: &[serde_json::Value]) -> Vec<Step> {
             "sleep" => {
                 let s = c["sec"].as_f64().unwrap_or(0.0);
                 if s != POLL {
-                    out.push(Step::Wait(s));
+                    out.push(Step::Wait(s, None));
                 }
             }
             "ExecutePrimitive" => {
@@ -660,7 +668,8 @@ pub enum Aspect {
     Kind,
     /// The target (it depends on a motion the translation could not make).
     Target,
-    /// The whole motion: the statement is not translated (TR001).
+    /// What the statement does, motions and waits (also inside an `MM_*` routine it calls):
+    /// it is not translated (TR001).
     Motion,
     /// The speed where KRL's is krlkit's `BAS(#INITMOV)` default (100 %, 2 m/s): the
     /// translations write their own defaults for it.
@@ -682,6 +691,21 @@ pub struct Excluded {
     pub because: usize,
     /// Part of the message of that finding.
     pub finding: &'static str,
+}
+
+/// Leave `aspect` out at `line`, because of a finding at line `because` saying `finding`.
+pub const fn by(line: usize, aspect: Aspect, because: usize, finding: &'static str) -> Excluded {
+    Excluded {
+        line,
+        aspect,
+        because,
+        finding,
+    }
+}
+
+/// Leave `aspect` out at `line`, where a finding says `finding`.
+pub const fn ex(line: usize, aspect: Aspect, finding: &'static str) -> Excluded {
+    by(line, aspect, line, finding)
 }
 
 /// [`Excluded::line`] for an exclusion that holds at every motion.
@@ -779,7 +803,8 @@ fn moved_outputs(
     for s in krl {
         match s {
             Step::Move(m) if m.line.is_some_and(|l| dropped.contains(&l)) => {}
-            Step::Wait(_) if waits => {}
+            Step::Wait(_, _) if waits => {}
+            Step::Wait(_, Some(l)) if dropped.contains(l) => {}
             Step::Out(n, v, Some(l)) if lines.contains(l) => moved.push((*n, *v)),
             _ => k.push(s.clone()),
         }
@@ -788,7 +813,7 @@ fn moved_outputs(
     let mut want = moved.iter().peekable();
     for s in target {
         match (s, want.peek()) {
-            (Step::Wait(_), _) if waits => {}
+            (Step::Wait(..), _) if waits => {}
             (Step::Out(n, v, _), Some((m, w))) if n == m && v == w => {
                 want.next();
             }
@@ -882,7 +907,7 @@ pub fn compare(
             (Step::Out(n, v, _), Step::Out(m, w, _)) => {
                 (n != m || v != w).then(|| "output".to_string())
             }
-            (Step::Wait(a), Step::Wait(b)) => (!close(*a, *b)).then(|| "wait".to_string()),
+            (Step::Wait(a, _), Step::Wait(b, _)) => (!close(*a, *b)).then(|| "wait".to_string()),
             _ => Some("a different step".to_string()),
         };
         if let Some(d) = diff {

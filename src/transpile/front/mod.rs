@@ -40,29 +40,47 @@ pub struct Parsed {
 }
 
 impl Parsed {
+    /// Parsed one piece at a time (`syntax::parse_pieces`): the tree of a large file is never
+    /// held whole (for 20 MB of blank lines it was 1.1 GB).
     pub fn new(path: impl Into<String>, text: impl Into<String>) -> Parsed {
+        use crate::syntax::ast::{FileBuilder, PieceLowerer};
+        use crate::syntax::{Node, Piece};
         let text = text.into();
-        let parse = crate::syntax::parse(&text);
-        let ast = parse.ast(&text);
-        let comments = comments::collect(&parse.root(), &text);
+        let mut lowerer = PieceLowerer::new(&text);
+        let mut file = FileBuilder::default();
+        let mut found: Vec<comments::Comment> = Vec::new();
         let mut names = HashSet::new();
         let mut upper = String::new();
-        parse.root().walk_tokens(&mut |t| {
-            if t.kind == TokenKind::Ident {
-                upper.clear();
-                upper.push_str(t.text(&text));
-                upper.make_ascii_uppercase();
-                if !names.contains(&upper) {
-                    names.insert(upper.clone());
+        let syntax_errors = crate::syntax::parse_pieces(&text, |piece| {
+            let node: &Node<'_> = match &piece {
+                Piece::Open { line, .. } => line,
+                Piece::Item(n) | Piece::Close(n) => n,
+            };
+            // A closing piece repeats its routine's first line: its comments are taken once.
+            let after = found.last().map(|c| c.span.start);
+            let new = comments::collect(node, &text);
+            found.extend(
+                new.into_iter()
+                    .filter(|c| after.is_none_or(|a| c.span.start > a)),
+            );
+            node.walk_tokens(&mut |t| {
+                if t.kind == TokenKind::Ident {
+                    upper.clear();
+                    upper.push_str(t.text(&text));
+                    upper.make_ascii_uppercase();
+                    if !names.contains(&upper) {
+                        names.insert(upper.clone());
+                    }
                 }
-            }
+            });
+            lowerer.lower(piece, |e| file.add(e));
         });
         Parsed {
             path: path.into(),
-            syntax_errors: parse.diagnostics,
+            ast: file.finish(),
+            syntax_errors,
+            comments: found,
             text,
-            ast,
-            comments,
             names,
             lines: std::cell::OnceCell::new(),
         }
