@@ -210,7 +210,7 @@ fn cases_are_found() {
 
 /// The motions an example must make against the examples scenario, from the scenario itself.
 fn expected_motions(example: &str, sc: &Scenario) -> Vec<(&'static str, Vec<f64>)> {
-    let project = |id: i64| sc.projects.iter().find(|p| p.id == id).expect("project");
+    let project = |id: i64| sc.project(id).expect("project");
     let viz = sc.viz.as_ref().expect("viz");
     let joints = |w: &krlkit::sim::scenario::Waypoint| w.joints.clone().expect("joints");
     let pose = |w: &krlkit::sim::scenario::Waypoint| w.pose.clone().expect("pose");

@@ -213,10 +213,7 @@ mod cell {
 }
 
 fn project(sc: &Scenario, id: i64) -> &krlkit::sim::scenario::Project {
-    sc.projects
-        .iter()
-        .find(|p| p.id == id)
-        .unwrap_or_else(|| panic!("project {id}"))
+    sc.project(id).unwrap_or_else(|| panic!("project {id}"))
 }
 
 /// Every motion the program makes when everything works (or in its `variant`), from the

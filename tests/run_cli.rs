@@ -87,7 +87,7 @@ fn trace_has_one_event_per_motion_and_per_mm_call() {
     assert_eq!(out.status.code(), Some(0), "{}", stderr(&out));
     let lines = trace_lines(&trace);
     let motions: Vec<_> = lines.iter().filter_map(|l| motion(l)).collect();
-    let points = &sc.projects.iter().find(|p| p.id == 1).unwrap().points;
+    let points = &sc.project(1).unwrap().points;
     assert_eq!(motions.len(), points.len());
     for ((kind, target), p) in motions.iter().zip(points) {
         assert_eq!(kind, "LIN");

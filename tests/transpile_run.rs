@@ -606,11 +606,7 @@ fn cell_with(base: &str, extra: &str) -> Scenario {
 
 /// The vision poses the AS run received, in the order of the scenario's project points.
 fn received(s: &Scenario, project: i64) -> Vec<[f64; 6]> {
-    let p = s
-        .projects
-        .iter()
-        .find(|p| p.id == project)
-        .expect("project");
+    let p = s.project(project).expect("project");
     p.points
         .iter()
         .map(|v| v.pose.clone().try_into().unwrap())

@@ -46,11 +46,7 @@ pub fn trace_of(program: &str, scenario: &str) -> String {
 pub fn scenario_poses(scenario: &str, project: i64) -> Vec<(Vec<f64>, i64)> {
     let text = std::fs::read_to_string(root().join(scenario)).expect("scenario");
     let sc = Scenario::from_toml_str(&text, scenario).expect("scenario parses");
-    let p = sc
-        .projects
-        .iter()
-        .find(|p| p.id == project)
-        .expect("project in the scenario");
+    let p = sc.project(project).expect("project in the scenario");
     p.points
         .iter()
         .map(|pt| (pt.pose.clone(), pt.label))
