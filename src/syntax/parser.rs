@@ -61,17 +61,28 @@ pub fn parse(text: &str) -> Parse {
     let mut diagnostics = Vec::new();
     let mut b = Builder::new(text);
     let mut asm = Assembler::new();
-    let bytes = text.as_bytes();
-    let mut start = 0;
-    while start < bytes.len() {
-        let (content_end, line_end) = line_bounds(bytes, start);
-        let (line, role) = parse_line(&mut b, start, content_end, line_end, &mut diagnostics);
-        asm.push(&mut b, line, role, &mut diagnostics);
-        start = line_end;
-    }
+    each_line(&mut b, &mut asm, &mut diagnostics, |_, _| {});
     let tree = asm.finish(b, &mut diagnostics);
     diagnostics.sort_by_key(|d| d.span.start);
     Parse { tree, diagnostics }
+}
+
+/// Parses each physical line of `b`'s text into `asm`; `after` runs once a line is in.
+fn each_line(
+    b: &mut Builder,
+    asm: &mut Assembler,
+    diagnostics: &mut Vec<Diagnostic>,
+    mut after: impl FnMut(&mut Builder, &mut Assembler),
+) {
+    let bytes = b.text.as_bytes();
+    let mut start = 0;
+    while start < bytes.len() {
+        let (content_end, line_end) = line_bounds(bytes, start);
+        let (line, role) = parse_line(b, start, content_end, line_end, diagnostics);
+        asm.push(b, line, role, diagnostics);
+        after(b, asm);
+        start = line_end;
+    }
 }
 
 /// One piece of a file as [`parse_pieces`] hands it out, in text order.
@@ -110,15 +121,9 @@ pub fn parse_pieces(text: &str, mut f: impl FnMut(Piece<'_>)) -> Vec<Diagnostic>
             PieceKind::Close => Piece::Close(node),
         })
     };
-    let bytes = text.as_bytes();
-    let mut start = 0;
-    while start < bytes.len() {
-        let (content_end, line_end) = line_bounds(bytes, start);
-        let (line, role) = parse_line(&mut b, start, content_end, line_end, &mut diagnostics);
-        asm.push(&mut b, line, role, &mut diagnostics);
-        asm.hand_out(&mut b, &mut hand);
-        start = line_end;
-    }
+    each_line(&mut b, &mut asm, &mut diagnostics, |b, asm| {
+        asm.hand_out(b, &mut hand)
+    });
     asm.close_all(&mut b, &mut diagnostics);
     asm.hand_out(&mut b, &mut hand);
     diagnostics.sort_by_key(|d| d.span.start);
