@@ -257,7 +257,9 @@ fn pieces(text: &str, config: &LintConfig, keep: bool) -> Option<Pieces> {
             facts.add(&event);
             match &mut file {
                 Some(file) => file.add(event),
-                None => followed &= followed && summary.add(event),
+                // Once the summary cannot follow the file's order, stop feeding it.
+                None if followed => followed = summary.add(event),
+                None => {}
             }
         });
     });
