@@ -159,56 +159,48 @@ fn same_items(names: &Names, old: &FileSummary, new: &FileSummary) -> bool {
         (Some((o, _, op)), Some((n, _, np))) => op == np && name(o, n),
         _ => false,
     };
-    let routines = old.routines.len() == new.routines.len()
-        && old.routines.iter().zip(&new.routines).all(|(o, n)| {
-            name(o.name, n.name)
-                && o.kind == n.kind
-                && o.global == n.global
-                && opt_ty(&o.ret, &n.ret)
-                && o.params.len() == n.params.len()
-                && o.params.iter().zip(&n.params).all(|(op, np)| {
-                    name(op.name, np.name) && op.dir == np.dir && op.array == np.array
-                })
-        });
-    let decls = old.decls.len() == new.decls.len()
-        && old.decls.iter().zip(&new.decls).all(|(o, n)| {
-            name(o.name, n.name)
-                && o.owner == n.owner
-                && o.kind == n.kind
-                && o.global == n.global
-                && opt_ty(&o.ty, &n.ty)
-                && o.value == n.value
-        });
-    let types = old.types.len() == new.types.len()
-        && old.types.iter().zip(&new.types).all(|(o, n)| {
-            name(o.name, n.name)
-                && o.owner == n.owner
-                && o.global == n.global
-                && match (&o.kind, &n.kind) {
-                    (TypeItemKind::Struc(of), TypeItemKind::Struc(nf)) => {
-                        of.len() == nf.len()
-                            && of
-                                .iter()
-                                .zip(nf)
-                                .all(|(a, b)| name(a.name, b.name) && ty(&a.ty, &b.ty))
-                    }
-                    (TypeItemKind::Enum(ov), TypeItemKind::Enum(nv)) => {
-                        ov.len() == nv.len() && ov.iter().zip(nv).all(|(a, b)| name(a.0, b.0))
-                    }
-                    _ => false,
+    let routines = pairwise(&old.routines, &new.routines, |o, n| {
+        name(o.name, n.name)
+            && o.kind == n.kind
+            && o.global == n.global
+            && opt_ty(&o.ret, &n.ret)
+            && pairwise(&o.params, &n.params, |op, np| {
+                name(op.name, np.name) && op.dir == np.dir && op.array == np.array
+            })
+    });
+    let decls = pairwise(&old.decls, &new.decls, |o, n| {
+        name(o.name, n.name)
+            && o.owner == n.owner
+            && o.kind == n.kind
+            && o.global == n.global
+            && opt_ty(&o.ty, &n.ty)
+            && o.value == n.value
+    });
+    let types = pairwise(&old.types, &new.types, |o, n| {
+        name(o.name, n.name)
+            && o.owner == n.owner
+            && o.global == n.global
+            && match (&o.kind, &n.kind) {
+                (TypeItemKind::Struc(of), TypeItemKind::Struc(nf)) => {
+                    pairwise(of, nf, |a, b| name(a.name, b.name) && ty(&a.ty, &b.ty))
                 }
-        });
-    let exts = old.exts.len() == new.exts.len()
-        && old.exts.iter().zip(&new.exts).all(|(o, n)| {
-            name(o.name, n.name)
-                && o.owner == n.owner
-                && o.kind == n.kind
-                && opt_ty(&o.ret, &n.ret)
-                && o.params.len() == n.params.len()
-                && o.params
-                    .iter()
-                    .zip(&n.params)
-                    .all(|(a, b)| a.1 == b.1 && ty(&a.0, &b.0))
-        });
+                (TypeItemKind::Enum(ov), TypeItemKind::Enum(nv)) => {
+                    pairwise(ov, nv, |a, b| name(a.0, b.0))
+                }
+                _ => false,
+            }
+    });
+    let exts = pairwise(&old.exts, &new.exts, |o, n| {
+        name(o.name, n.name)
+            && o.owner == n.owner
+            && o.kind == n.kind
+            && opt_ty(&o.ret, &n.ret)
+            && pairwise(&o.params, &n.params, |a, b| a.1 == b.1 && ty(&a.0, &b.0))
+    });
     dat && routines && decls && types && exts
+}
+
+/// Equally long, and `eq` holds for each pair in order.
+fn pairwise<A, B>(a: &[A], b: &[B], eq: impl Fn(&A, &B) -> bool) -> bool {
+    a.len() == b.len() && a.iter().zip(b).all(|(x, y)| eq(x, y))
 }
