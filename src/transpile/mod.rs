@@ -106,24 +106,123 @@ pub struct Translation {
     pub silent: Vec<crate::diag::Span>,
 }
 
+/// A target's renderer, fed the program one routine at a time: each routine's body comes as
+/// the lowered, resolved ops of one statement after another, and is never held whole.
+pub trait Renderer {
+    /// Before the first routine.
+    fn start(&mut self);
+    fn begin_routine(&mut self, id: ir::RoutineId);
+    /// The next ops of the routine begun last.
+    fn ops(&mut self, ops: &ir::Block);
+    fn end_routine(&mut self);
+    /// The target program's text, the findings (not yet sorted) and the statements that wrote
+    /// something.
+    fn finish(self: Box<Self>) -> (String, front::report::Report, Vec<crate::diag::Span>);
+}
+
 /// Translate a KRL program (its `.src` and optional `.dat`) to `target`.
+///
+/// The statements are lowered twice, one at a time, and never held whole (memory follows the
+/// largest statement, not the program): the first pass records the program model without the
+/// routines' bodies and each routine's flow skeleton; the flow facts are solved on the
+/// skeletons; the second pass lowers each statement again, resolves its motions and hands it
+/// to the target's renderer.
 pub fn transpile(
     target: Target,
     src: Source,
     dat: Option<Source>,
     options: &Options,
 ) -> Translation {
-    let mut program = front::Program::new(
+    let program = front::Program::new(
         front::Parsed::new(src.path, src.text),
         dat.map(|d| front::Parsed::new(d.path, d.text)),
     );
-    let (mut model, vision) = ir::lower::lower(&program, options);
-    program.release_syntax();
-    ir::flow::resolve(&mut model);
-    let (text, mut report, produced) = match target {
-        Target::Kawasaki => kawasaki::render(&program, &model, vision.as_ref(), options),
-        Target::Flexiv => flexiv::render(&program, &model, vision.as_ref(), options),
+    let mut first = ir::lower::Lower::new(&program, options);
+    let mut skeleton = ir::flow::Skeleton::default();
+    let mut plan = ir::goto::Plan::default();
+    let mut open = ir::RoutineId(0);
+    each_lowered(&program, &mut first, |event| match event {
+        Lowered::Begin(id, name, starts) => {
+            open = id;
+            skeleton.begin(id, name, starts);
+            plan.begin(id);
+        }
+        Lowered::Ops(ops) => {
+            skeleton.push(open, &ops);
+            plan.push(&ops);
+        }
+        Lowered::End(id) => plan.end(id),
+    });
+    let ir::lower::Lowering {
+        program: mut model,
+        vision,
+        replay,
+    } = first.finish();
+    skeleton.finish();
+    let flow = ir::flow::solve(skeleton);
+    let mut report = front::report::Report::default();
+    for f in std::mem::take(&mut model.findings) {
+        report.approximate(f.file, f.span, f.message, f.help);
+    }
+    let mut renderer: Box<dyn Renderer + '_> = match target {
+        Target::Kawasaki => Box::new(kawasaki::renderer(
+            &program,
+            &model,
+            vision.as_ref(),
+            options,
+            report,
+        )),
+        Target::Flexiv => Box::new(flexiv::renderer(
+            &program,
+            &model,
+            vision.as_ref(),
+            options,
+            report,
+        )),
     };
+    renderer.start();
+    let mut second = replay.lower(&model, &program, options);
+    // Python has no GOTO: a label and the jumps to it are made loops together ([`ir::goto`]).
+    let structure = target == Target::Flexiv;
+    let mut resolver = None;
+    let (mut k, mut unit_end, mut unit, mut next_loop) = (0, None, ir::Block::new(), 0);
+    each_lowered(&program, &mut second, |event| match event {
+        Lowered::Begin(id, _, _) => {
+            open = id;
+            resolver = Some(flow.resolver(id));
+            renderer.begin_routine(id);
+            (k, next_loop) = (0, plan.next_loop(id));
+        }
+        Lowered::Ops(mut ops) => {
+            if let Some(r) = &mut resolver {
+                r.resolve(&mut ops);
+            }
+            if structure {
+                let end = *unit_end.get_or_insert_with(|| plan.unit_end(open, k));
+                unit.append(&mut ops);
+                if k >= end {
+                    ir::goto::structure(&mut unit, &mut next_loop);
+                    renderer.ops(&unit);
+                    unit = ir::Block::new();
+                    unit_end = None;
+                }
+            } else {
+                renderer.ops(&ops);
+            }
+            k += 1;
+        }
+        Lowered::End(_) => {
+            if !unit.is_empty() {
+                ir::goto::structure(&mut unit, &mut next_loop);
+                renderer.ops(&unit);
+                unit = ir::Block::new();
+            }
+            unit_end = None;
+            renderer.end_routine();
+        }
+    });
+    drop(second);
+    let (text, mut report, produced) = renderer.finish();
     if target == Target::Kawasaki {
         let at = model
             .routines
@@ -133,20 +232,22 @@ pub fn transpile(
     }
     report.coverage = coverage(&model, &report);
     let silent = silent(&model, &report, &produced);
-    trim_spans(&mut report.src, &program.src.text);
-    if let Some(dat) = &program.dat {
+    drop(model);
+    let front::Program { src, dat, .. } = program;
+    trim_spans(&mut report.src, &src.text);
+    if let Some(dat) = &dat {
         trim_spans(&mut report.dat, &dat.text);
     }
     report.finish();
     let mut reports = vec![FileReport {
-        path: program.src.path.clone(),
-        text: program.src.text.clone(),
+        path: src.path,
+        text: src.text,
         diagnostics: std::mem::take(&mut report.src),
     }];
-    if let Some(dat) = &program.dat {
+    if let Some(dat) = dat {
         reports.push(FileReport {
-            path: dat.path.clone(),
-            text: dat.text.clone(),
+            path: dat.path,
+            text: dat.text,
             diagnostics: std::mem::take(&mut report.dat),
         });
     }
@@ -155,6 +256,50 @@ pub fn transpile(
         reports,
         coverage: report.coverage,
         silent,
+    }
+}
+
+/// What [`each_lowered`] hands out.
+enum Lowered<'a> {
+    /// A routine begins: its id, its name, and whether it starts the program.
+    Begin(ir::RoutineId, &'a str, bool),
+    /// The ops of its next statement (the first: those before its body; the last: those
+    /// after).
+    Ops(ir::Block),
+    End(ir::RoutineId),
+}
+
+/// Lowers the program's statements one at a time with `lower`: each routine in source order,
+/// then the statements outside any DEF.
+fn each_lowered(
+    program: &front::Program,
+    lower: &mut ir::lower::Lower<'_>,
+    mut f: impl FnMut(Lowered<'_>),
+) {
+    let name = |i: usize| program.src.outline.routines[i].head.name.text.as_str();
+    program.src.each_statement(false, |s| match s {
+        front::Statement::Begin(i) => {
+            let ops = lower.begin_routine(i);
+            f(Lowered::Begin(ir::RoutineId(i as u32), name(i), i == 0));
+            f(Lowered::Ops(ops));
+        }
+        front::Statement::Stmt(s) => f(Lowered::Ops(lower.stmt(&s))),
+        front::Statement::End(i) => {
+            f(Lowered::Ops(lower.end_routine()));
+            f(Lowered::End(ir::RoutineId(i as u32)));
+        }
+    });
+    if let Some((id, ops)) = lower.begin_top_level() {
+        let stem = lower.routine_name(id);
+        f(Lowered::Begin(id, &stem, true));
+        f(Lowered::Ops(ops));
+        program.src.each_statement(true, |s| {
+            if let front::Statement::Stmt(s) = s {
+                f(Lowered::Ops(lower.stmt(&s)));
+            }
+        });
+        f(Lowered::Ops(lower.end_routine()));
+        f(Lowered::End(id));
     }
 }
 

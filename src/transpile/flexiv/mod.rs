@@ -40,33 +40,33 @@ use super::front::Program as Source;
 use super::front::comments::CommentQueue;
 use super::front::names::{Home, Namer};
 use super::front::report::Report;
-use super::ir::{self, LoopId, RoutineId, RoutineKind, Scope, TempId, VarId};
+use super::ir::{self, Block, LoopId, RoutineId, RoutineKind, Scope, TempId, VarId};
 use crate::diag::Span;
 use names::NAME_RULES;
 
 pub(super) use super::front::{Fail, R, fail};
 
-/// Render `program`; the findings are not yet sorted. `produced`: the statements that wrote
-/// something.
-pub fn render(
-    src: &Source,
-    program: &ir::Program,
-    vision: Option<&VisionServer>,
-    options: &Options,
-) -> (String, Report, Vec<Span>) {
-    // Python has no GOTO: jumps become loops first.
-    let mut structured = program.clone();
-    for r in &mut structured.routines {
-        ir::goto::structure(r);
-    }
-    let mut tx = Tx::new(src, &structured, vision, options);
-    tx.run();
-    let text = tx.assemble();
-    (text, tx.rep, tx.produced)
+/// A renderer of `program` to Python, fed by [`crate::transpile::Renderer`]; `report` holds
+/// the lowering's findings. Python has no GOTO: the routines' jumps must already be loops
+/// ([`crate::transpile::ir::goto`]).
+pub fn renderer<'a>(
+    src: &'a Source,
+    program: &'a ir::Program,
+    vision: Option<&'a VisionServer>,
+    options: &'a Options,
+    report: Report,
+) -> Tx<'a> {
+    let mut tx = Tx::new(src, program, vision, options);
+    tx.rep = report;
+    tx
 }
 
 /// The routine being rendered.
 struct Rt {
+    id: RoutineId,
+    /// Its Python name and parameters.
+    name: String,
+    params: Vec<String>,
     kind: RoutineKind,
     /// Python names of the OUT parameters, in order (returned by every `return`).
     outs: Vec<String>,
@@ -93,7 +93,7 @@ struct Assumed {
     what: &'static str,
 }
 
-pub(super) struct Tx<'a> {
+pub struct Tx<'a> {
     src: &'a Source,
     ir: &'a ir::Program,
     fx: &'a FlexivOptions,
@@ -101,7 +101,19 @@ pub(super) struct Tx<'a> {
     rep: Report,
     names: Namer<'a>,
     comments: CommentQueue<'a>,
+    /// Lines of the statement being rendered.
     lines: Vec<String>,
+    /// The function being rendered: the comment lines before its `def`, its lines so far
+    /// (one per line), whether any is code, and where its locals' zero values go.
+    before_def: Vec<String>,
+    body: String,
+    body_has_code: bool,
+    defaults_at: usize,
+    /// The locals its first statements assign (they need no zero value), and whether only
+    /// such assignments have been seen so far.
+    leading: BTreeSet<VarId>,
+    scanning: bool,
+    last_op_is_return: bool,
     depth: usize,
     rt: Option<Rt>,
     /// Python name → undeclared KRL name.
@@ -142,6 +154,13 @@ impl<'a> Tx<'a> {
             names: Namer::new(&NAME_RULES, ir),
             comments,
             lines: Vec::new(),
+            before_def: Vec::new(),
+            body: String::new(),
+            body_has_code: false,
+            defaults_at: 0,
+            leading: BTreeSet::new(),
+            scanning: false,
+            last_op_is_return: false,
             depth: 0,
             rt: None,
             assumed: BTreeMap::new(),
@@ -157,13 +176,10 @@ impl<'a> Tx<'a> {
         }
     }
 
-    fn run(&mut self) {
+    /// Before the first routine: the names of everything declared, in declaration order, so
+    /// TR003 points at declarations and names made up later never take a user's.
+    fn start_program(&mut self) {
         let ir = self.ir;
-        for f in &ir.findings {
-            self.rep.approximate(f.file, f.span, &f.message, &f.help);
-        }
-        // Names of everything declared, in declaration order, so TR003 points at declarations
-        // and names made up later never take a user's.
         for r in &ir.routines {
             if !r.synthetic {
                 self.routine_name(&r.name, r.name_span);
@@ -171,14 +187,11 @@ impl<'a> Tx<'a> {
         }
         self.names.declare_globals(&mut self.rep);
         self.data_globals();
-        for (i, r) in ir.routines.iter().enumerate() {
-            if !r.synthetic {
-                self.routine(RoutineId(i as u32));
-            }
-        }
-        if let Some(t) = ir.top_level {
-            self.routine(t);
-        }
+    }
+
+    /// After the last routine: which function `main()` calls.
+    fn choose_entry(&mut self) {
+        let ir = self.ir;
         let first = ir.routines.iter().position(|r| !r.synthetic);
         match first {
             Some(i) if ir.routines[i].params.is_empty() => {
@@ -315,21 +328,24 @@ impl<'a> Tx<'a> {
 
     // ----- routines ----------------------------------------------------------------------
 
-    fn routine(&mut self, id: RoutineId) {
+    fn begin_routine(&mut self, id: RoutineId) {
         let ir = self.ir;
         let r = ir.routine(id);
         // Comments before the DEF line go above the function.
         self.lines.clear();
         self.depth = 0;
         self.flush_comments(r.span.start);
-        let before = std::mem::take(&mut self.lines);
+        self.before_def = std::mem::take(&mut self.lines);
         let name = if r.synthetic {
             self.routine_name(&r.name, r.name_span)
         } else {
             self.names.routine_of(&r.name).unwrap_or("").to_owned()
         };
         self.rt = Some(Rt {
+            id,
+            name,
             kind: r.kind,
+            params: Vec::new(),
             outs: Vec::new(),
             globals: BTreeSet::new(),
             temps: HashMap::new(),
@@ -352,54 +368,111 @@ impl<'a> Tx<'a> {
             params.push(n);
         }
         if let Some(rt) = &mut self.rt {
-            rt.outs = outs.clone();
+            rt.outs = outs;
+            rt.params = params;
         }
         self.depth = 1;
         // Comments before the declarations stay before the locals' values.
         if let Some(first) = r.locals.iter().map(|(v, _)| ir.var(*v).decl.start).min() {
             self.flush_comments(first);
         }
-        self.local_defaults(r);
-        let start = self.lines.len();
-        self.block(&r.body);
+        self.flush_lines();
+        // The zero values go here once the first statements are known.
+        self.defaults_at = self.body.len();
+        self.leading.clear();
+        self.scanning = true;
+        self.last_op_is_return = false;
+    }
+
+    /// The next ops of the routine being rendered.
+    fn routine_ops(&mut self, ops: &Block) {
+        if self.scanning {
+            for s in ops {
+                match &s.op {
+                    ir::Op::Assign {
+                        place: ir::Place::Var(v),
+                        ..
+                    } => {
+                        self.leading.insert(*v);
+                    }
+                    _ => {
+                        self.scanning = false;
+                        break;
+                    }
+                }
+            }
+        }
+        if let Some(last) = ops.last() {
+            self.last_op_is_return = matches!(last.op, ir::Op::Return(_));
+        }
+        self.block(ops);
+        self.flush_lines();
+    }
+
+    fn end_routine(&mut self) {
+        let ir = self.ir;
+        let Some(id) = self.rt.as_ref().map(|rt| rt.id) else {
+            return;
+        };
+        let r = ir.routine(id);
         self.flush_comments(r.span.end);
-        let ends_with_return = matches!(r.body.last().map(|s| &s.op), Some(ir::Op::Return(_)));
-        if !outs.is_empty() && r.kind == RoutineKind::Def && !ends_with_return {
+        self.flush_lines();
+        let first = std::mem::take(&mut self.leading);
+        self.scanning = false;
+        self.local_defaults(r, &first);
+        let defaults = std::mem::take(&mut self.lines);
+        self.body_has_code |= has_code(&defaults);
+        let mut text = String::new();
+        for l in &defaults {
+            text.push_str(l);
+            text.push('\n');
+        }
+        self.body.insert_str(self.defaults_at, &text);
+        let (outs, kind) = match &self.rt {
+            Some(rt) => (rt.outs.clone(), rt.kind),
+            None => (Vec::new(), r.kind),
+        };
+        if !outs.is_empty() && kind == RoutineKind::Def && !self.last_op_is_return {
             self.line(format!("return {}", outs.join(", ")));
         }
-        if !has_code(&self.lines) {
+        if !self.body_has_code && !has_code(&self.lines) {
             self.line("pass");
         }
-        let _ = start;
-        let body = std::mem::take(&mut self.lines);
-        let globals = self.rt.take().map(|rt| rt.globals).unwrap_or_default();
-        let mut f = before;
-        f.push(format!("def {name}({}):", params.join(", ")));
-        if !globals.is_empty() {
-            let g: Vec<&str> = globals.iter().map(String::as_str).collect();
-            f.push(format!("    global {}", g.join(", ")));
+        self.flush_lines();
+        let Some(rt) = self.rt.take() else {
+            return;
+        };
+        let mut f = std::mem::take(&mut self.before_def).join("\n");
+        if !f.is_empty() {
+            f.push('\n');
         }
-        f.extend(body);
-        self.functions.push(f.join("\n"));
+        f.push_str(&format!("def {}({}):", rt.name, rt.params.join(", ")));
+        if !rt.globals.is_empty() {
+            let g: Vec<&str> = rt.globals.iter().map(String::as_str).collect();
+            f.push_str(&format!("\n    global {}", g.join(", ")));
+        }
+        let body = std::mem::take(&mut self.body);
+        if !body.is_empty() {
+            f.push('\n');
+            f.push_str(body.strip_suffix('\n').unwrap_or(&body));
+        }
+        self.functions.push(f);
+        self.body_has_code = false;
         self.depth = 0;
+    }
+
+    /// Moves the finished lines into the function's text.
+    fn flush_lines(&mut self) {
+        self.body_has_code |= has_code(&self.lines);
+        for l in self.lines.drain(..) {
+            self.body.push_str(&l);
+            self.body.push('\n');
+        }
     }
 
     /// Locals start with their type's zero value (KRL leaves them undefined; Python needs a
     /// value to bind); declared values are assigned where the routine's statements say.
-    fn local_defaults(&mut self, r: &'a ir::Routine) {
-        // Locals the routine assigns before anything else need no zero value.
-        let mut first: BTreeSet<VarId> = BTreeSet::new();
-        for s in &r.body {
-            match &s.op {
-                ir::Op::Assign {
-                    place: ir::Place::Var(v),
-                    ..
-                } => {
-                    first.insert(*v);
-                }
-                _ => break,
-            }
-        }
+    fn local_defaults(&mut self, r: &'a ir::Routine, first: &BTreeSet<VarId>) {
         for (v, dims) in &r.locals {
             if first.contains(v) {
                 continue;
@@ -518,6 +591,30 @@ impl<'a> Tx<'a> {
 }
 
 /// Whether any line is code (not a comment or blank).
+impl crate::transpile::Renderer for Tx<'_> {
+    fn start(&mut self) {
+        self.start_program();
+    }
+
+    fn begin_routine(&mut self, id: RoutineId) {
+        Tx::begin_routine(self, id);
+    }
+
+    fn ops(&mut self, ops: &Block) {
+        self.routine_ops(ops);
+    }
+
+    fn end_routine(&mut self) {
+        Tx::end_routine(self);
+    }
+
+    fn finish(mut self: Box<Self>) -> (String, Report, Vec<Span>) {
+        self.choose_entry();
+        let text = self.assemble();
+        (text, self.rep, self.produced)
+    }
+}
+
 fn has_code(lines: &[String]) -> bool {
     lines.iter().any(|l| {
         let t = l.trim();

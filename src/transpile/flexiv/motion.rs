@@ -128,7 +128,7 @@ impl<'a> Tx<'a> {
         }
     }
 
-    pub(super) fn motion(&mut self, m: &'a Move, span: Span) -> R<()> {
+    pub(super) fn motion(&mut self, m: &Move, span: Span) -> R<()> {
         let zone_arg = |z: Option<String>| z.map(|z| format!(", {z}")).unwrap_or_default();
         match &m.path {
             Path::Circular { .. } => fail(
@@ -283,7 +283,7 @@ impl<'a> Tx<'a> {
     }
 
     /// The linear segments of one spline: one MoveL through the points as waypoints.
-    pub(super) fn spline_group(&mut self, g: &'a [Stmt]) {
+    pub(super) fn spline_group(&mut self, g: &[Stmt]) {
         let span = g[0].span;
         self.flush_comments(span.start);
         let start = self.lines.len();

@@ -11,7 +11,7 @@ use crate::transpile::ir::{
 
 impl<'a> Tx<'a> {
     /// A block: consecutive ops of one KRL statement render together (and fail together).
-    pub(super) fn block(&mut self, b: &'a Block) {
+    pub(super) fn block(&mut self, b: &Block) {
         let mut i = 0;
         while i < b.len() {
             let span = b[i].span;
@@ -31,7 +31,7 @@ impl<'a> Tx<'a> {
     }
 
     /// A nested block, one level deeper; `pass` when nothing in it is code.
-    fn nested(&mut self, b: &'a Block) {
+    fn nested(&mut self, b: &Block) {
         self.forget_frames();
         self.depth += 1;
         let start = self.lines.len();
@@ -43,7 +43,7 @@ impl<'a> Tx<'a> {
         self.forget_frames();
     }
 
-    pub(super) fn group(&mut self, g: &'a [Stmt]) {
+    pub(super) fn group(&mut self, g: &[Stmt]) {
         let span = g[0].span;
         self.flush_comments(span.start);
         let start = self.lines.len();
@@ -98,7 +98,7 @@ impl<'a> Tx<'a> {
         self.depth -= 1;
     }
 
-    fn op(&mut self, s: &'a Stmt) -> R<()> {
+    fn op(&mut self, s: &Stmt) -> R<()> {
         let span = s.span;
         match &s.op {
             Op::Assign { place, value } => self.assign(place, value, span),
@@ -295,7 +295,7 @@ impl<'a> Tx<'a> {
 
     // ----- loops -------------------------------------------------------------------------
 
-    fn loop_(&mut self, id: LoopId, kind: &'a LoopKind, body: &'a Block, end: u32) -> R<()> {
+    fn loop_(&mut self, id: LoopId, kind: &LoopKind, body: &Block, end: u32) -> R<()> {
         let head = match kind {
             LoopKind::For(f) => {
                 let (var, from, to, step) = (&f.var, &f.from, &f.to, &f.step);
@@ -463,7 +463,7 @@ impl<'a> Tx<'a> {
         })
     }
 
-    fn return_(&mut self, value: Option<&'a Expr>, span: Span) -> R<()> {
+    fn return_(&mut self, value: Option<&Expr>, span: Span) -> R<()> {
         let (kind, outs) = match &self.rt {
             Some(rt) => (rt.kind, rt.outs.clone()),
             None => (RoutineKind::Def, Vec::new()),
@@ -494,7 +494,7 @@ impl<'a> Tx<'a> {
     }
 
     /// `place = value`.
-    fn assign(&mut self, place: &'a Place, value: &'a Expr, span: Span) -> R<()> {
+    fn assign(&mut self, place: &Place, value: &Expr, span: Span) -> R<()> {
         let t = self.target(place, span, true)?;
         // A literal with only some components keeps the others, as in KRL.
         if let ExprKind::Aggregate(a) = &value.kind
@@ -548,13 +548,7 @@ impl<'a> Tx<'a> {
         }
     }
 
-    fn call(
-        &mut self,
-        callee: &'a Callee,
-        args: &'a [Arg],
-        ret: Option<&'a Place>,
-        span: Span,
-    ) -> R<()> {
+    fn call(&mut self, callee: &Callee, args: &[Arg], ret: Option<&Place>, span: Span) -> R<()> {
         // The called routine may switch tools or work frames.
         self.forget_frames();
         match callee {

@@ -26,7 +26,7 @@ pub fn dat_record(program: &Program, value: &Expr) -> Option<Vec<(String, f64)>>
     let ExprKind::Name(id) = &value.kind else {
         return None;
     };
-    let dat = program.dat.as_ref()?.ast.dat.as_ref()?;
+    let dat = program.dat.as_ref()?.outline.dat.as_ref()?;
     let init = dat
         .decls
         .iter()

@@ -9,6 +9,7 @@ pub mod kinds;
 pub mod literal;
 pub mod model;
 pub mod names;
+pub mod outline;
 pub mod report;
 pub mod sysvar;
 pub mod vision;
@@ -20,34 +21,48 @@ use std::collections::HashSet;
 
 use crate::diag::{Diagnostic, Span};
 use crate::syntax::TokenKind;
-use crate::syntax::ast::SourceFile;
 
-/// One input file, parsed. The lossless tree is not kept (it was a seventh of a large
-/// translation's memory): what the translator needs of it is read out here.
+/// One input file, parsed one piece at a time (`syntax::parse_pieces`): neither its lossless
+/// tree nor its AST is ever held whole. What the translation needs of the whole file is read
+/// out here (the [`outline::Outline`], comments, names, the semantic summary); statements are
+/// handed out again, one at a time, by [`Parsed::each_statement`].
 pub struct Parsed {
     pub path: String,
     pub text: String,
-    /// Released after lowering ([`Program::release_syntax`]): renderers read text only.
-    pub ast: SourceFile,
+    /// Routine heads, body facts and the data list.
+    pub outline: outline::Outline,
     /// The parser's findings (KRL001).
     pub syntax_errors: Vec<Diagnostic>,
     /// Every comment, in source order.
     pub comments: Vec<comments::Comment>,
     /// Every identifier of the text, upper case.
     names: HashSet<String>,
+    /// The file's summary for the semantic model (taken by [`Program::new`]).
+    summary: Option<crate::sema::FileSummary>,
     /// Built on the first [`Parsed::line`] (building one per question was quadratic).
     lines: std::cell::OnceCell<crate::diag::LineIndex>,
 }
 
+/// What [`Parsed::each_statement`] hands out, in text order.
+#[derive(Debug)]
+pub enum Statement {
+    /// The routine with this index (into the outline's routines) opens.
+    Begin(usize),
+    /// A statement of the open routine's body (after its head), or of the top level.
+    Stmt(crate::syntax::ast::Stmt),
+    /// The routine with this index ends.
+    End(usize),
+}
+
 impl Parsed {
-    /// Parsed one piece at a time (`syntax::parse_pieces`): the tree of a large file is never
-    /// held whole (for 20 MB of blank lines it was 1.1 GB).
     pub fn new(path: impl Into<String>, text: impl Into<String>) -> Parsed {
-        use crate::syntax::ast::{FileBuilder, PieceLowerer};
+        use crate::syntax::ast::PieceLowerer;
         use crate::syntax::{Node, Piece};
         let text = text.into();
         let mut lowerer = PieceLowerer::new(&text);
-        let mut file = FileBuilder::default();
+        let mut outline = outline::OutlineBuilder::default();
+        let mut summary = crate::sema::SummaryBuilder::default();
+        let mut followed = true;
         let mut found: Vec<comments::Comment> = Vec::new();
         let mut names = HashSet::new();
         let mut upper = String::new();
@@ -73,17 +88,80 @@ impl Parsed {
                     }
                 }
             });
-            lowerer.lower(piece, |e| file.add(e));
+            lowerer.lower(piece, |e| {
+                outline.add(&e);
+                if followed && !summary.add(e) {
+                    followed = false;
+                }
+            });
         });
+        // A file whose order the streamed summary cannot follow (a routine after its data
+        // list) is summarised from its whole AST, the one case where it is built.
+        let summary = if followed {
+            summary.finish()
+        } else {
+            crate::sema::FileSummary::of(&crate::syntax::ast::lower_pieces(&text).0)
+        };
         Parsed {
             path: path.into(),
-            ast: file.finish(),
+            outline: outline.finish(),
             syntax_errors,
             comments: found,
             text,
             names,
+            summary: Some(summary),
             lines: std::cell::OnceCell::new(),
         }
+    }
+
+    /// Parses the file again and hands `f` the statements of the routines' bodies (`top_level`
+    /// false: every routine in source order, between its [`Statement::Begin`] and
+    /// [`Statement::End`]) or the statements outside any DEF (`top_level` true), one at a
+    /// time: only one statement's tree exists at once. Head declarations are not handed out
+    /// (they are in the outline).
+    pub fn each_statement(&self, top_level: bool, mut f: impl FnMut(Statement)) {
+        use crate::syntax::ast::{Lowered, PieceLowerer};
+        if top_level && !self.outline.top_level {
+            return;
+        }
+        let mut lowerer = PieceLowerer::new(&self.text);
+        // The routine open, and how many of its head's pieces are still to skip.
+        let mut open: Option<(usize, usize)> = None;
+        let mut in_module = false;
+        let mut routines = 0;
+        crate::syntax::parse_pieces(&self.text, |piece| {
+            lowerer.lower(piece, |e| match e {
+                Lowered::Routine(_) => {
+                    let head = self
+                        .outline
+                        .routines
+                        .get(routines)
+                        .map_or(0, |r| r.head_pieces);
+                    open = Some((routines, head));
+                    if !top_level {
+                        f(Statement::Begin(routines));
+                    }
+                    routines += 1;
+                    in_module = true;
+                }
+                Lowered::Dat(_) => in_module = true,
+                Lowered::Stmt(s) => match &mut open {
+                    Some((_, skip)) if *skip > 0 => *skip -= 1,
+                    Some(_) if !top_level => f(Statement::Stmt(s)),
+                    None if !in_module && top_level => f(Statement::Stmt(s)),
+                    _ => {}
+                },
+                Lowered::Header(_) => {}
+                Lowered::Close { .. } => {
+                    if let Some((i, _)) = open.take()
+                        && !top_level
+                    {
+                        f(Statement::End(i));
+                    }
+                    in_module = false;
+                }
+            })
+        });
     }
 
     /// The 1-based line of a byte offset.
@@ -109,15 +187,15 @@ pub struct Program {
 }
 
 impl Program {
-    /// The model is built from the files' own trees: `sema::Analysis` would parse them a second
-    /// time and keep a second tree of each, which doubled the memory of a large program.
-    pub fn new(src: Parsed, dat: Option<Parsed>) -> Program {
-        let inputs = std::iter::once(&src)
-            .chain(&dat)
+    /// The model is built from the summaries made while parsing: `sema::Analysis` would parse
+    /// the files a second time and keep a tree of each.
+    pub fn new(mut src: Parsed, mut dat: Option<Parsed>) -> Program {
+        let inputs = std::iter::once(&mut src)
+            .chain(&mut dat)
             .map(|f| crate::sema::SemaInput {
                 path: f.path.clone(),
                 group: 0,
-                summary: crate::sema::FileSummary::of(&f.ast),
+                summary: f.summary.take().unwrap_or_default(),
             })
             .collect();
         let sema = crate::sema::Sema::build(inputs, &[]);
@@ -127,16 +205,6 @@ impl Program {
     /// Whether the program's text names `name` (an identifier token, any case).
     pub fn uses_name(&self, name: &str) -> bool {
         self.src.names.contains(&name.to_ascii_uppercase())
-    }
-
-    /// Drops the syntax trees and the semantic model once the program is lowered: the
-    /// renderers read text and comments only, and a large program's tree and model were a
-    /// third of its translation's memory.
-    pub fn release_syntax(&mut self) {
-        for f in std::iter::once(&mut self.src).chain(&mut self.dat) {
-            f.ast = SourceFile::default();
-        }
-        self.sema = crate::sema::Sema::build(Vec::new(), &[]);
     }
 }
 

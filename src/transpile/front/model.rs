@@ -11,7 +11,7 @@ use crate::diag::Span;
 use crate::sema::{
     self, Position, Resolved, RoutineId, Scope, SymbolKind, TyKind, TypeDefKind, TypeId,
 };
-use crate::syntax::ast::{self, Definition, Expr, ExprKind, StmtKind};
+use crate::syntax::ast::{self, Definition, Expr, ExprKind};
 use crate::transpile::front::Program;
 use crate::transpile::front::report::FileId;
 use crate::transpile::ir::{self, Bank, Component, SignalRange, Ty};
@@ -169,10 +169,10 @@ impl<'p> Model<'p> {
                 let index = self.sema.routine(r).index as usize;
                 self.program
                     .src
-                    .ast
+                    .outline
                     .routines
                     .get(index)
-                    .and_then(|a| a.params.iter().find(|p| p.name.is(&name)))
+                    .and_then(|a| a.head.params.iter().find(|p| p.name.is(&name)))
                     .map_or(decl.span, |p| p.name.span)
             }
             _ => decl.span,
@@ -335,22 +335,23 @@ impl<'p> Model<'p> {
     fn enum_names(&self) -> Vec<(String, Option<String>)> {
         let mut out = Vec::new();
         for f in std::iter::once(&self.program.src).chain(&self.program.dat) {
-            for d in f.ast.dat.iter().flat_map(|d| d.definitions.iter()) {
+            for d in f.outline.dat.iter().flat_map(|d| d.definitions.iter()) {
                 if let Definition::Enum(e) = d {
                     out.push((e.name.text.to_string(), None));
                 }
             }
-            for r in &f.ast.routines {
-                let own = r
-                    .definitions
-                    .iter()
-                    .chain(r.body.iter().filter_map(|s| match &s.kind {
-                        StmtKind::Definition(d) => Some(d),
-                        _ => None,
-                    }));
+            for r in &f.outline.routines {
+                // The head's definitions and those that are statements of the body itself.
+                let own = r.head.definitions.iter().chain(
+                    r.facts
+                        .definitions
+                        .iter()
+                        .filter(|(_, top)| *top)
+                        .map(|(d, _)| d),
+                );
                 for d in own {
                     if let Definition::Enum(e) = d {
-                        out.push((e.name.text.to_string(), Some(r.name.text.to_string())));
+                        out.push((e.name.text.to_string(), Some(r.head.name.text.to_string())));
                     }
                 }
             }
@@ -443,16 +444,12 @@ impl<'p> Model<'p> {
                     found.insert((file, s.name.span), signal(s));
                 }
             };
-            for d in f.ast.dat.iter().flat_map(|d| d.definitions.iter()) {
+            for d in f.outline.dat.iter().flat_map(|d| d.definitions.iter()) {
                 look(d);
             }
-            for r in &f.ast.routines {
-                r.definitions.iter().for_each(&mut look);
-                crate::transpile::front::walk::each_stmt(&r.body, &mut |s| {
-                    if let StmtKind::Definition(d) = &s.kind {
-                        look(d);
-                    }
-                });
+            for r in &f.outline.routines {
+                r.head.definitions.iter().for_each(&mut look);
+                r.facts.definitions.iter().for_each(|(d, _)| look(d));
             }
         }
         found

@@ -5,24 +5,108 @@
 //! (the label before them) restart a loop that starts after the label, `Continue`. A jump into a
 //! block from outside it has no structured form and becomes [`Why::Goto`].
 
-use super::{Block, LabelId, LoopId, LoopKind, Op, Routine, Stmt, Why};
+use std::collections::{BTreeMap, BTreeSet};
 
-/// Rewrite the jumps of `r` (its labels stay as comments: [`Op::Keep`]).
-pub fn structure(r: &mut Routine) {
-    let mut next = next_loop_id(&r.body);
-    rewrite(&mut r.body, &mut next);
+use super::{Block, LabelId, LoopId, LoopKind, Op, RoutineId, Stmt, Why};
+
+/// Rewrite the jumps of `b`, a run of a routine's statements that holds every jump to each
+/// label at its top (its labels stay as comments: [`Op::Keep`]); new loops are numbered from
+/// `next`.
+pub fn structure(b: &mut Block, next: &mut u32) {
+    rewrite(b, next);
     // What is left jumps into a block (or to no label).
-    fail_gotos(&mut r.body);
+    fail_gotos(b);
 }
 
-fn next_loop_id(b: &Block) -> u32 {
-    let mut n = 0;
-    super::visit::each_op(b, &mut |op| {
-        if let Op::Loop { id, .. } = op {
-            n = n.max(id.0 + 1);
+/// Which of a routine's top-level statements must be structured together: a label at the top
+/// and every statement that jumps to it, and what lies between. Made from the first lowering
+/// (statement by statement), used by the second ([`Plan::unit_end`]).
+#[derive(Debug, Default)]
+pub struct Plan {
+    /// Per routine: the ranges of its statements (by their index in the routine, the ops
+    /// before the body counting as statement 0) that form one unit, sorted, disjoint.
+    units: Vec<Vec<(usize, usize)>>,
+    /// Per routine: the first loop id the rewriting may use.
+    next_loop: Vec<u32>,
+    /// The routine being planned: where each top-level label stands and where jumps to each
+    /// label stand.
+    at: BTreeMap<LabelId, Vec<usize>>,
+    top: BTreeSet<LabelId>,
+    next: usize,
+    loops: u32,
+}
+
+impl Plan {
+    /// The statements of routine `id` follow.
+    pub fn begin(&mut self, id: RoutineId) {
+        let i = id.0 as usize;
+        if self.units.len() <= i {
+            self.units.resize_with(i + 1, Vec::new);
+            self.next_loop.resize(i + 1, 0);
         }
-    });
-    n
+        self.at.clear();
+        self.top.clear();
+        self.next = 0;
+        self.loops = 0;
+    }
+
+    /// The ops of the routine's next statement.
+    pub fn push(&mut self, ops: &Block) {
+        let k = self.next;
+        self.next += 1;
+        for s in ops {
+            if let Op::Label(l) = s.op {
+                self.at.entry(l).or_default().push(k);
+                self.top.insert(l);
+            }
+        }
+        super::visit::each_op(ops, &mut |op| match op {
+            Op::Goto(l) => self.at.entry(*l).or_default().push(k),
+            Op::Loop { id, .. } => self.loops = self.loops.max(id.0 + 1),
+            _ => {}
+        });
+    }
+
+    /// The routine `id` ends.
+    pub fn end(&mut self, id: RoutineId) {
+        let top = std::mem::take(&mut self.top);
+        let mut ranges: Vec<(usize, usize)> = std::mem::take(&mut self.at)
+            .into_iter()
+            .filter(|(l, at)| top.contains(l) && at.len() > 1)
+            .map(|(_, at)| at)
+            .map(|at| {
+                let (lo, hi) = (at.iter().min(), at.iter().max());
+                (*lo.expect("non-empty"), *hi.expect("non-empty"))
+            })
+            .collect();
+        ranges.sort_unstable();
+        let mut units: Vec<(usize, usize)> = Vec::new();
+        for (lo, hi) in ranges {
+            match units.last_mut() {
+                Some(last) if lo <= last.1 => last.1 = last.1.max(hi),
+                _ => units.push((lo, hi)),
+            }
+        }
+        let i = id.0 as usize;
+        self.units[i] = units;
+        self.next_loop[i] = self.loops;
+    }
+
+    /// The first loop id the rewriting of routine `id` may use.
+    pub fn next_loop(&self, id: RoutineId) -> u32 {
+        self.next_loop.get(id.0 as usize).copied().unwrap_or(0)
+    }
+
+    /// The last statement of the unit statement `k` of routine `id` begins (`k` itself when
+    /// it is a unit of its own).
+    pub fn unit_end(&self, id: RoutineId, k: usize) -> usize {
+        let units = self.units.get(id.0 as usize).map_or(&[][..], |u| u);
+        let i = units.partition_point(|&(lo, _)| lo <= k);
+        match i.checked_sub(1).map(|i| units[i]) {
+            Some((lo, hi)) if lo <= k && k <= hi => hi,
+            _ => k,
+        }
+    }
 }
 
 /// Whether `s` (or anything nested in it) jumps to `l`.

@@ -28,7 +28,7 @@ use super::front::Program as Source;
 use super::front::comments::CommentQueue;
 use super::front::names::{Home, NameRules, Namer};
 use super::front::report::{FileId, Report};
-use super::ir::{self, LoopId, RoutineId, RoutineKind, TempId, Ty, VarId};
+use super::ir::{self, Block, LoopId, RoutineId, RoutineKind, TempId, Ty, VarId};
 use crate::diag::Span;
 
 pub(super) use super::front::{Fail, R, fail};
@@ -48,24 +48,25 @@ pub const NAME_RULES: NameRules = NameRules {
     package: &mm::GLOBALS,
 };
 
-/// Render `program`; the findings are not yet sorted. `produced`: the statements that wrote
-/// something.
-pub fn render(
-    src: &Source,
-    program: &ir::Program,
-    vision: Option<&VisionServer>,
-    options: &Options,
-) -> (String, Report, Vec<Span>) {
+/// A renderer of `program` to AS, fed by [`crate::transpile::Renderer`]; `report` holds the
+/// lowering's findings.
+pub fn renderer<'a>(
+    src: &'a Source,
+    program: &'a ir::Program,
+    vision: Option<&'a VisionServer>,
+    options: &'a Options,
+    report: Report,
+) -> Tx<'a> {
     let mut tx = Tx::new(src, program, vision, options);
-    tx.run();
-    let text = tx.assemble();
-    (text, tx.rep, tx.produced)
+    tx.rep = report;
+    tx
 }
 
 /// One translated `.PROGRAM`.
 struct ProgramOut {
     header: String,
-    body: Vec<String>,
+    /// Its lines, each ending in a line break, ASCII.
+    body: String,
 }
 
 /// The routine being rendered.
@@ -84,7 +85,7 @@ struct Rt {
     scratch: HashMap<String, String>,
 }
 
-pub(super) struct Tx<'a> {
+pub struct Tx<'a> {
     src: &'a Source,
     ir: &'a ir::Program,
     opts: &'a Options,
@@ -93,7 +94,13 @@ pub(super) struct Tx<'a> {
     names: Namer<'a>,
     comments: CommentQueue<'a>,
     programs: Vec<ProgramOut>,
+    /// Lines of the statement being rendered (and the last line before it, which a SPEED
+    /// line is compared with).
     lines: Vec<String>,
+    /// The lines of the routine being rendered, before [`Tx::lines`].
+    body: String,
+    /// The header of the routine being rendered.
+    header: String,
     depth: usize,
     rt: Option<Rt>,
     /// Vision server used by `mm_init_skt` (for the header).
@@ -123,6 +130,8 @@ impl<'a> Tx<'a> {
             comments,
             programs: Vec::new(),
             lines: Vec::new(),
+            body: String::new(),
+            header: String::new(),
             depth: 0,
             rt: None,
             server_used: None,
@@ -132,28 +141,16 @@ impl<'a> Tx<'a> {
         }
     }
 
-    fn run(&mut self) {
+    /// Before the first routine: the names of everything declared, in declaration order, so
+    /// TR003 points at declarations and names made up later never take a user's.
+    fn start_program(&mut self) {
         let ir = self.ir;
-        for f in &ir.findings {
-            self.rep.approximate(f.file, f.span, &f.message, &f.help);
-        }
-        // Names of everything declared, in declaration order, so TR003 points at declarations
-        // and names made up later never take a user's.
         for r in &ir.routines {
             if !r.synthetic {
                 self.name_program(&r.name, r.name_span);
             }
         }
         self.names.declare_globals(&mut self.rep);
-        for (i, r) in ir.routines.iter().enumerate() {
-            if !r.synthetic {
-                self.routine(RoutineId(i as u32));
-            }
-        }
-        if let Some(t) = ir.top_level {
-            self.routine(t);
-        }
-        self.data_sections();
     }
 
     // ----- names -------------------------------------------------------------------------
@@ -267,7 +264,7 @@ impl<'a> Tx<'a> {
 
     // ----- routines ----------------------------------------------------------------------
 
-    fn routine(&mut self, id: RoutineId) {
+    fn begin_routine(&mut self, id: RoutineId) {
         let ir = self.ir;
         let r = ir.routine(id);
         self.flush_comments(r.span.start);
@@ -317,16 +314,37 @@ impl<'a> Tx<'a> {
                 rt.retval = Some((rv, ty));
             }
         }
-        let header = format!(".PROGRAM {name}({})", params.join(","));
+        self.header = format!(".PROGRAM {name}({})", params.join(","));
         self.lines = before;
         for c in copies {
             self.line(c);
         }
-        self.block(&r.body);
+    }
+
+    /// The next ops of the routine being rendered.
+    fn routine_ops(&mut self, ops: &Block) {
+        self.block(ops);
+        self.flush_lines(1);
+    }
+
+    fn end_routine(&mut self) {
+        let r = self.ir.routine(self.routine_id());
         self.flush_comments(r.span.end);
-        let body = std::mem::take(&mut self.lines);
+        self.flush_lines(0);
+        let header = std::mem::take(&mut self.header);
+        let body = std::mem::take(&mut self.body);
         self.programs.push(ProgramOut { header, body });
         self.rt = None;
+    }
+
+    /// Moves the finished lines into the routine's text, all but the last `keep`.
+    fn flush_lines(&mut self, keep: usize) {
+        let n = self.lines.len().saturating_sub(keep);
+        for l in self.lines.drain(..n) {
+            // Non-ASCII can only come from comments and strings (strings are reported).
+            self.body.push_str(&format::ascii(l.trim_end()));
+            self.body.push('\n');
+        }
     }
 
     // ----- assembly ----------------------------------------------------------------------
@@ -337,10 +355,11 @@ impl<'a> Tx<'a> {
         if self.programs.is_empty() {
             self.programs.push(ProgramOut {
                 header: ".PROGRAM main()".into(),
-                body: Vec::new(),
+                body: String::new(),
             });
         }
-        for (i, p) in self.programs.iter().enumerate() {
+        // Each routine's text is dropped once copied: the output is held once.
+        for (i, p) in std::mem::take(&mut self.programs).into_iter().enumerate() {
             out.push_str(&p.header);
             out.push('\n');
             if i == 0 {
@@ -350,11 +369,7 @@ impl<'a> Tx<'a> {
                     out.push('\n');
                 }
             }
-            for l in &p.body {
-                // Non-ASCII can only come from comments and strings (strings are reported).
-                out.push_str(&format::ascii(l.trim_end()));
-                out.push('\n');
-            }
+            out.push_str(&p.body);
             out.push_str(".END\n");
         }
         out.push_str(&format::ascii(&self.data_text()));
@@ -390,6 +405,30 @@ impl<'a> Tx<'a> {
             v.extend(entries.iter().map(|e| format!(";   {e}")));
         }
         v
+    }
+}
+
+impl crate::transpile::Renderer for Tx<'_> {
+    fn start(&mut self) {
+        self.start_program();
+    }
+
+    fn begin_routine(&mut self, id: RoutineId) {
+        Tx::begin_routine(self, id);
+    }
+
+    fn ops(&mut self, ops: &Block) {
+        self.routine_ops(ops);
+    }
+
+    fn end_routine(&mut self) {
+        Tx::end_routine(self);
+    }
+
+    fn finish(mut self: Box<Self>) -> (String, Report, Vec<Span>) {
+        self.data_sections();
+        let text = self.assemble();
+        (text, self.rep, self.produced)
     }
 }
 

@@ -151,7 +151,7 @@ impl<'a> Tx<'a> {
         }
     }
 
-    pub(super) fn motion(&mut self, m: &'a Move, span: Span) -> R<()> {
+    pub(super) fn motion(&mut self, m: &Move, span: Span) -> R<()> {
         // Everything that can fail first, so a failure leaves no lines behind.
         let targets = self.targets(m, span)?;
         let accuracy = self.accuracy_for(m, span);

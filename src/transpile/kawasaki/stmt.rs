@@ -11,7 +11,7 @@ use crate::transpile::ir::{
 
 impl<'a> Tx<'a> {
     /// A block: consecutive ops of one KRL statement render together (and fail together).
-    pub(super) fn block(&mut self, b: &'a Block) {
+    pub(super) fn block(&mut self, b: &Block) {
         let mut i = 0;
         while i < b.len() {
             let span = b[i].span;
@@ -26,7 +26,7 @@ impl<'a> Tx<'a> {
 
     /// A nested block, one level deeper; the ACCURACY in force is unknown at both ends (the
     /// body may run zero or many times, or be jumped into).
-    fn nested(&mut self, b: &'a Block) {
+    fn nested(&mut self, b: &Block) {
         self.forget_accuracy();
         self.depth += 1;
         self.block(b);
@@ -34,7 +34,7 @@ impl<'a> Tx<'a> {
         self.forget_accuracy();
     }
 
-    fn group(&mut self, g: &'a [Stmt]) {
+    fn group(&mut self, g: &[Stmt]) {
         let span = g[0].span;
         self.flush_comments(span.start);
         let start = self.lines.len();
@@ -80,7 +80,7 @@ impl<'a> Tx<'a> {
         self.line(text);
     }
 
-    fn op(&mut self, s: &'a Stmt) -> R<()> {
+    fn op(&mut self, s: &Stmt) -> R<()> {
         let span = s.span;
         match &s.op {
             Op::Assign { place, value } => self.assign(place, value, span),
@@ -236,7 +236,7 @@ impl<'a> Tx<'a> {
         }
     }
 
-    fn loop_(&mut self, id: LoopId, kind: &'a LoopKind, body: &'a Block, end: u32) -> R<()> {
+    fn loop_(&mut self, id: LoopId, kind: &LoopKind, body: &Block, end: u32) -> R<()> {
         let (head, close) = match kind {
             LoopKind::For(f) => {
                 let (var, from, to, step) = (&f.var, &f.from, &f.to, &f.step);
@@ -295,7 +295,7 @@ impl<'a> Tx<'a> {
             .unwrap_or_else(|| "loop_next".into())
     }
 
-    fn return_(&mut self, value: Option<&'a Expr>, span: Span) -> R<()> {
+    fn return_(&mut self, value: Option<&Expr>, span: Span) -> R<()> {
         let retval = self.rt.as_ref().and_then(|r| r.retval.clone());
         if let (Some(v), Some((rv, ty))) = (value, retval) {
             let value = self.value(&ty, v)?;
@@ -317,7 +317,7 @@ impl<'a> Tx<'a> {
     }
 
     /// `place = value`.
-    fn assign(&mut self, place: &'a Place, value: &'a Expr, span: Span) -> R<()> {
+    fn assign(&mut self, place: &Place, value: &Expr, span: Span) -> R<()> {
         let ty = self.place_ty(place);
         if let Place::Component(base, c) = place {
             return self.component_assign(base, *c, value, span);
@@ -353,13 +353,7 @@ impl<'a> Tx<'a> {
     }
 
     /// `p = {Z 450}`: only positions can be set one by one (a shift in the base frame).
-    fn partial_assign(
-        &mut self,
-        place: &'a Place,
-        a: &'a ir::Aggregate,
-        at: Span,
-        span: Span,
-    ) -> R<()> {
+    fn partial_assign(&mut self, place: &Place, a: &ir::Aggregate, at: Span, span: Span) -> R<()> {
         if a.axis
             || a.fields
                 .iter()
@@ -443,13 +437,7 @@ impl<'a> Tx<'a> {
         self.expr(v)
     }
 
-    fn call(
-        &mut self,
-        callee: &'a Callee,
-        args: &'a [Arg],
-        ret: Option<&'a Place>,
-        span: Span,
-    ) -> R<()> {
+    fn call(&mut self, callee: &Callee, args: &[Arg], ret: Option<&Place>, span: Span) -> R<()> {
         let (name, function, ret_ty) = match callee {
             Callee::Mm(sub) => return self.mm_call(sub, args, span),
             Callee::Routine(r) => {

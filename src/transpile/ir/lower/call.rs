@@ -7,7 +7,6 @@ use crate::diag::Span;
 use crate::syntax::ast::{self, StmtKind};
 use crate::transpile::front::ilf;
 use crate::transpile::front::sysvar::Sys;
-use crate::transpile::front::walk;
 use crate::transpile::ir::why::KukaOnly;
 use crate::transpile::ir::{
     Bank, Block, Callee, Expr, ExprKind, InterruptDecl, IoPlace, Op, Stmt, Ty, UnaryOp, Why,
@@ -162,7 +161,8 @@ impl<'p> Lower<'p> {
                     "INT" => Ty::Int,
                     _ => Ty::Real,
                 };
-                self.out.vars[v.0 as usize].ty = ty.clone();
+                let dims = self.out.var(*v).dims;
+                self.retype(*v, ty.clone(), dims);
                 value.ty = ty;
             }
             let place = match &value.kind {
@@ -195,14 +195,12 @@ impl<'p> Lower<'p> {
     /// Every `INTERRUPT DECL` of the file, so `INTERRUPT ON n` anywhere finds its declaration.
     pub(super) fn collect_interrupts(&mut self) {
         let src = self.src;
-        let mut decls: Vec<(&ast::Routine, &ast::Stmt)> = Vec::new();
-        for r in &src.src.ast.routines {
-            walk::each_stmt(&r.body, &mut |s| {
-                if matches!(s.kind, StmtKind::InterruptDecl { .. }) {
-                    decls.push((r, s));
-                }
-            });
-        }
+        let decls = src
+            .src
+            .outline
+            .routines
+            .iter()
+            .flat_map(|r| r.facts.interrupts.iter().map(move |s| (&r.head, s)));
         for (r, s) in decls {
             let StmtKind::InterruptDecl {
                 global,

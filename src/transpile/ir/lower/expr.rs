@@ -403,8 +403,9 @@ impl<'p> Lower<'p> {
                         Some(v) => v,
                         None => {
                             let v = self.assumed_var(id, Ty::Real, "an array of numbers");
-                            self.out.vars[v.0 as usize].dims =
-                                self.out.var(v).dims.max(indices.len());
+                            let var = self.out.var(v);
+                            let (ty, dims) = (var.ty.clone(), var.dims.max(indices.len()));
+                            self.retype(v, ty, dims);
                             v
                         }
                     },

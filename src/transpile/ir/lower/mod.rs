@@ -21,27 +21,70 @@ use crate::diag::Span;
 use crate::syntax::ast::{self, StmtKind};
 use crate::transpile::Options;
 use crate::transpile::VisionServer;
+use crate::transpile::front;
 use crate::transpile::front::model::{Model, VarInfo, VarKind};
+use crate::transpile::front::outline::RoutineOutline;
 use crate::transpile::front::report::FileId;
-use crate::transpile::front::{self, walk};
 
-/// Lower `program` (parsed, with its names resolved by `model`).
-pub fn lower(program: &front::Program, options: &Options) -> (Program, Option<VisionServer>) {
-    let model = Model::new(program);
-    let mut l = Lower {
-        src: program,
-        model,
-        opts: options,
-        out: Program::default(),
-        vars: HashMap::new(),
-        rt: None,
-        next_spline: 0,
-        vision: None,
-        writes: HashMap::new(),
-        moves: HashMap::new(),
-    };
-    l.run();
-    (l.out, l.vision)
+/// The program model lowered statement by statement, in two passes over the program's
+/// statements (each statement's tree is made, lowered and dropped):
+///
+/// - the first pass ([`Lower::new`]) records everything but the routines' bodies: variables,
+///   routine headers, findings, constructs, interrupts, `.dat` values. Its caller keeps of each
+///   lowered statement only what it needs (the motion-parameter skeleton of `flow`);
+/// - the second pass ([`Replay::lower`]) lowers every statement again, to exactly the same
+///   ops, for the renderers: nothing of the first pass's bookkeeping is repeated (findings,
+///   constructs), and the variables' assumed types are replayed as they changed.
+///
+/// A routine is lowered with [`Lower::begin_routine`], [`Lower::stmt`] for each statement of
+/// its body, and [`Lower::end_routine`]; the statements outside any DEF likewise with
+/// [`Lower::begin_top_level`].
+pub struct Lowering {
+    pub program: Program,
+    pub vision: Option<VisionServer>,
+    pub replay: Replay,
+}
+
+/// What the second pass needs to lower the statements again exactly as the first did.
+pub struct Replay {
+    /// The variables as they were when the first routine began.
+    vars: Vec<Var>,
+    keys: HashMap<(String, String), VarId>,
+    /// The next spline id at the start of each routine.
+    next_spline: Vec<u32>,
+}
+
+impl Replay {
+    /// A lowering that repeats the first pass over the same program and options.
+    pub fn lower<'p>(
+        &self,
+        first: &Program,
+        src: &'p front::Program,
+        options: &'p Options,
+    ) -> Lower<'p> {
+        let out = Program {
+            vars: self.vars.clone(),
+            routines: first.routines.clone(),
+            top_level: first.top_level,
+            interrupts: first.interrupts.clone(),
+            ..Program::default()
+        };
+        Lower {
+            src,
+            model: Model::new(src),
+            opts: options,
+            out,
+            vars: self.keys.clone(),
+            rt: None,
+            next_spline: 0,
+            vision: None,
+            writes: HashMap::new(),
+            moves: HashMap::new(),
+            replay: Some(self.next_spline.clone()),
+            journal: None,
+            spline_at: Vec::new(),
+        }
+    }
 }
 
 /// A failure: why, and where to report it.
@@ -85,7 +128,7 @@ struct SplineCtx {
     with: Vec<(super::MotionParam, super::ParamValue)>,
 }
 
-pub(super) struct Lower<'p> {
+pub struct Lower<'p> {
     src: &'p front::Program,
     model: Model<'p>,
     opts: &'p Options,
@@ -100,26 +143,76 @@ pub(super) struct Lower<'p> {
     writes: HashMap<String, Option<BTreeSet<String>>>,
     /// Upper-case routine name → whether it moves the robot (itself or through calls).
     moves: HashMap<String, bool>,
+    /// The second pass: the next spline id at each routine's start (findings and constructs
+    /// are not recorded again).
+    replay: Option<Vec<u32>>,
+    /// First pass, from the first routine on: each change of an assumed variable's type or
+    /// dimensions, with the value it replaced (undone for the second pass).
+    journal: Option<Vec<(VarId, Ty, usize)>>,
+    /// First pass: the next spline id at each routine's start.
+    spline_at: Vec<u32>,
 }
 
 impl<'p> Lower<'p> {
-    fn run(&mut self) {
-        let src = self.src;
-        for g in self.model.globals() {
-            self.add_var(String::new(), g, Scope::Global);
+    /// The first pass over `program`: every name gets its id (globals, routines, their
+    /// parameters and locals) and the interrupt declarations are lowered; the routines follow.
+    pub fn new(program: &'p front::Program, options: &'p Options) -> Lower<'p> {
+        let mut l = Lower {
+            src: program,
+            model: Model::new(program),
+            opts: options,
+            out: Program::default(),
+            vars: HashMap::new(),
+            rt: None,
+            next_spline: 0,
+            vision: None,
+            writes: HashMap::new(),
+            moves: HashMap::new(),
+            replay: None,
+            journal: None,
+            spline_at: Vec::new(),
+        };
+        for g in l.model.globals() {
+            l.add_var(String::new(), g, Scope::Global);
         }
         // Routines first (ids for calls), then their bodies.
-        for r in &src.src.ast.routines {
-            self.declare_routine(r);
+        for r in &program.src.outline.routines {
+            l.declare_routine(r);
         }
-        self.collect_interrupts();
-        for (i, r) in src.src.ast.routines.iter().enumerate() {
-            self.routine(RoutineId(i as u32), r);
-        }
-        if !src.src.ast.top_level.is_empty() {
-            self.top_level();
+        l.collect_interrupts();
+        l.journal = Some(Vec::new());
+        l
+    }
+
+    /// The first pass ends: the `.dat` values are lowered, and what the second pass needs is
+    /// set aside.
+    pub fn finish(mut self) -> Lowering {
+        let mut vars = self.out.vars.clone();
+        for (v, ty, dims) in self.journal.take().unwrap_or_default().into_iter().rev() {
+            let var = &mut vars[v.0 as usize];
+            var.ty = ty;
+            var.dims = dims;
         }
         self.data();
+        Lowering {
+            replay: Replay {
+                vars,
+                keys: self.vars.clone(),
+                next_spline: std::mem::take(&mut self.spline_at),
+            },
+            program: self.out,
+            vision: self.vision,
+        }
+    }
+
+    /// Changes an assumed variable's type or dimensions, remembering the old ones.
+    pub(super) fn retype(&mut self, v: VarId, ty: Ty, dims: usize) {
+        let var = &mut self.out.vars[v.0 as usize];
+        if let Some(j) = &mut self.journal {
+            j.push((v, var.ty.clone(), var.dims));
+        }
+        var.ty = ty;
+        var.dims = dims;
     }
 
     // ----- findings, constructs ----------------------------------------------------------
@@ -140,6 +233,9 @@ impl<'p> Lower<'p> {
         message: impl Into<String>,
         help: impl Into<String>,
     ) {
+        if self.replay.is_some() {
+            return;
+        }
         self.out.findings.push(Finding {
             file,
             span,
@@ -149,6 +245,9 @@ impl<'p> Lower<'p> {
     }
 
     pub(super) fn construct(&mut self, kind: &'static str, span: Span) {
+        if self.replay.is_some() {
+            return;
+        }
         self.out.constructs.push(Construct {
             kind,
             span,
@@ -159,6 +258,9 @@ impl<'p> Lower<'p> {
     /// Change the kind of the construct just recorded (assignments that set I/O, calls of
     /// `MM_*` …).
     pub(super) fn kind(&mut self, kind: &'static str) {
+        if self.replay.is_some() {
+            return;
+        }
         if let Some(c) = self.out.constructs.last_mut() {
             c.kind = kind;
         }
@@ -285,7 +387,8 @@ impl<'p> Lower<'p> {
 
     // ----- routines ----------------------------------------------------------------------
 
-    fn declare_routine(&mut self, r: &ast::Routine) {
+    fn declare_routine(&mut self, outline: &RoutineOutline) {
+        let r = &outline.head;
         let key = r.name.key();
         for v in self.model.locals(&r.name.text) {
             let id = RoutineId(self.out.routines.len() as u32);
@@ -300,7 +403,7 @@ impl<'p> Lower<'p> {
             ast::RoutineKind::Def => RoutineKind::Def,
             ast::RoutineKind::Deffct => RoutineKind::Deffct,
         };
-        let assigned = walk::assigned_names(&r.body);
+        let assigned = &outline.facts.assigned;
         let mut seen = std::collections::HashSet::new();
         let mut duplicate = None;
         let params = r
@@ -342,7 +445,7 @@ impl<'p> Lower<'p> {
             labels: Vec::new(),
             body: Vec::new(),
             closed: r.closed,
-            header_error: self.header_syntax_error(r),
+            header_error: self.header_syntax_error(outline),
             duplicate_param: duplicate,
             span: r.span,
             end: front::end_line_start(&self.src.src.text, r.span),
@@ -351,18 +454,11 @@ impl<'p> Lower<'p> {
     }
 
     /// The line of `r`'s header when the parser reported a syntax error on it.
-    fn header_syntax_error(&self, r: &ast::Routine) -> Option<Span> {
-        let first = r
-            .decls
-            .iter()
-            .map(|d| d.span.start)
-            .chain(r.body.iter().map(|s| s.span.start))
-            .min()
-            .unwrap_or(r.span.end);
-        let d =
-            self.src.src.syntax_errors.iter().find(|d| {
-                d.code == "KRL001" && d.span.start >= r.span.start && d.span.start < first
-            })?;
+    fn header_syntax_error(&self, r: &RoutineOutline) -> Option<Span> {
+        let first = r.first_after_header.unwrap_or(r.head.span.end);
+        let d = self.src.src.syntax_errors.iter().find(|d| {
+            d.code == "KRL001" && d.span.start >= r.head.span.start && d.span.start < first
+        })?;
         let text = &self.src.src.text;
         let at = (d.span.start as usize).min(text.len());
         let from = text[..at].rfind(['\n', '\r']).map_or(0, |i| i + 1);
@@ -386,10 +482,16 @@ impl<'p> Lower<'p> {
         });
     }
 
-    fn routine(&mut self, id: RoutineId, r: &ast::Routine) {
-        let key = r.name.key();
+    /// The routine with index `i` begins: the ops before its body (a header that did not
+    /// parse, a repeated parameter, the values of its head's declarations).
+    pub fn begin_routine(&mut self, i: usize) -> Block {
+        let src = self.src;
+        let outline = &src.src.outline.routines[i];
+        let r = &outline.head;
+        let id = RoutineId(i as u32);
+        self.start_splines(id);
         let kind = self.out.routine(id).kind;
-        self.enter(id, key.clone());
+        self.enter(id, r.name.key());
         let header = match kind {
             RoutineKind::Def => "routine DEF",
             RoutineKind::Deffct => "routine DEFFCT",
@@ -407,11 +509,9 @@ impl<'p> Lower<'p> {
             );
         }
         // Labels in source order, so their ids follow the text.
-        walk::each_stmt(&r.body, &mut |s| {
-            if let StmtKind::Label { name } = &s.kind {
-                self.label(name);
-            }
-        });
+        for name in &outline.facts.labels {
+            self.label(name);
+        }
         let mut body = Block::new();
         if let Some(at) = self.out.routine(id).header_error {
             body.push(Stmt {
@@ -434,54 +534,90 @@ impl<'p> Lower<'p> {
         for d in &r.decls {
             self.body_decl(d, d.span, &mut body);
         }
-        self.block_into(&r.body, &mut body);
-        self.finish_triggers(&mut body);
-        let rt = self.rt.take().expect("in a routine");
-        body.shrink_to_fit();
-        let out = &mut self.out.routines[id.0 as usize];
-        out.body = body;
-        out.temps = rt.temps;
-        out.locals = rt.locals;
-        out.labels = rt.label_names;
+        body
     }
 
-    /// Statements outside any DEF: one routine named after the file.
-    fn top_level(&mut self) {
-        let src = self.src;
-        let stem = std::path::Path::new(&src.src.path)
-            .file_stem()
-            .and_then(|s| s.to_str())
-            .unwrap_or("main")
-            .to_owned();
-        let id = RoutineId(self.out.routines.len() as u32);
-        self.out.routines.push(Routine {
-            name: stem,
-            name_span: Span::empty(0),
-            kind: RoutineKind::Def,
-            ret: None,
-            params: Vec::new(),
-            locals: Vec::new(),
-            temps: Vec::new(),
-            labels: Vec::new(),
-            body: Vec::new(),
-            closed: true,
-            header_error: None,
-            duplicate_param: None,
-            span: Span::new(0, src.src.text.len()),
-            end: src.src.text.len() as u32,
-            synthetic: true,
-        });
-        self.out.top_level = Some(id);
-        self.enter(id, String::new());
+    /// One statement of the routine (or top level) begun last, lowered.
+    pub fn stmt(&mut self, s: &ast::Stmt) -> Block {
+        let mut out = Block::new();
+        self.stmt_into(s, &mut out);
+        out
+    }
+
+    /// The routine (or top level) begun last ends: the ops of TRIGGERs no motion followed.
+    /// The first pass records its temporaries, locals and labels.
+    pub fn end_routine(&mut self) -> Block {
         let mut body = Block::new();
-        self.block_into(&src.src.ast.top_level, &mut body);
         self.finish_triggers(&mut body);
         let rt = self.rt.take().expect("in a routine");
-        body.shrink_to_fit();
-        let out = &mut self.out.routines[id.0 as usize];
-        out.body = body;
-        out.temps = rt.temps;
-        out.labels = rt.label_names;
+        if self.replay.is_none() {
+            let out = &mut self.out.routines[rt.id.0 as usize];
+            out.temps = rt.temps;
+            out.locals = rt.locals;
+            out.labels = rt.label_names;
+        }
+        body
+    }
+
+    /// The name of a routine of the model.
+    pub fn routine_name(&self, id: RoutineId) -> String {
+        self.out.routine(id).name.clone()
+    }
+
+    /// Spline ids continue from where the first pass had them at this routine's start.
+    fn start_splines(&mut self, id: RoutineId) {
+        match &self.replay {
+            Some(at) => self.next_spline = at.get(id.0 as usize).copied().unwrap_or(0),
+            None => {
+                let i = id.0 as usize;
+                if self.spline_at.len() <= i {
+                    self.spline_at.resize(i + 1, 0);
+                }
+                self.spline_at[i] = self.next_spline;
+            }
+        }
+    }
+
+    /// Statements outside any DEF begin: one routine named after the file (made by the first
+    /// pass). `None` when the file has none.
+    pub fn begin_top_level(&mut self) -> Option<(RoutineId, Block)> {
+        let src = self.src;
+        if !src.src.outline.top_level {
+            return None;
+        }
+        let id = match self.out.top_level {
+            Some(id) => id,
+            None => {
+                let stem = std::path::Path::new(&src.src.path)
+                    .file_stem()
+                    .and_then(|s| s.to_str())
+                    .unwrap_or("main")
+                    .to_owned();
+                let id = RoutineId(self.out.routines.len() as u32);
+                self.out.routines.push(Routine {
+                    name: stem,
+                    name_span: Span::empty(0),
+                    kind: RoutineKind::Def,
+                    ret: None,
+                    params: Vec::new(),
+                    locals: Vec::new(),
+                    temps: Vec::new(),
+                    labels: Vec::new(),
+                    body: Vec::new(),
+                    closed: true,
+                    header_error: None,
+                    duplicate_param: None,
+                    span: Span::new(0, src.src.text.len()),
+                    end: src.src.text.len() as u32,
+                    synthetic: true,
+                });
+                self.out.top_level = Some(id);
+                id
+            }
+        };
+        self.start_splines(id);
+        self.enter(id, String::new());
+        Some((id, Block::new()))
     }
 
     // ----- what routines do (for hoisting and advance-run stops) -------------------------
@@ -495,35 +631,17 @@ impl<'p> Lower<'p> {
         // Recursion: assume nothing more while the routine is being looked at.
         self.writes.insert(key.clone(), Some(BTreeSet::new()));
         let src = self.src;
-        let result = match src.src.ast.routine(name) {
+        let result = match src.src.outline.routine(name) {
             None => None,
             Some(r) => {
-                let mut set = BTreeSet::new();
+                let mut set: BTreeSet<String> = r.facts.written.iter().cloned().collect();
                 let mut unknown = false;
-                let mut callees = Vec::new();
-                walk::each_stmt(&r.body, &mut |s| match &s.kind {
-                    StmtKind::Assign { target, value } => {
-                        if let Some(id) = walk::root_name(target) {
-                            set.insert(id.key());
-                        }
-                        expr_calls(value, &mut callees);
-                    }
-                    StmtKind::Call { name, args } => {
-                        callees.push(name.text.to_string());
-                        for a in args.iter().flatten() {
-                            if let Some(id) = walk::root_name(a) {
-                                set.insert(id.key());
-                            }
-                        }
-                    }
-                    _ => {}
-                });
-                for c in callees {
+                for c in &r.facts.callees {
                     if c.to_ascii_uppercase().starts_with("MM_") {
                         set.insert("MM_LAST_STATUS".into());
                         continue;
                     }
-                    match self.may_write(&c) {
+                    match self.may_write(c) {
                         Some(w) => set.extend(w),
                         None => unknown = true,
                     }
@@ -551,20 +669,12 @@ impl<'p> Lower<'p> {
         }
         self.moves.insert(key.clone(), false);
         let src = self.src;
-        let result = match src.src.ast.routine(name) {
+        let result = match src.src.outline.routine(name) {
             // Another module's routine, or a package routine: it may.
             None => !key.starts_with("MM_") || key == "MM_CALIB",
             Some(r) => {
-                let mut moves = false;
-                let mut callees = Vec::new();
-                walk::each_stmt(&r.body, &mut |s| match &s.kind {
-                    StmtKind::Motion(_) | StmtKind::Spline { .. } => moves = true,
-                    StmtKind::Call { name, .. } => callees.push(name.text.to_string()),
-                    StmtKind::Assign { value, .. } => expr_calls(value, &mut callees),
-                    _ => {}
-                });
-                moves
-                    || callees.iter().any(|c| {
+                r.facts.moves
+                    || r.facts.callees.iter().any(|c| {
                         let k = c.to_ascii_uppercase();
                         k != "BAS" && KNOWN_STILL.iter().all(|s| *s != k) && self.routine_moves(c)
                     })
@@ -579,23 +689,21 @@ impl<'p> Lower<'p> {
     fn data(&mut self) {
         let src = self.src;
         if let Some(dat) = &src.dat
-            && let Some(m) = &dat.ast.dat
+            && let Some(m) = &dat.outline.dat
         {
             self.dat_module(m, FileId::Dat, &dat.text);
         }
-        if let Some(m) = &src.src.ast.dat {
+        if let Some(m) = &src.src.outline.dat {
             self.dat_module(m, FileId::Src, &src.src.text);
         }
         // GLOBAL declarations inside routines are globals without a value here.
-        for r in &src.src.ast.routines {
-            let mut decls: Vec<&ast::Decl> = r.decls.iter().filter(|d| d.global).collect();
-            walk::each_stmt(&r.body, &mut |s| {
-                if let StmtKind::Decl(d) = &s.kind
-                    && d.global
-                {
-                    decls.push(d);
-                }
-            });
+        for r in &src.src.outline.routines {
+            let decls = r
+                .head
+                .decls
+                .iter()
+                .filter(|d| d.global)
+                .chain(&r.facts.global_decls);
             for d in decls {
                 for v in &d.vars {
                     if let Some(id) = self.vars.get(&(String::new(), v.name.key())).copied() {
@@ -713,36 +821,6 @@ const KNOWN_STILL: [&str; 8] = [
     "SWRITE",
     "SREAD",
 ];
-
-/// Names of routines called inside an expression.
-fn expr_calls(e: &ast::Expr, out: &mut Vec<String>) {
-    match &e.kind {
-        ast::ExprKind::Call { name, args } => {
-            out.push(name.text.to_string());
-            for a in args.iter().flatten() {
-                expr_calls(a, out);
-            }
-        }
-        ast::ExprKind::Index { base, indices } => {
-            expr_calls(base, out);
-            for i in indices.iter().flatten() {
-                expr_calls(i, out);
-            }
-        }
-        ast::ExprKind::Member { base, .. } => expr_calls(base, out),
-        ast::ExprKind::Unary { operand, .. } => expr_calls(operand, out),
-        ast::ExprKind::Binary { lhs, rhs, .. } => {
-            expr_calls(lhs, out);
-            expr_calls(rhs, out);
-        }
-        ast::ExprKind::Aggregate { fields, .. } => {
-            for (_, v) in fields {
-                expr_calls(v, out);
-            }
-        }
-        _ => {}
-    }
-}
 
 /// The first line of `span` (a block statement's own line).
 pub(super) fn first_line(text: &str, span: Span) -> Span {

@@ -472,8 +472,8 @@ impl<'p> Lower<'p> {
         let modules = src
             .dat
             .iter()
-            .filter_map(|d| d.ast.dat.as_ref())
-            .chain(src.src.ast.dat.as_ref());
+            .filter_map(|d| d.outline.dat.as_ref())
+            .chain(src.src.outline.dat.as_ref());
         for m in modules {
             for d in &m.decls {
                 for v in &d.vars {

@@ -17,7 +17,7 @@ impl<'p> Lower<'p> {
     /// Lower `body` into `out`.
     pub(super) fn block_into(&mut self, body: &[ast::Stmt], out: &mut Block) {
         for s in body {
-            self.stmt(s, out);
+            self.stmt_into(s, out);
         }
     }
 
@@ -53,7 +53,7 @@ impl<'p> Lower<'p> {
         b
     }
 
-    fn stmt(&mut self, s: &ast::Stmt, out: &mut Block) {
+    pub(super) fn stmt_into(&mut self, s: &ast::Stmt, out: &mut Block) {
         match &s.kind {
             StmtKind::Definition(_) => return,
             StmtKind::Decl(d) => {

@@ -9,12 +9,23 @@
 //! the file, the program's first routine starts with nothing set, and a routine nobody in the
 //! file calls starts with its caller's values (unknown). Routines of other modules and the
 //! Mech-Mind package are assumed to leave the parameters alone (`MM_CALIB` moves).
+//!
+//! The model's routine bodies are never held whole: while the statements are lowered the first
+//! time, each routine keeps only its [`skeleton`] (the steps that change or read the facts),
+//! and [`solve`] finds the fixpoints on the skeletons. The second lowering hands each lowered
+//! statement to a [`Resolver`], which walks it from the facts in force before it and writes
+//! the facts into its motions and advance-run stops. The walker is one ([`Walker`]), over
+//! either kind of step ([`Step`]).
+
+mod skeleton;
+
+pub use skeleton::{Node, Skeleton};
 
 use std::collections::BTreeMap;
 
 use super::{
-    Because, Blend, Block, Callee, CartMps, FrameRef, JointPct, Known, LabelId, LoopId, LoopKind,
-    MotionParam, Move, Op, ParamValue, Path, Program, RoutineId, SpeedSetting,
+    Because, Blend, Block, Callee, CartMps, FrameKind, FrameRef, JointPct, Known, LabelId, LoopId,
+    LoopKind, MotionParam, Move, Op, ParamValue, Path, RoutineId, SpeedSetting, Stmt,
 };
 
 /// What is known about one value at a program point.
@@ -189,6 +200,86 @@ fn apply(caller: &State, s: &Summary, moves: bool) -> State {
     }
 }
 
+/// What the walker sees of one step: the model's ops and the skeleton's nodes both answer it.
+pub(crate) enum View<'a, S> {
+    Label(LabelId),
+    If(&'a mut Vec<S>, &'a mut Vec<S>),
+    /// The cases' bodies and the default's (`None`: without a default the selector may match
+    /// no case and run nothing).
+    Switch(Vec<&'a mut Vec<S>>, Option<&'a mut Vec<S>>),
+    Loop(LoopId, Shape, &'a mut Vec<S>),
+    Set(MotionParam, &'a ParamValue),
+    Defaults,
+    Frame(FrameKind, &'a FrameRef),
+    /// A motion (the skeleton's have no parameters to write).
+    Move(Option<&'a mut Move>),
+    /// An advance-run stop (the skeleton's have no flag to write).
+    Stop(Option<&'a mut bool>),
+    /// A motion may be running from here on (a call of another module, `MM_CALIB`), or none
+    /// (the skeleton's collapsed steps).
+    Moving(bool),
+    Call(RoutineId),
+    Goto(LabelId),
+    Break(LoopId),
+    Continue(LoopId),
+    Return,
+    /// Changes nothing the flow knows.
+    Other,
+}
+
+/// When a loop tests its condition.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Shape {
+    /// Left only by a jump.
+    Forever,
+    /// Before each pass (WHILE, FOR).
+    Before,
+    /// After each pass (REPEAT).
+    After,
+}
+
+/// A step the walker can walk.
+pub(crate) trait Step: Sized {
+    fn view(&mut self) -> View<'_, Self>;
+}
+
+impl Step for Stmt {
+    fn view(&mut self) -> View<'_, Stmt> {
+        match &mut self.op {
+            Op::Label(l) => View::Label(*l),
+            Op::If { then, els, .. } => View::If(then, els),
+            Op::Switch { cases, default, .. } => View::Switch(
+                cases.iter_mut().map(|c| &mut c.body).collect(),
+                default.as_mut().map(|(b, _)| b),
+            ),
+            Op::Loop { id, kind, body, .. } => {
+                let shape = match kind {
+                    LoopKind::Forever => Shape::Forever,
+                    LoopKind::While(_) | LoopKind::For(_) => Shape::Before,
+                    LoopKind::Until(_) => Shape::After,
+                };
+                View::Loop(*id, shape, body)
+            }
+            Op::SetParam { param, value } => View::Set(*param, value),
+            Op::MotionDefaults => View::Defaults,
+            Op::SetFrame { which, frame } => View::Frame(*which, frame),
+            Op::Move(m) => View::Move(Some(m)),
+            Op::AdvanceStop { needed } => View::Stop(Some(needed)),
+            Op::Call { callee, .. } => match callee {
+                Callee::Routine(r) => View::Call(*r),
+                Callee::External { .. } => View::Moving(true),
+                Callee::Mm(sub) if sub.name == "MM_CALIB" => View::Moving(true),
+                Callee::Mm(_) => View::Other,
+            },
+            Op::Goto(l) => View::Goto(*l),
+            Op::Break(id) => View::Break(*id),
+            Op::Continue(id) => View::Continue(*id),
+            Op::Return(_) => View::Return,
+            _ => View::Other,
+        }
+    }
+}
+
 /// Walks one routine.
 struct Walker<'a> {
     summaries: &'a [Summary],
@@ -205,57 +296,70 @@ struct Walker<'a> {
     changed: bool,
 }
 
-impl Walker<'_> {
-    fn block(&mut self, b: &mut Block, mut s: Option<State>) -> Option<State> {
+impl<'a> Walker<'a> {
+    fn new(summaries: &'a [Summary], moves: &'a [bool]) -> Walker<'a> {
+        Walker {
+            summaries,
+            moves,
+            labels: BTreeMap::new(),
+            breaks: BTreeMap::new(),
+            continues: BTreeMap::new(),
+            exit: None,
+            calls: Vec::new(),
+            changed: false,
+        }
+    }
+
+    fn block<S: Step>(&mut self, b: &mut [S], mut s: Option<State>) -> Option<State> {
         for st in b.iter_mut() {
-            s = self.op(&mut st.op, s);
+            s = self.step(st, s);
         }
         s
     }
 
-    fn op(&mut self, op: &mut Op, s: Option<State>) -> Option<State> {
-        match op {
-            Op::Label(l) => {
-                let at = join_opt(s, self.labels.get(l).cloned());
+    fn step<S: Step>(&mut self, step: &mut S, s: Option<State>) -> Option<State> {
+        let view = step.view();
+        let mut st = match view {
+            View::Label(l) => {
+                let at = join_opt(s, self.labels.get(&l).cloned());
                 if let Some(st) = &at
-                    && self.labels.get(l) != Some(st)
+                    && self.labels.get(&l) != Some(st)
                 {
-                    self.labels.insert(*l, st.clone());
+                    self.labels.insert(l, st.clone());
                     self.changed = true;
                 }
                 return at;
             }
-            Op::If { then, els, .. } => {
+            View::If(then, els) => {
                 let a = self.block(then, s.clone());
                 let b = self.block(els, s);
                 return join_opt(a, b);
             }
-            Op::Switch { cases, default, .. } => {
+            View::Switch(cases, default) => {
                 let mut out = None;
-                for c in cases.iter_mut() {
-                    let r = self.block(&mut c.body, s.clone());
+                for c in cases {
+                    let r = self.block(c, s.clone());
                     out = join_opt(out, r);
                 }
                 let d = match default {
-                    Some((b, _)) => self.block(b, s),
+                    Some(b) => self.block(b, s),
                     None => s,
                 };
                 return join_opt(out, d);
             }
-            Op::Loop { id, kind, body, .. } => return self.loop_(*id, kind, body, s),
-            _ => {}
-        }
-        let mut st = s?;
-        match op {
-            Op::SetParam { param, value } => {
-                st.params.insert(*param, Fact::Is(value.clone()));
+            View::Loop(id, shape, body) => return self.loop_(id, shape, body, s),
+            _ => s?,
+        };
+        match view {
+            View::Set(param, value) => {
+                st.params.insert(param, Fact::Is(value.clone()));
                 match param {
                     MotionParam::VelCp => st.latest = Fact::Is(SpeedSetting::Cart(value.clone())),
                     MotionParam::VelPtp => st.latest = Fact::Is(SpeedSetting::Joint(value.clone())),
                     _ => {}
                 }
             }
-            Op::MotionDefaults => {
+            View::Defaults => {
                 for p in [
                     MotionParam::VelCp,
                     MotionParam::VelPtp,
@@ -268,51 +372,52 @@ impl Walker<'_> {
                 }
                 st.latest = Fact::Is(SpeedSetting::Joint(ParamValue::Default));
             }
-            Op::SetFrame { which, frame } => {
+            View::Frame(which, frame) => {
                 let f = Fact::Is(frame.clone());
                 match which {
-                    super::FrameKind::Tool => st.tool = f,
-                    super::FrameKind::Base => st.base = f,
+                    FrameKind::Tool => st.tool = f,
+                    FrameKind::Base => st.base = f,
                 }
             }
-            Op::Move(m) => {
-                resolve_move(m, &st);
+            View::Move(m) => {
+                if let Some(m) = m {
+                    resolve_move(m, &st);
+                }
                 st.moving = true;
             }
-            Op::AdvanceStop { needed } => {
-                *needed = st.moving;
+            View::Stop(needed) => {
+                if let Some(n) = needed {
+                    *n = st.moving;
+                }
                 st.moving = false;
             }
-            Op::Call { callee, .. } => match callee {
-                Callee::Routine(r) => {
-                    self.calls.push((*r, st.clone()));
-                    let s = &self.summaries[r.0 as usize];
-                    st = apply(&st, s, self.moves[r.0 as usize]);
-                }
-                Callee::External { .. } => st.moving = true,
-                Callee::Mm(sub) => st.moving |= sub.name == "MM_CALIB",
-            },
-            Op::Goto(l) => {
-                let at = join_opt(self.labels.get(l).cloned(), Some(st));
-                if self.labels.get(l) != at.as_ref()
+            View::Moving(m) => st.moving = m,
+            View::Call(r) => {
+                self.calls.push((r, st.clone()));
+                let s = &self.summaries[r.0 as usize];
+                st = apply(&st, s, self.moves[r.0 as usize]);
+            }
+            View::Goto(l) => {
+                let at = join_opt(self.labels.get(&l).cloned(), Some(st));
+                if self.labels.get(&l) != at.as_ref()
                     && let Some(a) = at
                 {
-                    self.labels.insert(*l, a);
+                    self.labels.insert(l, a);
                     self.changed = true;
                 }
                 return None;
             }
-            Op::Break(id) => {
-                let e = self.breaks.entry(*id).or_insert(None);
+            View::Break(id) => {
+                let e = self.breaks.entry(id).or_insert(None);
                 *e = join_opt(e.take(), Some(st));
                 return None;
             }
-            Op::Continue(id) => {
-                let e = self.continues.entry(*id).or_insert(None);
+            View::Continue(id) => {
+                let e = self.continues.entry(id).or_insert(None);
                 *e = join_opt(e.take(), Some(st));
                 return None;
             }
-            Op::Return(_) => {
+            View::Return => {
                 self.exit = join_opt(self.exit.take(), Some(st));
                 return None;
             }
@@ -321,11 +426,11 @@ impl Walker<'_> {
         Some(st)
     }
 
-    fn loop_(
+    fn loop_<S: Step>(
         &mut self,
         id: LoopId,
-        kind: &mut LoopKind,
-        body: &mut Block,
+        shape: Shape,
+        body: &mut [S],
         entry: Option<State>,
     ) -> Option<State> {
         let entry = entry?;
@@ -341,11 +446,11 @@ impl Walker<'_> {
             };
             if next == head {
                 let breaks = self.breaks.get(&id).cloned().flatten();
-                return match kind {
-                    LoopKind::Forever => breaks,
+                return match shape {
+                    Shape::Forever => breaks,
                     // The test runs at the head (and, for REPEAT, after the body).
-                    LoopKind::While(_) | LoopKind::For(_) => join_opt(Some(head), breaks),
-                    LoopKind::Until(_) => {
+                    Shape::Before => join_opt(Some(head), breaks),
+                    Shape::After => {
                         let end = self.block(body, Some(head.clone()));
                         join_opt(end, breaks)
                     }
@@ -415,24 +520,19 @@ fn to_known<T: Clone>(f: &Fact<T>) -> Known<T> {
     }
 }
 
-/// Walks routine `r` from `entry` to a fixpoint of its labels: its exit facts and the facts at
-/// its calls.
-fn walk_routine(
-    body: &mut Block,
-    entry: State,
-    summaries: &[Summary],
-    moves: &[bool],
-) -> (Option<State>, Vec<(RoutineId, State)>) {
-    let mut w = Walker {
-        summaries,
-        moves,
-        labels: BTreeMap::new(),
-        breaks: BTreeMap::new(),
-        continues: BTreeMap::new(),
-        exit: None,
-        calls: Vec::new(),
-        changed: false,
-    };
+/// What a walk of a routine found.
+struct Walked {
+    /// The facts at its end (and RETURNs).
+    exit: Option<State>,
+    /// The facts at each call of a routine of the file.
+    calls: Vec<(RoutineId, State)>,
+    /// The facts at each label.
+    labels: BTreeMap<LabelId, State>,
+}
+
+/// Walks a routine's skeleton from `entry` to a fixpoint of its labels.
+fn walk_routine(body: &mut [Node], entry: State, summaries: &[Summary], moves: &[bool]) -> Walked {
+    let mut w = Walker::new(summaries, moves);
     for _ in 0..16 {
         w.changed = false;
         w.exit = None;
@@ -443,30 +543,43 @@ fn walk_routine(
             break;
         }
     }
-    (w.exit, w.calls)
+    Walked {
+        exit: w.exit,
+        calls: w.calls,
+        labels: w.labels,
+    }
 }
 
-/// Resolve every motion's speed, blending, frames and latest speed, and drop advance-run stops
-/// where no motion can be running.
-pub fn resolve(p: &mut Program) {
-    let n = p.routines.len();
-    let names: Vec<String> = p.routines.iter().map(|r| r.name.clone()).collect();
+/// The facts every routine starts with and has at its labels, found on the skeletons.
+pub struct Solution {
+    summaries: Vec<Summary>,
+    moves: Vec<bool>,
+    /// Per routine: the facts at its start and at its labels.
+    entries: Vec<(State, BTreeMap<LabelId, State>)>,
+}
+
+/// The fixpoints: which routines move, what each routine leaves behind (to a fixpoint over the
+/// call graph), what each starts with (the join over its calls), and the facts at its labels.
+pub fn solve(skeleton: Skeleton) -> Solution {
+    let Skeleton {
+        mut routines,
+        names,
+        direct_moves,
+        first,
+    } = skeleton;
+    let n = routines.len();
+    let calls_of = |body: &[Node]| {
+        let mut out = Vec::new();
+        skeleton::each_call(body, &mut |c| out.push(c));
+        out
+    };
+    let callees: Vec<Vec<RoutineId>> = routines.iter().map(|r| calls_of(r)).collect();
     // Which routines move the robot (themselves or through calls), to a fixpoint.
-    let mut moves = vec![false; n];
+    let mut moves = direct_moves.clone();
     loop {
         let mut changed = false;
-        for (i, r) in p.routines.iter().enumerate() {
-            let mut m = false;
-            super::visit::each_op(&r.body, &mut |op| match op {
-                Op::Move(_) => m = true,
-                Op::Call { callee, .. } => match callee {
-                    Callee::Routine(c) => m |= moves[c.0 as usize],
-                    Callee::External { .. } => m = true,
-                    Callee::Mm(s) => m |= s.name == "MM_CALIB",
-                },
-                _ => {}
-            });
-            if m && !moves[i] {
+        for i in 0..n {
+            if !moves[i] && callees[i].iter().any(|c| moves[c.0 as usize]) {
                 moves[i] = true;
                 changed = true;
             }
@@ -481,7 +594,7 @@ pub fn resolve(p: &mut Program) {
         let mut changed = false;
         for i in 0..n {
             let entry = State::uniform(|| Fact::Entry, false);
-            let (exit, _) = walk_routine(&mut p.routines[i].body, entry, &summaries, &moves);
+            let exit = walk_routine(&mut routines[i], entry, &summaries, &moves).exit;
             let exit = exit.unwrap_or_else(|| State::uniform(|| Fact::Entry, false));
             if summaries[i].exit != exit {
                 summaries[i].exit = exit;
@@ -494,25 +607,14 @@ pub fn resolve(p: &mut Program) {
     }
     // Entry facts: the first routine (and statements outside any DEF) start with nothing set;
     // the others with the join over their calls in the file, or their caller's (unknown).
-    let starts: Vec<bool> = (0..n)
-        .map(|i| i == 0 || p.top_level == Some(RoutineId(i as u32)))
-        .collect();
     let mut called = vec![false; n];
-    for r in &p.routines {
-        super::visit::each_op(&r.body, &mut |op| {
-            if let Op::Call {
-                callee: Callee::Routine(c),
-                ..
-            } = op
-            {
-                called[c.0 as usize] = true;
-            }
-        });
+    for c in callees.iter().flatten() {
+        called[c.0 as usize] = true;
     }
     let start_state = State::uniform(|| Fact::Unknown(Because::NeverSet), false);
     let caller_state = State::uniform(|| Fact::Unknown(Because::Caller), true);
-    let first = |i: usize| {
-        if starts[i] {
+    let first_state = |i: usize| {
+        if first[i] {
             Some(start_state.clone())
         } else if !called[i] {
             Some(caller_state.clone())
@@ -520,14 +622,14 @@ pub fn resolve(p: &mut Program) {
             None
         }
     };
-    let mut entries: Vec<Option<State>> = (0..n).map(first).collect();
+    let mut entries: Vec<Option<State>> = (0..n).map(first_state).collect();
     for _ in 0..16 {
         let mut calls: Vec<Option<State>> = vec![None; n];
         for (i, entry) in entries.iter().enumerate() {
             let Some(entry) = entry.clone() else {
                 continue;
             };
-            let (_, cs) = walk_routine(&mut p.routines[i].body, entry, &summaries, &moves);
+            let cs = walk_routine(&mut routines[i], entry, &summaries, &moves).calls;
             for (c, st) in cs {
                 let slot = &mut calls[c.0 as usize];
                 *slot = join_opt(slot.take(), Some(st));
@@ -535,8 +637,8 @@ pub fn resolve(p: &mut Program) {
         }
         let next: Vec<Option<State>> = (0..n)
             .map(|i| {
-                if starts[i] || !called[i] {
-                    first(i)
+                if first[i] || !called[i] {
+                    first_state(i)
                 } else {
                     calls[i].clone()
                 }
@@ -547,13 +649,48 @@ pub fn resolve(p: &mut Program) {
         }
         entries = next;
     }
-    // The walks above wrote provisional facts into the model (walking a copy instead doubled
-    // the memory of a large routine); this last walk overwrites every one of them.
-    for (i, entry) in entries.into_iter().enumerate() {
-        let entry = entry.unwrap_or_else(|| caller_state.clone());
-        let body = &mut p.routines[i].body;
-        walk_routine(body, entry, &summaries, &moves);
-        drop_stops(body);
+    let entries = entries
+        .into_iter()
+        .enumerate()
+        .map(|(i, entry)| {
+            let entry = entry.unwrap_or_else(|| caller_state.clone());
+            let walked = walk_routine(&mut routines[i], entry.clone(), &summaries, &moves);
+            (entry, walked.labels)
+        })
+        .collect();
+    Solution {
+        summaries,
+        moves,
+        entries,
+    }
+}
+
+/// Resolves the statements of one routine, lowered the second time, in order: each motion
+/// gets the facts in force, each advance-run stop where no motion can be running is dropped.
+pub struct Resolver<'a> {
+    walker: Walker<'a>,
+    state: Option<State>,
+}
+
+impl Solution {
+    /// A resolver for the statements of `routine`, from the facts it starts with.
+    pub fn resolver(&self, routine: RoutineId) -> Resolver<'_> {
+        let (entry, labels) = self.entries[routine.0 as usize].clone();
+        let mut walker = Walker::new(&self.summaries, &self.moves);
+        // The labels' facts are already at their fixpoint: one walk writes the final facts.
+        walker.labels = labels;
+        Resolver {
+            walker,
+            state: Some(entry),
+        }
+    }
+}
+
+impl Resolver<'_> {
+    /// The next ops of the routine, resolved in place.
+    pub fn resolve(&mut self, ops: &mut Block) {
+        self.state = self.walker.block(ops, self.state.take());
+        drop_stops(ops);
     }
 }
 

@@ -1,0 +1,257 @@
+//! What the translation must know of a whole file before it lowers any statement, gathered in
+//! one pass over the file's pieces (`syntax::parse_pieces`) without keeping the statements:
+//! each routine's header and declarations, and the few facts of its body that other routines'
+//! statements ask about (which names it assigns, whether it moves, which routines it calls, its
+//! labels, interrupt declarations and definitions). The statements themselves are lowered later,
+//! one at a time, from a second parse ([`super::Parsed::each_statement`]), so a large routine
+//! is never held whole.
+
+use std::collections::HashSet;
+
+use crate::syntax::ast::{self, Definition, Lowered, Stmt, StmtKind};
+use crate::transpile::front::walk;
+
+/// The outline of one file.
+#[derive(Debug, Default)]
+pub struct Outline {
+    /// In source order (the order of `ast::SourceFile::routines`).
+    pub routines: Vec<RoutineOutline>,
+    /// The file has statements outside any DEF (a `.sub` fragment).
+    pub top_level: bool,
+    /// The first data list (`DEFDAT`), whole: its values are read as data.
+    pub dat: Option<ast::DatModule>,
+}
+
+impl Outline {
+    /// The routine called `name` (case-insensitive), the first of that name.
+    pub fn routine(&self, name: &str) -> Option<&RoutineOutline> {
+        self.routines.iter().find(|r| r.head.name.is(name))
+    }
+}
+
+/// One routine: its head, and facts of its body.
+#[derive(Debug)]
+pub struct RoutineOutline {
+    /// Header, the declarations and definitions before the first statement, span and `closed`;
+    /// `body` is always empty.
+    pub head: ast::Routine,
+    /// How many statement pieces the head's declarations and definitions took (the body starts
+    /// after them in a re-parse).
+    pub head_pieces: usize,
+    /// Where the first declaration or statement after the header starts (definitions of the
+    /// head excluded): a syntax error before it is on the header.
+    pub first_after_header: Option<u32>,
+    pub facts: BodyFacts,
+}
+
+/// What other statements ask about a routine's body (statements after the head, nested ones
+/// included, visited depth-first in source order as `front::walk::each_stmt` does).
+#[derive(Debug, Default)]
+pub struct BodyFacts {
+    /// Upper-case names assigned anywhere (assignment targets, FOR variables).
+    pub assigned: HashSet<String>,
+    /// Upper-case root names of assignment targets and of call arguments.
+    pub written: Vec<String>,
+    /// Routines called, by statement or inside an assigned value, in visiting order.
+    pub callees: Vec<String>,
+    /// A motion or spline block.
+    pub moves: bool,
+    /// Label names, in visiting order.
+    pub labels: Vec<ast::Ident>,
+    /// `INTERRUPT DECL` statements, in visiting order.
+    pub interrupts: Vec<Stmt>,
+    /// `GLOBAL` declarations among the statements, in visiting order.
+    pub global_decls: Vec<ast::Decl>,
+    /// Definitions (ENUM, SIGNAL, …) among the statements, in visiting order, and whether
+    /// each is a statement of the body itself (not nested in a block).
+    pub definitions: Vec<(Definition, bool)>,
+}
+
+impl BodyFacts {
+    fn add(&mut self, stmt: &Stmt) {
+        walk::each_stmt(std::slice::from_ref(stmt), &mut |s| match &s.kind {
+            StmtKind::Assign { target, value } => {
+                if let Some(id) = walk::root_name(target) {
+                    self.assigned.insert(id.key());
+                    self.written.push(id.key());
+                }
+                expr_calls(value, &mut self.callees);
+            }
+            StmtKind::For { var, .. } => {
+                self.assigned.insert(var.key());
+            }
+            StmtKind::Call { name, args } => {
+                self.callees.push(name.text.to_string());
+                for a in args.iter().flatten() {
+                    if let Some(id) = walk::root_name(a) {
+                        self.written.push(id.key());
+                    }
+                }
+            }
+            StmtKind::Motion(_) | StmtKind::Spline { .. } => self.moves = true,
+            StmtKind::Label { name } => self.labels.push(name.clone()),
+            StmtKind::InterruptDecl { .. } => self.interrupts.push(s.clone()),
+            StmtKind::Decl(d) if d.global => self.global_decls.push((**d).clone()),
+            StmtKind::Definition(d) => self.definitions.push((d.clone(), std::ptr::eq(s, stmt))),
+            _ => {}
+        });
+    }
+}
+
+/// Names of routines called inside an expression.
+pub fn expr_calls(e: &ast::Expr, out: &mut Vec<String>) {
+    use ast::ExprKind;
+    match &e.kind {
+        ExprKind::Call { name, args } => {
+            out.push(name.text.to_string());
+            for a in args.iter().flatten() {
+                expr_calls(a, out);
+            }
+        }
+        ExprKind::Index { base, indices } => {
+            expr_calls(base, out);
+            for i in indices.iter().flatten() {
+                expr_calls(i, out);
+            }
+        }
+        ExprKind::Member { base, .. } => expr_calls(base, out),
+        ExprKind::Unary { operand, .. } => expr_calls(operand, out),
+        ExprKind::Binary { lhs, rhs, .. } => {
+            expr_calls(lhs, out);
+            expr_calls(rhs, out);
+        }
+        ExprKind::Aggregate { fields, .. } => {
+            for (_, v) in fields {
+                expr_calls(v, out);
+            }
+        }
+        _ => {}
+    }
+}
+
+/// The module a piece belongs to.
+enum Open {
+    None,
+    Routine,
+    Dat(ast::DatModule),
+}
+
+/// Builds an [`Outline`] from [`Lowered`] events, in text order.
+pub struct OutlineBuilder {
+    outline: Outline,
+    open: Open,
+    /// The open routine is still in its head (declarations and definitions only so far).
+    in_head: bool,
+}
+
+impl Default for OutlineBuilder {
+    fn default() -> Self {
+        OutlineBuilder {
+            outline: Outline::default(),
+            open: Open::None,
+            in_head: false,
+        }
+    }
+}
+
+impl OutlineBuilder {
+    /// Take one event (by reference: the caller passes it on).
+    pub fn add(&mut self, event: &Lowered) {
+        match event {
+            Lowered::Routine(r) => {
+                self.outline.routines.push(RoutineOutline {
+                    head: r.clone(),
+                    head_pieces: 0,
+                    first_after_header: None,
+                    facts: BodyFacts::default(),
+                });
+                self.open = Open::Routine;
+                self.in_head = true;
+            }
+            Lowered::Dat(d) => self.open = Open::Dat(d.clone()),
+            Lowered::Stmt(s) => match &mut self.open {
+                Open::None => self.outline.top_level = true,
+                Open::Dat(d) => d.add(s.clone()),
+                Open::Routine => {
+                    let r = self.outline.routines.last_mut().expect("a routine is open");
+                    let head_definition = matches!(s.kind, StmtKind::Definition(_));
+                    if !head_definition || !self.in_head {
+                        r.first_after_header.get_or_insert(s.span.start);
+                    }
+                    if self.in_head {
+                        match &s.kind {
+                            StmtKind::Decl(d) => {
+                                r.head.decls.push((**d).clone());
+                                r.head_pieces += 1;
+                                return;
+                            }
+                            StmtKind::Definition(d) => {
+                                r.head.definitions.push(d.clone());
+                                r.head_pieces += 1;
+                                return;
+                            }
+                            _ => self.in_head = false,
+                        }
+                    }
+                    r.facts.add(s);
+                }
+            },
+            Lowered::Header(_) => {}
+            Lowered::Close { span, closed } => {
+                match std::mem::replace(&mut self.open, Open::None) {
+                    Open::Routine => {
+                        if let Some(r) = self.outline.routines.last_mut() {
+                            r.head.close(*span, *closed);
+                        }
+                    }
+                    Open::Dat(mut d) => {
+                        d.close(*span);
+                        if self.outline.dat.is_none() {
+                            self.outline.dat = Some(d);
+                        }
+                    }
+                    Open::None => {}
+                }
+                self.in_head = false;
+            }
+        }
+    }
+
+    pub fn finish(self) -> Outline {
+        self.outline
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// The outline agrees with the whole AST on everything it keeps.
+    #[test]
+    fn outline_matches_the_ast() {
+        let text = "&ACCESS RVP\nDEF a(x:IN)\n  DECL INT x\n  ENUM m_t p, q\n  DECL GLOBAL INT g\n  x = f(2)\n  IF x > 1 THEN\n    lbl:\n    PTP HOME\n    b(y)\n  ENDIF\n  GLOBAL DECL REAL r\n  SIGNAL s $OUT[3]\nEND\nDEFFCT INT f(v:IN)\n  DECL INT v\n  RETURN v\nENDFCT\nDEFDAT big\n  DECL INT k = 3\nENDDAT\n";
+        let (ast, _) = ast::lower_pieces(text);
+        let mut b = OutlineBuilder::default();
+        let mut lowerer = ast::PieceLowerer::new(text);
+        crate::syntax::parse_pieces(text, |p| lowerer.lower(p, |e| b.add(&e)));
+        let o = b.finish();
+        assert_eq!(o.routines.len(), ast.routines.len());
+        for (r, a) in o.routines.iter().zip(&ast.routines) {
+            let mut head = a.clone();
+            head.body.clear();
+            assert_eq!(r.head, head);
+            assert_eq!(r.facts.assigned, walk::assigned_names(&a.body));
+        }
+        let a = &o.routines[0];
+        assert_eq!(a.head_pieces, 3);
+        assert_eq!(a.facts.callees, ["f", "b"]);
+        assert_eq!(a.facts.written, ["X", "Y"]);
+        assert!(a.facts.moves);
+        assert_eq!(a.facts.labels.len(), 1);
+        assert_eq!(a.facts.global_decls.len(), 1);
+        assert_eq!(a.facts.definitions.len(), 1);
+        assert!(!o.routines[1].facts.moves);
+        assert_eq!(o.dat, ast.dat);
+        assert!(!o.top_level);
+    }
+}
