@@ -229,7 +229,7 @@ mod tests {
     /// The outline agrees with the whole AST on everything it keeps.
     #[test]
     fn outline_matches_the_ast() {
-        let text = "&ACCESS RVP\nDEF a(x:IN)\n  DECL INT x\n  ENUM m_t p, q\n  DECL GLOBAL INT g\n  x = f(2)\n  IF x > 1 THEN\n    lbl:\n    PTP HOME\n    b(y)\n  ENDIF\n  GLOBAL DECL REAL r\n  SIGNAL s $OUT[3]\nEND\nDEFFCT INT f(v:IN)\n  DECL INT v\n  RETURN v\nENDFCT\nDEFDAT big\n  DECL INT k = 3\nENDDAT\n";
+        let text = "&ACCESS RVP\nDEF a(x:IN)\n  DECL INT x\n  ENUM m_t p, q\n  DECL GLOBAL INT g\n  x = f(2)\n  IF x > 1 THEN\n    lbl:\n    PTP HOME\n    b(y)\n  ENDIF\n  DECL GLOBAL REAL r\n  SIGNAL s $OUT[3]\nEND\nDEFFCT INT f(v:IN)\n  DECL INT v\n  RETURN v\nENDFCT\nDEFDAT big\n  DECL INT k = 3\nENDDAT\n";
         let (ast, _) = ast::lower_pieces(text);
         let mut b = OutlineBuilder::default();
         let mut lowerer = ast::PieceLowerer::new(text);
