@@ -766,6 +766,12 @@ impl Sema {
         self.files[file.index()].s.has_errors
     }
 
+    /// Whether the file was given as a declarations-only summary
+    /// ([`FileSummary::declarations_of`]): its uses, calls and assignments are not known.
+    pub fn declarations_only(&self, file: FileId) -> bool {
+        self.files[file.index()].s.declarations_only
+    }
+
     /// The symbols declared by a file's declarations, in file order.
     pub fn declared_symbols(&self, file: FileId) -> &[SymbolId] {
         &self.files[file.index()].decl_symbols
