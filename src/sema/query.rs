@@ -174,6 +174,14 @@ impl Sema {
         &self.types[id.index()]
     }
 
+    /// Every type: the primitives, the KSS environment's, then the files' in file order.
+    pub fn types(&self) -> impl Iterator<Item = (TypeId, &TypeDef)> {
+        self.types
+            .iter()
+            .enumerate()
+            .map(|(i, t)| (TypeId(i as u32), t))
+    }
+
     pub fn ext(&self, id: ExtId) -> &Ext {
         &self.exts[id.index()]
     }
