@@ -20,6 +20,10 @@
 //! # API for clients
 //! Build: [`Analysis::new`] (parse + model, ASTs kept: language server, transpiler,
 //! interpreter) or, streaming, [`FileSummary::of`] per file then [`Sema::build`] (`check`).
+//! A client that asks only about declarations (the transpiler) may summarise with
+//! [`FileSummary::declarations_of`] or [`SummaryBuilder::declarations_only`]: the model then
+//! gives the same symbols, routines, types, lookups and spellings, but no uses, references,
+//! callers, calls or assignments ([`Sema::declarations_only`]), so no lint rule runs on it.
 //! Workspaces: [`Workspace::load`] reads folders, files and backup `.zip`s (with `am.ini`).
 //!
 //! Everything is addressed by ids ([`FileId`], [`ModuleId`], [`RoutineId`], [`SymbolId`],

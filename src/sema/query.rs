@@ -174,6 +174,14 @@ impl Sema {
         &self.types[id.index()]
     }
 
+    /// Every type: the primitives, the KSS environment's, then the files' in file order.
+    pub fn types(&self) -> impl Iterator<Item = (TypeId, &TypeDef)> {
+        self.types
+            .iter()
+            .enumerate()
+            .map(|(i, t)| (TypeId(i as u32), t))
+    }
+
     pub fn ext(&self, id: ExtId) -> &Ext {
         &self.exts[id.index()]
     }
@@ -764,6 +772,12 @@ impl Sema {
     /// Whether the file has lines that did not parse (names in them are only "mentioned").
     pub fn has_syntax_errors(&self, file: FileId) -> bool {
         self.files[file.index()].s.has_errors
+    }
+
+    /// Whether the file was given as a declarations-only summary
+    /// ([`FileSummary::declarations_of`]): its uses, calls and assignments are not known.
+    pub fn declarations_only(&self, file: FileId) -> bool {
+        self.files[file.index()].s.declarations_only
     }
 
     /// The symbols declared by a file's declarations, in file order.

@@ -3,10 +3,17 @@
 //! that does not hold on to the AST. Nothing here looks outside the file: names are resolved in
 //! stage 2 ([`super::build`]), once every file's items are known, so `check` can drop each
 //! file's syntax tree as soon as its summary is made.
+//!
+//! A declarations-only summary ([`FileSummary::declarations_of`],
+//! [`SummaryBuilder::declarations_only`]) walks the same code in the same order but keeps only
+//! the items and the type names they reference: statements add no use, term or fact, only the
+//! names they spell (the name table, which gives every name its first spelling, is the full
+//! summary's).
 
 use compact_str::CompactString;
 use rustc_hash::FxHashMap;
 
+mod deferred;
 mod stream;
 
 pub use stream::SummaryBuilder;
@@ -256,12 +263,38 @@ pub struct FileSummary {
     pub(crate) assigns: Vec<AssignFact>,
     /// Statements that did not parse (KRL001): names in them may be used.
     pub(crate) has_errors: bool,
+    /// Only items and the `Type` uses they reference: no statement's uses, terms or facts.
+    pub(crate) declarations_only: bool,
 }
 
 impl FileSummary {
     /// Summarise one parsed file.
     pub fn of(file: &SourceFile) -> FileSummary {
-        let mut s = Summarizer::default();
+        FileSummary::summarise(file, Summarizer::default())
+    }
+
+    /// What [`FileSummary::of`] gives without what only statements give: the items (routines
+    /// with parameters and return types, DECL/CONST with values, STRUC/ENUM, SIGNAL, EXT,
+    /// CHANNEL, IMPORT, the DEFDAT), the `Type` uses they reference and the same name table. Its
+    /// size grows with the file's declarations and the distinct names it spells, never with
+    /// its statements.
+    ///
+    /// A [`super::Sema`] built from such summaries answers every declaration question as one
+    /// built from full summaries (symbols, routines, signatures, types, fields, enum values,
+    /// `lookup_*`, names and their spellings, duplicates), but knows no use of a statement:
+    /// `references`, `callers`, `calls` and `assignments` are empty, `uses`, `use_at` and
+    /// `resolve` know only the declarations' type names, and [`FileSummary::interface`] lists
+    /// no calls. Lint's model rules need uses: never run them on it.
+    pub fn declarations_of(file: &SourceFile) -> FileSummary {
+        FileSummary::summarise(file, Summarizer::declarations_only())
+    }
+
+    /// Whether this is a [`FileSummary::declarations_of`] summary.
+    pub fn is_declarations_only(&self) -> bool {
+        self.declarations_only
+    }
+
+    fn summarise(file: &SourceFile, mut s: Summarizer) -> FileSummary {
         for (i, r) in file.routines.iter().enumerate() {
             s.routine(i as u32, r);
         }
@@ -383,6 +416,38 @@ impl FileSummary {
     pub fn use_count(&self) -> usize {
         self.uses.len()
     }
+
+    /// Bytes the summary holds on the heap: its vectors' capacities and its names' texts (for
+    /// statistics and memory tests; the allocator's own overhead is not counted).
+    pub fn heap_bytes(&self) -> usize {
+        fn vec<T>(v: &Vec<T>) -> usize {
+            v.capacity() * std::mem::size_of::<T>()
+        }
+        let names = vec(&self.names) + self.names.iter().map(|n| n.len()).sum::<usize>();
+        let routines =
+            vec(&self.routines) + self.routines.iter().map(|r| vec(&r.params)).sum::<usize>();
+        let decls = vec(&self.decls)
+            + (self.decls.iter())
+                .map(|d| match &d.value {
+                    Some(ConstValue::Str(t) | ConstValue::Enum(t)) => t.len(),
+                    _ => 0,
+                })
+                .sum::<usize>();
+        let types = vec(&self.types)
+            + (self.types.iter())
+                .map(|t| match &t.kind {
+                    TypeItemKind::Struc(fields) => vec(fields),
+                    TypeItemKind::Enum(values) => vec(values),
+                })
+                .sum::<usize>();
+        let exts = vec(&self.exts) + self.exts.iter().map(|x| vec(&x.params)).sum::<usize>();
+        let statements = vec(&self.uses)
+            + vec(&self.terms)
+            + vec(&self.calls)
+            + vec(&self.args)
+            + vec(&self.assigns);
+        names + routines + decls + types + exts + statements
+    }
 }
 
 /// Names are owned (not borrowed from the AST) so that a file can be summarised one statement
@@ -397,6 +462,12 @@ struct Summarizer {
 }
 
 impl Summarizer {
+    fn declarations_only() -> Summarizer {
+        let mut s = Summarizer::default();
+        s.out.declarations_only = true;
+        s
+    }
+
     fn name(&mut self, text: &str) -> u32 {
         let mut key = CompactString::from(text);
         key.make_ascii_uppercase();
@@ -414,7 +485,23 @@ impl Summarizer {
         out
     }
 
+    /// A name use of a statement or an expression: only its name when declarations only
+    /// ([`NONE`]).
     fn use_of(&mut self, id: &Ident, kind: UseKind, access: Access) -> u32 {
+        if self.out.declarations_only {
+            self.name(&id.text);
+            return NONE;
+        }
+        self.push_use(id, kind, access)
+    }
+
+    /// The type name of an item (a declaration, a field, a parameter, a return type): kept in
+    /// every summary, as the item's type is its resolution.
+    fn item_type(&mut self, id: &Ident) -> u32 {
+        self.push_use(id, UseKind::Type, Access::Name)
+    }
+
+    fn push_use(&mut self, id: &Ident, kind: UseKind, access: Access) -> u32 {
         let name = self.name(&id.text);
         self.out.uses.push(Use {
             name,
@@ -426,13 +513,25 @@ impl Summarizer {
         (self.out.uses.len() - 1) as u32
     }
 
+    /// A new term ([`NONE`] when declarations only: no term is kept).
     fn term(&mut self, t: Term) -> u32 {
+        if self.out.declarations_only {
+            return NONE;
+        }
         self.out.terms.push(t);
         (self.out.terms.len() - 1) as u32
     }
 
+    fn term_at(&self, t: u32) -> Term {
+        self.out
+            .terms
+            .get(t as usize)
+            .copied()
+            .unwrap_or(Term::Unknown)
+    }
+
     fn type_ref(&mut self, t: &TypeRef, var_dims: &[Option<Expr>]) -> TypeRefItem {
-        let use_ix = self.use_of(&t.name, UseKind::Type, Access::Name);
+        let use_ix = self.item_type(&t.name);
         self.sized(use_ix, &t.dims, var_dims)
     }
 
@@ -502,7 +601,7 @@ impl Summarizer {
     }
 
     fn decl(&mut self, d: &Decl, in_dat: bool) {
-        let ty_use = self.use_of(&d.ty.name, UseKind::Type, Access::Name);
+        let ty_use = self.item_type(&d.ty.name);
         for v in &d.vars {
             let ty = self.sized(ty_use, &d.ty.dims, &v.dims);
             let name = self.name(&v.name.text);
@@ -529,8 +628,8 @@ impl Summarizer {
     }
 
     fn assign(&mut self, span: Span, target: u32, value: u32) {
-        let known = |t: &Term| !matches!(t, Term::Unknown);
-        if known(&self.out.terms[target as usize]) && known(&self.out.terms[value as usize]) {
+        let known = |t: Term| !matches!(t, Term::Unknown);
+        if known(self.term_at(target)) && known(self.term_at(value)) {
             self.out.assigns.push(AssignFact {
                 span,
                 target,
@@ -558,7 +657,7 @@ impl Summarizer {
                     .fields
                     .iter()
                     .map(|f| {
-                        let use_ix = self.use_of(&f.ty, UseKind::Type, Access::Name);
+                        let use_ix = self.item_type(&f.ty);
                         let ty = self.sized(use_ix, &[], &f.dims);
                         FieldItem {
                             name: self.name(&f.name.text),
@@ -843,6 +942,9 @@ impl Summarizer {
 
     fn mention(&mut self, word: &str, span: Span) {
         let name = self.name(word);
+        if self.out.declarations_only {
+            return;
+        }
         self.out.uses.push(Use {
             name,
             span,
@@ -862,6 +964,12 @@ impl Summarizer {
         {
             self.mention(s.trim(), *span);
         }
+        if self.out.declarations_only {
+            for e in args.iter().flatten() {
+                self.expr(e, Access::Read);
+            }
+            return NONE;
+        }
         let empty_parens = args.iter().all(Option::is_none) && args.len() <= 1;
         let facts: Vec<ArgFact> = args
             .iter()
@@ -874,8 +982,8 @@ impl Summarizer {
                 Some(e) => {
                     let place = is_place(e);
                     let term = self.expr(e, if place { Access::Arg } else { Access::Read });
-                    let form = match (&self.out.terms[term as usize], place) {
-                        (Term::Var { use_ix, .. }, true) => ArgForm::Place(*use_ix),
+                    let form = match (self.term_at(term), place) {
+                        (Term::Var { use_ix, .. }, true) => ArgForm::Place(use_ix),
                         _ if is_literal(e) => ArgForm::Literal,
                         _ => ArgForm::Expression,
                     };
@@ -936,7 +1044,7 @@ impl Summarizer {
                 match op {
                     UnaryOp::Not => Term::Bool,
                     UnaryOp::BNot => Term::Int,
-                    UnaryOp::Neg | UnaryOp::Pos => self.out.terms[o as usize],
+                    UnaryOp::Neg | UnaryOp::Pos => self.term_at(o),
                 }
             }
             ExprKind::Binary { op, lhs, rhs } => {
@@ -973,7 +1081,7 @@ impl Summarizer {
     }
 
     fn project(&mut self, base: u32, p: Proj) -> Term {
-        match self.out.terms[base as usize] {
+        match self.term_at(base) {
             Term::Var {
                 use_ix,
                 mut proj,

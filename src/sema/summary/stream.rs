@@ -1,6 +1,7 @@
 //! [`FileSummary::of`] fed one lowered piece at a time, so that `check` never holds a file's
 //! AST whole: each statement is summarised and dropped.
 
+use super::deferred::Deferred;
 use super::{FileSummary, NONE, RoutineItem, Summarizer, stmt_ends};
 use crate::syntax::ast::{
     self, DatModule, Definition, Lowered, Routine, RoutineKind, Stmt, StmtKind,
@@ -12,7 +13,7 @@ enum Open {
     Dat {
         /// Summarised at its end, after the declarations (as `of` does).
         definitions: Vec<Definition>,
-        body: Vec<Stmt>,
+        body: Deferred,
     },
     /// A second data list, which the AST drops.
     Ignored,
@@ -39,10 +40,22 @@ pub struct SummaryBuilder {
     open: Option<Open>,
     dat_seen: bool,
     /// Summarised last, as `of` does.
-    top_level: Vec<Stmt>,
+    top_level: Deferred,
 }
 
 impl SummaryBuilder {
+    /// Builds the summary [`FileSummary::declarations_of`] gives (the same events, the same
+    /// order; see there for what it keeps and what a model built from it cannot answer). A
+    /// statement of a routine is summarised and dropped, adding nothing but names not seen
+    /// before; one outside routines or in a data list's body is kept until its turn only when
+    /// it declares something, else just its names are.
+    pub fn declarations_only() -> SummaryBuilder {
+        SummaryBuilder {
+            s: Summarizer::declarations_only(),
+            ..SummaryBuilder::default()
+        }
+    }
+
     /// Take one event. False when the file's order is one this builder cannot follow (a
     /// routine after the data list, which `of` summarises after every routine): summarise
     /// the whole AST then.
@@ -83,18 +96,19 @@ impl SummaryBuilder {
         self.s.out.dat = Some((name, d.name.span, d.public));
         self.open = Some(Open::Dat {
             definitions: Vec::new(),
-            body: Vec::new(),
+            body: Deferred::default(),
         });
     }
 
     fn stmt(&mut self, st: Stmt) {
+        let declarations_only = self.s.out.declarations_only;
         match &mut self.open {
-            None => self.top_level.push(st),
+            None => self.top_level.push(st, declarations_only),
             Some(Open::Ignored) => {}
             Some(Open::Dat { definitions, body }) => match st.kind {
                 StmtKind::Decl(d) => self.s.decl(&d, true),
                 StmtKind::Definition(d) => definitions.push(d),
-                _ => body.push(st),
+                _ => body.push(st, declarations_only),
             },
             Some(Open::Routine(r)) => {
                 if r.in_head {
@@ -153,7 +167,7 @@ impl SummaryBuilder {
                 for d in definitions {
                     self.s.definition(&d);
                 }
-                self.s.block(&body);
+                body.summarise(&mut self.s);
             }
             _ => {}
         }
@@ -165,8 +179,7 @@ impl SummaryBuilder {
             self.close(crate::diag::Span::empty(0), false);
         }
         self.s.owner = NONE;
-        let top = std::mem::take(&mut self.top_level);
-        self.s.block(&top);
+        std::mem::take(&mut self.top_level).summarise(&mut self.s);
         self.s.finish()
     }
 }
@@ -175,18 +188,28 @@ impl SummaryBuilder {
 mod tests {
     use super::*;
 
-    fn streamed(text: &str) -> Option<FileSummary> {
+    fn streamed_with(text: &str, mut b: SummaryBuilder) -> Option<FileSummary> {
         let mut lowerer = ast::PieceLowerer::new(text);
-        let mut b = SummaryBuilder::default();
         let mut followed = true;
         crate::syntax::parse_pieces(text, |p| lowerer.lower(p, |e| followed &= b.add(e)));
         followed.then(|| b.finish())
     }
 
+    fn streamed(text: &str) -> Option<FileSummary> {
+        streamed_with(text, SummaryBuilder::default())
+    }
+
+    /// Both builders give what their whole-file summary gives.
     fn same(text: &str) {
-        let whole = FileSummary::of(&crate::syntax::parse(text).ast(text));
+        let ast = crate::syntax::parse(text).ast(text);
+        let whole = FileSummary::of(&ast);
         if let Some(s) = streamed(text) {
             assert_eq!(format!("{s:?}"), format!("{whole:?}"), "{text}");
+        }
+        let declarations = FileSummary::declarations_of(&ast);
+        assert_eq!(declarations.names, whole.names, "{text}");
+        if let Some(s) = streamed_with(text, SummaryBuilder::declarations_only()) {
+            assert_eq!(format!("{s:?}"), format!("{declarations:?}"), "{text}");
         }
     }
 
@@ -200,6 +223,50 @@ mod tests {
         }
     }
 
+    /// One routine of `n` statements that name variables, call, assign and nest, and a
+    /// second routine it calls.
+    fn long_routine(n: usize) -> String {
+        let kinds = [
+            "PTP {X 10.5, Y 20.0, Z 300.0} C_PTP\n",
+            "LIN p C_DIS\n",
+            "x = x + 1.25 * SIN(30.0)\n",
+            "$OUT[3] = TRUE\n",
+            "helper(i, x, p.X)\n",
+            "IF i > 4 THEN\ni = i + 1\nENDIF\n",
+            "WAIT FOR $IN[2]\n",
+            "FOR n = 1 TO 10\nENDFOR\n",
+        ];
+        let mut s = String::from("DEF big()\nDECL INT i, n\nDECL REAL x\nDECL E6POS p\n");
+        for k in 0..n {
+            s.push_str(kinds[k % kinds.len()]);
+        }
+        s.push_str("END\nDEF helper(a:IN, b:OUT, c:IN)\nDECL INT a\nDECL REAL b, c\nEND\n");
+        s
+    }
+
+    #[test]
+    fn a_declarations_only_summary_does_not_grow_with_statements() {
+        let (small, large) = (long_routine(1_000), long_routine(100_000));
+        let full = streamed(&small).unwrap();
+        assert!(full.uses.len() > 1_000 && full.calls.len() > 100 && full.assigns.len() > 100);
+        let size = |text: &str| {
+            let s = streamed_with(text, SummaryBuilder::declarations_only()).unwrap();
+            let items = (s.routines.len(), s.decls.len(), s.uses.len());
+            let statements = (s.terms.len(), s.calls.len(), s.args.len(), s.assigns.len());
+            (items, statements, s.names.len(), s.heap_bytes())
+        };
+        let (items, statements, names, bytes) = size(&small);
+        // Two routines, seven data, the type names of the five DECLs.
+        assert_eq!((items, statements), ((2, 7, 5), (0, 0, 0, 0)));
+        assert_eq!(names, full.names.len());
+        assert!(
+            bytes * 20 < full.heap_bytes(),
+            "{bytes} of {}",
+            full.heap_bytes()
+        );
+        assert_eq!(size(&large), (items, statements, names, bytes));
+    }
+
     #[test]
     fn odd_shapes_summarise_as_the_whole_file() {
         for text in [
@@ -209,6 +276,10 @@ mod tests {
             "DEF (\nDEFDAT (\nDECL INT i\nENUM e a, b\nx = 1\nENDDAT\nDEFDAT b\nDECL INT j\nENDDAT\n",
             "DEFDAT d\nDECL INT i = 1\nENDDAT x\n",
             "DEF a()\nSTRUC s INT q\nEND\n",
+            // Statements outside routines and in a data list's body, declaring or not, with
+            // names first spelled there.
+            "x = Y + 1\nDECL INT q\nIF z THEN\nDECL INT w\nENDIF\nDEF a()\nDECL INT y\nEND\nz = 1\n",
+            "DEFDAT d\nDECL INT i\nA = B\nIF c THEN\nDECL INT b\nENDIF\nc = D\n!bad line\nENDDAT\n",
         ] {
             same(text);
         }
