@@ -127,23 +127,33 @@ pub fn run(args: CheckArgs) -> anyhow::Result<Outcome> {
     let reports = &outcome.reports;
     let errors: usize = reports.iter().map(|r| r.count(Severity::Error)).sum();
     let warnings: usize = reports.iter().map(|r| r.count(Severity::Warning)).sum();
-    let mut out = String::new();
+    // Written as rendered, one finding at a time; flushed before the summary goes to stderr.
+    let mut out = std::io::BufWriter::new(std::io::stdout().lock());
     match args.format {
         CheckFormat::Human => {
             let renderer = super::ui::renderer(true);
             for r in reports {
-                render::human::render_with(r, &mut out, &renderer);
+                render::human::write_with(r, &mut out, &renderer)?;
             }
         }
-        CheckFormat::Concise => each(reports, &mut out, render::concise::render),
-        CheckFormat::Github => each(reports, &mut out, render::github::render),
-        CheckFormat::Json => out = render::json::render(reports) + "\n",
+        CheckFormat::Concise => {
+            for r in reports {
+                render::concise::write(r, &mut out)?;
+            }
+        }
+        CheckFormat::Github => {
+            for r in reports {
+                render::github::write(r, &mut out)?;
+            }
+        }
+        CheckFormat::Json => render::json::write(reports, &mut out)?,
         CheckFormat::Sarif => {
             let root = std::env::current_dir().ok();
-            out = render::sarif::render(reports, root.as_deref()) + "\n";
+            render::sarif::write(reports, root.as_deref(), &mut out)?;
         }
     }
-    std::io::stdout().lock().write_all(out.as_bytes())?;
+    out.flush()?;
+    drop(out);
     if args.format == CheckFormat::Human && !super::ui::quiet() {
         let files = reports.len();
         if files == 0 && !failed {
@@ -175,12 +185,6 @@ pub fn run(args: CheckArgs) -> anyhow::Result<Outcome> {
     } else {
         Outcome::Success
     })
-}
-
-fn each(reports: &[FileReport], out: &mut String, render: fn(&FileReport, &mut String)) {
-    for r in reports {
-        render(r, out);
-    }
 }
 
 fn plural(n: usize) -> &'static str {

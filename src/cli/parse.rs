@@ -1,10 +1,12 @@
 //! `krlkit parse PATH... [--format human|json]` and `krlkit parse --tree FILE`.
 //!
-//! Files are read, parsed and rendered in parallel, one at a time per worker; a tree is dropped
-//! as soon as its file is rendered. An unreadable file is reported and the run goes on (exit 2
-//! at the end); any syntax error gives exit 1.
+//! Files are read and parsed in parallel, one at a time per worker (the outline parse keeps no
+//! tree). Their findings are written in input order, one at a time, as soon as every file before
+//! them is done, so neither results nor rendered text pile up. An unreadable file is reported
+//! and the run goes on (exit 2 at the end); any syntax error gives exit 1.
 
-use std::io::Write;
+use std::collections::BTreeMap;
+use std::io::{self, Write};
 
 use rayon::prelude::*;
 
@@ -28,69 +30,60 @@ pub fn run(args: ParseArgs) -> anyhow::Result<Outcome> {
             eprintln!("parsing {}", c.path.display());
         }
     }
-    let walk_errors = walk.errors;
-    let mut results: Vec<Result<Option<Checked>, FileError>> = Vec::new();
+    for e in &walk.errors {
+        eprintln!("error: cannot read {e}");
+    }
+    let mut sink = Sink {
+        out: io::BufWriter::new(io::stdout().lock()),
+        json: None,
+        renderer: super::ui::renderer(true),
+        files: 0,
+        errors: 0,
+        warnings: 0,
+        failed: !walk.errors.is_empty(),
+    };
+    if args.format == ParseFormat::Json {
+        sink.json = Some(render::json::Document::begin(&mut sink.out)?);
+    }
     if stdin {
         let name = args
             .stdin_filename
             .clone()
             .unwrap_or_else(|| "<stdin>".into());
-        results.push(
+        sink.take(
             files::read_stdin()
-                .map(|d| Some(checked(name, d.text, args.format)))
+                .map(|d| Some(checked(name, d.text)))
                 .map_err(|source| FileError {
                     path: "-".into(),
                     source,
                 }),
-        );
+        )?;
     }
-    results.extend(
-        walk.found
-            .par_iter()
-            .map(|c| check(c, args.format))
-            .collect::<Vec<_>>(),
-    );
+    in_order(&walk.found, check, |result| sink.take(result))?;
 
-    let mut failed = !walk_errors.is_empty();
-    for e in &walk_errors {
-        eprintln!("error: cannot read {e}");
+    if let Some(doc) = sink.json.take() {
+        doc.end(&mut sink.out)?;
     }
-    let mut reports = Vec::new();
-    let mut human = String::new();
-    let mut errors = 0;
-    let mut warnings = 0;
-    for result in results {
-        match result {
-            Ok(Some(checked)) => {
-                errors += checked.report.count(Severity::Error);
-                warnings += checked.report.count(Severity::Warning);
-                human.push_str(&checked.human);
-                reports.push(checked.report);
-            }
-            Ok(None) => {}
-            Err(e) => {
-                eprintln!("error: cannot read {e}");
-                failed = true;
-            }
+    sink.out.flush()?;
+    let Sink {
+        out,
+        files,
+        errors,
+        warnings,
+        failed,
+        ..
+    } = sink;
+    drop(out);
+    if args.format == ParseFormat::Human && !super::ui::quiet() {
+        if files == 0 && !failed {
+            eprintln!("warning: no KRL files found");
         }
-    }
-    let mut stdout = std::io::stdout().lock();
-    match args.format {
-        ParseFormat::Json => writeln!(stdout, "{}", render::json::render(&reports))?,
-        ParseFormat::Human if super::ui::quiet() => write!(stdout, "{human}")?,
-        ParseFormat::Human => {
-            write!(stdout, "{human}")?;
-            let files = reports.len();
-            if reports.is_empty() && !failed {
-                eprintln!("warning: no KRL files found");
-            }
-            eprintln!(
-                "{files} file{} parsed: {errors} error{}, {warnings} warning{}",
-                plural(files),
-                plural(errors),
-                plural(warnings)
-            );
-        }
+        eprintln!(
+            "{files} file{} parsed: {errors} error{}, {warnings} warning{}",
+            plural(files),
+            plural(errors),
+            plural(warnings)
+        );
     }
     Ok(if failed {
         Outcome::Failure
@@ -105,53 +98,97 @@ fn plural(n: usize) -> &'static str {
     if n == 1 { "" } else { "s" }
 }
 
-struct Checked {
-    /// Clean files keep no text, so memory does not grow with the number of files.
-    report: FileReport,
-    human: String,
+/// Where the files' results go, in input order: findings written to `out` (human, or items of
+/// the JSON document), read errors named on stderr, counts kept for the summary.
+struct Sink<W: Write> {
+    out: W,
+    json: Option<render::json::Document>,
+    renderer: annotate_snippets::Renderer,
+    files: usize,
+    errors: usize,
+    warnings: usize,
+    failed: bool,
 }
 
-fn check(candidate: &Candidate, format: ParseFormat) -> Result<Option<Checked>, FileError> {
+impl<W: Write> Sink<W> {
+    fn take(&mut self, result: Result<Option<FileReport>, FileError>) -> io::Result<()> {
+        match result {
+            Ok(Some(report)) => {
+                self.files += 1;
+                self.errors += report.count(Severity::Error);
+                self.warnings += report.count(Severity::Warning);
+                match &mut self.json {
+                    Some(doc) => doc.report(&report, &mut self.out),
+                    None => render::human::write_with(&report, &mut self.out, &self.renderer),
+                }
+            }
+            Ok(None) => Ok(()),
+            Err(e) => {
+                // After the findings of the files before it.
+                self.out.flush()?;
+                eprintln!("error: cannot read {e}");
+                self.failed = true;
+                Ok(())
+            }
+        }
+    }
+}
+
+/// `work` on every item in parallel; `take` gets the results in the items' order, each as soon
+/// as the ones before it are taken (only results that finished early wait). An error of `take`
+/// stops the work and is returned.
+fn in_order<I: Sync, T: Send>(
+    items: &[I],
+    work: impl Fn(&I) -> T + Sync,
+    mut take: impl FnMut(T) -> io::Result<()>,
+) -> io::Result<()> {
+    let work = &work;
+    std::thread::scope(|scope| {
+        let (tx, rx) = crossbeam_channel::unbounded();
+        // Not on the rayon pool: this thread waits for the whole parallel loop.
+        scope.spawn(move || {
+            // Fails only when the receiver is gone (`take` failed): then stop.
+            let _ = items
+                .par_iter()
+                .enumerate()
+                .try_for_each_with(tx, |tx, (i, item)| tx.send((i, work(item))).map_err(drop));
+        });
+        let mut early = BTreeMap::new();
+        let mut next = 0;
+        for (i, result) in rx {
+            early.insert(i, result);
+            while let Some(result) = early.remove(&next) {
+                take(result)?;
+                next += 1;
+            }
+        }
+        Ok(())
+    })
+}
+
+fn check(candidate: &Candidate) -> Result<Option<FileReport>, FileError> {
     let Some(decoded) = files::load(candidate)? else {
         return Ok(None);
     };
     Ok(Some(checked(
         candidate.path.display().to_string(),
         decoded.text,
-        format,
     )))
 }
 
-fn checked(path: String, text: String, format: ParseFormat) -> Checked {
+/// The file's report; a clean file keeps no text, so memory does not grow with the number of
+/// files.
+fn checked(path: String, text: String) -> FileReport {
     let diagnostics = syntax::diagnostics(&text);
-    if diagnostics.is_empty() {
-        return Checked {
-            report: FileReport {
-                path,
-                text: String::new(),
-                diagnostics: Vec::new(),
-            },
-            human: String::new(),
-        };
-    }
-    let report = FileReport {
+    FileReport {
         path,
-        text,
+        text: if diagnostics.is_empty() {
+            String::new()
+        } else {
+            text
+        },
         diagnostics,
-    };
-    let mut human = String::new();
-    let report = match format {
-        ParseFormat::Human => {
-            render::human::render_with(&report, &mut human, &super::ui::renderer(true));
-            // Human output is already rendered; keep only what the summary needs.
-            FileReport {
-                text: String::new(),
-                ..report
-            }
-        }
-        ParseFormat::Json => report,
-    };
-    Checked { report, human }
+    }
 }
 
 fn tree(args: &ParseArgs) -> anyhow::Result<Outcome> {
@@ -179,7 +216,7 @@ fn tree(args: &ParseArgs) -> anyhow::Result<Outcome> {
             return Ok(Outcome::Failure);
         }
     };
-    let mut stdout = std::io::BufWriter::new(std::io::stdout().lock());
+    let mut stdout = io::BufWriter::new(io::stdout().lock());
     let diagnostics = syntax::write_json_tree(&decoded.text, &mut stdout)?;
     writeln!(stdout)?;
     stdout.flush()?;
@@ -195,8 +232,8 @@ fn tree(args: &ParseArgs) -> anyhow::Result<Outcome> {
         text: decoded.text,
         diagnostics,
     };
-    let mut human = String::new();
-    render::human::render(&report, &mut human);
-    eprint!("{human}");
+    let mut err = io::BufWriter::new(io::stderr().lock());
+    render::human::write(&report, &mut err)?;
+    err.flush()?;
     Ok(Outcome::Findings)
 }

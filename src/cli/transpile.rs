@@ -130,11 +130,10 @@ pub fn run(mut args: TranspileArgs) -> anyhow::Result<Outcome> {
     let errors: usize = t.reports.iter().map(|r| r.count(Severity::Error)).sum();
     let warnings: usize = t.reports.iter().map(|r| r.count(Severity::Warning)).sum();
     let infos: usize = t.reports.iter().map(|r| r.count(Severity::Info)).sum();
-    let rendered = render_reports(&t.reports, args.format);
     if args.out.is_some() {
-        std::io::stdout().lock().write_all(rendered.as_bytes())?;
+        write_reports(&t.reports, args.format, std::io::stdout().lock())?;
     } else {
-        std::io::stderr().lock().write_all(rendered.as_bytes())?;
+        write_reports(&t.reports, args.format, std::io::stderr().lock())?;
     }
     if args.format == CheckFormat::Human && !super::ui::quiet() {
         let c = t.coverage.total();
@@ -219,19 +218,31 @@ fn plural(n: usize) -> &'static str {
     if n == 1 { "" } else { "s" }
 }
 
-fn render_reports(reports: &[FileReport], format: CheckFormat) -> String {
-    let mut out = String::new();
+/// Write the findings to `out` as they are rendered, one at a time (buffered, flushed before
+/// returning so the summary line comes after them).
+fn write_reports(
+    reports: &[FileReport],
+    format: CheckFormat,
+    out: impl Write,
+) -> std::io::Result<()> {
+    let mut out = std::io::BufWriter::new(out);
     match format {
-        CheckFormat::Human => reports
-            .iter()
-            .for_each(|r| render::human::render(r, &mut out)),
-        CheckFormat::Concise => reports
-            .iter()
-            .for_each(|r| render::concise::render(r, &mut out)),
-        CheckFormat::Github => reports
-            .iter()
-            .for_each(|r| render::github::render(r, &mut out)),
-        CheckFormat::Json => out = render::json::render(reports) + "\n",
+        CheckFormat::Human => {
+            for r in reports {
+                render::human::write(r, &mut out)?;
+            }
+        }
+        CheckFormat::Concise => {
+            for r in reports {
+                render::concise::write(r, &mut out)?;
+            }
+        }
+        CheckFormat::Github => {
+            for r in reports {
+                render::github::write(r, &mut out)?;
+            }
+        }
+        CheckFormat::Json => render::json::write(reports, &mut out)?,
         CheckFormat::Sarif => {
             let rules: Vec<RuleMeta> = transpile::rules::RULES
                 .iter()
@@ -244,10 +255,10 @@ fn render_reports(reports: &[FileReport], format: CheckFormat) -> String {
                 })
                 .collect();
             let root = std::env::current_dir().ok();
-            out = render::sarif::render_with_rules(reports, &rules, root.as_deref()) + "\n";
+            render::sarif::write_with_rules(reports, &rules, root.as_deref(), &mut out)?;
         }
     }
-    out
+    out.flush()
 }
 
 fn read_source(path: &Path) -> anyhow::Result<Source> {

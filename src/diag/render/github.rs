@@ -2,12 +2,14 @@
 //! `::error file=…,line=…,col=…,endLine=…,endColumn=…,title=CODE::message`.
 //! `warning` and `info` findings become `::warning` and `::notice`.
 
+use std::io::{self, Write};
+
 use crate::diag::{FileReport, LineIndex, Severity};
 
-/// Append every diagnostic of `report`.
-pub fn render(report: &FileReport, out: &mut String) {
+/// Write every diagnostic of `report`, one workflow command each.
+pub fn write<W: Write + ?Sized>(report: &FileReport, out: &mut W) -> io::Result<()> {
     if report.diagnostics.is_empty() {
-        return;
+        return Ok(());
     }
     let index = LineIndex::new(&report.text);
     for d in &report.diagnostics {
@@ -23,13 +25,15 @@ pub fn render(report: &FileReport, out: &mut String) {
             message.push_str("\nhelp: ");
             message.push_str(h);
         }
-        out.push_str(&format!(
-            "::{command} file={},line={line},col={col},endLine={end_line},endColumn={end_col},title={}::{}\n",
+        writeln!(
+            out,
+            "::{command} file={},line={line},col={col},endLine={end_line},endColumn={end_col},title={}::{}",
             escape_property(&report.path),
             escape_property(d.code),
             escape_data(&message)
-        ));
+        )?;
     }
+    Ok(())
 }
 
 /// Escaping of a command's message (GitHub's `escapeData`).

@@ -1,25 +1,33 @@
 //! rustc-style output with the source line and a caret under the span (annotate-snippets).
 
+use std::io::{self, Write};
+
 use annotate_snippets::{AnnotationKind, Level, Renderer, Snippet};
 
 use crate::diag::{Diagnostic, FileReport, LineIndex, Severity};
 
-/// Append every diagnostic of `report`, plain (no colour).
-pub fn render(report: &FileReport, out: &mut String) {
-    render_with(report, out, &Renderer::plain());
+/// Write every diagnostic of `report`, plain (no colour).
+pub fn write<W: Write + ?Sized>(report: &FileReport, out: &mut W) -> io::Result<()> {
+    write_with(report, out, &Renderer::plain())
 }
 
-/// Like [`render`], with a caller-chosen renderer (e.g. `Renderer::styled()` for a terminal).
-pub fn render_with(report: &FileReport, out: &mut String, renderer: &Renderer) {
+/// Like [`write`], with a caller-chosen renderer (e.g. `Renderer::styled()` for a terminal).
+/// Each diagnostic is rendered and written before the next one is rendered.
+pub fn write_with<W: Write + ?Sized>(
+    report: &FileReport,
+    out: &mut W,
+    renderer: &Renderer,
+) -> io::Result<()> {
     if report.diagnostics.is_empty() {
         // No line index (4 bytes a line) for a file with nothing to show.
-        return;
+        return Ok(());
     }
     let index = LineIndex::new(&report.text);
     for d in &report.diagnostics {
-        out.push_str(&render_one(report, &index, d, renderer));
-        out.push_str("\n\n");
+        out.write_all(render_one(report, &index, d, renderer).as_bytes())?;
+        out.write_all(b"\n\n")?;
     }
+    Ok(())
 }
 
 fn render_one(
@@ -70,8 +78,9 @@ mod tests {
                     .with_help("write a value"),
             ],
         };
-        let mut out = String::new();
-        render(&report, &mut out);
+        let mut bytes = Vec::new();
+        write(&report, &mut bytes).unwrap();
+        let out = String::from_utf8(bytes).unwrap();
         insta::assert_snapshot!(out);
     }
 }

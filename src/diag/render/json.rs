@@ -1,14 +1,10 @@
 //! The contract's JSON document: `{"diagnostics":[…],"summary":{"files","errors","warnings"}}`.
 
+use std::io::{self, Write};
+
 use serde::Serialize;
 
 use crate::diag::{FileReport, LineIndex, Severity};
-
-#[derive(Serialize)]
-struct Document<'a> {
-    diagnostics: Vec<Item<'a>>,
-    summary: Summary,
-}
 
 #[derive(Serialize)]
 struct Item<'a> {
@@ -30,25 +26,62 @@ struct Summary {
     warnings: usize,
 }
 
-/// One JSON document for all reports (`files` counts every report, clean ones included).
-pub fn render(reports: &[FileReport]) -> String {
-    let mut diagnostics = Vec::new();
-    let mut errors = 0;
-    let mut warnings = 0;
+/// One JSON document for all reports, then a newline (`files` counts every report, clean ones
+/// included).
+pub fn write<W: Write + ?Sized>(reports: &[FileReport], out: &mut W) -> io::Result<()> {
+    let mut doc = Document::begin(out)?;
     for report in reports {
+        doc.report(report, out)?;
+    }
+    doc.end(out)
+}
+
+/// The document written as the reports come: [`Document::begin`], [`Document::report`] for
+/// every report in order, [`Document::end`]. The envelope is written here, each finding by
+/// serde, so nothing holds more than one finding; the summary counts what went by.
+pub struct Document {
+    items: usize,
+    summary: Summary,
+}
+
+impl Document {
+    /// Write the start of the document.
+    pub fn begin<W: Write + ?Sized>(out: &mut W) -> io::Result<Document> {
+        out.write_all(b"{\"diagnostics\":[")?;
+        Ok(Document {
+            items: 0,
+            summary: Summary {
+                files: 0,
+                errors: 0,
+                warnings: 0,
+            },
+        })
+    }
+
+    /// Write the findings of `report` (a clean report is counted in `files` only).
+    pub fn report<W: Write + ?Sized>(
+        &mut self,
+        report: &FileReport,
+        out: &mut W,
+    ) -> io::Result<()> {
+        self.summary.files += 1;
         if report.diagnostics.is_empty() {
-            continue;
+            return Ok(());
         }
         let index = LineIndex::new(&report.text);
         for d in &report.diagnostics {
             let (line, column) = index.line_col(&report.text, d.span.start as usize);
             let (end_line, end_column) = index.line_col(&report.text, d.span.end as usize);
             match d.severity {
-                Severity::Error => errors += 1,
-                Severity::Warning => warnings += 1,
+                Severity::Error => self.summary.errors += 1,
+                Severity::Warning => self.summary.warnings += 1,
                 Severity::Info => {}
             }
-            diagnostics.push(Item {
+            if self.items > 0 {
+                out.write_all(b",")?;
+            }
+            self.items += 1;
+            let item = Item {
                 file: &report.path,
                 line,
                 column,
@@ -58,18 +91,18 @@ pub fn render(reports: &[FileReport]) -> String {
                 severity: d.severity,
                 message: &d.message,
                 help: d.help.as_deref(),
-            });
+            };
+            serde_json::to_writer(&mut *out, &item)?;
         }
+        Ok(())
     }
-    let doc = Document {
-        diagnostics,
-        summary: Summary {
-            files: reports.len(),
-            errors,
-            warnings,
-        },
-    };
-    serde_json::to_string(&doc).unwrap_or_else(|e| format!("{{\"error\":\"{e}\"}}"))
+
+    /// Write the summary, the end of the document and a newline.
+    pub fn end<W: Write + ?Sized>(self, out: &mut W) -> io::Result<()> {
+        out.write_all(b"],\"summary\":")?;
+        serde_json::to_writer(&mut *out, &self.summary)?;
+        out.write_all(b"}\n")
+    }
 }
 
 #[cfg(test)]
@@ -95,6 +128,10 @@ mod tests {
                 diagnostics: vec![],
             },
         ];
-        insta::assert_snapshot!(render(&reports), @r#"{"diagnostics":[{"file":"a.src","line":2,"column":4,"end_line":2,"end_column":4,"code":"KRL001","severity":"error","message":"expected expression","help":null}],"summary":{"files":2,"errors":1,"warnings":0}}"#);
+        let mut out = Vec::new();
+        write(&reports, &mut out).unwrap();
+        let out = String::from_utf8(out).unwrap();
+        assert!(out.ends_with("}\n"), "{out}");
+        insta::assert_snapshot!(out.trim_end(), @r#"{"diagnostics":[{"file":"a.src","line":2,"column":4,"end_line":2,"end_column":4,"code":"KRL001","severity":"error","message":"expected expression","help":null}],"summary":{"files":2,"errors":1,"warnings":0}}"#);
     }
 }

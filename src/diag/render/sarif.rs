@@ -5,12 +5,14 @@
 //! relative reference against the `SRCROOT` base (the working directory, named in
 //! `originalUriBaseIds` when known), an absolute path a `file://` URI.
 
+use std::io::{self, Write};
 use std::path::Path;
 
 use percent_encoding::{AsciiSet, NON_ALPHANUMERIC, utf8_percent_encode};
+use serde::ser::{Serialize, SerializeMap, Serializer};
 use serde_json::{Value, json};
 
-use crate::diag::{FileReport, LineIndex, Severity};
+use crate::diag::{Diagnostic, FileReport, LineIndex, Severity};
 use crate::lint::RULES;
 
 const SCHEMA: &str = "https://json.schemastore.org/sarif-2.1.0.json";
@@ -59,9 +61,14 @@ pub fn artifact_location(path: &str) -> Value {
     json!({ "uri": uri, "uriBaseId": SRCROOT })
 }
 
-/// The whole SARIF log for `reports` with the lint rules' metadata; `root` is the directory
-/// relative paths start from (the working directory), named as `SRCROOT` when given.
-pub fn render(reports: &[FileReport], root: Option<&Path>) -> String {
+/// The whole SARIF log for `reports` with the lint rules' metadata, then a newline; `root` is
+/// the directory relative paths start from (the working directory), named as `SRCROOT` when
+/// given.
+pub fn write<W: Write + ?Sized>(
+    reports: &[FileReport],
+    root: Option<&Path>,
+    out: &mut W,
+) -> io::Result<()> {
     let rules: Vec<RuleMeta> = RULES
         .iter()
         .map(|r| RuleMeta {
@@ -72,15 +79,19 @@ pub fn render(reports: &[FileReport], root: Option<&Path>) -> String {
             doc: r.doc,
         })
         .collect();
-    render_with_rules(reports, &rules, root)
+    write_with_rules(reports, &rules, root, out)
 }
 
-/// The whole SARIF log for `reports` with the metadata of `rules` (`root` as for [`render`]).
-pub fn render_with_rules(
+/// The whole SARIF log for `reports` with the metadata of `rules` (`root` as for [`write`]).
+///
+/// The log around the results is a `Value`; the results are made one at a time as the log is
+/// written (pretty, by serde_json), so only one of them is ever held.
+pub fn write_with_rules<W: Write + ?Sized>(
     reports: &[FileReport],
     rule_meta: &[RuleMeta],
     root: Option<&Path>,
-) -> String {
+    out: &mut W,
+) -> io::Result<()> {
     let rules: Vec<Value> = rule_meta
         .iter()
         .map(|r| {
@@ -94,41 +105,6 @@ pub fn render_with_rules(
             })
         })
         .collect();
-    let mut results = Vec::new();
-    for report in reports {
-        if report.diagnostics.is_empty() {
-            continue;
-        }
-        let index = LineIndex::new(&report.text);
-        let location = artifact_location(&report.path);
-        for d in &report.diagnostics {
-            let (line, col) = index.line_col(&report.text, d.span.start as usize);
-            let (end_line, end_col) = index.line_col(&report.text, d.span.end as usize);
-            let mut text = d.message.clone();
-            if let Some(h) = &d.help {
-                text.push_str(" (help: ");
-                text.push_str(h);
-                text.push(')');
-            }
-            results.push(json!({
-                "ruleId": d.code,
-                "ruleIndex": rule_meta.iter().position(|r| r.code == d.code),
-                "level": level(d.severity),
-                "message": { "text": text },
-                "locations": [{
-                    "physicalLocation": {
-                        "artifactLocation": location,
-                        "region": {
-                            "startLine": line,
-                            "startColumn": col,
-                            "endLine": end_line,
-                            "endColumn": end_col,
-                        }
-                    }
-                }]
-            }));
-        }
-    }
     let mut run = json!({
         "tool": { "driver": {
             "name": "krlkit",
@@ -136,7 +112,8 @@ pub fn render_with_rules(
             "informationUri": "https://github.com/krlkit/krlkit",
             "rules": rules,
         }},
-        "results": results,
+        // Written by `Results`, in this entry's place.
+        "results": [],
     });
     if let Some(base) = root.and_then(|r| url::Url::from_directory_path(r).ok()) {
         run["originalUriBaseIds"] = json!({ SRCROOT: { "uri": base.as_str() } });
@@ -144,9 +121,104 @@ pub fn render_with_rules(
     let log = json!({
         "$schema": SCHEMA,
         "version": "2.1.0",
-        "runs": [run],
+        // Written as `[run]`, in this entry's place.
+        "runs": [],
     });
-    serde_json::to_string_pretty(&log).unwrap_or_default()
+    let run = Splice {
+        object: &run,
+        key: "results",
+        value: Results { reports, rule_meta },
+    };
+    let log = Splice {
+        object: &log,
+        key: "runs",
+        value: [run],
+    };
+    serde_json::to_writer_pretty(&mut *out, &log)?;
+    out.write_all(b"\n")
+}
+
+/// A JSON object written as `object` is (its keys in its order), except that the entry `key`
+/// is `value`.
+struct Splice<'a, T> {
+    object: &'a Value,
+    key: &'static str,
+    value: T,
+}
+
+impl<T: Serialize> Serialize for Splice<'_, T> {
+    fn serialize<S: Serializer>(&self, serializer: S) -> Result<S::Ok, S::Error> {
+        let object = self.object.as_object().expect("an object");
+        let mut map = serializer.serialize_map(Some(object.len()))?;
+        for (k, v) in object {
+            if k == self.key {
+                map.serialize_entry(k, &self.value)?;
+            } else {
+                map.serialize_entry(k, v)?;
+            }
+        }
+        map.end()
+    }
+}
+
+/// The `results` array: one result per finding, each made as it is written.
+struct Results<'a> {
+    reports: &'a [FileReport],
+    rule_meta: &'a [RuleMeta<'a>],
+}
+
+impl Serialize for Results<'_> {
+    fn serialize<S: Serializer>(&self, serializer: S) -> Result<S::Ok, S::Error> {
+        let results = self
+            .reports
+            .iter()
+            .filter(|report| !report.diagnostics.is_empty())
+            .flat_map(|report| {
+                let index = LineIndex::new(&report.text);
+                let location = artifact_location(&report.path);
+                report
+                    .diagnostics
+                    .iter()
+                    .map(move |d| self.result(report, &index, &location, d))
+            });
+        serializer.collect_seq(results)
+    }
+}
+
+impl Results<'_> {
+    fn result(
+        &self,
+        report: &FileReport,
+        index: &LineIndex,
+        location: &Value,
+        d: &Diagnostic,
+    ) -> Value {
+        let (line, col) = index.line_col(&report.text, d.span.start as usize);
+        let (end_line, end_col) = index.line_col(&report.text, d.span.end as usize);
+        let mut text = d.message.clone();
+        if let Some(h) = &d.help {
+            text.push_str(" (help: ");
+            text.push_str(h);
+            text.push(')');
+        }
+        json!({
+            "ruleId": d.code,
+            "ruleIndex": self.rule_meta.iter().position(|r| r.code == d.code),
+            "level": level(d.severity),
+            "message": { "text": text },
+            "locations": [{
+                "physicalLocation": {
+                    "artifactLocation": location,
+                    "region": {
+                        "startLine": line,
+                        "startColumn": col,
+                        "endLine": end_line,
+                        "endColumn": end_col,
+                    }
+                }
+            }]
+        })
+    }
 }
 
 /// The "What it checks" section of a rule doc, as one line of plain text.
@@ -160,6 +232,13 @@ fn first_paragraph(doc: &str) -> String {
 mod tests {
     use super::*;
     use std::path::PathBuf;
+
+    /// The log [`write`] writes, read back.
+    fn written(reports: &[FileReport], root: Option<&Path>) -> Value {
+        let mut out = Vec::new();
+        write(reports, root, &mut out).unwrap();
+        serde_json::from_slice(&out).unwrap()
+    }
 
     /// Resolve an artifact location as a SARIF consumer does.
     fn resolve(location: &Value, root: &url::Url) -> PathBuf {
@@ -228,17 +307,13 @@ mod tests {
                 "m",
             )],
         };
-        let log: Value = serde_json::from_str(&render(
-            std::slice::from_ref(&report),
-            Some(Path::new("/w")),
-        ))
-        .unwrap();
+        let log = written(std::slice::from_ref(&report), Some(Path::new("/w")));
         let run = &log["runs"][0];
         assert_eq!(run["originalUriBaseIds"][SRCROOT]["uri"], "file:///w/");
         let location = &run["results"][0]["locations"][0]["physicalLocation"]["artifactLocation"];
         assert_eq!(location["uri"], "a%20b.src");
         assert_eq!(location["uriBaseId"], SRCROOT);
-        let log: Value = serde_json::from_str(&render(&[report], None)).unwrap();
+        let log = written(&[report], None);
         assert!(log["runs"][0].get("originalUriBaseIds").is_none());
     }
 }
