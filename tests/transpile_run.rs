@@ -105,7 +105,7 @@ fn translate_with_findings(
         .iter()
         .flat_map(|r| &r.diagnostics)
         .filter(|d| d.severity == Severity::Error)
-        .map(|d| d.message.clone())
+        .map(|d| d.message.to_string())
         .collect();
     let findings = equiv_support::findings(&t);
     (t.text, errors, findings)

@@ -11,6 +11,7 @@ pub use fix::{Applicability, Edit, Fix};
 pub use line_index::LineIndex;
 
 use serde::Serialize;
+use std::sync::Arc;
 
 /// How serious a finding is. Ordered so that `Error > Warning > Info`.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, PartialOrd, Ord, Hash, Serialize)]
@@ -94,13 +95,14 @@ pub struct Diagnostic {
     pub code: &'static str,
     pub severity: Severity,
     pub span: Span,
-    /// One line saying what is wrong.
-    pub message: String,
+    /// One line saying what is wrong. Shared: a large report says the same thing at many
+    /// places, and each place holds a pointer to the one text.
+    pub message: Arc<str>,
     /// Optional: what to do about it.
-    pub help: Option<String>,
+    pub help: Option<Arc<str>>,
     /// Optional: the change that would resolve it, as data (see [`fix`]).
     #[serde(skip_serializing_if = "Option::is_none")]
-    pub fix: Option<Fix>,
+    pub fix: Option<Box<Fix>>,
     /// Other places that explain the finding (a first declaration, the config it disagrees
     /// with); editors show them as related locations.
     #[serde(skip_serializing_if = "Vec::is_empty")]
@@ -122,7 +124,7 @@ impl Diagnostic {
         code: &'static str,
         severity: Severity,
         span: Span,
-        message: impl Into<String>,
+        message: impl Into<Arc<str>>,
     ) -> Diagnostic {
         Diagnostic {
             code,
@@ -135,21 +137,21 @@ impl Diagnostic {
         }
     }
 
-    pub fn error(code: &'static str, span: Span, message: impl Into<String>) -> Diagnostic {
+    pub fn error(code: &'static str, span: Span, message: impl Into<Arc<str>>) -> Diagnostic {
         Diagnostic::new(code, Severity::Error, span, message)
     }
 
-    pub fn warning(code: &'static str, span: Span, message: impl Into<String>) -> Diagnostic {
+    pub fn warning(code: &'static str, span: Span, message: impl Into<Arc<str>>) -> Diagnostic {
         Diagnostic::new(code, Severity::Warning, span, message)
     }
 
-    pub fn with_help(mut self, help: impl Into<String>) -> Diagnostic {
+    pub fn with_help(mut self, help: impl Into<Arc<str>>) -> Diagnostic {
         self.help = Some(help.into());
         self
     }
 
     pub fn with_fix(mut self, fix: Fix) -> Diagnostic {
-        self.fix = Some(fix);
+        self.fix = Some(Box::new(fix));
         self
     }
 

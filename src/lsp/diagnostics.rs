@@ -41,7 +41,7 @@ pub fn related(
 pub fn convert(lines: &Lines, d: &diag::Diagnostic) -> Diagnostic {
     let message = match &d.help {
         Some(h) => format!("{}\nhelp: {h}", d.message),
-        None => d.message.clone(),
+        None => d.message.to_string(),
     };
     Diagnostic {
         range: lines.range(d.span),

@@ -234,27 +234,28 @@ pub fn transpile(
     let silent = silent(&model, &report, &produced);
     drop(model);
     let front::Program { src, dat, .. } = program;
-    trim_spans(&mut report.src, &src.text);
+    report.trim_spans(front::report::FileId::Src, &src.text);
     if let Some(dat) = &dat {
-        trim_spans(&mut report.dat, &dat.text);
+        report.trim_spans(front::report::FileId::Dat, &dat.text);
     }
-    report.finish();
+    let coverage = std::mem::take(&mut report.coverage);
+    let [src_findings, dat_findings] = report.into_diagnostics();
     let mut reports = vec![FileReport {
         path: src.path,
         text: src.text,
-        diagnostics: std::mem::take(&mut report.src),
+        diagnostics: src_findings,
     }];
     if let Some(dat) = dat {
         reports.push(FileReport {
             path: dat.path,
             text: dat.text,
-            diagnostics: std::mem::take(&mut report.dat),
+            diagnostics: dat_findings,
         });
     }
     Translation {
         text,
         reports,
-        coverage: report.coverage,
+        coverage,
         silent,
     }
 }
@@ -323,10 +324,10 @@ fn report_structure(text: &str, at: crate::diag::Span, report: &mut front::repor
 /// as the worst finding that starts inside it (renames do not count).
 fn coverage(model: &ir::Program, report: &front::report::Report) -> Coverage {
     use front::report::{FileId, Outcome};
-    let src = Starts::new(&report.src);
-    let dat = Starts::new(&report.dat);
+    let src = Starts::new(report.starts(FileId::Src));
+    let dat = Starts::new(report.starts(FileId::Dat));
     let mut c = Coverage::default();
-    for k in &model.constructs {
+    for k in &model.constructs.list {
         let starts = match k.file {
             FileId::Src => &src,
             FileId::Dat => &dat,
@@ -339,7 +340,7 @@ fn coverage(model: &ir::Program, report: &front::report::Report) -> Coverage {
         } else {
             Outcome::Exact
         };
-        c.record(k.kind, o);
+        c.record(model.constructs.kind(k), o);
     }
     c
 }
@@ -352,12 +353,13 @@ fn silent(
     produced: &[crate::diag::Span],
 ) -> Vec<crate::diag::Span> {
     use front::report::FileId;
-    let findings = Starts::new(&report.src);
+    let findings = Starts::new(report.starts(FileId::Src));
     let produced = Covered::new(produced);
     model
         .constructs
+        .list
         .iter()
-        .filter(|k| k.file == FileId::Src && !k.kind.starts_with("routine"))
+        .filter(|k| k.file == FileId::Src && !model.constructs.kind(k).starts_with("routine"))
         .filter(|k| !produced.overlaps(k.span))
         .filter(|k| findings.inside(k.span)[2] == 0)
         .map(|k| k.span)
@@ -379,9 +381,8 @@ struct Starts {
 }
 
 impl Starts {
-    fn new(findings: &[crate::diag::Diagnostic]) -> Starts {
-        let mut by_start: Vec<(u32, &str)> =
-            findings.iter().map(|d| (d.span.start, d.code)).collect();
+    fn new(findings: impl Iterator<Item = (u32, &'static str)>) -> Starts {
+        let mut by_start: Vec<(u32, &str)> = findings.collect();
         by_start.sort_unstable();
         let mut counts = Vec::with_capacity(by_start.len() + 1);
         let mut running = [0u32; 3];
@@ -440,22 +441,6 @@ impl Covered {
     }
 }
 
-/// Statement spans cover their whole lines; findings point at the code, not at the
-/// indentation or the line break.
-fn trim_spans(diagnostics: &mut [crate::diag::Diagnostic], text: &str) {
-    const BLANK: [char; 4] = [' ', '\t', '\r', '\n'];
-    for d in diagnostics {
-        let (start, end) = (d.span.start as usize, d.span.end as usize);
-        if let Some(s) = text.get(start..end) {
-            let code = s.trim_matches(BLANK);
-            if !code.is_empty() {
-                let from = start + (s.len() - s.trim_start_matches(BLANK).len());
-                d.span = crate::diag::Span::new(from, from + code.len());
-            }
-        }
-    }
-}
-
 #[cfg(test)]
 mod structure_tests {
     use super::*;
@@ -468,9 +453,10 @@ mod structure_tests {
             crate::diag::Span::new(4, 5),
             &mut report,
         );
-        assert_eq!(report.src.len(), 1, "{:?}", report.src);
-        assert_eq!(report.src[0].code, rules::UNTRANSLATABLE);
-        assert!(report.src[0].message.contains("structural check"));
+        let [src, _] = report.into_diagnostics();
+        assert_eq!(src.len(), 1, "{src:?}");
+        assert_eq!(src[0].code, rules::UNTRANSLATABLE);
+        assert!(src[0].message.contains("structural check"));
 
         let mut report = front::report::Report::default();
         report_structure(
@@ -478,6 +464,6 @@ mod structure_tests {
             crate::diag::Span::new(4, 5),
             &mut report,
         );
-        assert!(report.src.is_empty(), "{:?}", report.src);
+        assert!(report.is_empty());
     }
 }

@@ -328,7 +328,7 @@ pub fn findings(t: &Translation) -> Vec<(String, usize, String)> {
                 out.push((
                     d.code.to_string(),
                     index.line_of(d.span.start as usize) + 1,
-                    d.message.clone(),
+                    d.message.to_string(),
                 ));
             }
         }

@@ -20,7 +20,7 @@ pub fn write<W: Write + ?Sized>(report: &FileReport, out: &mut W) -> io::Result<
             Severity::Warning => "warning",
             Severity::Info => "notice",
         };
-        let mut message = d.message.clone();
+        let mut message = d.message.to_string();
         if let Some(h) = &d.help {
             message.push_str("\nhelp: ");
             message.push_str(h);

@@ -51,14 +51,14 @@ fn render_one(
         Severity::Warning => Level::WARNING,
         Severity::Info => Level::INFO,
     };
-    let mut group = level.primary_title(d.message.as_str()).id(d.code).element(
+    let mut group = level.primary_title(&*d.message).id(d.code).element(
         Snippet::source(window)
             .line_start(first + 1)
             .path(report.path.as_str())
             .annotation(AnnotationKind::Primary.span(rel)),
     );
     if let Some(help) = &d.help {
-        group = group.element(Level::HELP.message(help.as_str()));
+        group = group.element(Level::HELP.message(&**help));
     }
     renderer.render(&[group])
 }

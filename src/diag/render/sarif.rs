@@ -195,7 +195,7 @@ impl Results<'_> {
     ) -> Value {
         let (line, col) = index.line_col(&report.text, d.span.start as usize);
         let (end_line, end_col) = index.line_col(&report.text, d.span.end as usize);
-        let mut text = d.message.clone();
+        let mut text = d.message.to_string();
         if let Some(h) = &d.help {
             text.push_str(" (help: ");
             text.push_str(h);

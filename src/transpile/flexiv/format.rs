@@ -44,7 +44,10 @@ pub fn ascii(s: &str) -> String {
 }
 
 /// The whole script with every non-ASCII character replaced by `?` (line breaks kept).
-pub fn ascii_lines(s: &str) -> String {
+pub fn ascii_lines(s: String) -> String {
+    if s.is_ascii() {
+        return s;
+    }
     s.chars()
         .map(|c| if c.is_ascii() { c } else { '?' })
         .collect()

@@ -442,20 +442,25 @@ impl<'a> Tx<'a> {
         let Some(rt) = self.rt.take() else {
             return;
         };
-        let mut f = std::mem::take(&mut self.before_def).join("\n");
-        if !f.is_empty() {
-            f.push('\n');
+        let mut head = std::mem::take(&mut self.before_def).join("\n");
+        if !head.is_empty() {
+            head.push('\n');
         }
-        f.push_str(&format!("def {}({}):", rt.name, rt.params.join(", ")));
+        head.push_str(&format!("def {}({}):", rt.name, rt.params.join(", ")));
         if !rt.globals.is_empty() {
             let g: Vec<&str> = rt.globals.iter().map(String::as_str).collect();
-            f.push_str(&format!("\n    global {}", g.join(", ")));
+            head.push_str(&format!("\n    global {}", g.join(", ")));
         }
-        let body = std::mem::take(&mut self.body);
-        if !body.is_empty() {
-            f.push('\n');
-            f.push_str(body.strip_suffix('\n').unwrap_or(&body));
+        // The function is its body with the head put in front (one copy of a large body).
+        let mut f = std::mem::take(&mut self.body);
+        if f.ends_with('\n') {
+            f.pop();
         }
+        if !f.is_empty() {
+            head.push('\n');
+        }
+        f.insert_str(0, &head);
+        f.shrink_to_fit();
         self.functions.push(f);
         self.body_has_code = false;
         self.depth = 0;
@@ -524,7 +529,9 @@ impl<'a> Tx<'a> {
             }
             section(&v, &mut program);
         }
-        for f in &self.functions {
+        // Each function's text is dropped once copied.
+        program.reserve(self.functions.iter().map(|f| f.len() + 3).sum());
+        for f in std::mem::take(&mut self.functions) {
             program.push_str("\n\n");
             for l in f.lines() {
                 program.push_str(l.trim_end());
@@ -533,7 +540,7 @@ impl<'a> Tx<'a> {
         }
         let text = script::render(self, program);
         // Comments and names are ASCII already; this is a guard, not a translation.
-        format::ascii_lines(&text)
+        format::ascii_lines(text)
     }
 
     fn header_comment(&self) -> Vec<String> {

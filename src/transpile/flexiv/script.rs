@@ -127,9 +127,11 @@ pub(super) fn render(tx: &Tx<'_>, program: String) -> String {
         program,
         entry: tx.entry.clone(),
     };
-    let mut text = Script { s: &view }
-        .render()
-        .unwrap_or_else(|e| format!("# the script could not be rendered: {e}"));
+    // Sized for the program and the runtime around it, so the text is not grown by doubling.
+    let mut text = String::with_capacity(view.program.len() + (256 << 10));
+    if let Err(e) = (Script { s: &view }).render_into(&mut text) {
+        text = format!("# the script could not be rendered: {e}");
+    }
     text.push('\n');
     text
 }

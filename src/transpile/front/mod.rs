@@ -61,7 +61,7 @@ impl Parsed {
         let text = text.into();
         let mut lowerer = PieceLowerer::new(&text);
         let mut outline = outline::OutlineBuilder::default();
-        let mut summary = crate::sema::SummaryBuilder::default();
+        let mut summary = crate::sema::SummaryBuilder::declarations_only();
         let mut followed = true;
         let mut found: Vec<comments::Comment> = Vec::new();
         let mut names = HashSet::new();
@@ -95,12 +95,13 @@ impl Parsed {
                 }
             });
         });
-        // A file whose order the streamed summary cannot follow (a routine after its data
-        // list) is summarised from its whole AST, the one case where it is built.
+        // Declarations only: the translation asks the model what names mean, never where they
+        // are used. A file whose order the streamed summary cannot follow (a routine after its
+        // data list) is summarised from its whole AST, the one case where it is built.
         let summary = if followed {
             summary.finish()
         } else {
-            crate::sema::FileSummary::of(&crate::syntax::ast::lower_pieces(&text).0)
+            crate::sema::FileSummary::declarations_of(&crate::syntax::ast::lower_pieces(&text).0)
         };
         Parsed {
             path: path.into(),
@@ -121,7 +122,11 @@ impl Parsed {
     /// (they are in the outline).
     pub fn each_statement(&self, top_level: bool, mut f: impl FnMut(Statement)) {
         use crate::syntax::ast::{Lowered, PieceLowerer};
-        if top_level && !self.outline.top_level {
+        let any = match top_level {
+            true => self.outline.top_level,
+            false => !self.outline.routines.is_empty(),
+        };
+        if !any {
             return;
         }
         let mut lowerer = PieceLowerer::new(&self.text);

@@ -6,7 +6,7 @@
 //! one at a time, from a second parse ([`super::Parsed::each_statement`]), so a large routine
 //! is never held whole.
 
-use std::collections::HashSet;
+use std::collections::{BTreeSet, HashSet};
 
 use crate::syntax::ast::{self, Definition, Lowered, Stmt, StmtKind};
 use crate::transpile::front::walk;
@@ -51,9 +51,11 @@ pub struct BodyFacts {
     /// Upper-case names assigned anywhere (assignment targets, FOR variables).
     pub assigned: HashSet<String>,
     /// Upper-case root names of assignment targets and of call arguments.
-    pub written: Vec<String>,
-    /// Routines called, by statement or inside an assigned value, in visiting order.
+    pub written: BTreeSet<String>,
+    /// Routines called, by statement or inside an assigned value, in the order of their first
+    /// call (each once).
     pub callees: Vec<String>,
+    called: HashSet<String>,
     /// A motion or spline block.
     pub moves: bool,
     /// Label names, in visiting order.
@@ -73,18 +75,22 @@ impl BodyFacts {
             StmtKind::Assign { target, value } => {
                 if let Some(id) = walk::root_name(target) {
                     self.assigned.insert(id.key());
-                    self.written.push(id.key());
+                    self.written.insert(id.key());
                 }
-                expr_calls(value, &mut self.callees);
+                let mut calls = Vec::new();
+                expr_calls(value, &mut calls);
+                for c in calls {
+                    self.call(c);
+                }
             }
             StmtKind::For { var, .. } => {
                 self.assigned.insert(var.key());
             }
             StmtKind::Call { name, args } => {
-                self.callees.push(name.text.to_string());
+                self.call(name.text.to_string());
                 for a in args.iter().flatten() {
                     if let Some(id) = walk::root_name(a) {
-                        self.written.push(id.key());
+                        self.written.insert(id.key());
                     }
                 }
             }
@@ -95,6 +101,16 @@ impl BodyFacts {
             StmtKind::Definition(d) => self.definitions.push((d.clone(), std::ptr::eq(s, stmt))),
             _ => {}
         });
+    }
+}
+
+impl BodyFacts {
+    /// A call of `name`: a routine called again changes nothing another routine asks.
+    fn call(&mut self, name: String) {
+        if !self.called.contains(&name) {
+            self.called.insert(name.clone());
+            self.callees.push(name);
+        }
     }
 }
 
@@ -245,7 +261,7 @@ mod tests {
         let a = &o.routines[0];
         assert_eq!(a.head_pieces, 3);
         assert_eq!(a.facts.callees, ["f", "b"]);
-        assert_eq!(a.facts.written, ["X", "Y"]);
+        assert_eq!(a.facts.written, BTreeSet::from(["X".into(), "Y".into()]));
         assert!(a.facts.moves);
         assert_eq!(a.facts.labels.len(), 1);
         assert_eq!(a.facts.global_decls.len(), 1);

@@ -149,7 +149,7 @@ pub struct Program {
     /// Every `INTERRUPT DECL` of the file.
     pub interrupts: Vec<InterruptDecl>,
     /// Every KRL construct, for the coverage table.
-    pub constructs: Vec<Construct>,
+    pub constructs: Constructs,
     /// Target-independent findings (TR002) decided while lowering.
     pub findings: Vec<Finding>,
 }
@@ -173,12 +173,68 @@ impl Program {
 }
 
 /// A KRL construct counted in the coverage table: a statement (its own first line for blocks),
-/// a routine header or a `.dat` value.
+/// a routine header or a `.dat` value. Twelve bytes: a program has one per statement.
 #[derive(Debug, Clone, PartialEq)]
 pub struct Construct {
-    pub kind: &'static str,
     pub span: Span,
+    /// Index into [`Constructs::kinds`].
+    kind: u8,
     pub file: FileId,
+}
+
+/// Every construct of the program, in source order per file, and the kinds they are counted
+/// under.
+#[derive(Debug, Clone, Default)]
+pub struct Constructs {
+    pub list: Vec<Construct>,
+    kinds: Vec<&'static str>,
+}
+
+impl Constructs {
+    pub fn push(&mut self, kind: &'static str, span: Span, file: FileId) {
+        let kind = self.kind_index(kind);
+        self.list.push(Construct { span, kind, file });
+    }
+
+    /// Changes the kind of the construct recorded last.
+    pub fn set_last_kind(&mut self, kind: &'static str) {
+        if let Some(i) = self.list.len().checked_sub(1) {
+            self.set_kind(i, kind);
+        }
+    }
+
+    /// Changes the kind of construct `i` (if there is one).
+    pub fn set_kind(&mut self, i: usize, kind: &'static str) {
+        let kind = self.kind_index(kind);
+        if let Some(c) = self.list.get_mut(i) {
+            c.kind = kind;
+        }
+    }
+
+    pub fn len(&self) -> usize {
+        self.list.len()
+    }
+
+    pub fn is_empty(&self) -> bool {
+        self.list.is_empty()
+    }
+
+    /// The coverage kind of `c` (`assignment`, `PTP`, `routine DEF` …).
+    pub fn kind(&self, c: &Construct) -> &'static str {
+        self.kinds[c.kind as usize]
+    }
+
+    fn kind_index(&mut self, kind: &'static str) -> u8 {
+        match self.kinds.iter().position(|k| *k == kind) {
+            Some(i) => i as u8,
+            None => {
+                // Kinds are the handful the lowering names (front::kinds and its handlers).
+                assert!(self.kinds.len() < 255, "construct kinds are few");
+                self.kinds.push(kind);
+                (self.kinds.len() - 1) as u8
+            }
+        }
+    }
 }
 
 /// A finding decided by the lowering (target-independent wording).

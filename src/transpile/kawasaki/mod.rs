@@ -332,7 +332,8 @@ impl<'a> Tx<'a> {
         self.flush_comments(r.span.end);
         self.flush_lines(0);
         let header = std::mem::take(&mut self.header);
-        let body = std::mem::take(&mut self.body);
+        let mut body = std::mem::take(&mut self.body);
+        body.shrink_to_fit();
         self.programs.push(ProgramOut { header, body });
         self.rt = None;
     }
@@ -350,8 +351,17 @@ impl<'a> Tx<'a> {
     // ----- assembly ----------------------------------------------------------------------
 
     fn assemble(&mut self) -> String {
-        let mut out = String::new();
         let head = self.header_comment();
+        let data = format::ascii(&self.data_text()).into_owned();
+        let size: usize = self
+            .programs
+            .iter()
+            .map(|p| p.header.len() + p.body.len() + 8)
+            .sum::<usize>()
+            + head.iter().map(|l| l.len() + 3).sum::<usize>()
+            + data.len()
+            + 32;
+        let mut out = String::with_capacity(size);
         if self.programs.is_empty() {
             self.programs.push(ProgramOut {
                 header: ".PROGRAM main()".into(),
@@ -372,7 +382,7 @@ impl<'a> Tx<'a> {
             out.push_str(&p.body);
             out.push_str(".END\n");
         }
-        out.push_str(&format::ascii(&self.data_text()));
+        out.push_str(&data);
         out
     }
 

@@ -446,7 +446,7 @@ impl<'a> Walker<'a> {
             };
             if next == head {
                 let breaks = self.breaks.get(&id).cloned().flatten();
-                return match shape {
+                let after = match shape {
                     Shape::Forever => breaks,
                     // The test runs at the head (and, for REPEAT, after the body).
                     Shape::Before => join_opt(Some(head), breaks),
@@ -455,9 +455,16 @@ impl<'a> Walker<'a> {
                         join_opt(end, breaks)
                     }
                 };
+                // Nothing jumps out of a loop once it is left: a routine of many loops kept the
+                // facts of every one.
+                self.breaks.remove(&id);
+                self.continues.remove(&id);
+                return after;
             }
             head = next;
         }
+        self.breaks.remove(&id);
+        self.continues.remove(&id);
         // No fixpoint (cannot happen on a finite lattice): nothing known after the loop.
         Some(State::uniform(
             || Fact::Unknown(Because::PathsDisagree),

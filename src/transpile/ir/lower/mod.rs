@@ -14,8 +14,8 @@ mod stmt;
 use std::collections::{BTreeSet, HashMap};
 
 use super::{
-    Block, Construct, Datum, Expr, Finding, LabelId, LoopId, Op, Program, Routine, RoutineId,
-    RoutineKind, Scope, Stmt, TempId, Ty, Var, VarId, Why,
+    Block, Datum, Expr, Finding, LabelId, LoopId, Op, Program, Routine, RoutineId, RoutineKind,
+    Scope, Stmt, TempId, Ty, Var, VarId, Why,
 };
 use crate::diag::Span;
 use crate::syntax::ast::{self, StmtKind};
@@ -248,11 +248,7 @@ impl<'p> Lower<'p> {
         if self.replay.is_some() {
             return;
         }
-        self.out.constructs.push(Construct {
-            kind,
-            span,
-            file: FileId::Src,
-        });
+        self.out.constructs.push(kind, span, FileId::Src);
     }
 
     /// Change the kind of the construct just recorded (assignments that set I/O, calls of
@@ -261,9 +257,7 @@ impl<'p> Lower<'p> {
         if self.replay.is_some() {
             return;
         }
-        if let Some(c) = self.out.constructs.last_mut() {
-            c.kind = kind;
-        }
+        self.out.constructs.set_last_kind(kind);
     }
 
     // ----- variables ---------------------------------------------------------------------
@@ -634,7 +628,7 @@ impl<'p> Lower<'p> {
         let result = match src.src.outline.routine(name) {
             None => None,
             Some(r) => {
-                let mut set: BTreeSet<String> = r.facts.written.iter().cloned().collect();
+                let mut set = r.facts.written.clone();
                 let mut unknown = false;
                 for c in &r.facts.callees {
                     if c.to_ascii_uppercase().starts_with("MM_") {
@@ -787,7 +781,7 @@ impl<'p> Lower<'p> {
     }
 
     fn data_construct(&mut self, kind: &'static str, span: Span, file: FileId) {
-        self.out.constructs.push(Construct { kind, span, file });
+        self.out.constructs.push(kind, span, file);
     }
 
     /// A `.dat` value: lowered as an expression (no calls), findings in `file`.

@@ -609,11 +609,8 @@ impl<'p> Lower<'p> {
             rt.continued = saved.unwrap_or(false);
         }
         // The action's kind (I/O, call …) does not rename the TRIGGER.
-        if let Some(c) = construct
-            .checked_sub(1)
-            .and_then(|i| self.out.constructs.get_mut(i))
-        {
-            c.kind = "TRIGGER";
+        if let Some(i) = construct.checked_sub(1) {
+            self.out.constructs.set_kind(i, "TRIGGER");
         }
         r?;
         for s in &mut act {
