@@ -40,7 +40,7 @@ pub struct Parsed {
     /// The file's summary for the semantic model (taken by [`Program::new`]).
     summary: Option<crate::sema::FileSummary>,
     /// Built on the first [`Parsed::line`] (building one per question was quadratic).
-    lines: std::cell::OnceCell<crate::diag::LineIndex>,
+    lines: std::sync::OnceLock<crate::diag::LineIndex>,
 }
 
 /// What [`Parsed::each_statement`] hands out, in text order.
@@ -111,16 +111,42 @@ impl Parsed {
             text,
             names,
             summary: Some(summary),
-            lines: std::cell::OnceCell::new(),
+            lines: std::sync::OnceLock::new(),
         }
     }
 
     /// Parses the file again and hands `f` the statements of the routines' bodies (`top_level`
     /// false: every routine in source order, between its [`Statement::Begin`] and
     /// [`Statement::End`]) or the statements outside any DEF (`top_level` true), one at a
-    /// time: only one statement's tree exists at once. Head declarations are not handed out
+    /// time: only a few statements' trees exist at once. Head declarations are not handed out
     /// (they are in the outline).
+    ///
+    /// The parse runs on a second thread, a bounded batch of statements ahead of `f`: parsing
+    /// is a third of a translation's work, and it overlaps the lowering and rendering.
     pub fn each_statement(&self, top_level: bool, mut f: impl FnMut(Statement)) {
+        const BATCH: usize = 256;
+        let (send, receive) = std::sync::mpsc::sync_channel::<Vec<Statement>>(4);
+        std::thread::scope(|scope| {
+            scope.spawn(move || {
+                let mut batch = Vec::with_capacity(BATCH);
+                self.statements(top_level, |s| {
+                    batch.push(s);
+                    if batch.len() == BATCH {
+                        let full = std::mem::replace(&mut batch, Vec::with_capacity(BATCH));
+                        // The receiver only stops early when `f` panicked.
+                        let _ = send.send(full);
+                    }
+                });
+                let _ = send.send(batch);
+            });
+            for batch in receive {
+                batch.into_iter().for_each(&mut f);
+            }
+        });
+    }
+
+    /// [`Parsed::each_statement`] on this thread.
+    fn statements(&self, top_level: bool, mut f: impl FnMut(Statement)) {
         use crate::syntax::ast::{Lowered, PieceLowerer};
         let any = match top_level {
             true => self.outline.top_level,
