@@ -6,14 +6,13 @@
 //! still checked and reported. The summary line names the files, modules and routines read and
 //! the KSS version of a backup's `am.ini`.
 
-use std::io::Write;
 use std::path::{Path, PathBuf};
 
 use anyhow::Context;
 
 use super::Outcome;
 use super::args::{CheckArgs, CheckFormat};
-use crate::diag::{FileReport, Severity, render};
+use crate::diag::{FileReport, Severity};
 use crate::files;
 use crate::lint::{self, EkiChannel, LintConfig};
 use crate::sema::{SourceKind, Workspace, WorkspaceFile};
@@ -128,32 +127,7 @@ pub fn run(args: CheckArgs) -> anyhow::Result<Outcome> {
     let errors: usize = reports.iter().map(|r| r.count(Severity::Error)).sum();
     let warnings: usize = reports.iter().map(|r| r.count(Severity::Warning)).sum();
     // Written as rendered, one finding at a time; flushed before the summary goes to stderr.
-    let mut out = std::io::BufWriter::new(std::io::stdout().lock());
-    match args.format {
-        CheckFormat::Human => {
-            let renderer = super::ui::renderer(true);
-            for r in reports {
-                render::human::write_with(r, &mut out, &renderer)?;
-            }
-        }
-        CheckFormat::Concise => {
-            for r in reports {
-                render::concise::write(r, &mut out)?;
-            }
-        }
-        CheckFormat::Github => {
-            for r in reports {
-                render::github::write(r, &mut out)?;
-            }
-        }
-        CheckFormat::Json => render::json::write(reports, &mut out)?,
-        CheckFormat::Sarif => {
-            let root = std::env::current_dir().ok();
-            render::sarif::write(reports, root.as_deref(), &mut out)?;
-        }
-    }
-    out.flush()?;
-    drop(out);
+    super::findings::write(reports, args.format, true, None, std::io::stdout().lock())?;
     if args.format == CheckFormat::Human && !super::ui::quiet() {
         let files = reports.len();
         if files == 0 && !failed {

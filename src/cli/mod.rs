@@ -2,6 +2,7 @@
 
 mod args;
 mod check;
+mod findings;
 mod fix;
 mod fmt;
 mod generate;

@@ -15,8 +15,8 @@ use anyhow::Context;
 
 use super::Outcome;
 use super::args::{CheckFormat, PtpPrimitive, TranspileArgs, TranspileTarget};
+use crate::diag::Severity;
 use crate::diag::render::sarif::RuleMeta;
-use crate::diag::{FileReport, Severity, render};
 use crate::lint::{self, EkiChannel};
 use crate::transpile::flexiv::{self, FlexivOptions, RdkVersion};
 use crate::transpile::kawasaki;
@@ -130,10 +130,33 @@ pub fn run(mut args: TranspileArgs) -> anyhow::Result<Outcome> {
     let errors: usize = t.reports.iter().map(|r| r.count(Severity::Error)).sum();
     let warnings: usize = t.reports.iter().map(|r| r.count(Severity::Warning)).sum();
     let infos: usize = t.reports.iter().map(|r| r.count(Severity::Info)).sum();
+    let rules: Vec<RuleMeta> = transpile::rules::RULES
+        .iter()
+        .map(|r| RuleMeta {
+            code: r.code,
+            name: r.name,
+            severity: r.severity,
+            summary: r.summary,
+            doc: r.doc,
+        })
+        .collect();
+    let (reports, format) = (&t.reports, args.format);
     if args.out.is_some() {
-        write_reports(&t.reports, args.format, std::io::stdout().lock())?;
+        super::findings::write(
+            reports,
+            format,
+            true,
+            Some(&rules),
+            std::io::stdout().lock(),
+        )?;
     } else {
-        write_reports(&t.reports, args.format, std::io::stderr().lock())?;
+        super::findings::write(
+            reports,
+            format,
+            false,
+            Some(&rules),
+            std::io::stderr().lock(),
+        )?;
     }
     if args.format == CheckFormat::Human && !super::ui::quiet() {
         let c = t.coverage.total();
@@ -216,49 +239,6 @@ fn flexiv_options(args: &TranspileArgs, target: Target) -> Result<FlexivOptions,
 
 fn plural(n: usize) -> &'static str {
     if n == 1 { "" } else { "s" }
-}
-
-/// Write the findings to `out` as they are rendered, one at a time (buffered, flushed before
-/// returning so the summary line comes after them).
-fn write_reports(
-    reports: &[FileReport],
-    format: CheckFormat,
-    out: impl Write,
-) -> std::io::Result<()> {
-    let mut out = std::io::BufWriter::new(out);
-    match format {
-        CheckFormat::Human => {
-            for r in reports {
-                render::human::write(r, &mut out)?;
-            }
-        }
-        CheckFormat::Concise => {
-            for r in reports {
-                render::concise::write(r, &mut out)?;
-            }
-        }
-        CheckFormat::Github => {
-            for r in reports {
-                render::github::write(r, &mut out)?;
-            }
-        }
-        CheckFormat::Json => render::json::write(reports, &mut out)?,
-        CheckFormat::Sarif => {
-            let rules: Vec<RuleMeta> = transpile::rules::RULES
-                .iter()
-                .map(|r| RuleMeta {
-                    code: r.code,
-                    name: r.name,
-                    severity: r.severity,
-                    summary: r.summary,
-                    doc: r.doc,
-                })
-                .collect();
-            let root = std::env::current_dir().ok();
-            render::sarif::write_with_rules(reports, &rules, root.as_deref(), &mut out)?;
-        }
-    }
-    out.flush()
 }
 
 fn read_source(path: &Path) -> anyhow::Result<Source> {

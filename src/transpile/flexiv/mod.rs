@@ -176,19 +176,6 @@ impl<'a> Tx<'a> {
         }
     }
 
-    /// Before the first routine: the names of everything declared, in declaration order, so
-    /// TR003 points at declarations and names made up later never take a user's.
-    fn start_program(&mut self) {
-        let ir = self.ir;
-        for r in &ir.routines {
-            if !r.synthetic {
-                self.routine_name(&r.name, r.name_span);
-            }
-        }
-        self.names.declare_globals(&mut self.rep);
-        self.data_globals();
-    }
-
     /// After the last routine: which function `main()` calls.
     fn choose_entry(&mut self) {
         let ir = self.ir;
@@ -328,144 +315,6 @@ impl<'a> Tx<'a> {
 
     // ----- routines ----------------------------------------------------------------------
 
-    fn begin_routine(&mut self, id: RoutineId) {
-        let ir = self.ir;
-        let r = ir.routine(id);
-        // Comments before the DEF line go above the function.
-        self.lines.clear();
-        self.depth = 0;
-        self.flush_comments(r.span.start);
-        self.before_def = std::mem::take(&mut self.lines);
-        let name = if r.synthetic {
-            self.routine_name(&r.name, r.name_span)
-        } else {
-            self.names.routine_of(&r.name).unwrap_or("").to_owned()
-        };
-        self.rt = Some(Rt {
-            id,
-            name,
-            kind: r.kind,
-            params: Vec::new(),
-            outs: Vec::new(),
-            globals: BTreeSet::new(),
-            temps: HashMap::new(),
-            loops: Vec::new(),
-            flags: HashMap::new(),
-            pending: Vec::new(),
-            made: 0,
-            tool: None,
-            base: None,
-        });
-        // Locals first (parameters, then declarations), so made-up names never take a user's.
-        self.names.declare_locals(&mut self.rep, id);
-        let mut params = Vec::new();
-        let mut outs = Vec::new();
-        for p in &r.params {
-            let (n, _) = self.var_name(p.var, ir.var(p.var).decl);
-            if p.dir == ir::ParamDir::Out {
-                outs.push(n.clone());
-            }
-            params.push(n);
-        }
-        if let Some(rt) = &mut self.rt {
-            rt.outs = outs;
-            rt.params = params;
-        }
-        self.depth = 1;
-        // Comments before the declarations stay before the locals' values.
-        if let Some(first) = r.locals.iter().map(|(v, _)| ir.var(*v).decl.start).min() {
-            self.flush_comments(first);
-        }
-        self.flush_lines();
-        // The zero values go here once the first statements are known.
-        self.defaults_at = self.body.len();
-        self.leading.clear();
-        self.scanning = true;
-        self.last_op_is_return = false;
-    }
-
-    /// The next ops of the routine being rendered.
-    fn routine_ops(&mut self, ops: &Block) {
-        if self.scanning {
-            for s in ops {
-                match &s.op {
-                    ir::Op::Assign {
-                        place: ir::Place::Var(v),
-                        ..
-                    } => {
-                        self.leading.insert(*v);
-                    }
-                    _ => {
-                        self.scanning = false;
-                        break;
-                    }
-                }
-            }
-        }
-        if let Some(last) = ops.last() {
-            self.last_op_is_return = matches!(last.op, ir::Op::Return(_));
-        }
-        self.block(ops);
-        self.flush_lines();
-    }
-
-    fn end_routine(&mut self) {
-        let ir = self.ir;
-        let Some(id) = self.rt.as_ref().map(|rt| rt.id) else {
-            return;
-        };
-        let r = ir.routine(id);
-        self.flush_comments(r.span.end);
-        self.flush_lines();
-        let first = std::mem::take(&mut self.leading);
-        self.scanning = false;
-        self.local_defaults(r, &first);
-        let defaults = std::mem::take(&mut self.lines);
-        self.body_has_code |= has_code(&defaults);
-        let mut text = String::new();
-        for l in &defaults {
-            text.push_str(l);
-            text.push('\n');
-        }
-        self.body.insert_str(self.defaults_at, &text);
-        let (outs, kind) = match &self.rt {
-            Some(rt) => (rt.outs.clone(), rt.kind),
-            None => (Vec::new(), r.kind),
-        };
-        if !outs.is_empty() && kind == RoutineKind::Def && !self.last_op_is_return {
-            self.line(format!("return {}", outs.join(", ")));
-        }
-        if !self.body_has_code && !has_code(&self.lines) {
-            self.line("pass");
-        }
-        self.flush_lines();
-        let Some(rt) = self.rt.take() else {
-            return;
-        };
-        let mut head = std::mem::take(&mut self.before_def).join("\n");
-        if !head.is_empty() {
-            head.push('\n');
-        }
-        head.push_str(&format!("def {}({}):", rt.name, rt.params.join(", ")));
-        if !rt.globals.is_empty() {
-            let g: Vec<&str> = rt.globals.iter().map(String::as_str).collect();
-            head.push_str(&format!("\n    global {}", g.join(", ")));
-        }
-        // The function is its body with the head put in front (one copy of a large body).
-        let mut f = std::mem::take(&mut self.body);
-        if f.ends_with('\n') {
-            f.pop();
-        }
-        if !f.is_empty() {
-            head.push('\n');
-        }
-        f.insert_str(0, &head);
-        f.shrink_to_fit();
-        self.functions.push(f);
-        self.body_has_code = false;
-        self.depth = 0;
-    }
-
     /// Moves the finished lines into the function's text.
     fn flush_lines(&mut self) {
         self.body_has_code |= has_code(&self.lines);
@@ -597,22 +446,156 @@ impl<'a> Tx<'a> {
     }
 }
 
-/// Whether any line is code (not a comment or blank).
 impl crate::transpile::Renderer for Tx<'_> {
+    /// Before the first routine: the names of everything declared, in declaration order, so
+    /// TR003 points at declarations and names made up later never take a user's.
     fn start(&mut self) {
-        self.start_program();
+        let ir = self.ir;
+        for r in &ir.routines {
+            if !r.synthetic {
+                self.routine_name(&r.name, r.name_span);
+            }
+        }
+        self.names.declare_globals(&mut self.rep);
+        self.data_globals();
     }
 
     fn begin_routine(&mut self, id: RoutineId) {
-        Tx::begin_routine(self, id);
+        let ir = self.ir;
+        let r = ir.routine(id);
+        // Comments before the DEF line go above the function.
+        self.lines.clear();
+        self.depth = 0;
+        self.flush_comments(r.span.start);
+        self.before_def = std::mem::take(&mut self.lines);
+        let name = if r.synthetic {
+            self.routine_name(&r.name, r.name_span)
+        } else {
+            self.names.routine_of(&r.name).unwrap_or("").to_owned()
+        };
+        self.rt = Some(Rt {
+            id,
+            name,
+            kind: r.kind,
+            params: Vec::new(),
+            outs: Vec::new(),
+            globals: BTreeSet::new(),
+            temps: HashMap::new(),
+            loops: Vec::new(),
+            flags: HashMap::new(),
+            pending: Vec::new(),
+            made: 0,
+            tool: None,
+            base: None,
+        });
+        // Locals first (parameters, then declarations), so made-up names never take a user's.
+        self.names.declare_locals(&mut self.rep, id);
+        let mut params = Vec::new();
+        let mut outs = Vec::new();
+        for p in &r.params {
+            let (n, _) = self.var_name(p.var, ir.var(p.var).decl);
+            if p.dir == ir::ParamDir::Out {
+                outs.push(n.clone());
+            }
+            params.push(n);
+        }
+        if let Some(rt) = &mut self.rt {
+            rt.outs = outs;
+            rt.params = params;
+        }
+        self.depth = 1;
+        // Comments before the declarations stay before the locals' values.
+        if let Some(first) = r.locals.iter().map(|(v, _)| ir.var(*v).decl.start).min() {
+            self.flush_comments(first);
+        }
+        self.flush_lines();
+        // The zero values go here once the first statements are known.
+        self.defaults_at = self.body.len();
+        self.leading.clear();
+        self.scanning = true;
+        self.last_op_is_return = false;
     }
 
+    /// The next ops of the routine being rendered.
     fn ops(&mut self, ops: &Block) {
-        self.routine_ops(ops);
+        if self.scanning {
+            for s in ops {
+                match &s.op {
+                    ir::Op::Assign {
+                        place: ir::Place::Var(v),
+                        ..
+                    } => {
+                        self.leading.insert(*v);
+                    }
+                    _ => {
+                        self.scanning = false;
+                        break;
+                    }
+                }
+            }
+        }
+        if let Some(last) = ops.last() {
+            self.last_op_is_return = matches!(last.op, ir::Op::Return(_));
+        }
+        self.block(ops);
+        self.flush_lines();
     }
 
     fn end_routine(&mut self) {
-        Tx::end_routine(self);
+        let ir = self.ir;
+        let Some(id) = self.rt.as_ref().map(|rt| rt.id) else {
+            return;
+        };
+        let r = ir.routine(id);
+        self.flush_comments(r.span.end);
+        self.flush_lines();
+        let first = std::mem::take(&mut self.leading);
+        self.scanning = false;
+        self.local_defaults(r, &first);
+        let defaults = std::mem::take(&mut self.lines);
+        self.body_has_code |= has_code(&defaults);
+        let mut text = String::new();
+        for l in &defaults {
+            text.push_str(l);
+            text.push('\n');
+        }
+        self.body.insert_str(self.defaults_at, &text);
+        let (outs, kind) = match &self.rt {
+            Some(rt) => (rt.outs.clone(), rt.kind),
+            None => (Vec::new(), r.kind),
+        };
+        if !outs.is_empty() && kind == RoutineKind::Def && !self.last_op_is_return {
+            self.line(format!("return {}", outs.join(", ")));
+        }
+        if !self.body_has_code && !has_code(&self.lines) {
+            self.line("pass");
+        }
+        self.flush_lines();
+        let Some(rt) = self.rt.take() else {
+            return;
+        };
+        let mut head = std::mem::take(&mut self.before_def).join("\n");
+        if !head.is_empty() {
+            head.push('\n');
+        }
+        head.push_str(&format!("def {}({}):", rt.name, rt.params.join(", ")));
+        if !rt.globals.is_empty() {
+            let g: Vec<&str> = rt.globals.iter().map(String::as_str).collect();
+            head.push_str(&format!("\n    global {}", g.join(", ")));
+        }
+        // The function is its body with the head put in front (one copy of a large body).
+        let mut f = std::mem::take(&mut self.body);
+        if f.ends_with('\n') {
+            f.pop();
+        }
+        if !f.is_empty() {
+            head.push('\n');
+        }
+        f.insert_str(0, &head);
+        f.shrink_to_fit();
+        self.functions.push(f);
+        self.body_has_code = false;
+        self.depth = 0;
     }
 
     fn finish(mut self: Box<Self>) -> (String, Report, Vec<Span>) {
@@ -622,6 +605,7 @@ impl crate::transpile::Renderer for Tx<'_> {
     }
 }
 
+/// Whether any line is code (not a comment or blank).
 fn has_code(lines: &[String]) -> bool {
     lines.iter().any(|l| {
         let t = l.trim();

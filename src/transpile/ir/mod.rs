@@ -909,6 +909,16 @@ pub enum MotionParam {
 }
 
 impl MotionParam {
+    /// What `BAS(#INITMOV)` sets from BAS.DAT: the speeds and accelerations, not the blending.
+    pub const DEFAULTED: [MotionParam; 6] = [
+        MotionParam::VelCp,
+        MotionParam::VelPtp,
+        MotionParam::VelOri,
+        MotionParam::AccCp,
+        MotionParam::AccPtp,
+        MotionParam::AccCpPct,
+    ];
+
     pub const ALL: [MotionParam; 10] = [
         MotionParam::VelCp,
         MotionParam::VelPtp,

@@ -141,18 +141,6 @@ impl<'a> Tx<'a> {
         }
     }
 
-    /// Before the first routine: the names of everything declared, in declaration order, so
-    /// TR003 points at declarations and names made up later never take a user's.
-    fn start_program(&mut self) {
-        let ir = self.ir;
-        for r in &ir.routines {
-            if !r.synthetic {
-                self.name_program(&r.name, r.name_span);
-            }
-        }
-        self.names.declare_globals(&mut self.rep);
-    }
-
     // ----- names -------------------------------------------------------------------------
 
     /// The AS name of a program (a routine of the file or of another module).
@@ -264,80 +252,6 @@ impl<'a> Tx<'a> {
 
     // ----- routines ----------------------------------------------------------------------
 
-    fn begin_routine(&mut self, id: RoutineId) {
-        let ir = self.ir;
-        let r = ir.routine(id);
-        self.flush_comments(r.span.start);
-        // Comments before the DEF line belong to no program: carry them into this one.
-        let before: Vec<String> = std::mem::take(&mut self.lines);
-        let name = if r.synthetic {
-            self.name_program(&r.name, r.name_span)
-        } else {
-            self.names.routine_of(&r.name).unwrap_or("").to_owned()
-        };
-        self.rt = Some(Rt {
-            id,
-            retval: None,
-            accuracy: None,
-            temps: HashMap::new(),
-            breaks: HashMap::new(),
-            continues: HashMap::new(),
-            scratch: HashMap::new(),
-        });
-        // Locals first (parameters, then declarations), then labels, so made-up names never
-        // take a user's.
-        self.names.declare_locals(&mut self.rep, id);
-        self.names.declare_labels(&mut self.rep, id);
-        let mut params: Vec<String> = Vec::new();
-        let mut copies: Vec<String> = Vec::new();
-        for p in &r.params {
-            let var = ir.var(p.var);
-            let ty = var.ty.clone();
-            let (n, _) = self.var_name(p.var, var.decl);
-            if p.array > 0 {
-                let sig = format::param_sigil(&format!(".{n}"), &ty);
-                params.push(format!("{sig}[{}]", ",".repeat(p.array - 1)));
-            } else if p.dir == ir::ParamDir::In && p.assigned {
-                // AS passes by reference: keep the caller's variable unchanged.
-                let copy = self.fresh_local(&format!("{}_in", truncate(&n, 12)));
-                params.push(format::param_sigil(&copy, &ty));
-                copies.push(format::copy_stmt(&format!(".{n}"), &copy, &ty));
-            } else {
-                params.push(format::param_sigil(&format!(".{n}"), &ty));
-            }
-        }
-        if r.kind == RoutineKind::Deffct {
-            let ty = r.ret.clone().unwrap_or(Ty::Real);
-            let rv = self.fresh_local("retval");
-            params.push(format::param_sigil(&rv, &ty));
-            if let Some(rt) = &mut self.rt {
-                rt.retval = Some((rv, ty));
-            }
-        }
-        self.header = format!(".PROGRAM {name}({})", params.join(","));
-        self.lines = before;
-        for c in copies {
-            self.line(c);
-        }
-    }
-
-    /// The next ops of the routine being rendered.
-    fn routine_ops(&mut self, ops: &Block) {
-        self.block(ops);
-        self.flush_lines(1);
-    }
-
-    fn end_routine(&mut self) {
-        let r = self.ir.routine(self.routine_id());
-        self.flush_comments(r.span.end);
-        self.flush_lines(0);
-        let header = std::mem::take(&mut self.header);
-        let mut body = std::mem::take(&mut self.body);
-        body.shrink_to_fit();
-        self.programs.push(ProgramOut { header, body });
-        self.rt = None;
-    }
-
     /// Moves the finished lines into the routine's text, all but the last `keep`.
     fn flush_lines(&mut self, keep: usize) {
         let n = self.lines.len().saturating_sub(keep);
@@ -419,20 +333,90 @@ impl<'a> Tx<'a> {
 }
 
 impl crate::transpile::Renderer for Tx<'_> {
+    /// Before the first routine: the names of everything declared, in declaration order, so
+    /// TR003 points at declarations and names made up later never take a user's.
     fn start(&mut self) {
-        self.start_program();
+        let ir = self.ir;
+        for r in &ir.routines {
+            if !r.synthetic {
+                self.name_program(&r.name, r.name_span);
+            }
+        }
+        self.names.declare_globals(&mut self.rep);
     }
 
     fn begin_routine(&mut self, id: RoutineId) {
-        Tx::begin_routine(self, id);
+        let ir = self.ir;
+        let r = ir.routine(id);
+        self.flush_comments(r.span.start);
+        // Comments before the DEF line belong to no program: carry them into this one.
+        let before: Vec<String> = std::mem::take(&mut self.lines);
+        let name = if r.synthetic {
+            self.name_program(&r.name, r.name_span)
+        } else {
+            self.names.routine_of(&r.name).unwrap_or("").to_owned()
+        };
+        self.rt = Some(Rt {
+            id,
+            retval: None,
+            accuracy: None,
+            temps: HashMap::new(),
+            breaks: HashMap::new(),
+            continues: HashMap::new(),
+            scratch: HashMap::new(),
+        });
+        // Locals first (parameters, then declarations), then labels, so made-up names never
+        // take a user's.
+        self.names.declare_locals(&mut self.rep, id);
+        self.names.declare_labels(&mut self.rep, id);
+        let mut params: Vec<String> = Vec::new();
+        let mut copies: Vec<String> = Vec::new();
+        for p in &r.params {
+            let var = ir.var(p.var);
+            let ty = var.ty.clone();
+            let (n, _) = self.var_name(p.var, var.decl);
+            if p.array > 0 {
+                let sig = format::param_sigil(&format!(".{n}"), &ty);
+                params.push(format!("{sig}[{}]", ",".repeat(p.array - 1)));
+            } else if p.dir == ir::ParamDir::In && p.assigned {
+                // AS passes by reference: keep the caller's variable unchanged.
+                let copy = self.fresh_local(&format!("{}_in", truncate(&n, 12)));
+                params.push(format::param_sigil(&copy, &ty));
+                copies.push(format::copy_stmt(&format!(".{n}"), &copy, &ty));
+            } else {
+                params.push(format::param_sigil(&format!(".{n}"), &ty));
+            }
+        }
+        if r.kind == RoutineKind::Deffct {
+            let ty = r.ret.clone().unwrap_or(Ty::Real);
+            let rv = self.fresh_local("retval");
+            params.push(format::param_sigil(&rv, &ty));
+            if let Some(rt) = &mut self.rt {
+                rt.retval = Some((rv, ty));
+            }
+        }
+        self.header = format!(".PROGRAM {name}({})", params.join(","));
+        self.lines = before;
+        for c in copies {
+            self.line(c);
+        }
     }
 
+    /// The next ops of the routine being rendered.
     fn ops(&mut self, ops: &Block) {
-        self.routine_ops(ops);
+        self.block(ops);
+        self.flush_lines(1);
     }
 
     fn end_routine(&mut self) {
-        Tx::end_routine(self);
+        let r = self.ir.routine(self.routine_id());
+        self.flush_comments(r.span.end);
+        self.flush_lines(0);
+        let header = std::mem::take(&mut self.header);
+        let mut body = std::mem::take(&mut self.body);
+        body.shrink_to_fit();
+        self.programs.push(ProgramOut { header, body });
+        self.rt = None;
     }
 
     fn finish(mut self: Box<Self>) -> (String, Report, Vec<Span>) {

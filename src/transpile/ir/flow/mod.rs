@@ -360,14 +360,7 @@ impl<'a> Walker<'a> {
                 }
             }
             View::Defaults => {
-                for p in [
-                    MotionParam::VelCp,
-                    MotionParam::VelPtp,
-                    MotionParam::VelOri,
-                    MotionParam::AccCp,
-                    MotionParam::AccPtp,
-                    MotionParam::AccCpPct,
-                ] {
+                for p in MotionParam::DEFAULTED {
                     st.params.insert(p, Fact::Is(ParamValue::Default));
                 }
                 st.latest = Fact::Is(SpeedSetting::Joint(ParamValue::Default));
