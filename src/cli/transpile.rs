@@ -140,24 +140,14 @@ pub fn run(mut args: TranspileArgs) -> anyhow::Result<Outcome> {
             doc: r.doc,
         })
         .collect();
-    let (reports, format) = (&t.reports, args.format);
-    if args.out.is_some() {
-        super::findings::write(
-            reports,
-            format,
-            true,
-            Some(&rules),
-            std::io::stdout().lock(),
-        )?;
-    } else {
-        super::findings::write(
-            reports,
-            format,
-            false,
-            Some(&rules),
-            std::io::stderr().lock(),
-        )?;
-    }
+    // Beside a program written to a file the findings are the output; after one written to
+    // stdout they go to stderr.
+    let to_stdout = args.out.is_some();
+    let out: Box<dyn Write> = match to_stdout {
+        true => Box::new(std::io::stdout().lock()),
+        false => Box::new(std::io::stderr().lock()),
+    };
+    super::findings::write(&t.reports, args.format, to_stdout, Some(&rules), out)?;
     if args.format == CheckFormat::Human && !super::ui::quiet() {
         let c = t.coverage.total();
         eprintln!(
