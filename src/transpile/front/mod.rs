@@ -127,7 +127,7 @@ impl Parsed {
         const BATCH: usize = 256;
         let (send, receive) = std::sync::mpsc::sync_channel::<Vec<Statement>>(4);
         std::thread::scope(|scope| {
-            scope.spawn(move || {
+            let parser = std::thread::Builder::new().spawn_scoped(scope, move || {
                 let mut batch = Vec::with_capacity(BATCH);
                 self.statements(top_level, |s| {
                     batch.push(s);
@@ -139,8 +139,14 @@ impl Parsed {
                 });
                 let _ = send.send(batch);
             });
-            for batch in receive {
-                batch.into_iter().for_each(&mut f);
+            match parser {
+                Ok(_) => {
+                    for batch in receive {
+                        batch.into_iter().for_each(&mut f);
+                    }
+                }
+                // No thread to be had: parse here.
+                Err(_) => self.statements(top_level, f),
             }
         });
     }
@@ -244,4 +250,52 @@ pub fn end_line_start(text: &str, span: Span) -> u32 {
     let s = &text[..(span.end as usize).min(text.len())];
     let s = s.trim_end_matches(['\r', '\n']);
     s.rfind(['\n', '\r']).map_or(span.start, |i| i as u32 + 1)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// The statements handed out one at a time (in batches, from another thread) are the
+    /// whole AST's, in order: routine bodies after their heads, then the top level.
+    #[test]
+    fn each_statement_hands_out_the_asts_statements() {
+        let mut text = String::from("DECL INT n\nn = 1\nDEF a()\n  DECL INT i\n");
+        for k in 0..1000 {
+            text.push_str(&format!(
+                "  i = {k}\n  IF i > 3 THEN\n    PTP HOME\n  ENDIF\n"
+            ));
+        }
+        text.push_str("END\nn = 2\nDEF b()\nEND\nDEFDAT d\n  DECL INT z = 1\nENDDAT\n");
+        let (ast, _) = crate::syntax::ast::lower_pieces(&text);
+        let parsed = Parsed::new("t.src", text.clone());
+        let mut events = Vec::new();
+        parsed.each_statement(false, |s| events.push(s));
+        let mut expected = vec![format!("{:?}", Statement::Begin(0))];
+        expected.extend(ast.routines[0].body.iter().map(|s| format!("{s:?}")));
+        expected.push(format!("{:?}", Statement::End(0)));
+        expected.push(format!("{:?}", Statement::Begin(1)));
+        expected.push(format!("{:?}", Statement::End(1)));
+        let got: Vec<String> = events
+            .iter()
+            .map(|e| match e {
+                Statement::Stmt(s) => format!("{s:?}"),
+                other => format!("{other:?}"),
+            })
+            .collect();
+        assert_eq!(got.len(), 2004);
+        assert_eq!(got, expected);
+        let mut top = Vec::new();
+        parsed.each_statement(true, |s| top.push(s));
+        let top: Vec<String> = top
+            .iter()
+            .map(|e| match e {
+                Statement::Stmt(s) => format!("{s:?}"),
+                other => format!("{other:?}"),
+            })
+            .collect();
+        let expected: Vec<String> = ast.top_level.iter().map(|s| format!("{s:?}")).collect();
+        assert_eq!(top, expected);
+        assert_eq!(top.len(), 3);
+    }
 }
