@@ -280,6 +280,19 @@ impl<'a> Namer<'a> {
         self.routines.get(krl)
     }
 
+    /// Names what the program declares before anything is rendered — its routines, then its
+    /// globals, in declaration order — so TR003 points at declarations and names made up later
+    /// never take a user's.
+    pub fn declare_program(&mut self, rep: &mut Report) {
+        let ir = self.ir;
+        for r in &ir.routines {
+            if !r.synthetic {
+                self.routine(rep, &r.name, r.name_span);
+            }
+        }
+        self.declare_globals(rep);
+    }
+
     /// Names the globals in declaration order, so TR003 points at their declarations.
     pub fn declare_globals(&mut self, rep: &mut Report) {
         let (ir, rules) = (self.ir, self.rules);

@@ -333,16 +333,8 @@ impl<'a> Tx<'a> {
 }
 
 impl crate::transpile::Renderer for Tx<'_> {
-    /// Before the first routine: the names of everything declared, in declaration order, so
-    /// TR003 points at declarations and names made up later never take a user's.
     fn start(&mut self) {
-        let ir = self.ir;
-        for r in &ir.routines {
-            if !r.synthetic {
-                self.name_program(&r.name, r.name_span);
-            }
-        }
-        self.names.declare_globals(&mut self.rep);
+        self.names.declare_program(&mut self.rep);
     }
 
     fn begin_routine(&mut self, id: RoutineId) {
