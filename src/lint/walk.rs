@@ -88,32 +88,10 @@ fn target_reads<'a>(target: &'a Expr, out: &mut Vec<&'a Expr>) {
 
 /// Calls `f` on every name read by `e` (variables, not called function names).
 pub fn names_in<'a>(e: &'a Expr, f: &mut impl FnMut(&'a Ident)) {
-    match &e.kind {
-        ExprKind::Name(id) => f(id),
-        ExprKind::Index { base, indices } => {
-            names_in(base, f);
-            for i in indices.iter().flatten() {
-                names_in(i, f);
-            }
-        }
-        ExprKind::Member { base, .. } => names_in(base, f),
-        ExprKind::Call { args, .. } => {
-            for a in args.iter().flatten() {
-                names_in(a, f);
-            }
-        }
-        ExprKind::Unary { operand, .. } => names_in(operand, f),
-        ExprKind::Binary { lhs, rhs, .. } => {
-            names_in(lhs, f);
-            names_in(rhs, f);
-        }
-        ExprKind::Aggregate { fields, .. } => {
-            for (_, v) in fields {
-                names_in(v, f);
-            }
-        }
-        _ => {}
+    if let ExprKind::Name(id) = &e.kind {
+        f(id);
     }
+    e.for_each_operand(|o| names_in(o, f));
 }
 
 /// The variable an lvalue-like expression names (`x`, `x[1]`, `x.y`), if it is one.

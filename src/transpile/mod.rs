@@ -142,9 +142,9 @@ pub fn transpile(
     let mut plan = ir::goto::Plan::default();
     let mut open = ir::RoutineId(0);
     each_lowered(&program, &mut first, |event| match event {
-        Lowered::Begin(id, name, starts) => {
+        Lowered::Begin(id) => {
             open = id;
-            skeleton.begin(id, name, starts);
+            skeleton.begin(id);
             plan.begin(id);
         }
         Lowered::Ops(ops) => {
@@ -159,7 +159,7 @@ pub fn transpile(
         replay,
     } = first.finish();
     skeleton.finish();
-    let flow = ir::flow::solve(skeleton);
+    let flow = ir::flow::solve(skeleton, &model);
     let mut report = front::report::Report::default();
     for f in std::mem::take(&mut model.findings) {
         report.approximate(f.file, f.span, f.message, f.help);
@@ -183,41 +183,33 @@ pub fn transpile(
     renderer.start();
     let mut second = replay.lower(&model, &program, options);
     // Python has no GOTO: a label and the jumps to it are made loops together ([`ir::goto`]).
-    let structure = target == Target::Flexiv;
+    let mut units = (target == Target::Flexiv).then(|| ir::goto::Units::new(&plan));
     let mut resolver = None;
-    let (mut k, mut unit_end, mut unit, mut next_loop) = (0, None, ir::Block::new(), 0);
     each_lowered(&program, &mut second, |event| match event {
-        Lowered::Begin(id, _, _) => {
-            open = id;
+        Lowered::Begin(id) => {
             resolver = Some(flow.resolver(id));
             renderer.begin_routine(id);
-            (k, next_loop) = (0, plan.next_loop(id));
+            if let Some(u) = &mut units {
+                u.begin(id);
+            }
         }
         Lowered::Ops(mut ops) => {
             if let Some(r) = &mut resolver {
                 r.resolve(&mut ops);
             }
-            if structure {
-                let end = *unit_end.get_or_insert_with(|| plan.unit_end(open, k));
-                unit.append(&mut ops);
-                if k >= end {
-                    ir::goto::structure(&mut unit, &mut next_loop);
-                    renderer.ops(&unit);
-                    unit = ir::Block::new();
-                    unit_end = None;
+            match &mut units {
+                Some(u) => {
+                    if let Some(unit) = u.push(ops) {
+                        renderer.ops(&unit);
+                    }
                 }
-            } else {
-                renderer.ops(&ops);
+                None => renderer.ops(&ops),
             }
-            k += 1;
         }
         Lowered::End(_) => {
-            if !unit.is_empty() {
-                ir::goto::structure(&mut unit, &mut next_loop);
+            if let Some(unit) = units.as_mut().and_then(|u| u.end()) {
                 renderer.ops(&unit);
-                unit = ir::Block::new();
             }
-            unit_end = None;
             renderer.end_routine();
         }
     });
@@ -261,9 +253,9 @@ pub fn transpile(
 }
 
 /// What [`each_lowered`] hands out.
-enum Lowered<'a> {
-    /// A routine begins: its id, its name, and whether it starts the program.
-    Begin(ir::RoutineId, &'a str, bool),
+enum Lowered {
+    /// A routine begins.
+    Begin(ir::RoutineId),
     /// The ops of its next statement (the first: those before its body; the last: those
     /// after).
     Ops(ir::Block),
@@ -275,13 +267,12 @@ enum Lowered<'a> {
 fn each_lowered(
     program: &front::Program,
     lower: &mut ir::lower::Lower<'_>,
-    mut f: impl FnMut(Lowered<'_>),
+    mut f: impl FnMut(Lowered),
 ) {
-    let name = |i: usize| program.src.outline.routines[i].head.name.text.as_str();
     program.src.each_statement(false, |s| match s {
         front::Statement::Begin(i) => {
             let ops = lower.begin_routine(i);
-            f(Lowered::Begin(ir::RoutineId(i as u32), name(i), i == 0));
+            f(Lowered::Begin(ir::RoutineId(i as u32)));
             f(Lowered::Ops(ops));
         }
         front::Statement::Stmt(s) => f(Lowered::Ops(lower.stmt(&s))),
@@ -291,8 +282,7 @@ fn each_lowered(
         }
     });
     if let Some((id, ops)) = lower.begin_top_level() {
-        let stem = lower.routine_name(id);
-        f(Lowered::Begin(id, &stem, true));
+        f(Lowered::Begin(id));
         f(Lowered::Ops(ops));
         program.src.each_statement(true, |s| {
             if let front::Statement::Stmt(s) = s {

@@ -1,9 +1,10 @@
 //! The one statement walker every stage uses: which statement lists a statement nests, and a
 //! depth-first visit of them. Nested bodies are those of IF/ELSE, SWITCH cases and DEFAULT, the
 //! loops, SPLINE blocks, `SKIP … ENDSKIP`, and the handler of an `INTERRUPT DECL` and the action
-//! of a `TRIGGER` (which run later, but are code of the routine all the same).
+//! of a `TRIGGER` (which run later, but are code of the routine all the same). Likewise for
+//! expressions: the operands an expression nests ([`Expr::for_each_operand`]).
 
-use super::{Stmt, StmtKind};
+use super::{Expr, ExprKind, Stmt, StmtKind};
 
 impl Stmt {
     /// Calls `f` on each statement list nested directly in this statement, in source order.
@@ -61,6 +62,28 @@ pub fn each_stmt<'a>(stmts: &'a [Stmt], f: &mut impl FnMut(&'a Stmt)) {
         f(s);
         if s.has_body() {
             s.for_each_body(|body| each_stmt(body, f));
+        }
+    }
+}
+
+impl Expr {
+    /// Calls `f` on each expression nested directly in this one, in source order: a call's
+    /// arguments, an index's base and indices, a member's base, operands, aggregate values.
+    pub fn for_each_operand<'a>(&'a self, mut f: impl FnMut(&'a Expr)) {
+        match &self.kind {
+            ExprKind::Call { args, .. } => args.iter().flatten().for_each(f),
+            ExprKind::Index { base, indices } => {
+                f(base);
+                indices.iter().flatten().for_each(f);
+            }
+            ExprKind::Member { base, .. } => f(base),
+            ExprKind::Unary { operand, .. } => f(operand),
+            ExprKind::Binary { lhs, rhs, .. } => {
+                f(lhs);
+                f(rhs);
+            }
+            ExprKind::Aggregate { fields, .. } => fields.iter().for_each(|(_, v)| f(v)),
+            _ => {}
         }
     }
 }

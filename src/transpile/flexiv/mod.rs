@@ -67,6 +67,17 @@ struct Rt {
     /// Its Python name and parameters.
     name: String,
     params: Vec<String>,
+    /// The comment lines before its `def`, its lines so far (one per line), whether any is
+    /// code, and where its locals' zero values go.
+    before_def: Vec<String>,
+    body: String,
+    has_code: bool,
+    defaults_at: usize,
+    /// The locals its first statements assign (they need no zero value), while only such
+    /// assignments have been seen (`None` after).
+    leading: Option<BTreeSet<VarId>>,
+    first: BTreeSet<VarId>,
+    last_op_is_return: bool,
     kind: RoutineKind,
     /// Python names of the OUT parameters, in order (returned by every `return`).
     outs: Vec<String>,
@@ -103,17 +114,6 @@ pub struct Tx<'a> {
     comments: CommentQueue<'a>,
     /// Lines of the statement being rendered.
     lines: Vec<String>,
-    /// The function being rendered: the comment lines before its `def`, its lines so far
-    /// (one per line), whether any is code, and where its locals' zero values go.
-    before_def: Vec<String>,
-    body: String,
-    body_has_code: bool,
-    defaults_at: usize,
-    /// The locals its first statements assign (they need no zero value), and whether only
-    /// such assignments have been seen so far.
-    leading: BTreeSet<VarId>,
-    scanning: bool,
-    last_op_is_return: bool,
     depth: usize,
     rt: Option<Rt>,
     /// Python name → undeclared KRL name.
@@ -154,13 +154,6 @@ impl<'a> Tx<'a> {
             names: Namer::new(&NAME_RULES, ir),
             comments,
             lines: Vec::new(),
-            before_def: Vec::new(),
-            body: String::new(),
-            body_has_code: false,
-            defaults_at: 0,
-            leading: BTreeSet::new(),
-            scanning: false,
-            last_op_is_return: false,
             depth: 0,
             rt: None,
             assumed: BTreeMap::new(),
@@ -315,12 +308,15 @@ impl<'a> Tx<'a> {
 
     // ----- routines ----------------------------------------------------------------------
 
-    /// Moves the finished lines into the function's text.
+    /// Moves the finished lines into the text of the function being rendered.
     fn flush_lines(&mut self) {
-        self.body_has_code |= has_code(&self.lines);
+        let Some(rt) = &mut self.rt else {
+            return;
+        };
+        rt.has_code |= has_code(&self.lines);
         for l in self.lines.drain(..) {
-            self.body.push_str(&l);
-            self.body.push('\n');
+            rt.body.push_str(&l);
+            rt.body.push('\n');
         }
     }
 
@@ -459,7 +455,7 @@ impl crate::transpile::Renderer for Tx<'_> {
         self.lines.clear();
         self.depth = 0;
         self.flush_comments(r.span.start);
-        self.before_def = std::mem::take(&mut self.lines);
+        let before_def = std::mem::take(&mut self.lines);
         let name = if r.synthetic {
             self.routine_name(&r.name, r.name_span)
         } else {
@@ -468,8 +464,15 @@ impl crate::transpile::Renderer for Tx<'_> {
         self.rt = Some(Rt {
             id,
             name,
-            kind: r.kind,
             params: Vec::new(),
+            before_def,
+            body: String::new(),
+            has_code: false,
+            defaults_at: 0,
+            leading: Some(BTreeSet::new()),
+            first: BTreeSet::new(),
+            last_op_is_return: false,
+            kind: r.kind,
             outs: Vec::new(),
             globals: BTreeSet::new(),
             temps: HashMap::new(),
@@ -491,43 +494,40 @@ impl crate::transpile::Renderer for Tx<'_> {
             }
             params.push(n);
         }
-        if let Some(rt) = &mut self.rt {
-            rt.outs = outs;
-            rt.params = params;
-        }
         self.depth = 1;
         // Comments before the declarations stay before the locals' values.
         if let Some(first) = r.locals.iter().map(|(v, _)| ir.var(*v).decl.start).min() {
             self.flush_comments(first);
         }
         self.flush_lines();
-        // The zero values go here once the first statements are known.
-        self.defaults_at = self.body.len();
-        self.leading.clear();
-        self.scanning = true;
-        self.last_op_is_return = false;
+        if let Some(rt) = &mut self.rt {
+            rt.outs = outs;
+            rt.params = params;
+            // The zero values go here once the first statements are known.
+            rt.defaults_at = rt.body.len();
+        }
     }
 
     /// The next ops of the routine being rendered.
     fn ops(&mut self, ops: &Block) {
-        if self.scanning {
+        if let Some(rt) = &mut self.rt {
             for s in ops {
+                let Some(leading) = &mut rt.leading else {
+                    break;
+                };
                 match &s.op {
                     ir::Op::Assign {
                         place: ir::Place::Var(v),
                         ..
                     } => {
-                        self.leading.insert(*v);
+                        leading.insert(*v);
                     }
-                    _ => {
-                        self.scanning = false;
-                        break;
-                    }
+                    _ => rt.first = rt.leading.take().unwrap_or_default(),
                 }
             }
-        }
-        if let Some(last) = ops.last() {
-            self.last_op_is_return = matches!(last.op, ir::Op::Return(_));
+            if let Some(last) = ops.last() {
+                rt.last_op_is_return = matches!(last.op, ir::Op::Return(_));
+            }
         }
         self.block(ops);
         self.flush_lines();
@@ -541,32 +541,36 @@ impl crate::transpile::Renderer for Tx<'_> {
         let r = ir.routine(id);
         self.flush_comments(r.span.end);
         self.flush_lines();
-        let first = std::mem::take(&mut self.leading);
-        self.scanning = false;
+        let first = match &mut self.rt {
+            Some(rt) => rt
+                .leading
+                .take()
+                .unwrap_or_else(|| std::mem::take(&mut rt.first)),
+            None => BTreeSet::new(),
+        };
         self.local_defaults(r, &first);
         let defaults = std::mem::take(&mut self.lines);
-        self.body_has_code |= has_code(&defaults);
+        let Some(mut rt) = self.rt.take() else {
+            return;
+        };
+        rt.has_code |= has_code(&defaults);
         let mut text = String::new();
         for l in &defaults {
             text.push_str(l);
             text.push('\n');
         }
-        self.body.insert_str(self.defaults_at, &text);
-        let (outs, kind) = match &self.rt {
-            Some(rt) => (rt.outs.clone(), rt.kind),
-            None => (Vec::new(), r.kind),
-        };
-        if !outs.is_empty() && kind == RoutineKind::Def && !self.last_op_is_return {
-            self.line(format!("return {}", outs.join(", ")));
+        rt.body.insert_str(rt.defaults_at, &text);
+        if !rt.outs.is_empty() && rt.kind == RoutineKind::Def && !rt.last_op_is_return {
+            self.line(format!("return {}", rt.outs.join(", ")));
         }
-        if !self.body_has_code && !has_code(&self.lines) {
+        if !rt.has_code && !has_code(&self.lines) {
             self.line("pass");
         }
-        self.flush_lines();
-        let Some(rt) = self.rt.take() else {
-            return;
-        };
-        let mut head = std::mem::take(&mut self.before_def).join("\n");
+        for l in self.lines.drain(..) {
+            rt.body.push_str(&l);
+            rt.body.push('\n');
+        }
+        let mut head = rt.before_def.join("\n");
         if !head.is_empty() {
             head.push('\n');
         }
@@ -576,7 +580,7 @@ impl crate::transpile::Renderer for Tx<'_> {
             head.push_str(&format!("\n    global {}", g.join(", ")));
         }
         // The function is its body with the head put in front (one copy of a large body).
-        let mut f = std::mem::take(&mut self.body);
+        let mut f = rt.body;
         if f.ends_with('\n') {
             f.pop();
         }
@@ -586,7 +590,6 @@ impl crate::transpile::Renderer for Tx<'_> {
         f.insert_str(0, &head);
         f.shrink_to_fit();
         self.functions.push(f);
-        self.body_has_code = false;
         self.depth = 0;
     }
 

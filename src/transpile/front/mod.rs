@@ -269,31 +269,26 @@ mod tests {
         text.push_str("END\nn = 2\nDEF b()\nEND\nDEFDAT d\n  DECL INT z = 1\nENDDAT\n");
         let (ast, _) = crate::syntax::ast::lower_pieces(&text);
         let parsed = Parsed::new("t.src", text.clone());
-        let mut events = Vec::new();
-        parsed.each_statement(false, |s| events.push(s));
+        // Each event as text (a statement as the AST prints it).
+        let events = |top_level: bool| {
+            let mut v = Vec::new();
+            parsed.each_statement(top_level, |e| {
+                v.push(match e {
+                    Statement::Stmt(s) => format!("{s:?}"),
+                    other => format!("{other:?}"),
+                })
+            });
+            v
+        };
         let mut expected = vec![format!("{:?}", Statement::Begin(0))];
         expected.extend(ast.routines[0].body.iter().map(|s| format!("{s:?}")));
         expected.push(format!("{:?}", Statement::End(0)));
         expected.push(format!("{:?}", Statement::Begin(1)));
         expected.push(format!("{:?}", Statement::End(1)));
-        let got: Vec<String> = events
-            .iter()
-            .map(|e| match e {
-                Statement::Stmt(s) => format!("{s:?}"),
-                other => format!("{other:?}"),
-            })
-            .collect();
+        let got = events(false);
         assert_eq!(got.len(), 2004);
         assert_eq!(got, expected);
-        let mut top = Vec::new();
-        parsed.each_statement(true, |s| top.push(s));
-        let top: Vec<String> = top
-            .iter()
-            .map(|e| match e {
-                Statement::Stmt(s) => format!("{s:?}"),
-                other => format!("{other:?}"),
-            })
-            .collect();
+        let top = events(true);
         let expected: Vec<String> = ast.top_level.iter().map(|s| format!("{s:?}")).collect();
         assert_eq!(top, expected);
         assert_eq!(top.len(), 3);

@@ -116,33 +116,10 @@ impl BodyFacts {
 
 /// Names of routines called inside an expression.
 pub fn expr_calls(e: &ast::Expr, out: &mut Vec<String>) {
-    use ast::ExprKind;
-    match &e.kind {
-        ExprKind::Call { name, args } => {
-            out.push(name.text.to_string());
-            for a in args.iter().flatten() {
-                expr_calls(a, out);
-            }
-        }
-        ExprKind::Index { base, indices } => {
-            expr_calls(base, out);
-            for i in indices.iter().flatten() {
-                expr_calls(i, out);
-            }
-        }
-        ExprKind::Member { base, .. } => expr_calls(base, out),
-        ExprKind::Unary { operand, .. } => expr_calls(operand, out),
-        ExprKind::Binary { lhs, rhs, .. } => {
-            expr_calls(lhs, out);
-            expr_calls(rhs, out);
-        }
-        ExprKind::Aggregate { fields, .. } => {
-            for (_, v) in fields {
-                expr_calls(v, out);
-            }
-        }
-        _ => {}
+    if let ast::ExprKind::Call { name, .. } = &e.kind {
+        out.push(name.text.to_string());
     }
+    e.for_each_operand(|o| expr_calls(o, out));
 }
 
 /// The module a piece belongs to.

@@ -28,9 +28,9 @@ pub struct Plan {
     units: Vec<Vec<(usize, usize)>>,
     /// Per routine: the first loop id the rewriting may use.
     next_loop: Vec<u32>,
-    /// The routine being planned: where each top-level label stands and where jumps to each
-    /// label stand.
-    at: BTreeMap<LabelId, Vec<usize>>,
+    /// The routine being planned: per label, the first and last statement that holds it or
+    /// a jump to it.
+    at: BTreeMap<LabelId, (usize, usize)>,
     top: BTreeSet<LabelId>,
     next: usize,
     loops: u32,
@@ -56,28 +56,31 @@ impl Plan {
         self.next += 1;
         for s in ops {
             if let Op::Label(l) = s.op {
-                self.at.entry(l).or_default().push(k);
+                self.seen(l, k);
                 self.top.insert(l);
             }
         }
         super::visit::each_op(ops, &mut |op| match op {
-            Op::Goto(l) => self.at.entry(*l).or_default().push(k),
+            Op::Goto(l) => self.seen(*l, k),
             Op::Loop { id, .. } => self.loops = self.loops.max(id.0 + 1),
             _ => {}
         });
     }
 
+    fn seen(&mut self, l: LabelId, k: usize) {
+        let range = self.at.entry(l).or_insert((k, k));
+        range.0 = range.0.min(k);
+        range.1 = range.1.max(k);
+    }
+
     /// The routine `id` ends.
     pub fn end(&mut self, id: RoutineId) {
         let top = std::mem::take(&mut self.top);
+        // A label statement holds nothing else: a range wider than one statement has a jump.
         let mut ranges: Vec<(usize, usize)> = std::mem::take(&mut self.at)
             .into_iter()
-            .filter(|(l, at)| top.contains(l) && at.len() > 1)
-            .map(|(_, at)| at)
-            .map(|at| {
-                let (lo, hi) = (at.iter().min(), at.iter().max());
-                (*lo.expect("non-empty"), *hi.expect("non-empty"))
-            })
+            .filter(|(l, (lo, hi))| top.contains(l) && lo < hi)
+            .map(|(_, range)| range)
             .collect();
         ranges.sort_unstable();
         let mut units: Vec<(usize, usize)> = Vec::new();
@@ -106,6 +109,63 @@ impl Plan {
             Some((lo, hi)) if lo <= k && k <= hi => hi,
             _ => k,
         }
+    }
+}
+
+/// Hands a routine's resolved statements on for rendering, each unit of a [`Plan`] structured
+/// once its last statement has come (a statement outside any unit at once).
+pub struct Units<'p> {
+    plan: &'p Plan,
+    routine: RoutineId,
+    /// The index of the next statement, and the last of the unit being gathered.
+    next: usize,
+    unit_end: Option<usize>,
+    unit: Block,
+    next_loop: u32,
+}
+
+impl<'p> Units<'p> {
+    pub fn new(plan: &'p Plan) -> Units<'p> {
+        Units {
+            plan,
+            routine: RoutineId(0),
+            next: 0,
+            unit_end: None,
+            unit: Block::new(),
+            next_loop: 0,
+        }
+    }
+
+    /// Routine `id`'s statements follow.
+    pub fn begin(&mut self, id: RoutineId) {
+        self.routine = id;
+        self.next = 0;
+        self.unit_end = None;
+        self.unit.clear();
+        self.next_loop = self.plan.next_loop(id);
+    }
+
+    /// The ops of the routine's next statement; a finished unit, structured, when there is one.
+    pub fn push(&mut self, mut ops: Block) -> Option<Block> {
+        let k = self.next;
+        self.next += 1;
+        let end = *self
+            .unit_end
+            .get_or_insert_with(|| self.plan.unit_end(self.routine, k));
+        self.unit.append(&mut ops);
+        (k >= end).then(|| self.take())
+    }
+
+    /// The routine ends: what is left of a unit (none when the plan matches the statements).
+    pub fn end(&mut self) -> Option<Block> {
+        (!self.unit.is_empty()).then(|| self.take())
+    }
+
+    fn take(&mut self) -> Block {
+        let mut unit = std::mem::take(&mut self.unit);
+        self.unit_end = None;
+        structure(&mut unit, &mut self.next_loop);
+        unit
     }
 }
 
@@ -259,5 +319,57 @@ fn fail_gotos(b: &mut Block) {
             Op::Loop { body, .. } => fail_gotos(body),
             _ => {}
         }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::diag::Span;
+
+    fn stmt(op: Op) -> Stmt {
+        Stmt {
+            op,
+            span: Span::new(0, 1),
+        }
+    }
+
+    /// A unit runs from the first to the last statement holding a top-level label or a jump
+    /// to it; overlapping ranges merge, adjacent ones do not; a label nested in a block makes
+    /// no unit.
+    #[test]
+    fn units_span_a_label_and_its_jumps() {
+        let (a, b, c, d, e) = (LabelId(0), LabelId(1), LabelId(2), LabelId(5), LabelId(6));
+        let nested = |l| Op::Loop {
+            id: LoopId(3),
+            kind: LoopKind::Forever,
+            body: vec![stmt(Op::Label(l)), stmt(Op::Goto(l))],
+            end: 0,
+        };
+        let statements = [
+            Op::Goto(a),          // 0
+            Op::Halt,             // 1
+            Op::Label(a),         // 2
+            Op::Goto(b),          // 3
+            Op::Halt,             // 4
+            Op::Label(b),         // 5
+            Op::Halt,             // 6
+            Op::Label(c),         // 7: never jumped to
+            nested(LabelId(4)),   // 8
+            Op::Goto(LabelId(4)), // 9: into a block
+            Op::Label(d),         // 10
+            Op::Goto(e),          // 11
+            Op::Goto(d),          // 12
+            Op::Label(e),         // 13
+        ];
+        let mut plan = Plan::default();
+        plan.begin(RoutineId(0));
+        for op in statements {
+            plan.push(&vec![stmt(op)]);
+        }
+        plan.end(RoutineId(0));
+        let ends: Vec<usize> = (0..14).map(|k| plan.unit_end(RoutineId(0), k)).collect();
+        assert_eq!(ends, [2, 2, 2, 5, 5, 5, 6, 7, 8, 9, 13, 13, 13, 13]);
+        assert_eq!(plan.next_loop(RoutineId(0)), 4);
     }
 }

@@ -269,7 +269,8 @@ pub struct Param {
     pub assigned: bool,
 }
 
-/// One routine.
+/// One routine's header; its body is never held (its statements are lowered and rendered one
+/// at a time, see [`lower`]).
 #[derive(Debug, Clone, PartialEq)]
 pub struct Routine {
     pub name: String,
@@ -283,7 +284,6 @@ pub struct Routine {
     pub temps: Vec<Ty>,
     /// Labels: their KRL names and where they first appear, by [`LabelId`].
     pub labels: Vec<(String, Span)>,
-    pub body: Block,
     /// False when the file ended before `END`.
     pub closed: bool,
     /// The DEF line did not parse (its parameters are missing from the tree).

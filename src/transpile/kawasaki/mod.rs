@@ -72,6 +72,8 @@ struct ProgramOut {
 /// The routine being rendered.
 struct Rt {
     id: RoutineId,
+    /// Its `.PROGRAM` line and the lines written so far (before [`Tx::lines`]).
+    program: ProgramOut,
     /// DEFFCT: the output parameter that carries the result (rendered, e.g. `.retval`).
     retval: Option<(String, Ty)>,
     /// The `ACCURACY … ALWAYS` in force, if known at this point.
@@ -97,10 +99,6 @@ pub struct Tx<'a> {
     /// Lines of the statement being rendered (and the last line before it, which a SPEED
     /// line is compared with).
     lines: Vec<String>,
-    /// The lines of the routine being rendered, before [`Tx::lines`].
-    body: String,
-    /// The header of the routine being rendered.
-    header: String,
     depth: usize,
     rt: Option<Rt>,
     /// Vision server used by `mm_init_skt` (for the header).
@@ -130,8 +128,6 @@ impl<'a> Tx<'a> {
             comments,
             programs: Vec::new(),
             lines: Vec::new(),
-            body: String::new(),
-            header: String::new(),
             depth: 0,
             rt: None,
             server_used: None,
@@ -252,13 +248,17 @@ impl<'a> Tx<'a> {
 
     // ----- routines ----------------------------------------------------------------------
 
-    /// Moves the finished lines into the routine's text, all but the last `keep`.
+    /// Moves the finished lines into the text of the routine being rendered, all but the
+    /// last `keep`.
     fn flush_lines(&mut self, keep: usize) {
+        let Some(rt) = &mut self.rt else {
+            return;
+        };
         let n = self.lines.len().saturating_sub(keep);
         for l in self.lines.drain(..n) {
             // Non-ASCII can only come from comments and strings (strings are reported).
-            self.body.push_str(&format::ascii(l.trim_end()));
-            self.body.push('\n');
+            rt.program.body.push_str(&format::ascii(l.trim_end()));
+            rt.program.body.push('\n');
         }
     }
 
@@ -350,6 +350,10 @@ impl crate::transpile::Renderer for Tx<'_> {
         };
         self.rt = Some(Rt {
             id,
+            program: ProgramOut {
+                header: String::new(),
+                body: String::new(),
+            },
             retval: None,
             accuracy: None,
             temps: HashMap::new(),
@@ -387,7 +391,9 @@ impl crate::transpile::Renderer for Tx<'_> {
                 rt.retval = Some((rv, ty));
             }
         }
-        self.header = format!(".PROGRAM {name}({})", params.join(","));
+        if let Some(rt) = &mut self.rt {
+            rt.program.header = format!(".PROGRAM {name}({})", params.join(","));
+        }
         self.lines = before;
         for c in copies {
             self.line(c);
@@ -404,11 +410,10 @@ impl crate::transpile::Renderer for Tx<'_> {
         let r = self.ir.routine(self.routine_id());
         self.flush_comments(r.span.end);
         self.flush_lines(0);
-        let header = std::mem::take(&mut self.header);
-        let mut body = std::mem::take(&mut self.body);
-        body.shrink_to_fit();
-        self.programs.push(ProgramOut { header, body });
-        self.rt = None;
+        if let Some(mut rt) = self.rt.take() {
+            rt.program.body.shrink_to_fit();
+            self.programs.push(rt.program);
+        }
     }
 
     fn finish(mut self: Box<Self>) -> (String, Report, Vec<Span>) {

@@ -25,7 +25,7 @@ use std::collections::BTreeMap;
 
 use super::{
     Because, Blend, Block, Callee, CartMps, FrameKind, FrameRef, JointPct, Known, LabelId, LoopId,
-    LoopKind, MotionParam, Move, Op, ParamValue, Path, RoutineId, SpeedSetting, Stmt,
+    LoopKind, MotionParam, Move, Op, ParamValue, Path, Program, RoutineId, SpeedSetting, Stmt,
 };
 
 /// What is known about one value at a program point.
@@ -560,14 +560,17 @@ pub struct Solution {
 
 /// The fixpoints: which routines move, what each routine leaves behind (to a fixpoint over the
 /// call graph), what each starts with (the join over its calls), and the facts at its labels.
-pub fn solve(skeleton: Skeleton) -> Solution {
+pub fn solve(skeleton: Skeleton, program: &Program) -> Solution {
     let Skeleton {
         mut routines,
-        names,
         direct_moves,
-        first,
     } = skeleton;
     let n = routines.len();
+    let names: Vec<String> = program.routines.iter().map(|r| r.name.clone()).collect();
+    // The program starts with its first routine (or its statements outside any DEF).
+    let first: Vec<bool> = (0..n)
+        .map(|i| i == 0 || program.top_level == Some(RoutineId(i as u32)))
+        .collect();
     let calls_of = |body: &[Node]| {
         let mut out = Vec::new();
         skeleton::each_call(body, &mut |c| out.push(c));
@@ -690,6 +693,8 @@ impl Resolver<'_> {
     /// The next ops of the routine, resolved in place.
     pub fn resolve(&mut self, ops: &mut Block) {
         self.state = self.walker.block(ops, self.state.take());
+        // The facts at calls serve the fixpoints only: a routine of many calls kept them all.
+        self.walker.calls.clear();
         drop_stops(ops);
     }
 }

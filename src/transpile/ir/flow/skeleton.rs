@@ -215,25 +215,18 @@ pub(super) fn each_call(body: &[Node], f: &mut impl FnMut(RoutineId)) {
 pub struct Skeleton {
     /// By routine id.
     pub(super) routines: Vec<Vec<Node>>,
-    pub(super) names: Vec<String>,
     /// The routine moves the robot itself (a motion, a call of another module, `MM_CALIB`).
     pub(super) direct_moves: Vec<bool>,
-    /// The routine starts the program (the first routine, the statements outside any DEF).
-    pub(super) first: Vec<bool>,
 }
 
 impl Skeleton {
-    /// Routine `id` (named `name`) begins; `first`: it starts the program.
-    pub fn begin(&mut self, id: RoutineId, name: &str, first: bool) {
+    /// Routine `id` begins.
+    pub fn begin(&mut self, id: RoutineId) {
         let i = id.0 as usize;
         if self.routines.len() <= i {
             self.routines.resize_with(i + 1, Vec::new);
-            self.names.resize(i + 1, String::new());
             self.direct_moves.resize(i + 1, false);
-            self.first.resize(i + 1, false);
         }
-        self.names[i] = name.to_owned();
-        self.first[i] = first;
     }
 
     /// The next ops of routine `id`.

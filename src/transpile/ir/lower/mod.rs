@@ -80,9 +80,9 @@ impl Replay {
             vision: None,
             writes: HashMap::new(),
             moves: HashMap::new(),
-            replay: Some(self.next_spline.clone()),
-            journal: None,
-            spline_at: Vec::new(),
+            pass: Pass::Replay {
+                spline_at: self.next_spline.clone(),
+            },
         }
     }
 }
@@ -143,14 +143,21 @@ pub struct Lower<'p> {
     writes: HashMap<String, Option<BTreeSet<String>>>,
     /// Upper-case routine name → whether it moves the robot (itself or through calls).
     moves: HashMap<String, bool>,
-    /// The second pass: the next spline id at each routine's start (findings and constructs
-    /// are not recorded again).
-    replay: Option<Vec<u32>>,
-    /// First pass, from the first routine on: each change of an assumed variable's type or
-    /// dimensions, with the value it replaced (undone for the second pass).
-    journal: Option<Vec<(VarId, Ty, usize)>>,
-    /// First pass: the next spline id at each routine's start.
-    spline_at: Vec<u32>,
+    pass: Pass,
+}
+
+/// Which pass a [`Lower`] makes.
+enum Pass {
+    First {
+        /// From the first routine on: each change of an assumed variable's type or dimensions,
+        /// with the value it replaced (undone for the second pass).
+        journal: Option<Vec<(VarId, Ty, usize)>>,
+        /// The next spline id at each routine's start.
+        spline_at: Vec<u32>,
+    },
+    /// Records nothing (findings, constructs, routine details are the first pass's); spline
+    /// ids start at each routine where the first pass had them.
+    Replay { spline_at: Vec<u32> },
 }
 
 impl<'p> Lower<'p> {
@@ -168,9 +175,10 @@ impl<'p> Lower<'p> {
             vision: None,
             writes: HashMap::new(),
             moves: HashMap::new(),
-            replay: None,
-            journal: None,
-            spline_at: Vec::new(),
+            pass: Pass::First {
+                journal: None,
+                spline_at: Vec::new(),
+            },
         };
         for g in l.model.globals() {
             l.add_var(String::new(), g, Scope::Global);
@@ -180,15 +188,25 @@ impl<'p> Lower<'p> {
             l.declare_routine(r);
         }
         l.collect_interrupts();
-        l.journal = Some(Vec::new());
+        if let Pass::First { journal, .. } = &mut l.pass {
+            *journal = Some(Vec::new());
+        }
         l
     }
 
     /// The first pass ends: the `.dat` values are lowered, and what the second pass needs is
     /// set aside.
     pub fn finish(mut self) -> Lowering {
+        // Taking the journal ends it: the `.dat` values are lowered once, in this pass.
+        let (journal, spline_at) = match &mut self.pass {
+            Pass::First { journal, spline_at } => (
+                journal.take().unwrap_or_default(),
+                std::mem::take(spline_at),
+            ),
+            Pass::Replay { .. } => (Vec::new(), Vec::new()),
+        };
         let mut vars = self.out.vars.clone();
-        for (v, ty, dims) in self.journal.take().unwrap_or_default().into_iter().rev() {
+        for (v, ty, dims) in journal.into_iter().rev() {
             let var = &mut vars[v.0 as usize];
             var.ty = ty;
             var.dims = dims;
@@ -198,17 +216,24 @@ impl<'p> Lower<'p> {
             replay: Replay {
                 vars,
                 keys: self.vars.clone(),
-                next_spline: std::mem::take(&mut self.spline_at),
+                next_spline: spline_at,
             },
             program: self.out,
             vision: self.vision,
         }
     }
 
+    fn replaying(&self) -> bool {
+        matches!(self.pass, Pass::Replay { .. })
+    }
+
     /// Changes an assumed variable's type or dimensions, remembering the old ones.
     pub(super) fn retype(&mut self, v: VarId, ty: Ty, dims: usize) {
         let var = &mut self.out.vars[v.0 as usize];
-        if let Some(j) = &mut self.journal {
+        if let Pass::First {
+            journal: Some(j), ..
+        } = &mut self.pass
+        {
             j.push((v, var.ty.clone(), var.dims));
         }
         var.ty = ty;
@@ -233,7 +258,7 @@ impl<'p> Lower<'p> {
         message: impl Into<String>,
         help: impl Into<String>,
     ) {
-        if self.replay.is_some() {
+        if self.replaying() {
             return;
         }
         self.out.findings.push(Finding {
@@ -245,7 +270,7 @@ impl<'p> Lower<'p> {
     }
 
     pub(super) fn construct(&mut self, kind: &'static str, span: Span) {
-        if self.replay.is_some() {
+        if self.replaying() {
             return;
         }
         self.out.constructs.push(kind, span, FileId::Src);
@@ -254,7 +279,7 @@ impl<'p> Lower<'p> {
     /// Change the kind of the construct just recorded (assignments that set I/O, calls of
     /// `MM_*` …).
     pub(super) fn kind(&mut self, kind: &'static str) {
-        if self.replay.is_some() {
+        if self.replaying() {
             return;
         }
         self.out.constructs.set_last_kind(kind);
@@ -437,7 +462,6 @@ impl<'p> Lower<'p> {
             locals: Vec::new(),
             temps: Vec::new(),
             labels: Vec::new(),
-            body: Vec::new(),
             closed: r.closed,
             header_error: self.header_syntax_error(outline),
             duplicate_param: duplicate,
@@ -544,7 +568,7 @@ impl<'p> Lower<'p> {
         let mut body = Block::new();
         self.finish_triggers(&mut body);
         let rt = self.rt.take().expect("in a routine");
-        if self.replay.is_none() {
+        if !self.replaying() {
             let out = &mut self.out.routines[rt.id.0 as usize];
             out.temps = rt.temps;
             out.locals = rt.locals;
@@ -553,21 +577,16 @@ impl<'p> Lower<'p> {
         body
     }
 
-    /// The name of a routine of the model.
-    pub fn routine_name(&self, id: RoutineId) -> String {
-        self.out.routine(id).name.clone()
-    }
-
     /// Spline ids continue from where the first pass had them at this routine's start.
     fn start_splines(&mut self, id: RoutineId) {
-        match &self.replay {
-            Some(at) => self.next_spline = at.get(id.0 as usize).copied().unwrap_or(0),
-            None => {
-                let i = id.0 as usize;
-                if self.spline_at.len() <= i {
-                    self.spline_at.resize(i + 1, 0);
+        let i = id.0 as usize;
+        match &mut self.pass {
+            Pass::Replay { spline_at } => self.next_spline = spline_at.get(i).copied().unwrap_or(0),
+            Pass::First { spline_at, .. } => {
+                if spline_at.len() <= i {
+                    spline_at.resize(i + 1, 0);
                 }
-                self.spline_at[i] = self.next_spline;
+                spline_at[i] = self.next_spline;
             }
         }
     }
@@ -597,7 +616,6 @@ impl<'p> Lower<'p> {
                     locals: Vec::new(),
                     temps: Vec::new(),
                     labels: Vec::new(),
-                    body: Vec::new(),
                     closed: true,
                     header_error: None,
                     duplicate_param: None,
