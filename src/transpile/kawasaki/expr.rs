@@ -9,6 +9,7 @@ use crate::transpile::ir::{
     Aggregate, Bank, BinaryOp, Builtin, Component, Expr, ExprKind, IoPlace, Place, Ty, UnaryOp,
 };
 use crate::transpile::orientation::abc_to_oat;
+use crate::transpile::render::Emit;
 
 /// Binding strength of an AS expression, to decide where parentheses go.
 pub(super) const ATOM: u8 = 10;
@@ -530,7 +531,7 @@ impl<'a> Tx<'a> {
             [] => {}
             [(1, v)] => {
                 out.push(num(*v));
-                self.rep.approximate(
+                self.out.rep.approximate(
                     file,
                     span,
                     "external axis E1 becomes the 7th value (JT7)",
@@ -550,7 +551,7 @@ impl<'a> Tx<'a> {
 
     fn status_turn(&mut self, a: &Aggregate, span: Span, file: FileId) {
         if let Some(st) = a.status_turn_text() {
-            self.rep.approximate(
+            self.out.rep.approximate(
                 file,
                 span,
                 format!(
