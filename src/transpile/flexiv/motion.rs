@@ -202,11 +202,21 @@ impl<'a> Tx<'a> {
                 self.line(format!("move_j({t}{vel})"));
                 Ok(())
             }
-            Path::JointRel { delta, .. } => fail(
-                delta.span,
-                "this relative motion has no counterpart",
-                "compute the target pose and move to it",
-            ),
+            Path::JointRel { delta, .. } => {
+                let d = self.joint_offsets(delta)?;
+                if !matches!(m.blend, Blend::Exact) {
+                    self.out.rep.approximate(
+                        FileId::Src,
+                        span,
+                        "MoveJ is not blended: the robot stops at this point",
+                        "nothing to do unless the stop matters",
+                    );
+                }
+                self.speed_never_set(m, span);
+                let vel = self.with_speed(m, MotionParam::VelPtp, "vel");
+                self.line(format!("move_j_rel([{}]{vel})", d.join(", ")));
+                Ok(())
+            }
             Path::LinearRel {
                 delta,
                 in_tool,
@@ -244,6 +254,46 @@ impl<'a> Tx<'a> {
                 Ok(())
             }
         }
+    }
+
+    /// `PTP_REL {A6 90}`: the offset of each Rizon joint (degrees) through the joint map, as
+    /// Kawasaki's `DRIVE`; the joints move together, from where they are.
+    fn joint_offsets(&mut self, d: &Delta) -> R<Vec<String>> {
+        let Some(map) = &self.fx.joint_map else {
+            return fail(
+                d.span,
+                "a relative axis move: which Rizon joint turns, and in which direction, needs a joint map",
+                "give --joint-map (e.g. A1,A2,0,A3,A4,A5,A6)",
+            );
+        };
+        let mut offsets = vec!["0".to_owned(); map.0.len()];
+        for (c, e) in &d.fields {
+            let crate::transpile::ir::Component::Axis(i) = c else {
+                return fail(
+                    d.span,
+                    "a relative axis move with external axes has no Flexiv equivalent",
+                    "move the external axis on its own",
+                );
+            };
+            let Some((joint, source)) = map.joint_of(*i as u8 + 1) else {
+                return fail(
+                    e.span,
+                    format!(
+                        "the joint map {map} gives axis A{} no single Rizon joint",
+                        i + 1
+                    ),
+                    "give a joint map in which the axis drives one joint",
+                );
+            };
+            let v = self.expr(e)?;
+            offsets[joint] = match source {
+                crate::transpile::joints::JointSource::Axis { negate: true, .. } => {
+                    crate::transpile::render::negate_number(&v)
+                }
+                _ => v,
+            };
+        }
+        Ok(offsets)
     }
 
     /// `LIN_REL`/`PTP_REL` offsets: X, Y, Z only.

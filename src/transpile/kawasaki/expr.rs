@@ -581,21 +581,6 @@ fn arg_missing(span: Span) -> super::Fail {
     }
 }
 
-/// A rendered number or expression negated (`90` → `-90`, `-.a` → `.a`, `.a+1` → `-(.a+1)`).
-pub(super) fn negate_number(v: &str) -> String {
-    if let Some(rest) = v.strip_prefix('-')
-        && !rest.contains(['+', '-', '*', '/', ' '])
-    {
-        return rest.to_owned();
-    }
-    if v.chars()
-        .all(|c| c.is_ascii_alphanumeric() || c == '.' || c == '_')
-    {
-        return format!("-{v}");
-    }
-    format!("-({v})")
-}
-
 /// The signed signal number negated.
 pub(super) fn negate(n: &str) -> String {
     match n.strip_prefix('-') {

@@ -321,7 +321,7 @@ impl<'a> Tx<'a> {
             let v = self.expr(e)?;
             let v = match source {
                 crate::transpile::joints::JointSource::Axis { negate: true, .. } => {
-                    super::expr::negate_number(&v)
+                    crate::transpile::render::negate_number(&v)
                 }
                 _ => v,
             };

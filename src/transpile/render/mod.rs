@@ -243,6 +243,22 @@ pub fn offset_text(offset: i64, offset_first: bool) -> String {
     }
 }
 
+/// A rendered number or expression negated in any target's syntax
+/// (`90` → `-90`, `-.a` → `.a`, `.a+1` → `-(.a+1)`).
+pub fn negate_number(v: &str) -> String {
+    if let Some(rest) = v.strip_prefix('-')
+        && !rest.contains(['+', '-', '*', '/', ' '])
+    {
+        return rest.to_owned();
+    }
+    if v.chars()
+        .all(|c| c.is_ascii_alphanumeric() || c == '.' || c == '_')
+    {
+        return format!("-{v}");
+    }
+    format!("-({v})")
+}
+
 /// The file name of a path, for the header.
 pub fn file_name(path: &str) -> String {
     std::path::Path::new(path)
