@@ -5,7 +5,7 @@
 //! explicit advance-run stops) and resolves the motion parameters by dataflow; each target is
 //! a renderer of that model ([`kawasaki`]: Kawasaki AS, [`flexiv`]: a Flexiv RDK Python script)
 //! that decides no KRL semantics.
-//! [`orientation`] holds the Euler-angle conversions, [`rules`] the diagnostic codes TR001–TR003.
+//! [`rules`] holds the diagnostic codes TR001–TR003; Euler-angle conversions are `crate::geom`'s.
 //!
 //! Invariants: translation never fails and never panics on user input: what cannot be
 //! translated faithfully is a `TR001` and stays in the output as a comment at its place,
@@ -17,7 +17,6 @@ pub mod front;
 pub mod ir;
 pub mod joints;
 pub mod kawasaki;
-pub mod orientation;
 pub mod rules;
 
 use std::net::Ipv4Addr;
