@@ -3,6 +3,8 @@
 //! ending in CR for the ASCII codec, fixed-size BYTE records for HEX, as Mech-Mind's shipped
 //! XML). A leaf: it imports no krlkit module; `generate` builds a [`Channel`] from the spec.
 
+pub mod read;
+
 use quick_xml::Writer;
 use quick_xml::events::{BytesDecl, BytesEnd, BytesStart, BytesText, Event};
 use serde::Serialize;
