@@ -6,7 +6,7 @@
 //! a renderer of that model ([`kawasaki`]: Kawasaki AS, [`flexiv`]: a Flexiv RDK Python script)
 //! that decides no KRL semantics, built on the backend core [`render`] (the statement loop, the
 //! TR001 fallback, comments, and the one table of targets with their capabilities).
-//! [`orientation`] holds the Euler-angle conversions, [`rules`] the diagnostic codes TR001–TR003.
+//! [`rules`] holds the diagnostic codes TR001–TR003; Euler-angle conversions are `crate::geom`'s.
 //!
 //! Invariants: translation never fails and never panics on user input: what cannot be
 //! translated faithfully is a `TR001` and stays in the output as a comment at its place,
@@ -18,7 +18,6 @@ pub mod front;
 pub mod ir;
 pub mod joints;
 pub mod kawasaki;
-pub mod orientation;
 pub mod render;
 pub mod rules;
 

@@ -4,11 +4,11 @@
 use super::format::{self, num, with_sigil};
 use super::{R, Tx, fail};
 use crate::diag::Span;
+use crate::geom::abc_to_oat;
 use crate::transpile::front::report::FileId;
 use crate::transpile::ir::{
     Aggregate, Bank, BinaryOp, Builtin, Component, Expr, ExprKind, IoPlace, Place, Ty, UnaryOp,
 };
-use crate::transpile::orientation::abc_to_oat;
 use crate::transpile::render::Emit;
 
 /// Binding strength of an AS expression, to decide where parentheses go.
