@@ -213,12 +213,11 @@ impl<'a> Tx<'a> {
             Builtin::Cos => format!("math.cos(math.radians({}))", one(&v)?),
             Builtin::Tan => format!("math.tan(math.radians({}))", one(&v)?),
             Builtin::Acos => format!("math.degrees(math.acos({}))", one(&v)?),
-            Builtin::Atan2 => {
-                if v.len() != 2 {
-                    return fail(span, "ATAN2 takes two values", "pass y and x");
-                }
-                format!("math.degrees(math.atan2({}, {}))", v[0], v[1])
-            }
+            // The lowering passes exactly `Builtin::arity` values.
+            Builtin::Atan2 => match v.as_slice() {
+                [y, x] => format!("math.degrees(math.atan2({y}, {x}))"),
+                _ => one(&[])?,
+            },
             Builtin::StrLen => format!("len({})", one(&v)?),
             Builtin::InvPos => format!("frame_inv({})", one(&v)?),
             Builtin::Round => format!("to_int({})", one(&v)?),

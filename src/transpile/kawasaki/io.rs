@@ -6,7 +6,7 @@ use super::{R, Tx, fail};
 use crate::diag::Span;
 use crate::transpile::front::report::FileId;
 use crate::transpile::ir::{
-    BinaryOp, Callee, Expr, ExprKind, InterruptAction, IoPlace, IoTiming, TimerOp, Wait,
+    BinaryOp, Callee, Expr, ExprKind, InterruptAction, IoTiming, OutPlace, TimerOp, Wait,
 };
 use crate::transpile::render::Emit;
 
@@ -14,28 +14,12 @@ impl<'a> Tx<'a> {
     /// `SIGNAL n` / `SIGNAL -n`, an IF choosing between them, or `BITS` for a group.
     pub(super) fn set_io(
         &mut self,
-        io: &IoPlace,
+        io: &OutPlace,
         value: &Expr,
         when: &IoTiming,
         span: Span,
     ) -> R<()> {
-        if let IoPlace::In(_) = io {
-            return fail(
-                span,
-                "inputs cannot be written in AS",
-                "write an output or an internal signal instead",
-            );
-        }
-        if let IoPlace::Signal(r) = io
-            && r.bank == crate::transpile::ir::Bank::In
-        {
-            return fail(
-                span,
-                "inputs cannot be written in AS",
-                "write an output instead",
-            );
-        }
-        let sig = self.signal(io)?;
+        let sig = self.signal(&io.as_io())?;
         match when {
             IoTiming::Now | IoTiming::Trigger(_) => {}
             IoTiming::Ahead => self.out.rep.approximate(
@@ -75,8 +59,8 @@ impl<'a> Tx<'a> {
         Ok(())
     }
 
-    pub(super) fn pulse(&mut self, io: &IoPlace, level: &Expr, seconds: &Expr) -> R<()> {
-        let Sig::One(n) = self.signal(io)? else {
+    pub(super) fn pulse(&mut self, io: &OutPlace, level: &Expr, seconds: &Expr) -> R<()> {
+        let Sig::One(n) = self.signal(&io.as_io())? else {
             return fail(
                 seconds.span,
                 "PULSE of a signal group has no AS equivalent",

@@ -60,6 +60,51 @@ pub fn backend(target: Target) -> &'static dyn Backend {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::transpile::{Source, transpile};
+
+    /// The TR001 messages of `src` translated to every target.
+    fn refusals(src: &str) -> Vec<(Target, Vec<String>)> {
+        BACKENDS
+            .iter()
+            .map(|b| {
+                let t = transpile(
+                    b.target(),
+                    Source {
+                        path: "p.src".into(),
+                        text: src.into(),
+                    },
+                    None,
+                    &Options::default(),
+                );
+                let msgs = t.reports[0]
+                    .diagnostics
+                    .iter()
+                    .filter(|d| d.code == crate::transpile::rules::UNTRANSLATABLE)
+                    .map(|d| d.message.to_string())
+                    .collect();
+                (b.target(), msgs)
+            })
+            .collect()
+    }
+
+    #[test]
+    fn the_lowering_refuses_for_every_target_alike() {
+        let cases = [
+            (
+                "DEF p()\nDECL REAL r\nr = ATAN2(1.0)\nEND\n",
+                "`ATAN2` takes 2 arguments, this call passes 1",
+            ),
+            (
+                "DEF p()\n$IN[3] = TRUE\nEND\n",
+                "`$IN[3]` cannot be written",
+            ),
+        ];
+        for (src, want) in cases {
+            for (target, msgs) in refusals(src) {
+                assert_eq!(msgs, [want.to_owned()], "{target:?}: {src}");
+            }
+        }
+    }
 
     #[test]
     fn every_target_is_registered_once() {

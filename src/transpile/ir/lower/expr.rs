@@ -546,6 +546,16 @@ impl<'p> Lower<'p> {
                 Some(v) => v,
                 None => return fail(Why::OmittedArgument, span),
             };
+            if present.len() != b.arity() {
+                return fail(
+                    Why::Arity {
+                        name: name.text.to_string(),
+                        takes: b.arity(),
+                        given: present.len(),
+                    },
+                    span,
+                );
+            }
             let v = self.seq(&present, pre)?;
             let ty = match (b, v.first().map(|a| &a.ty)) {
                 (Builtin::Abs, Some(Ty::Int)) => Ty::Int,

@@ -9,8 +9,8 @@ use crate::transpile::front::kinds::category;
 use crate::transpile::front::sysvar::{self, Sys};
 use crate::transpile::front::{end_line_start, walk};
 use crate::transpile::ir::{
-    Bank, Block, Case, Expr, ExprKind, ForLoop, InterruptAction, IoPlace, IoTiming, LoopKind, Op,
-    Place, RoutineKind, Scope, Stmt, TimerOp, Ty, UnaryOp, Wait, Why,
+    Block, Case, Expr, ExprKind, ForLoop, InterruptAction, IoTiming, LoopKind, Op, OutPlace,
+    OutSignal, Place, RoutineKind, Scope, Stmt, TimerOp, Ty, UnaryOp, Wait, Why,
 };
 
 impl<'p> Lower<'p> {
@@ -433,15 +433,16 @@ impl<'p> Lower<'p> {
                 duration,
             } => {
                 let io = match sysvar::classify(signal) {
-                    Some(Sys::Out(i)) => IoPlace::Out(Box::new(self.expr(i, ops)?)),
-                    Some(Sys::Flag(i)) => IoPlace::Flag(Box::new(self.expr(i, ops)?)),
+                    Some(Sys::Out(i)) => OutPlace::Out(Box::new(self.expr(i, ops)?)),
+                    Some(Sys::Flag(i)) => OutPlace::Flag(Box::new(self.expr(i, ops)?)),
                     Some(_) => return fail(Why::PulseSignal, signal.span),
                     None => match &signal.kind {
                         A::Name(id) => match self.var(&id.text).map(|v| self.out.var(v).ty.clone())
                         {
-                            Some(Ty::Signal(r)) if r.bank == Bank::Out && r.width() == 1 => {
-                                IoPlace::Signal(r)
-                            }
+                            Some(Ty::Signal(r)) if r.width() == 1 => match OutSignal::new(r) {
+                                Some(s) => OutPlace::Signal(s),
+                                None => return fail(Why::PulseSignal, signal.span),
+                            },
                             _ => return fail(Why::PulseSignal, signal.span),
                         },
                         _ => return fail(Why::PulseSignal, signal.span),
@@ -655,19 +656,19 @@ impl<'p> Lower<'p> {
         ops: &mut Block,
     ) -> L<()> {
         self.kind("I/O");
-        if r.bank == Bank::In {
+        let Some(r) = OutSignal::new(r) else {
             return fail(
                 Why::ReadOnly(self.src.src.slice(span).trim().to_owned()),
                 span,
             );
-        }
+        };
         let when = self.io_timing();
         self.stop(span, ops);
         let v = self.expr(value, ops)?;
         Self::push(
             ops,
             Op::SetIo {
-                io: IoPlace::Signal(r),
+                io: OutPlace::Signal(r),
                 value: v,
                 when,
             },
@@ -704,7 +705,7 @@ impl<'p> Lower<'p> {
                 Self::push(
                     ops,
                     Op::SetIo {
-                        io: IoPlace::Out(Box::new(i)),
+                        io: OutPlace::Out(Box::new(i)),
                         value: v,
                         when,
                     },
@@ -720,7 +721,7 @@ impl<'p> Lower<'p> {
                 Self::push(
                     ops,
                     Op::SetIo {
-                        io: IoPlace::Out(Box::new(i)),
+                        io: OutPlace::Out(Box::new(i)),
                         value: v,
                         when: IoTiming::PathEnd,
                     },
@@ -735,7 +736,7 @@ impl<'p> Lower<'p> {
                 Self::push(
                     ops,
                     Op::SetIo {
-                        io: IoPlace::Flag(Box::new(i)),
+                        io: OutPlace::Flag(Box::new(i)),
                         value: v,
                         when: IoTiming::Now,
                     },
