@@ -138,7 +138,8 @@ pub fn transpile(
         front::Parsed::new(src.path, src.text),
         dat.map(|d| front::Parsed::new(d.path, d.text)),
     );
-    let mut first = ir::lower::Lower::new(&program, options);
+    let backend = render::backend(target);
+    let mut first = ir::lower::Lower::new(&program, options, backend.caps());
     let mut skeleton = ir::flow::Skeleton::default();
     let mut plan = ir::goto::Plan::default();
     let mut open = ir::RoutineId(0);
@@ -165,7 +166,6 @@ pub fn transpile(
     for f in std::mem::take(&mut model.findings) {
         report.approximate(f.file, f.span, f.message, f.help);
     }
-    let backend = render::backend(target);
     let mut renderer = backend.renderer(&program, &model, vision.as_ref(), options, report);
     renderer.start();
     let mut second = replay.lower(&model, &program, options);

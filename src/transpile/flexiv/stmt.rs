@@ -201,27 +201,22 @@ impl<'a> Tx<'a> {
                 "BRAKE (stopping the motion from an interrupt routine) has no counterpart: every move has ended before the next statement runs",
                 "remove it, or call robot.Stop() where the robot must stop",
             ),
-            Op::Interrupt { .. } => fail(
-                span,
-                "interrupts have no counterpart in the script (they would need a thread polling the condition)",
-                "poll the condition where the program can react, or port the interrupt to a thread by hand",
-            ),
-            Op::InterruptDecl(i) => {
-                if self.ir.interrupts[*i].stop_messages {
-                    self.out.rep.approximate(
-                        FileId::Src,
-                        span,
-                        "KUKA's standard stop-message interrupt ($STOPMESS -> IR_STOPM) has no counterpart; the robot reports its own stops as faults",
-                        "nothing to do unless IR_STOPM was customised",
-                    );
-                    self.keep_as_comment("TR002", span);
-                    return Ok(());
-                }
-                fail(
+            // The lowering refuses interrupts for a target without them
+            // ([`crate::transpile::ir::Why::NoInterrupts`]): this is never reached.
+            Op::Interrupt { .. } => {
+                let why = crate::transpile::ir::Why::NoInterrupts;
+                fail(span, why.message(), super::help::help(&why))
+            }
+            // What reaches here is KUKA's stop-message interrupt.
+            Op::InterruptDecl(_) => {
+                self.out.rep.approximate(
+                    FileId::Src,
                     span,
-                    "interrupts have no counterpart in the script (they would need a thread polling the condition)",
-                    "poll the condition where the program can react, or port the interrupt to a thread by hand",
-                )
+                    "KUKA's standard stop-message interrupt ($STOPMESS -> IR_STOPM) has no counterpart; the robot reports its own stops as faults",
+                    "nothing to do unless IR_STOPM was customised",
+                );
+                self.keep_as_comment("TR002", span);
+                Ok(())
             }
             Op::Message { routine, text } => {
                 let t = self.expr(text)?;

@@ -401,6 +401,9 @@ impl<'p> Lower<'p> {
                 {
                     return fail(Why::NoInterruptDecl(n), span);
                 }
+                if !self.caps.interrupts {
+                    return fail(Why::NoInterrupts, span);
+                }
                 let action = match action {
                     ast::InterruptAction::On => InterruptAction::On,
                     ast::InterruptAction::Off => InterruptAction::Off,
@@ -420,6 +423,9 @@ impl<'p> Lower<'p> {
                     .iter()
                     .position(|d| d.span.start == span.start);
                 match i {
+                    Some(i) if !self.caps.interrupts && !self.out.interrupts[i].stop_messages => {
+                        fail(Why::NoInterrupts, span)
+                    }
                     Some(i) => {
                         Self::push(ops, Op::InterruptDecl(i), span);
                         Ok(())
