@@ -335,16 +335,7 @@ impl<'a> Tx<'a> {
     pub(super) fn target(&mut self, p: &Place, span: Span, write: bool) -> R<Target> {
         match p {
             Place::Var(v) => {
-                let var = self.ir.var(*v);
-                if let Ty::Struc(s) | Ty::Other(s) = &var.ty
-                    && !s.is_empty()
-                {
-                    return fail(
-                        span,
-                        format!("`{}` has type {s}, which has no translation", var.name),
-                        "split the structure into separate variables (numbers, strings, poses)",
-                    );
-                }
+                // A structure never gets here: the lowering refuses what the target cannot hold.
                 let (n, module) = self.var_name(*v, span);
                 if write && module {
                     self.assigns_global(&n);

@@ -334,16 +334,8 @@ impl<'a> Tx<'a> {
         match p {
             Place::Var(v) => {
                 let var = self.ir.var(*v);
+                // A structure never gets here: the lowering refuses what the target cannot hold.
                 let vty = var.ty.clone();
-                if let Ty::Struc(s) | Ty::Other(s) = &vty
-                    && !s.is_empty()
-                {
-                    return fail(
-                        span,
-                        format!("`{}` has type {s}, which has no AS equivalent", var.name),
-                        "split the structure into separate variables (reals, strings, poses)",
-                    );
-                }
                 let (n, local) = self.var_name(*v, span);
                 let n = if local { format!(".{n}") } else { n };
                 Ok(with_sigil(&n, &vty))

@@ -98,6 +98,10 @@ mod tests {
                 "DEF p()\n$IN[3] = TRUE\nEND\n",
                 "`$IN[3]` cannot be written",
             ),
+            (
+                "DEF p()\nSTRUC grip_t REAL force\nDECL grip_t g\nDECL REAL r\nr = g.force\nEND\n",
+                "a value of type GRIP_T has no counterpart",
+            ),
         ];
         for (src, want) in cases {
             for (target, msgs) in refusals(src) {
