@@ -68,7 +68,6 @@ static STYLE: Style = Style {
 static CAPS: render::Caps = render::Caps {
     goto: false,
     records: false,
-    functions: true,
     interrupts: false,
 };
 

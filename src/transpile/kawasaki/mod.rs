@@ -61,7 +61,6 @@ static STYLE: Style = Style {
 static CAPS: render::Caps = render::Caps {
     goto: true,
     records: false,
-    functions: false,
     interrupts: true,
 };
 

@@ -15,12 +15,37 @@ pub struct Caps {
     /// `GOTO` and labels; without them a label and the jumps to it are made loops first
     /// ([`crate::transpile::ir::goto`]).
     pub goto: bool,
-    /// Records (KRL `STRUC` types).
+    /// Records (KRL `STRUC` types); without them a STRUC variable is TR001.
     pub records: bool,
-    /// User functions that return a value.
-    pub functions: bool,
-    /// Interrupts on a signal with a handler routine.
+    /// Interrupts on a signal with a handler routine; without them INTERRUPT is TR001.
     pub interrupts: bool,
+}
+
+/// The capability table of every target, as README shows it (a test keeps README equal to it).
+pub fn caps_table() -> String {
+    let yes_no = |b: bool, without: &str| {
+        if b {
+            "yes".to_owned()
+        } else {
+            format!("no: {without}")
+        }
+    };
+    let mut t = String::from(
+        "| `--to` | language | GOTO | STRUC | interrupts | identifiers |\n|---|---|---|---|---|---|\n",
+    );
+    for b in BACKENDS {
+        let (c, n) = (b.caps(), b.name_rules());
+        t.push_str(&format!(
+            "| `{}` | {} | {} | {} | {} | ≤ {} characters |\n",
+            b.name(),
+            n.language,
+            yes_no(c.goto, "jumps become loops"),
+            yes_no(c.records, "TR001"),
+            yes_no(c.interrupts, "TR001"),
+            n.max_len
+        ));
+    }
+    t
 }
 
 /// One target.
@@ -108,6 +133,16 @@ mod tests {
                 assert_eq!(msgs, [want.to_owned()], "{target:?}: {src}");
             }
         }
+    }
+
+    #[test]
+    fn readme_shows_the_capability_table() {
+        let readme = include_str!("../../../README.md");
+        assert!(
+            readme.contains(&caps_table()),
+            "README's capability table differs from the targets' Caps; paste:\n{}",
+            caps_table()
+        );
     }
 
     #[test]
