@@ -284,7 +284,7 @@ fn each_lowered(
 /// is a renderer defect, and it fails the command (TR001 at the program's first routine)
 /// instead of reaching the robot.
 fn report_structure(
-    backend: &dyn render::Backend,
+    backend: &render::Backend,
     text: &str,
     at: crate::diag::Span,
     report: &mut front::report::Report,

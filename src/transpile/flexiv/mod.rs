@@ -37,7 +37,7 @@ pub use options::{Api, FlexivOptions, JointMap, JointSource, PtpPrimitive, RdkVe
 use super::Options;
 use super::VisionServer;
 use super::front::Program as Source;
-use super::front::names::{Home, NameRules, Namer};
+use super::front::names::{Home, Namer};
 use super::front::report::Report;
 use super::ir::{self, Block, LoopId, RoutineId, RoutineKind, Scope, TempId, VarId};
 use super::render::{self, Emit, Out, Style};
@@ -63,55 +63,25 @@ static STYLE: Style = Style {
     trailing_on_first: true,
 };
 
-/// Python has no GOTO: the routines' jumps are made loops before they reach the renderer
-/// ([`crate::transpile::ir::goto`]).
-static CAPS: render::Caps = render::Caps {
-    goto: false,
-    records: false,
-    interrupts: false,
-};
-
-/// A Flexiv RDK Python script in the table of targets.
-pub struct Backend;
-
-impl render::Backend for Backend {
-    fn target(&self) -> super::Target {
-        super::Target::Flexiv
-    }
-
-    fn name(&self) -> &'static str {
-        "flexiv"
-    }
-
-    fn caps(&self) -> &'static render::Caps {
-        &CAPS
-    }
-
-    fn name_rules(&self) -> &'static NameRules {
-        &NAME_RULES
-    }
-
-    fn help(&self, why: &ir::Why) -> String {
-        help::help(why)
-    }
-
-    /// Python's structure is its indentation, which the renderer writes whole; the runs in
-    /// `tests/` execute it.
-    fn check(&self, _text: &str) -> Vec<String> {
-        Vec::new()
-    }
-
-    fn renderer<'a>(
-        &self,
-        src: &'a Source,
-        program: &'a ir::Program,
-        vision: Option<&'a VisionServer>,
-        options: &'a Options,
-        report: Report,
-    ) -> Box<dyn crate::transpile::Renderer + 'a> {
+/// A Flexiv RDK Python script in the table of targets. Python has no GOTO: the routines' jumps
+/// are made loops before they reach the renderer ([`crate::transpile::ir::goto`]); its
+/// structure is its indentation, which the renderer writes whole, and the runs in `tests/`
+/// execute it (no check of its own).
+pub static BACKEND: render::Backend = render::Backend {
+    target: super::Target::Flexiv,
+    name: "flexiv",
+    caps: render::Caps {
+        goto: false,
+        records: false,
+        interrupts: false,
+    },
+    name_rules: &NAME_RULES,
+    help: help::help,
+    check: |_| Vec::new(),
+    renderer: |src, program, vision, options, report| {
         Box::new(Tx::new(src, program, vision, options, report))
-    }
-}
+    },
+};
 
 /// The routine being rendered.
 struct Rt {

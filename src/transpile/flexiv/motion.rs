@@ -183,14 +183,7 @@ impl<'a> Tx<'a> {
                     );
                 }
                 let t = self.motion_target(to)?;
-                if !matches!(m.blend, Blend::Exact) {
-                    self.out.rep.approximate(
-                        FileId::Src,
-                        span,
-                        "MoveJ is not blended: the robot stops at this point",
-                        "nothing to do unless the stop matters",
-                    );
-                }
+                self.move_j_stops(m, span);
                 self.out.rep.approximate(
                     FileId::Src,
                     to.expr.span,
@@ -204,14 +197,7 @@ impl<'a> Tx<'a> {
             }
             Path::JointRel { delta, .. } => {
                 let d = self.joint_offsets(delta)?;
-                if !matches!(m.blend, Blend::Exact) {
-                    self.out.rep.approximate(
-                        FileId::Src,
-                        span,
-                        "MoveJ is not blended: the robot stops at this point",
-                        "nothing to do unless the stop matters",
-                    );
-                }
+                self.move_j_stops(m, span);
                 self.speed_never_set(m, span);
                 let vel = self.with_speed(m, MotionParam::VelPtp, "vel");
                 self.line(format!("move_j_rel([{}]{vel})", d.join(", ")));
@@ -256,6 +242,18 @@ impl<'a> Tx<'a> {
         }
     }
 
+    /// MoveJ is not blended: a blended KRL motion stops at its point (TR002).
+    fn move_j_stops(&mut self, m: &Move, span: Span) {
+        if !matches!(m.blend, Blend::Exact) {
+            self.out.rep.approximate(
+                FileId::Src,
+                span,
+                "MoveJ is not blended: the robot stops at this point",
+                "nothing to do unless the stop matters",
+            );
+        }
+    }
+
     /// `PTP_REL {A6 90}`: the offset of each Rizon joint (degrees) through the joint map, as
     /// Kawasaki's `DRIVE`; the joints move together, from where they are.
     fn joint_offsets(&mut self, d: &Delta) -> R<Vec<String>> {
@@ -267,30 +265,12 @@ impl<'a> Tx<'a> {
             );
         };
         let mut offsets = vec!["0".to_owned(); map.0.len()];
-        for (c, e) in &d.fields {
-            let crate::transpile::ir::Component::Axis(i) = c else {
-                return fail(
-                    d.span,
-                    "a relative axis move with external axes has no Flexiv equivalent",
-                    "move the external axis on its own",
-                );
-            };
-            let Some((joint, source)) = map.joint_of(*i as u8 + 1) else {
-                return fail(
-                    e.span,
-                    format!(
-                        "the joint map {map} gives axis A{} no single Rizon joint",
-                        i + 1
-                    ),
-                    "give a joint map in which the axis drives one joint",
-                );
-            };
+        for (joint, negate, e) in crate::transpile::joints::relative_joints(map, d, "Rizon")? {
             let v = self.expr(e)?;
-            offsets[joint] = match source {
-                crate::transpile::joints::JointSource::Axis { negate: true, .. } => {
-                    crate::transpile::render::negate_number(&v)
-                }
-                _ => v,
+            offsets[joint] = if negate {
+                crate::transpile::render::negate_number(&v)
+            } else {
+                v
             };
         }
         Ok(offsets)

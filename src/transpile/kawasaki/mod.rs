@@ -58,51 +58,22 @@ static STYLE: Style = Style {
     trailing_on_first: false,
 };
 
-static CAPS: render::Caps = render::Caps {
-    goto: true,
-    records: false,
-    interrupts: true,
-};
-
 /// Kawasaki AS in the table of targets.
-pub struct Backend;
-
-impl render::Backend for Backend {
-    fn target(&self) -> super::Target {
-        super::Target::Kawasaki
-    }
-
-    fn name(&self) -> &'static str {
-        "kawasaki"
-    }
-
-    fn caps(&self) -> &'static render::Caps {
-        &CAPS
-    }
-
-    fn name_rules(&self) -> &'static NameRules {
-        &NAME_RULES
-    }
-
-    fn help(&self, why: &ir::Why) -> String {
-        help::help(why)
-    }
-
-    fn check(&self, text: &str) -> Vec<String> {
-        check::check(text)
-    }
-
-    fn renderer<'a>(
-        &self,
-        src: &'a Source,
-        program: &'a ir::Program,
-        vision: Option<&'a VisionServer>,
-        options: &'a Options,
-        report: Report,
-    ) -> Box<dyn crate::transpile::Renderer + 'a> {
+pub static BACKEND: render::Backend = render::Backend {
+    target: super::Target::Kawasaki,
+    name: "kawasaki",
+    caps: render::Caps {
+        goto: true,
+        records: false,
+        interrupts: true,
+    },
+    name_rules: &NAME_RULES,
+    help: help::help,
+    check: check::check,
+    renderer: |src, program, vision, options, report| {
         Box::new(Tx::new(src, program, vision, options, report))
-    }
-}
+    },
+};
 
 /// One translated `.PROGRAM`.
 struct ProgramOut {

@@ -300,30 +300,12 @@ impl<'a> Tx<'a> {
             );
         };
         let mut moves = Vec::new();
-        for (c, e) in &d.fields {
-            let Component::Axis(i) = c else {
-                return fail(
-                    d.span,
-                    "a relative axis move with external axes has no AS equivalent",
-                    "move the external axis on its own",
-                );
-            };
-            let Some((joint, source)) = map.joint_of(*i as u8 + 1) else {
-                return fail(
-                    e.span,
-                    format!(
-                        "the joint map {map} gives axis A{} no single Kawasaki joint",
-                        i + 1
-                    ),
-                    "give a joint map in which the axis drives one joint",
-                );
-            };
+        for (joint, negate, e) in crate::transpile::joints::relative_joints(map, d, "Kawasaki")? {
             let v = self.expr(e)?;
-            let v = match source {
-                crate::transpile::joints::JointSource::Axis { negate: true, .. } => {
-                    crate::transpile::render::negate_number(&v)
-                }
-                _ => v,
+            let v = if negate {
+                crate::transpile::render::negate_number(&v)
+            } else {
+                v
             };
             moves.push((joint + 1, v));
         }

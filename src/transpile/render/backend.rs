@@ -48,33 +48,71 @@ pub fn caps_table() -> String {
     t
 }
 
-/// One target.
-pub trait Backend: Sync {
-    fn target(&self) -> Target;
+/// A target's renderer of `program` over `src`; `report` holds the lowering's findings.
+pub type MakeRenderer = for<'a> fn(
+    src: &'a Source,
+    program: &'a ir::Program,
+    vision: Option<&'a VisionServer>,
+    options: &'a Options,
+    report: Report,
+) -> Box<dyn Renderer + 'a>;
+
+/// One target: what it declares, as data.
+pub struct Backend {
+    pub target: Target,
     /// Its `--to` name.
-    fn name(&self) -> &'static str;
-    fn caps(&self) -> &'static Caps;
-    fn name_rules(&self) -> &'static NameRules;
+    pub name: &'static str,
+    pub caps: Caps,
+    pub name_rules: &'static NameRules,
     /// What to do instead, in this target, for a construct no target can express.
-    fn help(&self, why: &Why) -> String;
+    pub help: fn(&Why) -> String,
     /// Problems of the target text that would keep it from loading (a renderer defect).
-    fn check(&self, text: &str) -> Vec<String>;
-    /// A renderer of `program`; `report` holds the lowering's findings.
-    fn renderer<'a>(
+    pub check: fn(&str) -> Vec<String>,
+    pub renderer: MakeRenderer,
+}
+
+impl Backend {
+    pub fn target(&self) -> Target {
+        self.target
+    }
+
+    pub fn name(&self) -> &'static str {
+        self.name
+    }
+
+    pub fn caps(&self) -> &Caps {
+        &self.caps
+    }
+
+    pub fn name_rules(&self) -> &'static NameRules {
+        self.name_rules
+    }
+
+    pub fn help(&self, why: &Why) -> String {
+        (self.help)(why)
+    }
+
+    pub fn check(&self, text: &str) -> Vec<String> {
+        (self.check)(text)
+    }
+
+    pub fn renderer<'a>(
         &self,
         src: &'a Source,
         program: &'a ir::Program,
         vision: Option<&'a VisionServer>,
         options: &'a Options,
         report: Report,
-    ) -> Box<dyn Renderer + 'a>;
+    ) -> Box<dyn Renderer + 'a> {
+        (self.renderer)(src, program, vision, options, report)
+    }
 }
 
 /// Every target, in `--to` order.
-pub static BACKENDS: &[&dyn Backend] = &[&kawasaki::Backend, &flexiv::Backend];
+pub static BACKENDS: &[&Backend] = &[&kawasaki::BACKEND, &flexiv::BACKEND];
 
 /// The backend of `target`.
-pub fn backend(target: Target) -> &'static dyn Backend {
+pub fn backend(target: Target) -> &'static Backend {
     BACKENDS
         .iter()
         .copied()
