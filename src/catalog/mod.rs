@@ -100,6 +100,8 @@ pub struct Limits {
     pub do_list_len: u32,
     pub krl_identifier_max: usize,
     pub eki_raw_size_max: u32,
+    pub eki_port_max: u32,
+    pub eki_connect_ms_max: u32,
     pub flag_min: i64,
     pub flag_max: i64,
     pub out_max: u32,
