@@ -6,6 +6,7 @@
 
 mod interface;
 mod kawasaki;
+mod shape;
 
 use std::sync::OnceLock;
 
@@ -16,6 +17,7 @@ pub use interface::{Codec, Hex, HexKind, Interface, float32_value};
 pub use kawasaki::{
     AsKind, AsParam, GlobalOrigin, KawasakiCommand, KawasakiGlobal, KawasakiLimits, VisionMoveField,
 };
+pub use shape::{ProgramShape, RoutineShape};
 
 const CATALOG_TOML: &str = include_str!("catalog.toml");
 
@@ -291,6 +293,8 @@ impl Range<'_> {
 #[serde(deny_unknown_fields)]
 pub struct Subprogram {
     pub name: String,
+    /// What it does, which picks the template that renders it.
+    pub shape: RoutineShape,
     pub summary: String,
     /// Protocol commands it sends (empty: local copy or configuration only).
     pub commands: Vec<u32>,
