@@ -297,7 +297,7 @@ fn each_lowered(
 /// renderer defect, and it fails the command (TR001 at the program's first routine) instead of
 /// reaching the robot.
 fn report_structure(text: &str, at: crate::diag::Span, report: &mut front::report::Report) {
-    for problem in kawasaki::check::check(text) {
+    for problem in crate::aslang::check(text, crate::aslang::Calls::Open) {
         report.untranslatable(
             front::report::FileId::Src,
             at,

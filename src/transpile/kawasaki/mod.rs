@@ -9,7 +9,6 @@
 //! (`motion.rs`), I/O, waits and interrupts (`io.rs`), `MM_*` calls (`mm.rs`) and data
 //! (`data.rs`) each live in their own file.
 
-pub mod check;
 mod data;
 mod expr;
 mod format;
