@@ -84,3 +84,34 @@ pub fn read(name: &str, path: &str, xml: &str) -> Result<EkiChannel, ReadError> 
         config: eki::read(xml)?,
     })
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn a_scan_keeps_channels_skips_other_xml_and_names_rejected_eki_files() {
+        let dir = tempfile::tempdir().expect("tempdir");
+        let fixtures = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/fixtures/eki");
+        for (from, to) in [
+            ("ok_byte.xml", "Cell_A.xml"),
+            ("port_out_of_range.xml", "Cell_B.xml"),
+            ("root_not_ethernetkrl.xml", "Other.xml"),
+        ] {
+            std::fs::copy(fixtures.join(from), dir.path().join(to)).expect("copy");
+        }
+        let scan = scan(&[dir.path().to_path_buf()]);
+        let names: Vec<&str> = scan.channels.iter().map(|c| c.name.as_str()).collect();
+        assert_eq!(names, ["Cell_A"]);
+        assert_eq!(scan.channels[0].alive_flag(), Some(873));
+        assert_eq!(scan.channels[0].receive_flag(), Some(871));
+        assert_eq!(scan.channels[0].ip(), Some("192.168.10.20"));
+        assert_eq!(scan.rejected.len(), 1);
+        assert!(
+            scan.rejected[0]
+                .ends_with("Cell_B.xml: EXTERNAL PORT `65535` is not a number 1 … 65534"),
+            "{:?}",
+            scan.rejected
+        );
+    }
+}
