@@ -9,7 +9,6 @@
 //! (`motion.rs`), I/O, waits and interrupts (`io.rs`), `MM_*` calls (`mm.rs`) and data
 //! (`data.rs`) each live in their own file.
 
-pub mod check;
 mod data;
 mod expr;
 mod format;
@@ -69,7 +68,13 @@ pub static BACKEND: render::Backend = render::Backend {
     },
     name_rules: &NAME_RULES,
     help: help::help,
-    check: check::check,
+    // Calls of programs defined elsewhere (the package, other modules) are not resolved.
+    check: |text| {
+        crate::aslang::check(text, crate::aslang::Calls::Open)
+            .iter()
+            .map(ToString::to_string)
+            .collect()
+    },
     renderer: |src, program, vision, options, report| {
         Box::new(Tx::new(src, program, vision, options, report))
     },
