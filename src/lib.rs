@@ -13,6 +13,7 @@ pub mod eki;
 pub mod files;
 pub mod fmt;
 pub mod generate;
+pub mod geom;
 pub mod interp;
 pub mod lint;
 pub mod lsp;

@@ -8,6 +8,7 @@
 
 pub mod as_check;
 pub mod as_view;
+mod channel;
 mod hex_view;
 mod install;
 mod kawasaki;
@@ -126,7 +127,7 @@ pub fn generate(spec: &Spec) -> Result<Vec<GeneratedFile>, GenError> {
     }
     files.push(GeneratedFile::new(
         PathBuf::from(XML_DIR).join(spec.xml_file_name()),
-        writer::normalise(&crate::eki::channel_xml(spec), eol),
+        writer::normalise(&channel::channel(spec, &pkg).to_xml(), eol),
         eol,
     ));
     files.push(GeneratedFile::new(

@@ -503,7 +503,7 @@ fn view(
         .iter()
         .map(|d| {
             let (x, y) = proj.xy(&d.pose);
-            let r = frame::rotation(d.pose[3], d.pose[4], d.pose[5]);
+            let r = crate::geom::abc_to_matrix(d.pose[3], d.pose[4], d.pose[5]);
             let glyph = ["x", "y", "z"]
                 .iter()
                 .enumerate()
