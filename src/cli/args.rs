@@ -4,10 +4,16 @@ use std::path::PathBuf;
 
 use clap::{Args, Parser, Subcommand, ValueEnum};
 
+/// The version, with the git commit when built from a checkout (see `build.rs`).
+const VERSION: &str = match option_env!("KRLKIT_VERSION") {
+    Some(v) => v,
+    None => env!("CARGO_PKG_VERSION"),
+};
+
 #[derive(Debug, Parser)]
 #[command(
     name = "krlkit",
-    version,
+    version = VERSION,
     about = "Generate, lint, transpile and run KUKA KRL for Mech-Mind 3D vision"
 )]
 pub struct Cli {
