@@ -9,6 +9,7 @@ extern crate alloc;
 pub mod catalog;
 pub mod cli;
 pub mod diag;
+pub mod diff;
 pub mod eki;
 pub mod files;
 pub mod fmt;
