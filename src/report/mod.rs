@@ -15,6 +15,7 @@
 mod coverage;
 mod page;
 mod path;
+pub mod plot;
 mod scale;
 mod summary;
 mod timeline;
