@@ -202,3 +202,25 @@ proptest! {
         prop_assert!((delta.angle_deg - turn).abs() < 1e-3, "{} vs {turn}", delta.angle_deg);
     }
 }
+
+#[test]
+fn the_page_is_self_contained_and_draws_every_moved_point() {
+    let case = fixtures().join("cell");
+    let (a, _) = diff::load(&case.join("old"), false);
+    let (b, _) = diff::load(&case.join("new"), false);
+    let d = diff::compare(&a, &b, &Options::default());
+    let html = diff::page::render(&d, &a, &b).expect("page");
+    for banned in ["http:", "https:", "src=", "<link"] {
+        assert!(!html.contains(banned), "{banned} in the page");
+    }
+    // Six drawings (three views, old and new); each marks XP1, XP3, XWAIT and BASE_DATA[2].
+    assert_eq!(html.matches("<svg class=\"path-view\"").count(), 6);
+    for name in ["XP1", "XP3", "XWAIT", "BASE_DATA[2]"] {
+        let marks = html
+            .matches(&format!("class=\"point-name\">{name}<"))
+            .count();
+        assert_eq!(marks, 6, "{name}");
+    }
+    assert!(!html.contains("class=\"point-name\">TOOL_DATA[1]<"));
+    assert!(html.contains("WAIT SEC 1.0"));
+}

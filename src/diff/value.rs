@@ -164,7 +164,7 @@ pub fn delta(ty: &str, old: &str, new: &str) -> Option<Delta> {
     if ty == "LOAD" || (ty.is_empty() && has("CM") && has("M")) {
         // A load moves by its centre of mass (the mass shows in old → new).
         let (co, cn) = (text(&fo, "CM")?, text(&fn_, "CM")?);
-        return delta("FRAME", &co, &cn);
+        return delta("FRAME", &co, &cn).filter(|d| d.magnitude() > 0.0);
     }
     let cartesian = CARTESIAN.contains(&ty) || (ty.is_empty() && has("X") && has("A"));
     let axes = AXES.contains(&ty) || (ty.is_empty() && has("A1"));
@@ -214,6 +214,13 @@ pub fn delta(ty: &str, old: &str, new: &str) -> Option<Delta> {
         return Some(Delta::Axes(AxesDelta { axes }));
     }
     None
+}
+
+/// `X, Y, Z, A, B, C` of a position or frame value (missing fields 0); `None` if it has no X.
+pub fn xyzabc(value: &str) -> Option<[f64; 6]> {
+    let f = fields(value)?;
+    get(&f, "X")?;
+    Some(["X", "Y", "Z", "A", "B", "C"].map(|k| get(&f, k).unwrap_or(0.0)))
 }
 
 /// The angle between two KUKA A, B, C orientations (degrees, from rotation matrices: wraps

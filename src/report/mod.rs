@@ -16,7 +16,7 @@ mod coverage;
 mod page;
 mod path;
 pub mod plot;
-mod scale;
+pub mod scale;
 mod summary;
 mod timeline;
 pub mod trace;
