@@ -178,12 +178,12 @@ fn views(points: &[(String, [f64; 6], [f64; 6])]) -> Vec<[View; 2]> {
         .iter()
         .map(|&(id, name, h, hn, v, vn)| {
             let proj = fit.projection(h, v);
-            let side = |side: &'static str, pick: fn(&([f64; 6], [f64; 6])) -> [f64; 6]| {
+            let side = |side: &'static str, new: bool| {
                 let axes = plot::axes(&proj, fit.lo);
                 let marks = points
                     .iter()
                     .map(|(name, o, n)| {
-                        let p = pick(&(*o, *n));
+                        let p = if new { *n } else { *o };
                         let (x, y) = proj.xy(&p);
                         PointMark {
                             name: name.clone(),
@@ -214,7 +214,7 @@ fn views(points: &[(String, [f64; 6], [f64; 6])]) -> Vec<[View; 2]> {
                     ),
                 }
             };
-            [side("old", |p| p.0), side("new", |p| p.1)]
+            [side("old", false), side("new", true)]
         })
         .collect()
 }
