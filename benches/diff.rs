@@ -1,6 +1,6 @@
 //! `krlkit diff` of two ~8 MB backups (~1,000 files, generated here, nothing committed): the
-//! NEW side has every header line changed, 5 % of the points moved and one routine line
-//! changed per 20 modules. Measures reading both sides from disk and comparing them.
+//! NEW side has every header line changed, two points moved in every tenth module's `.dat` and one
+//! routine line changed in every twentieth module. Measures reading both sides from disk and comparing them.
 //! Run briefly: `cargo bench --bench diff -- --warm-up-time 1 --measurement-time 5`.
 //! `DIFF_BENCH_TREES=DIR cargo bench --bench diff` writes the two trees to DIR/old and
 //! DIR/new and exits (to measure the binary's peak memory with `/usr/bin/time -v`).
@@ -26,7 +26,7 @@ fn write(root: &Path, files: &[(String, String)]) -> usize {
 }
 
 fn trees(root: &Path) -> (usize, usize) {
-    let old: Vec<(String, String)> = tree::tree_with(8 << 20, 40)
+    let old: Vec<(String, String)> = tree::tree_with(8 << 20, 32)
         .into_iter()
         .map(|i| (i.path, i.text))
         .collect();
@@ -35,10 +35,11 @@ fn trees(root: &Path) -> (usize, usize) {
         .enumerate()
         .map(|(n, (path, text))| {
             let mut t = text.replace("&ACCESS RVP\r\n", "&ACCESS RVP1\r\n");
-            if n % 20 == 1 && path.ends_with(".dat") {
+            // Entry 0 is $config.dat, then each module's .src and .dat.
+            if n % 20 == 2 && path.ends_with(".dat") {
                 t = t.replacen("X 1064.2,Y -18.7", "X 1066.2,Y -18.7", 2);
             }
-            if n % 40 == 0 && path.ends_with(".src") {
+            if n % 40 == 1 && path.ends_with(".src") {
                 t = t.replacen("WAIT SEC 0.2", "WAIT SEC 0.3", 1);
             }
             (path.clone(), t)
