@@ -6,6 +6,7 @@
 // pest is built without `std` (see Cargo.toml); its generated parser names `alloc` from the crate root.
 extern crate alloc;
 
+pub mod aslang;
 pub mod catalog;
 pub mod cli;
 pub mod diag;

@@ -6,7 +6,6 @@
 //! every KRL and AS file is ASCII with the spec's line endings; nothing is written until
 //! everything rendered.
 
-pub mod as_check;
 pub mod as_view;
 mod channel;
 mod hex_view;

@@ -14,7 +14,7 @@ use std::io::{ErrorKind, Read, Write};
 use std::net::{SocketAddr, TcpStream, ToSocketAddrs};
 use std::time::Duration;
 
-pub use crate::eki::read::{ChannelConfig, RawElement, RawKind, parse_config};
+use crate::eki::{Channel as ChannelConfig, Element as RawElement, External, Kind as RawKind};
 use crate::syntax::ast::Expr;
 
 use super::globals::Globals;
@@ -69,7 +69,7 @@ impl Eki {
                 std::iter::once(alive).chain(elements)
             })
             .flatten()
-            .any(|m| n.is_none_or(|n| n == m))
+            .any(|m| n.is_none_or(|n| n == m as usize))
     }
 
     pub(crate) fn close_all(&mut self) {
@@ -132,10 +132,12 @@ impl Channel {
             self.rx.clear();
             return;
         };
+        let size = el.size as usize;
         loop {
             let cut = match &el.kind {
-                RawKind::Byte => (self.rx.len() >= el.size).then_some((el.size, el.size)),
+                RawKind::Byte => (self.rx.len() >= size).then_some((size, size)),
                 RawKind::Stream { eos } => eos
+                    .0
                     .iter()
                     .filter(|e| !e.is_empty())
                     .filter_map(|e| {
@@ -150,7 +152,7 @@ impl Channel {
                 break;
             };
             let mut record: Vec<u8> = self.rx.drain(..consumed).collect();
-            record.truncate(data_end.min(el.size));
+            record.truncate(data_end.min(size));
             self.records
                 .entry(el.tag.to_ascii_uppercase())
                 .or_default()
@@ -161,14 +163,19 @@ impl Channel {
     }
 }
 
+/// A flag or output number of the channel file as an index.
+fn wide(n: Option<u32>) -> Option<usize> {
+    n.map(|n| n as usize)
+}
+
 fn set_flag(
     globals: &mut Globals,
     changes: &mut Vec<(&'static str, usize, bool)>,
     var: &'static str,
-    n: Option<usize>,
+    n: Option<u32>,
     v: bool,
 ) {
-    if let Some(n) = n
+    if let Some(n) = wide(n)
         && let Some(Value::Array { items, .. }) = globals.get_mut(var)
         && let Some(slot) = n.checked_sub(1).and_then(|i| items.get_mut(i))
     {
@@ -220,7 +227,7 @@ fn load_config(m: &Machine, name: &str) -> R<ChannelConfig> {
             })?
         }
     };
-    let cfg = parse_config(&text).map_err(|e| m.err(format!("{name}.xml: {e}")))?;
+    let cfg = crate::eki::read(&text).map_err(|e| m.err(format!("{name}.xml: {e}")))?;
     if cfg.xml_mode {
         return Err(m.err(format!(
             "{name}.xml: XML-mode EKI channels are not supported by krlkit run (RAW only)"
@@ -284,18 +291,18 @@ pub(crate) fn call(m: &mut Machine, up: &str, args: &[Option<Expr>]) -> R<Value>
             if c.stream.is_some() {
                 return Ok(status(0, 0, 0, true, c.counter));
             }
-            if !c.cfg.external_type.eq_ignore_ascii_case("Server") {
+            if c.cfg.external != External::Server {
                 return Err(m.err("EKI_Open: only channels whose EXTERNAL TYPE is Server (robot = client) are supported"));
             }
-            let addr_text = vision.unwrap_or_else(|| format!("{}:{}", c.cfg.ip, c.cfg.port));
-            let timeout = Duration::from_millis(c.cfg.connect_timeout_ms.clamp(1, 2000));
+            let addr_text = vision.unwrap_or_else(|| format!("{}:{}", c.cfg.ip, c.cfg.port.unwrap_or(0)));
+            let timeout = Duration::from_millis(u64::from(c.cfg.connect_timeout_ms.clamp(1, 2000)));
             let stream = resolve(&addr_text).and_then(|a| TcpStream::connect_timeout(&a, timeout).ok());
             let c = m.eki.channels.get_mut(&key).ok_or_else(m_err_never)?;
             match stream {
                 Some(s) => {
                     let _ = s.set_nodelay(true);
                     c.stream = Some(s);
-                    let (af, ao) = (c.cfg.alive_flag, c.cfg.alive_out);
+                    let (af, ao) = (wide(c.cfg.alive_flag), wide(c.cfg.alive_out));
                     m.eki.stats.connections += 1;
                     m.set_io("$FLAG", af, true);
                     m.set_io("$OUT", ao, true);
@@ -322,7 +329,7 @@ pub(crate) fn call(m: &mut Machine, up: &str, args: &[Option<Expr>]) -> R<Value>
                         kind: RawKind::Byte,
                         size,
                         ..
-                    }) => Some(*size),
+                    }) => Some(*size as usize),
                     _ => None,
                 }
             });
@@ -352,7 +359,7 @@ pub(crate) fn call(m: &mut Machine, up: &str, args: &[Option<Expr>]) -> R<Value>
                 kind: RawKind::Stream { eos },
                 ..
             }) = el
-                && let Some(first) = eos.first()
+                && let Some(first) = eos.0.first()
             {
                 bytes.extend_from_slice(first);
             }
@@ -369,7 +376,7 @@ pub(crate) fn call(m: &mut Machine, up: &str, args: &[Option<Expr>]) -> R<Value>
                 }
                 Err(_) => {
                     c.stream = None;
-                    let af = c.cfg.alive_flag;
+                    let af = wide(c.cfg.alive_flag);
                     m.set_io("$FLAG", af, false);
                     Ok(status(0, 0, MSG_DESTROYED, false, counter))
                 }
@@ -433,7 +440,7 @@ pub(crate) fn call(m: &mut Machine, up: &str, args: &[Option<Expr>]) -> R<Value>
                 return Ok(not_init(m));
             };
             c.stream = None;
-            let (af, ao) = (c.cfg.alive_flag, c.cfg.alive_out);
+            let (af, ao) = (wide(c.cfg.alive_flag), wide(c.cfg.alive_out));
             if up == "EKI_CLEAR" {
                 m.eki.channels.remove(&key);
             }

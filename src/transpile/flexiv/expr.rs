@@ -8,6 +8,7 @@ use crate::transpile::ir::{
     Aggregate, Bank, BinaryOp, Builtin, Component, Expr, ExprKind, IoPlace, MotionParam, Place,
     SignalRange, Ty, UnaryOp,
 };
+use crate::transpile::render::Emit;
 
 /// Binding strength of a Python expression (higher binds tighter), to place parentheses.
 pub(super) const ATOM: u8 = 15;
@@ -314,7 +315,7 @@ impl<'a> Tx<'a> {
     }
 
     pub(super) fn output_readback(&mut self, span: Span) {
-        self.rep.approximate(
+        self.out.rep.approximate(
             FileId::Src,
             span,
             "reading an output gives the value this script last wrote to it (RDK 1.x cannot read outputs back)",
@@ -479,7 +480,7 @@ impl<'a> Tx<'a> {
     /// S and T are dropped: a Rizon resolves its posture (7 joints) itself.
     pub(super) fn status_turn(&mut self, a: &Aggregate, span: Span, file: FileId) {
         if let Some(st) = a.status_turn_text() {
-            self.rep.approximate(
+            self.out.rep.approximate(
                 file,
                 span,
                 format!(

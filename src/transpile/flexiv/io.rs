@@ -5,6 +5,7 @@ use super::{R, Tx, fail};
 use crate::diag::Span;
 use crate::transpile::front::report::FileId;
 use crate::transpile::ir::{Bank, Expr, ExprKind, IoPlace, IoTiming, TimerOp, UnaryOp, Wait};
+use crate::transpile::render::Emit;
 
 impl<'a> Tx<'a> {
     /// A value written to an output: `True`/`False` literals as they are, others as they are
@@ -26,13 +27,13 @@ impl<'a> Tx<'a> {
         let fx = self.fx;
         match when {
             IoTiming::Now | IoTiming::Trigger(_) => {}
-            IoTiming::Ahead => self.rep.approximate(
+            IoTiming::Ahead => self.out.rep.approximate(
                 FileId::Src,
                 span,
                 "after CONTINUE the output switches after the previous move has ended (the script waits for every move), not while it runs",
                 "check when the output must switch",
             ),
-            IoTiming::PathEnd => self.rep.approximate(
+            IoTiming::PathEnd => self.out.rep.approximate(
                 FileId::Src,
                 span,
                 "$OUT_C (set when the robot reaches the point) is set after the previous move has ended",
@@ -102,7 +103,7 @@ impl<'a> Tx<'a> {
             }
         };
         let t = self.expr(seconds)?;
-        self.rep.approximate(
+        self.out.rep.approximate(
             FileId::Src,
             span,
             "PULSE becomes set, sleep, reset: the script waits for the pulse to end (KRL does not)",
@@ -171,9 +172,9 @@ impl<'a> Tx<'a> {
         let line = self.src.src.line(span.start);
         let at = format!(
             "{}:{line}",
-            super::file_name(&self.src.src.path).replace('"', "")
+            crate::transpile::render::file_name(&self.src.src.path).replace('"', "")
         );
-        self.rep.approximate(
+        self.out.rep.approximate(
             FileId::Src,
             span,
             "HALT waits for Enter at the console (there is no teach pendant); without a console the script stops the robot and ends",

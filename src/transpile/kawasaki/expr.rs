@@ -9,6 +9,7 @@ use crate::transpile::front::report::FileId;
 use crate::transpile::ir::{
     Aggregate, Bank, BinaryOp, Builtin, Component, Expr, ExprKind, IoPlace, Place, Ty, UnaryOp,
 };
+use crate::transpile::render::Emit;
 
 /// Binding strength of an AS expression, to decide where parentheses go.
 pub(super) const ATOM: u8 = 10;
@@ -530,7 +531,7 @@ impl<'a> Tx<'a> {
             [] => {}
             [(1, v)] => {
                 out.push(num(*v));
-                self.rep.approximate(
+                self.out.rep.approximate(
                     file,
                     span,
                     "external axis E1 becomes the 7th value (JT7)",
@@ -550,7 +551,7 @@ impl<'a> Tx<'a> {
 
     fn status_turn(&mut self, a: &Aggregate, span: Span, file: FileId) {
         if let Some(st) = a.status_turn_text() {
-            self.rep.approximate(
+            self.out.rep.approximate(
                 file,
                 span,
                 format!(
@@ -578,21 +579,6 @@ fn arg_missing(span: Span) -> super::Fail {
         message: "a built-in function without its argument".into(),
         help: "pass the argument".into(),
     }
-}
-
-/// A rendered number or expression negated (`90` → `-90`, `-.a` → `.a`, `.a+1` → `-(.a+1)`).
-pub(super) fn negate_number(v: &str) -> String {
-    if let Some(rest) = v.strip_prefix('-')
-        && !rest.contains(['+', '-', '*', '/', ' '])
-    {
-        return rest.to_owned();
-    }
-    if v.chars()
-        .all(|c| c.is_ascii_alphanumeric() || c == '.' || c == '_')
-    {
-        return format!("-{v}");
-    }
-    format!("-({v})")
 }
 
 /// The signed signal number negated.

@@ -8,6 +8,7 @@ use crate::transpile::front::report::FileId;
 use crate::transpile::ir::{
     BinaryOp, Callee, Expr, ExprKind, InterruptAction, IoPlace, IoTiming, TimerOp, Wait,
 };
+use crate::transpile::render::Emit;
 
 impl<'a> Tx<'a> {
     /// `SIGNAL n` / `SIGNAL -n`, an IF choosing between them, or `BITS` for a group.
@@ -37,13 +38,13 @@ impl<'a> Tx<'a> {
         let sig = self.signal(io)?;
         match when {
             IoTiming::Now | IoTiming::Trigger(_) => {}
-            IoTiming::Ahead => self.rep.approximate(
+            IoTiming::Ahead => self.out.rep.approximate(
                 FileId::Src,
                 span,
                 "after CONTINUE the output switches as AS's look-ahead reaches this line, which may be earlier or later than KRL's advance run",
                 "check when the output must switch; add BREAK before it if the robot must have arrived",
             ),
-            IoTiming::PathEnd => self.rep.approximate(
+            IoTiming::PathEnd => self.out.rep.approximate(
                 FileId::Src,
                 span,
                 "$OUT_C (set when the robot reaches the point) becomes BREAK + SIGNAL",
@@ -107,7 +108,7 @@ impl<'a> Tx<'a> {
             }
             TimerOp::Stop(v) => match &v.kind {
                 ExprKind::Bool(false) => {
-                    self.rep.approximate(
+                    self.out.rep.approximate(
                         FileId::Src,
                         span,
                         "AS timers always run; starting a timer ($TIMER_STOP = FALSE) has no statement",
@@ -208,7 +209,7 @@ impl<'a> Tx<'a> {
                 self.line(format!(
                     "; INTERRUPT {n}: ON {sig} CALL {prog} when switched on"
                 ));
-                self.rep.approximate(
+                self.out.rep.approximate(
                     FileId::Src,
                     span,
                     format!("interrupt {n} becomes ON {sig} CALL {prog}: no priorities, and BRAKE/RESUME behave differently"),
@@ -273,7 +274,7 @@ impl<'a> Tx<'a> {
             });
         }
         if matches!(action, InterruptAction::Enable | InterruptAction::Disable) {
-            self.rep.approximate(
+            self.out.rep.approximate(
                 FileId::Src,
                 span,
                 "INTERRUPT ENABLE/DISABLE (which keep or buffer the event) become ON/IGNORE",
@@ -289,7 +290,7 @@ impl<'a> Tx<'a> {
     /// KUKA's INI fold declares an interrupt on `$STOPMESS` that calls `IR_STOPM`; the Kawasaki
     /// controller handles its own stop messages, so nothing is needed.
     fn stop_message_interrupt(&mut self, span: Span) {
-        self.rep.approximate(
+        self.out.rep.approximate(
             FileId::Src,
             span,
             "KUKA's standard stop-message interrupt ($STOPMESS → IR_STOPM) has no AS counterpart; the Kawasaki controller handles stop messages itself",

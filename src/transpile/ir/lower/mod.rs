@@ -682,8 +682,11 @@ impl<'p> Lower<'p> {
         self.moves.insert(key.clone(), false);
         let src = self.src;
         let result = match src.src.outline.routine(name) {
-            // Another module's routine, or a package routine: it may.
-            None => !key.starts_with("MM_") || key == "MM_CALIB",
+            // Another module's routine may; a package routine only if its catalog shape does.
+            None => match crate::catalog::catalog().subprogram(&key) {
+                Some(sub) => sub.shape.moves(),
+                None => !key.starts_with("MM_"),
+            },
             Some(r) => {
                 r.facts.moves
                     || r.facts.callees.iter().any(|c| {

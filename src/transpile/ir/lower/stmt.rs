@@ -498,7 +498,7 @@ impl<'p> Lower<'p> {
                     self.routine_moves(&n)
                 }
                 crate::transpile::ir::Callee::External { name, .. } => self.routine_moves(name),
-                crate::transpile::ir::Callee::Mm(s) => s.name == "MM_CALIB",
+                crate::transpile::ir::Callee::Mm(s) => s.shape.moves(),
             })
     }
 
