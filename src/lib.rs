@@ -10,6 +10,7 @@ pub mod aslang;
 pub mod catalog;
 pub mod cli;
 pub mod diag;
+pub mod diff;
 pub mod eki;
 pub mod files;
 pub mod fmt;
