@@ -116,6 +116,8 @@ pub fn run(o: Options) -> Result<()> {
         }
         times.push(format!("{}: {:.0} s", t.triple, t0.elapsed().as_secs_f64()));
     }
+    // The stages (with two npm installs) are some 300 MB: nothing in them is needed again.
+    fs::remove_dir_all(l.target_dir.join("xtask-dist"))?;
     let sums = archive::sha256sums(&l.dist)?;
     fs::write(l.dist.join("SHA256SUMS"), &sums)?;
     eprintln!("\ndist/ ({}):", times.join(", "));
