@@ -377,6 +377,7 @@ pub struct DiffArgs {
     pub old: PathBuf,
     /// The newer backup, same kinds (a folder against a `.zip` works).
     pub new: PathBuf,
+    /// Output: human text grouped by module, JSON (the README's contract), or one HTML page.
     #[arg(long, value_enum, default_value_t = DiffFormat::Human)]
     pub format: DiffFormat,
     /// Where to write the output (required for `--format html`); default stdout.

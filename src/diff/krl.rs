@@ -311,7 +311,7 @@ mod tests {
         assert_eq!(split_comment("a=\"x;y\" ; c"), ("a=\"x;y\" ", Some(" c")));
         assert_eq!(
             comment_text("FOLD PTP P1 Vel=100 %;%{PE}%R 8.3"),
-            "FOLD PTP P1 VEL=100 %"
+            "FOLD PTP P1 VEL=100%"
         );
     }
 
