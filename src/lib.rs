@@ -6,13 +6,16 @@
 // pest is built without `std` (see Cargo.toml); its generated parser names `alloc` from the crate root.
 extern crate alloc;
 
+pub mod aslang;
 pub mod catalog;
 pub mod cli;
 pub mod diag;
+pub mod diff;
 pub mod eki;
 pub mod files;
 pub mod fmt;
 pub mod generate;
+pub mod geom;
 pub mod interp;
 pub mod lint;
 pub mod lsp;

@@ -172,9 +172,9 @@ fn motions_and_transformations() {
     assert_eq!(targets.len(), want.len());
     for ((i, got), (wi, w)) in targets.iter().zip(want) {
         assert_eq!(*i, wi);
-        let same_rotation = krlkit::transpile::orientation::max_diff(
-            &krlkit::transpile::orientation::oat_to_matrix(got[3], got[4], got[5]),
-            &krlkit::transpile::orientation::oat_to_matrix(w[3], w[4], w[5]),
+        let same_rotation = krlkit::geom::max_diff(
+            &krlkit::geom::oat_to_matrix(got[3], got[4], got[5]),
+            &krlkit::geom::oat_to_matrix(w[3], w[4], w[5]),
         ) < 1e-9;
         let joint = matches!(wi, "JMOVE" | "HOME");
         assert!(

@@ -4,8 +4,9 @@
 
 use std::path::Path;
 
+use krlkit::aslang::{self, Calls};
 use krlkit::catalog::{Origin, catalog};
-use krlkit::generate::{self, GeneratedFile, Target, as_check, as_view::AsPackage, view};
+use krlkit::generate::{self, GeneratedFile, Target, as_view::AsPackage, view};
 use krlkit::spec::{LineEnding, Spec};
 
 fn specs() -> Vec<(String, Spec)> {
@@ -73,7 +74,7 @@ fn every_generated_as_file_is_well_formed() {
         let f = &files[0];
         assert!(f.contents.is_ascii(), "{name}: not ASCII");
         let text = as_text(&files);
-        let problems = as_check::check(&text, &[]);
+        let problems = aslang::check(&text, Calls::Closed(&[]));
         assert!(problems.is_empty(), "{name}: {problems:#?}");
         // Line endings as the spec says, and no blank line.
         let eol = spec.line_endings.as_str();

@@ -126,16 +126,12 @@ const CASES: &[Case] = &[
         name: "joint_targets",
         inputs: &[],
         kawasaki: &[],
-        // Lines 10, 11: a partial axis literal and PTP_REL are not translated (TR001), so the
-        // script makes neither motion, and line 13, which moves to where the robot is, goes
-        // to where line 9 left it.
+        // Line 10: a partial axis literal is not translated (TR001), so the script does not
+        // make that motion; PTP_REL (line 11, a MoveJ by the joint map) turns A6 from where
+        // line 9 left the arm, and line 13, which moves to where the robot is, goes there too.
         flexiv: &[
             ex(10, Aspect::Motion, "an incomplete literal"),
-            ex(
-                11,
-                Aspect::Motion,
-                "this relative motion has no counterpart",
-            ),
+            by(11, Aspect::Target, 10, "an incomplete literal"),
             by(13, Aspect::Target, 10, "an incomplete literal"),
         ],
     },

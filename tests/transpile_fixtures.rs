@@ -3,7 +3,7 @@
 //! AS text and of the findings live in `tests/fixtures/transpile/snapshots/`.
 //!
 //! Checked for every fixture: the AS text is structurally sound (sections and blocks balanced,
-//! labels, names ≤ 15), it passes the generator's `as_check` with every `CALL` naming a program of
+//! labels, names ≤ 15: `aslang::check`), and checked again with every `CALL` naming a program of
 //! the text or of the generated Kawasaki package (`as/mm_package.as`) with the right number of
 //! arguments, translation is deterministic, and every TR001 finding's construct is still in the
 //! output as a `; [TR001]` comment. The coverage summary `COVERAGE.md` (both targets; the
@@ -11,9 +11,9 @@
 
 use std::path::{Path, PathBuf};
 
+use krlkit::aslang::{Calls, check};
 use krlkit::diag::render::concise;
 use krlkit::diag::{FileReport, LineIndex};
-use krlkit::transpile::kawasaki::check::check;
 use krlkit::transpile::{self, Coverage, Options, Source, Target, Translation};
 
 fn dir() -> PathBuf {
@@ -106,7 +106,7 @@ fn fixtures_translate_to_sound_as() {
     external.push(("gripper_open", 2));
     // The cross-check is not vacuous: a wrong arity or an unknown program is found.
     let wrong = ".PROGRAM x()\n  CALL mm_get_pose(1)\n  CALL mm_nothing\n.END\n";
-    assert_eq!(krlkit::generate::as_check::check(wrong, &external).len(), 2);
+    assert_eq!(check(wrong, Calls::Closed(&external)).len(), 2);
     assert!(programs.len() >= 6, "fixtures present");
     let mut failures = Vec::new();
     for src in &programs {
@@ -136,15 +136,15 @@ fn fixtures_translate_to_sound_as() {
                 insta::assert_snapshot!(format!("{stem}.mapped.as"), mapped.text);
                 insta::assert_snapshot!(format!("{stem}.mapped.findings"), concise_text(&mapped.reports));
             });
-            for p in check(&mapped.text) {
+            for p in check(&mapped.text, Calls::Open) {
                 failures.push(format!("{stem} (mapped): {p}"));
             }
         }
-        for p in check(&t.text) {
+        for p in check(&t.text, Calls::Open) {
             failures.push(format!("{stem}: {p}"));
         }
-        for p in krlkit::generate::as_check::check(&t.text, &external) {
-            failures.push(format!("{stem}: as_check line {}: {}", p.line, p.message));
+        for p in check(&t.text, Calls::Closed(&external)) {
+            failures.push(format!("{stem} (calls resolved): {p}"));
         }
         let again = translate(src);
         if again.text != t.text || concise_text(&again.reports) != concise_text(&t.reports) {

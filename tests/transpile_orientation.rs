@@ -4,7 +4,7 @@
 //! 0), a quarter just beside them. The values the transpiler prints (rounded to 1e-6 degrees)
 //! are checked through `krlkit transpile` itself.
 
-use krlkit::transpile::orientation::{abc_to_matrix, abc_to_oat, max_diff, oat_to_matrix};
+use krlkit::geom::{abc_to_matrix, abc_to_oat, max_diff, oat_to_matrix};
 use krlkit::transpile::{self, Options, Source, Target};
 
 /// A small deterministic generator (64-bit LCG), so the poses are the same on every run.

@@ -3,7 +3,7 @@
 //! (whatever was or was not translatable), both are deterministic and ASCII, and every
 //! untranslated construct leaves a `[TR001]` comment.
 
-use krlkit::transpile::kawasaki::check::check;
+use krlkit::aslang::{Calls, check};
 use krlkit::transpile::{self, Options, Source, Target};
 use proptest::prelude::*;
 
@@ -123,7 +123,7 @@ proptest! {
     fn generated_programs_translate_to_sound_as(items in prop::collection::vec(item(), 0..12)) {
         let text = program(&items);
         let t = translate(&text);
-        let problems = check(&t.text);
+        let problems = check(&t.text, Calls::Open);
         prop_assert!(problems.is_empty(), "{problems:?}\n{text}\n{}", t.text);
         prop_assert!(t.text.is_ascii());
         let again = translate(&text);
@@ -136,7 +136,7 @@ proptest! {
     #[test]
     fn arbitrary_text_never_panics(text in "(\\PC{0,40}\n){0,12}") {
         let t = translate(&format!("DEF x()\n{text}END\n"));
-        prop_assert!(check(&t.text).is_empty(), "{}", t.text);
+        prop_assert!(check(&t.text, Calls::Open).is_empty(), "{}", t.text);
         prop_assert!(t.text.is_ascii(), "{}", t.text);
     }
 }

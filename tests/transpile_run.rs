@@ -27,10 +27,10 @@ use std::time::{Duration, Instant};
 
 use as_support::{As, End, Event, V};
 use krlkit::diag::Severity;
+use krlkit::geom::{Matrix, abc_to_matrix, abc_to_oat, max_diff, oat_to_matrix};
 use krlkit::interp::{self, Event as KrlEvent, RunResult, Value};
 use krlkit::sim::{RequestLog, Scenario, Server};
 use krlkit::spec::{DEFAULT_SPEC_TOML, Spec};
-use krlkit::transpile::orientation::{Matrix, abc_to_matrix, abc_to_oat, max_diff, oat_to_matrix};
 use krlkit::transpile::{self, Options, Source, Target, VisionServer};
 
 /// Matrix elements of a converted literal printed to 1e-6 degrees differ by at most

@@ -1,14 +1,42 @@
 // The whole client: start `krlkit lsp` for KRL files and let vscode-languageclient speak LSP.
 // Everything the editor shows (diagnostics, hovers, navigation, rename, formatting) comes from
 // the server; this file only says how to start it.
+const fs = require('fs');
+const path = require('path');
 const vscode = require('vscode');
 const { LanguageClient } = require('vscode-languageclient/node');
 
 let client;
 
+// Which krlkit to run: the `krlkit.path` setting when the user set one (a deliberate choice
+// wins), else the binary bundled in a platform build of the extension (`server/`), else
+// `krlkit` on the PATH.
+function serverCommand(context, config) {
+  const setting = config.get('path');
+  if (setting) {
+    return { command: setting, from: 'the krlkit.path setting' };
+  }
+  const exe = process.platform === 'win32' ? 'krlkit.exe' : 'krlkit';
+  const bundled = path.join(context.extensionPath, 'server', exe);
+  if (fs.existsSync(bundled)) {
+    if (process.platform !== 'win32') {
+      try {
+        fs.accessSync(bundled, fs.constants.X_OK);
+      } catch {
+        fs.chmodSync(bundled, 0o755); // an unzip that dropped the mode bits
+      }
+    }
+    return { command: bundled, from: 'the binary bundled with the extension' };
+  }
+  return { command: 'krlkit', from: 'the PATH' };
+}
+
 function activate(context) {
   const config = vscode.workspace.getConfiguration('krlkit');
-  const command = config.get('path') || 'krlkit';
+  const output = vscode.window.createOutputChannel('krlkit');
+  context.subscriptions.push(output);
+  const { command, from } = serverCommand(context, config);
+  output.appendLine(`krlkit: running ${command} lsp (${from})`);
   const serverOptions = { command, args: ['lsp'] };
   const clientOptions = {
     documentSelector: [
@@ -22,6 +50,7 @@ function activate(context) {
       ),
     },
     initializationOptions: { debounceMs: config.get('debounceMs') || 0 },
+    outputChannel: output,
   };
   client = new LanguageClient('krlkit', 'krlkit', serverOptions, clientOptions);
   context.subscriptions.push(

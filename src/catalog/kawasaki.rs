@@ -105,6 +105,8 @@ pub struct KawasakiCommand {
     /// The corresponding KUKA subprogram; absent for the Kawasaki-only programs.
     #[serde(default)]
     pub kuka: Option<String>,
+    /// What it does, which picks the template that renders it.
+    pub shape: super::ProgramShape,
     pub summary: String,
     /// Protocol commands it may send (must exist in `[[command]]`); empty for local copies.
     pub commands: Vec<u32>,

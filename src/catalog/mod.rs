@@ -6,6 +6,7 @@
 
 mod interface;
 mod kawasaki;
+mod shape;
 
 use std::sync::OnceLock;
 
@@ -16,6 +17,7 @@ pub use interface::{Codec, Hex, HexKind, Interface, float32_value};
 pub use kawasaki::{
     AsKind, AsParam, GlobalOrigin, KawasakiCommand, KawasakiGlobal, KawasakiLimits, VisionMoveField,
 };
+pub use shape::{ProgramShape, RoutineShape};
 
 const CATALOG_TOML: &str = include_str!("catalog.toml");
 
@@ -100,6 +102,8 @@ pub struct Limits {
     pub do_list_len: u32,
     pub krl_identifier_max: usize,
     pub eki_raw_size_max: u32,
+    pub eki_port_max: u32,
+    pub eki_connect_ms_max: u32,
     pub flag_min: i64,
     pub flag_max: i64,
     pub out_max: u32,
@@ -289,6 +293,8 @@ impl Range<'_> {
 #[serde(deny_unknown_fields)]
 pub struct Subprogram {
     pub name: String,
+    /// What it does, which picks the template that renders it.
+    pub shape: RoutineShape,
     pub summary: String,
     /// Protocol commands it sends (empty: local copy or configuration only).
     pub commands: Vec<u32>,

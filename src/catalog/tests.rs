@@ -327,3 +327,38 @@ fn ranges_read_well() {
         "MM_Start_Vis"
     );
 }
+
+#[test]
+fn a_routine_without_a_shape_does_not_load() {
+    for (entry, shape) in [
+        ("name = \"MM_Get_Pose\"\n", "shape = \"get_pose\"\n"),
+        ("name = \"mm_get_pose\"\n", "shape = \"get_pose\"\n"),
+    ] {
+        let at = CATALOG_TOML.find(entry).expect("entry") + entry.len();
+        assert!(CATALOG_TOML[at..].starts_with(shape), "{entry}");
+        let without = format!(
+            "{}{}",
+            &CATALOG_TOML[..at],
+            &CATALOG_TOML[at + shape.len()..]
+        );
+        let err = toml::from_str::<Catalog>(&without).expect_err("no shape");
+        assert!(err.to_string().contains("missing field `shape`"), "{err}");
+        let unknown = without.replacen(entry, &format!("{entry}shape = \"teleport\"\n"), 1);
+        let err = toml::from_str::<Catalog>(&unknown).expect_err("unknown shape");
+        assert!(
+            err.to_string().contains("unknown variant `teleport`"),
+            "{err}"
+        );
+    }
+}
+
+#[test]
+fn only_calibration_moves_the_robot() {
+    let moving: Vec<&str> = catalog()
+        .subprograms
+        .iter()
+        .filter(|s| s.shape.moves())
+        .map(|s| s.name.as_str())
+        .collect();
+    assert_eq!(moving, ["MM_CALIB"]);
+}

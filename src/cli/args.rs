@@ -4,10 +4,16 @@ use std::path::PathBuf;
 
 use clap::{Args, Parser, Subcommand, ValueEnum};
 
+/// The version, with the git commit when built from a checkout (see `build.rs`).
+const VERSION: &str = match option_env!("KRLKIT_VERSION") {
+    Some(v) => v,
+    None => env!("CARGO_PKG_VERSION"),
+};
+
 #[derive(Debug, Parser)]
 #[command(
     name = "krlkit",
-    version,
+    version = VERSION,
     about = "Generate, lint, transpile and run KUKA KRL for Mech-Mind 3D vision"
 )]
 pub struct Cli {
@@ -62,6 +68,8 @@ pub enum Command {
     Srci(SrciArgs),
     /// Write the HTML dry-run report of a `krlkit run --trace` file.
     Report(ReportArgs),
+    /// What changed between two robot backups (folders, `.zip`s or files), in the robot's terms.
+    Diff(DiffArgs),
     /// Language server over stdin/stdout, for editors (VS Code, Neovim, Helix, Zed).
     Lsp,
     /// Format KRL files in place: blanks and word case only; protected lines untouched.
@@ -361,6 +369,50 @@ pub struct ReportArgs {
     /// The HTML page to write.
     #[arg(short, long, value_name = "FILE.html")]
     pub out: PathBuf,
+}
+
+#[derive(Debug, Args)]
+pub struct DiffArgs {
+    /// The older backup: a robot folder, a backup `.zip`, or a single file.
+    pub old: PathBuf,
+    /// The newer backup, same kinds (a folder against a `.zip` works).
+    pub new: PathBuf,
+    /// Output: human text grouped by module, JSON (the README's contract), or one HTML page.
+    #[arg(long, value_enum, default_value_t = DiffFormat::Human)]
+    pub format: DiffFormat,
+    /// Where to write the output (required for `--format html`); default stdout.
+    #[arg(short, long, value_name = "FILE")]
+    pub out: Option<PathBuf>,
+    /// Point moves up to MM millimetres (and DEG degrees; default: MM) are no change.
+    #[arg(long, value_name = "MM[,DEG]", value_parser = parse_tolerance)]
+    pub tolerance: Option<(f64, f64)>,
+    /// Comments are compared too (inline-form metadata never is).
+    #[arg(long)]
+    pub comments: bool,
+    /// List the cosmetic churn that was ignored.
+    #[arg(long)]
+    pub all: bool,
+}
+
+#[derive(Debug, Clone, Copy, PartialEq, Eq, ValueEnum)]
+pub enum DiffFormat {
+    Human,
+    Json,
+    Html,
+}
+
+fn parse_tolerance(s: &str) -> Result<(f64, f64), String> {
+    let num = |t: &str| {
+        t.trim()
+            .parse::<f64>()
+            .ok()
+            .filter(|v| v.is_finite() && *v >= 0.0)
+            .ok_or_else(|| format!("`{t}` is not a non-negative number"))
+    };
+    match s.split_once(',') {
+        Some((mm, deg)) => Ok((num(mm)?, num(deg)?)),
+        None => num(s).map(|mm| (mm, mm)),
+    }
 }
 
 #[derive(Debug, Args)]

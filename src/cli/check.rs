@@ -27,10 +27,13 @@ pub fn run(args: CheckArgs) -> anyhow::Result<Outcome> {
     };
     let (channels, channels_given) = match &args.eki_xml {
         Some(path) => (vec![read_channel(path)?], true),
-        None => (
-            lint::eki_xml::scan(&files::split_stdin(&args.paths).0),
-            false,
-        ),
+        None => {
+            let scan = lint::eki_xml::scan(&files::split_stdin(&args.paths).0);
+            for r in &scan.rejected {
+                eprintln!("warning: {r}");
+            }
+            (scan.channels, false)
+        }
     };
 
     let (paths, stdin) = files::split_stdin(&args.paths);
@@ -199,10 +202,5 @@ fn read_channel(path: &Path) -> anyhow::Result<EkiChannel> {
         &path.display().to_string(),
         &text,
     )
-    .ok_or_else(|| {
-        anyhow::anyhow!(
-            "{}: not an EthernetKRL config (no <ETHERNETKRL> root element)",
-            path.display()
-        )
-    })
+    .map_err(|e| anyhow::anyhow!("{}: {e}", path.display()))
 }

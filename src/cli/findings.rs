@@ -38,12 +38,15 @@ pub(super) fn write(
         CheckFormat::Json => render::json::write(reports, &mut out)?,
         CheckFormat::Sarif => {
             let root = std::env::current_dir().ok();
-            match rules {
-                Some(rules) => {
-                    render::sarif::write_with_rules(reports, rules, root.as_deref(), &mut out)?
+            let lint_rules;
+            let rules = match rules {
+                Some(rules) => rules,
+                None => {
+                    lint_rules = crate::lint::sarif_rules();
+                    &lint_rules
                 }
-                None => render::sarif::write(reports, root.as_deref(), &mut out)?,
-            }
+            };
+            render::sarif::write(reports, rules, root.as_deref(), &mut out)?
         }
     }
     out.flush()

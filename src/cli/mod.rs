@@ -2,6 +2,7 @@
 
 mod args;
 mod check;
+mod diff;
 mod findings;
 mod fix;
 mod fmt;
@@ -69,6 +70,7 @@ pub fn main() -> ExitCode {
         Command::Run(a) => run::run(a),
         Command::Srci(a) => srci::run(a),
         Command::Report(a) => report::run(a),
+        Command::Diff(a) => diff::run(a),
         Command::Lsp => lsp::run(),
         Command::Fmt(a) => fmt::run(a),
         Command::Completions(a) => {

@@ -253,12 +253,8 @@ fn read_channel(path: &Path) -> anyhow::Result<EkiChannel> {
         .file_stem()
         .map(|s| s.to_string_lossy().into_owned())
         .unwrap_or_default();
-    lint::eki_xml::read(&stem, &file_name(path), &text).ok_or_else(|| {
-        anyhow::anyhow!(
-            "{}: not an EthernetKRL config (no <ETHERNETKRL> root element)",
-            path.display()
-        )
-    })
+    lint::eki_xml::read(&stem, &file_name(path), &text)
+        .map_err(|e| anyhow::anyhow!("{}: {e}", path.display()))
 }
 
 /// EKI configs in the program's directory (not walked further); others are ignored.

@@ -1,78 +1,128 @@
-//! The EthernetKRL channel file (`<channel>.xml`), written with quick-xml per the EKI 2.2
-//! schema: EXTERNAL IP/PORT, INTERNAL ALIVE flag, RAW receive/send elements: STREAM ending in
-//! CR for the ASCII codec, fixed-size BYTE records for HEX (as Mech-Mind's shipped XML).
+//! The EthernetKRL channel file (`<channel>.xml`) as one typed value, [`Channel`]: read by
+//! [`read::read`] (for `check`, `transpile` and `run`) and written by [`Channel::to_xml`] (for
+//! `gen`) per the EKI 2.2 schema: EXTERNAL TYPE/IP/PORT, INTERNAL ALIVE and TIMEOUT, RAW
+//! receive/send elements (STREAM ending in CR for the ASCII codec, fixed-size BYTE records for
+//! HEX, as Mech-Mind's shipped XML). A leaf: it imports no krlkit module; `generate` builds a
+//! [`Channel`] from the spec.
 
-use quick_xml::Writer;
-use quick_xml::events::{BytesDecl, BytesEnd, BytesStart, BytesText, Event};
+pub mod read;
+#[cfg(test)]
+mod tests;
+mod write;
 
-use crate::generate::view::{RX_TAG, TX_TAG};
-use crate::spec::{Codec, Spec};
+use std::fmt;
 
-/// End-of-stream byte of Mech-Mind's ASCII framing (CR).
-pub const EOS: &str = "13";
+use serde::{Serialize, Serializer};
 
-/// Sizes of the RAW records for a spec: `(receive, send)` in bytes.
-pub fn record_sizes(spec: &Spec) -> (u32, u32) {
-    let p = crate::generate::view::Package::new(spec);
-    (p.rx_size, p.tx_size)
+pub use read::{ReadError, read};
+
+/// EKI's connect timeout when the file gives none (`INTERNAL/TIMEOUT@Connect`), in ms.
+pub const DEFAULT_CONNECT_MS: u32 = 2000;
+/// A RAW element's `Size` when the file gives none (EKI's maximum) [U: KUKA documents no default].
+pub const DEFAULT_SIZE: u32 = 3600;
+
+/// One EKI channel: what the file configures.
+#[derive(Debug, Clone, PartialEq, Eq, Serialize)]
+pub struct Channel {
+    /// `CONFIGURATION/EXTERNAL/TYPE`: what the remote system is (default Server).
+    pub external: External,
+    /// `CONFIGURATION/EXTERNAL/IP`, trimmed (empty: not given).
+    pub ip: String,
+    /// `CONFIGURATION/EXTERNAL/PORT`.
+    pub port: Option<u16>,
+    /// `CONFIGURATION/INTERNAL/ALIVE@Set_Flag`.
+    pub alive_flag: Option<u32>,
+    /// `CONFIGURATION/INTERNAL/ALIVE@Set_Out`.
+    pub alive_out: Option<u32>,
+    /// `CONFIGURATION/INTERNAL/TIMEOUT@Connect` in ms ([`DEFAULT_CONNECT_MS`] when absent).
+    pub connect_timeout_ms: u32,
+    /// `RECEIVE/RAW/ELEMENT`s.
+    pub receive: Vec<Element>,
+    /// `SEND/RAW/ELEMENT`s.
+    pub send: Vec<Element>,
+    /// RECEIVE or SEND uses `<XML>` (free XML structure) instead of `<RAW>`; its elements are not
+    /// modelled (the writer writes RAW only).
+    pub xml_mode: bool,
 }
 
-/// The channel XML for `spec` (LF line endings; the package writer converts them).
-pub fn channel_xml(spec: &Spec) -> String {
-    let (rx_size, tx_size) = record_sizes(spec);
-    let (kind, eos) = match spec.codec {
-        Codec::Ascii => ("STREAM", Some(EOS)),
-        Codec::HexLe | Codec::HexBe => ("BYTE", None),
-    };
-    let mut w = Writer::new_with_indent(Vec::new(), b' ', 2);
-    // Writing into a Vec cannot fail; the results are ignored for that reason only.
-    let _ = w.write_event(Event::Decl(BytesDecl::new("1.0", Some("utf-8"), None)));
-    let _ = w.write_event(Event::Start(BytesStart::new("ETHERNETKRL")));
-    let _ = w.write_event(Event::Start(BytesStart::new("CONFIGURATION")));
-    let _ = w.write_event(Event::Start(BytesStart::new("EXTERNAL")));
-    text_element(&mut w, "IP", &spec.server_ip.to_string());
-    text_element(&mut w, "PORT", &spec.server_port.to_string());
-    let _ = w.write_event(Event::End(BytesEnd::new("EXTERNAL")));
-    let _ = w.write_event(Event::Start(BytesStart::new("INTERNAL")));
-    let alive = spec.alive_flag.to_string();
-    let _ = w.write_event(Event::Empty(
-        BytesStart::new("ALIVE").with_attributes([("Set_Flag", alive.as_str())]),
-    ));
-    let _ = w.write_event(Event::End(BytesEnd::new("INTERNAL")));
-    let _ = w.write_event(Event::End(BytesEnd::new("CONFIGURATION")));
-
-    let recv_flag = spec.receive_flag.to_string();
-    let rx = rx_size.to_string();
-    let mut rx_attrs = vec![
-        ("Tag", RX_TAG),
-        ("Type", kind),
-        ("Set_Flag", recv_flag.as_str()),
-        ("Size", rx.as_str()),
-    ];
-    rx_attrs.extend(eos.map(|e| ("EOS", e)));
-    raw_section(&mut w, "RECEIVE", &rx_attrs);
-    let tx = tx_size.to_string();
-    let mut tx_attrs = vec![("Tag", TX_TAG), ("Type", kind), ("Size", tx.as_str())];
-    tx_attrs.extend(eos.map(|e| ("EOS", e)));
-    raw_section(&mut w, "SEND", &tx_attrs);
-    let _ = w.write_event(Event::End(BytesEnd::new("ETHERNETKRL")));
-    let mut s = String::from_utf8(w.into_inner()).unwrap_or_default();
-    s.push('\n');
-    s
+impl Default for Channel {
+    fn default() -> Self {
+        Channel {
+            external: External::Server,
+            ip: String::new(),
+            port: None,
+            alive_flag: None,
+            alive_out: None,
+            connect_timeout_ms: DEFAULT_CONNECT_MS,
+            receive: Vec::new(),
+            send: Vec::new(),
+            xml_mode: false,
+        }
+    }
 }
 
-fn text_element(w: &mut Writer<Vec<u8>>, name: &str, text: &str) {
-    let _ = w.write_event(Event::Start(BytesStart::new(name)));
-    let _ = w.write_event(Event::Text(BytesText::new(text)));
-    let _ = w.write_event(Event::End(BytesEnd::new(name)));
+/// `CONFIGURATION/EXTERNAL/TYPE`.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize)]
+pub enum External {
+    /// The remote system is the server (the robot connects as client).
+    Server,
+    /// The remote system is the client (the robot listens).
+    Client,
 }
 
-fn raw_section(w: &mut Writer<Vec<u8>>, section: &str, attrs: &[(&str, &str)]) {
-    let _ = w.write_event(Event::Start(BytesStart::new(section)));
-    let _ = w.write_event(Event::Start(BytesStart::new("RAW")));
-    let _ = w.write_event(Event::Empty(
-        BytesStart::new("ELEMENT").with_attributes(attrs.iter().copied()),
-    ));
-    let _ = w.write_event(Event::End(BytesEnd::new("RAW")));
-    let _ = w.write_event(Event::End(BytesEnd::new(section)));
+/// One RAW element.
+#[derive(Debug, Clone, PartialEq, Eq, Serialize)]
+pub struct Element {
+    pub tag: String,
+    pub kind: Kind,
+    /// `Size` in bytes: the exact record size for BYTE, the maximum for STREAM.
+    pub size: u32,
+    /// `Set_Flag`: raised when a complete record arrived.
+    pub set_flag: Option<u32>,
+    /// `Set_Out`: raised when a complete record arrived.
+    pub set_out: Option<u32>,
+}
+
+/// How a RAW element frames its bytes.
+#[derive(Debug, Clone, PartialEq, Eq, Serialize)]
+pub enum Kind {
+    /// `Type="STREAM"`: variable-length records ending in an end string.
+    Stream { eos: Eos },
+    /// `Type="BYTE"`: fixed-size records.
+    Byte,
+}
+
+/// A STREAM element's `EOS`: one or two alternative end strings (`13,10|59`), each 1 to 32
+/// bytes. Serialized and displayed as written in the file.
+#[derive(Debug, Clone, PartialEq, Eq)]
+pub struct Eos(pub Vec<Vec<u8>>);
+
+impl Eos {
+    /// Mech-Mind's ASCII framing: CR.
+    pub fn cr() -> Eos {
+        Eos(vec![vec![13]])
+    }
+}
+
+impl fmt::Display for Eos {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        for (i, alt) in self.0.iter().enumerate() {
+            if i > 0 {
+                f.write_str("|")?;
+            }
+            for (j, b) in alt.iter().enumerate() {
+                if j > 0 {
+                    f.write_str(",")?;
+                }
+                write!(f, "{b}")?;
+            }
+        }
+        Ok(())
+    }
+}
+
+impl Serialize for Eos {
+    fn serialize<S: Serializer>(&self, s: S) -> Result<S::Ok, S::Error> {
+        s.collect_str(self)
+    }
 }

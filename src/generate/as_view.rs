@@ -252,46 +252,8 @@ pub fn assumptions(spec: &Spec) -> Vec<String> {
     ]
 }
 
-/// Which template renders a program.
-#[derive(Debug, Clone, Copy, PartialEq, Eq)]
-pub enum Shape {
-    InitSkt,
-    Simple,
-    StartVis,
-    StartViz,
-    Fetch,
-    GetPose,
-    GetJps,
-    DyData,
-    GetDoList,
-    SetDoList,
-    PlanData,
-    Notify,
-    Calibrate,
-}
-
-impl Shape {
-    fn of(name: &str) -> Shape {
-        match name {
-            "mm_init_skt" => Shape::InitSkt,
-            "mm_start_vis" => Shape::StartVis,
-            "mm_start_viz" => Shape::StartViz,
-            "mm_get_visdata" | "mm_get_vispath" | "mm_get_vizdata" => Shape::Fetch,
-            "mm_get_pose" => Shape::GetPose,
-            "mm_get_jps" => Shape::GetJps,
-            "mm_get_dydata" => Shape::DyData,
-            "mm_get_dolist" => Shape::GetDoList,
-            "mm_set_dolist" => Shape::SetDoList,
-            "mm_get_plandata" => Shape::PlanData,
-            "mm_get_notify" => Shape::Notify,
-            "calibrate" => Shape::Calibrate,
-            // Send the IN values, store the status (and one value for mm_get_property):
-            // mm_switch_model, mm_set_branch, mm_set_index, mm_set_boxsize, mm_set_property,
-            // mm_get_property.
-            _ => Shape::Simple,
-        }
-    }
-}
+/// Which template renders a program: its catalog shape.
+pub use crate::catalog::ProgramShape as Shape;
 
 /// One `mm_*` program as the templates see it.
 #[derive(Debug, Clone)]
@@ -393,7 +355,7 @@ impl AsProgram {
     pub fn new(k: &KawasakiCommand) -> AsProgram {
         let cat = catalog();
         let codes = Codes::from_catalog();
-        let shape = Shape::of(&k.name);
+        let shape = k.shape;
         let cmd = k.commands.first().copied().unwrap_or(0);
         let ok = cat.command(cmd).and_then(|c| c.success).unwrap_or(0);
         let alt_cmd = k.commands.get(1).copied().unwrap_or(0);

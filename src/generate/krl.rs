@@ -5,6 +5,7 @@ use askama::Template;
 
 use super::srci::{Packer, Step};
 use super::view::{Package, Routine};
+use crate::catalog::RoutineShape;
 
 macro_rules! routine_templates {
     ($($ty:ident => $path:literal),* $(,)?) => {
@@ -71,34 +72,29 @@ pub fn render_srci(p: &Packer) -> askama::Result<(String, String)> {
     Ok((SrciSrc { p }.render()?, SrciDat { p }.render()?))
 }
 
-/// Render one routine. The routine's shape is chosen by name; names come from the catalog.
+/// Render one routine with the template of its catalog shape.
 pub fn render_routine(r: &Routine, p: &Package) -> askama::Result<String> {
-    match r.name.as_str() {
-        "MM_Init_Socket" => InitSocket { r, p }.render(),
-        "MM_Start_Vis" => StartVis { r, p }.render(),
-        "MM_Start_Viz" => StartViz { r, p }.render(),
-        "MM_Get_VisData" | "MM_Get_VizData" | "MM_Get_VisPath" if r.fetch_all => {
-            BatchAll { r, p }.render()
-        }
-        "MM_Get_VisData" | "MM_Get_VizData" | "MM_Get_VisPath" => Batch { r, p }.render(),
-        "MM_Get_Pose" => GetPose { r, p }.render(),
-        "MM_Get_Jps" => GetJps { r, p }.render(),
-        "MM_Get_DoList" => GetDoList { r, p }.render(),
-        "MM_Set_DoList" => SetDoList { r, p }.render(),
-        "MM_Get_Dy_Data" => GetDyData { r, p }.render(),
-        "MM_Get_DyPose" => GetDyPose { r, p }.render(),
-        "MM_Get_PlanData" if r.alt_cmd != 0 => GetPlanDataV2 { r, p }.render(),
-        "MM_Get_PlanData" => GetPlanData { r, p }.render(),
-        "MM_Get_Property" => GetProperty { r, p }.render(),
-        "MM_Get_Notify" => GetNotify { r, p }.render(),
-        "MM_Get_Wobj" => GetWobj { r, p }.render(),
-        "MM_Get_PlanJps" => GetPlanJps { r, p }.render(),
-        "MM_Get_PlanPose" => GetPlanPose { r, p }.render(),
-        "MM_CALIB" => Calib { r, p }.render(),
-        // Send the IN arguments, store the status: MM_Switch_Model, MM_Set_Branch,
-        // MM_Set_Index, MM_Get_Status, MM_Set_BoxSize, MM_Set_Pos, MM_Stop_Viz,
-        // MM_Set_Property.
-        _ => Simple { r, p }.render(),
+    match r.shape {
+        RoutineShape::InitSocket => InitSocket { r, p }.render(),
+        RoutineShape::Simple => Simple { r, p }.render(),
+        RoutineShape::StartVis => StartVis { r, p }.render(),
+        RoutineShape::StartViz => StartViz { r, p }.render(),
+        RoutineShape::Batch if r.fetch_all => BatchAll { r, p }.render(),
+        RoutineShape::Batch => Batch { r, p }.render(),
+        RoutineShape::GetPose => GetPose { r, p }.render(),
+        RoutineShape::GetJps => GetJps { r, p }.render(),
+        RoutineShape::GetDoList => GetDoList { r, p }.render(),
+        RoutineShape::SetDoList => SetDoList { r, p }.render(),
+        RoutineShape::GetDyData => GetDyData { r, p }.render(),
+        RoutineShape::GetDyPose => GetDyPose { r, p }.render(),
+        RoutineShape::GetPlanData if r.alt_cmd != 0 => GetPlanDataV2 { r, p }.render(),
+        RoutineShape::GetPlanData => GetPlanData { r, p }.render(),
+        RoutineShape::GetProperty => GetProperty { r, p }.render(),
+        RoutineShape::GetNotify => GetNotify { r, p }.render(),
+        RoutineShape::GetWobj => GetWobj { r, p }.render(),
+        RoutineShape::GetPlanJps => GetPlanJps { r, p }.render(),
+        RoutineShape::GetPlanPose => GetPlanPose { r, p }.render(),
+        RoutineShape::Calib => Calib { r, p }.render(),
     }
 }
 

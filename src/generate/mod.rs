@@ -6,8 +6,8 @@
 //! every KRL and AS file is ASCII with the spec's line endings; nothing is written until
 //! everything rendered.
 
-pub mod as_check;
 pub mod as_view;
+mod channel;
 mod hex_view;
 mod install;
 mod kawasaki;
@@ -126,7 +126,7 @@ pub fn generate(spec: &Spec) -> Result<Vec<GeneratedFile>, GenError> {
     }
     files.push(GeneratedFile::new(
         PathBuf::from(XML_DIR).join(spec.xml_file_name()),
-        writer::normalise(&crate::eki::channel_xml(spec), eol),
+        writer::normalise(&channel::channel(spec, &pkg).to_xml(), eol),
         eol,
     ));
     files.push(GeneratedFile::new(

@@ -413,7 +413,45 @@ fn lock(dir: &Path) -> io::Result<fs::File> {
     Ok(f)
 }
 
-#[cfg(not(unix))]
+/// One `gen` at a time per parent folder (Windows): a lock file opened without sharing, so a
+/// second run waits; the system deletes it when its handle closes, also when `gen` is killed.
+#[cfg(windows)]
+fn lock(dir: &Path) -> io::Result<fs::File> {
+    use std::os::windows::fs::OpenOptionsExt;
+    const GENERIC_READ: u32 = 0x8000_0000;
+    const GENERIC_WRITE: u32 = 0x4000_0000;
+    const DELETE: u32 = 0x0001_0000;
+    const FILE_FLAG_DELETE_ON_CLOSE: u32 = 0x0400_0000;
+    const ERROR_SHARING_VIOLATION: i32 = 32;
+    const ERROR_ACCESS_DENIED: i32 = 5; // the file is being deleted by the run that let go
+    let path = dir.join(LOCK_FILE);
+    let mut denied = 0;
+    loop {
+        let opened = fs::OpenOptions::new()
+            .read(true)
+            .write(true)
+            .create(true)
+            .access_mode(GENERIC_READ | GENERIC_WRITE | DELETE)
+            .share_mode(0)
+            .custom_flags(FILE_FLAG_DELETE_ON_CLOSE)
+            .open(&path);
+        match opened {
+            Ok(f) => return Ok(f),
+            Err(e) if e.raw_os_error() == Some(ERROR_SHARING_VIOLATION) => {}
+            // Denied for good (a read-only folder) after 5 s of waits.
+            Err(e) if e.raw_os_error() == Some(ERROR_ACCESS_DENIED) && denied < 100 => {
+                denied += 1;
+            }
+            Err(e) => return Err(e),
+        }
+        std::thread::sleep(std::time::Duration::from_millis(50));
+    }
+}
+
+#[cfg(windows)]
+const LOCK_FILE: &str = ".krlkit-gen.lock";
+
+#[cfg(not(any(unix, windows)))]
 fn lock(_: &Path) -> io::Result<()> {
     Ok(())
 }

@@ -1,7 +1,7 @@
 //! View models: everything the KRL templates print, computed here from the catalog and the
 //! spec, so the templates hold layout only.
 
-use crate::catalog::{Interface, Param, Subprogram, catalog};
+use crate::catalog::{Interface, Param, RoutineShape, Subprogram, catalog};
 use crate::spec::Spec;
 
 use super::hex_view::{self, HexCase};
@@ -335,6 +335,8 @@ pub fn routine_assumptions(spec: &Spec) -> Vec<String> {
 #[derive(Debug, Clone)]
 pub struct Routine {
     pub name: String,
+    /// Which template renders it.
+    pub shape: RoutineShape,
     /// `Job:IN,Last_Data:OUT,...` as the seed writes it.
     pub params: String,
     pub decls: Vec<String>,
@@ -522,7 +524,7 @@ impl Routine {
         if cat.command_in(iface, cmd).is_some_and(|c| c.is_paged()) {
             status.push(format!("{} TOO_MANY_POINTS", codes.too_many_points));
         }
-        if sp.name == "MM_Set_DoList" {
+        if sp.shape == RoutineShape::SetDoList {
             status.push(format!(
                 "{} WRONG_DATA_KIND (no DO list stored)",
                 codes.wrong_data_kind
@@ -535,7 +537,9 @@ impl Routine {
             };
             header.push(format!("Status ({target}): {}", status.join(", ")));
         }
-        if sp.commands.is_empty() && sp.name != "MM_Init_Socket" && sp.name != "MM_Set_DoList" {
+        if sp.commands.is_empty()
+            && !matches!(sp.shape, RoutineShape::InitSocket | RoutineShape::SetDoList)
+        {
             header.push(
                 "On success MM_Last_Status keeps the status of the call that stored the data."
                     .into(),
@@ -616,6 +620,7 @@ impl Routine {
                 .map_or(0, |i| (2 + c.reply.len() + i) as u32)
         });
         Routine {
+            shape: sp.shape,
             plan_fixed: plan_fixed_of(cmd),
             alt_plan_fixed: plan_fixed_of(alt_cmd),
             alt_speed_at,

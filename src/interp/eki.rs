@@ -14,9 +14,7 @@ use std::io::{ErrorKind, Read, Write};
 use std::net::{SocketAddr, TcpStream, ToSocketAddrs};
 use std::time::Duration;
 
-use quick_xml::Reader;
-use quick_xml::events::Event as X;
-
+use crate::eki::{Channel as ChannelConfig, Element as RawElement, External, Kind as RawKind};
 use crate::syntax::ast::Expr;
 
 use super::globals::Globals;
@@ -27,150 +25,6 @@ pub const MSG_NOT_INIT: i64 = 2;
 pub const MSG_NO_CONNECTION: i64 = 9;
 pub const MSG_ALREADY_INIT: i64 = 23;
 pub const MSG_DESTROYED: i64 = 512;
-
-#[derive(Debug, Clone, PartialEq)]
-pub enum RawKind {
-    Stream { eos: Vec<Vec<u8>> },
-    Byte,
-}
-
-#[derive(Debug, Clone, PartialEq)]
-pub struct RawElement {
-    pub tag: String,
-    pub kind: RawKind,
-    pub size: usize,
-    pub set_flag: Option<usize>,
-    pub set_out: Option<usize>,
-}
-
-/// The parts of an EKI XML file the emulation uses.
-#[derive(Debug, Clone, PartialEq, Default)]
-pub struct ChannelConfig {
-    pub external_type: String,
-    pub ip: String,
-    pub port: u16,
-    pub connect_timeout_ms: u64,
-    pub alive_flag: Option<usize>,
-    pub alive_out: Option<usize>,
-    pub receive: Vec<RawElement>,
-    pub send: Vec<RawElement>,
-    /// True when RECEIVE/SEND use `<XML>` (not supported here).
-    pub xml_mode: bool,
-}
-
-fn parse_eos(s: &str) -> Result<Vec<Vec<u8>>, String> {
-    s.split('|')
-        .map(|alt| {
-            alt.split(',')
-                .map(|n| {
-                    n.trim()
-                        .parse::<u8>()
-                        .map_err(|_| format!("bad EOS value `{s}`"))
-                })
-                .collect()
-        })
-        .collect()
-}
-
-/// Read an EKI configuration (element and attribute names case-insensitive).
-pub fn parse_config(xml: &str) -> Result<ChannelConfig, String> {
-    let mut r = Reader::from_str(xml);
-    r.config_mut().trim_text(true);
-    let mut cfg = ChannelConfig {
-        connect_timeout_ms: 2000,
-        external_type: "Server".into(),
-        ..Default::default()
-    };
-    let mut stack: Vec<String> = Vec::new();
-    loop {
-        let ev = r.read_event().map_err(|e| format!("EKI XML: {e}"))?;
-        let empty = matches!(ev, X::Empty(_));
-        match ev {
-            X::Start(e) | X::Empty(e) => {
-                let name = e.name().into_inner().to_ascii_uppercase();
-                let mut attrs = HashMap::new();
-                for a in e.attributes().flatten() {
-                    let k = a.key.into_inner().to_ascii_uppercase();
-                    #[allow(deprecated)]
-                    let v = a
-                        .unescape_value()
-                        .map(|v| v.into_owned())
-                        .unwrap_or_default();
-                    attrs.insert(k, v);
-                }
-                let num = |k: &str| attrs.get(k).and_then(|v| v.trim().parse::<usize>().ok());
-                let path = stack.join("/");
-                match name.as_str() {
-                    "ALIVE" => {
-                        cfg.alive_flag = num("SET_FLAG");
-                        cfg.alive_out = num("SET_OUT");
-                    }
-                    "TIMEOUT" => {
-                        if let Some(t) = num("CONNECT") {
-                            cfg.connect_timeout_ms = t as u64;
-                        }
-                    }
-                    "XML" if path.contains("RECEIVE") || path.contains("SEND") => {
-                        cfg.xml_mode = true
-                    }
-                    "ELEMENT" if path.ends_with("RAW") => {
-                        let tag = attrs.get("TAG").cloned().unwrap_or_default();
-                        let ty = attrs
-                            .get("TYPE")
-                            .map(|t| t.to_ascii_uppercase())
-                            .unwrap_or_default();
-                        let kind = if ty == "BYTE" {
-                            RawKind::Byte
-                        } else {
-                            RawKind::Stream {
-                                eos: match attrs.get("EOS") {
-                                    Some(s) => parse_eos(s)?,
-                                    None => vec![],
-                                },
-                            }
-                        };
-                        let el = RawElement {
-                            tag,
-                            kind,
-                            size: num("SIZE").unwrap_or(3600),
-                            set_flag: num("SET_FLAG"),
-                            set_out: num("SET_OUT"),
-                        };
-                        if path.contains("RECEIVE") {
-                            cfg.receive.push(el);
-                        } else {
-                            cfg.send.push(el);
-                        }
-                    }
-                    _ => {}
-                }
-                if !empty {
-                    stack.push(name);
-                }
-            }
-            X::Text(t) => {
-                let raw: &str = t.as_ref();
-                let text = raw.trim().to_string();
-                let path = stack.join("/");
-                if path.ends_with("EXTERNAL/IP") {
-                    cfg.ip = text;
-                } else if path.ends_with("EXTERNAL/PORT") {
-                    cfg.port = text
-                        .parse()
-                        .map_err(|_| format!("EKI XML: bad PORT `{text}`"))?;
-                } else if path.ends_with("EXTERNAL/TYPE") {
-                    cfg.external_type = text;
-                }
-            }
-            X::End(_) => {
-                stack.pop();
-            }
-            X::Eof => break,
-            _ => {}
-        }
-    }
-    Ok(cfg)
-}
 
 #[derive(Debug)]
 struct Channel {
@@ -215,7 +69,7 @@ impl Eki {
                 std::iter::once(alive).chain(elements)
             })
             .flatten()
-            .any(|m| n.is_none_or(|n| n == m))
+            .any(|m| n.is_none_or(|n| n == m as usize))
     }
 
     pub(crate) fn close_all(&mut self) {
@@ -278,10 +132,12 @@ impl Channel {
             self.rx.clear();
             return;
         };
+        let size = el.size as usize;
         loop {
             let cut = match &el.kind {
-                RawKind::Byte => (self.rx.len() >= el.size).then_some((el.size, el.size)),
+                RawKind::Byte => (self.rx.len() >= size).then_some((size, size)),
                 RawKind::Stream { eos } => eos
+                    .0
                     .iter()
                     .filter(|e| !e.is_empty())
                     .filter_map(|e| {
@@ -296,7 +152,7 @@ impl Channel {
                 break;
             };
             let mut record: Vec<u8> = self.rx.drain(..consumed).collect();
-            record.truncate(data_end.min(el.size));
+            record.truncate(data_end.min(size));
             self.records
                 .entry(el.tag.to_ascii_uppercase())
                 .or_default()
@@ -307,14 +163,19 @@ impl Channel {
     }
 }
 
+/// A flag or output number of the channel file as an index.
+fn wide(n: Option<u32>) -> Option<usize> {
+    n.map(|n| n as usize)
+}
+
 fn set_flag(
     globals: &mut Globals,
     changes: &mut Vec<(&'static str, usize, bool)>,
     var: &'static str,
-    n: Option<usize>,
+    n: Option<u32>,
     v: bool,
 ) {
-    if let Some(n) = n
+    if let Some(n) = wide(n)
         && let Some(Value::Array { items, .. }) = globals.get_mut(var)
         && let Some(slot) = n.checked_sub(1).and_then(|i| items.get_mut(i))
     {
@@ -366,7 +227,7 @@ fn load_config(m: &Machine, name: &str) -> R<ChannelConfig> {
             })?
         }
     };
-    let cfg = parse_config(&text).map_err(|e| m.err(format!("{name}.xml: {e}")))?;
+    let cfg = crate::eki::read(&text).map_err(|e| m.err(format!("{name}.xml: {e}")))?;
     if cfg.xml_mode {
         return Err(m.err(format!(
             "{name}.xml: XML-mode EKI channels are not supported by krlkit run (RAW only)"
@@ -430,18 +291,18 @@ pub(crate) fn call(m: &mut Machine, up: &str, args: &[Option<Expr>]) -> R<Value>
             if c.stream.is_some() {
                 return Ok(status(0, 0, 0, true, c.counter));
             }
-            if !c.cfg.external_type.eq_ignore_ascii_case("Server") {
+            if c.cfg.external != External::Server {
                 return Err(m.err("EKI_Open: only channels whose EXTERNAL TYPE is Server (robot = client) are supported"));
             }
-            let addr_text = vision.unwrap_or_else(|| format!("{}:{}", c.cfg.ip, c.cfg.port));
-            let timeout = Duration::from_millis(c.cfg.connect_timeout_ms.clamp(1, 2000));
+            let addr_text = vision.unwrap_or_else(|| format!("{}:{}", c.cfg.ip, c.cfg.port.unwrap_or(0)));
+            let timeout = Duration::from_millis(u64::from(c.cfg.connect_timeout_ms.clamp(1, 2000)));
             let stream = resolve(&addr_text).and_then(|a| TcpStream::connect_timeout(&a, timeout).ok());
             let c = m.eki.channels.get_mut(&key).ok_or_else(m_err_never)?;
             match stream {
                 Some(s) => {
                     let _ = s.set_nodelay(true);
                     c.stream = Some(s);
-                    let (af, ao) = (c.cfg.alive_flag, c.cfg.alive_out);
+                    let (af, ao) = (wide(c.cfg.alive_flag), wide(c.cfg.alive_out));
                     m.eki.stats.connections += 1;
                     m.set_io("$FLAG", af, true);
                     m.set_io("$OUT", ao, true);
@@ -468,7 +329,7 @@ pub(crate) fn call(m: &mut Machine, up: &str, args: &[Option<Expr>]) -> R<Value>
                         kind: RawKind::Byte,
                         size,
                         ..
-                    }) => Some(*size),
+                    }) => Some(*size as usize),
                     _ => None,
                 }
             });
@@ -498,7 +359,7 @@ pub(crate) fn call(m: &mut Machine, up: &str, args: &[Option<Expr>]) -> R<Value>
                 kind: RawKind::Stream { eos },
                 ..
             }) = el
-                && let Some(first) = eos.first()
+                && let Some(first) = eos.0.first()
             {
                 bytes.extend_from_slice(first);
             }
@@ -515,7 +376,7 @@ pub(crate) fn call(m: &mut Machine, up: &str, args: &[Option<Expr>]) -> R<Value>
                 }
                 Err(_) => {
                     c.stream = None;
-                    let af = c.cfg.alive_flag;
+                    let af = wide(c.cfg.alive_flag);
                     m.set_io("$FLAG", af, false);
                     Ok(status(0, 0, MSG_DESTROYED, false, counter))
                 }
@@ -579,7 +440,7 @@ pub(crate) fn call(m: &mut Machine, up: &str, args: &[Option<Expr>]) -> R<Value>
                 return Ok(not_init(m));
             };
             c.stream = None;
-            let (af, ao) = (c.cfg.alive_flag, c.cfg.alive_out);
+            let (af, ao) = (wide(c.cfg.alive_flag), wide(c.cfg.alive_out));
             if up == "EKI_CLEAR" {
                 m.eki.channels.remove(&key);
             }

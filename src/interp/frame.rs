@@ -1,8 +1,8 @@
-//! The geometric operator `:` and INV_POS on KUKA frames (A about Z, B about Y, C about X, degrees).
+//! The geometric operator `:`, INV_POS, relative and circular targets on KRL pose values; the
+//! frame arithmetic itself is `crate::geom`'s.
 
 use super::value::{CART_FIELDS, Value};
-
-type M = [[f64; 4]; 4];
+use crate::geom::{Frame, apply, round as clean};
 
 fn get(v: &Value) -> Option<[f64; 6]> {
     let mut out = [0.0; 6];
@@ -12,60 +12,8 @@ fn get(v: &Value) -> Option<[f64; 6]> {
     matches!(v, Value::Struc { .. } | Value::Partial(_)).then_some(out)
 }
 
-fn matrix(f: [f64; 6]) -> M {
-    let (a, b, c) = (f[3].to_radians(), f[4].to_radians(), f[5].to_radians());
-    let (sa, ca, sb, cb, sc, cc) = (a.sin(), a.cos(), b.sin(), b.cos(), c.sin(), c.cos());
-    [
-        [
-            ca * cb,
-            ca * sb * sc - sa * cc,
-            ca * sb * cc + sa * sc,
-            f[0],
-        ],
-        [
-            sa * cb,
-            sa * sb * sc + ca * cc,
-            sa * sb * cc - ca * sc,
-            f[1],
-        ],
-        [-sb, cb * sc, cb * cc, f[2]],
-        [0.0, 0.0, 0.0, 1.0],
-    ]
-}
-
-fn frame(m: &M) -> [f64; 6] {
-    let b = (-m[2][0]).atan2((m[0][0] * m[0][0] + m[1][0] * m[1][0]).sqrt());
-    let (a, c) = if b.cos().abs() < 1e-9 {
-        // Gimbal lock: put the whole rotation into A.
-        ((-m[0][1]).atan2(m[1][1]), 0.0)
-    } else {
-        (m[1][0].atan2(m[0][0]), m[2][1].atan2(m[2][2]))
-    };
-    [
-        clean(m[0][3]),
-        clean(m[1][3]),
-        clean(m[2][3]),
-        clean(a.to_degrees()),
-        clean(b.to_degrees()),
-        clean(c.to_degrees()),
-    ]
-}
-
-/// Rounded to 1e-9 (far below a REAL's precision on the controller), so computed poses do
-/// not carry float noise (-165.00000000000003, "-0.0000" in requests) into traces.
-fn clean(x: f64) -> f64 {
-    let r = (x * 1e9).round() / 1e9;
-    if r == 0.0 { 0.0 } else { r }
-}
-
-fn mul(x: &M, y: &M) -> M {
-    let mut r = [[0.0; 4]; 4];
-    for (i, row) in r.iter_mut().enumerate() {
-        for (j, cell) in row.iter_mut().enumerate() {
-            *cell = (0..4).map(|k| x[i][k] * y[k][j]).sum();
-        }
-    }
-    r
+fn frame_of(v: &Value) -> Option<Frame> {
+    get(v).map(Frame::from_xyzabc)
 }
 
 fn with_frame(template: &Value, f: [f64; 6]) -> Value {
@@ -80,8 +28,8 @@ fn with_frame(template: &Value, f: [f64; 6]) -> Value {
 
 /// `a : b` — the pose `b` expressed through frame `a`; the result has `b`'s type.
 pub fn compose(a: &Value, b: &Value) -> Option<Value> {
-    let r = frame(&mul(&matrix(get(a)?), &matrix(get(b)?)));
-    Some(with_frame(b, r))
+    let r = frame_of(a)?.compose(&frame_of(b)?);
+    Some(with_frame(b, r.to_xyzabc()))
 }
 
 /// The target of a Cartesian `LIN_REL`/`PTP_REL` from `cur` by `rel` (fields it lacks are 0).
@@ -92,10 +40,10 @@ pub fn compose(a: &Value, b: &Value) -> Option<Value> {
 pub fn relative(cur: &Value, rel: &Value, in_tool: bool) -> Option<Value> {
     let c = get(cur)?;
     let r = get(rel)?;
-    let m = matrix(c);
+    let m = Frame::from_xyzabc(c);
     if r[3..].iter().all(|x| *x == 0.0) {
         let d = if in_tool {
-            [0, 1, 2].map(|i| (0..3).map(|k| m[i][k] * r[k]).sum::<f64>())
+            apply(&m.rot, [r[0], r[1], r[2]])
         } else {
             [r[0], r[1], r[2]]
         };
@@ -106,26 +54,14 @@ pub fn relative(cur: &Value, rel: &Value, in_tool: bool) -> Option<Value> {
         return Some(with_frame(cur, out));
     }
     let composed = if in_tool {
-        mul(&m, &matrix(r))
+        m.compose(&Frame::from_xyzabc(r))
     } else {
-        let mut turned = mul(&matrix([0.0, 0.0, 0.0, r[3], r[4], r[5]]), &m);
-        for i in 0..3 {
-            turned[i][3] = c[i] + r[i];
-        }
+        let turn = Frame::from_xyzabc([0.0, 0.0, 0.0, r[3], r[4], r[5]]);
+        let mut turned = turn.compose(&m);
+        turned.pos = [0, 1, 2].map(|i| c[i] + r[i]);
         turned
     };
-    Some(with_frame(cur, frame(&composed)))
-}
-
-/// The rotation part of a KUKA frame's A, B, C (degrees): the tool's X, Y, Z axes are its
-/// columns.
-pub(crate) fn rotation(a: f64, b: f64, c: f64) -> [[f64; 3]; 3] {
-    let m = matrix([0.0, 0.0, 0.0, a, b, c]);
-    [
-        [m[0][0], m[0][1], m[0][2]],
-        [m[1][0], m[1][1], m[1][2]],
-        [m[2][0], m[2][1], m[2][2]],
-    ]
+    Some(with_frame(cur, composed.to_xyzabc()))
 }
 
 type V3 = [f64; 3];
@@ -212,20 +148,8 @@ pub fn circ_end(start: &Value, aux: &Value, end: &Value, angle: f64) -> Option<V
 }
 
 /// INV_POS: the inverse frame.
-#[allow(clippy::needless_range_loop)]
 pub fn inverse(a: &Value) -> Option<Value> {
-    let m = matrix(get(a)?);
-    let mut inv = [[0.0; 4]; 4];
-    for i in 0..3 {
-        for j in 0..3 {
-            inv[i][j] = m[j][i];
-        }
-    }
-    for i in 0..3 {
-        inv[i][3] = -(0..3).map(|k| inv[i][k] * m[k][3]).sum::<f64>();
-    }
-    inv[3][3] = 1.0;
-    Some(with_frame(a, frame(&inv)))
+    Some(with_frame(a, frame_of(a)?.inverse().to_xyzabc()))
 }
 
 /// `$POS_ACT` after `$BASE`/`$TOOL` changed from `old` to `new` (each `(base, tool)`): the
@@ -233,21 +157,14 @@ pub fn inverse(a: &Value) -> Option<Value> {
 /// (`INV(new_base) : old_base : pos : INV(old_tool) : new_tool`). Fields other than X..C keep
 /// their values.
 pub fn rebase(pos: &Value, old: (&Value, &Value), new: (&Value, &Value)) -> Option<Value> {
-    let inv = |f: &Value| -> Option<M> {
-        let m = matrix(get(f)?);
-        let mut r = [[0.0; 4]; 4];
-        for i in 0..3 {
-            for j in 0..3 {
-                r[i][j] = m[j][i];
-            }
-            r[i][3] = -(0..3).map(|k| m[k][i] * m[k][3]).sum::<f64>();
-        }
-        r[3][3] = 1.0;
-        Some(r)
-    };
-    let flange = mul(&mul(&matrix(get(old.0)?), &matrix(get(pos)?)), &inv(old.1)?);
-    let m = mul(&mul(&inv(new.0)?, &flange), &matrix(get(new.1)?));
-    Some(with_frame(pos, frame(&m)))
+    let flange = frame_of(old.0)?
+        .compose(&frame_of(pos)?)
+        .compose(&frame_of(old.1)?.inverse());
+    let m = frame_of(new.0)?
+        .inverse()
+        .compose(&flange)
+        .compose(&frame_of(new.1)?);
+    Some(with_frame(pos, m.to_xyzabc()))
 }
 
 #[cfg(test)]
@@ -322,6 +239,7 @@ mod tests {
 
     #[test]
     fn rotation_columns_are_the_tool_axes() {
+        let rotation = crate::geom::abc_to_matrix;
         // B = 180: the tool's Z points down, X backwards.
         let r = rotation(0.0, 180.0, 0.0);
         let z = [r[0][2], r[1][2], r[2][2]];

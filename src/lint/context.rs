@@ -395,8 +395,8 @@ impl InitSocket {
             .as_deref()
             .and_then(|x| channels.iter().find(|c| c.name == x));
         if let Some(ch) = channel {
-            flags.extend(ch.alive_flag.map(|v| (v, "alive")));
-            flags.extend(ch.receive_flag.map(|v| (v, "receive")));
+            flags.extend(ch.alive_flag().map(|v| (v, "alive")));
+            flags.extend(ch.receive_flag().map(|v| (v, "receive")));
         } else {
             flags.extend(self.alive.map(|v| (v, "alive")));
             flags.extend(self.receive.map(|v| (v, "receive")));

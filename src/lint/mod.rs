@@ -33,7 +33,7 @@ use rayon::prelude::*;
 
 pub use config::{ConfigError, LintConfig};
 pub use eki_xml::EkiChannel;
-pub use registry::{Check, FIXES, RULES, Rule, fix_of, nearest_code, rule};
+pub use registry::{Check, FIXES, RULES, Rule, fix_of, nearest_code, rule, sarif_rules};
 pub use session::{Affected, Session};
 
 use crate::diag::{Diagnostic, FileReport, LineIndex};

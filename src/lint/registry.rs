@@ -3,6 +3,7 @@
 
 use super::context::{FileCtx, SyntaxCtx};
 use super::rules;
+use crate::diag::render::sarif::RuleMeta;
 use crate::diag::{Diagnostic, Severity};
 
 /// One lint rule: identity, documentation and the check itself.
@@ -81,6 +82,20 @@ pub fn fix_of(code: &str) -> Option<&'static str> {
         .iter()
         .find(|(c, _)| c.eq_ignore_ascii_case(code))
         .map(|(_, d)| *d)
+}
+
+/// Every rule's metadata for the SARIF renderer.
+pub fn sarif_rules() -> Vec<RuleMeta<'static>> {
+    RULES
+        .iter()
+        .map(|r| RuleMeta {
+            code: r.code,
+            name: r.name,
+            severity: r.severity,
+            summary: r.summary,
+            doc: r.doc,
+        })
+        .collect()
 }
 
 /// The rule with this code (case-insensitive).

@@ -50,7 +50,10 @@ impl Workspace {
                         Err(e) => problems.push(format!("cannot read {e}")),
                     }
                 }
-                (inputs, lint::eki_xml::scan(std::slice::from_ref(r)))
+                (
+                    inputs,
+                    lint::eki_xml::scan(std::slice::from_ref(r)).channels,
+                )
             }
             None => (Vec::new(), Vec::new()),
         };
@@ -110,7 +113,7 @@ impl Workspace {
 
     pub fn reload_channels(&mut self) {
         let channels: Vec<EkiChannel> = match &self.root {
-            Some(r) => lint::eki_xml::scan(std::slice::from_ref(r)),
+            Some(r) => lint::eki_xml::scan(std::slice::from_ref(r)).channels,
             None => Vec::new(),
         };
         self.session.set_channels(channels, false);

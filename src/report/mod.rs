@@ -15,7 +15,8 @@
 mod coverage;
 mod page;
 mod path;
-mod scale;
+pub mod plot;
+pub mod scale;
 mod summary;
 mod timeline;
 pub mod trace;

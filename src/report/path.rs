@@ -4,7 +4,9 @@
 
 use serde::Serialize;
 
-use super::scale::{nice_floor, num, px, ticks};
+use super::plot::{self, Projection, VIEW_H, VIEW_W, VIEWS};
+pub use super::plot::{GlyphAxis, GridLine, Rect, ScaleBar};
+use super::scale::{num, px};
 use super::trace::{Entry, Kind, Pose, Target, pose_of};
 use crate::interp::frame;
 
@@ -68,21 +70,6 @@ pub struct View {
 }
 
 #[derive(Debug, Clone, Serialize)]
-pub struct Rect {
-    pub x: String,
-    pub y: String,
-    pub w: String,
-    pub h: String,
-}
-
-/// A grid line at a round coordinate, with its label.
-#[derive(Debug, Clone, Serialize)]
-pub struct GridLine {
-    pub at: String,
-    pub label: String,
-}
-
-#[derive(Debug, Clone, Serialize)]
 pub struct Segment {
     /// `ptp`, `lin`, `circ`, `spl`, or `jump` (after axis motions: the path is not known).
     pub family: &'static str,
@@ -104,13 +91,6 @@ pub struct Mark {
 }
 
 #[derive(Debug, Clone, Serialize)]
-pub struct GlyphAxis {
-    pub axis: &'static str,
-    pub dx: String,
-    pub dy: String,
-}
-
-#[derive(Debug, Clone, Serialize)]
 pub struct VisionMark {
     pub n: usize,
     pub x: String,
@@ -128,13 +108,7 @@ pub struct Point {
     pub title: String,
 }
 
-#[derive(Debug, Clone, Serialize)]
-pub struct ScaleBar {
-    pub x: String,
-    pub y: String,
-    pub w: String,
-    pub label: String,
-}
+const ARC_SEGMENTS: usize = 24;
 
 /// Motions and vision poses of a trace, and the three views.
 #[derive(Debug, Clone, Serialize)]
@@ -145,15 +119,6 @@ pub struct PathModel {
     /// Millimetres per 100 px, for the text.
     pub mm_per_100px: String,
 }
-
-const VIEW_W: f64 = 440.0;
-const VIEW_H: f64 = 340.0;
-const LEFT: f64 = 48.0;
-const RIGHT: f64 = 14.0;
-const TOP: f64 = 14.0;
-const BOTTOM: f64 = 50.0;
-const GLYPH_PX: f64 = 14.0;
-const ARC_SEGMENTS: usize = 24;
 
 fn family(kind: &str) -> &'static str {
     let base = kind.trim_end_matches("_REL");
@@ -344,84 +309,24 @@ fn drawn(motions: &[MotionRow]) -> Vec<Drawn<'_>> {
     out
 }
 
-struct Projection {
-    h: usize,
-    v: usize,
-    scale: f64,
-    /// Page coordinates of the world point (lo_h, lo_v).
-    x0: f64,
-    y0: f64,
-    lo_h: f64,
-    lo_v: f64,
-}
-
-impl Projection {
-    fn xy(&self, p: &[f64]) -> (f64, f64) {
-        (
-            self.x0 + (p[self.h] - self.lo_h) * self.scale,
-            self.y0 - (p[self.v] - self.lo_v) * self.scale,
-        )
-    }
-}
-
-const VIEWS: [(&str, &str, usize, &str, usize, &str); 3] = [
-    ("top", "Top view", 0, "X", 1, "Y"),
-    ("front", "Front view", 0, "X", 2, "Z"),
-    ("side", "Side view", 1, "Y", 2, "Z"),
-];
-
 pub fn build(entries: &[Entry]) -> PathModel {
     let mut motions = motions(entries);
     let mut vision = vision_poses(entries);
     link(&mut motions, &mut vision);
     let drawn = drawn(&motions);
-    // Extent of everything drawn, per world axis.
-    let mut lo = [f64::INFINITY; 3];
-    let mut hi = [f64::NEG_INFINITY; 3];
-    let mut grow = |p: &[f64]| {
-        for i in 0..3 {
-            lo[i] = lo[i].min(p[i]);
-            hi[i] = hi[i].max(p[i]);
-        }
-    };
-    for d in &drawn {
-        grow(&d.pose);
-        d.lead.iter().for_each(|p| grow(p));
-    }
-    vision.iter().for_each(|v| grow(&v.pose));
-    if lo[0] > hi[0] {
-        lo = [0.0; 3];
-        hi = [0.0; 3];
-    }
-    // A flat extent still gets room around it; 5 % margin inside the plot.
-    let mut range = [0.0; 3];
-    for i in 0..3 {
-        let r = (hi[i] - lo[i]).max(1.0);
-        let pad = if hi[i] - lo[i] < 1.0 { 50.0 } else { r * 0.05 };
-        lo[i] -= pad;
-        hi[i] += pad;
-        range[i] = hi[i] - lo[i];
-    }
-    let (pw, ph) = (VIEW_W - LEFT - RIGHT, VIEW_H - TOP - BOTTOM);
-    let scale = VIEWS
+    let points = drawn
         .iter()
-        .map(|(_, _, h, _, v, _)| (pw / range[*h]).min(ph / range[*v]))
-        .fold(f64::INFINITY, f64::min);
+        .flat_map(|d| {
+            std::iter::once([d.pose[0], d.pose[1], d.pose[2]]).chain(d.lead.iter().copied())
+        })
+        .chain(vision.iter().map(|v| [v.pose[0], v.pose[1], v.pose[2]]));
+    let fit = plot::fit(points);
+    let scale = fit.scale;
+    let lo = fit.lo;
     let views = VIEWS
         .iter()
         .map(|&(id, name, h, hn, v, vn)| {
-            // Centre the extent in the plot.
-            let x0 = LEFT + (pw - range[h] * scale) / 2.0;
-            let y0 = TOP + ph - (ph - range[v] * scale) / 2.0;
-            let proj = Projection {
-                h,
-                v,
-                scale,
-                x0,
-                y0,
-                lo_h: lo[h],
-                lo_v: lo[v],
-            };
+            let proj = fit.projection(h, v);
             view(
                 (id, name, hn, vn),
                 &proj,
@@ -448,28 +353,7 @@ fn view(
     vision: &[VisionRow],
     motion_count: usize,
 ) -> View {
-    let (pw, ph) = (VIEW_W - LEFT - RIGHT, VIEW_H - TOP - BOTTOM);
-    // Grid lines over the whole plot (not only the drawn extent, so a flat axis still gets two
-    // labels to read the scale from), about one per 60 px across and 40 px up.
-    let (vis_lo_h, vis_lo_v) = (
-        proj.lo_h + (LEFT - proj.x0) / proj.scale,
-        proj.lo_v + (proj.y0 - TOP - ph) / proj.scale,
-    );
-    let (vis_hi_h, vis_hi_v) = (vis_lo_h + pw / proj.scale, vis_lo_v + ph / proj.scale);
-    let grid_h = ticks(vis_lo_h, vis_hi_h, (pw / 60.0) as usize)
-        .into_iter()
-        .map(|t| GridLine {
-            at: px(proj.xy(&axis_point(proj, t, lo[proj.v])).0),
-            label: num(t, 3),
-        })
-        .collect();
-    let grid_v = ticks(vis_lo_v, vis_hi_v, (ph / 40.0) as usize)
-        .into_iter()
-        .map(|t| GridLine {
-            at: px(proj.xy(&axis_point(proj, lo[proj.h], t)).1),
-            label: num(t, 3),
-        })
-        .collect();
+    let axes = plot::axes(proj, lo);
     let segments = drawn
         .iter()
         .filter(|d| d.lead.len() >= 2)
@@ -503,16 +387,7 @@ fn view(
         .iter()
         .map(|d| {
             let (x, y) = proj.xy(&d.pose);
-            let r = frame::rotation(d.pose[3], d.pose[4], d.pose[5]);
-            let glyph = ["x", "y", "z"]
-                .iter()
-                .enumerate()
-                .map(|(j, axis)| GlyphAxis {
-                    axis,
-                    dx: px(GLYPH_PX * r[proj.h][j]),
-                    dy: px(-GLYPH_PX * r[proj.v][j]),
-                })
-                .collect();
+            let glyph = plot::glyph(proj, [d.pose[3], d.pose[4], d.pose[5]]);
             let m = d.motion;
             let vision = m
                 .vision
@@ -585,7 +460,6 @@ fn view(
             ),
         }
     };
-    let bar_mm = nice_floor(pw / 4.0 / proj.scale);
     let axis_motions = motion_count - drawn.len();
     let mut desc = format!(
         "{name} ({hn} to the right, {vn} up, mm): {} Cartesian motion target{}, {} vision pose{}",
@@ -608,33 +482,15 @@ fn view(
         v: vn,
         width: VIEW_W as u32,
         height: VIEW_H as u32,
-        plot: Rect {
-            x: px(LEFT),
-            y: px(TOP),
-            w: px(pw),
-            h: px(ph),
-        },
-        grid_h,
-        grid_v,
+        plot: axes.plot,
+        grid_h: axes.grid_h,
+        grid_v: axes.grid_v,
         segments,
         targets,
         vision: vision_marks,
         start: drawn.first().map(|d| point(d, "start")),
         end: drawn.last().map(|d| point(d, "end")),
-        scale_bar: ScaleBar {
-            x: px(LEFT),
-            y: px(VIEW_H - 12.0),
-            w: px(bar_mm * proj.scale),
-            label: format!("{} mm", num(bar_mm, 3)),
-        },
+        scale_bar: axes.scale_bar,
         desc,
     }
-}
-
-/// A world point whose coordinates on the view's axes are `(h, v)`.
-fn axis_point(proj: &Projection, h: f64, v: f64) -> [f64; 3] {
-    let mut p = [0.0; 3];
-    p[proj.h] = h;
-    p[proj.v] = v;
-    p
 }

@@ -64,6 +64,11 @@ pub struct Workspace {
     pub errors: Vec<LoadError>,
     /// Paths passed over (special files such as FIFOs), as messages.
     pub skipped: Vec<String>,
+    /// EthernetKRL channel files (`.xml` naming `ETHERNETKRL`), read only by
+    /// [`Workspace::load_with_eki`] (`krlkit diff`).
+    pub eki: Vec<WorkspaceFile>,
+    /// Whether EKI files are read ([`Workspace::load_with_eki`]).
+    pub want_eki: bool,
 }
 
 /// Entries larger than this are not read from an archive (no KRL file comes near it).
@@ -109,7 +114,21 @@ impl Workspace {
     /// Read every path: folders are walked, `.zip` files read as backup archives, other files
     /// read as KRL. Errors are collected; everything readable is still read.
     pub fn load(paths: &[PathBuf]) -> Workspace {
-        let mut ws = Workspace::default();
+        Self::load_into(Workspace::default(), paths)
+    }
+
+    /// [`Workspace::load`], and the EKI channel files beside the KRL (folders and archives).
+    pub fn load_with_eki(paths: &[PathBuf]) -> Workspace {
+        Self::load_into(
+            Workspace {
+                want_eki: true,
+                ..Workspace::default()
+            },
+            paths,
+        )
+    }
+
+    fn load_into(mut ws: Workspace, paths: &[PathBuf]) -> Workspace {
         for (g, path) in paths.iter().enumerate() {
             let group = g as u32;
             if path.is_file() && is_zip(path) {
@@ -144,6 +163,17 @@ impl Workspace {
                     path: e.path.display().to_string(),
                     message: e.source.to_string(),
                 }),
+            }
+        }
+        if self.want_eki {
+            for p in files::walk_xml(std::slice::from_ref(&path.to_path_buf())) {
+                match std::fs::read(&p) {
+                    Ok(bytes) => self.push_eki(p.display().to_string(), &bytes, group),
+                    Err(e) => self.errors.push(LoadError {
+                        path: p.display().to_string(),
+                        message: e.to_string(),
+                    }),
+                }
             }
         }
         let mut source = Source {
@@ -230,7 +260,8 @@ impl Workspace {
             names.push(name.clone());
             let is_ini = name.eq_ignore_ascii_case("am.ini")
                 || name.to_ascii_lowercase().ends_with("/am.ini");
-            if !is_ini && !files::has_krl_extension(Path::new(&name)) {
+            let is_xml = self.want_eki && name.to_ascii_lowercase().ends_with(".xml");
+            if !is_ini && !is_xml && !files::has_krl_extension(Path::new(&name)) {
                 continue;
             }
             if entry.size() > MAX_ENTRY {
@@ -260,6 +291,10 @@ impl Workspace {
                 }
                 continue;
             }
+            if is_xml {
+                self.push_eki(name, &bytes, group);
+                continue;
+            }
             raw.push((name, bytes));
         }
         let decoded: Vec<WorkspaceFile> = raw
@@ -281,6 +316,13 @@ impl Workspace {
             kss_version: version.as_deref().and_then(KssVersion::parse),
             kss_version_text: version,
         });
+    }
+
+    fn push_eki(&mut self, path: String, bytes: &[u8], group: u32) {
+        let text = crate::syntax::decode(bytes).text;
+        if text.to_ascii_uppercase().contains("<ETHERNETKRL") {
+            self.eki.push(WorkspaceFile { path, text, group });
+        }
     }
 
     /// The KSS version of the first source that names one.

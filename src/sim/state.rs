@@ -7,6 +7,9 @@ use std::collections::{HashMap, VecDeque};
 use std::sync::{Arc, OnceLock};
 use std::time::Duration;
 
+use serde::Deserialize;
+use serde::de::value::StrDeserializer;
+
 use crate::catalog::{Interface, catalog};
 
 use super::clock::{Clock, SystemClock};
@@ -19,8 +22,10 @@ pub const NOTIFY_LIFETIME: Duration = Duration::from_secs(3);
 /// oldest instead of growing the buffer.
 pub const NOTIFY_CAPACITY: usize = 256;
 
-/// The commands this server answers, by catalog name.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
+/// The commands this server answers: one per catalog `[[command]]`, whose `name` is the variant
+/// in snake case (serde reads it; a catalog command this enum lacks stops the server's start).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, Deserialize)]
+#[serde(rename_all = "snake_case")]
 pub enum Cmd {
     StartVision,
     GetVisionResult,
@@ -44,30 +49,6 @@ pub enum Cmd {
     Calibrate,
     GetStatus,
 }
-
-const COMMANDS: [(Cmd, &str); 21] = [
-    (Cmd::StartVision, "start_vision"),
-    (Cmd::GetVisionResult, "get_vision_result"),
-    (Cmd::SwitchRecipe, "switch_recipe"),
-    (Cmd::GetVisionPath, "get_vision_path"),
-    (Cmd::GetVisionDoList, "get_vision_do_list"),
-    (Cmd::GetCustomData, "get_custom_data"),
-    (Cmd::GetVisionPlanWaypoint, "get_vision_plan_waypoint"),
-    (Cmd::StartViz, "start_viz"),
-    (Cmd::SetBranch, "set_branch"),
-    (Cmd::SetIndex, "set_index"),
-    (Cmd::GetVizPath, "get_viz_path"),
-    (Cmd::GetDoList, "get_do_list"),
-    (Cmd::GetVizProperty, "get_viz_property"),
-    (Cmd::SetVizProperty, "set_viz_property"),
-    (Cmd::GetPlanWaypoint, "get_plan_waypoint"),
-    (Cmd::SetBoxSize, "set_box_size"),
-    (Cmd::SetExternalMove, "set_external_move"),
-    (Cmd::StopViz, "stop_viz"),
-    (Cmd::GetNotify, "get_notify"),
-    (Cmd::Calibrate, "calibrate"),
-    (Cmd::GetStatus, "get_status"),
-];
 
 /// Status codes the server replies with, resolved from the catalog once.
 #[derive(Debug)]
@@ -129,11 +110,11 @@ pub fn codes_in(iface: Interface) -> &'static Codes {
         let mut commands = HashMap::new();
         let mut success = HashMap::new();
         let mut arity = HashMap::new();
-        for (cmd, name) in COMMANDS {
-            // A command the version lacks (502 in 2.x, 202 in 1.x) is answered 3001.
-            let Some(c) = cat.command_named_in(iface, name) else {
-                continue;
-            };
+        // A command the version lacks (502 in 2.x, 202 in 1.x) is answered 3001.
+        for c in cat.commands_of(iface) {
+            let name = c.name.as_str();
+            let cmd = Cmd::deserialize(StrDeserializer::<serde::de::value::Error>::new(name))
+                .unwrap_or_else(|_| panic!("catalog command {name} has no Cmd"));
             commands.insert(c.code, cmd);
             if !c.request.iter().any(|f| f.ends_with("...")) {
                 arity.insert(cmd, c.request.len());
@@ -834,15 +815,19 @@ mod tests {
     fn every_command_and_status_name_resolves_in_the_catalog() {
         for iface in Interface::ALL {
             let c = codes_in(iface);
-            for (cmd, name) in COMMANDS {
-                let code = catalog().command_named_in(iface, name).map(|c| c.code);
-                assert_eq!(code.and_then(|n| c.command(n)), code.map(|_| cmd), "{name}");
+            for command in catalog().commands_of(iface) {
+                let served = c.command(command.code).expect("served");
+                let named = Cmd::deserialize(StrDeserializer::<serde::de::value::Error>::new(
+                    &command.name,
+                ));
+                assert_eq!(named, Ok(served), "{}", command.name);
             }
             assert_eq!(c.invalid_format, 3002);
             assert_eq!(c.project_not_found, 1011);
         }
-        assert_eq!(codes_in(Interface::V1).commands.len(), COMMANDS.len() - 1);
-        assert_eq!(codes_in(Interface::V2).commands.len(), COMMANDS.len() - 1);
+        // 21 commands, each version lacking one.
+        assert_eq!(codes_in(Interface::V1).commands.len(), 20);
+        assert_eq!(codes_in(Interface::V2).commands.len(), 20);
         assert!(codes_in(Interface::V1).command(202).is_none());
         assert!(codes_in(Interface::V2).command(502).is_none());
     }
@@ -863,14 +848,12 @@ mod tests {
             let c = codes_in(iface);
             let bad = c.invalid_format.to_string();
             let mut fixed = 0;
-            for (cmd, name) in COMMANDS {
-                let Some(n) = c.arity(cmd) else {
+            for command in catalog().commands_of(iface) {
+                let (code, name) = (command.code, &command.name);
+                let Some(n) = c.command(code).and_then(|cmd| c.arity(cmd)) else {
                     continue;
                 };
                 fixed += 1;
-                let code = catalog()
-                    .command_named_in(iface, name)
-                    .map_or(0, |c| c.code);
                 let ask = |state: &mut State, len: usize| {
                     state
                         .handle(&Request {

@@ -178,7 +178,7 @@ impl RawSpec {
             &self.server_port,
             "server_port",
             1,
-            65535,
+            i64::from(lim.eki_port_max),
             u32::from(default::SERVER_PORT),
         )? as u16;
         let (fmin, fmax) = (lim.flag_min, lim.flag_max);

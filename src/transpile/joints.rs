@@ -158,6 +158,40 @@ impl fmt::Display for JointMap {
     }
 }
 
+/// A relative axis move (`PTP_REL {A6 90}`) through `map`: per offset its target joint
+/// (0-based), whether it turns the other way, and the KRL value; `robot` names the target arm
+/// in the findings. External axes and an axis carried by no single joint are TR001.
+pub fn relative_joints<'e>(
+    map: &JointMap,
+    d: &'e crate::transpile::ir::Delta,
+    robot: &str,
+) -> crate::transpile::front::R<Vec<(usize, bool, &'e crate::transpile::ir::Expr)>> {
+    use crate::transpile::front::fail;
+    let mut out = Vec::new();
+    for (c, e) in &d.fields {
+        let crate::transpile::ir::Component::Axis(i) = c else {
+            return fail(
+                d.span,
+                format!("a relative axis move with external axes has no {robot} equivalent"),
+                "move the external axis on its own",
+            );
+        };
+        let Some((joint, source)) = map.joint_of(*i as u8 + 1) else {
+            return fail(
+                e.span,
+                format!(
+                    "the joint map {map} gives axis A{} no single {robot} joint",
+                    i + 1
+                ),
+                "give a joint map in which the axis drives one joint",
+            );
+        };
+        let negate = matches!(source, JointSource::Axis { negate: true, .. });
+        out.push((joint, negate, e));
+    }
+    Ok(out)
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;

@@ -4,8 +4,9 @@
 //! [`ir`] lowers it once into a target-neutral program model (hoisted calls, typed motions,
 //! explicit advance-run stops) and resolves the motion parameters by dataflow; each target is
 //! a renderer of that model ([`kawasaki`]: Kawasaki AS, [`flexiv`]: a Flexiv RDK Python script)
-//! that decides no KRL semantics.
-//! [`orientation`] holds the Euler-angle conversions, [`rules`] the diagnostic codes TR001–TR003.
+//! that decides no KRL semantics, built on the backend core [`render`] (the statement loop, the
+//! TR001 fallback, comments, and the one table of targets with their capabilities).
+//! [`rules`] holds the diagnostic codes TR001–TR003; Euler-angle conversions are `crate::geom`'s.
 //!
 //! Invariants: translation never fails and never panics on user input: what cannot be
 //! translated faithfully is a `TR001` and stays in the output as a comment at its place,
@@ -17,7 +18,7 @@ pub mod front;
 pub mod ir;
 pub mod joints;
 pub mod kawasaki;
-pub mod orientation;
+pub mod render;
 pub mod rules;
 
 use std::net::Ipv4Addr;
@@ -137,7 +138,8 @@ pub fn transpile(
         front::Parsed::new(src.path, src.text),
         dat.map(|d| front::Parsed::new(d.path, d.text)),
     );
-    let mut first = ir::lower::Lower::new(&program, options);
+    let backend = render::backend(target);
+    let mut first = ir::lower::Lower::new(&program, options, backend.caps());
     let mut skeleton = ir::flow::Skeleton::default();
     let mut plan = ir::goto::Plan::default();
     let mut open = ir::RoutineId(0);
@@ -164,26 +166,12 @@ pub fn transpile(
     for f in std::mem::take(&mut model.findings) {
         report.approximate(f.file, f.span, f.message, f.help);
     }
-    let mut renderer: Box<dyn Renderer + '_> = match target {
-        Target::Kawasaki => Box::new(kawasaki::renderer(
-            &program,
-            &model,
-            vision.as_ref(),
-            options,
-            report,
-        )),
-        Target::Flexiv => Box::new(flexiv::renderer(
-            &program,
-            &model,
-            vision.as_ref(),
-            options,
-            report,
-        )),
-    };
+    let mut renderer = backend.renderer(&program, &model, vision.as_ref(), options, report);
     renderer.start();
     let mut second = replay.lower(&model, &program, options);
-    // Python has no GOTO: a label and the jumps to it are made loops together ([`ir::goto`]).
-    let mut units = (target == Target::Flexiv).then(|| ir::goto::Units::new(&plan));
+    // A target without GOTO: a label and the jumps to it are made loops together
+    // ([`ir::goto`]).
+    let mut units = (!backend.caps().goto).then(|| ir::goto::Units::new(&plan));
     let mut resolver = None;
     each_lowered(&program, &mut second, |event| match event {
         Lowered::Begin(id) => {
@@ -215,13 +203,11 @@ pub fn transpile(
     });
     drop(second);
     let (text, mut report, produced) = renderer.finish();
-    if target == Target::Kawasaki {
-        let at = model
-            .routines
-            .first()
-            .map_or(crate::diag::Span::new(0, 0), |r| r.name_span);
-        report_structure(&text, at, &mut report);
-    }
+    let at = model
+        .routines
+        .first()
+        .map_or(crate::diag::Span::new(0, 0), |r| r.name_span);
+    report_structure(backend, &text, at, &mut report);
     report.coverage = coverage(&model, &report);
     let silent = silent(&model, &report, &produced);
     drop(model);
@@ -294,16 +280,22 @@ fn each_lowered(
     }
 }
 
-/// The promise is "loads on the controller": AS text that fails the structural check is a
-/// renderer defect, and it fails the command (TR001 at the program's first routine) instead of
-/// reaching the robot.
-fn report_structure(text: &str, at: crate::diag::Span, report: &mut front::report::Report) {
-    for problem in kawasaki::check::check(text) {
+/// The promise is "loads on the controller": target text that fails the backend's own check
+/// is a renderer defect, and it fails the command (TR001 at the program's first routine)
+/// instead of reaching the robot.
+fn report_structure(
+    backend: &render::Backend,
+    text: &str,
+    at: crate::diag::Span,
+    report: &mut front::report::Report,
+) {
+    for problem in backend.check(text) {
         report.untranslatable(
             front::report::FileId::Src,
             at,
             format!(
-                "the translated AS fails krlkit's structural check ({problem}): a translator defect"
+                "the translated {} fails krlkit's structural check ({problem}): a translator defect",
+                backend.name_rules().language
             ),
             "do not load this output; report the program that produced it",
         );
@@ -439,6 +431,7 @@ mod structure_tests {
     fn unsound_as_fails_the_translation() {
         let mut report = front::report::Report::default();
         report_structure(
+            render::backend(Target::Kawasaki),
             ".PROGRAM a()\n  IF x THEN\n.END\n",
             crate::diag::Span::new(4, 5),
             &mut report,
@@ -450,6 +443,7 @@ mod structure_tests {
 
         let mut report = front::report::Report::default();
         report_structure(
+            render::backend(Target::Kawasaki),
             ".PROGRAM a()\n  HOME\n.END\n",
             crate::diag::Span::new(4, 5),
             &mut report,

@@ -197,6 +197,16 @@ def move_j(j, vel=None):
         "MoveJ", {"target": to_jpos(j), "jntVelScale": KRL.vel_ptp if vel is None else vel}
     )
     wait_reached()
+
+
+def move_j_rel(d, vel=None):
+    """PTP_REL of axes: MoveJ to the current joints plus the mapped offsets (degrees)."""
+    q = [math.degrees(v) for v in robot.states().q]
+    target = flexivrdk.JPos([a + b for a, b in zip(q, d)])
+    robot.ExecutePrimitive(
+        "MoveJ", {"target": target, "jntVelScale": KRL.vel_ptp if vel is None else vel}
+    )
+    wait_reached()
 {%- endif %}
 
 

@@ -33,7 +33,7 @@ use std::collections::HashMap;
 use std::net::TcpStream;
 use std::rc::Rc;
 
-use krlkit::generate::as_check::split_top_level;
+use krlkit::aslang::split_top_level;
 use parse::{Param, Program};
 
 #[derive(Debug, Clone, PartialEq)]

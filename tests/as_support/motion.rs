@@ -2,7 +2,7 @@
 //! target sets the current pose, a joint target the current joints; targets are recorded as
 //! written (in the active BASE and TOOL, which are recorded as settings).
 
-use krlkit::transpile::orientation::{Matrix, matrix_to_oat, mul, oat_to_matrix};
+use krlkit::geom::{Matrix, matrix_to_oat, mul, oat_to_matrix};
 
 use super::exec::fmt_num;
 use super::parse::{Move, Setting};

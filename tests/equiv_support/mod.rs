@@ -15,9 +15,9 @@ use std::path::{Path, PathBuf};
 use std::process::Command;
 
 use krlkit::diag::{LineIndex, Severity};
+use krlkit::geom::{Matrix, abc_to_matrix, abc_to_oat, max_diff, oat_to_matrix};
 use krlkit::interp::{self, Event as KrlEvent, RunResult, SpeedKind, WaitKind};
 use krlkit::transpile::flexiv::{FlexivOptions, PtpPrimitive};
-use krlkit::transpile::orientation::{Matrix, abc_to_matrix, abc_to_oat, max_diff, oat_to_matrix};
 use krlkit::transpile::{self, Options, Source, Target, Translation};
 
 use crate::as_support::{As, End, Event as AsEvent, V};
@@ -612,7 +612,7 @@ pub fn flexiv_steps(calls: &[serde_json::Value]) -> Vec<Step> {
                             for (i, qi) in q.iter_mut().enumerate() {
                                 *qi += (0..3).map(|k| r0[i][k] * xyz[k]).sum::<f64>();
                             }
-                            (q, krlkit::transpile::orientation::mul(&r0, &r))
+                            (q, krlkit::geom::mul(&r0, &r))
                         }
                         _ => (xyz, r),
                     };

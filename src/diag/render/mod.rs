@@ -107,7 +107,7 @@ mod tests {
                 rs.iter().try_for_each(|r| github::write(r, w))
             }),
             ("json", |rs, w| json::write(rs, w)),
-            ("sarif", |rs, w| sarif::write(rs, None, w)),
+            ("sarif", |rs, w| sarif::write(rs, &[], None, w)),
         ];
         for (name, render) in formats {
             let mut w = Recorder::default();

@@ -1,5 +1,5 @@
-//! SARIF 2.1.0: one run, the rule metadata (the lint registry's, or the caller's), one result
-//! per finding.
+//! SARIF 2.1.0: one run, the rule metadata the caller passes (diag knows no rule registry), one
+//! result per finding.
 //!
 //! Artifact locations are URIs, as SARIF requires (§3.4.3): a relative path is a percent-encoded
 //! relative reference against the `SRCROOT` base (the working directory, named in
@@ -13,7 +13,6 @@ use serde::ser::{Serialize, SerializeMap, Serializer};
 use serde_json::{Value, json};
 
 use crate::diag::{Diagnostic, FileReport, LineIndex, Severity};
-use crate::lint::RULES;
 
 const SCHEMA: &str = "https://json.schemastore.org/sarif-2.1.0.json";
 
@@ -61,32 +60,13 @@ pub fn artifact_location(path: &str) -> Value {
     json!({ "uri": uri, "uriBaseId": SRCROOT })
 }
 
-/// The whole SARIF log for `reports` with the lint rules' metadata, then a newline; `root` is
-/// the directory relative paths start from (the working directory), named as `SRCROOT` when
-/// given.
-pub fn write<W: Write + ?Sized>(
-    reports: &[FileReport],
-    root: Option<&Path>,
-    out: &mut W,
-) -> io::Result<()> {
-    let rules: Vec<RuleMeta> = RULES
-        .iter()
-        .map(|r| RuleMeta {
-            code: r.code,
-            name: r.name,
-            severity: r.severity,
-            summary: r.summary,
-            doc: r.doc,
-        })
-        .collect();
-    write_with_rules(reports, &rules, root, out)
-}
-
-/// The whole SARIF log for `reports` with the metadata of `rules` (`root` as for [`write`]).
+/// The whole SARIF log for `reports` with the metadata of `rules` (the caller's: the lint
+/// registry's, the translation's), then a newline; `root` is the directory relative paths start
+/// from (the working directory), named as `SRCROOT` when given.
 ///
 /// The log around the results is a `Value`; the results are made one at a time as the log is
 /// written (pretty, by serde_json), so only one of them is ever held.
-pub fn write_with_rules<W: Write + ?Sized>(
+pub fn write<W: Write + ?Sized>(
     reports: &[FileReport],
     rule_meta: &[RuleMeta],
     root: Option<&Path>,
@@ -236,7 +216,7 @@ mod tests {
     /// The log [`write`] writes, read back.
     fn written(reports: &[FileReport], root: Option<&Path>) -> Value {
         let mut out = Vec::new();
-        write(reports, root, &mut out).unwrap();
+        write(reports, &[], root, &mut out).unwrap();
         serde_json::from_slice(&out).unwrap()
     }
 

@@ -57,8 +57,8 @@ fn check(ctx: &FileCtx, out: &mut Vec<Diagnostic>) {
             continue;
         };
         for (i, what, want) in [
-            (1usize, "alive", ch.alive_flag),
-            (2, "receive", ch.receive_flag),
+            (1usize, "alive", ch.alive_flag()),
+            (2, "receive", ch.receive_flag()),
         ] {
             let Some(want) = want else { continue };
             let Some(Some(arg)) = c.args.get(i) else {

@@ -27,8 +27,8 @@ fn init_call(ctx: &FileCtx) -> String {
     let (name, alive, recv) = match ctx.project.channels.first() {
         Some(ch) => (
             ch.name.clone(),
-            ch.alive_flag.unwrap_or(spec.alive_flag.into()),
-            ch.receive_flag.unwrap_or(spec.receive_flag.into()),
+            ch.alive_flag().unwrap_or(spec.alive_flag.into()),
+            ch.receive_flag().unwrap_or(spec.receive_flag.into()),
         ),
         None => (
             spec.channel.clone(),

@@ -10,7 +10,7 @@ use std::collections::BTreeSet;
 use askama::Template;
 
 use super::options::FlexivOptions;
-use crate::catalog::{Command, Direction, Origin, Param, Subprogram, catalog};
+use crate::catalog::{Command, Direction, Origin, Param, RoutineShape, Subprogram, catalog};
 
 /// A status code the client sets itself (catalog origin `package`).
 pub struct Code {
@@ -106,6 +106,8 @@ pub struct Method {
     pub name: String,
     /// KUKA name, e.g. `MM_Get_VisData`.
     pub krl: String,
+    /// Which template renders it.
+    pub shape: RoutineShape,
     pub summary: String,
     /// Docstring lines after the summary.
     pub doc: Vec<String>,
@@ -143,10 +145,10 @@ pub fn param_name(p: &Param) -> String {
     p.ident().to_ascii_lowercase()
 }
 
-/// The subprograms the client supports; `MM_CALIB` moves the robot through the KUKA package's
-/// own motions and is left to the user.
+/// The subprograms the client supports: not those that move the robot (`MM_CALIB` moves it
+/// through the KUKA package's own motions and is left to the user).
 pub fn supported(sub: &Subprogram) -> bool {
-    sub.name != "MM_CALIB"
+    !sub.shape.moves()
 }
 
 /// The Python condition for one IN parameter outside its documented range.
@@ -194,7 +196,7 @@ fn method(sub: &Subprogram, fx: &FlexivOptions) -> Method {
     let cmd = sub.commands.first().copied().unwrap_or(0);
     let command = cat.command(cmd);
     let ok = command.and_then(|c| c.success).unwrap_or(0);
-    let init = sub.name == "MM_Init_Socket";
+    let init = sub.shape == RoutineShape::InitSocket;
     let ins: Vec<String> = if init {
         // The host program connects by address; the KUKA XML name and EKI flags have no role.
         vec!["ip".into(), "port".into(), "time_out".into()]
@@ -281,9 +283,9 @@ fn method(sub: &Subprogram, fx: &FlexivOptions) -> Method {
     if !status.is_empty() {
         doc.push(format!("Status (last_status): {}.", status.join("; ")));
     }
-    let kind = match (sub.param("Jps_Pos"), sub.name.as_str()) {
-        (_, "MM_Get_Jps") => "KIND_JOINTS".to_owned(),
-        (_, "MM_Get_Pose") => "KIND_TCP".to_owned(),
+    let kind = match (sub.param("Jps_Pos"), sub.shape) {
+        (_, RoutineShape::GetJps) => "KIND_JOINTS".to_owned(),
+        (_, RoutineShape::GetPose) => "KIND_TCP".to_owned(),
         (Some(_), _) => "jps_pos".to_owned(),
         (None, _) => "self.KIND_TCP".to_owned(),
     };
@@ -305,6 +307,7 @@ fn method(sub: &Subprogram, fx: &FlexivOptions) -> Method {
     Method {
         name: method_name(&sub.name),
         krl: sub.name.clone(),
+        shape: sub.shape,
         summary,
         doc,
         ins,
@@ -362,21 +365,25 @@ struct ClientTemplate<'a> {
 }
 
 fn render_method(m: &Method, v: &ClientView) -> askama::Result<String> {
-    match m.krl.as_str() {
-        "MM_Init_Socket" => InitSocket { m, v }.render(),
-        "MM_Start_Vis" => StartVis { m, v }.render(),
-        "MM_Start_Viz" => StartViz { m, v }.render(),
-        "MM_Get_VisData" | "MM_Get_VizData" | "MM_Get_VisPath" => Batch { m, v }.render(),
-        "MM_Get_Pose" | "MM_Get_Jps" => GetPose { m, v }.render(),
-        "MM_Get_Dy_Data" => GetDyData { m, v }.render(),
-        "MM_Get_DyPose" => GetDyPose { m, v }.render(),
-        "MM_Get_PlanData" => GetPlanData { m, v }.render(),
-        "MM_Get_PlanJps" | "MM_Get_PlanPose" => GetPlanPoint { m, v }.render(),
-        "MM_Get_DoList" => GetDoList { m, v }.render(),
-        "MM_Set_DoList" => SetDoList { m, v }.render(),
-        // Send the IN arguments, keep the status: MM_Switch_Model, MM_Set_Branch,
-        // MM_Set_Index, MM_Get_Status, MM_Set_BoxSize, MM_Set_Pos.
-        _ => Simple { m, v }.render(),
+    match m.shape {
+        RoutineShape::InitSocket => InitSocket { m, v }.render(),
+        RoutineShape::StartVis => StartVis { m, v }.render(),
+        RoutineShape::StartViz => StartViz { m, v }.render(),
+        RoutineShape::Batch => Batch { m, v }.render(),
+        RoutineShape::GetPose | RoutineShape::GetJps => GetPose { m, v }.render(),
+        RoutineShape::GetDyData => GetDyData { m, v }.render(),
+        RoutineShape::GetDyPose => GetDyPose { m, v }.render(),
+        RoutineShape::GetPlanData => GetPlanData { m, v }.render(),
+        RoutineShape::GetPlanJps | RoutineShape::GetPlanPose => GetPlanPoint { m, v }.render(),
+        RoutineShape::GetDoList => GetDoList { m, v }.render(),
+        RoutineShape::SetDoList => SetDoList { m, v }.render(),
+        // Send the IN arguments, keep the status. The client serves the 1.x interface, which
+        // has no GetProperty/GetNotify/GetWobj routine; Calib is never rendered (`supported`).
+        RoutineShape::Simple
+        | RoutineShape::GetProperty
+        | RoutineShape::GetNotify
+        | RoutineShape::GetWobj
+        | RoutineShape::Calib => Simple { m, v }.render(),
     }
 }
 

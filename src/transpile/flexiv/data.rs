@@ -30,19 +30,21 @@ impl<'a> Tx<'a> {
             }
             _ => n.clone(),
         };
-        let start = self.lines.len();
+        let start = self.out.lines.len();
         let r = match &d.value {
             Ok(v) => self.data_expr(&var.ty, v, d.file),
             Err(why) => super::fail(d.span, why.message(), super::help::help(why)),
         };
-        self.lines.truncate(start);
+        self.out.lines.truncate(start);
         match r {
             Ok(value) => {
                 self.globals.push(format!("{name} = {value}"));
-                self.produced.push(d.span);
+                self.out.produced.push(d.span);
             }
             Err(f) => {
-                self.rep.untranslatable(d.file, f.span, f.message, f.help);
+                self.out
+                    .rep
+                    .untranslatable(d.file, f.span, f.message, f.help);
                 let file = match d.file {
                     crate::transpile::front::report::FileId::Src => &self.src.src,
                     crate::transpile::front::report::FileId::Dat => {

@@ -8,6 +8,7 @@ use crate::transpile::ir::{
     Aggregate, Bank, BinaryOp, Builtin, Component, Expr, ExprKind, IoPlace, MotionParam, Place,
     SignalRange, Ty, UnaryOp,
 };
+use crate::transpile::render::Emit;
 
 /// Binding strength of a Python expression (higher binds tighter), to place parentheses.
 pub(super) const ATOM: u8 = 15;
@@ -212,12 +213,11 @@ impl<'a> Tx<'a> {
             Builtin::Cos => format!("math.cos(math.radians({}))", one(&v)?),
             Builtin::Tan => format!("math.tan(math.radians({}))", one(&v)?),
             Builtin::Acos => format!("math.degrees(math.acos({}))", one(&v)?),
-            Builtin::Atan2 => {
-                if v.len() != 2 {
-                    return fail(span, "ATAN2 takes two values", "pass y and x");
-                }
-                format!("math.degrees(math.atan2({}, {}))", v[0], v[1])
-            }
+            // The lowering passes exactly `Builtin::arity` values.
+            Builtin::Atan2 => match v.as_slice() {
+                [y, x] => format!("math.degrees(math.atan2({y}, {x}))"),
+                _ => one(&[])?,
+            },
             Builtin::StrLen => format!("len({})", one(&v)?),
             Builtin::InvPos => format!("frame_inv({})", one(&v)?),
             Builtin::Round => format!("to_int({})", one(&v)?),
@@ -314,7 +314,7 @@ impl<'a> Tx<'a> {
     }
 
     pub(super) fn output_readback(&mut self, span: Span) {
-        self.rep.approximate(
+        self.out.rep.approximate(
             FileId::Src,
             span,
             "reading an output gives the value this script last wrote to it (RDK 1.x cannot read outputs back)",
@@ -335,16 +335,7 @@ impl<'a> Tx<'a> {
     pub(super) fn target(&mut self, p: &Place, span: Span, write: bool) -> R<Target> {
         match p {
             Place::Var(v) => {
-                let var = self.ir.var(*v);
-                if let Ty::Struc(s) | Ty::Other(s) = &var.ty
-                    && !s.is_empty()
-                {
-                    return fail(
-                        span,
-                        format!("`{}` has type {s}, which has no translation", var.name),
-                        "split the structure into separate variables (numbers, strings, poses)",
-                    );
-                }
+                // A structure never gets here: the lowering refuses what the target cannot hold.
                 let (n, module) = self.var_name(*v, span);
                 if write && module {
                     self.assigns_global(&n);
@@ -479,7 +470,7 @@ impl<'a> Tx<'a> {
     /// S and T are dropped: a Rizon resolves its posture (7 joints) itself.
     pub(super) fn status_turn(&mut self, a: &Aggregate, span: Span, file: FileId) {
         if let Some(st) = a.status_turn_text() {
-            self.rep.approximate(
+            self.out.rep.approximate(
                 file,
                 span,
                 format!(

@@ -70,6 +70,9 @@ pub(super) fn help(why: &Why) -> String {
         Why::InterruptNumber | Why::NoInterruptDecl(_) => {
             "poll the condition where the program can react".into()
         }
+        Why::NoInterrupts => {
+            "poll the condition where the program can react, or port the interrupt to a thread by hand".into()
+        }
         Why::InterruptCondition | Why::InterruptHandler => {
             "poll the condition where the program can react, or port the interrupt to a thread by hand".into()
         }

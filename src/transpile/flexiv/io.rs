@@ -4,7 +4,8 @@ use super::expr::{CMP, NOT};
 use super::{R, Tx, fail};
 use crate::diag::Span;
 use crate::transpile::front::report::FileId;
-use crate::transpile::ir::{Bank, Expr, ExprKind, IoPlace, IoTiming, TimerOp, UnaryOp, Wait};
+use crate::transpile::ir::{Expr, ExprKind, IoTiming, OutPlace, TimerOp, UnaryOp, Wait};
+use crate::transpile::render::Emit;
 
 impl<'a> Tx<'a> {
     /// A value written to an output: `True`/`False` literals as they are, others as they are
@@ -18,7 +19,7 @@ impl<'a> Tx<'a> {
 
     pub(super) fn set_io(
         &mut self,
-        io: &IoPlace,
+        io: &OutPlace,
         value: &Expr,
         when: &IoTiming,
         span: Span,
@@ -26,13 +27,13 @@ impl<'a> Tx<'a> {
         let fx = self.fx;
         match when {
             IoTiming::Now | IoTiming::Trigger(_) => {}
-            IoTiming::Ahead => self.rep.approximate(
+            IoTiming::Ahead => self.out.rep.approximate(
                 FileId::Src,
                 span,
                 "after CONTINUE the output switches after the previous move has ended (the script waits for every move), not while it runs",
                 "check when the output must switch",
             ),
-            IoTiming::PathEnd => self.rep.approximate(
+            IoTiming::PathEnd => self.out.rep.approximate(
                 FileId::Src,
                 span,
                 "$OUT_C (set when the robot reaches the point) is set after the previous move has ended",
@@ -40,24 +41,19 @@ impl<'a> Tx<'a> {
             ),
         }
         match io {
-            IoPlace::Out(i) => {
+            OutPlace::Out(i) => {
                 let p = self.port(fx.output_offset, i)?;
                 let v = self.bool_value(value)?;
                 self.line(format!("set_out({}, {v})", p.text));
             }
-            IoPlace::Flag(i) => {
+            OutPlace::Flag(i) => {
                 let i = self.expr(i)?;
                 let v = self.expr(value)?;
                 self.line(format!("FLAG[{i}] = {v}"));
             }
-            IoPlace::In(_) => {
-                return fail(span, "inputs cannot be written", "write an output instead");
-            }
-            IoPlace::Signal(r) => {
-                if r.bank == Bank::In {
-                    return fail(span, "inputs cannot be written", "write an output instead");
-                }
-                let (first, _) = self.signal_ports(*r, span)?;
+            OutPlace::Signal(r) => {
+                let r = r.range();
+                let (first, _) = self.signal_ports(r, span)?;
                 if r.width() == 1 {
                     let v = self.bool_value(value)?;
                     self.line(format!("set_out({first}, {v})"));
@@ -72,16 +68,16 @@ impl<'a> Tx<'a> {
 
     pub(super) fn pulse(
         &mut self,
-        io: &IoPlace,
+        io: &OutPlace,
         level: &Expr,
         seconds: &Expr,
         span: Span,
     ) -> R<()> {
         let fx = self.fx;
         let port = match io {
-            IoPlace::Out(i) => self.port(fx.output_offset, i)?.text,
-            IoPlace::Signal(r) if r.bank == Bank::Out && r.width() == 1 => {
-                self.signal_ports(*r, span)?.0.to_string()
+            OutPlace::Out(i) => self.port(fx.output_offset, i)?.text,
+            OutPlace::Signal(r) if r.range().width() == 1 => {
+                self.signal_ports(r.range(), span)?.0.to_string()
             }
             _ => {
                 return fail(
@@ -102,7 +98,7 @@ impl<'a> Tx<'a> {
             }
         };
         let t = self.expr(seconds)?;
-        self.rep.approximate(
+        self.out.rep.approximate(
             FileId::Src,
             span,
             "PULSE becomes set, sleep, reset: the script waits for the pulse to end (KRL does not)",
@@ -171,9 +167,9 @@ impl<'a> Tx<'a> {
         let line = self.src.src.line(span.start);
         let at = format!(
             "{}:{line}",
-            super::file_name(&self.src.src.path).replace('"', "")
+            crate::transpile::render::file_name(&self.src.src.path).replace('"', "")
         );
-        self.rep.approximate(
+        self.out.rep.approximate(
             FileId::Src,
             span,
             "HALT waits for Enter at the console (there is no teach pendant); without a console the script stops the robot and ends",

@@ -117,7 +117,7 @@ impl<'a> Tx<'a> {
         };
         let invertible = self.fx.joint_map.as_ref().is_some_and(|m| m.invertible());
         if sends_current && !invertible {
-            self.rep.approximate(
+            self.out.rep.approximate(
                 FileId::Src,
                 span,
                 "the request carries the robot's current joints: six values, but a Rizon has seven (the client sends joints 1-6 [?])",

@@ -37,29 +37,51 @@ pub use options::{Api, FlexivOptions, JointMap, JointSource, PtpPrimitive, RdkVe
 use super::Options;
 use super::VisionServer;
 use super::front::Program as Source;
-use super::front::comments::CommentQueue;
 use super::front::names::{Home, Namer};
 use super::front::report::Report;
 use super::ir::{self, Block, LoopId, RoutineId, RoutineKind, Scope, TempId, VarId};
+use super::render::{self, Emit, Out, Style};
 use crate::diag::Span;
 use names::NAME_RULES;
 
 pub(super) use super::front::{Fail, R, fail};
 
-/// A renderer of `program` to Python, fed by [`crate::transpile::Renderer`]; `report` holds
-/// the lowering's findings. Python has no GOTO: the routines' jumps must already be loops
-/// ([`crate::transpile::ir::goto`]).
-pub fn renderer<'a>(
-    src: &'a Source,
-    program: &'a ir::Program,
-    vision: Option<&'a VisionServer>,
-    options: &'a Options,
-    report: Report,
-) -> Tx<'a> {
-    let mut tx = Tx::new(src, program, vision, options);
-    tx.rep = report;
-    tx
-}
+/// How Python writes lines: four-space indents, `#` comments in ASCII.
+static STYLE: Style = Style {
+    indent: "    ",
+    base_depth: 0,
+    comment: |text| {
+        let t = format::ascii(text.trim_end());
+        if t.trim().is_empty() {
+            "#".into()
+        } else {
+            format!("# {}", t.trim_start())
+        }
+    },
+    kept: |code, krl| format!("# [{code}] {}", format::ascii(krl)),
+    trailing: |t| format!("  # {}", format::ascii(t.trim())),
+    trailing_on_first: true,
+};
+
+/// A Flexiv RDK Python script in the table of targets. Python has no GOTO: the routines' jumps
+/// are made loops before they reach the renderer ([`crate::transpile::ir::goto`]); its
+/// structure is its indentation, which the renderer writes whole, and the runs in `tests/`
+/// execute it (no check of its own).
+pub static BACKEND: render::Backend = render::Backend {
+    target: super::Target::Flexiv,
+    name: "flexiv",
+    caps: render::Caps {
+        goto: false,
+        records: false,
+        interrupts: false,
+    },
+    name_rules: &NAME_RULES,
+    help: help::help,
+    check: |_| Vec::new(),
+    renderer: |src, program, vision, options, report| {
+        Box::new(Tx::new(src, program, vision, options, report))
+    },
+};
 
 /// The routine being rendered.
 struct Rt {
@@ -109,12 +131,8 @@ pub struct Tx<'a> {
     ir: &'a ir::Program,
     fx: &'a FlexivOptions,
     vision: Option<&'a VisionServer>,
-    rep: Report,
+    out: Out<'a>,
     names: Namer<'a>,
-    comments: CommentQueue<'a>,
-    /// Lines of the statement being rendered.
-    lines: Vec<String>,
-    depth: usize,
     rt: Option<Rt>,
     /// Python name → undeclared KRL name.
     assumed: BTreeMap<String, Assumed>,
@@ -123,8 +141,6 @@ pub struct Tx<'a> {
     /// MM_ subprograms the program calls (catalog names).
     mm_used: BTreeSet<String>,
     server_used: Option<String>,
-    /// Header notes collected while translating (deduplicated, in order).
-    notes: Vec<String>,
     /// Module-level lines: the `.dat` globals.
     globals: Vec<String>,
     /// `.dat` declarations that could not be translated, kept as comments.
@@ -133,8 +149,6 @@ pub struct Tx<'a> {
     functions: Vec<String>,
     /// The function `main()` calls.
     entry: Option<String>,
-    /// KRL statements that wrote at least one line.
-    produced: Vec<Span>,
 }
 
 impl<'a> Tx<'a> {
@@ -143,29 +157,24 @@ impl<'a> Tx<'a> {
         ir: &'a ir::Program,
         vision: Option<&'a VisionServer>,
         opts: &'a Options,
+        report: Report,
     ) -> Tx<'a> {
-        let comments = CommentQueue::new(&src.src.comments);
         Tx {
             src,
             ir,
             fx: &opts.flexiv,
             vision,
-            rep: Report::default(),
+            out: Out::new(&STYLE, src, report),
             names: Namer::new(&NAME_RULES, ir),
-            comments,
-            lines: Vec::new(),
-            depth: 0,
             rt: None,
             assumed: BTreeMap::new(),
             externals: BTreeSet::new(),
             mm_used: BTreeSet::new(),
             server_used: None,
-            notes: Vec::new(),
             globals: Vec::new(),
             data_kept: Vec::new(),
             functions: Vec::new(),
             entry: None,
-            produced: Vec::new(),
         }
     }
 
@@ -199,12 +208,12 @@ impl<'a> Tx<'a> {
 
     /// The Python name of a routine (of this file or of another module).
     fn routine_name(&mut self, krl: &str, span: Span) -> String {
-        self.names.routine(&mut self.rep, krl, span)
+        self.names.routine(&mut self.out.rep, krl, span)
     }
 
     /// The Python spelling of a variable, and whether it lives at module level.
     fn var_name(&mut self, v: VarId, used_at: Span) -> (String, bool) {
-        let (n, home) = self.names.var(&mut self.rep, v, used_at);
+        let (n, home) = self.names.var(&mut self.out.rep, v, used_at);
         let var = self.ir.var(v);
         if var.scope == Scope::Assumed && !self.assumed.contains_key(&n) {
             let what = match &var.ty {
@@ -223,19 +232,6 @@ impl<'a> Tx<'a> {
             );
         }
         (n, home == Home::Global)
-    }
-
-    /// A temporary's name, minted on first use (starts with `_`, which no translated KRL name
-    /// does).
-    fn temp_name(&mut self, t: TempId) -> String {
-        if let Some(n) = self.rt.as_ref().and_then(|r| r.temps.get(&t)) {
-            return n.clone();
-        }
-        let n = self.made("t");
-        if let Some(rt) = &mut self.rt {
-            rt.temps.insert(t, n.clone());
-        }
-        n
     }
 
     /// A name the translator needs (`_base`, `_base2`, …).
@@ -261,51 +257,6 @@ impl<'a> Tx<'a> {
         }
     }
 
-    fn note(&mut self, text: impl Into<String>) {
-        let t = text.into();
-        if !self.notes.contains(&t) {
-            self.notes.push(t);
-        }
-    }
-
-    // ----- output ------------------------------------------------------------------------
-
-    fn line(&mut self, s: impl AsRef<str>) {
-        let indent = "    ".repeat(self.depth);
-        self.lines.push(format!("{indent}{}", s.as_ref()));
-    }
-
-    /// Comment lines for everything before `offset` that has not been carried over.
-    fn flush_comments(&mut self, offset: u32) {
-        for c in self.comments.before(offset) {
-            self.comment(&c.text);
-        }
-    }
-
-    fn comment(&mut self, text: &str) {
-        let t = format::ascii(text.trim_end());
-        if t.trim().is_empty() {
-            self.line("#");
-        } else {
-            self.line(format!("# {}", t.trim_start()));
-        }
-    }
-
-    /// The original KRL of the lines of `span`, one comment line per source line, tagged with
-    /// `code`.
-    fn keep_as_comment(&mut self, code: &str, span: Span) {
-        let span = crate::transpile::kawasaki::whole_lines(&self.src.src.text, span);
-        let text = self.src.src.slice(span).to_owned();
-        for l in text.split(['\n', '\r']) {
-            let l = l.trim();
-            if !l.is_empty() {
-                self.line(format!("# [{code}] {}", format::ascii(l)));
-            }
-        }
-        // Comments inside the kept text are part of it.
-        self.comments.before(span.end);
-    }
-
     // ----- routines ----------------------------------------------------------------------
 
     /// Moves the finished lines into the text of the function being rendered.
@@ -313,8 +264,8 @@ impl<'a> Tx<'a> {
         let Some(rt) = &mut self.rt else {
             return;
         };
-        rt.has_code |= has_code(&self.lines);
-        for l in self.lines.drain(..) {
+        rt.has_code |= has_code(&self.out.lines);
+        for l in self.out.lines.drain(..) {
             rt.body.push_str(&l);
             rt.body.push('\n');
         }
@@ -399,8 +350,8 @@ impl<'a> Tx<'a> {
             "m and Euler ZYX degrees listed [rx, ry, rz] = [C, B, A] in the frame KRL.base.".into(),
             format!(
                 "I/O: $OUT[n] -> digital output port {}, $IN[n] -> digital input port {} (--output-offset, --input-offset).",
-                offset_text(fx.output_offset),
-                offset_text(fx.input_offset)
+                render::offset_text(fx.output_offset, false),
+                render::offset_text(fx.input_offset, false)
             ),
             match fx.ptp {
                 PtpPrimitive::MoveL => {
@@ -431,20 +382,17 @@ impl<'a> Tx<'a> {
         if let Some(origin) = &self.server_used {
             v.push(format!("Vision server: {origin}."));
         }
-        for n in &self.notes {
+        for n in &self.out.notes {
             v.push(n.clone());
         }
-        if let Some((title, entries)) = self.names.name_map() {
-            v.push(title);
-            v.extend(entries.iter().map(|e| format!("  {e}")));
-        }
+        v.extend(render::name_map_lines(&self.names, ""));
         v.iter().map(|l| format::ascii(l)).collect()
     }
 }
 
 impl crate::transpile::Renderer for Tx<'_> {
     fn start(&mut self) {
-        self.names.declare_program(&mut self.rep);
+        self.names.declare_program(&mut self.out.rep);
         self.data_globals();
     }
 
@@ -452,10 +400,10 @@ impl crate::transpile::Renderer for Tx<'_> {
         let ir = self.ir;
         let r = ir.routine(id);
         // Comments before the DEF line go above the function.
-        self.lines.clear();
-        self.depth = 0;
+        self.out.lines.clear();
+        self.out.depth = 0;
         self.flush_comments(r.span.start);
-        let before_def = std::mem::take(&mut self.lines);
+        let before_def = std::mem::take(&mut self.out.lines);
         let name = if r.synthetic {
             self.routine_name(&r.name, r.name_span)
         } else {
@@ -484,7 +432,7 @@ impl crate::transpile::Renderer for Tx<'_> {
             base: None,
         });
         // Locals first (parameters, then declarations), so made-up names never take a user's.
-        self.names.declare_locals(&mut self.rep, id);
+        self.names.declare_locals(&mut self.out.rep, id);
         let mut params = Vec::new();
         let mut outs = Vec::new();
         for p in &r.params {
@@ -494,7 +442,7 @@ impl crate::transpile::Renderer for Tx<'_> {
             }
             params.push(n);
         }
-        self.depth = 1;
+        self.out.depth = 1;
         // Comments before the declarations stay before the locals' values.
         if let Some(first) = r.locals.iter().map(|(v, _)| ir.var(*v).decl.start).min() {
             self.flush_comments(first);
@@ -549,7 +497,7 @@ impl crate::transpile::Renderer for Tx<'_> {
             None => BTreeSet::new(),
         };
         self.local_defaults(r, &first);
-        let defaults = std::mem::take(&mut self.lines);
+        let defaults = std::mem::take(&mut self.out.lines);
         let Some(mut rt) = self.rt.take() else {
             return;
         };
@@ -563,10 +511,10 @@ impl crate::transpile::Renderer for Tx<'_> {
         if !rt.outs.is_empty() && rt.kind == RoutineKind::Def && !rt.last_op_is_return {
             self.line(format!("return {}", rt.outs.join(", ")));
         }
-        if !rt.has_code && !has_code(&self.lines) {
+        if !rt.has_code && !has_code(&self.out.lines) {
             self.line("pass");
         }
-        for l in self.lines.drain(..) {
+        for l in self.out.lines.drain(..) {
             rt.body.push_str(&l);
             rt.body.push('\n');
         }
@@ -590,13 +538,32 @@ impl crate::transpile::Renderer for Tx<'_> {
         f.insert_str(0, &head);
         f.shrink_to_fit();
         self.functions.push(f);
-        self.depth = 0;
+        self.out.depth = 0;
     }
 
     fn finish(mut self: Box<Self>) -> (String, Report, Vec<Span>) {
         self.choose_entry();
         let text = self.assemble();
-        (text, self.rep, self.produced)
+        (text, self.out.rep, self.out.produced)
+    }
+}
+
+impl<'a> Emit<'a> for Tx<'a> {
+    fn out(&mut self) -> &mut Out<'a> {
+        &mut self.out
+    }
+
+    fn op(&mut self, s: &ir::Stmt) -> R<()> {
+        Tx::op(self, s)
+    }
+
+    fn temps(&mut self) -> Option<&mut HashMap<TempId, String>> {
+        self.rt.as_mut().map(|r| &mut r.temps)
+    }
+
+    /// Starts with `_`, which no translated KRL name does.
+    fn mint_temp(&mut self) -> String {
+        self.made("t")
     }
 }
 
@@ -606,20 +573,4 @@ fn has_code(lines: &[String]) -> bool {
         let t = l.trim();
         !t.is_empty() && !t.starts_with('#')
     })
-}
-
-fn offset_text(offset: i64) -> String {
-    match offset {
-        0 => "n".into(),
-        o if o > 0 => format!("n+{o}"),
-        o => format!("n-{}", -o),
-    }
-}
-
-fn file_name(path: &str) -> String {
-    std::path::Path::new(path)
-        .file_name()
-        .and_then(|s| s.to_str())
-        .unwrap_or(path)
-        .to_owned()
 }

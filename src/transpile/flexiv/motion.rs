@@ -10,6 +10,7 @@ use crate::transpile::ir::{
     Because, Blend, Delta, Expr, ExprKind, FrameKind, FrameRef, Known, MotionParam, Move, Op,
     ParamValue, Path, Stmt, Target,
 };
+use crate::transpile::render::Emit;
 
 /// Blending radii (mm) assumed to have a zoneRadius code `Z<mm>`: unverified (the reference
 /// notes know "Z0" and "Z50" from public examples); stated in the script's header.
@@ -68,7 +69,7 @@ impl<'a> Tx<'a> {
                 (format!("zone_code({n})"), "$APO.CDIS".to_owned())
             }
             Known::Is(ParamValue::Default) | Known::Unknown(Because::NeverSet) => {
-                self.rep.approximate(
+                self.out.rep.approximate(
                     FileId::Src,
                     span,
                     "the blending distance is not set in this program ($APO.CDIS); zoneRadius \"Z0\" (no blending) is used",
@@ -82,7 +83,7 @@ impl<'a> Tx<'a> {
                 "$APO.CDIS as the program last set it".to_owned(),
             ),
         };
-        self.rep.approximate(
+        self.out.rep.approximate(
             FileId::Src,
             span,
             format!(
@@ -112,7 +113,8 @@ impl<'a> Tx<'a> {
             ),
         };
         if never && !m.with.iter().any(|(p, _)| *p == param) {
-            self.rep
+            self.out
+                .rep
                 .approximate(FileId::Src, span, what, "set the speed before the move");
         }
     }
@@ -156,7 +158,7 @@ impl<'a> Tx<'a> {
                 let z = self.zone_for(m, span);
                 match self.fx.ptp {
                     super::PtpPrimitive::MoveL => {
-                        self.rep.approximate(
+                        self.out.rep.approximate(
                             FileId::Src,
                             span,
                             "PTP to a pose becomes MoveL: the path is a straight line (KUKA interpolates the axes) and the speed is $VEL.CP (KRL.vel_cp, m/s), not the PTP percentage",
@@ -181,15 +183,8 @@ impl<'a> Tx<'a> {
                     );
                 }
                 let t = self.motion_target(to)?;
-                if !matches!(m.blend, Blend::Exact) {
-                    self.rep.approximate(
-                        FileId::Src,
-                        span,
-                        "MoveJ is not blended: the robot stops at this point",
-                        "nothing to do unless the stop matters",
-                    );
-                }
-                self.rep.approximate(
+                self.move_j_stops(m, span);
+                self.out.rep.approximate(
                     FileId::Src,
                     to.expr.span,
                     "KUKA axis values become Rizon joints by the joint map; the same numbers give a different pose on a different arm",
@@ -200,11 +195,14 @@ impl<'a> Tx<'a> {
                 self.line(format!("move_j({t}{vel})"));
                 Ok(())
             }
-            Path::JointRel { delta, .. } => fail(
-                delta.span,
-                "this relative motion has no counterpart",
-                "compute the target pose and move to it",
-            ),
+            Path::JointRel { delta, .. } => {
+                let d = self.joint_offsets(delta)?;
+                self.move_j_stops(m, span);
+                self.speed_never_set(m, span);
+                let vel = self.with_speed(m, MotionParam::VelPtp, "vel");
+                self.line(format!("move_j_rel([{}]{vel})", d.join(", ")));
+                Ok(())
+            }
             Path::LinearRel {
                 delta,
                 in_tool,
@@ -213,7 +211,7 @@ impl<'a> Tx<'a> {
             } => {
                 let d = self.offset(delta)?;
                 if *joint {
-                    self.rep.approximate(
+                    self.out.rep.approximate(
                         FileId::Src,
                         span,
                         "PTP_REL with a Cartesian offset becomes a MoveL (a straight line; KUKA interpolates the axes)",
@@ -223,7 +221,7 @@ impl<'a> Tx<'a> {
                 let world = matches!(m.frames.base, Known::Is(FrameRef::Null | FrameRef::World))
                     || matches!(m.frames.base, Known::Unknown(Because::NeverSet));
                 if !in_tool && !world {
-                    self.rep.approximate(
+                    self.out.rep.approximate(
                         FileId::Src,
                         span,
                         "LIN_REL in a base: the offset is added in the work coordinate KRL.base, whose pose the script reads from the robot (WorkCoord.pose [?])",
@@ -242,6 +240,40 @@ impl<'a> Tx<'a> {
                 Ok(())
             }
         }
+    }
+
+    /// MoveJ is not blended: a blended KRL motion stops at its point (TR002).
+    fn move_j_stops(&mut self, m: &Move, span: Span) {
+        if !matches!(m.blend, Blend::Exact) {
+            self.out.rep.approximate(
+                FileId::Src,
+                span,
+                "MoveJ is not blended: the robot stops at this point",
+                "nothing to do unless the stop matters",
+            );
+        }
+    }
+
+    /// `PTP_REL {A6 90}`: the offset of each Rizon joint (degrees) through the joint map, as
+    /// Kawasaki's `DRIVE`; the joints move together, from where they are.
+    fn joint_offsets(&mut self, d: &Delta) -> R<Vec<String>> {
+        let Some(map) = &self.fx.joint_map else {
+            return fail(
+                d.span,
+                "a relative axis move: which Rizon joint turns, and in which direction, needs a joint map",
+                "give --joint-map (e.g. A1,A2,0,A3,A4,A5,A6)",
+            );
+        };
+        let mut offsets = vec!["0".to_owned(); map.0.len()];
+        for (joint, negate, e) in crate::transpile::joints::relative_joints(map, d, "Rizon")? {
+            let v = self.expr(e)?;
+            offsets[joint] = if negate {
+                crate::transpile::render::negate_number(&v)
+            } else {
+                v
+            };
+        }
+        Ok(offsets)
     }
 
     /// `LIN_REL`/`PTP_REL` offsets: X, Y, Z only.
@@ -286,7 +318,7 @@ impl<'a> Tx<'a> {
     pub(super) fn spline_group(&mut self, g: &[Stmt]) {
         let span = g[0].span;
         self.flush_comments(span.start);
-        let start = self.lines.len();
+        let start = self.out.lines.len();
         let mut points = Vec::new();
         let mut r = Ok(());
         for s in g {
@@ -310,7 +342,7 @@ impl<'a> Tx<'a> {
             Ok(()) => {
                 let z = self.zone_for(last, g[g.len() - 1].span);
                 let vel = self.with_speed(last, MotionParam::VelCp, "vel");
-                self.rep.approximate(
+                self.out.rep.approximate(
                     FileId::Src,
                     span,
                     format!(
@@ -322,12 +354,13 @@ impl<'a> Tx<'a> {
                 let zone = z.map(|z| format!(", {z}")).unwrap_or_default();
                 self.line(format!("move_l_path([{}]{zone}{vel})", points.join(", ")));
                 for s in g {
-                    self.produced.push(s.span);
+                    self.out.produced.push(s.span);
                 }
             }
             Err(f) => {
-                self.lines.truncate(start);
-                self.rep
+                self.out.lines.truncate(start);
+                self.out
+                    .rep
                     .untranslatable(FileId::Src, f.span, f.message, f.help);
                 for s in g {
                     self.keep_as_comment("TR001", s.span);
@@ -354,7 +387,7 @@ impl<'a> Tx<'a> {
                     MotionParam::ApoCvel => "C_VEL",
                     _ => "C_ORI",
                 };
-                self.rep.approximate(
+                self.out.rep.approximate(
                     FileId::Src,
                     span,
                     format!(
@@ -369,7 +402,7 @@ impl<'a> Tx<'a> {
             | MotionParam::AccCp
             | MotionParam::AccPtp
             | MotionParam::AccCpPct => {
-                self.rep.approximate(
+                self.out.rep.approximate(
                     FileId::Src,
                     span,
                     "orientation speed and accelerations are not carried over; the robot uses its defaults",
@@ -408,7 +441,7 @@ impl<'a> Tx<'a> {
 
     fn null_frame(&mut self, tool: bool, span: Span) -> R<()> {
         if tool {
-            self.rep.approximate(
+            self.out.rep.approximate(
                 FileId::Src,
                 span,
                 format!("$TOOL = $NULLFRAME switches to the tool \"{FLANGE_TOOL}\", assumed to be the robot's flange tool [?]"),
@@ -438,7 +471,7 @@ impl<'a> Tx<'a> {
             None => self.src.src.slice(index.span).trim().to_owned(),
         };
         if tool {
-            self.rep.approximate(
+            self.out.rep.approximate(
                 FileId::Src,
                 span,
                 format!("{krl}[{i}] becomes the robot's tool {name}, which this translation does not define; switching tools stops the robot (IDLE) first"),
@@ -449,7 +482,7 @@ impl<'a> Tx<'a> {
             ));
             self.set_tool(name);
         } else {
-            self.rep.approximate(
+            self.out.rep.approximate(
                 FileId::Src,
                 span,
                 format!("{krl}[{i}] becomes the work coordinate {name}, which this translation does not define"),
@@ -505,7 +538,7 @@ impl<'a> Tx<'a> {
     }
 
     pub(super) fn pos_act_caveat(&mut self, span: Span) {
-        self.rep.approximate(
+        self.out.rep.approximate(
             FileId::Src,
             span,
             "$POS_ACT becomes the robot's TCP pose in WORLD (RobotStates.tcp_pose); KUKA's is relative to $BASE",

@@ -45,7 +45,7 @@ struct Script<'a> {
 
 pub(super) fn render(tx: &Tx<'_>, program: String) -> String {
     let fx = tx.fx;
-    let source = super::file_name(&tx.src.src.path);
+    let source = crate::transpile::render::file_name(&tx.src.src.path);
     let name = std::path::Path::new(&source)
         .file_stem()
         .and_then(|s| s.to_str())

@@ -8,6 +8,7 @@ use crate::transpile::ir::{
     Arg, Block, Callee, Component, Expr, ExprKind, LoopId, LoopKind, Op, Place, RoutineKind, Stmt,
     Ty,
 };
+use crate::transpile::render::Emit;
 
 impl<'a> Tx<'a> {
     /// A block: consecutive ops of one KRL statement render together (and fail together).
@@ -33,72 +34,24 @@ impl<'a> Tx<'a> {
     /// A nested block, one level deeper; `pass` when nothing in it is code.
     fn nested(&mut self, b: &Block) {
         self.forget_frames();
-        self.depth += 1;
-        let start = self.lines.len();
+        self.out.depth += 1;
+        let start = self.out.lines.len();
         self.block(b);
-        if !has_code(&self.lines[start..]) {
+        if !has_code(&self.out.lines[start..]) {
             self.line("pass");
         }
-        self.depth -= 1;
+        self.out.depth -= 1;
         self.forget_frames();
-    }
-
-    pub(super) fn group(&mut self, g: &[Stmt]) {
-        let span = g[0].span;
-        self.flush_comments(span.start);
-        let start = self.lines.len();
-        let depth = self.depth;
-        let mut r = Ok(());
-        for s in g {
-            r = self.op(s);
-            if r.is_err() {
-                break;
-            }
-        }
-        if let Err(f) = r {
-            self.lines.truncate(start);
-            self.depth = depth;
-            self.rep
-                .untranslatable(FileId::Src, f.span, f.message, f.help);
-            self.keep_as_comment("TR001", span);
-        }
-        if self.lines.len() > start {
-            self.produced.push(span);
-        }
-        self.trailing_comment(g, start);
-    }
-
-    /// A comment after the code of a statement: on the statement's first line, or after a
-    /// block on its last.
-    fn trailing_comment(&mut self, g: &[Stmt], start: usize) {
-        let span = g[0].span;
-        let text = &self.src.src.text;
-        let Some(c) = self.comments.trailing(span, text) else {
-            return;
-        };
-        let block = g
-            .iter()
-            .any(|s| matches!(s.op, Op::If { .. } | Op::Switch { .. } | Op::Loop { .. }));
-        let at = if block {
-            self.lines.len().checked_sub(1)
-        } else {
-            (self.lines.len() > start).then_some(start)
-        };
-        let t = super::format::ascii(c.text.trim());
-        match at.filter(|i| *i >= start) {
-            Some(i) => self.lines[i].push_str(&format!("  # {t}")),
-            None => self.comment(&c.text),
-        }
     }
 
     /// Comments before the block's end line, inside the block.
     fn end_block(&mut self, end: u32) {
-        self.depth += 1;
+        self.out.depth += 1;
         self.flush_comments(end);
-        self.depth -= 1;
+        self.out.depth -= 1;
     }
 
-    fn op(&mut self, s: &Stmt) -> R<()> {
+    pub(super) fn op(&mut self, s: &Stmt) -> R<()> {
         let span = s.span;
         match &s.op {
             Op::Assign { place, value } => self.assign(place, value, span),
@@ -117,7 +70,7 @@ impl<'a> Tx<'a> {
             Op::Move(m) => self.motion(m, span),
             Op::SetParam { param, value } => self.set_param(*param, value, span),
             Op::MotionDefaults => {
-                self.rep.approximate(
+                self.out.rep.approximate(
                     FileId::Src,
                     span,
                     "BAS(#INITMOV) sets KUKA's motion defaults from BAS.DAT; the script uses DEFAULT_VEL (m/s) and DEFAULT_PTP (%) instead",
@@ -158,9 +111,9 @@ impl<'a> Tx<'a> {
                 self.nested(then);
                 if !els.is_empty() {
                     if let Some(at) = else_at {
-                        self.depth += 1;
+                        self.out.depth += 1;
                         self.flush_comments(*at);
-                        self.depth -= 1;
+                        self.out.depth -= 1;
                     }
                     self.line("else:");
                     self.nested(els);
@@ -248,31 +201,26 @@ impl<'a> Tx<'a> {
                 "BRAKE (stopping the motion from an interrupt routine) has no counterpart: every move has ended before the next statement runs",
                 "remove it, or call robot.Stop() where the robot must stop",
             ),
-            Op::Interrupt { .. } => fail(
-                span,
-                "interrupts have no counterpart in the script (they would need a thread polling the condition)",
-                "poll the condition where the program can react, or port the interrupt to a thread by hand",
-            ),
-            Op::InterruptDecl(i) => {
-                if self.ir.interrupts[*i].stop_messages {
-                    self.rep.approximate(
-                        FileId::Src,
-                        span,
-                        "KUKA's standard stop-message interrupt ($STOPMESS -> IR_STOPM) has no counterpart; the robot reports its own stops as faults",
-                        "nothing to do unless IR_STOPM was customised",
-                    );
-                    self.keep_as_comment("TR002", span);
-                    return Ok(());
-                }
-                fail(
+            // The lowering refuses interrupts for a target without them
+            // ([`crate::transpile::ir::Why::NoInterrupts`]): this is never reached.
+            Op::Interrupt { .. } => {
+                let why = crate::transpile::ir::Why::NoInterrupts;
+                fail(span, why.message(), super::help::help(&why))
+            }
+            // What reaches here is KUKA's stop-message interrupt.
+            Op::InterruptDecl(_) => {
+                self.out.rep.approximate(
+                    FileId::Src,
                     span,
-                    "interrupts have no counterpart in the script (they would need a thread polling the condition)",
-                    "poll the condition where the program can react, or port the interrupt to a thread by hand",
-                )
+                    "KUKA's standard stop-message interrupt ($STOPMESS -> IR_STOPM) has no counterpart; the robot reports its own stops as faults",
+                    "nothing to do unless IR_STOPM was customised",
+                );
+                self.keep_as_comment("TR002", span);
+                Ok(())
             }
             Op::Message { routine, text } => {
                 let t = self.expr(text)?;
-                self.rep.approximate(
+                self.out.rep.approximate(
                     FileId::Src,
                     span,
                     format!("{routine} becomes print (no message window, no acknowledgement)"),
@@ -360,7 +308,7 @@ impl<'a> Tx<'a> {
             rt.loops.push(id);
             rt.pending.push(Default::default());
         }
-        self.depth += 1;
+        self.out.depth += 1;
         if let Some(f) = self
             .rt
             .as_ref()
@@ -368,17 +316,17 @@ impl<'a> Tx<'a> {
         {
             self.line(format!("{f} = False"));
         }
-        let start = self.lines.len();
+        let start = self.out.lines.len();
         self.block(body);
         self.flush_comments(end);
         if let Some(c) = until {
             self.line(format!("if {c}:"));
             self.line("    break");
         }
-        if !has_code(&self.lines[start..]) {
+        if !has_code(&self.out.lines[start..]) {
             self.line("pass");
         }
-        self.depth -= 1;
+        self.out.depth -= 1;
         self.forget_frames();
         let pending = match &mut self.rt {
             Some(rt) => {
@@ -616,7 +564,7 @@ impl<'a> Tx<'a> {
     /// A routine of another module: called by name, reported, and listed in the script.
     fn external(&mut self, name: &str, span: Span) -> String {
         let f = self.routine_name(name, span);
-        self.rep.approximate(
+        self.out.rep.approximate(
             FileId::Src,
             span,
             format!(

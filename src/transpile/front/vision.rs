@@ -55,8 +55,8 @@ pub fn resolve(
             ),
         );
     };
-    let ip = ch.ip.as_deref().and_then(|i| i.parse::<Ipv4Addr>().ok());
-    match (ip, ch.port) {
+    let ip = ch.ip().and_then(|i| i.parse::<Ipv4Addr>().ok());
+    match (ip, ch.config.port) {
         (Some(ip), Some(port)) => Ok(VisionServer {
             ip,
             port,

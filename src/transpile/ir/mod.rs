@@ -344,13 +344,13 @@ pub enum Op {
     /// `$OV_PRO = …` (percent).
     SetOverride(Expr),
     SetIo {
-        io: IoPlace,
+        io: OutPlace,
         value: Expr,
         when: IoTiming,
     },
     /// `PULSE(signal, level, seconds)`.
     Pulse {
-        io: IoPlace,
+        io: OutPlace,
         level: Expr,
         seconds: Expr,
     },
@@ -658,6 +658,17 @@ pub enum Builtin {
     Round,
 }
 
+impl Builtin {
+    /// How many values it takes: the lowering refuses other calls, so a renderer finds exactly
+    /// this many.
+    pub fn arity(self) -> usize {
+        match self {
+            Builtin::Atan2 => 2,
+            _ => 1,
+        }
+    }
+}
+
 /// A pose or axis aggregate.
 #[derive(Debug, Clone, PartialEq)]
 pub struct Aggregate {
@@ -742,6 +753,44 @@ pub enum IoPlace {
     Flag(Box<Expr>),
     /// A `SIGNAL` name: one bit, or a group read/written as a number (LSB first).
     Signal(SignalRange),
+}
+
+/// A place a program writes: never an input (the lowering refuses writes to inputs with
+/// `Why::ReadOnly`, and this type cannot hold one, so no renderer meets one).
+#[derive(Debug, Clone, PartialEq)]
+pub enum OutPlace {
+    /// `$OUT[n]`.
+    Out(Box<Expr>),
+    /// `$FLAG[n]`.
+    Flag(Box<Expr>),
+    /// A `SIGNAL` name of outputs.
+    Signal(OutSignal),
+}
+
+impl OutPlace {
+    /// The same place as an expression reads it (renderers number signals once for both).
+    pub fn as_io(&self) -> IoPlace {
+        match self {
+            OutPlace::Out(i) => IoPlace::Out(i.clone()),
+            OutPlace::Flag(i) => IoPlace::Flag(i.clone()),
+            OutPlace::Signal(s) => IoPlace::Signal(s.range()),
+        }
+    }
+}
+
+/// A `SIGNAL` range of outputs.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub struct OutSignal(SignalRange);
+
+impl OutSignal {
+    /// `None` for a range of inputs.
+    pub fn new(r: SignalRange) -> Option<OutSignal> {
+        (r.bank == Bank::Out).then_some(OutSignal(r))
+    }
+
+    pub fn range(self) -> SignalRange {
+        self.0
+    }
 }
 
 /// When an output switches relative to the motions around it.

@@ -105,6 +105,8 @@ pub enum Why {
     NoInterruptDecl(i64),
     /// An interrupt whose condition is not one signal (or its negation).
     InterruptCondition,
+    /// An interrupt in a target that has none ([`crate::transpile::render::Caps`]).
+    NoInterrupts,
     /// An interrupt handler that is not a call without arguments.
     InterruptHandler,
     /// A function RETURN without a value.
@@ -227,6 +229,7 @@ impl Why {
             Why::PulseLevel => "a PULSE to a computed level has no counterpart".into(),
             Why::InterruptNumber => "an interrupt number that is not a literal has no counterpart".into(),
             Why::NoInterruptDecl(n) => format!("no INTERRUPT DECL {n} in this file"),
+            Why::NoInterrupts => "interrupts have no counterpart in this target (they would need a thread polling the condition)".into(),
             Why::InterruptCondition => "its condition is not a single signal ($IN, $OUT, $FLAG or a one-bit SIGNAL), which is all a target can watch".into(),
             Why::InterruptHandler => "its handler is not a call of a routine without arguments".into(),
             Why::ReturnWithoutValue => "a function RETURN without a value".into(),

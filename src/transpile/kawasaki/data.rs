@@ -56,10 +56,12 @@ impl<'a> Tx<'a> {
                     Line::Reals(l) => self.data.reals.push(l),
                     Line::Strings(l) => self.data.strings.push(l),
                 }
-                self.produced.push(d.span);
+                self.out.produced.push(d.span);
             }
             Err(f) => {
-                self.rep.untranslatable(d.file, f.span, f.message, f.help);
+                self.out
+                    .rep
+                    .untranslatable(d.file, f.span, f.message, f.help);
                 let file = match d.file {
                     FileId::Src => &self.src.src,
                     FileId::Dat => self.src.dat.as_ref().unwrap_or(&self.src.src),

@@ -4,11 +4,12 @@
 use super::format::{self, num, with_sigil};
 use super::{R, Tx, fail};
 use crate::diag::Span;
+use crate::geom::abc_to_oat;
 use crate::transpile::front::report::FileId;
 use crate::transpile::ir::{
     Aggregate, Bank, BinaryOp, Builtin, Component, Expr, ExprKind, IoPlace, Place, Ty, UnaryOp,
 };
-use crate::transpile::orientation::abc_to_oat;
+use crate::transpile::render::Emit;
 
 /// Binding strength of an AS expression, to decide where parentheses go.
 pub(super) const ATOM: u8 = 10;
@@ -333,16 +334,8 @@ impl<'a> Tx<'a> {
         match p {
             Place::Var(v) => {
                 let var = self.ir.var(*v);
+                // A structure never gets here: the lowering refuses what the target cannot hold.
                 let vty = var.ty.clone();
-                if let Ty::Struc(s) | Ty::Other(s) = &vty
-                    && !s.is_empty()
-                {
-                    return fail(
-                        span,
-                        format!("`{}` has type {s}, which has no AS equivalent", var.name),
-                        "split the structure into separate variables (reals, strings, poses)",
-                    );
-                }
                 let (n, local) = self.var_name(*v, span);
                 let n = if local { format!(".{n}") } else { n };
                 Ok(with_sigil(&n, &vty))
@@ -530,7 +523,7 @@ impl<'a> Tx<'a> {
             [] => {}
             [(1, v)] => {
                 out.push(num(*v));
-                self.rep.approximate(
+                self.out.rep.approximate(
                     file,
                     span,
                     "external axis E1 becomes the 7th value (JT7)",
@@ -550,7 +543,7 @@ impl<'a> Tx<'a> {
 
     fn status_turn(&mut self, a: &Aggregate, span: Span, file: FileId) {
         if let Some(st) = a.status_turn_text() {
-            self.rep.approximate(
+            self.out.rep.approximate(
                 file,
                 span,
                 format!(
@@ -578,21 +571,6 @@ fn arg_missing(span: Span) -> super::Fail {
         message: "a built-in function without its argument".into(),
         help: "pass the argument".into(),
     }
-}
-
-/// A rendered number or expression negated (`90` → `-90`, `-.a` → `.a`, `.a+1` → `-(.a+1)`).
-pub(super) fn negate_number(v: &str) -> String {
-    if let Some(rest) = v.strip_prefix('-')
-        && !rest.contains(['+', '-', '*', '/', ' '])
-    {
-        return rest.to_owned();
-    }
-    if v.chars()
-        .all(|c| c.is_ascii_alphanumeric() || c == '.' || c == '_')
-    {
-        return format!("-{v}");
-    }
-    format!("-({v})")
 }
 
 /// The signed signal number negated.

@@ -74,7 +74,7 @@ pub(super) fn help(why: &Why) -> String {
         Why::NoInterruptDecl(_) => {
             "translate the file that declares the interrupt, or declare it here".into()
         }
-        Why::InterruptCondition | Why::InterruptHandler => {
+        Why::NoInterrupts | Why::InterruptCondition | Why::InterruptHandler => {
             "watch the condition with a PC program, or poll it with SIG()".into()
         }
         Why::ReturnWithoutValue => "return a value".into(),

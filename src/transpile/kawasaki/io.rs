@@ -6,44 +6,29 @@ use super::{R, Tx, fail};
 use crate::diag::Span;
 use crate::transpile::front::report::FileId;
 use crate::transpile::ir::{
-    BinaryOp, Callee, Expr, ExprKind, InterruptAction, IoPlace, IoTiming, TimerOp, Wait,
+    BinaryOp, Callee, Expr, ExprKind, InterruptAction, IoTiming, OutPlace, TimerOp, Wait,
 };
+use crate::transpile::render::Emit;
 
 impl<'a> Tx<'a> {
     /// `SIGNAL n` / `SIGNAL -n`, an IF choosing between them, or `BITS` for a group.
     pub(super) fn set_io(
         &mut self,
-        io: &IoPlace,
+        io: &OutPlace,
         value: &Expr,
         when: &IoTiming,
         span: Span,
     ) -> R<()> {
-        if let IoPlace::In(_) = io {
-            return fail(
-                span,
-                "inputs cannot be written in AS",
-                "write an output or an internal signal instead",
-            );
-        }
-        if let IoPlace::Signal(r) = io
-            && r.bank == crate::transpile::ir::Bank::In
-        {
-            return fail(
-                span,
-                "inputs cannot be written in AS",
-                "write an output instead",
-            );
-        }
-        let sig = self.signal(io)?;
+        let sig = self.signal(&io.as_io())?;
         match when {
             IoTiming::Now | IoTiming::Trigger(_) => {}
-            IoTiming::Ahead => self.rep.approximate(
+            IoTiming::Ahead => self.out.rep.approximate(
                 FileId::Src,
                 span,
                 "after CONTINUE the output switches as AS's look-ahead reaches this line, which may be earlier or later than KRL's advance run",
                 "check when the output must switch; add BREAK before it if the robot must have arrived",
             ),
-            IoTiming::PathEnd => self.rep.approximate(
+            IoTiming::PathEnd => self.out.rep.approximate(
                 FileId::Src,
                 span,
                 "$OUT_C (set when the robot reaches the point) becomes BREAK + SIGNAL",
@@ -74,8 +59,8 @@ impl<'a> Tx<'a> {
         Ok(())
     }
 
-    pub(super) fn pulse(&mut self, io: &IoPlace, level: &Expr, seconds: &Expr) -> R<()> {
-        let Sig::One(n) = self.signal(io)? else {
+    pub(super) fn pulse(&mut self, io: &OutPlace, level: &Expr, seconds: &Expr) -> R<()> {
+        let Sig::One(n) = self.signal(&io.as_io())? else {
             return fail(
                 seconds.span,
                 "PULSE of a signal group has no AS equivalent",
@@ -107,7 +92,7 @@ impl<'a> Tx<'a> {
             }
             TimerOp::Stop(v) => match &v.kind {
                 ExprKind::Bool(false) => {
-                    self.rep.approximate(
+                    self.out.rep.approximate(
                         FileId::Src,
                         span,
                         "AS timers always run; starting a timer ($TIMER_STOP = FALSE) has no statement",
@@ -208,7 +193,7 @@ impl<'a> Tx<'a> {
                 self.line(format!(
                     "; INTERRUPT {n}: ON {sig} CALL {prog} when switched on"
                 ));
-                self.rep.approximate(
+                self.out.rep.approximate(
                     FileId::Src,
                     span,
                     format!("interrupt {n} becomes ON {sig} CALL {prog}: no priorities, and BRAKE/RESUME behave differently"),
@@ -273,7 +258,7 @@ impl<'a> Tx<'a> {
             });
         }
         if matches!(action, InterruptAction::Enable | InterruptAction::Disable) {
-            self.rep.approximate(
+            self.out.rep.approximate(
                 FileId::Src,
                 span,
                 "INTERRUPT ENABLE/DISABLE (which keep or buffer the event) become ON/IGNORE",
@@ -289,7 +274,7 @@ impl<'a> Tx<'a> {
     /// KUKA's INI fold declares an interrupt on `$STOPMESS` that calls `IR_STOPM`; the Kawasaki
     /// controller handles its own stop messages, so nothing is needed.
     fn stop_message_interrupt(&mut self, span: Span) {
-        self.rep.approximate(
+        self.out.rep.approximate(
             FileId::Src,
             span,
             "KUKA's standard stop-message interrupt ($STOPMESS → IR_STOPM) has no AS counterpart; the Kawasaki controller handles stop messages itself",

@@ -5,6 +5,7 @@
 //! (`MM_Get_PlanJps`/`MM_Get_PlanPose`, with the Vision Move index shift from the catalog) or
 //! are untranslatable.
 
+use crate::transpile::render::Emit;
 use std::net::Ipv4Addr;
 
 use super::format::{self, num};
@@ -96,7 +97,7 @@ impl<'a> Tx<'a> {
                     && let Some(v) = arg.value.as_ref().and_then(|v| v.number())
                     && !p.in_range(v)
                 {
-                    self.rep.approximate(
+                    self.out.rep.approximate(
                         FileId::Src,
                         arg.span,
                         format!(
@@ -167,7 +168,7 @@ impl<'a> Tx<'a> {
                             let ty = self.place_ty(place);
                             let t = self.place_text(place, &ty, arg.span)?;
                             after.push(format!("{t} = {}", num(*v)));
-                            self.rep.approximate(
+                            self.out.rep.approximate(
                                 FileId::Src,
                                 arg.span,
                                 format!("{} has no {n}; {} is set to {} after the call (all data arrive in one call)", k.name, self.src.src.slice(arg.span), num(*v)),
@@ -191,7 +192,7 @@ impl<'a> Tx<'a> {
             } else {
                 ("arguments", "are")
             };
-            self.rep.approximate(
+            self.out.rep.approximate(
                 FileId::Src,
                 span,
                 format!(
@@ -411,7 +412,7 @@ impl<'a> Tx<'a> {
         }
         if vision_move {
             self.line(format!("IF vis_pos_vismove[{serial}] == 1 THEN"));
-            self.depth += 1;
+            self.out.depth += 1;
         }
         if user {
             self.line(format!("FOR {k} = 1 TO num_customdata[{serial}]"));
@@ -446,7 +447,7 @@ impl<'a> Tx<'a> {
             ));
         }
         if vision_move {
-            self.depth -= 1;
+            self.out.depth -= 1;
             self.line("END");
         }
         if user {

@@ -9,7 +9,6 @@
 //! (`motion.rs`), I/O, waits and interrupts (`io.rs`), `MM_*` calls (`mm.rs`) and data
 //! (`data.rs`) each live in their own file.
 
-pub mod check;
 mod data;
 mod expr;
 mod format;
@@ -25,10 +24,10 @@ use std::collections::HashMap;
 use super::Options;
 use super::VisionServer;
 use super::front::Program as Source;
-use super::front::comments::CommentQueue;
 use super::front::names::{Home, NameRules, Namer};
 use super::front::report::{FileId, Report};
 use super::ir::{self, Block, LoopId, RoutineId, RoutineKind, TempId, Ty, VarId};
+use super::render::{self, Emit, Out, Style};
 use crate::diag::Span;
 
 pub(super) use super::front::{Fail, R, fail};
@@ -48,19 +47,38 @@ pub const NAME_RULES: NameRules = NameRules {
     package: &mm::GLOBALS,
 };
 
-/// A renderer of `program` to AS, fed by [`crate::transpile::Renderer`]; `report` holds the
-/// lowering's findings.
-pub fn renderer<'a>(
-    src: &'a Source,
-    program: &'a ir::Program,
-    vision: Option<&'a VisionServer>,
-    options: &'a Options,
-    report: Report,
-) -> Tx<'a> {
-    let mut tx = Tx::new(src, program, vision, options);
-    tx.rep = report;
-    tx
-}
+/// How AS writes lines: bodies indented under `.PROGRAM`, `;` comments.
+static STYLE: Style = Style {
+    indent: "  ",
+    base_depth: 1,
+    comment: |t| format!(";{t}"),
+    kept: |code, krl| format!("; [{code}] {krl}"),
+    trailing: |t| format!(" ;{t}"),
+    trailing_on_first: false,
+};
+
+/// Kawasaki AS in the table of targets.
+pub static BACKEND: render::Backend = render::Backend {
+    target: super::Target::Kawasaki,
+    name: "kawasaki",
+    caps: render::Caps {
+        goto: true,
+        records: false,
+        interrupts: true,
+    },
+    name_rules: &NAME_RULES,
+    help: help::help,
+    // Calls of programs defined elsewhere (the package, other modules) are not resolved.
+    check: |text| {
+        crate::aslang::check(text, crate::aslang::Calls::Open)
+            .iter()
+            .map(ToString::to_string)
+            .collect()
+    },
+    renderer: |src, program, vision, options, report| {
+        Box::new(Tx::new(src, program, vision, options, report))
+    },
+};
 
 /// One translated `.PROGRAM`.
 struct ProgramOut {
@@ -92,22 +110,15 @@ pub struct Tx<'a> {
     ir: &'a ir::Program,
     opts: &'a Options,
     vision: Option<&'a VisionServer>,
-    rep: Report,
+    /// Its lines are those of the statement being rendered and the last line before it, which
+    /// a SPEED line is compared with.
+    out: Out<'a>,
     names: Namer<'a>,
-    comments: CommentQueue<'a>,
     programs: Vec<ProgramOut>,
-    /// Lines of the statement being rendered (and the last line before it, which a SPEED
-    /// line is compared with).
-    lines: Vec<String>,
-    depth: usize,
     rt: Option<Rt>,
     /// Vision server used by `mm_init_skt` (for the header).
     server_used: Option<String>,
-    /// Header notes collected while translating (deduplicated, in order).
-    notes: Vec<String>,
     data: data::DataOut,
-    /// KRL statements that wrote at least one line.
-    produced: Vec<Span>,
 }
 
 impl<'a> Tx<'a> {
@@ -116,24 +127,19 @@ impl<'a> Tx<'a> {
         ir: &'a ir::Program,
         vision: Option<&'a VisionServer>,
         opts: &'a Options,
+        report: Report,
     ) -> Tx<'a> {
-        let comments = CommentQueue::new(&src.src.comments);
         Tx {
             src,
             ir,
             opts,
             vision,
-            rep: Report::default(),
+            out: Out::new(&STYLE, src, report),
             names: Namer::new(&NAME_RULES, ir),
-            comments,
             programs: Vec::new(),
-            lines: Vec::new(),
-            depth: 0,
             rt: None,
             server_used: None,
-            notes: Vec::new(),
             data: data::DataOut::default(),
-            produced: Vec::new(),
         }
     }
 
@@ -141,25 +147,13 @@ impl<'a> Tx<'a> {
 
     /// The AS name of a program (a routine of the file or of another module).
     fn name_program(&mut self, krl: &str, span: Span) -> String {
-        self.names.routine(&mut self.rep, krl, span)
+        self.names.routine(&mut self.out.rep, krl, span)
     }
 
     /// A variable's AS spelling without sigils, and whether it is local (gets a `.`).
     fn var_name(&mut self, v: VarId, used_at: Span) -> (String, bool) {
-        let (n, home) = self.names.var(&mut self.rep, v, used_at);
+        let (n, home) = self.names.var(&mut self.out.rep, v, used_at);
         (n, home == Home::Local)
-    }
-
-    /// A temporary's name (with its `.`), minted on first use.
-    fn temp_name(&mut self, t: TempId) -> String {
-        if let Some(n) = self.rt.as_ref().and_then(|r| r.temps.get(&t)) {
-            return n.clone();
-        }
-        let n = self.fresh_local("tmp");
-        if let Some(rt) = &mut self.rt {
-            rt.temps.insert(t, n.clone());
-        }
-        n
     }
 
     fn routine_id(&self) -> RoutineId {
@@ -201,49 +195,13 @@ impl<'a> Tx<'a> {
     /// Strings are ASCII in the output: report a KRL string that is not.
     fn check_ascii(&mut self, file: FileId, span: Span, s: &str) {
         if !s.is_ascii() {
-            self.rep.approximate(
+            self.out.rep.approximate(
                 file,
                 span,
                 "non-ASCII characters in this string become `?` in the ASCII .as file",
                 "use ASCII text",
             );
         }
-    }
-
-    fn note(&mut self, text: impl Into<String>) {
-        let t = text.into();
-        if !self.notes.contains(&t) {
-            self.notes.push(t);
-        }
-    }
-
-    // ----- output ------------------------------------------------------------------------
-
-    fn line(&mut self, s: impl AsRef<str>) {
-        let indent = "  ".repeat(self.depth + 1);
-        self.lines.push(format!("{indent}{}", s.as_ref()));
-    }
-
-    /// Comment lines for everything before `offset` that has not been carried over.
-    fn flush_comments(&mut self, offset: u32) {
-        for c in self.comments.before(offset) {
-            self.line(format!(";{}", c.text));
-        }
-    }
-
-    /// The original KRL of the lines of `span`, one comment line per source line, tagged with
-    /// `code`.
-    fn keep_as_comment(&mut self, code: &str, span: Span) {
-        let span = whole_lines(&self.src.src.text, span);
-        let text = self.src.src.slice(span).to_owned();
-        for l in text.split(['\n', '\r']) {
-            let l = l.trim();
-            if !l.is_empty() {
-                self.line(format!("; [{code}] {l}"));
-            }
-        }
-        // Comments inside the kept text are part of it.
-        self.comments.before(span.end);
     }
 
     // ----- routines ----------------------------------------------------------------------
@@ -254,8 +212,8 @@ impl<'a> Tx<'a> {
         let Some(rt) = &mut self.rt else {
             return;
         };
-        let n = self.lines.len().saturating_sub(keep);
-        for l in self.lines.drain(..n) {
+        let n = self.out.lines.len().saturating_sub(keep);
+        for l in self.out.lines.drain(..n) {
             // Non-ASCII can only come from comments and strings (strings are reported).
             rt.program.body.push_str(&format::ascii(l.trim_end()));
             rt.program.body.push('\n');
@@ -305,36 +263,33 @@ impl<'a> Tx<'a> {
         let mut v = vec![
             format!(
                 "; Translated from KRL {} by krlkit transpile --to kawasaki",
-                file_name(&self.src.src.path)
+                render::file_name(&self.src.src.path)
             ),
             format!(
                 "; Signals: $OUT[n] -> {}, $IN[n] -> {}, $FLAG[n] -> {}",
-                offset_text(s.output_offset),
-                offset_text(s.input_offset),
-                offset_text(s.flag_offset)
+                render::offset_text(s.output_offset, true),
+                render::offset_text(s.input_offset, true),
+                render::offset_text(s.flag_offset, true)
             ),
         ];
         if let Some(origin) = &self.server_used {
             v.push(format!("; Vision server: {origin}"));
         }
-        for n in &self.notes {
+        for n in &self.out.notes {
             v.push(format!("; {n}"));
         }
         if !self.data.kept.is_empty() {
             v.push("; Data not translated:".into());
             v.extend(self.data.kept.iter().cloned());
         }
-        if let Some((title, entries)) = self.names.name_map() {
-            v.push(format!("; {title}"));
-            v.extend(entries.iter().map(|e| format!(";   {e}")));
-        }
+        v.extend(render::name_map_lines(&self.names, "; "));
         v
     }
 }
 
 impl crate::transpile::Renderer for Tx<'_> {
     fn start(&mut self) {
-        self.names.declare_program(&mut self.rep);
+        self.names.declare_program(&mut self.out.rep);
     }
 
     fn begin_routine(&mut self, id: RoutineId) {
@@ -342,7 +297,7 @@ impl crate::transpile::Renderer for Tx<'_> {
         let r = ir.routine(id);
         self.flush_comments(r.span.start);
         // Comments before the DEF line belong to no program: carry them into this one.
-        let before: Vec<String> = std::mem::take(&mut self.lines);
+        let before: Vec<String> = std::mem::take(&mut self.out.lines);
         let name = if r.synthetic {
             self.name_program(&r.name, r.name_span)
         } else {
@@ -363,8 +318,8 @@ impl crate::transpile::Renderer for Tx<'_> {
         });
         // Locals first (parameters, then declarations), then labels, so made-up names never
         // take a user's.
-        self.names.declare_locals(&mut self.rep, id);
-        self.names.declare_labels(&mut self.rep, id);
+        self.names.declare_locals(&mut self.out.rep, id);
+        self.names.declare_labels(&mut self.out.rep, id);
         let mut params: Vec<String> = Vec::new();
         let mut copies: Vec<String> = Vec::new();
         for p in &r.params {
@@ -394,7 +349,7 @@ impl crate::transpile::Renderer for Tx<'_> {
         if let Some(rt) = &mut self.rt {
             rt.program.header = format!(".PROGRAM {name}({})", params.join(","));
         }
-        self.lines = before;
+        self.out.lines = before;
         for c in copies {
             self.line(c);
         }
@@ -419,37 +374,26 @@ impl crate::transpile::Renderer for Tx<'_> {
     fn finish(mut self: Box<Self>) -> (String, Report, Vec<Span>) {
         self.data_sections();
         let text = self.assemble();
-        (text, self.rep, self.produced)
+        (text, self.out.rep, self.out.produced)
     }
 }
 
-/// `span` widened to whole source lines.
-pub(super) fn whole_lines(text: &str, span: Span) -> Span {
-    let start = (span.start as usize).min(text.len());
-    let end = (span.end as usize).min(text.len()).max(start);
-    // A statement's span already ends with its line break.
-    let end = start + text[start..end].trim_end_matches(['\n', '\r']).len();
-    let from = text[..start].rfind(['\n', '\r']).map_or(0, |i| i + 1);
-    let to = text[end..]
-        .find(['\n', '\r'])
-        .map_or(text.len(), |i| end + i);
-    Span::new(from, to.max(from))
-}
-
-fn offset_text(offset: i64) -> String {
-    match offset {
-        0 => "n".into(),
-        o if o > 0 => format!("{o}+n"),
-        o => format!("n-{}", -o),
+impl<'a> Emit<'a> for Tx<'a> {
+    fn out(&mut self) -> &mut Out<'a> {
+        &mut self.out
     }
-}
 
-fn file_name(path: &str) -> String {
-    std::path::Path::new(path)
-        .file_name()
-        .and_then(|s| s.to_str())
-        .unwrap_or(path)
-        .to_owned()
+    fn op(&mut self, s: &ir::Stmt) -> R<()> {
+        Tx::op(self, s)
+    }
+
+    fn temps(&mut self) -> Option<&mut HashMap<TempId, String>> {
+        self.rt.as_mut().map(|r| &mut r.temps)
+    }
+
+    fn mint_temp(&mut self) -> String {
+        self.fresh_local("tmp")
+    }
 }
 
 fn truncate(s: &str, n: usize) -> &str {

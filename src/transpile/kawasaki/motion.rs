@@ -11,6 +11,7 @@ use crate::transpile::ir::{
     JointPct, Known, Load, MotionParam, Move, ParamValue, Path, SpeedSetting, Target, Ty,
 };
 use crate::transpile::joints::JointSource;
+use crate::transpile::render::Emit;
 
 /// The ACCURACY (mm) used for an exact stop and, with a warning, for blending whose distance
 /// is not known.
@@ -101,7 +102,7 @@ impl<'a> Tx<'a> {
                         other.describe()
                     ),
                 };
-                self.rep.approximate(
+                self.out.rep.approximate(
                     FileId::Src,
                     span,
                     format!("{why}; ACCURACY {FINE_ACCURACY} (no blending) is used"),
@@ -115,7 +116,7 @@ impl<'a> Tx<'a> {
                 Known::Is(ParamValue::Num(x)) => format!(", {}{unit}", num(*x)),
                 _ => String::new(),
             };
-            self.rep.approximate(
+            self.out.rep.approximate(
                 FileId::Src,
                 span,
                 format!("{what} ({desc}{given}) becomes ACCURACY {value} (a distance in mm)"),
@@ -169,7 +170,7 @@ impl<'a> Tx<'a> {
                 (AsSpeed::MmS(_), true) | (AsSpeed::Pct(_), false)
             ) && !matches!(l, AsSpeed::Pct(v) if v == INIT_SPEED);
             if other {
-                self.rep.approximate(
+                self.out.rep.approximate(
                     FileId::Src,
                     span,
                     "the speed of this motion is not known here; AS moves at the SPEED … ALWAYS in force, which KRL set for the other motion type",
@@ -223,7 +224,7 @@ impl<'a> Tx<'a> {
             } => {
                 let d = self.draw_values(delta)?;
                 if *joint {
-                    self.rep.approximate(
+                    self.out.rep.approximate(
                         FileId::Src,
                         span,
                         "PTP_REL with a Cartesian offset becomes a straight DRAW/TDRAW (KUKA interpolates the axes)",
@@ -272,7 +273,7 @@ impl<'a> Tx<'a> {
                 JointSource::Fixed(v) => num(v),
             });
         }
-        self.rep.approximate(
+        self.out.rep.approximate(
             FileId::Src,
             span,
             "the axes not given stay where the previous motion ended: AS reads them there (BREAK, HERE), so that motion is not blended",
@@ -299,37 +300,19 @@ impl<'a> Tx<'a> {
             );
         };
         let mut moves = Vec::new();
-        for (c, e) in &d.fields {
-            let Component::Axis(i) = c else {
-                return fail(
-                    d.span,
-                    "a relative axis move with external axes has no AS equivalent",
-                    "move the external axis on its own",
-                );
-            };
-            let Some((joint, source)) = map.joint_of(*i as u8 + 1) else {
-                return fail(
-                    e.span,
-                    format!(
-                        "the joint map {map} gives axis A{} no single Kawasaki joint",
-                        i + 1
-                    ),
-                    "give a joint map in which the axis drives one joint",
-                );
-            };
+        for (joint, negate, e) in crate::transpile::joints::relative_joints(map, d, "Kawasaki")? {
             let v = self.expr(e)?;
-            let v = match source {
-                crate::transpile::joints::JointSource::Axis { negate: true, .. } => {
-                    super::expr::negate_number(&v)
-                }
-                _ => v,
+            let v = if negate {
+                crate::transpile::render::negate_number(&v)
+            } else {
+                v
             };
             moves.push((joint + 1, v));
         }
         let pct = match speed {
             Known::Is(JointPct(v)) => self.param_text(v, 1.0),
             Known::Unknown(b) => {
-                self.rep.approximate(
+                self.out.rep.approximate(
                     FileId::Src,
                     span,
                     format!(
@@ -342,7 +325,7 @@ impl<'a> Tx<'a> {
             }
         };
         if moves.len() > 1 {
-            self.rep.approximate(
+            self.out.rep.approximate(
                 FileId::Src,
                 span,
                 "the axes move one after the other (one DRIVE each), not together",
@@ -403,7 +386,7 @@ impl<'a> Tx<'a> {
                 self.speed_line(s.text(true));
             }
             MotionParam::VelOri => {
-                self.rep.approximate(
+                self.out.rep.approximate(
                     FileId::Src,
                     span,
                     "AS has no separate orientation speed; $VEL.ORI is not carried over",
@@ -420,7 +403,7 @@ impl<'a> Tx<'a> {
             }
             MotionParam::AccPtp | MotionParam::AccCpPct => {
                 let v = self.param_text(v, 1.0);
-                self.rep.approximate(
+                self.out.rep.approximate(
                     FileId::Src,
                     span,
                     "an acceleration in percent becomes ACCEL/DECEL for all motions",
@@ -440,7 +423,7 @@ impl<'a> Tx<'a> {
                     MotionParam::ApoCvel => "C_VEL",
                     _ => "C_ORI",
                 };
-                self.rep.approximate(
+                self.out.rep.approximate(
                     FileId::Src,
                     span,
                     format!("AS blends by distance only: {} has no counterpart; {which} moves use ACCURACY from $APO.CDIS", p.krl()),
@@ -455,13 +438,13 @@ impl<'a> Tx<'a> {
     }
 
     fn speed_line(&mut self, line: String) {
-        if self.lines.last().map(|l| l.trim()) != Some(line.as_str()) {
+        if self.out.lines.last().map(|l| l.trim()) != Some(line.as_str()) {
             self.line(line);
         }
     }
 
     pub(super) fn motion_defaults(&mut self, span: Span) -> R<()> {
-        self.rep.approximate(
+        self.out.rep.approximate(
             FileId::Src,
             span,
             format!("BAS(#INITMOV) sets KUKA's motion defaults from BAS.DAT; AS gets conservative defaults SPEED {INIT_SPEED} ALWAYS and ACCURACY {FINE_ACCURACY} ALWAYS"),
@@ -506,7 +489,7 @@ impl<'a> Tx<'a> {
         if !tool {
             self.base_caveat(span);
         }
-        self.rep.approximate(
+        self.out.rep.approximate(
             FileId::Src,
             span,
             format!("{krl}[{i}] lives in the KUKA machine data; AS uses the transformation {array}[{i}], which this translation does not define"),
@@ -519,7 +502,7 @@ impl<'a> Tx<'a> {
     }
 
     fn base_caveat(&mut self, span: Span) {
-        self.rep.approximate(
+        self.out.rep.approximate(
             FileId::Src,
             span,
             "KUKA $BASE is relative to $WORLD, AS BASE shifts the robot base frame; they agree only if $ROBROOT is null",
@@ -536,7 +519,7 @@ impl<'a> Tx<'a> {
             ),
             Load::Mass(m) => {
                 let m = self.expr(m)?;
-                self.rep.approximate(
+                self.out.rep.approximate(
                     FileId::Src,
                     span,
                     "only the mass is set: AS WEIGHT takes the centre of mass as 0,0,0",
@@ -554,7 +537,7 @@ impl<'a> Tx<'a> {
                     });
                 }
                 if *inertia {
-                    self.rep.approximate(
+                    self.out.rep.approximate(
                         FileId::Src,
                         span,
                         "AS WEIGHT takes mass and centre of mass; the inertia is not set",

@@ -8,6 +8,7 @@ use crate::transpile::ir::{
     self, Arg, Block, Callee, Component, Expr, ExprKind, LoopId, LoopKind, Op, Place, RoutineKind,
     Stmt, Ty,
 };
+use crate::transpile::render::Emit;
 
 impl<'a> Tx<'a> {
     /// A block: consecutive ops of one KRL statement render together (and fail together).
@@ -28,59 +29,21 @@ impl<'a> Tx<'a> {
     /// body may run zero or many times, or be jumped into).
     fn nested(&mut self, b: &Block) {
         self.forget_accuracy();
-        self.depth += 1;
+        self.out.depth += 1;
         self.block(b);
-        self.depth -= 1;
+        self.out.depth -= 1;
         self.forget_accuracy();
-    }
-
-    fn group(&mut self, g: &[Stmt]) {
-        let span = g[0].span;
-        self.flush_comments(span.start);
-        let start = self.lines.len();
-        let depth = self.depth;
-        let mut r = Ok(());
-        for s in g {
-            r = self.op(s);
-            if r.is_err() {
-                break;
-            }
-        }
-        if let Err(f) = r {
-            self.lines.truncate(start);
-            self.depth = depth;
-            self.rep
-                .untranslatable(FileId::Src, f.span, f.message, f.help);
-            self.keep_as_comment("TR001", span);
-        }
-        if self.lines.len() > start {
-            self.produced.push(span);
-        }
-        self.trailing_comment(span, start);
-    }
-
-    fn trailing_comment(&mut self, span: Span, start: usize) {
-        let text = &self.src.src.text;
-        if let Some(c) = self.comments.trailing(span, text) {
-            if self.lines.len() > start {
-                if let Some(last) = self.lines.last_mut() {
-                    last.push_str(&format!(" ;{}", c.text));
-                }
-            } else {
-                self.line(format!(";{}", c.text));
-            }
-        }
     }
 
     /// Writes the block end, after the comments that come before it in the source.
     fn end_block(&mut self, end: u32, text: &str) {
-        self.depth += 1;
+        self.out.depth += 1;
         self.flush_comments(end);
-        self.depth -= 1;
+        self.out.depth -= 1;
         self.line(text);
     }
 
-    fn op(&mut self, s: &Stmt) -> R<()> {
+    pub(super) fn op(&mut self, s: &Stmt) -> R<()> {
         let span = s.span;
         match &s.op {
             Op::Assign { place, value } => self.assign(place, value, span),
@@ -121,9 +84,9 @@ impl<'a> Tx<'a> {
                 self.nested(then);
                 if !els.is_empty() {
                     if let Some(at) = else_at {
-                        self.depth += 1;
+                        self.out.depth += 1;
                         self.flush_comments(*at);
-                        self.depth -= 1;
+                        self.out.depth -= 1;
                     }
                     self.line("ELSE");
                     self.nested(els);
@@ -189,7 +152,7 @@ impl<'a> Tx<'a> {
             }
             Op::Label(l) => {
                 let n = self.label_name(*l);
-                self.lines.push(format!("{n}:"));
+                self.out.lines.push(format!("{n}:"));
                 self.forget_accuracy();
                 Ok(())
             }
@@ -202,7 +165,7 @@ impl<'a> Tx<'a> {
             Op::Brake { fast } => {
                 self.line("BRAKE");
                 if *fast {
-                    self.rep.approximate(
+                    self.out.rep.approximate(
                         FileId::Src,
                         span,
                         "BRAKE F (fast stop) becomes BRAKE (normal stop)",
@@ -215,7 +178,7 @@ impl<'a> Tx<'a> {
             Op::InterruptDecl(i) => self.interrupt_decl(*i, span),
             Op::Message { routine, text } => {
                 let t = self.expr(text)?;
-                self.rep.approximate(
+                self.out.rep.approximate(
                     FileId::Src,
                     span,
                     format!("{routine} becomes PRINT (no message window, no acknowledgement)"),
@@ -271,12 +234,12 @@ impl<'a> Tx<'a> {
         self.nested(body);
         if continues {
             let l = self.continue_label(id);
-            self.lines.push(format!("{l}:"));
+            self.out.lines.push(format!("{l}:"));
         }
         self.end_block(end, &close);
         if exits {
             let l = self.break_label(id);
-            self.lines.push(format!("{l}:"));
+            self.out.lines.push(format!("{l}:"));
         }
         Ok(())
     }

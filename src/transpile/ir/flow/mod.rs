@@ -268,7 +268,7 @@ impl Step for Stmt {
             Op::Call { callee, .. } => match callee {
                 Callee::Routine(r) => View::Call(*r),
                 Callee::External { .. } => View::Moving(true),
-                Callee::Mm(sub) if sub.name == "MM_CALIB" => View::Moving(true),
+                Callee::Mm(sub) if sub.shape.moves() => View::Moving(true),
                 Callee::Mm(_) => View::Other,
             },
             Op::Goto(l) => View::Goto(*l),

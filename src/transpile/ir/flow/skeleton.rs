@@ -144,7 +144,7 @@ fn append(ops: &Block, out: &mut Vec<Node>, moves: &mut bool) {
                     *moves = true;
                     Node::Moving(true)
                 }
-                Callee::Mm(sub) if sub.name == "MM_CALIB" => {
+                Callee::Mm(sub) if sub.shape.moves() => {
                     *moves = true;
                     Node::Moving(true)
                 }

@@ -350,6 +350,7 @@ impl<'p> Lower<'p> {
         match &e.kind {
             A::Name(id) => {
                 if let Some(v) = self.var(&id.text) {
+                    self.holdable(v, span)?;
                     let var = self.out.var(v);
                     if let Ty::Signal(r) = var.ty {
                         if r.bank == crate::transpile::ir::Bank::In {
@@ -362,6 +363,7 @@ impl<'p> Lower<'p> {
                     return Ok(Expr::new(ExprKind::Place(Place::Var(v)), ty, span));
                 }
                 if let Some(v) = self.package_var(id) {
+                    self.holdable(v, span)?;
                     let ty = self.out.var(v).ty.clone();
                     return Ok(Expr::new(ExprKind::Place(Place::Var(v)), ty, span));
                 }
@@ -377,16 +379,26 @@ impl<'p> Lower<'p> {
         }
     }
 
+    /// A variable of a type the target cannot hold (a STRUC without records, a KUKA structure
+    /// no target has) is refused here, once, for every target.
+    fn holdable(&self, v: crate::transpile::ir::VarId, at: Span) -> L<()> {
+        match &self.out.var(v).ty {
+            Ty::Struc(t) if !t.is_empty() && !self.caps.records => {
+                fail(Why::Structure(t.clone()), at)
+            }
+            Ty::Other(t) if !t.is_empty() => fail(Why::Structure(t.clone()), at),
+            _ => Ok(()),
+        }
+    }
+
     /// A place (assignment target or value), and the type it holds. `write`: an assignment
     /// target (an undeclared name is assumed from the value later).
     pub(super) fn place(&mut self, e: &ast::Expr, pre: &mut Block, write: bool) -> L<(Place, Ty)> {
         let span = e.span;
         match &e.kind {
             A::Name(id) => {
-                if let Some(v) = self.var(&id.text) {
-                    return Ok((Place::Var(v), self.out.var(v).ty.clone()));
-                }
-                if let Some(v) = self.package_var(id) {
+                if let Some(v) = self.var(&id.text).or_else(|| self.package_var(id)) {
+                    self.holdable(v, span)?;
                     return Ok((Place::Var(v), self.out.var(v).ty.clone()));
                 }
                 let _ = write;
@@ -410,6 +422,7 @@ impl<'p> Lower<'p> {
                         }
                     },
                 };
+                self.holdable(v, span)?;
                 let ty = self.out.var(v).ty.clone();
                 let mut idx = Vec::new();
                 let present: Vec<&ast::Expr> = indices.iter().flatten().collect();
@@ -546,6 +559,16 @@ impl<'p> Lower<'p> {
                 Some(v) => v,
                 None => return fail(Why::OmittedArgument, span),
             };
+            if present.len() != b.arity() {
+                return fail(
+                    Why::Arity {
+                        name: name.text.to_string(),
+                        takes: b.arity(),
+                        given: present.len(),
+                    },
+                    span,
+                );
+            }
             let v = self.seq(&present, pre)?;
             let ty = match (b, v.first().map(|a| &a.ty)) {
                 (Builtin::Abs, Some(Ty::Int)) => Ty::Int,

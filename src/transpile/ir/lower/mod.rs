@@ -25,6 +25,7 @@ use crate::transpile::front;
 use crate::transpile::front::model::{Model, VarInfo, VarKind};
 use crate::transpile::front::outline::RoutineOutline;
 use crate::transpile::front::report::FileId;
+use crate::transpile::render::Caps;
 
 /// The program model lowered statement by statement, in two passes over the program's
 /// statements (each statement's tree is made, lowered and dropped):
@@ -52,6 +53,7 @@ pub struct Replay {
     keys: HashMap<(String, String), VarId>,
     /// The next spline id at the start of each routine.
     next_spline: Vec<u32>,
+    caps: &'static Caps,
 }
 
 impl Replay {
@@ -73,6 +75,7 @@ impl Replay {
             src,
             model: Model::new(src),
             opts: options,
+            caps: self.caps,
             out,
             vars: self.keys.clone(),
             rt: None,
@@ -132,6 +135,8 @@ pub struct Lower<'p> {
     src: &'p front::Program,
     model: Model<'p>,
     opts: &'p Options,
+    /// What the target can hold: the lowering refuses the rest (TR001) once, for every target.
+    caps: &'static Caps,
     out: Program,
     /// (routine key or "", upper-case name) → id; package and assumed names under "".
     vars: HashMap<(String, String), VarId>,
@@ -163,11 +168,16 @@ enum Pass {
 impl<'p> Lower<'p> {
     /// The first pass over `program`: every name gets its id (globals, routines, their
     /// parameters and locals) and the interrupt declarations are lowered; the routines follow.
-    pub fn new(program: &'p front::Program, options: &'p Options) -> Lower<'p> {
+    pub fn new(
+        program: &'p front::Program,
+        options: &'p Options,
+        caps: &'static Caps,
+    ) -> Lower<'p> {
         let mut l = Lower {
             src: program,
             model: Model::new(program),
             opts: options,
+            caps,
             out: Program::default(),
             vars: HashMap::new(),
             rt: None,
@@ -217,6 +227,7 @@ impl<'p> Lower<'p> {
                 vars,
                 keys: self.vars.clone(),
                 next_spline: spline_at,
+                caps: self.caps,
             },
             program: self.out,
             vision: self.vision,
@@ -682,8 +693,11 @@ impl<'p> Lower<'p> {
         self.moves.insert(key.clone(), false);
         let src = self.src;
         let result = match src.src.outline.routine(name) {
-            // Another module's routine, or a package routine: it may.
-            None => !key.starts_with("MM_") || key == "MM_CALIB",
+            // Another module's routine may; a package routine only if its catalog shape does.
+            None => match crate::catalog::catalog().subprogram(&key) {
+                Some(sub) => sub.shape.moves(),
+                None => !key.starts_with("MM_"),
+            },
             Some(r) => {
                 r.facts.moves
                     || r.facts.callees.iter().any(|c| {

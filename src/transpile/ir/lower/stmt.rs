@@ -9,8 +9,8 @@ use crate::transpile::front::ilf;
 use crate::transpile::front::kinds::category;
 use crate::transpile::front::sysvar::{self, Sys};
 use crate::transpile::ir::{
-    Bank, Block, Case, Expr, ExprKind, ForLoop, InterruptAction, IoPlace, IoTiming, LoopKind, Op,
-    Place, RoutineKind, Scope, Stmt, TimerOp, Ty, UnaryOp, Wait, Why,
+    Block, Case, Expr, ExprKind, ForLoop, InterruptAction, IoTiming, LoopKind, Op, OutPlace,
+    OutSignal, Place, RoutineKind, Scope, Stmt, TimerOp, Ty, UnaryOp, Wait, Why,
 };
 
 impl<'p> Lower<'p> {
@@ -401,6 +401,9 @@ impl<'p> Lower<'p> {
                 {
                     return fail(Why::NoInterruptDecl(n), span);
                 }
+                if !self.caps.interrupts {
+                    return fail(Why::NoInterrupts, span);
+                }
                 let action = match action {
                     ast::InterruptAction::On => InterruptAction::On,
                     ast::InterruptAction::Off => InterruptAction::Off,
@@ -420,6 +423,9 @@ impl<'p> Lower<'p> {
                     .iter()
                     .position(|d| d.span.start == span.start);
                 match i {
+                    Some(i) if !self.caps.interrupts && !self.out.interrupts[i].stop_messages => {
+                        fail(Why::NoInterrupts, span)
+                    }
                     Some(i) => {
                         Self::push(ops, Op::InterruptDecl(i), span);
                         Ok(())
@@ -433,15 +439,16 @@ impl<'p> Lower<'p> {
                 duration,
             } => {
                 let io = match sysvar::classify(signal) {
-                    Some(Sys::Out(i)) => IoPlace::Out(Box::new(self.expr(i, ops)?)),
-                    Some(Sys::Flag(i)) => IoPlace::Flag(Box::new(self.expr(i, ops)?)),
+                    Some(Sys::Out(i)) => OutPlace::Out(Box::new(self.expr(i, ops)?)),
+                    Some(Sys::Flag(i)) => OutPlace::Flag(Box::new(self.expr(i, ops)?)),
                     Some(_) => return fail(Why::PulseSignal, signal.span),
                     None => match &signal.kind {
                         A::Name(id) => match self.var(&id.text).map(|v| self.out.var(v).ty.clone())
                         {
-                            Some(Ty::Signal(r)) if r.bank == Bank::Out && r.width() == 1 => {
-                                IoPlace::Signal(r)
-                            }
+                            Some(Ty::Signal(r)) if r.width() == 1 => match OutSignal::new(r) {
+                                Some(s) => OutPlace::Signal(s),
+                                None => return fail(Why::PulseSignal, signal.span),
+                            },
                             _ => return fail(Why::PulseSignal, signal.span),
                         },
                         _ => return fail(Why::PulseSignal, signal.span),
@@ -498,7 +505,7 @@ impl<'p> Lower<'p> {
                     self.routine_moves(&n)
                 }
                 crate::transpile::ir::Callee::External { name, .. } => self.routine_moves(name),
-                crate::transpile::ir::Callee::Mm(s) => s.name == "MM_CALIB",
+                crate::transpile::ir::Callee::Mm(s) => s.shape.moves(),
             })
     }
 
@@ -655,19 +662,19 @@ impl<'p> Lower<'p> {
         ops: &mut Block,
     ) -> L<()> {
         self.kind("I/O");
-        if r.bank == Bank::In {
+        let Some(r) = OutSignal::new(r) else {
             return fail(
                 Why::ReadOnly(self.src.src.slice(span).trim().to_owned()),
                 span,
             );
-        }
+        };
         let when = self.io_timing();
         self.stop(span, ops);
         let v = self.expr(value, ops)?;
         Self::push(
             ops,
             Op::SetIo {
-                io: IoPlace::Signal(r),
+                io: OutPlace::Signal(r),
                 value: v,
                 when,
             },
@@ -704,7 +711,7 @@ impl<'p> Lower<'p> {
                 Self::push(
                     ops,
                     Op::SetIo {
-                        io: IoPlace::Out(Box::new(i)),
+                        io: OutPlace::Out(Box::new(i)),
                         value: v,
                         when,
                     },
@@ -720,7 +727,7 @@ impl<'p> Lower<'p> {
                 Self::push(
                     ops,
                     Op::SetIo {
-                        io: IoPlace::Out(Box::new(i)),
+                        io: OutPlace::Out(Box::new(i)),
                         value: v,
                         when: IoTiming::PathEnd,
                     },
@@ -735,7 +742,7 @@ impl<'p> Lower<'p> {
                 Self::push(
                     ops,
                     Op::SetIo {
-                        io: IoPlace::Flag(Box::new(i)),
+                        io: OutPlace::Flag(Box::new(i)),
                         value: v,
                         when: IoTiming::Now,
                     },

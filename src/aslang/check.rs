@@ -1,0 +1,395 @@
+//! The structural check of AS text: sections open and close (`.PROGRAM` … `.END`, data
+//! sections … `.END`), data lines are well formed, control blocks balance (`IF … THEN`/`ELSE`/
+//! `END`, `FOR … TO`, `WHILE … DO`, `CASE … OF`/`VALUE … :`/`ANY :`, `DO`/`UNTIL`), the labels
+//! that `GOTO`s name exist, `C1MOVE` is followed by `C2MOVE`, names fit the catalog's AS limit,
+//! the text is ASCII, and `CALL`s name a program with its number of arguments.
+//!
+//! It is a checker of our own output, not an AS parser: it knows the statement heads the
+//! generator and the translator write and ignores the rest of a line.
+
+use std::collections::HashSet;
+use std::fmt;
+
+use super::lex::{call_target, code_part, names, split_top_level, without_strings};
+use crate::catalog::catalog;
+
+/// One finding, on a 1-based line.
+#[derive(Debug, Clone, PartialEq, Eq)]
+pub struct Problem {
+    pub line: usize,
+    pub message: String,
+}
+
+impl fmt::Display for Problem {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        write!(f, "line {}: {}", self.line, self.message)
+    }
+}
+
+/// Which `CALL`s must resolve.
+#[derive(Debug, Clone, Copy)]
+pub enum Calls<'a> {
+    /// The whole program set: every `CALL` names a program of the text or one of these
+    /// `(name, parameter count)`, with that many arguments (a generated package).
+    Closed(&'a [(&'a str, usize)]),
+    /// A part of a program set: a `CALL` of a program of the text must match its parameter
+    /// count; other targets are defined elsewhere (a translated module).
+    Open,
+}
+
+/// Check AS text; the problems in line order, none when it is well formed.
+pub fn check(text: &str, calls: Calls<'_>) -> Vec<Problem> {
+    let mut c = Checker {
+        max: catalog().kawasaki_limits.name_max,
+        problems: Vec::new(),
+        state: State::Outside,
+        programs: Vec::new(),
+        calls: Vec::new(),
+    };
+    let mut last = 0;
+    for (idx, raw) in text.lines().enumerate() {
+        last = idx + 1;
+        c.line(last, raw);
+    }
+    match std::mem::replace(&mut c.state, State::Outside) {
+        State::Outside => {}
+        State::Program(p) => c.push(last, format!("program `{}` has no .END", p.name)),
+        State::Data { kind, .. } => c.push(last, format!("{kind} section has no .END")),
+    }
+    c.resolve_calls(calls);
+    c.problems.sort_by_key(|p| p.line);
+    c.problems
+}
+
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+enum Block {
+    If { has_else: bool },
+    For,
+    While,
+    Do,
+    Case,
+}
+
+impl Block {
+    fn name(self) -> &'static str {
+        match self {
+            Block::If { .. } => "IF",
+            Block::For => "FOR",
+            Block::While => "WHILE",
+            Block::Do => "DO",
+            Block::Case => "CASE",
+        }
+    }
+}
+
+struct Program {
+    name: String,
+    blocks: Vec<(Block, usize)>,
+    labels: HashSet<String>,
+    gotos: Vec<(String, usize)>,
+    /// Line of a C1MOVE waiting for its C2MOVE.
+    c1: Option<usize>,
+}
+
+enum State {
+    Outside,
+    Program(Program),
+    Data { kind: &'static str, line: usize },
+}
+
+struct Call {
+    line: usize,
+    name: String,
+    arity: usize,
+}
+
+/// Data sections the generator and the translator write.
+const DATA_SECTIONS: [&str; 4] = [".REALS", ".STRINGS", ".TRANS", ".JOINTS"];
+
+struct Checker {
+    max: usize,
+    problems: Vec<Problem>,
+    state: State,
+    /// Programs defined so far (lower case) with their parameter counts.
+    programs: Vec<(String, usize)>,
+    calls: Vec<Call>,
+}
+
+impl Checker {
+    fn push(&mut self, line: usize, message: String) {
+        self.problems.push(Problem { line, message });
+    }
+
+    fn long_names(&mut self, n: usize, code: &str) {
+        for id in names(&without_strings(code)) {
+            if id.len() > self.max {
+                let max = self.max;
+                self.push(n, format!("name `{id}` is longer than {max}"));
+            }
+        }
+    }
+
+    fn line(&mut self, n: usize, raw: &str) {
+        if !raw.is_ascii() {
+            self.push(n, "non-ASCII character".into());
+        }
+        let code = code_part(raw).trim();
+        if code.is_empty() {
+            return;
+        }
+        let upper = code.to_ascii_uppercase();
+        let head = upper
+            .split(|c: char| c.is_whitespace() || c == '(')
+            .next()
+            .unwrap_or("");
+        let section = head == ".PROGRAM" || head == ".END" || DATA_SECTIONS.contains(&head);
+        match &mut self.state {
+            State::Outside => self.outside(n, code, head),
+            State::Data { kind, line } => {
+                let (kind, at) = (*kind, *line);
+                if head == ".END" {
+                    self.state = State::Outside;
+                } else if section {
+                    self.push(
+                        n,
+                        format!("`{head}` inside the {kind} section of line {at} (missing .END?)"),
+                    );
+                } else {
+                    self.data_line(n, kind, code);
+                }
+            }
+            State::Program(p) => {
+                if head == ".END" {
+                    let p = match std::mem::replace(&mut self.state, State::Outside) {
+                        State::Program(p) => p,
+                        _ => unreachable!("in a program"),
+                    };
+                    self.end_program(p);
+                } else if section {
+                    let msg = format!("`{head}` inside program `{}` (missing .END?)", p.name);
+                    self.push(n, msg);
+                } else {
+                    self.program_line(n, code);
+                }
+            }
+        }
+    }
+
+    fn outside(&mut self, n: usize, code: &str, head: &str) {
+        if head == ".PROGRAM" {
+            self.program_head(n, code[".PROGRAM".len()..].trim());
+        } else if let Some(kind) = DATA_SECTIONS.iter().find(|s| **s == head) {
+            self.state = State::Data { kind, line: n };
+        } else if head == ".END" {
+            self.push(n, ".END without a section".into());
+        } else if head.starts_with('.') {
+            self.push(n, format!("unknown section {head}"));
+        } else {
+            self.push(n, format!("`{code}` outside a section"));
+        }
+    }
+
+    fn program_head(&mut self, n: usize, rest: &str) {
+        let max = self.max;
+        let (name, params) = match rest.find('(') {
+            Some(p) => (rest[..p].trim(), rest[p + 1..].split(')').next()),
+            None => (rest.split_whitespace().next().unwrap_or(""), None),
+        };
+        if name.is_empty() || !name.as_bytes()[0].is_ascii_alphabetic() {
+            self.push(n, format!("bad program name `{name}`"));
+        }
+        if name.len() > max {
+            self.push(n, format!("program name `{name}` is longer than {max}"));
+        }
+        let params: Vec<&str> = params.map(split_top_level).unwrap_or_default();
+        for p in &params {
+            let id = p
+                .strip_prefix('.')
+                .map(|s| s.trim_start_matches(['#', '&', '$']))
+                .map(|s| s.split('[').next().unwrap_or(s));
+            match id {
+                None => self.push(n, format!("parameter `{p}` is not a local (.name)")),
+                Some(id) if id.len() > max || id.is_empty() => {
+                    self.push(n, format!("parameter `{p}` is empty or longer than {max}"))
+                }
+                Some(_) => {}
+            }
+        }
+        let lower = name.to_ascii_lowercase();
+        if self.programs.iter().any(|(p, _)| *p == lower) {
+            self.push(n, format!("program `{name}` defined twice"));
+        }
+        self.programs.push((lower.clone(), params.len()));
+        self.state = State::Program(Program {
+            name: lower,
+            blocks: Vec::new(),
+            labels: HashSet::new(),
+            gotos: Vec::new(),
+            c1: None,
+        });
+    }
+
+    fn end_program(&mut self, p: Program) {
+        for (b, at) in p.blocks {
+            self.push(at, format!("{} without END in `{}`", b.name(), p.name));
+        }
+        if let Some(at) = p.c1 {
+            self.push(at, "C1MOVE without C2MOVE".into());
+        }
+        for (l, at) in p.gotos {
+            if !p.labels.contains(&l) {
+                let msg = format!("GOTO to `{l}`, which is not a label of `{}`", p.name);
+                self.push(at, msg);
+            }
+        }
+    }
+
+    fn data_line(&mut self, n: usize, kind: &str, code: &str) {
+        self.long_names(n, code);
+        let words: Vec<&str> = code.split_whitespace().collect();
+        let numbers = |ws: &[&str]| ws.iter().all(|w| w.parse::<f64>().is_ok());
+        let ok = match kind {
+            ".TRANS" => {
+                (words.len() == 7 || words.len() == 8)
+                    && !words[0].starts_with(['#', '$'])
+                    && numbers(&words[1..])
+            }
+            ".JOINTS" => words.len() >= 7 && words[0].starts_with('#') && numbers(&words[1..]),
+            ".REALS" => words.len() == 3 && words[1] == "=" && numbers(&words[2..]),
+            _ => {
+                words.first().is_some_and(|w| w.starts_with('$'))
+                    && code.contains("= \"")
+                    && code.ends_with('"')
+            }
+        };
+        if !ok {
+            self.push(n, format!("malformed {kind} line `{code}`"));
+        }
+    }
+
+    fn program_line(&mut self, n: usize, code: &str) {
+        self.long_names(n, code);
+        let bare = without_strings(code);
+        let upper = bare.to_ascii_uppercase();
+        let words: Vec<&str> = upper.split_whitespace().collect();
+        let first = words.first().copied().unwrap_or("");
+        let last_word = words.last().copied().unwrap_or("");
+        let State::Program(p) = &mut self.state else {
+            return;
+        };
+        let mut problems: Vec<(usize, String)> = Vec::new();
+        let after_c1 = p.c1.take();
+        if let Some(at) = after_c1
+            && first != "C2MOVE"
+        {
+            problems.push((at, "C1MOVE not followed by C2MOVE".into()));
+        }
+        if let Some(label) = code.strip_suffix(':')
+            && !label.contains(' ')
+            && first != "ANY:"
+        {
+            if !p.labels.insert(label.to_ascii_lowercase()) {
+                problems.push((n, format!("label `{label}` defined twice")));
+            }
+        } else {
+            match first {
+                "IF" => {
+                    if last_word == "THEN" {
+                        p.blocks.push((Block::If { has_else: false }, n));
+                    } else if let Some(i) = upper.find(" GOTO ") {
+                        p.gotos.push((code[i + 6..].trim().to_ascii_lowercase(), n));
+                    } else {
+                        problems.push((n, "IF without THEN (or GOTO)".into()));
+                    }
+                }
+                "ELSE" => match p.blocks.last_mut() {
+                    Some((Block::If { has_else }, _)) if !*has_else => *has_else = true,
+                    _ => problems.push((n, "ELSE outside an IF block (or a second ELSE)".into())),
+                },
+                "END" => match p.blocks.pop() {
+                    None => problems.push((n, "END without an open block".into())),
+                    Some((Block::Do, at)) => problems.push((
+                        n,
+                        format!("END closes the DO of line {at} (UNTIL expected)"),
+                    )),
+                    Some(_) => {}
+                },
+                "FOR" => {
+                    if !words.contains(&"TO") {
+                        problems.push((n, "FOR without TO".into()));
+                    }
+                    p.blocks.push((Block::For, n));
+                }
+                "WHILE" => {
+                    if last_word != "DO" {
+                        problems.push((n, "WHILE without DO".into()));
+                    }
+                    p.blocks.push((Block::While, n));
+                }
+                "DO" if words.len() == 1 => p.blocks.push((Block::Do, n)),
+                "UNTIL" => match p.blocks.pop() {
+                    Some((Block::Do, _)) => {}
+                    Some((b, at)) => {
+                        problems.push((n, format!("UNTIL closes the {} of line {at}", b.name())))
+                    }
+                    None => problems.push((n, "UNTIL without DO".into())),
+                },
+                "CASE" | "SCASE" => {
+                    if last_word != "OF" {
+                        problems.push((n, format!("{first} without OF")));
+                    }
+                    p.blocks.push((Block::Case, n));
+                }
+                "VALUE" | "SVALUE" | "ANY" | "ANY:" => {
+                    if !matches!(p.blocks.last(), Some((Block::Case, _))) {
+                        problems.push((n, format!("{first} outside a CASE block")));
+                    }
+                    if !upper.trim_end().ends_with(':') {
+                        problems.push((n, format!("{first} without `:`")));
+                    }
+                }
+                "GOTO" => p.gotos.push((code[4..].trim().to_ascii_lowercase(), n)),
+                "C1MOVE" => p.c1 = Some(n),
+                "C2MOVE" if after_c1.is_none() => {
+                    problems.push((n, "C2MOVE without C1MOVE".into()))
+                }
+                "CALL" => {
+                    let (name, arity) = call_target(&code[4..]);
+                    self.calls.push(Call {
+                        line: n,
+                        name,
+                        arity,
+                    });
+                }
+                _ => {}
+            }
+        }
+        for (line, message) in problems {
+            self.push(line, message);
+        }
+    }
+
+    fn resolve_calls(&mut self, calls: Calls<'_>) {
+        let external = match calls {
+            Calls::Closed(e) => e,
+            Calls::Open => &[],
+        };
+        for c in std::mem::take(&mut self.calls) {
+            let known = self
+                .programs
+                .iter()
+                .map(|(p, a)| (p.as_str(), *a))
+                .chain(external.iter().map(|(p, a)| (*p, *a)))
+                .find(|(p, _)| p.eq_ignore_ascii_case(&c.name));
+            let message = match known {
+                None if matches!(calls, Calls::Open) => continue,
+                None => format!("CALL of unknown program `{}`", c.name),
+                Some((_, a)) if a != c.arity => {
+                    format!("CALL {} with {} arguments; it takes {a}", c.name, c.arity)
+                }
+                Some(_) => continue,
+            };
+            self.push(c.line, message);
+        }
+    }
+}

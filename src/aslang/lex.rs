@@ -1,0 +1,105 @@
+//! Lexical pieces of an AS line: its code part, its names, its argument lists.
+
+/// The code part of a line: everything before a `;` that is not inside a string.
+pub(super) fn code_part(line: &str) -> &str {
+    let mut in_str = false;
+    for (i, c) in line.char_indices() {
+        match c {
+            '"' => in_str = !in_str,
+            ';' if !in_str => return &line[..i],
+            _ => {}
+        }
+    }
+    line
+}
+
+/// The code with string literals blanked (so their words are not taken for names).
+pub(super) fn without_strings(code: &str) -> String {
+    let mut out = String::with_capacity(code.len());
+    let mut in_str = false;
+    for c in code.chars() {
+        if c == '"' {
+            in_str = !in_str;
+            out.push(' ');
+        } else {
+            out.push(if in_str { ' ' } else { c });
+        }
+    }
+    out
+}
+
+/// Names in a code line, without the local dot and the sigil: `.#cur` → `cur`,
+/// `$mm_tx[1]` → `mm_tx`. Numbers (`0.5`, `.5`, `1E5`) are skipped.
+pub(super) fn names(code: &str) -> Vec<String> {
+    let b = code.as_bytes();
+    let mut out = Vec::new();
+    let mut i = 0;
+    let is_name = |c: u8| c.is_ascii_alphanumeric() || c == b'_' || c == b'.';
+    while i < b.len() {
+        let start = i;
+        let mut j = i;
+        if b[j] == b'.' {
+            j += 1;
+        }
+        if j < b.len() && matches!(b[j], b'#' | b'&' | b'$' | b'@') {
+            j += 1;
+        }
+        if j < b.len() && b[j].is_ascii_alphabetic() {
+            let name_start = j;
+            while j < b.len() && is_name(b[j]) {
+                j += 1;
+            }
+            // A name right after a digit or a name character is part of a number (1E5).
+            let glued = start > 0 && is_name(b[start - 1]) && b[start] != b'.';
+            if !glued {
+                out.push(code[name_start..j].trim_end_matches('.').to_string());
+            }
+            i = j;
+        } else if b[i].is_ascii_digit() || b[i] == b'.' {
+            i += 1;
+            while i < b.len() && is_name(b[i]) {
+                i += 1;
+            }
+        } else {
+            i += 1;
+        }
+    }
+    out
+}
+
+/// The comma-separated items of an argument or parameter list, ignoring commas inside
+/// brackets (`.t[,]`, `f(a, b)`); empty for a blank list.
+pub fn split_top_level(list: &str) -> Vec<&str> {
+    if list.trim().is_empty() {
+        return Vec::new();
+    }
+    let mut items = Vec::new();
+    let (mut depth, mut start) = (0i32, 0);
+    for (i, c) in list.char_indices() {
+        match c {
+            '(' | '[' => depth += 1,
+            ')' | ']' => depth -= 1,
+            ',' if depth == 0 => {
+                items.push(list[start..i].trim());
+                start = i + 1;
+            }
+            _ => {}
+        }
+    }
+    items.push(list[start..].trim());
+    items
+}
+
+/// `(name, argument count)` of a `CALL` statement's target.
+pub(super) fn call_target(rest: &str) -> (String, usize) {
+    let rest = rest.trim();
+    let (name, args) = match rest.find('(') {
+        Some(p) => (&rest[..p], Some(&rest[p + 1..])),
+        None => (rest.split_whitespace().next().unwrap_or(""), None),
+    };
+    let arity = args.map_or(0, |a| {
+        let inner = a.rsplit_once(')').map_or(a, |(x, _)| x);
+        split_top_level(inner).len()
+    });
+    (name.trim().to_ascii_lowercase(), arity)
+}

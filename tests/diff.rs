@@ -1,0 +1,226 @@
+//! `krlkit diff`: fixture pairs under `tests/fixtures/diff/<case>/{old,new}` with JSON
+//! snapshots beside them; a folder against the same backup as a `.zip`; property tests (a tree
+//! against itself is no change; a moved point reports the delta that was applied).
+
+use std::io::Write;
+use std::path::{Path, PathBuf};
+
+use krlkit::diff::{self, Options};
+use proptest::prelude::*;
+
+fn fixtures() -> PathBuf {
+    Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/fixtures/diff")
+}
+
+fn run(old: &Path, new: &Path, opts: &Options) -> diff::Diff {
+    let (a, ea) = diff::load(old, opts.comments);
+    let (b, eb) = diff::load(new, opts.comments);
+    assert!(ea.is_empty() && eb.is_empty(), "{ea:?} {eb:?}");
+    let mut d = diff::compare(&a, &b, opts);
+    d.old = "old".into();
+    d.new = "new".into();
+    d
+}
+
+#[test]
+fn fixture_pairs_match_their_snapshots() {
+    let mut cases: Vec<PathBuf> = std::fs::read_dir(fixtures())
+        .expect("fixtures")
+        .map(|e| e.expect("entry").path())
+        .filter(|p| p.is_dir())
+        .collect();
+    cases.sort();
+    assert!(cases.len() >= 2);
+    for case in cases {
+        let name = case
+            .file_name()
+            .expect("name")
+            .to_string_lossy()
+            .into_owned();
+        let d = run(&case.join("old"), &case.join("new"), &Options::default());
+        let mut settings = insta::Settings::clone_current();
+        settings.set_snapshot_path(&case);
+        settings.set_prepend_module_to_snapshot(false);
+        settings.bind(|| insta::assert_json_snapshot!("diff", d));
+        let human = diff::render::human(&d, true);
+        settings.bind(|| insta::assert_snapshot!("human", human));
+        if name == "churn" {
+            assert!(
+                d.changes.is_empty(),
+                "header-only churn is no change: {human}"
+            );
+            assert!(d.ignored > 0);
+        }
+    }
+}
+
+/// Zip a folder, entries named by their path inside it.
+fn zip_folder(dir: &Path, to: &Path) {
+    let file = std::fs::File::create(to).expect("create zip");
+    let mut z = zip::ZipWriter::new(file);
+    let opts = zip::write::SimpleFileOptions::default();
+    let mut stack = vec![dir.to_path_buf()];
+    let mut files = Vec::new();
+    while let Some(d) = stack.pop() {
+        for e in std::fs::read_dir(&d).expect("read_dir") {
+            let p = e.expect("entry").path();
+            if p.is_dir() {
+                stack.push(p);
+            } else {
+                files.push(p);
+            }
+        }
+    }
+    files.sort();
+    for p in files {
+        let name = p
+            .strip_prefix(dir)
+            .expect("inside")
+            .to_string_lossy()
+            .replace('\\', "/");
+        z.start_file(name, opts).expect("start");
+        z.write_all(&std::fs::read(&p).expect("read"))
+            .expect("write");
+    }
+    z.finish().expect("finish");
+}
+
+#[test]
+fn a_folder_against_its_zip_gives_the_folder_result() {
+    let case = fixtures().join("cell");
+    let tmp = tempfile::tempdir().expect("tempdir");
+    let zip = tmp.path().join("new.zip");
+    zip_folder(&case.join("new"), &zip);
+    let folders = run(&case.join("old"), &case.join("new"), &Options::default());
+    let mixed = run(&case.join("old"), &zip, &Options::default());
+    assert_eq!(folders.changes, mixed.changes);
+    assert_eq!(folders.ignored, mixed.ignored);
+    assert!(!folders.changes.is_empty());
+}
+
+#[test]
+fn the_tolerance_hides_small_moves() {
+    let case = fixtures().join("cell");
+    let opts = Options {
+        tolerance_mm: 3.0,
+        tolerance_deg: 2.0,
+        comments: false,
+    };
+    let d = run(&case.join("old"), &case.join("new"), &opts);
+    let names: Vec<&str> = d.changes.iter().map(|c| c.name.as_str()).collect();
+    assert!(!names.contains(&"TOOL_DATA[1]") && !names.contains(&"BASE_DATA[2]"));
+    assert!(names.contains(&"XP3"), "{names:?}");
+}
+
+#[test]
+fn comments_count_when_asked() {
+    let case = fixtures().join("cell");
+    let opts = Options {
+        comments: true,
+        ..Options::default()
+    };
+    let d = run(&case.join("old"), &case.join("new"), &opts);
+    let pick = d
+        .changes
+        .iter()
+        .find(|c| c.name == "pick")
+        .expect("pick changed");
+    assert!(pick.lines.iter().any(|l| l.text.contains("from above")));
+}
+
+/// Every fixture tree of the repository against itself: no change, nothing ignored.
+#[test]
+fn every_fixture_tree_against_itself_is_no_change() {
+    let root = Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/fixtures");
+    let mut trees = 0;
+    for e in std::fs::read_dir(&root).expect("fixtures") {
+        let p = e.expect("entry").path();
+        if !p.is_dir() {
+            continue;
+        }
+        let d = run(&p, &p, &Options::default());
+        assert!(
+            d.changes.is_empty() && d.ignored == 0,
+            "{}: {d:?}",
+            p.display()
+        );
+        trees += 1;
+    }
+    assert!(trees > 10);
+}
+
+fn dat(name: &str, p: [f64; 6]) -> String {
+    format!(
+        "DEFDAT {name}\nDECL E6POS XP={{X {:.6},Y {:.6},Z {:.6},A {:.9},B {:.9},C {:.9},S 2,T 10}}\nENDDAT\n",
+        p[0], p[1], p[2], p[3], p[4], p[5]
+    )
+}
+
+/// Rotation by `deg` about a unit `axis` (Rodrigues).
+fn axis_angle(axis: [f64; 3], deg: f64) -> krlkit::geom::Matrix {
+    let [x, y, z] = axis;
+    let (s, c) = deg.to_radians().sin_cos();
+    let t = 1.0 - c;
+    [
+        [t * x * x + c, t * x * y - s * z, t * x * z + s * y],
+        [t * x * y + s * z, t * y * y + c, t * y * z - s * x],
+        [t * x * z - s * y, t * y * z + s * x, t * z * z + c],
+    ]
+}
+
+proptest! {
+    #![proptest_config(ProptestConfig::with_cases(48))]
+
+    #[test]
+    fn a_moved_point_reports_the_applied_delta(
+        x in -2000.0..2000.0f64, y in -2000.0..2000.0f64, z in -500.0..2000.0f64,
+        a in -180.0..180.0f64,
+        b in prop_oneof![Just(90.0f64), Just(-90.0f64), -90.0..90.0f64],
+        c in -180.0..180.0f64,
+        t in prop::array::uniform3(-100.0..100.0f64),
+        axis in prop::array::uniform3(-1.0..1.0f64),
+        turn in 0.01..170.0f64,
+    ) {
+        let len = (axis[0] * axis[0] + axis[1] * axis[1] + axis[2] * axis[2]).sqrt();
+        prop_assume!(len > 0.1);
+        let axis = axis.map(|v| v / len);
+        let old = krlkit::geom::abc_to_matrix(a, b, c);
+        let new = krlkit::geom::mul(&old, &axis_angle(axis, turn));
+        let (na, nb, nc) = krlkit::geom::matrix_to_abc(&new);
+        let tmp = tempfile::tempdir().expect("tempdir");
+        let (po, pn) = (tmp.path().join("old.dat"), tmp.path().join("new.dat"));
+        std::fs::write(&po, dat("p", [x, y, z, a, b, c])).expect("write");
+        std::fs::write(&pn, dat("p", [x + t[0], y + t[1], z + t[2], na, nb, nc])).expect("write");
+        let d = run(&po, &pn, &Options::default());
+        prop_assert_eq!(d.changes.len(), 1, "{:?}", d);
+        let Some(diff::value::Delta::Cartesian(delta)) = &d.changes[0].delta else {
+            panic!("no cartesian delta: {d:?}")
+        };
+        let dist = (t[0] * t[0] + t[1] * t[1] + t[2] * t[2]).sqrt();
+        prop_assert!((delta.distance_mm - dist).abs() < 1e-4, "{} vs {dist}", delta.distance_mm);
+        prop_assert!((delta.dx - t[0]).abs() < 1e-4);
+        prop_assert!((delta.angle_deg - turn).abs() < 1e-3, "{} vs {turn}", delta.angle_deg);
+    }
+}
+
+#[test]
+fn the_page_is_self_contained_and_draws_every_moved_point() {
+    let case = fixtures().join("cell");
+    let (a, _) = diff::load(&case.join("old"), false);
+    let (b, _) = diff::load(&case.join("new"), false);
+    let d = diff::compare(&a, &b, &Options::default());
+    let html = diff::page::render(&d, &a, &b).expect("page");
+    for banned in ["http:", "https:", "src=", "<link"] {
+        assert!(!html.contains(banned), "{banned} in the page");
+    }
+    // Six drawings (three views, old and new); each marks XP1, XP3, XWAIT and BASE_DATA[2].
+    assert_eq!(html.matches("<svg class=\"path-view\"").count(), 6);
+    for name in ["XP1", "XP3", "XWAIT", "BASE_DATA[2]"] {
+        let marks = html
+            .matches(&format!("class=\"point-name\">{name}<"))
+            .count();
+        assert_eq!(marks, 6, "{name}");
+    }
+    assert!(!html.contains("class=\"point-name\">TOOL_DATA[1]<"));
+    assert!(html.contains("WAIT SEC 1.0"));
+}
