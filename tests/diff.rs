@@ -402,3 +402,61 @@ fn the_page_is_self_contained_and_draws_every_moved_point() {
     assert!(!html.contains("class=\"point-name\">TOOL_DATA[1]<"));
     assert!(html.contains("WAIT SEC 1.0"));
 }
+
+/// The page read with a strict XML parser: well-formed, ids unique, every link in-page and
+/// resolving, no attribute naming a resource elsewhere; each view pair is old then new.
+#[test]
+fn the_page_is_well_formed_and_links_only_inside_itself() {
+    use quick_xml::events::Event;
+    let case = fixtures().join("cell");
+    let (a, _) = diff::load(&case.join("old"), false);
+    let (b, _) = diff::load(&case.join("new"), false);
+    let d = diff::compare(&a, &b, &Options::default());
+    let html = diff::page::render(&d, &a, &b).expect("page");
+    let mut reader = quick_xml::Reader::from_str(&html);
+    reader.config_mut().check_end_names = true;
+    let (mut ids, mut refs, mut sides) =
+        (std::collections::BTreeSet::new(), Vec::new(), Vec::new());
+    loop {
+        let ev = reader.read_event().unwrap_or_else(|e| {
+            panic!("not well-formed at byte {}: {e}", reader.buffer_position())
+        });
+        match &ev {
+            Event::Start(s) | Event::Empty(s) => {
+                for attr in s.attributes() {
+                    let attr = attr.expect("attribute well-formed");
+                    let value = attr.value.to_string();
+                    assert!(
+                        !value.contains("://") && !value.starts_with("//"),
+                        "{value}"
+                    );
+                    match attr.key.as_ref() {
+                        "id" => {
+                            assert!(ids.insert(value.clone()), "id {value} twice");
+                            if let Some(side) = value
+                                .strip_prefix("view-")
+                                .and_then(|v| v.rsplit('-').next())
+                                && (side == "old" || side == "new")
+                                && !value.ends_with("-title")
+                            {
+                                sides.push(side.to_owned());
+                            }
+                        }
+                        "href" | "src" => refs.push(value),
+                        _ => {}
+                    }
+                }
+            }
+            Event::Eof => break,
+            _ => {}
+        }
+    }
+    for r in &refs {
+        let id = r
+            .strip_prefix('#')
+            .unwrap_or_else(|| panic!("{r} leaves the page"));
+        assert!(ids.contains(id), "{r} points nowhere");
+    }
+    assert_eq!(sides.len(), 6, "{sides:?}");
+    assert!(sides.chunks(2).all(|p| p == ["old", "new"]), "{sides:?}");
+}
