@@ -7,6 +7,9 @@ use std::path::{Path, PathBuf};
 
 use krlkit::diff::{self, Options};
 use proptest::prelude::*;
+use serde_json::json;
+
+mod lsp_support;
 
 fn fixtures() -> PathBuf {
     Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/fixtures/diff")
@@ -459,4 +462,61 @@ fn the_page_is_well_formed_and_links_only_inside_itself() {
     }
     assert_eq!(sides.len(), 6, "{sides:?}");
     assert!(sides.chunks(2).all(|p| p == ["old", "new"]), "{sides:?}");
+}
+
+/// The language server's `krlkit.diff` command: the open folder (NEW) against a backup folder
+/// or `.zip` (OLD, a path or a `file:` URI) gives what `krlkit diff BACKUP FOLDER` gives.
+#[test]
+fn the_language_server_compares_the_folder_with_a_backup() {
+    let caps = krlkit::lsp::capabilities();
+    let commands = caps
+        .execute_command_provider
+        .expect("executeCommand")
+        .commands;
+    assert_eq!(commands, ["krlkit.diff"]);
+    let case = fixtures().join("cell");
+    let tmp = tempfile::tempdir().expect("tempdir");
+    let zip = tmp.path().join("old.zip");
+    zip_folder(&case.join("old"), &zip);
+    let direct = run(&case.join("old"), &case.join("new"), &Options::default());
+    let expected = serde_json::to_value(&direct.changes).expect("json");
+    let mut client = lsp_support::Client::start(&case.join("new"), json!({}));
+    for backup in [
+        json!(case.join("old").display().to_string()),
+        json!(lsp_support::uri(&zip)),
+    ] {
+        let r = client.request(
+            "workspace/executeCommand",
+            json!({"command": "krlkit.diff", "arguments": [backup]}),
+        );
+        assert_eq!(r["diff"]["changes"], expected, "{backup}");
+        assert_eq!(r["changes"], json!(direct.changes.len()));
+        let text = r["text"].as_str().expect("text");
+        assert!(
+            text.contains("~ routine pick")
+                && text.contains(&format!("\n{} changes,", direct.changes.len())),
+            "{text}"
+        );
+    }
+    let r = client.request(
+        "workspace/executeCommand",
+        json!({"command": "krlkit.diff", "arguments": []}),
+    );
+    assert!(
+        r["error"]["message"]
+            .as_str()
+            .is_some_and(|m| m.contains("backup")),
+        "{r}"
+    );
+    let r = client.request(
+        "workspace/executeCommand",
+        json!({"command": "krlkit.diff", "arguments": [tmp.path().join("missing").display().to_string()]}),
+    );
+    assert!(
+        r["error"]["message"]
+            .as_str()
+            .is_some_and(|m| m.contains("no such file")),
+        "{r}"
+    );
+    assert!(client.shutdown().success());
 }
