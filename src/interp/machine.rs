@@ -964,7 +964,7 @@ impl<'p> Machine<'p> {
                         && let Some(Some(Slot::Alias(place))) = frame.vars.get(slot as usize)
                         && let Ok(v) = self.read_value(place)
                     {
-                        out.push((p.name.text.to_string(), to_json(&v)));
+                        out.push((p.name.text.to_string(), v.to_json()));
                     }
                 }
             }
@@ -2514,33 +2514,5 @@ fn scalar_type(v: &Value) -> BaseType {
         Value::Enum(_) => BaseType::Enum(String::new()),
         Value::Unset(t) => t.clone(),
         _ => BaseType::Int,
-    }
-}
-
-pub(crate) fn to_json(v: &Value) -> serde_json::Value {
-    use serde_json::json;
-    match v {
-        Value::Unset(_) => serde_json::Value::Null,
-        Value::Int(i) => json!(i),
-        Value::Real(r) => json!(r),
-        Value::Bool(b) => json!(b),
-        Value::Char(c) => json!((*c as char).to_string()),
-        Value::Enum(e) => json!(format!("#{e}")),
-        Value::Str(s) => json!(s),
-        Value::Array { items, .. } => {
-            if let Some(t) = v.as_text()
-                && matches!(items.first(), Some(Value::Char(_)))
-            {
-                return json!(t);
-            }
-            serde_json::Value::Array(items.iter().map(to_json).collect())
-        }
-        Value::Struc { fields, .. } | Value::Partial(fields) => {
-            let mut m = serde_json::Map::new();
-            for (k, x) in fields {
-                m.insert(k.clone(), to_json(x));
-            }
-            serde_json::Value::Object(m)
-        }
     }
 }

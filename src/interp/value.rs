@@ -74,7 +74,31 @@ impl Value {
 
     /// JSON for traces and reports: CHAR arrays as strings, STRUCs as objects.
     pub fn to_json(&self) -> serde_json::Value {
-        super::machine::to_json(self)
+        use serde_json::json;
+        match self {
+            Value::Unset(_) => serde_json::Value::Null,
+            Value::Int(i) => json!(i),
+            Value::Real(r) => json!(r),
+            Value::Bool(b) => json!(b),
+            Value::Char(c) => json!((*c as char).to_string()),
+            Value::Enum(e) => json!(format!("#{e}")),
+            Value::Str(s) => json!(s),
+            Value::Array { items, .. } => {
+                if let Some(t) = self.as_text()
+                    && matches!(items.first(), Some(Value::Char(_)))
+                {
+                    return json!(t);
+                }
+                serde_json::Value::Array(items.iter().map(Value::to_json).collect())
+            }
+            Value::Struc { fields, .. } | Value::Partial(fields) => {
+                let mut m = serde_json::Map::new();
+                for (k, x) in fields {
+                    m.insert(k.clone(), x.to_json());
+                }
+                serde_json::Value::Object(m)
+            }
+        }
     }
 
     /// The text of a CHAR array (up to the first NUL) or a string literal.
