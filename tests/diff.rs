@@ -222,32 +222,35 @@ fn zip_folder(dir: &Path, to: &Path) {
     z.finish().expect("finish");
 }
 
+/// `dir` zipped into `tmp/name`.
+fn zipped(tmp: &Path, dir: &Path, name: &str) -> PathBuf {
+    let to = tmp.join(name);
+    zip_folder(dir, &to);
+    to
+}
+
 #[test]
 fn a_folder_against_its_zip_gives_the_folder_result() {
     let case = fixtures().join("cell");
     let tmp = tempfile::tempdir().expect("tempdir");
-    let zip = tmp.path().join("new.zip");
-    zip_folder(&case.join("new"), &zip);
+    let zip = zipped(tmp.path(), &case.join("new"), "new.zip");
     let folders = run(&case.join("old"), &case.join("new"), &Options::default());
     let mixed = run(&case.join("old"), &zip, &Options::default());
     assert_eq!(folders.changes, mixed.changes);
     assert_eq!(folders.ignored, mixed.ignored);
     assert!(!folders.changes.is_empty());
     // Both sides zipped: the same again.
-    let old_zip = tmp.path().join("old.zip");
-    zip_folder(&case.join("old"), &old_zip);
+    let old_zip = zipped(tmp.path(), &case.join("old"), "old.zip");
     let zips = run(&old_zip, &zip, &Options::default());
     assert_eq!(folders.changes, zips.changes);
     assert_eq!(folders.ignored, zips.ignored);
     // The churn pair zipped is still no change.
     let churn = fixtures().join("churn");
-    let (co, cn) = (
-        tmp.path().join("churn_old.zip"),
-        tmp.path().join("churn_new.zip"),
+    let d = run(
+        &zipped(tmp.path(), &churn.join("old"), "churn_old.zip"),
+        &zipped(tmp.path(), &churn.join("new"), "churn_new.zip"),
+        &Options::default(),
     );
-    zip_folder(&churn.join("old"), &co);
-    zip_folder(&churn.join("new"), &cn);
-    let d = run(&co, &cn, &Options::default());
     assert!(d.changes.is_empty() && d.ignored > 0, "{d:#?}");
 }
 
@@ -257,8 +260,7 @@ fn a_folder_against_its_zip_gives_the_folder_result() {
 fn a_zip_without_the_krc_folder_matches_a_krc_folder() {
     let case = fixtures().join("cell");
     let tmp = tempfile::tempdir().expect("tempdir");
-    let zip = tmp.path().join("new.zip");
-    zip_folder(&case.join("new/KRC"), &zip);
+    let zip = zipped(tmp.path(), &case.join("new/KRC"), "new.zip");
     let folders = run(&case.join("old"), &case.join("new"), &Options::default());
     let mixed = run(&case.join("old"), &zip, &Options::default());
     let key = |d: &diff::Diff| -> Vec<(diff::ChangeKind, diff::What, String)> {
@@ -333,6 +335,19 @@ fn dat(name: &str, p: [f64; 6]) -> String {
         "DEFDAT {name}\nDECL E6POS XP={{X {:.6},Y {:.6},Z {:.6},A {:.9},B {:.9},C {:.9},S 2,T 10}}\nENDDAT\n",
         p[0], p[1], p[2], p[3], p[4], p[5]
     )
+}
+
+/// A pose written with other angles is one ignored item, not also a file's churn.
+#[test]
+fn a_rewritten_pose_is_ignored_once() {
+    let tmp = tempfile::tempdir().expect("tempdir");
+    let (po, pn) = (tmp.path().join("old.dat"), tmp.path().join("new.dat"));
+    std::fs::write(&po, dat("p", [1.0, 2.0, 3.0, 179.0, 0.0, 180.0])).expect("write");
+    std::fs::write(&pn, dat("p", [1.0, 2.0, 3.0, -181.0, 0.0, -180.0])).expect("write");
+    let d = run(&po, &pn, &Options::default());
+    assert!(d.changes.is_empty(), "{d:#?}");
+    assert_eq!(d.ignored, 1, "{d:#?}");
+    assert_eq!(d.ignored_items[0].name.as_deref(), Some("XP"));
 }
 
 /// Rotation by `deg` about a unit `axis` (Rodrigues).
@@ -476,8 +491,7 @@ fn the_language_server_compares_the_folder_with_a_backup() {
     assert_eq!(commands, ["krlkit.diff"]);
     let case = fixtures().join("cell");
     let tmp = tempfile::tempdir().expect("tempdir");
-    let zip = tmp.path().join("old.zip");
-    zip_folder(&case.join("old"), &zip);
+    let zip = zipped(tmp.path(), &case.join("old"), "old.zip");
     let direct = run(&case.join("old"), &case.join("new"), &Options::default());
     let expected = serde_json::to_value(&direct.changes).expect("json");
     let mut client = lsp_support::Client::start(&case.join("new"), json!({}));

@@ -206,7 +206,7 @@ fn by_name<'a, T>(
 }
 
 fn module(out: &mut Out, a: &model::Module, b: &model::Module, opts: &Options) {
-    let before = out.changes.len();
+    let (before, ignored_before) = (out.changes.len(), out.ignored.len());
     let m = b.name.clone();
     // Routines, in NEW's order of appearance (added/changed), then removed ones.
     let (ra, rb) = (
@@ -244,8 +244,10 @@ fn module(out: &mut Out, a: &model::Module, b: &model::Module, opts: &Options) {
     }
     data(out, a, b, opts, &m);
     signals(out, a, b, &m);
-    let changed = out.changes.len() > before;
-    cosmetic(out, a, b, changed, opts);
+    // A difference already told (a change, or a data item ignored with its reason) needs no
+    // "blanks, case or number spelling" for its file as well.
+    let told = out.changes.len() > before || out.ignored.len() > ignored_before;
+    cosmetic(out, a, b, told, opts);
 }
 
 /// The small unified diff of a routine's statements; empty when they are the same.
@@ -431,7 +433,7 @@ fn signals(out: &mut Out, a: &model::Module, b: &model::Module, m: &str) {
 }
 
 /// Files of a module whose text differs with no change reported for it: why, per file.
-fn cosmetic(out: &mut Out, a: &model::Module, b: &model::Module, changed: bool, opts: &Options) {
+fn cosmetic(out: &mut Out, a: &model::Module, b: &model::Module, told: bool, opts: &Options) {
     for fb in &b.files {
         let Some(fa) = a
             .files
@@ -471,7 +473,7 @@ fn cosmetic(out: &mut Out, a: &model::Module, b: &model::Module, changed: bool, 
                 why.push("inline-form metadata");
             }
         }
-        if why.is_empty() && !changed {
+        if why.is_empty() && !told {
             why.push("blanks, case or number spelling");
         }
         if !why.is_empty() {
