@@ -5,9 +5,9 @@ use compact_str::CompactString;
 
 use crate::syntax::ast::{Expr, ExprKind, Ident};
 
-use super::io::io_array;
 #[cfg(test)]
 use super::BY_NAME;
+use super::io::io_array;
 use super::{Machine, R};
 use crate::interp::globals::Globals;
 use crate::interp::resolve::{Binding, MODULE_LEVEL, canonical};
