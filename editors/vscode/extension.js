@@ -1,6 +1,7 @@
 // The whole client: start `krlkit lsp` for KRL files and let vscode-languageclient speak LSP.
-// Everything the editor shows (diagnostics, hovers, navigation, rename, formatting) comes from
-// the server; this file only says how to start it.
+// Everything the editor shows (diagnostics, hovers, navigation, rename, formatting, the
+// comparison with a backup) comes from the server; this file only says how to start it and
+// asks which backup to compare with.
 const fs = require('fs');
 const path = require('path');
 const vscode = require('vscode');
@@ -54,9 +55,49 @@ function activate(context) {
   };
   client = new LanguageClient('krlkit', 'krlkit', serverOptions, clientOptions);
   context.subscriptions.push(
-    vscode.commands.registerCommand('krlkit.restart', () => client.restart())
+    vscode.commands.registerCommand('krlkit.restart', () => client.restart()),
+    vscode.commands.registerCommand('krlkit.compareWithBackup', () => compareWithBackup())
   );
   return client.start();
+}
+
+// "Compare with backup…": the server's `krlkit.diff` command (the same comparison as
+// `krlkit diff BACKUP FOLDER`) on a backup folder or .zip the user picks; the report opens
+// as a text document.
+async function compareWithBackup() {
+  const kind = await vscode.window.showQuickPick(
+    [
+      { label: 'A backup folder…', folder: true },
+      { label: 'A backup .zip…', folder: false },
+    ],
+    { placeHolder: 'Compare the open folder with…' }
+  );
+  if (!kind) {
+    return;
+  }
+  const picked = await vscode.window.showOpenDialog({
+    canSelectFiles: !kind.folder,
+    canSelectFolders: kind.folder,
+    canSelectMany: false,
+    filters: kind.folder ? undefined : { 'KUKA backup': ['zip', 'ZIP'] },
+    openLabel: 'Compare',
+  });
+  if (!picked || picked.length === 0) {
+    return;
+  }
+  try {
+    const result = await client.sendRequest('workspace/executeCommand', {
+      command: 'krlkit.diff',
+      arguments: [picked[0].fsPath],
+    });
+    const doc = await vscode.workspace.openTextDocument({
+      content: result.text,
+      language: 'plaintext',
+    });
+    await vscode.window.showTextDocument(doc, { preview: false });
+  } catch (e) {
+    vscode.window.showErrorMessage(`krlkit: ${e.message || e}`);
+  }
 }
 
 function deactivate() {

@@ -80,11 +80,12 @@ pub fn split_comment(line: &str) -> (&str, Option<&str>) {
 
 /// A comment without inline-form metadata (`FOLD PTP P1 Vel=100 %;%{PE}…` → `FOLD PTP P1 …`).
 pub fn comment_text(comment: &str) -> String {
-    let c = match comment.find(";%{") {
-        Some(i) => &comment[..i],
-        None => comment,
-    };
-    normalize(c)
+    normalize(without_metadata(comment))
+}
+
+/// A comment as written, inline-form metadata cut.
+fn without_metadata(comment: &str) -> &str {
+    comment.find(";%{").map_or(comment, |i| &comment[..i])
 }
 
 fn is_word(c: char) -> bool {
@@ -250,9 +251,9 @@ pub fn items(text: &str, is_dat: bool, comments: bool) -> Items {
             out.headers.push(line.to_owned());
             continue;
         }
-        let (code, comment) = split_comment(line);
+        let (code, raw_comment) = split_comment(line);
         let code = code.trim();
-        let comment = comment.map(comment_text).filter(|c| !c.is_empty());
+        let comment = raw_comment.map(comment_text).filter(|c| !c.is_empty());
         if let Some(c) = &comment {
             out.comments.push(c.clone());
         }
@@ -265,11 +266,17 @@ pub fn items(text: &str, is_dat: bool, comments: bool) -> Items {
                 key.push_str(" ;");
                 key.push_str(c);
             }
-            let text = if comments { line } else { code };
+            // Shown as written, less the metadata no comparison sees.
+            let text = match raw_comment {
+                Some(c) if comments => format!("{code} ;{}", without_metadata(c).trim_end())
+                    .trim_start()
+                    .to_owned(),
+                _ => code.to_owned(),
+            };
             r.stmts.push(Stmt {
                 line: i as u32 + 1,
                 key,
-                text: text.to_owned(),
+                text,
             });
             if is_end(code) {
                 out.routines.extend(current.take());
@@ -339,5 +346,19 @@ mod tests {
         assert_eq!(it.routines[1].name, "f");
         assert_eq!(it.signals[0].target, "$OUT[3]");
         assert_eq!(it.headers, ["&ACCESS RVP"]);
+        let it = items(
+            "DEF a( )\n  ;FOLD PTP P1 Vel=100 %;%{PE}%R 8.7.8\n  PTP P1 ; go\nEND\n",
+            false,
+            true,
+        );
+        let shown: Vec<&str> = it.routines[0]
+            .stmts
+            .iter()
+            .map(|s| s.text.as_str())
+            .collect();
+        assert_eq!(
+            shown,
+            ["DEF a( )", ";FOLD PTP P1 Vel=100 %", "PTP P1 ; go", "END"]
+        );
     }
 }

@@ -445,6 +445,9 @@ fn cosmetic(out: &mut Out, a: &model::Module, b: &model::Module, changed: bool, 
         if fa.crlf != fb.crlf {
             why.push("line ends");
         }
+        if fa.encoding != fb.encoding {
+            why.push("encoding");
+        }
         if fa.text == fb.text {
             if !why.is_empty() {
                 push_ignored(out, &fb.path, &why);
@@ -486,8 +489,9 @@ fn push_ignored(out: &mut Out, file: &str, why: &[&str]) {
 }
 
 fn eki_changes(out: &mut Out, old: &Backup, new: &Backup) {
-    for (key, (path, settings)) in &new.eki {
-        let Some((_, old_settings)) = old.eki.get(key) else {
+    for (key, nf) in &new.eki {
+        let (path, settings) = (&nf.path, &nf.settings);
+        let Some(of) = old.eki.get(key) else {
             out.changes.push(Change {
                 file: path.clone(),
                 name: channel(path),
@@ -495,6 +499,19 @@ fn eki_changes(out: &mut Out, old: &Backup, new: &Backup) {
             });
             continue;
         };
+        let old_settings = &of.settings;
+        if old_settings == settings {
+            if of.text != nf.text {
+                // What EKI's reader does not read (layout, comments, elements it does not
+                // model) is listed with --all, not lost.
+                out.ignored.push(Ignored {
+                    file: path.clone(),
+                    name: None,
+                    why: "text only: no setting the EKI reader reads changed".into(),
+                });
+            }
+            continue;
+        }
         let keys: std::collections::BTreeSet<&String> = old_settings
             .iter()
             .chain(settings)
@@ -503,7 +520,32 @@ fn eki_changes(out: &mut Out, old: &Backup, new: &Backup) {
         let get = |s: &[(String, String)], k: &str| {
             s.iter().find(|(n, _)| n == k).map(|(_, v)| v.clone())
         };
+        let mut whole: std::collections::BTreeSet<&str> = std::collections::BTreeSet::new();
         for k in keys {
+            // An element on one side only is one change, its settings summed up.
+            if let Some(el) = element_of(k) {
+                let on = |s: &[(String, String)]| s.iter().any(|(n, _)| n.starts_with(el));
+                let (in_old, in_new) = (on(old_settings), on(settings));
+                if in_old != in_new {
+                    if whole.insert(el) {
+                        let side = if in_new { settings } else { old_settings };
+                        let summary = Some(element_summary(side, el));
+                        let (kind, old, new) = if in_new {
+                            (ChangeKind::Added, None, summary)
+                        } else {
+                            (ChangeKind::Removed, summary, None)
+                        };
+                        out.changes.push(Change {
+                            file: path.clone(),
+                            name: format!("{} {}", channel(path), el.trim_end_matches('/')),
+                            old,
+                            new,
+                            ..change(kind, What::Eki, String::new())
+                        });
+                    }
+                    continue;
+                }
+            }
             let (o, n) = (get(old_settings, k), get(settings, k));
             if o != n {
                 let kind = match (&o, &n) {
@@ -521,15 +563,31 @@ fn eki_changes(out: &mut Out, old: &Backup, new: &Backup) {
             }
         }
     }
-    for (key, (path, _)) in &old.eki {
+    for (key, of) in &old.eki {
         if !new.eki.contains_key(key) {
             out.changes.push(Change {
-                file: path.clone(),
-                name: channel(path),
+                file: of.path.clone(),
+                name: channel(&of.path),
                 ..change(ChangeKind::Removed, What::Eki, String::new())
             });
         }
     }
+}
+
+/// `RECEIVE/ELEMENT[tag]/` of an element's setting key.
+fn element_of(key: &str) -> Option<&str> {
+    key.find("]/").map(|i| &key[..i + 2])
+}
+
+/// An element's settings on one line: `Type STREAM, EOS 13,10; Size 64` (unset ones left out).
+fn element_summary(settings: &[(String, String)], el: &str) -> String {
+    settings
+        .iter()
+        .filter_map(|(k, v)| Some((k.strip_prefix(el)?, v)))
+        .filter(|(_, v)| v.as_str() != "-")
+        .map(|(k, v)| format!("{k} {v}"))
+        .collect::<Vec<_>>()
+        .join("; ")
 }
 
 fn channel(path: &str) -> String {

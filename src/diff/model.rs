@@ -10,6 +10,7 @@ use rayon::prelude::*;
 
 use super::krl::{self, Items};
 use crate::sema::workspace::{LoadError, SourceKind, Workspace};
+use crate::syntax::TextEncoding;
 
 #[derive(Debug, Clone)]
 pub struct FileItems {
@@ -20,6 +21,8 @@ pub struct FileItems {
     /// What cosmetic churn can be told from: the text with line ends unified.
     pub text: String,
     pub crlf: bool,
+    /// How the bytes were decoded (UTF-8, Windows-1252, …): a change of it is churn.
+    pub encoding: TextEncoding,
 }
 
 #[derive(Debug, Clone, Default)]
@@ -47,14 +50,23 @@ impl Module {
     }
 }
 
+/// An EKI channel file: its settings as the EKI reader reads them, and its text to tell
+/// whether anything else in it differs.
+#[derive(Debug, Clone)]
+pub struct EkiFile {
+    pub path: String,
+    pub settings: Vec<(String, String)>,
+    pub text: String,
+}
+
 #[derive(Debug, Clone, Default)]
 pub struct Backup {
     /// The root as given.
     pub root: String,
     /// Keyed by [`module_key`].
     pub modules: BTreeMap<String, Module>,
-    /// Channel name (upper case) → (path, settings).
-    pub eki: BTreeMap<String, (String, Vec<(String, String)>)>,
+    /// Channel name (upper case) → its file.
+    pub eki: BTreeMap<String, EkiFile>,
     pub kss: Option<String>,
 }
 
@@ -117,6 +129,11 @@ pub fn load(root: &Path, comments: bool) -> (Backup, Vec<LoadError>) {
             let is_dat = path.to_ascii_lowercase().ends_with(".dat");
             let items = krl::items(&f.text, is_dat, comments);
             let crlf = f.text.contains("\r\n");
+            let encoding = ws
+                .encodings
+                .get(&f.path)
+                .copied()
+                .unwrap_or(TextEncoding::Utf8);
             let text = if crlf {
                 f.text.replace("\r\n", "\n")
             } else {
@@ -130,6 +147,7 @@ pub fn load(root: &Path, comments: bool) -> (Backup, Vec<LoadError>) {
                     items,
                     text,
                     crlf,
+                    encoding,
                 },
             )
         })
@@ -157,7 +175,11 @@ pub fn load(root: &Path, comments: bool) -> (Backup, Vec<LoadError>) {
         let name = crate::lint::eki_xml::channel_name(Path::new(&path));
         b.eki.insert(
             name.to_ascii_uppercase(),
-            (path, super::eki::settings(&e.text)),
+            EkiFile {
+                path,
+                settings: super::eki::settings(&e.text),
+                text: e.text.clone(),
+            },
         );
     }
     (b, errors)

@@ -384,9 +384,9 @@ impl<'p> Machine<'p> {
                 let mut lines = Vec::new();
                 let mut add = |s: &Stmt| lines.push(m.lines.line_of(s.span.start as usize));
                 for r in &m.ast.routines {
-                    crate::lint::walk::each_stmt(&r.body, &mut add);
+                    crate::syntax::ast::each_stmt(&r.body, &mut add);
                 }
-                crate::lint::walk::each_stmt(&m.ast.top_level, &mut add);
+                crate::syntax::ast::each_stmt(&m.ast.top_level, &mut add);
                 lines.sort_unstable();
                 lines.dedup();
                 Event::Coverage {

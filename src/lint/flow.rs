@@ -230,7 +230,7 @@ impl<'s, 'c, 'p> Walker<'s, 'c, 'p> {
         match &s.kind {
             StmtKind::Call { name, args } => self.call(name, args, st),
             StmtKind::Assign { target, value } => {
-                if let Some(key) = walk::root_var(target).and_then(|v| self.sh.symbol(v)) {
+                if let Some(key) = target.root_name().and_then(|v| self.sh.symbol(v)) {
                     let known = match (&target.kind, self.value_of(value, &st)) {
                         (ExprKind::Name(_), Some(x)) => Some(x),
                         _ => None,
@@ -336,7 +336,7 @@ impl<'s, 'c, 'p> Walker<'s, 'c, 'p> {
             }
             self.forget_globals(&mut st);
             for a in args.iter().flatten() {
-                if let Some(k) = walk::root_var(a).and_then(|v| self.sh.symbol(v)) {
+                if let Some(k) = a.root_name().and_then(|v| self.sh.symbol(v)) {
                     st.vals.remove(&k);
                 }
             }
@@ -411,7 +411,7 @@ impl<'s, 'c, 'p> Walker<'s, 'c, 'p> {
             if p.dir == Direction::Out
                 && let Some(k) = a
                     .as_ref()
-                    .and_then(walk::root_var)
+                    .and_then(Expr::root_name)
                     .and_then(|v| self.sh.symbol(v))
             {
                 st.vals.remove(&k);

@@ -297,7 +297,7 @@ fn mm_relevant(ast: &SourceFile) -> bool {
         .chain(std::iter::once(ast.top_level.as_slice()));
     for body in bodies {
         let writes_flag = |target: &crate::syntax::ast::Expr| {
-            walk::root_var(target).is_some_and(|v| v.is("$FLAG"))
+            target.root_name().is_some_and(|v| v.is("$FLAG"))
                 && matches!(target.kind, ExprKind::Index { .. })
         };
         walk::each_stmt(body, &mut |s| {

@@ -54,6 +54,10 @@ pub fn capabilities() -> ServerCapabilities {
         })),
         workspace_symbol_provider: Some(OneOf::Left(true)),
         document_range_formatting_provider: Some(OneOf::Left(true)),
+        execute_command_provider: Some(lsp_types::ExecuteCommandOptions {
+            commands: vec![super::compare::COMMAND.into()],
+            work_done_progress_options: Default::default(),
+        }),
         ..ServerCapabilities::default()
     }
 }
@@ -91,6 +95,17 @@ pub fn dispatch(s: &mut Server, r: Request) -> Option<Result<Value, ResponseErro
         }
         req::RangeFormatting::METHOD => {
             call::<req::RangeFormatting>(params, |p| formatting(s, &p.text_document, Some(p.range)))
+        }
+        req::ExecuteCommand::METHOD => {
+            return Some(
+                serde_json::from_value(params)
+                    .map_err(|e| ResponseError {
+                        code: ErrorCode::InvalidParams as i32,
+                        message: format!("invalid parameters for {method}: {e}"),
+                        data: None,
+                    })
+                    .and_then(|p| super::compare::execute(s.ws.root.as_deref(), p)),
+            );
         }
         // Not LSP: how many files still wait for a check (tests and editors' status bars).
         STATUS => Ok(serde_json::json!({

@@ -13,13 +13,15 @@
 //! - `names`: hover, definition, references, rename, completion and signatures of names, all
 //!   asked of the semantic model ([`crate::sema`]);
 //! - `diagnostics`, `mm`, `outline`, `cursor`: findings, the `MM_*` interface, the outline and
-//!   folds, and what is under the cursor, in LSP shapes.
+//!   folds, and what is under the cursor, in LSP shapes;
+//! - `compare`: the `krlkit.diff` command (the folder against a backup, [`crate::diff`]).
 //!
 //! Invariants: the server never changes the text it is sent (every edit is applied as sent, in
 //! order, and the analysed text is byte for byte the editor's); a request is answered from the
 //! analysis of the latest text; nothing a client sends makes the server panic or exit before
 //! `exit` (a handler that fails answers with an error instead).
 
+mod compare;
 mod cursor;
 mod diagnostics;
 mod documents;

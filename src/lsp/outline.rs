@@ -210,30 +210,10 @@ pub fn folding_ranges(lines: &Lines, file: &SourceFile) -> Vec<FoldingRange> {
         }
     }
     fn blocks(stmts: &[Stmt], push: &mut dyn FnMut(Span, Option<FoldingRangeKind>)) {
-        for s in stmts {
-            let inner: Vec<&[Stmt]> = match &s.kind {
-                StmtKind::If {
-                    then_body,
-                    else_body,
-                    ..
-                } => vec![then_body, else_body],
-                StmtKind::Switch { cases, default, .. } => {
-                    let mut v: Vec<&[Stmt]> = cases.iter().map(|c| c.body.as_slice()).collect();
-                    v.extend(default.as_deref());
-                    v
-                }
-                StmtKind::For { body, .. }
-                | StmtKind::While { body, .. }
-                | StmtKind::Repeat { body, .. }
-                | StmtKind::Loop { body }
-                | StmtKind::Spline { body, .. }
-                | StmtKind::Skip { body, .. } => vec![body],
-                _ => continue,
-            };
+        for s in stmts.iter().filter(|s| s.has_body()) {
+            // An interrupt's handler and a trigger's action share their statement's line.
             push(s.span, None);
-            for b in inner {
-                blocks(b, push);
-            }
+            s.for_each_body(|b| blocks(b, push));
         }
     }
     for r in &file.routines {
@@ -247,4 +227,64 @@ pub fn folding_ranges(lines: &Lines, file: &SourceFile) -> Vec<FoldingRange> {
     out.sort_by_key(|f| (f.start_line, std::cmp::Reverse(f.end_line)));
     out.dedup_by_key(|f| (f.start_line, f.end_line));
     out
+}
+
+#[cfg(test)]
+mod tests {
+    use crate::lint::{LintConfig, Session};
+    use crate::lsp::names::Model;
+    use crate::sema::Resolved;
+    use crate::syntax::ast;
+    use crate::transpile::front::outline::OutlineBuilder;
+
+    /// One walker: a call made by an interrupt's handler or a trigger's action is a call of the
+    /// routine for every consumer — lint, the model's callers, the transpiler's call facts and
+    /// the language server's references.
+    #[test]
+    fn calls_in_interrupt_and_trigger_bodies_are_seen_everywhere() {
+        let text = "DEF cell()\n  INTERRUPT DECL 3 WHEN $IN[1] DO on_part(1, 2)\n  TRIGGER WHEN DISTANCE=0 DELAY=0 DO on_part(3, 4) PRIO=-1\n  TRIGGER WHEN DISTANCE=1 DELAY=0 DO MM_Bogus() PRIO=-1\n  LIN P1\nEND\nDEF on_part(n:IN)\n  DECL INT n\nEND\n";
+        let input = crate::lint::Input {
+            path: "cell.src".into(),
+            text: text.into(),
+        };
+        let session = Session::new(vec![input], Vec::new(), false, LintConfig::default());
+        let codes: Vec<_> = session
+            .check("cell.src")
+            .unwrap()
+            .diagnostics
+            .iter()
+            .map(|d| d.code)
+            .collect();
+        assert_eq!(
+            codes.iter().filter(|c| **c == "KRL013").count(),
+            2,
+            "{codes:?}"
+        );
+        assert!(codes.contains(&"MM001"), "{codes:?}");
+
+        let sema = session.sema();
+        let file = sema.file_id("cell.src").unwrap();
+        let decl = text.find("on_part(n").unwrap() as u32;
+        let Some((_, Resolved::Routine(on_part))) = sema.resolve(file, decl) else {
+            panic!("on_part is a routine")
+        };
+        assert_eq!(sema.callers(on_part).len(), 2);
+
+        let model = Model {
+            sema,
+            files: session.files(),
+        };
+        assert_eq!(
+            model.occurrences(Resolved::Routine(on_part), false).len(),
+            2
+        );
+
+        let mut b = OutlineBuilder::default();
+        let mut lowerer = ast::PieceLowerer::new(text);
+        crate::syntax::parse_pieces(text, |p| lowerer.lower(p, |e| b.add(&e)));
+        assert_eq!(
+            b.finish().routines[0].facts.callees,
+            ["on_part", "MM_Bogus"]
+        );
+    }
 }

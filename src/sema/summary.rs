@@ -22,7 +22,7 @@ use super::ty::Sizes;
 use crate::diag::Span;
 use crate::syntax::ast::{
     self, BinaryOp, Decl, Definition, Expr, ExprKind, ExtKind, Ident, ParamDir, RoutineKind,
-    SourceFile, Stmt, StmtKind, TypeRef, UnaryOp,
+    SourceFile, Stmt, StmtKind, TypeRef, UnaryOp, walk::Role,
 };
 
 /// "No routine" (module level) and "no term" (an omitted argument).
@@ -784,116 +784,15 @@ impl Summarizer {
             StmtKind::Call { name, args } => {
                 self.call(name, args);
             }
-            StmtKind::If { cond, .. }
-            | StmtKind::While { cond, .. }
-            | StmtKind::WaitFor { cond } => {
-                self.expr(cond, Access::Read);
-            }
             StmtKind::Repeat { until: Some(u), .. } => {
                 // The body, then the UNTIL condition evaluated after it.
                 self.block_then(s, Some(u));
                 self.release(mark, facts);
                 return;
             }
-            StmtKind::Switch {
-                selector, cases, ..
-            } => {
-                self.expr(selector, Access::Read);
-                for c in cases {
-                    for v in &c.values {
-                        self.expr(v, Access::Read);
-                    }
-                }
-            }
-            StmtKind::For {
-                var,
-                from,
-                to,
-                step,
-                ..
-            } => {
+            StmtKind::For { var, .. } => {
                 self.use_of(var, UseKind::Var, Access::Write);
-                self.expr(from, Access::Read);
-                self.expr(to, Access::Read);
-                if let Some(st) = step {
-                    self.expr(st, Access::Read);
-                }
-            }
-            StmtKind::WaitSec { time } => {
-                self.expr(time, Access::Read);
-            }
-            StmtKind::Confirm { handle } => {
-                self.expr(handle, Access::Read);
-            }
-            StmtKind::Return { value: Some(v) } => {
-                self.expr(v, Access::Read);
-            }
-            StmtKind::Motion(m) => {
-                if let Some(a) = &m.aux {
-                    self.expr(a, Access::Read);
-                }
-                self.expr(&m.target, Access::Read);
-                if let Some(ca) = &m.ca {
-                    self.expr(ca, Access::Read);
-                }
-                for (k, v) in &m.with {
-                    self.expr(k, Access::Write);
-                    self.expr(v, Access::Read);
-                }
-            }
-            StmtKind::Spline { with, .. } => {
-                for (k, v) in with {
-                    self.expr(k, Access::Write);
-                    self.expr(v, Access::Read);
-                }
-            }
-            StmtKind::TimeBlock(ast::TimeBlock::Part(e))
-            | StmtKind::TimeBlock(ast::TimeBlock::End(Some(e))) => {
-                self.expr(e, Access::Read);
-            }
-            StmtKind::Skip { arg: Some(a), .. } => {
-                self.expr(a, Access::Read);
-            }
-            StmtKind::Interrupt {
-                number: Some(n), ..
-            } => {
-                self.expr(n, Access::Read);
-            }
-            StmtKind::InterruptDecl {
-                number, condition, ..
-            } => {
-                self.expr(number, Access::Read);
-                self.expr(condition, Access::Read);
-            }
-            StmtKind::Trigger {
-                position,
-                delay,
-                prio,
-                ..
-            } => {
-                self.expr(position, Access::Read);
-                self.expr(delay, Access::Read);
-                if let Some(p) = prio {
-                    self.expr(p, Access::Read);
-                }
-            }
-            StmtKind::Pulse {
-                signal,
-                level,
-                duration,
-            } => {
-                self.expr(signal, Access::Write);
-                self.expr(level, Access::Read);
-                self.expr(duration, Access::Read);
-            }
-            StmtKind::AnIn(a) | StmtKind::AnOut(a) => {
-                self.expr(&a.target, Access::Write);
-                if let Some(v) = &a.value {
-                    self.expr(v, Access::Read);
-                }
-                for (_, v) in &a.options {
-                    self.expr(v, Access::Read);
-                }
+                s.for_each_expr(|e, role| self.own(e, role));
             }
             StmtKind::Decl(d) => self.decl(d, self.owner == NONE),
             StmtKind::Definition(d) => self.definition(d),
@@ -901,12 +800,21 @@ impl Summarizer {
                 self.out.has_errors |= matches!(s.kind, StmtKind::Error { .. });
                 self.mentions(text, s.span);
             }
-            _ => {}
+            _ => s.for_each_expr(|e, role| self.own(e, role)),
         }
         self.release(mark, facts);
         if s.has_body() {
             s.for_each_body(|b| self.block(b));
         }
+    }
+
+    /// One of a statement's own expressions ([`Stmt::for_each_expr`]).
+    fn own(&mut self, e: &Expr, role: Role) {
+        let access = match role {
+            Role::Read => Access::Read,
+            Role::Write => Access::Write,
+        };
+        self.expr(e, access);
     }
 
     /// REPEAT: the body, then the UNTIL condition.

@@ -69,6 +69,9 @@ pub struct Workspace {
     pub eki: Vec<WorkspaceFile>,
     /// Whether EKI files are read ([`Workspace::load_with_eki`]).
     pub want_eki: bool,
+    /// The encoding of each KRL file not read as plain UTF-8, by path (`diff` counts an
+    /// encoding change as cosmetic churn).
+    pub encodings: std::collections::HashMap<String, crate::syntax::TextEncoding>,
 }
 
 /// Entries larger than this are not read from an archive (no KRL file comes near it).
@@ -153,11 +156,20 @@ impl Workspace {
         }
         let loaded: Vec<_> = candidates
             .par_iter()
-            .map(|c| files::load(c).map(|d| d.map(|d| (c.path.display().to_string(), d.text))))
+            .map(|c| files::load(c).map(|d| d.map(|d| (c.path.display().to_string(), d))))
             .collect();
         for r in loaded {
             match r {
-                Ok(Some((path, text))) => self.files.push(WorkspaceFile { path, text, group }),
+                Ok(Some((path, d))) => {
+                    if d.encoding != crate::syntax::TextEncoding::Utf8 {
+                        self.encodings.insert(path.clone(), d.encoding);
+                    }
+                    self.files.push(WorkspaceFile {
+                        path,
+                        text: d.text,
+                        group,
+                    })
+                }
                 Ok(None) => {}
                 Err(e) => self.errors.push(LoadError {
                     path: e.path.display().to_string(),
@@ -297,18 +309,26 @@ impl Workspace {
             }
             raw.push((name, bytes));
         }
-        let decoded: Vec<WorkspaceFile> = raw
+        let decoded: Vec<(WorkspaceFile, crate::syntax::TextEncoding)> = raw
             .into_par_iter()
             .filter_map(|(name, bytes)| {
-                let text = crate::syntax::decode(&bytes).text;
-                files::looks_like_krl(&text).then_some(WorkspaceFile {
-                    path: name,
-                    text,
-                    group,
-                })
+                let d = crate::syntax::decode(&bytes);
+                files::looks_like_krl(&d.text).then_some((
+                    WorkspaceFile {
+                        path: name,
+                        text: d.text,
+                        group,
+                    },
+                    d.encoding,
+                ))
             })
             .collect();
-        self.files.extend(decoded);
+        for (f, encoding) in decoded {
+            if encoding != crate::syntax::TextEncoding::Utf8 {
+                self.encodings.insert(f.path.clone(), encoding);
+            }
+            self.files.push(f);
+        }
         let _ = backup_layout(names.iter().map(String::as_str));
         self.sources.push(Source {
             path: path.to_path_buf(),

@@ -5,6 +5,7 @@ use crate::lint::context::{FileCtx, subprogram};
 use crate::lint::registry::{Check, Rule};
 use crate::lint::walk;
 use crate::sema::{Scope, SymbolKind};
+use crate::syntax::ast::walk::Role;
 use crate::syntax::ast::{Routine, Stmt, StmtKind};
 
 use super::well_formed_calls;
@@ -105,9 +106,12 @@ fn stmt_reads(iface: Interface, s: &Stmt, key: &str) -> bool {
         }
         return found;
     }
-    for e in walk::own_exprs(s) {
-        walk::names_in(e, &mut |id| found |= id.key() == key);
-    }
+    s.for_each_expr(|e, role| match role {
+        Role::Read => walk::names_in(e, &mut |id| found |= id.key() == key),
+        Role::Write => {
+            e.for_each_index(&mut |i| walk::names_in(i, &mut |id| found |= id.key() == key))
+        }
+    });
     found
 }
 

@@ -13,7 +13,6 @@ pub mod outline;
 pub mod report;
 pub mod sysvar;
 pub mod vision;
-pub mod walk;
 
 pub use fail::{Fail, R, fail};
 

@@ -9,7 +9,6 @@
 use std::collections::{BTreeSet, HashSet};
 
 use crate::syntax::ast::{self, Definition, Lowered, Stmt, StmtKind};
-use crate::transpile::front::walk;
 
 /// The outline of one file.
 #[derive(Debug, Default)]
@@ -45,7 +44,7 @@ pub struct RoutineOutline {
 }
 
 /// What other statements ask about a routine's body (statements after the head, nested ones
-/// included, visited depth-first in source order as `front::walk::each_stmt` does).
+/// included, visited depth-first in source order as `syntax::ast::each_stmt` does: the handler of an `INTERRUPT DECL` and the action of a `TRIGGER` included).
 #[derive(Debug, Default)]
 pub struct BodyFacts {
     /// Upper-case names assigned anywhere (assignment targets, FOR variables).
@@ -71,9 +70,9 @@ pub struct BodyFacts {
 
 impl BodyFacts {
     fn add(&mut self, stmt: &Stmt) {
-        walk::each_stmt(std::slice::from_ref(stmt), &mut |s| match &s.kind {
+        ast::each_stmt(std::slice::from_ref(stmt), &mut |s| match &s.kind {
             StmtKind::Assign { target, value } => {
-                if let Some(id) = walk::root_name(target) {
+                if let Some(id) = target.root_name() {
                     self.assigned.insert(id.key());
                     self.written.insert(id.key());
                 }
@@ -89,7 +88,7 @@ impl BodyFacts {
             StmtKind::Call { name, args } => {
                 self.call(name.text.to_string());
                 for a in args.iter().flatten() {
-                    if let Some(id) = walk::root_name(a) {
+                    if let Some(id) = a.root_name() {
                         self.written.insert(id.key());
                     }
                 }
@@ -233,8 +232,8 @@ mod tests {
             let mut head = a.clone();
             head.body.clear();
             assert_eq!(r.head, head);
-            assert_eq!(r.facts.assigned, walk::assigned_names(&a.body));
         }
+        assert_eq!(o.routines[0].facts.assigned, HashSet::from(["X".into()]));
         let a = &o.routines[0];
         assert_eq!(a.head_pieces, 3);
         assert_eq!(a.facts.callees, ["f", "b"]);
@@ -246,5 +245,19 @@ mod tests {
         assert!(!o.routines[1].facts.moves);
         assert_eq!(o.dat, ast.dat);
         assert!(!o.top_level);
+    }
+
+    /// An interrupt's handler and a trigger's action are calls of the routine: hoisting a
+    /// call past them (`may_write`) must know what they may write.
+    #[test]
+    fn calls_in_interrupt_and_trigger_bodies_are_facts() {
+        let text = "DEF a()\n  INTERRUPT DECL 3 WHEN $IN[1] DO on_part(p)\n  TRIGGER WHEN DISTANCE=0 DELAY=0 DO n = count() PRIO=-1\n  LIN P1\nEND\n";
+        let mut b = OutlineBuilder::default();
+        let mut lowerer = ast::PieceLowerer::new(text);
+        crate::syntax::parse_pieces(text, |p| lowerer.lower(p, |e| b.add(&e)));
+        let facts = &b.finish().routines[0].facts;
+        assert_eq!(facts.callees, ["on_part", "count"]);
+        assert_eq!(facts.written, BTreeSet::from(["N".into(), "P".into()]));
+        assert_eq!(facts.assigned, HashSet::from(["N".into()]));
     }
 }

@@ -4,10 +4,10 @@ use super::expr::has_call;
 use super::{L, Lower, fail, first_line};
 use crate::diag::Span;
 use crate::syntax::ast::{self, ExprKind as A, StmtKind};
+use crate::transpile::front::end_line_start;
 use crate::transpile::front::ilf;
 use crate::transpile::front::kinds::category;
 use crate::transpile::front::sysvar::{self, Sys};
-use crate::transpile::front::{end_line_start, walk};
 use crate::transpile::ir::{
     Block, Case, Expr, ExprKind, ForLoop, InterruptAction, IoTiming, LoopKind, Op, OutPlace,
     OutSignal, Place, RoutineKind, Scope, Stmt, TimerOp, Ty, UnaryOp, Wait, Why,
@@ -574,7 +574,7 @@ impl<'p> Lower<'p> {
         {
             return self.ilf_assign(id, value, span, ops);
         }
-        let Some(root) = walk::root_name(target) else {
+        let Some(root) = target.root_name() else {
             return fail(Why::AssignTarget, target.span);
         };
         // An undeclared name takes the value's type.
