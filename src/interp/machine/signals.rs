@@ -147,7 +147,7 @@ impl<'p> Machine<'p> {
                 };
                 let (lo, hi) = (*lo, *hi);
                 let (array, name) = (*array, self.globals.name(*array));
-                let traced = super::io_array(name);
+                let traced = super::io::io_array(name);
                 let not_io = format!("{name} is not an I/O array");
                 let Some(Value::Array { items, .. }) = self.globals.at_mut(array) else {
                     return Err(self.err(not_io));

@@ -1,0 +1,377 @@
+//! Places: where a name, element or member lives (bound at load or looked up by name),
+//! reading it, assigning to it.
+
+use compact_str::CompactString;
+
+use crate::syntax::ast::{Expr, ExprKind, Ident};
+
+#[cfg(test)]
+use super::BY_NAME;
+use super::io::io_array;
+use super::{Machine, R};
+use crate::interp::globals::Globals;
+use crate::interp::resolve::{Binding, MODULE_LEVEL, canonical};
+use crate::interp::value::Value;
+
+/// Where a value lives: the target of assignments and OUT parameters.
+#[derive(Debug, Clone, PartialEq)]
+pub(crate) struct Place {
+    pub(super) root: Root,
+    pub(super) path: Path,
+}
+
+/// Element indices and fields below a root: rarely more than two, kept inline.
+pub(super) type Path = smallvec::SmallVec<[Seg; 2]>;
+
+impl Place {
+    pub(super) fn root(root: Root) -> Place {
+        Place {
+            root,
+            path: Path::new(),
+        }
+    }
+}
+
+#[derive(Debug, Clone, PartialEq)]
+pub(super) enum Root {
+    /// A slot of [`Globals`].
+    Global(usize),
+    /// Frame index, slot in the frame.
+    Local(usize, usize),
+    /// A SIGNAL group: bits `lo..=hi` (0-based offsets) of a BOOL array global (its slot).
+    Group { array: usize, lo: usize, hi: usize },
+    /// `SIGNAL name FALSE` (or TRUE).
+    Const(bool),
+}
+
+#[derive(Debug, Clone, PartialEq)]
+pub(super) enum Seg {
+    Index(usize),
+    /// As written (fields match case-insensitively).
+    Field(CompactString),
+}
+
+#[derive(Debug)]
+pub(super) enum Slot {
+    Own(Value),
+    Alias(Place),
+}
+
+impl<'p> Machine<'p> {
+    /// The place a name denotes here, by name: the routine frame's local, a SIGNAL, the
+    /// module's data, robot-wide data and system variables.
+    pub(super) fn lookup_root(&self, name: &str) -> R<Place> {
+        #[cfg(test)]
+        BY_NAME.with(|n| n.set(n.get() + 1));
+        let upper = name.to_ascii_uppercase();
+        let key = canonical(&upper);
+        if let Some((fi, f)) = self.frames.iter().enumerate().next_back()
+            && self.declared_scope.is_none_or(|m| m == f.module)
+            && let Some(i) = self.local_slot(fi, key)
+            && let Some(slot) = &f.vars[i]
+        {
+            return Ok(match slot {
+                Slot::Own(_) => Place::root(Root::Local(fi, i)),
+                Slot::Alias(p) => p.clone(),
+            });
+        }
+        let scoped = format!("{}::{key}", self.prog.modules[self.cur_module()].scope);
+        for k in [scoped.as_str(), key] {
+            if let Some(p) = self.signals.get(k) {
+                return Ok(p.clone());
+            }
+        }
+        for k in [scoped.as_str(), key] {
+            if let Some(slot) = self.globals.slot(k)
+                && self.globals.at(slot).is_some()
+            {
+                return Ok(Place::root(Root::Global(slot)));
+            }
+        }
+        Err(self.err(format!("unknown variable `{name}`")))
+    }
+
+    /// The value of a name use bound at load, when reading it has no side effect (no
+    /// recording under way, no system variable computed when read, no SIGNAL).
+    pub(super) fn read_bound(&self, id: &Ident) -> Option<&Value> {
+        if self.reads.is_some() || self.loop_reads.is_some() || self.declared_scope.is_some() {
+            return None;
+        }
+        let b = self.prog.binding(self.cur_module(), id.span)?;
+        let f = self.frames.last()?;
+        let here = f.routine.map_or(MODULE_LEVEL, |r| r as u32);
+        match b {
+            Binding::Local { routine, slot } if routine == here => {
+                match f.vars.get(slot as usize)?.as_ref()? {
+                    Slot::Own(v) => Some(v),
+                    Slot::Alias(_) => None,
+                }
+            }
+            Binding::Global {
+                routine,
+                scoped,
+                plain,
+            } if routine == here && f.extra.is_empty() => {
+                let (k, v) = [scoped, plain]
+                    .into_iter()
+                    .find_map(|s| Some((s as usize, self.globals.at(s as usize)?)))?;
+                let sys = &self.sys;
+                let computed = [sys.timer, sys.timer_flag, sys.input, sys.in_home].contains(&k);
+                (!computed).then_some(v)
+            }
+            _ => None,
+        }
+    }
+
+    /// The place a name use bound at load denotes, when the binding applies here (see
+    /// `resolve.rs`); `None`: ask by name.
+    pub(super) fn bound_place(&self, id: &Ident) -> Option<Place> {
+        if self.declared_scope.is_some() {
+            return None;
+        }
+        let b = self.prog.binding(self.cur_module(), id.span)?;
+        let fi = self.frames.len().checked_sub(1)?;
+        let f = &self.frames[fi];
+        let here = f.routine.map_or(MODULE_LEVEL, |r| r as u32);
+        match b {
+            Binding::Local { routine, slot } if routine == here => {
+                match f.vars.get(slot as usize)?.as_ref()? {
+                    Slot::Own(_) => Some(Place::root(Root::Local(fi, slot as usize))),
+                    Slot::Alias(p) => Some(p.clone()),
+                }
+            }
+            Binding::Global {
+                routine,
+                scoped,
+                plain,
+            } if routine == here && f.extra.is_empty() => [scoped, plain]
+                .into_iter()
+                .map(|s| s as usize)
+                .find(|&s| self.globals.at(s).is_some())
+                .map(|s| Place::root(Root::Global(s))),
+            _ => None,
+        }
+    }
+
+    /// Whether `name` is a variable (or signal) visible here.
+    /// `Some(true)` when the variable `name` is fully assigned, `Some(false)` when a part of it
+    /// never was, `None` when there is no such variable (`VARSTATE`).
+    pub(crate) fn variable_assigned(&self, name: &str) -> Option<bool> {
+        let place = self.lookup_root(name).ok()?;
+        Some(match self.read_place(&place) {
+            Ok(v) => !v.has_unset(),
+            // Signals (groups, constants) always have a value.
+            Err(_) => true,
+        })
+    }
+
+    pub(crate) fn place_of(&mut self, e: &Expr) -> R<Place> {
+        match &e.kind {
+            ExprKind::Name(id) => match self.bound_place(id) {
+                Some(p) => Ok(p),
+                None => self.lookup_root(&id.text),
+            },
+            ExprKind::Member { base, field } => {
+                let mut p = self.place_of(base)?;
+                let v = self.read_place(&p)?;
+                if v.field(&field.text).is_none() {
+                    return Err(self.err(format!(
+                        "{} has no member {}",
+                        v.kind_name(),
+                        field.text
+                    )));
+                }
+                p.path.push(Seg::Field(field.text.clone()));
+                Ok(p)
+            }
+            ExprKind::Index { base, indices } => {
+                let mut p = self.place_of(base)?;
+                if indices.iter().all(|i| i.is_none()) {
+                    return Ok(p);
+                }
+                let mut idx = smallvec::SmallVec::<[i64; 3]>::new();
+                for i in indices {
+                    match i {
+                        Some(e) => idx.push(self.eval_int(e)?),
+                        None => return Err(self.err("empty index")),
+                    }
+                }
+                let flat = match self.read_place(&p)? {
+                    Value::Array { dims, .. } => self.flat_index(dims, &idx)?,
+                    other => {
+                        return Err(self.err(format!("{} is not an array", other.kind_name())));
+                    }
+                };
+                p.path.push(Seg::Index(flat));
+                Ok(p)
+            }
+            _ => Err(self.err("not a variable")),
+        }
+    }
+
+    pub(super) fn flat_index(&self, dims: &[usize], idx: &[i64]) -> R<usize> {
+        if dims.len() != idx.len() {
+            return Err(self.err(format!(
+                "array has {} dimensions, {} indices given",
+                dims.len(),
+                idx.len()
+            )));
+        }
+        let mut flat = 0usize;
+        for (d, i) in dims.iter().zip(idx) {
+            if *i < 1 || *i as usize > *d {
+                return Err(self.err(format!("index {i} out of range 1..{d}")));
+            }
+            flat = flat * d + (*i as usize - 1);
+        }
+        Ok(flat)
+    }
+
+    pub(super) fn root_ref(&self, root: &Root) -> Option<&Value> {
+        match root {
+            Root::Global(k) => self.globals.at(*k),
+            Root::Local(fi, k) => match self.frames.get(*fi)?.vars.get(*k)?.as_ref()? {
+                Slot::Own(v) => Some(v),
+                Slot::Alias(_) => None,
+            },
+            Root::Group { .. } | Root::Const(_) => None,
+        }
+    }
+
+    pub(crate) fn read_place(&self, p: &Place) -> R<&Value> {
+        if matches!(p.root, Root::Group { .. } | Root::Const(_)) {
+            return Err(self.err("a signal group or constant has no members or elements"));
+        }
+        let mut v = self
+            .root_ref(&p.root)
+            .ok_or_else(|| self.err("dangling reference"))?;
+        for s in &p.path {
+            v = match (s, v) {
+                (Seg::Index(i), Value::Array { items, .. }) => items.get(*i),
+                (Seg::Field(f), v) => v.field(f),
+                _ => None,
+            }
+            .ok_or_else(|| self.err("invalid access"))?;
+        }
+        Ok(v)
+    }
+
+    pub(crate) fn read_value(&mut self, p: &Place) -> R<Value> {
+        self.note_read(&p.root, &p.path);
+        let sys = self.sys;
+        match &p.root {
+            Root::Global(k) if *k == sys.timer || *k == sys.timer_flag => self.sync_timers(),
+            Root::Global(k) | Root::Group { array: k, .. } if *k == sys.input => self.sync_inputs(),
+            Root::Global(k) if *k == sys.in_home => return Ok(Value::Bool(self.in_home())),
+            _ => {}
+        }
+        if let Some(v) = self.read_signal(&p.root)? {
+            return Ok(v);
+        }
+        self.read_place(p).cloned()
+    }
+
+    pub(super) fn eval_place_int(&mut self, p: &Place) -> R<i64> {
+        match self.read_value(p)? {
+            Value::Int(i) => Ok(i),
+            v => Err(self.err(format!("expected INT, found {}", v.kind_name()))),
+        }
+    }
+
+    pub(crate) fn assign(&mut self, p: &Place, v: Value) -> R<()> {
+        self.writes += 1;
+        if self.assign_scalar(p, &v) {
+            return Ok(());
+        }
+        if let Some(Value::Int(_) | Value::Bool(_)) = self.read_signal(&p.root)? {
+            let v = match v {
+                Value::Real(r) => Value::Int(r.round() as i64),
+                v => v,
+            };
+            self.write_signal(&p.root, v)?;
+            return Ok(());
+        }
+        let current = self.read_place(p)?.clone();
+        let io = match (&p.root, p.path.as_slice(), &current) {
+            (Root::Global(k), [Seg::Index(i)], Value::Bool(old)) => {
+                io_array(self.globals.name(*k)).map(|a| (a, i + 1, *old))
+            }
+            _ => None,
+        };
+        let new = self.coerce(current, v)?;
+        if let (Some((array, n, old)), Value::Bool(b)) = (io, &new)
+            && old != *b
+        {
+            self.io_changed(array, n, *b);
+        }
+        let frames_before = match &p.root {
+            Root::Global(k) if *k == self.sys.tool || *k == self.sys.base => Some(self.tool_base()),
+            _ => None,
+        };
+        // `read_place` found it above, and nothing since moved it.
+        let Some(slot) = self.place_mut(p) else {
+            return Err(self.err("invalid access"));
+        };
+        *slot = new;
+        if let Root::Global(k) = &p.root {
+            self.after_system_write(*k, &p.path);
+        }
+        if let Some((old_base, old_tool)) = frames_before {
+            self.follow_frames(&old_base, &old_tool);
+        }
+        Ok(())
+    }
+
+    /// A scalar into a scalar of the program's own data (no I/O, timer or frame to follow),
+    /// where KRL's assignment rules keep the value as it is; `false`: not done, assign in
+    /// full.
+    pub(super) fn assign_scalar(&mut self, p: &Place, v: &Value) -> bool {
+        let plain = match p.root {
+            Root::Local(..) => true,
+            Root::Global(k) => !self.globals.name(k).starts_with('$'),
+            _ => false,
+        };
+        if !plain {
+            return false;
+        }
+        let Some(slot) = self.place_mut(p) else {
+            return false;
+        };
+        match (slot, v) {
+            (Value::Int(x), Value::Int(i))
+                if (crate::interp::value::INT_MIN..=crate::interp::value::INT_MAX).contains(i) =>
+            {
+                *x = *i
+            }
+            (Value::Real(x), Value::Real(r)) => *x = *r,
+            (Value::Real(x), Value::Int(i)) => *x = *i as f64,
+            (Value::Bool(x), Value::Bool(b)) => *x = *b,
+            _ => return false,
+        }
+        true
+    }
+
+    /// The value at `p`, to change it.
+    pub(super) fn place_mut(&mut self, p: &Place) -> Option<&mut Value> {
+        let mut v = match &p.root {
+            Root::Global(k) => self.globals.at_mut(*k)?,
+            Root::Local(fi, k) => match self.frames.get_mut(*fi)?.vars.get_mut(*k)?.as_mut()? {
+                Slot::Own(v) => v,
+                Slot::Alias(_) => return None,
+            },
+            Root::Group { .. } | Root::Const(_) => return None,
+        };
+        for s in &p.path {
+            v = match (s, v) {
+                (Seg::Index(i), Value::Array { items, .. }) => items.get_mut(*i)?,
+                (Seg::Field(f), v) => v.field_mut(f)?,
+                _ => return None,
+            };
+        }
+        Some(v)
+    }
+
+    pub(crate) fn globals_mut(&mut self) -> &mut Globals {
+        &mut self.globals
+    }
+}
