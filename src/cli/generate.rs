@@ -21,6 +21,9 @@ pub fn run(args: GenArgs) -> anyhow::Result<Outcome> {
         Target::All => generate::Target::All,
     };
     let files = generate::generate_target(&spec, target)?;
+    for w in generate::replaced_mismatches(&args.out, &files) {
+        eprintln!("warning: {w}");
+    }
     if args.check {
         let drift = generate::check(&args.out, &files);
         if drift.is_clean() {

@@ -61,6 +61,43 @@ impl Default for Channel {
     }
 }
 
+impl Channel {
+    /// How the channel frames what it receives (its first RAW receive element), if it has one.
+    pub fn framing(&self) -> Option<Framing> {
+        self.receive.first().map(|e| match e.kind {
+            Kind::Stream { .. } => Framing::Stream,
+            Kind::Byte => Framing::Byte { size: e.size },
+        })
+    }
+}
+
+/// The wire format a channel's RAW elements carry: Mech-Vision's ASCII is STREAM records ending
+/// in CR, its HEX fixed-size BYTE records (660 bytes in Mech-Mind's shipped `XML_Kuka_MMIND.xml`).
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Framing {
+    Stream,
+    Byte { size: u32 },
+}
+
+impl Framing {
+    /// Whether both carry the same codec family (ASCII or HEX), whatever the record size.
+    pub fn same_codec(self, other: Framing) -> bool {
+        matches!(
+            (self, other),
+            (Framing::Stream, Framing::Stream) | (Framing::Byte { .. }, Framing::Byte { .. })
+        )
+    }
+}
+
+impl fmt::Display for Framing {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        match self {
+            Framing::Stream => f.write_str("ASCII (RAW STREAM elements)"),
+            Framing::Byte { size } => write!(f, "HEX (RAW BYTE elements of Size {size})"),
+        }
+    }
+}
+
 /// `CONFIGURATION/EXTERNAL/TYPE`.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize)]
 pub enum External {

@@ -8,6 +8,7 @@
 
 pub mod as_view;
 mod channel;
+mod framing;
 mod hex_view;
 mod install;
 mod kawasaki;
@@ -20,6 +21,7 @@ mod writer;
 
 use std::path::PathBuf;
 
+pub use framing::replaced_mismatches;
 pub use output::{Drift, check, write_atomic};
 
 use crate::catalog::catalog;
