@@ -234,11 +234,11 @@ fn plural(n: usize) -> &'static str {
 }
 
 fn read_source(path: &Path) -> anyhow::Result<Source> {
-    let bytes = crate::files::read_regular(path)
-        .with_context(|| format!("cannot read {}", path.display()))?;
+    let decoded =
+        crate::files::read_text(path).with_context(|| format!("cannot read {}", path.display()))?;
     Ok(Source {
         path: path.display().to_string(),
-        text: crate::syntax::decode_owned(bytes).text,
+        text: decoded.text,
     })
 }
 
