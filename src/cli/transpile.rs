@@ -104,6 +104,17 @@ pub fn run(mut args: TranspileArgs) -> anyhow::Result<Outcome> {
                 return Ok(Outcome::Failure);
             }
         };
+        let who = match target {
+            Target::Kawasaki => "the Kawasaki AS package the translated program calls",
+            Target::Flexiv => "the Flexiv script's vision client",
+        };
+        if let Err(msg) = crate::generate::ascii_1x_only(&spec_data, who) {
+            eprintln!(
+                "error: {}: {msg}\n  help: pass a spec with codec = \"ascii\" and interface = \"1.x\" (and select ASCII in Mech-Vision for this robot)",
+                spec.display()
+            );
+            return Ok(Outcome::Failure);
+        }
         options.server = Some(VisionServer {
             ip: spec_data.server_ip,
             port: spec_data.server_port,
