@@ -5,6 +5,7 @@
 //! HEX, as Mech-Mind's shipped XML). A leaf: it imports no krlkit module; `generate` builds a
 //! [`Channel`] from the spec.
 
+mod framing;
 pub mod read;
 #[cfg(test)]
 mod tests;
@@ -14,6 +15,7 @@ use std::fmt;
 
 use serde::{Serialize, Serializer};
 
+pub use framing::{Framing, dump};
 pub use read::{ReadError, read};
 
 /// EKI's connect timeout when the file gives none (`INTERNAL/TIMEOUT@Connect`), in ms.
@@ -68,33 +70,6 @@ impl Channel {
             Kind::Stream { .. } => Framing::Stream,
             Kind::Byte => Framing::Byte { size: e.size },
         })
-    }
-}
-
-/// The wire format a channel's RAW elements carry: Mech-Vision's ASCII is STREAM records ending
-/// in CR, its HEX fixed-size BYTE records (660 bytes in Mech-Mind's shipped `XML_Kuka_MMIND.xml`).
-#[derive(Debug, Clone, Copy, PartialEq, Eq)]
-pub enum Framing {
-    Stream,
-    Byte { size: u32 },
-}
-
-impl Framing {
-    /// Whether both carry the same codec family (ASCII or HEX), whatever the record size.
-    pub fn same_codec(self, other: Framing) -> bool {
-        matches!(
-            (self, other),
-            (Framing::Stream, Framing::Stream) | (Framing::Byte { .. }, Framing::Byte { .. })
-        )
-    }
-}
-
-impl fmt::Display for Framing {
-    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
-        match self {
-            Framing::Stream => f.write_str("ASCII (RAW STREAM elements)"),
-            Framing::Byte { size } => write!(f, "HEX (RAW BYTE elements of Size {size})"),
-        }
     }
 }
 
