@@ -124,9 +124,9 @@ fn entry_rule(code: &str) -> Rule {
     } else if len > super::words::MAX_LEN {
         Rule::line
     } else {
-        match super::words::lookup(word.as_bytes()) {
-            Some(w) if w.roles & super::words::KW_LED != 0 => Rule::line_kw,
-            Some(w) if w.roles & super::words::STATEMENT != 0 => Rule::line,
+        match super::words::roles(word.as_bytes()) {
+            Some(r) if r & super::words::KW_LED != 0 => Rule::line_kw,
+            Some(r) if r & super::words::STATEMENT != 0 => Rule::line,
             _ => Rule::line_ident,
         }
     }

@@ -22,142 +22,152 @@ pub(crate) const NOT_PLAIN: u16 = 1 << 6;
 pub(crate) const CONTEXT: u16 = 0;
 
 /// A keyword in upper case and its roles.
+#[cfg(test)]
 #[derive(Debug, Clone, Copy)]
 pub(crate) struct Word {
-    pub text: &'static str,
+    pub text: &'static [u8],
     pub roles: u16,
 }
 
-const fn w(text: &'static str, roles: u16) -> Word {
-    Word { text, roles }
+/// The table and its lookup from one list: [`WORDS`] for the tests that compare it with the grammar,
+/// the parsers, which ask for almost every word (a `match` on bytes is several times faster
+/// than searching the table).
+macro_rules! keywords {
+    ($($word:literal: $roles:expr,)*) => {
+        /// Every keyword, sorted (a test checks it); the tests compare it with the grammar.
+        #[cfg(test)]
+        pub(crate) const WORDS: &[Word] = &[$(Word { text: $word, roles: $roles },)*];
+
+        /// The roles of the keyword spelled `upper` (already upper case).
+        #[inline]
+        pub(crate) fn roles_upper(upper: &[u8]) -> Option<u16> {
+            match upper {
+                $($word => Some($roles),)*
+                _ => None,
+            }
+        }
+    };
 }
 
-/// Sorted by bytes (a test checks it), so a lookup is a binary search.
-pub(crate) const WORDS: &[Word] = &[
-    w("AND", RESERVED),
-    w("ANIN", NOT_A_TYPE | STATEMENT | NOT_PLAIN),
-    w("ANOUT", NOT_A_TYPE | STATEMENT | NOT_PLAIN),
-    w("BRAKE", NOT_A_TYPE | STATEMENT | NOT_PLAIN),
-    w("B_AND", RESERVED),
-    w("B_EXOR", RESERVED),
-    w("B_NOT", RESERVED),
-    w("B_OR", RESERVED),
-    w("CA", CONTEXT),
-    w("CASE", NOT_A_TYPE | STATEMENT | NOT_PLAIN),
-    w("CHANNEL", NOT_A_TYPE | STATEMENT | KW_LED | NOT_PLAIN),
-    w("CIRC", NOT_A_TYPE | MOTION | STATEMENT),
-    w("CIRC_REL", NOT_A_TYPE | MOTION | STATEMENT),
-    w("CONFIRM", NOT_A_TYPE | STATEMENT | NOT_PLAIN),
-    w("CONST", NOT_A_TYPE | STATEMENT | NOT_PLAIN),
-    w("CONST_VEL", NOT_A_TYPE | STATEMENT | NOT_PLAIN),
-    w("CONTINUE", NOT_A_TYPE | STATEMENT),
-    w("C_DIS", APPROX),
-    w("C_ORI", APPROX),
-    w("C_PTP", APPROX),
-    w("C_SPL", APPROX),
-    w("C_VEL", APPROX),
-    w("DECL", NOT_A_TYPE),
-    w("DEF", NOT_A_TYPE | STATEMENT | KW_LED | NOT_PLAIN),
-    w("DEFAULT", NOT_A_TYPE | STATEMENT),
-    w("DEFDAT", NOT_A_TYPE | STATEMENT | KW_LED | NOT_PLAIN),
-    w("DEFFCT", NOT_A_TYPE | STATEMENT | KW_LED | NOT_PLAIN),
-    w("DELAY", CONTEXT),
-    w("DISABLE", CONTEXT),
-    w("DISTANCE", CONTEXT),
-    w("DO", RESERVED),
-    w("ELSE", NOT_A_TYPE | STATEMENT),
-    w("ENABLE", CONTEXT),
-    w("END", NOT_A_TYPE | STATEMENT),
-    w("ENDDAT", NOT_A_TYPE | STATEMENT),
-    w("ENDFCT", NOT_A_TYPE | STATEMENT),
-    w("ENDFOR", NOT_A_TYPE | STATEMENT),
-    w("ENDIF", NOT_A_TYPE | STATEMENT),
-    w("ENDLOOP", NOT_A_TYPE | STATEMENT),
-    w("ENDSKIP", NOT_A_TYPE | STATEMENT | NOT_PLAIN),
-    w("ENDSPLINE", NOT_A_TYPE | STATEMENT | NOT_PLAIN),
-    w("ENDSWITCH", NOT_A_TYPE | STATEMENT),
-    w("ENDWHILE", NOT_A_TYPE | STATEMENT),
-    w("ENUM", NOT_A_TYPE | STATEMENT | KW_LED | NOT_PLAIN),
-    w("EXIT", NOT_A_TYPE | STATEMENT),
-    w("EXOR", RESERVED),
-    w("EXT", NOT_A_TYPE | STATEMENT | KW_LED | NOT_PLAIN),
-    w("EXTFCT", NOT_A_TYPE | STATEMENT | KW_LED | NOT_PLAIN),
-    w("EXTFCTP", NOT_A_TYPE | STATEMENT | KW_LED | NOT_PLAIN),
-    w("EXTP", NOT_A_TYPE | STATEMENT | KW_LED | NOT_PLAIN),
-    w("F", CONTEXT),
-    w("FLT", CONTEXT),
-    w("FOR", NOT_A_TYPE | STATEMENT | NOT_PLAIN),
-    w("GLOBAL", NOT_A_TYPE | STATEMENT | KW_LED | NOT_PLAIN),
-    w("GOTO", NOT_A_TYPE | STATEMENT | NOT_PLAIN),
-    w("HALT", NOT_A_TYPE | STATEMENT),
-    w("IF", NOT_A_TYPE | STATEMENT),
-    w("IMPORT", NOT_A_TYPE | STATEMENT | NOT_PLAIN),
-    w("INTERRUPT", NOT_A_TYPE | STATEMENT | KW_LED | NOT_PLAIN),
-    w("IS", CONTEXT),
-    w("LIN", NOT_A_TYPE | MOTION | STATEMENT),
-    w("LIN_REL", NOT_A_TYPE | MOTION | STATEMENT),
-    w("LOOP", NOT_A_TYPE | STATEMENT),
-    w("MOVE_EMI", NOT_A_TYPE | STATEMENT | NOT_PLAIN),
-    w("NOT", RESERVED),
-    w("OFF", CONTEXT),
-    w("ON", CONTEXT),
-    w("ONSTART", CONTEXT),
-    w("ON_ERROR_PROCEED", NOT_A_TYPE | STATEMENT),
-    w("OR", RESERVED),
-    w("PART", CONTEXT),
-    w("PATH", CONTEXT),
-    w("PRIO", CONTEXT),
-    w("PTP", NOT_A_TYPE | MOTION | STATEMENT),
-    w("PTP_REL", NOT_A_TYPE | MOTION | STATEMENT),
-    w("PTP_SPLINE", NOT_A_TYPE | STATEMENT | NOT_PLAIN),
-    w("PUBLIC", CONTEXT),
-    w("REPEAT", NOT_A_TYPE | STATEMENT),
-    w("RESUME", NOT_A_TYPE | STATEMENT),
-    w("RETURN", NOT_A_TYPE | STATEMENT | NOT_PLAIN),
-    w("SCIRC", NOT_A_TYPE | MOTION | STATEMENT),
-    w("SCIRC_REL", NOT_A_TYPE | MOTION | STATEMENT),
-    w("SEC", CONTEXT),
-    w("SIGNAL", NOT_A_TYPE | STATEMENT | KW_LED | NOT_PLAIN),
-    w("SKIP", NOT_A_TYPE | STATEMENT | NOT_PLAIN),
-    w("SLIN", NOT_A_TYPE | MOTION | STATEMENT),
-    w("SLIN_REL", NOT_A_TYPE | MOTION | STATEMENT),
-    w("SPL", NOT_A_TYPE | MOTION | STATEMENT),
-    w("SPLINE", NOT_A_TYPE | STATEMENT | NOT_PLAIN),
-    w("SPTP", NOT_A_TYPE | MOTION | STATEMENT),
-    w("SPTP_REL", NOT_A_TYPE | MOTION | STATEMENT),
-    w("START", CONTEXT),
-    w("STEP", RESERVED),
-    w("STRUC", NOT_A_TYPE | STATEMENT | KW_LED | NOT_PLAIN),
-    w("SWITCH", NOT_A_TYPE | STATEMENT | NOT_PLAIN),
-    w("THEN", RESERVED),
-    w("TIME_BLOCK", NOT_A_TYPE | STATEMENT | NOT_PLAIN),
-    w("TO", RESERVED),
-    w("TRIGGER", NOT_A_TYPE | STATEMENT | KW_LED | NOT_PLAIN),
-    w("UNTIL", NOT_A_TYPE | STATEMENT | NOT_PLAIN),
-    w("WAIT", NOT_A_TYPE | STATEMENT),
-    w("WHEN", RESERVED),
-    w("WHILE", NOT_A_TYPE | STATEMENT | NOT_PLAIN),
-    w("WITH", CONTEXT),
-];
+keywords! {
+    b"AND": RESERVED,
+    b"ANIN": NOT_A_TYPE | STATEMENT | NOT_PLAIN,
+    b"ANOUT": NOT_A_TYPE | STATEMENT | NOT_PLAIN,
+    b"BRAKE": NOT_A_TYPE | STATEMENT | NOT_PLAIN,
+    b"B_AND": RESERVED,
+    b"B_EXOR": RESERVED,
+    b"B_NOT": RESERVED,
+    b"B_OR": RESERVED,
+    b"CA": CONTEXT,
+    b"CASE": NOT_A_TYPE | STATEMENT | NOT_PLAIN,
+    b"CHANNEL": NOT_A_TYPE | STATEMENT | KW_LED | NOT_PLAIN,
+    b"CIRC": NOT_A_TYPE | MOTION | STATEMENT,
+    b"CIRC_REL": NOT_A_TYPE | MOTION | STATEMENT,
+    b"CONFIRM": NOT_A_TYPE | STATEMENT | NOT_PLAIN,
+    b"CONST": NOT_A_TYPE | STATEMENT | NOT_PLAIN,
+    b"CONST_VEL": NOT_A_TYPE | STATEMENT | NOT_PLAIN,
+    b"CONTINUE": NOT_A_TYPE | STATEMENT,
+    b"C_DIS": APPROX,
+    b"C_ORI": APPROX,
+    b"C_PTP": APPROX,
+    b"C_SPL": APPROX,
+    b"C_VEL": APPROX,
+    b"DECL": NOT_A_TYPE,
+    b"DEF": NOT_A_TYPE | STATEMENT | KW_LED | NOT_PLAIN,
+    b"DEFAULT": NOT_A_TYPE | STATEMENT,
+    b"DEFDAT": NOT_A_TYPE | STATEMENT | KW_LED | NOT_PLAIN,
+    b"DEFFCT": NOT_A_TYPE | STATEMENT | KW_LED | NOT_PLAIN,
+    b"DELAY": CONTEXT,
+    b"DISABLE": CONTEXT,
+    b"DISTANCE": CONTEXT,
+    b"DO": RESERVED,
+    b"ELSE": NOT_A_TYPE | STATEMENT,
+    b"ENABLE": CONTEXT,
+    b"END": NOT_A_TYPE | STATEMENT,
+    b"ENDDAT": NOT_A_TYPE | STATEMENT,
+    b"ENDFCT": NOT_A_TYPE | STATEMENT,
+    b"ENDFOR": NOT_A_TYPE | STATEMENT,
+    b"ENDIF": NOT_A_TYPE | STATEMENT,
+    b"ENDLOOP": NOT_A_TYPE | STATEMENT,
+    b"ENDSKIP": NOT_A_TYPE | STATEMENT | NOT_PLAIN,
+    b"ENDSPLINE": NOT_A_TYPE | STATEMENT | NOT_PLAIN,
+    b"ENDSWITCH": NOT_A_TYPE | STATEMENT,
+    b"ENDWHILE": NOT_A_TYPE | STATEMENT,
+    b"ENUM": NOT_A_TYPE | STATEMENT | KW_LED | NOT_PLAIN,
+    b"EXIT": NOT_A_TYPE | STATEMENT,
+    b"EXOR": RESERVED,
+    b"EXT": NOT_A_TYPE | STATEMENT | KW_LED | NOT_PLAIN,
+    b"EXTFCT": NOT_A_TYPE | STATEMENT | KW_LED | NOT_PLAIN,
+    b"EXTFCTP": NOT_A_TYPE | STATEMENT | KW_LED | NOT_PLAIN,
+    b"EXTP": NOT_A_TYPE | STATEMENT | KW_LED | NOT_PLAIN,
+    b"F": CONTEXT,
+    b"FLT": CONTEXT,
+    b"FOR": NOT_A_TYPE | STATEMENT | NOT_PLAIN,
+    b"GLOBAL": NOT_A_TYPE | STATEMENT | KW_LED | NOT_PLAIN,
+    b"GOTO": NOT_A_TYPE | STATEMENT | NOT_PLAIN,
+    b"HALT": NOT_A_TYPE | STATEMENT,
+    b"IF": NOT_A_TYPE | STATEMENT,
+    b"IMPORT": NOT_A_TYPE | STATEMENT | NOT_PLAIN,
+    b"INTERRUPT": NOT_A_TYPE | STATEMENT | KW_LED | NOT_PLAIN,
+    b"IS": CONTEXT,
+    b"LIN": NOT_A_TYPE | MOTION | STATEMENT,
+    b"LIN_REL": NOT_A_TYPE | MOTION | STATEMENT,
+    b"LOOP": NOT_A_TYPE | STATEMENT,
+    b"MOVE_EMI": NOT_A_TYPE | STATEMENT | NOT_PLAIN,
+    b"NOT": RESERVED,
+    b"OFF": CONTEXT,
+    b"ON": CONTEXT,
+    b"ONSTART": CONTEXT,
+    b"ON_ERROR_PROCEED": NOT_A_TYPE | STATEMENT,
+    b"OR": RESERVED,
+    b"PART": CONTEXT,
+    b"PATH": CONTEXT,
+    b"PRIO": CONTEXT,
+    b"PTP": NOT_A_TYPE | MOTION | STATEMENT,
+    b"PTP_REL": NOT_A_TYPE | MOTION | STATEMENT,
+    b"PTP_SPLINE": NOT_A_TYPE | STATEMENT | NOT_PLAIN,
+    b"PUBLIC": CONTEXT,
+    b"REPEAT": NOT_A_TYPE | STATEMENT,
+    b"RESUME": NOT_A_TYPE | STATEMENT,
+    b"RETURN": NOT_A_TYPE | STATEMENT | NOT_PLAIN,
+    b"SCIRC": NOT_A_TYPE | MOTION | STATEMENT,
+    b"SCIRC_REL": NOT_A_TYPE | MOTION | STATEMENT,
+    b"SEC": CONTEXT,
+    b"SIGNAL": NOT_A_TYPE | STATEMENT | KW_LED | NOT_PLAIN,
+    b"SKIP": NOT_A_TYPE | STATEMENT | NOT_PLAIN,
+    b"SLIN": NOT_A_TYPE | MOTION | STATEMENT,
+    b"SLIN_REL": NOT_A_TYPE | MOTION | STATEMENT,
+    b"SPL": NOT_A_TYPE | MOTION | STATEMENT,
+    b"SPLINE": NOT_A_TYPE | STATEMENT | NOT_PLAIN,
+    b"SPTP": NOT_A_TYPE | MOTION | STATEMENT,
+    b"SPTP_REL": NOT_A_TYPE | MOTION | STATEMENT,
+    b"START": CONTEXT,
+    b"STEP": RESERVED,
+    b"STRUC": NOT_A_TYPE | STATEMENT | KW_LED | NOT_PLAIN,
+    b"SWITCH": NOT_A_TYPE | STATEMENT | NOT_PLAIN,
+    b"THEN": RESERVED,
+    b"TIME_BLOCK": NOT_A_TYPE | STATEMENT | NOT_PLAIN,
+    b"TO": RESERVED,
+    b"TRIGGER": NOT_A_TYPE | STATEMENT | KW_LED | NOT_PLAIN,
+    b"UNTIL": NOT_A_TYPE | STATEMENT | NOT_PLAIN,
+    b"WAIT": NOT_A_TYPE | STATEMENT,
+    b"WHEN": RESERVED,
+    b"WHILE": NOT_A_TYPE | STATEMENT | NOT_PLAIN,
+    b"WITH": CONTEXT,
+}
 
 /// The longest keyword (`ON_ERROR_PROCEED`) has 16 letters.
 pub(crate) const MAX_LEN: usize = 16;
 
-/// The keyword spelled `upper` (already upper case).
-pub(crate) fn lookup_upper(upper: &[u8]) -> Option<&'static Word> {
-    WORDS
-        .binary_search_by(|w| w.text.as_bytes().cmp(upper))
-        .ok()
-        .map(|i| &WORDS[i])
-}
-
 /// `upper` (already upper case) is a keyword with one of `roles`.
+#[inline]
 pub(crate) fn is_upper(upper: &[u8], roles: u16) -> bool {
-    lookup_upper(upper).is_some_and(|w| w.roles & roles != 0)
+    roles_upper(upper).is_some_and(|r| r & roles != 0)
 }
 
-/// The keyword spelled `word` in any case.
-pub(crate) fn lookup(word: &[u8]) -> Option<&'static Word> {
+/// The roles of the keyword spelled `word` in any case.
+#[inline]
+pub(crate) fn roles(word: &[u8]) -> Option<u16> {
     if word.len() > MAX_LEN {
         return None;
     }
@@ -165,12 +175,13 @@ pub(crate) fn lookup(word: &[u8]) -> Option<&'static Word> {
     for (u, c) in buf.iter_mut().zip(word) {
         *u = c.to_ascii_uppercase();
     }
-    lookup_upper(&buf[..word.len()])
+    roles_upper(&buf[..word.len()])
 }
 
 /// `word` (any case) is a keyword with one of `roles`.
+#[inline]
 pub(crate) fn is(word: &[u8], roles: u16) -> bool {
-    lookup(word).is_some_and(|w| w.roles & roles != 0)
+    self::roles(word).is_some_and(|r| r & roles != 0)
 }
 
 /// A KRL keyword: a word that starts a statement or a block, an operator word, a motion or
@@ -219,22 +230,23 @@ mod tests {
         WORDS
             .iter()
             .filter(|w| w.roles & roles != 0)
-            .map(|w| w.text.to_owned())
+            .map(text)
             .collect()
+    }
+
+    fn text(w: &Word) -> String {
+        String::from_utf8(w.text.to_vec()).expect("ASCII")
     }
 
     #[test]
     fn sorted_unique_upper_and_short() {
         for pair in WORDS.windows(2) {
-            assert!(
-                pair[0].text.as_bytes() < pair[1].text.as_bytes(),
-                "{}",
-                pair[1].text
-            );
+            assert!(pair[0].text < pair[1].text, "{}", text(&pair[1]));
         }
         for w in WORDS {
-            assert_eq!(w.text, w.text.to_ascii_uppercase());
-            assert!(w.text.len() <= MAX_LEN, "{}", w.text);
+            assert_eq!(w.text, w.text.to_ascii_uppercase().as_slice());
+            assert!(w.text.len() <= MAX_LEN, "{}", text(w));
+            assert_eq!(roles_upper(w.text), Some(w.roles));
         }
     }
 
@@ -253,7 +265,7 @@ mod tests {
             .filter(|l| l.starts_with("K_"))
             .flat_map(literals)
             .collect();
-        let table: BTreeSet<String> = WORDS.iter().map(|w| w.text.to_owned()).collect();
+        let table: BTreeSet<String> = WORDS.iter().map(text).collect();
         let missing: Vec<_> = keywords.difference(&table).collect();
         assert!(missing.is_empty(), "{missing:?}");
         // And every word of the table is a keyword somewhere in the grammar.
@@ -275,10 +287,10 @@ mod tests {
 
     #[test]
     fn lookup_ignores_case_and_refuses_long_words() {
-        assert!(lookup(b"endwhile").is_some());
-        assert!(lookup(b"EndWhile").is_some_and(|w| w.roles & STATEMENT != 0));
-        assert!(lookup(b"ON_ERROR_PROCEEDX").is_none());
-        assert!(lookup(b"pick").is_none());
+        assert!(roles(b"endwhile").is_some());
+        assert!(is(b"EndWhile", STATEMENT));
+        assert!(roles(b"ON_ERROR_PROCEEDX").is_none());
+        assert!(roles(b"pick").is_none());
         assert!(is_keyword("lin_rel") && !is_keyword("with") && !is_keyword("x"));
     }
 }

@@ -57,6 +57,7 @@ struct P<'t, 'b> {
 const MAX_DEPTH: usize = 64;
 const MAX_ITEMS: usize = 1024;
 
+#[inline]
 fn is_idc(b: u8) -> bool {
     b.is_ascii_alphanumeric() || b == b'_' || b == b'$'
 }
@@ -74,6 +75,7 @@ struct Upper {
 }
 
 impl Upper {
+    #[inline]
     fn of(word: &[u8]) -> Upper {
         let mut buf = [0u8; MAX_KEYWORD];
         let len = if word.len() <= MAX_KEYWORD {
@@ -88,24 +90,29 @@ impl Upper {
     }
 
     /// The word in upper case, or empty for a word too long to be a keyword.
+    #[inline]
     fn as_bytes(&self) -> &[u8] {
         &self.buf[..self.len]
     }
 }
 
 impl<'t> P<'t, '_> {
+    #[inline]
     fn tok(kind: TokenKind, start: usize, end: usize) -> Child {
         Builder::token(kind, start, end)
     }
 
+    #[inline]
     fn push(&mut self, c: Child) {
         self.t.push(c);
     }
 
+    #[inline]
     fn end_of(&self, c: Child) -> usize {
         self.t.span_of(c).end as usize
     }
 
+    #[inline]
     fn ws(&mut self) {
         while self.pos < self.end {
             match self.b[self.pos] {
@@ -118,10 +125,12 @@ impl<'t> P<'t, '_> {
         }
     }
 
+    #[inline]
     fn peek(&self) -> Option<u8> {
         (self.pos < self.end).then(|| self.b[self.pos])
     }
 
+    #[inline]
     fn word_len(&self) -> usize {
         self.b[self.pos..self.end]
             .iter()
@@ -130,15 +139,18 @@ impl<'t> P<'t, '_> {
     }
 
     /// The word at the cursor, upper-cased (not consumed).
+    #[inline]
     fn upper_word(&self) -> Upper {
         Upper::of(&self.b[self.pos..self.pos + self.word_len()])
     }
 
     /// A whole-word, case-insensitive keyword at the cursor (no blanks skipped).
+    #[inline]
     fn kw(&mut self, word: &str) -> Option<Child> {
         self.kw_bytes(word.as_bytes())
     }
 
+    #[inline]
     fn kw_bytes(&mut self, word: &[u8]) -> Option<Child> {
         let n = word.len();
         let here = self.b.get(self.pos..self.pos + n)?;
@@ -187,6 +199,7 @@ impl<'t> P<'t, '_> {
         None
     }
 
+    #[inline]
     fn punct(&mut self, c: u8) -> bool {
         if self.peek() == Some(c) {
             self.pos += 1;
