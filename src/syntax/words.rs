@@ -29,9 +29,9 @@ pub(crate) struct Word {
     pub roles: u16,
 }
 
-/// The table and its lookup from one list: [`WORDS`] for the tests that compare it with the grammar,
-/// the parsers, which ask for almost every word (a `match` on bytes is several times faster
-/// than searching the table).
+/// The table and its lookup from one list: [`WORDS`] for the tests that compare it with the
+/// grammar, a `match` for the parsers, which ask for almost every word (a `match` on bytes
+/// is several times faster than searching the table).
 macro_rules! keywords {
     ($($word:literal: $roles:expr,)*) => {
         /// Every keyword, sorted (a test checks it); the tests compare it with the grammar.
