@@ -16,6 +16,7 @@ mod scalar;
 mod settings;
 mod signals;
 mod submit;
+mod trace;
 mod vision;
 mod watch;
 
@@ -23,9 +24,7 @@ use super::eki::Eki;
 use super::globals::Globals;
 use super::program::Program;
 use super::value::{Types, Value};
-use super::{
-    End, Event, Location, Options, Record, RunResult, RuntimeError, TraceSink, VisionPose,
-};
+use super::{End, Event, Location, Options, RunResult, RuntimeError, TraceSink, VisionPose};
 pub(crate) use place::Place;
 use place::{Root, Seg, Slot};
 
@@ -109,14 +108,7 @@ pub(crate) struct Machine<'p> {
     pub(crate) clock_ms: f64,
     timers: Vec<Timer>,
     pub(crate) eki: Eki,
-    events: Vec<Record>,
-    /// Where each record also goes the moment it is made (`--trace` as the run goes).
-    sink: Option<&'p mut (dyn TraceSink + 'p)>,
-    /// Per module, per 0-based line: statements run there.
-    hits: Vec<Vec<u64>>,
-    /// (module, offset, 0-based line) of statements run lately, by offset.
-    line_cache: Vec<(usize, u32, usize)>,
-    messages: Vec<String>,
+    trace: trace::Trace<'p>,
     steps: u64,
     /// TRIGGER actions waiting for the next motion.
     pending_triggers: Vec<(usize, Stmt)>,
@@ -146,7 +138,6 @@ pub(crate) struct Machine<'p> {
 }
 
 const TIMERS: usize = 64;
-const LINE_CACHE: usize = 256;
 
 #[cfg(test)]
 thread_local! {
@@ -193,15 +184,7 @@ impl<'p> Machine<'p> {
             clock_ms: 0.0,
             timers: vec![Timer::default(); TIMERS + 1],
             eki: Eki::default(),
-            events: Vec::new(),
-            sink: None,
-            hits: prog
-                .modules
-                .iter()
-                .map(|m| vec![0; m.lines.line_count()])
-                .collect(),
-            line_cache: vec![(usize::MAX, 0, 0); LINE_CACHE],
-            messages: Vec::new(),
+            trace: trace::Trace::new(prog),
             steps: 0,
             pending_triggers: Vec::new(),
             interrupts: interrupt::Interrupts::default(),
@@ -234,7 +217,7 @@ impl<'p> Machine<'p> {
 
     /// Send every event to `sink` as well, as it happens.
     pub(crate) fn with_sink(mut self, sink: &'p mut (dyn TraceSink + 'p)) -> Machine<'p> {
-        self.sink = Some(sink);
+        self.trace.sink = Some(sink);
         self
     }
 
@@ -323,7 +306,7 @@ impl<'p> Machine<'p> {
             End::Halt { file, line } => ("halt".to_string(), Some(format!("{file}:{line}: HALT"))),
             End::Error(e) => ("error".to_string(), Some(e.to_string())),
         };
-        for c in self.coverage() {
+        for c in self.trace.coverage(self.prog) {
             self.emit_at(None, c);
         }
         let at = match &end {
@@ -366,38 +349,12 @@ impl<'p> Machine<'p> {
             end,
             outputs,
             eki: std::mem::take(&mut self.eki.stats),
-            events: self.events,
-            messages: self.messages,
+            events: self.trace.events,
+            messages: self.trace.messages,
             globals,
             steps: self.steps,
             sim_time_ms: self.clock_ms,
         }
-    }
-
-    /// Every statement line of every module with its hit count.
-    fn coverage(&self) -> Vec<Event> {
-        self.prog
-            .modules
-            .iter()
-            .zip(&self.hits)
-            .map(|(m, hits)| {
-                let mut lines = Vec::new();
-                let mut add = |s: &Stmt| lines.push(m.lines.line_of(s.span.start as usize));
-                for r in &m.ast.routines {
-                    crate::syntax::ast::each_stmt(&r.body, &mut add);
-                }
-                crate::syntax::ast::each_stmt(&m.ast.top_level, &mut add);
-                lines.sort_unstable();
-                lines.dedup();
-                Event::Coverage {
-                    file: m.name.clone(),
-                    lines: lines
-                        .into_iter()
-                        .map(|l| (l + 1, hits.get(l).copied().unwrap_or(0)))
-                        .collect(),
-                }
-            })
-            .collect()
     }
 
     /// The statement being run, as a trace location.
@@ -418,14 +375,6 @@ impl<'p> Machine<'p> {
 
     /// Add a trace record (and hand it to the sink at once).
     fn emit_at(&mut self, at: Option<Location>, event: Event) {
-        let record = Record {
-            t_ms: self.clock_ms,
-            at,
-            event,
-        };
-        if let Some(sink) = self.sink.as_mut() {
-            sink.record(&record);
-        }
-        self.events.push(record);
+        self.trace.record(self.clock_ms, at, event);
     }
 }
