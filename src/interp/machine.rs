@@ -87,13 +87,6 @@ enum Flow {
     Goto(String),
 }
 
-#[derive(Debug, Clone, Copy, Default)]
-struct Timer {
-    base: f64,
-    start: f64,
-    running: bool,
-}
-
 pub(crate) type R<T> = Result<T, Stop>;
 
 pub(crate) struct Machine<'p> {
@@ -106,17 +99,13 @@ pub(crate) struct Machine<'p> {
     /// Current module and byte offset, for error locations.
     loc: (usize, u32),
     pub(crate) clock_ms: f64,
-    timers: Vec<Timer>,
+    io: io::Io,
     pub(crate) eki: Eki,
     trace: trace::Trace<'p>,
     steps: u64,
     /// TRIGGER actions waiting for the next motion.
     pending_triggers: Vec<(usize, Stmt)>,
     interrupts: interrupt::Interrupts,
-    /// SIGNAL names of the DEFDATs, keyed like globals (`NAME` or `SCOPE::NAME`).
-    signals: rustc_hash::FxHashMap<String, Place>,
-    /// Outputs a PULSE will set back.
-    pulses: Vec<signals::Pulse>,
     message_handles: i64,
     /// Assignments and motions so far: a loop iteration that adds none changed nothing.
     writes: u64,
@@ -125,8 +114,6 @@ pub(crate) struct Machine<'p> {
     /// package). Cleared inside the routines it calls.
     declared_scope: Option<usize>,
     motions: u64,
-    /// While the submit routine runs (see `submit.rs`).
-    in_submit: bool,
     /// The last word the submit routine wrote.
     /// The point store's poses as last traced (an [`Event::Vision`] when they change).
     traced_poses: Vec<VisionPose>,
@@ -136,8 +123,6 @@ pub(crate) struct Machine<'p> {
     /// What the current iteration of an idle polling loop reads.
     loop_reads: watch::LoopReads,
 }
-
-const TIMERS: usize = 64;
 
 #[cfg(test)]
 thread_local! {
@@ -182,19 +167,16 @@ impl<'p> Machine<'p> {
             frames: Vec::new(),
             loc: (0, 0),
             clock_ms: 0.0,
-            timers: vec![Timer::default(); TIMERS + 1],
+            io: io::Io::new(),
             eki: Eki::default(),
             trace: trace::Trace::new(prog),
             steps: 0,
             pending_triggers: Vec::new(),
             interrupts: interrupt::Interrupts::default(),
-            signals: Default::default(),
-            pulses: Vec::new(),
             message_handles: 0,
             writes: 0,
             motions: 0,
             declared_scope: None,
-            in_submit: false,
             srci_word: None,
             traced_poses: Vec::new(),
             reads: None,

@@ -25,7 +25,7 @@ impl<'p> Machine<'p> {
                 self.opts.max_time_ms / 1000.0
             )));
         }
-        if self.in_submit {
+        if self.io.in_submit {
             return Ok(());
         }
         self.expire_pulses(false)?;
@@ -317,9 +317,8 @@ impl<'p> Machine<'p> {
     /// is an error at the loop (`at`). `seen` is the write count at the previous back edge.
     pub(super) fn loop_back_edge(&mut self, seen: &mut u64, at: (usize, u32)) -> R<()> {
         self.tick()?;
-        let external = self.eki.any_connected()
-            || self.timers.iter().any(|t| t.running)
-            || self.pulses_running();
+        let external =
+            self.eki.any_connected() || self.io.timer_running(None) || self.io.pulses_running();
         let idle = self.writes == *seen;
         let never = |m: &mut Self| {
             m.loc = at;

@@ -77,7 +77,7 @@ impl<'p> Machine<'p> {
         }
         let scoped = format!("{}::{key}", self.prog.modules[self.cur_module()].scope);
         for k in [scoped.as_str(), key] {
-            if let Some(p) = self.signals.get(k) {
+            if let Some(p) = self.io.signal(k) {
                 return Ok(p.clone());
             }
         }
