@@ -1,7 +1,5 @@
 //! The executor: scopes, places (for OUT parameters), statements and expressions.
 
-use crate::syntax::ast::Stmt;
-
 mod bas;
 mod call;
 mod eval;
@@ -12,6 +10,7 @@ mod interrupt;
 mod io;
 mod motion;
 mod place;
+mod robot;
 mod scalar;
 mod settings;
 mod signals;
@@ -24,7 +23,7 @@ use super::eki::Eki;
 use super::globals::Globals;
 use super::program::Program;
 use super::value::{Types, Value};
-use super::{End, Event, Location, Options, RunResult, RuntimeError, TraceSink, VisionPose};
+use super::{End, Event, Location, Options, RunResult, RuntimeError, TraceSink};
 pub(crate) use place::Place;
 use place::{Root, Seg, Slot};
 
@@ -103,8 +102,6 @@ pub(crate) struct Machine<'p> {
     pub(crate) eki: Eki,
     trace: trace::Trace<'p>,
     steps: u64,
-    /// TRIGGER actions waiting for the next motion.
-    pending_triggers: Vec<(usize, Stmt)>,
     interrupts: interrupt::Interrupts,
     message_handles: i64,
     /// Assignments and motions so far: a loop iteration that adds none changed nothing.
@@ -113,11 +110,7 @@ pub(crate) struct Machine<'p> {
     /// module that declared it, whose names it uses wherever the program is (even inside the
     /// package). Cleared inside the routines it calls.
     declared_scope: Option<usize>,
-    motions: u64,
-    /// The last word the submit routine wrote.
-    /// The point store's poses as last traced (an [`Event::Vision`] when they change).
-    traced_poses: Vec<VisionPose>,
-    srci_word: Option<u32>,
+    robot: robot::Robot,
     /// What the `WAIT FOR` check under way reads (see `watch.rs`).
     reads: Option<watch::Reads>,
     /// What the current iteration of an idle polling loop reads.
@@ -159,10 +152,12 @@ const BUILTIN_GLOBALS: [&str; 11] = [
 
 impl<'p> Machine<'p> {
     pub(crate) fn new(prog: &'p Program, opts: &'p Options) -> Machine<'p> {
+        let mut globals = prog.resolved.globals.clone();
+        let robot = robot::Robot::new(&mut globals);
         let mut m = Machine {
             prog,
             opts,
-            globals: prog.resolved.globals.clone(),
+            globals,
             sys: SysSlots::default(),
             frames: Vec::new(),
             loc: (0, 0),
@@ -171,14 +166,11 @@ impl<'p> Machine<'p> {
             eki: Eki::default(),
             trace: trace::Trace::new(prog),
             steps: 0,
-            pending_triggers: Vec::new(),
             interrupts: interrupt::Interrupts::default(),
             message_handles: 0,
             writes: 0,
-            motions: 0,
+            robot,
             declared_scope: None,
-            srci_word: None,
-            traced_poses: Vec::new(),
             reads: None,
             loop_reads: None,
         };

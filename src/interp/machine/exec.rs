@@ -257,7 +257,9 @@ impl<'p> Machine<'p> {
             StmtKind::Definition(_) => {}
             StmtKind::Trigger { action, .. } => {
                 let module = self.cur_module();
-                self.pending_triggers.push((module, (**action).clone()))
+                self.robot
+                    .pending_triggers
+                    .push((module, (**action).clone()))
             }
             StmtKind::Pulse {
                 signal,

@@ -93,8 +93,8 @@ impl Machine<'_> {
                 )));
             }
         };
-        if self.srci_word != Some(word) {
-            self.srci_word = Some(word);
+        if self.trace.srci_word != Some(word) {
+            self.trace.srci_word = Some(word);
             self.emit_at(None, Event::Srci { word });
         }
         Ok(())

@@ -2,7 +2,7 @@
 //! coverage, and the messages the program showed.
 
 use crate::interp::program::Program;
-use crate::interp::{Event, Location, Record, TraceSink};
+use crate::interp::{Event, Location, Record, TraceSink, VisionPose};
 use crate::syntax::ast::Stmt;
 
 const LINE_CACHE: usize = 256;
@@ -16,6 +16,10 @@ pub(super) struct Trace<'p> {
     /// (module, offset, 0-based line) of statements run lately, by offset.
     line_cache: Vec<(usize, u32, usize)>,
     pub(super) messages: Vec<String>,
+    /// The point store's poses as last traced (an [`Event::Vision`] when they change).
+    pub(super) vision_poses: Vec<VisionPose>,
+    /// The last word the submit routine wrote (an [`Event::Srci`] when it changes).
+    pub(super) srci_word: Option<u32>,
 }
 
 impl<'p> Trace<'p> {
@@ -30,6 +34,8 @@ impl<'p> Trace<'p> {
                 .collect(),
             line_cache: vec![(usize::MAX, 0, 0); LINE_CACHE],
             messages: Vec::new(),
+            vision_poses: Vec::new(),
+            srci_word: None,
         }
     }
 
