@@ -59,6 +59,7 @@
 //! - Deterministic: the same files in the same order give the same ids.
 
 mod build;
+mod calls;
 mod edit;
 pub mod env;
 mod ids;
