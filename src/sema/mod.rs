@@ -60,6 +60,7 @@
 
 mod build;
 mod calls;
+mod consts;
 mod edit;
 pub mod env;
 mod ids;
