@@ -76,16 +76,8 @@ impl Sema {
 #[cfg(test)]
 mod tests {
     use super::super::Analysis;
+    use super::super::tests::analysis;
     use super::*;
-
-    fn analysis(files: &[(&str, &str)]) -> Analysis {
-        Analysis::new(
-            files
-                .iter()
-                .map(|(p, t)| (p.to_string(), t.to_string()))
-                .collect(),
-        )
-    }
 
     fn routine(a: &Analysis, name: &str) -> RoutineId {
         a.sema

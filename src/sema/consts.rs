@@ -24,31 +24,26 @@ impl Sema {
 
 #[cfg(test)]
 mod tests {
-    use super::super::Analysis;
+    use super::super::tests::analysis;
 
     #[test]
     fn constants_of_the_module_the_robot_and_config_not_another_module() {
-        let a = Analysis::new(
-            [
-                (
-                    "R1/System/$config.dat",
-                    "DEFDAT $CONFIG\nDECL CONST INT cfg_n = 3\nENDDAT\n",
-                ),
-                ("R1/Program/cell.src", "DEF cell()\nEND\n"),
-                (
-                    "R1/Program/cell.dat",
-                    "DEFDAT cell PUBLIC\nDECL CONST INT mine = 4\nDECL GLOBAL CONST REAL g = 2.5\n\
+        let a = analysis(&[
+            (
+                "R1/System/$config.dat",
+                "DEFDAT $CONFIG\nDECL CONST INT cfg_n = 3\nENDDAT\n",
+            ),
+            ("R1/Program/cell.src", "DEF cell()\nEND\n"),
+            (
+                "R1/Program/cell.dat",
+                "DEFDAT cell PUBLIC\nDECL CONST INT mine = 4\nDECL GLOBAL CONST REAL g = 2.5\n\
                      DECL CONST CHAR c = \"x\"\nENDDAT\n",
-                ),
-                (
-                    "R1/Program/other.dat",
-                    "DEFDAT other\nDECL CONST INT theirs = 5\nENDDAT\n",
-                ),
-            ]
-            .iter()
-            .map(|(p, t)| (p.to_string(), t.to_string()))
-            .collect(),
-        );
+            ),
+            (
+                "R1/Program/other.dat",
+                "DEFDAT other\nDECL CONST INT theirs = 5\nENDDAT\n",
+            ),
+        ]);
         let f = a.sema.file_id("R1/Program/cell.src").expect("file");
         let at = a.sema.position(f, 0);
         let mut got: Vec<(String, f64)> = a
