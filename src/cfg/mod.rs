@@ -23,7 +23,7 @@ mod render;
 
 use std::collections::VecDeque;
 
-use crate::syntax::ast::Stmt;
+use crate::syntax::ast::{Stmt, StmtKind};
 
 /// A block's index in [`Cfg::blocks`].
 pub type BlockId = usize;
@@ -130,6 +130,21 @@ impl<'a> Cfg<'a> {
         out.sort_by_key(|&b| self.blocks[b].stmts[0].span.start);
         out
     }
+}
+
+/// Whether `s` only ever passes control to the statement after it (no branch, jump or nested
+/// body): its graph is one block falling off its end.
+pub fn is_straight(s: &Stmt) -> bool {
+    !s.has_body()
+        && !matches!(
+            s.kind,
+            StmtKind::Return { .. }
+                | StmtKind::Halt
+                | StmtKind::Exit
+                | StmtKind::Goto { .. }
+                | StmtKind::Label { .. }
+                | StmtKind::Error { .. }
+        )
 }
 
 #[cfg(test)]
