@@ -115,6 +115,34 @@ impl<'a> Cfg<'a> {
         seen
     }
 
+    /// Every block once, those reachable from [`ENTRY`] first in reverse postorder (a block
+    /// before its successors, loops aside), then the others in index order: the order in
+    /// which a forward dataflow converges fastest (a backward one: reversed).
+    pub fn forward_order(&self) -> Vec<BlockId> {
+        let n = self.blocks.len();
+        let mut seen = vec![false; n];
+        let mut post = Vec::with_capacity(n);
+        // An explicit stack: a routine may chain a million blocks.
+        let mut stack = vec![(ENTRY, 0usize)];
+        seen[ENTRY] = true;
+        while let Some((b, next)) = stack.last_mut() {
+            let b = *b;
+            if let Some(e) = self.blocks[b].edges.get(*next) {
+                *next += 1;
+                if !seen[e.to] {
+                    seen[e.to] = true;
+                    stack.push((e.to, 0));
+                }
+            } else {
+                post.push(b);
+                stack.pop();
+            }
+        }
+        post.reverse();
+        post.extend((0..n).filter(|&b| !seen[b]));
+        post
+    }
+
     /// Whether the body's end can be reached by falling off it (not through `RETURN`).
     pub fn end_reachable(&self) -> bool {
         self.reachable()[END]
