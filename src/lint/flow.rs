@@ -20,8 +20,8 @@ use std::collections::{HashMap, HashSet};
 
 use super::context::FileCtx;
 use super::walk;
-use crate::cfg::{BlockId, Cfg, END, ENTRY, EdgeKind, RETURN};
 use crate::catalog::{Direction, catalog};
+use crate::cfg::{BlockId, Cfg, END, ENTRY, EdgeKind, RETURN};
 use crate::diag::{Diagnostic, Severity};
 use crate::sema::{Resolved, Scope, SymbolId};
 use crate::syntax::ast::{Expr, ExprKind, Ident, Routine, Stmt, StmtKind};
