@@ -16,7 +16,7 @@
 //!   paths disagree; constants declared with a literal in the module's `.dat` or `$config.dat`.
 
 use std::cell::RefCell;
-use std::collections::{HashMap, HashSet};
+use std::collections::{BTreeSet, HashMap, HashSet};
 
 use super::context::FileCtx;
 use super::walk;
@@ -190,34 +190,41 @@ impl<'s, 'c, 'p> Walker<'s, 'c, 'p> {
     }
 
     /// The state at the routine's end (falling off it or through RETURN) from `entry`: a
-    /// forward dataflow over the routine's control-flow graph to its fixpoint, then (when
-    /// recording) one pass that checks each statement in the state at its fixpoint.
+    /// forward dataflow over the routine's control-flow graph to its fixpoint (a worklist in
+    /// reverse postorder), then (when recording) one pass that checks each statement in the
+    /// state at its fixpoint. Without loops or backward jumps one pass is the fixpoint.
     fn run_routine(&mut self, entry: State) -> State {
-        let g = &self.graph;
+        let g = self.graph;
         let order = g.forward_order();
+        let rank = ranks(&order);
         let mut ins = vec![State::dead(); g.blocks.len()];
         ins[ENTRY] = entry;
-        let rec = std::mem::replace(&mut self.record, false);
-        loop {
-            let mut changed = false;
-            for &b in &order {
+        let acyclic = acyclic(g, &rank);
+        if !acyclic {
+            let rec = std::mem::replace(&mut self.record, false);
+            let mut dirty: BTreeSet<usize> = (0..order.len()).collect();
+            while let Some(r) = dirty.pop_first() {
+                let b = order[r];
                 let out = self.block(b, ins[b].clone());
-                for e in self.graph.blocks[b].edges.iter().filter(|e| taken(e.kind)) {
+                for e in g.blocks[b].edges.iter().filter(|e| taken(e.kind)) {
                     let joined = ins[e.to].clone().join(out.clone());
                     if joined != ins[e.to] {
                         ins[e.to] = joined;
-                        changed = true;
+                        dirty.insert(rank[e.to]);
                     }
                 }
             }
-            if !changed {
-                break;
-            }
+            self.record = rec;
         }
-        self.record = rec;
-        if rec {
+        if acyclic || self.record {
             for &b in &order {
-                self.block(b, ins[b].clone());
+                let out = self.block(b, ins[b].clone());
+                if acyclic {
+                    for e in g.blocks[b].edges.iter().filter(|e| taken(e.kind)) {
+                        let slot = std::mem::replace(&mut ins[e.to], State::dead());
+                        ins[e.to] = slot.join(out.clone());
+                    }
+                }
             }
         }
         let end = std::mem::replace(&mut ins[END], State::dead());
@@ -451,6 +458,28 @@ fn taken(kind: EdgeKind) -> bool {
     !matches!(kind, EdgeKind::Interrupt | EdgeKind::Trigger)
 }
 
+/// Each block's place in `order`.
+fn ranks(order: &[BlockId]) -> Vec<usize> {
+    let mut rank = vec![0; order.len()];
+    for (i, &b) in order.iter().enumerate() {
+        rank[b] = i;
+    }
+    rank
+}
+
+/// Whether every followed edge out of a reachable block leads later in the order (no loop, no
+/// backward jump): then one pass in order (backward: in reverse) is the fixpoint.
+fn acyclic(g: &Cfg, rank: &[usize]) -> bool {
+    let seen = g.reachable();
+    g.blocks.iter().enumerate().all(|(b, block)| {
+        !seen[b]
+            || block
+                .edges
+                .iter()
+                .all(|e| !taken(e.kind) || rank[e.to] > rank[b])
+    })
+}
+
 /// The MM_ calls that may follow a call statement (local routines by their summary), given
 /// those that may follow the statement.
 fn call_later(sh: &Shared, s: &Stmt, later: u64, out: Option<&mut HashMap<u32, u64>>) -> u64 {
@@ -475,16 +504,20 @@ fn later_calls(sh: &Shared, g: &Cfg, at_end: u64, out: &mut HashMap<u32, u64>) {
     let order = g.forward_order();
     let mut outs = vec![0u64; g.blocks.len()];
     let mut ins = vec![0u64; g.blocks.len()];
-    ins[END] = at_end;
-    ins[RETURN] = at_end;
+    for b in [END, RETURN] {
+        ins[b] = at_end;
+        outs[b] = at_end;
+    }
     let through = |b: BlockId, mut later: u64, out: &mut Option<&mut HashMap<u32, u64>>| {
         for s in g.blocks[b].stmts.iter().rev() {
             later = call_later(sh, s, later, out.as_deref_mut());
         }
         later
     };
-    loop {
-        let mut changed = false;
+    let acyclic = acyclic(g, &ranks(&order));
+    let mut changed = !acyclic;
+    while changed {
+        changed = false;
         for &b in order.iter().rev() {
             let after = g.blocks[b]
                 .edges
@@ -498,12 +531,18 @@ fn later_calls(sh: &Shared, g: &Cfg, at_end: u64, out: &mut HashMap<u32, u64>) {
                 changed = true;
             }
         }
-        if !changed {
-            break;
-        }
     }
-    for &b in &order {
-        through(b, outs[b], &mut Some(out));
+    for &b in order.iter().rev() {
+        if acyclic {
+            outs[b] = g.blocks[b]
+                .edges
+                .iter()
+                .filter(|e| taken(e.kind))
+                .fold(outs[b], |acc, e| acc | ins[e.to]);
+            ins[b] = through(b, outs[b], &mut Some(&mut *out));
+        } else {
+            through(b, outs[b], &mut Some(&mut *out));
+        }
     }
 }
 
