@@ -98,8 +98,17 @@ impl<'a> Builder<'a> {
         }
     }
 
-    /// Builds `body` in a new block entered from `from` by `kind` (no edge if `taken` is
-    /// false: the body is then unreachable), ending with an edge to `after`.
+    /// Opens a new block entered from `from` by `kind` (no edge if `taken` is false: what
+    /// follows is then unreachable).
+    fn enter(&mut self, from: BlockId, kind: EdgeKind, taken: bool) {
+        let b = self.block();
+        if taken {
+            self.edge(from, b, kind);
+        }
+        self.open = Some(b);
+    }
+
+    /// Builds `body` in a block entered as by [`Self::enter`], ending with an edge to `after`.
     fn branch(
         &mut self,
         from: BlockId,
@@ -108,17 +117,13 @@ impl<'a> Builder<'a> {
         body: &'a [Stmt],
         after: BlockId,
     ) {
-        let b = self.block();
-        if taken {
-            self.edge(from, b, kind);
-        }
-        self.open = Some(b);
+        self.enter(from, kind, taken);
         self.stmts(body);
         self.flow_to(after, EdgeKind::Next);
     }
 
-    /// Builds a loop body in a new block entered from `from`, `EXIT` leading to `after`; the
-    /// body's end is left open for the caller's back edge.
+    /// Builds a loop body in a block entered as by [`Self::enter`], `EXIT` leading to
+    /// `after`; the body's end is left open for the caller's back edge.
     fn loop_body(
         &mut self,
         from: BlockId,
@@ -127,11 +132,7 @@ impl<'a> Builder<'a> {
         body: &'a [Stmt],
         after: BlockId,
     ) {
-        let b = self.block();
-        if taken {
-            self.edge(from, b, kind);
-        }
-        self.open = Some(b);
+        self.enter(from, kind, taken);
         self.loops.push(after);
         self.stmts(body);
         self.loops.pop();
