@@ -8,6 +8,7 @@ extern crate alloc;
 
 pub mod aslang;
 pub mod catalog;
+pub mod cfg;
 pub mod cli;
 pub mod diag;
 pub mod diff;

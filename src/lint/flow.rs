@@ -1,4 +1,4 @@
-//! Call-order and known-value analysis over each routine's structured control flow.
+//! Call-order and known-value analysis over each routine's control-flow graph ([`crate::cfg`]).
 //!
 //! Semantics (documented in the MM006/MM007/MM010 rule docs):
 //! - "may" = the set of MM_ calls that happened on at least one path to here. A prerequisite
@@ -6,19 +6,22 @@
 //! - "must" = the calls that happened on every path, first loop iteration only. A `before`
 //!   call (e.g. MM_Switch_Model before MM_Start_Vis) is reported only when the later call has
 //!   definitely run already and cannot run again after it (no following call on any path).
-//! - Loops are walked twice, so a prerequisite later in the loop body counts from the second
-//!   iteration. Calls into routines of the same file are followed (their effect is summarised);
+//! - The analysis runs to its fixpoint over the graph, so a prerequisite later in a loop body
+//!   counts from the second iteration; GOTO, EXIT, RETURN and HALT go where the graph says; an
+//!   INTERRUPT handler or a TRIGGER action is not followed (it runs at an unknown time).
+//!   Calls into routines of the same file are followed (their effect is summarised);
 //!   calls to anything else satisfy nothing. Routines whose callers are unknown (called from
 //!   another file, or never called) start from "anything may have happened": silent.
 //! - Known values: `x = literal` is known until x is written again, passed to a routine, or the
 //!   paths disagree; constants declared with a literal in the module's `.dat` or `$config.dat`.
 
 use std::cell::RefCell;
-use std::collections::{HashMap, HashSet};
+use std::collections::{BTreeSet, HashMap, HashSet};
 
 use super::context::FileCtx;
 use super::walk;
 use crate::catalog::{Direction, catalog};
+use crate::cfg::{BlockId, Cfg, END, ENTRY, EdgeKind, RETURN};
 use crate::diag::{Diagnostic, Severity};
 use crate::sema::{Resolved, Scope, SymbolId};
 use crate::syntax::ast::{Expr, ExprKind, Ident, Routine, Stmt, StmtKind};
@@ -53,7 +56,7 @@ fn names_of(bits: &[String]) -> u64 {
     bits.iter().fold(0, |acc, n| acc | bit(n))
 }
 
-#[derive(Clone, Debug)]
+#[derive(Clone, Debug, PartialEq)]
 struct State {
     dead: bool,
     may: u64,
@@ -148,7 +151,8 @@ impl Shared<'_, '_> {
             vals: HashMap::new(),
             plan: 0,
         };
-        let mut a = Walker::new(self, r, false);
+        let graph = Cfg::of(&r.body);
+        let mut a = Walker::new(self, &graph, false);
         let end = a.run_routine(entry);
         let s = Summary {
             may: if end.dead { 0 } else { end.may },
@@ -162,10 +166,8 @@ impl Shared<'_, '_> {
 
 struct Walker<'s, 'c, 'p> {
     sh: &'s Shared<'c, 'p>,
-    routine: &'s Routine,
+    graph: &'s Cfg<'s>,
     record: bool,
-    labels: HashMap<String, State>,
-    returns: State,
     findings: Vec<Diagnostic>,
     values: HashMap<u32, f64>,
     /// Entry states of local routines called from here, joined over call sites.
@@ -175,13 +177,11 @@ struct Walker<'s, 'c, 'p> {
 }
 
 impl<'s, 'c, 'p> Walker<'s, 'c, 'p> {
-    fn new(sh: &'s Shared<'c, 'p>, routine: &'s Routine, record: bool) -> Self {
+    fn new(sh: &'s Shared<'c, 'p>, graph: &'s Cfg<'s>, record: bool) -> Self {
         Walker {
             sh,
-            routine,
+            graph,
             record,
-            labels: HashMap::new(),
-            returns: State::dead(),
             findings: Vec::new(),
             values: HashMap::new(),
             callsites: HashMap::new(),
@@ -189,43 +189,57 @@ impl<'s, 'c, 'p> Walker<'s, 'c, 'p> {
         }
     }
 
+    /// The state at the routine's end (falling off it or through RETURN) from `entry`: a
+    /// forward dataflow over the routine's control-flow graph to its fixpoint (a worklist in
+    /// reverse postorder), then (when recording) one pass that checks each statement in the
+    /// state at its fixpoint. Without loops or backward jumps one pass is the fixpoint.
     fn run_routine(&mut self, entry: State) -> State {
-        let has_goto = {
-            let mut g = false;
-            walk::each_stmt(&self.routine.body, &mut |s| {
-                g |= matches!(s.kind, StmtKind::Goto { .. })
-            });
-            g
-        };
-        if has_goto {
+        let g = self.graph;
+        let order = g.forward_order();
+        let rank = ranks(&order);
+        let mut ins = vec![State::dead(); g.blocks.len()];
+        ins[ENTRY] = entry;
+        let acyclic = acyclic(g, &rank);
+        if !acyclic {
             let rec = std::mem::replace(&mut self.record, false);
-            let _ = self.block(&self.routine.body, entry.clone());
+            let mut dirty: BTreeSet<usize> = (0..order.len()).collect();
+            while let Some(r) = dirty.pop_first() {
+                let b = order[r];
+                let out = self.block(b, ins[b].clone());
+                for e in g.blocks[b].edges.iter().filter(|e| taken(e.kind)) {
+                    let joined = ins[e.to].clone().join(out.clone());
+                    if joined != ins[e.to] {
+                        ins[e.to] = joined;
+                        dirty.insert(rank[e.to]);
+                    }
+                }
+            }
             self.record = rec;
-            self.returns = State::dead();
         }
-        let end = self.block(&self.routine.body, entry);
-        end.join(std::mem::replace(&mut self.returns, State::dead()))
+        if acyclic || self.record {
+            for &b in &order {
+                let out = self.block(b, ins[b].clone());
+                if acyclic {
+                    for e in g.blocks[b].edges.iter().filter(|e| taken(e.kind)) {
+                        let slot = std::mem::replace(&mut ins[e.to], State::dead());
+                        ins[e.to] = slot.join(out.clone());
+                    }
+                }
+            }
+        }
+        let end = std::mem::replace(&mut ins[END], State::dead());
+        end.join(std::mem::replace(&mut ins[RETURN], State::dead()))
     }
 
-    fn block(&mut self, stmts: &'s [Stmt], mut st: State) -> State {
-        for s in stmts {
+    fn block(&mut self, b: BlockId, mut st: State) -> State {
+        let graph = self.graph;
+        for s in &graph.blocks[b].stmts {
             st = self.stmt(s, st);
         }
         st
     }
 
-    fn looped(&mut self, body: &'s [Stmt], st: State) -> State {
-        if !self.record {
-            // The exploratory pass only needs the state after one iteration. Walking nested
-            // loops twice here too would cost 2^depth.
-            return self.block(body, st);
-        }
-        let rec = std::mem::replace(&mut self.record, false);
-        let first = self.block(body, st.clone());
-        self.record = rec;
-        self.block(body, st.join(first))
-    }
-
+    /// What one statement does to the state; where control goes is the graph's.
     fn stmt(&mut self, s: &'s Stmt, mut st: State) -> State {
         match &s.kind {
             StmtKind::Call { name, args } => self.call(name, args, st),
@@ -246,57 +260,12 @@ impl<'s, 'c, 'p> Walker<'s, 'c, 'p> {
                 }
                 st
             }
-            StmtKind::If {
-                then_body,
-                else_body,
-                ..
-            } => {
-                let t = self.block(then_body, st.clone());
-                let e = self.block(else_body, st);
-                t.join(e)
-            }
-            StmtKind::Switch { cases, default, .. } => {
-                let mut out = State::dead();
-                for c in cases {
-                    let r = self.block(&c.body, st.clone());
-                    out = out.join(r);
-                }
-                match default {
-                    Some(d) => out.join(self.block(d, st)),
-                    None => out.join(st),
-                }
-            }
-            StmtKind::For { var, body, .. } => {
+            StmtKind::For { var, .. } => {
                 if let Some(k) = self.sh.symbol(var) {
                     st.vals.remove(&k);
                 }
-                let after = self.looped(body, st.clone());
-                st.join(after)
+                st
             }
-            StmtKind::While { body, .. } | StmtKind::Loop { body } => {
-                let after = self.looped(body, st.clone());
-                st.join(after)
-            }
-            StmtKind::Repeat { body, .. } => self.looped(body, st),
-            StmtKind::Spline { body, .. } => self.block(body, st),
-            // The block may be skipped when its condition holds at the start.
-            StmtKind::Skip { body, .. } => {
-                let t = self.block(body, st.clone());
-                st.join(t)
-            }
-            StmtKind::Return { .. } => {
-                self.returns = std::mem::replace(&mut self.returns, State::dead()).join(st);
-                State::dead()
-            }
-            StmtKind::Goto { label } => {
-                let slot = self.labels.remove(&label.key()).unwrap_or_else(State::dead);
-                self.labels.insert(label.key(), slot.join(st));
-                State::dead()
-            }
-            StmtKind::Label { name } => match self.labels.get(&name.key()) {
-                Some(l) => st.join(l.clone()),
-                None => st,
-            },
             _ => st,
         }
     }
@@ -483,70 +452,98 @@ fn alternatives(names: &[String]) -> String {
     }
 }
 
-/// Backward pass: which MM_ calls may still follow each MM_ call.
-fn later_calls(sh: &Shared, stmts: &[Stmt], mut later: u64, out: &mut HashMap<u32, u64>) -> u64 {
-    for s in stmts.iter().rev() {
-        later = match &s.kind {
-            StmtKind::Call { name, .. } => {
-                if sh.ctx.subprogram(&name.text).is_some() {
-                    out.insert(name.span.start, later);
-                    later | bit(&name.text)
-                } else if let Some(r) = sh.local_routine(name) {
-                    later | sh.summary(r).may
-                } else {
-                    later
-                }
-            }
-            StmtKind::If {
-                then_body,
-                else_body,
-                ..
-            } => later_calls(sh, then_body, later, out) | later_calls(sh, else_body, later, out),
-            StmtKind::Switch { cases, default, .. } => {
-                let mut acc = if default.is_none() { later } else { 0 };
-                for c in cases {
-                    acc |= later_calls(sh, &c.body, later, out);
-                }
-                if let Some(d) = default {
-                    acc |= later_calls(sh, d, later, out);
-                }
-                acc
-            }
-            StmtKind::For { body, .. }
-            | StmtKind::While { body, .. }
-            | StmtKind::Loop { body }
-            | StmtKind::Repeat { body, .. } => {
-                // From the second iteration on, every call of the body may follow (linear, where
-                // a nested backward pass per loop level would be exponential).
-                let first = later | calls_in(sh, body);
-                later | later_calls(sh, body, first, out)
-            }
-            StmtKind::Spline { body, .. } => later_calls(sh, body, later, out),
-            StmtKind::Skip { body, .. } => later | later_calls(sh, body, later, out),
-            _ => later,
-        };
-    }
-    later
+/// Whether the analysis follows an edge of this kind. An INTERRUPT handler or a TRIGGER action
+/// runs at a time the analysis does not know: its calls neither satisfy nor follow others.
+fn taken(kind: EdgeKind) -> bool {
+    !matches!(kind, EdgeKind::Interrupt | EdgeKind::Trigger)
 }
 
-/// Every MM_ call that may happen in `stmts` (local routines by their summary), in any order:
-/// what [`later_calls`] accumulates over the same statements.
-fn calls_in(sh: &Shared, stmts: &[Stmt]) -> u64 {
-    let mut bits = 0;
-    for s in stmts {
-        match &s.kind {
-            StmtKind::Call { name, .. } => {
-                if sh.ctx.subprogram(&name.text).is_some() {
-                    bits |= bit(&name.text);
-                } else if let Some(r) = sh.local_routine(name) {
-                    bits |= sh.summary(r).may;
-                }
+/// Each block's place in `order`.
+fn ranks(order: &[BlockId]) -> Vec<usize> {
+    let mut rank = vec![0; order.len()];
+    for (i, &b) in order.iter().enumerate() {
+        rank[b] = i;
+    }
+    rank
+}
+
+/// Whether every followed edge out of a reachable block leads later in the order (no loop, no
+/// backward jump): then one pass in order (backward: in reverse) is the fixpoint.
+fn acyclic(g: &Cfg, rank: &[usize]) -> bool {
+    let seen = g.reachable();
+    g.blocks.iter().enumerate().all(|(b, block)| {
+        !seen[b]
+            || block
+                .edges
+                .iter()
+                .all(|e| !taken(e.kind) || rank[e.to] > rank[b])
+    })
+}
+
+/// The MM_ calls that may follow a call statement (local routines by their summary), given
+/// those that may follow the statement.
+fn call_later(sh: &Shared, s: &Stmt, later: u64, out: Option<&mut HashMap<u32, u64>>) -> u64 {
+    let StmtKind::Call { name, .. } = &s.kind else {
+        return later;
+    };
+    if sh.ctx.subprogram(&name.text).is_some() {
+        if let Some(out) = out {
+            out.insert(name.span.start, later);
+        }
+        later | bit(&name.text)
+    } else if let Some(r) = sh.local_routine(name) {
+        later | sh.summary(r).may
+    } else {
+        later
+    }
+}
+
+/// Backward pass over the graph: which MM_ calls may still follow each MM_ call, `at_end`
+/// following the routine's end.
+fn later_calls(sh: &Shared, g: &Cfg, at_end: u64, out: &mut HashMap<u32, u64>) {
+    let order = g.forward_order();
+    let mut outs = vec![0u64; g.blocks.len()];
+    let mut ins = vec![0u64; g.blocks.len()];
+    for b in [END, RETURN] {
+        ins[b] = at_end;
+        outs[b] = at_end;
+    }
+    let through = |b: BlockId, mut later: u64, out: &mut Option<&mut HashMap<u32, u64>>| {
+        for s in g.blocks[b].stmts.iter().rev() {
+            later = call_later(sh, s, later, out.as_deref_mut());
+        }
+        later
+    };
+    let acyclic = acyclic(g, &ranks(&order));
+    let mut changed = !acyclic;
+    while changed {
+        changed = false;
+        for &b in order.iter().rev() {
+            let after = g.blocks[b]
+                .edges
+                .iter()
+                .filter(|e| taken(e.kind))
+                .fold(outs[b], |acc, e| acc | ins[e.to]);
+            outs[b] = after;
+            let before = through(b, after, &mut None);
+            if before != ins[b] {
+                ins[b] = before;
+                changed = true;
             }
-            StmtKind::InterruptDecl { .. } | StmtKind::Trigger { .. } => {}
-            _ => s.for_each_body(|body| bits |= calls_in(sh, body)),
         }
     }
-    bits
+    for &b in order.iter().rev() {
+        if acyclic {
+            outs[b] = g.blocks[b]
+                .edges
+                .iter()
+                .filter(|e| taken(e.kind))
+                .fold(outs[b], |acc, e| acc | ins[e.to]);
+            ins[b] = through(b, outs[b], &mut Some(&mut *out));
+        } else {
+            through(b, outs[b], &mut Some(&mut *out));
+        }
+    }
 }
 
 /// Analyse every user routine of the file.
@@ -639,8 +636,9 @@ pub fn analyze(ctx: &FileCtx) -> FlowResult {
         } else {
             ALL
         };
-        let mut w = Walker::new(&sh, r, true);
-        later_calls(&sh, &r.body, exit_later, &mut w.follows);
+        let graph = Cfg::of(&r.body);
+        let mut w = Walker::new(&sh, &graph, true);
+        later_calls(&sh, &graph, exit_later, &mut w.follows);
         w.run_routine(entry);
         for (c, st) in w.callsites.drain() {
             let slot = entries.remove(&c).unwrap_or_else(State::dead);

@@ -19,6 +19,7 @@ mod stream;
 pub use stream::SummaryBuilder;
 
 use super::ty::Sizes;
+use crate::cfg::Cfg;
 use crate::diag::Span;
 use crate::syntax::ast::{
     self, BinaryOp, Decl, Definition, Expr, ExprKind, ExtKind, Ident, ParamDir, RoutineKind,
@@ -1060,111 +1061,37 @@ pub(crate) fn const_value(e: &Expr) -> Option<ConstValue> {
     })
 }
 
-/// How a statement list can end: falling off its end, or leaving the innermost loop (EXIT).
-#[derive(Clone, Copy)]
-struct Ends {
-    falls: bool,
-    exits: bool,
-}
-
-/// Whether a DEFFCT body can reach ENDFCT without RETURN. GOTO and lines that did not parse
-/// make the answer unknown: then `false` (never reported).
+/// Whether a DEFFCT body can reach ENDFCT without RETURN, from its control-flow graph. GOTO,
+/// labels and lines that did not parse make the answer unknown: then `false` (never reported).
+/// The graph follows GOTO exactly, but the streamed summary holds one statement at a time and
+/// must give the same answer (see [`StmtEnds`]).
 fn falls_off_end(body: &[Stmt]) -> bool {
     // An empty function is a stub or a template, not a forgotten RETURN.
     if body.is_empty() {
         return false;
     }
-    let mut unknown = false;
-    ast::each_stmt(body, &mut |s| {
-        unknown |= matches!(
-            s.kind,
-            StmtKind::Goto { .. } | StmtKind::Label { .. } | StmtKind::Error { .. }
-        );
-    });
-    !unknown && ends(body).falls
+    let g = Cfg::of(body);
+    !(g.has_jumps || g.has_errors) && g.end_reachable()
 }
 
-fn ends(stmts: &[Stmt]) -> Ends {
-    let mut exits = false;
-    for s in stmts {
-        let e = stmt_ends(s);
-        exits |= e.exits;
-        if !e.falls {
-            return Ends {
-                falls: false,
-                exits,
-            };
-        }
-    }
-    Ends { falls: true, exits }
+/// How one top-level statement of a routine ends, for the streamed summary: whether control
+/// can leave it at its end, and whether it jumps or did not parse (the answer is unknown).
+pub(super) struct StmtEnds {
+    pub falls: bool,
+    pub unknown: bool,
 }
 
-fn literal_bool(e: &Expr) -> Option<bool> {
-    match e.kind {
-        ExprKind::Bool(b) => Some(b),
-        _ => None,
-    }
-}
-
-fn stmt_ends(s: &Stmt) -> Ends {
-    let falls = |falls| Ends {
-        falls,
-        exits: false,
-    };
-    match &s.kind {
-        // HALT: the program stops there (integrators write `DEFAULT HALT` for "cannot happen").
-        StmtKind::Return { .. } | StmtKind::Halt => falls(false),
-        StmtKind::Exit => Ends {
-            falls: false,
-            exits: true,
-        },
-        StmtKind::If {
-            then_body,
-            else_body,
-            ..
-        } => {
-            let (t, e) = (ends(then_body), ends(else_body));
-            Ends {
-                falls: t.falls || e.falls,
-                exits: t.exits || e.exits,
-            }
-        }
-        StmtKind::Switch { cases, default, .. } => {
-            // Without DEFAULT a SWITCH falls through, unless every CASE names ENUM values:
-            // then it is taken to cover the ENUM (the model does not know it here).
-            let enum_cases = !cases.is_empty()
-                && cases
-                    .iter()
-                    .all(|c| c.values.iter().all(|v| matches!(v.kind, ExprKind::Enum(_))));
-            let mut out = Ends {
-                falls: default.is_none() && !enum_cases,
-                exits: false,
-            };
-            for b in cases
-                .iter()
-                .map(|c| c.body.as_slice())
-                .chain(default.as_deref())
-            {
-                let e = ends(b);
-                out.falls |= e.falls;
-                out.exits |= e.exits;
-            }
-            out
-        }
-        StmtKind::Loop { body } => falls(ends(body).exits),
-        StmtKind::While { cond, body } => {
-            falls(literal_bool(cond) != Some(true) || ends(body).exits)
-        }
-        StmtKind::Repeat { body, until } => {
-            let b = ends(body);
-            let endless = until.as_ref().and_then(literal_bool) == Some(false);
-            falls(b.exits || (b.falls && !endless))
-        }
-        StmtKind::Skip { body, .. } | StmtKind::Spline { body, .. } => Ends {
+pub(super) fn stmt_ends(s: &Stmt) -> StmtEnds {
+    if crate::cfg::is_straight(s) {
+        return StmtEnds {
             falls: true,
-            exits: ends(body).exits,
-        },
-        _ => falls(true),
+            unknown: false,
+        };
+    }
+    let g = Cfg::of(std::slice::from_ref(s));
+    StmtEnds {
+        falls: g.end_reachable(),
+        unknown: g.has_jumps || g.has_errors,
     }
 }
 
@@ -1197,6 +1124,13 @@ mod tests {
             missing(text),
             [true, false, false, true, false, false, false]
         );
+    }
+
+    #[test]
+    fn a_literal_condition_takes_one_way() {
+        let text = "DEFFCT INT a()\nIF TRUE THEN\nRETURN 1\nENDIF\nENDFCT\n\
+                    DEFFCT INT b()\nIF FALSE THEN\nRETURN 1\nENDIF\nENDFCT\n";
+        assert_eq!(missing(text), [false, true]);
     }
 
     #[test]

@@ -3,9 +3,7 @@
 
 use super::deferred::Deferred;
 use super::{FileSummary, NONE, RoutineItem, Summarizer, stmt_ends};
-use crate::syntax::ast::{
-    self, DatModule, Definition, Lowered, Routine, RoutineKind, Stmt, StmtKind,
-};
+use crate::syntax::ast::{DatModule, Definition, Lowered, Routine, RoutineKind, Stmt, StmtKind};
 
 /// The routine or data list being summarised.
 enum Open {
@@ -124,13 +122,9 @@ impl SummaryBuilder {
                     }
                 }
                 r.any = true;
-                ast::each_stmt(std::slice::from_ref(&st), &mut |s| {
-                    r.unknown |= matches!(
-                        s.kind,
-                        StmtKind::Goto { .. } | StmtKind::Label { .. } | StmtKind::Error { .. }
-                    );
-                });
-                r.falls &= stmt_ends(&st).falls;
+                let ends = stmt_ends(&st);
+                r.unknown |= ends.unknown;
+                r.falls &= ends.falls;
                 self.s.stmt(&st);
             }
         }
@@ -189,7 +183,7 @@ mod tests {
     use super::*;
 
     fn streamed_with(text: &str, mut b: SummaryBuilder) -> Option<FileSummary> {
-        let mut lowerer = ast::PieceLowerer::new(text);
+        let mut lowerer = crate::syntax::ast::PieceLowerer::new(text);
         let mut followed = true;
         crate::syntax::parse_pieces(text, |p| lowerer.lower(p, |e| followed &= b.add(e)));
         followed.then(|| b.finish())
