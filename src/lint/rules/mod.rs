@@ -15,6 +15,7 @@ pub mod krl015;
 pub mod krl016;
 pub mod krl017;
 pub mod krl018;
+pub mod krl019;
 pub mod mm001;
 pub mod mm002;
 pub mod mm003;
@@ -26,6 +27,7 @@ pub mod mm008;
 pub mod mm009;
 pub mod mm010;
 pub mod mm011;
+mod near;
 
 use super::context::FileCtx;
 use super::walk;
