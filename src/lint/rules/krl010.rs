@@ -1,10 +1,7 @@
+use super::near::{Candidates, Near, undeclared_vars};
 use crate::diag::{Diagnostic, Severity};
 use crate::lint::context::FileCtx;
 use crate::lint::registry::{Check, Rule};
-use rustc_hash::FxHashSet;
-
-use super::near::{Candidates, Near};
-use crate::sema::{Access, Resolved, UseKind};
 
 pub static RULE: Rule = Rule {
     code: "KRL010",
@@ -22,29 +19,10 @@ fn check(ctx: &FileCtx, out: &mut Vec<Diagnostic>) {
     }
     let sema = ctx.sema;
     let mut near = Near::new(sema, ctx.id, Candidates::All);
-    // A name undeclared twice on one line (`n = n + 1`) is one mistake.
-    let mut seen = FxHashSet::default();
-    for (i, u) in sema.uses(ctx.id).iter().enumerate() {
-        if u.kind != UseKind::Var
-            || u.access == Access::Mention
-            || sema.resolution(ctx.id, i) != Resolved::Unresolved
-        {
-            continue;
-        }
-        let name = sema.name(sema.use_name(u));
-        if name.starts_with('$') || ctx.in_environment(sema.use_name(u)) {
-            continue;
-        }
-        // A routine's name used without parentheses is another mistake, reported elsewhere.
-        let at = sema.position(ctx.id, u.span.start);
-        if sema.lookup_call(at, name) != Resolved::Unresolved {
-            continue;
-        }
-        if !seen.insert((ctx.lines().line_of(u.span.start as usize), sema.use_name(u))) {
-            continue;
-        }
-        let d = Diagnostic::error(RULE.code, u.span, format!("`{name}` is not declared"));
-        let help = match near.suggest(at.routine, sema.use_name(u)) {
+    for (span, id, at) in undeclared_vars(ctx) {
+        let name = sema.name(id);
+        let d = Diagnostic::error(RULE.code, span, format!("`{name}` is not declared"));
+        let help = match near.suggest(at.routine, id) {
             Some(n) => format!("did you mean `{n}`?"),
             None => "declare it in the routine, in the module's .dat, or GLOBAL in a PUBLIC \
                      data list"
@@ -56,22 +34,11 @@ fn check(ctx: &FileCtx, out: &mut Vec<Diagnostic>) {
 
 #[cfg(test)]
 mod tests {
-    use crate::lint::{Input, LintConfig, lint};
+    use crate::lint::LintConfig;
 
     fn helps(src: &str) -> Vec<String> {
-        let inputs = vec![
-            Input {
-                path: "$config.dat".into(),
-                text: "DEFDAT $CONFIG\nENDDAT\n".into(),
-            },
-            Input {
-                path: "cell.src".into(),
-                text: src.into(),
-            },
-        ];
-        lint(inputs, Vec::new(), false, &LintConfig::default())
+        super::super::lint_robot(src, &LintConfig::default())
             .into_iter()
-            .flat_map(|r| r.diagnostics)
             .filter(|d| d.code == "KRL010")
             .map(|d| d.help.as_deref().unwrap_or("").to_owned())
             .collect()

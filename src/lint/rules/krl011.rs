@@ -64,22 +64,12 @@ fn check(ctx: &FileCtx, out: &mut Vec<Diagnostic>) {
 
 #[cfg(test)]
 mod tests {
-    use crate::lint::{Input, LintConfig, lint};
+    use crate::lint::LintConfig;
 
     fn codes(config: &LintConfig) -> Vec<&'static str> {
-        let inputs = vec![
-            Input {
-                path: "$config.dat".into(),
-                text: "DEFDAT $CONFIG\nENDDAT\n".into(),
-            },
-            Input {
-                path: "cell.src".into(),
-                text: "DEF cell()\n  ST_ETHERNET(1, 0, \"rsi.xml\")\n  FRIOPEN(10)\nEND\n".into(),
-            },
-        ];
-        lint(inputs, Vec::new(), false, config)
+        let src = "DEF cell()\n  ST_ETHERNET(1, 0, \"rsi.xml\")\n  FRIOPEN(10)\nEND\n";
+        super::super::lint_robot(src, config)
             .into_iter()
-            .flat_map(|r| r.diagnostics)
             .map(|d| d.code)
             .collect()
     }

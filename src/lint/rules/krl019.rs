@@ -1,11 +1,11 @@
-use rustc_hash::{FxHashMap, FxHashSet};
+use rustc_hash::FxHashMap;
 
-use super::near::{Candidates, Near};
+use super::near::{Candidates, Near, undeclared_vars};
 use crate::diag::{Diagnostic, Severity};
 use crate::lint::context::FileCtx;
 use crate::lint::registry::{Check, Rule};
 use crate::lint::text::typo_of;
-use crate::sema::{Access, NameId, Resolved, RoutineId, UseKind};
+use crate::sema::{NameId, Resolved, RoutineId};
 
 pub static RULE: Rule = Rule {
     code: "KRL019",
@@ -26,33 +26,15 @@ fn check(ctx: &FileCtx, out: &mut Vec<Diagnostic>) {
     }
     let sema = ctx.sema;
     let mut near = Near::new(sema, ctx.id, Candidates::Given);
-    let mut seen = FxHashSet::default();
-    for (i, u) in sema.uses(ctx.id).iter().enumerate() {
-        if u.kind != UseKind::Var
-            || u.access == Access::Mention
-            || sema.resolution(ctx.id, i) != Resolved::Unresolved
-        {
-            continue;
-        }
-        let id = sema.use_name(u);
-        let name = sema.name(id);
-        if name.starts_with('$') || ctx.in_environment(id) {
-            continue;
-        }
-        let at = sema.position(ctx.id, u.span.start);
-        if sema.lookup_call(at, name) != Resolved::Unresolved {
-            continue;
-        }
+    for (span, id, at) in undeclared_vars(ctx) {
         let Some(typo_of) = near.suggest(at.routine, id) else {
             continue;
         };
-        if !seen.insert((ctx.lines().line_of(u.span.start as usize), id)) {
-            continue;
-        }
+        let name = sema.name(id);
         out.push(
             Diagnostic::warning(
                 RULE.code,
-                u.span,
+                span,
                 format!("`{name}` is declared in none of the files given: a typo of `{typo_of}`?"),
             )
             .with_help(format!("write `{typo_of}`; {HELP}")),

@@ -94,3 +94,23 @@ pub fn user_calls<'a>(
         Some((c, sig, ext))
     })
 }
+
+/// The findings of `src` as `cell.src` beside an empty `$config.dat` (a whole robot), under
+/// `config`.
+#[cfg(test)]
+pub(crate) fn lint_robot(src: &str, config: &super::LintConfig) -> Vec<crate::diag::Diagnostic> {
+    let inputs = vec![
+        super::Input {
+            path: "$config.dat".into(),
+            text: "DEFDAT $CONFIG\nENDDAT\n".into(),
+        },
+        super::Input {
+            path: "cell.src".into(),
+            text: src.into(),
+        },
+    ];
+    super::lint(inputs, Vec::new(), false, config)
+        .into_iter()
+        .flat_map(|r| r.diagnostics)
+        .collect()
+}

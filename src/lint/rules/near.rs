@@ -2,8 +2,10 @@
 
 use rustc_hash::FxHashMap;
 
+use crate::diag::Span;
+use crate::lint::context::FileCtx;
 use crate::lint::text::typo_of;
-use crate::sema::{FileId, NameId, Position, Resolved, RoutineId, Sema};
+use crate::sema::{Access, FileId, NameId, Position, Resolved, RoutineId, Sema, UseKind};
 
 /// Which visible variables may be suggested.
 #[derive(Clone, Copy, PartialEq, Eq)]
@@ -95,4 +97,36 @@ fn given(sema: &Sema, at: Position, name: &str) -> bool {
         Resolved::Symbol(s) => sema.symbol(s).decl.is_some(),
         _ => false,
     }
+}
+
+/// The variables a file uses that are declared nowhere visible (KRL010, KRL019): not `$`
+/// names (the controller has more than krlkit lists), not names KUKA's own files use, not a
+/// routine's name without parentheses (another mistake); once per name and line (`n = n + 1`
+/// is one mistake). With the use's span, name and position.
+pub fn undeclared_vars<'a>(
+    ctx: &'a FileCtx<'a>,
+) -> impl Iterator<Item = (Span, NameId, Position)> + 'a {
+    let sema = ctx.sema;
+    let mut seen = rustc_hash::FxHashSet::default();
+    sema.uses(ctx.id)
+        .iter()
+        .enumerate()
+        .filter(move |&(i, u)| {
+            u.kind == UseKind::Var
+                && u.access != Access::Mention
+                && sema.resolution(ctx.id, i) == Resolved::Unresolved
+        })
+        .filter_map(move |(_, u)| {
+            let id = sema.use_name(u);
+            let name = sema.name(id);
+            if name.starts_with('$') || ctx.in_environment(id) {
+                return None;
+            }
+            let at = sema.position(ctx.id, u.span.start);
+            if sema.lookup_call(at, name) != Resolved::Unresolved {
+                return None;
+            }
+            seen.insert((ctx.lines().line_of(u.span.start as usize), id))
+                .then_some((u.span, id, at))
+        })
 }
