@@ -25,6 +25,9 @@ pub struct LintConfig {
     /// The interface version `MM_` calls are checked against; `None`: detected from the
     /// package routines among the checked files, else 1.x.
     pub interface: Option<Interface>,
+    /// Optional technology packages installed on the controller (`kss.toml` `[[package]]`):
+    /// the names their programs use are known.
+    pub packages: Vec<&'static str>,
 }
 
 /// A problem in the config, with the line it is on (1-based; 0 when unknown).
@@ -98,12 +101,38 @@ impl LintConfig {
                     }
                 }
                 "interface" => cfg.interface = Some(interface(v, "interface")?),
+                "packages" => {
+                    let known = || {
+                        let names: Vec<&str> = crate::sema::env()
+                            .packages
+                            .iter()
+                            .map(|p| p.name.as_str())
+                            .collect();
+                        names.join(", ")
+                    };
+                    let list = v.as_array().ok_or_else(|| {
+                        err(
+                            "packages",
+                            format!("`packages` must be a list of: {}", known()),
+                        )
+                    })?;
+                    for p in list {
+                        let found = p.as_str().and_then(|p| crate::sema::env().package(p));
+                        let found = found.ok_or_else(|| {
+                            err(
+                                "packages",
+                                format!("unknown package {p}: known are {}", known()),
+                            )
+                        })?;
+                        cfg.packages.push(found.name.as_str());
+                    }
+                }
                 other => {
                     return Err(err(
                         other,
                         format!(
-                            "unknown key `lint.{other}` (expected `disable`, `severity` or \
-                             `interface`)"
+                            "unknown key `lint.{other}` (expected `disable`, `severity`, \
+                             `interface` or `packages`)"
                         ),
                     ));
                 }
@@ -170,6 +199,14 @@ mod tests {
         .expect("valid");
         assert!(c.disabled.contains("MM008"));
         assert_eq!(c.severity.get("MM011"), Some(&Severity::Error));
+    }
+
+    #[test]
+    fn reads_packages() {
+        let c = LintConfig::from_toml("k.toml", "[lint]\npackages = [\"RSI_KRC2\"]\n").unwrap();
+        assert_eq!(c.packages, ["rsi_krc2"]);
+        let e = LintConfig::from_toml("k.toml", "[lint]\npackages = [\"arc\"]\n").unwrap_err();
+        assert!(e.message.contains("rsi_krc2"), "{e}");
     }
 
     #[test]

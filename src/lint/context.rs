@@ -302,6 +302,8 @@ pub struct Project {
     pub environment: HashSet<(RobotId, NameId)>,
     /// The interface version calls are checked against, and why.
     pub interface: super::interface::Selected,
+    /// Optional technology packages the config switches on (`[lint] packages`).
+    pub packages: Vec<&'static str>,
 }
 
 impl Project {
@@ -329,6 +331,7 @@ impl Project {
             owned_flags: HashMap::new(),
             environment: HashSet::new(),
             interface,
+            packages: Vec::new(),
         };
         for s in sockets {
             s.owned_flags(&p.channels, &mut p.owned_flags);
@@ -336,9 +339,18 @@ impl Project {
         p
     }
 
-    /// Learn [`Project::environment`] from the model.
+    /// Learn [`Project::environment`] from the model, and from the names of the optional
+    /// packages switched on.
     pub fn learn_environment(&mut self, sema: &Sema) {
         self.environment.clear();
+        let env = crate::sema::env();
+        for p in self.packages.iter().filter_map(|p| env.package(p)) {
+            for n in p.names.iter().filter_map(|n| sema.names.get(n)) {
+                for (r, _) in sema.robots() {
+                    self.environment.insert((r, n));
+                }
+            }
+        }
         for (id, f) in sema.files().filter(|(_, f)| f.vendor) {
             for (i, u) in sema.uses(id).iter().enumerate() {
                 if u.kind != UseKind::Type

@@ -162,6 +162,7 @@ pub fn lint_workspace(
         rest.iter().filter_map(|(_, a)| a.as_ref()),
         interface::select(config.interface, &sema),
     );
+    project.packages = config.packages.clone();
     project.learn_environment(&sema);
     let reports: Vec<FileReport> = rest
         .into_par_iter()

@@ -47,6 +47,7 @@ pub static RULES: &[&Rule] = &[
     &rules::krl016::RULE,
     &rules::krl017::RULE,
     &rules::krl018::RULE,
+    &rules::krl019::RULE,
     &rules::mm001::RULE,
     &rules::mm002::RULE,
     &rules::mm003::RULE,

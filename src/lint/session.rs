@@ -133,6 +133,7 @@ impl Session {
             self.meta.iter().flat_map(|m| &m.sockets),
             super::interface::select(self.config.interface, &self.sema),
         );
+        self.project.packages = self.config.packages.clone();
         self.project.learn_environment(&self.sema);
     }
 

@@ -74,6 +74,61 @@ pub fn near_enough(name: &str) -> usize {
     name.len().div_ceil(3).max(2)
 }
 
+/// Whether `name` reads as a typo of `candidate`: one slip of the keys apart (one character
+/// wrong, missing, extra, or two neighbours swapped: `Gripper_Opne`), case aside; both at
+/// least 4 characters long; and not two members of a family (`XP1`/`XP2`, `part2_ok`/
+/// `part3_ok`, `LocalLamp`/`local_lamp`, `layer`/`layers`), which differ in digits,
+/// underscores or a plural's `s` only and are each declared on purpose.
+/// Stricter than [`near_enough`]: `pick_pose` is no typo of `pick_count`, nor `status` of
+/// `g_status`.
+pub fn typo_of(name: &str, candidate: &str) -> bool {
+    const SHORTEST: usize = 4;
+    let up = |s: &str| -> Vec<char> { s.chars().map(|c| c.to_ascii_uppercase()).collect() };
+    let (a, b) = (up(name), up(candidate));
+    if a.len() < SHORTEST || b.len() < SHORTEST || a == b {
+        return false;
+    }
+    // Names of one family: the same but for digits (`XP1`, `XP2`), underscores (`LocalLamp`,
+    // `local_lamp`) or a plural's `S` (`layer`, `layers`).
+    let letters = |v: &[char]| -> Vec<char> {
+        let v: Vec<char> = v
+            .iter()
+            .copied()
+            .filter(|c| !c.is_ascii_digit() && *c != '_')
+            .collect();
+        match v.split_last() {
+            Some((&'S', rest)) => rest.to_vec(),
+            _ => v,
+        }
+    };
+    if letters(&a) == letters(&b) {
+        return false;
+    }
+    let (short, long) = if a.len() <= b.len() {
+        (&a, &b)
+    } else {
+        (&b, &a)
+    };
+    let head = short
+        .iter()
+        .zip(long.iter())
+        .take_while(|(x, y)| x == y)
+        .count();
+    match long.len() - short.len() {
+        // One extra character.
+        1 => short[head..] == long[head + 1..],
+        // One wrong character, or two neighbours swapped.
+        0 => {
+            short[head + 1..] == long[head + 1..]
+                || (head + 1 < short.len()
+                    && short[head] == long[head + 1]
+                    && short[head + 1] == long[head]
+                    && short[head + 2..] == long[head + 2..])
+        }
+        _ => false,
+    }
+}
+
 /// The candidate nearest to `name`, if reasonably near ([`near_enough`]); of equally near
 /// ones the first in text order.
 pub fn nearest<'a>(name: &str, candidates: impl IntoIterator<Item = &'a str>) -> Option<&'a str> {
@@ -94,6 +149,34 @@ mod tests {
         let got: Vec<(usize, &str)> = lines("a\r\nbc\rd\n\ne").collect();
         assert_eq!(got, [(0, "a"), (3, "bc"), (6, "d"), (8, ""), (9, "e")]);
         assert_eq!(lines("").count(), 0);
+    }
+
+    #[test]
+    fn typos_are_one_slip_and_not_numbered_families() {
+        for (a, b) in [
+            ("Gripper_Opne", "Gripper_Open"),
+            ("part_countr", "part_count"),
+            ("grip_forse", "grip_force"),
+            ("speed", "SPEEED"),
+            ("xpick", "pick"),
+            ("speeds", "speedy"),
+        ] {
+            assert!(typo_of(a, b), "{a} {b}");
+            assert!(typo_of(b, a), "{b} {a}");
+        }
+        for (a, b) in [
+            ("pick_cnt", "PICK_CNT"),
+            ("pick_count", "pick_pose"),
+            ("g_status", "status"),
+            ("cnt", "cnx"),
+            ("XP12", "XP1"),
+            ("part2_ok", "part3_ok"),
+            ("abcd", "badc"),
+            ("local_lamp", "LocalLamp"),
+            ("layers", "layer"),
+        ] {
+            assert!(!typo_of(a, b), "{a} {b}");
+        }
     }
 
     #[test]

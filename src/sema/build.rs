@@ -368,8 +368,9 @@ impl Sema {
         }
         // After the files, so names keep the spelling the user's code gives them.
         b.environment(&mut names);
+        let nameless = names.get("");
         for i in 0..b.sema.files.len() {
-            b.items(FileId(i as u32));
+            b.items(FileId(i as u32), nameless);
         }
         b.sema.names = names;
         let Sema { files, scopes, .. } = &mut b.sema;
@@ -751,7 +752,8 @@ impl Builder {
         self.sema.symbols[b.index()].unverified = true;
     }
 
-    fn items(&mut self, file: FileId) {
+    /// `nameless`: the empty name, if interned (a routine whose header is not KRL has it).
+    fn items(&mut self, file: FileId, nameless: Option<NameId>) {
         let fi = file.index();
         let info = self.sema.files[fi].info.clone();
         let robot_wide = self.sema.files[fi].robot_wide;
@@ -777,6 +779,11 @@ impl Builder {
             self.sema.scopes.routine.push(Table::default());
             ids.push(id);
             let name = NameId(r.name);
+            // A header that is not KRL (`DEF _Wrap(a:REAL)`) leaves a routine without a name:
+            // it declares nothing.
+            if Some(name) == nameless {
+                continue;
+            }
             let here = Loc {
                 file,
                 span: r.name_span,

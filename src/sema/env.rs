@@ -19,6 +19,18 @@ struct Raw {
     variables: Vec<RawEntry>,
     #[serde(rename = "routine")]
     routines: Vec<RawEntry>,
+    #[serde(rename = "package", default)]
+    packages: Vec<EnvPackage>,
+}
+
+/// An optional technology package (`[lint] packages = [...]` switches it on): the names its
+/// programs use, known to exist on a controller that has it installed. Not typed.
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct EnvPackage {
+    pub name: String,
+    pub doc: String,
+    pub names: Vec<String>,
 }
 
 #[derive(Debug, Deserialize)]
@@ -116,8 +128,19 @@ pub struct Env {
     pub types: Vec<EnvType>,
     pub variables: Vec<EnvVariable>,
     pub routines: Vec<EnvRoutine>,
+    /// Optional technology packages, off unless the lint config names them.
+    pub packages: Vec<EnvPackage>,
     /// Entries whose `decl` did not parse as expected (the env tests require none).
     pub rejected: Vec<String>,
+}
+
+impl Env {
+    /// The optional package called `name` (case-insensitive).
+    pub fn package(&self, name: &str) -> Option<&EnvPackage> {
+        self.packages
+            .iter()
+            .find(|p| p.name.eq_ignore_ascii_case(name))
+    }
 }
 
 /// The environment, parsed on first use.
@@ -139,6 +162,7 @@ fn load(text: &str) -> Env {
                 types: Vec::new(),
                 variables: Vec::new(),
                 routines: Vec::new(),
+                packages: Vec::new(),
                 rejected: vec![format!("kss.toml: {e}")],
             };
         }
@@ -147,6 +171,7 @@ fn load(text: &str) -> Env {
         types: Vec::new(),
         variables: Vec::new(),
         routines: Vec::new(),
+        packages: raw.packages,
         rejected: Vec::new(),
     };
     for e in raw.types {

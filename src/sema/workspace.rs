@@ -20,7 +20,8 @@ pub struct WorkspaceFile {
     pub path: String,
     /// Decoded text (see [`crate::syntax::decode`]).
     pub text: String,
-    /// Which of the paths given it came from (robots never span two).
+    /// Which of the paths given it came from (robots never span two); files named one by one
+    /// all have the first one's.
     pub group: u32,
 }
 
@@ -132,10 +133,15 @@ impl Workspace {
     }
 
     fn load_into(mut ws: Workspace, paths: &[PathBuf]) -> Workspace {
+        // Files named one by one are one program (`check prog.src $config.dat`): they share
+        // the group of the first of them, so their robot is complete when one is `$config.dat`.
+        let mut files: Option<u32> = None;
         for (g, path) in paths.iter().enumerate() {
             let group = g as u32;
             if path.is_file() && is_zip(path) {
                 ws.load_zip(path, group);
+            } else if path.is_file() {
+                ws.load_path(path, *files.get_or_insert(group));
             } else {
                 ws.load_path(path, group);
             }

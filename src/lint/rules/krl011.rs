@@ -11,7 +11,7 @@ pub static RULE: Rule = Rule {
     name: "unknown-routine",
     severity: Severity::Error,
     summary: "A call reaches no routine: none of the module, no GLOBAL one, no EXT and no KSS built-in",
-    doc: "## What it checks\nEvery call (a statement, a function in an expression, an interrupt's handler, a trigger's action) must reach a routine: a DEF/DEFFCT of the calling module, a GLOBAL DEF/DEFFCT or the main routine of another module of the robot, an `EXT`/`EXTFCT` declaration, or a KSS built-in (math and string functions, EthernetKRL, MsgLib, `BAS` …; see `krlkit rule KRL011` and the environment data). The help names the nearest routine.\n\nOnly reported when the whole robot is checked (a `$config.dat` among the files); calls of `MM_` names are left to MM001. Routines that KUKA's own files (system folder, technology packages, templates) call without a declaration in the workspace exist on that controller and are not reported either, and KUKA's own files are not checked.\n\n## Why it matters\nThe module does not link: the controller reports an unresolved subprogram when the program is selected.\n\n## Example\n```krl\nDEF cell()\n  pick_part()\nEND\nDEF pickpart()\nEND\n```\n\n## Fix\nCall the routine by its name, make it GLOBAL, or declare it with `EXT` where it is called.",
+    doc: "## What it checks\nEvery call (a statement, a function in an expression, an interrupt's handler, a trigger's action) must reach a routine: a DEF/DEFFCT of the calling module, a GLOBAL DEF/DEFFCT or the main routine of another module of the robot, an `EXT`/`EXTFCT` declaration, or a KSS built-in (math and string functions, EthernetKRL, MsgLib, `BAS` …; see `krlkit rule KRL011` and the environment data). The help names the nearest routine.\n\nOnly reported when the whole robot is checked (a `$config.dat` among the files); calls of `MM_` names are left to MM001. Routines that KUKA's own files (system folder, technology packages, templates) call without a declaration in the workspace exist on that controller and are not reported either, and KUKA's own files are not checked. The names of an optional technology package (RSI on KR C2's `ST_` functions, FRI, ArcTech, EntertainTech: `kss.toml` `[[package]]`) are known when the config switches it on: `[lint] packages = [\"rsi_krc2\", \"fri\"]`.\n\n## Why it matters\nThe module does not link: the controller reports an unresolved subprogram when the program is selected.\n\n## Example\n```krl\nDEF cell()\n  pick_part()\nEND\nDEF pickpart()\nEND\n```\n\n## Fix\nCall the routine by its name, make it GLOBAL, or declare it with `EXT` where it is called.",
     check: Check::Model(check),
 };
 
@@ -59,5 +59,26 @@ fn check(ctx: &FileCtx, out: &mut Vec<Diagnostic>) {
             None => d.with_help("define it, make it GLOBAL, or declare it with EXT"),
         };
         out.push(d);
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use crate::lint::LintConfig;
+
+    fn codes(config: &LintConfig) -> Vec<&'static str> {
+        let src = "DEF cell()\n  ST_ETHERNET(1, 0, \"rsi.xml\")\n  FRIOPEN(10)\nEND\n";
+        super::super::lint_robot(src, config)
+            .into_iter()
+            .map(|d| d.code)
+            .collect()
+    }
+
+    #[test]
+    fn technology_packages_are_known_when_switched_on() {
+        assert_eq!(codes(&LintConfig::default()), ["KRL011", "KRL011"]);
+        let on = LintConfig::from_toml("k.toml", "[lint]\npackages = [\"rsi_krc2\", \"fri\"]\n")
+            .expect("config");
+        assert_eq!(codes(&on), Vec::<&str>::new());
     }
 }

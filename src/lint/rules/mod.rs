@@ -15,6 +15,7 @@ pub mod krl015;
 pub mod krl016;
 pub mod krl017;
 pub mod krl018;
+pub mod krl019;
 pub mod mm001;
 pub mod mm002;
 pub mod mm003;
@@ -26,6 +27,7 @@ pub mod mm008;
 pub mod mm009;
 pub mod mm010;
 pub mod mm011;
+mod near;
 
 use super::context::FileCtx;
 use super::walk;
@@ -91,4 +93,24 @@ pub fn user_calls<'a>(
         let sig = sema.callable(c.target)?;
         Some((c, sig, ext))
     })
+}
+
+/// The findings of `src` as `cell.src` beside an empty `$config.dat` (a whole robot), under
+/// `config`.
+#[cfg(test)]
+pub(crate) fn lint_robot(src: &str, config: &super::LintConfig) -> Vec<crate::diag::Diagnostic> {
+    let inputs = vec![
+        super::Input {
+            path: "$config.dat".into(),
+            text: "DEFDAT $CONFIG\nENDDAT\n".into(),
+        },
+        super::Input {
+            path: "cell.src".into(),
+            text: src.into(),
+        },
+    ];
+    super::lint(inputs, Vec::new(), false, config)
+        .into_iter()
+        .flat_map(|r| r.diagnostics)
+        .collect()
 }

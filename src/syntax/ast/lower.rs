@@ -111,10 +111,12 @@ impl<'t> Cx<'t> {
         out
     }
 
+    /// Array dimensions; `[]` (an open-array parameter, `DECL CHAR file[]`) is one of no size.
     fn dims(&self, node: Option<Node>) -> Vec<Option<Expr>> {
         node.map(|n| {
             let els: Vec<Element> = n.significant().collect();
-            self.list(&els, "[", "]")
+            let dims = self.list(&els, "[", "]");
+            if dims.is_empty() { vec![None] } else { dims }
         })
         .unwrap_or_default()
     }
