@@ -276,6 +276,17 @@ impl<'a> Tx<'a> {
                 self.opts.rapid.signals.in_pattern()
             ),
         ];
+        let single = &self.opts.rapid.signals.single;
+        if !single.is_empty() {
+            let v2: Vec<String> = single
+                .iter()
+                .map(|(bank, n, name)| {
+                    let b = if *bank == ir::Bank::Out { "OUT" } else { "IN" };
+                    format!("${b}[{n}] -> {name}")
+                })
+                .collect();
+            v.push(format!("! Signal names: {}", v2.join(", ")));
+        }
         for a in format::ASSUMED {
             v.push(format!("! Assumed [?]: {a}"));
         }
