@@ -16,20 +16,6 @@ const MM_HELP: &str =
     "use the Mech-Mind ABB interface (its RAPID modules and routines) for this call";
 
 impl<'a> Tx<'a> {
-    /// A block: consecutive ops of one KRL statement render together (and fail together).
-    pub(super) fn block(&mut self, b: &Block) {
-        let mut i = 0;
-        while i < b.len() {
-            let span = b[i].span;
-            let mut j = i + 1;
-            while j < b.len() && b[j].span == span {
-                j += 1;
-            }
-            self.group(&b[i..j]);
-            i = j;
-        }
-    }
-
     /// A nested block, one level deeper; where the robot stands is unknown at both ends.
     fn nested(&mut self, b: &Block) {
         self.still = false;
