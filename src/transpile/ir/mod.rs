@@ -163,6 +163,31 @@ impl Program {
         &self.routines[r.0 as usize]
     }
 
+    /// The interrupt numbers an `INTERRUPT ON|OFF|… [n]` at `at` acts on (no number: every
+    /// number the file declares), each with the declaration it means: the last one before
+    /// `at`, else the first (`Err(n)`: none declares `n`).
+    pub fn interrupts_for(&self, number: Option<i64>, at: u32) -> Vec<Result<usize, i64>> {
+        let numbers: Vec<i64> = match number {
+            Some(n) => vec![n],
+            None => {
+                let mut v: Vec<i64> = self.interrupts.iter().map(|d| d.number).collect();
+                v.sort_unstable();
+                v.dedup();
+                v
+            }
+        };
+        numbers
+            .into_iter()
+            .map(|n| {
+                self.interrupts
+                    .iter()
+                    .rposition(|d| d.number == n && d.span.start < at)
+                    .or_else(|| self.interrupts.iter().position(|d| d.number == n))
+                    .ok_or(n)
+            })
+            .collect()
+    }
+
     /// The routine a KRL name calls (case-insensitive).
     pub fn routine_named(&self, name: &str) -> Option<RoutineId> {
         self.routines

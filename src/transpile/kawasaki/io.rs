@@ -216,28 +216,19 @@ impl<'a> Tx<'a> {
         span: Span,
     ) -> R<()> {
         let decls = &self.ir.interrupts;
-        let numbers: Vec<i64> = match number {
-            Some(n) => vec![n],
-            None => {
-                let mut v: Vec<i64> = decls.iter().map(|d| d.number).collect();
-                v.sort_unstable();
-                v.dedup();
-                v
-            }
-        };
         let mut lines = Vec::new();
-        for n in numbers {
-            let Some(i) = decls
-                .iter()
-                .rposition(|d| d.number == n && d.span.start < span.start)
-                .or_else(|| decls.iter().position(|d| d.number == n))
-            else {
-                return fail(
-                    span,
-                    format!("no INTERRUPT DECL {n} in this file"),
-                    "translate the file that declares the interrupt, or declare it here",
-                );
+        for found in self.ir.interrupts_for(number, span.start) {
+            let i = match found {
+                Ok(i) => i,
+                Err(n) => {
+                    return fail(
+                        span,
+                        format!("no INTERRUPT DECL {n} in this file"),
+                        "translate the file that declares the interrupt, or declare it here",
+                    );
+                }
             };
+            let n = decls[i].number;
             if decls[i].stop_messages {
                 self.stop_message_interrupt(span);
                 continue;

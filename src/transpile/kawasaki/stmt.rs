@@ -11,20 +11,6 @@ use crate::transpile::ir::{
 use crate::transpile::render::Emit;
 
 impl<'a> Tx<'a> {
-    /// A block: consecutive ops of one KRL statement render together (and fail together).
-    pub(super) fn block(&mut self, b: &Block) {
-        let mut i = 0;
-        while i < b.len() {
-            let span = b[i].span;
-            let mut j = i + 1;
-            while j < b.len() && b[j].span == span {
-                j += 1;
-            }
-            self.group(&b[i..j]);
-            i = j;
-        }
-    }
-
     /// A nested block, one level deeper; the ACCURACY in force is unknown at both ends (the
     /// body may run zero or many times, or be jumped into).
     fn nested(&mut self, b: &Block) {

@@ -175,6 +175,20 @@ pub trait Emit<'a> {
         n
     }
 
+    /// A block: consecutive ops of one KRL statement render together (and fail together).
+    fn block(&mut self, b: &[Stmt]) {
+        let mut i = 0;
+        while i < b.len() {
+            let span = b[i].span;
+            let mut j = i + 1;
+            while j < b.len() && b[j].span == span {
+                j += 1;
+            }
+            self.group(&b[i..j]);
+            i = j;
+        }
+    }
+
     /// The ops of one KRL statement, rendered together: when one fails, the statement's lines
     /// are dropped and its KRL is kept as a comment with a `TR001`.
     fn group(&mut self, g: &[Stmt]) {
