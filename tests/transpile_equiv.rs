@@ -8,6 +8,7 @@
 
 mod as_support;
 mod equiv_support;
+mod rapid_support;
 
 use equiv_support::{
     Aspect, Brand, EVERY_LINE, Excluded, Program, as_steps, by, compare, ex, findings,

@@ -9,6 +9,7 @@
 
 mod as_support;
 mod equiv_support;
+mod rapid_support;
 
 use equiv_support::{
     Brand, Program, as_steps, compare, findings, flexiv_steps, krl_steps, python, run_as,

@@ -291,6 +291,24 @@ impl Rapid {
         self.globals.get(&name.to_ascii_lowercase()).map(|s| &s.v)
     }
 
+    /// Gives module data `name` a value (an aggregate checked against its type): the test's
+    /// cell defines what a controller's configuration would.
+    pub fn set(&mut self, name: &str, v: V) -> Result<(), String> {
+        let slot = self
+            .globals
+            .get_mut(&name.to_ascii_lowercase())
+            .ok_or_else(|| format!("no data `{name}`"))?;
+        slot.v = self.types.coerce(v, &slot.ty)?;
+        Ok(())
+    }
+
+    /// The type of module data `name` (lower case), if it is declared.
+    pub fn type_of(&self, name: &str) -> Option<&str> {
+        self.globals
+            .get(&name.to_ascii_lowercase())
+            .map(|s| s.ty.base.as_str())
+    }
+
     pub fn num(&self, name: &str) -> f64 {
         match self.get(name) {
             Some(V::Num(n)) => *n,
@@ -308,4 +326,10 @@ impl Rapid {
             })
             .collect()
     }
+}
+
+/// The RAPID orient (q1 = w first) of KUKA's A, B, C: Rz(A)·Ry(B)·Rx(C), by the interpreter's
+/// own quaternion code.
+pub fn orient_zyx(a: f64, b: f64, c: f64) -> [f64; 4] {
+    geom::matrix_to_quat(&geom::zyx(a, b, c))
 }
