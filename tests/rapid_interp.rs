@@ -164,6 +164,51 @@ ENDMODULE
 }
 
 #[test]
+fn instruction_arguments_in_parentheses_are_not_calls() {
+    let mut r = Rapid::load_files(&[(
+        "t.mod",
+        &main_with(
+            "  VAR num t{2,2};\n  VAR string s := \"gripper\";",
+            "    WaitUntil (di3 = 1) AND (di5 = 0);\n    fill t;\n    s := StrPart(s, 2, 3);",
+        )
+        .replace(
+            "ENDMODULE",
+            "  PROC fill(INOUT num m{*,*})\n    m{2,1} := 4;\n  ENDPROC\nENDMODULE",
+        ),
+    )])
+    .unwrap();
+    r.set_input(3, true);
+    assert_eq!(r.run("main"), Ok(End::Done));
+    assert_eq!(r.get("s"), Some(&V::Str("rip".into())));
+    let Some(V::Arr(rows)) = r.get("t") else {
+        panic!()
+    };
+    assert_eq!(rows[1], V::Arr(vec![V::Num(4.0), V::Num(0.0)]));
+}
+
+#[test]
+fn arrays_are_passed_by_name_with_their_dimensions() {
+    let text = |arg: &str, param: &str| {
+        format!(
+            "MODULE t\n  VAR num a{{3}};\n  PROC main()\n    f {arg};\n  ENDPROC\n  PROC f(INOUT num x{param})\n  ENDPROC\nENDMODULE\n"
+        )
+    };
+    ok(&text("a", "{*}"));
+    let e = err(&text("a{}", "{*}"));
+    assert!(
+        e.starts_with("t.mod:4:") && e.contains("an empty index"),
+        "{e}"
+    );
+    let e = err(&text("a", "{*,*}"));
+    assert!(
+        e.starts_with("t.mod:4:") && e.contains("a num{3} passed for the parameter `x` (num{*,*})"),
+        "{e}"
+    );
+    let e = err(&text("a{1}", "{*}"));
+    assert!(e.contains("a num passed"), "{e}");
+}
+
+#[test]
 fn names_are_case_insensitive() {
     let r = ok(
         "MODULE T\n  VAR NUM Count;\n  PROC Main()\n    count := COUNT + 1;\n    Bump;\n  ENDPROC\n  PROC bump()\n    cOUNT := count * 5;\n  ENDPROC\nENDMODULE\n",

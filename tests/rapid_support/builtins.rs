@@ -601,6 +601,25 @@ impl Rapid {
                 let a = split("StrLen", args, 1, &[])?;
                 Ok(V::Num(self.eval(a.pos[0])?.str()?.chars().count() as f64))
             }
+            "strpart" => {
+                let a = split("StrPart", args, 3, &[])?;
+                let text: Vec<char> = self.eval(a.pos[0])?.str()?.chars().collect();
+                let (start, len) = (self.num_arg(a.pos[1])?, self.num_arg(a.pos[2])?);
+                let whole = |x: f64| x.fract() == 0.0 && x >= 0.0;
+                if !whole(start) || !whole(len) || start < 1.0 {
+                    return Err(format!("StrPart from {start}, {len} characters").into());
+                }
+                let (st, n) = (start as usize - 1, len as usize);
+                if st + n > text.len() {
+                    return Err(format!(
+                        "StrPart: characters {start}..{} of a string of {}",
+                        st + n,
+                        text.len()
+                    )
+                    .into());
+                }
+                Ok(V::Str(text[st..st + n].iter().collect()))
+            }
             "dinput" | "doutput" | "testdi" => {
                 let a = split(name, args, 1, &[])?;
                 let dir = if name == "doutput" { Dir::Out } else { Dir::In };

@@ -111,7 +111,7 @@ impl Rapid {
         let mut refs = HashMap::new();
         for (p, e) in routine.params.iter().zip(positional) {
             let bad = |got: &Ty| -> R<()> {
-                let same = got.base == p.ty && (p.array != got.dims.is_empty());
+                let same = got.base == p.ty && p.dims == got.dims.len();
                 if same {
                     Ok(())
                 } else {
@@ -121,7 +121,12 @@ impl Rapid {
                         show(got),
                         p.name,
                         p.ty,
-                        if p.array { "{*}" } else { "" }
+                        match p.dims {
+                            0 => "",
+                            1 => "{*}",
+                            2 => "{*,*}",
+                            _ => "{*,*,*}",
+                        }
                     )
                     .into())
                 }
@@ -140,10 +145,11 @@ impl Rapid {
                 }
                 Mode::In => {
                     let v = self.eval(e)?;
-                    let ty = match (&v, p.array) {
-                        (V::Arr(_), true) => self.ty_of(&v, &p.ty),
+                    let ty = match (&v, p.dims) {
+                        (V::Arr(_), 1..) => self.ty_of(&v, &p.ty),
                         _ => Ty::scalar(&p.ty),
                     };
+                    bad(&ty)?;
                     let v = self.types.coerce(v, &ty)?;
                     vars.insert(
                         p.name.clone(),

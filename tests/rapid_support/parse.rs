@@ -33,8 +33,8 @@ pub struct Param {
     pub mode: Mode,
     pub ty: String,
     pub name: String,
-    /// `{*}`: an array of any size.
-    pub array: bool,
+    /// `{*}`, `{*,*}`: an array of any size with this many dimensions (0: not an array).
+    pub dims: usize,
 }
 
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -392,16 +392,22 @@ impl P<'_> {
                 };
                 let ty = self.name()?;
                 let name = self.name()?;
-                let array = self.eat_p("{");
-                if array {
-                    self.p("*")?;
+                let mut dims = 0;
+                if self.eat_p("{") {
+                    loop {
+                        self.p("*")?;
+                        dims += 1;
+                        if !self.eat_p(",") {
+                            break;
+                        }
+                    }
                     self.p("}")?;
                 }
                 params.push(Param {
                     mode,
                     ty,
                     name,
-                    array,
+                    dims,
                 });
             }
         }
@@ -538,7 +544,7 @@ impl P<'_> {
         } else if self.eat_kw("EXIT") {
             S::Exit
         } else if self.eat_kw("CONNECT") {
-            let ir = self.postfix()?;
+            let ir = self.data()?;
             self.kw("WITH")?;
             S::Connect(ir, self.name()?)
         } else if matches!(self.peek(), Some(Tok::Id(_)))
@@ -548,7 +554,9 @@ impl P<'_> {
             self.p(":")?;
             return Ok(S::Label(l));
         } else {
-            let target = self.postfix()?;
+            // Not `postfix`: `WaitUntil (a) AND (b);` is an instruction with an argument in
+            // parentheses, not a function call.
+            let target = self.data()?;
             if self.eat_p(":=") {
                 S::Assign(target, self.expr()?)
             } else if let Expr::Name(n) = target {
@@ -683,8 +691,18 @@ impl P<'_> {
         }
         self.postfix()
     }
+    /// A data reference: a name with components and elements.
+    fn data(&mut self) -> R<Expr> {
+        let e = Expr::Name(self.name()?);
+        self.components(e)
+    }
+
     fn postfix(&mut self) -> R<Expr> {
-        let mut e = self.primary()?;
+        let e = self.primary()?;
+        self.components(e)
+    }
+
+    fn components(&mut self, mut e: Expr) -> R<Expr> {
         loop {
             if self.eat_p(".") {
                 let f = match self.peek() {
@@ -694,7 +712,11 @@ impl P<'_> {
                 self.i += 1;
                 e = Expr::Field(Box::new(e), f);
             } else if self.eat_p("{") {
-                e = Expr::Index(Box::new(e), self.list("}")?);
+                let idx = self.list("}")?;
+                if idx.is_empty() {
+                    return self.fail("an empty index `{}`");
+                }
+                e = Expr::Index(Box::new(e), idx);
             } else {
                 return Ok(e);
             }
