@@ -221,6 +221,7 @@ pub struct RuleArgs {
 pub enum TranspileTarget {
     Kawasaki,
     Flexiv,
+    Rapid,
 }
 
 #[derive(Debug, Args)]
@@ -228,7 +229,8 @@ pub struct TranspileArgs {
     /// The KRL program (.src); its .dat beside it is read too. `-` reads the program from stdin
     /// (no .dat).
     pub file: PathBuf,
-    /// The target language: Kawasaki AS, or a Python script for the Flexiv RDK.
+    /// The target language: Kawasaki AS, a Python script for the Flexiv RDK, or an ABB RAPID
+    /// program module.
     #[arg(long, value_enum)]
     pub to: TranspileTarget,
     /// Output file, written atomically (default, or `-`: stdout, and the diagnostics go to
@@ -272,11 +274,16 @@ pub struct TranspileArgs {
     #[arg(long, value_enum)]
     pub ptp: Option<PtpPrimitive>,
     /// KUKA axes to the target's joints (Kawasaki: six, e.g. A1,-A2+90,A3-90,A4,A5,A6; Flexiv:
-    /// the Rizon's seven, e.g. A1,A2,0,A3,A4,A5,A6): per joint a KUKA axis, optionally negated
-    /// and shifted by degrees, or a fixed angle; without it axis values written in the program
-    /// are not translated.
+    /// the Rizon's seven, e.g. A1,A2,0,A3,A4,A5,A6; rapid: six, e.g. A1,A2+90,A3-90,A4,A5,A6):
+    /// per joint a KUKA axis, optionally negated and shifted by degrees, or a fixed angle;
+    /// without it axis values written in the program are not translated.
     #[arg(long, value_name = "MAP")]
     pub joint_map: Option<String>,
+    /// rapid only: RAPID signal names for KRL's I/O numbers, comma-separated: out=PATTERN,
+    /// in=PATTERN with {n} for the number (default out=do{n},in=di{n}), or single signals
+    /// such as out17=doGripper, in10=diBinReady.
+    #[arg(long, value_name = "MAP")]
+    pub signal_map: Option<String>,
 }
 
 #[derive(Debug, Clone, Copy, PartialEq, Eq, ValueEnum)]

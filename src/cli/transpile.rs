@@ -19,8 +19,8 @@ use crate::diag::Severity;
 use crate::diag::render::sarif::RuleMeta;
 use crate::lint::{self, EkiChannel};
 use crate::transpile::flexiv::{self, FlexivOptions, RdkVersion};
-use crate::transpile::kawasaki;
 use crate::transpile::{self, Options, SignalMap, Source, Target, VisionServer};
+use crate::transpile::{kawasaki, rapid};
 
 pub fn run(mut args: TranspileArgs) -> anyhow::Result<Outcome> {
     if args.out.as_deref().is_some_and(crate::files::is_stdin) {
@@ -35,6 +35,7 @@ pub fn run(mut args: TranspileArgs) -> anyhow::Result<Outcome> {
     let target = match args.to {
         TranspileTarget::Kawasaki => Target::Kawasaki,
         TranspileTarget::Flexiv => Target::Flexiv,
+        TranspileTarget::Rapid => Target::Rapid,
     };
     if let Some(msg) = foreign_option(&args) {
         eprintln!("error: {msg}");
@@ -48,14 +49,31 @@ pub fn run(mut args: TranspileArgs) -> anyhow::Result<Outcome> {
         }
     };
     let joint_map = match (&args.joint_map, target) {
-        (Some(m), Target::Kawasaki) => match kawasaki::joint_map(m) {
-            Ok(m) => Some(m),
+        (Some(m), Target::Kawasaki | Target::Rapid) => {
+            let parsed = if target == Target::Kawasaki {
+                kawasaki::joint_map(m)
+            } else {
+                rapid::joint_map(m)
+            };
+            match parsed {
+                Ok(m) => Some(m),
+                Err(msg) => {
+                    eprintln!("error: {msg}");
+                    return Ok(Outcome::Failure);
+                }
+            }
+        }
+        _ => None,
+    };
+    let rapid_options = match &args.signal_map {
+        Some(m) => match rapid::SignalNames::parse(m) {
+            Ok(signals) => rapid::RapidOptions { signals },
             Err(msg) => {
                 eprintln!("error: {msg}");
                 return Ok(Outcome::Failure);
             }
         },
-        _ => None,
+        None => rapid::RapidOptions::default(),
     };
     let dat_path = if stdin {
         None
@@ -95,6 +113,7 @@ pub fn run(mut args: TranspileArgs) -> anyhow::Result<Outcome> {
         },
         flexiv,
         joint_map,
+        rapid: rapid_options,
         ..Options::default()
     };
     if let Some(spec) = &args.spec {
@@ -169,25 +188,40 @@ pub fn run(mut args: TranspileArgs) -> anyhow::Result<Outcome> {
 /// An option given for the other target: refused, because a user who passes it expects it to
 /// change the output and it would silently change nothing.
 fn foreign_option(args: &TranspileArgs) -> Option<String> {
-    let (given, target, other): (&[(&str, bool)], _, _) = match args.to {
-        TranspileTarget::Kawasaki => (
-            &[
-                ("--rdk", args.rdk.is_some()),
-                ("--serial", args.serial.is_some()),
-                ("--ptp", args.ptp.is_some()),
-            ],
-            "kawasaki",
-            "flexiv",
+    use TranspileTarget::{Flexiv, Kawasaki, Rapid};
+    let options: [(&str, bool, &[TranspileTarget]); 7] = [
+        ("--rdk", args.rdk.is_some(), &[Flexiv]),
+        ("--serial", args.serial.is_some(), &[Flexiv]),
+        ("--ptp", args.ptp.is_some(), &[Flexiv]),
+        ("--flag-offset", args.flag_offset.is_some(), &[Kawasaki]),
+        (
+            "--input-offset",
+            args.input_offset.is_some(),
+            &[Kawasaki, Flexiv],
         ),
-        TranspileTarget::Flexiv => (
-            &[("--flag-offset", args.flag_offset.is_some())],
-            "flexiv",
-            "kawasaki",
+        (
+            "--output-offset",
+            args.output_offset.is_some(),
+            &[Kawasaki, Flexiv],
         ),
+        ("--signal-map", args.signal_map.is_some(), &[Rapid]),
+    ];
+    let name = |t: &TranspileTarget| match t {
+        Kawasaki => "kawasaki",
+        Flexiv => "flexiv",
+        Rapid => "rapid",
     };
-    let (flag, _) = given.iter().find(|(_, set)| *set)?;
+    let (flag, _, targets) = options
+        .iter()
+        .find(|(_, set, targets)| *set && !targets.contains(&args.to))?;
+    let other: Vec<String> = targets
+        .iter()
+        .map(|t| format!("`--to {}`", name(t)))
+        .collect();
     Some(format!(
-        "{flag} applies to `--to {other}` only; it has no effect with `--to {target}` (remove it)"
+        "{flag} applies to {} only; it has no effect with `--to {}` (remove it)",
+        other.join(" and "),
+        name(&args.to)
     ))
 }
 

@@ -18,6 +18,7 @@ pub mod front;
 pub mod ir;
 pub mod joints;
 pub mod kawasaki;
+pub mod rapid;
 pub mod render;
 pub mod rules;
 
@@ -34,6 +35,8 @@ pub enum Target {
     Kawasaki,
     /// A Flexiv RDK Python script.
     Flexiv,
+    /// An ABB RAPID program module.
+    Rapid,
 }
 
 /// How KRL I/O numbers map to the target's signal numbers. The defaults follow the usual
@@ -80,9 +83,11 @@ pub struct Options {
     pub channels_given: bool,
     /// The Flexiv backend's settings.
     pub flexiv: flexiv::FlexivOptions,
-    /// Kawasaki: KUKA axes → JT1…JT6 (`--joint-map`); without it axis values written in the
-    /// program are TR001 (Flexiv's seven-joint map is in `flexiv`).
+    /// Kawasaki and ABB: KUKA axes → the target's six axes (`--joint-map`); without it axis
+    /// values written in the program are TR001 (Flexiv's seven-joint map is in `flexiv`).
     pub joint_map: Option<joints::JointMap>,
+    /// The RAPID backend's settings.
+    pub rapid: rapid::RapidOptions,
 }
 
 /// One input file.

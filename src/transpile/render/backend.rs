@@ -7,7 +7,7 @@ use super::super::front::names::NameRules;
 use super::super::front::report::Report;
 use super::super::ir::{self, Why};
 use super::super::{Options, Renderer, Target, VisionServer};
-use crate::transpile::{flexiv, kawasaki};
+use crate::transpile::{flexiv, kawasaki, rapid};
 
 /// What a target language can hold, declared once per target.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -109,7 +109,7 @@ impl Backend {
 }
 
 /// Every target, in `--to` order.
-pub static BACKENDS: &[&Backend] = &[&kawasaki::BACKEND, &flexiv::BACKEND];
+pub static BACKENDS: &[&Backend] = &[&kawasaki::BACKEND, &flexiv::BACKEND, &rapid::BACKEND];
 
 /// The backend of `target`.
 pub fn backend(target: Target) -> &'static Backend {
@@ -185,7 +185,7 @@ mod tests {
 
     #[test]
     fn every_target_is_registered_once() {
-        for t in [Target::Kawasaki, Target::Flexiv] {
+        for t in [Target::Kawasaki, Target::Flexiv, Target::Rapid] {
             let n = BACKENDS.iter().filter(|b| b.target() == t).count();
             assert_eq!(n, 1, "{t:?}");
             assert_eq!(backend(t).target(), t);

@@ -1,0 +1,313 @@
+//! The structural check of a translated module: what would keep RAPID from loading it, a
+//! renderer defect when found. Blocks balanced (`MODULE`, `PROC`, `FUNC`, `TRAP`, `IF … THEN`,
+//! `WHILE`, `FOR`, `TEST`, `RECORD`), statements ended with `;`, identifiers of at most 32 and
+//! strings of at most 80 characters, every called routine defined in the module or listed as
+//! external in the header, every `GOTO` label in its routine.
+
+use std::collections::HashSet;
+
+/// Instructions the translator writes (called without being defined in the module).
+const INSTRUCTIONS: [&str; 27] = [
+    "movej",
+    "movel",
+    "movec",
+    "moveabsj",
+    "setdo",
+    "pulsedo",
+    "waitdi",
+    "waitdo",
+    "waituntil",
+    "waittime",
+    "stop",
+    "confj",
+    "confl",
+    "velset",
+    "accset",
+    "tpwrite",
+    "goto",
+    "return",
+    "idelete",
+    "connect",
+    "isignaldi",
+    "iwatch",
+    "isleep",
+    "triggio",
+    "triggl",
+    "triggj",
+    "stopmove",
+];
+
+/// Functions and data-type names that may stand before `(`.
+const FUNCTIONS: [&str; 17] = [
+    "abs",
+    "sqrt",
+    "sin",
+    "cos",
+    "tan",
+    "acos",
+    "atan2",
+    "strlen",
+    "strpart",
+    "round",
+    "eulerzyx",
+    "orientzyx",
+    "crobt",
+    "cjointt",
+    "offs",
+    "reltool",
+    "startmove",
+];
+
+/// Keywords that can appear before `(` or start a line without being calls.
+const KEYWORDS: [&str; 12] = [
+    "not", "and", "or", "xor", "div", "mod", "if", "while", "test", "case", "var", "pers",
+];
+
+pub fn check(text: &str) -> Vec<String> {
+    let mut problems = Vec::new();
+    let mut stack: Vec<(&'static str, usize)> = Vec::new();
+    let mut defined: HashSet<String> = HashSet::new();
+    let mut called: Vec<(String, usize)> = Vec::new();
+    let mut external: HashSet<String> = HashSet::new();
+    // Per routine: labels defined and GOTO targets.
+    let mut labels: HashSet<String> = HashSet::new();
+    let mut gotos: Vec<(String, usize)> = Vec::new();
+    for (i, raw) in text.lines().enumerate() {
+        let n = i + 1;
+        if let Some(list) = raw
+            .trim()
+            .strip_prefix("! External routines (other modules):")
+        {
+            external.extend(list.split(',').map(|s| s.trim().to_ascii_lowercase()));
+        }
+        let (code, strings) = split_code(raw);
+        for s in strings {
+            if s > 80 {
+                problems.push(format!("line {n}: a string of {s} characters (at most 80)"));
+            }
+        }
+        let line = code.trim();
+        if line.is_empty() {
+            continue;
+        }
+        let words = identifiers(line);
+        for w in &words {
+            if w.len() > 32 {
+                problems.push(format!("line {n}: `{w}` is longer than 32 characters"));
+            }
+        }
+        let first = words
+            .first()
+            .map(|w| w.to_ascii_lowercase())
+            .unwrap_or_default();
+        let upper_line = line.to_ascii_uppercase();
+        let open = |kind: &'static str, stack: &mut Vec<(&'static str, usize)>| {
+            stack.push((kind, n));
+        };
+        let close = |kind: &'static str,
+                     stack: &mut Vec<(&'static str, usize)>,
+                     problems: &mut Vec<String>| {
+            match stack.pop() {
+                Some((k, _)) if k == kind => {}
+                Some((k, at)) => {
+                    problems.push(format!("line {n}: END{kind} closes the {k} of line {at}"))
+                }
+                None => problems.push(format!("line {n}: END{kind} without {kind}")),
+            }
+        };
+        match first.as_str() {
+            "module" => open("MODULE", &mut stack),
+            "endmodule" => close("MODULE", &mut stack, &mut problems),
+            "proc" | "func" | "trap" => {
+                let kind = match first.as_str() {
+                    "proc" => "PROC",
+                    "func" => "FUNC",
+                    _ => "TRAP",
+                };
+                let name = if kind == "FUNC" {
+                    words.get(2)
+                } else {
+                    words.get(1)
+                };
+                if let Some(name) = name {
+                    defined.insert(name.to_ascii_lowercase());
+                }
+                check_gotos(&labels, &gotos, &mut problems);
+                labels.clear();
+                gotos.clear();
+                open(kind, &mut stack);
+            }
+            "endproc" => close("PROC", &mut stack, &mut problems),
+            "endfunc" => close("FUNC", &mut stack, &mut problems),
+            "endtrap" => close("TRAP", &mut stack, &mut problems),
+            "if" if upper_line.ends_with("THEN") => open("IF", &mut stack),
+            "else" | "elseif" => {
+                if stack.last().map(|s| s.0) != Some("IF") {
+                    problems.push(format!("line {n}: {} outside IF", first.to_uppercase()));
+                }
+            }
+            "endif" => close("IF", &mut stack, &mut problems),
+            "while" => open("WHILE", &mut stack),
+            "endwhile" => close("WHILE", &mut stack, &mut problems),
+            "for" => open("FOR", &mut stack),
+            "endfor" => close("FOR", &mut stack, &mut problems),
+            "test" => open("TEST", &mut stack),
+            "case" | "default" => {
+                if stack.last().map(|s| s.0) != Some("TEST") {
+                    problems.push(format!("line {n}: {} outside TEST", first.to_uppercase()));
+                }
+            }
+            "endtest" => close("TEST", &mut stack, &mut problems),
+            "record" => open("RECORD", &mut stack),
+            "endrecord" => close("RECORD", &mut stack, &mut problems),
+            _ => {
+                if line.ends_with(':') && words.len() == 1 {
+                    labels.insert(first.clone());
+                } else if !line.ends_with(';') {
+                    problems.push(format!("line {n}: a statement without `;`: {line}"));
+                } else if first == "goto" {
+                    if let Some(l) = words.get(1) {
+                        gotos.push((l.to_ascii_lowercase(), n));
+                    }
+                } else if !matches!(first.as_str(), "var" | "pers" | "const")
+                    && let Some(rest) = line.get(words[0].len()..)
+                    && !rest.trim_start().starts_with([':', '{', '.'])
+                    && !INSTRUCTIONS.contains(&first.as_str())
+                {
+                    called.push((first.clone(), n));
+                }
+            }
+        }
+        for f in calls_in(line) {
+            let l = f.to_ascii_lowercase();
+            if !FUNCTIONS.contains(&l.as_str())
+                && !KEYWORDS.contains(&l.as_str())
+                && !matches!(first.as_str(), "proc" | "func")
+            {
+                called.push((l, n));
+            }
+        }
+    }
+    check_gotos(&labels, &gotos, &mut problems);
+    for (k, at) in stack {
+        problems.push(format!("line {at}: {k} is not closed"));
+    }
+    for (name, at) in called {
+        if !defined.contains(&name) && !external.contains(&name) {
+            problems.push(format!("line {at}: `{name}` is called but not defined"));
+        }
+    }
+    problems
+}
+
+fn check_gotos(labels: &HashSet<String>, gotos: &[(String, usize)], problems: &mut Vec<String>) {
+    for (l, at) in gotos {
+        if !labels.contains(l) {
+            problems.push(format!("line {at}: GOTO {l} has no label in its routine"));
+        }
+    }
+}
+
+/// The code of a line (strings blanked, the comment cut) and the lengths of its strings.
+fn split_code(line: &str) -> (String, Vec<usize>) {
+    let mut code = String::with_capacity(line.len());
+    let mut strings = Vec::new();
+    let mut chars = line.chars().peekable();
+    while let Some(c) = chars.next() {
+        match c {
+            '!' => break,
+            '"' => {
+                let mut len = 0;
+                loop {
+                    match chars.next() {
+                        Some('"') if chars.peek() == Some(&'"') => {
+                            chars.next();
+                            len += 1;
+                        }
+                        Some('"') | None => break,
+                        Some('\\') => {
+                            chars.next();
+                            len += 1;
+                        }
+                        Some(_) => len += 1,
+                    }
+                }
+                strings.push(len);
+                code.push_str("\"\"");
+            }
+            c => code.push(c),
+        }
+    }
+    (code, strings)
+}
+
+/// The identifiers of a line of code (numbers and `9E9` excluded).
+fn identifiers(code: &str) -> Vec<&str> {
+    let mut v = Vec::new();
+    let b = code.as_bytes();
+    let mut i = 0;
+    while i < b.len() {
+        if b[i].is_ascii_alphabetic()
+            && (i == 0
+                || !(b[i - 1].is_ascii_alphanumeric() || b[i - 1] == b'_' || b[i - 1] == b'.'))
+        {
+            let s = i;
+            while i < b.len() && (b[i].is_ascii_alphanumeric() || b[i] == b'_') {
+                i += 1;
+            }
+            v.push(&code[s..i]);
+        } else {
+            i += 1;
+        }
+    }
+    v
+}
+
+/// Names directly followed by `(`: function calls (and declarations' parameter lists).
+fn calls_in(code: &str) -> Vec<&str> {
+    let mut v = Vec::new();
+    for (i, _) in code.match_indices('(') {
+        let before = &code[..i];
+        let start = before
+            .rfind(|c: char| !(c.is_ascii_alphanumeric() || c == '_'))
+            .map_or(0, |p| p + 1);
+        let name = &before[start..];
+        if name.starts_with(|c: char| c.is_ascii_alphabetic())
+            && !before[..start].ends_with(['.', '\\'])
+        {
+            v.push(name);
+        }
+    }
+    v
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn a_sound_module_passes() {
+        let m = "MODULE m\n  PROC a()\n    IF x THEN\n      b 1;\n    ENDIF\n    l:\n    GOTO l;\n    y := f(2) + Abs(-1);\n  ENDPROC\n  PROC b(num n)\n  ENDPROC\n  FUNC num f(num n)\n    RETURN n;\n  ENDFUNC\nENDMODULE\n";
+        assert_eq!(check(m), Vec::<String>::new());
+    }
+
+    #[test]
+    fn defects_are_found() {
+        let m = "MODULE m\n  PROC a()\n    IF x THEN\n      c 1;\n    GOTO nowhere;\n    y := g(1)\n  ENDPROC\nENDMODULE\n";
+        let p = check(m);
+        assert!(
+            p.iter().any(|s| s.contains("ENDPROC closes the IF")),
+            "{p:?}"
+        );
+        assert!(p.iter().any(|s| s.contains("`c` is called")), "{p:?}");
+        assert!(p.iter().any(|s| s.contains("without `;`")), "{p:?}");
+        assert!(p.iter().any(|s| s.contains("GOTO nowhere")), "{p:?}");
+        let long = format!(
+            "MODULE m\n  VAR num {};\n  VAR string s := \"{}\";\nENDMODULE\n",
+            "a".repeat(33),
+            "x".repeat(81)
+        );
+        let p = check(&long);
+        assert_eq!(p.len(), 2, "{p:?}");
+    }
+}

@@ -1,0 +1,289 @@
+//! Module data: `.dat` values become `PERS` (KRL writes `.dat` data back, as RAPID writes
+//! persistents back into the module), globals without a value `VAR`, `CONST` stays `CONST`;
+//! array elements the `.dat` sets one by one become the array's initial aggregate.
+
+use std::collections::BTreeMap;
+
+use super::format::{self, zero};
+use super::{R, Tx, fail};
+use crate::diag::Span;
+use crate::transpile::front::report::FileId;
+use crate::transpile::ir::{Datum, Expr, Scope, Ty, VarId};
+use crate::transpile::render::Emit;
+
+/// The module's data lines.
+#[derive(Debug, Default)]
+pub(super) struct DataOut {
+    lines: Vec<String>,
+    /// Declarations that could not be translated, kept as comments in the header.
+    pub kept: Vec<String>,
+}
+
+impl<'a> Tx<'a> {
+    /// A data declaration: `VAR num a{3,4};`, `VAR string s;`.
+    pub(super) fn declaration(
+        &mut self,
+        kw: &str,
+        name: &str,
+        ty: &Ty,
+        dims: &[Option<Expr>],
+        _at: Span,
+    ) -> String {
+        let d = self.dims_text(ty, dims);
+        format!("{kw} {} {name}{d};", format::type_name(ty, dims.len()))
+    }
+
+    /// `{3,4}` for an array (a CHAR array's last dimension is the string's length).
+    fn dims_text(&mut self, ty: &Ty, dims: &[Option<Expr>]) -> String {
+        let dims = if *ty == Ty::Char && !dims.is_empty() {
+            &dims[..dims.len() - 1]
+        } else {
+            dims
+        };
+        if dims.is_empty() {
+            return String::new();
+        }
+        let mut v = Vec::new();
+        for d in dims {
+            let t = match d {
+                Some(e) => match e.integer() {
+                    Some(n) => n.to_string(),
+                    None => self.expr(e).unwrap_or_else(|_| "1".into()),
+                },
+                None => "1".into(),
+            };
+            v.push(t);
+        }
+        format!("{{{}}}", v.join(","))
+    }
+
+    /// Renders the module data (after the names are declared, before any routine).
+    pub(super) fn module_data(&mut self) {
+        let ir = self.ir;
+        let mut elements: BTreeMap<VarId, Vec<&'a Datum>> = BTreeMap::new();
+        for d in &ir.data {
+            if d.index.as_ref().is_some_and(|i| !i.is_empty()) {
+                elements.entry(d.var).or_default().push(d);
+            }
+        }
+        let mut declared = std::collections::HashSet::new();
+        for d in &ir.data {
+            if d.index.as_ref().is_some_and(|i| !i.is_empty()) {
+                continue;
+            }
+            declared.insert(d.var);
+            let var = ir.var(d.var);
+            let name = self.names.global(&var.name);
+            let kw = if var.constant { "CONST" } else { "PERS" };
+            self.file = d.file;
+            let r = match &d.value {
+                Ok(v) => self
+                    .data_value(&var.ty, v)
+                    .map(|v| format!("{kw} {} {name} := {v};", format::type_name(&var.ty, 0))),
+                Err(why) => fail(d.span, why.message(), super::help::help(why)),
+            };
+            self.data_result(r, d.span, d.file);
+        }
+        for (v, dims) in &ir.uninit_globals {
+            declared.insert(*v);
+            let var = ir.var(*v);
+            let name = self.names.global(&var.name);
+            match elements.remove(v) {
+                Some(values) => {
+                    let line = self.array_with_values(&name, &var.ty, dims, &values);
+                    let span = values[0].span;
+                    match line {
+                        Ok(l) => {
+                            self.data.lines.push(l);
+                            for d in values {
+                                self.out.produced.push(d.span);
+                            }
+                        }
+                        Err(f) => {
+                            let l = self.declaration("VAR", &name, &var.ty, dims, span);
+                            self.data.lines.push(l);
+                            for d in values {
+                                self.data_result(Err(f.clone()), d.span, d.file);
+                            }
+                        }
+                    }
+                }
+                None => {
+                    let l = self.declaration("VAR", &name, &var.ty, dims, var.decl);
+                    self.data.lines.push(l);
+                }
+            }
+        }
+        // Elements of an array declared nowhere here.
+        for (_, values) in elements {
+            for d in values {
+                let r = fail(
+                    d.span,
+                    "an array element of the .dat whose array is not declared here",
+                    "declare the array in the .dat",
+                );
+                self.data_result(r, d.span, d.file);
+            }
+        }
+        self.file = FileId::Src;
+        // Names the program uses but declares nowhere (e.g. from $config.dat): a persistent of
+        // the same name in another module is the same object.
+        for (i, var) in ir.vars.iter().enumerate() {
+            let v = VarId(i as u32);
+            if !matches!(var.scope, Scope::Assumed | Scope::Package) || declared.contains(&v) {
+                continue;
+            }
+            if matches!(var.ty, Ty::Signal(_) | Ty::Struc(_) | Ty::Other(_)) || var.dims > 0 {
+                continue;
+            }
+            let name = self.names.global(&var.name);
+            self.note(format!(
+                "`{name}` is not declared in this program: declared here as PERS (a persistent of the same name in another module is the same object)"
+            ));
+            self.data.lines.push(format!(
+                "PERS {} {name} := {};",
+                format::type_name(&var.ty, 0),
+                zero(&var.ty)
+            ));
+        }
+    }
+
+    fn data_result(&mut self, r: R<String>, span: Span, file: FileId) {
+        match r {
+            Ok(l) => {
+                self.data.lines.push(l);
+                self.out.produced.push(span);
+            }
+            Err(f) => {
+                self.out.rep.untranslatable(file, f.span, f.message, f.help);
+                let src = match file {
+                    FileId::Src => &self.src.src,
+                    FileId::Dat => self.src.dat.as_ref().unwrap_or(&self.src.src),
+                };
+                let text = src.slice(span).trim().to_owned();
+                for l in text.split(['\n', '\r']).filter(|l| !l.trim().is_empty()) {
+                    self.data.kept.push(format!("! [TR001] {}", l.trim()));
+                }
+            }
+        }
+    }
+
+    /// An initial value: a literal (RAPID initialises data with literals and constants only).
+    fn data_value(&mut self, ty: &Ty, v: &Expr) -> R<String> {
+        if matches!(ty, Ty::Pose | Ty::Joint) {
+            if let crate::transpile::ir::ExprKind::Aggregate(a) = &v.kind
+                && a.numbers().is_some()
+            {
+                return self.expr(v);
+            }
+            return fail(
+                v.span,
+                "this pose value is not a literal",
+                "use a literal pose",
+            );
+        }
+        if v.number().is_none()
+            && !matches!(
+                v.kind,
+                crate::transpile::ir::ExprKind::Bool(_)
+                    | crate::transpile::ir::ExprKind::Str(_)
+                    | crate::transpile::ir::ExprKind::Char(_)
+                    | crate::transpile::ir::ExprKind::Enum { .. }
+            )
+        {
+            return fail(v.span, "this value is not a literal", "use a literal");
+        }
+        self.expr(v)
+    }
+
+    /// `PERS num a{3} := [0,5,0];` from the elements the `.dat` sets.
+    fn array_with_values(
+        &mut self,
+        name: &str,
+        ty: &Ty,
+        dims: &[Option<Expr>],
+        values: &[&Datum],
+    ) -> R<String> {
+        let sizes: Option<Vec<usize>> = dims
+            .iter()
+            .map(|d| {
+                d.as_ref()
+                    .and_then(Expr::integer)
+                    .map(|n| n.max(0) as usize)
+            })
+            .collect();
+        let at = values[0].span;
+        let Some(sizes) = sizes.filter(|s| (1..=2).contains(&s.len()) && *ty != Ty::Char) else {
+            return fail(
+                at,
+                "array values in the .dat of an array of more than two dimensions, of strings, or of a size that is not a number",
+                "set the elements in the program",
+            );
+        };
+        let total: usize = sizes.iter().product();
+        if total > 10_000 {
+            return fail(
+                at,
+                "an array too large to initialise in RAPID",
+                "set the elements in the program",
+            );
+        }
+        let mut cells = vec![zero(ty); total];
+        for d in values {
+            self.file = d.file;
+            let idx = d.index.as_deref().unwrap_or(&[]);
+            let value = match &d.value {
+                Ok(v) => self.data_value(ty, v)?,
+                Err(why) => return fail(d.span, why.message(), super::help::help(why)),
+            };
+            let pos = match (idx, sizes.as_slice()) {
+                ([i], [n]) if (1..=*n as i64).contains(i) => (*i - 1) as usize,
+                ([i, j], [n, m]) if (1..=*n as i64).contains(i) && (1..=*m as i64).contains(j) => {
+                    (*i as usize - 1) * m + (*j as usize - 1)
+                }
+                _ => return fail(d.span, "an index outside the array", "fix the index"),
+            };
+            cells[pos] = value;
+        }
+        let agg = match sizes.as_slice() {
+            [_] => format!("[{}]", cells.join(",")),
+            [_, m] => {
+                let rows: Vec<String> = cells
+                    .chunks(*m.max(&1))
+                    .map(|r| format!("[{}]", r.join(",")))
+                    .collect();
+                format!("[{}]", rows.join(","))
+            }
+            _ => unreachable!("one or two dimensions"),
+        };
+        let d = sizes
+            .iter()
+            .map(ToString::to_string)
+            .collect::<Vec<_>>()
+            .join(",");
+        Ok(format!(
+            "PERS {} {name}{{{d}}} := {agg};",
+            format::type_name(ty, 0)
+        ))
+    }
+
+    /// The module's data lines, and the flag array when `$FLAG` is used.
+    pub(super) fn data_lines(&self) -> Vec<String> {
+        let mut v = self.data.lines.clone();
+        if self.flags {
+            v.push("VAR bool krl_flag{1024};".into());
+        }
+        // Placeholders for KUKA's TOOL_DATA/BASE_DATA entries (TR002 where they are set).
+        for n in &self.frame_data.tools {
+            v.push(format!(
+                "PERS tooldata tool{n} := [TRUE,[[0,0,0],[1,0,0,0]],[1,[0,0,1],[1,0,0,0],0,0,0]];"
+            ));
+        }
+        for n in &self.frame_data.wobjs {
+            v.push(format!(
+                "PERS wobjdata wobj{n} := [FALSE,TRUE,\"\",[[0,0,0],[1,0,0,0]],[[0,0,0],[1,0,0,0]]];"
+            ));
+        }
+        v
+    }
+}

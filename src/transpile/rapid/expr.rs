@@ -1,0 +1,443 @@
+//! Expressions and places in RAPID spelling: explicit parentheses, `{}` indices, pose
+//! components (`p.trans.x`, `EulerZYX(\Z, p.rot)`), signal reads, robtarget literals.
+
+use super::format::{self, NO_EXTAX, num};
+use super::{R, Tx, fail};
+use crate::diag::Span;
+use crate::transpile::ir::{
+    Aggregate, Bank, BinaryOp, Builtin, Component, Expr, ExprKind, IoPlace, Place, Ty, UnaryOp,
+};
+use crate::transpile::render::Emit;
+
+/// Binding strength of a RAPID expression, to decide where parentheses go.
+const ATOM: u8 = 10;
+const MUL: u8 = 7;
+const ADD: u8 = 6;
+const CMP: u8 = 4;
+const LOGIC: u8 = 2;
+/// A unary operator's result as an operand.
+const NEG: u8 = 1;
+
+/// A rendered expression and how tightly it binds.
+pub(super) struct Rendered {
+    pub text: String,
+    prec: u8,
+    /// The operator, for chains of the same operator that need no parentheses.
+    op: Option<&'static str>,
+}
+
+impl Rendered {
+    fn atom(text: String) -> Rendered {
+        Rendered {
+            text,
+            prec: ATOM,
+            op: None,
+        }
+    }
+}
+
+/// Why axis values written in the program are not copied.
+pub(super) const NO_JOINT_MAP: &str = "KUKA axis values: ABB's axis zeros and directions differ, so the same numbers are another posture; without a joint map they are not translated";
+pub(super) const JOINT_MAP_HELP: &str = "give --joint-map (per ABB axis the KUKA axis, negated and shifted as the two arms need, e.g. A1,A2+90,A3-90,A4,A5,A6), or teach the point on the ABB robot";
+
+impl<'a> Tx<'a> {
+    /// An expression in a value context.
+    pub(super) fn expr(&mut self, e: &Expr) -> R<String> {
+        Ok(self.render(e)?.text)
+    }
+
+    fn render(&mut self, e: &Expr) -> R<Rendered> {
+        match &e.kind {
+            ExprKind::Int(i) => Ok(Rendered::atom(i.to_string())),
+            ExprKind::Real(r) => Ok(Rendered::atom(num(*r))),
+            ExprKind::Bool(b) => Ok(Rendered::atom(if *b { "TRUE" } else { "FALSE" }.into())),
+            ExprKind::Char(c) => Ok(Rendered::atom(format::string(&c.to_string()))),
+            ExprKind::Str(s) => Ok(Rendered::atom(format::string(s))),
+            ExprKind::Bits(v) | ExprKind::Hex(v) => Ok(Rendered::atom(v.to_string())),
+            ExprKind::Enum { ordinal, .. } => Ok(Rendered::atom(ordinal.to_string())),
+            ExprKind::Place(p) => self.place_value(p, e.span),
+            ExprKind::Unary(op, a) => self.unary(*op, a, e),
+            ExprKind::Binary(op, a, b) => self.binary(*op, a, b, e),
+            ExprKind::Aggregate(a) => Ok(Rendered::atom(self.literal(a, e.span)?)),
+            ExprKind::Builtin(b, args) => self.builtin(*b, args, e.span),
+            ExprKind::Io(io @ IoPlace::Flag(_)) => Ok(Rendered::atom(self.signal(io, e.span)?)),
+            ExprKind::Io(io) => Ok(Rendered::atom(format!(
+                "({} = 1)",
+                self.signal(io, e.span)?
+            ))),
+            ExprKind::Timer(_) | ExprKind::TimerFlag(_) => fail(
+                e.span,
+                "KRL timers ($TIMER, in ms) have no translation to RAPID clocks yet",
+                "use a clock: ClkReset, ClkStart and ClkRead (seconds)",
+            ),
+            ExprKind::Param(p) => fail(
+                e.span,
+                format!("reading {} back has no RAPID equivalent", p.krl()),
+                "keep the value in a variable where the program sets it",
+            ),
+            ExprKind::NullFrame => Ok(Rendered::atom(format::zero(&Ty::Pose))),
+            ExprKind::Current { joints: false } => Ok(Rendered::atom(self.current_pos())),
+            ExprKind::Current { joints: true } => fail(
+                e.span,
+                NO_JOINT_MAP,
+                "assign $AXIS_ACT to a variable first, and give --joint-map",
+            ),
+        }
+    }
+
+    fn unary(&mut self, op: UnaryOp, operand: &Expr, whole: &Expr) -> R<Rendered> {
+        if let Some(t) = self.signal_test(whole) {
+            return Ok(Rendered::atom(t?));
+        }
+        let inner = self.render(operand)?;
+        let wrap = |r: Rendered| {
+            if r.prec < ATOM {
+                format!("({})", r.text)
+            } else {
+                r.text
+            }
+        };
+        // NOT binds loosely in RAPID and a sign after an operator is unusual: both are
+        // parenthesised as operands (their `prec` is below every binary operator's).
+        let text = match op {
+            UnaryOp::Not => format!("NOT {}", wrap(inner)),
+            UnaryOp::Neg => format!("-{}", wrap(inner)),
+            UnaryOp::BNot => {
+                return fail(
+                    whole.span,
+                    "B_NOT (bitwise NOT) has no RAPID equivalent on num",
+                    "compute the bits with BitNeg on a byte, or port by hand",
+                );
+            }
+        };
+        Ok(Rendered {
+            text,
+            prec: NEG,
+            op: None,
+        })
+    }
+
+    fn binary(&mut self, op: BinaryOp, lhs: &Expr, rhs: &Expr, whole: &Expr) -> R<Rendered> {
+        if let Some(t) = self.signal_test(whole) {
+            return Ok(Rendered::atom(t?));
+        }
+        let (sym, prec): (&'static str, u8) = match op {
+            BinaryOp::Geo => {
+                return fail(
+                    whole.span,
+                    "the geometric operator `:` has no translation to RAPID yet",
+                    "compose the poses with PoseMult by hand",
+                );
+            }
+            BinaryOp::BAnd | BinaryOp::BOr | BinaryOp::BExor => {
+                return fail(
+                    whole.span,
+                    "bitwise operators on numbers have no RAPID equivalent (BitAnd/BitOr work on bytes)",
+                    "port by hand with BitAnd/BitOr on byte values",
+                );
+            }
+            BinaryOp::Mul => ("*", MUL),
+            BinaryOp::Div => ("/", MUL),
+            BinaryOp::IntDiv => ("DIV", MUL),
+            BinaryOp::Add => ("+", ADD),
+            BinaryOp::Sub => ("-", ADD),
+            BinaryOp::And => ("AND", LOGIC),
+            BinaryOp::Or => ("OR", LOGIC),
+            BinaryOp::Exor => ("XOR", LOGIC),
+            BinaryOp::Eq => ("=", CMP),
+            BinaryOp::Ne => ("<>", CMP),
+            BinaryOp::Lt => ("<", CMP),
+            BinaryOp::Gt => (">", CMP),
+            BinaryOp::Le => ("<=", CMP),
+            BinaryOp::Ge => (">=", CMP),
+        };
+        let l = self.render(lhs)?;
+        let r = self.render(rhs)?;
+        let side = |c: Rendered, right: bool| -> String {
+            let paren = if prec >= ADD {
+                // Left-associative: `a - b + c` needs none, `a - (b + c)` does.
+                c.prec < prec || (c.prec == prec && right)
+            } else if prec == CMP {
+                c.prec <= CMP
+            } else {
+                c.prec < ATOM && (right || c.op != Some(sym))
+            };
+            if paren {
+                format!("({})", c.text)
+            } else {
+                c.text
+            }
+        };
+        let text = format!("{} {sym} {}", side(l, false), side(r, true));
+        Ok(Rendered {
+            text,
+            prec,
+            op: Some(sym),
+        })
+    }
+
+    /// `$IN[3]`, `NOT $IN[3]`, `$IN[3] == FALSE` … as `(di3 = 1)` / `(di3 = 0)`; `None` if `e`
+    /// is not a signal test.
+    pub(super) fn signal_test(&mut self, e: &Expr) -> Option<R<String>> {
+        self.signal_level(e)
+            .map(|r| r.map(|(s, high)| format!("({s} = {})", u8::from(high))))
+    }
+
+    /// A signal test as its signal and the level it tests for.
+    pub(super) fn signal_level(&mut self, e: &Expr) -> Option<R<(String, bool)>> {
+        match &e.kind {
+            ExprKind::Unary(UnaryOp::Not, a) => {
+                let t = self.signal_level(a)?;
+                Some(t.map(|(s, v)| (s, !v)))
+            }
+            ExprKind::Binary(op @ (BinaryOp::Eq | BinaryOp::Ne), a, b) => {
+                let (sig, v) = match (&a.kind, &b.kind) {
+                    (_, ExprKind::Bool(v)) => (a, *v),
+                    (ExprKind::Bool(v), _) => (b, *v),
+                    _ => return None,
+                };
+                let t = self.signal_level(sig)?;
+                let positive = v == (*op == BinaryOp::Eq);
+                Some(t.map(|(s, l)| (s, if positive { l } else { !l })))
+            }
+            ExprKind::Io(io @ (IoPlace::In(_) | IoPlace::Out(_))) => {
+                Some(self.signal(io, e.span).map(|s| (s, true)))
+            }
+            ExprKind::Io(io @ IoPlace::Signal(r)) if r.width() == 1 => {
+                Some(self.signal(io, e.span).map(|s| (s, true)))
+            }
+            _ => None,
+        }
+    }
+
+    /// The RAPID name of a digital signal, or the element of the flag array (a bool) for
+    /// `$FLAG[n]`.
+    pub(super) fn signal(&mut self, io: &IoPlace, span: Span) -> R<String> {
+        let map = &self.opts.rapid.signals;
+        let (bank, index) = match io {
+            IoPlace::In(i) => (Bank::In, i),
+            IoPlace::Out(i) => (Bank::Out, i),
+            IoPlace::Flag(i) => {
+                let i = self.expr(i)?;
+                self.flags = true;
+                return Ok(format!("krl_flag{{{i}}}"));
+            }
+            IoPlace::Signal(r) => {
+                if r.width() != 1 {
+                    return fail(
+                        span,
+                        "a group of signals (SIGNAL … TO …) needs a group signal of the I/O configuration",
+                        "configure a group signal and read it with GInput / write it with SetGO",
+                    );
+                }
+                return Ok(map.name(r.bank, r.from));
+            }
+        };
+        match index.integer() {
+            Some(n) => Ok(map.name(bank, n)),
+            None => fail(
+                index.span,
+                "a signal number computed at run time: RAPID signals are names of the I/O configuration",
+                "use a literal number, or an IF per signal",
+            ),
+        }
+    }
+
+    /// A place read as a value.
+    fn place_value(&mut self, p: &Place, span: Span) -> R<Rendered> {
+        match p {
+            Place::Component(base, Component::Pose(i @ 3..=5)) => {
+                let b = self.place_text(base, span)?;
+                let axis = ["\\Z", "\\Y", "\\X"][*i - 3];
+                Ok(Rendered::atom(format!("EulerZYX({axis}, {b}.rot)")))
+            }
+            Place::Index(base, idx)
+                if self.is_string(base) && matches!(idx.as_slice(), [Some(_)]) =>
+            {
+                let b = self.place_text(base, span)?;
+                let i = match idx.as_slice() {
+                    [Some(i)] => self.expr(i)?,
+                    _ => unreachable!("one index"),
+                };
+                Ok(Rendered::atom(format!("StrPart({b}, {i}, 1)")))
+            }
+            _ => Ok(Rendered::atom(self.place_text(p, span)?)),
+        }
+    }
+
+    fn is_string(&self, p: &Place) -> bool {
+        matches!(p, Place::Var(v) if self.ir.var(*v).ty == Ty::Char)
+    }
+
+    /// A variable, element or component as RAPID writes it, readable and assignable.
+    pub(super) fn place_text(&mut self, p: &Place, span: Span) -> R<String> {
+        match p {
+            Place::Var(v) => Ok(self.var_name(*v, span)),
+            Place::Temp(t) => Ok(self.temp_name(*t)),
+            Place::Index(base, idx) => {
+                let b = self.place_text(base, span)?;
+                if self.is_string(base) {
+                    return match idx.as_slice() {
+                        [None] | [] => Ok(b),
+                        _ => fail(
+                            span,
+                            "one character of a string as a place has no RAPID equivalent",
+                            "build the string with StrPart and +",
+                        ),
+                    };
+                }
+                let mut v = Vec::new();
+                for i in idx {
+                    match i {
+                        Some(i) => v.push(self.expr(i)?),
+                        None => return Ok(b),
+                    }
+                }
+                Ok(format!("{b}{{{}}}", v.join(",")))
+            }
+            Place::Component(base, c) => {
+                let b = self.place_text(base, span)?;
+                match c {
+                    Component::Pose(i @ 0..=2) => Ok(format!("{b}.trans.{}", ["x", "y", "z"][*i])),
+                    Component::Ext(i) => Ok(format!(
+                        "{b}.extax.eax_{}",
+                        ["a", "b", "c", "d", "e", "f"][*i]
+                    )),
+                    Component::Axis(_) => fail(span, NO_JOINT_MAP, JOINT_MAP_HELP),
+                    _ => fail(
+                        span,
+                        format!(
+                            "the component `{}` has no RAPID counterpart as a place",
+                            c.krl()
+                        ),
+                        "compute the whole value and assign it",
+                    ),
+                }
+            }
+            Place::Member(_, f) => fail(
+                span,
+                format!("structure member `.{f}` has no translation to RAPID yet"),
+                "split the structure into separate variables",
+            ),
+        }
+    }
+
+    fn builtin(&mut self, b: Builtin, args: &[Expr], span: Span) -> R<Rendered> {
+        let mut v = Vec::new();
+        for a in args {
+            v.push(self.render(a)?.text);
+        }
+        let name = match b {
+            Builtin::Abs => "Abs",
+            Builtin::Sqrt => "Sqrt",
+            Builtin::Sin => "Sin",
+            Builtin::Cos => "Cos",
+            Builtin::Tan => "Tan",
+            Builtin::Acos => "ACos",
+            Builtin::Atan2 => "ATan2",
+            Builtin::StrLen => "StrLen",
+            Builtin::Round => "Round",
+            Builtin::InvPos => {
+                return fail(
+                    span,
+                    "INV_POS has no translation to RAPID yet",
+                    "invert the frame with PoseInv on a pose by hand",
+                );
+            }
+        };
+        Ok(Rendered::atom(format!("{name}({})", v.join(", "))))
+    }
+
+    /// The current position: `CRobT(\Tool:=… \WObj:=…)`.
+    pub(super) fn current_pos(&mut self) -> String {
+        "CRobT(\\Tool:=tool0 \\WObj:=wobj0)".into()
+    }
+
+    /// A complete pose or axis literal: `[[x,y,z],[q1,q2,q3,q4],[0,0,0,0],[e1,…]]` or
+    /// `[[j1,…,j6],[e1,…]]`.
+    pub(super) fn literal(&mut self, a: &Aggregate, span: Span) -> R<String> {
+        if !a.complete() {
+            let want = if a.axis {
+                "A1 to A6"
+            } else {
+                "X, Y, Z, A, B and C"
+            };
+            return fail(
+                span,
+                format!(
+                    "an incomplete literal (KRL keeps the missing components of the current value); RAPID needs all of {want}"
+                ),
+                "write every component",
+            );
+        }
+        let ext = self.ext_axes(a, span)?;
+        if a.axis {
+            let Some(map) = self.opts.joint_map.clone() else {
+                return fail(span, NO_JOINT_MAP, JOINT_MAP_HELP);
+            };
+            let Some(m) = a.numbers() else {
+                return fail(
+                    span,
+                    "axis values with computed components; only literal values go through the joint map",
+                    "use literal values",
+                );
+            };
+            self.note(format!(
+                "KUKA axis values -> ABB axes 1..6 by the joint map {map} (--joint-map)"
+            ));
+            let j: Vec<String> = map.apply(&m).into_iter().map(num).collect();
+            return Ok(format!("[[{}],{ext}]", j.join(",")));
+        }
+        let mut xyz = Vec::new();
+        for i in 0..3 {
+            xyz.push(self.expr(a.get(a.main(i)).expect("complete"))?);
+        }
+        let abc: Option<Vec<f64>> = (3..6)
+            .map(|i| a.get(a.main(i)).and_then(Expr::number))
+            .collect();
+        let rot = match abc {
+            Some(abc) => format::orient(abc[0], abc[1], abc[2]),
+            None => {
+                let mut v = Vec::new();
+                for i in 3..6 {
+                    v.push(self.expr(a.get(a.main(i)).expect("complete"))?);
+                }
+                format!("OrientZYX({})", v.join(", "))
+            }
+        };
+        if let Some(st) = a.status_turn_text() {
+            self.out.rep.approximate(
+                self.file,
+                span,
+                format!(
+                    "status/turn ({st}) have no formula to RAPID confdata; [0,0,0,0] with ConfJ/ConfL \\Off lets the controller pick the arm configuration"
+                ),
+                "check the configuration at this point, or teach it on the ABB robot",
+            );
+        }
+        Ok(format!("[[{}],{rot},[0,0,0,0],{ext}]", xyz.join(",")))
+    }
+
+    /// E1…E6 of a literal, `9E9` where not given.
+    fn ext_axes(&mut self, a: &Aggregate, span: Span) -> R<String> {
+        let ext = match a.ext() {
+            Ok(e) => e,
+            Err(at) => {
+                return fail(
+                    at,
+                    "an external axis value that is not a number literal",
+                    "use literal values",
+                );
+            }
+        };
+        if ext.iter().all(Option::is_none) {
+            let _ = span;
+            return Ok(NO_EXTAX.into());
+        }
+        let v: Vec<String> = ext
+            .iter()
+            .map(|e| e.map_or_else(|| "9E9".into(), num))
+            .collect();
+        Ok(format!("[{}]", v.join(",")))
+    }
+}

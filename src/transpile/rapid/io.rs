@@ -1,0 +1,219 @@
+//! Outputs, pulses and waits: `SetDO`, `PulseDO`, `WaitDI`/`WaitDO`, `WaitUntil`, `WaitTime`;
+//! `$FLAG[n]` is the module's bool array `krl_flag`. Signal names come from `--signal-map`.
+
+use super::{R, Tx, fail};
+use crate::diag::Span;
+use crate::transpile::front::report::FileId;
+use crate::transpile::ir::{Bank, Expr, ExprKind, IoPlace, IoTiming, OutPlace, Wait};
+use crate::transpile::render::Emit;
+
+/// How KRL's digital I/O numbers become RAPID signal names: a pattern per bank with `{n}` for
+/// the number, and names for single signals.
+#[derive(Debug, Clone, PartialEq, Eq)]
+pub struct SignalNames {
+    pub out_pattern: String,
+    pub in_pattern: String,
+    /// `(bank, number, name)` entries that win over the patterns.
+    pub single: Vec<(Bank, i64, String)>,
+}
+
+impl Default for SignalNames {
+    fn default() -> SignalNames {
+        SignalNames {
+            out_pattern: "do{n}".into(),
+            in_pattern: "di{n}".into(),
+            single: Vec::new(),
+        }
+    }
+}
+
+impl SignalNames {
+    /// `out=do{n},in=di{n},out17=doGripper,in10=diBinReady` (every item optional).
+    pub fn parse(s: &str) -> Result<SignalNames, String> {
+        let mut m = SignalNames::default();
+        for item in s.split(',').map(str::trim).filter(|i| !i.is_empty()) {
+            let Some((key, value)) = item.split_once('=') else {
+                return Err(format!(
+                    "--signal-map item `{item}` is not KEY=NAME (e.g. out=do{{n}}, in10=diBinReady)"
+                ));
+            };
+            let (key, value) = (key.trim().to_ascii_lowercase(), value.trim());
+            let (bank, rest) = if let Some(r) = key.strip_prefix("out") {
+                (Bank::Out, r)
+            } else if let Some(r) = key.strip_prefix("in") {
+                (Bank::In, r)
+            } else {
+                return Err(format!(
+                    "--signal-map key `{key}` is neither out, in, outN nor inN"
+                ));
+            };
+            let ident = value.replace("{n}", "1");
+            if !valid_name(&ident) {
+                return Err(format!(
+                    "--signal-map name `{value}` is not a RAPID identifier (a letter, then letters, digits or _, at most 32)"
+                ));
+            }
+            if rest.is_empty() {
+                if !value.contains("{n}") {
+                    return Err(format!(
+                        "--signal-map pattern `{value}` needs {{n}} for the signal number"
+                    ));
+                }
+                match bank {
+                    Bank::Out => m.out_pattern = value.into(),
+                    Bank::In => m.in_pattern = value.into(),
+                }
+            } else {
+                let n: i64 = rest.parse().map_err(|_| {
+                    format!("--signal-map key `{key}`: the signal number is not a number")
+                })?;
+                m.single.push((bank, n, value.into()));
+            }
+        }
+        Ok(m)
+    }
+
+    pub fn out_pattern(&self) -> String {
+        self.out_pattern.replace("{n}", "<n>")
+    }
+
+    pub fn in_pattern(&self) -> String {
+        self.in_pattern.replace("{n}", "<n>")
+    }
+
+    /// The name of signal `n` of `bank`.
+    pub fn name(&self, bank: Bank, n: i64) -> String {
+        if let Some((_, _, name)) = self.single.iter().find(|(b, k, _)| *b == bank && *k == n) {
+            return name.clone();
+        }
+        let p = match bank {
+            Bank::Out => &self.out_pattern,
+            Bank::In => &self.in_pattern,
+        };
+        p.replace("{n}", &n.to_string())
+    }
+}
+
+fn valid_name(s: &str) -> bool {
+    s.len() <= 32
+        && s.starts_with(|c: char| c.is_ascii_alphabetic())
+        && s.chars().all(|c| c.is_ascii_alphanumeric() || c == '_')
+}
+
+impl<'a> Tx<'a> {
+    fn out_name(&mut self, io: &OutPlace, span: Span) -> R<String> {
+        self.signal(&io.as_io(), span)
+    }
+
+    pub(super) fn set_io(
+        &mut self,
+        io: &OutPlace,
+        value: &Expr,
+        when: &IoTiming,
+        span: Span,
+    ) -> R<()> {
+        let sig = self.out_name(io, span)?;
+        if let IoTiming::PathEnd | IoTiming::Trigger(_) = when {
+            self.out.rep.approximate(
+                FileId::Src,
+                span,
+                "this output switches on the path in KRL ($OUT_C or TRIGGER); RAPID sets it where the statement stands",
+                "use TriggIO with TriggL/TriggJ for a switch on the path",
+            );
+        }
+        if let OutPlace::Flag(_) = io {
+            let v = self.expr(value)?;
+            self.line(format!("{sig} := {v};"));
+            return Ok(());
+        }
+        match &value.kind {
+            ExprKind::Bool(b) => self.line(format!("SetDO {sig}, {};", u8::from(*b))),
+            _ => {
+                let c = self.expr(value)?;
+                self.line(format!("IF {c} THEN"));
+                self.out.depth += 1;
+                self.line(format!("SetDO {sig}, 1;"));
+                self.out.depth -= 1;
+                self.line("ELSE");
+                self.out.depth += 1;
+                self.line(format!("SetDO {sig}, 0;"));
+                self.out.depth -= 1;
+                self.line("ENDIF");
+            }
+        }
+        Ok(())
+    }
+
+    pub(super) fn pulse(
+        &mut self,
+        io: &OutPlace,
+        level: &Expr,
+        seconds: &Expr,
+        span: Span,
+    ) -> R<()> {
+        if let OutPlace::Flag(_) = io {
+            return fail(
+                span,
+                "a pulse of a flag has no RAPID equivalent",
+                "pulse an output",
+            );
+        }
+        if !matches!(level.kind, ExprKind::Bool(true)) {
+            return fail(
+                level.span,
+                "a low or computed pulse level: PulseDO pulses high",
+                "use SetDO sig, 0; WaitTime t; SetDO sig, 1; (this waits, PULSE does not)",
+            );
+        }
+        let sig = self.out_name(io, span)?;
+        let t = self.expr(seconds)?;
+        self.line(format!("PulseDO \\PLength:={t}, {sig};"));
+        Ok(())
+    }
+
+    pub(super) fn wait(&mut self, w: &Wait) -> R<()> {
+        match w {
+            Wait::Seconds(t) => {
+                let t = self.expr(t)?;
+                self.line(format!("WaitTime {t};"));
+            }
+            Wait::Until(c) => {
+                let io_of = |e: &Expr| -> Option<Bank> {
+                    let mut e = e;
+                    loop {
+                        match &e.kind {
+                            ExprKind::Unary(_, a) => e = a,
+                            ExprKind::Binary(_, a, b) => {
+                                e = if matches!(b.kind, ExprKind::Bool(_)) {
+                                    a
+                                } else {
+                                    b
+                                }
+                            }
+                            ExprKind::Io(IoPlace::In(_)) => return Some(Bank::In),
+                            ExprKind::Io(IoPlace::Out(_)) => return Some(Bank::Out),
+                            ExprKind::Io(IoPlace::Signal(r)) => return Some(r.bank),
+                            _ => return None,
+                        }
+                    }
+                };
+                match (self.signal_level(c), io_of(c)) {
+                    (Some(t), Some(bank)) => {
+                        let (sig, high) = t?;
+                        let instr = match bank {
+                            Bank::In => "WaitDI",
+                            Bank::Out => "WaitDO",
+                        };
+                        self.line(format!("{instr} {sig}, {};", u8::from(high)));
+                    }
+                    _ => {
+                        let c = self.expr(c)?;
+                        self.line(format!("WaitUntil {c};"));
+                    }
+                }
+            }
+            Wait::Poll => self.line("WaitTime 0.01;"),
+        }
+        Ok(())
+    }
+}

@@ -1,0 +1,397 @@
+//! The program model → ABB RAPID, following the mapping of the reference notes
+//! (`abb-rapid.md` §9).
+//!
+//! A renderer: every KRL decision (hoisted calls, motion parameters per motion, advance-run
+//! stops, unsupported constructs) is in the model; this module spells it in RAPID and reports
+//! what RAPID cannot say. One `.src` (+ `.dat`) becomes one program module (`.mod`): a header
+//! comment with the assumptions and the name map, the module data (the `.dat` values as
+//! `PERS`, globals without a value as `VAR`), a `PROC`/`FUNC` per routine with its `VAR`s
+//! before its statements, and a `PROC main()` that starts the program's main routine.
+//! Statements and control flow (`stmt.rs`), expressions (`expr.rs`), motions (`motion.rs`), I/O
+//! and waits (`io.rs`), data (`data.rs`) and the structural check of the output (`check.rs`)
+//! each live in their own file.
+
+pub mod check;
+mod data;
+mod expr;
+mod format;
+mod help;
+mod io;
+mod keywords;
+mod motion;
+mod stmt;
+
+use std::collections::HashMap;
+
+use super::Options;
+use super::front::Program as Source;
+use super::front::names::{NameRules, Namer};
+use super::front::report::{FileId, Report};
+use super::ir::{self, Block, LoopId, RoutineId, RoutineKind, TempId, Ty, VarId};
+use super::render::{self, Emit, Out, Style};
+use crate::diag::Span;
+
+pub(super) use super::front::{R, fail};
+
+/// RAPID identifier rules: at most 32 characters, one namespace for routines and module data.
+pub const NAME_RULES: NameRules = NameRules {
+    max_len: 32,
+    is_reserved: keywords::is_reserved,
+    language: "RAPID",
+    routine: "routine",
+    routines_with_globals: true,
+    package: &[],
+};
+
+/// How RAPID writes lines: module items indented once, routine bodies twice, `!` comments.
+static STYLE: Style = Style {
+    indent: "  ",
+    base_depth: 2,
+    comment: |t| format!("!{t}"),
+    kept: |code, krl| format!("! [{code}] {krl}"),
+    trailing: |t| format!(" !{t}"),
+    trailing_on_first: false,
+};
+
+/// ABB RAPID in the table of targets.
+pub static BACKEND: render::Backend = render::Backend {
+    target: super::Target::Rapid,
+    name: "rapid",
+    caps: render::Caps {
+        goto: true,
+        records: false,
+        interrupts: false,
+    },
+    name_rules: &NAME_RULES,
+    help: help::help,
+    check: check::check,
+    renderer: |src, program, _vision, options, report| {
+        Box::new(Tx::new(src, program, options, report))
+    },
+};
+
+/// The RAPID backend's settings.
+#[derive(Debug, Clone, Default)]
+pub struct RapidOptions {
+    /// KRL I/O numbers → signal names (`--signal-map`).
+    pub signals: io::SignalNames,
+}
+
+pub use io::SignalNames;
+
+/// The joint map for an ABB arm's six axes, e.g. `-A1,A2+90,A3-90,-A4,A5,-A6`.
+pub fn joint_map(s: &str) -> Result<super::joints::JointMap, String> {
+    super::joints::JointMap::parse(s, 6, "ABB", "A1,A2+90,A3-90,A4,A5,A6")
+}
+
+/// One translated routine.
+struct RoutineOut {
+    /// `PROC name(…)` / `FUNC num name(…)`.
+    head: String,
+    /// `ENDPROC` / `ENDFUNC`.
+    end: &'static str,
+    /// Its declared data (`VAR …;` lines, indented).
+    decls: Vec<String>,
+    /// Its statements, each line ending in a line break.
+    body: String,
+}
+
+/// The routine being rendered.
+struct Rt {
+    id: RoutineId,
+    out: RoutineOut,
+    /// Temporaries named so far.
+    temps: HashMap<TempId, String>,
+    /// Made-up locals, with their RAPID types, in the order minted.
+    extra: Vec<(String, &'static str)>,
+    /// Loops left by a jump: the label after the loop.
+    breaks: HashMap<LoopId, String>,
+}
+
+pub struct Tx<'a> {
+    src: &'a Source,
+    ir: &'a ir::Program,
+    opts: &'a Options,
+    out: Out<'a>,
+    names: Namer<'a>,
+    routines: Vec<RoutineOut>,
+    rt: Option<Rt>,
+    data: data::DataOut,
+    /// Routines of other modules the program calls (RAPID names), for the header.
+    external: Vec<String>,
+    /// `$FLAG[n]` is used: the module declares the flag array.
+    flags: bool,
+    frame_data: motion::FrameData,
+    /// The file of the value being rendered (the `.dat` while its data are).
+    file: FileId,
+}
+
+impl<'a> Tx<'a> {
+    fn new(src: &'a Source, ir: &'a ir::Program, opts: &'a Options, report: Report) -> Tx<'a> {
+        Tx {
+            src,
+            ir,
+            opts,
+            out: Out::new(&STYLE, src, report),
+            names: Namer::new(&NAME_RULES, ir),
+            routines: Vec::new(),
+            rt: None,
+            data: data::DataOut::default(),
+            external: Vec::new(),
+            flags: false,
+            frame_data: motion::FrameData::default(),
+            file: FileId::Src,
+        }
+    }
+
+    // ----- names -------------------------------------------------------------------------
+
+    /// A variable's RAPID name.
+    fn var_name(&mut self, v: VarId, used_at: Span) -> String {
+        self.names.var(&mut self.out.rep, v, used_at).0
+    }
+
+    fn routine_id(&self) -> RoutineId {
+        self.rt.as_ref().map_or(RoutineId(0), |r| r.id)
+    }
+
+    /// A label the translator needs (e.g. after a loop left with a jump).
+    fn fresh_label(&mut self, base: &str) -> String {
+        let id = self.routine_id();
+        self.names.fresh_label(id, base)
+    }
+
+    /// A label of the KRL program.
+    fn label_name(&mut self, l: ir::LabelId) -> String {
+        let id = self.routine_id();
+        let krl = &self.ir.routine(id).labels[l.0 as usize].0;
+        self.names.label(id, krl)
+    }
+
+    /// A local the translator needs, declared with `ty` in the routine being rendered.
+    fn fresh_local(&mut self, base: &str, ty: &'static str) -> String {
+        let id = self.routine_id();
+        let n = self.names.fresh_local(id, base);
+        if let Some(rt) = &mut self.rt {
+            rt.extra.push((n.clone(), ty));
+        }
+        n
+    }
+
+    // ----- routines ----------------------------------------------------------------------
+
+    /// Moves the finished lines into the body of the routine being rendered.
+    fn flush_lines(&mut self) {
+        let Some(rt) = &mut self.rt else {
+            return;
+        };
+        for l in self.out.lines.drain(..) {
+            rt.out.body.push_str(l.trim_end());
+            rt.out.body.push('\n');
+        }
+    }
+
+    /// The routine that `PROC main()` starts: the file's first routine, when it takes no
+    /// parameters and is a procedure.
+    fn main_routine(&self) -> Option<String> {
+        let r = self.ir.routines.first()?;
+        if r.kind != RoutineKind::Def || !r.params.is_empty() {
+            return None;
+        }
+        self.names.routine_of(&r.name).map(str::to_owned)
+    }
+
+    // ----- assembly ----------------------------------------------------------------------
+
+    fn assemble(&mut self) -> String {
+        let mut out = String::new();
+        let module = format::module_name(&self.src.src.path);
+        out.push_str(&format!("MODULE {module}\n"));
+        for l in self.header_comment() {
+            out.push_str("  ");
+            out.push_str(&l);
+            out.push('\n');
+        }
+        for l in self.data_lines() {
+            out.push_str("  ");
+            out.push_str(&l);
+            out.push('\n');
+        }
+        for r in std::mem::take(&mut self.routines) {
+            out.push_str("  ");
+            out.push_str(&r.head);
+            out.push('\n');
+            for d in &r.decls {
+                out.push_str("    ");
+                out.push_str(d);
+                out.push('\n');
+            }
+            out.push_str(&r.body);
+            out.push_str("  ");
+            out.push_str(r.end);
+            out.push('\n');
+        }
+        out.push_str("  PROC main()\n");
+        // KUKA's status and turn have no formula to confdata: the controller picks the
+        // configuration closest to the current one.
+        out.push_str("    ConfJ \\Off;\n    ConfL \\Off;\n");
+        if let Some(m) = self.main_routine() {
+            out.push_str(&format!("    {m};\n"));
+        }
+        out.push_str("  ENDPROC\n");
+        out.push_str("ENDMODULE\n");
+        out
+    }
+
+    fn header_comment(&self) -> Vec<String> {
+        let mut v = vec![
+            format!(
+                "! Translated from KRL {} by krlkit transpile --to rapid",
+                render::file_name(&self.src.src.path)
+            ),
+            format!(
+                "! Signals: $OUT[n] -> {}, $IN[n] -> {} (names of the I/O configuration; --signal-map)",
+                self.opts.rapid.signals.out_pattern(),
+                self.opts.rapid.signals.in_pattern()
+            ),
+        ];
+        for a in format::ASSUMED {
+            v.push(format!("! Assumed [?]: {a}"));
+        }
+        for n in &self.out.notes {
+            v.push(format!("! {n}"));
+        }
+        if !self.external.is_empty() {
+            v.push(format!(
+                "! External routines (other modules): {}",
+                self.external.join(", ")
+            ));
+        }
+        if !self.data.kept.is_empty() {
+            v.push("! Data not translated:".into());
+            v.extend(self.data.kept.iter().cloned());
+        }
+        v.extend(render::name_map_lines(&self.names, "! "));
+        v
+    }
+}
+
+impl crate::transpile::Renderer for Tx<'_> {
+    fn start(&mut self) {
+        self.names.declare_program(&mut self.out.rep);
+        self.module_data();
+    }
+
+    fn begin_routine(&mut self, id: RoutineId) {
+        let ir = self.ir;
+        let r = ir.routine(id);
+        self.flush_comments(r.span.start);
+        // Comments before the DEF line belong to no routine: carry them into this one.
+        let before: Vec<String> = std::mem::take(&mut self.out.lines);
+        let name = if r.synthetic {
+            self.names.routine(&mut self.out.rep, &r.name, r.name_span)
+        } else {
+            self.names.routine_of(&r.name).unwrap_or("").to_owned()
+        };
+        self.rt = Some(Rt {
+            id,
+            out: RoutineOut {
+                head: String::new(),
+                end: "ENDPROC",
+                decls: Vec::new(),
+                body: String::new(),
+            },
+            temps: HashMap::new(),
+            extra: Vec::new(),
+            breaks: HashMap::new(),
+        });
+        self.names.declare_locals(&mut self.out.rep, id);
+        self.names.declare_labels(&mut self.out.rep, id);
+        let mut params = Vec::new();
+        for p in &r.params {
+            let var = ir.var(p.var);
+            let n = self.var_name(p.var, var.decl);
+            let ty = format::type_name(&var.ty, var.dims);
+            let by_ref = p.dir == ir::ParamDir::Out || p.array > 0;
+            let mode = if by_ref { "INOUT " } else { "" };
+            let dims = if p.array > 0 {
+                format!("{{{}}}", vec!["*"; p.array].join(","))
+            } else {
+                String::new()
+            };
+            params.push(format!("{mode}{ty} {n}{dims}"));
+        }
+        let mut decls = Vec::new();
+        for (v, dims) in &r.locals {
+            let var = ir.var(*v);
+            let n = self.var_name(*v, var.decl);
+            decls.push(self.declaration("VAR", &n, &var.ty, dims, var.decl));
+        }
+        if let Some(rt) = &mut self.rt {
+            rt.out.head = match r.kind {
+                RoutineKind::Def => format!("PROC {name}({})", params.join(", ")),
+                RoutineKind::Deffct => {
+                    let ty = format::type_name(r.ret.as_ref().unwrap_or(&Ty::Real), 0);
+                    rt.out.end = "ENDFUNC";
+                    format!("FUNC {ty} {name}({})", params.join(", "))
+                }
+            };
+            rt.out.decls = decls;
+        }
+        self.out.lines = before;
+    }
+
+    fn ops(&mut self, ops: &Block) {
+        self.block(ops);
+        self.flush_lines();
+    }
+
+    fn end_routine(&mut self) {
+        let r = self.ir.routine(self.routine_id());
+        self.flush_comments(r.span.end);
+        self.flush_lines();
+        let ir = self.ir;
+        if let Some(mut rt) = self.rt.take() {
+            let mut temps: Vec<(&TempId, &String)> = rt.temps.iter().collect();
+            temps.sort();
+            for (t, n) in temps {
+                let ty = ir
+                    .routine(rt.id)
+                    .temps
+                    .get(t.0 as usize)
+                    .unwrap_or(&Ty::Real);
+                rt.out
+                    .decls
+                    .push(format!("VAR {} {n};", format::type_name(ty, 0)));
+            }
+            for (n, ty) in &rt.extra {
+                rt.out.decls.push(format!("VAR {ty} {n};"));
+            }
+            self.routines.push(rt.out);
+        }
+    }
+
+    fn finish(mut self: Box<Self>) -> (String, Report, Vec<Span>) {
+        let text = self.assemble();
+        (text, self.out.rep, self.out.produced)
+    }
+}
+
+impl<'a> Emit<'a> for Tx<'a> {
+    fn out(&mut self) -> &mut Out<'a> {
+        &mut self.out
+    }
+
+    fn op(&mut self, s: &ir::Stmt) -> R<()> {
+        Tx::op(self, s)
+    }
+
+    fn temps(&mut self) -> Option<&mut HashMap<TempId, String>> {
+        self.rt.as_mut().map(|r| &mut r.temps)
+    }
+
+    fn mint_temp(&mut self) -> String {
+        let id = self.routine_id();
+        self.names.fresh_local(id, "tmp")
+    }
+}

@@ -1,0 +1,427 @@
+//! Statements and control flow, assignments and calls. KRL FOR and REPEAT become WHILE loops
+//! (RAPID's FOR counter is read-only and gone after the loop; KRL's is a variable), loops left
+//! early jump to a label after them (RAPID `EXIT` ends the program).
+
+use super::{R, Tx, fail};
+use crate::diag::Span;
+use crate::transpile::front::report::FileId;
+use crate::transpile::ir::{
+    self, Arg, Block, Callee, Component, Expr, ExprKind, LoopId, LoopKind, Op, Place, RoutineKind,
+    Stmt, Ty,
+};
+use crate::transpile::render::Emit;
+
+/// What KRL's Mech-Mind calls become on an ABB robot.
+const MM_HELP: &str =
+    "use the Mech-Mind ABB interface (its RAPID modules and routines) for this call";
+
+impl<'a> Tx<'a> {
+    /// A block: consecutive ops of one KRL statement render together (and fail together).
+    pub(super) fn block(&mut self, b: &Block) {
+        let mut i = 0;
+        while i < b.len() {
+            let span = b[i].span;
+            let mut j = i + 1;
+            while j < b.len() && b[j].span == span {
+                j += 1;
+            }
+            self.group(&b[i..j]);
+            i = j;
+        }
+    }
+
+    fn nested(&mut self, b: &Block) {
+        self.out.depth += 1;
+        self.block(b);
+        self.out.depth -= 1;
+    }
+
+    /// Writes the block end, after the comments that come before it in the source.
+    fn end_block(&mut self, end: u32, text: &str) {
+        self.out.depth += 1;
+        self.flush_comments(end);
+        self.out.depth -= 1;
+        self.line(text);
+    }
+
+    pub(super) fn op(&mut self, s: &Stmt) -> R<()> {
+        let span = s.span;
+        match &s.op {
+            Op::Assign { place, value } => self.assign(place, value, span),
+            Op::Call { callee, args, ret } => self.call(callee, args, ret.as_ref(), span),
+            Op::ReadPos { place, joints } => {
+                let t = self.place_text(place, span)?;
+                if *joints {
+                    if self.opts.joint_map.is_none() {
+                        return fail(span, super::expr::NO_JOINT_MAP, super::expr::JOINT_MAP_HELP);
+                    }
+                    self.line(format!("{t} := CJointT();"));
+                } else {
+                    let c = self.current_pos();
+                    self.line(format!("{t} := {c};"));
+                }
+                Ok(())
+            }
+            Op::Move(m) => self.motion(m, span),
+            Op::SetParam { param, value } => self.set_param(*param, value, span),
+            Op::MotionDefaults => self.motion_defaults(span),
+            Op::SetFrame { which, frame } => self.set_frame(*which, frame, span),
+            Op::SetLoad(_) => fail(
+                span,
+                "$LOAD has no translation to RAPID yet",
+                "give the payload in the tooldata's tload, or with GripLoad",
+            ),
+            Op::SetOverride(v) => {
+                let v = self.expr(v)?;
+                self.out.rep.approximate(
+                    FileId::Src,
+                    span,
+                    "the program override ($OV_PRO) becomes VelSet, which scales the programmed speeds of the following motions",
+                    "check the speeds; the operator's override on the FlexPendant is separate",
+                );
+                self.line(format!("VelSet {v}, 10000;"));
+                Ok(())
+            }
+            Op::SetIo { io, value, when } => self.set_io(io, value, when, span),
+            Op::Pulse { io, level, seconds } => self.pulse(io, level, seconds, span),
+            Op::Timer { .. } => fail(
+                span,
+                "KRL timers ($TIMER, in ms) have no translation to RAPID clocks yet",
+                "use a clock: ClkReset, ClkStart and ClkRead (seconds)",
+            ),
+            Op::Wait(w) => self.wait(w),
+            Op::AdvanceStop { needed } => {
+                if *needed {
+                    // The robot stands still at the previous point before what follows, as
+                    // KRL's advance-run stop makes it.
+                    self.line("WaitTime \\InPos, 0;");
+                }
+                Ok(())
+            }
+            Op::If {
+                cond,
+                then,
+                els,
+                else_at,
+                end,
+            } => {
+                let c = self.expr(cond)?;
+                self.line(format!("IF {c} THEN"));
+                self.nested(then);
+                if !els.is_empty() {
+                    if let Some(at) = else_at {
+                        self.out.depth += 1;
+                        self.flush_comments(*at);
+                        self.out.depth -= 1;
+                    }
+                    self.line("ELSE");
+                    self.nested(els);
+                }
+                self.end_block(*end, "ENDIF");
+                Ok(())
+            }
+            Op::Switch {
+                selector,
+                cases,
+                default,
+                end,
+            } => {
+                let sel = self.expr(selector)?;
+                let mut values = Vec::new();
+                for c in cases {
+                    let mut v = Vec::new();
+                    for e in &c.values {
+                        v.push(self.expr(e)?);
+                    }
+                    values.push(v.join(", "));
+                }
+                self.line(format!("TEST {sel}"));
+                for (c, v) in cases.iter().zip(values) {
+                    self.flush_comments(c.span.start);
+                    self.line(format!("CASE {v}:"));
+                    self.nested(&c.body);
+                }
+                if let Some((d, at)) = default {
+                    self.flush_comments(*at);
+                    self.line("DEFAULT:");
+                    self.nested(d);
+                }
+                self.end_block(*end, "ENDTEST");
+                Ok(())
+            }
+            Op::Loop {
+                id,
+                kind,
+                body,
+                end,
+            } => self.loop_(*id, kind, body, *end),
+            Op::Break(id) => {
+                let l = self.break_label(*id);
+                self.line(format!("GOTO {l};"));
+                Ok(())
+            }
+            Op::Continue(_) => fail(
+                span,
+                "a jump to the next pass of a loop",
+                "restructure the jump",
+            ),
+            Op::Goto(l) => {
+                let n = self.label_name(*l);
+                self.line(format!("GOTO {n};"));
+                Ok(())
+            }
+            Op::Label(l) => {
+                let n = self.label_name(*l);
+                self.line(format!("{n}:"));
+                Ok(())
+            }
+            Op::Return(v) => {
+                match v {
+                    Some(v) => {
+                        let v = self.expr(v)?;
+                        self.line(format!("RETURN {v};"));
+                    }
+                    None => self.line("RETURN;"),
+                }
+                Ok(())
+            }
+            Op::Halt => {
+                self.line("Stop;");
+                Ok(())
+            }
+            Op::Brake { .. } => fail(
+                span,
+                "BRAKE has no translation to RAPID yet",
+                "stop the robot with StopMove in a TRAP and resume with StartMove",
+            ),
+            Op::Interrupt { .. } | Op::InterruptDecl(_) => fail(
+                span,
+                "interrupts have no translation to RAPID yet",
+                "CONNECT an intnum with a TRAP and order it with ISignalDI",
+            ),
+            Op::Message { routine, text } => {
+                let t = self.expr(text)?;
+                self.out.rep.approximate(
+                    FileId::Src,
+                    span,
+                    format!("{routine} becomes TPWrite (no message window, no acknowledgement)"),
+                    "use UIMsgBox where the operator must confirm",
+                );
+                self.line(format!("TPWrite {t};"));
+                Ok(())
+            }
+            Op::Unsupported { why, at } => fail(*at, why.message(), super::help::help(why)),
+            Op::Keep { note } => {
+                let text = self.src.src.slice(span).trim().to_owned();
+                match note {
+                    Some(n) => self.line(format!("! {text} ({n})")),
+                    None => self.keep_as_comment("TR002", span),
+                }
+                Ok(())
+            }
+        }
+    }
+
+    fn loop_(&mut self, id: LoopId, kind: &LoopKind, body: &Block, end: u32) -> R<()> {
+        let exits = ir::visit::any_op(body, &mut |op| matches!(op, Op::Break(x) if *x == id));
+        let until = matches!(kind, LoopKind::Until(_));
+        // Everything that can fail before a line is written.
+        let (pre, head, step) = match kind {
+            LoopKind::For(f) => {
+                let v = self.place_text(&f.var, f.from.span)?;
+                let from = self.expr(&f.from)?;
+                let step = match &f.step {
+                    Some(st) => match st.number() {
+                        Some(n) => n,
+                        None => {
+                            return fail(
+                                st.span,
+                                "a FOR step that is not a literal number",
+                                "use a literal step",
+                            );
+                        }
+                    },
+                    None => 1.0,
+                };
+                let mut pre = vec![format!("{v} := {from};")];
+                // KRL evaluates the bound once, before the loop.
+                let to = if f.to.number().is_some() {
+                    self.expr(&f.to)?
+                } else {
+                    let t = self.expr(&f.to)?;
+                    let n = self.fresh_local("for_to", "num");
+                    pre.push(format!("{n} := {t};"));
+                    n
+                };
+                let cmp = if step < 0.0 { ">=" } else { "<=" };
+                let inc = if step < 0.0 {
+                    format!("{v} := {v} - {};", super::format::num(-step))
+                } else {
+                    format!("{v} := {v} + {};", super::format::num(step))
+                };
+                (pre, format!("WHILE {v} {cmp} {to} DO"), Some(inc))
+            }
+            LoopKind::While(c) => (Vec::new(), format!("WHILE {} DO", self.expr(c)?), None),
+            LoopKind::Until(c) => {
+                let c = self.expr(c)?;
+                (Vec::new(), "WHILE TRUE DO".into(), Some(c))
+            }
+            LoopKind::Forever => (Vec::new(), "WHILE TRUE DO".into(), None),
+        };
+        if exits || until {
+            let l = self.fresh_label("loop_end");
+            if let Some(rt) = &mut self.rt {
+                rt.breaks.insert(id, l);
+            }
+        }
+        for p in pre {
+            self.line(p);
+        }
+        self.line(head);
+        self.nested(body);
+        match (&step, until) {
+            (Some(c), true) => {
+                let l = self.break_label(id);
+                self.out.depth += 1;
+                self.line(format!("IF {c} THEN"));
+                self.out.depth += 1;
+                self.line(format!("GOTO {l};"));
+                self.out.depth -= 1;
+                self.line("ENDIF");
+                self.out.depth -= 1;
+            }
+            (Some(inc), false) => {
+                self.out.depth += 1;
+                self.line(inc.clone());
+                self.out.depth -= 1;
+            }
+            (None, _) => {}
+        }
+        self.end_block(end, "ENDWHILE");
+        if exits || until {
+            let l = self.break_label(id);
+            self.line(format!("{l}:"));
+        }
+        Ok(())
+    }
+
+    fn break_label(&mut self, id: LoopId) -> String {
+        self.rt
+            .as_ref()
+            .and_then(|r| r.breaks.get(&id).cloned())
+            .unwrap_or_else(|| "loop_end".into())
+    }
+
+    /// `place := value`.
+    fn assign(&mut self, place: &Place, value: &Expr, span: Span) -> R<()> {
+        if let Place::Component(base, c @ Component::Pose(3..=5)) = place {
+            let b = self.place_text(base, span)?;
+            let v = self.expr(value)?;
+            let mut abc = [
+                format!("EulerZYX(\\Z, {b}.rot)"),
+                format!("EulerZYX(\\Y, {b}.rot)"),
+                format!("EulerZYX(\\X, {b}.rot)"),
+            ];
+            if let Component::Pose(i) = c {
+                abc[i - 3] = v;
+            }
+            self.line(format!("{b}.rot := OrientZYX({});", abc.join(", ")));
+            return Ok(());
+        }
+        if let ExprKind::Aggregate(a) = &value.kind
+            && !a.complete()
+        {
+            if a.axis {
+                return fail(
+                    value.span,
+                    "an incomplete axis literal (KRL keeps the missing axes)",
+                    "write every axis",
+                );
+            }
+            for (c, v) in &a.fields {
+                let p = Place::Component(Box::new(place.clone()), *c);
+                self.assign(&p, v, span)?;
+            }
+            return Ok(());
+        }
+        let t = self.place_text(place, span)?;
+        let v = self.expr(value)?;
+        self.line(format!("{t} := {v};"));
+        Ok(())
+    }
+
+    /// An argument: a variable for an INOUT parameter, else a value.
+    fn call_arg(&mut self, a: &Arg) -> R<String> {
+        let Some(v) = &a.value else {
+            return fail(
+                a.span,
+                "an omitted argument has no RAPID equivalent",
+                "pass every argument",
+            );
+        };
+        if a.out
+            && let Some(p) = &a.place
+        {
+            return self.place_text(p, a.span);
+        }
+        self.expr(v)
+    }
+
+    fn call(&mut self, callee: &Callee, args: &[Arg], ret: Option<&Place>, span: Span) -> R<()> {
+        let (name, function, ret_ty) = match callee {
+            Callee::Mm(sub) => {
+                return fail(
+                    span,
+                    format!(
+                        "`{}` is a routine of the Mech-Mind KUKA interface; ABB robots talk to Mech-Vision through Mech-Mind's ABB interface",
+                        sub.name
+                    ),
+                    MM_HELP,
+                );
+            }
+            Callee::Routine(r) => {
+                let routine = self.ir.routine(*r);
+                let name = self
+                    .names
+                    .routine_of(&routine.name)
+                    .unwrap_or(&routine.name)
+                    .to_owned();
+                (
+                    name,
+                    routine.kind == RoutineKind::Deffct,
+                    routine.ret.clone().unwrap_or(Ty::Real),
+                )
+            }
+            Callee::External {
+                name,
+                span: at,
+                function,
+            } => {
+                let n = self.names.routine(&mut self.out.rep, name, *at);
+                if !self.external.contains(&n) {
+                    self.external.push(n.clone());
+                }
+                (n, *function, Ty::Real)
+            }
+        };
+        let mut a = Vec::new();
+        for arg in args {
+            a.push(self.call_arg(arg)?);
+        }
+        if function {
+            let to = match ret {
+                Some(p) => self.place_text(p, span)?,
+                None => {
+                    let ty = super::format::type_name(&ret_ty, 0);
+                    self.fresh_local("fct_result", ty)
+                }
+            };
+            self.line(format!("{to} := {name}({});", a.join(", ")));
+        } else if a.is_empty() {
+            self.line(format!("{name};"));
+        } else {
+            self.line(format!("{name} {};", a.join(", ")));
+        }
+        Ok(())
+    }
+}
