@@ -1,19 +1,21 @@
 //! Property: a random straight-line KRL program — PTP/LIN to random poses and axis values,
 //! random `$VEL.CP` and `BAS(#VEL_PTP)` speeds, `$APO.CDIS` blending, `$BASE`/`$TOOL` from
 //! `BASE_DATA`/`TOOL_DATA`, `$OUT` writes, `WAIT SEC`, calls of a small routine that switches
-//! an output around a wait — translates to AS and Flexiv Python without TR001, and the
-//! translations' runs (test AS interpreter, Flexiv stub) match the KRL run on krlkit's
-//! interpreter motion by motion: target, kind, speed kind and value, blending, base and tool
-//! frames, and the order of outputs and waits (`equiv_support::compare`, nothing excluded).
-//! The program sets its speeds and blending distance first, so no TR002 excuses a difference.
+//! an output around a wait — translates to AS, Flexiv Python and ABB RAPID without TR001, and
+//! the translations' runs (test AS interpreter, Flexiv stub, test RAPID interpreter) match the
+//! KRL run on krlkit's interpreter motion by motion: target, kind, speed kind and value,
+//! blending, base and tool frames, and the order of outputs and waits
+//! (`equiv_support::compare`, nothing excluded). The program sets its speeds and blending
+//! distance first, so no TR002 excuses a difference. RAPID runs in-process, so it also gets
+//! many more cases of its own.
 
 mod as_support;
 mod equiv_support;
 mod rapid_support;
 
 use equiv_support::{
-    Brand, Program, as_steps, compare, findings, flexiv_steps, krl_steps, python, run_as,
-    run_flexiv, run_krl, to_as, to_flexiv,
+    Brand, Program, as_steps, compare, findings, flexiv_steps, krl_steps, python, rapid_steps,
+    run_as, run_flexiv, run_krl, run_rapid, to_as, to_flexiv, to_rapid,
 };
 use proptest::prelude::*;
 
@@ -77,6 +79,33 @@ fn program(body: &[String]) -> Program {
     }
 }
 
+/// The RAPID translation has no TR001 and its run matches `krl`.
+fn rapid_matches(p: &Program, krl: &[equiv_support::Step]) -> Result<(), String> {
+    let t = to_rapid(p);
+    let f = findings(&t);
+    if f.iter().any(|(c, ..)| c == "TR001") {
+        return Err(format!("RAPID: {f:?}\n{}", p.src));
+    }
+    run_rapid(&t.text, &[])
+        .and_then(|r| compare(krl, &rapid_steps(&r), Brand::Abb, &f, &[]))
+        .map_err(|e| format!("RAPID: {e}\n{}\n{}", p.src, t.text))
+}
+
+proptest! {
+    #![proptest_config(ProptestConfig::with_cases(64))]
+
+    #[test]
+    fn straight_line_programs_move_the_same_in_rapid(
+        body in prop::collection::vec(statement(), 1..20)
+    ) {
+        let p = program(&body);
+        let r = run_krl(&p, &[]);
+        prop_assert!(matches!(r.end, krlkit::interp::End::Normal), "KRL: {:?}\n{}", r.end, p.src);
+        let got = rapid_matches(&p, &krl_steps(&r));
+        prop_assert!(got.is_ok(), "{}", got.unwrap_err());
+    }
+}
+
 proptest! {
     // Each case runs python3 once: a dozen cases keep the test to a few seconds in debug.
     #![proptest_config(ProptestConfig::with_cases(12))]
@@ -96,6 +125,9 @@ proptest! {
         let got = run_as(&t.text, &[])
             .and_then(|a| compare(&krl, &as_steps(&a), Brand::Kawasaki, &f, &[]));
         prop_assert!(got.is_ok(), "AS: {}\n{}\n{}", got.unwrap_err(), p.src, t.text);
+
+        let got = rapid_matches(&p, &krl);
+        prop_assert!(got.is_ok(), "{}", got.unwrap_err());
 
         if let Some(py) = python() {
             let t = to_flexiv(&p);

@@ -325,6 +325,17 @@ pub fn to_flexiv_for(p: &Program, server: Option<transpile::VisionServer>) -> Tr
     transpile::transpile(Target::Flexiv, src, dat, &options)
 }
 
+/// The RAPID translation (axis values one to one through the joint map, as for AS: the test
+/// interpreter has no kinematics).
+pub fn to_rapid(p: &Program) -> Translation {
+    let (src, dat) = sources(p);
+    let options = Options {
+        joint_map: Some(krlkit::transpile::rapid::joint_map("A1,A2,A3,A4,A5,A6").expect("map")),
+        ..Options::default()
+    };
+    transpile::transpile(Target::Rapid, src, dat, &options)
+}
+
 /// Findings of a translation: (code, 1-based line in the `.src`, message).
 pub fn findings(t: &Translation) -> Vec<(String, usize, String)> {
     let mut out = Vec::new();

@@ -193,12 +193,22 @@ impl Rapid {
                     self.advance_to(end)?;
                 }
             }
-            "waitdi" => {
-                let a = split("WaitDI", args, 2, &["maxtime", "timeflag"])?;
-                let n = self.signal_arg(a.pos[0], Dir::In)?;
+            "waitdi" | "waitdo" => {
+                let (what, dir) = if name == "waitdi" {
+                    ("WaitDI", Dir::In)
+                } else {
+                    ("WaitDO", Dir::Out)
+                };
+                let a = split(what, args, 2, &["maxtime", "timeflag"])?;
+                let n = self.signal_arg(a.pos[0], dir)?;
                 let v = self.dio_value(a.pos[1])?;
                 self.wait(&a, &mut |r: &mut Rapid| {
-                    Ok(r.inputs.get(&n).copied().unwrap_or(false) == v)
+                    let bank = if dir == Dir::In {
+                        &r.inputs
+                    } else {
+                        &r.outputs
+                    };
+                    Ok(bank.get(&n).copied().unwrap_or(false) == v)
                 })?;
             }
             "waituntil" => {
@@ -231,10 +241,11 @@ impl Rapid {
                 let s = if on { "On" } else { "Off" };
                 self.trace.push(Event::Setting(format!("{n} \\{s}")));
             }
-            "velset" => {
-                let a = split("VelSet", args, 2, &[])?;
+            "velset" | "accset" => {
+                let what = if name == "velset" { "VelSet" } else { "AccSet" };
+                let a = split(what, args, 2, &[])?;
                 let (o, m) = (self.num_arg(a.pos[0])?, self.num_arg(a.pos[1])?);
-                self.trace.push(Event::Setting(format!("VelSet {o}, {m}")));
+                self.trace.push(Event::Setting(format!("{what} {o}, {m}")));
             }
             "isignaldi" => {
                 let a = split("ISignalDI", args, 3, &["single"])?;

@@ -83,7 +83,7 @@ pub enum Event {
     Waited(f64),
     /// A TRAP started.
     Trap(String),
-    /// `ConfJ`, `ConfL`, `VelSet` as written, with evaluated values.
+    /// `ConfJ`, `ConfL`, `VelSet`, `AccSet` as written, with evaluated values.
     Setting(String),
     /// `TPWrite` text.
     Print(String),
