@@ -1,10 +1,11 @@
 //! Every runnable transpile fixture moves the same on every target: the KRL original runs on
-//! krlkit's interpreter, its AS translation on the test AS interpreter and its Flexiv
-//! translation on the stub `flexivrdk`, all in the same cell (`equiv_support`), and the runs
+//! krlkit's interpreter, its AS translation on the test AS interpreter, its Flexiv
+//! translation on the stub `flexivrdk` and its RAPID translation on the test RAPID interpreter,
+//! all in the same cell (`equiv_support`), and the runs
 //! must have the same motions (target, kind, speed kind and value, blending, base and tool
 //! frames), output changes and waits in the same order. Where a translation reports that it
-//! does not keep something (TR002 at the line), the test leaves exactly that out, and says so
-//! below; a fixture is left out only with the reason.
+//! does not keep something (TR001/TR002 at the line), the test leaves exactly that out, and
+//! says so below; a fixture is left out only with the reason.
 
 mod as_support;
 mod equiv_support;
