@@ -6,6 +6,7 @@
 
 mod rapid_support;
 
+use proptest::prelude::*;
 use rapid_support::{End, Event, Rapid, Target, V};
 
 fn run(text: &str) -> Result<Rapid, String> {
@@ -492,6 +493,15 @@ ENDMODULE
 }
 
 #[test]
+fn endless_recursion_is_an_error_not_a_crash() {
+    let e = err("MODULE t\n  PROC main()\n    main;\n  ENDPROC\nENDMODULE\n");
+    assert!(
+        e.starts_with("t.mod:3:") && e.contains("nested more than 40"),
+        "{e}"
+    );
+}
+
+#[test]
 fn stop_and_exit_end_the_run_where_they_are() {
     let text = "MODULE t\n  PROC main()\n    sub;\n    SetDO do1, 1;\n  ENDPROC\n  PROC sub()\n    Stop;\n  ENDPROC\nENDMODULE\n";
     let mut r = Rapid::load_files(&[("t.mod", text)]).unwrap();
@@ -646,5 +656,105 @@ fn module_level_constructs_outside_the_subset_are_refused() {
             Err(e) => e,
         };
         assert!(e.starts_with(at) && e.contains(want), "{text}: {e}");
+    }
+}
+
+fn fragment() -> impl Strategy<Value = &'static str> {
+    prop::sample::select(vec![
+        "MODULE",
+        "ENDMODULE",
+        "PROC",
+        "ENDPROC",
+        "FUNC",
+        "num",
+        "ENDFUNC",
+        "TRAP",
+        "ENDTRAP",
+        "VAR",
+        "PERS",
+        "CONST",
+        "robtarget",
+        "intnum",
+        "IF",
+        "THEN",
+        "ELSE",
+        "ENDIF",
+        "WHILE",
+        "DO",
+        "ENDWHILE",
+        "FOR",
+        "FROM",
+        "TO",
+        "ENDFOR",
+        "TEST",
+        "CASE",
+        "DEFAULT",
+        "ENDTEST",
+        "GOTO",
+        "RETURN",
+        "CONNECT",
+        "WITH",
+        "main",
+        "x",
+        "y",
+        "l",
+        "MoveL",
+        "SetDO",
+        "do1",
+        "di2",
+        "WaitTime",
+        "WaitDI",
+        "CRobT",
+        "Offs",
+        "v100",
+        "fine",
+        "tool0",
+        "1",
+        "0.5",
+        "9E9",
+        "\"s\"",
+        "TRUE",
+        ":=",
+        ":",
+        ";",
+        ",",
+        "(",
+        ")",
+        "[",
+        "]",
+        "{",
+        "}",
+        "\\",
+        ".",
+        "+",
+        "-",
+        "*",
+        "/",
+        "=",
+        "<",
+        "AND",
+        "NOT",
+        "DIV",
+        "\n",
+    ])
+}
+
+proptest! {
+    #![proptest_config(ProptestConfig::with_cases(256))]
+
+    /// Whatever the text, loading and running it ends in a result or an error, never a panic.
+    #[test]
+    fn never_panics(body in prop::collection::vec(fragment(), 0..60)) {
+        let text = format!("MODULE t\n  PROC main()\n{}\n  ENDPROC\nENDMODULE\n", body.join(" "));
+        if let Ok(mut r) = Rapid::load_files(&[("t.mod", &text)]) {
+            r.step_limit = 10_000;
+            r.max_wait = 1.0;
+            let _ = r.run("main");
+        }
+        let text = format!("MODULE t\n{}\nENDMODULE\n", body.join(" "));
+        if let Ok(mut r) = Rapid::load_files(&[("t.mod", &text)]) {
+            r.step_limit = 10_000;
+            let _ = r.run("main");
+        }
     }
 }

@@ -8,6 +8,8 @@ use super::parse::{Arg, Decl, Expr, Kind, Mode, Routine, S, Stmt, Storage};
 use super::value::{Ty, V, show};
 use super::{Call, Place, Rapid, Root, Slot};
 
+const MAX_DEPTH: usize = 40;
+
 /// What a statement hands to the block around it.
 pub enum Flow {
     Next,
@@ -85,8 +87,9 @@ impl Rapid {
 
     /// Calls a routine with evaluated IN arguments and INOUT places.
     pub(super) fn call(&mut self, routine: &Rc<Routine>, args: &[Arg]) -> R<Flow> {
-        if self.calls.len() > 200 {
-            return Err("calls nested more than 200 deep".into());
+        // Far deeper than a translation calls, and shallow enough for a test thread's stack.
+        if self.calls.len() >= MAX_DEPTH {
+            return Err(format!("calls nested more than {MAX_DEPTH} deep").into());
         }
         let positional: Vec<&Expr> = args
             .iter()
