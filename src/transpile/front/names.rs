@@ -370,6 +370,12 @@ impl<'a> Namer<'a> {
         self.locals.entry(id).or_default().fresh(base, max)
     }
 
+    /// A routine the translator adds (a RAPID TRAP), named apart from every routine and global.
+    pub fn fresh_routine(&mut self, base: &str) -> String {
+        let max = self.rules.max_len;
+        self.routines.fresh(base, max)
+    }
+
     /// The name map for the output's header: a title, then `kind krl -> target` per rename.
     pub fn name_map(&self) -> Option<(String, Vec<String>)> {
         if self.renamed.is_empty() {

@@ -7,7 +7,7 @@
 use std::collections::HashSet;
 
 /// Instructions the translator writes (called without being defined in the module).
-const INSTRUCTIONS: [&str; 27] = [
+const INSTRUCTIONS: [&str; 28] = [
     "movej",
     "movel",
     "movec",
@@ -35,10 +35,11 @@ const INSTRUCTIONS: [&str; 27] = [
     "triggl",
     "triggj",
     "stopmove",
+    "startmove",
 ];
 
 /// Functions and data-type names that may stand before `(`.
-const FUNCTIONS: [&str; 17] = [
+const FUNCTIONS: [&str; 16] = [
     "abs",
     "sqrt",
     "sin",
@@ -55,7 +56,6 @@ const FUNCTIONS: [&str; 17] = [
     "cjointt",
     "offs",
     "reltool",
-    "startmove",
 ];
 
 /// Keywords that can appear before `(` or start a line without being calls.

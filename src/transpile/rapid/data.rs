@@ -273,6 +273,9 @@ impl<'a> Tx<'a> {
         if self.flags {
             v.push("VAR bool krl_flag{1024};".into());
         }
+        for n in &self.intnums {
+            v.push(format!("VAR intnum ir{n};"));
+        }
         // Placeholders for KUKA's TOOL_DATA/BASE_DATA entries (TR002 where they are set).
         for n in &self.frame_data.tools {
             v.push(format!(

@@ -4,7 +4,9 @@
 use super::{R, Tx, fail};
 use crate::diag::Span;
 use crate::transpile::front::report::FileId;
-use crate::transpile::ir::{Bank, Expr, ExprKind, IoPlace, IoTiming, OutPlace, Wait};
+use crate::transpile::ir::{
+    Bank, Callee, Expr, ExprKind, InterruptAction, IoPlace, IoTiming, OutPlace, Wait,
+};
 use crate::transpile::render::Emit;
 
 /// How KRL's digital I/O numbers become RAPID signal names: a pattern per bank with `{n}` for
@@ -213,6 +215,182 @@ impl<'a> Tx<'a> {
                 }
             }
             Wait::Poll => self.line("WaitTime 0.01;"),
+        }
+        Ok(())
+    }
+}
+
+/// One interrupt as RAPID orders it: `ISignalDI di7, 1, ir3;` with `CONNECT ir3 WITH trap`.
+struct Order {
+    number: i64,
+    /// `ISignalDI di7, 1` / `ISignalDO do3, 0`.
+    signal: String,
+    trap: String,
+}
+
+impl<'a> Tx<'a> {
+    /// The RAPID form of interrupt declaration `i`, or why there is none.
+    fn order(&mut self, i: usize) -> Result<Order, String> {
+        let d = &self.ir.interrupts[i];
+        let cond = d.condition.as_ref().map_err(|w| w.message())?.clone();
+        let bank = match &cond.kind {
+            ExprKind::Io(IoPlace::Out(_)) => Bank::Out,
+            ExprKind::Unary(_, e) | ExprKind::Binary(_, e, _)
+                if matches!(e.kind, ExprKind::Io(IoPlace::Out(_))) =>
+            {
+                Bank::Out
+            }
+            _ => Bank::In,
+        };
+        let (sig, high) = match self.signal_level(&cond) {
+            Some(Ok(t)) => t,
+            _ => return Err(crate::transpile::ir::Why::InterruptCondition.message()),
+        };
+        let proc_ = match &d.handler {
+            Ok(Callee::Routine(r)) => {
+                let n = self.ir.routine(*r).name.clone();
+                self.names.routine_of(&n).unwrap_or(&n).to_owned()
+            }
+            Ok(Callee::External { name, span, .. }) => {
+                let n = self.names.routine(&mut self.out.rep, name, *span);
+                if !self.external.contains(&n) {
+                    self.external.push(n.clone());
+                }
+                n
+            }
+            Ok(Callee::Mm(s)) => {
+                return Err(format!(
+                    "its handler `{}` is a routine of the Mech-Mind KUKA interface",
+                    s.name
+                ));
+            }
+            Err(w) => return Err(w.message()),
+        };
+        let trap = match self.traps.iter().find(|(_, p)| **p == proc_) {
+            Some((t, _)) => t.clone(),
+            None => {
+                let t = self.names.fresh_routine(&format!("{proc_}_trap"));
+                self.traps.insert(t.clone(), proc_);
+                t
+            }
+        };
+        let instr = match bank {
+            Bank::In => "ISignalDI",
+            Bank::Out => "ISignalDO",
+        };
+        Ok(Order {
+            number: d.number,
+            signal: format!("{instr} {sig}, {}", u8::from(high)),
+            trap,
+        })
+    }
+
+    pub(super) fn interrupt_decl(&mut self, i: usize, span: Span) -> R<()> {
+        let d = &self.ir.interrupts[i];
+        let n = d.number;
+        if d.stop_messages {
+            self.out.rep.approximate(
+                FileId::Src,
+                span,
+                "KUKA's standard stop-message interrupt ($STOPMESS → IR_STOPM) has no RAPID counterpart; the ABB controller handles stop messages itself",
+                "nothing to do unless IR_STOPM was customised",
+            );
+            self.keep_as_comment("TR002", span);
+            return Ok(());
+        }
+        match self.order(i) {
+            Ok(o) => {
+                self.intnums.insert(o.number);
+                self.line(format!(
+                    "! INTERRUPT {n}: {}, ir{n} with TRAP {} when switched on",
+                    o.signal, o.trap
+                ));
+                self.out.rep.approximate(
+                    FileId::Src,
+                    span,
+                    format!("interrupt {n} becomes {}, ir{n} with TRAP {}: no priorities (traps run in the order of their events), and BRAKE/RESUME behave differently", o.signal, o.trap),
+                    "check the reaction time and what the handler does to the running motion",
+                );
+                Ok(())
+            }
+            Err(why) => fail(
+                span,
+                format!("interrupt {n} cannot be translated: {why}"),
+                "watch one input with ISignalDI, or poll the condition with WaitUntil",
+            ),
+        }
+    }
+
+    pub(super) fn interrupt(
+        &mut self,
+        action: InterruptAction,
+        number: Option<i64>,
+        span: Span,
+    ) -> R<()> {
+        let decls = &self.ir.interrupts;
+        let numbers: Vec<i64> = match number {
+            Some(n) => vec![n],
+            None => {
+                let mut v: Vec<i64> = decls
+                    .iter()
+                    .filter(|d| !d.stop_messages)
+                    .map(|d| d.number)
+                    .collect();
+                v.sort_unstable();
+                v.dedup();
+                v
+            }
+        };
+        let mut lines = Vec::new();
+        for n in numbers {
+            let Some(i) = decls
+                .iter()
+                .rposition(|d| d.number == n && d.span.start < span.start)
+                .or_else(|| decls.iter().position(|d| d.number == n))
+            else {
+                return fail(
+                    span,
+                    format!("no INTERRUPT DECL {n} in this file"),
+                    "translate the file that declares the interrupt, or declare it here",
+                );
+            };
+            if decls[i].stop_messages {
+                lines.push(format!("! INTERRUPT {n}: the controller's stop messages"));
+                continue;
+            }
+            let o = match self.order(i) {
+                Ok(o) => o,
+                Err(why) => {
+                    return fail(
+                        span,
+                        format!("interrupt {n} cannot be translated: {why}"),
+                        "see its declaration",
+                    );
+                }
+            };
+            self.intnums.insert(n);
+            match action {
+                InterruptAction::On => {
+                    // A connected intnum cannot be connected again: delete it first.
+                    lines.push(format!("IDelete ir{n};"));
+                    lines.push(format!("CONNECT ir{n} WITH {};", o.trap));
+                    lines.push(format!("{}, ir{n};", o.signal));
+                }
+                InterruptAction::Off => lines.push(format!("IDelete ir{n};")),
+                InterruptAction::Enable => lines.push(format!("IWatch ir{n};")),
+                InterruptAction::Disable => lines.push(format!("ISleep ir{n};")),
+            }
+        }
+        if matches!(action, InterruptAction::Enable | InterruptAction::Disable) {
+            self.out.rep.approximate(
+                FileId::Src,
+                span,
+                "INTERRUPT ENABLE/DISABLE become IWatch/ISleep: KRL keeps an event that comes while disabled and runs it at ENABLE, RAPID loses it",
+                "use IDisable/IEnable (all interrupts, events queued) if the event must not be lost",
+            );
+        }
+        for l in lines {
+            self.line(l);
         }
         Ok(())
     }

@@ -60,7 +60,7 @@ pub static BACKEND: render::Backend = render::Backend {
     caps: render::Caps {
         goto: true,
         records: false,
-        interrupts: false,
+        interrupts: true,
     },
     name_rules: &NAME_RULES,
     help: help::help,
@@ -124,6 +124,15 @@ pub struct Tx<'a> {
     frame_data: motion::FrameData,
     /// The file of the value being rendered (the `.dat` while its data are).
     file: FileId,
+    /// Interrupt numbers with their `intnum` declared (`ir<n>`), and the TRAPs: trap name →
+    /// the procedure it runs.
+    intnums: std::collections::BTreeSet<i64>,
+    traps: std::collections::BTreeMap<String, String>,
+    /// A `BRAKE` was translated (`StopMove`): the TRAPs restart the path (`StartMove`).
+    braked: bool,
+    /// The robot stands still at the previous point here (after an exact stop or an
+    /// advance-run stop), as far as the statements rendered since show.
+    still: bool,
 }
 
 impl<'a> Tx<'a> {
@@ -141,6 +150,10 @@ impl<'a> Tx<'a> {
             flags: false,
             frame_data: motion::FrameData::default(),
             file: FileId::Src,
+            still: false,
+            intnums: std::collections::BTreeSet::new(),
+            traps: std::collections::BTreeMap::new(),
+            braked: false,
         }
     }
 
@@ -231,6 +244,14 @@ impl<'a> Tx<'a> {
             out.push_str(r.end);
             out.push('\n');
         }
+        for (trap, proc_) in std::mem::take(&mut self.traps) {
+            out.push_str(&format!("  TRAP {trap}\n    {proc_};\n"));
+            if self.braked {
+                // KRL resumes the path when the interrupt routine returns after BRAKE.
+                out.push_str("    StartMove;\n");
+            }
+            out.push_str("  ENDTRAP\n");
+        }
         out.push_str("  PROC main()\n");
         // KUKA's status and turn have no formula to confdata: the controller picks the
         // configuration closest to the current one.
@@ -255,6 +276,17 @@ impl<'a> Tx<'a> {
                 self.opts.rapid.signals.in_pattern()
             ),
         ];
+        let single = &self.opts.rapid.signals.single;
+        if !single.is_empty() {
+            let v2: Vec<String> = single
+                .iter()
+                .map(|(bank, n, name)| {
+                    let b = if *bank == ir::Bank::Out { "OUT" } else { "IN" };
+                    format!("${b}[{n}] -> {name}")
+                })
+                .collect();
+            v.push(format!("! Signal names: {}", v2.join(", ")));
+        }
         for a in format::ASSUMED {
             v.push(format!("! Assumed [?]: {a}"));
         }
@@ -305,6 +337,7 @@ impl crate::transpile::Renderer for Tx<'_> {
             extra: Vec::new(),
             breaks: HashMap::new(),
         });
+        self.still = false;
         self.names.declare_locals(&mut self.out.rep, id);
         self.names.declare_labels(&mut self.out.rep, id);
         let mut params = Vec::new();

@@ -36,6 +36,9 @@ pub(super) struct FrameData {
 
 impl<'a> Tx<'a> {
     pub(super) fn motion(&mut self, m: &Move, span: Span) -> R<()> {
+        let tool = self.frame_of(FrameKind::Tool, &m.frames.tool, span)?;
+        let wobj = self.frame_of(FrameKind::Base, &m.frames.base, span)?;
+        let mut pre = Vec::new();
         let line = match &m.path {
             Path::Joint { to, .. } if to.joints => {
                 format!("MoveAbsJ {}", self.target(to)?)
@@ -45,25 +48,115 @@ impl<'a> Tx<'a> {
             Path::Circular { via, to, .. } => {
                 format!("MoveC {}, {}", self.target(via)?, self.target(to)?)
             }
-            Path::LinearRel { .. } | Path::JointRel { .. } => {
-                return fail(
-                    span,
-                    format!("{} has no translation to RAPID yet", m.krl),
-                    "move to Offs(CRobT(), dx, dy, dz) or RelTool(CRobT(), dx, dy, dz)",
-                );
+            Path::LinearRel {
+                delta,
+                in_tool,
+                joint,
+                ..
+            } => {
+                let to = self.relative_target(delta, *in_tool, &tool, &wobj, span)?;
+                let instr = if *joint { "MoveJ" } else { "MoveL" };
+                format!("{instr} {to}")
+            }
+            Path::JointRel { delta, .. } => {
+                let Some(map) = self.opts.joint_map.clone() else {
+                    return fail(
+                        delta.span,
+                        "a relative axis move: which ABB axis turns, and in which direction, needs a joint map",
+                        super::expr::JOINT_MAP_HELP,
+                    );
+                };
+                let mut turns = Vec::new();
+                for (joint, negate, e) in
+                    crate::transpile::joints::relative_joints(&map, delta, "ABB")?
+                {
+                    let v = self.expr(e)?;
+                    turns.push((joint + 1, if negate { "-" } else { "+" }, v));
+                }
+                let j = self.fresh_local("axes_rel", "jointtarget");
+                pre.push(format!("{j} := CJointT();"));
+                for (axis, sign, v) in turns {
+                    let v = if v.starts_with('-') {
+                        format!("({v})")
+                    } else {
+                        v
+                    };
+                    pre.push(format!(
+                        "{j}.robax.rax_{axis} := {j}.robax.rax_{axis} {sign} {v};"
+                    ));
+                }
+                format!("MoveAbsJ {j}")
             }
         };
         let speed = self.speed_of(m, span);
         let zone = self.zone_of(m, span);
-        let tool = self.frame_of(FrameKind::Tool, &m.frames.tool, span)?;
-        let wobj = self.frame_of(FrameKind::Base, &m.frames.base, span)?;
+        let blends = zone != "fine";
         let wobj = if wobj == "wobj0" {
             String::new()
         } else {
             format!(" \\WObj:={wobj}")
         };
+        for p in pre {
+            self.line(p);
+        }
         self.line(format!("{line}, {speed}, {zone}, {tool}{wobj};"));
+        self.still = !blends;
         Ok(())
+    }
+
+    /// `Offs(CRobT(…), dx, dy, dz)` (offsets along the work object's axes) or
+    /// `RelTool(CRobT(…), dx, dy, dz [\Rz:=a])` (along the tool's): KRL offsets from the end
+    /// of the previous motion, RAPID from where the robot is when the motion is prepared.
+    fn relative_target(
+        &mut self,
+        d: &crate::transpile::ir::Delta,
+        in_tool: bool,
+        tool: &str,
+        wobj: &str,
+        span: Span,
+    ) -> R<String> {
+        use crate::transpile::ir::Component;
+        let mut xyz = ["0".to_owned(), "0".to_owned(), "0".to_owned()];
+        let mut turn: Option<(usize, String)> = None;
+        for (c, e) in &d.fields {
+            match c {
+                Component::Pose(i @ 0..=2) => xyz[*i] = self.expr(e)?,
+                Component::Pose(_) if e.number() == Some(0.0) => {}
+                Component::Pose(i @ 3..=5) if in_tool && turn.is_none() => {
+                    turn = Some((*i, self.expr(e)?));
+                }
+                _ => {
+                    return fail(
+                        d.span,
+                        if in_tool {
+                            "a relative move in the tool frame that turns about more than one axis or moves external axes: RelTool turns about x, y, z in another order than KUKA's A, B, C"
+                        } else {
+                            "a relative move in the base frame that turns the tool or moves external axes has no translation to RAPID yet (Offs only shifts)"
+                        },
+                        "split it into a shift and one turn about one tool axis, or compute the target with PoseMult",
+                    );
+                }
+            }
+        }
+        if !self.still {
+            self.out.rep.approximate(
+                FileId::Src,
+                span,
+                "the previous motion is blended (or not known here): RAPID reads the robot's position (CRobT) for this relative move before the robot reaches the previous point, KRL offsets from that point",
+                "make the previous motion an exact stop (fine) or compute the target from the previous point",
+            );
+        }
+        let here = format!("CRobT(\\Tool:={tool} \\WObj:={wobj})");
+        Ok(if in_tool {
+            let rot = match turn {
+                // KUKA's A turns about Z, B about Y, C about X.
+                Some((i, v)) => format!(" \\{}:={v}", ["Rz", "Ry", "Rx"][i - 3]),
+                None => String::new(),
+            };
+            format!("RelTool({here}, {}{rot})", xyz.join(", "))
+        } else {
+            format!("Offs({here}, {})", xyz.join(", "))
+        })
     }
 
     /// A motion target: a variable, an element or a literal.

@@ -30,10 +30,13 @@ impl<'a> Tx<'a> {
         }
     }
 
+    /// A nested block, one level deeper; where the robot stands is unknown at both ends.
     fn nested(&mut self, b: &Block) {
+        self.still = false;
         self.out.depth += 1;
         self.block(b);
         self.out.depth -= 1;
+        self.still = false;
     }
 
     /// Writes the block end, after the comments that come before it in the source.
@@ -95,6 +98,7 @@ impl<'a> Tx<'a> {
                     // The robot stands still at the previous point before what follows, as
                     // KRL's advance-run stop makes it.
                     self.line("WaitTime \\InPos, 0;");
+                    self.still = true;
                 }
                 Ok(())
             }
@@ -173,6 +177,7 @@ impl<'a> Tx<'a> {
             Op::Label(l) => {
                 let n = self.label_name(*l);
                 self.line(format!("{n}:"));
+                self.still = false;
                 Ok(())
             }
             Op::Return(v) => {
@@ -189,16 +194,17 @@ impl<'a> Tx<'a> {
                 self.line("Stop;");
                 Ok(())
             }
-            Op::Brake { .. } => fail(
-                span,
-                "BRAKE has no translation to RAPID yet",
-                "stop the robot with StopMove in a TRAP and resume with StartMove",
-            ),
-            Op::Interrupt { .. } | Op::InterruptDecl(_) => fail(
-                span,
-                "interrupts have no translation to RAPID yet",
-                "CONNECT an intnum with a TRAP and order it with ISignalDI",
-            ),
+            Op::Brake { fast } => {
+                self.braked = true;
+                self.line(if *fast {
+                    "StopMove \\Quick;"
+                } else {
+                    "StopMove;"
+                });
+                Ok(())
+            }
+            Op::Interrupt { action, number } => self.interrupt(*action, *number, span),
+            Op::InterruptDecl(i) => self.interrupt_decl(*i, span),
             Op::Message { routine, text } => {
                 let t = self.expr(text)?;
                 self.out.rep.approximate(
@@ -408,6 +414,7 @@ impl<'a> Tx<'a> {
         for arg in args {
             a.push(self.call_arg(arg)?);
         }
+        self.still = false;
         if function {
             let to = match ret {
                 Some(p) => self.place_text(p, span)?,
