@@ -502,6 +502,45 @@ fn endless_recursion_is_an_error_not_a_crash() {
 }
 
 #[test]
+fn an_output_interrupt_runs_its_trap_which_may_stop_and_restart_the_motion() {
+    let text = "\
+MODULE t
+  VAR intnum ir1;
+  PROC main()
+    CONNECT ir1 WITH on_out;
+    ISignalDO \\Single do2, 1, ir1;
+    SetDO do2, 1;
+    SetDO do3, 1;
+    SetDO do2, 0;
+    SetDO do2, 1;
+  ENDPROC
+  TRAP on_out
+    StopMove;
+    SetDO do9, 1;
+    StartMove;
+  ENDTRAP
+ENDMODULE
+";
+    let r = ok(text);
+    let seen: Vec<String> = r.trace.iter().map(|e| format!("{e:?}")).collect();
+    assert_eq!(
+        seen,
+        [
+            "Out(2, true)",
+            "Trap(\"on_out\")",
+            "Setting(\"StopMove\")",
+            "Out(9, true)",
+            "Setting(\"StartMove\")",
+            "Out(3, true)",
+            "Out(2, false)",
+            "Out(2, true)",
+        ]
+    );
+    let e = err(&main_with("", "    StopMove;"));
+    assert!(e.contains("outside a TRAP"), "{e}");
+}
+
+#[test]
 fn stop_and_exit_end_the_run_where_they_are() {
     let text = "MODULE t\n  PROC main()\n    sub;\n    SetDO do1, 1;\n  ENDPROC\n  PROC sub()\n    Stop;\n  ENDPROC\nENDMODULE\n";
     let mut r = Rapid::load_files(&[("t.mod", text)]).unwrap();

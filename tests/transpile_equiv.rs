@@ -148,16 +148,12 @@ const CASES: &[Case] = &[
         inputs: &[],
         kawasaki: &[],
         flexiv: &[],
-        // Lines 8, 9: LIN_REL, line 11: the geometric operator are not translated (TR001) yet.
-        rapid: &[
-            ex(8, Aspect::Motion, "LIN_REL has no translation"),
-            ex(9, Aspect::Motion, "LIN_REL has no translation"),
-            ex(
-                11,
-                Aspect::Motion,
-                "the geometric operator `:` has no translation",
-            ),
-        ],
+        // Line 11: the geometric operator is not translated (TR001) yet.
+        rapid: &[ex(
+            11,
+            Aspect::Motion,
+            "the geometric operator `:` has no translation",
+        )],
     },
     Case {
         name: "joint_targets",
@@ -171,11 +167,12 @@ const CASES: &[Case] = &[
             by(11, Aspect::Target, 10, "an incomplete literal"),
             by(13, Aspect::Target, 10, "an incomplete literal"),
         ],
-        // As for Flexiv: line 10 (a partial axis literal) and line 11 (PTP_REL) are not
-        // translated (TR001) yet, so line 13, which moves to where the robot is, goes elsewhere.
+        // As for Flexiv: line 10 (a partial axis literal) is not translated (TR001), so
+        // PTP_REL (line 11) turns A6 from where line 9 left the arm, and line 13, which moves to
+        // where the robot is, goes there too.
         rapid: &[
             ex(10, Aspect::Motion, "an incomplete literal"),
-            ex(11, Aspect::Motion, "PTP_REL has no translation"),
+            by(11, Aspect::Target, 10, "an incomplete literal"),
             by(13, Aspect::Target, 10, "an incomplete literal"),
         ],
     },

@@ -126,8 +126,11 @@ impl Rapid {
     }
 
     fn set_output(&mut self, n: i64, v: bool) {
-        self.outputs.insert(n, v);
+        let old = self.outputs.insert(n, v).unwrap_or(false);
         self.trace.push(Event::Out(n, v));
+        if old != v {
+            self.signal_changed(Dir::Out, n, v);
+        }
     }
 
     fn dio_value(&mut self, e: &Expr) -> R<bool> {
@@ -247,25 +250,30 @@ impl Rapid {
                 let (o, m) = (self.num_arg(a.pos[0])?, self.num_arg(a.pos[1])?);
                 self.trace.push(Event::Setting(format!("{what} {o}, {m}")));
             }
-            "isignaldi" => {
-                let a = split("ISignalDI", args, 3, &["single"])?;
-                let n = self.signal_arg(a.pos[0], Dir::In)?;
+            "isignaldi" | "isignaldo" => {
+                let (what, dir) = if name == "isignaldi" {
+                    ("ISignalDI", Dir::In)
+                } else {
+                    ("ISignalDO", Dir::Out)
+                };
+                let a = split(what, args, 3, &["single"])?;
+                let n = self.signal_arg(a.pos[0], dir)?;
                 let edge = match self.num_arg(a.pos[1])? {
                     0.0 => 0,
                     1.0 => 1,
                     2.0 => 2,
-                    x => return Err(format!("ISignalDI: the trigger value {x}").into()),
+                    x => return Err(format!("{what}: the trigger value {x}").into()),
                 };
                 let id = self.interrupt_id(a.pos[2])?;
                 let single = a.switch("single")?;
                 let i = self
                     .interrupts
                     .get_mut(&id)
-                    .ok_or("ISignalDI on an interrupt not CONNECTed")?;
+                    .ok_or_else(|| format!("{what} on an interrupt not CONNECTed"))?;
                 if i.signal.is_some() {
-                    return Err("ISignalDI on an interrupt already ordered".into());
+                    return Err(format!("{what} on an interrupt already ordered").into());
                 }
-                i.signal = Some((n, edge, single));
+                i.signal = Some((dir, n, edge, single));
                 i.active = true;
             }
             "idelete" => {
@@ -283,6 +291,23 @@ impl Rapid {
                     .get_mut(&id)
                     .ok_or_else(|| format!("{name} on an interrupt not CONNECTed"))?;
                 i.active = name == "iwatch";
+            }
+            "stopmove" | "startmove" => {
+                if !self.in_trap {
+                    return Err(format!("{name} outside a TRAP is not modelled").into());
+                }
+                let what = if name == "stopmove" {
+                    let a = split("StopMove", args, 0, &["quick"])?;
+                    if a.switch("quick")? {
+                        "StopMove \\Quick"
+                    } else {
+                        "StopMove"
+                    }
+                } else {
+                    split("StartMove", args, 0, &[])?;
+                    "StartMove"
+                };
+                self.trace.push(Event::Setting(what.to_string()));
             }
             "triggio" => self.triggio(args)?,
             _ => return Err(format!("unknown instruction or procedure `{name}`").into()),
@@ -349,7 +374,7 @@ impl Rapid {
             self.clock = self.clock.max(when);
             let old = self.inputs.insert(n, v).unwrap_or(false);
             if old != v {
-                self.input_changed(n, v);
+                self.signal_changed(Dir::In, n, v);
             }
             if let Some(Flow::Stop(..)) = self.serve_traps()? {
                 return Err("a TRAP stopped the program during a wait (not modelled)".into());
@@ -359,15 +384,16 @@ impl Rapid {
         Ok(())
     }
 
-    fn input_changed(&mut self, n: i64, v: bool) {
+    /// Orders the traps of the interrupts on this signal's edge.
+    fn signal_changed(&mut self, dir: Dir, n: i64, v: bool) {
         let mut ids: Vec<i64> = self.interrupts.keys().copied().collect();
         ids.sort_unstable();
         for id in ids {
             let i = &self.interrupts[&id];
-            let Some((m, edge, single)) = i.signal else {
+            let Some((d, m, edge, single)) = i.signal else {
                 continue;
             };
-            let fires = m == n && i.active && (edge == 2 || (edge == 1) == v);
+            let fires = d == dir && m == n && i.active && (edge == 2 || (edge == 1) == v);
             if fires {
                 self.pending.push_back(i.trap.clone());
                 if single {

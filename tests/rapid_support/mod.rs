@@ -83,7 +83,8 @@ pub enum Event {
     Waited(f64),
     /// A TRAP started.
     Trap(String),
-    /// `ConfJ`, `ConfL`, `VelSet`, `AccSet` as written, with evaluated values.
+    /// `ConfJ`, `ConfL`, `VelSet`, `AccSet`, `StopMove`, `StartMove` as written, with evaluated
+    /// values.
     Setting(String),
     /// `TPWrite` text.
     Print(String),
@@ -136,8 +137,8 @@ struct Call {
 
 struct Interrupt {
     trap: String,
-    /// `ISignalDI`: input number, edge (0 falling, 1 rising, 2 both), single.
-    signal: Option<(i64, u8, bool)>,
+    /// `ISignalDI`/`ISignalDO`: the signal, edge (0 falling, 1 rising, 2 both), single.
+    signal: Option<(Dir, i64, u8, bool)>,
     active: bool,
 }
 
