@@ -843,6 +843,16 @@ fn close(a: f64, b: f64) -> bool {
     (a - b).abs() <= 1e-9 * a.abs().max(1.0)
 }
 
+/// How far a target may be from KRL's (mm, and matrix entries). RAPID's quaternions are
+/// printed with 7 decimals (a rotation off by ~1e-7), so a relative motion in the tool moves
+/// its point by up to ~1e-7 per mm of offset.
+fn target_tolerance(brand: Brand) -> f64 {
+    match brand {
+        Brand::Abb => 1e-4,
+        Brand::Kawasaki | Brand::Flexiv => 1e-6,
+    }
+}
+
 /// Compares one motion; `None` if equal, else what differs.
 fn motion_differs(k: &Motion, t: &Motion, brand: Brand, skip: &[Aspect]) -> Option<String> {
     let mut bad = Vec::new();
@@ -850,7 +860,7 @@ fn motion_differs(k: &Motion, t: &Motion, brand: Brand, skip: &[Aspect]) -> Opti
         bad.push(format!("kind {} vs {}", k.kind, t.kind));
     }
     let d = k.target.distance(&t.target);
-    if !skip.contains(&Aspect::Target) && (d.is_nan() || d > 1e-6) {
+    if !skip.contains(&Aspect::Target) && (d.is_nan() || d > target_tolerance(brand)) {
         bad.push(format!("target differs by {d:e}"));
     }
     if !skip.contains(&Aspect::Speed) {
