@@ -124,10 +124,14 @@ pub fn run(mut args: TranspileArgs) -> anyhow::Result<Outcome> {
             }
         };
         let who = match target {
-            Target::Kawasaki => "the Kawasaki AS package the translated program calls",
-            Target::Flexiv => "the Flexiv script's vision client",
+            Target::Kawasaki => Some("the Kawasaki AS package the translated program calls"),
+            Target::Flexiv => Some("the Flexiv script's vision client"),
+            // The RAPID module's MM_* calls are not translated (TR001): no client speaks a codec.
+            Target::Rapid => None,
         };
-        if let Err(msg) = crate::generate::ascii_1x_only(&spec_data, who) {
+        if let Some(who) = who
+            && let Err(msg) = crate::generate::ascii_1x_only(&spec_data, who)
+        {
             eprintln!(
                 "error: {}: {msg}\n  help: pass a spec with codec = \"ascii\" and interface = \"1.x\" (and select ASCII in Mech-Vision for this robot)",
                 spec.display()
