@@ -1,4 +1,4 @@
-//! Transpile throughput (KRL → Kawasaki AS, KRL → Flexiv Python): the fixture programs, and a large synthetic
+//! Transpile throughput (KRL → Kawasaki AS, KRL → Flexiv Python, KRL → ABB RAPID): the fixture programs, and a large synthetic
 //! program with many routines, motions, I/O and `.dat` poses.
 //! Run briefly: `cargo bench --bench transpile -- --warm-up-time 1 --measurement-time 3`.
 
@@ -61,6 +61,9 @@ fn bench(c: &mut Criterion) {
     g.bench_function("synthetic_200_routines_flexiv", |b| {
         b.iter(|| run_to(Target::Flexiv, &src, Some(&dat)))
     });
+    g.bench_function("synthetic_200_routines_rapid", |b| {
+        b.iter(|| run_to(Target::Rapid, &src, Some(&dat)))
+    });
     g.finish();
     let mut fixtures = Vec::new();
     if let Ok(rd) = std::fs::read_dir("tests/fixtures/transpile") {
@@ -80,6 +83,14 @@ fn bench(c: &mut Criterion) {
             fixtures
                 .iter()
                 .map(|(s, d)| run(s, d.as_deref()))
+                .sum::<usize>()
+        })
+    });
+    c.bench_function("transpile/fixtures_rapid", |b| {
+        b.iter(|| {
+            fixtures
+                .iter()
+                .map(|(s, d)| run_to(Target::Rapid, s, d.as_deref()))
                 .sum::<usize>()
         })
     });

@@ -80,7 +80,13 @@ pub fn check(text: &str) -> Vec<String> {
         {
             external.extend(list.split(',').map(|s| s.trim().to_ascii_lowercase()));
         }
-        let (code, strings) = split_code(raw);
+        // Most lines have neither a string nor a comment: no copy for them.
+        let (code, strings) = if raw.contains(['"', '!']) {
+            let (c, s) = split_code(raw);
+            (std::borrow::Cow::Owned(c), s)
+        } else {
+            (std::borrow::Cow::Borrowed(raw), Vec::new())
+        };
         for s in strings {
             if s > 80 {
                 problems.push(format!("line {n}: a string of {s} characters (at most 80)"));
@@ -96,11 +102,11 @@ pub fn check(text: &str) -> Vec<String> {
                 problems.push(format!("line {n}: `{w}` is longer than 32 characters"));
             }
         }
-        let first = words
-            .first()
-            .map(|w| w.to_ascii_lowercase())
-            .unwrap_or_default();
-        let upper_line = line.to_ascii_uppercase();
+        let mut buf = [0u8; 12];
+        let first = lower(words.first().copied().unwrap_or(""), &mut buf);
+        let ends_then = line.len() >= 4
+            && line.is_char_boundary(line.len() - 4)
+            && line[line.len() - 4..].eq_ignore_ascii_case("THEN");
         let open = |kind: &'static str, stack: &mut Vec<(&'static str, usize)>| {
             stack.push((kind, n));
         };
@@ -115,11 +121,11 @@ pub fn check(text: &str) -> Vec<String> {
                 None => problems.push(format!("line {n}: END{kind} without {kind}")),
             }
         };
-        match first.as_str() {
+        match first {
             "module" => open("MODULE", &mut stack),
             "endmodule" => close("MODULE", &mut stack, &mut problems),
             "proc" | "func" | "trap" => {
-                let kind = match first.as_str() {
+                let kind = match first {
                     "proc" => "PROC",
                     "func" => "FUNC",
                     _ => "TRAP",
@@ -140,7 +146,7 @@ pub fn check(text: &str) -> Vec<String> {
             "endproc" => close("PROC", &mut stack, &mut problems),
             "endfunc" => close("FUNC", &mut stack, &mut problems),
             "endtrap" => close("TRAP", &mut stack, &mut problems),
-            "if" if upper_line.ends_with("THEN") => open("IF", &mut stack),
+            "if" if ends_then => open("IF", &mut stack),
             "else" | "elseif" => {
                 if stack.last().map(|s| s.0) != Some("IF") {
                     problems.push(format!("line {n}: {} outside IF", first.to_uppercase()));
@@ -162,27 +168,30 @@ pub fn check(text: &str) -> Vec<String> {
             "endrecord" => close("RECORD", &mut stack, &mut problems),
             _ => {
                 if line.ends_with(':') && words.len() == 1 {
-                    labels.insert(first.clone());
+                    labels.insert(words[0].to_ascii_lowercase());
                 } else if !line.ends_with(';') {
                     problems.push(format!("line {n}: a statement without `;`: {line}"));
                 } else if first == "goto" {
                     if let Some(l) = words.get(1) {
                         gotos.push((l.to_ascii_lowercase(), n));
                     }
-                } else if !matches!(first.as_str(), "var" | "pers" | "const")
+                } else if !matches!(first, "var" | "pers" | "const")
                     && let Some(rest) = line.get(words[0].len()..)
                     && !rest.trim_start().starts_with([':', '{', '.'])
-                    && !INSTRUCTIONS.contains(&first.as_str())
+                    && !INSTRUCTIONS.contains(&first)
                 {
-                    called.push((first.clone(), n));
+                    called.push((words[0].to_ascii_lowercase(), n));
                 }
             }
+        }
+        if !line.contains('(') {
+            continue;
         }
         for f in calls_in(line) {
             let l = f.to_ascii_lowercase();
             if !FUNCTIONS.contains(&l.as_str())
                 && !KEYWORDS.contains(&l.as_str())
-                && !matches!(first.as_str(), "proc" | "func")
+                && !matches!(first, "proc" | "func")
             {
                 called.push((l, n));
             }
@@ -198,6 +207,17 @@ pub fn check(text: &str) -> Vec<String> {
         }
     }
     problems
+}
+
+/// `word` in lower case, in `buf` (a word longer than the buffer, never a keyword, is `""`).
+fn lower<'b>(word: &str, buf: &'b mut [u8; 12]) -> &'b str {
+    if word.len() > buf.len() {
+        return "";
+    }
+    let b = &mut buf[..word.len()];
+    b.copy_from_slice(word.as_bytes());
+    b.make_ascii_lowercase();
+    std::str::from_utf8(b).unwrap_or("")
 }
 
 fn check_gotos(labels: &HashSet<String>, gotos: &[(String, usize)], problems: &mut Vec<String>) {

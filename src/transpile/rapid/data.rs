@@ -19,6 +19,13 @@ pub(super) struct DataOut {
     pub kept: Vec<String>,
 }
 
+impl DataOut {
+    /// The number of data lines.
+    pub(super) fn len(&self) -> usize {
+        self.lines.len()
+    }
+}
+
 impl<'a> Tx<'a> {
     /// A data declaration: `VAR num a{3,4};`, `VAR string s;`.
     pub(super) fn declaration(
@@ -268,8 +275,8 @@ impl<'a> Tx<'a> {
     }
 
     /// The module's data lines, and the flag array when `$FLAG` is used.
-    pub(super) fn data_lines(&self) -> Vec<String> {
-        let mut v = self.data.lines.clone();
+    pub(super) fn data_lines(&mut self) -> Vec<String> {
+        let mut v = std::mem::take(&mut self.data.lines);
         if self.flags {
             v.push("VAR bool krl_flag{1024};".into());
         }

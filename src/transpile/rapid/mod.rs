@@ -217,7 +217,18 @@ impl<'a> Tx<'a> {
     // ----- assembly ----------------------------------------------------------------------
 
     fn assemble(&mut self) -> String {
-        let mut out = String::new();
+        let size: usize = self
+            .routines
+            .iter()
+            .map(|r| {
+                r.head.len()
+                    + r.body.len()
+                    + r.decls.iter().map(|d| d.len() + 5).sum::<usize>()
+                    + 16
+            })
+            .sum::<usize>()
+            + 64 * (self.data.len() + 16);
+        let mut out = String::with_capacity(size);
         let module = format::module_name(&self.src.src.path);
         out.push_str(&format!("MODULE {module}\n"));
         for l in self.header_comment() {
