@@ -1,17 +1,20 @@
 //! Every runnable transpile fixture moves the same on every target: the KRL original runs on
-//! krlkit's interpreter, its AS translation on the test AS interpreter and its Flexiv
-//! translation on the stub `flexivrdk`, all in the same cell (`equiv_support`), and the runs
+//! krlkit's interpreter, its AS translation on the test AS interpreter, its Flexiv
+//! translation on the stub `flexivrdk` and its RAPID translation on the test RAPID interpreter,
+//! all in the same cell (`equiv_support`), and the runs
 //! must have the same motions (target, kind, speed kind and value, blending, base and tool
 //! frames), output changes and waits in the same order. Where a translation reports that it
-//! does not keep something (TR002 at the line), the test leaves exactly that out, and says so
-//! below; a fixture is left out only with the reason.
+//! does not keep something (TR001/TR002 at the line), the test leaves exactly that out, and
+//! says so below; a fixture is left out only with the reason.
 
 mod as_support;
 mod equiv_support;
+mod rapid_support;
 
 use equiv_support::{
     Aspect, Brand, EVERY_LINE, Excluded, Program, as_steps, by, compare, ex, findings,
-    flexiv_steps, krl_steps, python, run_as, run_flexiv, to_as, to_flexiv,
+    flexiv_steps, krl_steps, python, rapid_steps, run_as, run_flexiv, run_rapid, to_as, to_flexiv,
+    to_rapid,
 };
 
 /// A runnable fixture: the `$IN` inputs that are on, and what each target leaves out.
@@ -20,11 +23,15 @@ struct Case {
     inputs: &'static [usize],
     kawasaki: &'static [Excluded],
     flexiv: &'static [Excluded],
+    rapid: &'static [Excluded],
 }
 
 // What the findings say (parts of their messages).
 const AS_SPEED_UNKNOWN: &str = "the speed of this motion is not known here";
 const PTP_UNSET: &str = "the PTP speed ($VEL_AXIS) is not set";
+const RAPID_PTP_UNSET: &str = "the PTP speed ($VEL_AXIS) of this motion is not known here";
+const RAPID_CP_UNSET: &str = "the path speed ($VEL.CP) of this motion is not known here";
+const RAPID_CDIS_UNKNOWN: &str = "the blending distance ($APO.CDIS) of this motion is not known";
 const SPLINE: &str = "a SPLINE block becomes plain LIN/CIRC motions";
 /// spline_trigger's TRIGGERs switch the glue output before / after the motion, not on the path.
 const TRIGGER_ON: Excluded = ex(
@@ -41,10 +48,11 @@ const TRIGGER_OFF: Excluded = ex(
 /// The runnable fixtures without a vision server. Not here: `dup_params` and
 /// `untranslatable` (TR001: the routines and calls that matter are not translated), `motions`
 /// (a JT7 value the test AS interpreter does not model), `taught` (AS needs `#xhome`, which
-/// KUKA's controller defines), `io_waits` and `viz_depal` (they read variables before
+/// KUKA's controller defines; RAPID runs it, [`RAPID_ONLY`]), `io_waits` and `viz_depal` (they read variables before
 /// anything assigns them), `flexiv_pick` (a vision cell with no KRL run to compare), and the
 /// vision cells `pick_cycle`, `bin_pick`, `depal_plan`, `vision_variants`, which
-/// `transpile_run.rs` compares on both targets against the fake vision server.
+/// `transpile_run.rs` compares on AS and Flexiv against the fake vision server (RAPID's `MM_*`
+/// calls are TR001).
 const CASES: &[Case] = &[
     Case {
         name: "speed_kinds",
@@ -54,6 +62,8 @@ const CASES: &[Case] = &[
         kawasaki: &[ex(4, Aspect::Speed, AS_SPEED_UNKNOWN)],
         // Line 4: the same unset PTP speed; the script moves at its default (KRL.vel_ptp).
         flexiv: &[ex(4, Aspect::Speed, PTP_UNSET)],
+        // Line 4: the same unset PTP speed; the module moves at 10 % of vmax.
+        rapid: &[ex(4, Aspect::Speed, RAPID_PTP_UNSET)],
     },
     Case {
         name: "blend_after_call",
@@ -67,12 +77,21 @@ const CASES: &[Case] = &[
         ],
         // Line 13: the PTP speed is never set; the script moves at its default.
         flexiv: &[ex(13, Aspect::Speed, PTP_UNSET)],
+        // Lines 9, 13, 14: the blending distance after `pick_some()` is not known: fine.
+        // Line 13: the PTP speed is never set; the module moves at 10 % of vmax.
+        rapid: &[
+            ex(9, Aspect::Blend, RAPID_CDIS_UNKNOWN),
+            ex(13, Aspect::Blend, RAPID_CDIS_UNKNOWN),
+            ex(14, Aspect::Blend, RAPID_CDIS_UNKNOWN),
+            ex(13, Aspect::Speed, RAPID_PTP_UNSET),
+        ],
     },
     Case {
         name: "calls_in_expressions",
         inputs: &[],
         kawasaki: &[],
         flexiv: &[],
+        rapid: &[],
     },
     Case {
         name: "spline_trigger",
@@ -97,6 +116,14 @@ const CASES: &[Case] = &[
             TRIGGER_ON,
             TRIGGER_OFF,
         ],
+        rapid: &[
+            ex(5, Aspect::Speed, RAPID_PTP_UNSET),
+            ex(9, Aspect::Speed, RAPID_PTP_UNSET),
+            by(7, Aspect::Blend, 6, SPLINE),
+            by(8, Aspect::Blend, 6, SPLINE),
+            TRIGGER_ON,
+            TRIGGER_OFF,
+        ],
     },
     Case {
         name: "pallet_pattern",
@@ -115,12 +142,19 @@ const CASES: &[Case] = &[
             8,
             "the script uses DEFAULT_VEL",
         )],
+        rapid: &[],
     },
     Case {
         name: "base_offsets",
         inputs: &[],
         kawasaki: &[],
         flexiv: &[],
+        // Line 11: the geometric operator is not translated (TR001) yet.
+        rapid: &[ex(
+            11,
+            Aspect::Motion,
+            "the geometric operator `:` has no translation",
+        )],
     },
     Case {
         name: "joint_targets",
@@ -134,6 +168,14 @@ const CASES: &[Case] = &[
             by(11, Aspect::Target, 10, "an incomplete literal"),
             by(13, Aspect::Target, 10, "an incomplete literal"),
         ],
+        // As for Flexiv: line 10 (a partial axis literal) is not translated (TR001), so
+        // PTP_REL (line 11) turns A6 from where line 9 left the arm, and line 13, which moves to
+        // where the robot is, goes there too.
+        rapid: &[
+            ex(10, Aspect::Motion, "an incomplete literal"),
+            by(11, Aspect::Target, 10, "an incomplete literal"),
+            by(13, Aspect::Target, 10, "an incomplete literal"),
+        ],
     },
     Case {
         name: "advance_stops",
@@ -141,18 +183,21 @@ const CASES: &[Case] = &[
         inputs: &[3, 7],
         kawasaki: &[],
         flexiv: &[],
+        rapid: &[],
     },
     Case {
         name: "gripper_check",
         inputs: &[5],
         kawasaki: &[],
         flexiv: &[],
+        rapid: &[],
     },
     Case {
         name: "control",
         inputs: &[],
         kawasaki: &[],
         flexiv: &[],
+        rapid: &[],
     },
     Case {
         name: "python_names",
@@ -163,8 +208,116 @@ const CASES: &[Case] = &[
             ex(29, Aspect::Speed, "the path speed ($VEL.CP) is not set"),
             ex(31, Aspect::Speed, "the path speed ($VEL.CP) is not set"),
         ],
+        // Lines 29, 31: $VEL.CP is never set; the module moves at v100.
+        rapid: &[
+            ex(29, Aspect::Speed, RAPID_CP_UNSET),
+            ex(31, Aspect::Speed, RAPID_CP_UNSET),
+        ],
     },
 ];
+
+/// Fixtures only the RAPID translation runs here (the others' reasons are at [`CASES`]):
+/// `taught`, the teach-pendant form (folds, `PDAT_ACT`, `BAS(#PTP_PARAMS)`), whose `XHOME` the
+/// AS test interpreter lacks.
+const RAPID_ONLY: &[Case] = &[Case {
+    name: "taught",
+    inputs: &[],
+    kawasaki: &[],
+    flexiv: &[],
+    // Lines 20, 54: XHOME is KUKA's machine data; the module declares a placeholder (zeros).
+    // Line 28: $APO.CDIS is never set (KRL: 0); the module stops exactly (fine).
+    rapid: &[
+        ex(20, Aspect::Target, "`XHOME` is not declared"),
+        by(54, Aspect::Target, 20, "`XHOME` is not declared"),
+        ex(28, Aspect::Blend, RAPID_CDIS_UNKNOWN),
+    ],
+}];
+
+/// Fixtures whose RAPID translation does not run or compare yet: (name, the failure the run
+/// shows, why). Each is a defect of the translation, reported to the backend's owner;
+/// [`rapid_pending_fixtures_still_fail`] keeps the list honest, so a fix moves the fixture into
+/// the comparison.
+const RAPID_PENDING: &[(&str, &str, &str)] = &[
+    (
+        "pallet_pattern",
+        "an empty index `{}`",
+        "the array `per_layer` is passed as `per_layer{}`, which is not RAPID",
+    ),
+    (
+        "blend_after_call",
+        "line 13: C_PTP without a TR002",
+        "line 13's C_PTP is written as fine (the distance after the call is not known) with no \
+         TR002 naming C_PTP",
+    ),
+];
+
+fn rapid_run(case: &Case) -> Result<(), String> {
+    let p = Program::fixture(case.name);
+    let krl = krl_run(&p, case.inputs);
+    let t = to_rapid(&p);
+    let f = findings(&t);
+    run_rapid(&t.text, case.inputs)
+        .and_then(|r| compare(&krl, &rapid_steps(&r), Brand::Abb, &f, case.rapid))
+        .map_err(|e| format!("{e}\n{}", t.text))
+}
+
+#[test]
+fn rapid_pending_fixtures_still_fail() {
+    for (name, failure, why) in RAPID_PENDING {
+        let case = CASES.iter().find(|c| c.name == *name).expect("a case");
+        match rapid_run(case) {
+            Ok(()) => panic!("{name} runs and compares now: take it off RAPID_PENDING ({why})"),
+            Err(e) => assert!(e.contains(failure), "{name}: another failure:\n{e}"),
+        }
+    }
+}
+
+/// RAPID translations a controller would refuse to load: (fixture, the load error, why).
+const RAPID_UNLOADABLE: &[(&str, &str, &str)] = &[
+    (
+        "motions",
+        "`cell_name` is declared twice",
+        "the `.dat`'s PERS and a VAR of the same name",
+    ),
+    (
+        "pallet_pattern",
+        "an empty index `{}`",
+        "the array `per_layer` is passed as `per_layer{}`",
+    ),
+];
+
+/// Every fixture's RAPID translation, runnable here or not (vision cells, TR001s), loads in the
+/// test interpreter: it parses, every module data's value fits its type, no name is declared
+/// twice. The exceptions are listed with their defect, and must still show it.
+#[test]
+fn every_rapid_translation_loads() {
+    let mut names: Vec<String> = std::fs::read_dir(equiv_support::fixture_dir())
+        .expect("fixtures")
+        .filter_map(|e| {
+            let p = e.expect("entry").path();
+            let stem = p.file_stem()?.to_string_lossy().into_owned();
+            (p.extension()? == "src").then_some(stem)
+        })
+        .collect();
+    names.sort();
+    assert!(names.len() > 20, "{names:?}");
+    let mut failures = Vec::new();
+    for name in &names {
+        let t = to_rapid(&Program::fixture(name));
+        let loaded = rapid_support::Rapid::load_files(&[("program.mod", &t.text)]);
+        match (loaded, RAPID_UNLOADABLE.iter().find(|(n, ..)| n == name)) {
+            (Ok(_), None) => {}
+            (Err(e), Some((_, want, _))) if e.contains(want) => {}
+            (Ok(_), Some((_, _, why))) => {
+                failures.push(format!(
+                    "{name} loads now: take it off RAPID_UNLOADABLE ({why})"
+                ));
+            }
+            (Err(e), _) => failures.push(format!("{name}: {e}\n{}", t.text)),
+        }
+    }
+    assert!(failures.is_empty(), "{}", failures.join("\n\n"));
+}
 
 #[test]
 fn every_runnable_fixture_moves_the_same_on_every_target() {
@@ -180,6 +333,11 @@ fn every_runnable_fixture_moves_the_same_on_every_target() {
         if let Err(e) = r {
             failures.push(format!("{} (AS): {e}\n{}", case.name, t.text));
         }
+        if !RAPID_PENDING.iter().any(|(n, ..)| *n == case.name)
+            && let Err(e) = rapid_run(case)
+        {
+            failures.push(format!("{} (RAPID): {e}", case.name));
+        }
         let Some(py) = py else { continue };
         let t = to_flexiv(&p);
         let f = findings(&t);
@@ -187,6 +345,11 @@ fn every_runnable_fixture_moves_the_same_on_every_target() {
             .and_then(|calls| compare(&krl, &flexiv_steps(&calls), Brand::Flexiv, &f, case.flexiv));
         if let Err(e) = r {
             failures.push(format!("{} (Flexiv): {e}", case.name));
+        }
+    }
+    for case in RAPID_ONLY {
+        if let Err(e) = rapid_run(case) {
+            failures.push(format!("{} (RAPID): {e}", case.name));
         }
     }
     assert!(failures.is_empty(), "{}", failures.join("\n\n"));
@@ -241,6 +404,46 @@ fn a_broken_translation_is_caught() {
                 Brand::Kawasaki,
                 &findings(&t),
                 case.kawasaki,
+            )
+        });
+        assert!(r.is_err(), "{name}: `{from}` -> `{to}` was not caught");
+    }
+    let rapid_cases: [(&str, &str, &str); 5] = [
+        ("speed_kinds", "MoveL ppick, v200,", "MoveL ppick, v300,"),
+        // A quaternion with another convention (x first): another rotation.
+        (
+            "base_offsets",
+            "[0.7071068,0,0.7071068,0]",
+            "[0,0.7071068,0.7071068,0]",
+        ),
+        ("base_offsets", "\\WObj:=wobj3", "\\WObj:=wobj0"),
+        // An exact stop blended.
+        (
+            "spline_trigger",
+            "MoveL ppick, v200, fine, tool0;",
+            "MoveL ppick, v200, z20, tool0;",
+        ),
+        // The output switches after the next motion instead of before it.
+        (
+            "advance_stops",
+            "    IF (di3 = 1) THEN\n      SetDO do4, 1;\n    ENDIF\n    MoveL phome, v200, fine, tool0;\n",
+            "    MoveL phome, v200, fine, tool0;\n    IF (di3 = 1) THEN\n      SetDO do4, 1;\n    ENDIF\n",
+        ),
+    ];
+    for (name, from, to) in rapid_cases {
+        let case = CASES.iter().find(|c| c.name == name).expect("a case");
+        let p = Program::fixture(name);
+        let krl = krl_run(&p, case.inputs);
+        let t = to_rapid(&p);
+        assert!(t.text.contains(from), "{name}: `{from}` not in\n{}", t.text);
+        let broken = t.text.replace(from, to);
+        let r = run_rapid(&broken, case.inputs).and_then(|r| {
+            compare(
+                &krl,
+                &rapid_steps(&r),
+                Brand::Abb,
+                &findings(&t),
+                case.rapid,
             )
         });
         assert!(r.is_err(), "{name}: `{from}` -> `{to}` was not caught");

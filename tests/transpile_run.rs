@@ -18,6 +18,7 @@
 
 mod as_support;
 mod equiv_support;
+mod rapid_support;
 mod sim_support;
 
 use std::collections::HashMap;

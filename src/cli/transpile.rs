@@ -128,6 +128,7 @@ pub fn run(mut args: TranspileArgs) -> anyhow::Result<Outcome> {
         let who = match target {
             Target::Kawasaki => Some("the Kawasaki AS package the translated program calls"),
             Target::Flexiv => Some("the Flexiv script's vision client"),
+            // The RAPID module's MM_* calls are not translated (TR001): no client speaks a codec.
             Target::Rapid => None,
         };
         if let Some(who) = who

@@ -1,13 +1,14 @@
 //! Equivalence of a KRL program's run on krlkit's interpreter with the runs of its translations:
-//! Kawasaki AS on the test AS interpreter (`as_support`) and Flexiv Python on the stub
-//! `flexivrdk` (`tests/flexiv_stub/`). Each run becomes a list of [`Step`]s — motions with
+//! Kawasaki AS on the test AS interpreter (`as_support`), Flexiv Python on the stub
+//! `flexivrdk` (`tests/flexiv_stub/`) and ABB RAPID on the test RAPID interpreter
+//! (`rapid_support`). Each run becomes a list of [`Step`]s — motions with
 //! target, speed (kind and value), blending and the base and tool frames in force; outputs that
 //! change; `WAIT SEC` waits — and [`compare`] puts them side by side.
 //!
-//! The cell is the same for all three: `BASE_DATA[n]`/`TOOL_DATA[n]` (n = 1…8) hold the frames
+//! The cell is the same for all four: `BASE_DATA[n]`/`TOOL_DATA[n]` (n = 1…8) hold the frames
 //! of [`table_frame`] (set by a wrapper routine that then calls the program on KUKA, defined as
 //! `base_data[n]`/`tool_data[n]` transformations in AS, as work coordinates `base_data_n` and
-//! tools `tool_data_n` on the Flexiv stub), so a translation that loses a frame selection moves
+//! tools `tool_data_n` on the Flexiv stub, as `wobj<n>`/`tool<n>` in RAPID), so a translation that loses a frame selection moves
 //! in another frame and the comparison sees it.
 #![allow(dead_code)]
 
@@ -21,6 +22,10 @@ use krlkit::transpile::flexiv::{FlexivOptions, PtpPrimitive};
 use krlkit::transpile::{self, Options, Source, Target, Translation};
 
 use crate::as_support::{As, End, Event as AsEvent, V};
+use crate::rapid_support::{
+    End as RapidEnd, Event as RapidEvent, Frame as RapidFrame, Rapid, Target as RapidTarget,
+    V as RV, VMAX as RAPID_VMAX, orient_zyx,
+};
 
 /// Flexiv's poll interval (`POLL` in the script): sleeps of this length are polling, not waits.
 const POLL: f64 = 0.01;
@@ -112,6 +117,8 @@ pub enum Blend {
     Krl(&'static str, f64),
     Accuracy(f64),
     Zone(String),
+    /// RAPID: the zone's pzone_tcp in mm (after `\\Z`).
+    Pzone(f64),
 }
 
 #[derive(Debug, Clone)]
@@ -318,6 +325,17 @@ pub fn to_flexiv_for(p: &Program, server: Option<transpile::VisionServer>) -> Tr
     transpile::transpile(Target::Flexiv, src, dat, &options)
 }
 
+/// The RAPID translation (axis values one to one through the joint map, as for AS: the test
+/// interpreter has no kinematics).
+pub fn to_rapid(p: &Program) -> Translation {
+    let (src, dat) = sources(p);
+    let options = Options {
+        joint_map: Some(krlkit::transpile::rapid::joint_map("A1,A2,A3,A4,A5,A6").expect("map")),
+        ..Options::default()
+    };
+    transpile::transpile(Target::Rapid, src, dat, &options)
+}
+
 /// Findings of a translation: (code, 1-based line in the `.src`, message).
 pub fn findings(t: &Translation) -> Vec<(String, usize, String)> {
     let mut out = Vec::new();
@@ -458,6 +476,109 @@ pub fn as_steps(a: &As) -> Vec<Step> {
                 }
             }
             AsEvent::Twait(t) => out.push(Step::Wait(*t, None)),
+            _ => {}
+        }
+    }
+    out
+}
+
+// ----- RAPID ---------------------------------------------------------------------------------
+
+/// A pose aggregate `[[x, y, z], [q1, q2, q3, q4]]` of a table frame.
+fn rapid_pose(f: &[f64; 6]) -> RV {
+    let n = |v: &[f64]| RV::Agg(v.iter().map(|x| RV::Num(*x)).collect());
+    RV::Agg(vec![n(&f[..3]), n(&orient_zyx(f[3], f[4], f[5]))])
+}
+
+/// Runs a RAPID module on the test interpreter in the cell: the translation's `tool<n>` and
+/// `wobj<n>` placeholders get `TOOL_DATA[n]` and `BASE_DATA[n]` (a controller's configuration
+/// would), `$IN[n]` (`di<n>`) is on for each of `inputs`; `main` runs.
+pub fn run_rapid(text: &str, inputs: &[usize]) -> Result<Rapid, String> {
+    let mut r = Rapid::load_files(&[("program.mod", text)])?;
+    for n in 1..=TABLE {
+        let tool = format!("tool{n}");
+        if r.type_of(&tool) == Some("tooldata") {
+            let load = RV::Agg(vec![
+                RV::Num(1.0),
+                RV::Agg(vec![RV::Num(0.0), RV::Num(0.0), RV::Num(1.0)]),
+                RV::Agg(vec![RV::Num(1.0), RV::Num(0.0), RV::Num(0.0), RV::Num(0.0)]),
+                RV::Num(0.0),
+                RV::Num(0.0),
+                RV::Num(0.0),
+            ]);
+            let v = RV::Agg(vec![
+                RV::Bool(true),
+                rapid_pose(&table_frame(false, n)),
+                load,
+            ]);
+            r.set(&tool, v)?;
+        }
+        let wobj = format!("wobj{n}");
+        if r.type_of(&wobj) == Some("wobjdata") {
+            let v = RV::Agg(vec![
+                RV::Bool(false),
+                RV::Bool(true),
+                RV::Str(String::new()),
+                rapid_pose(&table_frame(true, n)),
+                rapid_pose(&[0.0; 6]),
+            ]);
+            r.set(&wobj, v)?;
+        }
+    }
+    for n in inputs {
+        r.set_input(*n as i64, true);
+    }
+    r.max_wait = 5.0;
+    match r.run("main")? {
+        RapidEnd::Done => Ok(r),
+        other => Err(format!("the RAPID program ended with {other:?}")),
+    }
+}
+
+fn rapid_frame(f: &RapidFrame) -> Pose {
+    Pose::Cart(f.p, f.r)
+}
+
+/// The steps of a RAPID run: per motion its target (robtarget in the work object, or joints),
+/// the speed (MoveJ/MoveAbsJ/TriggJ: v_tcp as a percentage of `vmax`; MoveL/MoveC/TriggL:
+/// v_tcp in m/s), `fine` or the zone's pzone_tcp, the work object's and the tool's frames;
+/// output changes (a pulse: on, then off); `WaitTime` waits.
+pub fn rapid_steps(r: &Rapid) -> Vec<Step> {
+    let mut out = Vec::new();
+    let mut outputs = Outputs::new();
+    for e in &r.trace {
+        match e {
+            RapidEvent::Move(m) => {
+                let (kind, speed) = match m.instr {
+                    "MoveJ" | "MoveAbsJ" | "TriggJ" => {
+                        ("PTP", Speed::Joint(Some(m.speed[0] * 100.0 / RAPID_VMAX)))
+                    }
+                    "MoveC" => ("CIRC", Speed::Cp(Some(m.speed[0] / 1000.0))),
+                    _ => ("LIN", Speed::Cp(Some(m.speed[0] / 1000.0))),
+                };
+                out.push(Step::Move(Box::new(Motion {
+                    kind,
+                    target: match &m.target {
+                        RapidTarget::Cart(f) => rapid_frame(f),
+                        RapidTarget::Joints(j) => Pose::Axis(*j),
+                    },
+                    speed,
+                    blend: if m.fine {
+                        Blend::Exact
+                    } else {
+                        Blend::Pzone(m.zone)
+                    },
+                    base: rapid_frame(&m.wobj),
+                    tool: rapid_frame(&m.tool),
+                    line: None,
+                })));
+            }
+            RapidEvent::Out(n, v) => outputs.set(*n, *v, &mut out),
+            RapidEvent::Pulse(n, _) => {
+                outputs.set(*n, true, &mut out);
+                outputs.set(*n, false, &mut out);
+            }
+            RapidEvent::WaitTime(t) => out.push(Step::Wait(*t, None)),
             _ => {}
         }
     }
@@ -715,10 +836,21 @@ pub const EVERY_LINE: usize = 0;
 pub enum Brand {
     Kawasaki,
     Flexiv,
+    Abb,
 }
 
 fn close(a: f64, b: f64) -> bool {
     (a - b).abs() <= 1e-9 * a.abs().max(1.0)
+}
+
+/// How far a target may be from KRL's (mm, and matrix entries). RAPID's quaternions are
+/// printed with 7 decimals (a rotation off by ~1e-7), so a relative motion in the tool moves
+/// its point by up to ~1e-7 per mm of offset.
+fn target_tolerance(brand: Brand) -> f64 {
+    match brand {
+        Brand::Abb => 1e-4,
+        Brand::Kawasaki | Brand::Flexiv => 1e-6,
+    }
 }
 
 /// Compares one motion; `None` if equal, else what differs.
@@ -728,7 +860,7 @@ fn motion_differs(k: &Motion, t: &Motion, brand: Brand, skip: &[Aspect]) -> Opti
         bad.push(format!("kind {} vs {}", k.kind, t.kind));
     }
     let d = k.target.distance(&t.target);
-    if !skip.contains(&Aspect::Target) && (d.is_nan() || d > 1e-6) {
+    if !skip.contains(&Aspect::Target) && (d.is_nan() || d > target_tolerance(brand)) {
         bad.push(format!("target differs by {d:e}"));
     }
     if !skip.contains(&Aspect::Speed) {
@@ -750,6 +882,7 @@ fn motion_differs(k: &Motion, t: &Motion, brand: Brand, skip: &[Aspect]) -> Opti
             (Blend::Krl("C_DIS" | "C_SPL", v), Blend::Accuracy(a), Brand::Kawasaki) => {
                 close(*v, *a)
             }
+            (Blend::Krl("C_DIS" | "C_SPL", v), Blend::Pzone(d), Brand::Abb) => close(*v, *d),
             (Blend::Krl("C_DIS" | "C_SPL", v), b, Brand::Flexiv) => {
                 let z = krlkit::transpile::flexiv::zone_code(*v);
                 match b {
