@@ -170,7 +170,8 @@ pub struct CheckArgs {
     /// Files or directories (walked recursively); `-` reads one file from stdin.
     #[arg(required = true)]
     pub paths: Vec<PathBuf>,
-    /// The name diagnostics give the file read from `-` (stdin), e.g. the path an editor has open.
+    /// The name diagnostics give the file read from `-` (stdin), e.g. the path an editor has
+    /// open; without it, rules about the file's name (KRL003) do not apply.
     #[arg(long, value_name = "NAME")]
     pub stdin_filename: Option<String>,
     /// How to print findings: rustc-style, one line each, JSON, SARIF 2.1.0, or GitHub

@@ -55,7 +55,7 @@ pub fn run(args: CheckArgs) -> anyhow::Result<Outcome> {
         let name = args
             .stdin_filename
             .clone()
-            .unwrap_or_else(|| "<stdin>".into());
+            .unwrap_or_else(|| crate::files::STDIN_NAME.into());
         match files::read_stdin() {
             Ok(d) => ws.files.push(WorkspaceFile {
                 path: name,

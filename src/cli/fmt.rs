@@ -140,7 +140,10 @@ fn unified_diff(name: &str, before: &str, after: &str) -> String {
 }
 
 fn stdin(args: &FmtArgs, opts: &FmtOptions) -> anyhow::Result<Outcome> {
-    let name = args.stdin_filename.as_deref().unwrap_or("<stdin>");
+    let name = args
+        .stdin_filename
+        .as_deref()
+        .unwrap_or(crate::files::STDIN_NAME);
     let mut bytes = Vec::new();
     std::io::stdin().read_to_end(&mut bytes)?;
     let decoded = decode(&bytes);

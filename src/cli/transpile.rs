@@ -29,7 +29,7 @@ pub fn run(mut args: TranspileArgs) -> anyhow::Result<Outcome> {
     let stdin = crate::files::is_stdin(&args.file);
     let name = match (&args.stdin_filename, stdin) {
         (Some(n), true) => n.clone(),
-        (None, true) => "<stdin>".to_string(),
+        (None, true) => crate::files::STDIN_NAME.to_string(),
         _ => args.file.display().to_string(),
     };
     let target = match args.to {
