@@ -9,6 +9,7 @@ extern crate alloc;
 pub mod aslang;
 pub mod catalog;
 pub mod cli;
+pub mod config;
 pub mod diag;
 pub mod diff;
 pub mod eki;

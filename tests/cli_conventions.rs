@@ -143,6 +143,19 @@ fn help_says_what_the_docs_promise() {
     assert!(out(&o).contains("--color <WHEN>"), "{}", out(&o));
 }
 
+/// Every command that reads `krlkit.toml` says where it looks: both names, and the parents.
+#[test]
+fn config_options_name_both_files() {
+    for cmd in ["gen", "check", "fmt", "run"] {
+        let h = out(&krlkit(&[cmd, "--help"], ""));
+        let h = h.split_whitespace().collect::<Vec<_>>().join(" ");
+        assert!(
+            h.contains("krlkit.toml, else .krlkit.toml") && h.contains("nearest parent"),
+            "{cmd} --help:\n{h}"
+        );
+    }
+}
+
 /// `cargo install` builds a lean binary; symbols for profiling live in their own profile.
 #[test]
 fn release_is_lean_and_profiling_keeps_symbols() {

@@ -113,8 +113,9 @@ pub struct FmtArgs {
     /// Write nothing; print a unified diff of what would change (exit 1 if anything would).
     #[arg(long)]
     pub diff: bool,
-    /// Config file with a [fmt] table (default: ./.krlkit.toml or ./krlkit.toml if present).
-    #[arg(long)]
+    /// The krlkit.toml whose [fmt] table to use (default: krlkit.toml, else .krlkit.toml, in
+    /// this folder or the nearest parent up to the repository root).
+    #[arg(long, value_name = "FILE")]
     pub config: Option<PathBuf>,
     /// The name to report for `-` (stdin).
     #[arg(long, value_name = "NAME")]
@@ -130,8 +131,10 @@ pub enum Target {
 
 #[derive(Debug, Args)]
 pub struct GenArgs {
-    /// Spec file (TOML). Without it, the embedded default spec is used.
-    #[arg(long)]
+    /// The krlkit.toml to generate from (default: krlkit.toml, else .krlkit.toml, in this
+    /// folder or the nearest parent up to the repository root; without one, the embedded
+    /// default spec).
+    #[arg(long, visible_alias = "config", value_name = "FILE")]
     pub spec: Option<PathBuf>,
     /// Package folder: written with `krl/`, `xml/` (KUKA) and `as/` (Kawasaki) inside, replaced
     /// atomically.
@@ -181,8 +184,9 @@ pub struct CheckArgs {
     /// EKI XML config to cross-check MM_Init_Socket against.
     #[arg(long)]
     pub eki_xml: Option<PathBuf>,
-    /// Config file with a [lint] section (default: ./krlkit.toml if present).
-    #[arg(long)]
+    /// The krlkit.toml whose [lint] table to use (default: krlkit.toml, else .krlkit.toml, in
+    /// this folder or the nearest parent up to the repository root).
+    #[arg(long, value_name = "FILE")]
     pub config: Option<PathBuf>,
     /// Apply the fixes rules declare safe, in place (atomically, encoding and line endings
     /// kept; a fix that would add a syntax error is skipped), then report what is left.
@@ -239,8 +243,8 @@ pub struct TranspileArgs {
     /// The name diagnostics give the program read from `-` (stdin).
     #[arg(long, value_name = "NAME")]
     pub stdin_filename: Option<String>,
-    /// Spec whose vision server address (IP, port) MM_Init_Socket translates to.
-    #[arg(long)]
+    /// The krlkit.toml whose vision server address (IP, port) MM_Init_Socket translates to.
+    #[arg(long, visible_alias = "config", value_name = "FILE")]
     pub spec: Option<PathBuf>,
     /// EKI XML config whose IP and port MM_Init_Socket translates to (default: the XML named
     /// by MM_Init_Socket beside the program).
@@ -325,9 +329,15 @@ pub struct RunArgs {
     /// of .src/.dat/.xml files). Default: the package generated in memory from --spec.
     #[arg(long)]
     pub package: Option<PathBuf>,
-    /// Spec to generate the package from when --package is not given (default: the embedded
-    /// default spec).
-    #[arg(long, conflicts_with = "package")]
+    /// The krlkit.toml to generate the package from when --package is not given (default:
+    /// krlkit.toml, else .krlkit.toml, in this folder or the nearest parent up to the
+    /// repository root; without one, the embedded default spec).
+    #[arg(
+        long,
+        visible_alias = "config",
+        value_name = "FILE",
+        conflicts_with = "package"
+    )]
     pub spec: Option<PathBuf>,
     /// Vision server address HOST:PORT (overrides the EKI XML's IP and port); checked before
     /// the run starts.

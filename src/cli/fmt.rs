@@ -23,20 +23,10 @@ enum Done {
 }
 
 pub fn run(args: FmtArgs) -> anyhow::Result<Outcome> {
-    let opts = match super::check::read_config(args.config.as_deref()) {
-        Ok(Some((path, text))) => match FmtOptions::from_toml(&path, &text) {
-            Ok(o) => o,
-            Err(e) => {
-                eprintln!("error: {e}");
-                return Ok(Outcome::Failure);
-            }
-        },
-        Ok(None) => FmtOptions::default(),
-        Err(message) => {
-            eprintln!("error: {message}");
-            return Ok(Outcome::Failure);
-        }
+    let Some(config) = super::config::load(args.config.as_deref()) else {
+        return Ok(Outcome::Failure);
     };
+    let opts = config.fmt;
     if args.paths.iter().any(|p| p.as_os_str() == "-") {
         if args.paths.len() > 1 {
             eprintln!("error: `-` (stdin) cannot be combined with other paths");

@@ -2,6 +2,7 @@
 
 mod args;
 mod check;
+mod config;
 mod diff;
 mod findings;
 mod fix;

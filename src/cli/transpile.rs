@@ -98,13 +98,10 @@ pub fn run(mut args: TranspileArgs) -> anyhow::Result<Outcome> {
         ..Options::default()
     };
     if let Some(spec) = &args.spec {
-        let spec_data = match super::generate::load_spec(Some(spec)) {
-            Ok(s) => s,
-            Err(msg) => {
-                eprintln!("{msg}");
-                return Ok(Outcome::Failure);
-            }
+        let Some(config) = super::config::load(Some(spec)) else {
+            return Ok(Outcome::Failure);
         };
+        let spec_data = config.spec;
         options.server = Some(VisionServer {
             ip: spec_data.server_ip,
             port: spec_data.server_port,
