@@ -156,6 +156,52 @@ fn config_options_name_both_files() {
     }
 }
 
+/// Every command's help ends with what its exit codes mean, and the man page has EXIT STATUS.
+#[test]
+fn exit_codes_in_every_help_and_the_man_page() {
+    let top = out(&krlkit(&["--help"], ""));
+    let commands: Vec<&str> = top
+        .split("Commands:")
+        .nth(1)
+        .and_then(|t| t.split("Options:").next())
+        .expect("a command list")
+        .lines()
+        .filter_map(|l| l.strip_prefix("  ").filter(|r| !r.starts_with(' ')))
+        .filter_map(|l| l.split_whitespace().next())
+        .filter(|c| *c != "help")
+        .collect();
+    assert!(commands.len() > 10, "{commands:?}");
+    for args in commands
+        .iter()
+        .map(|c| vec![*c, "--help"])
+        .chain([vec!["--help"], vec!["sim", "serve", "--help"]])
+    {
+        let h = out(&krlkit(&args, ""));
+        assert!(
+            h.contains("Exit status:\n  0  success")
+                && h.contains("  2  the job could not be done"),
+            "{args:?}:\n{h}"
+        );
+    }
+    for page in [vec!["man"], vec!["man", "check"]] {
+        let man = out(&krlkit(&page, ""));
+        assert!(man.contains(".SH \"EXIT STATUS\""), "{man}");
+    }
+}
+
+/// `gen -o DIR` as `transpile -o FILE`.
+#[test]
+fn gen_takes_o_for_out() {
+    let dir = tempfile::tempdir().unwrap();
+    let o = Command::new(env!("CARGO_BIN_EXE_krlkit"))
+        .args(["gen", "-o", "pkg"])
+        .current_dir(dir.path())
+        .output()
+        .unwrap();
+    assert_eq!(o.status.code(), Some(0), "{}", err(&o));
+    assert!(dir.path().join("pkg/krl").is_dir());
+}
+
 /// `cargo install` builds a lean binary; symbols for profiling live in their own profile.
 #[test]
 fn release_is_lean_and_profiling_keeps_symbols() {

@@ -138,7 +138,7 @@ pub struct GenArgs {
     pub spec: Option<PathBuf>,
     /// Package folder: written with `krl/`, `xml/` (KUKA) and `as/` (Kawasaki) inside, replaced
     /// atomically.
-    #[arg(long, value_name = "DIR", default_value = "mm_package")]
+    #[arg(short, long, value_name = "DIR", default_value = "mm_package")]
     pub out: PathBuf,
     /// Which robot package to write.
     #[arg(long, value_enum, default_value_t = Target::Kuka)]
@@ -188,6 +188,10 @@ pub struct CheckArgs {
     /// this folder or the nearest parent up to the repository root).
     #[arg(long, value_name = "FILE")]
     pub config: Option<PathBuf>,
+    /// Exit 0 when the paths hold no KRL file (by default that is an error, exit 2: a wrong
+    /// path would otherwise pass CI silently).
+    #[arg(long)]
+    pub allow_no_files: bool,
     /// Apply the fixes rules declare safe, in place (atomically, encoding and line endings
     /// kept; a fix that would add a syntax error is skipped), then report what is left.
     #[arg(long)]

@@ -65,6 +65,18 @@ pub fn run(args: CheckArgs) -> anyhow::Result<Outcome> {
             }
         }
     }
+    if ws.files.is_empty() && !failed && !args.allow_no_files {
+        let named: Vec<String> = paths.iter().map(|p| p.display().to_string()).collect();
+        eprintln!(
+            "error: no KRL files (.src, .sub, .dat) in {}",
+            named.join(", ")
+        );
+        eprintln!(
+            "  help: name the robot's KRC folder, a backup .zip or the files; --allow-no-files \
+             accepts none"
+        );
+        return Ok(Outcome::Failure);
+    }
     // Files read from an archive are not written back by --fix.
     let archived: Vec<u32> = ws
         .sources
@@ -130,9 +142,6 @@ pub fn run(args: CheckArgs) -> anyhow::Result<Outcome> {
     super::findings::write(reports, args.format, true, None, std::io::stdout().lock())?;
     if args.format == CheckFormat::Human && !super::ui::quiet() {
         let files = reports.len();
-        if files == 0 && !failed {
-            eprintln!("warning: no KRL files found");
-        }
         if let Some(note) = outcome.incomplete_note() {
             eprintln!("note: {note}");
         }
