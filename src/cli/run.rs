@@ -271,7 +271,9 @@ pub fn run(args: RunArgs) -> anyhow::Result<Outcome> {
     for m in &result.messages {
         eprintln!("{m}");
     }
-    print!("{}", summary(&args.program, &Summary::of(&result)));
+    if !super::ui::quiet() {
+        print!("{}", summary(&args.program, &Summary::of(&result)));
+    }
     if let Some(JsonLines {
         path,
         failed: Some(e),
