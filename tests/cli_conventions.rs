@@ -189,6 +189,33 @@ fn exit_codes_in_every_help_and_the_man_page() {
     }
 }
 
+/// Help texts point to documents the installed binary has, not to the source tree.
+#[test]
+fn docs_the_help_points_to_are_in_the_binary() {
+    let o = krlkit(&["docs", "scenario"], "");
+    assert_eq!(o.status.code(), Some(0), "{}", err(&o));
+    let doc = std::fs::read_to_string(
+        std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("src/sim/SCENARIO.md"),
+    )
+    .unwrap();
+    assert_eq!(out(&o), doc);
+    let h = out(&krlkit(&["sim", "serve", "--help"], ""));
+    assert!(h.contains("krlkit docs scenario"), "{h}");
+    let dir = tempfile::tempdir().unwrap();
+    std::fs::write(dir.path().join("bad.toml"), "[server\n").unwrap();
+    let o = Command::new(env!("CARGO_BIN_EXE_krlkit"))
+        .args(["sim", "serve", "--scenario", "bad.toml"])
+        .current_dir(dir.path())
+        .output()
+        .unwrap();
+    assert_eq!(o.status.code(), Some(2));
+    assert!(
+        err(&o).contains("`krlkit docs scenario`") && !err(&o).contains("src/"),
+        "{}",
+        err(&o)
+    );
+}
+
 /// `gen -o DIR` as `transpile -o FILE`.
 #[test]
 fn gen_takes_o_for_out() {

@@ -78,6 +78,22 @@ pub enum Command {
     Completions(CompletionsArgs),
     /// Print the man page (roff): `krlkit man > krlkit.1`, `krlkit man check` for one command.
     Man(ManArgs),
+    /// Print a document the binary carries (Markdown): `scenario`, the format of a
+    /// `sim serve --scenario` file.
+    Docs(DocsArgs),
+}
+
+#[derive(Debug, Args)]
+pub struct DocsArgs {
+    /// The document to print.
+    #[arg(value_enum)]
+    pub topic: DocTopic,
+}
+
+#[derive(Debug, Clone, Copy, PartialEq, Eq, ValueEnum)]
+pub enum DocTopic {
+    /// The fake vision server's scenario file.
+    Scenario,
 }
 
 #[derive(Debug, Args)]
@@ -311,7 +327,7 @@ pub struct ServeArgs {
     /// Address and port to listen on (IP:PORT; loopback unless --allow-remote).
     #[arg(long, value_name = "ADDR", default_value = "127.0.0.1:50000")]
     pub listen: String,
-    /// Scenario file (TOML).
+    /// Scenario file (TOML; `krlkit docs scenario` describes the format).
     #[arg(long)]
     pub scenario: Option<PathBuf>,
     /// Allow a non-loopback listen address (a real robot cell); loopback only by default.

@@ -114,6 +114,13 @@ pub fn main() -> ExitCode {
             Ok(Outcome::Success)
         }
         Command::Man(a) => man(a),
+        Command::Docs(a) => {
+            let text = match a.topic {
+                args::DocTopic::Scenario => include_str!("../sim/SCENARIO.md"),
+            };
+            print!("{text}");
+            Ok(Outcome::Success)
+        }
     };
     match result {
         Ok(outcome) => outcome.into(),

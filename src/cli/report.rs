@@ -27,7 +27,10 @@ pub fn run(args: ReportArgs) -> anyhow::Result<Outcome> {
     // as if it were one.
     let entries = crate::report::trace::parse(&text).unwrap_or_default();
     if entries.is_empty() && text.lines().all(|l| l.trim().is_empty()) {
-        eprintln!("error: {} is empty: it holds no events", args.trace.display());
+        eprintln!(
+            "error: {} is empty: it holds no events",
+            args.trace.display()
+        );
         eprintln!("  help: pass a file written by `krlkit run --trace`");
         return Ok(Outcome::Failure);
     }
