@@ -313,11 +313,40 @@ pub fn name_parts(path: &str) -> (String, String) {
     (part(p.file_stem()), part(p.extension()))
 }
 
-/// Read all of stdin and decode it.
+/// Read all of stdin and decode it; binary input is an error (see [`decode_text`]).
 pub fn read_stdin() -> io::Result<Decoded> {
     let mut bytes = Vec::new();
     io::stdin().lock().read_to_end(&mut bytes)?;
-    Ok(decode_owned(bytes))
+    decode_text(bytes)
+}
+
+/// Read a regular file (see [`read_regular`]) as text; binary content is an error.
+pub fn read_text(path: &Path) -> io::Result<Decoded> {
+    decode_text(read_regular(path)?)
+}
+
+/// Decode `bytes`, refusing what is not text in any encoding tried: decoding never fails (see
+/// [`crate::syntax::decode`]), so the test is the result: a NUL character, which no KRL or
+/// editor text holds (a UTF-16 file with its BOM decodes without one), is how binary files,
+/// and UTF-16 saved without a BOM, show. Parsing such bytes would only give KRL001 findings
+/// full of control characters, and `transpile` would copy them into its output.
+pub fn decode_text(bytes: Vec<u8>) -> io::Result<Decoded> {
+    let decoded = decode_owned(bytes);
+    is_text(&decoded)?;
+    Ok(decoded)
+}
+
+fn is_text(decoded: &Decoded) -> io::Result<()> {
+    match decoded.text.find('\0') {
+        None => Ok(()),
+        Some(at) => {
+            let line = decoded.text[..at].matches('\n').count() + 1;
+            Err(io::Error::new(
+                io::ErrorKind::InvalidData,
+                format!("not a text file (a NUL byte on line {line})"),
+            ))
+        }
+    }
 }
 
 /// Read and decode one candidate. `Ok(None)`: a walked file whose content is not KRL.
@@ -327,9 +356,15 @@ pub fn load(candidate: &Candidate) -> Result<Option<Decoded>, FileError> {
         source,
     })?;
     let decoded = decode_owned(bytes);
+    // A walked file that does not start like KRL is skipped, binary or not; one that does, or
+    // one the user named, must be text.
     if candidate.origin == Origin::Walked && !looks_like_krl(&decoded.text) {
         return Ok(None);
     }
+    is_text(&decoded).map_err(|source| FileError {
+        path: candidate.path.clone(),
+        source,
+    })?;
     Ok(Some(decoded))
 }
 

@@ -9,7 +9,16 @@ use krlkit::catalog::{Origin, catalog};
 use krlkit::generate::{self, GeneratedFile, Target, as_view::AsPackage, view};
 use krlkit::spec::{LineEnding, Spec};
 
+/// The spec fixtures the Kawasaki package implements (ASCII, 1.x); the others are refused
+/// (`hex_or_v2_specs_are_refused_not_ignored`).
 fn specs() -> Vec<(String, Spec)> {
+    all_specs()
+        .into_iter()
+        .filter(|(_, s)| generate::ascii_1x_only(s, "").is_ok())
+        .collect()
+}
+
+fn all_specs() -> Vec<(String, Spec)> {
     let mut specs = vec![("default".to_string(), Spec::default())];
     let dir = Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/fixtures/specs/ok");
     let mut paths: Vec<_> = std::fs::read_dir(&dir)
@@ -260,4 +269,27 @@ fn check_sees_only_the_folders_of_the_target() {
     let d = generate::check(dir.path(), &kuka);
     assert_eq!(d.missing.len(), kuka.len());
     assert!(d.stale.is_empty());
+}
+
+#[test]
+fn hex_or_v2_specs_are_refused_not_ignored() {
+    let mut refused = 0;
+    for (name, spec) in all_specs() {
+        let ascii_1x = spec.codec == krlkit::catalog::Codec::Ascii
+            && spec.interface == krlkit::catalog::Interface::V1;
+        match generate::generate_kawasaki(&spec) {
+            Ok(_) => assert!(ascii_1x, "{name}: generated although not ASCII 1.x"),
+            Err(e) => {
+                assert!(!ascii_1x, "{name}: {e}");
+                let msg = e.to_string();
+                assert!(
+                    msg.contains("supports codec = \"ascii\" and interface = \"1.x\" only")
+                        && msg.contains(&format!("codec = \"{}\"", spec.codec.as_str())),
+                    "{name}: {msg}"
+                );
+                refused += 1;
+            }
+        }
+    }
+    assert!(refused >= 2, "no HEX or 2.x spec fixture was tried");
 }

@@ -267,9 +267,13 @@ pub struct TranspileArgs {
     #[arg(long, visible_alias = "config", value_name = "FILE")]
     pub spec: Option<PathBuf>,
     /// EKI XML config whose IP and port MM_Init_Socket translates to (default: the XML named
-    /// by MM_Init_Socket beside the program).
+    /// by MM_Init_Socket beside the program, else in the program's package).
     #[arg(long)]
     pub eki_xml: Option<PathBuf>,
+    /// The package the program belongs to, whose xml/Config/User/Common/EthernetKRL/ holds the
+    /// channel XML (default: the nearest folder above the program that has one).
+    #[arg(long, value_name = "DIR", conflicts_with = "eki_xml")]
+    pub package: Option<PathBuf>,
     /// How to print findings: rustc-style, one line each, JSON, SARIF 2.1.0, or GitHub
     /// workflow commands.
     #[arg(long, value_enum, default_value_t = CheckFormat::Human)]

@@ -14,7 +14,7 @@ use super::Outcome;
 use super::args::FmtArgs;
 use crate::files;
 use crate::fmt::{self, FmtOptions};
-use crate::syntax::{decode, encode_as};
+use crate::syntax::encode_as;
 
 /// What happened to one file.
 enum Done {
@@ -63,7 +63,11 @@ pub fn run(args: FmtArgs) -> anyhow::Result<Outcome> {
                 }
             }
             Err(e) => {
-                eprintln!("error: {e:#}");
+                // A FileError already names its cause; the chain would repeat it.
+                match e.downcast_ref::<files::FileError>() {
+                    Some(f) => eprintln!("error: {f}"),
+                    None => eprintln!("error: {e:#}"),
+                }
                 failed = true;
             }
         }
@@ -136,7 +140,14 @@ fn stdin(args: &FmtArgs, opts: &FmtOptions) -> anyhow::Result<Outcome> {
         .unwrap_or(crate::files::STDIN_NAME);
     let mut bytes = Vec::new();
     std::io::stdin().read_to_end(&mut bytes)?;
-    let decoded = decode(&bytes);
+    let decoded = match files::decode_text(bytes.clone()) {
+        Ok(d) => d,
+        Err(e) => {
+            eprintln!("error: {name}: {e}");
+            std::io::stdout().write_all(&bytes)?;
+            return Ok(Outcome::Failure);
+        }
+    };
     let formatted = match format_checked(name, &decoded.text, opts) {
         Ok(f) => f,
         Err(e) => {

@@ -16,7 +16,23 @@ pub fn run(args: GenArgs) -> anyhow::Result<Outcome> {
         Target::Kawasaki => generate::Target::Kawasaki,
         Target::All => generate::Target::All,
     };
-    let files = generate::generate_target(&spec, target)?;
+    let files = match generate::generate_target(&spec, target) {
+        Err(generate::GenError::Unsupported(msg)) => {
+            let spec = args
+                .spec
+                .as_deref()
+                .unwrap_or(Path::new("the default spec"));
+            eprintln!(
+                "error: {}: {msg}\n  help: use a spec with codec = \"ascii\" and interface = \"1.x\" for this package (and select ASCII in Mech-Vision), or `--target kuka`: the KUKA package supports every codec and interface",
+                spec.display()
+            );
+            return Ok(Outcome::Failure);
+        }
+        r => r?,
+    };
+    for w in generate::replaced_mismatches(&args.out, &files) {
+        eprintln!("warning: {w}");
+    }
     if args.check {
         let drift = generate::check(&args.out, &files);
         if drift.is_clean() {

@@ -12,6 +12,7 @@ mod init;
 mod inplace;
 mod lsp;
 mod outputs;
+mod package_xml;
 mod parse;
 mod report;
 mod rules;

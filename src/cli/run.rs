@@ -66,9 +66,9 @@ impl TraceSink for JsonLines {
 }
 
 fn read_text(path: &Path) -> anyhow::Result<String> {
-    let bytes = crate::files::read_regular(path)
-        .with_context(|| format!("cannot read {}", path.display()))?;
-    Ok(crate::syntax::decode_owned(bytes).text)
+    let decoded =
+        crate::files::read_text(path).with_context(|| format!("cannot read {}", path.display()))?;
+    Ok(decoded.text)
 }
 
 fn has_ext(p: &Path, ext: &str) -> bool {

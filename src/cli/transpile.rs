@@ -9,7 +9,7 @@
 //! cannot be read or the arguments are bad.
 
 use std::io::Write;
-use std::path::{Path, PathBuf};
+use std::path::Path;
 
 use anyhow::Context;
 
@@ -17,7 +17,6 @@ use super::Outcome;
 use super::args::{CheckFormat, PtpPrimitive, TranspileArgs, TranspileTarget};
 use crate::diag::Severity;
 use crate::diag::render::sarif::RuleMeta;
-use crate::lint::{self, EkiChannel};
 use crate::transpile::flexiv::{self, FlexivOptions, RdkVersion};
 use crate::transpile::kawasaki;
 use crate::transpile::{self, Options, SignalMap, Source, Target, VisionServer};
@@ -102,6 +101,17 @@ pub fn run(mut args: TranspileArgs) -> anyhow::Result<Outcome> {
             return Ok(Outcome::Failure);
         };
         let spec_data = config.spec;
+        let who = match target {
+            Target::Kawasaki => "the Kawasaki AS package the translated program calls",
+            Target::Flexiv => "the Flexiv script's vision client",
+        };
+        if let Err(msg) = crate::generate::ascii_1x_only(&spec_data, who) {
+            eprintln!(
+                "error: {}: {msg}\n  help: pass a spec with codec = \"ascii\" and interface = \"1.x\" (and select ASCII in Mech-Vision for this robot)",
+                spec.display()
+            );
+            return Ok(Outcome::Failure);
+        }
         options.server = Some(VisionServer {
             ip: spec_data.server_ip,
             port: spec_data.server_port,
@@ -112,11 +122,14 @@ pub fn run(mut args: TranspileArgs) -> anyhow::Result<Outcome> {
     }
     match &args.eki_xml {
         Some(path) => {
-            options.channels = vec![read_channel(path)?];
+            options.channels = vec![super::package_xml::read_channel(path)?];
             options.channels_given = true;
         }
         None if stdin => {}
-        None => options.channels = channels_beside(&args.file),
+        None => {
+            options.channels =
+                super::package_xml::channels_for(&args.file, args.package.as_deref())?
+        }
     }
 
     let t = transpile::transpile(target, src, dat, &options);
@@ -229,11 +242,11 @@ fn plural(n: usize) -> &'static str {
 }
 
 fn read_source(path: &Path) -> anyhow::Result<Source> {
-    let bytes = crate::files::read_regular(path)
-        .with_context(|| format!("cannot read {}", path.display()))?;
+    let decoded =
+        crate::files::read_text(path).with_context(|| format!("cannot read {}", path.display()))?;
     Ok(Source {
         path: path.display().to_string(),
-        text: crate::syntax::decode_owned(bytes).text,
+        text: decoded.text,
     })
 }
 
@@ -241,38 +254,4 @@ fn file_name(path: &Path) -> String {
     path.file_name()
         .map(|s| s.to_string_lossy().into_owned())
         .unwrap_or_default()
-}
-
-fn read_channel(path: &Path) -> anyhow::Result<EkiChannel> {
-    let bytes = std::fs::read(path).with_context(|| format!("cannot read {}", path.display()))?;
-    let text = crate::syntax::decode(&bytes).text;
-    let stem = path
-        .file_stem()
-        .map(|s| s.to_string_lossy().into_owned())
-        .unwrap_or_default();
-    lint::eki_xml::read(&stem, &file_name(path), &text)
-        .map_err(|e| anyhow::anyhow!("{}: {e}", path.display()))
-}
-
-/// EKI configs in the program's directory (not walked further); others are ignored.
-fn channels_beside(program: &Path) -> Vec<EkiChannel> {
-    let dir = program
-        .parent()
-        .filter(|d| !d.as_os_str().is_empty())
-        .unwrap_or(Path::new("."));
-    let Ok(rd) = std::fs::read_dir(dir) else {
-        return Vec::new();
-    };
-    let mut xml: Vec<PathBuf> = rd
-        .flatten()
-        .map(|e| e.path())
-        .filter(|p| {
-            p.is_file()
-                && p.extension()
-                    .and_then(|e| e.to_str())
-                    .is_some_and(|e| e.eq_ignore_ascii_case("xml"))
-        })
-        .collect();
-    xml.sort();
-    xml.iter().filter_map(|p| read_channel(p).ok()).collect()
 }

@@ -5,6 +5,7 @@
 //! HEX, as Mech-Mind's shipped XML). A leaf: it imports no krlkit module; `generate` builds a
 //! [`Channel`] from the spec.
 
+mod framing;
 pub mod read;
 #[cfg(test)]
 mod tests;
@@ -14,6 +15,7 @@ use std::fmt;
 
 use serde::{Serialize, Serializer};
 
+pub use framing::{Framing, dump};
 pub use read::{ReadError, read};
 
 /// EKI's connect timeout when the file gives none (`INTERNAL/TIMEOUT@Connect`), in ms.
@@ -58,6 +60,16 @@ impl Default for Channel {
             send: Vec::new(),
             xml_mode: false,
         }
+    }
+}
+
+impl Channel {
+    /// How the channel frames what it receives (its first RAW receive element), if it has one.
+    pub fn framing(&self) -> Option<Framing> {
+        self.receive.first().map(|e| match e.kind {
+            Kind::Stream { .. } => Framing::Stream,
+            Kind::Byte => Framing::Byte { size: e.size },
+        })
     }
 }
 

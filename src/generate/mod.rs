@@ -8,6 +8,7 @@
 
 pub mod as_view;
 mod channel;
+mod framing;
 mod hex_view;
 mod install;
 mod kawasaki;
@@ -20,6 +21,7 @@ mod writer;
 
 use std::path::PathBuf;
 
+pub use framing::replaced_mismatches;
 pub use output::{Drift, check, write_atomic};
 
 use crate::catalog::catalog;
@@ -68,6 +70,30 @@ pub enum GenError {
     },
     #[error("{0}")]
     Io(String),
+    /// The spec asks a package for what it does not implement.
+    #[error("{0}")]
+    Unsupported(String),
+}
+
+/// The Kawasaki AS package and the Flexiv script's client implement Mech-Mind's ASCII codec and
+/// 1.x interface only (the vendor documents no other for those robots): a spec asking `who`
+/// for another is refused rather than silently ignored.
+pub fn ascii_1x_only(spec: &Spec, who: &str) -> Result<(), String> {
+    use crate::catalog::{Codec, Interface};
+    let mut asked = Vec::new();
+    if spec.codec != Codec::Ascii {
+        asked.push(format!("codec = \"{}\"", spec.codec.as_str()));
+    }
+    if spec.interface != Interface::V1 {
+        asked.push(format!("interface = \"{}\"", spec.interface.as_str()));
+    }
+    if asked.is_empty() {
+        return Ok(());
+    }
+    Err(format!(
+        "{who} supports codec = \"ascii\" and interface = \"1.x\" only, but the spec sets {}",
+        asked.join(" and ")
+    ))
 }
 
 impl GeneratedFile {
@@ -142,6 +168,7 @@ pub fn generate(spec: &Spec) -> Result<Vec<GeneratedFile>, GenError> {
 
 /// Render the Kawasaki AS package for `spec`: the `.as` file and its install note.
 pub fn generate_kawasaki(spec: &Spec) -> Result<Vec<GeneratedFile>, GenError> {
+    ascii_1x_only(spec, "the Kawasaki AS package").map_err(GenError::Unsupported)?;
     let pkg = as_view::AsPackage::new(spec);
     let text = kawasaki::render_package(&pkg)
         .map_err(|(file, source)| GenError::Render { file, source })?;

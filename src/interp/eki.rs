@@ -14,7 +14,9 @@ use std::io::{ErrorKind, Read, Write};
 use std::net::{SocketAddr, TcpStream, ToSocketAddrs};
 use std::time::Duration;
 
-use crate::eki::{Channel as ChannelConfig, Element as RawElement, External, Kind as RawKind};
+use crate::eki::{
+    Channel as ChannelConfig, Element as RawElement, External, Framing, Kind as RawKind,
+};
 use crate::syntax::ast::Expr;
 
 use super::globals::Globals;
@@ -41,6 +43,9 @@ pub(crate) struct Eki {
     pub(crate) stats: super::EkiStats,
     /// Flags and outputs [`Eki::pump`] changed, for the trace: `(array, 1-based index, value)`.
     pub(crate) io_changes: Vec<(&'static str, usize, bool)>,
+    /// A reply in the other framing than the channel's (see [`Framing::foreign`]): the run
+    /// stops with this message at once instead of waiting for a record that never completes.
+    pub(crate) mismatch: Option<String>,
 }
 
 impl Eki {
@@ -82,7 +87,7 @@ impl Eki {
     /// and set the configured flags.
     pub(crate) fn pump(&mut self, globals: &mut Globals, wait: Duration) {
         let mut waited = false;
-        for c in self.channels.values_mut() {
+        for (name, c) in &mut self.channels {
             let Some(s) = &mut c.stream else { continue };
             let mut buf = [0u8; 8192];
             let mut closed = false;
@@ -111,6 +116,11 @@ impl Eki {
                     }
                 }
             }
+            if let Some(f) = c.foreign() {
+                self.mismatch
+                    .get_or_insert_with(|| mismatch(name, f, &c.rx));
+                c.rx.clear();
+            }
             let changes = &mut self.io_changes;
             c.split_records(globals, changes);
             if closed {
@@ -123,6 +133,16 @@ impl Eki {
 }
 
 impl Channel {
+    /// The channel's framing, when the record arriving is in the other one.
+    fn foreign(&self) -> Option<Framing> {
+        let el = self.cfg.receive.first()?;
+        let f = match el.kind {
+            RawKind::Stream { .. } => Framing::Stream,
+            RawKind::Byte => Framing::Byte { size: el.size },
+        };
+        f.foreign(&self.rx).then_some(f)
+    }
+
     fn split_records(
         &mut self,
         globals: &mut Globals,
@@ -161,6 +181,32 @@ impl Channel {
             set_flag(globals, changes, "$OUT", el.set_out, true);
         }
     }
+}
+
+/// What a run against a server of the other codec is told, with the first bytes it answered:
+/// the spec `codec` that matches the server, or the server setting that matches the package.
+fn mismatch(channel: &str, package: Framing, rx: &[u8]) -> String {
+    let (server, records, spec_codec, serve_codec) = match package {
+        Framing::Stream => (
+            format!("HEX (binary 4-byte fields: {})", crate::eki::dump(rx, 8)),
+            "RAW STREAM records ending in CR".to_owned(),
+            "hex-le",
+            "ascii",
+        ),
+        Framing::Byte { size } => {
+            let text = String::from_utf8_lossy(&rx[..rx.len().min(16)]).into_owned();
+            (
+                format!("ASCII ({:?})", text.trim_end()),
+                format!("RAW BYTE records of {size} bytes"),
+                "ascii",
+                "hex-le",
+            )
+        }
+    };
+    let speaks = package.codec();
+    format!(
+        "the vision server answers in {server}; this package speaks {speaks}: its channel `{channel}` has {records}; set `codec = \"{spec_codec}\"` in the spec and regenerate the package, or switch the server to {speaks} (Mech-Vision's Robot Communication Configuration; `krlkit sim serve --codec {serve_codec}`)"
+    )
 }
 
 /// A flag or output number of the channel file as an index.

@@ -158,14 +158,7 @@ impl Codec for HexCodec {
                 .chain(r.args.iter().map(|a| a.to_string()))
                 .collect::<Vec<_>>()
                 .join(","),
-            Err(_) => {
-                let shown: Vec<String> = message
-                    .iter()
-                    .take(16)
-                    .map(|b| format!("{b:02x}"))
-                    .collect();
-                format!("hex {}", shown.join(" "))
-            }
+            Err(_) => crate::eki::dump(message, 16),
         }
     }
 }

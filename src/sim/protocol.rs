@@ -103,6 +103,13 @@ impl Codec for AsciiCodec {
     }
 
     fn show(&self, message: &[u8]) -> String {
+        // Binary (a NUL or another control byte) as a short hex dump, never hundreds of escapes.
+        if message
+            .iter()
+            .any(|b| b.is_ascii_control() && !b" \t\r\n".contains(b))
+        {
+            return crate::eki::dump(message, 16);
+        }
         String::from_utf8_lossy(message).into_owned()
     }
 }

@@ -35,6 +35,11 @@ const POLL: Duration = Duration::from_millis(20);
 const WRITE_TIMEOUT: Duration = Duration::from_secs(2);
 /// Characters of a request kept in the log (the reply is bounded by the scenario).
 const MAX_LOGGED_RAW: usize = 1024;
+/// Bytes of a message in the other framing shown in the log (a HEX frame is 660 bytes).
+const FOREIGN_SHOWN: usize = 16;
+/// After a message in the other framing without a line end, input is dropped until the client
+/// was quiet this long: the rest of that frame is no new message, and gets no second reply.
+const FOREIGN_QUIET: Duration = Duration::from_millis(100);
 /// Stack of a session thread: sessions only parse short messages and format replies.
 const SESSION_STACK: usize = 256 * 1024;
 
@@ -374,6 +379,8 @@ struct Session<'s> {
     peer: SocketAddr,
     connection: u64,
     codec: Box<dyn Codec>,
+    /// The server's framing, to recognise a client that uses the other one.
+    framing: crate::eki::Framing,
 }
 
 impl<'s> Session<'s> {
@@ -394,8 +401,15 @@ impl<'s> Session<'s> {
             Wire::HexLe => hex(ByteOrder::Little),
             Wire::HexBe => hex(ByteOrder::Big),
         };
+        let framing = match settings.codec {
+            Wire::Ascii => crate::eki::Framing::Stream,
+            Wire::HexLe | Wire::HexBe => crate::eki::Framing::Byte {
+                size: u32::try_from(settings.hex_reply_bytes()).unwrap_or(u32::MAX),
+            },
+        };
         Session {
             codec,
+            framing,
             shared,
             stream,
             peer,
@@ -419,8 +433,27 @@ impl<'s> Session<'s> {
         // session open.
         let mut last_message = Instant::now();
         let mut last_input = Instant::now();
+        let mut discarding = false;
         loop {
             loop {
+                if !discarding && self.framing.foreign(&input) {
+                    // The foreign message ends at a line end if it has one; else the rest of
+                    // it is still arriving and is dropped until the client is quiet.
+                    let end = input.iter().position(|b| b"\r\n".contains(b));
+                    let bytes: Vec<u8> = match end {
+                        Some(e) => input.drain(..=e).collect(),
+                        None => std::mem::take(&mut input),
+                    };
+                    if matches!(self.foreign(&bytes), Next::Close) {
+                        return;
+                    }
+                    discarding = end.is_none();
+                    continue;
+                }
+                if discarding {
+                    input.clear();
+                    break;
+                }
                 let frame = match self.codec.next_frame(&mut input) {
                     Some(f) => f,
                     // Input the codec takes without a terminator once it stayed quiet.
@@ -456,7 +489,12 @@ impl<'s> Session<'s> {
             });
             let wait = idle_left
                 .min(MAX_READ_WAIT)
-                .min(quiet_left.unwrap_or(MAX_READ_WAIT));
+                .min(quiet_left.unwrap_or(MAX_READ_WAIT))
+                .min(if discarding {
+                    FOREIGN_QUIET
+                } else {
+                    MAX_READ_WAIT
+                });
             if self.stream.set_read_timeout(Some(wait)).is_err() {
                 return;
             }
@@ -470,10 +508,40 @@ impl<'s> Session<'s> {
                     if matches!(
                         e.kind(),
                         ErrorKind::WouldBlock | ErrorKind::TimedOut | ErrorKind::Interrupted
-                    ) => {}
+                    ) =>
+                {
+                    discarding &= last_input.elapsed() < FOREIGN_QUIET;
+                }
                 Err(_) => return,
             }
         }
+    }
+
+    /// A message in the other framing (a HEX client of an ASCII server, or the reverse): said
+    /// in the log at once, with a short hex dump, and answered with the invalid-format reply in
+    /// the server's own framing, which the client's EthernetKRL recognises as foreign in turn.
+    fn foreign(&mut self, bytes: &[u8]) -> Next {
+        let server = self.framing.codec();
+        let (client, fix) = match self.framing {
+            crate::eki::Framing::Stream => ("HEX (binary 4-byte fields)", "hex-le"),
+            crate::eki::Framing::Byte { .. } => ("ASCII (text)", "ascii"),
+        };
+        let shown = match self.framing {
+            crate::eki::Framing::Stream => crate::eki::dump(bytes, FOREIGN_SHOWN),
+            crate::eki::Framing::Byte { .. } => {
+                clip(String::from_utf8_lossy(bytes).into_owned(), FOREIGN_SHOWN)
+            }
+        };
+        let reply = Reply::new(0, 0).int(i64::from(codes().invalid_format));
+        self.record(Entry {
+            raw: shown,
+            request: None,
+            reply: Some(reply.text()),
+            note: Some(format!(
+                "the client speaks {client}; this server speaks {server}: serve it with `--codec {fix}` (or `[server] codec`), or give the package the server's codec in its spec"
+            )),
+        });
+        self.send(&reply)
     }
 
     fn record(&self, entry: Entry) {

@@ -102,96 +102,6 @@ fn global_decl(code: &str, base: usize) -> Option<LineError> {
     })
 }
 
-/// Words that can start a statement other than a declaration, assignment, call or label.
-pub(super) const STATEMENT_WORDS: &[&str] = &[
-    "ANIN",
-    "ANOUT",
-    "BRAKE",
-    "CASE",
-    "CHANNEL",
-    "CIRC",
-    "CIRC_REL",
-    "CONFIRM",
-    "CONST",
-    "CONST_VEL",
-    "CONTINUE",
-    "DEF",
-    "DEFAULT",
-    "DEFDAT",
-    "DEFFCT",
-    "ELSE",
-    "END",
-    "ENDDAT",
-    "ENDFCT",
-    "ENDFOR",
-    "ENDIF",
-    "ENDLOOP",
-    "ENDSKIP",
-    "ENDSPLINE",
-    "ENDSWITCH",
-    "ENDWHILE",
-    "ENUM",
-    "EXIT",
-    "EXT",
-    "EXTFCT",
-    "EXTFCTP",
-    "EXTP",
-    "FOR",
-    "GLOBAL",
-    "GOTO",
-    "HALT",
-    "IF",
-    "IMPORT",
-    "INTERRUPT",
-    "LIN",
-    "LIN_REL",
-    "LOOP",
-    "MOVE_EMI",
-    "ON_ERROR_PROCEED",
-    "PTP",
-    "PTP_REL",
-    "PTP_SPLINE",
-    "REPEAT",
-    "RESUME",
-    "RETURN",
-    "SCIRC",
-    "SCIRC_REL",
-    "SIGNAL",
-    "SKIP",
-    "SLIN",
-    "SLIN_REL",
-    "SPL",
-    "SPLINE",
-    "SPTP",
-    "SPTP_REL",
-    "STRUC",
-    "SWITCH",
-    "TIME_BLOCK",
-    "TRIGGER",
-    "UNTIL",
-    "WAIT",
-    "WHILE",
-];
-
-/// First words whose lines `line_kw` covers (see krl.pest): most lines the fast path leaves to
-/// the grammar start with one of these.
-const KW_LED: &[&str] = &[
-    "CHANNEL",
-    "DEF",
-    "DEFDAT",
-    "DEFFCT",
-    "ENUM",
-    "EXT",
-    "EXTFCT",
-    "EXTFCTP",
-    "EXTP",
-    "GLOBAL",
-    "INTERRUPT",
-    "SIGNAL",
-    "STRUC",
-    "TRIGGER",
-];
-
 /// The cheapest grammar entry that can accept this line (always a subset of `line`).
 fn entry_rule(code: &str) -> Rule {
     let bytes = code.as_bytes();
@@ -211,12 +121,14 @@ fn entry_rule(code: &str) -> Rule {
     let word = &code[..len];
     if word.eq_ignore_ascii_case("DECL") {
         Rule::line_decl
-    } else if KW_LED.iter().any(|k| k.eq_ignore_ascii_case(word)) {
-        Rule::line_kw
-    } else if len > 16 || STATEMENT_WORDS.iter().any(|k| k.eq_ignore_ascii_case(word)) {
+    } else if len > super::words::MAX_LEN {
         Rule::line
     } else {
-        Rule::line_ident
+        match super::words::roles(word.as_bytes()) {
+            Some(r) if r & super::words::KW_LED != 0 => Rule::line_kw,
+            Some(r) if r & super::words::STATEMENT != 0 => Rule::line,
+            _ => Rule::line_ident,
+        }
     }
 }
 

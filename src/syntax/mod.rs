@@ -62,8 +62,9 @@ mod fast;
 pub mod folds;
 mod line;
 mod parser;
+mod words;
 
 pub use cst::{Children, Element, Node, NodeKind, SyntaxTree, Token, TokenKind};
 pub use decode::{Decoded, TextEncoding, decode, decode_owned, encode_as};
-pub use fast::is_keyword;
 pub use parser::{Parse, Piece, SYNTAX_ERROR, diagnostics, parse, parse_pieces, write_json_tree};
+pub use words::is_keyword;

@@ -221,10 +221,7 @@ impl<'p> Machine<'p> {
         }
         match crate::interp::builtins::call(self, name, args)? {
             Some(v) => Ok(Some(v)),
-            None => Err(self.err(format!(
-                "unknown routine or built-in function `{name}` (a routine of another module: \
-                 load it with `krlkit run --module FILE`)"
-            ))),
+            None => Err(self.err(unknown_routine(name))),
         }
     }
 
@@ -258,4 +255,25 @@ pub(super) fn fixed(dims: &[usize], incoming: &Value) -> Vec<usize> {
         return dims.iter().map(|d| (*d).max(1)).collect();
     }
     dims.to_vec()
+}
+
+/// Why a call reaches nothing: a Mech-Mind subprogram the package lacks is the spec's doing
+/// (its `subprograms` list), not a module to load.
+fn unknown_routine(name: &str) -> String {
+    use crate::catalog::{Interface, catalog};
+    let mm = Interface::ALL
+        .iter()
+        .find_map(|&i| catalog().subprogram_in(i, name));
+    match mm {
+        Some(sub) => format!(
+            "`{}` is a Mech-Mind subprogram the package does not contain: the spec's \
+             `subprograms` list does not generate it (add \"{}\" to the list; a --package \
+             folder: regenerate it from that spec)",
+            sub.name, sub.name
+        ),
+        None => format!(
+            "unknown routine or built-in function `{name}` (a routine of another module: \
+             load it with `krlkit run --module FILE`)"
+        ),
+    }
 }

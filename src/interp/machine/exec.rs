@@ -364,6 +364,9 @@ impl<'p> Machine<'p> {
                 .pump(&mut self.globals, std::time::Duration::from_micros(200));
             self.clock_ms +=
                 (before.elapsed().as_secs_f64() * 1000.0 * self.opts.time_scale).max(0.01);
+            if let Some(msg) = self.eki.mismatch.take() {
+                return Err(self.err(msg));
+            }
         } else if idle {
             // A pure polling iteration (it only waits for a timer or a pulse): one
             // interpreter cycle, as in WAIT FOR.
@@ -397,6 +400,9 @@ impl<'p> Machine<'p> {
                 &mut self.globals,
                 real.min(std::time::Duration::from_millis(50)),
             );
+            if let Some(msg) = self.eki.mismatch.take() {
+                return Err(self.err(msg));
+            }
         }
         self.clock_ms += ms;
         Ok(())
@@ -406,6 +412,9 @@ impl<'p> Machine<'p> {
         let start = self.clock_ms;
         loop {
             self.eki.pump(&mut self.globals, std::time::Duration::ZERO);
+            if let Some(msg) = self.eki.mismatch.take() {
+                return Err(self.err(msg));
+            }
             // One check: the condition, then the interrupt conditions between statements
             // (and the pulses that end there: a write during the check is a change).
             let writes = self.writes;
