@@ -243,10 +243,11 @@ fn release_is_lean_and_profiling_keeps_symbols() {
     assert_eq!(profiles["profiling"]["debug"].as_integer(), Some(1));
 }
 
-/// NUL and ESC from a file never reach the terminal raw, in any output format.
+/// Control characters (ESC, SOH) from a file never reach the terminal raw, in any output
+/// format. (A NUL makes the input "not a text file": tests/cmd/check_binary_src.)
 #[test]
 fn control_characters_are_escaped_in_every_format() {
-    let text = "DEF a()\n  x = \u{1b}[31mRED\u{0} +\nEND\n";
+    let text = "DEF a()\n  x = \u{1b}[31mRED\u{1} +\nEND\n";
     for format in ["human", "concise", "github", "json", "sarif"] {
         let o = krlkit(
             &["check", "-", "--format", format, "--color", "never"],
@@ -255,7 +256,7 @@ fn control_characters_are_escaped_in_every_format() {
         let shown = out(&o);
         assert!(shown.contains("KRL001"), "{format}: {shown}");
         assert!(
-            !shown.contains('\u{1b}') && !shown.contains('\u{0}'),
+            !shown.contains('\u{1b}') && !shown.contains('\u{1}'),
             "{format}: {shown:?}"
         );
     }

@@ -56,6 +56,11 @@ impl Globals {
         self.at_mut(slot)
     }
 
+    /// Give `slot` (from [`Globals::intern`]) its value.
+    pub(crate) fn set(&mut self, slot: usize, value: Value) {
+        self.values[slot] = Some(value);
+    }
+
     pub(crate) fn insert(&mut self, key: &str, value: Value) {
         let slot = self.intern(key);
         self.values[slot] = Some(value);

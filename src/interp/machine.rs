@@ -1,7 +1,5 @@
 //! The executor: scopes, places (for OUT parameters), statements and expressions.
 
-use crate::syntax::ast::Stmt;
-
 mod bas;
 mod call;
 mod eval;
@@ -12,10 +10,12 @@ mod interrupt;
 mod io;
 mod motion;
 mod place;
+mod robot;
 mod scalar;
 mod settings;
 mod signals;
 mod submit;
+mod trace;
 mod vision;
 mod watch;
 
@@ -23,9 +23,7 @@ use super::eki::Eki;
 use super::globals::Globals;
 use super::program::Program;
 use super::value::{Types, Value};
-use super::{
-    End, Event, Location, Options, Record, RunResult, RuntimeError, TraceSink, VisionPose,
-};
+use super::{End, Event, Location, Options, RunResult, RuntimeError, TraceSink};
 pub(crate) use place::Place;
 use place::{Root, Seg, Slot};
 
@@ -88,13 +86,6 @@ enum Flow {
     Goto(String),
 }
 
-#[derive(Debug, Clone, Copy, Default)]
-struct Timer {
-    base: f64,
-    start: f64,
-    running: bool,
-}
-
 pub(crate) type R<T> = Result<T, Stop>;
 
 pub(crate) struct Machine<'p> {
@@ -107,24 +98,11 @@ pub(crate) struct Machine<'p> {
     /// Current module and byte offset, for error locations.
     loc: (usize, u32),
     pub(crate) clock_ms: f64,
-    timers: Vec<Timer>,
+    io: io::Io,
     pub(crate) eki: Eki,
-    events: Vec<Record>,
-    /// Where each record also goes the moment it is made (`--trace` as the run goes).
-    sink: Option<&'p mut (dyn TraceSink + 'p)>,
-    /// Per module, per 0-based line: statements run there.
-    hits: Vec<Vec<u64>>,
-    /// (module, offset, 0-based line) of statements run lately, by offset.
-    line_cache: Vec<(usize, u32, usize)>,
-    messages: Vec<String>,
+    trace: trace::Trace<'p>,
     steps: u64,
-    /// TRIGGER actions waiting for the next motion.
-    pending_triggers: Vec<(usize, Stmt)>,
     interrupts: interrupt::Interrupts,
-    /// SIGNAL names of the DEFDATs, keyed like globals (`NAME` or `SCOPE::NAME`).
-    signals: rustc_hash::FxHashMap<String, Place>,
-    /// Outputs a PULSE will set back.
-    pulses: Vec<signals::Pulse>,
     message_handles: i64,
     /// Assignments and motions so far: a loop iteration that adds none changed nothing.
     writes: u64,
@@ -132,21 +110,12 @@ pub(crate) struct Machine<'p> {
     /// module that declared it, whose names it uses wherever the program is (even inside the
     /// package). Cleared inside the routines it calls.
     declared_scope: Option<usize>,
-    motions: u64,
-    /// While the submit routine runs (see `submit.rs`).
-    in_submit: bool,
-    /// The last word the submit routine wrote.
-    /// The point store's poses as last traced (an [`Event::Vision`] when they change).
-    traced_poses: Vec<VisionPose>,
-    srci_word: Option<u32>,
+    robot: robot::Robot,
     /// What the `WAIT FOR` check under way reads (see `watch.rs`).
     reads: Option<watch::Reads>,
     /// What the current iteration of an idle polling loop reads.
     loop_reads: watch::LoopReads,
 }
-
-const TIMERS: usize = 64;
-const LINE_CACHE: usize = 256;
 
 #[cfg(test)]
 thread_local! {
@@ -183,37 +152,25 @@ const BUILTIN_GLOBALS: [&str; 11] = [
 
 impl<'p> Machine<'p> {
     pub(crate) fn new(prog: &'p Program, opts: &'p Options) -> Machine<'p> {
+        let mut globals = prog.resolved.globals.clone();
+        let robot = robot::Robot::new(&mut globals);
         let mut m = Machine {
             prog,
             opts,
-            globals: prog.resolved.globals.clone(),
+            globals,
             sys: SysSlots::default(),
             frames: Vec::new(),
             loc: (0, 0),
             clock_ms: 0.0,
-            timers: vec![Timer::default(); TIMERS + 1],
+            io: io::Io::new(),
             eki: Eki::default(),
-            events: Vec::new(),
-            sink: None,
-            hits: prog
-                .modules
-                .iter()
-                .map(|m| vec![0; m.lines.line_count()])
-                .collect(),
-            line_cache: vec![(usize::MAX, 0, 0); LINE_CACHE],
-            messages: Vec::new(),
+            trace: trace::Trace::new(prog),
             steps: 0,
-            pending_triggers: Vec::new(),
             interrupts: interrupt::Interrupts::default(),
-            signals: Default::default(),
-            pulses: Vec::new(),
             message_handles: 0,
             writes: 0,
-            motions: 0,
+            robot,
             declared_scope: None,
-            in_submit: false,
-            srci_word: None,
-            traced_poses: Vec::new(),
             reads: None,
             loop_reads: None,
         };
@@ -234,7 +191,7 @@ impl<'p> Machine<'p> {
 
     /// Send every event to `sink` as well, as it happens.
     pub(crate) fn with_sink(mut self, sink: &'p mut (dyn TraceSink + 'p)) -> Machine<'p> {
-        self.sink = Some(sink);
+        self.trace.sink = Some(sink);
         self
     }
 
@@ -323,7 +280,7 @@ impl<'p> Machine<'p> {
             End::Halt { file, line } => ("halt".to_string(), Some(format!("{file}:{line}: HALT"))),
             End::Error(e) => ("error".to_string(), Some(e.to_string())),
         };
-        for c in self.coverage() {
+        for c in self.trace.coverage(self.prog) {
             self.emit_at(None, c);
         }
         let at = match &end {
@@ -366,38 +323,12 @@ impl<'p> Machine<'p> {
             end,
             outputs,
             eki: std::mem::take(&mut self.eki.stats),
-            events: self.events,
-            messages: self.messages,
+            events: self.trace.events,
+            messages: self.trace.messages,
             globals,
             steps: self.steps,
             sim_time_ms: self.clock_ms,
         }
-    }
-
-    /// Every statement line of every module with its hit count.
-    fn coverage(&self) -> Vec<Event> {
-        self.prog
-            .modules
-            .iter()
-            .zip(&self.hits)
-            .map(|(m, hits)| {
-                let mut lines = Vec::new();
-                let mut add = |s: &Stmt| lines.push(m.lines.line_of(s.span.start as usize));
-                for r in &m.ast.routines {
-                    crate::syntax::ast::each_stmt(&r.body, &mut add);
-                }
-                crate::syntax::ast::each_stmt(&m.ast.top_level, &mut add);
-                lines.sort_unstable();
-                lines.dedup();
-                Event::Coverage {
-                    file: m.name.clone(),
-                    lines: lines
-                        .into_iter()
-                        .map(|l| (l + 1, hits.get(l).copied().unwrap_or(0)))
-                        .collect(),
-                }
-            })
-            .collect()
     }
 
     /// The statement being run, as a trace location.
@@ -418,14 +349,6 @@ impl<'p> Machine<'p> {
 
     /// Add a trace record (and hand it to the sink at once).
     fn emit_at(&mut self, at: Option<Location>, event: Event) {
-        let record = Record {
-            t_ms: self.clock_ms,
-            at,
-            event,
-        };
-        if let Some(sink) = self.sink.as_mut() {
-            sink.record(&record);
-        }
-        self.events.push(record);
+        self.trace.record(self.clock_ms, at, event);
     }
 }

@@ -12,8 +12,8 @@ use super::walk;
 use crate::catalog::{Interface, Subprogram, catalog};
 use crate::diag::{Diagnostic, LineIndex};
 use crate::sema::{
-    Access, ConstValue, FileId, Loc, NameId, Resolved, RobotId, RoutineId, Scope, Sema, SymbolId,
-    SymbolKind, Ty, TyKind, UseKind,
+    Access, FileId, Loc, NameId, Position, Resolved, RobotId, RoutineId, Sema, SymbolId, Ty,
+    TyKind, UseKind,
 };
 use crate::syntax::ast::{
     DatModule, Decl, Definition, Expr, ExprKind, Ident, Lowered, Routine, SourceFile, Stmt,
@@ -554,21 +554,12 @@ impl<'p> FileCtx<'p> {
     /// robot's GLOBAL ones and `$config.dat`), by symbol.
     pub fn known_consts(&self) -> HashMap<SymbolId, f64> {
         let info = self.sema.file(self.id);
-        let mut m = HashMap::new();
-        for (id, s) in self.sema.symbols() {
-            let visible = match s.scope {
-                Scope::Module(md) => md == info.module,
-                Scope::Global(r) | Scope::Config(r) => r == info.robot,
-                _ => false,
-            };
-            if visible
-                && s.kind == SymbolKind::Constant
-                && let Some(v) = s.value.as_ref().and_then(ConstValue::as_f64)
-            {
-                m.insert(id, v);
-            }
-        }
-        m
+        let at = Position {
+            robot: info.robot,
+            module: info.module,
+            routine: None,
+        };
+        self.sema.visible_constants(at).into_iter().collect()
     }
 }
 

@@ -59,6 +59,8 @@
 //! - Deterministic: the same files in the same order give the same ids.
 
 mod build;
+mod calls;
+mod consts;
 mod edit;
 pub mod env;
 mod ids;

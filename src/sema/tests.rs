@@ -1,7 +1,7 @@
 use super::*;
 use crate::syntax::ast::{ParamDir, StmtKind};
 
-fn analysis(files: &[(&str, &str)]) -> Analysis {
+pub(super) fn analysis(files: &[(&str, &str)]) -> Analysis {
     Analysis::new(
         files
             .iter()

@@ -4,7 +4,7 @@
 
 use crate::syntax::ast::{Definition, Expr, ExprKind, Stmt, StmtKind};
 
-use super::{Flow, LINE_CACHE, Machine, R, Stop, watch};
+use super::{Flow, Machine, R, Stop, watch};
 use crate::interp::value::Value;
 use crate::interp::{Event, WaitKind};
 
@@ -25,7 +25,7 @@ impl<'p> Machine<'p> {
                 self.opts.max_time_ms / 1000.0
             )));
         }
-        if self.in_submit {
+        if self.io.in_submit {
             return Ok(());
         }
         self.expire_pulses(false)?;
@@ -83,19 +83,7 @@ impl<'p> Machine<'p> {
     pub(super) fn exec(&mut self, s: &Stmt) -> R<Flow> {
         self.loc = (self.cur_module(), s.span.start);
         let (mi, off) = self.loc;
-        // The statements of a loop come round again: their lines are remembered.
-        let cached = &mut self.line_cache[(off as usize ^ mi.wrapping_mul(31)) % LINE_CACHE];
-        let line = match *cached {
-            (m, o, line) if m == mi && o == off => Some(line),
-            _ => self.prog.modules.get(mi).map(|m| {
-                let line = m.lines.line_of(off as usize);
-                *cached = (mi, off, line);
-                line
-            }),
-        };
-        if let Some(h) = line.and_then(|l| self.hits.get_mut(mi)?.get_mut(l)) {
-            *h += 1;
-        }
+        self.trace.hit(self.prog, mi, off);
         self.tick()?;
         match &s.kind {
             StmtKind::Assign { target, value } => {
@@ -269,7 +257,9 @@ impl<'p> Machine<'p> {
             StmtKind::Definition(_) => {}
             StmtKind::Trigger { action, .. } => {
                 let module = self.cur_module();
-                self.pending_triggers.push((module, (**action).clone()))
+                self.robot
+                    .pending_triggers
+                    .push((module, (**action).clone()))
             }
             StmtKind::Pulse {
                 signal,
@@ -329,9 +319,8 @@ impl<'p> Machine<'p> {
     /// is an error at the loop (`at`). `seen` is the write count at the previous back edge.
     pub(super) fn loop_back_edge(&mut self, seen: &mut u64, at: (usize, u32)) -> R<()> {
         self.tick()?;
-        let external = self.eki.any_connected()
-            || self.timers.iter().any(|t| t.running)
-            || self.pulses_running();
+        let external =
+            self.eki.any_connected() || self.io.timer_running(None) || self.io.pulses_running();
         let idle = self.writes == *seen;
         let never = |m: &mut Self| {
             m.loc = at;
@@ -384,7 +373,7 @@ impl<'p> Machine<'p> {
 
     pub(crate) fn message(&mut self, text: String) {
         self.emit(Event::Message { text: text.clone() });
-        self.messages.push(text);
+        self.trace.messages.push(text);
     }
 
     pub(super) fn wait_sec(&mut self, t: f64) -> R<()> {

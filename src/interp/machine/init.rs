@@ -4,8 +4,9 @@
 use crate::syntax::ast::{Decl, Definition, Expr, ExprKind};
 
 use super::call::fixed;
+use super::io::TIMERS;
 use super::place::Slot;
-use super::{Frame, Machine, R, TIMERS};
+use super::{Frame, Machine, R};
 use crate::interp::value::{BaseType, Value};
 
 impl<'p> Machine<'p> {

@@ -77,7 +77,7 @@ impl<'p> Machine<'p> {
         }
         let scoped = format!("{}::{key}", self.prog.modules[self.cur_module()].scope);
         for k in [scoped.as_str(), key] {
-            if let Some(p) = self.signals.get(k) {
+            if let Some(p) = self.io.signal(k) {
                 return Ok(p.clone());
             }
         }
@@ -262,7 +262,9 @@ impl<'p> Machine<'p> {
         match &p.root {
             Root::Global(k) if *k == sys.timer || *k == sys.timer_flag => self.sync_timers(),
             Root::Global(k) | Root::Group { array: k, .. } if *k == sys.input => self.sync_inputs(),
-            Root::Global(k) if *k == sys.in_home => return Ok(Value::Bool(self.in_home())),
+            Root::Global(k) if *k == sys.in_home => {
+                return Ok(Value::Bool(self.robot.in_home(&self.globals)));
+            }
             _ => {}
         }
         if let Some(v) = self.read_signal(&p.root)? {
@@ -305,7 +307,9 @@ impl<'p> Machine<'p> {
             self.io_changed(array, n, *b);
         }
         let frames_before = match &p.root {
-            Root::Global(k) if *k == self.sys.tool || *k == self.sys.base => Some(self.tool_base()),
+            Root::Global(k) if *k == self.sys.tool || *k == self.sys.base => {
+                Some(self.robot.tool_base(&self.globals))
+            }
             _ => None,
         };
         // `read_place` found it above, and nothing since moved it.
@@ -317,7 +321,7 @@ impl<'p> Machine<'p> {
             self.after_system_write(*k, &p.path);
         }
         if let Some((old_base, old_tool)) = frames_before {
-            self.follow_frames(&old_base, &old_tool);
+            (self.robot).follow_frames(&mut self.globals, &old_base, &old_tool);
         }
         Ok(())
     }

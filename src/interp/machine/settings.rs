@@ -6,15 +6,15 @@ use crate::interp::value::{CART_FIELDS, Value};
 use crate::interp::{Approximation, MotionSettings, MotionSpeed, SpeedKind};
 use crate::syntax::ast::{Approx, Motion, MotionKind};
 
-use super::Machine;
+use super::robot::Robot;
+use crate::interp::globals::Globals;
 
-impl Machine<'_> {
-    pub(super) fn motion_settings(&self, m: &Motion) -> MotionSettings {
+impl Robot {
+    pub(super) fn settings(&self, g: &Globals, m: &Motion) -> MotionSettings {
         let num = |v: Option<&Value>| v.and_then(Value::as_f64);
-        let sys =
-            |name: &str, field: &str| num(self.globals.get(name).and_then(|v| v.field(field)));
+        let sys = |slot: usize, field: &str| num(g.at(slot).and_then(|v| v.field(field)));
         let speed = if matches!(m.kind, MotionKind::Ptp | MotionKind::Sptp) {
-            let axes = match self.globals.get("$VEL_AXIS") {
+            let axes = match g.at(self.vel_axis) {
                 Some(Value::Array { items, .. }) => {
                     items.iter().take(6).map(|v| num(Some(v))).collect()
                 }
@@ -28,7 +28,7 @@ impl Machine<'_> {
         } else {
             MotionSpeed {
                 kind: SpeedKind::Cp,
-                value: sys("$VEL", "CP"),
+                value: sys(self.vel, "CP"),
             }
         };
         // Zero is krlkit's cold start: no robot moves at 0, so the program never set it.
@@ -46,11 +46,11 @@ impl Machine<'_> {
             };
             Approximation {
                 kind,
-                value: sys("$APO", field).unwrap_or(0.0),
+                value: sys(self.apo, field).unwrap_or(0.0),
             }
         });
-        let frame = |name: &str| {
-            let v = self.globals.get(name);
+        let frame = |slot: usize| {
+            let v = g.at(slot);
             CART_FIELDS
                 .iter()
                 .map(|f| {
@@ -64,8 +64,8 @@ impl Machine<'_> {
         MotionSettings {
             speed,
             approx,
-            base: frame("$BASE"),
-            tool: frame("$TOOL"),
+            base: frame(self.base),
+            tool: frame(self.tool),
         }
     }
 }

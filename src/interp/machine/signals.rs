@@ -18,14 +18,6 @@ use crate::interp::value::Value;
 /// Widest signal group (bits): a KRL INT has 32.
 const MAX_GROUP_BITS: usize = 32;
 
-/// An output that a `PULSE` sets back when the clock reaches `until_ms`.
-#[derive(Debug, Clone)]
-pub(super) struct Pulse {
-    place: Place,
-    until_ms: f64,
-    value: bool,
-}
-
 impl<'p> Machine<'p> {
     /// The place a `SIGNAL` declaration names: one bit, a group of bits, or a constant.
     fn signal_place(&mut self, s: &SignalDecl) -> R<Place> {
@@ -99,7 +91,7 @@ impl<'p> Machine<'p> {
             None => s.name.key(),
             Some(scope) => format!("{scope}::{}", s.name.key()),
         };
-        self.signals.insert(key, place);
+        self.io.declare_signal(key, place);
         Ok(())
     }
 
@@ -201,33 +193,16 @@ impl<'p> Machine<'p> {
             return Err(self.err(format!("PULSE duration must be positive, not {t} s")));
         }
         self.assign(&place, Value::Bool(level))?;
-        // A new pulse on the same output replaces the running one.
-        self.pulses.retain(|p| p.place != place);
-        self.pulses.push(Pulse {
-            place,
-            until_ms: self.clock_ms + t * 1000.0,
-            value: !level,
-        });
+        let until = self.clock_ms + t * 1000.0;
+        self.io.start_pulse(place, until, !level);
         Ok(())
     }
 
     /// End the pulses whose time is up (or all of them, at the end of the run).
     pub(super) fn expire_pulses(&mut self, all: bool) -> R<()> {
-        if self.pulses.is_empty() {
-            return Ok(());
-        }
-        let now = self.clock_ms;
-        let (done, running): (Vec<Pulse>, Vec<Pulse>) = std::mem::take(&mut self.pulses)
-            .into_iter()
-            .partition(|p| all || p.until_ms <= now);
-        self.pulses = running;
-        for p in done {
+        for p in self.io.due_pulses(self.clock_ms, all) {
             self.assign(&p.place, Value::Bool(p.value))?;
         }
         Ok(())
-    }
-
-    pub(super) fn pulses_running(&self) -> bool {
-        !self.pulses.is_empty()
     }
 }

@@ -72,7 +72,7 @@ impl Machine<'_> {
         };
         let saved = (self.loc, self.writes, self.steps);
         let saved_scope = self.declared_scope.take();
-        self.in_submit = true;
+        self.io.in_submit = true;
         let ran = self.call_routine(mi, ri, &[]);
         // The word, read in the routine's module (where its .dat declares the signal).
         let word = ran.and_then(|_| {
@@ -80,7 +80,7 @@ impl Machine<'_> {
             let place = self.lookup_root(&submit.signal)?;
             self.read_value(&place)
         });
-        self.in_submit = false;
+        self.io.in_submit = false;
         self.declared_scope = saved_scope;
         (self.loc, self.writes, self.steps) = saved;
         let word = match word? {
@@ -93,8 +93,8 @@ impl Machine<'_> {
                 )));
             }
         };
-        if self.srci_word != Some(word) {
-            self.srci_word = Some(word);
+        if self.trace.srci_word != Some(word) {
+            self.trace.srci_word = Some(word);
             self.emit_at(None, Event::Srci { word });
         }
         Ok(())

@@ -58,10 +58,10 @@ impl Machine<'_> {
     /// After `routine` returned: trace the store if it changed since it was last traced.
     pub(super) fn trace_stored_poses(&mut self, routine: &str) {
         let poses = self.stored_poses();
-        if poses.is_empty() || poses == self.traced_poses {
+        if poses.is_empty() || poses == self.trace.vision_poses {
             return;
         }
-        self.traced_poses = poses.clone();
+        self.trace.vision_poses = poses.clone();
         self.emit(Event::Vision {
             routine: routine.to_string(),
             poses,

@@ -90,17 +90,14 @@ impl<'p> Machine<'p> {
     fn changeable(&self, key: &str, n: Option<usize>) -> bool {
         match key {
             "$FLAG" => self.eki.sets("$FLAG", n),
-            "$OUT" => self.pulses_running() || self.eki.sets("$OUT", n),
+            "$OUT" => self.io.pulses_running() || self.eki.sets("$OUT", n),
             "$IN" => self
                 .opts
                 .input_links
                 .iter()
                 .filter(|l| n.is_none_or(|n| l.input == n))
                 .any(|l| self.changeable("$OUT", Some(l.output))),
-            "$TIMER" | "$TIMER_FLAG" => match n {
-                Some(n) => self.timers.get(n).is_some_and(|t| t.running),
-                None => self.timers.iter().any(|t| t.running),
-            },
+            "$TIMER" | "$TIMER_FLAG" => self.io.timer_running(n),
             _ => false,
         }
     }
