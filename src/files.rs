@@ -294,6 +294,25 @@ pub fn split_stdin(paths: &[PathBuf]) -> (Vec<PathBuf>, bool) {
     )
 }
 
+/// The name a file read from `-` goes by when `--stdin-filename` gives none. It is no file
+/// name: rules about the file's name ([`name_parts`]) do not apply to it.
+pub const STDIN_NAME: &str = "<stdin>";
+
+/// The file name's stem and extension, lower case (`$config`, `dat`); both empty for
+/// [`STDIN_NAME`], a text that has no file name.
+pub fn name_parts(path: &str) -> (String, String) {
+    if path == STDIN_NAME {
+        return (String::new(), String::new());
+    }
+    let p = Path::new(path);
+    let part = |s: Option<&std::ffi::OsStr>| {
+        s.and_then(|s| s.to_str())
+            .unwrap_or("")
+            .to_ascii_lowercase()
+    };
+    (part(p.file_stem()), part(p.extension()))
+}
+
 /// Read all of stdin and decode it; binary input is an error (see [`decode_text`]).
 pub fn read_stdin() -> io::Result<Decoded> {
     let mut bytes = Vec::new();

@@ -10,6 +10,7 @@ pub mod aslang;
 pub mod catalog;
 pub mod cfg;
 pub mod cli;
+pub mod config;
 pub mod diag;
 pub mod diff;
 pub mod eki;

@@ -143,6 +143,92 @@ fn help_says_what_the_docs_promise() {
     assert!(out(&o).contains("--color <WHEN>"), "{}", out(&o));
 }
 
+/// Every command that reads `krlkit.toml` says where it looks: both names, and the parents.
+#[test]
+fn config_options_name_both_files() {
+    for cmd in ["gen", "check", "fmt", "run"] {
+        let h = out(&krlkit(&[cmd, "--help"], ""));
+        let h = h.split_whitespace().collect::<Vec<_>>().join(" ");
+        assert!(
+            h.contains("krlkit.toml, else .krlkit.toml") && h.contains("nearest parent"),
+            "{cmd} --help:\n{h}"
+        );
+    }
+}
+
+/// Every command's help ends with what its exit codes mean, and the man page has EXIT STATUS.
+#[test]
+fn exit_codes_in_every_help_and_the_man_page() {
+    let top = out(&krlkit(&["--help"], ""));
+    let commands: Vec<&str> = top
+        .split("Commands:")
+        .nth(1)
+        .and_then(|t| t.split("Options:").next())
+        .expect("a command list")
+        .lines()
+        .filter_map(|l| l.strip_prefix("  ").filter(|r| !r.starts_with(' ')))
+        .filter_map(|l| l.split_whitespace().next())
+        .filter(|c| *c != "help")
+        .collect();
+    assert!(commands.len() > 10, "{commands:?}");
+    for args in commands
+        .iter()
+        .map(|c| vec![*c, "--help"])
+        .chain([vec!["--help"], vec!["sim", "serve", "--help"]])
+    {
+        let h = out(&krlkit(&args, ""));
+        assert!(
+            h.contains("Exit status:\n  0  success")
+                && h.contains("  2  the job could not be done"),
+            "{args:?}:\n{h}"
+        );
+    }
+    for page in [vec!["man"], vec!["man", "check"]] {
+        let man = out(&krlkit(&page, ""));
+        assert!(man.contains(".SH \"EXIT STATUS\""), "{man}");
+    }
+}
+
+/// Help texts point to documents the installed binary has, not to the source tree.
+#[test]
+fn docs_the_help_points_to_are_in_the_binary() {
+    let o = krlkit(&["docs", "scenario"], "");
+    assert_eq!(o.status.code(), Some(0), "{}", err(&o));
+    let doc = std::fs::read_to_string(
+        std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("src/sim/SCENARIO.md"),
+    )
+    .unwrap();
+    assert_eq!(out(&o), doc);
+    let h = out(&krlkit(&["sim", "serve", "--help"], ""));
+    assert!(h.contains("krlkit docs scenario"), "{h}");
+    let dir = tempfile::tempdir().unwrap();
+    std::fs::write(dir.path().join("bad.toml"), "[server\n").unwrap();
+    let o = Command::new(env!("CARGO_BIN_EXE_krlkit"))
+        .args(["sim", "serve", "--scenario", "bad.toml"])
+        .current_dir(dir.path())
+        .output()
+        .unwrap();
+    assert_eq!(o.status.code(), Some(2));
+    assert!(
+        err(&o).contains("`krlkit docs scenario`") && !err(&o).contains("src/"),
+        "{}",
+        err(&o)
+    );
+}
+
+/// `gen -o DIR` as `transpile -o FILE`.
+#[test]
+fn gen_takes_o_for_out() {
+    let dir = tempfile::tempdir().unwrap();
+    let o = Command::new(env!("CARGO_BIN_EXE_krlkit"))
+        .args(["gen", "-o", "pkg"])
+        .current_dir(dir.path())
+        .output()
+        .unwrap();
+    assert_eq!(o.status.code(), Some(0), "{}", err(&o));
+    assert!(dir.path().join("pkg/krl").is_dir());
+}
+
 /// `cargo install` builds a lean binary; symbols for profiling live in their own profile.
 #[test]
 fn release_is_lean_and_profiling_keeps_symbols() {

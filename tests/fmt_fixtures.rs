@@ -48,7 +48,9 @@ fn options(path: &Path) -> (FmtOptions, String) {
     let toml = path.with_extension("toml");
     match std::fs::read_to_string(&toml) {
         Ok(text) => (
-            FmtOptions::from_toml(&toml.display().to_string(), &text).expect("fixture options"),
+            krlkit::config::Config::parse(&text, &toml.display().to_string())
+                .expect("fixture options")
+                .fmt,
             text,
         ),
         Err(_) => (FmtOptions::default(), "(defaults)\n".into()),

@@ -388,3 +388,28 @@ fn comments_and_announced_exit_codes_are_read() {
     assert_eq!(blocks[0].commands, ["npm i x"]);
     assert_eq!((blocks[1].line, blocks[1].not_run.is_none()), (7, true));
 }
+
+/// The README travels with the binary (archives, wheel): it names nothing outside the
+/// repository, and every relative link it has resolves in it.
+#[test]
+fn readme_points_only_inside_the_repository() {
+    let readme = std::fs::read_to_string(root().join("README.md")).unwrap();
+    for (i, line) in readme.lines().enumerate() {
+        assert!(
+            !line.contains("../shared") && !line.contains("/work/"),
+            "README.md:{}: points outside the repository: {line}",
+            i + 1
+        );
+        for target in line.split("](").skip(1).filter_map(|t| t.split(')').next()) {
+            if target.contains("://") || target.starts_with('#') {
+                continue;
+            }
+            let path = target.split('#').next().unwrap_or(target);
+            assert!(
+                root().join(path).exists(),
+                "README.md:{}: link to a missing file `{target}`",
+                i + 1
+            );
+        }
+    }
+}

@@ -78,6 +78,22 @@ pub enum Command {
     Completions(CompletionsArgs),
     /// Print the man page (roff): `krlkit man > krlkit.1`, `krlkit man check` for one command.
     Man(ManArgs),
+    /// Print a document the binary carries (Markdown): `scenario`, the format of a
+    /// `sim serve --scenario` file.
+    Docs(DocsArgs),
+}
+
+#[derive(Debug, Args)]
+pub struct DocsArgs {
+    /// The document to print.
+    #[arg(value_enum)]
+    pub topic: DocTopic,
+}
+
+#[derive(Debug, Clone, Copy, PartialEq, Eq, ValueEnum)]
+pub enum DocTopic {
+    /// The fake vision server's scenario file.
+    Scenario,
 }
 
 #[derive(Debug, Args)]
@@ -113,8 +129,9 @@ pub struct FmtArgs {
     /// Write nothing; print a unified diff of what would change (exit 1 if anything would).
     #[arg(long)]
     pub diff: bool,
-    /// Config file with a [fmt] table (default: ./.krlkit.toml or ./krlkit.toml if present).
-    #[arg(long)]
+    /// The krlkit.toml whose [fmt] table to use (default: krlkit.toml, else .krlkit.toml, in
+    /// this folder or the nearest parent up to the repository root).
+    #[arg(long, value_name = "FILE")]
     pub config: Option<PathBuf>,
     /// The name to report for `-` (stdin).
     #[arg(long, value_name = "NAME")]
@@ -130,12 +147,14 @@ pub enum Target {
 
 #[derive(Debug, Args)]
 pub struct GenArgs {
-    /// Spec file (TOML). Without it, the embedded default spec is used.
-    #[arg(long)]
+    /// The krlkit.toml to generate from (default: krlkit.toml, else .krlkit.toml, in this
+    /// folder or the nearest parent up to the repository root; without one, the embedded
+    /// default spec).
+    #[arg(long, visible_alias = "config", value_name = "FILE")]
     pub spec: Option<PathBuf>,
     /// Package folder: written with `krl/`, `xml/` (KUKA) and `as/` (Kawasaki) inside, replaced
     /// atomically.
-    #[arg(long, value_name = "DIR", default_value = "mm_package")]
+    #[arg(short, long, value_name = "DIR", default_value = "mm_package")]
     pub out: PathBuf,
     /// Which robot package to write.
     #[arg(long, value_enum, default_value_t = Target::Kuka)]
@@ -170,7 +189,8 @@ pub struct CheckArgs {
     /// Files or directories (walked recursively); `-` reads one file from stdin.
     #[arg(required = true)]
     pub paths: Vec<PathBuf>,
-    /// The name diagnostics give the file read from `-` (stdin), e.g. the path an editor has open.
+    /// The name diagnostics give the file read from `-` (stdin), e.g. the path an editor has
+    /// open; without it, rules about the file's name (KRL003) do not apply.
     #[arg(long, value_name = "NAME")]
     pub stdin_filename: Option<String>,
     /// How to print findings: rustc-style, one line each, JSON, SARIF 2.1.0, or GitHub
@@ -180,9 +200,14 @@ pub struct CheckArgs {
     /// EKI XML config to cross-check MM_Init_Socket against.
     #[arg(long)]
     pub eki_xml: Option<PathBuf>,
-    /// Config file with a [lint] section (default: ./krlkit.toml if present).
-    #[arg(long)]
+    /// The krlkit.toml whose [lint] table to use (default: krlkit.toml, else .krlkit.toml, in
+    /// this folder or the nearest parent up to the repository root).
+    #[arg(long, value_name = "FILE")]
     pub config: Option<PathBuf>,
+    /// Exit 0 when the paths hold no KRL file (by default that is an error, exit 2: a wrong
+    /// path would otherwise pass CI silently).
+    #[arg(long)]
+    pub allow_no_files: bool,
     /// Apply the fixes rules declare safe, in place (atomically, encoding and line endings
     /// kept; a fix that would add a syntax error is skipped), then report what is left.
     #[arg(long)]
@@ -240,8 +265,8 @@ pub struct TranspileArgs {
     /// The name diagnostics give the program read from `-` (stdin).
     #[arg(long, value_name = "NAME")]
     pub stdin_filename: Option<String>,
-    /// Spec whose vision server address (IP, port) MM_Init_Socket translates to.
-    #[arg(long)]
+    /// The krlkit.toml whose vision server address (IP, port) MM_Init_Socket translates to.
+    #[arg(long, visible_alias = "config", value_name = "FILE")]
     pub spec: Option<PathBuf>,
     /// EKI XML config whose IP and port MM_Init_Socket translates to (default: the XML named
     /// by MM_Init_Socket beside the program, else in the program's package).
@@ -313,7 +338,7 @@ pub struct ServeArgs {
     /// Address and port to listen on (IP:PORT; loopback unless --allow-remote).
     #[arg(long, value_name = "ADDR", default_value = "127.0.0.1:50000")]
     pub listen: String,
-    /// Scenario file (TOML).
+    /// Scenario file (TOML; `krlkit docs scenario` describes the format).
     #[arg(long)]
     pub scenario: Option<PathBuf>,
     /// Allow a non-loopback listen address (a real robot cell); loopback only by default.
@@ -335,9 +360,15 @@ pub struct RunArgs {
     /// of .src/.dat/.xml files). Default: the package generated in memory from --spec.
     #[arg(long)]
     pub package: Option<PathBuf>,
-    /// Spec to generate the package from when --package is not given (default: the embedded
-    /// default spec).
-    #[arg(long, conflicts_with = "package")]
+    /// The krlkit.toml to generate the package from when --package is not given (default:
+    /// krlkit.toml, else .krlkit.toml, in this folder or the nearest parent up to the
+    /// repository root; without one, the embedded default spec).
+    #[arg(
+        long,
+        visible_alias = "config",
+        value_name = "FILE",
+        conflicts_with = "package"
+    )]
     pub spec: Option<PathBuf>,
     /// Vision server address HOST:PORT (overrides the EKI XML's IP and port); checked before
     /// the run starts.

@@ -6,7 +6,7 @@
 //! still checked and reported. The summary line names the files, modules and routines read and
 //! the KSS version of a backup's `am.ini`.
 
-use std::path::{Path, PathBuf};
+use std::path::Path;
 
 use anyhow::Context;
 
@@ -14,17 +14,14 @@ use super::Outcome;
 use super::args::{CheckArgs, CheckFormat};
 use crate::diag::{FileReport, Severity};
 use crate::files;
-use crate::lint::{self, EkiChannel, LintConfig};
+use crate::lint::{self, EkiChannel};
 use crate::sema::{SourceKind, Workspace, WorkspaceFile};
 
 pub fn run(args: CheckArgs) -> anyhow::Result<Outcome> {
-    let config = match load_config(args.config.as_deref()) {
-        Ok(c) => c,
-        Err(message) => {
-            eprintln!("error: {message}");
-            return Ok(Outcome::Failure);
-        }
+    let Some(config) = super::config::load(args.config.as_deref()) else {
+        return Ok(Outcome::Failure);
     };
+    let config = config.lint;
     let (channels, channels_given) = match &args.eki_xml {
         Some(path) => (vec![read_channel(path)?], true),
         None => {
@@ -55,7 +52,7 @@ pub fn run(args: CheckArgs) -> anyhow::Result<Outcome> {
         let name = args
             .stdin_filename
             .clone()
-            .unwrap_or_else(|| "<stdin>".into());
+            .unwrap_or_else(|| crate::files::STDIN_NAME.into());
         match files::read_stdin() {
             Ok(d) => ws.files.push(WorkspaceFile {
                 path: name,
@@ -67,6 +64,18 @@ pub fn run(args: CheckArgs) -> anyhow::Result<Outcome> {
                 failed = true;
             }
         }
+    }
+    if ws.files.is_empty() && !failed && !args.allow_no_files {
+        let named: Vec<String> = paths.iter().map(|p| p.display().to_string()).collect();
+        eprintln!(
+            "error: no KRL files (.src, .sub, .dat) in {}",
+            named.join(", ")
+        );
+        eprintln!(
+            "  help: name the robot's KRC folder, a backup .zip or the files; --allow-no-files \
+             accepts none"
+        );
+        return Ok(Outcome::Failure);
     }
     // Files read from an archive are not written back by --fix.
     let archived: Vec<u32> = ws
@@ -133,9 +142,6 @@ pub fn run(args: CheckArgs) -> anyhow::Result<Outcome> {
     super::findings::write(reports, args.format, true, None, std::io::stdout().lock())?;
     if args.format == CheckFormat::Human && !super::ui::quiet() {
         let files = reports.len();
-        if files == 0 && !failed {
-            eprintln!("warning: no KRL files found");
-        }
         if let Some(note) = outcome.incomplete_note() {
             eprintln!("note: {note}");
         }
@@ -166,32 +172,6 @@ pub fn run(args: CheckArgs) -> anyhow::Result<Outcome> {
 
 fn plural(n: usize) -> &'static str {
     if n == 1 { "" } else { "s" }
-}
-
-/// `--config FILE`, else `./.krlkit.toml` or `./krlkit.toml` when present, else the defaults.
-fn load_config(path: Option<&Path>) -> Result<LintConfig, String> {
-    match read_config(path)? {
-        Some((path, text)) => LintConfig::from_toml(&path, &text).map_err(|e| e.to_string()),
-        None => Ok(LintConfig::default()),
-    }
-}
-
-/// The config file `check` and `fmt` read: `--config FILE`, else the first of `./.krlkit.toml`
-/// and `./krlkit.toml` that exists (the names the language server looks for). Returns its path
-/// as shown to the user and its text.
-pub(super) fn read_config(path: Option<&Path>) -> Result<Option<(String, String)>, String> {
-    let default = crate::lsp::workspace::CONFIG_NAMES
-        .iter()
-        .map(PathBuf::from)
-        .find(|p| p.is_file());
-    let path = match (path, default) {
-        (Some(p), _) => p.to_path_buf(),
-        (None, Some(p)) => p,
-        (None, None) => return Ok(None),
-    };
-    let text = std::fs::read_to_string(&path)
-        .map_err(|e| format!("cannot read config {}: {e}", path.display()))?;
-    Ok(Some((path.display().to_string(), text)))
 }
 
 fn read_channel(path: &Path) -> anyhow::Result<EkiChannel> {

@@ -23,20 +23,10 @@ enum Done {
 }
 
 pub fn run(args: FmtArgs) -> anyhow::Result<Outcome> {
-    let opts = match super::check::read_config(args.config.as_deref()) {
-        Ok(Some((path, text))) => match FmtOptions::from_toml(&path, &text) {
-            Ok(o) => o,
-            Err(e) => {
-                eprintln!("error: {e}");
-                return Ok(Outcome::Failure);
-            }
-        },
-        Ok(None) => FmtOptions::default(),
-        Err(message) => {
-            eprintln!("error: {message}");
-            return Ok(Outcome::Failure);
-        }
+    let Some(config) = super::config::load(args.config.as_deref()) else {
+        return Ok(Outcome::Failure);
     };
+    let opts = config.fmt;
     if args.paths.iter().any(|p| p.as_os_str() == "-") {
         if args.paths.len() > 1 {
             eprintln!("error: `-` (stdin) cannot be combined with other paths");
@@ -144,7 +134,10 @@ fn unified_diff(name: &str, before: &str, after: &str) -> String {
 }
 
 fn stdin(args: &FmtArgs, opts: &FmtOptions) -> anyhow::Result<Outcome> {
-    let name = args.stdin_filename.as_deref().unwrap_or("<stdin>");
+    let name = args
+        .stdin_filename
+        .as_deref()
+        .unwrap_or(crate::files::STDIN_NAME);
     let mut bytes = Vec::new();
     std::io::stdin().read_to_end(&mut bytes)?;
     let decoded = match files::decode_text(bytes.clone()) {

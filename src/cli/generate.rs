@@ -5,16 +5,12 @@ use clap::ValueEnum;
 use super::Outcome;
 use super::args::{GenArgs, Target};
 use crate::generate::{self, Drift};
-use crate::spec::Spec;
 
 pub fn run(args: GenArgs) -> anyhow::Result<Outcome> {
-    let spec = match load_spec(args.spec.as_deref()) {
-        Ok(s) => s,
-        Err(msg) => {
-            eprintln!("{msg}");
-            return Ok(Outcome::Failure);
-        }
+    let Some(config) = super::config::load(args.spec.as_deref()) else {
+        return Ok(Outcome::Failure);
     };
+    let spec = config.spec;
     let target = match args.target {
         Target::Kuka => generate::Target::Kuka,
         Target::Kawasaki => generate::Target::Kawasaki,
@@ -75,19 +71,6 @@ pub fn run(args: GenArgs) -> anyhow::Result<Outcome> {
         println!("wrote {} files to {}", files.len(), args.out.display());
     }
     Ok(Outcome::Success)
-}
-
-pub(super) fn load_spec(path: Option<&Path>) -> Result<Spec, String> {
-    let Some(path) = path else {
-        return Ok(Spec::default());
-    };
-    let text = std::fs::read_to_string(path).map_err(|e| {
-        format!(
-            "{}: error: cannot read the spec: {e}\n  help: check the path, or run `krlkit init` to create one",
-            path.display()
-        )
-    })?;
-    Spec::parse(&text, &path.display().to_string()).map_err(|e| e.to_string())
 }
 
 fn print_drift(args: &GenArgs, d: &Drift) {

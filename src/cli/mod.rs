@@ -2,6 +2,7 @@
 
 mod args;
 mod check;
+mod config;
 mod diff;
 mod findings;
 mod fix;
@@ -22,8 +23,6 @@ mod transpile;
 mod ui;
 
 use std::process::ExitCode;
-
-use clap::Parser;
 
 pub use args::Cli;
 use args::Command;
@@ -49,8 +48,44 @@ impl From<Outcome> for ExitCode {
     }
 }
 
+/// What every command's exit code means: the end of each `--help`, and the man page's EXIT
+/// STATUS section.
+const EXIT_STATUS: [(u8, &str); 3] = [
+    (0, "success (warnings allowed)"),
+    (
+        1,
+        "findings of severity error, `--check` drift (gen, fmt), or a HALT in the program (run)",
+    ),
+    (
+        2,
+        "the job could not be done: bad arguments, unreadable input, no KRL file in the paths \
+         given, an invalid krlkit.toml or scenario, a network failure, a runtime error (run)",
+    ),
+];
+
+/// The clap command with the exit status after every command's help.
+fn command() -> clap::Command {
+    use clap::CommandFactory;
+    fn with_exit_status(cmd: clap::Command) -> clap::Command {
+        let mut text = cmd
+            .get_after_help()
+            .map(|h| format!("{h}\n"))
+            .unwrap_or_default();
+        text.push_str("Exit status:");
+        for (code, meaning) in EXIT_STATUS {
+            text.push_str(&format!("\n  {code}  {meaning}"));
+        }
+        cmd.after_help(text).mut_subcommands(with_exit_status)
+    }
+    with_exit_status(Cli::command())
+}
+
 pub fn main() -> ExitCode {
-    let cli = match Cli::try_parse() {
+    use clap::FromArgMatches;
+    let parsed = command()
+        .try_get_matches()
+        .and_then(|m| Cli::from_arg_matches(&m));
+    let cli = match parsed {
         Ok(cli) => cli,
         Err(e) => {
             let code = if e.use_stderr() { 2 } else { 0 };
@@ -75,12 +110,18 @@ pub fn main() -> ExitCode {
         Command::Lsp => lsp::run(),
         Command::Fmt(a) => fmt::run(a),
         Command::Completions(a) => {
-            use clap::CommandFactory;
-            let mut cmd = Cli::command();
+            let mut cmd = command();
             clap_complete::generate(a.shell, &mut cmd, "krlkit", &mut std::io::stdout());
             Ok(Outcome::Success)
         }
         Command::Man(a) => man(a),
+        Command::Docs(a) => {
+            let text = match a.topic {
+                args::DocTopic::Scenario => include_str!("../sim/SCENARIO.md"),
+            };
+            print!("{text}");
+            Ok(Outcome::Success)
+        }
     };
     match result {
         Ok(outcome) => outcome.into(),
@@ -91,7 +132,8 @@ pub fn main() -> ExitCode {
     }
 }
 
-/// `krlkit man [COMMAND]`: the roff man page of krlkit or of one subcommand.
+/// `krlkit man [COMMAND]`: the roff man page of krlkit or of one subcommand, with an EXIT
+/// STATUS section.
 fn man(args: args::ManArgs) -> anyhow::Result<Outcome> {
     use clap::CommandFactory;
     let root = Cli::command();
@@ -108,6 +150,33 @@ fn man(args: args::ManArgs) -> anyhow::Result<Outcome> {
             }
         },
     };
-    clap_mangen::Man::new(cmd).render(&mut std::io::stdout())?;
+    let has_args = cmd.get_arguments().next().is_some();
+    let has_subcommands = cmd.get_subcommands().next().is_some();
+    let has_extra = cmd.get_after_help().is_some();
+    let has_version = cmd.get_version().is_some();
+    let man = clap_mangen::Man::new(cmd);
+    let mut out = std::io::stdout().lock();
+    man.render_title(&mut out)?;
+    man.render_name_section(&mut out)?;
+    man.render_synopsis_section(&mut out)?;
+    man.render_description_section(&mut out)?;
+    if has_args {
+        man.render_options_section(&mut out)?;
+    }
+    if has_subcommands {
+        man.render_subcommands_section(&mut out)?;
+    }
+    if has_extra {
+        man.render_extra_section(&mut out)?;
+    }
+    use std::io::Write;
+    writeln!(out, ".SH \"EXIT STATUS\"")?;
+    for (code, meaning) in EXIT_STATUS {
+        let meaning = meaning.replace('\\', "\\\\").replace('-', "\\-");
+        writeln!(out, ".TP\n\\fB{code}\\fR\n{meaning}")?;
+    }
+    if has_version {
+        man.render_version_section(&mut out)?;
+    }
     Ok(Outcome::Success)
 }

@@ -49,7 +49,7 @@ pub fn run(args: ParseArgs) -> anyhow::Result<Outcome> {
         let name = args
             .stdin_filename
             .clone()
-            .unwrap_or_else(|| "<stdin>".into());
+            .unwrap_or_else(|| crate::files::STDIN_NAME.into());
         sink.take(
             files::read_stdin()
                 .map(|d| Some(checked(name, d.text)))

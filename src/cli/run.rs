@@ -230,14 +230,10 @@ pub fn run(args: RunArgs) -> anyhow::Result<Outcome> {
             files.extend(pkg);
         }
         None => {
-            let spec = match super::generate::load_spec(args.spec.as_deref()) {
-                Ok(s) => s,
-                Err(message) => {
-                    eprintln!("{message}");
-                    return Ok(Outcome::Failure);
-                }
+            let Some(config) = super::config::load(args.spec.as_deref()) else {
+                return Ok(Outcome::Failure);
             };
-            let package = interp::package::generated(&spec)?;
+            let package = interp::package::generated(&config.spec)?;
             options.eki_configs = package.eki_configs;
             sources = package.sources;
         }
@@ -275,7 +271,9 @@ pub fn run(args: RunArgs) -> anyhow::Result<Outcome> {
     for m in &result.messages {
         eprintln!("{m}");
     }
-    print!("{}", summary(&args.program, &Summary::of(&result)));
+    if !super::ui::quiet() {
+        print!("{}", summary(&args.program, &Summary::of(&result)));
+    }
     if let Some(JsonLines {
         path,
         failed: Some(e),

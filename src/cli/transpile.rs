@@ -28,7 +28,7 @@ pub fn run(mut args: TranspileArgs) -> anyhow::Result<Outcome> {
     let stdin = crate::files::is_stdin(&args.file);
     let name = match (&args.stdin_filename, stdin) {
         (Some(n), true) => n.clone(),
-        (None, true) => "<stdin>".to_string(),
+        (None, true) => crate::files::STDIN_NAME.to_string(),
         _ => args.file.display().to_string(),
     };
     let target = match args.to {
@@ -116,15 +116,10 @@ pub fn run(mut args: TranspileArgs) -> anyhow::Result<Outcome> {
         ..Options::default()
     };
     if let Some(spec) = &args.spec {
-        let spec_data = match super::generate::load_spec(Some(spec)) {
-            Ok(s) => s,
-            Err(msg) => {
-                eprintln!("{msg}");
-                return Ok(Outcome::Failure);
-            }
+        let Some(config) = super::config::load(Some(spec)) else {
+            return Ok(Outcome::Failure);
         };
-        // A RAPID module leaves the MM_* calls to Mech-Mind's ABB interface: no client of ours
-        // speaks the spec's codec there.
+        let spec_data = config.spec;
         let who = match target {
             Target::Kawasaki => Some("the Kawasaki AS package the translated program calls"),
             Target::Flexiv => Some("the Flexiv script's vision client"),

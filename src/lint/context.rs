@@ -44,19 +44,14 @@ impl<'a> SyntaxCtx<'a> {
         facts: &'a SyntaxFacts,
         syntax_errors: &'a [Diagnostic],
     ) -> SyntaxCtx<'a> {
-        let p = std::path::Path::new(path);
-        let part = |s: Option<&std::ffi::OsStr>| {
-            s.and_then(|s| s.to_str())
-                .unwrap_or("")
-                .to_ascii_lowercase()
-        };
+        let (stem, ext) = crate::files::name_parts(path);
         SyntaxCtx {
             path,
             text,
             facts,
             syntax_errors,
-            stem: part(p.file_stem()),
-            ext: part(p.extension()),
+            stem,
+            ext,
             case_edits: None,
         }
     }
@@ -250,15 +245,10 @@ impl Parsed {
         let parse = crate::syntax::parse(&text);
         let case_edits = case_edits.then(|| crate::fmt::case_edits_in(&text, &parse));
         let ast = parse.ast(&text);
-        let p = std::path::Path::new(&path);
-        let part = |s: Option<&std::ffi::OsStr>| {
-            s.and_then(|s| s.to_str())
-                .unwrap_or("")
-                .to_ascii_lowercase()
-        };
+        let (stem, ext) = crate::files::name_parts(&path);
         Parsed {
-            stem: part(p.file_stem()),
-            ext: part(p.extension()),
+            stem,
+            ext,
             path,
             text,
             syntax_errors: parse.diagnostics,

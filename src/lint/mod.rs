@@ -31,7 +31,7 @@ pub(crate) mod walk;
 
 use rayon::prelude::*;
 
-pub use config::{ConfigError, LintConfig};
+pub use config::LintConfig;
 pub use eki_xml::EkiChannel;
 pub use registry::{Check, FIXES, RULES, Rule, fix_of, nearest_code, rule, sarif_rules};
 pub use session::{Affected, Session};

@@ -15,9 +15,6 @@ use crate::files;
 use crate::fmt::FmtOptions;
 use crate::lint::{self, Affected, EkiChannel, Input, LintConfig, Session, context::Parsed};
 
-/// Config files looked for in the workspace root, first found wins.
-pub const CONFIG_NAMES: [&str; 2] = [".krlkit.toml", "krlkit.toml"];
-
 pub struct Workspace {
     pub root: Option<PathBuf>,
     session: Session,
@@ -145,27 +142,21 @@ impl Workspace {
     }
 }
 
-/// The `[lint]` and `[fmt]` tables of the root's config file, or the defaults without one.
+/// The `[lint]` and `[fmt]` tables of the root's `krlkit.toml` (found as the CLI finds it from
+/// a folder), or the defaults without one.
 fn read_config(root: Option<&Path>) -> Result<(LintConfig, FmtOptions), String> {
-    let Some(path) =
-        root.and_then(|r| CONFIG_NAMES.iter().map(|n| r.join(n)).find(|p| p.is_file()))
-    else {
+    let Some(path) = root.and_then(crate::config::find) else {
         return Ok(Default::default());
     };
-    let text = std::fs::read_to_string(&path)
-        .map_err(|e| format!("cannot read config {}: {e}", path.display()))?;
-    let name = path.display().to_string();
-    Ok((
-        LintConfig::from_toml(&name, &text).map_err(|e| e.to_string())?,
-        FmtOptions::from_toml(&name, &text).map_err(|e| e.to_string())?,
-    ))
+    let config = crate::config::Config::read(&path).map_err(|e| e.to_string())?;
+    Ok((config.lint, config.fmt))
 }
 
 /// True for the files whose change means reading the config or the channels again.
 pub fn is_config(path: &Path) -> bool {
     path.file_name()
         .and_then(|n| n.to_str())
-        .is_some_and(|n| CONFIG_NAMES.contains(&n))
+        .is_some_and(|n| crate::config::FILE_NAMES.contains(&n))
 }
 
 pub fn is_xml(path: &Path) -> bool {

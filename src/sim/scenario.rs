@@ -697,7 +697,7 @@ impl Scenario {
             ck.error(
                 span,
                 e.message().trim().to_string(),
-                "see src/sim/SCENARIO.md for the scenario format",
+                "`krlkit docs scenario` describes the scenario format",
             )
         })?;
         let cat = catalog();

@@ -4,7 +4,7 @@ use serde::Deserialize;
 use toml::Spanned;
 
 use super::{Codec, LineEnding, Spec, SpecError, TIMER_RANGE};
-use crate::catalog::{Interface, catalog, edit_distance};
+use crate::catalog::{Interface, catalog};
 
 /// Every key of the spec, for "did you mean" help.
 pub(crate) const KEYS: &[&str] = &[
@@ -25,14 +25,13 @@ pub(crate) const KEYS: &[&str] = &[
     "calib_wait",
     "srci_status",
     "srci_output",
+    // The tables of the same file that other stages read (see `config`).
+    "lint",
+    "fmt",
 ];
 
 pub(crate) fn nearest_key(key: &str) -> Option<&'static str> {
-    KEYS.iter()
-        .map(|k| (edit_distance(key, k), *k))
-        .filter(|(d, _)| *d <= 3.max(key.len() / 3))
-        .min_by_key(|(d, _)| *d)
-        .map(|(_, k)| k)
+    crate::catalog::nearest_key(key, KEYS)
 }
 
 #[derive(Debug, Deserialize)]
@@ -55,6 +54,12 @@ pub(crate) struct RawSpec {
     calib_wait: Option<Spanned<i64>>,
     srci_status: Option<bool>,
     srci_output: Option<Spanned<i64>>,
+    /// `[lint]` and `[fmt]`: the same `krlkit.toml` configures `check` and `fmt`; `config`
+    /// reads and validates them.
+    #[serde(rename = "lint")]
+    _lint: Option<serde::de::IgnoredAny>,
+    #[serde(rename = "fmt")]
+    _fmt: Option<serde::de::IgnoredAny>,
 }
 
 /// Defaults for keys a spec leaves out. They equal the values in the default spec file (a test

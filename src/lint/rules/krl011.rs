@@ -77,8 +77,10 @@ mod tests {
     #[test]
     fn technology_packages_are_known_when_switched_on() {
         assert_eq!(codes(&LintConfig::default()), ["KRL011", "KRL011"]);
-        let on = LintConfig::from_toml("k.toml", "[lint]\npackages = [\"rsi_krc2\", \"fri\"]\n")
-            .expect("config");
+        let on =
+            crate::config::Config::parse("[lint]\npackages = [\"rsi_krc2\", \"fri\"]\n", "k.toml")
+                .expect("config")
+                .lint;
         assert_eq!(codes(&on), Vec::<&str>::new());
     }
 }
