@@ -136,6 +136,10 @@ pub struct FmtArgs {
     /// The name to report for `-` (stdin).
     #[arg(long, value_name = "NAME")]
     pub stdin_filename: Option<String>,
+    /// Exit 0 when the paths hold no KRL file (by default that is an error, exit 2: a wrong
+    /// path would otherwise pass CI silently).
+    #[arg(long)]
+    pub allow_no_files: bool,
 }
 
 #[derive(Debug, Clone, Copy, PartialEq, Eq, ValueEnum)]
@@ -234,6 +238,10 @@ pub struct ParseArgs {
     /// Print the lossless syntax tree of one file as JSON.
     #[arg(long)]
     pub tree: bool,
+    /// Exit 0 when the paths hold no KRL file (by default that is an error, exit 2: a wrong
+    /// path would otherwise pass CI silently).
+    #[arg(long)]
+    pub allow_no_files: bool,
 }
 
 #[derive(Debug, Args)]

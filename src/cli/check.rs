@@ -66,15 +66,7 @@ pub fn run(args: CheckArgs) -> anyhow::Result<Outcome> {
         }
     }
     if ws.files.is_empty() && !failed && !args.allow_no_files {
-        let named: Vec<String> = paths.iter().map(|p| p.display().to_string()).collect();
-        eprintln!(
-            "error: no KRL files (.src, .sub, .dat) in {}",
-            named.join(", ")
-        );
-        eprintln!(
-            "  help: name the robot's KRC folder, a backup .zip or the files; --allow-no-files \
-             accepts none"
-        );
+        super::no_files::refuse(&paths);
         return Ok(Outcome::Failure);
     }
     // Files read from an archive are not written back by --fix.

@@ -43,6 +43,10 @@ pub fn run(args: FmtArgs) -> anyhow::Result<Outcome> {
     for e in &walk_errors {
         eprintln!("error: cannot read {e}");
     }
+    if candidates.is_empty() && !failed && !args.allow_no_files {
+        super::no_files::refuse(&args.paths);
+        return Ok(Outcome::Failure);
+    }
     let write = !(args.check || args.diff);
     let results: Vec<(PathBuf, anyhow::Result<Option<Done>>)> = candidates
         .par_iter()

@@ -11,6 +11,7 @@ mod generate;
 mod init;
 mod inplace;
 mod lsp;
+mod no_files;
 mod outputs;
 mod package_xml;
 mod parse;

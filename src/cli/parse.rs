@@ -33,6 +33,10 @@ pub fn run(args: ParseArgs) -> anyhow::Result<Outcome> {
     for e in &walk.errors {
         eprintln!("error: cannot read {e}");
     }
+    if walk.found.is_empty() && !stdin && walk.errors.is_empty() && !args.allow_no_files {
+        super::no_files::refuse(&paths);
+        return Ok(Outcome::Failure);
+    }
     let mut sink = Sink {
         out: io::BufWriter::new(io::stdout().lock()),
         json: None,
@@ -75,9 +79,6 @@ pub fn run(args: ParseArgs) -> anyhow::Result<Outcome> {
     } = sink;
     drop(out);
     if args.format == ParseFormat::Human && !super::ui::quiet() {
-        if files == 0 && !failed {
-            eprintln!("warning: no KRL files found");
-        }
         eprintln!(
             "{files} file{} parsed: {errors} error{}, {warnings} warning{}",
             plural(files),
