@@ -36,6 +36,10 @@ pub const XML_DIR: &str = "xml/Config/User/Common/EthernetKRL";
 pub const INSTALL_PATH: &str = "krl/INSTALL.md";
 /// Name of the helper + global data module.
 pub const COMM_MODULE: &str = "MM_Comm";
+/// The reply parser `MM_Comm` declares in an ASCII package (`templates/krl/comm.src`).
+pub const PARSER_ASCII: &str = "MM_Parse";
+/// The reply parser `MM_Comm` declares in a HEX package (`templates/krl/comm.src`).
+pub const PARSER_HEX: &str = "MM_Parse_Hex";
 /// The package's modules besides the catalog's subprograms.
 pub const PACKAGE_MODULES: &[&str] = &[COMM_MODULE, srci::SRCI_MODULE];
 /// Where the Kawasaki package goes, relative to the output directory.
@@ -200,4 +204,39 @@ pub fn generate_target(spec: &Spec, target: Target) -> Result<Vec<GeneratedFile>
         files.extend(generate_kawasaki(spec)?);
     }
     Ok(files)
+}
+
+#[cfg(test)]
+mod parser_names {
+    use super::*;
+    use crate::spec::Codec;
+
+    /// lint (MM009) tells a package's framing by these names: each codec's `MM_Comm`
+    /// declares its own parser and not the other's.
+    #[test]
+    fn each_codec_declares_its_parser() {
+        for (codec, own, other) in [
+            (Codec::Ascii, PARSER_ASCII, PARSER_HEX),
+            (Codec::HexLe, PARSER_HEX, PARSER_ASCII),
+        ] {
+            let spec = Spec {
+                codec,
+                ..Spec::default()
+            };
+            let files = generate(&spec).expect("generates");
+            let comm = files
+                .iter()
+                .find(|f| f.path.ends_with(format!("{COMM_MODULE}.src")))
+                .expect("MM_Comm.src");
+            let text = String::from_utf8_lossy(&comm.contents).to_ascii_uppercase();
+            // `GLOBAL DEF name(` or `GLOBAL DEFFCT type name(`.
+            let defines = |name: &str| {
+                let call = format!(" {}(", name.to_ascii_uppercase());
+                text.lines()
+                    .any(|l| l.trim_start().starts_with("GLOBAL DEF") && l.contains(&call))
+            };
+            assert!(defines(own), "{codec:?}: {own}");
+            assert!(!defines(other), "{codec:?}: {other}");
+        }
+    }
 }

@@ -1,5 +1,6 @@
 use crate::diag::{Diagnostic, Severity, Span};
 use crate::eki::Framing;
+use crate::generate;
 use crate::lint::EkiChannel;
 use crate::lint::context::FileCtx;
 use crate::lint::registry::{Check, Rule};
@@ -98,10 +99,10 @@ fn framing_mismatch(ctx: &FileCtx, ch: &EkiChannel, at: Span) -> Option<Diagnost
     let xml = ch.config.framing()?;
     let pos = ctx.sema.position(ctx.id, at.start);
     let declared = |name| matches!(ctx.sema.lookup_call(pos, name), Resolved::Routine(_));
-    let (package, parser) = if declared("MM_Parse_Hex") {
-        (Framing::Byte { size: 0 }, "MM_Parse_Hex")
-    } else if declared("MM_Parse") {
-        (Framing::Stream, "MM_Parse")
+    let (package, parser) = if declared(generate::PARSER_HEX) {
+        (Framing::Byte { size: 0 }, generate::PARSER_HEX)
+    } else if declared(generate::PARSER_ASCII) {
+        (Framing::Stream, generate::PARSER_ASCII)
     } else {
         return None;
     };
