@@ -9,52 +9,16 @@
 //! output as a `; [TR001]` comment. The coverage summary `COVERAGE.md` (both targets; the
 //! Flexiv fixtures are checked in `tests/transpile_flexiv.rs`) is regenerated and compared (`UPDATE_COVERAGE=1 cargo test --test transpile_fixtures` rewrites it).
 
-use std::path::{Path, PathBuf};
+mod transpile_support;
+
+use std::path::Path;
+
+use transpile_support::{dir, options, programs, source};
 
 use krlkit::aslang::{Calls, check};
 use krlkit::diag::render::concise;
 use krlkit::diag::{FileReport, LineIndex};
-use krlkit::transpile::{self, Coverage, Options, Source, Target, Translation};
-
-fn dir() -> PathBuf {
-    Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/fixtures/transpile")
-}
-
-fn source(p: &Path) -> Source {
-    let bytes = std::fs::read(p).expect("read fixture");
-    Source {
-        path: p.file_name().expect("name").to_string_lossy().into_owned(),
-        text: krlkit::syntax::decode(&bytes).text,
-    }
-}
-
-fn programs() -> Vec<PathBuf> {
-    let mut v: Vec<PathBuf> = std::fs::read_dir(dir())
-        .expect("fixture dir")
-        .map(|e| e.expect("entry").path())
-        .filter(|p| p.extension().is_some_and(|e| e == "src"))
-        .collect();
-    v.sort();
-    v
-}
-
-fn options() -> Options {
-    let mut channels = Vec::new();
-    for e in std::fs::read_dir(dir()).expect("fixture dir") {
-        let p = e.expect("entry").path();
-        if p.extension().is_some_and(|e| e == "xml") {
-            let text = std::fs::read_to_string(&p).expect("xml");
-            let stem = p.file_stem().expect("stem").to_string_lossy().into_owned();
-            let name = p.file_name().expect("name").to_string_lossy().into_owned();
-            channels.extend(krlkit::lint::eki_xml::read(&stem, &name, &text));
-        }
-    }
-    channels.sort_by(|a, b| a.name.cmp(&b.name));
-    Options {
-        channels,
-        ..Options::default()
-    }
-}
+use krlkit::transpile::{self, Coverage, Options, Target, Translation};
 
 fn translate(src: &Path) -> Translation {
     translate_to(Target::Kawasaki, src, &options())

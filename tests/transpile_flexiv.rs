@@ -14,8 +14,12 @@
 //! maths (`:`, INV_POS, quaternion read-back, Coord order) against values worked out by hand.
 //! Without python3 (CI has it) the Python checks are skipped with a message.
 
+mod transpile_support;
+
 use std::path::{Path, PathBuf};
+
 use std::process::Command;
+use transpile_support::{dir, programs, source};
 
 use krlkit::catalog::catalog;
 use krlkit::diag::render::concise;
@@ -28,46 +32,12 @@ fn root() -> PathBuf {
     PathBuf::from(env!("CARGO_MANIFEST_DIR"))
 }
 
-fn dir() -> PathBuf {
-    root().join("tests/fixtures/transpile")
-}
-
-fn source(p: &Path) -> Source {
-    let bytes = std::fs::read(p).expect("read fixture");
-    Source {
-        path: p.file_name().expect("name").to_string_lossy().into_owned(),
-        text: krlkit::syntax::decode(&bytes).text,
-    }
-}
-
-fn programs() -> Vec<PathBuf> {
-    let mut v: Vec<PathBuf> = std::fs::read_dir(dir())
-        .expect("fixture dir")
-        .map(|e| e.expect("entry").path())
-        .filter(|p| p.extension().is_some_and(|e| e == "src"))
-        .collect();
-    v.sort();
-    v
-}
-
 /// The options `krlkit transpile` would use in the fixture directory (the EKI XML beside the
 /// programs), with the given Flexiv settings.
 fn options(flexiv: FlexivOptions) -> Options {
-    let mut channels = Vec::new();
-    for e in std::fs::read_dir(dir()).expect("fixture dir") {
-        let p = e.expect("entry").path();
-        if p.extension().is_some_and(|e| e == "xml") {
-            let text = std::fs::read_to_string(&p).expect("xml");
-            let stem = p.file_stem().expect("stem").to_string_lossy().into_owned();
-            let name = p.file_name().expect("name").to_string_lossy().into_owned();
-            channels.extend(krlkit::lint::eki_xml::read(&stem, &name, &text));
-        }
-    }
-    channels.sort_by(|a, b| a.name.cmp(&b.name));
     Options {
-        channels,
         flexiv,
-        ..Options::default()
+        ..transpile_support::options()
     }
 }
 
