@@ -2,39 +2,32 @@
 //! in one module, many modules in one folder) at 2, 10 and 50 MB, and the growth from 10 to
 //! 50 MB (linear is 5×): `cargo bench --bench scaling`. Runs the release binary, or the one
 //! `KRLKIT_BIN` names (to compare two builds); `SCALING_MB=2,10` picks the sizes,
-//! `SCALING_RUNS=3` repeats each run and keeps the fastest (the machine is shared).
+//! `SCALING_RUNS=3` repeats each run and keeps the fastest (the machine is shared). A run over
+//! 60 s is killed and shown as "> 60 s". Times are CPU (user + system) and wall; the ratio is
+//! CPU time's, as wall time on a shared machine mostly measures the neighbours.
 //! Prints, does not assert: `tests/scaling_guard.rs` guards the ratios.
 
-use std::path::{Path, PathBuf};
-use std::process::{Command, Stdio};
-use std::time::Instant;
+use std::path::PathBuf;
+use std::time::Duration;
 
+#[path = "../tests/scaling_support/measure.rs"]
+mod measure;
 #[path = "../tests/scaling_support/shapes.rs"]
 mod shapes;
 
+use measure::Run;
 use shapes::Shape;
 
-/// One cell of the matrix: wall time (s) and peak RSS (MB), or none where the command does not apply.
-type Cell = Option<(f64, u64)>;
+/// A run still going after this long is killed and shown as "> 60 s".
+const LIMIT: Duration = Duration::from_secs(60);
 
-/// Wall time (s) and peak RSS (MB) of one run, output discarded.
-fn measure(bin: &Path, args: &[String], cwd: &Path) -> (f64, u64) {
-    let start = Instant::now();
-    #[allow(clippy::zombie_processes)] // reaped by wait4 below, which also gives its rusage
-    let child = Command::new(bin)
-        .args(args)
-        .current_dir(cwd)
-        .stdout(Stdio::null())
-        .stderr(Stdio::null())
-        .spawn()
-        .expect("start krlkit");
-    let mut status = 0;
-    // SAFETY: an all-zero rusage is valid; wait4 fills it for our own child.
-    let mut usage: libc::rusage = unsafe { std::mem::zeroed() };
-    let pid = child.id() as libc::pid_t;
-    let r = unsafe { libc::wait4(pid, &mut status, 0, &mut usage) };
-    assert_eq!(r, pid);
-    (start.elapsed().as_secs_f64(), usage.ru_maxrss as u64 / 1024)
+/// One cell of the matrix.
+#[derive(Clone, Copy)]
+enum Cell {
+    /// The command takes no folder (transpile reads one file).
+    NotApplicable,
+    TimedOut,
+    Ran(Run),
 }
 
 /// The commands of the matrix for a program written by `shapes::write`; `None` where a
@@ -84,31 +77,39 @@ fn main() {
                 if i == 0 {
                     rows.push((name, Vec::new()));
                 }
-                let best = args.map(|args| {
-                    (0..runs)
-                        .map(|_| measure(&bin, &args, dir.path()))
-                        .fold((f64::MAX, 0), |(t, m), (t2, m2)| (t.min(t2), m.max(m2)))
-                });
-                rows[c].1.push(best);
+                let cell = match args {
+                    None => Cell::NotApplicable,
+                    Some(args) => measure::best_of(runs, &bin, &args, dir.path(), LIMIT)
+                        .map_or(Cell::TimedOut, Cell::Ran),
+                };
+                if let Cell::Ran(r) = cell {
+                    eprintln!("{} {mb} MB {name}: {r:?}", shape.name());
+                }
+                rows[c].1.push(cell);
             }
         }
-        println!("\n{}", shape.name());
+        println!("\n{} (CPU s / wall s / peak MB)", shape.name());
         print!("{:<20}", "command");
         for mb in &sizes {
-            print!("{:>18}", format!("{mb} MB"));
+            print!("{:>24}", format!("{mb} MB"));
         }
-        println!("{:>12}", "10→50 MB");
+        println!("{:>10}", "10→50 MB");
         for (name, cells) in &rows {
             print!("{name:<20}");
             for cell in cells {
-                match cell {
-                    Some((t, m)) => print!("{:>18}", format!("{t:.2} s {m:>5} MB")),
-                    None => print!("{:>18}", "—"),
-                }
+                let text = match cell {
+                    Cell::Ran(r) => format!("{:.2} / {:.2} / {}", r.cpu, r.wall, r.mb),
+                    Cell::TimedOut => format!("> {} s", LIMIT.as_secs()),
+                    Cell::NotApplicable => "—".into(),
+                };
+                print!("{text:>24}");
             }
-            let at = |mb| sizes.iter().position(|&s| s == mb).and_then(|i| cells[i]);
+            let at = |mb| match sizes.iter().position(|&s| s == mb).map(|i| cells[i]) {
+                Some(Cell::Ran(r)) => Some(r.cpu),
+                _ => None,
+            };
             match (at(10), at(50)) {
-                (Some((a, _)), Some((b, _))) => println!("{:>11.1}×", b / a.max(0.005)),
+                (Some(a), Some(b)) => println!("{:>9.1}×", b / a.max(0.005)),
                 _ => println!(),
             }
         }

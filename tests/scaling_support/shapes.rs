@@ -1,6 +1,6 @@
 //! The three program shapes of the scaling benchmark and guard: one long routine, many short
-//! pick routines in one module, and many modules in one folder. Each is lint-clean KRL with CRLF
-//! line ends (the shape of the repository's examples) that `krlkit run` can execute to the end:
+//! pick routines in one module, and many modules in one folder. Each is KRL with CRLF line ends
+//! (the shape of the repository's examples) that `krlkit run` can execute to the end:
 //! the main routine calls every routine once, and no routine waits for an input.
 
 use std::fmt::Write as _;
@@ -71,7 +71,19 @@ pub fn one_routine(bytes: usize) -> String {
         .unwrap();
     }
     s.push_str("END\r\n");
+    vision_routine(&mut s, "main");
     s
+}
+
+/// A routine `{module}_vision` that asks the vision system for a result and is never called
+/// (`run` needs no vision server): a call of an `MM_` routine makes `check` run the Mech-Mind
+/// rules and their dataflow (`lint::flow`) on every routine of the module, as in a real cell.
+fn vision_routine(s: &mut String, module: &str) {
+    write!(
+        s,
+        "\r\nDEF {module}_vision()\r\n  MM_Start_Vis(1, 0, 0, $AXIS_ACT)\r\nEND\r\n"
+    )
+    .unwrap();
 }
 
 /// A module `name` of 40-line pick routines adding up to about `bytes`, each with its own
@@ -93,6 +105,7 @@ pub fn many_routines(name: &str, bytes: usize, calls: &[String]) -> String {
         writeln!(s, "  {c}()\r").unwrap();
     }
     s.push_str("END\r\n");
+    vision_routine(&mut s, name);
     s.push_str(&body);
     s
 }

@@ -1,0 +1,103 @@
+//! The scaling guard (#25): in every program shape (`tests/scaling_support/shapes.rs`),
+//! `check`, `transpile --to kawasaki` and `transpile --to flexiv` on a 20 MB program take at most
+//! 13× the CPU time of the 2 MB one — linear with noise (and with the fixed start-up cost, which
+//! only makes the ratio smaller); a path quadratic in the routines gives ~100×. Each size is the
+//! best of 3 runs; CPU time (user + system) rather than wall, as machines are shared.
+//!
+//! A debug binary's ratios say nothing, so the test drives a release binary and is ignored in a
+//! plain `cargo test`: `.ci/run` runs it after `cargo xtask dist` on the binary dist built
+//! (`KRLKIT_BIN=… cargo test --test scaling_guard -- --ignored`); here
+//! `cargo test --release --test scaling_guard -- --ignored`. `SCALING_GUARD_MAX` lowers the
+//! bound (to see it fail); `benches/scaling.rs` prints the whole matrix.
+
+#[path = "scaling_support/measure.rs"]
+mod measure;
+#[path = "scaling_support/shapes.rs"]
+mod shapes;
+
+use std::path::PathBuf;
+use std::time::Duration;
+
+use shapes::Shape;
+
+const SMALL_MB: usize = 2;
+const LARGE_MB: usize = 20;
+/// Linear is 10× (2 → 20 MB); the rest is noise.
+const MAX_RATIO: f64 = 13.0;
+const RUNS: usize = 3;
+/// A 20 MB run takes a few seconds in release; one still going after this is a failure.
+const LIMIT: Duration = Duration::from_secs(120);
+
+/// The binary under test: `KRLKIT_BIN`, else this build's if it is a release build.
+fn binary() -> PathBuf {
+    if let Some(bin) = std::env::var_os("KRLKIT_BIN") {
+        return PathBuf::from(bin);
+    }
+    if cfg!(debug_assertions) {
+        panic!(
+            "the scaling guard needs a release binary: KRLKIT_BIN=path/to/release/krlkit, or cargo test --release"
+        );
+    }
+    PathBuf::from(env!("CARGO_BIN_EXE_krlkit"))
+}
+
+/// The guarded commands for a program `shapes::write` wrote (transpile reads one file, so it
+/// has no many-files row).
+fn commands(lib: &Option<PathBuf>) -> Vec<Vec<String>> {
+    let args = |v: &[&str]| v.iter().map(|a| a.to_string()).collect::<Vec<_>>();
+    let mut commands = vec![args(&[
+        "check",
+        if lib.is_some() { "." } else { "main.src" },
+    ])];
+    if lib.is_none() {
+        for to in ["kawasaki", "flexiv"] {
+            commands.push(args(&["transpile", "main.src", "--to", to]));
+        }
+    }
+    commands
+}
+
+#[test]
+#[ignore = "needs a release binary: .ci/run runs it after dist; here `cargo test --release --test scaling_guard -- --ignored`"]
+fn every_command_grows_linearly_in_every_shape() {
+    let bin = binary();
+    let max: f64 = std::env::var("SCALING_GUARD_MAX")
+        .ok()
+        .and_then(|v| v.parse().ok())
+        .unwrap_or(MAX_RATIO);
+    let mut failures = Vec::new();
+    for shape in Shape::ALL {
+        let small = tempfile::tempdir().unwrap();
+        let large = tempfile::tempdir().unwrap();
+        let (_, lib) = shapes::write(shape, SMALL_MB << 20, small.path());
+        shapes::write(shape, LARGE_MB << 20, large.path());
+        for args in commands(&lib) {
+            let what = format!("{} ({})", args[..args.len().min(4)].join(" "), shape.name());
+            let time = |dir: &tempfile::TempDir| {
+                measure::best_of(RUNS, &bin, &args, dir.path(), LIMIT).map(|r| r.cpu)
+            };
+            let (Some(a), b) = (time(&small), time(&large)) else {
+                failures.push(format!("{what}: {SMALL_MB} MB ran over {LIMIT:?}"));
+                continue;
+            };
+            let Some(b) = b else {
+                failures.push(format!(
+                    "{what}: {LARGE_MB} MB ran over {LIMIT:?} ({a:.2} s at {SMALL_MB} MB)"
+                ));
+                continue;
+            };
+            let ratio = b / a.max(0.001);
+            eprintln!("{what}: {a:.2} s → {b:.2} s CPU, {ratio:.1}×");
+            if ratio > max {
+                failures.push(format!(
+                    "{what}: {a:.2} s at {SMALL_MB} MB, {b:.2} s at {LARGE_MB} MB: {ratio:.1}× > {max}×"
+                ));
+            }
+        }
+    }
+    assert!(
+        failures.is_empty(),
+        "grows faster than linear:\n{}",
+        failures.join("\n")
+    );
+}
