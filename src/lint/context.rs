@@ -3,8 +3,9 @@
 //! calls come from [`crate::sema`]. The syntax tree stays available in the model phase only for
 //! files the Mech-Mind rules look at (they call an `MM_` routine or write a `$FLAG`).
 
-use std::collections::{HashMap, HashSet};
 use std::sync::OnceLock;
+
+use rustc_hash::{FxHashMap, FxHashSet};
 
 use super::eki_xml::EkiChannel;
 use super::flow::FlowResult;
@@ -285,11 +286,11 @@ pub struct Project {
     /// Whether `channels` came from `--eki-xml` (then a name mismatch is always reported).
     pub channels_given: bool,
     /// Flags owned by an EKI channel the program uses (alive and receive), by flag number.
-    pub owned_flags: HashMap<i64, &'static str>,
+    pub owned_flags: FxHashMap<i64, &'static str>,
     /// Names KUKA's own files (system, technology packages, templates) use without the
     /// workspace declaring them, per robot: they exist on that controller (an installed
     /// technology package, say), so user code may use them too.
-    pub environment: HashSet<(RobotId, NameId)>,
+    pub environment: FxHashSet<(RobotId, NameId)>,
     /// The interface version calls are checked against, and why.
     pub interface: super::interface::Selected,
     /// Optional technology packages the config switches on (`[lint] packages`).
@@ -318,8 +319,8 @@ impl Project {
         let mut p = Project {
             channels,
             channels_given,
-            owned_flags: HashMap::new(),
-            environment: HashSet::new(),
+            owned_flags: FxHashMap::default(),
+            environment: FxHashSet::default(),
             interface,
             packages: Vec::new(),
         };
@@ -391,7 +392,7 @@ pub fn init_sockets(ast: &SourceFile) -> Vec<InitSocket> {
 
 impl InitSocket {
     /// Flags the channel owns: from the XML the call names, else from its flag arguments.
-    fn owned_flags(&self, channels: &[EkiChannel], flags: &mut HashMap<i64, &'static str>) {
+    fn owned_flags(&self, channels: &[EkiChannel], flags: &mut FxHashMap<i64, &'static str>) {
         let channel = self
             .xml
             .as_deref()
@@ -502,11 +503,14 @@ impl<'p> FileCtx<'p> {
         self.ast
             .into_iter()
             .flat_map(|a| a.routines.iter())
-            .filter(|r| {
-                Interface::ALL
-                    .into_iter()
-                    .all(|i| subprogram(i, &r.name.text).is_none())
-            })
+            .filter(|r| Self::is_user_routine(r))
+    }
+
+    /// Whether `r` is the program's own, not one of an interface version's subprograms.
+    pub fn is_user_routine(r: &Routine) -> bool {
+        Interface::ALL
+            .into_iter()
+            .all(|i| subprogram(i, &r.name.text).is_none())
     }
 
     /// The interface subprogram called `name` in the version the program is checked against.
@@ -564,7 +568,7 @@ impl<'p> FileCtx<'p> {
 
     /// Constants with a numeric literal value visible in this file's module (its `.dat`, the
     /// robot's GLOBAL ones and `$config.dat`), by symbol.
-    pub fn known_consts(&self) -> HashMap<SymbolId, f64> {
+    pub fn known_consts(&self) -> FxHashMap<SymbolId, f64> {
         let info = self.sema.file(self.id);
         let at = Position {
             robot: info.robot,

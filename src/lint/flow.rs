@@ -16,7 +16,9 @@
 //!   paths disagree; constants declared with a literal in the module's `.dat` or `$config.dat`.
 
 use std::cell::RefCell;
-use std::collections::{BTreeSet, HashMap, HashSet};
+use std::collections::BTreeSet;
+
+use rustc_hash::{FxHashMap, FxHashSet};
 
 use super::context::FileCtx;
 use super::walk;
@@ -32,7 +34,7 @@ pub struct FlowResult {
     /// Findings tagged MM006, MM007 and MM010.
     pub findings: Vec<Diagnostic>,
     /// Known numeric values of call arguments, by the argument's span start.
-    pub values: HashMap<u32, f64>,
+    pub values: FxHashMap<u32, f64>,
 }
 
 const ALL: u64 = u64::MAX;
@@ -61,7 +63,7 @@ struct State {
     dead: bool,
     may: u64,
     must: u64,
-    vals: HashMap<SymbolId, f64>,
+    vals: FxHashMap<SymbolId, f64>,
     /// Jps_Pos values the last MM_Get_PlanData may have used: bit k for value k, bit 0 unknown.
     plan: u8,
 }
@@ -72,7 +74,7 @@ impl State {
             dead: true,
             may: 0,
             must: ALL,
-            vals: HashMap::new(),
+            vals: FxHashMap::default(),
             plan: 0,
         }
     }
@@ -104,9 +106,9 @@ struct Summary {
 
 struct Shared<'c, 'p> {
     ctx: &'c FileCtx<'p>,
-    summaries: RefCell<HashMap<usize, Summary>>,
-    in_progress: RefCell<HashSet<usize>>,
-    consts: HashMap<SymbolId, f64>,
+    summaries: RefCell<FxHashMap<usize, Summary>>,
+    in_progress: RefCell<FxHashSet<usize>>,
+    consts: FxHashMap<SymbolId, f64>,
     routines: &'c [Routine],
 }
 
@@ -120,13 +122,6 @@ impl Shared<'_, '_> {
             }
             _ => None,
         }
-    }
-
-    fn index_of(&self, r: &Routine) -> usize {
-        self.routines
-            .iter()
-            .position(|x| std::ptr::eq(x, r))
-            .unwrap_or(usize::MAX)
     }
 
     /// The symbol a variable name resolves to.
@@ -148,7 +143,7 @@ impl Shared<'_, '_> {
             dead: false,
             may: 0,
             must: 0,
-            vals: HashMap::new(),
+            vals: FxHashMap::default(),
             plan: 0,
         };
         let graph = Cfg::of(&r.body);
@@ -169,11 +164,11 @@ struct Walker<'s, 'c, 'p> {
     graph: &'s Cfg<'s>,
     record: bool,
     findings: Vec<Diagnostic>,
-    values: HashMap<u32, f64>,
+    values: FxHashMap<u32, f64>,
     /// Entry states of local routines called from here, joined over call sites.
-    callsites: HashMap<usize, State>,
+    callsites: FxHashMap<usize, State>,
     /// For each MM_ call (by span start): calls that may still follow it.
-    follows: HashMap<u32, u64>,
+    follows: FxHashMap<u32, u64>,
 }
 
 impl<'s, 'c, 'p> Walker<'s, 'c, 'p> {
@@ -183,9 +178,9 @@ impl<'s, 'c, 'p> Walker<'s, 'c, 'p> {
             graph,
             record,
             findings: Vec::new(),
-            values: HashMap::new(),
-            callsites: HashMap::new(),
-            follows: HashMap::new(),
+            values: FxHashMap::default(),
+            callsites: FxHashMap::default(),
+            follows: FxHashMap::default(),
         }
     }
 
@@ -482,7 +477,7 @@ fn acyclic(g: &Cfg, rank: &[usize]) -> bool {
 
 /// The MM_ calls that may follow a call statement (local routines by their summary), given
 /// those that may follow the statement.
-fn call_later(sh: &Shared, s: &Stmt, later: u64, out: Option<&mut HashMap<u32, u64>>) -> u64 {
+fn call_later(sh: &Shared, s: &Stmt, later: u64, out: Option<&mut FxHashMap<u32, u64>>) -> u64 {
     let StmtKind::Call { name, .. } = &s.kind else {
         return later;
     };
@@ -500,7 +495,7 @@ fn call_later(sh: &Shared, s: &Stmt, later: u64, out: Option<&mut HashMap<u32, u
 
 /// Backward pass over the graph: which MM_ calls may still follow each MM_ call, `at_end`
 /// following the routine's end.
-fn later_calls(sh: &Shared, g: &Cfg, at_end: u64, out: &mut HashMap<u32, u64>) {
+fn later_calls(sh: &Shared, g: &Cfg, at_end: u64, out: &mut FxHashMap<u32, u64>) {
     let order = g.forward_order();
     let mut outs = vec![0u64; g.blocks.len()];
     let mut ins = vec![0u64; g.blocks.len()];
@@ -508,7 +503,7 @@ fn later_calls(sh: &Shared, g: &Cfg, at_end: u64, out: &mut HashMap<u32, u64>) {
         ins[b] = at_end;
         outs[b] = at_end;
     }
-    let through = |b: BlockId, mut later: u64, out: &mut Option<&mut HashMap<u32, u64>>| {
+    let through = |b: BlockId, mut later: u64, out: &mut Option<&mut FxHashMap<u32, u64>>| {
         for s in g.blocks[b].stmts.iter().rev() {
             later = call_later(sh, s, later, out.as_deref_mut());
         }
@@ -546,6 +541,48 @@ fn later_calls(sh: &Shared, g: &Cfg, at_end: u64, out: &mut HashMap<u32, u64>) {
     }
 }
 
+/// The order routines are analysed in: main first, then, in file order, a routine whose local
+/// callers are all analysed, else the first one left. Kahn's order over the local call graph with
+/// the ready routines kept sorted by place (`ready`), so a file of n routines takes n log n, not
+/// a scan of the routines left per routine.
+fn analysis_order(
+    routines: &[usize],
+    callers: &FxHashMap<usize, FxHashSet<usize>>,
+    callees: &FxHashMap<usize, FxHashSet<usize>>,
+    is_main: impl Fn(usize) -> bool,
+) -> Vec<usize> {
+    let mut pending: Vec<usize> = routines.to_vec();
+    pending.sort_by_key(|&k| !is_main(k));
+    let place: FxHashMap<usize, usize> = pending.iter().enumerate().map(|(i, &k)| (k, i)).collect();
+    // Callers of each routine not yet ordered; a routine without local callers is never ready.
+    let mut waiting: FxHashMap<usize, usize> = callers.iter().map(|(&k, c)| (k, c.len())).collect();
+    let ready_now =
+        |k: usize, waiting: &FxHashMap<usize, usize>| is_main(k) || waiting.get(&k) == Some(&0);
+    let mut left: BTreeSet<usize> = (0..pending.len()).collect();
+    let mut ready: BTreeSet<usize> = (0..pending.len())
+        .filter(|&i| ready_now(pending[i], &waiting))
+        .collect();
+    let mut order = Vec::with_capacity(pending.len());
+    while let Some(i) = ready.pop_first().or_else(|| left.first().copied()) {
+        left.remove(&i);
+        ready.remove(&i);
+        let k = pending[i];
+        order.push(k);
+        for callee in callees.get(&k).into_iter().flatten() {
+            if let Some(n) = waiting.get_mut(callee) {
+                *n -= 1;
+            }
+            if let Some(&j) = place.get(callee)
+                && left.contains(&j)
+                && ready_now(*callee, &waiting)
+            {
+                ready.insert(j);
+            }
+        }
+    }
+    order
+}
+
 /// Analyse every user routine of the file.
 pub fn analyze(ctx: &FileCtx) -> FlowResult {
     let mut result = FlowResult::default();
@@ -554,12 +591,14 @@ pub fn analyze(ctx: &FileCtx) -> FlowResult {
     };
     let sh = Shared {
         ctx,
-        summaries: RefCell::new(HashMap::new()),
-        in_progress: RefCell::new(HashSet::new()),
+        summaries: RefCell::new(FxHashMap::default()),
+        in_progress: RefCell::new(FxHashSet::default()),
         consts: ctx.known_consts(),
         routines: &ast.routines,
     };
-    let routines: Vec<usize> = ctx.user_routines().map(|r| sh.index_of(r)).collect();
+    let routines: Vec<usize> = (0..ast.routines.len())
+        .filter(|&k| FileCtx::is_user_routine(&ast.routines[k]))
+        .collect();
     if ast.routines.is_empty() {
         return result;
     }
@@ -571,18 +610,20 @@ pub fn analyze(ctx: &FileCtx) -> FlowResult {
             .is_some_and(|&rid| ctx.sema.callers(rid).iter().any(|c| c.at.file != ctx.id))
     };
     // Local call graph: who calls whom, to order routines from the main one.
-    let mut callers: HashMap<usize, HashSet<usize>> = HashMap::new();
+    let mut callers: FxHashMap<usize, FxHashSet<usize>> = FxHashMap::default();
+    let mut callees: FxHashMap<usize, FxHashSet<usize>> = FxHashMap::default();
     for &k in &routines {
         walk::each_stmt(&ast.routines[k].body, &mut |s| {
             if let StmtKind::Call { name, .. } = &s.kind
                 && let Some(callee) = sh.local_routine(name)
             {
                 callers.entry(callee).or_default().insert(k);
+                callees.entry(k).or_default().insert(callee);
             }
         });
     }
-    let mut done: HashSet<usize> = HashSet::new();
-    let mut entries: HashMap<usize, State> = HashMap::new();
+    let mut done: FxHashSet<usize> = FxHashSet::default();
+    let mut entries: FxHashMap<usize, State> = FxHashMap::default();
     let is_dat = ctx.sema.file(ctx.id).kind == crate::sema::FileKind::Dat;
     let is_main = |k: usize| k == 0 && !is_dat;
     let unknown = || State {
@@ -592,22 +633,7 @@ pub fn analyze(ctx: &FileCtx) -> FlowResult {
         vals: sh.consts.clone(),
         plan: 1,
     };
-    // Main first, then routines whose local callers are all analysed, then the rest.
-    let mut order: Vec<usize> = Vec::new();
-    let mut pending: Vec<usize> = routines.clone();
-    pending.sort_by_key(|&k| !is_main(k));
-    while !pending.is_empty() {
-        let pos = pending
-            .iter()
-            .position(|&k| {
-                is_main(k)
-                    || callers
-                        .get(&k)
-                        .is_some_and(|c| c.iter().all(|x| order.contains(x)))
-            })
-            .unwrap_or(0);
-        order.push(pending.remove(pos));
-    }
+    let order = analysis_order(&routines, &callers, &callees, is_main);
     for k in order {
         let r = &ast.routines[k];
         let local_callers = callers.get(&k);

@@ -41,7 +41,7 @@ fn check(ctx: &FileCtx, out: &mut Vec<Diagnostic>) {
 
 fn owned(
     target: &Expr,
-    flags: &std::collections::HashMap<i64, &'static str>,
+    flags: &rustc_hash::FxHashMap<i64, &'static str>,
 ) -> Option<(i64, &'static str)> {
     let ExprKind::Index { base, indices } = &target.kind else {
         return None;
