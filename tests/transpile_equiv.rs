@@ -273,18 +273,11 @@ fn rapid_pending_fixtures_still_fail() {
 }
 
 /// RAPID translations a controller would refuse to load: (fixture, the load error, why).
-const RAPID_UNLOADABLE: &[(&str, &str, &str)] = &[
-    (
-        "motions",
-        "`cell_name` is declared twice",
-        "the `.dat`'s PERS and a VAR of the same name",
-    ),
-    (
-        "pallet_pattern",
-        "an empty index `{}`",
-        "the array `per_layer` is passed as `per_layer{}`",
-    ),
-];
+const RAPID_UNLOADABLE: &[(&str, &str, &str)] = &[(
+    "pallet_pattern",
+    "an empty index `{}`",
+    "the array `per_layer` is passed as `per_layer{}`",
+)];
 
 /// Every fixture's RAPID translation, runnable here or not (vision cells, TR001s), loads in the
 /// test interpreter: it parses, every module data's value fits its type, no name is declared
