@@ -242,12 +242,7 @@ const RAPID_ONLY: &[Case] = &[Case {
 /// shows, why). Each is a defect of the translation, reported to the backend's owner;
 /// [`rapid_pending_fixtures_still_fail`] keeps the list honest, so a fix moves the fixture into
 /// the comparison.
-const RAPID_PENDING: &[(&str, &str, &str)] = &[(
-    "blend_after_call",
-    "line 13: C_PTP without a TR002",
-    "line 13's C_PTP is written as fine (the distance after the call is not known) with no \
-         TR002 naming C_PTP",
-)];
+const RAPID_PENDING: &[(&str, &str, &str)] = &[];
 
 fn rapid_run(case: &Case) -> Result<(), String> {
     let p = Program::fixture(case.name);

@@ -263,12 +263,13 @@ impl<'a> Tx<'a> {
             }
             Known::Is(ParamValue::Default) => "fine".to_owned(),
             Known::Unknown(b) => {
-                self.unknown(
-                    span,
-                    b,
-                    "the blending distance ($APO.CDIS)",
-                    "fine (no blending)",
-                );
+                // C_PTP/C_VEL/C_ORI become a zone of that distance: say so even when it is
+                // not known, or the blending kind changes without a finding naming it.
+                let used = match other {
+                    Some(kind) => format!("fine (no blending) instead of {kind}"),
+                    None => "fine (no blending)".to_owned(),
+                };
+                self.unknown(span, b, "the blending distance ($APO.CDIS)", &used);
                 return "fine".into();
             }
         };
