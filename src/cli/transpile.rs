@@ -16,6 +16,7 @@ use anyhow::Context;
 
 use super::Outcome;
 use super::args::{CheckFormat, PtpPrimitive, TranspileArgs, TranspileTarget};
+use super::ui::plural;
 use crate::diag::Severity;
 use crate::diag::render::sarif::RuleMeta;
 use crate::transpile::flexiv::{self, FlexivOptions, RdkVersion};
@@ -197,11 +198,7 @@ pub fn run(mut args: TranspileArgs) -> anyhow::Result<Outcome> {
             c.approximate
         );
     }
-    Ok(if errors > 0 {
-        Outcome::Findings
-    } else {
-        Outcome::Success
-    })
+    Ok(Outcome::of(false, errors > 0))
 }
 
 /// An option given for the other target: refused, because a user who passes it expects it to
@@ -278,10 +275,6 @@ fn flexiv_options(args: &TranspileArgs, target: Target) -> Result<FlexivOptions,
         f.output_offset = o;
     }
     Ok(f)
-}
-
-fn plural(n: usize) -> &'static str {
-    if n == 1 { "" } else { "s" }
 }
 
 fn read_source(path: &Path) -> anyhow::Result<Source> {
