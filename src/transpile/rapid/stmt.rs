@@ -156,14 +156,7 @@ impl<'a> Tx<'a> {
                 Ok(())
             }
             Op::Unsupported { why, at } => fail(*at, why.message(), super::help::help(why)),
-            Op::Keep { note } => {
-                let text = self.src.src.slice(span).trim().to_owned();
-                match note {
-                    Some(n) => self.line(format!("! {text} ({n})")),
-                    None => self.keep_as_comment("TR002", span),
-                }
-                Ok(())
-            }
+            Op::Keep { note } => self.keep_op(*note, span),
         }
     }
 

@@ -208,6 +208,20 @@ pub trait Emit<'a> {
         }
     }
 
+    /// A statement with nothing to do in the target ([`Op::Keep`]): its KRL as a comment, with
+    /// the `note` saying why, or tagged TR002 (the finding made for it explains).
+    fn keep_op(&mut self, note: Option<&str>, span: Span) -> R<()> {
+        match note {
+            Some(n) => {
+                let out = self.out();
+                let text = out.src.src.slice(span).trim().to_owned();
+                out.comment(&format!(" {text} ({n})"));
+            }
+            None => self.keep_as_comment("TR002", span),
+        }
+        Ok(())
+    }
+
     /// IF/ELSE in the style's words.
     fn if_block(
         &mut self,
