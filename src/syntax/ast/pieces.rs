@@ -1,6 +1,7 @@
-//! Lowering a file piece by piece ([`crate::syntax::parse_pieces`]): what [`super::lower`]
-//! makes of the whole tree, one routine line or block at a time, so that a caller can look at
-//! each statement and drop it (`check` never holds the AST of a big file whole).
+//! Lowering a file piece by piece: the streamed pieces of [`crate::syntax::parse_pieces`], one
+//! routine line or block at a time, so that a caller can look at each statement and drop it
+//! (`check` never holds the AST of a big file whole), or a whole tree's (`Parse::pieces`, which
+//! is how [`super::lower`] lowers).
 
 use super::lower::{Cx, split_declarations};
 use super::*;
@@ -121,7 +122,7 @@ enum Open {
     Dat(DatModule),
 }
 
-/// Assembles [`Lowered`] events into the [`SourceFile`] that [`super::lower`] gives.
+/// Assembles [`Lowered`] events into a [`SourceFile`].
 pub struct FileBuilder {
     file: SourceFile,
     open: Open,
