@@ -499,9 +499,10 @@ impl<'p> FileCtx<'p> {
             })
     }
 
-    /// The interface subprogram called `name` in the version the program is checked against.
-    pub fn subprogram(&self, name: &str) -> Option<&'static Subprogram> {
-        subprogram(self.project.interface.version, name)
+    /// The interface subprogram, in the version the program is checked against, that the call
+    /// named `name` (a call's name in this file) calls, as the model resolves it.
+    pub fn mm_call(&self, name: &Ident) -> Option<&'static Subprogram> {
+        (self.sema).mm_call_at(self.id, name.span.start, self.project.interface.version)
     }
 
     /// The model's id of a routine of this file's AST.
