@@ -86,10 +86,10 @@ impl Sema {
         };
         match target {
             Resolved::Routine(_) => None,
-            Resolved::Mm(i) => Some(
-                catalog()
-                    .subprograms
-                    .get(i as usize)
+            Resolved::Mm(_) => Some(
+                [Interface::V1, Interface::V2]
+                    .into_iter()
+                    .find_map(|iface| self.mm_subprogram(target, iface))
                     .is_none_or(|s| s.shape.moves()),
             ),
             Resolved::Builtin(b) => Some(!env().routines[self.builtin(b).env_index].still),
