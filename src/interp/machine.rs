@@ -32,12 +32,11 @@ struct Frame {
     module: usize,
     /// The routine running (its index in the program's routines), `None` for a DEFDAT body.
     routine: Option<usize>,
-    /// By slot: the routine's layout (`resolve::RoutineInfo::locals`), then `extra`.
+    /// By slot: the routine's layout (`resolve::RoutineInfo::slots`).
     vars: Vec<Option<Slot>>,
-    /// Names declared here that the layout lacks, with slots after the layout's.
-    extra: Vec<String>,
-    /// How many slots the layout has.
-    layout: usize,
+    /// Which call this is (calls are numbered from 1 as they are made): an INTERRUPT or
+    /// TRIGGER remembers the call that declared it, to find its locals later.
+    call: u64,
     /// Where the routine was called from (`None`: the program's main routine, a DEFDAT body).
     call_site: Option<(usize, u32)>,
     /// The `MM_*` subprogram this frame runs, when it is one of the interface's.
@@ -47,18 +46,28 @@ struct Frame {
 }
 
 impl Frame {
-    fn new(module: usize, routine: Option<usize>, vars: Vec<Option<Slot>>) -> Frame {
+    fn new(module: usize, routine: Option<usize>, vars: Vec<Option<Slot>>, call: u64) -> Frame {
         Frame {
             module,
             routine,
-            layout: vars.len(),
             vars,
-            extra: Vec::new(),
+            call,
             call_site: None,
             mm: None,
             loops: Vec::new(),
         }
     }
+}
+
+/// Where code that runs away from its own place finds its names: an INTERRUPT's condition
+/// and handler call, a TRIGGER's action. Its names were bound at load to the routine that
+/// declared it (see `resolve.rs`); its locals are that declaring call's.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub(super) struct Lexical {
+    /// The module whose text it is.
+    module: usize,
+    /// The declaring call: its frame's index and [`Frame::call`] (the frame may have returned).
+    frame: Option<(usize, u64)>,
 }
 
 /// Why execution of a block stopped early. Boxed, so that a result that did not stop is
@@ -106,21 +115,17 @@ pub(crate) struct Machine<'p> {
     message_handles: i64,
     /// Assignments and motions so far: a loop iteration that adds none changed nothing.
     writes: u64,
-    /// While an interrupt's condition or handler call, or a TRIGGER's action, is evaluated: the
-    /// module that declared it, whose names it uses wherever the program is (even inside the
+    /// While an interrupt's condition or handler call, or a TRIGGER's action, is evaluated:
+    /// where it was declared, whose names it uses wherever the program is (even inside the
     /// package). Cleared inside the routines it calls.
-    declared_scope: Option<usize>,
+    lexical: Option<Lexical>,
+    /// Calls made so far (numbers the frames).
+    calls: u64,
     robot: robot::Robot,
     /// What the `WAIT FOR` check under way reads (see `watch.rs`).
     reads: Option<watch::Reads>,
     /// What the current iteration of an idle polling loop reads.
     loop_reads: watch::LoopReads,
-}
-
-#[cfg(test)]
-thread_local! {
-    /// Name lookups made by name on this thread (the tests of `resolve.rs` count them).
-    pub(crate) static BY_NAME: std::cell::Cell<u64> = const { std::cell::Cell::new(0) };
 }
 
 /// Slots of system variables with side effects on read or write.
@@ -170,7 +175,8 @@ impl<'p> Machine<'p> {
             message_handles: 0,
             writes: 0,
             robot,
-            declared_scope: None,
+            lexical: None,
+            calls: 0,
             reads: None,
             loop_reads: None,
         };
@@ -187,6 +193,22 @@ impl<'p> Machine<'p> {
             base: slot("$BASE"),
         };
         m
+    }
+
+    /// Where the code running now was written, for an INTERRUPT or TRIGGER declared here.
+    fn here(&self) -> Lexical {
+        self.lexical.unwrap_or_else(|| Lexical {
+            module: self.cur_module(),
+            frame: self.frames.last().map(|f| (self.frames.len() - 1, f.call)),
+        })
+    }
+
+    /// Run `f` with names found where `at` was written (see [`Lexical`]).
+    fn written_at<T>(&mut self, at: Lexical, f: impl FnOnce(&mut Self) -> R<T>) -> R<T> {
+        let saved = self.lexical.replace(at);
+        let r = f(self);
+        self.lexical = saved;
+        r
     }
 
     /// Send every event to `sink` as well, as it happens.

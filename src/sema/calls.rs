@@ -4,7 +4,7 @@
 //! call moves the robot. Consumers (the transpiler's call graph and hoisting, the MM rules)
 //! ask these instead of matching names as text.
 
-use crate::catalog::{Subprogram, catalog};
+use crate::catalog::{Interface, Subprogram};
 use crate::diag::Span;
 
 use super::scope::Scope;
@@ -99,16 +99,12 @@ impl Sema {
     }
 
     /// The Mech-Mind interface subprogram (catalog, 1.x) that the statement at `span` of
-    /// `file` calls: a call the model resolved to the catalog, or to the package's routine of
-    /// that name when the package is part of the workspace.
+    /// `file` calls: a call the model resolved to the catalog, or to the package's routine (or
+    /// an EXT of it) of that name ([`Sema::mm_subprogram`]).
     pub fn mm_call(&self, file: FileId, span: Span) -> Option<&'static Subprogram> {
         self.calls(file)
             .filter(|c| span.start <= c.span.start && c.span.end <= span.end)
-            .find_map(|c| match c.target {
-                Resolved::Mm(i) => catalog().subprograms.get(i as usize),
-                Resolved::Routine(r) => catalog().subprogram(self.name(self.routine(r).name)),
-                _ => None,
-            })
+            .find_map(|c| self.mm_subprogram(c.target, Interface::V1))
     }
 }
 

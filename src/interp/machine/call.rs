@@ -1,4 +1,4 @@
-//! Routines: finding the routine a call reaches, a routine's frame (its locals' slots,
+//! Routines: a routine's frame (its locals' slots,
 //! parameters IN by value and OUT by reference), calls of routines and built-ins.
 
 use crate::syntax::ast::{Definition, Expr, Ident, ParamDir, Routine, RoutineKind};
@@ -11,47 +11,23 @@ use crate::interp::resolve::Binding;
 use crate::interp::value::Value;
 
 impl<'p> Machine<'p> {
-    pub(super) fn find_routine(&self, name: &str) -> Option<(usize, usize)> {
-        self.prog
-            .find_routine(self.cur_module(), &name.to_ascii_uppercase())
-    }
-
-    /// The slot of local `key` in frame `fi`, if the frame has one of that name.
-    pub(super) fn local_slot(&self, fi: usize, key: &str) -> Option<usize> {
-        let f = self.frames.get(fi)?;
-        if let Some(r) = f.routine
-            && let Some(&i) = self.prog.routine_info(r).locals.get(key)
-        {
-            return Some(i as usize);
-        }
-        f.extra.iter().position(|k| k == key).map(|i| f.layout + i)
-    }
-
     /// The slot in frame `fi` that the declaration of `name` fills.
-    pub(super) fn decl_slot(&mut self, fi: usize, name: &Ident) -> usize {
+    pub(super) fn decl_slot(&self, fi: usize, name: &Ident) -> R<usize> {
         let f = &self.frames[fi];
-        if let Some(Binding::Local { routine, slot }) = self.prog.binding(f.module, name.span)
-            && f.routine == Some(routine as usize)
-        {
-            return slot as usize;
+        match self.prog.binding(f.module, name.span) {
+            Some(Binding::Local { routine, slot }) if f.routine == Some(routine as usize) => {
+                Ok(slot as usize)
+            }
+            _ => Err(self.err(format!(
+                "`{}` cannot be declared here (a declaration outside a routine's frame)",
+                name.text
+            ))),
         }
-        self.local_slot_or_new(fi, &name.key())
-    }
-
-    /// The slot of local `key` in frame `fi`, made when the frame has none of that name.
-    pub(super) fn local_slot_or_new(&mut self, fi: usize, key: &str) -> usize {
-        if let Some(i) = self.local_slot(fi, key) {
-            return i;
-        }
-        let f = &mut self.frames[fi];
-        f.extra.push(key.to_string());
-        f.vars.push(None);
-        f.vars.len() - 1
     }
 
     pub(super) fn cur_module(&self) -> usize {
-        match self.declared_scope {
-            Some(m) => m,
+        match self.lexical {
+            Some(l) => l.module,
             None => self.frames.last().map(|f| f.module).unwrap_or(self.loc.0),
         }
     }
@@ -75,7 +51,7 @@ impl<'p> Machine<'p> {
         let id = prog.routine_id(mi, ri);
         let info = prog.routine_info(id);
         let mut vars: Vec<Option<Slot>> = Vec::new();
-        vars.resize_with(info.locals.len(), || None);
+        vars.resize_with(info.slots as usize, || None);
         for (i, p) in routine.params.iter().enumerate() {
             let arg = args.get(i).and_then(|a| a.as_ref());
             let slot = match (p.dir, arg) {
@@ -115,8 +91,9 @@ impl<'p> Machine<'p> {
             return Err(self.err("call depth exceeds 200 (endless recursion?)"));
         }
         let saved_loc = self.loc;
-        let saved_scope = self.declared_scope.take();
-        let mut frame = Frame::new(mi, Some(id), vars);
+        let saved_lexical = self.lexical.take();
+        self.calls += 1;
+        let mut frame = Frame::new(mi, Some(id), vars, self.calls);
         frame.call_site = (!self.frames.is_empty()).then_some(saved_loc);
         frame.mm = is_mm.then(|| routine.name.text.to_string());
         self.frames.push(frame);
@@ -149,7 +126,7 @@ impl<'p> Machine<'p> {
         })();
         let frame = self.frames.pop();
         self.loc = saved_loc;
-        self.declared_scope = saved_scope;
+        self.lexical = saved_lexical;
         let result = match result {
             // The routine called from the interrupt's level is abandoned; that level goes on.
             Err(Stop::Resume(r)) if self.frames.len() == r.0 => Ok(None),
@@ -210,7 +187,7 @@ impl<'p> Machine<'p> {
         }
         let target = match self.prog.binding(self.cur_module(), id.span) {
             Some(Binding::Call(target)) => target.map(|(m, r)| (m as usize, r as usize)),
-            _ => self.find_routine(name),
+            _ => None,
         };
         if let Some((mi, ri)) = target {
             let r = self.call_routine(mi, ri, args)?;

@@ -256,10 +256,8 @@ impl<'p> Machine<'p> {
             }
             StmtKind::Definition(_) => {}
             StmtKind::Trigger { action, .. } => {
-                let module = self.cur_module();
-                self.robot
-                    .pending_triggers
-                    .push((module, (**action).clone()))
+                let at = self.here();
+                self.robot.pending_triggers.push((at, (**action).clone()))
             }
             StmtKind::Pulse {
                 signal,

@@ -162,8 +162,7 @@ impl<'p> Machine<'p> {
             for d in &dat.definitions {
                 if let Definition::Signal(sig) = d {
                     self.loc = (mi, sig.span.start);
-                    let scope = (!sig.global && !m.config).then(|| m.scope.clone());
-                    self.declare_dat_signal(sig, scope.as_deref())?;
+                    self.declare_dat_signal(mi, sig)?;
                 }
             }
             for d in &dat.decls {
@@ -189,7 +188,7 @@ impl<'p> Machine<'p> {
             let Some(dat) = &self.prog.modules[mi].ast.dat else {
                 continue;
             };
-            self.frames.push(Frame::new(mi, None, Vec::new()));
+            self.frames.push(Frame::new(mi, None, Vec::new(), 0));
             let r = self.exec_block(&dat.body);
             self.frames.pop();
             r?;
@@ -226,7 +225,10 @@ impl<'p> Machine<'p> {
                     None => dims.push(0),
                 }
             }
-            let local = local.map(|fi| (fi, self.decl_slot(fi, &v.name)));
+            let local = match local {
+                Some(fi) => Some((fi, self.decl_slot(fi, &v.name)?)),
+                None => None,
+            };
             if let Some((fi, i)) = local {
                 // A parameter keeps its caller-provided value/alias; IN values get the declared type.
                 if let Some(slot) = self.frames[fi].vars[i].as_mut() {

@@ -3,8 +3,6 @@
 //! variables (`$IN`, `$OUT`, `$FLAG` in [`Globals`]), since the program reads and writes them
 //! like any variable; [`Io`] holds what the controller keeps beside them.
 
-use rustc_hash::FxHashMap;
-
 use super::Machine;
 use super::place::{Place, Seg};
 use crate::interp::globals::Globals;
@@ -33,8 +31,8 @@ pub(super) struct Pulse {
 pub(super) struct Io {
     /// By 1-based number (index 0 unused).
     timers: Vec<Timer>,
-    /// SIGNAL names of the DEFDATs, keyed like globals (`NAME` or `SCOPE::NAME`).
-    signals: FxHashMap<String, Place>,
+    /// SIGNALs of the DEFDATs, by their index (`resolve::Binding::Signal`).
+    signals: Vec<Option<Place>>,
     /// Outputs a PULSE will set back.
     pulses: Vec<Pulse>,
     /// While the submit routine runs (see `submit.rs`): its outputs are not traced as bits.
@@ -45,7 +43,7 @@ impl Io {
     pub(super) fn new() -> Io {
         Io {
             timers: vec![Timer::default(); TIMERS + 1],
-            signals: FxHashMap::default(),
+            signals: Vec::new(),
             pulses: Vec::new(),
             in_submit: false,
         }
@@ -100,12 +98,16 @@ impl Io {
         t.running = !stop;
     }
 
-    pub(super) fn declare_signal(&mut self, key: String, place: Place) {
-        self.signals.insert(key, place);
+    pub(super) fn declare_signal(&mut self, index: u32, place: Place) {
+        let i = index as usize;
+        if self.signals.len() <= i {
+            self.signals.resize(i + 1, None);
+        }
+        self.signals[i] = Some(place);
     }
 
-    pub(super) fn signal(&self, key: &str) -> Option<&Place> {
-        self.signals.get(key)
+    pub(super) fn signal(&self, index: u32) -> Option<&Place> {
+        self.signals.get(index as usize)?.as_ref()
     }
 
     /// Start a pulse; a new pulse on the same output replaces the running one.

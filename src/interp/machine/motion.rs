@@ -49,13 +49,10 @@ impl<'p> Machine<'p> {
         });
         self.set_phase(submit::Phase::Running);
         self.submit_cycle()?;
-        // A trigger's action uses the names of the module that programmed it, even when the
-        // next motion is made elsewhere (MM_CALIB's).
-        for (module, t) in std::mem::take(&mut self.robot.pending_triggers) {
-            let saved = self.declared_scope.replace(module);
-            let r = self.exec(&t);
-            self.declared_scope = saved;
-            r?;
+        // A trigger's action uses the names of the routine call that programmed it, even when
+        // the next motion is made elsewhere (MM_CALIB's).
+        for (at, t) in std::mem::take(&mut self.robot.pending_triggers) {
+            self.written_at(at, |m| m.exec(&t))?;
         }
         Ok(())
     }

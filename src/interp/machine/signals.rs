@@ -13,6 +13,7 @@
 use crate::syntax::ast::{Expr, ExprKind, SignalDecl};
 
 use super::{Machine, Place, R, Root, Seg, Slot};
+use crate::interp::resolve::Binding;
 use crate::interp::value::Value;
 
 /// Widest signal group (bits): a KRL INT has 32.
@@ -84,14 +85,13 @@ impl<'p> Machine<'p> {
         }
     }
 
-    /// Declare a signal of a data list: module-wide under `scope`, else visible everywhere.
-    pub(super) fn declare_dat_signal(&mut self, s: &SignalDecl, scope: Option<&str>) -> R<()> {
+    /// Declare a signal of a data list (bound at load to its place in the signal table).
+    pub(super) fn declare_dat_signal(&mut self, mi: usize, s: &SignalDecl) -> R<()> {
         let place = self.signal_place(s)?;
-        let key = match scope {
-            None => s.name.key(),
-            Some(scope) => format!("{scope}::{}", s.name.key()),
+        let Some(Binding::Signal(i)) = self.prog.binding(mi, s.name.span) else {
+            return Err(self.err(format!("SIGNAL {} was not bound at load", s.name.text)));
         };
-        self.io.declare_signal(key, place);
+        self.io.declare_signal(i, place);
         Ok(())
     }
 
@@ -99,7 +99,7 @@ impl<'p> Machine<'p> {
     pub(super) fn declare_local_signal(&mut self, s: &SignalDecl, frame: usize) -> R<()> {
         let place = self.signal_place(s)?;
         if frame < self.frames.len() {
-            let i = self.local_slot_or_new(frame, &s.name.key());
+            let i = self.decl_slot(frame, &s.name)?;
             self.frames[frame].vars[i] = Some(Slot::Alias(place));
         }
         Ok(())
