@@ -72,30 +72,36 @@ impl Sema {
         self.lookup_call(at, name)
     }
 
+    /// The Mech-Mind subprogram a call that reaches `target` calls (the catalog's, or an EXT
+    /// of one), in either interface generation (1.x first).
+    pub fn mm_target(&self, target: Resolved) -> Option<&'static Subprogram> {
+        self.mm_subprogram(target, Interface::V1)
+            .or_else(|| self.mm_subprogram(target, Interface::V2))
+    }
+
     /// Whether a call that reaches `target` moves the robot, as far as the model knows without
-    /// reading a body: a Mech-Mind subprogram when its catalog shape moves; a KSS built-in,
-    /// or an EXT declaring one, unless `kss.toml` marks it `still`; a routine of another
-    /// module (an EXT, or a name the model cannot see) may. `None` for a routine of the
-    /// workspace: its body decides.
+    /// reading a body: a Mech-Mind subprogram (or an EXT of one) when its catalog shape moves;
+    /// a KSS built-in, or an EXT declaring one, unless `kss.toml` marks it `still`; a routine
+    /// of another module (an EXT, or a name the model cannot see) may. `None` for a routine
+    /// of the workspace: its body decides.
     pub fn call_moves(&self, target: Resolved) -> Option<bool> {
+        if let Resolved::Routine(_) = target {
+            return None;
+        }
+        if let Some(s) = self.mm_target(target) {
+            return Some(s.shape.moves());
+        }
         let still = |name: &str| {
             env()
                 .routines
                 .iter()
                 .any(|r| r.still && r.decl.name.is(name))
         };
-        match target {
-            Resolved::Routine(_) => None,
-            Resolved::Mm(_) => Some(
-                [Interface::V1, Interface::V2]
-                    .into_iter()
-                    .find_map(|iface| self.mm_subprogram(target, iface))
-                    .is_none_or(|s| s.shape.moves()),
-            ),
-            Resolved::Builtin(b) => Some(!env().routines[self.builtin(b).env_index].still),
-            Resolved::Ext(x) => Some(!still(self.name(self.ext(x).name))),
-            _ => Some(true),
-        }
+        Some(match target {
+            Resolved::Builtin(b) => !env().routines[self.builtin(b).env_index].still,
+            Resolved::Ext(x) => !still(self.name(self.ext(x).name)),
+            _ => true,
+        })
     }
 
     /// The Mech-Mind interface subprogram (catalog, 1.x) that the statement at `span` of
@@ -182,7 +188,8 @@ mod tests {
     /// built-in) or, for a routine of the workspace, from its body (`None`).
     #[test]
     fn call_targets_and_whether_they_move() {
-        let src = "DEF cell()\nEXT BAS(BAS_COMMAND :IN, REAL :IN)\nEXT elsewhere()\nEND\n\
+        let src = "DEF cell()\nEXT BAS(BAS_COMMAND :IN, REAL :IN)\nEXT elsewhere()\n\
+            EXT MM_Get_Status(INT :OUT)\nEXT MM_Calib(INT :IN)\nEND\n\
             DEF helper()\nEND\n";
         let a = analysis(&[("cell.src", src)]);
         let f = a.sema.file_id("cell.src").expect("file");
@@ -212,5 +219,12 @@ mod tests {
         );
         assert_eq!(moves(None, "MM_Get_Status"), Some(false));
         assert_eq!(moves(None, "MM_Calib"), Some(true));
+        assert_eq!(moves(None, "MM_Get_Property"), Some(false), "2.x only");
+        assert_eq!(
+            moves(Some(cell), "MM_Get_Status"),
+            Some(false),
+            "an EXT of it"
+        );
+        assert_eq!(moves(Some(cell), "MM_Calib"), Some(true), "an EXT of it");
     }
 }

@@ -699,7 +699,9 @@ impl<'p> Lower<'p> {
                 for c in &o.facts.callees {
                     let w = match self.call_target(Some(r), c) {
                         Ok(t) => self.routine_writes(t),
-                        Err(Resolved::Mm(_)) => Some(BTreeSet::from(["MM_LAST_STATUS".into()])),
+                        Err(t) if src.sema.mm_target(t).is_some() => {
+                            Some(BTreeSet::from(["MM_LAST_STATUS".into()]))
+                        }
                         Err(_) => None,
                     };
                     match w {
