@@ -490,6 +490,15 @@ fn resolve_move(m: &mut Move, st: &State) {
             };
         }
     }
+    if let Path::LinearRel {
+        joint: Some(speed), ..
+    } = &mut m.path
+    {
+        *speed = match known(MotionParam::VelPtp) {
+            Known::Is(v) => Known::Is(JointPct(v)),
+            Known::Unknown(b) => Known::Unknown(b),
+        };
+    }
     let cdis = known(MotionParam::ApoCdis);
     m.blend = match &m.blend {
         Blend::Exact => Blend::Exact,
