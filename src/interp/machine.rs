@@ -12,6 +12,7 @@ mod motion;
 mod place;
 mod robot;
 mod scalar;
+mod scopes;
 mod settings;
 mod signals;
 mod submit;
@@ -20,55 +21,12 @@ mod vision;
 mod watch;
 
 use super::eki::Eki;
-use super::globals::Globals;
 use super::program::Program;
 use super::value::{Types, Value};
 use super::{End, Event, Location, Options, RunResult, RuntimeError, TraceSink};
 pub(crate) use place::Place;
 use place::{Root, Seg, Slot};
-
-#[derive(Debug)]
-struct Frame {
-    module: usize,
-    /// The routine running (its index in the program's routines), `None` for a DEFDAT body.
-    routine: Option<usize>,
-    /// By slot: the routine's layout (`resolve::RoutineInfo::slots`).
-    vars: Vec<Option<Slot>>,
-    /// Which call this is (calls are numbered from 1 as they are made): an INTERRUPT or
-    /// TRIGGER remembers the call that declared it, to find its locals later.
-    call: u64,
-    /// Where the routine was called from (`None`: the program's main routine, a DEFDAT body).
-    call_site: Option<(usize, u32)>,
-    /// The `MM_*` subprogram this frame runs, when it is one of the interface's.
-    mm: Option<String>,
-    /// Headers of the loops running in this frame, innermost last (where limits are reported).
-    loops: Vec<(usize, u32)>,
-}
-
-impl Frame {
-    fn new(module: usize, routine: Option<usize>, vars: Vec<Option<Slot>>, call: u64) -> Frame {
-        Frame {
-            module,
-            routine,
-            vars,
-            call,
-            call_site: None,
-            mm: None,
-            loops: Vec::new(),
-        }
-    }
-}
-
-/// Where code that runs away from its own place finds its names: an INTERRUPT's condition
-/// and handler call, a TRIGGER's action. Its names were bound at load to the routine that
-/// declared it (see `resolve.rs`); its locals are that declaring call's.
-#[derive(Debug, Clone, Copy, PartialEq)]
-pub(super) struct Lexical {
-    /// The module whose text it is.
-    module: usize,
-    /// The declaring call: its frame's index and [`Frame::call`] (the frame may have returned).
-    frame: Option<(usize, u64)>,
-}
+use scopes::{Lexical, Scopes, SysSlots};
 
 /// Why execution of a block stopped early. Boxed, so that a result that did not stop is
 /// small (most statements and expressions do not).
@@ -98,46 +56,28 @@ enum Flow {
 pub(crate) type R<T> = Result<T, Stop>;
 
 pub(crate) struct Machine<'p> {
+    // The program.
     pub(crate) prog: &'p Program,
     pub(crate) opts: &'p Options,
-    globals: Globals,
-    /// Slots of the system variables the machine itself reads or watches.
-    sys: SysSlots,
-    frames: Vec<Frame>,
+    // The state, each concern its own part.
+    scopes: Scopes,
+    robot: robot::Robot,
+    io: io::Io,
+    pub(crate) eki: Eki,
+    interrupts: interrupt::Interrupts,
+    trace: trace::Trace<'p>,
+    // Where the run is.
     /// Current module and byte offset, for error locations.
     loc: (usize, u32),
     pub(crate) clock_ms: f64,
-    io: io::Io,
-    pub(crate) eki: Eki,
-    trace: trace::Trace<'p>,
     steps: u64,
-    interrupts: interrupt::Interrupts,
-    message_handles: i64,
     /// Assignments and motions so far: a loop iteration that adds none changed nothing.
     writes: u64,
-    /// While an interrupt's condition or handler call, or a TRIGGER's action, is evaluated:
-    /// where it was declared, whose names it uses wherever the program is (even inside the
-    /// package). Cleared inside the routines it calls.
-    lexical: Option<Lexical>,
-    /// Calls made so far (numbers the frames).
-    calls: u64,
-    robot: robot::Robot,
+    message_handles: i64,
     /// What the `WAIT FOR` check under way reads (see `watch.rs`).
     reads: Option<watch::Reads>,
     /// What the current iteration of an idle polling loop reads.
     loop_reads: watch::LoopReads,
-}
-
-/// Slots of system variables with side effects on read or write.
-#[derive(Debug, Default, Clone, Copy)]
-struct SysSlots {
-    timer: usize,
-    timer_flag: usize,
-    timer_stop: usize,
-    input: usize,
-    in_home: usize,
-    tool: usize,
-    base: usize,
 }
 
 /// Globals the interpreter predefines (like `$config.dat`); not reported in [`RunResult::globals`].
@@ -162,28 +102,24 @@ impl<'p> Machine<'p> {
         let mut m = Machine {
             prog,
             opts,
-            globals,
-            sys: SysSlots::default(),
-            frames: Vec::new(),
-            loc: (0, 0),
-            clock_ms: 0.0,
+            scopes: Scopes::new(globals),
+            robot,
             io: io::Io::new(),
             eki: Eki::default(),
-            trace: trace::Trace::new(prog),
-            steps: 0,
             interrupts: interrupt::Interrupts::default(),
-            message_handles: 0,
+            trace: trace::Trace::new(prog),
+            loc: (0, 0),
+            clock_ms: 0.0,
+            steps: 0,
             writes: 0,
-            robot,
-            lexical: None,
-            calls: 0,
+            message_handles: 0,
             reads: None,
             loop_reads: None,
         };
         m.init_system();
         m.init_robot_state();
-        let mut slot = |k: &str| m.globals.intern(k);
-        m.sys = SysSlots {
+        let mut slot = |k: &str| m.scopes.globals.intern(k);
+        m.scopes.sys = SysSlots {
             timer: slot("$TIMER"),
             timer_flag: slot("$TIMER_FLAG"),
             timer_stop: slot("$TIMER_STOP"),
@@ -197,17 +133,14 @@ impl<'p> Machine<'p> {
 
     /// Where the code running now was written, for an INTERRUPT or TRIGGER declared here.
     fn here(&self) -> Lexical {
-        self.lexical.unwrap_or_else(|| Lexical {
-            module: self.cur_module(),
-            frame: self.frames.last().map(|f| (self.frames.len() - 1, f.call)),
-        })
+        self.scopes.here(self.loc.0)
     }
 
     /// Run `f` with names found where `at` was written (see [`Lexical`]).
     fn written_at<T>(&mut self, at: Lexical, f: impl FnOnce(&mut Self) -> R<T>) -> R<T> {
-        let saved = self.lexical.replace(at);
+        let saved = self.scopes.lexical.replace(at);
         let r = f(self);
-        self.lexical = saved;
+        self.scopes.lexical = saved;
         r
     }
 
@@ -327,12 +260,13 @@ impl<'p> Machine<'p> {
             },
         );
         let globals = self
+            .scopes
             .globals
             .iter()
             .filter(|(k, _)| !k.starts_with('$') && !BUILTIN_GLOBALS.contains(k))
             .map(|(k, v)| (k.to_string(), v.clone()))
             .collect();
-        let outputs = match self.globals.get("$OUT") {
+        let outputs = match self.scopes.globals.get("$OUT") {
             Some(Value::Array { items, .. }) => items
                 .iter()
                 .enumerate()

@@ -4,7 +4,7 @@
 use crate::syntax::ast::{Definition, Expr, Ident, ParamDir, Routine, RoutineKind};
 
 use super::place::{Place, Slot};
-use super::{Flow, Frame, Machine, R, Stop};
+use super::{Flow, Machine, R, Stop};
 use crate::interp::Event;
 use crate::interp::program::Program;
 use crate::interp::resolve::Binding;
@@ -13,7 +13,7 @@ use crate::interp::value::Value;
 impl<'p> Machine<'p> {
     /// The slot in frame `fi` that the declaration of `name` fills.
     pub(super) fn decl_slot(&self, fi: usize, name: &Ident) -> R<usize> {
-        let f = &self.frames[fi];
+        let f = &self.scopes.frames[fi];
         match self.prog.binding(f.module, name.span) {
             Some(Binding::Local { routine, slot }) if f.routine == Some(routine as usize) => {
                 Ok(slot as usize)
@@ -26,10 +26,7 @@ impl<'p> Machine<'p> {
     }
 
     pub(super) fn cur_module(&self) -> usize {
-        match self.lexical {
-            Some(l) => l.module,
-            None => self.frames.last().map(|f| f.module).unwrap_or(self.loc.0),
-        }
+        self.scopes.module(self.loc.0)
     }
 
     pub(super) fn call_routine(
@@ -87,17 +84,16 @@ impl<'p> Machine<'p> {
                 name: routine.name.text.to_string(),
             });
         }
-        if self.frames.len() > 200 {
+        if self.scopes.frames.len() > 200 {
             return Err(self.err("call depth exceeds 200 (endless recursion?)"));
         }
         let saved_loc = self.loc;
-        let saved_lexical = self.lexical.take();
-        self.calls += 1;
-        let mut frame = Frame::new(mi, Some(id), vars, self.calls);
-        frame.call_site = (!self.frames.is_empty()).then_some(saved_loc);
+        let saved_lexical = self.scopes.lexical.take();
+        let mut frame = self.scopes.new_frame(mi, Some(id), vars);
+        frame.call_site = (!self.scopes.frames.is_empty()).then_some(saved_loc);
         frame.mm = is_mm.then(|| routine.name.text.to_string());
-        self.frames.push(frame);
-        let fi = self.frames.len() - 1;
+        self.scopes.frames.push(frame);
+        let fi = self.scopes.frames.len() - 1;
         let result = (|| -> R<Option<Value>> {
             for d in &routine.definitions {
                 if let Definition::Signal(sig) = d {
@@ -111,7 +107,7 @@ impl<'p> Machine<'p> {
                 self.declare(d, |n| n.to_string(), Some(fi))?;
             }
             for (p, &slot) in routine.params.iter().zip(&info.params) {
-                if self.frames[fi].vars[slot as usize].is_none() {
+                if self.scopes.frames[fi].vars[slot as usize].is_none() {
                     return Err(self.err(format!(
                         "parameter {} of {} has no declaration",
                         p.name.text, routine.name.text
@@ -124,12 +120,12 @@ impl<'p> Machine<'p> {
                 _ => Ok(None),
             }
         })();
-        let frame = self.frames.pop();
+        let frame = self.scopes.frames.pop();
         self.loc = saved_loc;
-        self.lexical = saved_lexical;
+        self.scopes.lexical = saved_lexical;
         let result = match result {
             // The routine called from the interrupt's level is abandoned; that level goes on.
-            Err(Stop::Resume(r)) if self.frames.len() == r.0 => Ok(None),
+            Err(Stop::Resume(r)) if self.scopes.frames.len() == r.0 => Ok(None),
             other => other,
         };
         let ret = result?;
@@ -145,7 +141,7 @@ impl<'p> Machine<'p> {
                     }
                 }
             }
-            let status = match self.globals.get("MM_LAST_STATUS") {
+            let status = match self.scopes.globals.get("MM_LAST_STATUS") {
                 Some(Value::Int(i)) => Some(*i),
                 _ => None,
             };

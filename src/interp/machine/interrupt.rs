@@ -69,7 +69,7 @@ impl<'p> Machine<'p> {
             on: false,
             enabled: true,
             last: false,
-            depth: self.frames.len(),
+            depth: self.scopes.frames.len(),
         };
         self.interrupts.table.insert(n, i);
         self.interrupts.recount();

@@ -175,7 +175,7 @@ impl<'p> Machine<'p> {
     /// Set `array[n]` (1-based; `None` does nothing), tracing a change.
     pub(crate) fn set_io(&mut self, array: &'static str, n: Option<usize>, value: bool) {
         let Some(n) = n else { return };
-        if let Some(Value::Array { items, .. }) = self.globals.get_mut(array)
+        if let Some(Value::Array { items, .. }) = self.scopes.globals.get_mut(array)
             && let Some(slot) = n.checked_sub(1).and_then(|i| items.get_mut(i))
             && *slot != Value::Bool(value)
         {
@@ -215,11 +215,11 @@ impl<'p> Machine<'p> {
     }
 
     pub(super) fn sync_inputs(&mut self) {
-        sync_inputs(&mut self.globals, &self.opts.input_links);
+        sync_inputs(&mut self.scopes.globals, &self.opts.input_links);
     }
 
     pub(super) fn sync_timers(&mut self) {
-        self.io.sync_timers(&mut self.globals, self.clock_ms);
+        self.io.sync_timers(&mut self.scopes.globals, self.clock_ms);
     }
 
     pub(super) fn after_system_write(&mut self, slot: usize, path: &[Seg]) {
@@ -228,15 +228,15 @@ impl<'p> Machine<'p> {
         };
         let n = i + 1;
         match slot {
-            s if s == self.sys.timer => {
-                if let Some(Value::Array { items, .. }) = self.globals.get("$TIMER")
+            s if s == self.scopes.sys.timer => {
+                if let Some(Value::Array { items, .. }) = self.scopes.globals.get("$TIMER")
                     && let Some(Value::Int(v)) = items.get(*i)
                 {
                     self.io.timer_set(n, *v as f64, self.clock_ms);
                 }
             }
-            s if s == self.sys.timer_stop => {
-                if let Some(Value::Array { items, .. }) = self.globals.get("$TIMER_STOP")
+            s if s == self.scopes.sys.timer_stop => {
+                if let Some(Value::Array { items, .. }) = self.scopes.globals.get("$TIMER_STOP")
                     && let Some(Value::Bool(stop)) = items.get(*i)
                 {
                     self.io.timer_stop(n, *stop, self.clock_ms);

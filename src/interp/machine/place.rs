@@ -6,6 +6,7 @@ use compact_str::CompactString;
 use crate::syntax::ast::{Expr, ExprKind, Ident};
 
 use super::io::io_array;
+use super::scopes::Unreachable;
 use super::{Machine, R};
 use crate::interp::globals::Globals;
 use crate::interp::resolve::Binding;
@@ -56,33 +57,24 @@ pub(super) enum Slot {
 }
 
 impl<'p> Machine<'p> {
-    /// The frame a local of `routine` lives in here: the running call's, or for an
-    /// INTERRUPT or TRIGGER, the call that declared it (see [`super::Lexical`]).
+    /// The frame a local of `routine` lives in here (see `Scopes::frame_of`).
     fn frame_of(&self, routine: u32, name: &str) -> R<usize> {
-        let fi = match self.lexical.and_then(|l| l.frame) {
-            Some((fi, call)) => match self.frames.get(fi) {
-                Some(f) if f.call == call => fi,
+        self.scopes.frame_of(routine).map_err(|why| {
+            let routine = self.routine_name(routine);
+            self.err(match why {
                 // KSS's behaviour is not documented in what we could read [U]: a GLOBAL
                 // interrupt outlives its routine, whose locals are gone, so krlkit stops.
-                _ => {
-                    return Err(self.err(format!(
-                        "`{name}` is a local of {}, whose call that declared this has returned \
-                         (an INTERRUPT condition or handler argument, or a TRIGGER action, uses \
-                         the locals of the routine it was declared in; krlkit assumes KSS \
-                         cannot read them then)",
-                        self.routine_name(routine)
-                    )));
+                Unreachable::Returned => format!(
+                    "`{name}` is a local of {routine}, whose call that declared this has \
+                     returned (an INTERRUPT condition or handler argument, or a TRIGGER action, \
+                     uses the locals of the routine it was declared in; krlkit assumes KSS \
+                     cannot read them then)"
+                ),
+                Unreachable::NotRunning => {
+                    format!("`{name}` is a local of {routine}, which is not running")
                 }
-            },
-            None => self.frames.len().wrapping_sub(1),
-        };
-        match self.frames.get(fi) {
-            Some(f) if f.routine == Some(routine as usize) => Ok(fi),
-            _ => Err(self.err(format!(
-                "`{name}` is a local of {}, which is not running",
-                self.routine_name(routine)
-            ))),
-        }
+            })
+        })
     }
 
     /// The name of routine `id` (in messages).
@@ -97,14 +89,14 @@ impl<'p> Machine<'p> {
         match self.prog.binding(self.cur_module(), id.span) {
             Some(Binding::Local { routine, slot }) => {
                 let fi = self.frame_of(routine, &id.text)?;
-                match self.frames[fi].vars.get(slot as usize) {
+                match self.scopes.frames[fi].vars.get(slot as usize) {
                     Some(Some(Slot::Own(_))) => Ok(Place::root(Root::Local(fi, slot as usize))),
                     Some(Some(Slot::Alias(p))) => Ok(p.clone()),
                     // Its DECL has not run yet.
                     _ => Err(unknown(self)),
                 }
             }
-            Some(Binding::Global(slot)) => match self.globals.at(slot as usize) {
+            Some(Binding::Global(slot)) => match self.scopes.globals.at(slot as usize) {
                 Some(_) => Ok(Place::root(Root::Global(slot as usize))),
                 None => Err(unknown(self)),
             },
@@ -123,30 +115,21 @@ impl<'p> Machine<'p> {
     pub(super) fn read_bound(&self, id: &Ident) -> Option<&Value> {
         if self.reads.is_some()
             || self.loop_reads.is_some()
-            || self.lexical.is_some()
+            || self.scopes.lexical.is_some()
             || super::scalar::slow()
         {
             return None;
         }
         match self.prog.binding(self.cur_module(), id.span)? {
-            Binding::Local { routine, slot } => {
-                let f = self.frames.last()?;
-                if f.routine != Some(routine as usize) {
-                    return None;
-                }
-                match f.vars.get(slot as usize)?.as_ref()? {
-                    Slot::Own(v) => Some(v),
-                    Slot::Alias(_) => None,
-                }
-            }
+            Binding::Local { routine, slot } => self.scopes.own_local(routine, slot),
             Binding::Global(k) => {
                 let k = k as usize;
-                let sys = &self.sys;
+                let sys = &self.scopes.sys;
                 let computed = [sys.timer, sys.timer_flag, sys.input, sys.in_home].contains(&k);
                 if computed {
                     return None;
                 }
-                self.globals.at(k)
+                self.scopes.globals.at(k)
             }
             Binding::Signal(_) | Binding::Call(_) => None,
         }
@@ -227,22 +210,12 @@ impl<'p> Machine<'p> {
         Ok(flat)
     }
 
-    pub(super) fn root_ref(&self, root: &Root) -> Option<&Value> {
-        match root {
-            Root::Global(k) => self.globals.at(*k),
-            Root::Local(fi, k) => match self.frames.get(*fi)?.vars.get(*k)?.as_ref()? {
-                Slot::Own(v) => Some(v),
-                Slot::Alias(_) => None,
-            },
-            Root::Group { .. } | Root::Const(_) => None,
-        }
-    }
-
     pub(crate) fn read_place(&self, p: &Place) -> R<&Value> {
         if matches!(p.root, Root::Group { .. } | Root::Const(_)) {
             return Err(self.err("a signal group or constant has no members or elements"));
         }
         let mut v = self
+            .scopes
             .root_ref(&p.root)
             .ok_or_else(|| self.err("dangling reference"))?;
         for s in &p.path {
@@ -258,12 +231,12 @@ impl<'p> Machine<'p> {
 
     pub(crate) fn read_value(&mut self, p: &Place) -> R<Value> {
         self.note_read(&p.root, &p.path);
-        let sys = self.sys;
+        let sys = self.scopes.sys;
         match &p.root {
             Root::Global(k) if *k == sys.timer || *k == sys.timer_flag => self.sync_timers(),
             Root::Global(k) | Root::Group { array: k, .. } if *k == sys.input => self.sync_inputs(),
             Root::Global(k) if *k == sys.in_home => {
-                return Ok(Value::Bool(self.robot.in_home(&self.globals)));
+                return Ok(Value::Bool(self.robot.in_home(&self.scopes.globals)));
             }
             _ => {}
         }
@@ -296,7 +269,7 @@ impl<'p> Machine<'p> {
         let current = self.read_place(p)?.clone();
         let io = match (&p.root, p.path.as_slice(), &current) {
             (Root::Global(k), [Seg::Index(i)], Value::Bool(old)) => {
-                io_array(self.globals.name(*k)).map(|a| (a, i + 1, *old))
+                io_array(self.scopes.globals.name(*k)).map(|a| (a, i + 1, *old))
             }
             _ => None,
         };
@@ -307,13 +280,13 @@ impl<'p> Machine<'p> {
             self.io_changed(array, n, *b);
         }
         let frames_before = match &p.root {
-            Root::Global(k) if *k == self.sys.tool || *k == self.sys.base => {
-                Some(self.robot.tool_base(&self.globals))
+            Root::Global(k) if *k == self.scopes.sys.tool || *k == self.scopes.sys.base => {
+                Some(self.robot.tool_base(&self.scopes.globals))
             }
             _ => None,
         };
         // `read_place` found it above, and nothing since moved it.
-        let Some(slot) = self.place_mut(p) else {
+        let Some(slot) = self.scopes.place_mut(p) else {
             return Err(self.err("invalid access"));
         };
         *slot = new;
@@ -321,7 +294,7 @@ impl<'p> Machine<'p> {
             self.after_system_write(*k, &p.path);
         }
         if let Some((old_base, old_tool)) = frames_before {
-            (self.robot).follow_frames(&mut self.globals, &old_base, &old_tool);
+            (self.robot).follow_frames(&mut self.scopes.globals, &old_base, &old_tool);
         }
         Ok(())
     }
@@ -332,13 +305,13 @@ impl<'p> Machine<'p> {
     pub(super) fn assign_scalar(&mut self, p: &Place, v: &Value) -> bool {
         let plain = match p.root {
             Root::Local(..) => true,
-            Root::Global(k) => !self.globals.name(k).starts_with('$'),
+            Root::Global(k) => !self.scopes.globals.name(k).starts_with('$'),
             _ => false,
         };
         if !plain {
             return false;
         }
-        let Some(slot) = self.place_mut(p) else {
+        let Some(slot) = self.scopes.place_mut(p) else {
             return false;
         };
         match (slot, v) {
@@ -355,27 +328,7 @@ impl<'p> Machine<'p> {
         true
     }
 
-    /// The value at `p`, to change it.
-    pub(super) fn place_mut(&mut self, p: &Place) -> Option<&mut Value> {
-        let mut v = match &p.root {
-            Root::Global(k) => self.globals.at_mut(*k)?,
-            Root::Local(fi, k) => match self.frames.get_mut(*fi)?.vars.get_mut(*k)?.as_mut()? {
-                Slot::Own(v) => v,
-                Slot::Alias(_) => return None,
-            },
-            Root::Group { .. } | Root::Const(_) => return None,
-        };
-        for s in &p.path {
-            v = match (s, v) {
-                (Seg::Index(i), Value::Array { items, .. }) => items.get_mut(*i)?,
-                (Seg::Field(f), v) => v.field_mut(f)?,
-                _ => return None,
-            };
-        }
-        Some(v)
-    }
-
     pub(crate) fn globals_mut(&mut self) -> &mut Globals {
-        &mut self.globals
+        &mut self.scopes.globals
     }
 }

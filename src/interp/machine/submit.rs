@@ -26,15 +26,16 @@ impl Machine<'_> {
     /// The state variables at the start of a run.
     pub(super) fn init_robot_state(&mut self) {
         let mode = self.opts.mode_op.to_ascii_uppercase();
-        self.globals.insert("$MODE_OP", Value::Enum(mode));
-        self.globals
+        self.scopes.globals.insert("$MODE_OP", Value::Enum(mode));
+        self.scopes
+            .globals
             .insert("$PRO_STATE0", Value::Enum("P_ACTIVE".into()));
         for (k, v) in [
             ("$NEAR_POSRET", true),
             ("$ROB_STOPPED", true),
             ("$PRO_MOVE", false),
         ] {
-            self.globals.insert(k, Value::Bool(v));
+            self.scopes.globals.insert(k, Value::Bool(v));
         }
         self.set_phase(Phase::Running);
     }
@@ -46,12 +47,15 @@ impl Machine<'_> {
             Phase::Ended => ("P_END", false),
             Phase::Halted | Phase::Failed => ("P_STOP", false),
         };
-        self.globals
+        self.scopes
+            .globals
             .insert("$PRO_STATE1", Value::Enum(state.into()));
-        self.globals.insert("$ROB_STOPPED", Value::Bool(!moving));
-        self.globals.insert("$PRO_MOVE", Value::Bool(moving));
+        self.scopes
+            .globals
+            .insert("$ROB_STOPPED", Value::Bool(!moving));
+        self.scopes.globals.insert("$PRO_MOVE", Value::Bool(moving));
         if matches!(phase, Phase::Failed) {
-            self.globals.insert("$STOPMESS", Value::Bool(true));
+            self.scopes.globals.insert("$STOPMESS", Value::Bool(true));
         }
     }
 
@@ -71,7 +75,7 @@ impl Machine<'_> {
             )));
         };
         let saved = (self.loc, self.writes, self.steps);
-        let saved_lexical = self.lexical.take();
+        let saved_lexical = self.scopes.lexical.take();
         self.io.in_submit = true;
         let ran = self.call_routine(mi, ri, &[]);
         let word = ran.and_then(|_| {
@@ -79,7 +83,7 @@ impl Machine<'_> {
             self.read_value(&place)
         });
         self.io.in_submit = false;
-        self.lexical = saved_lexical;
+        self.scopes.lexical = saved_lexical;
         (self.loc, self.writes, self.steps) = saved;
         let word = match word? {
             Value::Int(w) => w as u32,
@@ -109,9 +113,10 @@ impl Machine<'_> {
         }
         keys.iter()
             .find_map(|k| {
-                self.globals
+                self.scopes
+                    .globals
                     .slot(k)
-                    .filter(|&s| self.globals.at(s).is_some())
+                    .filter(|&s| self.scopes.globals.at(s).is_some())
             })
             .map(|s| Place::root(Root::Global(s)))
             .ok_or_else(|| self.err(format!("unknown variable `{name}`")))
