@@ -11,7 +11,9 @@ mod expr;
 mod motion;
 mod stmt;
 
-use std::collections::{BTreeSet, HashMap};
+use std::collections::BTreeSet;
+
+use rustc_hash::FxHashMap;
 
 use super::{
     Block, Datum, Expr, Finding, LabelId, LoopId, Op, Program, Routine, RoutineId, RoutineKind,
@@ -51,7 +53,7 @@ pub struct Lowering {
 pub struct Replay {
     /// The variables as they were when the first routine began.
     vars: Vec<Var>,
-    keys: HashMap<(String, String), VarId>,
+    keys: FxHashMap<(String, String), VarId>,
     /// The next spline id at the start of each routine.
     next_spline: Vec<u32>,
     caps: &'static Caps,
@@ -72,18 +74,20 @@ impl Replay {
             interrupts: first.interrupts.clone(),
             ..Program::default()
         };
+        let routine_ids = index_routines(&out.routines);
         Lower {
             src,
             model: Model::new(src),
             opts: options,
             caps: self.caps,
             out,
+            routine_ids,
             vars: self.keys.clone(),
             rt: None,
             next_spline: 0,
             vision: None,
-            writes: HashMap::new(),
-            moves: HashMap::new(),
+            writes: FxHashMap::default(),
+            moves: FxHashMap::default(),
             pass: Pass::Replay {
                 spline_at: self.next_spline.clone(),
             },
@@ -107,7 +111,7 @@ struct Ctx {
     /// Enclosing loops, innermost last.
     loops: Vec<LoopId>,
     next_loop: u32,
-    labels: HashMap<String, LabelId>,
+    labels: FxHashMap<String, LabelId>,
     label_names: Vec<(String, Span)>,
     /// `CONTINUE` came before the statement being lowered: it does not stop the advance run.
     continued: bool,
@@ -142,16 +146,19 @@ pub struct Lower<'p> {
     /// What the target can hold: the lowering refuses the rest (TR001) once, for every target.
     caps: &'static Caps,
     out: Program,
+    /// Upper-case name → the first routine of `out` of that name (a scan of the routines per
+    /// call made a file of many routines quadratic).
+    routine_ids: FxHashMap<String, RoutineId>,
     /// (routine key or "", upper-case name) → id; package and assumed names under "".
-    vars: HashMap<(String, String), VarId>,
+    vars: FxHashMap<(String, String), VarId>,
     rt: Option<Ctx>,
     next_spline: u32,
     vision: Option<VisionServer>,
     /// A routine of the `.src` → upper-case global names it may assign (itself or through the
     /// routines of the file it calls); `None`: unknown (it calls another module).
-    writes: HashMap<sema::RoutineId, Option<BTreeSet<String>>>,
+    writes: FxHashMap<sema::RoutineId, Option<BTreeSet<String>>>,
     /// A routine of the `.src` → whether it moves the robot (itself or through calls).
-    moves: HashMap<sema::RoutineId, bool>,
+    moves: FxHashMap<sema::RoutineId, bool>,
     pass: Pass,
 }
 
@@ -183,12 +190,13 @@ impl<'p> Lower<'p> {
             opts: options,
             caps,
             out: Program::default(),
-            vars: HashMap::new(),
+            routine_ids: FxHashMap::default(),
+            vars: FxHashMap::default(),
             rt: None,
             next_spline: 0,
             vision: None,
-            writes: HashMap::new(),
-            moves: HashMap::new(),
+            writes: FxHashMap::default(),
+            moves: FxHashMap::default(),
             pass: Pass::First {
                 journal: None,
                 spline_at: Vec::new(),
@@ -421,6 +429,20 @@ impl<'p> Lower<'p> {
 
     // ----- routines ----------------------------------------------------------------------
 
+    /// The routine of the program called `name` (any case), the first of that name.
+    pub(super) fn routine_named(&self, name: &str) -> Option<RoutineId> {
+        self.routine_ids.get(&name.to_ascii_uppercase()).copied()
+    }
+
+    fn push_routine(&mut self, r: Routine) -> RoutineId {
+        let id = RoutineId(self.out.routines.len() as u32);
+        self.routine_ids
+            .entry(r.name.to_ascii_uppercase())
+            .or_insert(id);
+        self.out.routines.push(r);
+        id
+    }
+
     fn declare_routine(&mut self, outline: &RoutineOutline) {
         let r = &outline.head;
         let key = r.name.key();
@@ -438,7 +460,7 @@ impl<'p> Lower<'p> {
             ast::RoutineKind::Deffct => RoutineKind::Deffct,
         };
         let assigned = &outline.facts.assigned;
-        let mut seen = std::collections::HashSet::new();
+        let mut seen = rustc_hash::FxHashSet::default();
         let mut duplicate = None;
         let params = r
             .params
@@ -468,7 +490,7 @@ impl<'p> Lower<'p> {
                 })
             })
             .collect();
-        self.out.routines.push(Routine {
+        self.push_routine(Routine {
             name: r.name.text.to_string(),
             name_span: r.name.span,
             kind,
@@ -506,7 +528,7 @@ impl<'p> Lower<'p> {
             temps: Vec::new(),
             loops: Vec::new(),
             next_loop: 0,
-            labels: HashMap::new(),
+            labels: FxHashMap::default(),
             label_names: Vec::new(),
             continued: false,
             triggers: Vec::new(),
@@ -621,8 +643,7 @@ impl<'p> Lower<'p> {
                     .and_then(|s| s.to_str())
                     .unwrap_or("main")
                     .to_owned();
-                let id = RoutineId(self.out.routines.len() as u32);
-                self.out.routines.push(Routine {
+                let id = self.push_routine(Routine {
                     name: stem,
                     name_span: Span::empty(0),
                     kind: RoutineKind::Def,
@@ -883,6 +904,16 @@ impl<'p> Lower<'p> {
             Err((why, _)) => Err(why),
         }
     }
+}
+
+/// Upper-case name → the first of `routines` of that name.
+fn index_routines(routines: &[Routine]) -> FxHashMap<String, RoutineId> {
+    let mut ids = FxHashMap::default();
+    for (i, r) in routines.iter().enumerate() {
+        ids.entry(r.name.to_ascii_uppercase())
+            .or_insert(RoutineId(i as u32));
+    }
+    ids
 }
 
 /// The first line of `span` (a block statement's own line).
