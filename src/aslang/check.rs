@@ -8,10 +8,12 @@
 //! generator and the translator write and ignores the rest of a line.
 
 use std::collections::HashSet;
+use std::collections::hash_map::Entry;
 use std::fmt;
 
 use super::lex::{call_target, code_part, names, split_top_level, without_strings};
 use crate::catalog::catalog;
+use rustc_hash::FxHashMap;
 
 /// One finding, on a 1-based line.
 #[derive(Debug, Clone, PartialEq, Eq)]
@@ -43,7 +45,7 @@ pub fn check(text: &str, calls: Calls<'_>) -> Vec<Problem> {
         max: catalog().kawasaki_limits.name_max,
         problems: Vec::new(),
         state: State::Outside,
-        programs: Vec::new(),
+        programs: FxHashMap::default(),
         calls: Vec::new(),
     };
     let mut last = 0;
@@ -110,8 +112,9 @@ struct Checker {
     max: usize,
     problems: Vec<Problem>,
     state: State,
-    /// Programs defined so far (lower case) with their parameter counts.
-    programs: Vec<(String, usize)>,
+    /// Programs defined so far (lower case) with their parameter counts, the first of a name
+    /// (a map: a scan per program and per call made a text of many programs quadratic).
+    programs: FxHashMap<String, usize>,
     calls: Vec<Call>,
 }
 
@@ -216,10 +219,12 @@ impl Checker {
             }
         }
         let lower = name.to_ascii_lowercase();
-        if self.programs.iter().any(|(p, _)| *p == lower) {
-            self.push(n, format!("program `{name}` defined twice"));
+        match self.programs.entry(lower.clone()) {
+            Entry::Occupied(_) => self.push(n, format!("program `{name}` defined twice")),
+            Entry::Vacant(v) => {
+                v.insert(params.len());
+            }
         }
-        self.programs.push((lower.clone(), params.len()));
         self.state = State::Program(Program {
             name: lower,
             blocks: Vec::new(),
@@ -375,16 +380,17 @@ impl Checker {
             Calls::Open => &[],
         };
         for c in std::mem::take(&mut self.calls) {
-            let known = self
-                .programs
-                .iter()
-                .map(|(p, a)| (p.as_str(), *a))
-                .chain(external.iter().map(|(p, a)| (*p, *a)))
-                .find(|(p, _)| p.eq_ignore_ascii_case(&c.name));
+            let known = match self.programs.get(&c.name.to_ascii_lowercase()) {
+                Some(a) => Some(*a),
+                None => external
+                    .iter()
+                    .find(|(p, _)| p.eq_ignore_ascii_case(&c.name))
+                    .map(|(_, a)| *a),
+            };
             let message = match known {
                 None if matches!(calls, Calls::Open) => continue,
                 None => format!("CALL of unknown program `{}`", c.name),
-                Some((_, a)) if a != c.arity => {
+                Some(a) if a != c.arity => {
                     format!("CALL {} with {} arguments; it takes {a}", c.name, c.arity)
                 }
                 Some(_) => continue,

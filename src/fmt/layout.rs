@@ -28,24 +28,8 @@ pub(super) struct Line<'a> {
 
 /// The lines of `parse`, in order, covering the text exactly once.
 pub(super) fn lines<'a>(text: &str, parse: &'a Parse, indent_folds: bool, out: &mut Vec<Line<'a>>) {
-    build(text, parse, indent_folds, true, out);
-}
-
-/// [`lines`] for edits that never touch a blank line: each run of blank lines is one protected
-/// pseudo-line, so a file of millions of blank lines holds few lines.
-pub(super) fn code_lines<'a>(text: &str, parse: &'a Parse, out: &mut Vec<Line<'a>>) {
-    build(text, parse, false, false, out);
-}
-
-fn build<'a>(
-    text: &str,
-    parse: &'a Parse,
-    indent_folds: bool,
-    blank: bool,
-    out: &mut Vec<Line<'a>>,
-) {
     out.clear();
-    collect(parse.root(), 0, blank, out);
+    collect(parse.root(), 0, out);
     fill_gaps(text, out);
     mark_folds(text, out, indent_folds);
     mark_diagnostics(parse, out);
@@ -102,7 +86,7 @@ fn is_frame(kind: NodeKind) -> bool {
     )
 }
 
-fn collect<'a>(node: Node<'a>, depth: usize, blank: bool, out: &mut Vec<Line<'a>>) {
+fn collect<'a>(node: Node<'a>, depth: usize, out: &mut Vec<Line<'a>>) {
     // The body of a DEFDAT stays at the DEFDAT's column, as in KUKA's own data lists.
     let inner = match node.kind {
         NodeKind::SourceFile | NodeKind::DatModule => 0,
@@ -120,8 +104,8 @@ fn collect<'a>(node: Node<'a>, depth: usize, blank: bool, out: &mut Vec<Line<'a>
             } else {
                 depth + inner
             };
-            collect(child, d, blank, out);
-        } else if blank || child.kind != NodeKind::BlankLine {
+            collect(child, d, out);
+        } else {
             let column1 = starts_column1_comment(child);
             let d = if column1 {
                 0

@@ -16,7 +16,7 @@ pub mod vision;
 
 pub use fail::{Fail, R, fail};
 
-use std::collections::HashSet;
+use rustc_hash::FxHashSet;
 
 use crate::diag::{Diagnostic, Span};
 use crate::syntax::TokenKind;
@@ -35,7 +35,7 @@ pub struct Parsed {
     /// Every comment, in source order.
     pub comments: Vec<comments::Comment>,
     /// Every identifier of the text, upper case.
-    names: HashSet<String>,
+    names: FxHashSet<String>,
     /// The file's summary for the semantic model (taken by [`Program::new`]).
     summary: Option<crate::sema::FileSummary>,
     /// Built on the first [`Parsed::line`] (building one per question was quadratic).
@@ -63,7 +63,7 @@ impl Parsed {
         let mut summary = crate::sema::SummaryBuilder::declarations_only();
         let mut followed = true;
         let mut found: Vec<comments::Comment> = Vec::new();
-        let mut names = HashSet::new();
+        let mut names = FxHashSet::default();
         let mut upper = String::new();
         let syntax_errors = crate::syntax::parse_pieces(&text, |piece| {
             let node: &Node<'_> = match &piece {

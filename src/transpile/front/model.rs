@@ -5,7 +5,9 @@
 //! built-in structure.
 
 use std::cell::OnceCell;
-use std::collections::{BTreeMap, HashMap};
+use std::collections::BTreeMap;
+
+use rustc_hash::FxHashMap;
 
 use crate::diag::Span;
 use crate::sema::{
@@ -66,9 +68,9 @@ pub struct Model<'p> {
     pose: Option<TypeId>,
     axis: Option<TypeId>,
     /// The `.src`'s routines by upper-case name (the first of a name).
-    routines: HashMap<String, RoutineId>,
+    routines: FxHashMap<String, RoutineId>,
     /// Each routine's parameters and locals.
-    symbols_of: HashMap<RoutineId, Vec<sema::SymbolId>>,
+    symbols_of: FxHashMap<RoutineId, Vec<sema::SymbolId>>,
     enums: OnceCell<Vec<(String, Option<String>)>>,
     /// `SIGNAL` declarations by the span of their name.
     signals: OnceCell<BTreeMap<(FileId, Span), Option<SignalRange>>>,
@@ -85,12 +87,12 @@ impl<'p> Model<'p> {
             Resolved::Type(t) => Some(t),
             _ => None,
         };
-        let mut routines = HashMap::new();
+        let mut routines = FxHashMap::default();
         for &r in &sema.file(SRC).routines {
             let name = sema.name(sema.routine(r).name).to_ascii_uppercase();
             routines.entry(name).or_insert(r);
         }
-        let mut symbols_of: HashMap<RoutineId, Vec<sema::SymbolId>> = HashMap::new();
+        let mut symbols_of: FxHashMap<RoutineId, Vec<sema::SymbolId>> = FxHashMap::default();
         for (id, s) in sema.symbols() {
             if let Scope::Routine(r) = s.scope {
                 symbols_of.entry(r).or_default().push(id);

@@ -9,7 +9,9 @@
 //! locals and labels) and records the renames (TR003 and the output's name map); the targets
 //! differ only in their [`NameRules`], which are data.
 
-use std::collections::{BTreeMap, BTreeSet, HashMap};
+use std::collections::{BTreeMap, BTreeSet};
+
+use rustc_hash::FxHashMap;
 
 use crate::diag::Span;
 use crate::transpile::front::report::{FileId, Report};
@@ -122,7 +124,7 @@ pub struct Namespace {
     /// Upper-case KRL name → target name.
     map: BTreeMap<String, String>,
     /// Target name → upper-case KRL name (or "" for names the translator made up).
-    taken: HashMap<String, String>,
+    taken: FxHashMap<String, String>,
 }
 
 impl Namespace {
@@ -203,17 +205,17 @@ pub struct Namer<'a> {
     ir: &'a ir::Program,
     routines: Namespace,
     globals: Namespace,
-    locals: HashMap<RoutineId, Namespace>,
-    labels: HashMap<RoutineId, Namespace>,
+    locals: FxHashMap<RoutineId, Namespace>,
+    labels: FxHashMap<RoutineId, Namespace>,
     /// Each routine's parameters and locals, in declaration order.
-    vars_of: HashMap<RoutineId, Vec<VarId>>,
+    vars_of: FxHashMap<RoutineId, Vec<VarId>>,
     /// Every rename, in the order found, with what kind of name it is.
     renamed: Vec<(&'static str, Renamed)>,
 }
 
 impl<'a> Namer<'a> {
     pub fn new(rules: &'static NameRules, ir: &'a ir::Program) -> Namer<'a> {
-        let mut vars_of: HashMap<RoutineId, Vec<VarId>> = HashMap::new();
+        let mut vars_of: FxHashMap<RoutineId, Vec<VarId>> = FxHashMap::default();
         for (i, v) in ir.vars.iter().enumerate() {
             if let Scope::Param(r) | Scope::Local(r) = v.scope {
                 vars_of.entry(r).or_default().push(VarId(i as u32));
@@ -224,8 +226,8 @@ impl<'a> Namer<'a> {
             ir,
             routines: Namespace::default(),
             globals: Namespace::default(),
-            locals: HashMap::new(),
-            labels: HashMap::new(),
+            locals: FxHashMap::default(),
+            labels: FxHashMap::default(),
             vars_of,
             renamed: Vec::new(),
         }

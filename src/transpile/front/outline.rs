@@ -8,6 +8,8 @@
 
 use std::collections::{BTreeSet, HashSet};
 
+use rustc_hash::FxHashMap;
+
 use crate::syntax::ast::{self, Definition, Lowered, Stmt, StmtKind};
 
 /// The outline of one file.
@@ -19,12 +21,16 @@ pub struct Outline {
     pub top_level: bool,
     /// The first data list (`DEFDAT`), whole: its values are read as data.
     pub dat: Option<ast::DatModule>,
+    /// Upper-case routine name → index of the first routine of that name (a scan per call
+    /// made a file of many routines quadratic).
+    by_name: FxHashMap<String, usize>,
 }
 
 impl Outline {
     /// The routine called `name` (case-insensitive), the first of that name.
     pub fn routine(&self, name: &str) -> Option<&RoutineOutline> {
-        self.routines.iter().find(|r| r.head.name.is(name))
+        let i = *self.by_name.get(&name.to_ascii_uppercase())?;
+        self.routines.get(i)
     }
 }
 
@@ -209,7 +215,11 @@ impl OutlineBuilder {
         }
     }
 
-    pub fn finish(self) -> Outline {
+    pub fn finish(mut self) -> Outline {
+        let o = &mut self.outline;
+        for (i, r) in o.routines.iter().enumerate() {
+            o.by_name.entry(r.head.name.key()).or_insert(i);
+        }
         self.outline
     }
 }

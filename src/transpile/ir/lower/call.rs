@@ -22,7 +22,7 @@ impl<'p> Lower<'p> {
         ops: &mut Block,
     ) -> L<()> {
         let key = name.key();
-        let routine = self.out.routine_named(&name.text);
+        let routine = self.routine_named(&name.text);
         if key.starts_with("MM_") && routine.is_none() {
             self.kind("MM_ call");
             return self.mm_call(name, args, span, ops);
@@ -215,12 +215,12 @@ impl<'p> Lower<'p> {
                 continue;
             };
             // Names in the condition are the declaring routine's.
-            let id = self.out.routine_named(&r.name.text).expect("declared");
+            let id = self.routine_named(&r.name.text).expect("declared");
             self.enter(id, r.name.key());
             let cond = self.interrupt_condition(condition);
             let callee = match &handler.kind {
                 StmtKind::Call { name, args } if args.iter().all(Option::is_none) => {
-                    Ok(match self.out.routine_named(&name.text) {
+                    Ok(match self.routine_named(&name.text) {
                         Some(r) => Callee::Routine(r),
                         None => Callee::External {
                             name: name.text.to_string(),

@@ -576,7 +576,7 @@ impl<'p> Lower<'p> {
             };
             return Ok(Expr::new(ExprKind::Builtin(b, v), ty, span));
         }
-        if let Some(r) = self.out.routine_named(&name.text) {
+        if let Some(r) = self.routine_named(&name.text) {
             if self.out.routine(r).kind != RoutineKind::Deffct {
                 return fail(Why::NotAFunction(name.text.to_string()), span);
             }

@@ -11,13 +11,16 @@ mod expr;
 mod motion;
 mod stmt;
 
-use std::collections::{BTreeSet, HashMap};
+use std::collections::BTreeSet;
+
+use rustc_hash::FxHashMap;
 
 use super::{
     Block, Datum, Expr, Finding, LabelId, LoopId, Op, Program, Routine, RoutineId, RoutineKind,
     Scope, Stmt, TempId, Ty, Var, VarId, Why,
 };
 use crate::diag::Span;
+use crate::sema::{self, Resolved};
 use crate::syntax::ast::{self, StmtKind};
 use crate::transpile::Options;
 use crate::transpile::VisionServer;
@@ -50,7 +53,7 @@ pub struct Lowering {
 pub struct Replay {
     /// The variables as they were when the first routine began.
     vars: Vec<Var>,
-    keys: HashMap<(String, String), VarId>,
+    keys: FxHashMap<(String, String), VarId>,
     /// The next spline id at the start of each routine.
     next_spline: Vec<u32>,
     caps: &'static Caps,
@@ -71,18 +74,20 @@ impl Replay {
             interrupts: first.interrupts.clone(),
             ..Program::default()
         };
+        let routine_ids = index_routines(&out.routines);
         Lower {
             src,
             model: Model::new(src),
             opts: options,
             caps: self.caps,
             out,
+            routine_ids,
             vars: self.keys.clone(),
             rt: None,
             next_spline: 0,
             vision: None,
-            writes: HashMap::new(),
-            moves: HashMap::new(),
+            writes: FxHashMap::default(),
+            moves: FxHashMap::default(),
             pass: Pass::Replay {
                 spline_at: self.next_spline.clone(),
             },
@@ -106,7 +111,7 @@ struct Ctx {
     /// Enclosing loops, innermost last.
     loops: Vec<LoopId>,
     next_loop: u32,
-    labels: HashMap<String, LabelId>,
+    labels: FxHashMap<String, LabelId>,
     label_names: Vec<(String, Span)>,
     /// `CONTINUE` came before the statement being lowered: it does not stop the advance run.
     continued: bool,
@@ -131,6 +136,9 @@ struct SplineCtx {
     with: Vec<(super::MotionParam, super::ParamValue)>,
 }
 
+/// The `.src` is file 0 of the program's model (the `.dat` file 1).
+const SRC: sema::FileId = sema::FileId(0);
+
 pub struct Lower<'p> {
     src: &'p front::Program,
     model: Model<'p>,
@@ -138,16 +146,19 @@ pub struct Lower<'p> {
     /// What the target can hold: the lowering refuses the rest (TR001) once, for every target.
     caps: &'static Caps,
     out: Program,
+    /// Upper-case name → the first routine of `out` of that name (a scan of the routines per
+    /// call made a file of many routines quadratic).
+    routine_ids: FxHashMap<String, RoutineId>,
     /// (routine key or "", upper-case name) → id; package and assumed names under "".
-    vars: HashMap<(String, String), VarId>,
+    vars: FxHashMap<(String, String), VarId>,
     rt: Option<Ctx>,
     next_spline: u32,
     vision: Option<VisionServer>,
-    /// Upper-case routine name → upper-case global names it may assign (itself or through the
+    /// A routine of the `.src` → upper-case global names it may assign (itself or through the
     /// routines of the file it calls); `None`: unknown (it calls another module).
-    writes: HashMap<String, Option<BTreeSet<String>>>,
-    /// Upper-case routine name → whether it moves the robot (itself or through calls).
-    moves: HashMap<String, bool>,
+    writes: FxHashMap<sema::RoutineId, Option<BTreeSet<String>>>,
+    /// A routine of the `.src` → whether it moves the robot (itself or through calls).
+    moves: FxHashMap<sema::RoutineId, bool>,
     pass: Pass,
 }
 
@@ -179,12 +190,13 @@ impl<'p> Lower<'p> {
             opts: options,
             caps,
             out: Program::default(),
-            vars: HashMap::new(),
+            routine_ids: FxHashMap::default(),
+            vars: FxHashMap::default(),
             rt: None,
             next_spline: 0,
             vision: None,
-            writes: HashMap::new(),
-            moves: HashMap::new(),
+            writes: FxHashMap::default(),
+            moves: FxHashMap::default(),
             pass: Pass::First {
                 journal: None,
                 spline_at: Vec::new(),
@@ -417,6 +429,20 @@ impl<'p> Lower<'p> {
 
     // ----- routines ----------------------------------------------------------------------
 
+    /// The routine of the program called `name` (any case), the first of that name.
+    pub(super) fn routine_named(&self, name: &str) -> Option<RoutineId> {
+        self.routine_ids.get(&name.to_ascii_uppercase()).copied()
+    }
+
+    fn push_routine(&mut self, r: Routine) -> RoutineId {
+        let id = RoutineId(self.out.routines.len() as u32);
+        self.routine_ids
+            .entry(r.name.to_ascii_uppercase())
+            .or_insert(id);
+        self.out.routines.push(r);
+        id
+    }
+
     fn declare_routine(&mut self, outline: &RoutineOutline) {
         let r = &outline.head;
         let key = r.name.key();
@@ -434,7 +460,7 @@ impl<'p> Lower<'p> {
             ast::RoutineKind::Deffct => RoutineKind::Deffct,
         };
         let assigned = &outline.facts.assigned;
-        let mut seen = std::collections::HashSet::new();
+        let mut seen = rustc_hash::FxHashSet::default();
         let mut duplicate = None;
         let params = r
             .params
@@ -464,7 +490,7 @@ impl<'p> Lower<'p> {
                 })
             })
             .collect();
-        self.out.routines.push(Routine {
+        self.push_routine(Routine {
             name: r.name.text.to_string(),
             name_span: r.name.span,
             kind,
@@ -502,7 +528,7 @@ impl<'p> Lower<'p> {
             temps: Vec::new(),
             loops: Vec::new(),
             next_loop: 0,
-            labels: HashMap::new(),
+            labels: FxHashMap::default(),
             label_names: Vec::new(),
             continued: false,
             triggers: Vec::new(),
@@ -617,8 +643,7 @@ impl<'p> Lower<'p> {
                     .and_then(|s| s.to_str())
                     .unwrap_or("main")
                     .to_owned();
-                let id = RoutineId(self.out.routines.len() as u32);
-                self.out.routines.push(Routine {
+                let id = self.push_routine(Routine {
                     name: stem,
                     name_span: Span::empty(0),
                     kind: RoutineKind::Def,
@@ -644,27 +669,63 @@ impl<'p> Lower<'p> {
     }
 
     // ----- what routines do (for hoisting and advance-run stops) -------------------------
+    //
+    // The call graph: each routine's callees are the names its body calls (the outline's
+    // facts, made while parsing, INTERRUPT handlers and TRIGGER actions included); what each
+    // name reaches, and whether a call of something that is no routine of the file moves the
+    // robot, the model answers (`sema::calls`).
+
+    /// The routine of the `.src` in the model that is being lowered (`None`: statements
+    /// outside any DEF).
+    fn sema_caller(&self) -> Option<sema::RoutineId> {
+        let i = self.rt.as_ref()?.id.0 as usize;
+        self.src.sema.file(SRC).routines.get(i).copied()
+    }
+
+    /// The routine of the `.src` a call of `name` from `caller` reaches, or what else it
+    /// reaches.
+    fn call_target(
+        &self,
+        caller: Option<sema::RoutineId>,
+        name: &str,
+    ) -> Result<sema::RoutineId, Resolved> {
+        let sema = &self.src.sema;
+        match sema.call_target(SRC, caller, name) {
+            Resolved::Routine(r) if sema.routine(r).file == SRC => Ok(r),
+            other => Err(other),
+        }
+    }
 
     /// The globals a call of `name` may assign; `None` when unknown.
     pub(super) fn may_write(&mut self, name: &str) -> Option<BTreeSet<String>> {
-        let key = name.to_ascii_uppercase();
-        if let Some(w) = self.writes.get(&key) {
+        match self.call_target(self.sema_caller(), name) {
+            Ok(r) => self.routine_writes(r),
+            Err(_) => None,
+        }
+    }
+
+    fn routine_writes(&mut self, r: sema::RoutineId) -> Option<BTreeSet<String>> {
+        if let Some(w) = self.writes.get(&r) {
             return w.clone();
         }
         // Recursion: assume nothing more while the routine is being looked at.
-        self.writes.insert(key.clone(), Some(BTreeSet::new()));
+        self.writes.insert(r, Some(BTreeSet::new()));
         let src = self.src;
-        let result = match src.src.outline.routine(name) {
+        let routine = src.sema.routine(r);
+        let result = match src.src.outline.routines.get(routine.index as usize) {
             None => None,
-            Some(r) => {
-                let mut set = r.facts.written.clone();
+            Some(o) => {
+                let mut set = o.facts.written.clone();
                 let mut unknown = false;
-                for c in &r.facts.callees {
-                    if c.to_ascii_uppercase().starts_with("MM_") {
-                        set.insert("MM_LAST_STATUS".into());
-                        continue;
-                    }
-                    match self.may_write(c) {
+                for c in &o.facts.callees {
+                    let w = match self.call_target(Some(r), c) {
+                        Ok(t) => self.routine_writes(t),
+                        Err(t) if src.sema.mm_target(t).is_some() => {
+                            Some(BTreeSet::from(["MM_LAST_STATUS".into()]))
+                        }
+                        Err(_) => None,
+                    };
+                    match w {
                         Some(w) => set.extend(w),
                         None => unknown = true,
                     }
@@ -672,7 +733,7 @@ impl<'p> Lower<'p> {
                 // Locals and parameters of the routine are not the caller's business.
                 let locals: BTreeSet<String> = self
                     .model
-                    .locals(name)
+                    .locals(src.sema.name(routine.name))
                     .into_iter()
                     .map(|v| v.name.to_ascii_uppercase())
                     .collect();
@@ -680,33 +741,42 @@ impl<'p> Lower<'p> {
                 (!unknown).then_some(set)
             }
         };
-        self.writes.insert(key, result.clone());
+        self.writes.insert(r, result.clone());
         result
     }
 
     /// Whether a call of `name` may move the robot.
     pub(super) fn routine_moves(&mut self, name: &str) -> bool {
-        let key = name.to_ascii_uppercase();
-        if let Some(m) = self.moves.get(&key) {
+        let target = self.call_target(self.sema_caller(), name);
+        self.target_moves(target)
+    }
+
+    fn target_moves(&mut self, target: Result<sema::RoutineId, Resolved>) -> bool {
+        let r = match target {
+            Ok(r) => r,
+            Err(other) => return self.src.sema.call_moves(other).unwrap_or(true),
+        };
+        if let Some(m) = self.moves.get(&r) {
             return *m;
         }
-        self.moves.insert(key.clone(), false);
+        self.moves.insert(r, false);
         let src = self.src;
-        let result = match src.src.outline.routine(name) {
-            // Another module's routine may; a package routine only if its catalog shape does.
-            None => match crate::catalog::catalog().subprogram(&key) {
-                Some(sub) => sub.shape.moves(),
-                None => !key.starts_with("MM_"),
-            },
-            Some(r) => {
-                r.facts.moves
-                    || r.facts.callees.iter().any(|c| {
-                        let k = c.to_ascii_uppercase();
-                        k != "BAS" && KNOWN_STILL.iter().all(|s| *s != k) && self.routine_moves(c)
+        let result = match src
+            .src
+            .outline
+            .routines
+            .get(src.sema.routine(r).index as usize)
+        {
+            None => true,
+            Some(o) => {
+                o.facts.moves
+                    || o.facts.callees.iter().any(|c| {
+                        let t = self.call_target(Some(r), c);
+                        self.target_moves(t)
                     })
             }
         };
-        self.moves.insert(key, result);
+        self.moves.insert(r, result);
         result
     }
 
@@ -836,17 +906,15 @@ impl<'p> Lower<'p> {
     }
 }
 
-/// Routines of the KUKA runtime that never move the robot.
-const KNOWN_STILL: [&str; 8] = [
-    "MSGNOTIFY",
-    "MSGQUIT",
-    "MSGSTATE",
-    "MM_GET_STATUS",
-    "MM_INIT_SOCKET",
-    "STRLEN",
-    "SWRITE",
-    "SREAD",
-];
+/// Upper-case name → the first of `routines` of that name.
+fn index_routines(routines: &[Routine]) -> FxHashMap<String, RoutineId> {
+    let mut ids = FxHashMap::default();
+    for (i, r) in routines.iter().enumerate() {
+        ids.entry(r.name.to_ascii_uppercase())
+            .or_insert(RoutineId(i as u32));
+    }
+    ids
+}
 
 /// The first line of `span` (a block statement's own line).
 pub(super) fn first_line(text: &str, span: Span) -> Span {
@@ -855,3 +923,6 @@ pub(super) fn first_line(text: &str, span: Span) -> Span {
     let len = rest.find(['\n', '\r']).unwrap_or(rest.len());
     Span::new(start, start + len)
 }
+
+#[cfg(test)]
+mod tests;

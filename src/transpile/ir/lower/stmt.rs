@@ -597,7 +597,7 @@ impl<'p> Lower<'p> {
         }
         // x = f(…) with a function of this file: the call writes x.
         if let A::Call { name, args } = &value.kind
-            && let Some(r) = self.out.routine_named(&name.text)
+            && let Some(r) = self.routine_named(&name.text)
             && self.out.routine(r).kind == RoutineKind::Deffct
         {
             self.kind("call");
