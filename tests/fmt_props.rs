@@ -176,6 +176,12 @@ proptest! {
     }
 
     #[test]
+    fn case_edits_are_the_formatters_word_case(text in file()) {
+        let (fixed, formatted) = case_fixed_and_formatted(&text);
+        prop_assert_eq!(fixed, formatted);
+    }
+
+    #[test]
     fn any_text_never_panics_and_is_equivalent(text in "\\PC{0,200}", opts in options()) {
         promises(&text, &opts)?;
     }
@@ -211,6 +217,41 @@ fn formatting_by_piece_is_the_trees_on_every_repository_file() {
         }
     }
     assert!(changed > 10);
+}
+
+/// The text with KRL005's edits applied and the formatted text (default options), each
+/// without blanks and blank lines: the formatter changes only blanks and word case, so the
+/// two are equal when the edits change the words the formatter's own layout lets it change.
+fn case_fixed_and_formatted(text: &str) -> (Vec<String>, Vec<String>) {
+    let words = |t: &str| -> Vec<String> {
+        t.split(['\n', '\r'])
+            .map(|l| l.replace([' ', '\t', '\u{a0}'], ""))
+            .filter(|l| !l.is_empty())
+            .collect()
+    };
+    let edits = krlkit::fmt::case_edits(text);
+    let fixed = krlkit::diag::fix::apply_edits(text, &edits).expect("case edits never overlap");
+    let formatted = format_text(text, &FmtOptions::default()).text;
+    (words(&fixed), words(&formatted))
+}
+
+#[test]
+fn case_edits_are_the_formatters_word_case_on_every_repository_file() {
+    let root = std::path::Path::new(env!("CARGO_MANIFEST_DIR"));
+    let mut differ = Vec::new();
+    for f in krlkit::files::walk(&[root.join("tests/fixtures"), root.join("krl")]).found {
+        let text = krlkit::syntax::decode(&std::fs::read(&f.path).unwrap()).text;
+        let (fixed, formatted) = case_fixed_and_formatted(&text);
+        if fixed != formatted {
+            let at = fixed.iter().zip(&formatted).position(|(a, b)| a != b);
+            differ.push(format!(
+                "{} {:?}",
+                f.path.display(),
+                at.map(|i| (&fixed[i], &formatted[i]))
+            ));
+        }
+    }
+    assert!(differ.is_empty(), "{differ:#?}");
 }
 
 #[test]

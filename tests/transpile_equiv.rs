@@ -142,7 +142,12 @@ const CASES: &[Case] = &[
             8,
             "the script uses DEFAULT_VEL",
         )],
-        rapid: &[],
+        rapid: &[by(
+            EVERY_LINE,
+            Aspect::InitSpeed,
+            8,
+            "RAPID moves until the program sets speeds at v100",
+        )],
     },
     Case {
         name: "base_offsets",
@@ -237,19 +242,7 @@ const RAPID_ONLY: &[Case] = &[Case {
 /// shows, why). Each is a defect of the translation, reported to the backend's owner;
 /// [`rapid_pending_fixtures_still_fail`] keeps the list honest, so a fix moves the fixture into
 /// the comparison.
-const RAPID_PENDING: &[(&str, &str, &str)] = &[
-    (
-        "pallet_pattern",
-        "an empty index `{}`",
-        "the array `per_layer` is passed as `per_layer{}`, which is not RAPID",
-    ),
-    (
-        "blend_after_call",
-        "line 13: C_PTP without a TR002",
-        "line 13's C_PTP is written as fine (the distance after the call is not known) with no \
-         TR002 naming C_PTP",
-    ),
-];
+const RAPID_PENDING: &[(&str, &str, &str)] = &[];
 
 fn rapid_run(case: &Case) -> Result<(), String> {
     let p = Program::fixture(case.name);
@@ -273,18 +266,7 @@ fn rapid_pending_fixtures_still_fail() {
 }
 
 /// RAPID translations a controller would refuse to load: (fixture, the load error, why).
-const RAPID_UNLOADABLE: &[(&str, &str, &str)] = &[
-    (
-        "motions",
-        "`cell_name` is declared twice",
-        "the `.dat`'s PERS and a VAR of the same name",
-    ),
-    (
-        "pallet_pattern",
-        "an empty index `{}`",
-        "the array `per_layer` is passed as `per_layer{}`",
-    ),
-];
+const RAPID_UNLOADABLE: &[(&str, &str, &str)] = &[];
 
 /// Every fixture's RAPID translation, runnable here or not (vision cells, TR001s), loads in the
 /// test interpreter: it parses, every module data's value fits its type, no name is declared

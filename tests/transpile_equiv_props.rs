@@ -93,8 +93,8 @@ fn rapid_matches(p: &Program, krl: &[equiv_support::Step]) -> Result<(), String>
 
 /// Straight-line statements with relative motions (in the base and in the tool), which the
 /// RAPID translation writes as `Offs`/`RelTool` of `CRobT`: no axis targets, since the test
-/// interpreters have no kinematics to read a pose back after one. Not yet `PTP_REL`:
-/// [`rapid_ptp_rel_speed_is_pending`].
+/// interpreters have no kinematics to read a pose back after one. A Cartesian `PTP_REL` is a
+/// `MoveJ` at the PTP speed (`BAS(#VEL_PTP)`), not the path speed.
 fn relative_statement() -> impl Strategy<Value = String> {
     let d = || -200i32..200;
     prop_oneof![
@@ -102,6 +102,9 @@ fn relative_statement() -> impl Strategy<Value = String> {
         (pose(), blend()).prop_map(|(p, b)| format!("LIN {p}{b}")),
         (d(), d(), d()).prop_map(|(x, y, z)| format!("LIN_REL {{X {x}, Y {y}, Z {z}}}")),
         (d(), d(), d()).prop_map(|(x, y, z)| format!("LIN_REL {{X {x}, Y {y}, Z {z}}} #TOOL")),
+        (d(), d(), d()).prop_map(|(x, y, z)| format!("PTP_REL {{X {x}, Y {y}, Z {z}}}")),
+        (d(), d(), d()).prop_map(|(x, y, z)| format!("PTP_REL {{X {x}, Y {y}, Z {z}}} #TOOL")),
+        (1i32..=100).prop_map(|v| format!("BAS(#VEL_PTP, {v})")),
         (5i32..=100).prop_map(|v| format!("$VEL.CP = {}", num(f64::from(v) / 100.0))),
         (1usize..=8).prop_map(|n| format!("$BASE = BASE_DATA[{n}]")),
         (1usize..=8).prop_map(|n| format!("$TOOL = TOOL_DATA[{n}]")),
@@ -172,23 +175,4 @@ proptest! {
             prop_assert!(got.is_ok(), "Flexiv: {}\n{}", got.unwrap_err(), p.src);
         }
     }
-}
-
-/// A Cartesian `PTP_REL` is translated as a MoveJ with the path speed (`v500` for
-/// `$VEL.CP = 0.5`) instead of the PTP percentage (`BAS(#VEL_PTP, 50)`): a defect of the
-/// translation, reported to the backend's owner. When this fails, the defect is fixed: add
-/// `PTP_REL` to [`relative_statement`].
-#[test]
-fn rapid_ptp_rel_speed_is_pending() {
-    let p = program(&[
-        "LIN {X 200, Y 0, Z 100, A 0, B 0, C 0}".to_string(),
-        "PTP_REL {X 10, Z 5}".to_string(),
-    ]);
-    let r = run_krl(&p, &[]);
-    let got = rapid_matches(&p, &krl_steps(&r));
-    let e = got.expect_err("PTP_REL's speed is right now: add PTP_REL to relative_statement()");
-    assert!(
-        e.contains("speed Joint(Some(50.0)) vs Joint(Some(10.0))"),
-        "{e}"
-    );
 }

@@ -271,13 +271,7 @@ impl Range<'_> {
                 n => format!("{} or {}", v[..n - 1].join(", "), v[n - 1]),
             });
         }
-        let num = |x: f64| {
-            if x.fract() == 0.0 {
-                format!("{}", x as i64)
-            } else {
-                format!("{x}")
-            }
-        };
+        let num = number_text;
         match (self.min, self.max, self.min_exclusive) {
             (Some(a), Some(b), _) => Some(format!("{} to {}", num(a), num(b))),
             (Some(a), None, _) => Some(format!(">= {}", num(a))),
@@ -482,6 +476,22 @@ impl Catalog {
             .find(|s| s.name.as_deref() == Some(name))
     }
 
+    /// The codes the package itself defines (not the server's), as `(code, name, meaning)`:
+    /// the same in every interface version and every target's package.
+    pub fn package_statuses(&self) -> Vec<(u32, String, String)> {
+        self.statuses
+            .iter()
+            .filter(|s| s.origin == Origin::Package)
+            .map(|s| {
+                (
+                    s.code,
+                    s.name.clone().unwrap_or_default(),
+                    s.meaning.clone(),
+                )
+            })
+            .collect()
+    }
+
     /// A package-defined status code by its symbolic name, e.g. `NO_CONNECTION` → 3099. The
     /// package's own codes are the same in every interface version.
     ///
@@ -557,3 +567,13 @@ pub fn nearest_key<'k>(key: &str, known: &[&'k str]) -> Option<&'k str> {
 mod kawasaki_tests;
 #[cfg(test)]
 mod tests;
+
+/// A catalog number as the generated code and documents write it: whole numbers without a
+/// fraction (`60`, not `60.0`).
+pub fn number_text(x: f64) -> String {
+    if x.fract() == 0.0 {
+        format!("{}", x as i64)
+    } else {
+        format!("{x}")
+    }
+}

@@ -273,7 +273,9 @@ pub struct TranspileArgs {
     /// The name diagnostics give the program read from `-` (stdin).
     #[arg(long, value_name = "NAME")]
     pub stdin_filename: Option<String>,
-    /// The krlkit.toml whose vision server address (IP, port) MM_Init_Socket translates to.
+    /// The krlkit.toml whose vision server address (IP, port) MM_Init_Socket translates to
+    /// (default: the krlkit.toml found from the working directory, if it sets server_ip or
+    /// server_port and no --eki-xml/--package is given; else the package's EKI XML).
     #[arg(long, visible_alias = "config", value_name = "FILE")]
     pub spec: Option<PathBuf>,
     /// EKI XML config whose IP and port MM_Init_Socket translates to (default: the XML named

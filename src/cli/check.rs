@@ -12,6 +12,7 @@ use anyhow::Context;
 
 use super::Outcome;
 use super::args::{CheckArgs, CheckFormat};
+use super::ui::plural;
 use crate::diag::{FileReport, Severity};
 use crate::files;
 use crate::lint::{self, EkiChannel};
@@ -153,17 +154,7 @@ pub fn run(args: CheckArgs) -> anyhow::Result<Outcome> {
             plural(warnings)
         );
     }
-    Ok(if failed {
-        Outcome::Failure
-    } else if errors > 0 {
-        Outcome::Findings
-    } else {
-        Outcome::Success
-    })
-}
-
-fn plural(n: usize) -> &'static str {
-    if n == 1 { "" } else { "s" }
+    Ok(Outcome::of(failed, errors > 0))
 }
 
 fn read_channel(path: &Path) -> anyhow::Result<EkiChannel> {

@@ -61,9 +61,5 @@ pub fn run(args: DiffArgs) -> anyhow::Result<Outcome> {
             }
         }
     }
-    Ok(if d.changes.is_empty() {
-        Outcome::Success
-    } else {
-        Outcome::Findings
-    })
+    Ok(Outcome::of(false, !d.changes.is_empty()))
 }

@@ -84,15 +84,9 @@ pub fn run(args: FmtArgs) -> anyhow::Result<Outcome> {
     };
     eprintln!(
         "{changed} file{} {verb}, {unchanged} unchanged",
-        if changed == 1 { "" } else { "s" }
+        super::ui::plural(changed)
     );
-    Ok(if failed {
-        Outcome::Failure
-    } else if changed > 0 && !write {
-        Outcome::Findings
-    } else {
-        Outcome::Success
-    })
+    Ok(Outcome::of(failed, changed > 0 && !write))
 }
 
 fn one(
@@ -170,11 +164,7 @@ fn stdin(args: &FmtArgs, opts: &FmtOptions) -> anyhow::Result<Outcome> {
                 writeln!(out, "{name}")?;
             }
         }
-        return Ok(if changed {
-            Outcome::Findings
-        } else {
-            Outcome::Success
-        });
+        return Ok(Outcome::of(false, changed));
     }
     match formatted {
         Some(f) => out.write_all(&encode_as(&f, decoded.encoding))?,

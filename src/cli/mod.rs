@@ -39,6 +39,18 @@ pub enum Outcome {
     Failure,
 }
 
+impl Outcome {
+    /// A run over files: 2 if a file could not be done, else 1 if a finding is an error (or a
+    /// `--check` drift), else 0.
+    pub(crate) fn of(failed: bool, findings: bool) -> Outcome {
+        match (failed, findings) {
+            (true, _) => Outcome::Failure,
+            (false, true) => Outcome::Findings,
+            (false, false) => Outcome::Success,
+        }
+    }
+}
+
 impl From<Outcome> for ExitCode {
     fn from(o: Outcome) -> ExitCode {
         match o {

@@ -12,6 +12,7 @@ use rayon::prelude::*;
 
 use super::Outcome;
 use super::args::{ParseArgs, ParseFormat};
+use super::ui::plural;
 use crate::diag::{FileReport, Severity, render};
 use crate::files::{self, Candidate, FileError};
 use crate::syntax;
@@ -86,17 +87,7 @@ pub fn run(args: ParseArgs) -> anyhow::Result<Outcome> {
             plural(warnings)
         );
     }
-    Ok(if failed {
-        Outcome::Failure
-    } else if errors > 0 {
-        Outcome::Findings
-    } else {
-        Outcome::Success
-    })
-}
-
-fn plural(n: usize) -> &'static str {
-    if n == 1 { "" } else { "s" }
+    Ok(Outcome::of(failed, errors > 0))
 }
 
 /// Where the files' results go, in input order: findings written to `out` (human, or items of

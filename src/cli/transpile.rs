@@ -2,7 +2,8 @@
 //! [--format …]` plus the target's options (signal offsets; RDK version, serial number, PTP
 //! primitive, joint map).
 //!
-//! Reads the program and its `.dat`, finds the vision server address (spec, else EKI XML),
+//! Reads the program and its `.dat`, finds the vision server address (`--spec`, or the found krlkit.toml when it
+//! sets `server_ip`/`server_port`, else EKI XML),
 //! translates, writes the target program (atomically with `-o`, else to stdout) and renders the
 //! findings: to stdout when the program goes to a file, to stderr when it goes to stdout.
 //! Exit 1 when a finding is an error (TR001; the output is still written), 2 when the input
@@ -15,6 +16,7 @@ use anyhow::Context;
 
 use super::Outcome;
 use super::args::{CheckFormat, PtpPrimitive, TranspileArgs, TranspileTarget};
+use super::ui::plural;
 use crate::diag::Severity;
 use crate::diag::render::sarif::RuleMeta;
 use crate::transpile::flexiv::{self, FlexivOptions, RdkVersion};
@@ -115,10 +117,15 @@ pub fn run(mut args: TranspileArgs) -> anyhow::Result<Outcome> {
         rapid: rapid_options,
         ..Options::default()
     };
-    if let Some(spec) = &args.spec {
-        let Some(config) = super::config::load(Some(spec)) else {
-            return Ok(Outcome::Failure);
-        };
+    // The krlkit.toml named by --spec, else the one every command finds (read whole: a broken
+    // file stops transpile as it stops gen and check). A found file gives the vision server only
+    // when it sets the address itself and no --eki-xml/--package names the package's XML.
+    let Some(config) = super::config::load(args.spec.as_deref()) else {
+        return Ok(Outcome::Failure);
+    };
+    let server_from_config = args.spec.is_some()
+        || (config.server_set && args.eki_xml.is_none() && args.package.is_none());
+    if let (true, Some(path)) = (server_from_config, config.path.as_deref()) {
         let spec_data = config.spec;
         let who = match target {
             Target::Kawasaki => Some("the Kawasaki AS package the translated program calls"),
@@ -130,15 +137,14 @@ pub fn run(mut args: TranspileArgs) -> anyhow::Result<Outcome> {
             && let Err(msg) = crate::generate::ascii_1x_only(&spec_data, who)
         {
             eprintln!(
-                "error: {}: {msg}\n  help: pass a spec with codec = \"ascii\" and interface = \"1.x\" (and select ASCII in Mech-Vision for this robot)",
-                spec.display()
+                "error: {path}: {msg}\n  help: pass a spec with codec = \"ascii\" and interface = \"1.x\" (and select ASCII in Mech-Vision for this robot)"
             );
             return Ok(Outcome::Failure);
         }
         options.server = Some(VisionServer {
             ip: spec_data.server_ip,
             port: spec_data.server_port,
-            origin: format!("spec {}", file_name(spec)),
+            origin: format!("spec {}", file_name(Path::new(path))),
         });
         options.flexiv.reply_timeout = spec_data.reply_timeout;
         options.flexiv.batch_size = spec_data.batch_size;
@@ -192,11 +198,7 @@ pub fn run(mut args: TranspileArgs) -> anyhow::Result<Outcome> {
             c.approximate
         );
     }
-    Ok(if errors > 0 {
-        Outcome::Findings
-    } else {
-        Outcome::Success
-    })
+    Ok(Outcome::of(false, errors > 0))
 }
 
 /// An option given for the other target: refused, because a user who passes it expects it to
@@ -273,10 +275,6 @@ fn flexiv_options(args: &TranspileArgs, target: Target) -> Result<FlexivOptions,
         f.output_offset = o;
     }
     Ok(f)
-}
-
-fn plural(n: usize) -> &'static str {
-    if n == 1 { "" } else { "s" }
 }
 
 fn read_source(path: &Path) -> anyhow::Result<Source> {

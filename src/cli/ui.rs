@@ -64,3 +64,8 @@ pub(super) fn renderer(stdout: bool) -> annotate_snippets::Renderer {
         annotate_snippets::Renderer::plain()
     }
 }
+
+/// The plural ending of a count's noun: `file{}`.
+pub(super) fn plural(n: usize) -> &'static str {
+    if n == 1 { "" } else { "s" }
+}

@@ -34,6 +34,10 @@ pub struct Config {
     pub spec: Spec,
     pub lint: LintConfig,
     pub fmt: FmtOptions,
+    /// The file sets `server_ip` or `server_port` itself: only then does a found file (not one
+    /// named by `--spec`) supply the vision server `transpile` connects to, so a `[lint]`-only
+    /// file never stands in for the package's EKI XML with the default address.
+    pub server_set: bool,
 }
 
 impl Config {
@@ -44,7 +48,11 @@ impl Config {
         let root =
             toml::de::DeTable::parse(text).map_err(|e| ConfigError::from_toml(text, file, &e))?;
         let doc = table::Doc { text, file };
+        let server_set = ["server_ip", "server_port"]
+            .iter()
+            .any(|k| root.get_ref().contains_key(*k));
         Ok(Config {
+            server_set,
             path: Some(file.to_owned()),
             spec,
             lint: lint_table::read(&doc, root.get_ref())?,

@@ -1,7 +1,8 @@
-//! KRL005's edits ([`super::case_edits`]) gathered one piece of a file at a time
-//! (`syntax::parse_pieces`), so `check` never holds a big file's tree: each line's candidate
-//! edits are kept as its piece goes by, and the lines the formatter protects for reasons only
-//! the whole file knows (inline-form folds, syntax errors) are taken out at the end.
+//! KRL005's edits gathered one piece of a file at a time: from `syntax::parse_pieces` (so
+//! `check` never holds a big file's tree) or from a whole tree's `Parse::pieces`
+//! ([`super::case_edits`]). Each line's candidate edits are kept as its piece goes by, and the
+//! lines the formatter protects for reasons only the whole file knows (inline-form folds,
+//! syntax errors) are taken out at the end.
 
 use super::layout::{has_inline_form_mark, is_block};
 use super::options::FmtOptions;

@@ -43,10 +43,11 @@ pub(super) fn each_line(
     indent_folds: bool,
     mut f: impl FnMut(Line<'_>),
 ) {
+    let mut pieces = Pieces::default();
     match source {
         Source::Tree(parse) => {
             let mut m = Marker::new(text, &parse.diagnostics, indent_folds);
-            collect(parse.root(), 0, true, &mut |l| m.add(l, &mut f));
+            parse.pieces(|piece| pieces.add(piece, &mut |l| m.add(l, &mut f)));
             m.end(&mut f);
         }
         Source::Pieces => {
@@ -54,7 +55,6 @@ pub(super) fn each_line(
             // first parse finds them (parsing is cheap next to keeping a tree).
             let diagnostics = crate::syntax::parse_pieces(text, |_| {});
             let mut m = Marker::new(text, &diagnostics, indent_folds);
-            let mut pieces = Pieces::default();
             crate::syntax::parse_pieces(text, |piece| {
                 pieces.add(piece, &mut |l| m.add(l, &mut f));
             });
@@ -63,19 +63,8 @@ pub(super) fn each_line(
     }
 }
 
-/// [`each_line`] of a parsed file for edits that never touch a blank line: each run of blank
-/// lines is one protected pseudo-line, so a file of millions of blank lines holds few lines.
-pub(super) fn code_lines<'a>(text: &str, parse: &'a Parse, out: &mut Vec<Line<'a>>) {
-    out.clear();
-    let mut m = Marker::new(text, &parse.diagnostics, false);
-    collect(parse.root(), 0, false, &mut |l| {
-        m.add(l, &mut |l| out.push(l))
-    });
-    m.end(&mut |l| out.push(l));
-}
-
-/// The lines of the pieces of [`crate::syntax::parse_pieces`], as [`collect`] lists them from
-/// the whole tree.
+/// The lines of the pieces of [`crate::syntax::parse_pieces`] or [`Parse::pieces`]: a line, or
+/// a block's lines with their depth.
 #[derive(Default)]
 struct Pieces {
     /// The open routine or data list: the depth step inside it, and whether it is a data list.
@@ -111,7 +100,7 @@ impl Pieces {
     /// A node directly inside the open routine or data list, or at top level (depth 0).
     fn child<'a>(&self, node: Node<'a>, sink: &mut impl FnMut(Line<'a>)) {
         let (inner, dat) = self.open.unwrap_or((0, false));
-        child(node, 0, inner, dat, true, sink);
+        child(node, 0, inner, dat, sink);
     }
 }
 
@@ -166,7 +155,7 @@ fn is_frame(kind: NodeKind) -> bool {
     )
 }
 
-fn collect<'a>(node: Node<'a>, depth: usize, blank: bool, sink: &mut impl FnMut(Line<'a>)) {
+fn collect<'a>(node: Node<'a>, depth: usize, sink: &mut impl FnMut(Line<'a>)) {
     // The body of a DEFDAT stays at the DEFDAT's column, as in KUKA's own data lists.
     let inner = match node.kind {
         NodeKind::SourceFile | NodeKind::DatModule => 0,
@@ -174,7 +163,7 @@ fn collect<'a>(node: Node<'a>, depth: usize, blank: bool, sink: &mut impl FnMut(
     };
     let dat = node.kind == NodeKind::DatModule;
     for c in node.nodes() {
-        child(c, depth, inner, dat, blank, sink);
+        child(c, depth, inner, dat, sink);
     }
 }
 
@@ -184,7 +173,6 @@ fn child<'a>(
     depth: usize,
     inner: usize,
     dat: bool,
-    blank: bool,
     sink: &mut impl FnMut(Line<'a>),
 ) {
     if child.span.is_empty() {
@@ -197,8 +185,8 @@ fn child<'a>(
         } else {
             depth + inner
         };
-        collect(child, d, blank, sink);
-    } else if blank || child.kind != NodeKind::BlankLine {
+        collect(child, d, sink);
+    } else {
         let column1 = starts_column1_comment(child);
         let d = if column1 {
             0

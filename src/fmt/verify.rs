@@ -1,9 +1,6 @@
 //! What the formatter promises, checked on the result: the CLI and `check --fix` refuse to write
 //! a file that fails, and the property tests run it on random input.
 
-use super::layout;
-use super::options::FmtOptions;
-use super::render::{Renderer, case_changes};
 use crate::diag::Edit;
 use crate::syntax::{Element, Parse, Piece, Token, TokenKind, parse};
 
@@ -173,21 +170,12 @@ pub fn case_edits(text: &str) -> Vec<Edit> {
 }
 
 /// [`case_edits`] of a file already parsed (`check` computes them from the tree it lowers,
-/// before the AST exists, rather than parsing the file a second time).
+/// before the AST exists, rather than parsing the file a second time): the tree's pieces
+/// through the one gatherer the streamed path uses ([`super::CaseEdits`]).
 pub fn case_edits_in(text: &str, parsed: &Parse) -> Vec<Edit> {
-    let opts = FmtOptions::default();
-    let mut lines = Vec::new();
-    layout::code_lines(text, parsed, &mut lines);
-    let mut renderer = Renderer::default();
-    let mut edits = Vec::new();
-    for line in lines.iter().filter(|l| !l.protected) {
-        if let Some(node) = line.node {
-            case_changes(&mut renderer, node, text, &opts, |t| {
-                edits.push(Edit::new(t.span, t.text(text).to_ascii_uppercase()));
-            });
-        }
-    }
-    edits
+    let mut edits = super::CaseEdits::default();
+    parsed.pieces(|piece| edits.add(piece, text));
+    edits.finish(text, &parsed.diagnostics)
 }
 
 #[cfg(test)]

@@ -1,6 +1,7 @@
 //! View models of the Kawasaki AS package: everything the templates under `templates/as/`
 //! print, computed from the catalog and the spec, so the templates hold layout only.
 
+use crate::catalog::number_text as as_num;
 use crate::catalog::{AsKind, AsParam, Command, Direction, KawasakiCommand, catalog};
 use crate::spec::Spec;
 
@@ -159,18 +160,7 @@ impl AsPackage {
         .into_iter()
         .max()
         .unwrap_or_default();
-        let package_codes: Vec<(u32, String, String)> = cat
-            .statuses
-            .iter()
-            .filter(|s| s.origin == crate::catalog::Origin::Package)
-            .map(|s| {
-                (
-                    s.code,
-                    s.name.clone().unwrap_or_default(),
-                    s.meaning.clone(),
-                )
-            })
-            .collect();
+        let package_codes = cat.package_statuses();
         let globals: Vec<String> = cat
             .kawasaki_globals
             .iter()
@@ -286,14 +276,6 @@ pub struct AsProgram {
     /// The OUT value of `mm_get_property` and its reply field (empty / 0 when none).
     pub out_name: String,
     pub out_field: u32,
-}
-
-fn as_num(x: f64) -> String {
-    if x.fract() == 0.0 {
-        format!("{}", x as i64)
-    } else {
-        format!("{x}")
-    }
 }
 
 /// The reference to a parameter inside the program body: the local with its sigil, except

@@ -1,6 +1,7 @@
 //! View models: everything the KRL templates print, computed here from the catalog and the
 //! spec, so the templates hold layout only.
 
+use crate::catalog::number_text as krl_num;
 use crate::catalog::{Interface, Param, RoutineShape, Subprogram, catalog};
 use crate::spec::Spec;
 
@@ -185,18 +186,7 @@ impl Package {
         } else {
             Vec::new()
         };
-        let package_codes = cat
-            .statuses
-            .iter()
-            .filter(|s| s.origin == crate::catalog::Origin::Package)
-            .map(|s| {
-                (
-                    s.code,
-                    s.name.clone().unwrap_or_default(),
-                    s.meaning.clone(),
-                )
-            })
-            .collect();
+        let package_codes = cat.package_statuses();
         Package {
             channel: spec.channel.clone(),
             alive_flag: spec.alive_flag,
@@ -378,14 +368,6 @@ pub struct Routine {
     pub plan_fixed: u32,
     pub alt_plan_fixed: u32,
     pub alt_speed_at: u32,
-}
-
-fn krl_num(x: f64) -> String {
-    if x.fract() == 0.0 {
-        format!("{}", x as i64)
-    } else {
-        format!("{x}")
-    }
 }
 
 /// The out-of-range condition of one IN parameter, or None when it has no range.

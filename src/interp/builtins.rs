@@ -1,6 +1,6 @@
 //! Built-in functions: math, strings, SWRITE/SREAD, CAST_TO/CAST_FROM, messages, EKI_*.
 
-use crate::syntax::ast::Expr;
+use crate::syntax::ast::{Expr, ExprKind};
 
 use super::format::{Piece, Scanned, format_one, parse_format, scan};
 use super::machine::{Machine, R};
@@ -200,9 +200,19 @@ pub(crate) fn call(m: &mut Machine, name: &str, args: &[Option<Expr>]) -> R<Opti
             return Err(m.err(format!("{name} is not supported by krlkit run")));
         }
         // #DECLARED while any part was never assigned (a CHAR array counts as assigned).
+        // Names are bound at load, so the name must be written there: a literal.
         "VARSTATE" => {
-            let name = text(m, 0)?;
-            Value::Enum(match m.variable_assigned(name.trim()) {
+            let Some(Some(Expr {
+                kind: ExprKind::Str(literal),
+                span,
+            })) = args.first()
+            else {
+                return Err(m.err(
+                    "VARSTATE needs the variable's name as a literal string (krlkit binds \
+                     names when the program is loaded, not while it runs)",
+                ));
+            };
+            Value::Enum(match m.variable_assigned(*span, literal.trim()) {
                 Some(true) => "INITIALIZED".into(),
                 Some(false) => "DECLARED".into(),
                 None => "UNKNOWN".into(),

@@ -12,6 +12,7 @@ mod motion;
 mod place;
 mod robot;
 mod scalar;
+mod scopes;
 mod settings;
 mod signals;
 mod submit;
@@ -20,46 +21,12 @@ mod vision;
 mod watch;
 
 use super::eki::Eki;
-use super::globals::Globals;
 use super::program::Program;
 use super::value::{Types, Value};
 use super::{End, Event, Location, Options, RunResult, RuntimeError, TraceSink};
 pub(crate) use place::Place;
 use place::{Root, Seg, Slot};
-
-#[derive(Debug)]
-struct Frame {
-    module: usize,
-    /// The routine running (its index in the program's routines), `None` for a DEFDAT body.
-    routine: Option<usize>,
-    /// By slot: the routine's layout (`resolve::RoutineInfo::locals`), then `extra`.
-    vars: Vec<Option<Slot>>,
-    /// Names declared here that the layout lacks, with slots after the layout's.
-    extra: Vec<String>,
-    /// How many slots the layout has.
-    layout: usize,
-    /// Where the routine was called from (`None`: the program's main routine, a DEFDAT body).
-    call_site: Option<(usize, u32)>,
-    /// The `MM_*` subprogram this frame runs, when it is one of the interface's.
-    mm: Option<String>,
-    /// Headers of the loops running in this frame, innermost last (where limits are reported).
-    loops: Vec<(usize, u32)>,
-}
-
-impl Frame {
-    fn new(module: usize, routine: Option<usize>, vars: Vec<Option<Slot>>) -> Frame {
-        Frame {
-            module,
-            routine,
-            layout: vars.len(),
-            vars,
-            extra: Vec::new(),
-            call_site: None,
-            mm: None,
-            loops: Vec::new(),
-        }
-    }
-}
+use scopes::{Lexical, Scopes, SysSlots};
 
 /// Why execution of a block stopped early. Boxed, so that a result that did not stop is
 /// small (most statements and expressions do not).
@@ -89,50 +56,28 @@ enum Flow {
 pub(crate) type R<T> = Result<T, Stop>;
 
 pub(crate) struct Machine<'p> {
+    // The program.
     pub(crate) prog: &'p Program,
     pub(crate) opts: &'p Options,
-    globals: Globals,
-    /// Slots of the system variables the machine itself reads or watches.
-    sys: SysSlots,
-    frames: Vec<Frame>,
+    // The state, each concern its own part.
+    scopes: Scopes,
+    robot: robot::Robot,
+    io: io::Io,
+    pub(crate) eki: Eki,
+    interrupts: interrupt::Interrupts,
+    trace: trace::Trace<'p>,
+    // Where the run is.
     /// Current module and byte offset, for error locations.
     loc: (usize, u32),
     pub(crate) clock_ms: f64,
-    io: io::Io,
-    pub(crate) eki: Eki,
-    trace: trace::Trace<'p>,
     steps: u64,
-    interrupts: interrupt::Interrupts,
-    message_handles: i64,
     /// Assignments and motions so far: a loop iteration that adds none changed nothing.
     writes: u64,
-    /// While an interrupt's condition or handler call, or a TRIGGER's action, is evaluated: the
-    /// module that declared it, whose names it uses wherever the program is (even inside the
-    /// package). Cleared inside the routines it calls.
-    declared_scope: Option<usize>,
-    robot: robot::Robot,
+    message_handles: i64,
     /// What the `WAIT FOR` check under way reads (see `watch.rs`).
     reads: Option<watch::Reads>,
     /// What the current iteration of an idle polling loop reads.
     loop_reads: watch::LoopReads,
-}
-
-#[cfg(test)]
-thread_local! {
-    /// Name lookups made by name on this thread (the tests of `resolve.rs` count them).
-    pub(crate) static BY_NAME: std::cell::Cell<u64> = const { std::cell::Cell::new(0) };
-}
-
-/// Slots of system variables with side effects on read or write.
-#[derive(Debug, Default, Clone, Copy)]
-struct SysSlots {
-    timer: usize,
-    timer_flag: usize,
-    timer_stop: usize,
-    input: usize,
-    in_home: usize,
-    tool: usize,
-    base: usize,
 }
 
 /// Globals the interpreter predefines (like `$config.dat`); not reported in [`RunResult::globals`].
@@ -157,27 +102,24 @@ impl<'p> Machine<'p> {
         let mut m = Machine {
             prog,
             opts,
-            globals,
-            sys: SysSlots::default(),
-            frames: Vec::new(),
-            loc: (0, 0),
-            clock_ms: 0.0,
+            scopes: Scopes::new(globals),
+            robot,
             io: io::Io::new(),
             eki: Eki::default(),
-            trace: trace::Trace::new(prog),
-            steps: 0,
             interrupts: interrupt::Interrupts::default(),
-            message_handles: 0,
+            trace: trace::Trace::new(prog),
+            loc: (0, 0),
+            clock_ms: 0.0,
+            steps: 0,
             writes: 0,
-            robot,
-            declared_scope: None,
+            message_handles: 0,
             reads: None,
             loop_reads: None,
         };
         m.init_system();
         m.init_robot_state();
-        let mut slot = |k: &str| m.globals.intern(k);
-        m.sys = SysSlots {
+        let mut slot = |k: &str| m.scopes.globals.intern(k);
+        m.scopes.sys = SysSlots {
             timer: slot("$TIMER"),
             timer_flag: slot("$TIMER_FLAG"),
             timer_stop: slot("$TIMER_STOP"),
@@ -187,6 +129,19 @@ impl<'p> Machine<'p> {
             base: slot("$BASE"),
         };
         m
+    }
+
+    /// Where the code running now was written, for an INTERRUPT or TRIGGER declared here.
+    fn here(&self) -> Lexical {
+        self.scopes.here(self.loc.0)
+    }
+
+    /// Run `f` with names found where `at` was written (see [`Lexical`]).
+    fn written_at<T>(&mut self, at: Lexical, f: impl FnOnce(&mut Self) -> R<T>) -> R<T> {
+        let saved = self.scopes.lexical.replace(at);
+        let r = f(self);
+        self.scopes.lexical = saved;
+        r
     }
 
     /// Send every event to `sink` as well, as it happens.
@@ -305,12 +260,13 @@ impl<'p> Machine<'p> {
             },
         );
         let globals = self
+            .scopes
             .globals
             .iter()
             .filter(|(k, _)| !k.starts_with('$') && !BUILTIN_GLOBALS.contains(k))
             .map(|(k, v)| (k.to_string(), v.clone()))
             .collect();
-        let outputs = match self.globals.get("$OUT") {
+        let outputs = match self.scopes.globals.get("$OUT") {
             Some(Value::Array { items, .. }) => items
                 .iter()
                 .enumerate()

@@ -40,8 +40,6 @@ pub struct Program {
     pub(crate) types: Types,
     /// Upper-case routine name → (module, routine) for GLOBAL DEFs and each file's first DEF.
     pub(crate) global_routines: HashMap<String, (usize, usize)>,
-    /// (scope, upper-case name) → (module, routine) for every routine.
-    pub(crate) local_routines: HashMap<(String, String), (usize, usize)>,
     /// Every name use bound to its slot or routine (see `resolve.rs`).
     pub(crate) resolved: Resolution,
 }
@@ -153,20 +151,8 @@ impl Program {
             modules,
             types,
             global_routines,
-            local_routines,
             resolved,
         })
-    }
-
-    /// The routine a call of `key` (upper case) from module `mi` reaches: the module's own,
-    /// else a GLOBAL one or a module's first.
-    pub(crate) fn find_routine(&self, mi: usize, key: &str) -> Option<(usize, usize)> {
-        find_routine(
-            &self.local_routines,
-            &self.global_routines,
-            &self.modules[mi].scope,
-            key,
-        )
     }
 
     /// What the name at `span` of module `mi`'s text was bound to at load.
@@ -177,6 +163,12 @@ impl Program {
     /// The routine-wide index of routine `ri` of module `mi`.
     pub(crate) fn routine_id(&self, mi: usize, ri: usize) -> usize {
         self.resolved.routine_ids[mi][ri] as usize
+    }
+
+    /// Module and index of routine `id`.
+    pub(crate) fn routine_at(&self, id: usize) -> (usize, usize) {
+        let (mi, ri) = self.resolved.routines[id].at;
+        (mi as usize, ri as usize)
     }
 
     pub(crate) fn routine_info(&self, id: usize) -> &RoutineInfo {
@@ -194,6 +186,8 @@ impl Program {
     }
 }
 
+/// The routine a call of `key` (upper case) from a module of `scope` reaches: the module's
+/// own, else a GLOBAL one or a module's first.
 fn find_routine(
     local: &HashMap<(String, String), (usize, usize)>,
     global: &HashMap<String, (usize, usize)>,

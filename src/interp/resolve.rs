@@ -1,19 +1,20 @@
-//! Name resolution at load time, through the semantic model: every variable use and call the
-//! model recorded gets a [`Binding`] — a routine's frame slot, a data-list or system variable's
-//! slot in [`Globals`], a call's target — so the running program indexes vectors instead of
-//! hashing names.
+//! Name resolution at load time, through the semantic model: every name use the model recorded
+//! gets a [`Binding`] — a routine's frame slot, a data-list or system variable's slot in
+//! [`Globals`], a data-list SIGNAL, a call's target — so the running program indexes vectors
+//! and never looks a name up.
 //!
-//! A binding is a shortcut, never a second opinion: the machine takes it only where it gives
-//! what the by-name lookup (routine frame → SIGNAL → module data → robot-wide data) would give,
-//! and asks by name otherwise (interrupt conditions and TRIGGER actions, which run in another
-//! routine's frame; a local not declared yet; a name also declared as a SIGNAL; uses the model
-//! did not record).
+//! A use in a routine is bound lexically, to that routine: a local is a slot of the frame of
+//! the routine whose text holds the use, also inside an INTERRUPT DECL's condition and
+//! handler arguments and a TRIGGER's action, which run later (the machine gives them the
+//! declaring call's frame). Any other variable is the module's own when the model resolves it
+//! to the module's data list (`SCOPE::NAME`), else the robot-wide one (`NAME`: GLOBAL,
+//! `$config.dat`, system variables); a data-list SIGNAL of that key is the signal.
 
-use rustc_hash::{FxHashMap, FxHashSet};
+use rustc_hash::FxHashMap;
 
 use crate::diag::Span;
 use crate::sema::{FileId, Resolved, Scope, Sema, UseKind};
-use crate::syntax::ast::{Definition, Routine, StmtKind};
+use crate::syntax::ast::{Definition, Ident, Routine, StmtKind};
 
 use super::globals::Globals;
 use super::program::Module;
@@ -22,9 +23,10 @@ use super::value::BaseType;
 /// A routine of the program: its frame layout and what a call needs to know about it.
 #[derive(Debug)]
 pub(crate) struct RoutineInfo {
-    /// Upper-case name of every parameter, declaration and SIGNAL of the routine → its slot in
-    /// the routine's frame.
-    pub locals: FxHashMap<String, u32>,
+    /// Its module and its index among the module's routines.
+    pub at: (u32, u32),
+    /// Slots in the routine's frame: one per parameter, declaration and SIGNAL.
+    pub slots: u32,
     /// The slot of each parameter.
     pub params: Vec<u32>,
     /// A subprogram of the Mech-Mind interface (traced as `call`/`return`).
@@ -33,20 +35,14 @@ pub(crate) struct RoutineInfo {
     pub ret: Option<BaseType>,
 }
 
-/// Module level (a DEFDAT body) in [`Binding`]'s `routine`.
-pub(crate) const MODULE_LEVEL: u32 = u32::MAX;
-
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub(crate) enum Binding {
-    /// Slot `slot` of the frame of routine `routine` (the routine the use is in).
+    /// Slot `slot` of the frame of routine `routine` (the routine whose text holds the use).
     Local { routine: u32, slot: u32 },
-    /// A variable of no routine, used in `routine`, which has no local of its name: the
-    /// module's own (`scoped`) if declared, else the robot-wide one (`plain`).
-    Global {
-        routine: u32,
-        scoped: u32,
-        plain: u32,
-    },
+    /// A slot of [`Globals`].
+    Global(u32),
+    /// A data-list SIGNAL, by its index in [`Resolution::signals`].
+    Signal(u32),
     /// A call: the routine it reaches (`None`: no routine of the program, a built-in).
     Call(Option<(u32, u32)>),
 }
@@ -86,6 +82,9 @@ pub(crate) struct Resolution {
     pub uses: Vec<Uses>,
     /// Every key the program's uses name (no values).
     pub globals: Globals,
+    /// The data lists' SIGNAL names, keyed like globals → their index (a [`Binding::Signal`]);
+    /// the keys serve the Rust side (the submit routine's word).
+    pub signals: FxHashMap<String, u32>,
 }
 
 /// The key the interpreter keeps a system variable under: `$OUT_C` sets outputs at the
@@ -108,18 +107,11 @@ fn local_names(routine: &Routine, from_model: Vec<String>) -> FxHashMap<String, 
     for d in &routine.decls {
         names.extend(d.vars.iter().map(|v| v.name.key()));
     }
-    let signal = |d: &Definition, names: &mut Vec<String>| {
-        if let Definition::Signal(s) = d {
-            names.push(s.name.key());
+    each_local_signal(routine, |s| names.push(s.key()));
+    crate::syntax::ast::walk::each_stmt(&routine.body, &mut |s| {
+        if let StmtKind::Decl(d) = &s.kind {
+            names.extend(d.vars.iter().map(|v| v.name.key()))
         }
-    };
-    for d in &routine.definitions {
-        signal(d, &mut names);
-    }
-    crate::syntax::ast::walk::each_stmt(&routine.body, &mut |s| match &s.kind {
-        StmtKind::Decl(d) => names.extend(d.vars.iter().map(|v| v.name.key())),
-        StmtKind::Definition(d) => signal(d, &mut names),
-        _ => {}
     });
     let mut locals = FxHashMap::default();
     for n in names {
@@ -127,6 +119,20 @@ fn local_names(routine: &Routine, from_model: Vec<String>) -> FxHashMap<String, 
         locals.entry(n).or_insert(next);
     }
     locals
+}
+
+/// The name of every SIGNAL a routine declares, before its statements or among them.
+fn each_local_signal<'a>(routine: &'a Routine, mut f: impl FnMut(&'a Ident)) {
+    for d in &routine.definitions {
+        if let Definition::Signal(s) = d {
+            f(&s.name);
+        }
+    }
+    crate::syntax::ast::walk::each_stmt(&routine.body, &mut |s| {
+        if let StmtKind::Definition(Definition::Signal(s)) = &s.kind {
+            f(&s.name);
+        }
+    });
 }
 
 /// Resolve the model's uses for the loaded `modules` (one per file of the model, in order);
@@ -147,6 +153,8 @@ pub(crate) fn resolve(
         }
     }
     let mut res = Resolution::default();
+    // The layout of each routine's frame, by routine index (load time only).
+    let mut layouts: Vec<FxHashMap<String, u32>> = Vec::new();
     for (mi, m) in modules.iter().enumerate() {
         let mut ids = Vec::new();
         for (ri, r) in m.ast.routines.iter().enumerate() {
@@ -161,35 +169,47 @@ pub(crate) fn resolve(
             ids.push(res.routines.len() as u32);
             let locals = local_names(r, from_model);
             res.routines.push(RoutineInfo {
+                at: (mi as u32, ri as u32),
                 params: r.params.iter().map(|p| locals[&p.name.key()]).collect(),
-                locals,
+                slots: locals.len() as u32,
                 is_mm,
                 ret: None,
             });
+            layouts.push(locals);
         }
         res.routine_ids.push(ids);
     }
-    // A name declared as a data-list SIGNAL is found as the signal first: asked by name.
-    let signals: FxHashSet<String> = modules
+    let mut uses: Vec<Uses> = modules
         .iter()
-        .filter_map(|m| m.ast.dat.as_ref())
-        .flat_map(|d| &d.definitions)
-        .filter_map(|d| match d {
-            Definition::Signal(s) => Some(s.name.key()),
-            _ => None,
-        })
-        .collect();
-    for (mi, m) in modules.iter().enumerate() {
-        let file = FileId(mi as u32);
-        let mut uses = Uses {
+        .map(|m| Uses {
             at: vec![0; m.text.len() + 1],
             bound: Vec::new(),
-        };
+        })
+        .collect();
+    // The data lists' signals, declared where the machine reads them: module-wide, or
+    // visible everywhere when GLOBAL or in `$config.dat`.
+    for (mi, m) in modules.iter().enumerate() {
+        let Some(dat) = &m.ast.dat else { continue };
+        for d in &dat.definitions {
+            if let Definition::Signal(s) = d {
+                let key = match !s.global && !m.config {
+                    true => format!("{}::{}", m.scope, s.name.key()),
+                    false => s.name.key(),
+                };
+                let next = res.signals.len() as u32;
+                let i = *res.signals.entry(key).or_insert(next);
+                uses[mi].put(s.name.span, Binding::Signal(i));
+            }
+        }
+    }
+    for (mi, m) in modules.iter().enumerate() {
+        let file = FileId(mi as u32);
+        let uses = &mut uses[mi];
         // Declared names: a call declares its routine's locals straight into their slots.
         for (ri, r) in m.ast.routines.iter().enumerate() {
             let id = res.routine_ids[mi][ri];
-            let locals = &res.routines[id as usize].locals;
-            let mut bind = |v: &crate::syntax::ast::Ident| {
+            let locals = &layouts[id as usize];
+            let mut bind = |v: &Ident| {
                 if let Some(&slot) = locals.get(&v.key()) {
                     uses.put(v.span, Binding::Local { routine: id, slot });
                 }
@@ -202,39 +222,40 @@ pub(crate) fn resolve(
                     d.vars.iter().for_each(|v| bind(&v.name));
                 }
             });
+            each_local_signal(r, bind);
         }
         for (k, u) in sema.uses(file).iter().enumerate() {
             let owner = (u.owner != u32::MAX).then(|| res.routine_ids[mi][u.owner as usize]);
             let key = sema.name(sema.use_name(u)).to_ascii_uppercase();
             let binding = match u.kind {
-                UseKind::Call => Some(Binding::Call(
-                    find_routine(mi, &key).map(|(a, b)| (a as u32, b as u32)),
-                )),
-                UseKind::Var if u.access != crate::sema::Access::Mention => {
+                UseKind::Call => {
+                    Binding::Call(find_routine(mi, &key).map(|(a, b)| (a as u32, b as u32)))
+                }
+                UseKind::Var => {
                     let key = canonical(&key);
-                    let local = owner.and_then(|r| res.routines[r as usize].locals.get(key));
-                    match (sema.resolution(file, k), owner, local) {
-                        (Resolved::Symbol(s), Some(r), Some(&slot))
-                            if matches!(sema.symbol(s).scope, Scope::Routine(_)) =>
-                        {
-                            Some(Binding::Local { routine: r, slot })
+                    let local = owner.and_then(|r| Some((r, *layouts[r as usize].get(key)?)));
+                    match local {
+                        Some((routine, slot)) => Binding::Local { routine, slot },
+                        None => {
+                            let own = matches!(sema.resolution(file, k), Resolved::Symbol(s)
+                                if matches!(sema.symbol(s).scope, Scope::Module(_)));
+                            let key = match own {
+                                true => format!("{}::{key}", m.scope),
+                                false => key.to_string(),
+                            };
+                            match res.signals.get(&key) {
+                                Some(&i) => Binding::Signal(i),
+                                None => Binding::Global(res.globals.intern(&key) as u32),
+                            }
                         }
-                        (_, _, None) if !signals.contains(key) => Some(Binding::Global {
-                            routine: owner.unwrap_or(MODULE_LEVEL),
-                            scoped: res.globals.intern(&format!("{}::{key}", m.scope)) as u32,
-                            plain: res.globals.intern(key) as u32,
-                        }),
-                        _ => None,
                     }
                 }
-                _ => None,
+                UseKind::Type => continue,
             };
-            if let Some(b) = binding {
-                uses.put(u.span, b);
-            }
+            uses.put(u.span, binding);
         }
-        res.uses.push(uses);
     }
+    res.uses = uses;
     res
 }
 
@@ -242,93 +263,100 @@ pub(crate) fn resolve(
 mod tests {
     use std::path::Path;
 
-    use crate::interp::machine::BY_NAME;
-    use crate::interp::{self, Options, Program, RunResult};
+    use super::Binding;
+    use crate::interp::Program;
+    use crate::syntax::ast::{Decl, Definition, Expr, ExprKind, Ident, Stmt, StmtKind, walk};
 
-    fn load(files: &[(&str, &str)]) -> Program {
-        Program::load(
-            files
-                .iter()
-                .map(|(n, t)| (n.to_string(), t.to_string()))
-                .collect(),
-        )
-        .unwrap()
-    }
-
-    /// The run and how many names it looked up by name.
-    fn run_counting(program: &Program, options: &Options) -> (RunResult, u64) {
-        BY_NAME.with(|n| n.set(0));
-        let r = interp::run(program, options);
-        (r, BY_NAME.with(|n| n.get()))
-    }
-
-    #[test]
-    fn locals_module_data_and_calls_never_go_by_name() {
-        let program = load(&[
-            (
-                "loop.src",
-                "DEF loop()\n  DECL INT i, a[3]\n  DECL REAL r\n  r = 0.5\n  FOR i = 1 TO 3\n    \
-                 a[i] = Next(nCount)\n    nCount = a[i]\n    pos.X = pos.X + r\n  ENDFOR\nEND\n\n\
-                 DEFFCT INT Next(n:IN)\n  DECL INT n\n  RETURN n + 1\nENDFCT\n",
-            ),
-            (
-                "loop.dat",
-                "DEFDAT loop\n  DECL INT nCount = 0\n  DECL FRAME pos = {X 0, Y 0, Z 0, A 0, B 0, \
-                 C 0}\nENDDAT\n",
-            ),
-        ]);
-        let (r, by_name) = run_counting(&program, &Options::default());
-        assert_eq!(r.end, interp::End::Normal);
-        assert_eq!(r.globals["LOOP::NCOUNT"], interp::Value::Int(3));
-        assert_eq!(by_name, 0, "every name was bound at load");
-    }
-
-    fn summary(r: &RunResult) -> String {
-        let mut globals: Vec<_> = r.globals.iter().collect();
-        globals.sort_by(|a, b| a.0.cmp(b.0));
-        let events: Vec<String> = r.events.iter().map(|e| e.to_json_line()).collect();
-        format!(
-            "{:?}\n{}\n{globals:?}\n{:?}\n{}",
-            r.end,
-            events.join("\n"),
-            r.outputs,
-            r.steps
-        )
-    }
-
-    /// Bindings are a shortcut: every fixture runs the same with all of them dropped (every
-    /// name looked up by name, as before they existed).
-    #[test]
-    fn fixtures_run_the_same_bound_and_by_name() {
-        let dir = Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/fixtures/interp");
-        let mut seen = 0;
-        let mut skipped = 0u64;
-        for e in std::fs::read_dir(&dir).unwrap() {
-            let p = e.unwrap().path();
-            if p.extension().is_none_or(|x| x != "src") {
-                continue;
+    /// Every name a module's code uses: variables (`false`) and called routines (`true`).
+    fn names<'a>(m: &'a crate::interp::program::Module, out: &mut Vec<(&'a Ident, bool)>) {
+        fn expr<'a>(e: &'a Expr, out: &mut Vec<(&'a Ident, bool)>) {
+            match &e.kind {
+                ExprKind::Name(id) => out.push((id, false)),
+                ExprKind::Call { name, .. } => out.push((name, true)),
+                _ => {}
             }
-            let mut files = Vec::new();
-            for f in [p.clone(), p.with_extension("dat")] {
-                if f.exists() {
-                    let name = f.file_name().unwrap().to_string_lossy().into_owned();
-                    files.push((name, std::fs::read_to_string(&f).unwrap()));
+            e.for_each_operand(|o| expr(o, out));
+        }
+        fn decls<'a>(ds: &'a [Decl], out: &mut Vec<(&'a Ident, bool)>) {
+            for v in ds.iter().flat_map(|d| &d.vars) {
+                v.dims
+                    .iter()
+                    .flatten()
+                    .chain(&v.init)
+                    .for_each(|e| expr(e, out));
+            }
+        }
+        fn signals<'a>(ds: &'a [Definition], out: &mut Vec<(&'a Ident, bool)>) {
+            for d in ds {
+                if let Definition::Signal(s) = d {
+                    std::iter::once(&*s.from)
+                        .chain(s.to.as_deref())
+                        .for_each(|e| expr(e, out));
                 }
             }
-            let options = Options {
-                step_limit: 100_000,
-                eki_dirs: vec![dir.clone()],
-                ..Options::default()
-            };
-            let mut program = Program::load(files).unwrap();
-            let (bound, by_name) = run_counting(&program, &options);
-            program.resolved.uses.clear();
-            let (unbound, _) = run_counting(&program, &options);
-            assert_eq!(summary(&bound), summary(&unbound), "{}", p.display());
-            seen += 1;
-            skipped += by_name;
         }
-        assert!(seen >= 10);
-        eprintln!("{seen} fixtures, {skipped} lookups by name while bound");
+        fn body<'a>(stmts: &'a [Stmt], out: &mut Vec<(&'a Ident, bool)>) {
+            walk::each_stmt(stmts, &mut |s| {
+                s.for_each_expr(|e, _| expr(e, out));
+                match &s.kind {
+                    StmtKind::Call { name, .. } => out.push((name, true)),
+                    StmtKind::For { var, .. } => out.push((var, false)),
+                    StmtKind::Decl(d) => decls(std::slice::from_ref(&**d), out),
+                    StmtKind::Definition(d) => signals(std::slice::from_ref(d), out),
+                    _ => {}
+                }
+            });
+        }
+        for r in &m.ast.routines {
+            decls(&r.decls, out);
+            signals(&r.definitions, out);
+            body(&r.body, out);
+        }
+        if let Some(dat) = &m.ast.dat {
+            decls(&dat.decls, out);
+            signals(&dat.definitions, out);
+            body(&dat.body, out);
+        }
+    }
+
+    /// Every name use of every interpreter fixture is bound at load, a call to a call.
+    #[test]
+    fn every_name_of_the_fixtures_is_bound_at_load() {
+        let root = Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/fixtures/interp");
+        let mut seen = 0;
+        for dir in [root.clone(), root.join("realistic"), root.join("e2e")] {
+            for e in std::fs::read_dir(&dir).unwrap() {
+                let p = e.unwrap().path();
+                if p.extension().is_none_or(|x| x != "src") {
+                    continue;
+                }
+                let mut files = Vec::new();
+                for f in [p.clone(), p.with_extension("dat")] {
+                    if f.exists() {
+                        let name = f.file_name().unwrap().to_string_lossy().into_owned();
+                        files.push((name, std::fs::read_to_string(&f).unwrap()));
+                    }
+                }
+                let Ok(program) = Program::load(files) else {
+                    continue;
+                };
+                for (mi, m) in program.modules.iter().enumerate() {
+                    let mut uses = Vec::new();
+                    names(m, &mut uses);
+                    for (id, call) in uses {
+                        let b = program.binding(mi, id.span);
+                        assert!(
+                            matches!(b, Some(Binding::Call(_))) == call && b.is_some(),
+                            "{}: `{}` at {} is bound to {b:?}",
+                            p.display(),
+                            id.text,
+                            m.line_of(id.span.start)
+                        );
+                        seen += 1;
+                    }
+                }
+            }
+        }
+        assert!(seen > 1000, "{seen}");
     }
 }

@@ -16,7 +16,7 @@ use crate::sema::{
     TyKind, UseKind,
 };
 use crate::syntax::ast::{
-    DatModule, Decl, Definition, Expr, ExprKind, Ident, Lowered, Routine, SourceFile, Stmt,
+    DatModule, Decl, Definition, Event, Expr, ExprKind, Ident, Lowered, Routine, SourceFile, Stmt,
     StmtKind,
 };
 
@@ -57,8 +57,8 @@ impl<'a> SyntaxCtx<'a> {
     }
 }
 
-/// What the syntax rules need from a file's AST, gathered from the whole AST ([`SyntaxFacts::of`])
-/// or one lowered piece at a time ([`SyntaxFacts::add`]).
+/// What the syntax rules need from a file's AST, gathered one event at a time: streamed
+/// ([`SyntaxFacts::add`]) or from a whole AST's events ([`SyntaxFacts::of`]).
 #[derive(Debug, Default)]
 pub struct SyntaxFacts {
     /// Names the file declares (routines, parameters, variables, types, fields, enum values,
@@ -74,51 +74,41 @@ pub struct SyntaxFacts {
 }
 
 impl SyntaxFacts {
+    /// The facts of a whole AST: [`SyntaxFacts::event`] fed its events.
     pub fn of(ast: &SourceFile) -> SyntaxFacts {
         let mut f = SyntaxFacts::default();
-        for r in &ast.routines {
-            f.routine(r);
-            for d in &r.decls {
-                f.decl(d);
-            }
-            for d in &r.definitions {
-                f.definition(d);
-            }
-            walk::each_stmt(&r.body, &mut |s| f.declares(s));
-        }
-        if let Some(d) = &ast.dat {
-            f.data_list(d);
-            for x in &d.decls {
-                f.decl(x);
-            }
-            for x in &d.definitions {
-                f.definition(x);
-            }
-        }
+        ast.events(|e| f.event(e));
         f
     }
 
+    /// Take one streamed event.
     pub fn add(&mut self, event: &Lowered) {
+        self.event(event.event());
+    }
+
+    fn event(&mut self, event: Event<'_>) {
         match event {
-            Lowered::Routine(r) => {
+            Event::Routine(r) => {
                 self.routine(r);
                 self.open = 1;
             }
-            Lowered::Dat(d) if self.dat.is_none() => {
+            Event::Dat(d) if self.dat.is_none() => {
                 self.data_list(d);
                 self.open = 2;
             }
-            Lowered::Dat(_) => self.open = 3,
-            Lowered::Stmt(s) if self.open == 1 => {
-                walk::each_stmt(std::slice::from_ref(s), &mut |s| self.declares(s))
+            Event::Dat(_) => self.open = 3,
+            Event::Stmt(s) if self.open == 1 => {
+                walk::each_stmt(std::slice::from_ref(&*s), &mut |s| self.declares(s))
             }
-            Lowered::Stmt(s) if self.open == 2 => match &s.kind {
+            Event::Stmt(s) if self.open == 2 => match &s.kind {
                 StmtKind::Decl(d) => self.decl(d),
                 StmtKind::Definition(d) => self.definition(d),
                 _ => {}
             },
-            Lowered::Close { .. } => self.open = 0,
-            Lowered::Stmt(_) | Lowered::Header(_) => {}
+            Event::Decl(d) if matches!(self.open, 1 | 2) => self.decl(d),
+            Event::Definition(d) if matches!(self.open, 1 | 2) => self.definition(d),
+            Event::Close { .. } => self.open = 0,
+            Event::Stmt(_) | Event::Decl(_) | Event::Definition(_) | Event::Header(_) => {}
         }
     }
 
@@ -509,9 +499,10 @@ impl<'p> FileCtx<'p> {
             })
     }
 
-    /// The interface subprogram called `name` in the version the program is checked against.
-    pub fn subprogram(&self, name: &str) -> Option<&'static Subprogram> {
-        subprogram(self.project.interface.version, name)
+    /// The interface subprogram, in the version the program is checked against, that the call
+    /// named `name` (a call's name in this file) calls, as the model resolves it.
+    pub fn mm_call(&self, name: &Ident) -> Option<&'static Subprogram> {
+        (self.sema).mm_call_at(self.id, name.span.start, self.project.interface.version)
     }
 
     /// The model's id of a routine of this file's AST.

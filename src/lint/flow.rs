@@ -290,7 +290,7 @@ impl<'s, 'c, 'p> Walker<'s, 'c, 'p> {
     }
 
     fn call(&mut self, name: &'s Ident, args: &'s [Option<Expr>], mut st: State) -> State {
-        let Some(sp) = self.sh.ctx.subprogram(&name.text) else {
+        let Some(sp) = self.sh.ctx.mm_call(name) else {
             if let Some(r) = self.sh.local_routine(name) {
                 if self.record {
                     let slot = self.callsites.remove(&r).unwrap_or_else(State::dead);
@@ -486,7 +486,7 @@ fn call_later(sh: &Shared, s: &Stmt, later: u64, out: Option<&mut HashMap<u32, u
     let StmtKind::Call { name, .. } = &s.kind else {
         return later;
     };
-    if sh.ctx.subprogram(&name.text).is_some() {
+    if sh.ctx.mm_call(name).is_some() {
         if let Some(out) = out {
             out.insert(name.span.start, later);
         }

@@ -662,8 +662,8 @@ impl Builder {
             self.sema.scopes.builtins.insert(name, id);
             self.versioned(name, &r.meta);
         }
-        for (i, s) in catalog().subprograms.iter().enumerate() {
-            let name = names.intern(&s.name);
+        for (i, s) in super::mm::names().iter().enumerate() {
+            let name = names.intern(s);
             self.sema.scopes.mm.insert(name, i as u16);
         }
         for (i, g) in catalog().globals.iter().enumerate() {

@@ -1,13 +1,14 @@
 //! What a routine does to the rest of the program, from the model's resolved uses: the
-//! routines it calls, the variables it (or anything it calls) may write, and the Mech-Mind
-//! interface subprogram a statement calls. Consumers (the transpiler's call graph and hoisting,
-//! the MM rules) ask these instead of matching names as text.
+//! routines it calls, the variables it (or anything it calls) may write, the Mech-Mind
+//! interface subprogram a statement calls, what a call of a name reaches and whether such a
+//! call moves the robot. Consumers (the transpiler's call graph and hoisting, the MM rules)
+//! ask these instead of matching names as text.
 
-use crate::catalog::{Subprogram, catalog};
+use crate::catalog::{Interface, Subprogram};
 use crate::diag::Span;
 
 use super::scope::Scope;
-use super::{Access, FileId, Resolved, RoutineId, Sema, SymbolId, UseKind};
+use super::{Access, FileId, Position, Resolved, RoutineId, Sema, SymbolId, UseKind, env};
 
 impl Sema {
     /// The routines of the workspace `routine` calls, each once, in the order of their first
@@ -59,17 +60,57 @@ impl Sema {
         out
     }
 
+    /// What a call of `name` reaches when made inside `caller` (`None`: outside any routine)
+    /// of `file`: the lookup the model makes for a call written there.
+    pub fn call_target(&self, file: FileId, caller: Option<RoutineId>, name: &str) -> Resolved {
+        let info = self.file(file);
+        let at = Position {
+            robot: info.robot,
+            module: info.module,
+            routine: caller,
+        };
+        self.lookup_call(at, name)
+    }
+
+    /// The Mech-Mind subprogram a call that reaches `target` calls (the catalog's, or an EXT
+    /// of one), in either interface generation (1.x first).
+    pub fn mm_target(&self, target: Resolved) -> Option<&'static Subprogram> {
+        self.mm_subprogram(target, Interface::V1)
+            .or_else(|| self.mm_subprogram(target, Interface::V2))
+    }
+
+    /// Whether a call that reaches `target` moves the robot, as far as the model knows without
+    /// reading a body: a Mech-Mind subprogram (or an EXT of one) when its catalog shape moves;
+    /// a KSS built-in, or an EXT declaring one, unless `kss.toml` marks it `still`; a routine
+    /// of another module (an EXT, or a name the model cannot see) may. `None` for a routine
+    /// of the workspace: its body decides.
+    pub fn call_moves(&self, target: Resolved) -> Option<bool> {
+        if let Resolved::Routine(_) = target {
+            return None;
+        }
+        if let Some(s) = self.mm_target(target) {
+            return Some(s.shape.moves());
+        }
+        let still = |name: &str| {
+            env()
+                .routines
+                .iter()
+                .any(|r| r.still && r.decl.name.is(name))
+        };
+        Some(match target {
+            Resolved::Builtin(b) => !env().routines[self.builtin(b).env_index].still,
+            Resolved::Ext(x) => !still(self.name(self.ext(x).name)),
+            _ => true,
+        })
+    }
+
     /// The Mech-Mind interface subprogram (catalog, 1.x) that the statement at `span` of
-    /// `file` calls: a call the model resolved to the catalog, or to the package's routine of
-    /// that name when the package is part of the workspace.
+    /// `file` calls: a call the model resolved to the catalog, or to the package's routine (or
+    /// an EXT of it) of that name ([`Sema::mm_subprogram`]).
     pub fn mm_call(&self, file: FileId, span: Span) -> Option<&'static Subprogram> {
         self.calls(file)
             .filter(|c| span.start <= c.span.start && c.span.end <= span.end)
-            .find_map(|c| match c.target {
-                Resolved::Mm(i) => catalog().subprograms.get(i as usize),
-                Resolved::Routine(r) => catalog().subprogram(self.name(self.routine(r).name)),
-                _ => None,
-            })
+            .find_map(|c| self.mm_subprogram(c.target, Interface::V1))
     }
 }
 
@@ -140,5 +181,50 @@ mod tests {
             Some("MM_START_VIS")
         );
         assert!(a.sema.mm_call(f, line(2)).is_none());
+    }
+
+    /// A call reaches what the model declares where it is written; whether it moves comes
+    /// from the catalog's shape, `kss.toml`'s `still` (also through an EXT declaring the
+    /// built-in) or, for a routine of the workspace, from its body (`None`).
+    #[test]
+    fn call_targets_and_whether_they_move() {
+        let src = "DEF cell()\nEXT BAS(BAS_COMMAND :IN, REAL :IN)\nEXT elsewhere()\n\
+            EXT MM_Get_Status(INT :OUT)\nEXT MM_Calib(INT :IN)\nEND\n\
+            DEF helper()\nEND\n";
+        let a = analysis(&[("cell.src", src)]);
+        let f = a.sema.file_id("cell.src").expect("file");
+        let cell = routine(&a, "cell");
+        let moves = |caller, name| a.sema.call_moves(a.sema.call_target(f, caller, name));
+        assert_eq!(
+            a.sema.call_target(f, Some(cell), "HELPER"),
+            Resolved::Routine(routine(&a, "helper"))
+        );
+        assert_eq!(moves(Some(cell), "helper"), None);
+        assert_eq!(moves(Some(cell), "MsgNotify"), Some(false));
+        assert_eq!(moves(None, "StrLen"), Some(false));
+        assert_eq!(
+            moves(Some(cell), "BAS"),
+            Some(false),
+            "an EXT of a still built-in"
+        );
+        assert!(matches!(
+            a.sema.call_target(f, Some(cell), "BAS"),
+            Resolved::Ext(_)
+        ));
+        assert_eq!(moves(Some(cell), "elsewhere"), Some(true));
+        assert_eq!(
+            moves(None, "elsewhere"),
+            Some(true),
+            "declared nowhere outside cell"
+        );
+        assert_eq!(moves(None, "MM_Get_Status"), Some(false));
+        assert_eq!(moves(None, "MM_Calib"), Some(true));
+        assert_eq!(moves(None, "MM_Get_Property"), Some(false), "2.x only");
+        assert_eq!(
+            moves(Some(cell), "MM_Get_Status"),
+            Some(false),
+            "an EXT of it"
+        );
+        assert_eq!(moves(Some(cell), "MM_Calib"), Some(true), "an EXT of it");
     }
 }

@@ -48,6 +48,8 @@ struct RawEntry {
     params: Vec<String>,
     #[serde(default)]
     variadic: bool,
+    #[serde(default)]
+    still: bool,
 }
 
 /// A KSS version (`V8.7.8` in `am.ini`, `8.3` in `kss.toml`).
@@ -119,6 +121,8 @@ pub struct EnvRoutine {
     pub params: Vec<String>,
     /// More arguments than parameters are accepted (SWRITE, CWRITE, CAST_TO …).
     pub variadic: bool,
+    /// A call never moves the robot (`still = true`; messages, string functions, `BAS`).
+    pub still: bool,
     pub meta: EnvMeta,
 }
 
@@ -202,6 +206,7 @@ fn load(text: &str) -> Env {
                 decl: x,
                 params: e.params.clone(),
                 variadic: e.variadic,
+                still: e.still,
                 meta: meta(&e),
             }),
             _ => env.rejected.push(e.decl),

@@ -64,6 +64,7 @@ mod consts;
 mod edit;
 pub mod env;
 mod ids;
+mod mm;
 mod model;
 mod names;
 mod query;

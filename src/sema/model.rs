@@ -198,8 +198,9 @@ pub enum Resolved {
     Ext(ExtId),
     Builtin(BuiltinId),
     Type(TypeId),
-    /// A subprogram of the Mech-Mind interface catalog (by its index there), when the package
-    /// is not part of the workspace.
+    /// A subprogram of the Mech-Mind interface catalog, 1.x or 2.x, when the package is not part
+    /// of the workspace: the index of its name (a 1.x subprogram's index in `subprograms`, the
+    /// 2.x-only names after them; `Sema::mm_subprogram` gives a generation's entry).
     Mm(u16),
     /// A global of the generated Mech-Mind package (catalog `[[global]]`, by index).
     MmGlobal(u16),

@@ -269,9 +269,9 @@ pub struct FileSummary {
 }
 
 impl FileSummary {
-    /// Summarise one parsed file.
+    /// Summarise one parsed file: the one builder ([`SummaryBuilder`]) fed its events.
     pub fn of(file: &SourceFile) -> FileSummary {
-        FileSummary::summarise(file, Summarizer::default())
+        FileSummary::built(file, SummaryBuilder::default())
     }
 
     /// What [`FileSummary::of`] gives without what only statements give: the items (routines
@@ -287,7 +287,7 @@ impl FileSummary {
     /// `resolve` know only the declarations' type names, and [`FileSummary::interface`] lists
     /// no calls. Lint's model rules need uses: never run them on it.
     pub fn declarations_of(file: &SourceFile) -> FileSummary {
-        FileSummary::summarise(file, Summarizer::declarations_only())
+        FileSummary::built(file, SummaryBuilder::declarations_only())
     }
 
     /// Whether this is a [`FileSummary::declarations_of`] summary.
@@ -295,25 +295,12 @@ impl FileSummary {
         self.declarations_only
     }
 
-    fn summarise(file: &SourceFile, mut s: Summarizer) -> FileSummary {
-        for (i, r) in file.routines.iter().enumerate() {
-            s.routine(i as u32, r);
-        }
-        if let Some(dat) = &file.dat {
-            s.owner = NONE;
-            let name = s.name(&dat.name.text);
-            s.out.dat = Some((name, dat.name.span, dat.public));
-            for d in &dat.decls {
-                s.decl(d, true);
-            }
-            for d in &dat.definitions {
-                s.definition(d);
-            }
-            s.block(&dat.body);
-        }
-        s.owner = NONE;
-        s.block(&file.top_level);
-        s.finish()
+    fn built(file: &SourceFile, mut b: SummaryBuilder) -> FileSummary {
+        // A whole AST lists the data list after the routines: the builder always follows.
+        file.events(|e| {
+            b.event(e);
+        });
+        b.finish()
     }
 
     /// One expression on its own (for type queries on any expression): its root term is the
@@ -559,19 +546,6 @@ impl Summarizer {
             dims: n.min(255) as u8,
             sizes,
         }
-    }
-
-    fn routine(&mut self, index: u32, r: &ast::Routine) {
-        let mut item = self.routine_head(index, r);
-        item.missing_return = r.kind == RoutineKind::Deffct && r.closed && falls_off_end(&r.body);
-        self.out.routines.push(item);
-        for d in &r.decls {
-            self.decl(d, false);
-        }
-        for d in &r.definitions {
-            self.definition(d);
-        }
-        self.block(&r.body);
     }
 
     /// A routine's own item (its uses: the return type), without `missing_return`.
@@ -1061,21 +1035,10 @@ pub(crate) fn const_value(e: &Expr) -> Option<ConstValue> {
     })
 }
 
-/// Whether a DEFFCT body can reach ENDFCT without RETURN, from its control-flow graph. GOTO,
-/// labels and lines that did not parse make the answer unknown: then `false` (never reported).
-/// The graph follows GOTO exactly, but the streamed summary holds one statement at a time and
-/// must give the same answer (see [`StmtEnds`]).
-fn falls_off_end(body: &[Stmt]) -> bool {
-    // An empty function is a stub or a template, not a forgotten RETURN.
-    if body.is_empty() {
-        return false;
-    }
-    let g = Cfg::of(body);
-    !(g.has_jumps || g.has_errors) && g.end_reachable()
-}
-
-/// How one top-level statement of a routine ends, for the streamed summary: whether control
-/// can leave it at its end, and whether it jumps or did not parse (the answer is unknown).
+/// How one top-level statement of a routine ends: whether control can leave it at its end, and
+/// whether it jumps or did not parse (the answer is unknown). A DEFFCT misses a RETURN when its
+/// body has statements, none unknown, and control falls through each (the builder holds one
+/// statement at a time; a test holds this against the whole body's graph).
 pub(super) struct StmtEnds {
     pub falls: bool,
     pub unknown: bool,
@@ -1124,6 +1087,30 @@ mod tests {
             missing(text),
             [true, false, false, true, false, false, false]
         );
+    }
+
+    /// The builder decides `missing_return` one statement at a time; the whole body's graph
+    /// (which follows GOTO exactly) must agree wherever it knows the answer.
+    #[test]
+    fn missing_return_by_statement_is_the_whole_bodys_graph() {
+        let root = std::path::Path::new(env!("CARGO_MANIFEST_DIR"));
+        let files = crate::files::walk(&[root.join("tests/fixtures"), root.join("krl")]).found;
+        let mut functions = 0;
+        for f in files {
+            let text = crate::syntax::decode(&std::fs::read(&f.path).unwrap()).text;
+            let ast = crate::syntax::parse(&text).ast(&text);
+            let summary = FileSummary::of(&ast);
+            for (r, item) in ast.routines.iter().zip(&summary.routines) {
+                if r.kind != RoutineKind::Deffct || !r.closed || r.body.is_empty() {
+                    continue;
+                }
+                functions += 1;
+                let g = Cfg::of(&r.body);
+                let whole = !(g.has_jumps || g.has_errors) && g.end_reachable();
+                assert_eq!(item.missing_return, whole, "{}", f.path.display());
+            }
+        }
+        assert!(functions > 10, "{functions}");
     }
 
     #[test]

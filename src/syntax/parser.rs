@@ -54,6 +54,33 @@ impl Parse {
     pub fn has_errors(&self) -> bool {
         !self.diagnostics.is_empty()
     }
+
+    /// The tree handed out as [`parse_pieces`] hands out the text, so that one consumer of
+    /// pieces serves the whole tree and the streamed file alike. A module's lines go out as
+    /// items but its last, which stays in its `Close` node (as its `END` line does when
+    /// streamed): consumers take a `Close` node's lines after the last piece they saw.
+    pub fn pieces(&self, mut f: impl FnMut(Piece<'_>)) {
+        for node in self.root().nodes() {
+            let data = match node.kind {
+                NodeKind::Routine => false,
+                NodeKind::DatModule => true,
+                _ => {
+                    f(Piece::Item(node));
+                    continue;
+                }
+            };
+            let mut lines = node.nodes();
+            let Some(line) = lines.next() else { continue };
+            f(Piece::Open { line, data });
+            let mut lines = lines.peekable();
+            while let Some(item) = lines.next() {
+                if lines.peek().is_some() {
+                    f(Piece::Item(item));
+                }
+            }
+            f(Piece::Close(node));
+        }
+    }
 }
 
 /// Parse decoded KRL text.

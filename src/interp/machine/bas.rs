@@ -188,12 +188,13 @@ impl<'p> Machine<'p> {
     pub(super) fn table_frame(&self, table: &str, n: i64, what: &str) -> R<Value> {
         if n == 0 {
             return Ok(self
+                .scopes
                 .globals
                 .get("$NULLFRAME")
                 .cloned()
                 .unwrap_or(Value::Int(0)));
         }
-        let len = match self.globals.get(table) {
+        let len = match self.scopes.globals.get(table) {
             Some(Value::Array { items, .. }) => items.len(),
             _ => 0,
         };
@@ -202,7 +203,7 @@ impl<'p> Machine<'p> {
     }
 
     pub(super) fn table_entry(&self, table: &str, n: i64) -> Option<Value> {
-        match self.globals.get(table) {
+        match self.scopes.globals.get(table) {
             Some(Value::Array { items, .. }) => usize::try_from(n - 1)
                 .ok()
                 .and_then(|i| items.get(i))
@@ -212,7 +213,7 @@ impl<'p> Machine<'p> {
     }
 
     fn data_field(&self, var: &str, field: &str) -> Option<Value> {
-        self.globals.get(var)?.field(field).cloned()
+        self.scopes.globals.get(var)?.field(field).cloned()
     }
 
     fn data_real(&self, var: &str, field: &str) -> R<f64> {
@@ -233,7 +234,7 @@ impl<'p> Machine<'p> {
     /// `$TOOL`/`$BASE` changes move `$POS_ACT` into the new frames.
     fn set_sys(&mut self, name: &str, fields: &[&str], v: Value) -> R<()> {
         let place = Place {
-            root: Root::Global(self.globals.intern(name)),
+            root: Root::Global(self.scopes.globals.intern(name)),
             path: fields.iter().map(|f| Seg::Field((*f).into())).collect(),
         };
         self.assign(&place, v)
@@ -242,7 +243,7 @@ impl<'p> Machine<'p> {
     fn set_axes(&mut self, name: &str, v: f64) -> R<()> {
         for i in 0..AXES {
             let place = Place {
-                root: Root::Global(self.globals.intern(name)),
+                root: Root::Global(self.scopes.globals.intern(name)),
                 path: smallvec::smallvec![Seg::Index(i)],
             };
             self.assign(&place, Value::Real(v))?;

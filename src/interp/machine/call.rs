@@ -1,59 +1,32 @@
-//! Routines: finding the routine a call reaches, a routine's frame (its locals' slots,
+//! Routines: a routine's frame (its locals' slots,
 //! parameters IN by value and OUT by reference), calls of routines and built-ins.
 
 use crate::syntax::ast::{Definition, Expr, Ident, ParamDir, Routine, RoutineKind};
 
 use super::place::{Place, Slot};
-use super::{Flow, Frame, Machine, R, Stop};
+use super::{Flow, Machine, R, Stop};
 use crate::interp::Event;
 use crate::interp::program::Program;
 use crate::interp::resolve::Binding;
 use crate::interp::value::Value;
 
 impl<'p> Machine<'p> {
-    pub(super) fn find_routine(&self, name: &str) -> Option<(usize, usize)> {
-        self.prog
-            .find_routine(self.cur_module(), &name.to_ascii_uppercase())
-    }
-
-    /// The slot of local `key` in frame `fi`, if the frame has one of that name.
-    pub(super) fn local_slot(&self, fi: usize, key: &str) -> Option<usize> {
-        let f = self.frames.get(fi)?;
-        if let Some(r) = f.routine
-            && let Some(&i) = self.prog.routine_info(r).locals.get(key)
-        {
-            return Some(i as usize);
-        }
-        f.extra.iter().position(|k| k == key).map(|i| f.layout + i)
-    }
-
     /// The slot in frame `fi` that the declaration of `name` fills.
-    pub(super) fn decl_slot(&mut self, fi: usize, name: &Ident) -> usize {
-        let f = &self.frames[fi];
-        if let Some(Binding::Local { routine, slot }) = self.prog.binding(f.module, name.span)
-            && f.routine == Some(routine as usize)
-        {
-            return slot as usize;
+    pub(super) fn decl_slot(&self, fi: usize, name: &Ident) -> R<usize> {
+        let f = &self.scopes.frames[fi];
+        match self.prog.binding(f.module, name.span) {
+            Some(Binding::Local { routine, slot }) if f.routine == Some(routine as usize) => {
+                Ok(slot as usize)
+            }
+            _ => Err(self.err(format!(
+                "`{}` cannot be declared here (a declaration outside a routine's frame)",
+                name.text
+            ))),
         }
-        self.local_slot_or_new(fi, &name.key())
-    }
-
-    /// The slot of local `key` in frame `fi`, made when the frame has none of that name.
-    pub(super) fn local_slot_or_new(&mut self, fi: usize, key: &str) -> usize {
-        if let Some(i) = self.local_slot(fi, key) {
-            return i;
-        }
-        let f = &mut self.frames[fi];
-        f.extra.push(key.to_string());
-        f.vars.push(None);
-        f.vars.len() - 1
     }
 
     pub(super) fn cur_module(&self) -> usize {
-        match self.declared_scope {
-            Some(m) => m,
-            None => self.frames.last().map(|f| f.module).unwrap_or(self.loc.0),
-        }
+        self.scopes.module(self.loc.0)
     }
 
     pub(super) fn call_routine(
@@ -75,7 +48,7 @@ impl<'p> Machine<'p> {
         let id = prog.routine_id(mi, ri);
         let info = prog.routine_info(id);
         let mut vars: Vec<Option<Slot>> = Vec::new();
-        vars.resize_with(info.locals.len(), || None);
+        vars.resize_with(info.slots as usize, || None);
         for (i, p) in routine.params.iter().enumerate() {
             let arg = args.get(i).and_then(|a| a.as_ref());
             let slot = match (p.dir, arg) {
@@ -111,16 +84,16 @@ impl<'p> Machine<'p> {
                 name: routine.name.text.to_string(),
             });
         }
-        if self.frames.len() > 200 {
+        if self.scopes.frames.len() > 200 {
             return Err(self.err("call depth exceeds 200 (endless recursion?)"));
         }
         let saved_loc = self.loc;
-        let saved_scope = self.declared_scope.take();
-        let mut frame = Frame::new(mi, Some(id), vars);
-        frame.call_site = (!self.frames.is_empty()).then_some(saved_loc);
+        let saved_lexical = self.scopes.lexical.take();
+        let mut frame = self.scopes.new_frame(mi, Some(id), vars);
+        frame.call_site = (!self.scopes.frames.is_empty()).then_some(saved_loc);
         frame.mm = is_mm.then(|| routine.name.text.to_string());
-        self.frames.push(frame);
-        let fi = self.frames.len() - 1;
+        self.scopes.frames.push(frame);
+        let fi = self.scopes.frames.len() - 1;
         let result = (|| -> R<Option<Value>> {
             for d in &routine.definitions {
                 if let Definition::Signal(sig) = d {
@@ -134,7 +107,7 @@ impl<'p> Machine<'p> {
                 self.declare(d, |n| n.to_string(), Some(fi))?;
             }
             for (p, &slot) in routine.params.iter().zip(&info.params) {
-                if self.frames[fi].vars[slot as usize].is_none() {
+                if self.scopes.frames[fi].vars[slot as usize].is_none() {
                     return Err(self.err(format!(
                         "parameter {} of {} has no declaration",
                         p.name.text, routine.name.text
@@ -147,12 +120,12 @@ impl<'p> Machine<'p> {
                 _ => Ok(None),
             }
         })();
-        let frame = self.frames.pop();
+        let frame = self.scopes.frames.pop();
         self.loc = saved_loc;
-        self.declared_scope = saved_scope;
+        self.scopes.lexical = saved_lexical;
         let result = match result {
             // The routine called from the interrupt's level is abandoned; that level goes on.
-            Err(Stop::Resume(r)) if self.frames.len() == r.0 => Ok(None),
+            Err(Stop::Resume(r)) if self.scopes.frames.len() == r.0 => Ok(None),
             other => other,
         };
         let ret = result?;
@@ -168,7 +141,7 @@ impl<'p> Machine<'p> {
                     }
                 }
             }
-            let status = match self.globals.get("MM_LAST_STATUS") {
+            let status = match self.scopes.globals.get("MM_LAST_STATUS") {
                 Some(Value::Int(i)) => Some(*i),
                 _ => None,
             };
@@ -210,7 +183,7 @@ impl<'p> Machine<'p> {
         }
         let target = match self.prog.binding(self.cur_module(), id.span) {
             Some(Binding::Call(target)) => target.map(|(m, r)| (m as usize, r as usize)),
-            _ => self.find_routine(name),
+            _ => None,
         };
         if let Some((mi, ri)) = target {
             let r = self.call_routine(mi, ri, args)?;

@@ -247,19 +247,17 @@ impl<'p> Machine<'p> {
                 self.eval(handle)?;
             }
             StmtKind::Decl(d) => {
-                let fi = self.frames.len() - 1;
+                let fi = self.scopes.frames.len() - 1;
                 self.declare(d, |n| n.to_string(), Some(fi))?;
             }
             StmtKind::Definition(Definition::Signal(sig)) => {
-                let fi = self.frames.len() - 1;
+                let fi = self.scopes.frames.len() - 1;
                 self.declare_local_signal(sig, fi)?;
             }
             StmtKind::Definition(_) => {}
             StmtKind::Trigger { action, .. } => {
-                let module = self.cur_module();
-                self.robot
-                    .pending_triggers
-                    .push((module, (**action).clone()))
+                let at = self.here();
+                self.robot.pending_triggers.push((at, (**action).clone()))
             }
             StmtKind::Pulse {
                 signal,
@@ -303,11 +301,11 @@ impl<'p> Machine<'p> {
         f: impl FnOnce(&mut Self, &mut u64, (usize, u32)) -> R<Flow>,
     ) -> R<Flow> {
         let (mut seen, at) = (self.writes, self.loc);
-        if let Some(frame) = self.frames.last_mut() {
+        if let Some(frame) = self.scopes.frames.last_mut() {
             frame.loops.push(at);
         }
         let flow = f(self, &mut seen, at);
-        if let Some(frame) = self.frames.last_mut() {
+        if let Some(frame) = self.scopes.frames.last_mut() {
             frame.loops.pop();
         }
         flow
@@ -349,8 +347,10 @@ impl<'p> Machine<'p> {
         *seen = self.writes;
         if self.eki.any_connected() {
             let before = std::time::Instant::now();
-            self.eki
-                .pump(&mut self.globals, std::time::Duration::from_micros(200));
+            self.eki.pump(
+                &mut self.scopes.globals,
+                std::time::Duration::from_micros(200),
+            );
             self.clock_ms +=
                 (before.elapsed().as_secs_f64() * 1000.0 * self.opts.time_scale).max(0.01);
             if let Some(msg) = self.eki.mismatch.take() {
@@ -386,7 +386,7 @@ impl<'p> Machine<'p> {
             let real =
                 std::time::Duration::from_secs_f64(ms / 1000.0 / self.opts.time_scale.max(1e-6));
             self.eki.pump(
-                &mut self.globals,
+                &mut self.scopes.globals,
                 real.min(std::time::Duration::from_millis(50)),
             );
             if let Some(msg) = self.eki.mismatch.take() {
@@ -400,7 +400,8 @@ impl<'p> Machine<'p> {
     pub(super) fn wait_for(&mut self, cond: &Expr) -> R<()> {
         let start = self.clock_ms;
         loop {
-            self.eki.pump(&mut self.globals, std::time::Duration::ZERO);
+            self.eki
+                .pump(&mut self.scopes.globals, std::time::Duration::ZERO);
             if let Some(msg) = self.eki.mismatch.take() {
                 return Err(self.err(msg));
             }
@@ -427,8 +428,10 @@ impl<'p> Machine<'p> {
             }
             if self.eki.any_connected() {
                 let before = std::time::Instant::now();
-                self.eki
-                    .pump(&mut self.globals, std::time::Duration::from_millis(2));
+                self.eki.pump(
+                    &mut self.scopes.globals,
+                    std::time::Duration::from_millis(2),
+                );
                 let real_ms = before.elapsed().as_secs_f64() * 1000.0;
                 self.clock_ms += (real_ms * self.opts.time_scale).max(0.05);
             } else {

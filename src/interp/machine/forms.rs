@@ -59,7 +59,12 @@ impl<'p> Machine<'p> {
                 let n = self.num_arg(args, name)?.round() as i64;
                 match self.table_entry("LOAD_DATA", n) {
                     Some(l) if n > 0 => l,
-                    _ => self.globals.get("$LOAD").cloned().unwrap_or(Value::Int(0)),
+                    _ => self
+                        .scopes
+                        .globals
+                        .get("$LOAD")
+                        .cloned()
+                        .unwrap_or(Value::Int(0)),
                 }
             }
             "SIPO_MODE" => arg(self, 0)?,

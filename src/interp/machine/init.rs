@@ -6,7 +6,7 @@ use crate::syntax::ast::{Decl, Definition, Expr, ExprKind};
 use super::call::fixed;
 use super::io::TIMERS;
 use super::place::Slot;
-use super::{Frame, Machine, R};
+use super::{Machine, R};
 use crate::interp::value::{BaseType, Value};
 
 impl<'p> Machine<'p> {
@@ -14,7 +14,7 @@ impl<'p> Machine<'p> {
         let t = self.prog.types.clone();
         let bools = |n: usize| t.default_value(&BaseType::Bool, &[n]);
         let mut put = |k: &str, v: Value| {
-            self.globals.insert(k, v);
+            self.scopes.globals.insert(k, v);
         };
         put("$FLAG", bools(1024));
         put("$OUT", bools(crate::interp::IO_COUNT));
@@ -162,8 +162,7 @@ impl<'p> Machine<'p> {
             for d in &dat.definitions {
                 if let Definition::Signal(sig) = d {
                     self.loc = (mi, sig.span.start);
-                    let scope = (!sig.global && !m.config).then(|| m.scope.clone());
-                    self.declare_dat_signal(sig, scope.as_deref())?;
+                    self.declare_dat_signal(mi, sig)?;
                 }
             }
             for d in &dat.decls {
@@ -189,9 +188,10 @@ impl<'p> Machine<'p> {
             let Some(dat) = &self.prog.modules[mi].ast.dat else {
                 continue;
             };
-            self.frames.push(Frame::new(mi, None, Vec::new()));
+            let frame = self.scopes.new_frame(mi, None, Vec::new());
+            self.scopes.frames.push(frame);
             let r = self.exec_block(&dat.body);
-            self.frames.pop();
+            self.scopes.frames.pop();
             r?;
         }
         Ok(())
@@ -226,15 +226,18 @@ impl<'p> Machine<'p> {
                     None => dims.push(0),
                 }
             }
-            let local = local.map(|fi| (fi, self.decl_slot(fi, &v.name)));
+            let local = match local {
+                Some(fi) => Some((fi, self.decl_slot(fi, &v.name)?)),
+                None => None,
+            };
             if let Some((fi, i)) = local {
                 // A parameter keeps its caller-provided value/alias; IN values get the declared type.
-                if let Some(slot) = self.frames[fi].vars[i].as_mut() {
+                if let Some(slot) = self.scopes.frames[fi].vars[i].as_mut() {
                     if let Slot::Own(val) = slot {
                         let mut target = self.prog.types.default_value(&ty, &fixed(&dims, val));
                         let incoming = std::mem::replace(val, Value::Int(0));
                         target = self.coerce(target, incoming)?;
-                        if let Some(Slot::Own(val)) = self.frames[fi].vars[i].as_mut() {
+                        if let Some(Slot::Own(val)) = self.scopes.frames[fi].vars[i].as_mut() {
                             *val = target;
                         }
                     }
@@ -265,8 +268,8 @@ impl<'p> Machine<'p> {
                 None => self.types().unset_value(&ty, &init_dims),
             };
             match local {
-                Some((fi, i)) => self.frames[fi].vars[i] = Some(Slot::Own(value)),
-                None => self.globals.insert(&key(&v.name.key()), value),
+                Some((fi, i)) => self.scopes.frames[fi].vars[i] = Some(Slot::Own(value)),
+                None => self.scopes.globals.insert(&key(&v.name.key()), value),
             }
         }
         Ok(())

@@ -9,12 +9,14 @@ use std::collections::BTreeMap;
 
 use crate::syntax::ast::{Expr, InterruptAction, Stmt};
 
-use super::{Machine, R, Stop};
+use super::{Lexical, Machine, R, Stop};
 
 #[derive(Debug, Clone)]
 pub(super) struct Interrupt {
     /// Module and offset of the declaration, for error locations while evaluating it.
     loc: (usize, u32),
+    /// Where it was declared: its condition and handler arguments use that call's names.
+    lexical: Lexical,
     condition: Expr,
     handler: Stmt,
     on: bool,
@@ -61,12 +63,13 @@ impl<'p> Machine<'p> {
         }
         let i = Interrupt {
             loc: self.loc,
+            lexical: self.here(),
             condition: cond.clone(),
             handler: handler.clone(),
             on: false,
             enabled: true,
             last: false,
-            depth: self.frames.len(),
+            depth: self.scopes.frames.len(),
         };
         self.interrupts.table.insert(n, i);
         self.interrupts.recount();
@@ -111,14 +114,12 @@ impl<'p> Machine<'p> {
         Ok(())
     }
 
-    /// Run `f` with names resolved in the module that declared `i`: its condition and handler
-    /// mean the same wherever the program is when they are checked (a non-GLOBAL interrupt stays
-    /// active in the routines its routine calls, the package's among them).
+    /// Run `f` with names found where `i` was declared: its condition and handler mean the
+    /// same wherever the program is when they are checked (a non-GLOBAL interrupt stays active
+    /// in the routines its routine calls, the package's among them), and a local in them is
+    /// the declaring call's.
     fn in_declaring_scope<T>(&mut self, i: &Interrupt, f: impl FnOnce(&mut Self) -> R<T>) -> R<T> {
-        let saved = self.declared_scope.replace(i.loc.0);
-        let r = f(self);
-        self.declared_scope = saved;
-        r
+        self.written_at(i.lexical, f)
     }
 
     /// Fire the interrupts whose condition rose since the last check (lowest number first).

@@ -3,8 +3,6 @@
 //! variables (`$IN`, `$OUT`, `$FLAG` in [`Globals`]), since the program reads and writes them
 //! like any variable; [`Io`] holds what the controller keeps beside them.
 
-use rustc_hash::FxHashMap;
-
 use super::Machine;
 use super::place::{Place, Seg};
 use crate::interp::globals::Globals;
@@ -33,8 +31,8 @@ pub(super) struct Pulse {
 pub(super) struct Io {
     /// By 1-based number (index 0 unused).
     timers: Vec<Timer>,
-    /// SIGNAL names of the DEFDATs, keyed like globals (`NAME` or `SCOPE::NAME`).
-    signals: FxHashMap<String, Place>,
+    /// SIGNALs of the DEFDATs, by their index (`resolve::Binding::Signal`).
+    signals: Vec<Option<Place>>,
     /// Outputs a PULSE will set back.
     pulses: Vec<Pulse>,
     /// While the submit routine runs (see `submit.rs`): its outputs are not traced as bits.
@@ -45,7 +43,7 @@ impl Io {
     pub(super) fn new() -> Io {
         Io {
             timers: vec![Timer::default(); TIMERS + 1],
-            signals: FxHashMap::default(),
+            signals: Vec::new(),
             pulses: Vec::new(),
             in_submit: false,
         }
@@ -100,12 +98,16 @@ impl Io {
         t.running = !stop;
     }
 
-    pub(super) fn declare_signal(&mut self, key: String, place: Place) {
-        self.signals.insert(key, place);
+    pub(super) fn declare_signal(&mut self, index: u32, place: Place) {
+        let i = index as usize;
+        if self.signals.len() <= i {
+            self.signals.resize(i + 1, None);
+        }
+        self.signals[i] = Some(place);
     }
 
-    pub(super) fn signal(&self, key: &str) -> Option<&Place> {
-        self.signals.get(key)
+    pub(super) fn signal(&self, index: u32) -> Option<&Place> {
+        self.signals.get(index as usize)?.as_ref()
     }
 
     /// Start a pulse; a new pulse on the same output replaces the running one.
@@ -173,7 +175,7 @@ impl<'p> Machine<'p> {
     /// Set `array[n]` (1-based; `None` does nothing), tracing a change.
     pub(crate) fn set_io(&mut self, array: &'static str, n: Option<usize>, value: bool) {
         let Some(n) = n else { return };
-        if let Some(Value::Array { items, .. }) = self.globals.get_mut(array)
+        if let Some(Value::Array { items, .. }) = self.scopes.globals.get_mut(array)
             && let Some(slot) = n.checked_sub(1).and_then(|i| items.get_mut(i))
             && *slot != Value::Bool(value)
         {
@@ -213,11 +215,11 @@ impl<'p> Machine<'p> {
     }
 
     pub(super) fn sync_inputs(&mut self) {
-        sync_inputs(&mut self.globals, &self.opts.input_links);
+        sync_inputs(&mut self.scopes.globals, &self.opts.input_links);
     }
 
     pub(super) fn sync_timers(&mut self) {
-        self.io.sync_timers(&mut self.globals, self.clock_ms);
+        self.io.sync_timers(&mut self.scopes.globals, self.clock_ms);
     }
 
     pub(super) fn after_system_write(&mut self, slot: usize, path: &[Seg]) {
@@ -226,15 +228,15 @@ impl<'p> Machine<'p> {
         };
         let n = i + 1;
         match slot {
-            s if s == self.sys.timer => {
-                if let Some(Value::Array { items, .. }) = self.globals.get("$TIMER")
+            s if s == self.scopes.sys.timer => {
+                if let Some(Value::Array { items, .. }) = self.scopes.globals.get("$TIMER")
                     && let Some(Value::Int(v)) = items.get(*i)
                 {
                     self.io.timer_set(n, *v as f64, self.clock_ms);
                 }
             }
-            s if s == self.sys.timer_stop => {
-                if let Some(Value::Array { items, .. }) = self.globals.get("$TIMER_STOP")
+            s if s == self.scopes.sys.timer_stop => {
+                if let Some(Value::Array { items, .. }) = self.scopes.globals.get("$TIMER_STOP")
                     && let Some(Value::Bool(stop)) = items.get(*i)
                 {
                     self.io.timer_stop(n, *stop, self.clock_ms);

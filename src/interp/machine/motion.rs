@@ -21,7 +21,7 @@ impl<'p> Machine<'p> {
         };
         let target = self.eval(&m.target)?;
         let mut goal = (self.robot)
-            .goal(&self.globals, m, &target, aux)
+            .goal(&self.scopes.globals, m, &target, aux)
             .map_err(|e| self.err(e))?;
         if let Some(ca) = &m.ca
             && goal.has_aux()
@@ -29,7 +29,7 @@ impl<'p> Machine<'p> {
             let angle = self.eval_real(ca)?;
             goal.cut_arc(angle).map_err(|e| self.err(e))?;
         }
-        let made = self.robot.arrive(&mut self.globals, m, goal);
+        let made = self.robot.arrive(&mut self.scopes.globals, m, goal);
         self.writes += 1;
         if self.robot.motions > self.opts.max_motions {
             return Err(self.limit_error(format!(
@@ -40,7 +40,7 @@ impl<'p> Machine<'p> {
         // The submit interpreter sees the robot move, then stand still at the target.
         self.set_phase(submit::Phase::Moving);
         self.submit_cycle()?;
-        let settings = self.robot.settings(&self.globals, m);
+        let settings = self.robot.settings(&self.scopes.globals, m);
         self.emit(Event::Motion {
             kind: made.kind,
             target: made.target,
@@ -49,13 +49,10 @@ impl<'p> Machine<'p> {
         });
         self.set_phase(submit::Phase::Running);
         self.submit_cycle()?;
-        // A trigger's action uses the names of the module that programmed it, even when the
-        // next motion is made elsewhere (MM_CALIB's).
-        for (module, t) in std::mem::take(&mut self.robot.pending_triggers) {
-            let saved = self.declared_scope.replace(module);
-            let r = self.exec(&t);
-            self.declared_scope = saved;
-            r?;
+        // A trigger's action uses the names of the routine call that programmed it, even when
+        // the next motion is made elsewhere (MM_CALIB's).
+        for (at, t) in std::mem::take(&mut self.robot.pending_triggers) {
+            self.written_at(at, |m| m.exec(&t))?;
         }
         Ok(())
     }

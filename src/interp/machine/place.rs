@@ -1,16 +1,15 @@
-//! Places: where a name, element or member lives (bound at load or looked up by name),
+//! Places: where a name (bound at load), element or member lives,
 //! reading it, assigning to it.
 
 use compact_str::CompactString;
 
 use crate::syntax::ast::{Expr, ExprKind, Ident};
 
-#[cfg(test)]
-use super::BY_NAME;
 use super::io::io_array;
+use super::scopes::Unreachable;
 use super::{Machine, R};
 use crate::interp::globals::Globals;
-use crate::interp::resolve::{Binding, MODULE_LEVEL, canonical};
+use crate::interp::resolve::Binding;
 use crate::interp::value::Value;
 
 /// Where a value lives: the target of assignments and OUT parameters.
@@ -58,106 +57,93 @@ pub(super) enum Slot {
 }
 
 impl<'p> Machine<'p> {
-    /// The place a name denotes here, by name: the routine frame's local, a SIGNAL, the
-    /// module's data, robot-wide data and system variables.
-    pub(super) fn lookup_root(&self, name: &str) -> R<Place> {
-        #[cfg(test)]
-        BY_NAME.with(|n| n.set(n.get() + 1));
-        let upper = name.to_ascii_uppercase();
-        let key = canonical(&upper);
-        if let Some((fi, f)) = self.frames.iter().enumerate().next_back()
-            && self.declared_scope.is_none_or(|m| m == f.module)
-            && let Some(i) = self.local_slot(fi, key)
-            && let Some(slot) = &f.vars[i]
-        {
-            return Ok(match slot {
-                Slot::Own(_) => Place::root(Root::Local(fi, i)),
-                Slot::Alias(p) => p.clone(),
-            });
-        }
-        let scoped = format!("{}::{key}", self.prog.modules[self.cur_module()].scope);
-        for k in [scoped.as_str(), key] {
-            if let Some(p) = self.io.signal(k) {
-                return Ok(p.clone());
-            }
-        }
-        for k in [scoped.as_str(), key] {
-            if let Some(slot) = self.globals.slot(k)
-                && self.globals.at(slot).is_some()
-            {
-                return Ok(Place::root(Root::Global(slot)));
-            }
-        }
-        Err(self.err(format!("unknown variable `{name}`")))
+    /// The frame a local of `routine` lives in here (see `Scopes::frame_of`).
+    fn frame_of(&self, routine: u32, name: &str) -> R<usize> {
+        self.scopes.frame_of(routine).map_err(|why| {
+            let routine = self.routine_name(routine);
+            self.err(match why {
+                // KSS's behaviour is not documented in what we could read [U]: a GLOBAL
+                // interrupt outlives its routine, whose locals are gone, so krlkit stops.
+                Unreachable::Returned => format!(
+                    "`{name}` is a local of {routine}, whose call that declared this has \
+                     returned (an INTERRUPT condition or handler argument, or a TRIGGER action, \
+                     uses the locals of the routine it was declared in; krlkit assumes KSS \
+                     cannot read them then)"
+                ),
+                Unreachable::NotRunning => {
+                    format!("`{name}` is a local of {routine}, which is not running")
+                }
+            })
+        })
     }
 
-    /// The value of a name use bound at load, when reading it has no side effect (no
-    /// recording under way, no system variable computed when read, no SIGNAL).
+    /// The name of routine `id` (in messages).
+    fn routine_name(&self, id: u32) -> String {
+        let (mi, ri) = self.prog.routine_at(id as usize);
+        self.prog.modules[mi].ast.routines[ri].name.text.to_string()
+    }
+
+    /// The place of a name use, from its binding at load.
+    pub(super) fn name_place(&self, id: &Ident) -> R<Place> {
+        let unknown = |m: &Self| m.err(format!("unknown variable `{}`", id.text));
+        match self.prog.binding(self.cur_module(), id.span) {
+            Some(Binding::Local { routine, slot }) => {
+                let fi = self.frame_of(routine, &id.text)?;
+                match self.scopes.frames[fi].vars.get(slot as usize) {
+                    Some(Some(Slot::Own(_))) => Ok(Place::root(Root::Local(fi, slot as usize))),
+                    Some(Some(Slot::Alias(p))) => Ok(p.clone()),
+                    // Its DECL has not run yet.
+                    _ => Err(unknown(self)),
+                }
+            }
+            Some(Binding::Global(slot)) => match self.scopes.globals.at(slot as usize) {
+                Some(_) => Ok(Place::root(Root::Global(slot as usize))),
+                None => Err(unknown(self)),
+            },
+            Some(Binding::Signal(i)) => self.io.signal(i).cloned().ok_or_else(|| unknown(self)),
+            Some(Binding::Call(_)) => Err(self.err(format!("`{}` is a routine", id.text))),
+            None => Err(self.err(format!(
+                "`{}` was not bound when the program was loaded (a use the semantic model did \
+                 not record: a krlkit defect)",
+                id.text
+            ))),
+        }
+    }
+
+    /// The value of a name use, when reading it has no side effect (no recording under way,
+    /// no system variable computed when read, no SIGNAL) and it runs where it is written.
     pub(super) fn read_bound(&self, id: &Ident) -> Option<&Value> {
-        if self.reads.is_some() || self.loop_reads.is_some() || self.declared_scope.is_some() {
+        if self.reads.is_some()
+            || self.loop_reads.is_some()
+            || self.scopes.lexical.is_some()
+            || super::scalar::slow()
+        {
             return None;
         }
-        let b = self.prog.binding(self.cur_module(), id.span)?;
-        let f = self.frames.last()?;
-        let here = f.routine.map_or(MODULE_LEVEL, |r| r as u32);
-        match b {
-            Binding::Local { routine, slot } if routine == here => {
-                match f.vars.get(slot as usize)?.as_ref()? {
-                    Slot::Own(v) => Some(v),
-                    Slot::Alias(_) => None,
-                }
-            }
-            Binding::Global {
-                routine,
-                scoped,
-                plain,
-            } if routine == here && f.extra.is_empty() => {
-                let (k, v) = [scoped, plain]
-                    .into_iter()
-                    .find_map(|s| Some((s as usize, self.globals.at(s as usize)?)))?;
-                let sys = &self.sys;
+        match self.prog.binding(self.cur_module(), id.span)? {
+            Binding::Local { routine, slot } => self.scopes.own_local(routine, slot),
+            Binding::Global(k) => {
+                let k = k as usize;
+                let sys = &self.scopes.sys;
                 let computed = [sys.timer, sys.timer_flag, sys.input, sys.in_home].contains(&k);
-                (!computed).then_some(v)
-            }
-            _ => None,
-        }
-    }
-
-    /// The place a name use bound at load denotes, when the binding applies here (see
-    /// `resolve.rs`); `None`: ask by name.
-    pub(super) fn bound_place(&self, id: &Ident) -> Option<Place> {
-        if self.declared_scope.is_some() {
-            return None;
-        }
-        let b = self.prog.binding(self.cur_module(), id.span)?;
-        let fi = self.frames.len().checked_sub(1)?;
-        let f = &self.frames[fi];
-        let here = f.routine.map_or(MODULE_LEVEL, |r| r as u32);
-        match b {
-            Binding::Local { routine, slot } if routine == here => {
-                match f.vars.get(slot as usize)?.as_ref()? {
-                    Slot::Own(_) => Some(Place::root(Root::Local(fi, slot as usize))),
-                    Slot::Alias(p) => Some(p.clone()),
+                if computed {
+                    return None;
                 }
+                self.scopes.globals.at(k)
             }
-            Binding::Global {
-                routine,
-                scoped,
-                plain,
-            } if routine == here && f.extra.is_empty() => [scoped, plain]
-                .into_iter()
-                .map(|s| s as usize)
-                .find(|&s| self.globals.at(s).is_some())
-                .map(|s| Place::root(Root::Global(s))),
-            _ => None,
+            Binding::Signal(_) | Binding::Call(_) => None,
         }
     }
 
-    /// Whether `name` is a variable (or signal) visible here.
-    /// `Some(true)` when the variable `name` is fully assigned, `Some(false)` when a part of it
-    /// never was, `None` when there is no such variable (`VARSTATE`).
-    pub(crate) fn variable_assigned(&self, name: &str) -> Option<bool> {
-        let place = self.lookup_root(name).ok()?;
+    /// `VARSTATE`: `Some(true)` when the variable named by the literal at `span` is fully
+    /// assigned, `Some(false)` when a part of it never was, `None` when there is no such
+    /// variable.
+    pub(crate) fn variable_assigned(&self, span: crate::diag::Span, name: &str) -> Option<bool> {
+        let id = Ident {
+            text: name.into(),
+            span,
+        };
+        let place = self.name_place(&id).ok()?;
         Some(match self.read_place(&place) {
             Ok(v) => !v.has_unset(),
             // Signals (groups, constants) always have a value.
@@ -167,10 +153,7 @@ impl<'p> Machine<'p> {
 
     pub(crate) fn place_of(&mut self, e: &Expr) -> R<Place> {
         match &e.kind {
-            ExprKind::Name(id) => match self.bound_place(id) {
-                Some(p) => Ok(p),
-                None => self.lookup_root(&id.text),
-            },
+            ExprKind::Name(id) => self.name_place(id),
             ExprKind::Member { base, field } => {
                 let mut p = self.place_of(base)?;
                 let v = self.read_place(&p)?;
@@ -227,22 +210,12 @@ impl<'p> Machine<'p> {
         Ok(flat)
     }
 
-    pub(super) fn root_ref(&self, root: &Root) -> Option<&Value> {
-        match root {
-            Root::Global(k) => self.globals.at(*k),
-            Root::Local(fi, k) => match self.frames.get(*fi)?.vars.get(*k)?.as_ref()? {
-                Slot::Own(v) => Some(v),
-                Slot::Alias(_) => None,
-            },
-            Root::Group { .. } | Root::Const(_) => None,
-        }
-    }
-
     pub(crate) fn read_place(&self, p: &Place) -> R<&Value> {
         if matches!(p.root, Root::Group { .. } | Root::Const(_)) {
             return Err(self.err("a signal group or constant has no members or elements"));
         }
         let mut v = self
+            .scopes
             .root_ref(&p.root)
             .ok_or_else(|| self.err("dangling reference"))?;
         for s in &p.path {
@@ -258,12 +231,12 @@ impl<'p> Machine<'p> {
 
     pub(crate) fn read_value(&mut self, p: &Place) -> R<Value> {
         self.note_read(&p.root, &p.path);
-        let sys = self.sys;
+        let sys = self.scopes.sys;
         match &p.root {
             Root::Global(k) if *k == sys.timer || *k == sys.timer_flag => self.sync_timers(),
             Root::Global(k) | Root::Group { array: k, .. } if *k == sys.input => self.sync_inputs(),
             Root::Global(k) if *k == sys.in_home => {
-                return Ok(Value::Bool(self.robot.in_home(&self.globals)));
+                return Ok(Value::Bool(self.robot.in_home(&self.scopes.globals)));
             }
             _ => {}
         }
@@ -296,7 +269,7 @@ impl<'p> Machine<'p> {
         let current = self.read_place(p)?.clone();
         let io = match (&p.root, p.path.as_slice(), &current) {
             (Root::Global(k), [Seg::Index(i)], Value::Bool(old)) => {
-                io_array(self.globals.name(*k)).map(|a| (a, i + 1, *old))
+                io_array(self.scopes.globals.name(*k)).map(|a| (a, i + 1, *old))
             }
             _ => None,
         };
@@ -307,13 +280,13 @@ impl<'p> Machine<'p> {
             self.io_changed(array, n, *b);
         }
         let frames_before = match &p.root {
-            Root::Global(k) if *k == self.sys.tool || *k == self.sys.base => {
-                Some(self.robot.tool_base(&self.globals))
+            Root::Global(k) if *k == self.scopes.sys.tool || *k == self.scopes.sys.base => {
+                Some(self.robot.tool_base(&self.scopes.globals))
             }
             _ => None,
         };
         // `read_place` found it above, and nothing since moved it.
-        let Some(slot) = self.place_mut(p) else {
+        let Some(slot) = self.scopes.place_mut(p) else {
             return Err(self.err("invalid access"));
         };
         *slot = new;
@@ -321,7 +294,7 @@ impl<'p> Machine<'p> {
             self.after_system_write(*k, &p.path);
         }
         if let Some((old_base, old_tool)) = frames_before {
-            (self.robot).follow_frames(&mut self.globals, &old_base, &old_tool);
+            (self.robot).follow_frames(&mut self.scopes.globals, &old_base, &old_tool);
         }
         Ok(())
     }
@@ -332,13 +305,13 @@ impl<'p> Machine<'p> {
     pub(super) fn assign_scalar(&mut self, p: &Place, v: &Value) -> bool {
         let plain = match p.root {
             Root::Local(..) => true,
-            Root::Global(k) => !self.globals.name(k).starts_with('$'),
+            Root::Global(k) => !self.scopes.globals.name(k).starts_with('$'),
             _ => false,
         };
         if !plain {
             return false;
         }
-        let Some(slot) = self.place_mut(p) else {
+        let Some(slot) = self.scopes.place_mut(p) else {
             return false;
         };
         match (slot, v) {
@@ -355,27 +328,7 @@ impl<'p> Machine<'p> {
         true
     }
 
-    /// The value at `p`, to change it.
-    pub(super) fn place_mut(&mut self, p: &Place) -> Option<&mut Value> {
-        let mut v = match &p.root {
-            Root::Global(k) => self.globals.at_mut(*k)?,
-            Root::Local(fi, k) => match self.frames.get_mut(*fi)?.vars.get_mut(*k)?.as_mut()? {
-                Slot::Own(v) => v,
-                Slot::Alias(_) => return None,
-            },
-            Root::Group { .. } | Root::Const(_) => return None,
-        };
-        for s in &p.path {
-            v = match (s, v) {
-                (Seg::Index(i), Value::Array { items, .. }) => items.get_mut(*i)?,
-                (Seg::Field(f), v) => v.field_mut(f)?,
-                _ => return None,
-            };
-        }
-        Some(v)
-    }
-
     pub(crate) fn globals_mut(&mut self) -> &mut Globals {
-        &mut self.globals
+        &mut self.scopes.globals
     }
 }

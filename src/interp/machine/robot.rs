@@ -18,8 +18,8 @@ pub(super) struct Robot {
     pub(super) apo: usize,
     /// Motions made so far (a run stops after `Options::max_motions`).
     pub(super) motions: u64,
-    /// TRIGGER actions waiting for the next motion, with the module that programmed each.
-    pub(super) pending_triggers: Vec<(usize, Stmt)>,
+    /// TRIGGER actions waiting for the next motion, with where each was programmed.
+    pub(super) pending_triggers: Vec<(super::Lexical, Stmt)>,
 }
 
 /// Where a motion goes, before a `CA` angle cuts its arc.

@@ -94,9 +94,27 @@ pub(super) fn scalar_op(op: BinaryOp, a: Scalar, b: Scalar) -> Option<Scalar> {
     })
 }
 
+#[cfg(test)]
+thread_local! {
+    /// Tests switch the fast lane off on this thread, to compare it with full evaluation.
+    pub(super) static SLOW: std::cell::Cell<bool> = const { std::cell::Cell::new(false) };
+}
+
+/// Whether the fast lane is off (only ever in tests).
+#[inline]
+pub(super) fn slow() -> bool {
+    #[cfg(test)]
+    return SLOW.with(|s| s.get());
+    #[cfg(not(test))]
+    false
+}
+
 impl Machine<'_> {
     /// `e` on the fast lane (see the module's doc), or `None`.
     pub(super) fn scalar(&self, e: &Expr) -> Option<Scalar> {
+        if slow() {
+            return None;
+        }
         match &e.kind {
             ExprKind::Int(i) if (INT_MIN..=INT_MAX).contains(i) => Some(Scalar::Int(*i)),
             ExprKind::Real(r) => Some(Scalar::Real(*r)),
@@ -129,9 +147,8 @@ mod tests {
 
     /// How `x op y` (or `a op b` written as literals) runs: its end and the result in `ri`,
     /// `rr` or `rb` (chosen by what the operator gives; a wrong guess is an error in every
-    /// run alike). `bound`: with the load-time bindings (the fast lane), else every name by
-    /// name (never the fast lane for variables).
-    fn run(a: &str, op: &str, b: &str, literals: bool, bound: bool) -> String {
+    /// run alike). `fast`: with the fast lane, else always the full evaluation.
+    fn run(a: &str, op: &str, b: &str, literals: bool, fast: bool) -> String {
         let result = match (op, ty(a), ty(b)) {
             ("+" | "-" | "*" | "/", "INT", "INT") => "ri",
             ("+" | "-" | "*" | "/", _, _) => "rr",
@@ -148,15 +165,14 @@ mod tests {
             ty(b)
         );
         let dat = "DEFDAT t\n  DECL INT ri\n  DECL REAL rr\n  DECL BOOL rb\nENDDAT\n";
-        let mut p = Program::load(vec![
+        let p = Program::load(vec![
             ("t.src".into(), src),
             ("t.dat".into(), dat.to_string()),
         ])
         .unwrap();
-        if !bound {
-            p.resolved.uses.clear();
-        }
+        super::SLOW.with(|s| s.set(!fast));
         let r = interp::run(&p, &Options::default());
+        super::SLOW.with(|s| s.set(false));
         let mut globals: Vec<_> = r
             .globals
             .iter()

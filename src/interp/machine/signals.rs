@@ -13,6 +13,7 @@
 use crate::syntax::ast::{Expr, ExprKind, SignalDecl};
 
 use super::{Machine, Place, R, Root, Seg, Slot};
+use crate::interp::resolve::Binding;
 use crate::interp::value::Value;
 
 /// Widest signal group (bits): a KRL INT has 32.
@@ -84,23 +85,22 @@ impl<'p> Machine<'p> {
         }
     }
 
-    /// Declare a signal of a data list: module-wide under `scope`, else visible everywhere.
-    pub(super) fn declare_dat_signal(&mut self, s: &SignalDecl, scope: Option<&str>) -> R<()> {
+    /// Declare a signal of a data list (bound at load to its place in the signal table).
+    pub(super) fn declare_dat_signal(&mut self, mi: usize, s: &SignalDecl) -> R<()> {
         let place = self.signal_place(s)?;
-        let key = match scope {
-            None => s.name.key(),
-            Some(scope) => format!("{scope}::{}", s.name.key()),
+        let Some(Binding::Signal(i)) = self.prog.binding(mi, s.name.span) else {
+            return Err(self.err(format!("SIGNAL {} was not bound at load", s.name.text)));
         };
-        self.io.declare_signal(key, place);
+        self.io.declare_signal(i, place);
         Ok(())
     }
 
     /// Declare a signal of a routine: a local name for the place.
     pub(super) fn declare_local_signal(&mut self, s: &SignalDecl, frame: usize) -> R<()> {
         let place = self.signal_place(s)?;
-        if frame < self.frames.len() {
-            let i = self.local_slot_or_new(frame, &s.name.key());
-            self.frames[frame].vars[i] = Some(Slot::Alias(place));
+        if frame < self.scopes.frames.len() {
+            let i = self.decl_slot(frame, &s.name)?;
+            self.scopes.frames[frame].vars[i] = Some(Slot::Alias(place));
         }
         Ok(())
     }
@@ -138,10 +138,10 @@ impl<'p> Machine<'p> {
                     }
                 };
                 let (lo, hi) = (*lo, *hi);
-                let (array, name) = (*array, self.globals.name(*array));
+                let (array, name) = (*array, self.scopes.globals.name(*array));
                 let traced = super::io::io_array(name);
                 let not_io = format!("{name} is not an I/O array");
-                let Some(Value::Array { items, .. }) = self.globals.at_mut(array) else {
+                let Some(Value::Array { items, .. }) = self.scopes.globals.at_mut(array) else {
                     return Err(self.err(not_io));
                 };
                 let mut changed = Vec::new();
@@ -169,9 +169,12 @@ impl<'p> Machine<'p> {
     }
 
     fn bool_array(&self, slot: usize) -> R<&[Value]> {
-        match self.globals.at(slot) {
+        match self.scopes.globals.at(slot) {
             Some(Value::Array { items, .. }) => Ok(items),
-            _ => Err(self.err(format!("{} is not an I/O array", self.globals.name(slot)))),
+            _ => Err(self.err(format!(
+                "{} is not an I/O array",
+                self.scopes.globals.name(slot)
+            ))),
         }
     }
 

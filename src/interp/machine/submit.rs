@@ -9,7 +9,7 @@
 //! the run). The routine runs beside the program, not in it: it takes no steps, makes no
 //! trace events of its own (its outputs are the word), and interrupts are not polled inside.
 
-use super::{Machine, R, Stop};
+use super::{Machine, Place, R, Root, Stop};
 use crate::interp::value::Value;
 use crate::interp::{End, Event};
 
@@ -26,15 +26,16 @@ impl Machine<'_> {
     /// The state variables at the start of a run.
     pub(super) fn init_robot_state(&mut self) {
         let mode = self.opts.mode_op.to_ascii_uppercase();
-        self.globals.insert("$MODE_OP", Value::Enum(mode));
-        self.globals
+        self.scopes.globals.insert("$MODE_OP", Value::Enum(mode));
+        self.scopes
+            .globals
             .insert("$PRO_STATE0", Value::Enum("P_ACTIVE".into()));
         for (k, v) in [
             ("$NEAR_POSRET", true),
             ("$ROB_STOPPED", true),
             ("$PRO_MOVE", false),
         ] {
-            self.globals.insert(k, Value::Bool(v));
+            self.scopes.globals.insert(k, Value::Bool(v));
         }
         self.set_phase(Phase::Running);
     }
@@ -46,12 +47,15 @@ impl Machine<'_> {
             Phase::Ended => ("P_END", false),
             Phase::Halted | Phase::Failed => ("P_STOP", false),
         };
-        self.globals
+        self.scopes
+            .globals
             .insert("$PRO_STATE1", Value::Enum(state.into()));
-        self.globals.insert("$ROB_STOPPED", Value::Bool(!moving));
-        self.globals.insert("$PRO_MOVE", Value::Bool(moving));
+        self.scopes
+            .globals
+            .insert("$ROB_STOPPED", Value::Bool(!moving));
+        self.scopes.globals.insert("$PRO_MOVE", Value::Bool(moving));
         if matches!(phase, Phase::Failed) {
-            self.globals.insert("$STOPMESS", Value::Bool(true));
+            self.scopes.globals.insert("$STOPMESS", Value::Bool(true));
         }
     }
 
@@ -71,17 +75,15 @@ impl Machine<'_> {
             )));
         };
         let saved = (self.loc, self.writes, self.steps);
-        let saved_scope = self.declared_scope.take();
+        let saved_lexical = self.scopes.lexical.take();
         self.io.in_submit = true;
         let ran = self.call_routine(mi, ri, &[]);
-        // The word, read in the routine's module (where its .dat declares the signal).
         let word = ran.and_then(|_| {
-            self.declared_scope = Some(mi);
-            let place = self.lookup_root(&submit.signal)?;
+            let place = self.data_place(mi, &submit.signal)?;
             self.read_value(&place)
         });
         self.io.in_submit = false;
-        self.declared_scope = saved_scope;
+        self.scopes.lexical = saved_lexical;
         (self.loc, self.writes, self.steps) = saved;
         let word = match word? {
             Value::Int(w) => w as u32,
@@ -98,6 +100,26 @@ impl Machine<'_> {
             self.emit_at(None, Event::Srci { word });
         }
         Ok(())
+    }
+
+    /// A signal or variable of module `mi`'s data list (or a robot-wide one) that the Rust
+    /// side names (the submit routine's word, named by the options, not by the program).
+    fn data_place(&self, mi: usize, name: &str) -> R<Place> {
+        let key = name.to_ascii_uppercase();
+        let keys = [format!("{}::{key}", self.prog.modules[mi].scope), key];
+        let signals = &self.prog.resolved.signals;
+        if let Some(p) = keys.iter().find_map(|k| self.io.signal(*signals.get(k)?)) {
+            return Ok(p.clone());
+        }
+        keys.iter()
+            .find_map(|k| {
+                self.scopes
+                    .globals
+                    .slot(k)
+                    .filter(|&s| self.scopes.globals.at(s).is_some())
+            })
+            .map(|s| Place::root(Root::Global(s)))
+            .ok_or_else(|| self.err(format!("unknown variable `{name}`")))
     }
 
     /// The last cycle, once the run has ended: the state says how. A failing routine turns a

@@ -13,7 +13,7 @@ use crate::interp::{Event, VisionPose};
 
 impl Machine<'_> {
     fn global_int(&self, name: &str) -> Option<i64> {
-        match self.globals.get(name)? {
+        match self.scopes.globals.get(name)? {
             Value::Int(i) => Some(*i),
             _ => None,
         }
@@ -30,13 +30,13 @@ impl Machine<'_> {
             return Vec::new();
         }
         let count = self.global_int("MM_PT_COUNT").unwrap_or(0).max(0) as usize;
-        let Some(Value::Array { dims, items }) = self.globals.get("MM_PT_VAL") else {
+        let Some(Value::Array { dims, items }) = self.scopes.globals.get("MM_PT_VAL") else {
             return Vec::new();
         };
         if dims.len() != 2 || dims[1] != 6 {
             return Vec::new();
         }
-        let labels = match self.globals.get("MM_PT_LABEL") {
+        let labels = match self.scopes.globals.get("MM_PT_LABEL") {
             Some(Value::Array { items, .. }) if tcp => Some(items),
             _ => None,
         };

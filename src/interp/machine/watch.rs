@@ -38,11 +38,13 @@ impl<'p> Machine<'p> {
         }
         let (key, index) = match root {
             // Only system variables can change while the program waits.
-            Root::Global(k) if self.globals.name(*k).starts_with('$') => match path.first() {
-                Some(Seg::Index(i)) => (self.globals.name(*k), Some(*i)),
-                _ => (self.globals.name(*k), None),
-            },
-            Root::Group { array, .. } => (self.globals.name(*array), None),
+            Root::Global(k) if self.scopes.globals.name(*k).starts_with('$') => {
+                match path.first() {
+                    Some(Seg::Index(i)) => (self.scopes.globals.name(*k), Some(*i)),
+                    _ => (self.scopes.globals.name(*k), None),
+                }
+            }
+            Root::Group { array, .. } => (self.scopes.globals.name(*array), None),
             _ => return,
         };
         if let Some(r) = &mut self.reads {
@@ -106,15 +108,21 @@ impl<'p> Machine<'p> {
     /// the user's code that called it (the innermost loop around that call, or the call
     /// itself), plus where in the package the run was; elsewhere, the current statement.
     pub(super) fn limit_error(&self, message: String) -> super::Stop {
-        let Some(k) = self.frames.iter().position(|f| f.mm.is_some()) else {
+        let Some(k) = self.scopes.frames.iter().position(|f| f.mm.is_some()) else {
             return self.err(message);
         };
         let inner = self.error("");
-        let callee = self.frames[k].mm.clone().unwrap_or_default();
-        let at = self.frames[k]
+        let callee = self.scopes.frames[k].mm.clone().unwrap_or_default();
+        let at = self.scopes.frames[k]
             .call_site
             .filter(|_| k > 0)
-            .map(|site| self.frames[k - 1].loops.last().copied().unwrap_or(site));
+            .map(|site| {
+                self.scopes.frames[k - 1]
+                    .loops
+                    .last()
+                    .copied()
+                    .unwrap_or(site)
+            });
         let Some(at) = at else {
             return self.err(message);
         };

@@ -24,7 +24,7 @@ fn check(ctx: &FileCtx, out: &mut Vec<Diagnostic>) {
             };
             if name.text.len() < 3
                 || !name.text[..3].eq_ignore_ascii_case("MM_")
-                || ctx.subprogram(&name.text).is_some()
+                || ctx.mm_call(name).is_some()
             {
                 return;
             }

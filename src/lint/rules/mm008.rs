@@ -1,7 +1,6 @@
 use crate::catalog::Direction;
-use crate::catalog::Interface;
 use crate::diag::{Diagnostic, Severity, Span};
-use crate::lint::context::{FileCtx, subprogram};
+use crate::lint::context::FileCtx;
 use crate::lint::registry::{Check, Rule};
 use crate::lint::walk;
 use crate::sema::{Scope, SymbolKind};
@@ -39,7 +38,7 @@ fn check(ctx: &FileCtx, out: &mut Vec<Diagnostic>) {
             continue;
         }
         let key = var.key();
-        if read_after(ctx.project.interface.version, c.routine, &key, c.name.span) {
+        if read_after(ctx, c.routine, &key, c.name.span) {
             continue;
         }
         out.push(
@@ -74,27 +73,27 @@ fn judgeable(ctx: &FileCtx, routine: &Routine, var: &crate::syntax::ast::Ident) 
             let key = var.key();
             !ctx.user_routines()
                 .filter(|r| !std::ptr::eq(*r, routine))
-                .any(|r| reads_anywhere(ctx.project.interface.version, &r.body, &key))
+                .any(|r| reads_anywhere(ctx, &r.body, &key))
         }
         _ => false,
     }
 }
 
-fn reads_anywhere(iface: Interface, body: &[Stmt], key: &str) -> bool {
+fn reads_anywhere(ctx: &FileCtx, body: &[Stmt], key: &str) -> bool {
     let mut found = false;
     walk::each_stmt(body, &mut |s| {
         if !found {
-            found = stmt_reads(iface, s, key);
+            found = stmt_reads(ctx, s, key);
         }
     });
     found
 }
 
 /// Whether `s` itself reads `key` (OUT arguments of interface calls are writes).
-fn stmt_reads(iface: Interface, s: &Stmt, key: &str) -> bool {
+fn stmt_reads(ctx: &FileCtx, s: &Stmt, key: &str) -> bool {
     let mut found = false;
     if let StmtKind::Call { name, args } = &s.kind
-        && let Some(sub) = subprogram(iface, &name.text)
+        && let Some(sub) = ctx.mm_call(name)
     {
         for (i, a) in args.iter().enumerate() {
             let Some(a) = a else { continue };
@@ -115,7 +114,7 @@ fn stmt_reads(iface: Interface, s: &Stmt, key: &str) -> bool {
     found
 }
 
-fn read_after(iface: Interface, routine: &Routine, key: &str, call: Span) -> bool {
+fn read_after(ctx: &FileCtx, routine: &Routine, key: &str, call: Span) -> bool {
     // Loops containing the call: any read inside them counts.
     let mut loops: Vec<Span> = Vec::new();
     walk::each_stmt(&routine.body, &mut |s| {
@@ -133,7 +132,7 @@ fn read_after(iface: Interface, routine: &Routine, key: &str, call: Span) -> boo
     });
     let mut found = false;
     walk::each_stmt(&routine.body, &mut |s| {
-        if found || !stmt_reads(iface, s, key) {
+        if found || !stmt_reads(ctx, s, key) {
             return;
         }
         let after = s.span.start >= call.end;

@@ -49,7 +49,7 @@ pub fn mm_calls<'a>(ctx: &FileCtx<'a>) -> Vec<MmCall<'a>> {
     for r in ctx.user_routines() {
         walk::each_stmt(&r.body, &mut |s| {
             if let StmtKind::Call { name, args } = &s.kind
-                && let Some(sub) = ctx.subprogram(&name.text)
+                && let Some(sub) = ctx.mm_call(name)
             {
                 v.push(MmCall {
                     routine: r,

@@ -4,6 +4,8 @@
 //! it spells, in order (they may give a name its first spelling): those are kept instead of
 //! the statement, so holding them costs the distinct names, not the statements.
 
+use std::borrow::Cow;
+
 use super::Summarizer;
 use crate::syntax::ast::{self, Stmt, StmtKind};
 
@@ -24,10 +26,10 @@ pub(super) struct Deferred {
 impl Deferred {
     /// Hold a statement until its turn (declarations only: just its names, unless it
     /// declares something).
-    pub fn push(&mut self, st: Stmt, declarations_only: bool) {
+    pub fn push(&mut self, st: Cow<'_, Stmt>, declarations_only: bool) {
         if !declarations_only || declares(&st) {
             self.end_run();
-            self.parts.push(Part::Stmt(st));
+            self.parts.push(Part::Stmt(st.into_owned()));
             return;
         }
         self.run

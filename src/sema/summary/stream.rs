@@ -1,15 +1,19 @@
-//! [`FileSummary::of`] fed one lowered piece at a time, so that `check` never holds a file's
-//! AST whole: each statement is summarised and dropped.
+//! The one summary builder: fed [`Event`]s one at a time, from a streamed file (`check` never
+//! holds a file's AST whole: each statement is summarised and dropped) or from a whole AST
+//! ([`FileSummary::of`]).
+
+use std::borrow::Cow;
 
 use super::deferred::Deferred;
 use super::{FileSummary, NONE, RoutineItem, Summarizer, stmt_ends};
-use crate::syntax::ast::{DatModule, Definition, Lowered, Routine, RoutineKind, Stmt, StmtKind};
+use crate::diag::Span;
+use crate::syntax::ast::{Decl, Definition, Event, Lowered, RoutineKind, Stmt, StmtKind};
 
 /// The routine or data list being summarised.
 enum Open {
     Routine(Box<OpenRoutine>),
     Dat {
-        /// Summarised at its end, after the declarations (as `of` does).
+        /// Summarised at its end, after the declarations (as a whole AST holds them).
         definitions: Vec<Definition>,
         body: Deferred,
     },
@@ -18,26 +22,27 @@ enum Open {
 }
 
 struct OpenRoutine {
-    head: Routine,
     item: RoutineItem,
     /// Still in the declarations before the first statement.
     in_head: bool,
     /// The head's definitions, summarised after its declarations.
     definitions: Vec<Definition>,
-    /// `falls_off_end` of the body so far.
+    /// Whether the body has a statement, one whose end is unknown (GOTO, a line that did not
+    /// parse), and whether control falls through every one of them.
     any: bool,
     unknown: bool,
     falls: bool,
 }
 
-/// Builds the summary [`FileSummary::of`] gives, from [`Lowered`] events.
+/// Builds a file's summary from its events ([`SummaryBuilder::add`] streamed,
+/// [`FileSummary::of`] from a whole AST).
 #[derive(Default)]
 pub struct SummaryBuilder {
     s: Summarizer,
     routines: u32,
     open: Option<Open>,
     dat_seen: bool,
-    /// Summarised last, as `of` does.
+    /// Summarised last, as a whole AST lists them.
     top_level: Deferred,
 }
 
@@ -54,19 +59,23 @@ impl SummaryBuilder {
         }
     }
 
-    /// Take one event. False when the file's order is one this builder cannot follow (a
-    /// routine after the data list, which `of` summarises after every routine): summarise
-    /// the whole AST then.
+    /// Take one streamed event. False when the file's order is one this builder cannot follow
+    /// (a routine after the data list, which a whole AST summarises after every routine):
+    /// summarise the whole AST then.
     pub fn add(&mut self, event: Lowered) -> bool {
+        event.with_event(|e| self.event(e))
+    }
+
+    /// Take one event (see [`SummaryBuilder::add`]).
+    pub(super) fn event(&mut self, event: Event<'_>) -> bool {
         match event {
-            Lowered::Routine(r) => {
+            Event::Routine(r) => {
                 if self.dat_seen {
                     return false;
                 }
-                let item = self.s.routine_head(self.routines, &r);
+                let item = self.s.routine_head(self.routines, r);
                 self.routines += 1;
                 self.open = Some(Open::Routine(Box::new(OpenRoutine {
-                    head: r,
                     item,
                     in_head: true,
                     definitions: Vec::new(),
@@ -75,50 +84,85 @@ impl SummaryBuilder {
                     falls: true,
                 })));
             }
-            Lowered::Dat(d) => self.open_dat(&d),
-            Lowered::Stmt(st) => self.stmt(st),
-            Lowered::Header(_) => {}
-            Lowered::Close { span, closed } => self.close(span, closed),
+            Event::Dat(d) => {
+                if self.dat_seen {
+                    self.open = Some(Open::Ignored);
+                } else {
+                    self.dat_seen = true;
+                    self.s.owner = NONE;
+                    let name = self.s.name(&d.name.text);
+                    self.s.out.dat = Some((name, d.name.span, d.public));
+                    self.open = Some(Open::Dat {
+                        definitions: Vec::new(),
+                        body: Deferred::default(),
+                    });
+                }
+            }
+            Event::Stmt(st) => self.stmt(st),
+            Event::Decl(d) => self.decl(d),
+            Event::Definition(d) => self.definition(Cow::Borrowed(d)),
+            Event::Header(_) => {}
+            Event::Close { span, closed } => self.close(span, closed),
         }
         true
     }
 
-    fn open_dat(&mut self, d: &DatModule) {
-        if self.dat_seen {
-            self.open = Some(Open::Ignored);
-            return;
+    /// A declaration of a routine's head or of the data list.
+    fn decl(&mut self, d: &Decl) {
+        match &mut self.open {
+            Some(Open::Routine(_)) => self.s.decl(d, false),
+            Some(Open::Dat { .. }) => self.s.decl(d, true),
+            Some(Open::Ignored) | None => {}
         }
-        self.dat_seen = true;
-        self.s.owner = NONE;
-        let name = self.s.name(&d.name.text);
-        self.s.out.dat = Some((name, d.name.span, d.public));
-        self.open = Some(Open::Dat {
-            definitions: Vec::new(),
-            body: Deferred::default(),
-        });
     }
 
-    fn stmt(&mut self, st: Stmt) {
+    /// A definition of a routine's head or of the data list: summarised after the
+    /// declarations.
+    fn definition(&mut self, d: Cow<'_, Definition>) {
+        match &mut self.open {
+            Some(Open::Routine(r)) => r.definitions.push(d.into_owned()),
+            Some(Open::Dat { definitions, .. }) => definitions.push(d.into_owned()),
+            Some(Open::Ignored) | None => {}
+        }
+    }
+
+    fn stmt(&mut self, st: Cow<'_, Stmt>) {
+        let head = match &self.open {
+            Some(Open::Dat { .. }) => true,
+            Some(Open::Routine(r)) => r.in_head,
+            _ => false,
+        };
+        if !head {
+            return self.body(st);
+        }
+        if let StmtKind::Decl(d) = &st.kind {
+            return self.decl(d);
+        }
+        match st {
+            Cow::Owned(Stmt {
+                kind: StmtKind::Definition(d),
+                ..
+            }) => self.definition(Cow::Owned(d)),
+            Cow::Borrowed(Stmt {
+                kind: StmtKind::Definition(d),
+                ..
+            }) => self.definition(Cow::Borrowed(d)),
+            st => self.body(st),
+        }
+    }
+
+    /// A statement that is no head declaration.
+    fn body(&mut self, st: Cow<'_, Stmt>) {
         let declarations_only = self.s.out.declarations_only;
         match &mut self.open {
             None => self.top_level.push(st, declarations_only),
             Some(Open::Ignored) => {}
-            Some(Open::Dat { definitions, body }) => match st.kind {
-                StmtKind::Decl(d) => self.s.decl(&d, true),
-                StmtKind::Definition(d) => definitions.push(d),
-                _ => body.push(st, declarations_only),
-            },
+            Some(Open::Dat { body, .. }) => body.push(st, declarations_only),
             Some(Open::Routine(r)) => {
                 if r.in_head {
-                    match st.kind {
-                        StmtKind::Decl(d) => return self.s.decl(&d, false),
-                        StmtKind::Definition(d) => return r.definitions.push(d),
-                        _ => {
-                            r.in_head = false;
-                            for d in std::mem::take(&mut r.definitions) {
-                                self.s.definition(&d);
-                            }
-                        }
+                    r.in_head = false;
+                    for d in std::mem::take(&mut r.definitions) {
+                        self.s.definition(&d);
                     }
                 }
                 r.any = true;
@@ -130,11 +174,10 @@ impl SummaryBuilder {
         }
     }
 
-    fn close(&mut self, span: crate::diag::Span, closed: bool) {
+    fn close(&mut self, span: Span, closed: bool) {
         match self.open.take() {
             Some(Open::Routine(r)) => {
                 let OpenRoutine {
-                    mut head,
                     mut item,
                     definitions,
                     any,
@@ -145,11 +188,13 @@ impl SummaryBuilder {
                 for d in definitions {
                     self.s.definition(&d);
                 }
-                head.close(span, closed);
-                item.span = head.span;
-                item.name_span = head.name.span;
+                // A routine without a name is named by its span.
+                if self.s.spell[item.name as usize].is_empty() {
+                    item.name_span = span;
+                }
+                item.span = span;
                 item.missing_return =
-                    head.kind == RoutineKind::Deffct && closed && any && !unknown && falls;
+                    item.kind == RoutineKind::Deffct && closed && any && !unknown && falls;
                 self.s.out.routines.push(item);
             }
             Some(Open::Dat { definitions, body }) => {
@@ -170,7 +215,7 @@ impl SummaryBuilder {
     pub fn finish(mut self) -> FileSummary {
         if let Some(Open::Routine(_) | Open::Dat { .. }) = self.open {
             // Pieces always close what they open; keep the summary whole anyway.
-            self.close(crate::diag::Span::empty(0), false);
+            self.close(Span::empty(0), false);
         }
         self.s.owner = NONE;
         std::mem::take(&mut self.top_level).summarise(&mut self.s);

@@ -5,24 +5,13 @@ use super::*;
 use crate::syntax::cst::{Element, Node, NodeKind as K, Token, TokenKind as T};
 use crate::syntax::parser::Parse;
 
-/// Build the typed AST of a parsed file.
+/// Build the typed AST of a parsed file: the tree's pieces ([`Parse::pieces`]) through the
+/// one piece lowerer and file builder the streamed path uses ([`super::lower_pieces`]).
 pub fn lower(parse: &Parse, text: &str) -> SourceFile {
-    let cx = Cx { text };
-    let mut file = SourceFile::default();
-    for node in parse.root().nodes() {
-        match node.kind {
-            K::Routine => file.routines.push(cx.routine(node)),
-            K::DatModule => {
-                let dat = cx.dat(node);
-                if file.dat.is_none() {
-                    file.dat = Some(dat);
-                }
-            }
-            K::HeaderLine => file.headers.push(node.text(text).trim_end().to_string()),
-            _ => cx.stmt_into(node, &mut file.top_level),
-        }
-    }
-    file
+    let mut lowerer = super::PieceLowerer::new(text);
+    let mut file = super::FileBuilder::default();
+    parse.pieces(|piece| lowerer.lower(piece, |e| file.add(e)));
+    file.finish()
 }
 
 pub(super) struct Cx<'t> {
@@ -265,22 +254,6 @@ impl<'t> Cx<'t> {
 
     // ---- modules ----------------------------------------------------------------------------
 
-    fn routine(&self, node: Node) -> Routine {
-        let closed = node.nodes().last().is_some_and(|n| n.kind == K::EndLine);
-        let mut r = self.routine_head(node.nodes().next(), node.span, closed);
-        let mut stmts = Vec::with_capacity(statements(node.nodes().skip(1)));
-        for child in node.nodes().skip(1) {
-            if child.kind != K::EndLine {
-                self.stmt_into(child, &mut stmts);
-            }
-        }
-        let (decls, definitions, body) = split_declarations(stmts);
-        r.decls = decls;
-        r.definitions = definitions;
-        r.body = body;
-        r
-    }
-
     /// A routine from its first line (`header`), without declarations or statements.
     pub(super) fn routine_head(&self, header: Option<Node>, span: Span, closed: bool) -> Routine {
         let mut r = Routine {
@@ -339,20 +312,6 @@ impl<'t> Cx<'t> {
                 _ => None,
             }
         })
-    }
-
-    fn dat(&self, node: Node) -> DatModule {
-        let mut stmts = Vec::with_capacity(statements(node.nodes().skip(1)));
-        for child in node.nodes().skip(1) {
-            if child.kind != K::EnddatLine {
-                self.stmt_into(child, &mut stmts);
-            }
-        }
-        let mut dat = self.dat_head(node.nodes().next(), node.span);
-        for s in stmts {
-            dat.add(s);
-        }
-        dat
     }
 
     /// A data list from its first line (`header`), without declarations or statements.

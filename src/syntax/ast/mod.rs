@@ -10,7 +10,7 @@ mod pieces;
 pub mod walk;
 
 pub use lower::lower;
-pub use pieces::{FileBuilder, Lowered, PieceLowerer, lower_pieces};
+pub use pieces::{Event, FileBuilder, Lowered, PieceLowerer, lower_pieces};
 pub use walk::each_stmt;
 
 pub use compact_str::CompactString;

@@ -1,12 +1,14 @@
-//! Lowering a file piece by piece ([`crate::syntax::parse_pieces`]): what [`super::lower`]
-//! makes of the whole tree, one routine line or block at a time, so that a caller can look at
-//! each statement and drop it (`check` never holds the AST of a big file whole).
+//! Lowering a file piece by piece: the streamed pieces of [`crate::syntax::parse_pieces`], one
+//! routine line or block at a time, so that a caller can look at each statement and drop it
+//! (`check` never holds the AST of a big file whole), or a whole tree's (`Parse::pieces`, which
+//! is how [`super::lower`] lowers).
 
 use super::lower::{Cx, split_declarations};
 use super::*;
 use crate::diag::Diagnostic;
 use crate::syntax::cst::{Node, NodeKind as K};
 use crate::syntax::parser::Piece;
+use std::borrow::Cow;
 
 /// One piece lowered, in text order.
 #[derive(Debug)]
@@ -24,6 +26,83 @@ pub enum Lowered {
     /// The open routine or data list ends: its whole span, and for a routine whether it was
     /// closed by `END`.
     Close { span: Span, closed: bool },
+}
+
+/// What a builder fed by events sees: a streamed piece lowered ([`Lowered::event`]) or a part
+/// of a whole AST ([`SourceFile::events`]), so that one builder serves both paths. A streamed
+/// routine's head declarations come as statements (`Stmt` of a `Decl` or `Definition`), a
+/// whole AST's as `Decl` and `Definition` (its lists hold them apart from the body).
+#[derive(Debug)]
+pub enum Event<'a> {
+    Routine(&'a Routine),
+    Dat(&'a DatModule),
+    /// Borrowed from a whole AST, owned when streamed (a builder may keep it for later).
+    Stmt(Cow<'a, Stmt>),
+    /// A declaration of the open routine's head or data list, from a whole AST.
+    Decl(&'a Decl),
+    /// A definition of the open routine's head or data list, from a whole AST.
+    Definition(&'a Definition),
+    Header(&'a str),
+    Close {
+        span: Span,
+        closed: bool,
+    },
+}
+
+impl Lowered {
+    /// This event as a builder sees it ([`Event`]), borrowed.
+    pub fn event(&self) -> Event<'_> {
+        match self {
+            Lowered::Routine(r) => Event::Routine(r),
+            Lowered::Dat(d) => Event::Dat(d),
+            Lowered::Stmt(s) => Event::Stmt(Cow::Borrowed(s)),
+            Lowered::Header(h) => Event::Header(h),
+            Lowered::Close { span, closed } => Event::Close {
+                span: *span,
+                closed: *closed,
+            },
+        }
+    }
+
+    /// [`Lowered::event`], handing over the statement of a `Stmt` event (which a builder may
+    /// keep) instead of lending it; `f` sees the event.
+    pub fn with_event<R>(self, f: impl FnOnce(Event<'_>) -> R) -> R {
+        match self {
+            Lowered::Stmt(s) => f(Event::Stmt(Cow::Owned(s))),
+            other => f(other.event()),
+        }
+    }
+}
+
+impl SourceFile {
+    /// The file as the events of its pieces, for the builders the streamed path feeds: each
+    /// routine (its head's declarations and definitions, its body, its close), the data list,
+    /// the statements outside routines, the `&` headers. Streamed, the same parts come in text
+    /// order; every builder gives the same result from either order.
+    pub fn events(&self, mut f: impl FnMut(Event<'_>)) {
+        for r in &self.routines {
+            f(Event::Routine(r));
+            r.decls.iter().for_each(|d| f(Event::Decl(d)));
+            r.definitions.iter().for_each(|d| f(Event::Definition(d)));
+            r.body.iter().for_each(|s| f(Event::Stmt(Cow::Borrowed(s))));
+            f(Event::Close {
+                span: r.span,
+                closed: r.closed,
+            });
+        }
+        if let Some(d) = &self.dat {
+            f(Event::Dat(d));
+            d.decls.iter().for_each(|x| f(Event::Decl(x)));
+            d.definitions.iter().for_each(|x| f(Event::Definition(x)));
+            d.body.iter().for_each(|s| f(Event::Stmt(Cow::Borrowed(s))));
+            f(Event::Close {
+                span: d.span,
+                closed: false,
+            });
+        }
+        (self.top_level.iter()).for_each(|s| f(Event::Stmt(Cow::Borrowed(s))));
+        self.headers.iter().for_each(|h| f(Event::Header(h)));
+    }
 }
 
 /// Turns pieces into [`Lowered`] events.
@@ -121,7 +200,7 @@ enum Open {
     Dat(DatModule),
 }
 
-/// Assembles [`Lowered`] events into the [`SourceFile`] that [`super::lower`] gives.
+/// Assembles [`Lowered`] events into a [`SourceFile`].
 pub struct FileBuilder {
     file: SourceFile,
     open: Open,

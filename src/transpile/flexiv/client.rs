@@ -10,7 +10,7 @@ use std::collections::BTreeSet;
 use askama::Template;
 
 use super::options::FlexivOptions;
-use crate::catalog::{Command, Direction, Origin, Param, RoutineShape, Subprogram, catalog};
+use crate::catalog::{Command, Direction, Param, RoutineShape, Subprogram, catalog};
 
 /// A status code the client sets itself (catalog origin `package`).
 pub struct Code {
@@ -391,13 +391,12 @@ fn render_method(m: &Method, v: &ClientView) -> askama::Result<String> {
 pub fn render(used: &BTreeSet<String>, fx: &FlexivOptions) -> askama::Result<String> {
     let cat = catalog();
     let codes = cat
-        .statuses
-        .iter()
-        .filter(|s| s.origin == Origin::Package)
-        .map(|s| Code {
-            name: s.name.clone().unwrap_or_default(),
-            code: s.code,
-            meaning: s.meaning.clone(),
+        .package_statuses()
+        .into_iter()
+        .map(|(code, name, meaning)| Code {
+            name,
+            code,
+            meaning,
         })
         .collect();
     let l = &cat.limits;

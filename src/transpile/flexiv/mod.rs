@@ -39,7 +39,7 @@ use super::VisionServer;
 use super::front::Program as Source;
 use super::front::names::{Home, Namer};
 use super::front::report::Report;
-use super::ir::{self, Block, LoopId, RoutineId, RoutineKind, Scope, TempId, VarId};
+use super::ir::{self, Block, LoopId, RoutineId, RoutineKind, Scope, Stmt, TempId, VarId};
 use super::render::{self, Emit, Out, Style};
 use crate::diag::Span;
 use names::NAME_RULES;
@@ -61,6 +61,11 @@ static STYLE: Style = Style {
     kept: |code, krl| format!("# [{code}] {}", format::ascii(krl)),
     trailing: |t| format!("  # {}", format::ascii(t.trim())),
     trailing_on_first: true,
+    comment_lead: "#",
+    pass: Some("pass"),
+    if_then: |c| format!("if {c}:"),
+    else_line: "else:",
+    end_if: None,
 };
 
 /// A Flexiv RDK Python script in the table of targets. Python has no GOTO: the routines' jumps
@@ -557,6 +562,18 @@ impl<'a> Emit<'a> for Tx<'a> {
         Tx::op(self, s)
     }
 
+    fn expr_text(&mut self, e: &ir::Expr) -> R<String> {
+        self.expr(e)
+    }
+
+    fn block_edge(&mut self) {
+        self.forget_frames();
+    }
+
+    fn block(&mut self, b: &[Stmt]) {
+        self.spline_block(b);
+    }
+
     fn temps(&mut self) -> Option<&mut HashMap<TempId, String>> {
         self.rt.as_mut().map(|r| &mut r.temps)
     }
@@ -569,8 +586,5 @@ impl<'a> Emit<'a> for Tx<'a> {
 
 /// Whether any line is code (not a comment or blank).
 fn has_code(lines: &[String]) -> bool {
-    lines.iter().any(|l| {
-        let t = l.trim();
-        !t.is_empty() && !t.starts_with('#')
-    })
+    render::has_code(lines, STYLE.comment_lead)
 }

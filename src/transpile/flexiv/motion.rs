@@ -210,7 +210,7 @@ impl<'a> Tx<'a> {
                 ..
             } => {
                 let d = self.offset(delta)?;
-                if *joint {
+                if joint.is_some() {
                     self.out.rep.approximate(
                         FileId::Src,
                         span,

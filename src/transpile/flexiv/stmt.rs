@@ -11,8 +11,9 @@ use crate::transpile::ir::{
 use crate::transpile::render::Emit;
 
 impl<'a> Tx<'a> {
-    /// A block: consecutive ops of one KRL statement render together (and fail together).
-    pub(super) fn block(&mut self, b: &Block) {
+    /// A block (the core's [`Emit::block`], which calls this): consecutive ops of one KRL
+    /// statement render together (and fail together), and a spline's motions as one MoveL.
+    pub(super) fn spline_block(&mut self, b: &[Stmt]) {
         let mut i = 0;
         while i < b.len() {
             let span = b[i].span;
@@ -29,26 +30,6 @@ impl<'a> Tx<'a> {
             self.group(&b[i..j]);
             i = j;
         }
-    }
-
-    /// A nested block, one level deeper; `pass` when nothing in it is code.
-    fn nested(&mut self, b: &Block) {
-        self.forget_frames();
-        self.out.depth += 1;
-        let start = self.out.lines.len();
-        self.block(b);
-        if !has_code(&self.out.lines[start..]) {
-            self.line("pass");
-        }
-        self.out.depth -= 1;
-        self.forget_frames();
-    }
-
-    /// Comments before the block's end line, inside the block.
-    fn end_block(&mut self, end: u32) {
-        self.out.depth += 1;
-        self.flush_comments(end);
-        self.out.depth -= 1;
     }
 
     pub(super) fn op(&mut self, s: &Stmt) -> R<()> {
@@ -105,22 +86,7 @@ impl<'a> Tx<'a> {
                 els,
                 else_at,
                 end,
-            } => {
-                let c = self.expr(cond)?;
-                self.line(format!("if {c}:"));
-                self.nested(then);
-                if !els.is_empty() {
-                    if let Some(at) = else_at {
-                        self.out.depth += 1;
-                        self.flush_comments(*at);
-                        self.out.depth -= 1;
-                    }
-                    self.line("else:");
-                    self.nested(els);
-                }
-                self.end_block(*end);
-                Ok(())
-            }
+            } => self.if_block(cond, then, els, *else_at, *end),
             Op::Switch {
                 selector,
                 cases,
@@ -172,7 +138,7 @@ impl<'a> Tx<'a> {
                 } else if first {
                     return fail(span, "a SWITCH without cases", "remove it");
                 }
-                self.end_block(*end);
+                self.end_block(*end, None);
                 Ok(())
             }
             Op::Loop {
@@ -230,14 +196,7 @@ impl<'a> Tx<'a> {
                 Ok(())
             }
             Op::Unsupported { why, at } => fail(*at, why.message(), super::help::help(why)),
-            Op::Keep { note } => {
-                let text = super::format::ascii(self.src.src.slice(span).trim());
-                match note {
-                    Some(n) => self.line(format!("# {text} ({n})")),
-                    None => self.keep_as_comment("TR002", span),
-                }
-                Ok(())
-            }
+            Op::Keep { note } => self.keep_op(*note, span),
         }
     }
 

@@ -1,6 +1,7 @@
 //! The vision server a program's `MM_Init_Socket` connects to. KUKA names an EKI channel (an
 //! XML file) there; the targets need the server's IP address and port themselves, taken from
-//! the spec (`--spec`), else from the EKI XML (`--eki-xml`, or the XML named by the call beside
+//! the spec (`--spec`, or the krlkit.toml found from the working directory when it sets
+//! `server_ip`/`server_port`), else from the EKI XML (`--eki-xml`, or the XML named by the call beside
 //! the program or in the program's package: `--package`, else the nearest folder above it with
 //! `xml/Config/User/Common/EthernetKRL/`).
 
@@ -49,7 +50,7 @@ pub fn resolve(
         return fail(
             span,
             format!(
-                "the vision server's IP address and port are unknown: no --spec, no --eki-xml, and no {wanted} beside the program or in its package (xml/Config/User/Common/EthernetKRL/ of a folder above it)"
+                "the vision server's IP address and port are unknown: no --spec, no server_ip/server_port in a krlkit.toml, no --eki-xml, and no {wanted} beside the program or in its package (xml/Config/User/Common/EthernetKRL/ of a folder above it)"
             ),
             format!(
                 "pass --spec krlkit.toml, --eki-xml FILE or --package DIR ({init_call} takes the IP address and port, not the XML name and flags)"

@@ -184,21 +184,8 @@ fn replace_gotos(b: &mut Block, l: LabelId, with: &Op) {
             s.op = with.clone();
             continue;
         }
-        match &mut s.op {
-            Op::If { then, els, .. } => {
-                replace_gotos(then, l, with);
-                replace_gotos(els, l, with);
-            }
-            Op::Switch { cases, default, .. } => {
-                for c in cases {
-                    replace_gotos(&mut c.body, l, with);
-                }
-                if let Some((d, _)) = default {
-                    replace_gotos(d, l, with);
-                }
-            }
-            Op::Loop { body, .. } => replace_gotos(body, l, with),
-            _ => {}
+        for c in super::visit::children_mut(&mut s.op) {
+            replace_gotos(c, l, with);
         }
     }
 }
@@ -271,21 +258,8 @@ fn rewrite(b: &mut Block, next: &mut u32) {
         };
     }
     for s in b.iter_mut() {
-        match &mut s.op {
-            Op::If { then, els, .. } => {
-                rewrite(then, next);
-                rewrite(els, next);
-            }
-            Op::Switch { cases, default, .. } => {
-                for c in cases {
-                    rewrite(&mut c.body, next);
-                }
-                if let Some((d, _)) = default {
-                    rewrite(d, next);
-                }
-            }
-            Op::Loop { body, .. } => rewrite(body, next),
-            _ => {}
+        for c in super::visit::children_mut(&mut s.op) {
+            rewrite(c, next);
         }
     }
 }
@@ -304,20 +278,11 @@ fn fail_gotos(b: &mut Block) {
                     note: Some("label"),
                 }
             }
-            Op::If { then, els, .. } => {
-                fail_gotos(then);
-                fail_gotos(els);
-            }
-            Op::Switch { cases, default, .. } => {
-                for c in cases {
-                    fail_gotos(&mut c.body);
-                }
-                if let Some((d, _)) = default {
-                    fail_gotos(d);
+            op => {
+                for c in super::visit::children_mut(op) {
+                    fail_gotos(c);
                 }
             }
-            Op::Loop { body, .. } => fail_gotos(body),
-            _ => {}
         }
     }
 }

@@ -1191,7 +1191,11 @@ impl Move {
     /// This motion's speed.
     pub fn speed(&self) -> Speed {
         match &self.path {
-            Path::Joint { speed, .. } | Path::JointRel { speed, .. } => Speed::Joint(speed.clone()),
+            Path::Joint { speed, .. }
+            | Path::JointRel { speed, .. }
+            | Path::LinearRel {
+                joint: Some(speed), ..
+            } => Speed::Joint(speed.clone()),
             Path::Linear { speed, .. }
             | Path::Circular { speed, .. }
             | Path::LinearRel { speed, .. } => Speed::Cart(speed.clone()),
@@ -1216,11 +1220,12 @@ pub enum Path {
         delta: Delta,
         speed: Known<JointPct>,
     },
-    /// LIN_REL (and PTP_REL with Cartesian offsets, a joint move in KRL: `joint`).
+    /// LIN_REL, and PTP_REL with Cartesian offsets: a joint move in KRL, whose PTP speed is
+    /// `joint` (a target that writes it as a straight move uses the path speed `speed`).
     LinearRel {
         delta: Delta,
         in_tool: bool,
-        joint: bool,
+        joint: Option<Known<JointPct>>,
         speed: Known<CartMps>,
     },
 }

@@ -19,6 +19,22 @@ pub fn children(op: &Op) -> Vec<&Block> {
     }
 }
 
+/// The blocks nested directly in `op`, to change (the order of [`children`]).
+pub fn children_mut(op: &mut Op) -> Vec<&mut Block> {
+    match op {
+        Op::If { then, els, .. } => vec![then, els],
+        Op::Switch { cases, default, .. } => {
+            let mut v: Vec<&mut Block> = cases.iter_mut().map(|c| &mut c.body).collect();
+            if let Some((d, _)) = default {
+                v.push(d);
+            }
+            v
+        }
+        Op::Loop { body, .. } => vec![body],
+        _ => Vec::new(),
+    }
+}
+
 /// Calls `f` on every op, depth-first in order.
 pub fn each_op<'a>(block: &'a Block, f: &mut impl FnMut(&'a Op)) {
     for s in block {

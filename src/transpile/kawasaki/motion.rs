@@ -223,7 +223,7 @@ impl<'a> Tx<'a> {
                 ..
             } => {
                 let d = self.draw_values(delta)?;
-                if *joint {
+                if joint.is_some() {
                     self.out.rep.approximate(
                         FileId::Src,
                         span,

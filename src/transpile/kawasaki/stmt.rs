@@ -8,27 +8,23 @@ use crate::transpile::ir::{
     self, Arg, Block, Callee, Component, Expr, ExprKind, LoopId, LoopKind, Op, Place, RoutineKind,
     Stmt, Ty,
 };
-use crate::transpile::render::Emit;
+use crate::transpile::render::{CaseWords, Emit};
+
+/// SWITCH on a number, and on a string (AS compares strings with SCASE/SVALUE).
+static CASE: CaseWords = CaseWords {
+    head: |s| format!("CASE {s} OF"),
+    case: |v| format!("VALUE {v}:"),
+    default: "ANY:",
+    end: "END",
+};
+static SCASE: CaseWords = CaseWords {
+    head: |s| format!("SCASE {s} OF"),
+    case: |v| format!("SVALUE {v}:"),
+    default: "ANY:",
+    end: "END",
+};
 
 impl<'a> Tx<'a> {
-    /// A nested block, one level deeper; the ACCURACY in force is unknown at both ends (the
-    /// body may run zero or many times, or be jumped into).
-    fn nested(&mut self, b: &Block) {
-        self.forget_accuracy();
-        self.out.depth += 1;
-        self.block(b);
-        self.out.depth -= 1;
-        self.forget_accuracy();
-    }
-
-    /// Writes the block end, after the comments that come before it in the source.
-    fn end_block(&mut self, end: u32, text: &str) {
-        self.out.depth += 1;
-        self.flush_comments(end);
-        self.out.depth -= 1;
-        self.line(text);
-    }
-
     pub(super) fn op(&mut self, s: &Stmt) -> R<()> {
         let span = s.span;
         match &s.op {
@@ -64,56 +60,19 @@ impl<'a> Tx<'a> {
                 els,
                 else_at,
                 end,
-            } => {
-                let c = self.expr(cond)?;
-                self.line(format!("IF {c} THEN"));
-                self.nested(then);
-                if !els.is_empty() {
-                    if let Some(at) = else_at {
-                        self.out.depth += 1;
-                        self.flush_comments(*at);
-                        self.out.depth -= 1;
-                    }
-                    self.line("ELSE");
-                    self.nested(els);
-                }
-                self.end_block(*end, "END");
-                Ok(())
-            }
+            } => self.if_block(cond, then, els, *else_at, *end),
             Op::Switch {
                 selector,
                 cases,
                 default,
                 end,
             } => {
-                let string = selector.ty == Ty::Char;
-                let sel = self.expr(selector)?;
-                let mut values = Vec::new();
-                for c in cases {
-                    let mut v = Vec::new();
-                    for e in &c.values {
-                        v.push(self.expr(e)?);
-                    }
-                    values.push(v.join(", "));
-                }
-                let (head, value) = if string {
-                    ("SCASE", "SVALUE")
+                let words = if selector.ty == Ty::Char {
+                    &SCASE
                 } else {
-                    ("CASE", "VALUE")
+                    &CASE
                 };
-                self.line(format!("{head} {sel} OF"));
-                for (c, v) in cases.iter().zip(values) {
-                    self.flush_comments(c.span.start);
-                    self.line(format!("{value} {v}:"));
-                    self.nested(&c.body);
-                }
-                if let Some((d, at)) = default {
-                    self.flush_comments(*at);
-                    self.line("ANY:");
-                    self.nested(d);
-                }
-                self.end_block(*end, "END");
-                Ok(())
+                self.case_block(words, selector, cases, default.as_ref(), *end)
             }
             Op::Loop {
                 id,
@@ -174,14 +133,7 @@ impl<'a> Tx<'a> {
                 Ok(())
             }
             Op::Unsupported { why, at } => fail(*at, why.message(), super::help::help(why)),
-            Op::Keep { note } => {
-                let text = self.src.src.slice(span).trim().to_owned();
-                match note {
-                    Some(n) => self.line(format!("; {text} ({n})")),
-                    None => self.keep_as_comment("TR002", span),
-                }
-                Ok(())
-            }
+            Op::Keep { note } => self.keep_op(*note, span),
         }
     }
 
@@ -222,7 +174,7 @@ impl<'a> Tx<'a> {
             let l = self.continue_label(id);
             self.out.lines.push(format!("{l}:"));
         }
-        self.end_block(end, &close);
+        self.end_block(end, Some(&close));
         if exits {
             let l = self.break_label(id);
             self.out.lines.push(format!("{l}:"));

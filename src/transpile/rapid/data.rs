@@ -92,7 +92,10 @@ impl<'a> Tx<'a> {
             self.data_result(r, d.span, d.file);
         }
         for (v, dims) in &ir.uninit_globals {
-            declared.insert(*v);
+            // A CHAR array the `.dat` declares and then sets whole (`s[]="A"`) is one PERS.
+            if !declared.insert(*v) {
+                continue;
+            }
             let var = ir.var(*v);
             let name = self.names.global(&var.name);
             match elements.remove(v) {

@@ -286,6 +286,10 @@ impl<'a> Tx<'a> {
                         ),
                     };
                 }
+                // `a[]` (the whole array, as an argument): RAPID passes an array by its name.
+                if idx.is_empty() {
+                    return Ok(b);
+                }
                 let mut v = Vec::new();
                 for i in idx {
                     match i {

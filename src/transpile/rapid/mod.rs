@@ -51,6 +51,11 @@ static STYLE: Style = Style {
     kept: |code, krl| format!("! [{code}] {krl}"),
     trailing: |t| format!(" !{t}"),
     trailing_on_first: false,
+    comment_lead: "!",
+    pass: None,
+    if_then: |c| format!("IF {c} THEN"),
+    else_line: "ELSE",
+    end_if: Some("ENDIF"),
 };
 
 /// ABB RAPID in the table of targets.
@@ -428,6 +433,14 @@ impl<'a> Emit<'a> for Tx<'a> {
 
     fn op(&mut self, s: &ir::Stmt) -> R<()> {
         Tx::op(self, s)
+    }
+
+    fn expr_text(&mut self, e: &ir::Expr) -> R<String> {
+        self.expr(e)
+    }
+
+    fn block_edge(&mut self) {
+        self.still = false;
     }
 
     fn temps(&mut self) -> Option<&mut HashMap<TempId, String>> {

@@ -55,7 +55,7 @@ impl<'a> Tx<'a> {
                 ..
             } => {
                 let to = self.relative_target(delta, *in_tool, &tool, &wobj, span)?;
-                let instr = if *joint { "MoveJ" } else { "MoveL" };
+                let instr = if joint.is_some() { "MoveJ" } else { "MoveL" };
                 format!("{instr} {to}")
             }
             Path::JointRel { delta, .. } => {
@@ -183,7 +183,11 @@ impl<'a> Tx<'a> {
     /// The speeddata argument: `v500`, `v1000 \V:=250`, `vmax \V:=vmax.v_tcp*30/100`.
     fn speed_of(&mut self, m: &Move, span: Span) -> String {
         match &m.path {
-            Path::Joint { speed, .. } | Path::JointRel { speed, .. } => match speed {
+            Path::Joint { speed, .. }
+            | Path::JointRel { speed, .. }
+            | Path::LinearRel {
+                joint: Some(speed), ..
+            } => match speed {
                 Known::Is(JointPct(v)) => self.ptp_speed(v),
                 Known::Unknown(b) => {
                     self.unknown(span, b, "the PTP speed ($VEL_AXIS)", "10 % (of vmax)");
@@ -263,12 +267,13 @@ impl<'a> Tx<'a> {
             }
             Known::Is(ParamValue::Default) => "fine".to_owned(),
             Known::Unknown(b) => {
-                self.unknown(
-                    span,
-                    b,
-                    "the blending distance ($APO.CDIS)",
-                    "fine (no blending)",
-                );
+                // C_PTP/C_VEL/C_ORI become a zone of that distance: say so even when it is
+                // not known, or the blending kind changes without a finding naming it.
+                let used = match other {
+                    Some(kind) => format!("fine (no blending) instead of {kind}"),
+                    None => "fine (no blending)".to_owned(),
+                };
+                self.unknown(span, b, "the blending distance ($APO.CDIS)", &used);
                 return "fine".into();
             }
         };

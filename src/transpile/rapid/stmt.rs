@@ -9,30 +9,21 @@ use crate::transpile::ir::{
     self, Arg, Block, Callee, Component, Expr, ExprKind, LoopId, LoopKind, Op, Place, RoutineKind,
     Stmt, Ty,
 };
-use crate::transpile::render::Emit;
+use crate::transpile::render::{CaseWords, Emit};
+
+/// KRL's SWITCH is RAPID's TEST.
+static TEST: CaseWords = CaseWords {
+    head: |s| format!("TEST {s}"),
+    case: |v| format!("CASE {v}:"),
+    default: "DEFAULT:",
+    end: "ENDTEST",
+};
 
 /// What KRL's Mech-Mind calls become on an ABB robot.
 const MM_HELP: &str =
     "use the Mech-Mind ABB interface (its RAPID modules and routines) for this call";
 
 impl<'a> Tx<'a> {
-    /// A nested block, one level deeper; where the robot stands is unknown at both ends.
-    fn nested(&mut self, b: &Block) {
-        self.still = false;
-        self.out.depth += 1;
-        self.block(b);
-        self.out.depth -= 1;
-        self.still = false;
-    }
-
-    /// Writes the block end, after the comments that come before it in the source.
-    fn end_block(&mut self, end: u32, text: &str) {
-        self.out.depth += 1;
-        self.flush_comments(end);
-        self.out.depth -= 1;
-        self.line(text);
-    }
-
     pub(super) fn op(&mut self, s: &Stmt) -> R<()> {
         let span = s.span;
         match &s.op {
@@ -94,51 +85,13 @@ impl<'a> Tx<'a> {
                 els,
                 else_at,
                 end,
-            } => {
-                let c = self.expr(cond)?;
-                self.line(format!("IF {c} THEN"));
-                self.nested(then);
-                if !els.is_empty() {
-                    if let Some(at) = else_at {
-                        self.out.depth += 1;
-                        self.flush_comments(*at);
-                        self.out.depth -= 1;
-                    }
-                    self.line("ELSE");
-                    self.nested(els);
-                }
-                self.end_block(*end, "ENDIF");
-                Ok(())
-            }
+            } => self.if_block(cond, then, els, *else_at, *end),
             Op::Switch {
                 selector,
                 cases,
                 default,
                 end,
-            } => {
-                let sel = self.expr(selector)?;
-                let mut values = Vec::new();
-                for c in cases {
-                    let mut v = Vec::new();
-                    for e in &c.values {
-                        v.push(self.expr(e)?);
-                    }
-                    values.push(v.join(", "));
-                }
-                self.line(format!("TEST {sel}"));
-                for (c, v) in cases.iter().zip(values) {
-                    self.flush_comments(c.span.start);
-                    self.line(format!("CASE {v}:"));
-                    self.nested(&c.body);
-                }
-                if let Some((d, at)) = default {
-                    self.flush_comments(*at);
-                    self.line("DEFAULT:");
-                    self.nested(d);
-                }
-                self.end_block(*end, "ENDTEST");
-                Ok(())
-            }
+            } => self.case_block(&TEST, selector, cases, default.as_ref(), *end),
             Op::Loop {
                 id,
                 kind,
@@ -203,14 +156,7 @@ impl<'a> Tx<'a> {
                 Ok(())
             }
             Op::Unsupported { why, at } => fail(*at, why.message(), super::help::help(why)),
-            Op::Keep { note } => {
-                let text = self.src.src.slice(span).trim().to_owned();
-                match note {
-                    Some(n) => self.line(format!("! {text} ({n})")),
-                    None => self.keep_as_comment("TR002", span),
-                }
-                Ok(())
-            }
+            Op::Keep { note } => self.keep_op(*note, span),
         }
     }
 
@@ -289,7 +235,7 @@ impl<'a> Tx<'a> {
             }
             (None, _) => {}
         }
-        self.end_block(end, "ENDWHILE");
+        self.end_block(end, Some("ENDWHILE"));
         if exits || until {
             let l = self.break_label(id);
             self.line(format!("{l}:"));

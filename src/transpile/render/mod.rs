@@ -18,7 +18,7 @@ use super::front::comments::CommentQueue;
 use super::front::names::Namer;
 use super::front::report::{FileId, Report};
 use super::front::{Fail, R};
-use super::ir::{Op, Stmt, TempId};
+use super::ir::{Case, Expr, Op, Stmt, TempId};
 use crate::diag::Span;
 
 pub use backend::{BACKENDS, Backend, Caps, backend};
@@ -38,6 +38,36 @@ pub struct Style {
     /// A trailing comment goes on the statement's first line unless the statement is a block
     /// (then on its end line); otherwise always on its last line.
     pub trailing_on_first: bool,
+    /// How a comment line starts (after the indentation).
+    pub comment_lead: &'static str,
+    /// The line a block without code needs (Python's `pass`); `None`: an empty block is fine.
+    pub pass: Option<&'static str>,
+    /// `IF c THEN`, `if c:`.
+    pub if_then: fn(&str) -> String,
+    /// `ELSE`, `else:`.
+    pub else_line: &'static str,
+    /// `ENDIF`, `END`; `None` where indentation ends a block.
+    pub end_if: Option<&'static str>,
+}
+
+/// How a target writes a SWITCH it has a statement for (`TEST`/`CASE`, `CASE`/`VALUE`).
+pub struct CaseWords {
+    /// `TEST sel`.
+    pub head: fn(&str) -> String,
+    /// `CASE 1, 2:` from the values joined by `, `.
+    pub case: fn(&str) -> String,
+    /// `DEFAULT:`.
+    pub default: &'static str,
+    /// `ENDTEST`.
+    pub end: &'static str,
+}
+
+/// Whether any of `lines` is code, not a comment or blank.
+pub fn has_code(lines: &[String], comment_lead: &str) -> bool {
+    lines.iter().any(|l| {
+        let t = l.trim();
+        !t.is_empty() && !t.starts_with(comment_lead)
+    })
 }
 
 /// The output of a renderer while it walks the program.
@@ -142,6 +172,116 @@ pub trait Emit<'a> {
     fn temps(&mut self) -> Option<&mut HashMap<TempId, String>>;
     /// A new name for a temporary (in the routine being rendered).
     fn mint_temp(&mut self) -> String;
+    /// An expression in the target's spelling.
+    fn expr_text(&mut self, e: &Expr) -> R<String>;
+    /// At a block's start and end: what the renderer knows of the robot's state (the
+    /// blending, frames or standstill in force) does not hold across the edge.
+    fn block_edge(&mut self);
+
+    /// A nested block, one level deeper.
+    fn nested(&mut self, b: &[Stmt]) {
+        self.block_edge();
+        let start = {
+            let out = self.out();
+            out.depth += 1;
+            out.lines.len()
+        };
+        self.block(b);
+        let out = self.out();
+        if let Some(pass) = out.style.pass
+            && !has_code(&out.lines[start..], out.style.comment_lead)
+        {
+            out.line(pass);
+        }
+        out.depth -= 1;
+        self.block_edge();
+    }
+
+    /// The comments before a block's end (inside the block), then its end line if any.
+    fn end_block(&mut self, end: u32, text: Option<&str>) {
+        let out = self.out();
+        out.depth += 1;
+        out.flush_comments(end);
+        out.depth -= 1;
+        if let Some(t) = text {
+            out.line(t);
+        }
+    }
+
+    /// A statement with nothing to do in the target ([`Op::Keep`]): its KRL as a comment, with
+    /// the `note` saying why, or tagged TR002 (the finding made for it explains).
+    fn keep_op(&mut self, note: Option<&str>, span: Span) -> R<()> {
+        match note {
+            Some(n) => {
+                let out = self.out();
+                let text = out.src.src.slice(span).trim().to_owned();
+                out.comment(&format!(" {text} ({n})"));
+            }
+            None => self.keep_as_comment("TR002", span),
+        }
+        Ok(())
+    }
+
+    /// IF/ELSE in the style's words.
+    fn if_block(
+        &mut self,
+        cond: &Expr,
+        then: &[Stmt],
+        els: &[Stmt],
+        else_at: Option<u32>,
+        end: u32,
+    ) -> R<()> {
+        let c = self.expr_text(cond)?;
+        let style = self.out().style;
+        self.line((style.if_then)(&c));
+        self.nested(then);
+        if !els.is_empty() {
+            if let Some(at) = else_at {
+                let out = self.out();
+                out.depth += 1;
+                out.flush_comments(at);
+                out.depth -= 1;
+            }
+            self.line(style.else_line);
+            self.nested(els);
+        }
+        self.end_block(end, style.end_if);
+        Ok(())
+    }
+
+    /// SWITCH as a statement of the target (`words`): the values of every case are rendered
+    /// before the first line, so a failing one drops nothing written.
+    fn case_block(
+        &mut self,
+        words: &CaseWords,
+        selector: &Expr,
+        cases: &[Case],
+        default: Option<&(Vec<Stmt>, u32)>,
+        end: u32,
+    ) -> R<()> {
+        let sel = self.expr_text(selector)?;
+        let mut values = Vec::new();
+        for c in cases {
+            let mut v = Vec::new();
+            for e in &c.values {
+                v.push(self.expr_text(e)?);
+            }
+            values.push(v.join(", "));
+        }
+        self.line((words.head)(&sel));
+        for (c, v) in cases.iter().zip(values) {
+            self.flush_comments(c.span.start);
+            self.line((words.case)(&v));
+            self.nested(&c.body);
+        }
+        if let Some((d, at)) = default {
+            self.flush_comments(*at);
+            self.line(words.default);
+            self.nested(d);
+        }
+        self.end_block(end, Some(words.end));
+        Ok(())
+    }
 
     fn line(&mut self, s: impl AsRef<str>) {
         self.out().line(s.as_ref());

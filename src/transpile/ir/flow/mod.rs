@@ -490,6 +490,15 @@ fn resolve_move(m: &mut Move, st: &State) {
             };
         }
     }
+    if let Path::LinearRel {
+        joint: Some(speed), ..
+    } = &mut m.path
+    {
+        *speed = match known(MotionParam::VelPtp) {
+            Known::Is(v) => Known::Is(JointPct(v)),
+            Known::Unknown(b) => Known::Unknown(b),
+        };
+    }
     let cdis = known(MotionParam::ApoCdis);
     m.blend = match &m.blend {
         Blend::Exact => Blend::Exact,
@@ -703,21 +712,8 @@ impl Resolver<'_> {
 fn drop_stops(b: &mut Block) {
     b.retain(|s| !matches!(s.op, Op::AdvanceStop { needed: false }));
     for s in b.iter_mut() {
-        match &mut s.op {
-            Op::If { then, els, .. } => {
-                drop_stops(then);
-                drop_stops(els);
-            }
-            Op::Switch { cases, default, .. } => {
-                for c in cases {
-                    drop_stops(&mut c.body);
-                }
-                if let Some((d, _)) = default {
-                    drop_stops(d);
-                }
-            }
-            Op::Loop { body, .. } => drop_stops(body),
-            _ => {}
+        for c in super::visit::children_mut(&mut s.op) {
+            drop_stops(c);
         }
     }
 }

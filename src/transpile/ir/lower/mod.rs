@@ -20,6 +20,7 @@ use super::{
     Scope, Stmt, TempId, Ty, Var, VarId, Why,
 };
 use crate::diag::Span;
+use crate::sema::{self, Resolved};
 use crate::syntax::ast::{self, StmtKind};
 use crate::transpile::Options;
 use crate::transpile::VisionServer;
@@ -135,6 +136,9 @@ struct SplineCtx {
     with: Vec<(super::MotionParam, super::ParamValue)>,
 }
 
+/// The `.src` is file 0 of the program's model (the `.dat` file 1).
+const SRC: sema::FileId = sema::FileId(0);
+
 pub struct Lower<'p> {
     src: &'p front::Program,
     model: Model<'p>,
@@ -150,11 +154,11 @@ pub struct Lower<'p> {
     rt: Option<Ctx>,
     next_spline: u32,
     vision: Option<VisionServer>,
-    /// Upper-case routine name → upper-case global names it may assign (itself or through the
+    /// A routine of the `.src` → upper-case global names it may assign (itself or through the
     /// routines of the file it calls); `None`: unknown (it calls another module).
-    writes: FxHashMap<String, Option<BTreeSet<String>>>,
-    /// Upper-case routine name → whether it moves the robot (itself or through calls).
-    moves: FxHashMap<String, bool>,
+    writes: FxHashMap<sema::RoutineId, Option<BTreeSet<String>>>,
+    /// A routine of the `.src` → whether it moves the robot (itself or through calls).
+    moves: FxHashMap<sema::RoutineId, bool>,
     pass: Pass,
 }
 
@@ -665,27 +669,63 @@ impl<'p> Lower<'p> {
     }
 
     // ----- what routines do (for hoisting and advance-run stops) -------------------------
+    //
+    // The call graph: each routine's callees are the names its body calls (the outline's
+    // facts, made while parsing, INTERRUPT handlers and TRIGGER actions included); what each
+    // name reaches, and whether a call of something that is no routine of the file moves the
+    // robot, the model answers (`sema::calls`).
+
+    /// The routine of the `.src` in the model that is being lowered (`None`: statements
+    /// outside any DEF).
+    fn sema_caller(&self) -> Option<sema::RoutineId> {
+        let i = self.rt.as_ref()?.id.0 as usize;
+        self.src.sema.file(SRC).routines.get(i).copied()
+    }
+
+    /// The routine of the `.src` a call of `name` from `caller` reaches, or what else it
+    /// reaches.
+    fn call_target(
+        &self,
+        caller: Option<sema::RoutineId>,
+        name: &str,
+    ) -> Result<sema::RoutineId, Resolved> {
+        let sema = &self.src.sema;
+        match sema.call_target(SRC, caller, name) {
+            Resolved::Routine(r) if sema.routine(r).file == SRC => Ok(r),
+            other => Err(other),
+        }
+    }
 
     /// The globals a call of `name` may assign; `None` when unknown.
     pub(super) fn may_write(&mut self, name: &str) -> Option<BTreeSet<String>> {
-        let key = name.to_ascii_uppercase();
-        if let Some(w) = self.writes.get(&key) {
+        match self.call_target(self.sema_caller(), name) {
+            Ok(r) => self.routine_writes(r),
+            Err(_) => None,
+        }
+    }
+
+    fn routine_writes(&mut self, r: sema::RoutineId) -> Option<BTreeSet<String>> {
+        if let Some(w) = self.writes.get(&r) {
             return w.clone();
         }
         // Recursion: assume nothing more while the routine is being looked at.
-        self.writes.insert(key.clone(), Some(BTreeSet::new()));
+        self.writes.insert(r, Some(BTreeSet::new()));
         let src = self.src;
-        let result = match src.src.outline.routine(name) {
+        let routine = src.sema.routine(r);
+        let result = match src.src.outline.routines.get(routine.index as usize) {
             None => None,
-            Some(r) => {
-                let mut set = r.facts.written.clone();
+            Some(o) => {
+                let mut set = o.facts.written.clone();
                 let mut unknown = false;
-                for c in &r.facts.callees {
-                    if c.to_ascii_uppercase().starts_with("MM_") {
-                        set.insert("MM_LAST_STATUS".into());
-                        continue;
-                    }
-                    match self.may_write(c) {
+                for c in &o.facts.callees {
+                    let w = match self.call_target(Some(r), c) {
+                        Ok(t) => self.routine_writes(t),
+                        Err(t) if src.sema.mm_target(t).is_some() => {
+                            Some(BTreeSet::from(["MM_LAST_STATUS".into()]))
+                        }
+                        Err(_) => None,
+                    };
+                    match w {
                         Some(w) => set.extend(w),
                         None => unknown = true,
                     }
@@ -693,7 +733,7 @@ impl<'p> Lower<'p> {
                 // Locals and parameters of the routine are not the caller's business.
                 let locals: BTreeSet<String> = self
                     .model
-                    .locals(name)
+                    .locals(src.sema.name(routine.name))
                     .into_iter()
                     .map(|v| v.name.to_ascii_uppercase())
                     .collect();
@@ -701,33 +741,42 @@ impl<'p> Lower<'p> {
                 (!unknown).then_some(set)
             }
         };
-        self.writes.insert(key, result.clone());
+        self.writes.insert(r, result.clone());
         result
     }
 
     /// Whether a call of `name` may move the robot.
     pub(super) fn routine_moves(&mut self, name: &str) -> bool {
-        let key = name.to_ascii_uppercase();
-        if let Some(m) = self.moves.get(&key) {
+        let target = self.call_target(self.sema_caller(), name);
+        self.target_moves(target)
+    }
+
+    fn target_moves(&mut self, target: Result<sema::RoutineId, Resolved>) -> bool {
+        let r = match target {
+            Ok(r) => r,
+            Err(other) => return self.src.sema.call_moves(other).unwrap_or(true),
+        };
+        if let Some(m) = self.moves.get(&r) {
             return *m;
         }
-        self.moves.insert(key.clone(), false);
+        self.moves.insert(r, false);
         let src = self.src;
-        let result = match src.src.outline.routine(name) {
-            // Another module's routine may; a package routine only if its catalog shape does.
-            None => match crate::catalog::catalog().subprogram(&key) {
-                Some(sub) => sub.shape.moves(),
-                None => !key.starts_with("MM_"),
-            },
-            Some(r) => {
-                r.facts.moves
-                    || r.facts.callees.iter().any(|c| {
-                        let k = c.to_ascii_uppercase();
-                        k != "BAS" && KNOWN_STILL.iter().all(|s| *s != k) && self.routine_moves(c)
+        let result = match src
+            .src
+            .outline
+            .routines
+            .get(src.sema.routine(r).index as usize)
+        {
+            None => true,
+            Some(o) => {
+                o.facts.moves
+                    || o.facts.callees.iter().any(|c| {
+                        let t = self.call_target(Some(r), c);
+                        self.target_moves(t)
                     })
             }
         };
-        self.moves.insert(key, result);
+        self.moves.insert(r, result);
         result
     }
 
@@ -867,18 +916,6 @@ fn index_routines(routines: &[Routine]) -> FxHashMap<String, RoutineId> {
     ids
 }
 
-/// Routines of the KUKA runtime that never move the robot.
-const KNOWN_STILL: [&str; 8] = [
-    "MSGNOTIFY",
-    "MSGQUIT",
-    "MSGSTATE",
-    "MM_GET_STATUS",
-    "MM_INIT_SOCKET",
-    "STRLEN",
-    "SWRITE",
-    "SREAD",
-];
-
 /// The first line of `span` (a block statement's own line).
 pub(super) fn first_line(text: &str, span: Span) -> Span {
     let start = span.start as usize;
@@ -886,3 +923,6 @@ pub(super) fn first_line(text: &str, span: Span) -> Span {
     let len = rest.find(['\n', '\r']).unwrap_or(rest.len());
     Span::new(start, start + len)
 }
+
+#[cfg(test)]
+mod tests;

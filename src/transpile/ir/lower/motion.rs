@@ -339,7 +339,7 @@ impl<'p> Lower<'p> {
                         .frame
                         .as_deref()
                         .is_some_and(|f| f.eq_ignore_ascii_case("TOOL")),
-                    joint,
+                    joint: joint.then(pending),
                     speed: pending(),
                 }
             }
