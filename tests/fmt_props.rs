@@ -165,6 +165,12 @@ proptest! {
     }
 
     #[test]
+    fn formatting_by_piece_is_the_trees(text in file(), opts in options()) {
+        let tree = krlkit::syntax::parse(&text);
+        prop_assert_eq!(format_text(&text, &opts), krlkit::fmt::format_parsed(&text, &tree, &opts));
+    }
+
+    #[test]
     fn case_edits_by_piece_are_the_trees(text in file()) {
         prop_assert_eq!(case_edits_by_piece(&text), krlkit::fmt::case_edits(&text));
     }
@@ -186,6 +192,31 @@ fn case_edits_by_piece(text: &str) -> Vec<krlkit::diag::Edit> {
     let mut edits = krlkit::fmt::CaseEdits::default();
     let diagnostics = krlkit::syntax::parse_pieces(text, |p| edits.add(p, text));
     edits.finish(text, &diagnostics)
+}
+
+/// `format_text` lays the file out one piece at a time; `format_parsed` from the whole tree.
+#[test]
+fn formatting_by_piece_is_the_trees_on_every_repository_file() {
+    let root = std::path::Path::new(env!("CARGO_MANIFEST_DIR"));
+    let files = krlkit::files::walk(&[root.join("tests/fixtures")]).found;
+    let mut changed = 0;
+    for f in files {
+        let text = krlkit::syntax::decode(&std::fs::read(&f.path).unwrap()).text;
+        let tree = krlkit::syntax::parse(&text);
+        for opts in [
+            FmtOptions::default(),
+            FmtOptions {
+                indent_folds: true,
+                ..FmtOptions::default()
+            },
+        ] {
+            let by_piece = format_text(&text, &opts);
+            changed += usize::from(by_piece.changed);
+            let whole = krlkit::fmt::format_parsed(&text, &tree, &opts);
+            assert_eq!(by_piece, whole, "{}", f.path.display());
+        }
+    }
+    assert!(changed > 10);
 }
 
 /// The text with KRL005's edits applied and the formatted text (default options), each

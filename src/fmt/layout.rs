@@ -7,6 +7,7 @@
 //! metadata line through its `;ENDFOLD`, nested folds and `;Params` lines included).
 
 use crate::diag::Span;
+use crate::syntax::folds::Fold;
 use crate::syntax::{Element, Node, NodeKind, Parse, TokenKind};
 
 /// One physical line.
@@ -26,13 +27,81 @@ pub(super) struct Line<'a> {
     pub column1: bool,
 }
 
-/// The lines of `parse`, in order, covering the text exactly once.
-pub(super) fn lines<'a>(text: &str, parse: &'a Parse, indent_folds: bool, out: &mut Vec<Line<'a>>) {
-    out.clear();
-    collect(parse.root(), 0, out);
-    fill_gaps(text, out);
-    mark_folds(text, out, indent_folds);
-    mark_diagnostics(parse, out);
+/// Where the lines come from: a tree already parsed, or the text, parsed one piece at a time
+/// (`syntax::parse_pieces`) so that a big file's tree is never held whole.
+#[derive(Clone, Copy)]
+pub(super) enum Source<'p> {
+    Tree(&'p Parse),
+    Pieces,
+}
+
+/// Calls `f` with the lines of `text`, in order, covering the text exactly once. A line's node
+/// lives only as long as the call (pieces are dropped after).
+pub(super) fn each_line(
+    text: &str,
+    source: Source<'_>,
+    indent_folds: bool,
+    mut f: impl FnMut(Line<'_>),
+) {
+    let mut pieces = Pieces::default();
+    match source {
+        Source::Tree(parse) => {
+            let mut m = Marker::new(text, &parse.diagnostics, indent_folds);
+            parse.pieces(|piece| pieces.add(piece, &mut |l| m.add(l, &mut f)));
+            m.end(&mut f);
+        }
+        Source::Pieces => {
+            // The diagnostics protect lines before the parse that hands them out ends: a
+            // first parse finds them (parsing is cheap next to keeping a tree).
+            let diagnostics = crate::syntax::parse_pieces(text, |_| {});
+            let mut m = Marker::new(text, &diagnostics, indent_folds);
+            crate::syntax::parse_pieces(text, |piece| {
+                pieces.add(piece, &mut |l| m.add(l, &mut f));
+            });
+            m.end(&mut f);
+        }
+    }
+}
+
+/// The lines of the pieces of [`crate::syntax::parse_pieces`] or [`Parse::pieces`]: a line, or
+/// a block's lines with their depth.
+#[derive(Default)]
+struct Pieces {
+    /// The open routine or data list: the depth step inside it, and whether it is a data list.
+    open: Option<(usize, bool)>,
+    /// End of the last piece seen (a `Close` piece repeats its first line).
+    seen: u32,
+}
+
+impl Pieces {
+    fn add<'a>(&mut self, piece: crate::syntax::Piece<'a>, sink: &mut impl FnMut(Line<'a>)) {
+        use crate::syntax::Piece;
+        match piece {
+            Piece::Open { line, data } => {
+                self.open = Some((usize::from(!data), data));
+                self.child(line, sink);
+                self.seen = line.span.end;
+            }
+            Piece::Item(node) => {
+                self.child(node, sink);
+                self.seen = node.span.end;
+            }
+            Piece::Close(node) => {
+                let seen = self.seen;
+                for c in node.nodes().filter(|c| c.span.start >= seen) {
+                    self.child(c, sink);
+                }
+                self.open = None;
+                self.seen = node.span.end;
+            }
+        }
+    }
+
+    /// A node directly inside the open routine or data list, or at top level (depth 0).
+    fn child<'a>(&self, node: Node<'a>, sink: &mut impl FnMut(Line<'a>)) {
+        let (inner, dat) = self.open.unwrap_or((0, false));
+        child(node, 0, inner, dat, sink);
+    }
 }
 
 pub(super) fn is_block(kind: NodeKind) -> bool {
@@ -86,44 +155,55 @@ fn is_frame(kind: NodeKind) -> bool {
     )
 }
 
-fn collect<'a>(node: Node<'a>, depth: usize, out: &mut Vec<Line<'a>>) {
+fn collect<'a>(node: Node<'a>, depth: usize, sink: &mut impl FnMut(Line<'a>)) {
     // The body of a DEFDAT stays at the DEFDAT's column, as in KUKA's own data lists.
     let inner = match node.kind {
         NodeKind::SourceFile | NodeKind::DatModule => 0,
         _ => 1,
     };
     let dat = node.kind == NodeKind::DatModule;
-    for child in node.nodes() {
-        if child.span.is_empty() {
-            continue;
-        }
-        if is_block(child.kind) {
-            // CASE and DEFAULT line up with their SWITCH.
-            let d = if matches!(child.kind, NodeKind::CaseBlock | NodeKind::DefaultBlock) {
-                depth
-            } else {
-                depth + inner
-            };
-            collect(child, d, out);
+    for c in node.nodes() {
+        child(c, depth, inner, dat, sink);
+    }
+}
+
+/// One child of a node at `depth` whose children are `inner` deeper (`dat`: of a DEFDAT).
+fn child<'a>(
+    child: Node<'a>,
+    depth: usize,
+    inner: usize,
+    dat: bool,
+    sink: &mut impl FnMut(Line<'a>),
+) {
+    if child.span.is_empty() {
+        return;
+    }
+    if is_block(child.kind) {
+        // CASE and DEFAULT line up with their SWITCH.
+        let d = if matches!(child.kind, NodeKind::CaseBlock | NodeKind::DefaultBlock) {
+            depth
         } else {
-            let column1 = starts_column1_comment(child);
-            let d = if column1 {
-                0
-            } else if is_frame(child.kind) {
-                depth
-            } else {
-                depth + inner
-            };
-            out.push(Line {
-                node: Some(child),
-                span: child.span,
-                depth: d,
-                protected: matches!(child.kind, NodeKind::HeaderLine | NodeKind::Error),
-                blank: child.kind == NodeKind::BlankLine,
-                dat_decl: dat && child.kind == NodeKind::DeclStmt,
-                column1,
-            });
-        }
+            depth + inner
+        };
+        collect(child, d, sink);
+    } else {
+        let column1 = starts_column1_comment(child);
+        let d = if column1 {
+            0
+        } else if is_frame(child.kind) {
+            depth
+        } else {
+            depth + inner
+        };
+        sink(Line {
+            node: Some(child),
+            span: child.span,
+            depth: d,
+            protected: matches!(child.kind, NodeKind::HeaderLine | NodeKind::Error),
+            blank: child.kind == NodeKind::BlankLine,
+            dat_decl: dat && child.kind == NodeKind::DeclStmt,
+            column1,
+        });
     }
 }
 
@@ -132,44 +212,6 @@ fn collect<'a>(node: Node<'a>, depth: usize, out: &mut Vec<Line<'a>>) {
 fn starts_column1_comment(node: Node<'_>) -> bool {
     node.kind == NodeKind::CommentLine
         && matches!(node.children().next(), Some(Element::Token(t)) if t.kind == TokenKind::Comment)
-}
-
-/// Text not covered by a line node becomes a protected pseudo-line, so the output always
-/// covers the input.
-fn fill_gaps(text: &str, lines: &mut Vec<Line<'_>>) {
-    let mut pos = 0u32;
-    let covered = lines.iter().all(|l| {
-        let ok = l.span.start == pos;
-        pos = l.span.end;
-        ok
-    }) && pos as usize == text.len();
-    if covered {
-        return;
-    }
-    let mut filled = Vec::with_capacity(lines.len() + 2);
-    let mut pos = 0u32;
-    let gap = |start: u32, end: u32| Line {
-        node: None,
-        span: Span { start, end },
-        depth: 0,
-        protected: true,
-        blank: false,
-        dat_decl: false,
-        column1: false,
-    };
-    for l in lines.drain(..) {
-        if l.span.start > pos {
-            filled.push(gap(pos, l.span.start));
-        }
-        if l.span.start >= pos {
-            pos = l.span.end;
-            filled.push(l);
-        }
-    }
-    if (pos as usize) < text.len() {
-        filled.push(gap(pos, text.len() as u32));
-    }
-    *lines = filled;
 }
 
 /// Inline-form metadata: `;FOLD … ;%{PE}…`, `;FOLD … ;%{h}`, `;%{E}` … all carry `%{`.
@@ -181,55 +223,127 @@ pub(super) fn has_inline_form_mark(node: Node<'_>, text: &str) -> bool {
     })
 }
 
-fn mark_folds(text: &str, lines: &mut [Line<'_>], indent_folds: bool) {
-    for l in lines.iter_mut() {
-        if l.node.is_some_and(|n| has_inline_form_mark(n, text)) {
+/// Marks lines as they go by, in text order: text no line node covers becomes a protected
+/// pseudo-line (the output always covers the input); lines of an inline form (`%{` on a fold
+/// line, through its `;ENDFOLD`) and lines a syntax diagnostic touches are protected; user
+/// folds indent the lines between their `;FOLD` and `;ENDFOLD` lines. Each line is decided
+/// from the folds and diagnostics around it, so no list of the file's lines is needed.
+struct Marker<'t> {
+    text: &'t str,
+    indent_folds: bool,
+    /// End of the last line handed on.
+    pos: u32,
+    /// Every fold (in order of its `;FOLD` line) and whether it is an inline form.
+    folds: Vec<(Fold, bool)>,
+    next_fold: usize,
+    /// Folds opened before the current line's end that may still reach it.
+    folds_open: Vec<(Fold, bool)>,
+    diagnostics: Vec<Span>,
+    next_diagnostic: usize,
+    /// Diagnostics that start before the current line's end and may still reach it.
+    diagnostics_open: Vec<Span>,
+}
+
+impl<'t> Marker<'t> {
+    fn new(text: &'t str, diagnostics: &[crate::diag::Diagnostic], indent_folds: bool) -> Self {
+        let folds = crate::syntax::folds::folds(text)
+            .0
+            .into_iter()
+            .map(|f| {
+                let inline = text[f.open.range()].contains("%{");
+                (f, inline)
+            })
+            .collect();
+        let mut diagnostics: Vec<Span> = diagnostics.iter().map(|d| d.span).collect();
+        diagnostics.sort_by_key(|d| d.start);
+        Marker {
+            text,
+            indent_folds,
+            pos: 0,
+            folds,
+            next_fold: 0,
+            folds_open: Vec::new(),
+            diagnostics,
+            next_diagnostic: 0,
+            diagnostics_open: Vec::new(),
+        }
+    }
+
+    /// The next line of a tree walk; one that overlaps lines before it is dropped.
+    fn add<'a>(&mut self, line: Line<'a>, f: &mut impl FnMut(Line<'a>)) {
+        if line.span.start > self.pos {
+            self.mark(gap(self.pos, line.span.start), f);
+        }
+        if line.span.start >= self.pos {
+            self.pos = line.span.end;
+            self.mark(line, f);
+        }
+    }
+
+    /// After the last line.
+    fn end<'a>(&mut self, f: &mut impl FnMut(Line<'a>)) {
+        let len = self.text.len() as u32;
+        if self.pos < len {
+            self.mark(gap(self.pos, len), f);
+            self.pos = len;
+        }
+    }
+
+    fn mark<'a>(&mut self, mut l: Line<'a>, f: &mut impl FnMut(Line<'a>)) {
+        let Span { start, end } = l.span;
+        if l.node.is_some_and(|n| has_inline_form_mark(n, self.text)) {
             l.protected = true;
         }
-    }
-    let ends: Vec<u32> = lines.iter().map(|l| l.span.end).collect();
-    let line_of = |at: u32| ends.partition_point(|&end| end <= at);
-    // +1 after a user fold's line, -1 at its `;ENDFOLD`.
-    let mut level_delta = vec![0i32; lines.len() + 1];
-    for fold in crate::syntax::folds::folds(text).0 {
-        let open = line_of(fold.open.start);
-        let inline = text[fold.open.range()].contains("%{");
-        let close = fold.close.map(|c| line_of(c.start));
-        match (inline, close) {
-            // An inline form, or one that never closes: everything through its end stays.
-            (true, close) => {
-                let end = close.unwrap_or(lines.len() - 1).min(lines.len() - 1);
-                for l in &mut lines[open.min(end)..=end] {
-                    l.protected = true;
-                }
-            }
-            (false, Some(close)) if close > open => {
-                level_delta[open + 1] += 1;
-                level_delta[close] -= 1;
-            }
-            _ => {}
+        while let Some(fold) = self.folds.get(self.next_fold)
+            && fold.0.open.start < end
+        {
+            self.folds_open.push(fold.clone());
+            self.next_fold += 1;
         }
-    }
-    if indent_folds {
-        let mut level = 0i32;
-        for (i, l) in lines.iter_mut().enumerate() {
-            level += level_delta[i];
-            if !l.column1 {
-                l.depth += level.max(0) as usize;
+        // An inline form (or a fold that never closes) protects every line from its own
+        // through its `;ENDFOLD`; a user fold indents the lines strictly between the two.
+        self.folds_open
+            .retain(|(fold, inline)| match (fold.close, inline) {
+                (None, true) => true,
+                (None, false) => false,
+                (Some(close), true) => close.start >= start,
+                (Some(close), false) => close.start >= end,
+            });
+        let mut level = 0;
+        for (fold, inline) in &self.folds_open {
+            if *inline {
+                l.protected = true;
+            } else if fold.open.start < start {
+                level += 1;
             }
         }
+        if self.indent_folds && !l.column1 {
+            l.depth += level;
+        }
+        while let Some(d) = self.diagnostics.get(self.next_diagnostic)
+            && d.start < end
+        {
+            self.diagnostics_open.push(*d);
+            self.next_diagnostic += 1;
+        }
+        self.diagnostics_open
+            .retain(|d| start < d.end || (start == d.end && d.is_empty()));
+        if !self.diagnostics_open.is_empty() {
+            l.protected = true;
+        }
+        f(l);
     }
 }
 
-/// Every line a syntax diagnostic touches is left as written.
-fn mark_diagnostics(parse: &Parse, lines: &mut [Line<'_>]) {
-    for d in &parse.diagnostics {
-        let first = lines.partition_point(|l| l.span.end <= d.span.start);
-        for l in lines.iter_mut().skip(first) {
-            if l.span.start > d.span.end || (l.span.start == d.span.end && !d.span.is_empty()) {
-                break;
-            }
-            l.protected = true;
-        }
+/// A protected pseudo-line for text between line nodes.
+fn gap<'a>(start: u32, end: u32) -> Line<'a> {
+    Line {
+        node: None,
+        span: Span { start, end },
+        depth: 0,
+        protected: true,
+        blank: false,
+        dat_decl: false,
+        column1: false,
     }
 }

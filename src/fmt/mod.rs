@@ -48,8 +48,8 @@ pub use options::{Case, FmtOptions, Spacing};
 pub use verify::{Equivalence, case_edits, case_edits_in, check_equivalent};
 
 use crate::diag::{Edit, Span};
-use crate::syntax::{Parse, parse};
-use layout::Line;
+use crate::syntax::Parse;
+use layout::Source;
 use render::{DeclGap, Renderer};
 
 /// The formatted text, and whether it differs from the input.
@@ -59,17 +59,21 @@ pub struct Formatted {
     pub changed: bool,
 }
 
-/// Format one file's decoded text.
+/// Format one file's decoded text. The file is parsed one piece at a time: its tree is never
+/// held whole (memory follows the output, not a tree of the input).
 pub fn format_text(text: &str, opts: &FmtOptions) -> Formatted {
-    let parsed = parse(text);
-    format_parsed(text, &parsed, opts)
+    format_from(text, Source::Pieces, opts)
 }
 
 /// [`format_text`] for a text already parsed.
 pub fn format_parsed(text: &str, parsed: &Parse, opts: &FmtOptions) -> Formatted {
+    format_from(text, Source::Tree(parsed), opts)
+}
+
+fn format_from(text: &str, source: Source<'_>, opts: &FmtOptions) -> Formatted {
     let mut out = String::with_capacity(text.len() + text.len() / 8);
     let mut changed = false;
-    for_each_line(text, parsed, opts, |orig, new| {
+    for_each_line(text, source, opts, |orig, new| {
         let new = new.unwrap_or(orig);
         changed |= new != orig;
         out.push_str(new);
@@ -79,10 +83,9 @@ pub fn format_parsed(text: &str, parsed: &Parse, opts: &FmtOptions) -> Formatted
 
 /// The formatting as whole-line edits (see the module docs).
 pub fn format_edits(text: &str, opts: &FmtOptions) -> Vec<Edit> {
-    let parsed = parse(text);
     let mut edits = Vec::new();
     let mut pos = 0usize;
-    for_each_line(text, &parsed, opts, |orig, new| {
+    for_each_line(text, Source::Pieces, opts, |orig, new| {
         let start = pos;
         pos += orig.len();
         if let Some(new) = new
@@ -109,12 +112,10 @@ pub fn format_range(text: &str, range: std::ops::Range<usize>, opts: &FmtOptions
 /// order; a removed blank line gets `Some("")`.
 fn for_each_line<'t>(
     text: &'t str,
-    parsed: &Parse,
+    source: Source<'_>,
     opts: &FmtOptions,
     mut f: impl FnMut(&'t str, Option<&str>),
 ) {
-    let mut lines: Vec<Line<'_>> = Vec::new();
-    layout::lines(text, parsed, opts.indent_folds, &mut lines);
     let mut renderer = Renderer::default();
     let mut buf = String::with_capacity(256);
     let mut blank_run = 0usize;
@@ -123,21 +124,21 @@ fn for_each_line<'t>(
     let mut after_cr = false;
     // DECL lines waiting for the end of their run to be aligned: (original, rendered, gap).
     let mut run: Vec<(&'t str, String, DeclGap)> = Vec::new();
-    for line in &lines {
+    layout::each_line(text, source, opts.indent_folds, |line| {
         let orig = &text[line.span.range()];
         let Some(node) = line.node.filter(|_| !line.protected) else {
             flush_run(&mut run, &mut f);
             blank_run = 0;
             f(orig, None);
             after_cr = orig.ends_with('\r');
-            continue;
+            return;
         };
         if line.blank {
             flush_run(&mut run, &mut f);
             blank_run += 1;
             if blank_run > opts.max_blank_lines {
                 f(orig, Some(""));
-                continue;
+                return;
             }
         } else {
             blank_run = 0;
@@ -158,7 +159,7 @@ fn for_each_line<'t>(
         }
         // Every kept line keeps its own ending.
         after_cr = orig.ends_with('\r');
-    }
+    });
     flush_run(&mut run, &mut f);
 }
 
