@@ -125,6 +125,11 @@ pub struct Namespace {
     map: BTreeMap<String, String>,
     /// Target name → upper-case KRL name (or "" for names the translator made up).
     taken: FxHashMap<String, String>,
+    /// (kept prefix, digits of the counter) → the counter [`Namespace::free_variant`] tries
+    /// first: every smaller one of as many digits makes a taken name (names are never given
+    /// back), so the thousands of cut names that share a prefix are not searched from 2 each
+    /// time (that made a file of many long names quadratic).
+    next_counter: FxHashMap<(String, usize), usize>,
 }
 
 impl Namespace {
@@ -167,15 +172,32 @@ impl Namespace {
         name
     }
 
-    fn free_variant(&self, base: &str, max_len: usize) -> String {
-        (2..)
-            .map(|n| {
-                let suffix = n.to_string();
-                let keep = max_len.saturating_sub(suffix.len()).min(base.len());
-                format!("{}{suffix}", &base[..keep])
-            })
-            .find(|c| !self.taken.contains_key(c))
-            .unwrap_or_default()
+    /// `base` with the smallest counter from 2 on whose name is free, the base cut so the name
+    /// fits `max_len`.
+    fn free_variant(&mut self, base: &str, max_len: usize) -> String {
+        let mut n = 2usize;
+        loop {
+            let digits = n.to_string().len();
+            let keep = max_len.saturating_sub(digits).min(base.len());
+            let key = (base[..keep].to_owned(), digits);
+            let end = 10usize.saturating_pow(digits as u32);
+            let from = self.next_counter.get(&key).map_or(n, |&c| c.max(n));
+            let free = (from..end)
+                .map(|m| (m, format!("{}{m}", key.0)))
+                .find(|(_, name)| !self.taken.contains_key(name));
+            match free {
+                Some((m, name)) => {
+                    // The caller takes the name.
+                    self.next_counter.insert(key, m + 1);
+                    return name;
+                }
+                None if end == usize::MAX => return String::new(),
+                None => {
+                    self.next_counter.insert(key, end);
+                    n = end;
+                }
+            }
+        }
     }
 }
 
@@ -453,5 +475,34 @@ mod tests {
         assert_eq!(ns.fresh("tmp", 15), "tmp");
         assert_eq!(ns.fresh("tmp", 15), "tmp2");
         assert_eq!(ns.fresh("mm_a_very_long_scratch", 15), "mm_a_very_long_");
+    }
+
+    /// The counters skip what is taken but never a free name: the same names as a search from
+    /// 2 each time, across digit counts and bases that share a cut prefix.
+    #[test]
+    fn clash_counters_are_the_smallest_free() {
+        let mut ns = Namespace::default();
+        let mut plain: std::collections::HashSet<String> = Default::default();
+        let slow = |taken: &std::collections::HashSet<String>, base: &str, max: usize| {
+            (2..)
+                .map(|n: usize| {
+                    let suffix = n.to_string();
+                    let keep = max.saturating_sub(suffix.len()).min(base.len());
+                    format!("{}{suffix}", &base[..keep])
+                })
+                .find(|c| !taken.contains(c))
+                .unwrap_or_default()
+        };
+        for i in 0..400 {
+            let base = ["abcdefgh", "abcdefghi", "abcdefgx", "ab"][i % 4];
+            let want = if plain.contains(base) {
+                slow(&plain, base, 10)
+            } else {
+                base.to_owned()
+            };
+            let got = ns.fresh(base, 10);
+            assert_eq!(got, want, "{i}");
+            plain.insert(got);
+        }
     }
 }
