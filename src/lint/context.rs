@@ -428,6 +428,8 @@ pub struct FileCtx<'p> {
     pub all: &'p dyn Texts,
     flow: OnceLock<FlowResult>,
     lines: OnceLock<LineIndex>,
+    /// The file's interface calls by the offset of their name, asked of the model once.
+    mm_calls: OnceLock<rustc_hash::FxHashMap<u32, &'static Subprogram>>,
 }
 
 impl<'p> FileCtx<'p> {
@@ -448,6 +450,7 @@ impl<'p> FileCtx<'p> {
             all,
             flow: OnceLock::new(),
             lines: OnceLock::new(),
+            mm_calls: OnceLock::new(),
         }
     }
 
@@ -506,7 +509,15 @@ impl<'p> FileCtx<'p> {
     /// The interface subprogram, in the version the program is checked against, that the call
     /// named `name` (a call's name in this file) calls, as the model resolves it.
     pub fn mm_call(&self, name: &Ident) -> Option<&'static Subprogram> {
-        (self.sema).mm_call_at(self.id, name.span.start, self.project.interface.version)
+        // Rules ask per statement, some once per statement of a routine: one pass over the
+        // file's calls answers them all.
+        let calls = self.mm_calls.get_or_init(|| {
+            let iface = self.project.interface.version;
+            (self.sema.calls(self.id))
+                .filter_map(|c| Some((c.span.start, self.sema.mm_subprogram(c.target, iface)?)))
+                .collect()
+        });
+        calls.get(&name.span.start).copied()
     }
 
     /// The model's id of a routine of this file's AST.

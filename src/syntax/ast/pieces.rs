@@ -82,27 +82,33 @@ impl SourceFile {
     pub fn events(&self, mut f: impl FnMut(Event<'_>)) {
         for r in &self.routines {
             f(Event::Routine(r));
-            r.decls.iter().for_each(|d| f(Event::Decl(d)));
-            r.definitions.iter().for_each(|d| f(Event::Definition(d)));
-            r.body.iter().for_each(|s| f(Event::Stmt(Cow::Borrowed(s))));
-            f(Event::Close {
-                span: r.span,
-                closed: r.closed,
-            });
+            module_events(
+                &mut f,
+                (&r.decls, &r.definitions, &r.body),
+                r.span,
+                r.closed,
+            );
         }
         if let Some(d) = &self.dat {
             f(Event::Dat(d));
-            d.decls.iter().for_each(|x| f(Event::Decl(x)));
-            d.definitions.iter().for_each(|x| f(Event::Definition(x)));
-            d.body.iter().for_each(|s| f(Event::Stmt(Cow::Borrowed(s))));
-            f(Event::Close {
-                span: d.span,
-                closed: false,
-            });
+            module_events(&mut f, (&d.decls, &d.definitions, &d.body), d.span, false);
         }
         (self.top_level.iter()).for_each(|s| f(Event::Stmt(Cow::Borrowed(s))));
         self.headers.iter().for_each(|h| f(Event::Header(h)));
     }
+}
+
+/// A routine's or data list's parts after its opening event, and its close.
+fn module_events<'a>(
+    f: &mut impl FnMut(Event<'a>),
+    (decls, definitions, body): (&'a [Decl], &'a [Definition], &'a [Stmt]),
+    span: Span,
+    closed: bool,
+) {
+    decls.iter().for_each(|d| f(Event::Decl(d)));
+    definitions.iter().for_each(|d| f(Event::Definition(d)));
+    body.iter().for_each(|s| f(Event::Stmt(Cow::Borrowed(s))));
+    f(Event::Close { span, closed });
 }
 
 /// Turns pieces into [`Lowered`] events.
