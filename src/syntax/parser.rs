@@ -57,8 +57,8 @@ impl Parse {
 
     /// The tree handed out as [`parse_pieces`] hands out the text, so that one consumer of
     /// pieces serves the whole tree and the streamed file alike. A module's lines go out as
-    /// items but its last, which stays in its `Close` node (as its `END` line does when
-    /// streamed): consumers take a `Close` node's lines after the last piece they saw.
+    /// items but the `END`/`ENDDAT` line that closed it, which stays in its `Close` node (as
+    /// when streamed): consumers take a `Close` node's lines after the last piece they saw.
     pub fn pieces(&self, mut f: impl FnMut(Piece<'_>)) {
         for node in self.root().nodes() {
             let data = match node.kind {
@@ -72,9 +72,18 @@ impl Parse {
             let mut lines = node.nodes();
             let Some(line) = lines.next() else { continue };
             f(Piece::Open { line, data });
+            // Only the line that closed the module stays behind: an unclosed module's last line
+            // (a stray `ENDFCT` in a DEFDAT) is an item, as it is when streamed.
+            let closes = |line: Node<'_>| {
+                matches!(
+                    (node.kind, line.kind),
+                    (NodeKind::Routine, NodeKind::EndLine)
+                        | (NodeKind::DatModule, NodeKind::EnddatLine)
+                )
+            };
             let mut lines = lines.peekable();
             while let Some(item) = lines.next() {
-                if lines.peek().is_some() {
+                if lines.peek().is_some() || !closes(item) {
                     f(Piece::Item(item));
                 }
             }
