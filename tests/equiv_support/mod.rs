@@ -883,6 +883,8 @@ fn motion_differs(k: &Motion, t: &Motion, brand: Brand, skip: &[Aspect]) -> Opti
                 close(*v, *a)
             }
             (Blend::Krl("C_DIS" | "C_SPL", v), Blend::Pzone(d), Brand::Abb) => close(*v, *d),
+            // A zero distance is a stop point: `fine` (RAPID's `z0` still blends 0.3 mm).
+            (Blend::Krl("C_DIS" | "C_SPL", v), Blend::Exact, Brand::Abb) => *v <= 0.0,
             (Blend::Krl("C_DIS" | "C_SPL", v), b, Brand::Flexiv) => {
                 let z = krlkit::transpile::flexiv::zone_code(*v);
                 match b {
