@@ -8,7 +8,7 @@ use super::layout::{has_inline_form_mark, is_block};
 use super::options::FmtOptions;
 use super::render::{Renderer, case_changes};
 use crate::diag::{Diagnostic, Edit, Span};
-use crate::syntax::{Node, NodeKind, Piece};
+use crate::syntax::{Node, NodeKind, Piece, PieceNodes};
 
 #[derive(Default)]
 pub struct CaseEdits {
@@ -16,29 +16,14 @@ pub struct CaseEdits {
     opts: FmtOptions,
     /// Candidate edits with the span of their line, in text order.
     edits: Vec<(Span, Edit)>,
-    /// End of the last piece seen (a `Close` piece repeats its first line).
-    seen: u32,
+    walk: PieceNodes,
 }
 
 impl CaseEdits {
     pub fn add(&mut self, piece: Piece<'_>, text: &str) {
-        match piece {
-            Piece::Open { line, .. } => {
-                self.node(line, text);
-                self.seen = line.span.end;
-            }
-            Piece::Item(node) => {
-                self.node(node, text);
-                self.seen = node.span.end;
-            }
-            Piece::Close(node) => {
-                let seen = self.seen;
-                for child in node.nodes().filter(|c| c.span.start >= seen) {
-                    self.node(child, text);
-                }
-                self.seen = node.span.end;
-            }
-        }
+        let mut walk = self.walk;
+        walk.each(piece, |node| self.node(node, text));
+        self.walk = walk;
     }
 
     /// A line, or a block's lines (as the formatter's layout lists them).

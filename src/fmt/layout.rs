@@ -69,31 +69,20 @@ pub(super) fn each_line(
 struct Pieces {
     /// The open routine or data list: the depth step inside it, and whether it is a data list.
     open: Option<(usize, bool)>,
-    /// End of the last piece seen (a `Close` piece repeats its first line).
-    seen: u32,
+    walk: crate::syntax::PieceNodes,
 }
 
 impl Pieces {
     fn add<'a>(&mut self, piece: crate::syntax::Piece<'a>, sink: &mut impl FnMut(Line<'a>)) {
         use crate::syntax::Piece;
-        match piece {
-            Piece::Open { line, data } => {
-                self.open = Some((usize::from(!data), data));
-                self.child(line, sink);
-                self.seen = line.span.end;
-            }
-            Piece::Item(node) => {
-                self.child(node, sink);
-                self.seen = node.span.end;
-            }
-            Piece::Close(node) => {
-                let seen = self.seen;
-                for c in node.nodes().filter(|c| c.span.start >= seen) {
-                    self.child(c, sink);
-                }
-                self.open = None;
-                self.seen = node.span.end;
-            }
+        if let Piece::Open { data, .. } = piece {
+            self.open = Some((usize::from(!data), data));
+        }
+        let mut walk = self.walk;
+        walk.each(piece, |node| self.child(node, sink));
+        self.walk = walk;
+        if let Piece::Close(_) = piece {
+            self.open = None;
         }
     }
 

@@ -66,5 +66,7 @@ mod words;
 
 pub use cst::{Children, Element, Node, NodeKind, SyntaxTree, Token, TokenKind};
 pub use decode::{Decoded, TextEncoding, decode, decode_owned, encode_as};
-pub use parser::{Parse, Piece, SYNTAX_ERROR, diagnostics, parse, parse_pieces, write_json_tree};
+pub use parser::{
+    Parse, Piece, PieceNodes, SYNTAX_ERROR, diagnostics, parse, parse_pieces, write_json_tree,
+};
 pub use words::is_keyword;

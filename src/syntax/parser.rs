@@ -135,6 +135,31 @@ pub enum Piece<'a> {
     Close(Node<'a>),
 }
 
+/// The nodes a stream of pieces holds, each once and in text order: an `Open`'s first line, an
+/// `Item`, and the lines of a `Close` node not handed out before it (its `END` line).
+/// Consumers of pieces that want lines walk with this.
+#[derive(Debug, Default, Clone, Copy)]
+pub struct PieceNodes {
+    /// End of the last piece seen (a `Close` piece repeats its first line).
+    seen: u32,
+}
+
+impl PieceNodes {
+    pub fn each<'a>(&mut self, piece: Piece<'a>, mut f: impl FnMut(Node<'a>)) {
+        match piece {
+            Piece::Open { line: node, .. } | Piece::Item(node) => {
+                f(node);
+                self.seen = node.span.end;
+            }
+            Piece::Close(node) => {
+                let seen = self.seen;
+                node.nodes().filter(|c| c.span.start >= seen).for_each(f);
+                self.seen = node.span.end;
+            }
+        }
+    }
+}
+
 /// [`parse`] one piece at a time: `f` sees every top-level line or block and every line or
 /// block directly inside a routine or data list as soon as it is finished, and its storage is
 /// reused after. Memory follows the largest block, not the file (a 50 MB routine is parsed
