@@ -26,6 +26,7 @@ pub mod why;
 use crate::catalog::Subprogram;
 use crate::diag::Span;
 use crate::transpile::front::report::FileId;
+use crate::transpile::front::{R, fail};
 
 pub use why::Why;
 
@@ -163,10 +164,25 @@ impl Program {
         &self.routines[r.0 as usize]
     }
 
-    /// The interrupt numbers an `INTERRUPT ON|OFF|… [n]` at `at` acts on (no number: every
-    /// number the file declares), each with the declaration it means: the last one before
-    /// `at`, else the first (`Err(n)`: none declares `n`).
-    pub fn interrupts_for(&self, number: Option<i64>, at: u32) -> Vec<Result<usize, i64>> {
+    /// The declarations an `INTERRUPT ON|OFF|… [n]` at `span` acts on (no number: every number
+    /// the file declares), each the last one of its number before `span`, else the first; the
+    /// finding when the file declares no such number (every target says the same).
+    pub fn interrupts_for(&self, number: Option<i64>, span: Span) -> R<Vec<usize>> {
+        self.interrupts_by_number(number, span.start)
+            .into_iter()
+            .map(|found| {
+                found.or_else(|n| {
+                    fail(
+                        span,
+                        format!("no INTERRUPT DECL {n} in this file"),
+                        "translate the file that declares the interrupt, or declare it here",
+                    )
+                })
+            })
+            .collect()
+    }
+
+    fn interrupts_by_number(&self, number: Option<i64>, at: u32) -> Vec<Result<usize, i64>> {
         let numbers: Vec<i64> = match number {
             Some(n) => vec![n],
             None => {

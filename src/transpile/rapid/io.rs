@@ -329,17 +329,7 @@ impl<'a> Tx<'a> {
     ) -> R<()> {
         let decls = &self.ir.interrupts;
         let mut lines = Vec::new();
-        for found in self.ir.interrupts_for(number, span.start) {
-            let i = match found {
-                Ok(i) => i,
-                Err(n) => {
-                    return fail(
-                        span,
-                        format!("no INTERRUPT DECL {n} in this file"),
-                        "translate the file that declares the interrupt, or declare it here",
-                    );
-                }
-            };
+        for i in self.ir.interrupts_for(number, span)? {
             let n = decls[i].number;
             if decls[i].stop_messages {
                 lines.push(format!("! INTERRUPT {n}: the controller's stop messages"));
