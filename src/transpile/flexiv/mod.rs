@@ -66,6 +66,13 @@ static STYLE: Style = Style {
     if_then: |c| format!("if {c}:"),
     else_line: "else:",
     end_if: None,
+    help: help::help,
+    message: render::MessageWords {
+        name: "print",
+        line: |t| format!("print({t})"),
+        confirm: "input()",
+    },
+    jumps: None,
 };
 
 /// A Flexiv RDK Python script in the table of targets. Python has no GOTO: the routines' jumps
@@ -564,6 +571,18 @@ impl<'a> Emit<'a> for Tx<'a> {
 
     fn expr_text(&mut self, e: &ir::Expr) -> R<String> {
         self.expr(e)
+    }
+
+    fn names(&mut self) -> &mut Namer<'a> {
+        &mut self.names
+    }
+
+    fn routine_id(&self) -> RoutineId {
+        self.rt.as_ref().map_or(RoutineId(0), |r| r.id)
+    }
+
+    fn program(&self) -> &'a ir::Program {
+        self.ir
     }
 
     fn block_edge(&mut self) {

@@ -170,8 +170,7 @@ impl<'a> Tx<'a> {
             // The lowering refuses interrupts for a target without them
             // ([`crate::transpile::ir::Why::NoInterrupts`]): this is never reached.
             Op::Interrupt { .. } => {
-                let why = crate::transpile::ir::Why::NoInterrupts;
-                fail(span, why.message(), super::help::help(&why))
+                self.unsupported(&crate::transpile::ir::Why::NoInterrupts, span)
             }
             // What reaches here is KUKA's stop-message interrupt.
             Op::InterruptDecl(_) => {
@@ -184,18 +183,8 @@ impl<'a> Tx<'a> {
                 self.keep_as_comment("TR002", span);
                 Ok(())
             }
-            Op::Message { routine, text } => {
-                let t = self.expr(text)?;
-                self.out.rep.approximate(
-                    FileId::Src,
-                    span,
-                    format!("{routine} becomes print (no message window, no acknowledgement)"),
-                    "use input() where the operator must confirm",
-                );
-                self.line(format!("print({t})"));
-                Ok(())
-            }
-            Op::Unsupported { why, at } => fail(*at, why.message(), super::help::help(why)),
+            Op::Message { routine, text } => self.message(routine, text, span),
+            Op::Unsupported { why, at } => self.unsupported(why, *at),
             Op::Keep { note } => self.keep_op(*note, span),
         }
     }

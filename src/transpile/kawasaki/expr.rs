@@ -11,31 +11,8 @@ use crate::transpile::ir::{
 };
 use crate::transpile::render::Emit;
 
-/// Binding strength of an AS expression, to decide where parentheses go.
-pub(super) const ATOM: u8 = 10;
-const UNARY: u8 = 8;
-const MUL: u8 = 7;
-pub(super) const ADD: u8 = 6;
-const CMP: u8 = 4;
-const LOGIC: u8 = 2;
-
-/// A rendered expression and how tightly it binds.
-pub(super) struct Rendered {
-    pub text: String,
-    prec: u8,
-    /// The operator, for chains of the same operator that need no parentheses.
-    op: Option<&'static str>,
-}
-
-impl Rendered {
-    fn atom(text: String) -> Rendered {
-        Rendered {
-            text,
-            prec: ATOM,
-            op: None,
-        }
-    }
-}
+pub(super) use crate::transpile::render::expr::{ADD, ATOM};
+use crate::transpile::render::expr::{CMP, LOGIC, MUL, Rendered, UNARY};
 
 impl<'a> Tx<'a> {
     /// An expression in a value context.
@@ -123,11 +100,7 @@ impl<'a> Tx<'a> {
                 );
             }
         };
-        Ok(Rendered {
-            text,
-            prec: UNARY,
-            op: None,
-        })
+        Ok(Rendered::of(text, UNARY))
     }
 
     fn binary(&mut self, op: BinaryOp, lhs: &Expr, rhs: &Expr, whole: &Expr) -> R<Rendered> {
@@ -160,30 +133,12 @@ impl<'a> Tx<'a> {
         };
         let l = self.render(lhs)?;
         let r = self.render(rhs)?;
-        let side = |c: Rendered, right: bool| -> String {
-            let paren = if prec >= ADD {
-                c.prec < prec || (c.prec == prec && right)
-            } else if prec == CMP {
-                c.prec < ADD
-            } else {
-                c.prec < UNARY && (right || c.op != Some(sym))
-            };
-            if paren {
-                format!("({})", c.text)
-            } else {
-                c.text
-            }
-        };
-        let text = format!("{} {sym} {}", side(l, false), side(r, true));
+        let whole = Rendered::infix(sym, prec, l, r);
         if op == BinaryOp::IntDiv {
             // KRL divides integers with truncation; AS `/` is real division.
-            return Ok(Rendered::atom(format!("INT({text})")));
+            return Ok(Rendered::atom(format!("INT({})", whole.text)));
         }
-        Ok(Rendered {
-            text,
-            prec,
-            op: Some(sym),
-        })
+        Ok(whole)
     }
 
     /// `$TIMER[n] > 500` (ms) → `TIMER(n) > 0.5` (s).
@@ -404,11 +359,7 @@ impl<'a> Tx<'a> {
                 } else {
                     format!("-{}", r.text)
                 };
-                return Ok(Rendered {
-                    text: t,
-                    prec: UNARY,
-                    op: None,
-                });
+                return Ok(Rendered::of(t, UNARY));
             }
             Builtin::Round => {
                 // AS has no confirmed ROUND; with INT truncating (the assumption KRL integer

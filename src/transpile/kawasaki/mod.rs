@@ -26,7 +26,7 @@ use super::VisionServer;
 use super::front::Program as Source;
 use super::front::names::{Home, NameRules, Namer};
 use super::front::report::{FileId, Report};
-use super::ir::{self, Block, LoopId, RoutineId, RoutineKind, TempId, Ty, VarId};
+use super::ir::{self, Block, RoutineId, RoutineKind, TempId, Ty, VarId};
 use super::render::{self, Emit, Out, Style};
 use crate::diag::Span;
 
@@ -60,6 +60,16 @@ static STYLE: Style = Style {
     if_then: |c| format!("IF {c} THEN"),
     else_line: "ELSE",
     end_if: Some("END"),
+    help: help::help,
+    message: render::MessageWords {
+        name: "PRINT",
+        line: |t| format!("PRINT {t}"),
+        confirm: "PROMPT",
+    },
+    jumps: Some(render::JumpWords {
+        goto: |l| format!("GOTO {l}"),
+        label_at_margin: true,
+    }),
 };
 
 /// Kawasaki AS in the table of targets.
@@ -104,8 +114,7 @@ struct Rt {
     /// Temporaries named so far.
     temps: HashMap<TempId, String>,
     /// Loops left by a jump: the label after the loop, and the label before its end.
-    breaks: HashMap<LoopId, String>,
-    continues: HashMap<LoopId, String>,
+    loops: render::LoopLabels,
     /// Scratch locals by purpose (each reused within the program).
     scratch: HashMap<String, String>,
 }
@@ -159,23 +168,6 @@ impl<'a> Tx<'a> {
     fn var_name(&mut self, v: VarId, used_at: Span) -> (String, bool) {
         let (n, home) = self.names.var(&mut self.out.rep, v, used_at);
         (n, home == Home::Local)
-    }
-
-    fn routine_id(&self) -> RoutineId {
-        self.rt.as_ref().map_or(RoutineId(0), |r| r.id)
-    }
-
-    /// A label the translator needs (e.g. after a loop left with a jump).
-    fn fresh_label(&mut self, base: &str) -> String {
-        let id = self.routine_id();
-        self.names.fresh_label(id, base)
-    }
-
-    /// A label of the KRL program.
-    fn label_name(&mut self, l: ir::LabelId) -> String {
-        let id = self.routine_id();
-        let krl = &self.ir.routine(id).labels[l.0 as usize].0;
-        self.names.label(id, krl)
     }
 
     /// A local variable the translator needs, rendered with its `.`.
@@ -317,8 +309,7 @@ impl crate::transpile::Renderer for Tx<'_> {
             retval: None,
             accuracy: None,
             temps: HashMap::new(),
-            breaks: HashMap::new(),
-            continues: HashMap::new(),
+            loops: render::LoopLabels::default(),
             scratch: HashMap::new(),
         });
         // Locals first (parameters, then declarations), then labels, so made-up names never
@@ -394,6 +385,22 @@ impl<'a> Emit<'a> for Tx<'a> {
 
     fn expr_text(&mut self, e: &ir::Expr) -> R<String> {
         self.expr(e)
+    }
+
+    fn names(&mut self) -> &mut Namer<'a> {
+        &mut self.names
+    }
+
+    fn routine_id(&self) -> RoutineId {
+        self.rt.as_ref().map_or(RoutineId(0), |r| r.id)
+    }
+
+    fn program(&self) -> &'a ir::Program {
+        self.ir
+    }
+
+    fn loop_labels(&mut self) -> Option<&mut render::LoopLabels> {
+        self.rt.as_mut().map(|r| &mut r.loops)
     }
 
     fn block_edge(&mut self) {

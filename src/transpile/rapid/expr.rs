@@ -9,32 +9,7 @@ use crate::transpile::ir::{
 };
 use crate::transpile::render::Emit;
 
-/// Binding strength of a RAPID expression, to decide where parentheses go.
-const ATOM: u8 = 10;
-const MUL: u8 = 7;
-const ADD: u8 = 6;
-const CMP: u8 = 4;
-const LOGIC: u8 = 2;
-/// A unary operator's result as an operand.
-const NEG: u8 = 1;
-
-/// A rendered expression and how tightly it binds.
-pub(super) struct Rendered {
-    pub text: String,
-    prec: u8,
-    /// The operator, for chains of the same operator that need no parentheses.
-    op: Option<&'static str>,
-}
-
-impl Rendered {
-    fn atom(text: String) -> Rendered {
-        Rendered {
-            text,
-            prec: ATOM,
-            op: None,
-        }
-    }
-}
+use crate::transpile::render::expr::{ADD, ATOM, CMP, LOGIC, LOOSE_UNARY as NEG, MUL, Rendered};
 
 /// Why axis values written in the program are not copied.
 pub(super) const NO_JOINT_MAP: &str = "KUKA axis values: ABB's axis zeros and directions differ, so the same numbers are another posture; without a joint map they are not translated";
@@ -110,11 +85,7 @@ impl<'a> Tx<'a> {
                 );
             }
         };
-        Ok(Rendered {
-            text,
-            prec: NEG,
-            op: None,
-        })
+        Ok(Rendered::of(text, NEG))
     }
 
     fn binary(&mut self, op: BinaryOp, lhs: &Expr, rhs: &Expr, whole: &Expr) -> R<Rendered> {
@@ -153,27 +124,7 @@ impl<'a> Tx<'a> {
         };
         let l = self.render(lhs)?;
         let r = self.render(rhs)?;
-        let side = |c: Rendered, right: bool| -> String {
-            let paren = if prec >= ADD {
-                // Left-associative: `a - b + c` needs none, `a - (b + c)` does.
-                c.prec < prec || (c.prec == prec && right)
-            } else if prec == CMP {
-                c.prec <= CMP
-            } else {
-                c.prec < ATOM && (right || c.op != Some(sym))
-            };
-            if paren {
-                format!("({})", c.text)
-            } else {
-                c.text
-            }
-        };
-        let text = format!("{} {sym} {}", side(l, false), side(r, true));
-        Ok(Rendered {
-            text,
-            prec,
-            op: Some(sym),
-        })
+        Ok(Rendered::infix(sym, prec, l, r))
     }
 
     /// `$IN[3]`, `NOT $IN[3]`, `$IN[3] == FALSE` … as `(di3 = 1)` / `(di3 = 0)`; `None` if `e`

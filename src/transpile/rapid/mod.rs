@@ -27,7 +27,7 @@ use super::Options;
 use super::front::Program as Source;
 use super::front::names::{NameRules, Namer};
 use super::front::report::{FileId, Report};
-use super::ir::{self, Block, LoopId, RoutineId, RoutineKind, TempId, Ty, VarId};
+use super::ir::{self, Block, RoutineId, RoutineKind, TempId, Ty, VarId};
 use super::render::{self, Emit, Out, Style};
 use crate::diag::Span;
 
@@ -56,6 +56,16 @@ static STYLE: Style = Style {
     if_then: |c| format!("IF {c} THEN"),
     else_line: "ELSE",
     end_if: Some("ENDIF"),
+    help: help::help,
+    message: render::MessageWords {
+        name: "TPWrite",
+        line: |t| format!("TPWrite {t};"),
+        confirm: "UIMsgBox",
+    },
+    jumps: Some(render::JumpWords {
+        goto: |l| format!("GOTO {l};"),
+        label_at_margin: false,
+    }),
 };
 
 /// ABB RAPID in the table of targets.
@@ -110,7 +120,7 @@ struct Rt {
     /// Made-up locals, with their RAPID types, in the order minted.
     extra: Vec<(String, &'static str)>,
     /// Loops left by a jump: the label after the loop.
-    breaks: HashMap<LoopId, String>,
+    loops: render::LoopLabels,
 }
 
 pub struct Tx<'a> {
@@ -167,23 +177,6 @@ impl<'a> Tx<'a> {
     /// A variable's RAPID name.
     fn var_name(&mut self, v: VarId, used_at: Span) -> String {
         self.names.var(&mut self.out.rep, v, used_at).0
-    }
-
-    fn routine_id(&self) -> RoutineId {
-        self.rt.as_ref().map_or(RoutineId(0), |r| r.id)
-    }
-
-    /// A label the translator needs (e.g. after a loop left with a jump).
-    fn fresh_label(&mut self, base: &str) -> String {
-        let id = self.routine_id();
-        self.names.fresh_label(id, base)
-    }
-
-    /// A label of the KRL program.
-    fn label_name(&mut self, l: ir::LabelId) -> String {
-        let id = self.routine_id();
-        let krl = &self.ir.routine(id).labels[l.0 as usize].0;
-        self.names.label(id, krl)
     }
 
     /// A local the translator needs, declared with `ty` in the routine being rendered.
@@ -351,7 +344,7 @@ impl crate::transpile::Renderer for Tx<'_> {
             },
             temps: HashMap::new(),
             extra: Vec::new(),
-            breaks: HashMap::new(),
+            loops: render::LoopLabels::default(),
         });
         self.still = false;
         self.names.declare_locals(&mut self.out.rep, id);
@@ -437,6 +430,22 @@ impl<'a> Emit<'a> for Tx<'a> {
 
     fn expr_text(&mut self, e: &ir::Expr) -> R<String> {
         self.expr(e)
+    }
+
+    fn names(&mut self) -> &mut Namer<'a> {
+        &mut self.names
+    }
+
+    fn routine_id(&self) -> RoutineId {
+        self.rt.as_ref().map_or(RoutineId(0), |r| r.id)
+    }
+
+    fn program(&self) -> &'a ir::Program {
+        self.ir
+    }
+
+    fn loop_labels(&mut self) -> Option<&mut render::LoopLabels> {
+        self.rt.as_mut().map(|r| &mut r.loops)
     }
 
     fn block_edge(&mut self) {

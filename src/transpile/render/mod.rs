@@ -10,6 +10,8 @@
 //! and what each declares it can hold ([`Caps`]).
 
 pub mod backend;
+pub mod expr;
+pub mod help;
 
 use std::collections::HashMap;
 
@@ -18,7 +20,7 @@ use super::front::comments::CommentQueue;
 use super::front::names::Namer;
 use super::front::report::{FileId, Report};
 use super::front::{Fail, R};
-use super::ir::{Case, Expr, Op, Stmt, TempId};
+use super::ir::{self as ir, Case, Expr, LabelId, LoopId, Op, RoutineId, Stmt, TempId, Why};
 use crate::diag::Span;
 
 pub use backend::{BACKENDS, Backend, Caps, backend};
@@ -48,6 +50,38 @@ pub struct Style {
     pub else_line: &'static str,
     /// `ENDIF`, `END`; `None` where indentation ends a block.
     pub end_if: Option<&'static str>,
+    /// What to do instead, in this target, for a construct no target can express.
+    pub help: fn(&Why) -> String,
+    /// How KRL's message routines (`MsgNotify` …) are written.
+    pub message: MessageWords,
+    /// How a target with `GOTO` writes a jump and a label; `None`: jumps become loops first.
+    pub jumps: Option<JumpWords>,
+}
+
+/// How a target shows a KRL message: an instruction that writes a line, without KUKA's
+/// message window or acknowledgement (a TR002 says so).
+pub struct MessageWords {
+    /// `PRINT`, `TPWrite`.
+    pub name: &'static str,
+    /// The line writing the rendered text.
+    pub line: fn(&str) -> String,
+    /// What to use where the operator must confirm (`PROMPT`, `UIMsgBox`).
+    pub confirm: &'static str,
+}
+
+/// How a target with `GOTO` writes jumps and labels.
+pub struct JumpWords {
+    /// `GOTO l`.
+    pub goto: fn(&str) -> String,
+    /// A label stands at the left margin (AS), not indented with the code (RAPID).
+    pub label_at_margin: bool,
+}
+
+/// The labels of the loops of a routine that are left (`EXIT`) or continued with a jump.
+#[derive(Default)]
+pub struct LoopLabels {
+    exits: HashMap<LoopId, String>,
+    nexts: HashMap<LoopId, String>,
 }
 
 /// How a target writes a SWITCH it has a statement for (`TEST`/`CASE`, `CASE`/`VALUE`).
@@ -177,6 +211,103 @@ pub trait Emit<'a> {
     /// At a block's start and end: what the renderer knows of the robot's state (the
     /// blending, frames or standstill in force) does not hold across the edge.
     fn block_edge(&mut self);
+    /// The target's names.
+    fn names(&mut self) -> &mut Namer<'a>;
+    /// The routine being rendered.
+    fn routine_id(&self) -> RoutineId;
+    fn program(&self) -> &'a ir::Program;
+    /// The loop labels of the routine being rendered (targets with `GOTO`).
+    fn loop_labels(&mut self) -> Option<&mut LoopLabels> {
+        None
+    }
+
+    /// A construct the lowering found no target can express: TR001 with the target's help.
+    fn unsupported(&mut self, why: &Why, at: Span) -> R<()> {
+        let help = (self.out().style.help)(why);
+        Err(Fail {
+            span: at,
+            message: why.message(),
+            help,
+        })
+    }
+
+    /// A KRL message as the target's instruction that writes a line (TR002).
+    fn message(&mut self, routine: &str, text: &Expr, span: Span) -> R<()> {
+        let t = self.expr_text(text)?;
+        let out = self.out();
+        let w = &out.style.message;
+        out.rep.approximate(
+            FileId::Src,
+            span,
+            format!(
+                "{routine} becomes {} (no message window, no acknowledgement)",
+                w.name
+            ),
+            format!("use {} where the operator must confirm", w.confirm),
+        );
+        let l = (w.line)(&t);
+        out.line(&l);
+        Ok(())
+    }
+
+    /// A label the translator needs (e.g. after a loop left with a jump).
+    fn fresh_label(&mut self, base: &str) -> String {
+        let id = self.routine_id();
+        self.names().fresh_label(id, base)
+    }
+
+    /// The target's name of a label of the KRL program.
+    fn label_name(&mut self, l: LabelId) -> String {
+        let id = self.routine_id();
+        let program = self.program();
+        let krl = &program.routine(id).labels[l.0 as usize].0;
+        self.names().label(id, krl)
+    }
+
+    /// `GOTO to` in the target's words.
+    fn goto_line(&mut self, to: &str) {
+        if let Some(j) = &self.out().style.jumps {
+            let l = (j.goto)(to);
+            self.line(l);
+        }
+    }
+
+    /// A label line; what the renderer knows of the robot's state does not hold after it
+    /// (it can be jumped to).
+    fn label_line(&mut self, name: &str) {
+        let out = self.out();
+        match &out.style.jumps {
+            Some(j) if j.label_at_margin => out.lines.push(format!("{name}:")),
+            _ => out.line(&format!("{name}:")),
+        }
+        self.block_edge();
+    }
+
+    /// The label after loop `id` (where `EXIT` jumps to), minted when `needed`.
+    fn exit_label(&mut self, id: LoopId, needed: bool) -> String {
+        self.loop_label(id, needed, false)
+    }
+
+    /// The label before loop `id`'s end (where a jump to its next pass goes), minted when
+    /// `needed`.
+    fn next_label(&mut self, id: LoopId, needed: bool) -> String {
+        self.loop_label(id, needed, true)
+    }
+
+    fn loop_label(&mut self, id: LoopId, mint: bool, next: bool) -> String {
+        let base = if next { "loop_next" } else { "loop_end" };
+        if mint {
+            let l = self.fresh_label(base);
+            if let Some(ls) = self.loop_labels() {
+                let m = if next { &mut ls.nexts } else { &mut ls.exits };
+                m.insert(id, l.clone());
+            }
+            return l;
+        }
+        self.loop_labels()
+            .and_then(|ls| if next { &ls.nexts } else { &ls.exits }.get(&id).cloned())
+            .unwrap_or_else(|| base.into())
+    }
 
     /// A nested block, one level deeper.
     fn nested(&mut self, b: &[Stmt]) {
