@@ -450,13 +450,7 @@ impl<'a> Tx<'a> {
         match callee {
             Callee::Mm(sub) => self.mm_call(sub, args, span),
             Callee::Routine(r) => {
-                let routine = self.ir.routine(*r);
-                let name = self
-                    .names
-                    .routine_of(&routine.name)
-                    .unwrap_or(&routine.name)
-                    .to_owned();
-                let deffct = routine.kind == RoutineKind::Deffct;
+                let (name, deffct, _) = self.routine_callee(*r);
                 let mut rendered = Vec::new();
                 let mut places = Vec::new();
                 let has_outs = args.iter().any(|a| a.out);

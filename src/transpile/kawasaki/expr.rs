@@ -82,16 +82,9 @@ impl<'a> Tx<'a> {
             return Ok(Rendered::atom(format!("SIG({})", t?)));
         }
         let inner = self.render(operand)?;
-        let wrap = |r: Rendered| {
-            if r.prec < UNARY {
-                format!("({})", r.text)
-            } else {
-                r.text
-            }
-        };
-        let text = match op {
-            UnaryOp::Not => format!("NOT {}", wrap(inner)),
-            UnaryOp::Neg => format!("-{}", wrap(inner)),
+        let sym = match op {
+            UnaryOp::Not => "NOT ",
+            UnaryOp::Neg => "-",
             UnaryOp::BNot => {
                 return fail(
                     whole.span,
@@ -100,7 +93,7 @@ impl<'a> Tx<'a> {
                 );
             }
         };
-        Ok(Rendered::of(text, UNARY))
+        Ok(Rendered::prefix(sym, inner, UNARY))
     }
 
     fn binary(&mut self, op: BinaryOp, lhs: &Expr, rhs: &Expr, whole: &Expr) -> R<Rendered> {

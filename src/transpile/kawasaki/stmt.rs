@@ -5,8 +5,7 @@ use super::{R, Tx, fail};
 use crate::diag::Span;
 use crate::transpile::front::report::FileId;
 use crate::transpile::ir::{
-    self, Arg, Block, Callee, Component, Expr, ExprKind, LoopId, LoopKind, Op, Place, RoutineKind,
-    Stmt, Ty,
+    self, Arg, Block, Callee, Component, Expr, ExprKind, LoopId, LoopKind, Op, Place, Stmt, Ty,
 };
 use crate::transpile::render::{CaseWords, Emit};
 
@@ -304,19 +303,7 @@ impl<'a> Tx<'a> {
     fn call(&mut self, callee: &Callee, args: &[Arg], ret: Option<&Place>, span: Span) -> R<()> {
         let (name, function, ret_ty) = match callee {
             Callee::Mm(sub) => return self.mm_call(sub, args, span),
-            Callee::Routine(r) => {
-                let routine = self.ir.routine(*r);
-                let name = self
-                    .names
-                    .routine_of(&routine.name)
-                    .unwrap_or(&routine.name)
-                    .to_owned();
-                (
-                    name,
-                    routine.kind == RoutineKind::Deffct,
-                    routine.ret.clone().unwrap_or(Ty::Real),
-                )
-            }
+            Callee::Routine(r) => self.routine_callee(*r),
             Callee::External {
                 name,
                 span: at,

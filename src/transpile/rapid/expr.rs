@@ -9,7 +9,7 @@ use crate::transpile::ir::{
 };
 use crate::transpile::render::Emit;
 
-use crate::transpile::render::expr::{ADD, ATOM, CMP, LOGIC, LOOSE_UNARY as NEG, MUL, Rendered};
+use crate::transpile::render::expr::{ADD, CMP, LOGIC, LOOSE_UNARY as NEG, MUL, Rendered};
 
 /// Why axis values written in the program are not copied.
 pub(super) const NO_JOINT_MAP: &str = "KUKA axis values: ABB's axis zeros and directions differ, so the same numbers are another posture; without a joint map they are not translated";
@@ -65,18 +65,9 @@ impl<'a> Tx<'a> {
             return Ok(Rendered::atom(t?));
         }
         let inner = self.render(operand)?;
-        let wrap = |r: Rendered| {
-            if r.prec < ATOM {
-                format!("({})", r.text)
-            } else {
-                r.text
-            }
-        };
-        // NOT binds loosely in RAPID and a sign after an operator is unusual: both are
-        // parenthesised as operands (their `prec` is below every binary operator's).
-        let text = match op {
-            UnaryOp::Not => format!("NOT {}", wrap(inner)),
-            UnaryOp::Neg => format!("-{}", wrap(inner)),
+        let sym = match op {
+            UnaryOp::Not => "NOT ",
+            UnaryOp::Neg => "-",
             UnaryOp::BNot => {
                 return fail(
                     whole.span,
@@ -85,7 +76,9 @@ impl<'a> Tx<'a> {
                 );
             }
         };
-        Ok(Rendered::of(text, NEG))
+        // NOT binds loosely in RAPID and a sign after an operator is unusual: both are
+        // parenthesised as operands.
+        Ok(Rendered::prefix(sym, inner, NEG))
     }
 
     fn binary(&mut self, op: BinaryOp, lhs: &Expr, rhs: &Expr, whole: &Expr) -> R<Rendered> {

@@ -6,8 +6,7 @@ use super::{R, Tx, fail};
 use crate::diag::Span;
 use crate::transpile::front::report::FileId;
 use crate::transpile::ir::{
-    self, Arg, Block, Callee, Component, Expr, ExprKind, LoopId, LoopKind, Op, Place, RoutineKind,
-    Stmt, Ty,
+    self, Arg, Block, Callee, Component, Expr, ExprKind, LoopId, LoopKind, Op, Place, Stmt, Ty,
 };
 use crate::transpile::render::{CaseWords, Emit};
 
@@ -293,19 +292,7 @@ impl<'a> Tx<'a> {
                     MM_HELP,
                 );
             }
-            Callee::Routine(r) => {
-                let routine = self.ir.routine(*r);
-                let name = self
-                    .names
-                    .routine_of(&routine.name)
-                    .unwrap_or(&routine.name)
-                    .to_owned();
-                (
-                    name,
-                    routine.kind == RoutineKind::Deffct,
-                    routine.ret.clone().unwrap_or(Ty::Real),
-                )
-            }
+            Callee::Routine(r) => self.routine_callee(*r),
             Callee::External {
                 name,
                 span: at,

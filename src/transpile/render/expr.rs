@@ -39,6 +39,17 @@ impl Rendered {
         }
     }
 
+    /// `NOT x`, `-x` binding as `prec` (`UNARY`, or `LOOSE_UNARY` where the target
+    /// parenthesises it as an operand): the operand in parentheses unless it binds tighter.
+    pub fn prefix(sym: &str, inner: Rendered, prec: u8) -> Rendered {
+        let text = if inner.prec < UNARY {
+            format!("{sym}({})", inner.text)
+        } else {
+            format!("{sym}{}", inner.text)
+        };
+        Rendered::of(text, prec)
+    }
+
     /// `l sym r` binding as `prec`: arithmetic is left-associative (`a - b + c` needs no
     /// parentheses, `a - (b + c)` does), a comparison's operands are arithmetic, and a logic
     /// operator chains only with itself.

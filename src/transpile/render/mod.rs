@@ -20,7 +20,9 @@ use super::front::comments::CommentQueue;
 use super::front::names::Namer;
 use super::front::report::{FileId, Report};
 use super::front::{Fail, R};
-use super::ir::{self as ir, Case, Expr, LabelId, LoopId, Op, RoutineId, Stmt, TempId, Why};
+use super::ir::{
+    self as ir, Case, Expr, LabelId, LoopId, Op, RoutineId, RoutineKind, Stmt, TempId, Ty, Why,
+};
 use crate::diag::Span;
 
 pub use backend::{BACKENDS, Backend, Caps, backend};
@@ -262,6 +264,19 @@ pub trait Emit<'a> {
         let program = self.program();
         let krl = &program.routine(id).labels[l.0 as usize].0;
         self.names().label(id, krl)
+    }
+
+    /// A routine of the program as a callee: its target name, whether it returns a value
+    /// (DEFFCT), and the value's type.
+    fn routine_callee(&mut self, r: RoutineId) -> (String, bool, Ty) {
+        let routine = self.program().routine(r);
+        let name = self
+            .names()
+            .routine_of(&routine.name)
+            .unwrap_or(&routine.name)
+            .to_owned();
+        let function = routine.kind == RoutineKind::Deffct;
+        (name, function, routine.ret.clone().unwrap_or(Ty::Real))
     }
 
     /// `GOTO to` in the target's words.
