@@ -84,8 +84,9 @@ pub static BACKEND: render::Backend = render::Backend {
     name: "flexiv",
     caps: render::Caps {
         goto: false,
-        records: false,
         interrupts: false,
+        blending: render::Blending::ZoneCodes,
+        ..render::Caps::BASE
     },
     name_rules: &NAME_RULES,
     help: help::help,

@@ -169,9 +169,7 @@ impl<'a> Tx<'a> {
             ),
             // The lowering refuses interrupts for a target without them
             // ([`crate::transpile::ir::Why::NoInterrupts`]): this is never reached.
-            Op::Interrupt { .. } => {
-                self.unsupported(&crate::transpile::ir::Why::NoInterrupts, span)
-            }
+            Op::Interrupt { .. } => crate::transpile::render::not_lowered(span, "an interrupt"),
             // What reaches here is KUKA's stop-message interrupt.
             Op::InterruptDecl(_) => {
                 self.out.rep.approximate(

@@ -507,13 +507,21 @@ pub enum InterruptAction {
 pub struct InterruptDecl {
     pub number: i64,
     pub global: bool,
-    /// The watched condition, or why it is not one a target can watch.
-    pub condition: Result<Expr, Why>,
+    /// The watched signal, or why the condition is not one this target can watch.
+    pub condition: Result<Watched, Why>,
     /// The handler routine (a call without arguments), or why not.
     pub handler: Result<Callee, Why>,
     /// KUKA's standard stop-message interrupt (`$STOPMESS` → `IR_STOPM`) of every INI fold.
     pub stop_messages: bool,
     pub span: Span,
+}
+
+/// What an interrupt watches: one signal (an input or output, or a flag where the target's
+/// `Caps::interrupt_on_flags` allows it; a `SIGNAL` of one bit), and the level that fires it.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Watched {
+    pub io: IoPlace,
+    pub high: bool,
 }
 
 // ----- places and expressions -----------------------------------------------------------

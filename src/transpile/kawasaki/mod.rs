@@ -77,9 +77,9 @@ pub static BACKEND: render::Backend = render::Backend {
     target: super::Target::Kawasaki,
     name: "kawasaki",
     caps: render::Caps {
-        goto: true,
-        records: false,
-        interrupts: true,
+        interrupt_on_flags: true,
+        functions: false,
+        ..render::Caps::BASE
     },
     name_rules: &NAME_RULES,
     help: help::help,

@@ -87,7 +87,7 @@ impl<'a> Tx<'a> {
                 Ok(v) => self
                     .data_value(&var.ty, v)
                     .map(|v| format!("{kw} {} {name} := {v};", format::type_name(&var.ty, 0))),
-                Err(why) => fail(d.span, why.message(), super::help::help(why)),
+                Err(why) => self.unsupported(why, d.span),
             };
             self.data_result(r, d.span, d.file);
         }
@@ -244,7 +244,7 @@ impl<'a> Tx<'a> {
             let idx = d.index.as_deref().unwrap_or(&[]);
             let value = match &d.value {
                 Ok(v) => self.data_value(ty, v)?,
-                Err(why) => return fail(d.span, why.message(), super::help::help(why)),
+                Err(why) => return self.unsupported(why, d.span),
             };
             let pos = match (idx, sizes.as_slice()) {
                 ([i], [n]) if (1..=*n as i64).contains(i) => (*i - 1) as usize,

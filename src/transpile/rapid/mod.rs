@@ -73,9 +73,8 @@ pub static BACKEND: render::Backend = render::Backend {
     target: super::Target::Rapid,
     name: "rapid",
     caps: render::Caps {
-        goto: true,
-        records: false,
-        interrupts: true,
+        string_len: Some(80),
+        ..render::Caps::BASE
     },
     name_rules: &NAME_RULES,
     help: help::help,

@@ -41,6 +41,7 @@ fn shared(why: &Why) -> String {
         Why::ReturnWithoutValue => "return a value",
         Why::WaitCall => "assign the function's value to a variable and wait on that",
         Why::MessageText => "pass the text",
+        Why::StringLength { .. } => "shorten the string, or build it from shorter parts",
         Why::Skip
         | Why::Other(_)
         | Why::SystemVariable(_)

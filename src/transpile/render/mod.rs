@@ -25,7 +25,7 @@ use super::ir::{
 };
 use crate::diag::Span;
 
-pub use backend::{BACKENDS, Backend, Caps, backend};
+pub use backend::{BACKENDS, Backend, Blending, Caps, Trigger, backend};
 
 /// How a target writes lines and comments.
 pub struct Style {
@@ -224,7 +224,7 @@ pub trait Emit<'a> {
     }
 
     /// A construct the lowering found no target can express: TR001 with the target's help.
-    fn unsupported(&mut self, why: &Why, at: Span) -> R<()> {
+    fn unsupported<T>(&mut self, why: &Why, at: Span) -> R<T> {
         let help = (self.out().style.help)(why);
         Err(Fail {
             span: at,
@@ -508,6 +508,19 @@ pub trait Emit<'a> {
         }
         out.trailing_comment(g, start);
     }
+}
+
+/// What the lowering lets no target without the capability have ([`Caps`]) reached this
+/// renderer: a defect of krlkit, reported (TR001) instead of a panic. No renderer refuses a
+/// construct itself.
+pub fn not_lowered<T>(span: Span, what: &str) -> R<T> {
+    Err(Fail {
+        span,
+        message: format!(
+            "internal: {what} reached a target whose capabilities exclude it (the lowering refuses it)"
+        ),
+        help: "report this as a krlkit defect".into(),
+    })
 }
 
 /// The header's name map, each line starting with `lead`.

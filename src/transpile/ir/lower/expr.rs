@@ -26,7 +26,16 @@ impl<'p> Lower<'p> {
             A::Real(r) => lit(ExprKind::Real(*r), Ty::Real),
             A::Bool(b) => lit(ExprKind::Bool(*b), Ty::Bool),
             A::Char(c) => lit(ExprKind::Char(*c), Ty::Char),
-            A::Str(s) => lit(ExprKind::Str(s.clone()), Ty::Char),
+            A::Str(s) => match self.caps.string_len {
+                Some(max) if s.chars().count() > max => fail(
+                    Why::StringLength {
+                        len: s.chars().count(),
+                        max,
+                    },
+                    span,
+                ),
+                _ => lit(ExprKind::Str(s.clone()), Ty::Char),
+            },
             A::Bits(b) => lit(ExprKind::Bits(*b), Ty::Int),
             A::Hex(h) => lit(ExprKind::Hex(*h), Ty::Int),
             A::Enum(name) => match self.model.enum_value(name) {
