@@ -72,9 +72,22 @@ pub enum Trigger {
     OnPath,
 }
 
-/// The capability table of every target, as README and `krlkit transpile --help` show it (a
-/// test keeps README equal to it).
-pub fn caps_table() -> String {
+/// The columns of the capability table.
+const CAPS_COLUMNS: [&str; 10] = [
+    "language",
+    "GOTO",
+    "STRUC",
+    "interrupts",
+    "DEFFCT",
+    "`_REL` in base/tool",
+    "blending",
+    "TRIGGER",
+    "strings",
+    "identifiers",
+];
+
+/// A target's row of the capability table, in [`CAPS_COLUMNS`] order.
+fn caps_row(b: &Backend) -> [String; 10] {
     let yes_no = |b: bool, without: &str| {
         if b {
             "yes".to_owned()
@@ -82,40 +95,69 @@ pub fn caps_table() -> String {
             format!("no: {without}")
         }
     };
-    let mut t = String::from(
-        "| `--to` | language | GOTO | STRUC | interrupts | DEFFCT | `_REL` in base/tool | blending | TRIGGER | strings | identifiers |\n|---|---|---|---|---|---|---|---|---|---|---|\n",
-    );
+    let (c, n) = (b.caps(), b.name_rules());
+    let interrupts = match (c.interrupts, c.interrupt_on_flags) {
+        (false, _) => "no: TR001",
+        (true, true) => "on one input, output or flag",
+        (true, false) => "on one input or output",
+    };
+    let blending = match c.blending {
+        Blending::Distance => "a distance",
+        Blending::ZoneCodes => "the nearest zone code (TR002)",
+    };
+    let trigger = match c.trigger {
+        Trigger::BeforeOrAfter => "before/after the motion (TR002)",
+        Trigger::OnPath => {
+            "on the path for an output at DISTANCE 0/1, DELAY 0; else before/after (TR002)"
+        }
+    };
+    let strings = match c.string_len {
+        Some(n) => format!("≤ {n} characters"),
+        None => "no limit known".to_owned(),
+    };
+    [
+        n.language.to_owned(),
+        yes_no(c.goto, "jumps become loops"),
+        yes_no(c.records, "TR001"),
+        interrupts.to_owned(),
+        yes_no(c.functions, "an output parameter"),
+        yes_no(c.relative_motions, "TR001"),
+        blending.to_owned(),
+        trigger.to_owned(),
+        strings,
+        format!("≤ {} characters", n.max_len),
+    ]
+}
+
+/// The capability table of every target, as README shows it (a test keeps README equal to it).
+pub fn caps_table() -> String {
+    let mut t = String::from("| `--to` |");
+    for c in CAPS_COLUMNS {
+        t.push_str(&format!(" {c} |"));
+    }
+    t.push('\n');
+    t.push_str(&"|---".repeat(CAPS_COLUMNS.len() + 1));
+    t.push_str("|\n");
     for b in BACKENDS {
-        let (c, n) = (b.caps(), b.name_rules());
-        let interrupts = match (c.interrupts, c.interrupt_on_flags) {
-            (false, _) => "no: TR001",
-            (true, true) => "on one input, output or flag",
-            (true, false) => "on one input or output",
-        };
-        let blending = match c.blending {
-            Blending::Distance => "a distance",
-            Blending::ZoneCodes => "the nearest zone code (TR002)",
-        };
-        let trigger = match c.trigger {
-            Trigger::BeforeOrAfter => "before/after the motion (TR002)",
-            Trigger::OnPath => {
-                "on the path for an output at DISTANCE 0/1, DELAY 0; else before/after (TR002)"
-            }
-        };
-        let strings = match c.string_len {
-            Some(n) => format!("≤ {n} characters"),
-            None => "no limit known".to_owned(),
-        };
-        t.push_str(&format!(
-            "| `{}` | {} | {} | {} | {interrupts} | {} | {} | {blending} | {trigger} | {strings} | ≤ {} characters |\n",
-            b.name(),
-            n.language,
-            yes_no(c.goto, "jumps become loops"),
-            yes_no(c.records, "TR001"),
-            yes_no(c.functions, "an output parameter"),
-            yes_no(c.relative_motions, "TR001"),
-            n.max_len
-        ));
+        t.push_str(&format!("| `{}` |", b.name()));
+        for v in caps_row(b) {
+            t.push_str(&format!(" {v} |"));
+        }
+        t.push('\n');
+    }
+    t
+}
+
+/// The same capabilities as text, one paragraph per target (`krlkit transpile --help`).
+pub fn caps_text() -> String {
+    let mut t = String::new();
+    for b in BACKENDS {
+        let cells: Vec<String> = CAPS_COLUMNS
+            .iter()
+            .zip(caps_row(b))
+            .map(|(c, v)| format!("{}: {v}", c.replace('`', "")))
+            .collect();
+        t.push_str(&format!("  {}: {}\n", b.name(), cells.join("; ")));
     }
     t
 }
