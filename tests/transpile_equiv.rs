@@ -455,3 +455,32 @@ fn a_broken_translation_is_caught() {
         assert!(r.is_err(), "{name}: `{from}` -> `{to}` was not caught");
     }
 }
+
+/// A STRUC is a RAPID RECORD: the translated `records` fixture runs, its record values are
+/// assigned, read and passed as KRL does (the KRL run: force 12.5 + 2, closed set, $OUT[3] and
+/// $OUT[4] on), and the `.dat` value is a PERS of the record type.
+#[test]
+fn a_struc_runs_as_a_record_in_rapid() {
+    let p = Program::fixture("records");
+    let t = to_rapid(&p);
+    assert!(
+        equiv_support::findings(&t).is_empty(),
+        "{:?}\n{}",
+        equiv_support::findings(&t),
+        t.text
+    );
+    let mut r = rapid_support::Rapid::load_files(&[("program.mod", &t.text)]).expect("loads");
+    assert_eq!(r.run("main"), Ok(rapid_support::End::Done), "{}", t.text);
+    assert!(r.output(3) && r.output(4));
+    assert_eq!(
+        r.get("last_grip"),
+        Some(&rapid_support::V::Rec(
+            "grip_t".into(),
+            vec![
+                rapid_support::V::Num(14.5),
+                rapid_support::V::Bool(true),
+                rapid_support::V::Str("left".into()),
+            ]
+        ))
+    );
+}

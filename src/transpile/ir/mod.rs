@@ -149,13 +149,39 @@ pub struct Program {
     pub uninit_globals: Vec<(VarId, Vec<Option<Expr>>)>,
     /// Every `INTERRUPT DECL` of the file.
     pub interrupts: Vec<InterruptDecl>,
+    /// The STRUC types the program's values have, for a target with records
+    /// (`Caps::records`); empty otherwise.
+    pub records: Vec<Record>,
     /// Every KRL construct, for the coverage table.
     pub constructs: Constructs,
     /// Target-independent findings (TR002) decided while lowering.
     pub findings: Vec<Finding>,
 }
 
+/// A KRL `STRUC` type as a record: its name and its fields (name as declared, type) in
+/// declaration order; a `CHAR` array field is a string.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Record {
+    pub name: String,
+    pub fields: Vec<(String, Ty)>,
+}
+
+impl Record {
+    /// The field `name` (any case): its index and type.
+    pub fn field(&self, name: &str) -> Option<(usize, &Ty)> {
+        self.fields
+            .iter()
+            .position(|(f, _)| f.eq_ignore_ascii_case(name))
+            .map(|i| (i, &self.fields[i].1))
+    }
+}
+
 impl Program {
+    /// The record of STRUC type `name` (upper case), if the program has one.
+    pub fn record(&self, name: &str) -> Option<&Record> {
+        self.records.iter().find(|r| r.name == name)
+    }
+
     pub fn var(&self, v: VarId) -> &Var {
         &self.vars[v.0 as usize]
     }
@@ -607,6 +633,9 @@ pub enum ExprKind {
     /// the missing ones from the value it is assigned to (or the current position for a motion
     /// target, or 0 as an operand of `:`).
     Aggregate(Box<Aggregate>),
+    /// A whole STRUC value (`{force 2.5, name "a"}`) of a target with records: every field's
+    /// value in the record's declaration order.
+    Record(Vec<Expr>),
     /// A KRL built-in function with a counterpart on the targets.
     Builtin(Builtin, Vec<Expr>),
     /// A digital input, output or flag read.

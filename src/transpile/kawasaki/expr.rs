@@ -9,7 +9,7 @@ use crate::transpile::front::report::FileId;
 use crate::transpile::ir::{
     Aggregate, Bank, BinaryOp, Builtin, Component, Expr, ExprKind, IoPlace, Place, Ty, UnaryOp,
 };
-use crate::transpile::render::Emit;
+use crate::transpile::render::{self, Emit};
 
 pub(super) use crate::transpile::render::expr::{ADD, ATOM};
 use crate::transpile::render::expr::{CMP, LOGIC, MUL, Rendered, UNARY};
@@ -67,6 +67,7 @@ impl<'a> Tx<'a> {
                 "keep the value in a variable where the program sets it",
             ),
             ExprKind::NullFrame => Ok(Rendered::atom("NULL".into())),
+            ExprKind::Record(_) => render::not_lowered(e.span, "a record value"),
             ExprKind::Current { .. } => fail(
                 e.span,
                 "the current position inside an expression needs a HERE statement first",

@@ -4,7 +4,7 @@
 
 use std::collections::BTreeMap;
 
-use super::format::{self, zero};
+use super::format::zero;
 use super::{R, Tx, fail};
 use crate::diag::Span;
 use crate::transpile::front::report::FileId;
@@ -37,7 +37,7 @@ impl<'a> Tx<'a> {
         _at: Span,
     ) -> String {
         let d = self.dims_text(ty, dims);
-        format!("{kw} {} {name}{d};", format::type_name(ty, dims.len()))
+        format!("{kw} {} {name}{d};", self.ty_name(ty, dims.len()))
     }
 
     /// `{3,4}` for an array (a CHAR array's last dimension is the string's length).
@@ -86,7 +86,7 @@ impl<'a> Tx<'a> {
             let r = match &d.value {
                 Ok(v) => self
                     .data_value(&var.ty, v)
-                    .map(|v| format!("{kw} {} {name} := {v};", format::type_name(&var.ty, 0))),
+                    .map(|v| format!("{kw} {} {name} := {v};", self.ty_name(&var.ty, 0))),
                 Err(why) => self.unsupported(why, d.span),
             };
             self.data_result(r, d.span, d.file);
@@ -152,7 +152,7 @@ impl<'a> Tx<'a> {
             ));
             self.data.lines.push(format!(
                 "PERS {} {name} := {};",
-                format::type_name(&var.ty, 0),
+                self.ty_name(&var.ty, 0),
                 zero(&var.ty)
             ));
         }
@@ -180,6 +180,15 @@ impl<'a> Tx<'a> {
 
     /// An initial value: a literal (RAPID initialises data with literals and constants only).
     fn data_value(&mut self, ty: &Ty, v: &Expr) -> R<String> {
+        if let (Ty::Struc(t), crate::transpile::ir::ExprKind::Record(values)) = (ty, &v.kind)
+            && let Some(r) = self.ir.record(t)
+        {
+            let mut parts = Vec::with_capacity(values.len());
+            for ((_, fty), x) in r.fields.iter().zip(values) {
+                parts.push(self.data_value(fty, x)?);
+            }
+            return Ok(format!("[{}]", parts.join(", ")));
+        }
         if matches!(ty, Ty::Pose | Ty::Joint) {
             if let crate::transpile::ir::ExprKind::Aggregate(a) = &v.kind
                 && a.numbers().is_some()
@@ -273,7 +282,7 @@ impl<'a> Tx<'a> {
             .join(",");
         Ok(format!(
             "PERS {} {name}{{{d}}} := {agg};",
-            format::type_name(ty, 0)
+            self.ty_name(ty, 0)
         ))
     }
 

@@ -51,6 +51,13 @@ impl<'a> Tx<'a> {
                 "keep the value in a variable where the program sets it",
             ),
             ExprKind::NullFrame => Ok(Rendered::atom(format::zero(&Ty::Pose))),
+            ExprKind::Record(values) => {
+                let mut v = Vec::with_capacity(values.len());
+                for x in values {
+                    v.push(self.expr(x)?);
+                }
+                Ok(Rendered::atom(format!("[{}]", v.join(", "))))
+            }
             ExprKind::Current { joints: false } => Ok(Rendered::atom(self.current_pos())),
             ExprKind::Current { joints: true } => fail(
                 e.span,
@@ -262,11 +269,10 @@ impl<'a> Tx<'a> {
                     ),
                 }
             }
-            Place::Member(_, f) => fail(
-                span,
-                format!("structure member `.{f}` has no translation to RAPID yet"),
-                "split the structure into separate variables",
-            ),
+            Place::Member(base, f) => {
+                let b = self.place_text(base, span)?;
+                Ok(format!("{b}.{}", format::field_name(f)))
+            }
         }
     }
 

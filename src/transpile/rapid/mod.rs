@@ -73,6 +73,7 @@ pub static BACKEND: render::Backend = render::Backend {
     target: super::Target::Rapid,
     name: "rapid",
     caps: render::Caps {
+        records: true,
         string_len: Some(80),
         ..render::Caps::BASE
     },
@@ -117,7 +118,7 @@ struct Rt {
     /// Temporaries named so far.
     temps: HashMap<TempId, String>,
     /// Made-up locals, with their RAPID types, in the order minted.
-    extra: Vec<(String, &'static str)>,
+    extra: Vec<(String, std::borrow::Cow<'static, str>)>,
     /// Loops left by a jump: the label after the loop.
     loops: render::LoopLabels,
 }
@@ -173,17 +174,26 @@ impl<'a> Tx<'a> {
 
     // ----- names -------------------------------------------------------------------------
 
+    /// The RAPID type of a KRL type; a STRUC the lowering made no record of (its variable is
+    /// declared, never used) is declared as a number, as every type without a counterpart.
+    fn ty_name(&self, ty: &Ty, dims: usize) -> std::borrow::Cow<'static, str> {
+        match ty {
+            Ty::Struc(t) if self.ir.record(t).is_none() => "num".into(),
+            _ => format::type_name(ty, dims),
+        }
+    }
+
     /// A variable's RAPID name.
     fn var_name(&mut self, v: VarId, used_at: Span) -> String {
         self.names.var(&mut self.out.rep, v, used_at).0
     }
 
     /// A local the translator needs, declared with `ty` in the routine being rendered.
-    fn fresh_local(&mut self, base: &str, ty: &'static str) -> String {
+    fn fresh_local(&mut self, base: &str, ty: impl Into<std::borrow::Cow<'static, str>>) -> String {
         let id = self.routine_id();
         let n = self.names.fresh_local(id, base);
         if let Some(rt) = &mut self.rt {
-            rt.extra.push((n.clone(), ty));
+            rt.extra.push((n.clone(), ty.into()));
         }
         n
     }
@@ -232,6 +242,17 @@ impl<'a> Tx<'a> {
             out.push_str("  ");
             out.push_str(&l);
             out.push('\n');
+        }
+        for r in &self.ir.records {
+            out.push_str(&format!("  RECORD {}\n", format::record_name(&r.name)));
+            for (f, ty) in &r.fields {
+                out.push_str(&format!(
+                    "    {} {};\n",
+                    self.ty_name(ty, 0),
+                    format::field_name(f)
+                ));
+            }
+            out.push_str("  ENDRECORD\n");
         }
         for l in self.data_lines() {
             out.push_str("  ");
@@ -352,7 +373,7 @@ impl crate::transpile::Renderer for Tx<'_> {
         for p in &r.params {
             let var = ir.var(p.var);
             let n = self.var_name(p.var, var.decl);
-            let ty = format::type_name(&var.ty, var.dims);
+            let ty = self.ty_name(&var.ty, var.dims);
             let by_ref = p.dir == ir::ParamDir::Out || p.array > 0;
             let mode = if by_ref { "INOUT " } else { "" };
             let dims = if p.array > 0 {
@@ -368,11 +389,12 @@ impl crate::transpile::Renderer for Tx<'_> {
             let n = self.var_name(*v, var.decl);
             decls.push(self.declaration("VAR", &n, &var.ty, dims, var.decl));
         }
+        let ret = self.ty_name(r.ret.as_ref().unwrap_or(&Ty::Real), 0);
         if let Some(rt) = &mut self.rt {
             rt.out.head = match r.kind {
                 RoutineKind::Def => format!("PROC {name}({})", params.join(", ")),
                 RoutineKind::Deffct => {
-                    let ty = format::type_name(r.ret.as_ref().unwrap_or(&Ty::Real), 0);
+                    let ty = ret;
                     rt.out.end = "ENDFUNC";
                     format!("FUNC {ty} {name}({})", params.join(", "))
                 }
@@ -403,7 +425,7 @@ impl crate::transpile::Renderer for Tx<'_> {
                     .unwrap_or(&Ty::Real);
                 rt.out
                     .decls
-                    .push(format!("VAR {} {n};", format::type_name(ty, 0)));
+                    .push(format!("VAR {} {n};", self.ty_name(ty, 0)));
             }
             for (n, ty) in &rt.extra {
                 rt.out.decls.push(format!("VAR {ty} {n};"));

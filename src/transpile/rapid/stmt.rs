@@ -314,7 +314,7 @@ impl<'a> Tx<'a> {
             let to = match ret {
                 Some(p) => self.place_text(p, span)?,
                 None => {
-                    let ty = super::format::type_name(&ret_ty, 0);
+                    let ty = self.ty_name(&ret_ty, 0);
                     self.fresh_local("fct_result", ty)
                 }
             };

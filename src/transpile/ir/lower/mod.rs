@@ -72,6 +72,7 @@ impl Replay {
             routines: first.routines.clone(),
             top_level: first.top_level,
             interrupts: first.interrupts.clone(),
+            records: first.records.clone(),
             ..Program::default()
         };
         let routine_ids = index_routines(&out.routines);

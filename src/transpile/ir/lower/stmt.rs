@@ -642,15 +642,19 @@ impl<'p> Lower<'p> {
         Ok(())
     }
 
-    /// Structures no target holds (user STRUCs, KUKA types) cannot be assigned.
-    fn check_structure(&self, place: &Place, at: Span) -> L<()> {
-        if let Some(v) = place.root()
-            && let Ty::Struc(t) | Ty::Other(t) = &self.out.var(v).ty
-            && !t.is_empty()
-        {
-            return fail(Why::Structure(t.clone()), at);
+    /// Structures the target does not hold (user STRUCs without records, KUKA types) cannot
+    /// be assigned.
+    fn check_structure(&mut self, place: &Place, at: Span) -> L<()> {
+        let Some(v) = place.root() else {
+            return Ok(());
+        };
+        match self.out.var(v).ty.clone() {
+            Ty::Struc(t) if !t.is_empty() && self.record_of(&t).is_none() => {
+                fail(Why::Structure(t), at)
+            }
+            Ty::Other(t) if !t.is_empty() => fail(Why::Structure(t), at),
+            _ => Ok(()),
         }
-        Ok(())
     }
 
     /// Assignment to a `SIGNAL` name.
