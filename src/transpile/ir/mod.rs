@@ -1238,6 +1238,19 @@ pub struct Move {
     pub with: Vec<(MotionParam, ParamValue)>,
     /// The KRL motion statement (`PTP`, `LIN_REL`, `SLIN` …), for messages.
     pub krl: &'static str,
+    /// A `TRIGGER` switched on this motion's path (only for a target whose
+    /// `Caps::trigger` is `OnPath`, on a LIN).
+    pub trigger: Option<PathTrigger>,
+}
+
+/// A `TRIGGER WHEN DISTANCE=0|1 DELAY=0 DO $OUT[n]=TRUE|FALSE`: the output set exactly at the
+/// motion's start or end point (the middle of its blending, as KRL's DISTANCE=1).
+#[derive(Debug, Clone, PartialEq)]
+pub struct PathTrigger {
+    pub at: TriggerAt,
+    /// `$OUT[n]` with a literal `n`.
+    pub io: OutPlace,
+    pub value: bool,
 }
 
 impl Move {

@@ -74,6 +74,7 @@ pub static BACKEND: render::Backend = render::Backend {
     name: "rapid",
     caps: render::Caps {
         records: true,
+        trigger: render::Trigger::OnPath,
         string_len: Some(80),
         ..render::Caps::BASE
     },

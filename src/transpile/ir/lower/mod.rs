@@ -129,6 +129,9 @@ struct PendingTrigger {
     at: super::TriggerAt,
     action: Block,
     span: Span,
+    /// The trigger as the target can switch it on a LIN's path; when the next motion is no
+    /// LIN, `approx` (message, help) is reported and the action goes before or after it.
+    on_path: Option<(super::PathTrigger, (String, &'static str))>,
 }
 
 #[derive(Clone)]

@@ -387,6 +387,7 @@ impl<'p> Lower<'p> {
                 action,
                 prio.as_deref(),
                 span,
+                ops,
             ),
             StmtKind::Interrupt { action, number } => {
                 let n = match number {
@@ -811,6 +812,9 @@ impl<'p> Lower<'p> {
             None => return,
         };
         for t in pending {
+            if let Some((_, (message, help))) = t.on_path {
+                self.approx(t.span, message, help);
+            }
             self.approx(
                 t.span,
                 "no motion follows this TRIGGER in its block; its action runs where the block ends",
