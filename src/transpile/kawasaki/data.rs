@@ -35,7 +35,7 @@ impl<'a> Tx<'a> {
 
     fn datum(&mut self, d: &'a Datum) {
         let var = self.ir.var(d.var);
-        let as_name = self.names.global(&var.name);
+        let as_name = self.out.names.global(&var.name);
         // `x[]` (a whole CHAR array) is the string itself.
         let full = match &d.index {
             Some(i) if !i.is_empty() => {

@@ -171,7 +171,7 @@ impl<'a> Tx<'a> {
         let prog = match &d.handler {
             Ok(Callee::Routine(r)) => {
                 let n = self.ir.routine(*r).name.clone();
-                self.names.routine_of(&n).unwrap_or(&n).to_owned()
+                self.out.names.routine_of(&n).unwrap_or(&n).to_owned()
             }
             Ok(Callee::External { name, span, .. }) => self.name_program(name, *span),
             Ok(Callee::Mm(s)) => s.name.to_ascii_lowercase(),

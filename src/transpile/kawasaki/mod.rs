@@ -24,7 +24,7 @@ use std::collections::HashMap;
 use super::Options;
 use super::VisionServer;
 use super::front::Program as Source;
-use super::front::names::{Home, NameRules, Namer};
+use super::front::names::{Home, NameRules};
 use super::front::report::{FileId, Report};
 use super::ir::{self, Block, RoutineId, RoutineKind, TempId, Ty, VarId};
 use super::render::{self, Emit, Out, Style};
@@ -127,7 +127,6 @@ pub struct Tx<'a> {
     /// Its lines are those of the statement being rendered and the last line before it, which
     /// a SPEED line is compared with.
     out: Out<'a>,
-    names: Namer<'a>,
     programs: Vec<ProgramOut>,
     rt: Option<Rt>,
     /// Vision server used by `mm_init_skt` (for the header).
@@ -148,8 +147,7 @@ impl<'a> Tx<'a> {
             ir,
             opts,
             vision,
-            out: Out::new(&STYLE, src, report),
-            names: Namer::new(&NAME_RULES, ir),
+            out: Out::new(&STYLE, src, ir, &NAME_RULES, report),
             programs: Vec::new(),
             rt: None,
             server_used: None,
@@ -161,19 +159,19 @@ impl<'a> Tx<'a> {
 
     /// The AS name of a program (a routine of the file or of another module).
     fn name_program(&mut self, krl: &str, span: Span) -> String {
-        self.names.routine(&mut self.out.rep, krl, span)
+        self.out.names.routine(&mut self.out.rep, krl, span)
     }
 
     /// A variable's AS spelling without sigils, and whether it is local (gets a `.`).
     fn var_name(&mut self, v: VarId, used_at: Span) -> (String, bool) {
-        let (n, home) = self.names.var(&mut self.out.rep, v, used_at);
+        let (n, home) = self.out.names.var(&mut self.out.rep, v, used_at);
         (n, home == Home::Local)
     }
 
     /// A local variable the translator needs, rendered with its `.`.
     fn fresh_local(&mut self, base: &str) -> String {
         let id = self.routine_id();
-        format!(".{}", self.names.fresh_local(id, base))
+        format!(".{}", self.out.names.fresh_local(id, base))
     }
 
     /// A scratch local for the translator's own use, the same one for `base` throughout the
@@ -279,14 +277,14 @@ impl<'a> Tx<'a> {
             v.push("; Data not translated:".into());
             v.extend(self.data.kept.iter().cloned());
         }
-        v.extend(render::name_map_lines(&self.names, "; "));
+        v.extend(render::name_map_lines(&self.out.names, "; "));
         v
     }
 }
 
 impl crate::transpile::Renderer for Tx<'_> {
     fn start(&mut self) {
-        self.names.declare_program(&mut self.out.rep);
+        self.out.names.declare_program(&mut self.out.rep);
     }
 
     fn begin_routine(&mut self, id: RoutineId) {
@@ -298,7 +296,7 @@ impl crate::transpile::Renderer for Tx<'_> {
         let name = if r.synthetic {
             self.name_program(&r.name, r.name_span)
         } else {
-            self.names.routine_of(&r.name).unwrap_or("").to_owned()
+            self.out.names.routine_of(&r.name).unwrap_or("").to_owned()
         };
         self.rt = Some(Rt {
             id,
@@ -314,8 +312,8 @@ impl crate::transpile::Renderer for Tx<'_> {
         });
         // Locals first (parameters, then declarations), then labels, so made-up names never
         // take a user's.
-        self.names.declare_locals(&mut self.out.rep, id);
-        self.names.declare_labels(&mut self.out.rep, id);
+        self.out.names.declare_locals(&mut self.out.rep, id);
+        self.out.names.declare_labels(&mut self.out.rep, id);
         let mut params: Vec<String> = Vec::new();
         let mut copies: Vec<String> = Vec::new();
         for p in &r.params {
@@ -387,16 +385,8 @@ impl<'a> Emit<'a> for Tx<'a> {
         self.expr(e)
     }
 
-    fn names(&mut self) -> &mut Namer<'a> {
-        &mut self.names
-    }
-
     fn routine_id(&self) -> RoutineId {
         self.rt.as_ref().map_or(RoutineId(0), |r| r.id)
-    }
-
-    fn program(&self) -> &'a ir::Program {
-        self.ir
     }
 
     fn loop_labels(&mut self) -> Option<&mut render::LoopLabels> {

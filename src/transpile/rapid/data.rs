@@ -80,7 +80,7 @@ impl<'a> Tx<'a> {
             }
             declared.insert(d.var);
             let var = ir.var(d.var);
-            let name = self.names.global(&var.name);
+            let name = self.out.names.global(&var.name);
             let kw = if var.constant { "CONST" } else { "PERS" };
             self.file = d.file;
             let r = match &d.value {
@@ -97,7 +97,7 @@ impl<'a> Tx<'a> {
                 continue;
             }
             let var = ir.var(*v);
-            let name = self.names.global(&var.name);
+            let name = self.out.names.global(&var.name);
             match elements.remove(v) {
                 Some(values) => {
                     let line = self.array_with_values(&name, &var.ty, dims, &values);
@@ -146,7 +146,7 @@ impl<'a> Tx<'a> {
             if matches!(var.ty, Ty::Signal(_) | Ty::Struc(_) | Ty::Other(_)) || var.dims > 0 {
                 continue;
             }
-            let name = self.names.global(&var.name);
+            let name = self.out.names.global(&var.name);
             self.note(format!(
                 "`{name}` is not declared in this program: declared here as PERS (a persistent of the same name in another module is the same object)"
             ));

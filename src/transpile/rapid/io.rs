@@ -243,10 +243,10 @@ impl<'a> Tx<'a> {
         let proc_ = match &d.handler {
             Ok(Callee::Routine(r)) => {
                 let n = self.ir.routine(*r).name.clone();
-                self.names.routine_of(&n).unwrap_or(&n).to_owned()
+                self.out.names.routine_of(&n).unwrap_or(&n).to_owned()
             }
             Ok(Callee::External { name, span, .. }) => {
-                let n = self.names.routine(&mut self.out.rep, name, *span);
+                let n = self.out.names.routine(&mut self.out.rep, name, *span);
                 if !self.external.contains(&n) {
                     self.external.push(n.clone());
                 }
@@ -263,7 +263,7 @@ impl<'a> Tx<'a> {
         let trap = match self.traps.iter().find(|(_, p)| **p == proc_) {
             Some((t, _)) => t.clone(),
             None => {
-                let t = self.names.fresh_routine(&format!("{proc_}_trap"));
+                let t = self.out.names.fresh_routine(&format!("{proc_}_trap"));
                 self.traps.insert(t.clone(), proc_);
                 t
             }

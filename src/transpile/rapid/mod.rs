@@ -25,7 +25,7 @@ use std::collections::HashMap;
 
 use super::Options;
 use super::front::Program as Source;
-use super::front::names::{NameRules, Namer};
+use super::front::names::NameRules;
 use super::front::report::{FileId, Report};
 use super::ir::{self, Block, RoutineId, RoutineKind, TempId, Ty, VarId};
 use super::render::{self, Emit, Out, Style};
@@ -129,7 +129,6 @@ pub struct Tx<'a> {
     ir: &'a ir::Program,
     opts: &'a Options,
     out: Out<'a>,
-    names: Namer<'a>,
     routines: Vec<RoutineOut>,
     rt: Option<Rt>,
     data: data::DataOut,
@@ -157,8 +156,7 @@ impl<'a> Tx<'a> {
             src,
             ir,
             opts,
-            out: Out::new(&STYLE, src, report),
-            names: Namer::new(&NAME_RULES, ir),
+            out: Out::new(&STYLE, src, ir, &NAME_RULES, report),
             routines: Vec::new(),
             rt: None,
             data: data::DataOut::default(),
@@ -186,13 +184,13 @@ impl<'a> Tx<'a> {
 
     /// A variable's RAPID name.
     fn var_name(&mut self, v: VarId, used_at: Span) -> String {
-        self.names.var(&mut self.out.rep, v, used_at).0
+        self.out.names.var(&mut self.out.rep, v, used_at).0
     }
 
     /// A local the translator needs, declared with `ty` in the routine being rendered.
     fn fresh_local(&mut self, base: &str, ty: impl Into<std::borrow::Cow<'static, str>>) -> String {
         let id = self.routine_id();
-        let n = self.names.fresh_local(id, base);
+        let n = self.out.names.fresh_local(id, base);
         if let Some(rt) = &mut self.rt {
             rt.extra.push((n.clone(), ty.into()));
         }
@@ -219,7 +217,7 @@ impl<'a> Tx<'a> {
         if r.kind != RoutineKind::Def || !r.params.is_empty() {
             return None;
         }
-        self.names.routine_of(&r.name).map(str::to_owned)
+        self.out.names.routine_of(&r.name).map(str::to_owned)
     }
 
     // ----- assembly ----------------------------------------------------------------------
@@ -333,14 +331,14 @@ impl<'a> Tx<'a> {
             v.push("! Data not translated:".into());
             v.extend(self.data.kept.iter().cloned());
         }
-        v.extend(render::name_map_lines(&self.names, "! "));
+        v.extend(render::name_map_lines(&self.out.names, "! "));
         v
     }
 }
 
 impl crate::transpile::Renderer for Tx<'_> {
     fn start(&mut self) {
-        self.names.declare_program(&mut self.out.rep);
+        self.out.names.declare_program(&mut self.out.rep);
         self.module_data();
     }
 
@@ -351,9 +349,11 @@ impl crate::transpile::Renderer for Tx<'_> {
         // Comments before the DEF line belong to no routine: carry them into this one.
         let before: Vec<String> = std::mem::take(&mut self.out.lines);
         let name = if r.synthetic {
-            self.names.routine(&mut self.out.rep, &r.name, r.name_span)
+            self.out
+                .names
+                .routine(&mut self.out.rep, &r.name, r.name_span)
         } else {
-            self.names.routine_of(&r.name).unwrap_or("").to_owned()
+            self.out.names.routine_of(&r.name).unwrap_or("").to_owned()
         };
         self.rt = Some(Rt {
             id,
@@ -368,8 +368,8 @@ impl crate::transpile::Renderer for Tx<'_> {
             loops: render::LoopLabels::default(),
         });
         self.still = false;
-        self.names.declare_locals(&mut self.out.rep, id);
-        self.names.declare_labels(&mut self.out.rep, id);
+        self.out.names.declare_locals(&mut self.out.rep, id);
+        self.out.names.declare_labels(&mut self.out.rep, id);
         let mut params = Vec::new();
         for p in &r.params {
             let var = ir.var(p.var);
@@ -454,16 +454,8 @@ impl<'a> Emit<'a> for Tx<'a> {
         self.expr(e)
     }
 
-    fn names(&mut self) -> &mut Namer<'a> {
-        &mut self.names
-    }
-
     fn routine_id(&self) -> RoutineId {
         self.rt.as_ref().map_or(RoutineId(0), |r| r.id)
-    }
-
-    fn program(&self) -> &'a ir::Program {
-        self.ir
     }
 
     fn loop_labels(&mut self) -> Option<&mut render::LoopLabels> {
@@ -480,6 +472,6 @@ impl<'a> Emit<'a> for Tx<'a> {
 
     fn mint_temp(&mut self) -> String {
         let id = self.routine_id();
-        self.names.fresh_local(id, "tmp")
+        self.out.names.fresh_local(id, "tmp")
     }
 }

@@ -298,7 +298,7 @@ impl<'a> Tx<'a> {
                 span: at,
                 function,
             } => {
-                let n = self.names.routine(&mut self.out.rep, name, *at);
+                let n = self.out.names.routine(&mut self.out.rep, name, *at);
                 if !self.external.contains(&n) {
                     self.external.push(n.clone());
                 }

@@ -17,7 +17,7 @@ use std::collections::HashMap;
 
 use super::front::Program as Source;
 use super::front::comments::CommentQueue;
-use super::front::names::Namer;
+use super::front::names::{NameRules, Namer};
 use super::front::report::{FileId, Report};
 use super::front::{Fail, R};
 use super::ir::{
@@ -110,6 +110,10 @@ pub fn has_code(lines: &[String], comment_lead: &str) -> bool {
 pub struct Out<'a> {
     pub style: &'static Style,
     pub src: &'a Source,
+    /// The program being rendered.
+    pub ir: &'a ir::Program,
+    /// The target's names for the program's (its `NameRules`), with the TR003 findings.
+    pub names: Namer<'a>,
     pub comments: CommentQueue<'a>,
     /// Lines of the statement being rendered (with their indentation).
     pub lines: Vec<String>,
@@ -122,10 +126,18 @@ pub struct Out<'a> {
 }
 
 impl<'a> Out<'a> {
-    pub fn new(style: &'static Style, src: &'a Source, rep: Report) -> Out<'a> {
+    pub fn new(
+        style: &'static Style,
+        src: &'a Source,
+        ir: &'a ir::Program,
+        rules: &'static NameRules,
+        rep: Report,
+    ) -> Out<'a> {
         Out {
             style,
             src,
+            ir,
+            names: Namer::new(rules, ir),
             comments: CommentQueue::new(&src.src.comments),
             lines: Vec::new(),
             depth: 0,
@@ -213,11 +225,8 @@ pub trait Emit<'a> {
     /// At a block's start and end: what the renderer knows of the robot's state (the
     /// blending, frames or standstill in force) does not hold across the edge.
     fn block_edge(&mut self);
-    /// The target's names.
-    fn names(&mut self) -> &mut Namer<'a>;
     /// The routine being rendered.
     fn routine_id(&self) -> RoutineId;
-    fn program(&self) -> &'a ir::Program;
     /// The loop labels of the routine being rendered (targets with `GOTO`).
     fn loop_labels(&mut self) -> Option<&mut LoopLabels> {
         None
@@ -255,23 +264,24 @@ pub trait Emit<'a> {
     /// A label the translator needs (e.g. after a loop left with a jump).
     fn fresh_label(&mut self, base: &str) -> String {
         let id = self.routine_id();
-        self.names().fresh_label(id, base)
+        self.out().names.fresh_label(id, base)
     }
 
     /// The target's name of a label of the KRL program.
     fn label_name(&mut self, l: LabelId) -> String {
         let id = self.routine_id();
-        let program = self.program();
+        let program = self.out().ir;
         let krl = &program.routine(id).labels[l.0 as usize].0;
-        self.names().label(id, krl)
+        self.out().names.label(id, krl)
     }
 
     /// A routine of the program as a callee: its target name, whether it returns a value
     /// (DEFFCT), and the value's type.
     fn routine_callee(&mut self, r: RoutineId) -> (String, bool, Ty) {
-        let routine = self.program().routine(r);
+        let routine = self.out().ir.routine(r);
         let name = self
-            .names()
+            .out()
+            .names
             .routine_of(&routine.name)
             .unwrap_or(&routine.name)
             .to_owned();
