@@ -177,7 +177,11 @@ pub(crate) fn resolve(
     for (mi, m) in modules.iter().enumerate() {
         let file = FileId(mi as u32);
         let uses = &mut uses[mi];
-        uses.reserve(sema.uses(file).len());
+        let declared: usize = res.routine_ids[mi]
+            .iter()
+            .map(|&id| layouts[id as usize].len())
+            .sum();
+        uses.reserve(sema.uses(file).len() + declared);
         // Declared names: a call declares its routine's locals straight into their slots.
         for (ri, r) in m.ast.routines.iter().enumerate() {
             let id = res.routine_ids[mi][ri];

@@ -12,6 +12,8 @@
 
 use std::collections::BTreeMap;
 
+use std::rc::Rc;
+
 use crate::syntax::ast::{Expr, InterruptAction, Stmt};
 
 use super::{Lexical, Machine, R, Stop};
@@ -22,8 +24,9 @@ pub(super) struct Interrupt {
     loc: (usize, u32),
     /// Where it was declared: its condition and handler arguments use that call's names.
     lexical: Lexical,
-    condition: Expr,
-    handler: Stmt,
+    /// Shared: an interrupt is copied out of the table at every check, without its code.
+    condition: Rc<Expr>,
+    handler: Rc<Stmt>,
     on: bool,
     enabled: bool,
     /// The condition's value at the last check (an interrupt fires on a rising edge).
@@ -94,8 +97,8 @@ impl<'p> Machine<'p> {
         let i = Interrupt {
             loc: self.loc,
             lexical: self.here(),
-            condition: cond.clone(),
-            handler: handler.clone(),
+            condition: Rc::new(cond.clone()),
+            handler: Rc::new(handler.clone()),
             on: false,
             enabled: true,
             last: false,

@@ -57,16 +57,17 @@ impl UsesBuilder {
     }
 
     pub(crate) fn finish(self) -> Uses {
-        let mut bound = self.bound;
-        // Stable: of the bindings of one offset, the last put is the last of its run.
-        bound.sort_by_key(|&(start, ..)| start);
-        let mut kept: Vec<(u32, u32, Binding)> = Vec::with_capacity(bound.len());
-        for e in bound {
-            match kept.last_mut() {
-                Some(last) if last.0 == e.0 => *last = e,
-                _ => kept.push(e),
+        let mut kept = self.bound;
+        // Stable: of the bindings of one offset, the last put is the last of its run, and
+        // `dedup_by` hands it over to the first, which stays.
+        kept.sort_by_key(|&(start, ..)| start);
+        kept.dedup_by(|later, first| {
+            let same = later.0 == first.0;
+            if same {
+                *first = *later;
             }
-        }
+            same
+        });
         kept.shrink_to_fit();
         let blocks_len = kept.last().map_or(0, |&(s, ..)| s as usize / BLOCK + 1);
         let mut blocks = vec![Block::default(); blocks_len];
