@@ -1,27 +1,24 @@
 //! The bindings of one module's text, found by the start offset of the name. A table by byte
-//! offset took four bytes per byte of text and a hash map scatters a routine's names over
-//! memory; here a bit per byte marks where a bound name starts, and a name's rank among the
-//! marked offsets is its index in the bindings, kept in text order (a quarter byte per byte
-//! of text, and a routine's names stay together).
+//! offset of indices took four bytes per byte of text, and a hash map scatters a routine's
+//! names over memory; here a byte per byte of text holds the rank of the name starting there
+//! within its 128-byte block (at most 128 names start in one, so a rank fits), and each block
+//! where its first name is in the bindings, kept in text order: a byte per byte of text, a
+//! routine's names together, two reads per lookup as before.
 
 use crate::diag::Span;
 
 use super::Binding;
 
-/// Offsets per block: one bit each in [`Block::starts`].
-const BLOCK: usize = 64;
-
-#[derive(Debug, Default, Clone, Copy)]
-struct Block {
-    /// Bit `i`: a bound name starts at offset `block * 64 + i`.
-    starts: u64,
-    /// Index in [`Uses::bound`] of the block's first name.
-    first: u32,
-}
+/// Bytes per block of [`Uses::first`]: no more names can start in one than a byte can count.
+const BLOCK: usize = 128;
 
 #[derive(Debug, Default)]
 pub(crate) struct Uses {
-    blocks: Vec<Block>,
+    /// Per byte of text up to the last name: 0, or 1 + the rank of the name starting there
+    /// among the names starting in its block.
+    rank: Vec<u8>,
+    /// Per block: the index in `bound` of its first name.
+    first: Vec<u32>,
     /// Start and end offset of each bound name, and its binding, by start offset.
     bound: Vec<(u32, u32, Binding)>,
 }
@@ -29,13 +26,12 @@ pub(crate) struct Uses {
 impl Uses {
     pub(crate) fn get(&self, span: Span) -> Option<Binding> {
         let start = span.start as usize;
-        let block = self.blocks.get(start / BLOCK)?;
-        let bit = start % BLOCK;
-        if block.starts >> bit & 1 == 0 {
+        let rank = *self.rank.get(start)?;
+        if rank == 0 {
             return None;
         }
-        let below = (block.starts & ((1u64 << bit) - 1)).count_ones();
-        let &(_, end, b) = self.bound.get((block.first + below) as usize)?;
+        let i = *self.first.get(start / BLOCK)? as usize + rank as usize - 1;
+        let &(_, end, b) = self.bound.get(i)?;
         (end == span.end).then_some(b)
     }
 }
@@ -69,17 +65,25 @@ impl UsesBuilder {
             same
         });
         kept.shrink_to_fit();
-        let blocks_len = kept.last().map_or(0, |&(s, ..)| s as usize / BLOCK + 1);
-        let mut blocks = vec![Block::default(); blocks_len];
+        let len = kept.last().map_or(0, |&(s, ..)| s as usize + 1);
+        let mut rank = vec![0u8; len];
+        let mut first = vec![0u32; len.div_ceil(BLOCK)];
+        let mut block = usize::MAX;
+        let mut in_block = 0u8;
         for (i, &(start, ..)) in kept.iter().enumerate() {
-            let block = &mut blocks[start as usize / BLOCK];
-            if block.starts == 0 {
-                block.first = i as u32;
+            let start = start as usize;
+            if start / BLOCK != block {
+                block = start / BLOCK;
+                first[block] = i as u32;
+                in_block = 0;
             }
-            block.starts |= 1u64 << (start as usize % BLOCK);
+            // Distinct offsets of one block: at most BLOCK of them.
+            in_block += 1;
+            rank[start] = in_block;
         }
         Uses {
-            blocks,
+            rank,
+            first,
             bound: kept,
         }
     }
@@ -117,6 +121,18 @@ mod tests {
         }
         for s in [1, 4, 62, 65, 126, 128, 199, 999, 1002, 5000] {
             assert_eq!(uses.get(span(s, s + 1)), None, "{s}");
+        }
+    }
+
+    #[test]
+    fn a_block_can_hold_a_name_at_every_offset() {
+        let mut b = UsesBuilder::default();
+        for s in 0..300 {
+            b.put(span(s, s + 1), Binding::Global(s));
+        }
+        let uses = b.finish();
+        for s in 0..300 {
+            assert_eq!(uses.get(span(s, s + 1)), Some(Binding::Global(s)), "{s}");
         }
     }
 
