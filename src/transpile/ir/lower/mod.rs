@@ -60,36 +60,37 @@ pub struct Replay {
 }
 
 impl Replay {
-    /// A lowering that repeats the first pass over the same program and options.
+    /// A lowering that repeats the first pass over the same program and options. The
+    /// routines are the first pass's (`first`), read, not copied: the second pass changes none.
     pub fn lower<'p>(
-        &self,
-        first: &Program,
+        self,
+        first: &'p Program,
         src: &'p front::Program,
         options: &'p Options,
     ) -> Lower<'p> {
         let out = Program {
-            vars: self.vars.clone(),
-            routines: first.routines.clone(),
+            vars: self.vars,
             top_level: first.top_level,
             interrupts: first.interrupts.clone(),
             ..Program::default()
         };
-        let routine_ids = index_routines(&out.routines);
+        let routine_ids = index_routines(&first.routines);
         Lower {
             src,
             model: Model::new(src),
             opts: options,
             caps: self.caps,
             out,
+            first: Some(&first.routines),
             routine_ids,
-            vars: self.keys.clone(),
+            vars: self.keys,
             rt: None,
             next_spline: 0,
             vision: None,
             writes: FxHashMap::default(),
             moves: FxHashMap::default(),
             pass: Pass::Replay {
-                spline_at: self.next_spline.clone(),
+                spline_at: self.next_spline,
             },
         }
     }
@@ -146,6 +147,8 @@ pub struct Lower<'p> {
     /// What the target can hold: the lowering refuses the rest (TR001) once, for every target.
     caps: &'static Caps,
     out: Program,
+    /// The second pass reads the routines of the first's program instead of `out`'s.
+    first: Option<&'p [Routine]>,
     /// Upper-case name → the first routine of `out` of that name (a scan of the routines per
     /// call made a file of many routines quadratic).
     routine_ids: FxHashMap<String, RoutineId>,
@@ -190,6 +193,7 @@ impl<'p> Lower<'p> {
             opts: options,
             caps,
             out: Program::default(),
+            first: None,
             routine_ids: FxHashMap::default(),
             vars: FxHashMap::default(),
             rt: None,
@@ -237,12 +241,20 @@ impl<'p> Lower<'p> {
         Lowering {
             replay: Replay {
                 vars,
-                keys: self.vars.clone(),
+                keys: std::mem::take(&mut self.vars),
                 next_spline: spline_at,
                 caps: self.caps,
             },
             program: self.out,
             vision: self.vision,
+        }
+    }
+
+    /// A routine of the program being lowered.
+    pub(super) fn routine(&self, r: RoutineId) -> &Routine {
+        match self.first {
+            Some(routines) => &routines[r.0 as usize],
+            None => self.out.routine(r),
         }
     }
 
@@ -545,7 +557,7 @@ impl<'p> Lower<'p> {
         let r = &outline.head;
         let id = RoutineId(i as u32);
         self.start_splines(id);
-        let kind = self.out.routine(id).kind;
+        let kind = self.routine(id).kind;
         self.enter(id, r.name.key());
         let header = match kind {
             RoutineKind::Def => "routine DEF",
@@ -568,7 +580,7 @@ impl<'p> Lower<'p> {
             self.label(name);
         }
         let mut body = Block::new();
-        if let Some(at) = self.out.routine(id).header_error {
+        if let Some(at) = self.routine(id).header_error {
             body.push(Stmt {
                 op: Op::Unsupported {
                     why: Why::HeaderSyntaxError,
@@ -577,7 +589,7 @@ impl<'p> Lower<'p> {
                 span: at,
             });
         }
-        if let Some((name, at)) = self.out.routine(id).duplicate_param.clone() {
+        if let Some((name, at)) = self.routine(id).duplicate_param.clone() {
             body.push(Stmt {
                 op: Op::Unsupported {
                     why: Why::DuplicateParameter(name),
