@@ -260,14 +260,29 @@ fn each_lowered(
     lower: &mut ir::lower::Lower<'_>,
     mut f: impl FnMut(Lowered),
 ) {
+    // The ops before the open routine's body: its head's declarations add to them until the
+    // first statement or its end.
+    let mut head: Option<ir::Block> = None;
     program.src.each_statement(false, |s| match s {
         front::Statement::Begin(i) => {
-            let ops = lower.begin_routine(i);
+            head = Some(lower.begin_routine(i));
             f(Lowered::Begin(ir::RoutineId(i as u32)));
-            f(Lowered::Ops(ops));
         }
-        front::Statement::Stmt(s) => f(Lowered::Ops(lower.stmt(&s))),
+        front::Statement::Head(s) => {
+            if let Some(ops) = &mut head {
+                lower.head(&s, ops);
+            }
+        }
+        front::Statement::Stmt(s) => {
+            if let Some(ops) = head.take() {
+                f(Lowered::Ops(ops));
+            }
+            f(Lowered::Ops(lower.stmt(&s)));
+        }
         front::Statement::End(i) => {
+            if let Some(ops) = head.take() {
+                f(Lowered::Ops(ops));
+            }
             f(Lowered::Ops(lower.end_routine()));
             f(Lowered::End(ir::RoutineId(i as u32)));
         }

@@ -550,7 +550,7 @@ impl<'p> Lower<'p> {
     }
 
     /// The routine with index `i` begins: the ops before its body (a header that did not
-    /// parse, a repeated parameter, the values of its head's declarations).
+    /// parse, a repeated parameter); [`Lower::head`] adds its head's declarations' values.
     pub fn begin_routine(&mut self, i: usize) -> Block {
         let src = self.src;
         let outline = &src.src.outline.routines[i];
@@ -598,10 +598,15 @@ impl<'p> Lower<'p> {
                 span: at,
             });
         }
-        for d in &r.decls {
-            self.body_decl(d, d.span, &mut body);
-        }
         body
+    }
+
+    /// A statement of the head of the routine begun last ([`front::Statement::Head`]): a
+    /// declaration's values are assigned, into the ops before the body.
+    pub fn head(&mut self, s: &ast::Stmt, into: &mut Block) {
+        if let StmtKind::Decl(d) = &s.kind {
+            self.body_decl(d, d.span, into);
+        }
     }
 
     /// One statement of the routine (or top level) begun last, lowered.
@@ -806,13 +811,7 @@ impl<'p> Lower<'p> {
         }
         // GLOBAL declarations inside routines are globals without a value here.
         for r in &src.src.outline.routines {
-            let decls = r
-                .head
-                .decls
-                .iter()
-                .filter(|d| d.global)
-                .chain(&r.facts.global_decls);
-            for d in decls {
+            for d in &r.facts.global_decls {
                 for v in &d.vars {
                     if let Some(id) = self.vars.get(&(String::new(), v.name.key())).copied() {
                         let dims = self.data_dims(&v.dims);
