@@ -53,7 +53,7 @@ pub struct Lowering {
 pub struct Replay {
     /// The variables as they were when the first routine began.
     vars: Vec<Var>,
-    keys: FxHashMap<(String, String), VarId>,
+    keys: VarKeys,
     /// The next spline id at the start of each routine.
     next_spline: Vec<u32>,
     caps: &'static Caps,
@@ -153,7 +153,7 @@ pub struct Lower<'p> {
     /// call made a file of many routines quadratic).
     routine_ids: FxHashMap<String, RoutineId>,
     /// (routine key or "", upper-case name) → id; package and assumed names under "".
-    vars: FxHashMap<(String, String), VarId>,
+    vars: VarKeys,
     rt: Option<Ctx>,
     next_spline: u32,
     vision: Option<VisionServer>,
@@ -195,7 +195,7 @@ impl<'p> Lower<'p> {
             out: Program::default(),
             first: None,
             routine_ids: FxHashMap::default(),
-            vars: FxHashMap::default(),
+            vars: VarKeys::default(),
             rt: None,
             next_spline: 0,
             vision: None,
@@ -324,7 +324,7 @@ impl<'p> Lower<'p> {
 
     fn add_var(&mut self, routine: String, v: VarInfo, scope: Scope) -> VarId {
         let id = VarId(self.out.vars.len() as u32);
-        let key = (routine, v.name.to_ascii_uppercase());
+        let name = v.name.to_ascii_uppercase();
         self.out.vars.push(Var {
             name: v.name,
             ty: v.ty,
@@ -334,7 +334,7 @@ impl<'p> Lower<'p> {
             decl: v.decl,
             file: v.file,
         });
-        self.vars.insert(key, id);
+        self.vars.insert(routine, name, id);
         id
     }
 
@@ -342,22 +342,20 @@ impl<'p> Lower<'p> {
     pub(super) fn var(&self, name: &str) -> Option<VarId> {
         let key = name.to_ascii_uppercase();
         if let Some(rt) = &self.rt
-            && let Some(v) = self.vars.get(&(rt.key.clone(), key.clone()))
+            && let Some(v) = self.vars.get(&rt.key, &key)
         {
-            return Some(*v);
+            return Some(v);
         }
         self.vars
-            .get(&(String::new(), key))
-            .copied()
+            .get("", &key)
             .filter(|v| matches!(self.out.var(*v).scope, Scope::Global))
     }
 
     /// A global of the generated KUKA package (`MM_Last_Status` …), typed by the catalog.
     pub(super) fn package_var(&mut self, id: &ast::Ident) -> Option<VarId> {
         let g = crate::catalog::catalog().global(&id.text)?;
-        let key = (String::new(), id.key());
-        if let Some(v) = self.vars.get(&key) {
-            return Some(*v);
+        if let Some(v) = self.vars.get("", &id.key()) {
+            return Some(v);
         }
         let ty = match g.ty.to_ascii_uppercase().as_str() {
             "INT" => Ty::Int,
@@ -381,9 +379,8 @@ impl<'p> Lower<'p> {
 
     /// A name the program does not declare: its type assumed from its use, reported once.
     pub(super) fn assumed_var(&mut self, id: &ast::Ident, ty: Ty, what: &str) -> VarId {
-        let key = (String::new(), id.key());
-        if let Some(v) = self.vars.get(&key) {
-            return *v;
+        if let Some(v) = self.vars.get("", &id.key()) {
+            return v;
         }
         self.approx(
             id.span,
@@ -478,7 +475,7 @@ impl<'p> Lower<'p> {
             .params
             .iter()
             .filter_map(|p| {
-                let var = *self.vars.get(&(key.clone(), p.name.key()))?;
+                let var = self.vars.get(&key, &p.name.key())?;
                 // A repeated name would make a header no target accepts (`def f(x, x)`):
                 // the routine keeps one parameter of that name and the header is reported.
                 if !seen.insert(var) {
@@ -813,7 +810,7 @@ impl<'p> Lower<'p> {
         for r in &src.src.outline.routines {
             for d in &r.facts.global_decls {
                 for v in &d.vars {
-                    if let Some(id) = self.vars.get(&(String::new(), v.name.key())).copied() {
+                    if let Some(id) = self.vars.get("", &v.name.key()) {
                         let dims = self.data_dims(&v.dims);
                         self.out.uninit_globals.push((id, dims));
                     }
@@ -832,7 +829,7 @@ impl<'p> Lower<'p> {
     fn dat_module(&mut self, m: &ast::DatModule, file: FileId, text: &str) {
         for d in &m.decls {
             for v in &d.vars {
-                let Some(id) = self.vars.get(&(String::new(), v.name.key())).copied() else {
+                let Some(id) = self.vars.get("", &v.name.key()) else {
                     continue;
                 };
                 let Some(init) = &v.init else {
@@ -877,7 +874,7 @@ impl<'p> Lower<'p> {
                 }
                 _ => continue,
             };
-            let Some(id) = self.vars.get(&(String::new(), name.key())).copied() else {
+            let Some(id) = self.vars.get("", &name.key()) else {
                 continue;
             };
             self.data_construct("data", s.span, file);
@@ -918,6 +915,21 @@ impl<'p> Lower<'p> {
 }
 
 /// Upper-case name → the first of `routines` of that name.
+/// (routine key or "", upper-case name) → variable: a map per routine, so a lookup copies no
+/// name (a pair of copied names per lookup was a tenth of a translation's time).
+#[derive(Default)]
+struct VarKeys(FxHashMap<String, FxHashMap<String, VarId>>);
+
+impl VarKeys {
+    fn get(&self, routine: &str, name: &str) -> Option<VarId> {
+        self.0.get(routine)?.get(name).copied()
+    }
+
+    fn insert(&mut self, routine: String, name: String, id: VarId) {
+        self.0.entry(routine).or_default().insert(name, id);
+    }
+}
+
 fn index_routines(routines: &[Routine]) -> FxHashMap<String, RoutineId> {
     let mut ids = FxHashMap::default();
     for (i, r) in routines.iter().enumerate() {
