@@ -285,7 +285,7 @@ impl<'p> Lower<'p> {
         for c in calls {
             let w = match &c {
                 Callee::Routine(r) => {
-                    let name = self.out.routine(*r).name.clone();
+                    let name = self.routine(*r).name.clone();
                     self.may_write(&name)
                 }
                 Callee::External { .. } => None,
@@ -618,11 +618,11 @@ impl<'p> Lower<'p> {
             return Ok(Expr::new(ExprKind::Builtin(b, v), ty, span));
         }
         if let Some(r) = self.routine_named(&name.text) {
-            if self.out.routine(r).kind != RoutineKind::Deffct {
+            if self.routine(r).kind != RoutineKind::Deffct {
                 return fail(Why::NotAFunction(name.text.to_string()), span);
             }
             let args = self.call_args(Some(r), name, args, span, pre)?;
-            let ty = self.out.routine(r).ret.clone().unwrap_or(Ty::Real);
+            let ty = self.routine(r).ret.clone().unwrap_or(Ty::Real);
             let t = self.temp(ty.clone());
             pre.push(Stmt {
                 op: Op::Call {
@@ -666,9 +666,9 @@ impl<'p> Lower<'p> {
         pre: &mut Block,
     ) -> L<Vec<Arg>> {
         let params: Option<Vec<crate::transpile::ir::Param>> =
-            routine.map(|r| self.out.routine(r).params.clone());
+            routine.map(|r| self.routine(r).params.clone());
         if let Some(p) = &params {
-            let header_ok = routine.is_some_and(|r| self.out.routine(r).header_error.is_none());
+            let header_ok = routine.is_some_and(|r| self.routine(r).header_error.is_none());
             if p.len() != args.len() && header_ok {
                 return fail(
                     Why::Arity {

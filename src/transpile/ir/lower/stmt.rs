@@ -348,7 +348,7 @@ impl<'p> Lower<'p> {
             StmtKind::Return { value } => {
                 let (kind, ret, synthetic) = match &self.rt {
                     Some(rt) => {
-                        let r = self.out.routine(rt.id);
+                        let r = self.routine(rt.id);
                         (r.kind, r.ret.clone(), r.synthetic)
                     }
                     None => (RoutineKind::Def, None, true),
@@ -502,7 +502,7 @@ impl<'p> Lower<'p> {
         moves
             || names.iter().any(|c| match c {
                 crate::transpile::ir::Callee::Routine(r) => {
-                    let n = self.out.routine(*r).name.clone();
+                    let n = self.routine(*r).name.clone();
                     self.routine_moves(&n)
                 }
                 crate::transpile::ir::Callee::External { name, .. } => self.routine_moves(name),
@@ -599,7 +599,7 @@ impl<'p> Lower<'p> {
         // x = f(…) with a function of this file: the call writes x.
         if let A::Call { name, args } = &value.kind
             && let Some(r) = self.routine_named(&name.text)
-            && self.out.routine(r).kind == RoutineKind::Deffct
+            && self.routine(r).kind == RoutineKind::Deffct
         {
             self.kind("call");
             let (place, _) = self.place(target, ops, true)?;
