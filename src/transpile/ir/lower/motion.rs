@@ -12,6 +12,7 @@ use crate::transpile::ir::{
     Known, Load, MotionParam, Move, Op, ParamValue, Path, Place, SplineId, Stmt, Target, TriggerAt,
     Ty, Why,
 };
+use rustc_hash::FxHashMap;
 
 fn pending<T>() -> Known<T> {
     Known::Unknown(Because::Pending)
@@ -483,25 +484,27 @@ impl<'p> Lower<'p> {
     /// Whether the `.dat` gives the global `name` a literal value (a value written in the
     /// program, in KUKA's conventions).
     fn dat_literal(&self, name: &str) -> bool {
-        let src = self.src;
-        let modules = src
-            .dat
-            .iter()
-            .filter_map(|d| d.outline.dat.as_ref())
-            .chain(src.src.outline.dat.as_ref());
-        for m in modules {
-            for d in &m.decls {
-                for v in &d.vars {
-                    if v.name.is(name) {
-                        return matches!(
-                            v.init.as_ref().map(|i| &i.kind),
-                            Some(A::Aggregate { .. })
-                        );
-                    }
-                }
+        let literals = self.dat_literals.get_or_init(|| {
+            let src = self.src;
+            let modules = src
+                .dat
+                .iter()
+                .filter_map(|d| d.outline.dat.as_ref())
+                .chain(src.src.outline.dat.as_ref());
+            let mut literals = FxHashMap::default();
+            for v in modules.flat_map(|m| &m.decls).flat_map(|d| &d.vars) {
+                // The first declaration of a name decides, as the scan it replaces did.
+                literals.entry(v.name.key()).or_insert(matches!(
+                    v.init.as_ref().map(|i| &i.kind),
+                    Some(A::Aggregate { .. })
+                ));
             }
-        }
-        false
+            literals
+        });
+        literals
+            .get(&name.to_ascii_uppercase())
+            .copied()
+            .unwrap_or(false)
     }
 
     /// A relative motion's offset.
