@@ -1054,7 +1054,7 @@ fn vision_variants_run_like_the_krl_original() {
 fn every_fixture_runs_or_stops_at_a_located_error() {
     // Translated as they are (TR001 lines stay comments), with no vision server: the AS either
     // runs to its end or fails with the file and line of the statement that cannot run.
-    let expected: [(&str, &str); 23] = [
+    let expected: [(&str, &str); 24] = [
         ("advance_stops", "advance_stops.as:19: WAIT still waiting"),
         (
             "base_offsets",
@@ -1071,6 +1071,7 @@ fn every_fixture_runs_or_stops_at_a_located_error() {
             "gripper_check",
             "gripper_check.as:8: SWAIT 1005 still waiting",
         ),
+        ("interrupt_scope", "done"),
         ("interrupt_undeclared", "done"),
         ("io_waits", "io_waits.as:9: the variable .ok is not defined"),
         ("joint_targets", "done"),

@@ -201,8 +201,9 @@ impl<'p> Lower<'p> {
             .outline
             .routines
             .iter()
-            .flat_map(|r| r.facts.interrupts.iter().map(move |s| (&r.head, s)));
-        for (r, s) in decls {
+            .enumerate()
+            .flat_map(|(i, r)| r.facts.interrupts.iter().map(move |s| (i, &r.head, s)));
+        for (i, r, s) in decls {
             let StmtKind::InterruptDecl {
                 global,
                 number,
@@ -233,6 +234,18 @@ impl<'p> Lower<'p> {
                 _ => Err(Why::InterruptHandler),
             };
             self.rt = None;
+            // KRL removes an interrupt declared without GLOBAL when its routine returns; the
+            // targets' interrupts live on. The module's first routine returns only at the end.
+            if !*global && i > 0 {
+                self.approx(
+                    s.span,
+                    format!(
+                        "INTERRUPT DECL {n} without GLOBAL ends when {} returns; the translation keeps it declared (and on) after that",
+                        r.name.text
+                    ),
+                    format!("switch it off (INTERRUPT OFF {n}) before {} returns, or declare it GLOBAL", r.name.text),
+                );
+            }
             self.out.interrupts.push(InterruptDecl {
                 number: n,
                 global: *global,
