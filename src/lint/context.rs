@@ -421,8 +421,11 @@ pub struct FileCtx<'p> {
     pub id: FileId,
     pub path: &'p str,
     pub text: &'p str,
-    /// Held only for files the Mech-Mind rules look at (see the module docs).
+    /// Held only for files the Mech-Mind rules look at (see the module docs); in `check` only
+    /// the bodies they can use (the others are empty, see `lint::kept`).
     pub ast: Option<&'p SourceFile>,
+    /// Upper-case names read by the user routines whose bodies `ast` does not hold.
+    pub elided_reads: Option<&'p FxHashSet<String>>,
     pub project: &'p Project,
     /// Every file's path and text (messages about declarations elsewhere).
     pub all: &'p dyn Texts,
@@ -446,6 +449,7 @@ impl<'p> FileCtx<'p> {
             path: all.path(id.index()),
             text: all.text(id.index()),
             ast,
+            elided_reads: None,
             project,
             all,
             flow: OnceLock::new(),
@@ -522,9 +526,18 @@ impl<'p> FileCtx<'p> {
 
     /// The model's id of a routine of this file's AST.
     pub fn routine_id(&self, r: &Routine) -> Option<RoutineId> {
-        let ast = self.ast?;
-        let i = ast.routines.iter().position(|x| std::ptr::eq(x, r))?;
+        let i = self.routine_index(r)?;
         self.sema.file(self.id).routines.get(i).copied()
+    }
+
+    /// The place of a routine of this file's AST among its routines, from its address (rules
+    /// ask per call: no search of the file's routines).
+    pub fn routine_index(&self, r: &Routine) -> Option<usize> {
+        let routines = &self.ast?.routines;
+        let size = std::mem::size_of::<Routine>();
+        let offset = (r as *const Routine as usize).checked_sub(routines.as_ptr() as usize)?;
+        let i = offset / size;
+        (offset % size == 0 && routines.get(i).is_some_and(|x| std::ptr::eq(x, r))).then_some(i)
     }
 
     /// The symbol a name at `offset` of this file resolves to.

@@ -222,6 +222,15 @@ impl Default for FileBuilder {
 }
 
 impl FileBuilder {
+    /// A builder holding a whole file already, for a caller that works on the routines of
+    /// either ([`FileBuilder::routines_mut`]).
+    pub fn of(file: SourceFile) -> FileBuilder {
+        FileBuilder {
+            file,
+            open: Open::None,
+        }
+    }
+
     pub fn add(&mut self, event: Lowered) {
         match event {
             Lowered::Routine(r) => self.open = Open::Routine(r, Vec::new()),
@@ -256,6 +265,12 @@ impl FileBuilder {
 
     pub fn finish(self) -> SourceFile {
         self.file
+    }
+
+    /// The routines closed so far, in file order (a caller that keeps only some routines'
+    /// bodies empties the others as they close).
+    pub fn routines_mut(&mut self) -> &mut [Routine] {
+        &mut self.file.routines
     }
 }
 
