@@ -69,7 +69,7 @@ fn every_command_grows_linearly_in_every_shape() {
         .and_then(|v| v.parse().ok())
         .unwrap_or(MAX_RATIO);
     let mut failures = Vec::new();
-    for shape in Shape::ALL {
+    for shape in Shape::ALL.into_iter().filter(|s| !s.calls_vision()) {
         let small = tempfile::tempdir().unwrap();
         let large = tempfile::tempdir().unwrap();
         let (_, lib) = shapes::write(shape, SMALL_MB << 20, small.path());
