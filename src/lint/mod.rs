@@ -301,7 +301,7 @@ fn pieces(text: &str, config: &LintConfig, tree: Tree) -> Option<Pieces> {
             let summary = FileSummary::of(&ast);
             (Some(Kept::of(ast)), summary)
         }
-        None => (kept.map(KeptBuilder::finish), summary.finish()),
+        None => (kept.map(|k| k.finish(text)), summary.finish()),
     };
     Some((diagnostics, facts, case_edits, ast, summary))
 }
@@ -417,11 +417,13 @@ mod tests {
             assert!(streamed == whole, "{path} ({tree:?})");
             assert!(kept.is_none_or(|kept| kept == pruned), "{path}");
         }
-        // The kept tree is the whole one but for emptied bodies.
+        // The kept tree is the whole one but for emptied routines.
         assert_eq!(pruned.ast.routines.len(), ast.routines.len(), "{path}");
         for (k, w) in pruned.ast.routines.iter().zip(&ast.routines) {
             let emptied = Routine {
                 body: Vec::new(),
+                decls: Vec::new(),
+                definitions: Vec::new(),
                 ..w.clone()
             };
             assert!(k == w || *k == emptied, "{path}: {}", w.name.text);
