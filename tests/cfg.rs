@@ -4,7 +4,7 @@
 
 use std::collections::HashMap;
 
-use krlkit::cfg::Cfg;
+use krlkit::cfg::{BlockId, Builder, Cfg, Edge, Feed, Sink};
 use krlkit::syntax::ast::{Stmt, each_stmt};
 use krlkit::syntax::parse;
 use proptest::prelude::*;
@@ -68,7 +68,44 @@ fn check(body: &[Stmt], text: &str) -> String {
     }
     let again = Cfg::of(body);
     assert_eq!(g, again, "two builds of the same body differ");
+    let edges: Vec<Vec<Edge>> = g.blocks.iter().map(|b| b.edges.clone()).collect();
+    assert_eq!(streamed(body), edges, "a streamed build differs");
     g.render(text)
+}
+
+/// A sink keeping only the edges, each block's list in the order they came.
+#[derive(Default)]
+struct Edges(Vec<Vec<Edge>>);
+
+impl Sink for Edges {
+    type Mark = ();
+    fn block(&mut self, id: BlockId) {
+        assert_eq!(id, self.0.len(), "block ids are dense");
+        self.0.push(Vec::new());
+    }
+    fn edge(&mut self, from: BlockId, edge: Edge) {
+        self.0[from].push(edge);
+    }
+    fn jump(&mut self, _: (), _: Option<()>) {}
+    fn stray_exit(&mut self, _: ()) {}
+    fn duplicate_label(&mut self, _: ()) {}
+}
+
+impl Feed<'_> for Edges {
+    fn stmt(&mut self, b: BlockId, _: &Stmt, _: usize) {
+        assert!(b < self.0.len(), "a statement in b{b} before it exists");
+    }
+}
+
+/// The graph's edges when the builder is fed one statement at a time, each a copy dropped
+/// right after (as the transpiler streams a routine): the same as the whole body's.
+fn streamed(body: &[Stmt]) -> Vec<Vec<Edge>> {
+    let mut b = Builder::new(Edges::default());
+    for s in body {
+        let one = s.clone();
+        b.push(&one);
+    }
+    b.finish().0
 }
 
 fn line() -> impl Strategy<Value = &'static str> {

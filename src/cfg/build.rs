@@ -1,21 +1,54 @@
 //! One pass over a statement list, appending each statement to the open block and opening
-//! blocks where control can branch or join.
+//! blocks where control can branch or join. The builder is streamed: it is fed one statement
+//! at a time ([`Builder::push`], its nested bodies walked here) and keeps only what later
+//! statements need (the open block, the enclosing loops, the labels and the jumps to resolve);
+//! what the graph holds is the [`Sink`]'s to keep. [`Cfg`] keeps everything; a consumer that
+//! streams a routine keeps only the facts it asks about (the transpiler's jump plan).
 
 use std::collections::HashMap;
 use std::collections::hash_map::Entry;
 
-use super::{Block, BlockId, Cfg, END, ENTRY, Edge, EdgeKind, RETURN};
+use super::{BlockId, END, ENTRY, Edge, EdgeKind, RETURN};
 use crate::syntax::ast::{Expr, ExprKind, Stmt, StmtKind};
 
-pub(super) struct Builder<'a> {
-    g: Cfg<'a>,
+/// What a graph is built into: told of every block, edge and statement as the builder makes
+/// them, in the order of a whole-body build.
+pub trait Sink {
+    /// What the sink keeps of a statement to be named again later (a jump's, a label's, a
+    /// stray `EXIT`'s): the statement itself, or where it stands in a stream.
+    type Mark: Clone;
+    /// Block `id` exists (ids are dense, from [`ENTRY`], [`END`] and [`RETURN`] on).
+    fn block(&mut self, id: BlockId);
+    fn edge(&mut self, from: BlockId, edge: Edge);
+    /// A `GOTO` and the label it reaches (its [`EdgeKind::Goto`] edge is made too), or
+    /// `None`: no label of that name in the body.
+    fn jump(&mut self, goto: Self::Mark, label: Option<Self::Mark>);
+    /// An `EXIT` outside any loop.
+    fn stray_exit(&mut self, exit: Self::Mark);
+    /// A label defined a second time (a `GOTO` reaches the first).
+    fn duplicate_label(&mut self, label: Self::Mark);
+}
+
+/// A sink that can take statements that live `'s` long.
+pub trait Feed<'s>: Sink {
+    /// `s` joins block `b`; `depth` is how many bodies it is nested in (0: a statement fed to
+    /// [`Builder::push`]).
+    fn stmt(&mut self, b: BlockId, s: &'s Stmt, depth: usize) -> Self::Mark;
+}
+
+/// Builds one routine's graph into a [`Sink`] (see the module doc).
+pub struct Builder<K: Sink> {
+    sink: K,
+    blocks: usize,
     /// The block the next statement joins; `None` right after a jump (the next statement opens
     /// a block nothing leads to).
     open: Option<BlockId>,
     /// For each enclosing loop, the block after it (where `EXIT` leads).
     loops: Vec<BlockId>,
-    labels: HashMap<String, BlockId>,
-    gotos: Vec<(BlockId, &'a Stmt, String)>,
+    /// How many bodies deep the statement being built is.
+    depth: usize,
+    labels: HashMap<String, (BlockId, K::Mark)>,
+    gotos: Vec<(BlockId, K::Mark, String)>,
 }
 
 fn literal_bool(e: &Expr) -> Option<bool> {
@@ -25,45 +58,50 @@ fn literal_bool(e: &Expr) -> Option<bool> {
     }
 }
 
-impl<'a> Builder<'a> {
-    pub(super) fn new() -> Self {
-        let mut g = Cfg {
-            blocks: Vec::new(),
-            unresolved_gotos: Vec::new(),
-            stray_exits: Vec::new(),
-            duplicate_labels: Vec::new(),
-            has_jumps: false,
-            has_errors: false,
-        };
-        g.blocks.resize_with(3, Block::default);
-        Builder {
-            g,
+impl<K: Sink> Builder<K> {
+    /// A builder of one body into `sink`: [`ENTRY`], [`END`] and [`RETURN`] are made at once.
+    pub fn new(sink: K) -> Self {
+        let mut b = Builder {
+            sink,
+            blocks: 0,
             open: Some(ENTRY),
             loops: Vec::new(),
+            depth: 0,
             labels: HashMap::new(),
             gotos: Vec::new(),
+        };
+        for _ in [ENTRY, END, RETURN] {
+            b.block();
         }
+        b
     }
 
-    pub(super) fn finish(mut self, body: &'a [Stmt]) -> Cfg<'a> {
-        self.stmts(body);
+    /// The body has been fed: falling off its end leads to [`END`], the `GOTO`s are resolved,
+    /// and the sink is handed back.
+    pub fn finish(mut self) -> K {
         self.flow_to(END, EdgeKind::Next);
         for (from, stmt, key) in std::mem::take(&mut self.gotos) {
             match self.labels.get(&key) {
-                Some(&to) => self.edge(from, to, EdgeKind::Goto),
-                None => self.g.unresolved_gotos.push(stmt),
+                Some((to, label)) => {
+                    let (to, label) = (*to, label.clone());
+                    self.edge(from, to, EdgeKind::Goto);
+                    self.sink.jump(stmt, Some(label));
+                }
+                None => self.sink.jump(stmt, None),
             }
         }
-        self.g
+        self.sink
     }
 
     fn block(&mut self) -> BlockId {
-        self.g.blocks.push(Block::default());
-        self.g.blocks.len() - 1
+        let id = self.blocks;
+        self.blocks += 1;
+        self.sink.block(id);
+        id
     }
 
     fn edge(&mut self, from: BlockId, to: BlockId, kind: EdgeKind) {
-        self.g.blocks[from].edges.push(Edge { to, kind });
+        self.sink.edge(from, Edge { to, kind });
     }
 
     /// An edge from the open block (if control can be there) to `to`; nothing is open after.
@@ -73,29 +111,12 @@ impl<'a> Builder<'a> {
         }
     }
 
-    /// Appends `s` to the open block (opening one if needed) and returns that block.
-    fn push(&mut self, s: &'a Stmt) -> BlockId {
-        let b = match self.open {
-            Some(b) => b,
-            None => self.block(),
-        };
-        self.g.blocks[b].stmts.push(s);
-        self.open = Some(b);
-        b
-    }
-
     /// Opens a fresh block, entered from the open one by a `Next` edge.
     fn head(&mut self) -> BlockId {
         let h = self.block();
         self.flow_to(h, EdgeKind::Next);
         self.open = Some(h);
         h
-    }
-
-    fn stmts(&mut self, body: &'a [Stmt]) {
-        for s in body {
-            self.stmt(s);
-        }
     }
 
     /// Opens a new block entered from `from` by `kind` (no edge if `taken` is false: what
@@ -108,15 +129,51 @@ impl<'a> Builder<'a> {
         self.open = Some(b);
     }
 
+    /// The next statement of the body (its nested bodies are built with it).
+    pub fn push<'s>(&mut self, s: &'s Stmt)
+    where
+        K: Feed<'s>,
+    {
+        self.stmt(s);
+    }
+
+    /// Appends `s` to the open block (opening one if needed); returns that block and the
+    /// sink's mark of `s`.
+    fn add<'s>(&mut self, s: &'s Stmt) -> (BlockId, K::Mark)
+    where
+        K: Feed<'s>,
+    {
+        let b = match self.open {
+            Some(b) => b,
+            None => self.block(),
+        };
+        let mark = self.sink.stmt(b, s, self.depth);
+        self.open = Some(b);
+        (b, mark)
+    }
+
+    fn stmts<'s>(&mut self, body: &'s [Stmt])
+    where
+        K: Feed<'s>,
+    {
+        self.depth += 1;
+        for s in body {
+            self.stmt(s);
+        }
+        self.depth -= 1;
+    }
+
     /// Builds `body` in a block entered as by [`Self::enter`], ending with an edge to `after`.
-    fn branch(
+    fn branch<'s>(
         &mut self,
         from: BlockId,
         kind: EdgeKind,
         taken: bool,
-        body: &'a [Stmt],
+        body: &'s [Stmt],
         after: BlockId,
-    ) {
+    ) where
+        K: Feed<'s>,
+    {
         self.enter(from, kind, taken);
         self.stmts(body);
         self.flow_to(after, EdgeKind::Next);
@@ -124,14 +181,16 @@ impl<'a> Builder<'a> {
 
     /// Builds a loop body in a block entered as by [`Self::enter`], `EXIT` leading to
     /// `after`; the body's end is left open for the caller's back edge.
-    fn loop_body(
+    fn loop_body<'s>(
         &mut self,
         from: BlockId,
         kind: EdgeKind,
         taken: bool,
-        body: &'a [Stmt],
+        body: &'s [Stmt],
         after: BlockId,
-    ) {
+    ) where
+        K: Feed<'s>,
+    {
         self.enter(from, kind, taken);
         self.loops.push(after);
         self.stmts(body);
@@ -139,18 +198,26 @@ impl<'a> Builder<'a> {
     }
 
     /// A handler or action: its own block, entered from `from`, leading nowhere.
-    fn detached(&mut self, from: BlockId, kind: EdgeKind, s: &'a Stmt) {
+    fn detached<'s>(&mut self, from: BlockId, kind: EdgeKind, s: &'s Stmt)
+    where
+        K: Feed<'s>,
+    {
         let open = self.open.take();
         let loops = std::mem::take(&mut self.loops);
         let b = self.block();
         self.edge(from, b, kind);
         self.open = Some(b);
+        self.depth += 1;
         self.stmt(s);
+        self.depth -= 1;
         self.loops = loops;
         self.open = open;
     }
 
-    fn stmt(&mut self, s: &'a Stmt) {
+    fn stmt<'s>(&mut self, s: &'s Stmt)
+    where
+        K: Feed<'s>,
+    {
         match &s.kind {
             StmtKind::If {
                 cond,
@@ -158,7 +225,7 @@ impl<'a> Builder<'a> {
                 else_body,
             } => {
                 let lit = literal_bool(cond);
-                let head = self.push(s);
+                let (head, _) = self.add(s);
                 let after = self.block();
                 self.branch(head, EdgeKind::True, lit != Some(false), then_body, after);
                 if else_body.is_empty() {
@@ -171,7 +238,7 @@ impl<'a> Builder<'a> {
                 self.open = Some(after);
             }
             StmtKind::Switch { cases, default, .. } => {
-                let head = self.push(s);
+                let (head, _) = self.add(s);
                 let after = self.block();
                 for c in cases {
                     self.branch(head, EdgeKind::Case, true, &c.body, after);
@@ -197,7 +264,7 @@ impl<'a> Builder<'a> {
             StmtKind::For { body, .. } => self.cond_loop(s, None, body),
             StmtKind::Loop { body } => {
                 let head = self.head();
-                self.push(s);
+                self.add(s);
                 let after = self.block();
                 self.loop_body(head, EdgeKind::Next, true, body, after);
                 self.flow_to(head, EdgeKind::Back);
@@ -213,7 +280,7 @@ impl<'a> Builder<'a> {
                 self.stmts(body);
                 self.loops.pop();
                 let test = self.head();
-                self.push(s);
+                self.add(s);
                 if lit != Some(true) {
                     self.edge(test, first, EdgeKind::Back);
                 }
@@ -223,74 +290,70 @@ impl<'a> Builder<'a> {
                 self.open = Some(after);
             }
             StmtKind::Skip { body, .. } => {
-                let head = self.push(s);
+                let (head, _) = self.add(s);
                 let after = self.block();
                 self.edge(head, after, EdgeKind::True);
                 self.branch(head, EdgeKind::False, true, body, after);
                 self.open = Some(after);
             }
             StmtKind::Spline { body, .. } => {
-                self.push(s);
+                self.add(s);
                 self.stmts(body);
             }
             StmtKind::InterruptDecl { handler, .. } => {
-                let b = self.push(s);
+                let (b, _) = self.add(s);
                 self.detached(b, EdgeKind::Interrupt, handler);
             }
             StmtKind::Trigger { action, .. } => {
-                let b = self.push(s);
+                let (b, _) = self.add(s);
                 self.detached(b, EdgeKind::Trigger, action);
             }
             StmtKind::Return { .. } => {
-                self.push(s);
+                self.add(s);
                 self.flow_to(RETURN, EdgeKind::Return);
             }
             StmtKind::Halt => {
-                self.push(s);
+                self.add(s);
                 self.open = None;
             }
             StmtKind::Exit => {
-                self.push(s);
+                let (_, mark) = self.add(s);
                 match self.loops.last() {
                     Some(&after) => self.flow_to(after, EdgeKind::Exit),
                     None => {
-                        self.g.stray_exits.push(s);
+                        self.sink.stray_exit(mark);
                         self.open = None;
                     }
                 }
             }
             StmtKind::Goto { label } => {
-                self.g.has_jumps = true;
-                let b = self.push(s);
-                self.gotos.push((b, s, label.key()));
+                let (b, mark) = self.add(s);
+                self.gotos.push((b, mark, label.key()));
                 self.open = None;
             }
             StmtKind::Label { name } => {
-                self.g.has_jumps = true;
                 let l = self.head();
-                self.push(s);
-                let key = name.key();
-                match self.labels.entry(key) {
-                    Entry::Occupied(_) => self.g.duplicate_labels.push(s),
+                let (_, mark) = self.add(s);
+                match self.labels.entry(name.key()) {
+                    Entry::Occupied(_) => self.sink.duplicate_label(mark),
                     Entry::Vacant(v) => {
-                        v.insert(l);
+                        v.insert((l, mark));
                     }
                 }
             }
-            StmtKind::Error { .. } => {
-                self.g.has_errors = true;
-                self.push(s);
-            }
             _ => {
-                self.push(s);
+                self.add(s);
             }
         }
     }
 
     /// WHILE and FOR: a head block testing the condition, the body, a back edge.
-    fn cond_loop(&mut self, s: &'a Stmt, lit: Option<bool>, body: &'a [Stmt]) {
+    fn cond_loop<'s>(&mut self, s: &'s Stmt, lit: Option<bool>, body: &'s [Stmt])
+    where
+        K: Feed<'s>,
+    {
         let head = self.head();
-        self.push(s);
+        self.add(s);
         let after = self.block();
         if lit != Some(true) {
             self.edge(head, after, EdgeKind::False);

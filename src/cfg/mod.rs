@@ -13,7 +13,9 @@
 //!
 //! The graph is built in one pass over the body, in time and space linear in its size: each
 //! statement lands in exactly one block, each branch adds a constant number of edges, labels
-//! are found through one map. A condition that is a literal (`WHILE TRUE`, `IF FALSE`,
+//! are found through one map. The one [`Builder`] is streamed (fed a statement at a time) and
+//! builds into a [`Sink`]: [`Cfg`] keeps the whole graph, a streaming consumer keeps only what
+//! it asks about. A condition that is a literal (`WHILE TRUE`, `IF FALSE`,
 //! `UNTIL FALSE`) gets no edge for the way it never takes, so the code behind it is
 //! unreachable. A SWITCH without DEFAULT whose cases all name ENUM values is taken to cover
 //! the ENUM (the graph knows no types): it has no edge past its cases.
@@ -22,6 +24,8 @@ mod build;
 mod render;
 
 use std::collections::VecDeque;
+
+pub use build::{Builder, Feed, Sink};
 
 use crate::syntax::ast::{Stmt, StmtKind};
 
@@ -96,7 +100,18 @@ pub struct Cfg<'a> {
 impl<'a> Cfg<'a> {
     /// The graph of a routine's body (or of any statement list).
     pub fn of(body: &'a [Stmt]) -> Cfg<'a> {
-        build::Builder::new().finish(body)
+        let mut b = Builder::new(Cfg {
+            blocks: Vec::new(),
+            unresolved_gotos: Vec::new(),
+            stray_exits: Vec::new(),
+            duplicate_labels: Vec::new(),
+            has_jumps: false,
+            has_errors: false,
+        });
+        for s in body {
+            b.push(s);
+        }
+        b.finish()
     }
 
     /// For each block, whether it can be reached from [`ENTRY`].
@@ -157,6 +172,45 @@ impl<'a> Cfg<'a> {
             .collect();
         out.sort_by_key(|&b| self.blocks[b].stmts[0].span.start);
         out
+    }
+}
+
+impl<'a> Sink for Cfg<'a> {
+    type Mark = &'a Stmt;
+
+    fn block(&mut self, id: BlockId) {
+        debug_assert_eq!(id, self.blocks.len());
+        self.blocks.push(Block::default());
+    }
+
+    fn edge(&mut self, from: BlockId, edge: Edge) {
+        self.blocks[from].edges.push(edge);
+    }
+
+    fn jump(&mut self, goto: &'a Stmt, label: Option<&'a Stmt>) {
+        if label.is_none() {
+            self.unresolved_gotos.push(goto);
+        }
+    }
+
+    fn stray_exit(&mut self, exit: &'a Stmt) {
+        self.stray_exits.push(exit);
+    }
+
+    fn duplicate_label(&mut self, label: &'a Stmt) {
+        self.duplicate_labels.push(label);
+    }
+}
+
+impl<'a> Feed<'a> for Cfg<'a> {
+    fn stmt(&mut self, b: BlockId, s: &'a Stmt, _depth: usize) -> &'a Stmt {
+        match s.kind {
+            StmtKind::Goto { .. } | StmtKind::Label { .. } => self.has_jumps = true,
+            StmtKind::Error { .. } => self.has_errors = true,
+            _ => {}
+        }
+        self.blocks[b].stmts.push(s);
+        s
     }
 }
 

@@ -154,9 +154,9 @@ pub fn transpile(
             skeleton.begin(id);
             plan.begin(id);
         }
-        Lowered::Ops(ops) => {
+        Lowered::Ops(ops, stmt) => {
             skeleton.push(open, &ops);
-            plan.push(&ops);
+            plan.push(stmt, &ops);
         }
         Lowered::End(id) => plan.end(id),
     });
@@ -186,7 +186,7 @@ pub fn transpile(
                 u.begin(id);
             }
         }
-        Lowered::Ops(mut ops) => {
+        Lowered::Ops(mut ops, _) => {
             if let Some(r) = &mut resolver {
                 r.resolve(&mut ops);
             }
@@ -244,12 +244,13 @@ pub fn transpile(
 }
 
 /// What [`each_lowered`] hands out.
-enum Lowered {
+enum Lowered<'s> {
     /// A routine begins.
     Begin(ir::RoutineId),
     /// The ops of its next statement (the first: those before its body; the last: those
-    /// after).
-    Ops(ir::Block),
+    /// after), and the statement when they are one (the jump plan builds the routine's
+    /// control-flow graph from them).
+    Ops(ir::Block, Option<&'s crate::syntax::ast::Stmt>),
     End(ir::RoutineId),
 }
 
@@ -258,29 +259,29 @@ enum Lowered {
 fn each_lowered(
     program: &front::Program,
     lower: &mut ir::lower::Lower<'_>,
-    mut f: impl FnMut(Lowered),
+    mut f: impl FnMut(Lowered<'_>),
 ) {
     program.src.each_statement(false, |s| match s {
         front::Statement::Begin(i) => {
             let ops = lower.begin_routine(i);
             f(Lowered::Begin(ir::RoutineId(i as u32)));
-            f(Lowered::Ops(ops));
+            f(Lowered::Ops(ops, None));
         }
-        front::Statement::Stmt(s) => f(Lowered::Ops(lower.stmt(&s))),
+        front::Statement::Stmt(s) => f(Lowered::Ops(lower.stmt(&s), Some(&s))),
         front::Statement::End(i) => {
-            f(Lowered::Ops(lower.end_routine()));
+            f(Lowered::Ops(lower.end_routine(), None));
             f(Lowered::End(ir::RoutineId(i as u32)));
         }
     });
     if let Some((id, ops)) = lower.begin_top_level() {
         f(Lowered::Begin(id));
-        f(Lowered::Ops(ops));
+        f(Lowered::Ops(ops, None));
         program.src.each_statement(true, |s| {
             if let front::Statement::Stmt(s) = s {
-                f(Lowered::Ops(lower.stmt(&s)));
+                f(Lowered::Ops(lower.stmt(&s), Some(&s)));
             }
         });
-        f(Lowered::Ops(lower.end_routine()));
+        f(Lowered::Ops(lower.end_routine(), None));
         f(Lowered::End(id));
     }
 }

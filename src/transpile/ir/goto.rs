@@ -5,7 +5,7 @@
 //! (the label before them) restart a loop that starts after the label, `Continue`. A jump into a
 //! block from outside it has no structured form and becomes [`Why::Goto`].
 
-use std::collections::{BTreeMap, BTreeSet};
+use std::collections::BTreeMap;
 
 use super::{Block, LabelId, LoopId, LoopKind, Op, RoutineId, Stmt, Why};
 
@@ -19,21 +19,68 @@ pub fn structure(b: &mut Block, next: &mut u32) {
 }
 
 /// Which of a routine's top-level statements must be structured together: a label at the top
-/// and every statement that jumps to it, and what lies between. Made from the first lowering
-/// (statement by statement), used by the second ([`Plan::unit_end`]).
-#[derive(Debug, Default)]
+/// and every statement that jumps to it, and what lies between. Made in the first lowering
+/// from the routine's control-flow graph ([`crate::cfg`], fed its statements one at a time:
+/// its `GOTO` edges), used by the second ([`Plan::unit_end`]).
+#[derive(Default)]
 pub struct Plan {
     /// Per routine: the ranges of its statements (by their index in the routine, the ops
     /// before the body counting as statement 0) that form one unit, sorted, disjoint.
     units: Vec<Vec<(usize, usize)>>,
     /// Per routine: the first loop id the rewriting may use.
     next_loop: Vec<u32>,
-    /// The routine being planned: per label, the first and last statement that holds it or
-    /// a jump to it.
-    at: BTreeMap<LabelId, (usize, usize)>,
-    top: BTreeSet<LabelId>,
-    next: usize,
+    /// The graph of the routine being planned, keeping only its jumps.
+    graph: Option<crate::cfg::Builder<Jumps>>,
     loops: u32,
+}
+
+/// A [`crate::cfg::Sink`] that keeps, per top-level label, the first and last top-level
+/// statement that holds it or a jump to it.
+#[derive(Default)]
+struct Jumps {
+    /// The index of the top-level statement being fed (0: the ops before the body).
+    top: usize,
+    /// Per top-level label (by its statement's index): the range of the jumps to it.
+    at: BTreeMap<usize, (usize, usize)>,
+}
+
+/// Where a statement stands: the index of its top-level statement, and whether it is one.
+#[derive(Clone, Copy)]
+struct At {
+    top: usize,
+    is_top: bool,
+}
+
+impl crate::cfg::Sink for Jumps {
+    type Mark = At;
+
+    fn block(&mut self, _: crate::cfg::BlockId) {}
+
+    fn edge(&mut self, _: crate::cfg::BlockId, _: crate::cfg::Edge) {}
+
+    fn jump(&mut self, goto: At, label: Option<At>) {
+        if let Some(l) = label.filter(|l| l.is_top) {
+            let range = self.at.entry(l.top).or_insert((l.top, l.top));
+            range.0 = range.0.min(goto.top);
+            range.1 = range.1.max(goto.top);
+        }
+    }
+
+    fn stray_exit(&mut self, _: At) {}
+
+    fn duplicate_label(&mut self, _: At) {}
+}
+
+impl crate::cfg::Feed<'_> for Jumps {
+    fn stmt(&mut self, _: crate::cfg::BlockId, _: &crate::syntax::ast::Stmt, depth: usize) -> At {
+        if depth == 0 {
+            self.top += 1;
+        }
+        At {
+            top: self.top,
+            is_top: depth == 0,
+        }
+    }
 }
 
 impl Plan {
@@ -44,44 +91,28 @@ impl Plan {
             self.units.resize_with(i + 1, Vec::new);
             self.next_loop.resize(i + 1, 0);
         }
-        self.at.clear();
-        self.top.clear();
-        self.next = 0;
+        self.graph = Some(crate::cfg::Builder::new(Jumps::default()));
         self.loops = 0;
     }
 
-    /// The ops of the routine's next statement.
-    pub fn push(&mut self, ops: &Block) {
-        let k = self.next;
-        self.next += 1;
-        for s in ops {
-            if let Op::Label(l) = s.op {
-                self.seen(l, k);
-                self.top.insert(l);
-            }
+    /// The routine's next statement (`None`: the ops before or after its body) and its ops.
+    pub fn push(&mut self, stmt: Option<&crate::syntax::ast::Stmt>, ops: &Block) {
+        if let (Some(s), Some(g)) = (stmt, &mut self.graph) {
+            g.push(s);
         }
-        super::visit::each_op(ops, &mut |op| match op {
-            Op::Goto(l) => self.seen(*l, k),
-            Op::Loop { id, .. } => self.loops = self.loops.max(id.0 + 1),
-            _ => {}
+        super::visit::each_op(ops, &mut |op| {
+            if let Op::Loop { id, .. } = op {
+                self.loops = self.loops.max(id.0 + 1);
+            }
         });
-    }
-
-    fn seen(&mut self, l: LabelId, k: usize) {
-        let range = self.at.entry(l).or_insert((k, k));
-        range.0 = range.0.min(k);
-        range.1 = range.1.max(k);
     }
 
     /// The routine `id` ends.
     pub fn end(&mut self, id: RoutineId) {
-        let top = std::mem::take(&mut self.top);
+        let jumps = self.graph.take().map(|g| g.finish()).unwrap_or_default();
         // A label statement holds nothing else: a range wider than one statement has a jump.
-        let mut ranges: Vec<(usize, usize)> = std::mem::take(&mut self.at)
-            .into_iter()
-            .filter(|(l, (lo, hi))| top.contains(l) && lo < hi)
-            .map(|(_, range)| range)
-            .collect();
+        let mut ranges: Vec<(usize, usize)> =
+            jumps.at.into_values().filter(|(lo, hi)| lo < hi).collect();
         ranges.sort_unstable();
         let mut units: Vec<(usize, usize)> = Vec::new();
         for (lo, hi) in ranges {
@@ -304,37 +335,34 @@ mod tests {
     /// no unit.
     #[test]
     fn units_span_a_label_and_its_jumps() {
-        let (a, b, c, d, e) = (LabelId(0), LabelId(1), LabelId(2), LabelId(5), LabelId(6));
-        let nested = |l| Op::Loop {
-            id: LoopId(3),
-            kind: LoopKind::Forever,
-            body: vec![stmt(Op::Label(l)), stmt(Op::Goto(l))],
-            end: 0,
-        };
-        let statements = [
-            Op::Goto(a),          // 0
-            Op::Halt,             // 1
-            Op::Label(a),         // 2
-            Op::Goto(b),          // 3
-            Op::Halt,             // 4
-            Op::Label(b),         // 5
-            Op::Halt,             // 6
-            Op::Label(c),         // 7: never jumped to
-            nested(LabelId(4)),   // 8
-            Op::Goto(LabelId(4)), // 9: into a block
-            Op::Label(d),         // 10
-            Op::Goto(e),          // 11
-            Op::Goto(d),          // 12
-            Op::Label(e),         // 13
-        ];
+        let text = "DEF r()\n\
+                    GOTO a\nHALT\na:\n\
+                    GOTO b\nHALT\nb:\n\
+                    HALT\n\
+                    c:\n\
+                    LOOP\nd:\nGOTO d\nENDLOOP\n\
+                    GOTO d\n\
+                    e:\nGOTO f\nGOTO e\nf:\n\
+                    END\n";
+        let ast = crate::syntax::parse(text).ast(text);
+        let body = &ast.routines[0].body;
         let mut plan = Plan::default();
         plan.begin(RoutineId(0));
-        for op in statements {
-            plan.push(&vec![stmt(op)]);
+        plan.push(None, &Block::new());
+        for s in body {
+            plan.push(Some(s), &Block::new());
         }
+        let nested = Op::Loop {
+            id: LoopId(3),
+            kind: LoopKind::Forever,
+            body: vec![stmt(Op::Halt)],
+            end: 0,
+        };
+        plan.push(None, &vec![stmt(nested)]);
         plan.end(RoutineId(0));
-        let ends: Vec<usize> = (0..14).map(|k| plan.unit_end(RoutineId(0), k)).collect();
-        assert_eq!(ends, [2, 2, 2, 5, 5, 5, 6, 7, 8, 9, 13, 13, 13, 13]);
+        let n = body.len() + 2;
+        let ends: Vec<usize> = (0..n).map(|k| plan.unit_end(RoutineId(0), k)).collect();
+        assert_eq!(ends, [0, 3, 3, 3, 6, 6, 6, 7, 8, 9, 10, 14, 14, 14, 14, 15]);
         assert_eq!(plan.next_loop(RoutineId(0)), 4);
     }
 }
