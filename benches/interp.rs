@@ -2,10 +2,18 @@
 //! loops that read and write locals, `.dat` globals, array elements and STRUC fields and call a
 //! DEFFCT. Names are bound to slots at load (`interp/resolve.rs`), so what a statement costs is
 //! its evaluation, not finding its variables.
+//! `many_routines_*`: the scaling benchmark's many-routines module (`tests/scaling_support`:
+//! 40-line pick routines, each with its function, a main routine calling each once) at two
+//! sizes, loaded (`load_`, bytes per second) and run (`run_`, statements per second): linear
+//! in the program is the same rate at both sizes.
 //! Run briefly: `cargo bench --bench interp -- --warm-up-time 1 --measurement-time 5`.
 
 use criterion::{Criterion, Throughput};
 use krlkit::interp::{self, End, Options, Program};
+
+#[path = "../tests/scaling_support/shapes.rs"]
+#[allow(dead_code)]
+mod shapes;
 
 /// Locals only: arithmetic, an array element, a condition.
 const LOCALS: &str = "DEF locals()
@@ -77,6 +85,20 @@ fn main() {
         let program = load(&files);
         g.throughput(Throughput::Elements(steps(&program)));
         g.bench_function(name, |b| {
+            b.iter(|| interp::run(&program, &Options::default()))
+        });
+    }
+    // Sizes whose runs stay under the motion limit (about 20 motions per pick routine).
+    for kb in [100, 800] {
+        let text = shapes::many_routines("main", kb << 10, &[]);
+        let files = [("main.src", text.as_str())];
+        g.throughput(Throughput::Bytes(text.len() as u64));
+        g.bench_function(format!("load_many_routines_{kb}kb"), |b| {
+            b.iter(|| load(&files))
+        });
+        let program = load(&files);
+        g.throughput(Throughput::Elements(steps(&program)));
+        g.bench_function(format!("run_many_routines_{kb}kb"), |b| {
             b.iter(|| interp::run(&program, &Options::default()))
         });
     }

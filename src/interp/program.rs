@@ -2,7 +2,7 @@
 //! `sema` (which `.src` and `.dat` form one module, which data list is `$config.dat`), with a
 //! routine registry and the type table built from all of them and the KSS environment.
 
-use std::collections::HashMap;
+use rustc_hash::FxHashMap;
 
 use crate::diag::{LineIndex, Span};
 use crate::sema::{Analysis, FileId};
@@ -39,7 +39,7 @@ pub struct Program {
     pub modules: Vec<Module>,
     pub(crate) types: Types,
     /// Upper-case routine name → (module, routine) for GLOBAL DEFs and each file's first DEF.
-    pub(crate) global_routines: HashMap<String, (usize, usize)>,
+    pub(crate) global_routines: FxHashMap<String, (usize, usize)>,
     /// Every name use bound to its slot or routine (see `resolve.rs`).
     pub(crate) resolved: Resolution,
 }
@@ -51,8 +51,8 @@ impl Program {
         let sema = &analysis.sema;
         // One scope name per model module; a second module of one name (another folder) is
         // told apart by its folder.
-        let mut scope_names: HashMap<crate::sema::ModuleId, String> = HashMap::new();
-        let mut taken: HashMap<String, crate::sema::ModuleId> = HashMap::new();
+        let mut scope_names: FxHashMap<crate::sema::ModuleId, String> = FxHashMap::default();
+        let mut taken: FxHashMap<String, crate::sema::ModuleId> = FxHashMap::default();
         for (i, f) in analysis.files.iter().enumerate() {
             let info = sema.file(FileId(i as u32));
             if scope_names.contains_key(&info.module) {
@@ -92,15 +92,19 @@ impl Program {
             });
         }
         let mut types = Types::builtin();
-        let mut global_routines = HashMap::new();
-        let mut local_routines = HashMap::new();
+        let mut global_routines = FxHashMap::default();
+        // Scope → routine key → routine: looked up by `&str`, once per call in the text.
+        let mut local_routines: FxHashMap<&str, FxHashMap<String, (usize, usize)>> =
+            FxHashMap::default();
         // Every ENUM and STRUC with the module it is written in.
         let mut defs: Vec<(usize, &Definition)> = Vec::new();
         for (mi, m) in modules.iter().enumerate() {
             for (ri, r) in m.ast.routines.iter().enumerate() {
                 let key = r.name.key();
                 local_routines
-                    .entry((m.scope.clone(), key.clone()))
+                    .entry(m.scope.as_str())
+                    .or_default()
+                    .entry(key.clone())
                     .or_insert((mi, ri));
                 // A file's first routine is callable from everywhere, like on the controller.
                 if r.global || ri == 0 {
@@ -189,13 +193,14 @@ impl Program {
 /// The routine a call of `key` (upper case) from a module of `scope` reaches: the module's
 /// own, else a GLOBAL one or a module's first.
 fn find_routine(
-    local: &HashMap<(String, String), (usize, usize)>,
-    global: &HashMap<String, (usize, usize)>,
+    local: &FxHashMap<&str, FxHashMap<String, (usize, usize)>>,
+    global: &FxHashMap<String, (usize, usize)>,
     scope: &str,
     key: &str,
 ) -> Option<(usize, usize)> {
     local
-        .get(&(scope.to_string(), key.to_string()))
+        .get(scope)
+        .and_then(|own| own.get(key))
         .or_else(|| global.get(key))
         .copied()
 }

@@ -10,15 +10,18 @@
 //! to the module's data list (`SCOPE::NAME`), else the robot-wide one (`NAME`: GLOBAL,
 //! `$config.dat`, system variables); a data-list SIGNAL of that key is the signal.
 
+mod uses;
+
 use rustc_hash::FxHashMap;
 
-use crate::diag::Span;
 use crate::sema::{FileId, Resolved, Scope, Sema, UseKind};
 use crate::syntax::ast::{Definition, Ident, Routine, StmtKind};
 
 use super::globals::Globals;
 use super::program::Module;
 use super::value::BaseType;
+pub(crate) use uses::Uses;
+use uses::UsesBuilder;
 
 /// A routine of the program: its frame layout and what a call needs to know about it.
 #[derive(Debug)]
@@ -45,31 +48,6 @@ pub(crate) enum Binding {
     Signal(u32),
     /// A call: the routine it reaches (`None`: no routine of the program, a built-in).
     Call(Option<(u32, u32)>),
-}
-
-/// The bindings of one module's text, by the start offset of the name.
-#[derive(Debug, Default)]
-pub(crate) struct Uses {
-    /// Offset → 1 + index in `bound` (0: nothing bound there).
-    at: Vec<u32>,
-    /// The binding and the end offset of its name (a check that the text is this module's).
-    bound: Vec<(u32, Binding)>,
-}
-
-impl Uses {
-    pub(crate) fn get(&self, span: Span) -> Option<Binding> {
-        let k = *self.at.get(span.start as usize)?;
-        let (end, b) = *self.bound.get(k.checked_sub(1)? as usize)?;
-        (end == span.end).then_some(b)
-    }
-
-    fn put(&mut self, span: Span, b: Binding) {
-        let Some(slot) = self.at.get_mut(span.start as usize) else {
-            return;
-        };
-        self.bound.push((span.end, b));
-        *slot = self.bound.len() as u32;
-    }
 }
 
 /// What loading resolved.
@@ -149,7 +127,7 @@ pub(crate) fn resolve(
             model_locals
                 .entry((r.file.0, r.index))
                 .or_default()
-                .push(sema.name(sym.name).to_ascii_uppercase());
+                .push(sema.names.key(sym.name).to_string());
         }
     }
     let mut res = Resolution::default();
@@ -179,13 +157,7 @@ pub(crate) fn resolve(
         }
         res.routine_ids.push(ids);
     }
-    let mut uses: Vec<Uses> = modules
-        .iter()
-        .map(|m| Uses {
-            at: vec![0; m.text.len() + 1],
-            bound: Vec::new(),
-        })
-        .collect();
+    let mut uses: Vec<UsesBuilder> = (0..modules.len()).map(|_| UsesBuilder::default()).collect();
     // The data lists' signals, declared where the machine reads them: module-wide, or
     // visible everywhere when GLOBAL or in `$config.dat`.
     for (mi, m) in modules.iter().enumerate() {
@@ -205,6 +177,11 @@ pub(crate) fn resolve(
     for (mi, m) in modules.iter().enumerate() {
         let file = FileId(mi as u32);
         let uses = &mut uses[mi];
+        let declared: usize = res.routine_ids[mi]
+            .iter()
+            .map(|&id| layouts[id as usize].len())
+            .sum();
+        uses.reserve(sema.uses(file).len() + declared);
         // Declared names: a call declares its routine's locals straight into their slots.
         for (ri, r) in m.ast.routines.iter().enumerate() {
             let id = res.routine_ids[mi][ri];
@@ -226,13 +203,13 @@ pub(crate) fn resolve(
         }
         for (k, u) in sema.uses(file).iter().enumerate() {
             let owner = (u.owner != u32::MAX).then(|| res.routine_ids[mi][u.owner as usize]);
-            let key = sema.name(sema.use_name(u)).to_ascii_uppercase();
+            let key = sema.names.key(sema.use_name(u));
             let binding = match u.kind {
                 UseKind::Call => {
-                    Binding::Call(find_routine(mi, &key).map(|(a, b)| (a as u32, b as u32)))
+                    Binding::Call(find_routine(mi, key).map(|(a, b)| (a as u32, b as u32)))
                 }
                 UseKind::Var => {
-                    let key = canonical(&key);
+                    let key = canonical(key);
                     let local = owner.and_then(|r| Some((r, *layouts[r as usize].get(key)?)));
                     match local {
                         Some((routine, slot)) => Binding::Local { routine, slot },
@@ -255,7 +232,7 @@ pub(crate) fn resolve(
             uses.put(u.span, binding);
         }
     }
-    res.uses = uses;
+    res.uses = uses.into_iter().map(UsesBuilder::finish).collect();
     res
 }
 

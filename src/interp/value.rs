@@ -1,6 +1,6 @@
 //! Runtime values and types.
 
-use std::collections::HashMap;
+use rustc_hash::FxHashMap;
 
 use crate::sema::env::EnvTypeDecl;
 use crate::syntax::ast::{EnumDecl, ExprKind, StrucDecl};
@@ -185,9 +185,9 @@ pub struct StrucDef {
 /// Type definitions in scope: built-in STRUCs/ENUMs plus every STRUC/ENUM of the loaded files.
 #[derive(Debug, Clone, Default)]
 pub struct Types {
-    pub strucs: HashMap<String, StrucDef>,
+    pub strucs: FxHashMap<String, StrucDef>,
     /// ENUM name → its values (upper-case).
-    pub enums: HashMap<String, Vec<String>>,
+    pub enums: FxHashMap<String, Vec<String>>,
 }
 
 const FRAME6: [&str; 6] = ["X", "Y", "Z", "A", "B", "C"];

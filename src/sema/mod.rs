@@ -135,13 +135,14 @@ impl Analysis {
             .files
             .into_par_iter()
             .map(|f| {
-                let parse = crate::syntax::parse(&f.text);
-                let ast = parse.ast(&f.text);
+                // Lowered piece by piece: the whole lossless tree is never held (it is
+                // several times the text).
+                let (ast, syntax_errors) = crate::syntax::ast::lower_pieces(&f.text);
                 let summary = FileSummary::of(&ast);
                 (
                     ParsedFile {
                         path: f.path.clone(),
-                        syntax_errors: parse.diagnostics,
+                        syntax_errors,
                         text: f.text,
                         ast,
                     },

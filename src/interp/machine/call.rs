@@ -121,6 +121,7 @@ impl<'p> Machine<'p> {
             }
         })();
         let frame = self.scopes.frames.pop();
+        self.interrupts.leave_level(self.scopes.frames.len());
         self.loc = saved_loc;
         self.scopes.lexical = saved_lexical;
         let result = match result {

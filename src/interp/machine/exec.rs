@@ -266,11 +266,11 @@ impl<'p> Machine<'p> {
             } => self.pulse(signal, level, duration)?,
             StmtKind::OnErrorProceed | StmtKind::TimeBlock(_) => {}
             StmtKind::InterruptDecl {
+                global,
                 number,
                 condition,
                 handler,
-                ..
-            } => self.interrupt_decl(number, condition, handler)?,
+            } => self.interrupt_decl(*global, number, condition, handler)?,
             StmtKind::Interrupt { action, number } => {
                 self.interrupt_switch(*action, number.as_ref())?
             }

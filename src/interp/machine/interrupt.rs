@@ -4,8 +4,15 @@
 //! TRUE (edge-triggered, like the controller), checked before every statement; the handler
 //! runs to completion with further interrupts held back. Conditions the simulation never makes
 //! TRUE (`$STOPMESS` in the standard INI fold) simply never fire.
+//!
+//! An interrupt declared without GLOBAL belongs to the level (the call) that declared it and
+//! the routines that call makes: when that call returns, the declaration is gone, as on the
+//! controller ([U]: from KUKA's description of GLOBAL; what becomes of an older declaration of
+//! the same number that it replaced is not documented, and here the number is then free).
 
 use std::collections::BTreeMap;
+
+use std::rc::Rc;
 
 use crate::syntax::ast::{Expr, InterruptAction, Stmt};
 
@@ -17,14 +24,18 @@ pub(super) struct Interrupt {
     loc: (usize, u32),
     /// Where it was declared: its condition and handler arguments use that call's names.
     lexical: Lexical,
-    condition: Expr,
-    handler: Stmt,
+    /// Shared: an interrupt is copied out of the table at every check, without its code.
+    condition: Rc<Expr>,
+    handler: Rc<Stmt>,
     on: bool,
     enabled: bool,
     /// The condition's value at the last check (an interrupt fires on a rising edge).
     last: bool,
-    /// Call depth of the declaration: where a RESUME in its handler returns to.
+    /// Call depth of the declaration: where a RESUME in its handler returns to, and (without
+    /// GLOBAL) the level whose return removes it.
     depth: usize,
+    /// `GLOBAL INTERRUPT DECL`: it outlives the routine that declared it.
+    global: bool,
 }
 
 #[derive(Debug, Default)]
@@ -35,11 +46,27 @@ pub(super) struct Interrupts {
     handling: bool,
     /// Declaration depth of the interrupt whose handler runs.
     handling_depth: usize,
+    /// Number of declarations without GLOBAL: nothing to remove when a call returns if 0.
+    local: usize,
 }
 
 impl Interrupts {
     fn recount(&mut self) {
         self.active = self.table.values().filter(|i| i.on && i.enabled).count();
+        self.local = self.table.values().filter(|i| !i.global).count();
+    }
+
+    /// The call at depth `depth + 1` returned: its own declarations (and any left by the
+    /// calls it made) without GLOBAL are gone.
+    pub(super) fn leave_level(&mut self, depth: usize) {
+        if self.local == 0 {
+            return;
+        }
+        let before = self.table.len();
+        self.table.retain(|_, i| i.global || i.depth <= depth);
+        if self.table.len() != before {
+            self.recount();
+        }
     }
 }
 
@@ -56,7 +83,13 @@ impl<'p> Machine<'p> {
         Stop::Resume(Box::new((self.interrupts.handling_depth, e)))
     }
 
-    pub(super) fn interrupt_decl(&mut self, number: &Expr, cond: &Expr, handler: &Stmt) -> R<()> {
+    pub(super) fn interrupt_decl(
+        &mut self,
+        global: bool,
+        number: &Expr,
+        cond: &Expr,
+        handler: &Stmt,
+    ) -> R<()> {
         let n = self.eval_int(number)?;
         if !NUMBERS.contains(&n) {
             return Err(self.err(format!("interrupt number {n} is outside 1..128")));
@@ -64,12 +97,13 @@ impl<'p> Machine<'p> {
         let i = Interrupt {
             loc: self.loc,
             lexical: self.here(),
-            condition: cond.clone(),
-            handler: handler.clone(),
+            condition: Rc::new(cond.clone()),
+            handler: Rc::new(handler.clone()),
             on: false,
             enabled: true,
             last: false,
             depth: self.scopes.frames.len(),
+            global,
         };
         self.interrupts.table.insert(n, i);
         self.interrupts.recount();
@@ -117,7 +151,7 @@ impl<'p> Machine<'p> {
     /// Run `f` with names found where `i` was declared: its condition and handler mean the
     /// same wherever the program is when they are checked (a non-GLOBAL interrupt stays active
     /// in the routines its routine calls, the package's among them), and a local in them is
-    /// the declaring call's.
+    /// the declaring call's (always there for a non-GLOBAL one, which goes with that call).
     fn in_declaring_scope<T>(&mut self, i: &Interrupt, f: impl FnOnce(&mut Self) -> R<T>) -> R<T> {
         self.written_at(i.lexical, f)
     }
