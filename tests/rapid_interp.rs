@@ -453,7 +453,7 @@ fn triggers_switch_outputs_at_the_start_or_end() {
             other => format!("{other:?}"),
         })
         .collect();
-    assert_eq!(kinds, ["5=true", "TriggL", "TriggJ", "6=true"]);
+    assert_eq!(kinds, ["TriggL", "5=true", "TriggJ", "6=true"]);
 }
 
 #[test]

@@ -99,7 +99,8 @@ const CASES: &[Case] = &[
         // Lines 5, 9: the PTP speed is never set (KRL: none), AS moves at the SPEED ALWAYS in
         // force. Lines 7, 8: the spline's points become LMOVEs blended by $APO.CDIS (KRL
         // passes them on one continuous path: no approximation clause of their own). Lines 11,
-        // 13: the TRIGGER actions switch the output before/after the motion, not on the path.
+        // 13: the TRIGGER actions switch the output before/after the motion, not on the path
+        // (RAPID switches them on the path: TriggIO/TriggL).
         kawasaki: &[
             ex(5, Aspect::Speed, AS_SPEED_UNKNOWN),
             ex(9, Aspect::Speed, AS_SPEED_UNKNOWN),
@@ -121,8 +122,6 @@ const CASES: &[Case] = &[
             ex(9, Aspect::Speed, RAPID_PTP_UNSET),
             by(7, Aspect::Blend, 6, SPLINE),
             by(8, Aspect::Blend, 6, SPLINE),
-            TRIGGER_ON,
-            TRIGGER_OFF,
         ],
     },
     Case {
@@ -390,7 +389,7 @@ fn a_broken_translation_is_caught() {
         });
         assert!(r.is_err(), "{name}: `{from}` -> `{to}` was not caught");
     }
-    let rapid_cases: [(&str, &str, &str); 5] = [
+    let rapid_cases: [(&str, &str, &str); 6] = [
         ("speed_kinds", "MoveL ppick, v200,", "MoveL ppick, v300,"),
         // A quaternion with another convention (x first): another rotation.
         (
@@ -402,8 +401,14 @@ fn a_broken_translation_is_caught() {
         // An exact stop blended.
         (
             "spline_trigger",
-            "MoveL ppick, v200, fine, tool0;",
-            "MoveL ppick, v200, z20, tool0;",
+            "TriggL ppick, v200, trigg, fine, tool0;",
+            "TriggL ppick, v200, trigg, z20, tool0;",
+        ),
+        // The output switched before the motion instead of on its path.
+        (
+            "spline_trigger",
+            "    TriggIO trigg, 0 \\Start \\DOp:=do5, 1;\n    TriggL ppick, v200, trigg, fine, tool0;\n",
+            "    SetDO do5, 1;\n    MoveL ppick, v200, fine, tool0;\n",
         ),
         // The output switches after the next motion instead of before it.
         (
@@ -454,4 +459,33 @@ fn a_broken_translation_is_caught() {
         });
         assert!(r.is_err(), "{name}: `{from}` -> `{to}` was not caught");
     }
+}
+
+/// A STRUC is a RAPID RECORD: the translated `records` fixture runs, its record values are
+/// assigned, read and passed as KRL does (the KRL run: force 12.5 + 2, closed set, $OUT[3] and
+/// $OUT[4] on), and the `.dat` value is a PERS of the record type.
+#[test]
+fn a_struc_runs_as_a_record_in_rapid() {
+    let p = Program::fixture("records");
+    let t = to_rapid(&p);
+    assert!(
+        equiv_support::findings(&t).is_empty(),
+        "{:?}\n{}",
+        equiv_support::findings(&t),
+        t.text
+    );
+    let mut r = rapid_support::Rapid::load_files(&[("program.mod", &t.text)]).expect("loads");
+    assert_eq!(r.run("main"), Ok(rapid_support::End::Done), "{}", t.text);
+    assert!(r.output(3) && r.output(4));
+    assert_eq!(
+        r.get("last_grip"),
+        Some(&rapid_support::V::Rec(
+            "grip_t".into(),
+            vec![
+                rapid_support::V::Num(14.5),
+                rapid_support::V::Bool(true),
+                rapid_support::V::Str("left".into()),
+            ]
+        ))
+    );
 }

@@ -59,6 +59,7 @@ pub enum Command {
     /// Explain one rule: what, why, example, fix.
     Rule(RuleArgs),
     /// Translate a KRL program to another robot language.
+    #[command(after_help = transpile_caps_help())]
     Transpile(TranspileArgs),
     /// Simulation tools: the fake Mech-Mind vision server.
     Sim(SimArgs),
@@ -491,6 +492,14 @@ pub enum SrciCommand {
 }
 
 /// The fields `srci encode` accepts, from the SRCI table.
+/// What each target can hold, from the targets' declared capabilities (as README shows it).
+fn transpile_caps_help() -> String {
+    format!(
+        "What each target can hold (TR001: not translated, TR002: approximately):\n{}",
+        crate::transpile::render::backend::caps_text()
+    )
+}
+
 fn srci_fields_help() -> String {
     use crate::srci::{FIELDS, FieldKind};
     let mut out = String::from("Fields (bit: name = values):\n");

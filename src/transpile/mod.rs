@@ -261,14 +261,29 @@ fn each_lowered(
     lower: &mut ir::lower::Lower<'_>,
     mut f: impl FnMut(Lowered<'_>),
 ) {
+    // The ops before the open routine's body: its head's declarations add to them until the
+    // first statement or its end.
+    let mut head: Option<ir::Block> = None;
     program.src.each_statement(false, |s| match s {
         front::Statement::Begin(i) => {
-            let ops = lower.begin_routine(i);
+            head = Some(lower.begin_routine(i));
             f(Lowered::Begin(ir::RoutineId(i as u32)));
-            f(Lowered::Ops(ops, None));
         }
-        front::Statement::Stmt(s) => f(Lowered::Ops(lower.stmt(&s), Some(&s))),
+        front::Statement::Head(s) => {
+            if let Some(ops) = &mut head {
+                lower.head(&s, ops);
+            }
+        }
+        front::Statement::Stmt(s) => {
+            if let Some(ops) = head.take() {
+                f(Lowered::Ops(ops, None));
+            }
+            f(Lowered::Ops(lower.stmt(&s), Some(&s)));
+        }
         front::Statement::End(i) => {
+            if let Some(ops) = head.take() {
+                f(Lowered::Ops(ops, None));
+            }
             f(Lowered::Ops(lower.end_routine(), None));
             f(Lowered::End(ir::RoutineId(i as u32)));
         }

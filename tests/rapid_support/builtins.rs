@@ -582,9 +582,6 @@ impl Rapid {
             Some(v) => Some(Target::Cart(cart(&v)?)),
             None => None,
         };
-        if let Some((n, v, true)) = trigger {
-            self.set_output(n, v);
-        }
         self.trace.push(Event::Move(Box::new(Motion {
             instr,
             target,
@@ -597,7 +594,10 @@ impl Rapid {
             wobj,
             line,
         })));
-        if let Some((n, v, false)) = trigger {
+        // The output switches on the motion's path (at its start or end point): in the trace
+        // after the motion, as the KRL interpreter records a TRIGGER (an output set before the
+        // motion starts is one the robot's standstill sees).
+        if let Some((n, v, _)) = trigger {
             self.set_output(n, v);
         }
         Ok(())

@@ -4,6 +4,7 @@
 use super::expr::ADD;
 use super::{R, Tx};
 use crate::transpile::ir::{Datum, Expr, ExprKind, Ty};
+use crate::transpile::render::Emit;
 
 impl<'a> Tx<'a> {
     pub(super) fn data_globals(&mut self) {
@@ -33,7 +34,7 @@ impl<'a> Tx<'a> {
         let start = self.out.lines.len();
         let r = match &d.value {
             Ok(v) => self.data_expr(&var.ty, v, d.file),
-            Err(why) => super::fail(d.span, why.message(), super::help::help(why)),
+            Err(why) => self.unsupported(why, d.span),
         };
         self.out.lines.truncate(start);
         match r {
@@ -72,11 +73,9 @@ impl<'a> Tx<'a> {
         file: crate::transpile::front::report::FileId,
     ) -> R<String> {
         match (ty, &value.kind) {
-            (Ty::Struc(t) | Ty::Other(t), _) => super::fail(
-                value.span,
-                format!("a value of type {t} has no translation"),
-                "split the structure into separate variables (numbers, strings, poses)",
-            ),
+            (Ty::Struc(_) | Ty::Other(_), _) => {
+                crate::transpile::render::not_lowered(value.span, "a structure value")
+            }
             (Ty::Signal(_), _) => {
                 super::fail(value.span, "a signal has no value to store", "remove it")
             }

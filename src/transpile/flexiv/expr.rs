@@ -102,6 +102,7 @@ impl<'a> Tx<'a> {
                 ),
             },
             ExprKind::NullFrame => Ok(Py::atom("Pose()")),
+            ExprKind::Record(_) => crate::transpile::render::not_lowered(e.span, "a record value"),
             ExprKind::Current { joints: true } => Ok(Py::atom(self.axis_act(e.span)?)),
             ExprKind::Current { joints: false } => {
                 self.pos_act_caveat(e.span);

@@ -37,7 +37,7 @@ pub use options::{Api, FlexivOptions, JointMap, JointSource, PtpPrimitive, RdkVe
 use super::Options;
 use super::VisionServer;
 use super::front::Program as Source;
-use super::front::names::{Home, Namer};
+use super::front::names::Home;
 use super::front::report::Report;
 use super::ir::{self, Block, LoopId, RoutineId, RoutineKind, Scope, Stmt, TempId, VarId};
 use super::render::{self, Emit, Out, Style};
@@ -66,6 +66,13 @@ static STYLE: Style = Style {
     if_then: |c| format!("if {c}:"),
     else_line: "else:",
     end_if: None,
+    help: help::help,
+    message: render::MessageWords {
+        name: "print",
+        line: |t| format!("print({t})"),
+        confirm: "input()",
+    },
+    jumps: None,
 };
 
 /// A Flexiv RDK Python script in the table of targets. Python has no GOTO: the routines' jumps
@@ -77,8 +84,9 @@ pub static BACKEND: render::Backend = render::Backend {
     name: "flexiv",
     caps: render::Caps {
         goto: false,
-        records: false,
         interrupts: false,
+        blending: render::Blending::ZoneCodes,
+        ..render::Caps::BASE
     },
     name_rules: &NAME_RULES,
     help: help::help,
@@ -137,7 +145,6 @@ pub struct Tx<'a> {
     fx: &'a FlexivOptions,
     vision: Option<&'a VisionServer>,
     out: Out<'a>,
-    names: Namer<'a>,
     rt: Option<Rt>,
     /// Python name → undeclared KRL name.
     assumed: BTreeMap<String, Assumed>,
@@ -169,8 +176,7 @@ impl<'a> Tx<'a> {
             ir,
             fx: &opts.flexiv,
             vision,
-            out: Out::new(&STYLE, src, report),
-            names: Namer::new(&NAME_RULES, ir),
+            out: Out::new(&STYLE, src, ir, &NAME_RULES, report),
             rt: None,
             assumed: BTreeMap::new(),
             externals: BTreeSet::new(),
@@ -190,6 +196,7 @@ impl<'a> Tx<'a> {
         match first {
             Some(i) if ir.routines[i].params.is_empty() => {
                 self.entry = self
+                    .out
                     .names
                     .routine_of(&ir.routines[i].name)
                     .map(str::to_owned);
@@ -201,6 +208,7 @@ impl<'a> Tx<'a> {
             None => {
                 if let Some(t) = ir.top_level {
                     self.entry = self
+                        .out
                         .names
                         .routine_of(&ir.routine(t).name)
                         .map(str::to_owned);
@@ -213,12 +221,12 @@ impl<'a> Tx<'a> {
 
     /// The Python name of a routine (of this file or of another module).
     fn routine_name(&mut self, krl: &str, span: Span) -> String {
-        self.names.routine(&mut self.out.rep, krl, span)
+        self.out.names.routine(&mut self.out.rep, krl, span)
     }
 
     /// The Python spelling of a variable, and whether it lives at module level.
     fn var_name(&mut self, v: VarId, used_at: Span) -> (String, bool) {
-        let (n, home) = self.names.var(&mut self.out.rep, v, used_at);
+        let (n, home) = self.out.names.var(&mut self.out.rep, v, used_at);
         let var = self.ir.var(v);
         if var.scope == Scope::Assumed && !self.assumed.contains_key(&n) {
             let what = match &var.ty {
@@ -390,14 +398,14 @@ impl<'a> Tx<'a> {
         for n in &self.out.notes {
             v.push(n.clone());
         }
-        v.extend(render::name_map_lines(&self.names, ""));
+        v.extend(render::name_map_lines(&self.out.names, ""));
         v.iter().map(|l| format::ascii(l)).collect()
     }
 }
 
 impl crate::transpile::Renderer for Tx<'_> {
     fn start(&mut self) {
-        self.names.declare_program(&mut self.out.rep);
+        self.out.names.declare_program(&mut self.out.rep);
         self.data_globals();
     }
 
@@ -412,7 +420,7 @@ impl crate::transpile::Renderer for Tx<'_> {
         let name = if r.synthetic {
             self.routine_name(&r.name, r.name_span)
         } else {
-            self.names.routine_of(&r.name).unwrap_or("").to_owned()
+            self.out.names.routine_of(&r.name).unwrap_or("").to_owned()
         };
         self.rt = Some(Rt {
             id,
@@ -437,7 +445,7 @@ impl crate::transpile::Renderer for Tx<'_> {
             base: None,
         });
         // Locals first (parameters, then declarations), so made-up names never take a user's.
-        self.names.declare_locals(&mut self.out.rep, id);
+        self.out.names.declare_locals(&mut self.out.rep, id);
         let mut params = Vec::new();
         let mut outs = Vec::new();
         for p in &r.params {
@@ -564,6 +572,10 @@ impl<'a> Emit<'a> for Tx<'a> {
 
     fn expr_text(&mut self, e: &ir::Expr) -> R<String> {
         self.expr(e)
+    }
+
+    fn routine_id(&self) -> RoutineId {
+        self.rt.as_ref().map_or(RoutineId(0), |r| r.id)
     }
 
     fn block_edge(&mut self) {

@@ -131,6 +131,9 @@ impl<'a> Tx<'a> {
     }
 
     pub(super) fn motion(&mut self, m: &Move, span: Span) -> R<()> {
+        if m.trigger.is_some() {
+            return crate::transpile::render::not_lowered(span, "a TRIGGER on the path");
+        }
         let zone_arg = |z: Option<String>| z.map(|z| format!(", {z}")).unwrap_or_default();
         match &m.path {
             Path::Circular { .. } => fail(

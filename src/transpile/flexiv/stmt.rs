@@ -169,10 +169,7 @@ impl<'a> Tx<'a> {
             ),
             // The lowering refuses interrupts for a target without them
             // ([`crate::transpile::ir::Why::NoInterrupts`]): this is never reached.
-            Op::Interrupt { .. } => {
-                let why = crate::transpile::ir::Why::NoInterrupts;
-                fail(span, why.message(), super::help::help(&why))
-            }
+            Op::Interrupt { .. } => crate::transpile::render::not_lowered(span, "an interrupt"),
             // What reaches here is KUKA's stop-message interrupt.
             Op::InterruptDecl(_) => {
                 self.out.rep.approximate(
@@ -184,18 +181,8 @@ impl<'a> Tx<'a> {
                 self.keep_as_comment("TR002", span);
                 Ok(())
             }
-            Op::Message { routine, text } => {
-                let t = self.expr(text)?;
-                self.out.rep.approximate(
-                    FileId::Src,
-                    span,
-                    format!("{routine} becomes print (no message window, no acknowledgement)"),
-                    "use input() where the operator must confirm",
-                );
-                self.line(format!("print({t})"));
-                Ok(())
-            }
-            Op::Unsupported { why, at } => fail(*at, why.message(), super::help::help(why)),
+            Op::Message { routine, text } => self.message(routine, text, span),
+            Op::Unsupported { why, at } => self.unsupported(why, *at),
             Op::Keep { note } => self.keep_op(*note, span),
         }
     }
@@ -461,13 +448,7 @@ impl<'a> Tx<'a> {
         match callee {
             Callee::Mm(sub) => self.mm_call(sub, args, span),
             Callee::Routine(r) => {
-                let routine = self.ir.routine(*r);
-                let name = self
-                    .names
-                    .routine_of(&routine.name)
-                    .unwrap_or(&routine.name)
-                    .to_owned();
-                let deffct = routine.kind == RoutineKind::Deffct;
+                let (name, deffct, _) = self.routine_callee(*r);
                 let mut rendered = Vec::new();
                 let mut places = Vec::new();
                 let has_outs = args.iter().any(|a| a.out);

@@ -47,6 +47,8 @@ pub struct Parsed {
 pub enum Statement {
     /// The routine with this index (into the outline's routines) opens.
     Begin(usize),
+    /// A declaration or definition of the open routine's head (before its first statement).
+    Head(crate::syntax::ast::Stmt),
     /// A statement of the open routine's body (after its head), or of the top level.
     Stmt(crate::syntax::ast::Stmt),
     /// The routine with this index ends.
@@ -117,8 +119,8 @@ impl Parsed {
     /// Parses the file again and hands `f` the statements of the routines' bodies (`top_level`
     /// false: every routine in source order, between its [`Statement::Begin`] and
     /// [`Statement::End`]) or the statements outside any DEF (`top_level` true), one at a
-    /// time: only a few statements' trees exist at once. Head declarations are not handed out
-    /// (they are in the outline).
+    /// time: only a few statements' trees exist at once. A routine's head declarations and
+    /// definitions come first, as [`Statement::Head`].
     ///
     /// The parse runs on a second thread, a bounded batch of statements ahead of `f`: parsing
     /// is a third of a translation's work, and it overlaps the lowering and rendering.
@@ -182,7 +184,12 @@ impl Parsed {
                 }
                 Lowered::Dat(_) => in_module = true,
                 Lowered::Stmt(s) => match &mut open {
-                    Some((_, skip)) if *skip > 0 => *skip -= 1,
+                    Some((_, skip)) if *skip > 0 => {
+                        *skip -= 1;
+                        if !top_level {
+                            f(Statement::Head(s));
+                        }
+                    }
                     Some(_) if !top_level => f(Statement::Stmt(s)),
                     None if !in_module && top_level => f(Statement::Stmt(s)),
                     _ => {}
@@ -274,18 +281,26 @@ mod tests {
             parsed.each_statement(top_level, |e| {
                 v.push(match e {
                     Statement::Stmt(s) => format!("{s:?}"),
+                    Statement::Head(s) => format!("head {s:?}"),
                     other => format!("{other:?}"),
                 })
             });
             v
         };
         let mut expected = vec![format!("{:?}", Statement::Begin(0))];
+        expected.extend(ast.routines[0].decls.iter().map(|d| {
+            let s = crate::syntax::ast::Stmt {
+                kind: crate::syntax::ast::StmtKind::Decl(Box::new(d.clone())),
+                span: d.span,
+            };
+            format!("head {s:?}")
+        }));
         expected.extend(ast.routines[0].body.iter().map(|s| format!("{s:?}")));
         expected.push(format!("{:?}", Statement::End(0)));
         expected.push(format!("{:?}", Statement::Begin(1)));
         expected.push(format!("{:?}", Statement::End(1)));
         let got = events(false);
-        assert_eq!(got.len(), 2004);
+        assert_eq!(got.len(), 2005);
         assert_eq!(got, expected);
         let top = events(true);
         let expected: Vec<String> = ast.top_level.iter().map(|s| format!("{s:?}")).collect();

@@ -361,6 +361,37 @@ impl<'p> Model<'p> {
         out
     }
 
+    /// The fields of the program's STRUC type `type_name` as seen in `routine` (name as
+    /// declared, type), or `None`
+    /// when it is no STRUC of the program or a field is an array (other than a CHAR string) or
+    /// itself a STRUC.
+    pub fn struc_fields(
+        &self,
+        routine: Option<&str>,
+        type_name: &str,
+    ) -> Option<Vec<(String, Ty)>> {
+        let Resolved::Type(t) = self.sema.lookup_type(self.position(routine), type_name) else {
+            return None;
+        };
+        let fields = self.sema.fields(t);
+        if fields.is_empty() {
+            return None;
+        }
+        fields
+            .iter()
+            .map(|f| {
+                let ty = self.ty(f.ty);
+                let string = matches!(f.ty.kind, TyKind::Char | TyKind::Str(_));
+                let array = f.ty.dims > 0 || f.sizes[0] > 0;
+                match ty {
+                    Ty::Struc(_) | Ty::Other(_) | Ty::Signal(_) => None,
+                    _ if array && !string => None,
+                    ty => Some((self.sema.name(f.name).to_string(), ty)),
+                }
+            })
+            .collect()
+    }
+
     /// The built-in value a type name stands for (`E6POS` → pose).
     pub fn layout_of_type(&self, type_name: &str) -> Option<Layout> {
         match self.sema.lookup_type(self.position(None), type_name) {

@@ -11,7 +11,7 @@
 
 use std::collections::{BTreeMap, BTreeSet};
 
-use rustc_hash::FxHashMap;
+use rustc_hash::{FxHashMap, FxHashSet};
 
 use crate::diag::Span;
 use crate::transpile::front::report::{FileId, Report};
@@ -221,14 +221,47 @@ pub enum Home {
     Package,
 }
 
+/// A TR003 for a name that had to change, recorded for the name map too.
+fn note(
+    renamed: &mut Vec<(&'static str, Renamed)>,
+    rules: &NameRules,
+    rep: &mut Report,
+    kind: &'static str,
+    file: FileId,
+    span: Span,
+    r: Option<Renamed>,
+) {
+    let Some(r) = r else { return };
+    let why: Vec<String> = r.reasons.iter().map(|x| x.describe(rules)).collect();
+    rep.renamed(
+        file,
+        span,
+        format!(
+            "{kind} `{}` is renamed `{}` in {} ({})",
+            r.krl,
+            r.target,
+            rules.language,
+            why.join(", ")
+        ),
+    );
+    renamed.push((kind, r));
+}
+
 /// The names of one translation under one target's rules.
 pub struct Namer<'a> {
     rules: &'static NameRules,
     ir: &'a ir::Program,
     routines: Namespace,
     globals: Namespace,
+    /// The namespaces of the routine being rendered (and of any other asked about since it
+    /// began): a routine's are dropped when the next one is declared, so a file of many
+    /// routines keeps one routine's names, not all of them ([`Namer::declare_locals`]).
     locals: FxHashMap<RoutineId, Namespace>,
     labels: FxHashMap<RoutineId, Namespace>,
+    /// The routine whose locals were declared last.
+    current: Option<RoutineId>,
+    /// Routines whose namespaces were dropped: asked again, they are made again the same way.
+    ended: FxHashSet<RoutineId>,
     /// Each routine's parameters and locals, in declaration order.
     vars_of: FxHashMap<RoutineId, Vec<VarId>>,
     /// Every rename, in the order found, with what kind of name it is.
@@ -250,6 +283,8 @@ impl<'a> Namer<'a> {
             globals: Namespace::default(),
             locals: FxHashMap::default(),
             labels: FxHashMap::default(),
+            current: None,
+            ended: FxHashSet::default(),
             vars_of,
             renamed: Vec::new(),
         }
@@ -276,20 +311,7 @@ impl<'a> Namer<'a> {
         span: Span,
         r: Option<Renamed>,
     ) {
-        let Some(r) = r else { return };
-        let why: Vec<String> = r.reasons.iter().map(|x| x.describe(self.rules)).collect();
-        rep.renamed(
-            file,
-            span,
-            format!(
-                "{kind} `{}` is renamed `{}` in {} ({})",
-                r.krl,
-                r.target,
-                self.rules.language,
-                why.join(", ")
-            ),
-        );
-        self.renamed.push((kind, r));
+        note(&mut self.renamed, self.rules, rep, kind, file, span, r);
     }
 
     /// The target name of a routine (of this file or of another module).
@@ -329,27 +351,67 @@ impl<'a> Namer<'a> {
     }
 
     /// Names the parameters and locals of `id` (parameters, then declarations), so TR003
-    /// points at their declarations and made-up names never take a user's.
+    /// points at their declarations and made-up names never take a user's. The routine
+    /// declared before ends here: its namespaces are dropped (renderers render one routine
+    /// after another).
     pub fn declare_locals(&mut self, rep: &mut Report, id: RoutineId) {
+        if let Some(prev) = self.current.replace(id)
+            && prev != id
+        {
+            self.locals.remove(&prev);
+            self.labels.remove(&prev);
+            self.ended.insert(prev);
+        }
         let ir = self.ir;
-        for v in self.vars_of.get(&id).cloned().unwrap_or_default() {
+        let vars = self.vars_of.get(&id).map_or(&[][..], Vec::as_slice);
+        let ns = self.locals.entry(id).or_default();
+        for &v in vars {
             let var = ir.var(v);
-            let (_, r) = self
-                .locals
-                .entry(id)
-                .or_default()
-                .name(&var.name, self.rules);
-            self.note(rep, "variable", var.file, var.decl, r);
+            let (_, r) = ns.name(&var.name, self.rules);
+            note(
+                &mut self.renamed,
+                self.rules,
+                rep,
+                "variable",
+                var.file,
+                var.decl,
+                r,
+            );
         }
     }
 
     /// Names the labels of `id` in source order.
     pub fn declare_labels(&mut self, rep: &mut Report, id: RoutineId) {
-        let ir = self.ir;
+        let (ir, rules) = (self.ir, self.rules);
         for (krl, span) in &ir.routine(id).labels {
-            let (_, r) = self.labels.entry(id).or_default().name(krl, self.rules);
+            let (_, r) = self.labels_ns(id).name(krl, rules);
             self.note(rep, "label", FileId::Src, *span, r);
         }
+    }
+
+    /// The locals' namespace of `id`; one of a routine that ended is made again as its
+    /// [`Namer::declare_locals`] made it (same names, findings not repeated).
+    fn locals_ns(&mut self, id: RoutineId) -> &mut Namespace {
+        if !self.locals.contains_key(&id) && self.ended.contains(&id) {
+            let mut ns = Namespace::default();
+            for &v in self.vars_of.get(&id).map_or(&[][..], Vec::as_slice) {
+                ns.name(&self.ir.var(v).name, self.rules);
+            }
+            self.locals.insert(id, ns);
+        }
+        self.locals.entry(id).or_default()
+    }
+
+    /// The labels' namespace of `id`, made again for a routine that ended.
+    fn labels_ns(&mut self, id: RoutineId) -> &mut Namespace {
+        if !self.labels.contains_key(&id) && self.ended.contains(&id) {
+            let mut ns = Namespace::default();
+            for (krl, _) in &self.ir.routine(id).labels {
+                ns.name(krl, self.rules);
+            }
+            self.labels.insert(id, ns);
+        }
+        self.labels.entry(id).or_default()
     }
 
     /// A variable's target name (without sigils) and where it lives.
@@ -357,7 +419,7 @@ impl<'a> Namer<'a> {
         let (ir, rules) = (self.ir, self.rules);
         let var = ir.var(v);
         let (ns, home) = match var.scope {
-            Scope::Local(r) | Scope::Param(r) => (self.locals.entry(r).or_default(), Home::Local),
+            Scope::Local(r) | Scope::Param(r) => (self.locals_ns(r), Home::Local),
             Scope::Package => {
                 if let Some(g) = package_name(rules, &var.name) {
                     return (g.to_owned(), Home::Package);
@@ -379,19 +441,20 @@ impl<'a> Namer<'a> {
 
     /// A label of the KRL routine `id`.
     pub fn label(&mut self, id: RoutineId, krl: &str) -> String {
-        self.labels.entry(id).or_default().name(krl, self.rules).0
+        let rules = self.rules;
+        self.labels_ns(id).name(krl, rules).0
     }
 
     /// A label the translator needs in routine `id`.
     pub fn fresh_label(&mut self, id: RoutineId, base: &str) -> String {
         let max = self.rules.max_len;
-        self.labels.entry(id).or_default().fresh(base, max)
+        self.labels_ns(id).fresh(base, max)
     }
 
     /// A local the translator needs in routine `id` (without sigils).
     pub fn fresh_local(&mut self, id: RoutineId, base: &str) -> String {
         let max = self.rules.max_len;
-        self.locals.entry(id).or_default().fresh(base, max)
+        self.locals_ns(id).fresh(base, max)
     }
 
     /// A routine the translator adds (a RAPID TRAP), named apart from every routine and global.
@@ -504,5 +567,35 @@ mod tests {
             assert_eq!(got, want, "{i}");
             plain.insert(got);
         }
+    }
+
+    /// A routine's names are dropped when the next routine is declared; asked again, they
+    /// come back as they were (clash counters included), without a second TR003.
+    #[test]
+    fn an_ended_routines_locals_keep_their_names() {
+        let var = |name: &str, r: u32| ir::Var {
+            name: name.into(),
+            ty: ir::Ty::Int,
+            dims: 0,
+            scope: Scope::Local(RoutineId(r)),
+            constant: false,
+            decl: Span::new(0, 1),
+            file: FileId::Src,
+        };
+        let program = ir::Program {
+            vars: vec![var("a$b", 0), var("a_b", 0), var("x", 1)],
+            ..ir::Program::default()
+        };
+        let rules: &'static NameRules = Box::leak(Box::new(rules()));
+        let mut names = Namer::new(rules, &program);
+        let mut rep = Report::default();
+        names.declare_locals(&mut rep, RoutineId(0));
+        let before = names.var(&mut rep, VarId(1), Span::new(5, 6));
+        names.declare_locals(&mut rep, RoutineId(1));
+        assert!(!names.locals.contains_key(&RoutineId(0)));
+        let findings = names.renamed.len();
+        assert_eq!(names.var(&mut rep, VarId(1), Span::new(7, 8)), before);
+        assert_eq!(before.0, "a_b2");
+        assert_eq!(names.renamed.len(), findings);
     }
 }

@@ -37,8 +37,9 @@ impl Outline {
 /// One routine: its head, and facts of its body.
 #[derive(Debug)]
 pub struct RoutineOutline {
-    /// Header, the declarations and definitions before the first statement, span and `closed`;
-    /// `body` is always empty.
+    /// Header, the definitions before the first statement, span and `closed`; `decls` and
+    /// `body` are always empty: the head's declarations come again with the statements
+    /// ([`super::Statement::Head`]), so the outline does not hold every routine's.
     pub head: ast::Routine,
     /// How many statement pieces the head's declarations and definitions took (the body starts
     /// after them in a re-parse).
@@ -53,7 +54,8 @@ pub struct RoutineOutline {
 /// included, visited depth-first in source order as `syntax::ast::each_stmt` does: the handler of an `INTERRUPT DECL` and the action of a `TRIGGER` included).
 #[derive(Debug, Default)]
 pub struct BodyFacts {
-    /// Upper-case names assigned anywhere (assignment targets, FOR variables).
+    /// Upper-case names of the routine's parameters assigned anywhere (assignment targets, FOR
+    /// variables); other names are dropped when the routine ends.
     pub assigned: HashSet<String>,
     /// Upper-case root names of assignment targets and of call arguments.
     pub written: BTreeSet<String>,
@@ -67,7 +69,7 @@ pub struct BodyFacts {
     pub labels: Vec<ast::Ident>,
     /// `INTERRUPT DECL` statements, in visiting order.
     pub interrupts: Vec<Stmt>,
-    /// `GLOBAL` declarations among the statements, in visiting order.
+    /// `GLOBAL` declarations of the head and among the statements, in visiting order.
     pub global_decls: Vec<ast::Decl>,
     /// Definitions (ENUM, SIGNAL, …) among the statements, in visiting order, and whether
     /// each is a statement of the body itself (not nested in a block).
@@ -179,7 +181,9 @@ impl OutlineBuilder {
                     if self.in_head {
                         match &s.kind {
                             StmtKind::Decl(d) => {
-                                r.head.decls.push((**d).clone());
+                                if d.global {
+                                    r.facts.global_decls.push((**d).clone());
+                                }
                                 r.head_pieces += 1;
                                 return;
                             }
@@ -200,6 +204,14 @@ impl OutlineBuilder {
                     Open::Routine => {
                         if let Some(r) = self.outline.routines.last_mut() {
                             r.head.close(*span, *closed);
+                            // Only needed while the routine is read: kept for every routine of
+                            // a file, they were much of the outline's memory.
+                            r.facts.called = HashSet::new();
+                            let params = &r.head.params;
+                            r.facts
+                                .assigned
+                                .retain(|n| params.iter().any(|p| p.name.is(n)));
+                            r.facts.assigned.shrink_to_fit();
                         }
                     }
                     Open::Dat(mut d) => {
@@ -217,6 +229,7 @@ impl OutlineBuilder {
 
     pub fn finish(mut self) -> Outline {
         let o = &mut self.outline;
+        o.routines.shrink_to_fit();
         for (i, r) in o.routines.iter().enumerate() {
             o.by_name.entry(r.head.name.key()).or_insert(i);
         }
@@ -241,6 +254,7 @@ mod tests {
         for (r, a) in o.routines.iter().zip(&ast.routines) {
             let mut head = a.clone();
             head.body.clear();
+            head.decls.clear();
             assert_eq!(r.head, head);
         }
         assert_eq!(o.routines[0].facts.assigned, HashSet::from(["X".into()]));
@@ -250,7 +264,8 @@ mod tests {
         assert_eq!(a.facts.written, BTreeSet::from(["X".into(), "Y".into()]));
         assert!(a.facts.moves);
         assert_eq!(a.facts.labels.len(), 1);
-        assert_eq!(a.facts.global_decls.len(), 1);
+        // `DECL GLOBAL INT g` of the head, `DECL GLOBAL REAL r` of the body.
+        assert_eq!(a.facts.global_decls.len(), 2);
         assert_eq!(a.facts.definitions.len(), 1);
         assert!(!o.routines[1].facts.moves);
         assert_eq!(o.dat, ast.dat);
@@ -261,7 +276,7 @@ mod tests {
     /// call past them (`may_write`) must know what they may write.
     #[test]
     fn calls_in_interrupt_and_trigger_bodies_are_facts() {
-        let text = "DEF a()\n  INTERRUPT DECL 3 WHEN $IN[1] DO on_part(p)\n  TRIGGER WHEN DISTANCE=0 DELAY=0 DO n = count() PRIO=-1\n  LIN P1\nEND\n";
+        let text = "DEF a(n:OUT)\n  INTERRUPT DECL 3 WHEN $IN[1] DO on_part(p)\n  TRIGGER WHEN DISTANCE=0 DELAY=0 DO n = count() PRIO=-1\n  LIN P1\nEND\n";
         let mut b = OutlineBuilder::default();
         let mut lowerer = ast::PieceLowerer::new(text);
         crate::syntax::parse_pieces(text, |p| lowerer.lower(p, |e| b.add(&e)));

@@ -149,13 +149,39 @@ pub struct Program {
     pub uninit_globals: Vec<(VarId, Vec<Option<Expr>>)>,
     /// Every `INTERRUPT DECL` of the file.
     pub interrupts: Vec<InterruptDecl>,
+    /// The STRUC types the program's values have, for a target with records
+    /// (`Caps::records`); empty otherwise.
+    pub records: Vec<Record>,
     /// Every KRL construct, for the coverage table.
     pub constructs: Constructs,
     /// Target-independent findings (TR002) decided while lowering.
     pub findings: Vec<Finding>,
 }
 
+/// A KRL `STRUC` type as a record: its name and its fields (name as declared, type) in
+/// declaration order; a `CHAR` array field is a string.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Record {
+    pub name: String,
+    pub fields: Vec<(String, Ty)>,
+}
+
+impl Record {
+    /// The field `name` (any case): its index and type.
+    pub fn field(&self, name: &str) -> Option<(usize, &Ty)> {
+        self.fields
+            .iter()
+            .position(|(f, _)| f.eq_ignore_ascii_case(name))
+            .map(|i| (i, &self.fields[i].1))
+    }
+}
+
 impl Program {
+    /// The record of STRUC type `name` (upper case), if the program has one.
+    pub fn record(&self, name: &str) -> Option<&Record> {
+        self.records.iter().find(|r| r.name == name)
+    }
+
     pub fn var(&self, v: VarId) -> &Var {
         &self.vars[v.0 as usize]
     }
@@ -507,13 +533,21 @@ pub enum InterruptAction {
 pub struct InterruptDecl {
     pub number: i64,
     pub global: bool,
-    /// The watched condition, or why it is not one a target can watch.
-    pub condition: Result<Expr, Why>,
+    /// The watched signal, or why the condition is not one this target can watch.
+    pub condition: Result<Watched, Why>,
     /// The handler routine (a call without arguments), or why not.
     pub handler: Result<Callee, Why>,
     /// KUKA's standard stop-message interrupt (`$STOPMESS` → `IR_STOPM`) of every INI fold.
     pub stop_messages: bool,
     pub span: Span,
+}
+
+/// What an interrupt watches: one signal (an input or output, or a flag where the target's
+/// `Caps::interrupt_on_flags` allows it; a `SIGNAL` of one bit), and the level that fires it.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Watched {
+    pub io: IoPlace,
+    pub high: bool,
 }
 
 // ----- places and expressions -----------------------------------------------------------
@@ -599,6 +633,9 @@ pub enum ExprKind {
     /// the missing ones from the value it is assigned to (or the current position for a motion
     /// target, or 0 as an operand of `:`).
     Aggregate(Box<Aggregate>),
+    /// A whole STRUC value (`{force 2.5, name "a"}`) of a target with records: every field's
+    /// value in the record's declaration order.
+    Record(Vec<Expr>),
     /// A KRL built-in function with a counterpart on the targets.
     Builtin(Builtin, Vec<Expr>),
     /// A digital input, output or flag read.
@@ -1201,6 +1238,19 @@ pub struct Move {
     pub with: Vec<(MotionParam, ParamValue)>,
     /// The KRL motion statement (`PTP`, `LIN_REL`, `SLIN` …), for messages.
     pub krl: &'static str,
+    /// A `TRIGGER` switched on this motion's path (only for a target whose
+    /// `Caps::trigger` is `OnPath`, on a LIN).
+    pub trigger: Option<PathTrigger>,
+}
+
+/// A `TRIGGER WHEN DISTANCE=0|1 DELAY=0 DO $OUT[n]=TRUE|FALSE`: the output set exactly at the
+/// motion's start or end point (the middle of its blending, as KRL's DISTANCE=1).
+#[derive(Debug, Clone, PartialEq)]
+pub struct PathTrigger {
+    pub at: TriggerAt,
+    /// `$OUT[n]` with a literal `n`.
+    pub io: OutPlace,
+    pub value: bool,
 }
 
 impl Move {

@@ -60,7 +60,7 @@ pub fn each_expr<'a>(e: &'a Expr, f: &mut impl FnMut(&'a Expr)) {
                 each_expr(v, f);
             }
         }
-        ExprKind::Builtin(_, args) => {
+        ExprKind::Builtin(_, args) | ExprKind::Record(args) => {
             for a in args {
                 each_expr(a, f);
             }

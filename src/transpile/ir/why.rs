@@ -125,6 +125,8 @@ pub enum Why {
     MessageText,
     /// `B_NOT` (no bitwise NOT in AS; in Python only on integers).
     BitwiseNot,
+    /// A string longer than the target holds (`Caps::string_len`).
+    StringLength { len: usize, max: usize },
 }
 
 /// Where the target's own connect call is named in [`Why::VisionServer`]'s help (each backend
@@ -240,6 +242,9 @@ impl Why {
             Why::Load => "this $LOAD value is not a mass with a centre of mass".into(),
             Why::MessageText => "a message without text".into(),
             Why::BitwiseNot => "B_NOT (bitwise NOT) has no confirmed counterpart".into(),
+            Why::StringLength { len, max } => {
+                format!("a string of {len} characters; this target holds at most {max}")
+            }
         }
     }
 }

@@ -4,6 +4,7 @@ use super::format::{self, num};
 use super::{R, Tx, fail};
 use crate::transpile::front::report::FileId;
 use crate::transpile::ir::{Datum, ExprKind, Ty};
+use crate::transpile::render::{self, Emit};
 
 /// The lines of the four data sections.
 #[derive(Debug, Default)]
@@ -34,7 +35,7 @@ impl<'a> Tx<'a> {
 
     fn datum(&mut self, d: &'a Datum) {
         let var = self.ir.var(d.var);
-        let as_name = self.names.global(&var.name);
+        let as_name = self.out.names.global(&var.name);
         // `x[]` (a whole CHAR array) is the string itself.
         let full = match &d.index {
             Some(i) if !i.is_empty() => {
@@ -46,7 +47,7 @@ impl<'a> Tx<'a> {
         let ty = var.ty.clone();
         let r = match &d.value {
             Ok(v) => self.data_line(&full, &ty, v, d.file),
-            Err(why) => fail(d.span, why.message(), super::help::help(why)),
+            Err(why) => self.unsupported(why, d.span),
         };
         match r {
             Ok(line) => {
@@ -126,11 +127,9 @@ impl<'a> Tx<'a> {
                 };
                 Ok(Line::Reals(format!("{name} = {v}")))
             }
-            (Ty::Struc(t) | Ty::Other(t), _) => fail(
-                value.span,
-                format!("a value of type {t} has no AS equivalent"),
-                "split the structure into separate variables (reals, strings, poses)",
-            ),
+            (Ty::Struc(_) | Ty::Other(_), _) => {
+                render::not_lowered(value.span, "a structure value")
+            }
             (Ty::Signal(_), _) => fail(value.span, "a signal has no value to store", "remove it"),
         }
     }

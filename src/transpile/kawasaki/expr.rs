@@ -9,33 +9,10 @@ use crate::transpile::front::report::FileId;
 use crate::transpile::ir::{
     Aggregate, Bank, BinaryOp, Builtin, Component, Expr, ExprKind, IoPlace, Place, Ty, UnaryOp,
 };
-use crate::transpile::render::Emit;
+use crate::transpile::render::{self, Emit};
 
-/// Binding strength of an AS expression, to decide where parentheses go.
-pub(super) const ATOM: u8 = 10;
-const UNARY: u8 = 8;
-const MUL: u8 = 7;
-pub(super) const ADD: u8 = 6;
-const CMP: u8 = 4;
-const LOGIC: u8 = 2;
-
-/// A rendered expression and how tightly it binds.
-pub(super) struct Rendered {
-    pub text: String,
-    prec: u8,
-    /// The operator, for chains of the same operator that need no parentheses.
-    op: Option<&'static str>,
-}
-
-impl Rendered {
-    fn atom(text: String) -> Rendered {
-        Rendered {
-            text,
-            prec: ATOM,
-            op: None,
-        }
-    }
-}
+pub(super) use crate::transpile::render::expr::{ADD, ATOM};
+use crate::transpile::render::expr::{CMP, LOGIC, MUL, Rendered, UNARY};
 
 impl<'a> Tx<'a> {
     /// An expression in a value context.
@@ -90,6 +67,7 @@ impl<'a> Tx<'a> {
                 "keep the value in a variable where the program sets it",
             ),
             ExprKind::NullFrame => Ok(Rendered::atom("NULL".into())),
+            ExprKind::Record(_) => render::not_lowered(e.span, "a record value"),
             ExprKind::Current { .. } => fail(
                 e.span,
                 "the current position inside an expression needs a HERE statement first",
@@ -105,16 +83,9 @@ impl<'a> Tx<'a> {
             return Ok(Rendered::atom(format!("SIG({})", t?)));
         }
         let inner = self.render(operand)?;
-        let wrap = |r: Rendered| {
-            if r.prec < UNARY {
-                format!("({})", r.text)
-            } else {
-                r.text
-            }
-        };
-        let text = match op {
-            UnaryOp::Not => format!("NOT {}", wrap(inner)),
-            UnaryOp::Neg => format!("-{}", wrap(inner)),
+        let sym = match op {
+            UnaryOp::Not => "NOT ",
+            UnaryOp::Neg => "-",
             UnaryOp::BNot => {
                 return fail(
                     whole.span,
@@ -123,11 +94,7 @@ impl<'a> Tx<'a> {
                 );
             }
         };
-        Ok(Rendered {
-            text,
-            prec: UNARY,
-            op: None,
-        })
+        Ok(Rendered::prefix(sym, inner, UNARY))
     }
 
     fn binary(&mut self, op: BinaryOp, lhs: &Expr, rhs: &Expr, whole: &Expr) -> R<Rendered> {
@@ -160,30 +127,12 @@ impl<'a> Tx<'a> {
         };
         let l = self.render(lhs)?;
         let r = self.render(rhs)?;
-        let side = |c: Rendered, right: bool| -> String {
-            let paren = if prec >= ADD {
-                c.prec < prec || (c.prec == prec && right)
-            } else if prec == CMP {
-                c.prec < ADD
-            } else {
-                c.prec < UNARY && (right || c.op != Some(sym))
-            };
-            if paren {
-                format!("({})", c.text)
-            } else {
-                c.text
-            }
-        };
-        let text = format!("{} {sym} {}", side(l, false), side(r, true));
+        let whole = Rendered::infix(sym, prec, l, r);
         if op == BinaryOp::IntDiv {
             // KRL divides integers with truncation; AS `/` is real division.
-            return Ok(Rendered::atom(format!("INT({text})")));
+            return Ok(Rendered::atom(format!("INT({})", whole.text)));
         }
-        Ok(Rendered {
-            text,
-            prec,
-            op: Some(sym),
-        })
+        Ok(whole)
     }
 
     /// `$TIMER[n] > 500` (ms) → `TIMER(n) > 0.5` (s).
@@ -404,11 +353,7 @@ impl<'a> Tx<'a> {
                 } else {
                     format!("-{}", r.text)
                 };
-                return Ok(Rendered {
-                    text: t,
-                    prec: UNARY,
-                    op: None,
-                });
+                return Ok(Rendered::of(t, UNARY));
             }
             Builtin::Round => {
                 // AS has no confirmed ROUND; with INT truncating (the assumption KRL integer

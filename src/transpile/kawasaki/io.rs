@@ -161,18 +161,17 @@ impl<'a> Tx<'a> {
     /// An interrupt's signal and handler program, or why it cannot be one.
     fn interrupt_target(&mut self, i: usize) -> Result<(String, String), String> {
         let d = &self.ir.interrupts[i];
-        let cond = match &d.condition {
-            Ok(c) => c.clone(),
-            Err(w) => return Err(w.message()),
+        let watched = d.condition.as_ref().map_err(|w| w.message())?;
+        // A one-bit SIGNAL is its first (only) signal.
+        let sig = match self.signal(&watched.io).map_err(|f| f.message)? {
+            Sig::One(n) => n,
+            Sig::Bits(first, _) => first.to_string(),
         };
-        let sig = match self.signal_test(&cond) {
-            Some(Ok(t)) => t,
-            _ => return Err(crate::transpile::ir::Why::InterruptCondition.message()),
-        };
+        let sig = if watched.high { sig } else { negate(&sig) };
         let prog = match &d.handler {
             Ok(Callee::Routine(r)) => {
                 let n = self.ir.routine(*r).name.clone();
-                self.names.routine_of(&n).unwrap_or(&n).to_owned()
+                self.out.names.routine_of(&n).unwrap_or(&n).to_owned()
             }
             Ok(Callee::External { name, span, .. }) => self.name_program(name, *span),
             Ok(Callee::Mm(s)) => s.name.to_ascii_lowercase(),

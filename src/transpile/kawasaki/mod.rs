@@ -24,9 +24,9 @@ use std::collections::HashMap;
 use super::Options;
 use super::VisionServer;
 use super::front::Program as Source;
-use super::front::names::{Home, NameRules, Namer};
+use super::front::names::{Home, NameRules};
 use super::front::report::{FileId, Report};
-use super::ir::{self, Block, LoopId, RoutineId, RoutineKind, TempId, Ty, VarId};
+use super::ir::{self, Block, RoutineId, RoutineKind, TempId, Ty, VarId};
 use super::render::{self, Emit, Out, Style};
 use crate::diag::Span;
 
@@ -60,6 +60,16 @@ static STYLE: Style = Style {
     if_then: |c| format!("IF {c} THEN"),
     else_line: "ELSE",
     end_if: Some("END"),
+    help: help::help,
+    message: render::MessageWords {
+        name: "PRINT",
+        line: |t| format!("PRINT {t}"),
+        confirm: "PROMPT",
+    },
+    jumps: Some(render::JumpWords {
+        goto: |l| format!("GOTO {l}"),
+        label_at_margin: true,
+    }),
 };
 
 /// Kawasaki AS in the table of targets.
@@ -67,9 +77,9 @@ pub static BACKEND: render::Backend = render::Backend {
     target: super::Target::Kawasaki,
     name: "kawasaki",
     caps: render::Caps {
-        goto: true,
-        records: false,
-        interrupts: true,
+        interrupt_on_flags: true,
+        functions: false,
+        ..render::Caps::BASE
     },
     name_rules: &NAME_RULES,
     help: help::help,
@@ -104,8 +114,7 @@ struct Rt {
     /// Temporaries named so far.
     temps: HashMap<TempId, String>,
     /// Loops left by a jump: the label after the loop, and the label before its end.
-    breaks: HashMap<LoopId, String>,
-    continues: HashMap<LoopId, String>,
+    loops: render::LoopLabels,
     /// Scratch locals by purpose (each reused within the program).
     scratch: HashMap<String, String>,
 }
@@ -118,7 +127,6 @@ pub struct Tx<'a> {
     /// Its lines are those of the statement being rendered and the last line before it, which
     /// a SPEED line is compared with.
     out: Out<'a>,
-    names: Namer<'a>,
     programs: Vec<ProgramOut>,
     rt: Option<Rt>,
     /// Vision server used by `mm_init_skt` (for the header).
@@ -139,8 +147,7 @@ impl<'a> Tx<'a> {
             ir,
             opts,
             vision,
-            out: Out::new(&STYLE, src, report),
-            names: Namer::new(&NAME_RULES, ir),
+            out: Out::new(&STYLE, src, ir, &NAME_RULES, report),
             programs: Vec::new(),
             rt: None,
             server_used: None,
@@ -152,36 +159,19 @@ impl<'a> Tx<'a> {
 
     /// The AS name of a program (a routine of the file or of another module).
     fn name_program(&mut self, krl: &str, span: Span) -> String {
-        self.names.routine(&mut self.out.rep, krl, span)
+        self.out.names.routine(&mut self.out.rep, krl, span)
     }
 
     /// A variable's AS spelling without sigils, and whether it is local (gets a `.`).
     fn var_name(&mut self, v: VarId, used_at: Span) -> (String, bool) {
-        let (n, home) = self.names.var(&mut self.out.rep, v, used_at);
+        let (n, home) = self.out.names.var(&mut self.out.rep, v, used_at);
         (n, home == Home::Local)
-    }
-
-    fn routine_id(&self) -> RoutineId {
-        self.rt.as_ref().map_or(RoutineId(0), |r| r.id)
-    }
-
-    /// A label the translator needs (e.g. after a loop left with a jump).
-    fn fresh_label(&mut self, base: &str) -> String {
-        let id = self.routine_id();
-        self.names.fresh_label(id, base)
-    }
-
-    /// A label of the KRL program.
-    fn label_name(&mut self, l: ir::LabelId) -> String {
-        let id = self.routine_id();
-        let krl = &self.ir.routine(id).labels[l.0 as usize].0;
-        self.names.label(id, krl)
     }
 
     /// A local variable the translator needs, rendered with its `.`.
     fn fresh_local(&mut self, base: &str) -> String {
         let id = self.routine_id();
-        format!(".{}", self.names.fresh_local(id, base))
+        format!(".{}", self.out.names.fresh_local(id, base))
     }
 
     /// A scratch local for the translator's own use, the same one for `base` throughout the
@@ -287,14 +277,14 @@ impl<'a> Tx<'a> {
             v.push("; Data not translated:".into());
             v.extend(self.data.kept.iter().cloned());
         }
-        v.extend(render::name_map_lines(&self.names, "; "));
+        v.extend(render::name_map_lines(&self.out.names, "; "));
         v
     }
 }
 
 impl crate::transpile::Renderer for Tx<'_> {
     fn start(&mut self) {
-        self.names.declare_program(&mut self.out.rep);
+        self.out.names.declare_program(&mut self.out.rep);
     }
 
     fn begin_routine(&mut self, id: RoutineId) {
@@ -306,7 +296,7 @@ impl crate::transpile::Renderer for Tx<'_> {
         let name = if r.synthetic {
             self.name_program(&r.name, r.name_span)
         } else {
-            self.names.routine_of(&r.name).unwrap_or("").to_owned()
+            self.out.names.routine_of(&r.name).unwrap_or("").to_owned()
         };
         self.rt = Some(Rt {
             id,
@@ -317,14 +307,13 @@ impl crate::transpile::Renderer for Tx<'_> {
             retval: None,
             accuracy: None,
             temps: HashMap::new(),
-            breaks: HashMap::new(),
-            continues: HashMap::new(),
+            loops: render::LoopLabels::default(),
             scratch: HashMap::new(),
         });
         // Locals first (parameters, then declarations), then labels, so made-up names never
         // take a user's.
-        self.names.declare_locals(&mut self.out.rep, id);
-        self.names.declare_labels(&mut self.out.rep, id);
+        self.out.names.declare_locals(&mut self.out.rep, id);
+        self.out.names.declare_labels(&mut self.out.rep, id);
         let mut params: Vec<String> = Vec::new();
         let mut copies: Vec<String> = Vec::new();
         for p in &r.params {
@@ -394,6 +383,14 @@ impl<'a> Emit<'a> for Tx<'a> {
 
     fn expr_text(&mut self, e: &ir::Expr) -> R<String> {
         self.expr(e)
+    }
+
+    fn routine_id(&self) -> RoutineId {
+        self.rt.as_ref().map_or(RoutineId(0), |r| r.id)
+    }
+
+    fn loop_labels(&mut self) -> Option<&mut render::LoopLabels> {
+        self.rt.as_mut().map(|r| &mut r.loops)
     }
 
     fn block_edge(&mut self) {

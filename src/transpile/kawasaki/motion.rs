@@ -153,6 +153,9 @@ impl<'a> Tx<'a> {
     }
 
     pub(super) fn motion(&mut self, m: &Move, span: Span) -> R<()> {
+        if m.trigger.is_some() {
+            return crate::transpile::render::not_lowered(span, "a TRIGGER on the path");
+        }
         // Everything that can fail first, so a failure leaves no lines behind.
         let targets = self.targets(m, span)?;
         let accuracy = self.accuracy_for(m, span);

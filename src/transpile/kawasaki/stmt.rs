@@ -5,8 +5,7 @@ use super::{R, Tx, fail};
 use crate::diag::Span;
 use crate::transpile::front::report::FileId;
 use crate::transpile::ir::{
-    self, Arg, Block, Callee, Component, Expr, ExprKind, LoopId, LoopKind, Op, Place, RoutineKind,
-    Stmt, Ty,
+    self, Arg, Block, Callee, Component, Expr, ExprKind, LoopId, LoopKind, Op, Place, Stmt, Ty,
 };
 use crate::transpile::render::{CaseWords, Emit};
 
@@ -81,24 +80,23 @@ impl<'a> Tx<'a> {
                 end,
             } => self.loop_(*id, kind, body, *end),
             Op::Break(id) => {
-                let l = self.break_label(*id);
-                self.line(format!("GOTO {l}"));
+                let l = self.exit_label(*id, false);
+                self.goto_line(&l);
                 Ok(())
             }
             Op::Continue(id) => {
-                let l = self.continue_label(*id);
-                self.line(format!("GOTO {l}"));
+                let l = self.next_label(*id, false);
+                self.goto_line(&l);
                 Ok(())
             }
             Op::Goto(l) => {
                 let n = self.label_name(*l);
-                self.line(format!("GOTO {n}"));
+                self.goto_line(&n);
                 Ok(())
             }
             Op::Label(l) => {
                 let n = self.label_name(*l);
-                self.out.lines.push(format!("{n}:"));
-                self.forget_accuracy();
+                self.label_line(&n);
                 Ok(())
             }
             Op::Return(v) => self.return_(v.as_ref(), span),
@@ -121,18 +119,8 @@ impl<'a> Tx<'a> {
             }
             Op::Interrupt { action, number } => self.interrupt(*action, *number, span),
             Op::InterruptDecl(i) => self.interrupt_decl(*i, span),
-            Op::Message { routine, text } => {
-                let t = self.expr(text)?;
-                self.out.rep.approximate(
-                    FileId::Src,
-                    span,
-                    format!("{routine} becomes PRINT (no message window, no acknowledgement)"),
-                    "use PROMPT where the operator must confirm",
-                );
-                self.line(format!("PRINT {t}"));
-                Ok(())
-            }
-            Op::Unsupported { why, at } => fail(*at, why.message(), super::help::help(why)),
+            Op::Message { routine, text } => self.message(routine, text, span),
+            Op::Unsupported { why, at } => self.unsupported(why, *at),
             Op::Keep { note } => self.keep_op(*note, span),
         }
     }
@@ -156,44 +144,18 @@ impl<'a> Tx<'a> {
         let exits = ir::visit::any_op(body, &mut |op| matches!(op, Op::Break(x) if *x == id));
         let continues =
             ir::visit::any_op(body, &mut |op| matches!(op, Op::Continue(x) if *x == id));
-        if exits {
-            let l = self.fresh_label("loop_end");
-            if let Some(rt) = &mut self.rt {
-                rt.breaks.insert(id, l);
-            }
-        }
-        if continues {
-            let l = self.fresh_label("loop_next");
-            if let Some(rt) = &mut self.rt {
-                rt.continues.insert(id, l);
-            }
-        }
+        let exit = exits.then(|| self.exit_label(id, true));
+        let next = continues.then(|| self.next_label(id, true));
         self.line(head);
         self.nested(body);
-        if continues {
-            let l = self.continue_label(id);
-            self.out.lines.push(format!("{l}:"));
+        if let Some(l) = next {
+            self.label_line(&l);
         }
         self.end_block(end, Some(&close));
-        if exits {
-            let l = self.break_label(id);
-            self.out.lines.push(format!("{l}:"));
+        if let Some(l) = exit {
+            self.label_line(&l);
         }
         Ok(())
-    }
-
-    fn break_label(&mut self, id: LoopId) -> String {
-        self.rt
-            .as_ref()
-            .and_then(|r| r.breaks.get(&id).cloned())
-            .unwrap_or_else(|| "loop_end".into())
-    }
-
-    fn continue_label(&mut self, id: LoopId) -> String {
-        self.rt
-            .as_ref()
-            .and_then(|r| r.continues.get(&id).cloned())
-            .unwrap_or_else(|| "loop_next".into())
     }
 
     fn return_(&mut self, value: Option<&Expr>, span: Span) -> R<()> {
@@ -341,19 +303,7 @@ impl<'a> Tx<'a> {
     fn call(&mut self, callee: &Callee, args: &[Arg], ret: Option<&Place>, span: Span) -> R<()> {
         let (name, function, ret_ty) = match callee {
             Callee::Mm(sub) => return self.mm_call(sub, args, span),
-            Callee::Routine(r) => {
-                let routine = self.ir.routine(*r);
-                let name = self
-                    .names
-                    .routine_of(&routine.name)
-                    .unwrap_or(&routine.name)
-                    .to_owned();
-                (
-                    name,
-                    routine.kind == RoutineKind::Deffct,
-                    routine.ret.clone().unwrap_or(Ty::Real),
-                )
-            }
+            Callee::Routine(r) => self.routine_callee(*r),
             Callee::External {
                 name,
                 span: at,

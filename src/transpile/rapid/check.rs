@@ -171,6 +171,8 @@ pub fn check(text: &str) -> Vec<String> {
                     labels.insert(words[0].to_ascii_lowercase());
                 } else if !line.ends_with(';') {
                     problems.push(format!("line {n}: a statement without `;`: {line}"));
+                } else if stack.last().map(|s| s.0) == Some("RECORD") {
+                    // A component: `num force;`.
                 } else if first == "goto" {
                     if let Some(l) = words.get(1) {
                         gotos.push((l.to_ascii_lowercase(), n));

@@ -4,7 +4,7 @@
 
 use std::collections::BTreeMap;
 
-use super::format::{self, zero};
+use super::format::zero;
 use super::{R, Tx, fail};
 use crate::diag::Span;
 use crate::transpile::front::report::FileId;
@@ -37,7 +37,7 @@ impl<'a> Tx<'a> {
         _at: Span,
     ) -> String {
         let d = self.dims_text(ty, dims);
-        format!("{kw} {} {name}{d};", format::type_name(ty, dims.len()))
+        format!("{kw} {} {name}{d};", self.ty_name(ty, dims.len()))
     }
 
     /// `{3,4}` for an array (a CHAR array's last dimension is the string's length).
@@ -80,14 +80,14 @@ impl<'a> Tx<'a> {
             }
             declared.insert(d.var);
             let var = ir.var(d.var);
-            let name = self.names.global(&var.name);
+            let name = self.out.names.global(&var.name);
             let kw = if var.constant { "CONST" } else { "PERS" };
             self.file = d.file;
             let r = match &d.value {
                 Ok(v) => self
                     .data_value(&var.ty, v)
-                    .map(|v| format!("{kw} {} {name} := {v};", format::type_name(&var.ty, 0))),
-                Err(why) => fail(d.span, why.message(), super::help::help(why)),
+                    .map(|v| format!("{kw} {} {name} := {v};", self.ty_name(&var.ty, 0))),
+                Err(why) => self.unsupported(why, d.span),
             };
             self.data_result(r, d.span, d.file);
         }
@@ -97,7 +97,7 @@ impl<'a> Tx<'a> {
                 continue;
             }
             let var = ir.var(*v);
-            let name = self.names.global(&var.name);
+            let name = self.out.names.global(&var.name);
             match elements.remove(v) {
                 Some(values) => {
                     let line = self.array_with_values(&name, &var.ty, dims, &values);
@@ -146,13 +146,13 @@ impl<'a> Tx<'a> {
             if matches!(var.ty, Ty::Signal(_) | Ty::Struc(_) | Ty::Other(_)) || var.dims > 0 {
                 continue;
             }
-            let name = self.names.global(&var.name);
+            let name = self.out.names.global(&var.name);
             self.note(format!(
                 "`{name}` is not declared in this program: declared here as PERS (a persistent of the same name in another module is the same object)"
             ));
             self.data.lines.push(format!(
                 "PERS {} {name} := {};",
-                format::type_name(&var.ty, 0),
+                self.ty_name(&var.ty, 0),
                 zero(&var.ty)
             ));
         }
@@ -180,6 +180,15 @@ impl<'a> Tx<'a> {
 
     /// An initial value: a literal (RAPID initialises data with literals and constants only).
     fn data_value(&mut self, ty: &Ty, v: &Expr) -> R<String> {
+        if let (Ty::Struc(t), crate::transpile::ir::ExprKind::Record(values)) = (ty, &v.kind)
+            && let Some(r) = self.ir.record(t)
+        {
+            let mut parts = Vec::with_capacity(values.len());
+            for ((_, fty), x) in r.fields.iter().zip(values) {
+                parts.push(self.data_value(fty, x)?);
+            }
+            return Ok(format!("[{}]", parts.join(", ")));
+        }
         if matches!(ty, Ty::Pose | Ty::Joint) {
             if let crate::transpile::ir::ExprKind::Aggregate(a) = &v.kind
                 && a.numbers().is_some()
@@ -244,7 +253,7 @@ impl<'a> Tx<'a> {
             let idx = d.index.as_deref().unwrap_or(&[]);
             let value = match &d.value {
                 Ok(v) => self.data_value(ty, v)?,
-                Err(why) => return fail(d.span, why.message(), super::help::help(why)),
+                Err(why) => return self.unsupported(why, d.span),
             };
             let pos = match (idx, sizes.as_slice()) {
                 ([i], [n]) if (1..=*n as i64).contains(i) => (*i - 1) as usize,
@@ -273,7 +282,7 @@ impl<'a> Tx<'a> {
             .join(",");
         Ok(format!(
             "PERS {} {name}{{{d}}} := {agg};",
-            format::type_name(ty, 0)
+            self.ty_name(ty, 0)
         ))
     }
 

@@ -9,32 +9,7 @@ use crate::transpile::ir::{
 };
 use crate::transpile::render::Emit;
 
-/// Binding strength of a RAPID expression, to decide where parentheses go.
-const ATOM: u8 = 10;
-const MUL: u8 = 7;
-const ADD: u8 = 6;
-const CMP: u8 = 4;
-const LOGIC: u8 = 2;
-/// A unary operator's result as an operand.
-const NEG: u8 = 1;
-
-/// A rendered expression and how tightly it binds.
-pub(super) struct Rendered {
-    pub text: String,
-    prec: u8,
-    /// The operator, for chains of the same operator that need no parentheses.
-    op: Option<&'static str>,
-}
-
-impl Rendered {
-    fn atom(text: String) -> Rendered {
-        Rendered {
-            text,
-            prec: ATOM,
-            op: None,
-        }
-    }
-}
+use crate::transpile::render::expr::{ADD, CMP, LOGIC, LOOSE_UNARY as NEG, MUL, Rendered};
 
 /// Why axis values written in the program are not copied.
 pub(super) const NO_JOINT_MAP: &str = "KUKA axis values: ABB's axis zeros and directions differ, so the same numbers are another posture; without a joint map they are not translated";
@@ -76,6 +51,13 @@ impl<'a> Tx<'a> {
                 "keep the value in a variable where the program sets it",
             ),
             ExprKind::NullFrame => Ok(Rendered::atom(format::zero(&Ty::Pose))),
+            ExprKind::Record(values) => {
+                let mut v = Vec::with_capacity(values.len());
+                for x in values {
+                    v.push(self.expr(x)?);
+                }
+                Ok(Rendered::atom(format!("[{}]", v.join(", "))))
+            }
             ExprKind::Current { joints: false } => Ok(Rendered::atom(self.current_pos())),
             ExprKind::Current { joints: true } => fail(
                 e.span,
@@ -90,18 +72,9 @@ impl<'a> Tx<'a> {
             return Ok(Rendered::atom(t?));
         }
         let inner = self.render(operand)?;
-        let wrap = |r: Rendered| {
-            if r.prec < ATOM {
-                format!("({})", r.text)
-            } else {
-                r.text
-            }
-        };
-        // NOT binds loosely in RAPID and a sign after an operator is unusual: both are
-        // parenthesised as operands (their `prec` is below every binary operator's).
-        let text = match op {
-            UnaryOp::Not => format!("NOT {}", wrap(inner)),
-            UnaryOp::Neg => format!("-{}", wrap(inner)),
+        let sym = match op {
+            UnaryOp::Not => "NOT ",
+            UnaryOp::Neg => "-",
             UnaryOp::BNot => {
                 return fail(
                     whole.span,
@@ -110,11 +83,9 @@ impl<'a> Tx<'a> {
                 );
             }
         };
-        Ok(Rendered {
-            text,
-            prec: NEG,
-            op: None,
-        })
+        // NOT binds loosely in RAPID and a sign after an operator is unusual: both are
+        // parenthesised as operands.
+        Ok(Rendered::prefix(sym, inner, NEG))
     }
 
     fn binary(&mut self, op: BinaryOp, lhs: &Expr, rhs: &Expr, whole: &Expr) -> R<Rendered> {
@@ -153,27 +124,7 @@ impl<'a> Tx<'a> {
         };
         let l = self.render(lhs)?;
         let r = self.render(rhs)?;
-        let side = |c: Rendered, right: bool| -> String {
-            let paren = if prec >= ADD {
-                // Left-associative: `a - b + c` needs none, `a - (b + c)` does.
-                c.prec < prec || (c.prec == prec && right)
-            } else if prec == CMP {
-                c.prec <= CMP
-            } else {
-                c.prec < ATOM && (right || c.op != Some(sym))
-            };
-            if paren {
-                format!("({})", c.text)
-            } else {
-                c.text
-            }
-        };
-        let text = format!("{} {sym} {}", side(l, false), side(r, true));
-        Ok(Rendered {
-            text,
-            prec,
-            op: Some(sym),
-        })
+        Ok(Rendered::infix(sym, prec, l, r))
     }
 
     /// `$IN[3]`, `NOT $IN[3]`, `$IN[3] == FALSE` … as `(di3 = 1)` / `(di3 = 0)`; `None` if `e`
@@ -318,11 +269,10 @@ impl<'a> Tx<'a> {
                     ),
                 }
             }
-            Place::Member(_, f) => fail(
-                span,
-                format!("structure member `.{f}` has no translation to RAPID yet"),
-                "split the structure into separate variables",
-            ),
+            Place::Member(base, f) => {
+                let b = self.place_text(base, span)?;
+                Ok(format!("{b}.{}", format::field_name(f)))
+            }
         }
     }
 

@@ -17,17 +17,29 @@ pub const ASSUMED: [&str; 3] = [
 pub const NO_EXTAX: &str = "[9E9,9E9,9E9,9E9,9E9,9E9]";
 
 /// The RAPID type of a KRL type (`dims`: a CHAR array's length counts as one dimension).
-pub fn type_name(ty: &Ty, dims: usize) -> &'static str {
+pub fn type_name(ty: &Ty, dims: usize) -> std::borrow::Cow<'static, str> {
     let _ = dims;
     match ty {
-        Ty::Int | Ty::Real | Ty::Enum(_) => "num",
-        Ty::Bool => "bool",
-        Ty::Char => "string",
-        Ty::Pose => "robtarget",
-        Ty::Joint => "jointtarget",
+        Ty::Int | Ty::Real | Ty::Enum(_) => "num".into(),
+        Ty::Bool => "bool".into(),
+        Ty::Char => "string".into(),
+        Ty::Pose => "robtarget".into(),
+        Ty::Joint => "jointtarget".into(),
+        Ty::Struc(t) => record_name(t).into(),
         // The lowering refuses values no target holds; a signal is never declared.
-        Ty::Struc(_) | Ty::Other(_) | Ty::Signal(_) => "num",
+        Ty::Other(_) | Ty::Signal(_) => "num".into(),
     }
+}
+
+/// A RECORD's name: the STRUC's name as a RAPID identifier (type names are no data or routine
+/// names, so they do not clash with them).
+pub fn record_name(krl: &str) -> String {
+    crate::transpile::front::names::target_name(krl, &super::NAME_RULES).0
+}
+
+/// A RECORD component's name: the STRUC field's name as a RAPID identifier.
+pub fn field_name(krl: &str) -> String {
+    crate::transpile::front::names::target_name(krl, &super::NAME_RULES).0
 }
 
 /// A type's zero value, for array aggregates with elements the `.dat` does not give.

@@ -232,27 +232,21 @@ impl<'a> Tx<'a> {
     /// The RAPID form of interrupt declaration `i`, or why there is none.
     fn order(&mut self, i: usize) -> Result<Order, String> {
         let d = &self.ir.interrupts[i];
-        let cond = d.condition.as_ref().map_err(|w| w.message())?.clone();
-        let bank = match &cond.kind {
-            ExprKind::Io(IoPlace::Out(_)) => Bank::Out,
-            ExprKind::Unary(_, e) | ExprKind::Binary(_, e, _)
-                if matches!(e.kind, ExprKind::Io(IoPlace::Out(_))) =>
-            {
-                Bank::Out
-            }
-            _ => Bank::In,
+        let watched = d.condition.as_ref().map_err(|w| w.message())?;
+        let high = watched.high;
+        let bank = match &watched.io {
+            IoPlace::Out(_) => Bank::Out,
+            IoPlace::Signal(r) => r.bank,
+            IoPlace::In(_) | IoPlace::Flag(_) => Bank::In,
         };
-        let (sig, high) = match self.signal_level(&cond) {
-            Some(Ok(t)) => t,
-            _ => return Err(crate::transpile::ir::Why::InterruptCondition.message()),
-        };
+        let sig = self.signal(&watched.io, d.span).map_err(|f| f.message)?;
         let proc_ = match &d.handler {
             Ok(Callee::Routine(r)) => {
                 let n = self.ir.routine(*r).name.clone();
-                self.names.routine_of(&n).unwrap_or(&n).to_owned()
+                self.out.names.routine_of(&n).unwrap_or(&n).to_owned()
             }
             Ok(Callee::External { name, span, .. }) => {
-                let n = self.names.routine(&mut self.out.rep, name, *span);
+                let n = self.out.names.routine(&mut self.out.rep, name, *span);
                 if !self.external.contains(&n) {
                     self.external.push(n.clone());
                 }
@@ -269,7 +263,7 @@ impl<'a> Tx<'a> {
         let trap = match self.traps.iter().find(|(_, p)| **p == proc_) {
             Some((t, _)) => t.clone(),
             None => {
-                let t = self.names.fresh_routine(&format!("{proc_}_trap"));
+                let t = self.out.names.fresh_routine(&format!("{proc_}_trap"));
                 self.traps.insert(t.clone(), proc_);
                 t
             }

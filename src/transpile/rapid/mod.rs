@@ -25,9 +25,9 @@ use std::collections::HashMap;
 
 use super::Options;
 use super::front::Program as Source;
-use super::front::names::{NameRules, Namer};
+use super::front::names::NameRules;
 use super::front::report::{FileId, Report};
-use super::ir::{self, Block, LoopId, RoutineId, RoutineKind, TempId, Ty, VarId};
+use super::ir::{self, Block, RoutineId, RoutineKind, TempId, Ty, VarId};
 use super::render::{self, Emit, Out, Style};
 use crate::diag::Span;
 
@@ -56,6 +56,16 @@ static STYLE: Style = Style {
     if_then: |c| format!("IF {c} THEN"),
     else_line: "ELSE",
     end_if: Some("ENDIF"),
+    help: help::help,
+    message: render::MessageWords {
+        name: "TPWrite",
+        line: |t| format!("TPWrite {t};"),
+        confirm: "UIMsgBox",
+    },
+    jumps: Some(render::JumpWords {
+        goto: |l| format!("GOTO {l};"),
+        label_at_margin: false,
+    }),
 };
 
 /// ABB RAPID in the table of targets.
@@ -63,9 +73,10 @@ pub static BACKEND: render::Backend = render::Backend {
     target: super::Target::Rapid,
     name: "rapid",
     caps: render::Caps {
-        goto: true,
-        records: false,
-        interrupts: true,
+        records: true,
+        trigger: render::Trigger::OnPath,
+        string_len: Some(80),
+        ..render::Caps::BASE
     },
     name_rules: &NAME_RULES,
     help: help::help,
@@ -108,9 +119,9 @@ struct Rt {
     /// Temporaries named so far.
     temps: HashMap<TempId, String>,
     /// Made-up locals, with their RAPID types, in the order minted.
-    extra: Vec<(String, &'static str)>,
+    extra: Vec<(String, std::borrow::Cow<'static, str>)>,
     /// Loops left by a jump: the label after the loop.
-    breaks: HashMap<LoopId, String>,
+    loops: render::LoopLabels,
 }
 
 pub struct Tx<'a> {
@@ -118,7 +129,6 @@ pub struct Tx<'a> {
     ir: &'a ir::Program,
     opts: &'a Options,
     out: Out<'a>,
-    names: Namer<'a>,
     routines: Vec<RoutineOut>,
     rt: Option<Rt>,
     data: data::DataOut,
@@ -146,8 +156,7 @@ impl<'a> Tx<'a> {
             src,
             ir,
             opts,
-            out: Out::new(&STYLE, src, report),
-            names: Namer::new(&NAME_RULES, ir),
+            out: Out::new(&STYLE, src, ir, &NAME_RULES, report),
             routines: Vec::new(),
             rt: None,
             data: data::DataOut::default(),
@@ -164,34 +173,26 @@ impl<'a> Tx<'a> {
 
     // ----- names -------------------------------------------------------------------------
 
+    /// The RAPID type of a KRL type; a STRUC the lowering made no record of (its variable is
+    /// declared, never used) is declared as a number, as every type without a counterpart.
+    fn ty_name(&self, ty: &Ty, dims: usize) -> std::borrow::Cow<'static, str> {
+        match ty {
+            Ty::Struc(t) if self.ir.record(t).is_none() => "num".into(),
+            _ => format::type_name(ty, dims),
+        }
+    }
+
     /// A variable's RAPID name.
     fn var_name(&mut self, v: VarId, used_at: Span) -> String {
-        self.names.var(&mut self.out.rep, v, used_at).0
-    }
-
-    fn routine_id(&self) -> RoutineId {
-        self.rt.as_ref().map_or(RoutineId(0), |r| r.id)
-    }
-
-    /// A label the translator needs (e.g. after a loop left with a jump).
-    fn fresh_label(&mut self, base: &str) -> String {
-        let id = self.routine_id();
-        self.names.fresh_label(id, base)
-    }
-
-    /// A label of the KRL program.
-    fn label_name(&mut self, l: ir::LabelId) -> String {
-        let id = self.routine_id();
-        let krl = &self.ir.routine(id).labels[l.0 as usize].0;
-        self.names.label(id, krl)
+        self.out.names.var(&mut self.out.rep, v, used_at).0
     }
 
     /// A local the translator needs, declared with `ty` in the routine being rendered.
-    fn fresh_local(&mut self, base: &str, ty: &'static str) -> String {
+    fn fresh_local(&mut self, base: &str, ty: impl Into<std::borrow::Cow<'static, str>>) -> String {
         let id = self.routine_id();
-        let n = self.names.fresh_local(id, base);
+        let n = self.out.names.fresh_local(id, base);
         if let Some(rt) = &mut self.rt {
-            rt.extra.push((n.clone(), ty));
+            rt.extra.push((n.clone(), ty.into()));
         }
         n
     }
@@ -216,7 +217,7 @@ impl<'a> Tx<'a> {
         if r.kind != RoutineKind::Def || !r.params.is_empty() {
             return None;
         }
-        self.names.routine_of(&r.name).map(str::to_owned)
+        self.out.names.routine_of(&r.name).map(str::to_owned)
     }
 
     // ----- assembly ----------------------------------------------------------------------
@@ -240,6 +241,17 @@ impl<'a> Tx<'a> {
             out.push_str("  ");
             out.push_str(&l);
             out.push('\n');
+        }
+        for r in &self.ir.records {
+            out.push_str(&format!("  RECORD {}\n", format::record_name(&r.name)));
+            for (f, ty) in &r.fields {
+                out.push_str(&format!(
+                    "    {} {};\n",
+                    self.ty_name(ty, 0),
+                    format::field_name(f)
+                ));
+            }
+            out.push_str("  ENDRECORD\n");
         }
         for l in self.data_lines() {
             out.push_str("  ");
@@ -319,14 +331,14 @@ impl<'a> Tx<'a> {
             v.push("! Data not translated:".into());
             v.extend(self.data.kept.iter().cloned());
         }
-        v.extend(render::name_map_lines(&self.names, "! "));
+        v.extend(render::name_map_lines(&self.out.names, "! "));
         v
     }
 }
 
 impl crate::transpile::Renderer for Tx<'_> {
     fn start(&mut self) {
-        self.names.declare_program(&mut self.out.rep);
+        self.out.names.declare_program(&mut self.out.rep);
         self.module_data();
     }
 
@@ -337,9 +349,11 @@ impl crate::transpile::Renderer for Tx<'_> {
         // Comments before the DEF line belong to no routine: carry them into this one.
         let before: Vec<String> = std::mem::take(&mut self.out.lines);
         let name = if r.synthetic {
-            self.names.routine(&mut self.out.rep, &r.name, r.name_span)
+            self.out
+                .names
+                .routine(&mut self.out.rep, &r.name, r.name_span)
         } else {
-            self.names.routine_of(&r.name).unwrap_or("").to_owned()
+            self.out.names.routine_of(&r.name).unwrap_or("").to_owned()
         };
         self.rt = Some(Rt {
             id,
@@ -351,16 +365,16 @@ impl crate::transpile::Renderer for Tx<'_> {
             },
             temps: HashMap::new(),
             extra: Vec::new(),
-            breaks: HashMap::new(),
+            loops: render::LoopLabels::default(),
         });
         self.still = false;
-        self.names.declare_locals(&mut self.out.rep, id);
-        self.names.declare_labels(&mut self.out.rep, id);
+        self.out.names.declare_locals(&mut self.out.rep, id);
+        self.out.names.declare_labels(&mut self.out.rep, id);
         let mut params = Vec::new();
         for p in &r.params {
             let var = ir.var(p.var);
             let n = self.var_name(p.var, var.decl);
-            let ty = format::type_name(&var.ty, var.dims);
+            let ty = self.ty_name(&var.ty, var.dims);
             let by_ref = p.dir == ir::ParamDir::Out || p.array > 0;
             let mode = if by_ref { "INOUT " } else { "" };
             let dims = if p.array > 0 {
@@ -376,11 +390,12 @@ impl crate::transpile::Renderer for Tx<'_> {
             let n = self.var_name(*v, var.decl);
             decls.push(self.declaration("VAR", &n, &var.ty, dims, var.decl));
         }
+        let ret = self.ty_name(r.ret.as_ref().unwrap_or(&Ty::Real), 0);
         if let Some(rt) = &mut self.rt {
             rt.out.head = match r.kind {
                 RoutineKind::Def => format!("PROC {name}({})", params.join(", ")),
                 RoutineKind::Deffct => {
-                    let ty = format::type_name(r.ret.as_ref().unwrap_or(&Ty::Real), 0);
+                    let ty = ret;
                     rt.out.end = "ENDFUNC";
                     format!("FUNC {ty} {name}({})", params.join(", "))
                 }
@@ -411,7 +426,7 @@ impl crate::transpile::Renderer for Tx<'_> {
                     .unwrap_or(&Ty::Real);
                 rt.out
                     .decls
-                    .push(format!("VAR {} {n};", format::type_name(ty, 0)));
+                    .push(format!("VAR {} {n};", self.ty_name(ty, 0)));
             }
             for (n, ty) in &rt.extra {
                 rt.out.decls.push(format!("VAR {ty} {n};"));
@@ -439,6 +454,14 @@ impl<'a> Emit<'a> for Tx<'a> {
         self.expr(e)
     }
 
+    fn routine_id(&self) -> RoutineId {
+        self.rt.as_ref().map_or(RoutineId(0), |r| r.id)
+    }
+
+    fn loop_labels(&mut self) -> Option<&mut render::LoopLabels> {
+        self.rt.as_mut().map(|r| &mut r.loops)
+    }
+
     fn block_edge(&mut self) {
         self.still = false;
     }
@@ -449,6 +472,6 @@ impl<'a> Emit<'a> for Tx<'a> {
 
     fn mint_temp(&mut self) -> String {
         let id = self.routine_id();
-        self.names.fresh_local(id, "tmp")
+        self.out.names.fresh_local(id, "tmp")
     }
 }

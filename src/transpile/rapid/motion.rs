@@ -10,7 +10,7 @@ use crate::diag::Span;
 use crate::transpile::front::report::FileId;
 use crate::transpile::ir::{
     Because, Blend, CartMps, ExprKind, FrameKind, FrameRef, JointPct, Known, MotionParam, Move,
-    ParamValue, Path, Target,
+    ParamValue, Path, Target, TriggerAt,
 };
 use crate::transpile::render::Emit;
 
@@ -39,12 +39,35 @@ impl<'a> Tx<'a> {
         let tool = self.frame_of(FrameKind::Tool, &m.frames.tool, span)?;
         let wobj = self.frame_of(FrameKind::Base, &m.frames.base, span)?;
         let mut pre = Vec::new();
+        // `, trigg` after the speed of a TriggL.
+        let mut trigg = String::new();
         let line = match &m.path {
             Path::Joint { to, .. } if to.joints => {
                 format!("MoveAbsJ {}", self.target(to)?)
             }
             Path::Joint { to, .. } => format!("MoveJ {}", self.target(to)?),
-            Path::Linear { to, .. } => format!("MoveL {}", self.target(to)?),
+            Path::Linear { to, .. } => match &m.trigger {
+                // The output is switched on the path: TriggIO before, TriggL with it.
+                Some(t) => {
+                    let sig = self.signal(&t.io.as_io(), span)?;
+                    let trig = self.fresh_local("trigg", "triggdata");
+                    let start = if t.at == TriggerAt::Start {
+                        " \\Start"
+                    } else {
+                        ""
+                    };
+                    pre.push(format!(
+                        "TriggIO {trig}, 0{start} \\DOp:={sig}, {};",
+                        u8::from(t.value)
+                    ));
+                    trigg = format!(", {trig}");
+                    self.note(
+                        "Assumed [?]: TriggIO at distance 0 switches where KRL's TRIGGER WHEN DISTANCE=0/1 DELAY=0 does (\\Start: the start point; else the end point, the middle of its zone when blended)",
+                    );
+                    format!("TriggL {}", self.target(to)?)
+                }
+                None => format!("MoveL {}", self.target(to)?),
+            },
             Path::Circular { via, to, .. } => {
                 format!("MoveC {}, {}", self.target(via)?, self.target(to)?)
             }
@@ -99,7 +122,7 @@ impl<'a> Tx<'a> {
         for p in pre {
             self.line(p);
         }
-        self.line(format!("{line}, {speed}, {zone}, {tool}{wobj};"));
+        self.line(format!("{line}, {speed}{trigg}, {zone}, {tool}{wobj};"));
         self.still = !blends;
         Ok(())
     }

@@ -6,8 +6,7 @@ use super::{R, Tx, fail};
 use crate::diag::Span;
 use crate::transpile::front::report::FileId;
 use crate::transpile::ir::{
-    self, Arg, Block, Callee, Component, Expr, ExprKind, LoopId, LoopKind, Op, Place, RoutineKind,
-    Stmt, Ty,
+    self, Arg, Block, Callee, Component, Expr, ExprKind, LoopId, LoopKind, Op, Place, Stmt, Ty,
 };
 use crate::transpile::render::{CaseWords, Emit};
 
@@ -99,8 +98,8 @@ impl<'a> Tx<'a> {
                 end,
             } => self.loop_(*id, kind, body, *end),
             Op::Break(id) => {
-                let l = self.break_label(*id);
-                self.line(format!("GOTO {l};"));
+                let l = self.exit_label(*id, false);
+                self.goto_line(&l);
                 Ok(())
             }
             Op::Continue(_) => fail(
@@ -110,13 +109,12 @@ impl<'a> Tx<'a> {
             ),
             Op::Goto(l) => {
                 let n = self.label_name(*l);
-                self.line(format!("GOTO {n};"));
+                self.goto_line(&n);
                 Ok(())
             }
             Op::Label(l) => {
                 let n = self.label_name(*l);
-                self.line(format!("{n}:"));
-                self.still = false;
+                self.label_line(&n);
                 Ok(())
             }
             Op::Return(v) => {
@@ -144,18 +142,8 @@ impl<'a> Tx<'a> {
             }
             Op::Interrupt { action, number } => self.interrupt(*action, *number, span),
             Op::InterruptDecl(i) => self.interrupt_decl(*i, span),
-            Op::Message { routine, text } => {
-                let t = self.expr(text)?;
-                self.out.rep.approximate(
-                    FileId::Src,
-                    span,
-                    format!("{routine} becomes TPWrite (no message window, no acknowledgement)"),
-                    "use UIMsgBox where the operator must confirm",
-                );
-                self.line(format!("TPWrite {t};"));
-                Ok(())
-            }
-            Op::Unsupported { why, at } => fail(*at, why.message(), super::help::help(why)),
+            Op::Message { routine, text } => self.message(routine, text, span),
+            Op::Unsupported { why, at } => self.unsupported(why, *at),
             Op::Keep { note } => self.keep_op(*note, span),
         }
     }
@@ -206,12 +194,7 @@ impl<'a> Tx<'a> {
             }
             LoopKind::Forever => (Vec::new(), "WHILE TRUE DO".into(), None),
         };
-        if exits || until {
-            let l = self.fresh_label("loop_end");
-            if let Some(rt) = &mut self.rt {
-                rt.breaks.insert(id, l);
-            }
-        }
+        let exit = (exits || until).then(|| self.exit_label(id, true));
         for p in pre {
             self.line(p);
         }
@@ -219,11 +202,11 @@ impl<'a> Tx<'a> {
         self.nested(body);
         match (&step, until) {
             (Some(c), true) => {
-                let l = self.break_label(id);
+                let l = self.exit_label(id, false);
                 self.out.depth += 1;
                 self.line(format!("IF {c} THEN"));
                 self.out.depth += 1;
-                self.line(format!("GOTO {l};"));
+                self.goto_line(&l);
                 self.out.depth -= 1;
                 self.line("ENDIF");
                 self.out.depth -= 1;
@@ -236,18 +219,10 @@ impl<'a> Tx<'a> {
             (None, _) => {}
         }
         self.end_block(end, Some("ENDWHILE"));
-        if exits || until {
-            let l = self.break_label(id);
-            self.line(format!("{l}:"));
+        if let Some(l) = exit {
+            self.label_line(&l);
         }
         Ok(())
-    }
-
-    fn break_label(&mut self, id: LoopId) -> String {
-        self.rt
-            .as_ref()
-            .and_then(|r| r.breaks.get(&id).cloned())
-            .unwrap_or_else(|| "loop_end".into())
     }
 
     /// `place := value`.
@@ -317,25 +292,13 @@ impl<'a> Tx<'a> {
                     MM_HELP,
                 );
             }
-            Callee::Routine(r) => {
-                let routine = self.ir.routine(*r);
-                let name = self
-                    .names
-                    .routine_of(&routine.name)
-                    .unwrap_or(&routine.name)
-                    .to_owned();
-                (
-                    name,
-                    routine.kind == RoutineKind::Deffct,
-                    routine.ret.clone().unwrap_or(Ty::Real),
-                )
-            }
+            Callee::Routine(r) => self.routine_callee(*r),
             Callee::External {
                 name,
                 span: at,
                 function,
             } => {
-                let n = self.names.routine(&mut self.out.rep, name, *at);
+                let n = self.out.names.routine(&mut self.out.rep, name, *at);
                 if !self.external.contains(&n) {
                     self.external.push(n.clone());
                 }
@@ -351,7 +314,7 @@ impl<'a> Tx<'a> {
             let to = match ret {
                 Some(p) => self.place_text(p, span)?,
                 None => {
-                    let ty = super::format::type_name(&ret_ty, 0);
+                    let ty = self.ty_name(&ret_ty, 0);
                     self.fresh_local("fct_result", ty)
                 }
             };

@@ -9,20 +9,85 @@ use super::super::ir::{self, Why};
 use super::super::{Options, Renderer, Target, VisionServer};
 use crate::transpile::{flexiv, kawasaki, rapid};
 
-/// What a target language can hold, declared once per target.
+/// What a target language can hold, declared once per target. The lowering asks it and
+/// decides once whether a construct translates exactly, approximately (TR002) or not at all
+/// (TR001); no renderer refuses a construct on its own.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub struct Caps {
     /// `GOTO` and labels; without them a label and the jumps to it are made loops first
     /// ([`crate::transpile::ir::goto`]).
     pub goto: bool,
-    /// Records (KRL `STRUC` types); without them a STRUC variable is TR001.
+    /// Records (KRL `STRUC` types); without them a STRUC variable or value is TR001.
     pub records: bool,
     /// Interrupts on a signal with a handler routine; without them INTERRUPT is TR001.
     pub interrupts: bool,
+    /// An interrupt can watch an internal flag (`$FLAG[n]`), not only an input or output;
+    /// without: such an interrupt is TR001.
+    pub interrupt_on_flags: bool,
+    /// Functions return their value (DEFFCT → a function); without: through an added output
+    /// parameter.
+    pub functions: bool,
+    /// Relative motions in the base or tool frame (`LIN_REL … #TOOL`) as one instruction.
+    pub relative_motions: bool,
+    /// How a blended motion's blending is given.
+    pub blending: Blending,
+    /// What becomes of a `TRIGGER`.
+    pub trigger: Trigger,
+    /// The longest string the target holds, in characters (`None`: no limit known); a longer
+    /// KRL string is TR001.
+    pub string_len: Option<usize>,
 }
 
-/// The capability table of every target, as README shows it (a test keeps README equal to it).
-pub fn caps_table() -> String {
+impl Caps {
+    /// The capabilities every target shares; a target's `Caps` says where it differs.
+    pub const BASE: Caps = Caps {
+        goto: true,
+        records: false,
+        interrupts: true,
+        interrupt_on_flags: false,
+        functions: true,
+        relative_motions: true,
+        blending: Blending::Distance,
+        trigger: Trigger::BeforeOrAfter,
+        string_len: None,
+    };
+}
+
+/// How a target blends motions.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Blending {
+    /// By a distance, as C_DIS (C_PTP/C_VEL become that distance, TR002).
+    Distance,
+    /// By a zone radius from a fixed set of codes (the nearest, TR002).
+    ZoneCodes,
+}
+
+/// How a target switches a `TRIGGER`'s action.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Trigger {
+    /// Before the next motion starts or after it ends (TR002).
+    BeforeOrAfter,
+    /// On the path where an output is set at the motion's start or end point without delay
+    /// (`DISTANCE=0|1 DELAY=0 DO $OUT[n]=…` on a LIN); otherwise before or after (TR002).
+    OnPath,
+}
+
+/// The columns of the capability table.
+const CAPS_COLUMNS: [&str; 10] = [
+    "language",
+    "GOTO",
+    "STRUC",
+    "interrupts",
+    "DEFFCT",
+    "`_REL` in base/tool",
+    "blending",
+    "TRIGGER",
+    "strings",
+    "identifiers",
+];
+
+/// A target's row of the capability table, in [`CAPS_COLUMNS`] order.
+fn caps_row(b: &Backend) -> [String; 10] {
     let yes_no = |b: bool, without: &str| {
         if b {
             "yes".to_owned()
@@ -30,20 +95,69 @@ pub fn caps_table() -> String {
             format!("no: {without}")
         }
     };
-    let mut t = String::from(
-        "| `--to` | language | GOTO | STRUC | interrupts | identifiers |\n|---|---|---|---|---|---|\n",
-    );
+    let (c, n) = (b.caps(), b.name_rules());
+    let interrupts = match (c.interrupts, c.interrupt_on_flags) {
+        (false, _) => "no: TR001",
+        (true, true) => "on one input, output or flag",
+        (true, false) => "on one input or output",
+    };
+    let blending = match c.blending {
+        Blending::Distance => "a distance",
+        Blending::ZoneCodes => "the nearest zone code (TR002)",
+    };
+    let trigger = match c.trigger {
+        Trigger::BeforeOrAfter => "before/after the motion (TR002)",
+        Trigger::OnPath => {
+            "on the path for an output at DISTANCE 0/1, DELAY 0; else before/after (TR002)"
+        }
+    };
+    let strings = match c.string_len {
+        Some(n) => format!("≤ {n} characters"),
+        None => "no limit known".to_owned(),
+    };
+    [
+        n.language.to_owned(),
+        yes_no(c.goto, "jumps become loops"),
+        yes_no(c.records, "TR001"),
+        interrupts.to_owned(),
+        yes_no(c.functions, "an output parameter"),
+        yes_no(c.relative_motions, "TR001"),
+        blending.to_owned(),
+        trigger.to_owned(),
+        strings,
+        format!("≤ {} characters", n.max_len),
+    ]
+}
+
+/// The capability table of every target, as README shows it (a test keeps README equal to it).
+pub fn caps_table() -> String {
+    let mut t = String::from("| `--to` |");
+    for c in CAPS_COLUMNS {
+        t.push_str(&format!(" {c} |"));
+    }
+    t.push('\n');
+    t.push_str(&"|---".repeat(CAPS_COLUMNS.len() + 1));
+    t.push_str("|\n");
     for b in BACKENDS {
-        let (c, n) = (b.caps(), b.name_rules());
-        t.push_str(&format!(
-            "| `{}` | {} | {} | {} | {} | ≤ {} characters |\n",
-            b.name(),
-            n.language,
-            yes_no(c.goto, "jumps become loops"),
-            yes_no(c.records, "TR001"),
-            yes_no(c.interrupts, "TR001"),
-            n.max_len
-        ));
+        t.push_str(&format!("| `{}` |", b.name()));
+        for v in caps_row(b) {
+            t.push_str(&format!(" {v} |"));
+        }
+        t.push('\n');
+    }
+    t
+}
+
+/// The same capabilities as text, one paragraph per target (`krlkit transpile --help`).
+pub fn caps_text() -> String {
+    let mut t = String::new();
+    for b in BACKENDS {
+        let cells: Vec<String> = CAPS_COLUMNS
+            .iter()
+            .zip(caps_row(b))
+            .map(|(c, v)| format!("{}: {v}", c.replace('`', "")))
+            .collect();
+        t.push_str(&format!("  {}: {}\n", b.name(), cells.join("; ")));
     }
     t
 }
@@ -161,16 +275,62 @@ mod tests {
                 "DEF p()\n$IN[3] = TRUE\nEND\n",
                 "`$IN[3]` cannot be written",
             ),
-            (
-                "DEF p()\nSTRUC grip_t REAL force\nDECL grip_t g\nDECL REAL r\nr = g.force\nEND\n",
-                "a value of type GRIP_T has no counterpart",
-            ),
         ];
         for (src, want) in cases {
             for (target, msgs) in refusals(src) {
                 assert_eq!(msgs, [want.to_owned()], "{target:?}: {src}");
             }
         }
+    }
+
+    #[test]
+    fn a_struc_is_a_record_where_the_target_has_records() {
+        let src =
+            "DEF p()\nSTRUC grip_t REAL force\nDECL grip_t g\nDECL REAL r\nr = g.force\nEND\n";
+        for (target, msgs) in refusals(src) {
+            if backend(target).caps().records {
+                assert!(msgs.is_empty(), "{target:?}: {msgs:?}");
+            } else {
+                assert_eq!(
+                    msgs,
+                    ["a value of type GRIP_T has no counterpart"],
+                    "{target:?}"
+                );
+            }
+        }
+    }
+
+    /// The TR001 messages of `src` in `target`.
+    fn refusals_in(target: Target, src: &str) -> Vec<String> {
+        refusals(src)
+            .into_iter()
+            .find(|(t, _)| *t == target)
+            .map(|(_, m)| m)
+            .unwrap_or_default()
+    }
+
+    #[test]
+    fn the_lowering_asks_each_targets_caps() {
+        let long = format!(
+            "DEF p()\nDECL CHAR s[100]\ns[] = \"{}\"\nEND\n",
+            "x".repeat(81)
+        );
+        assert!(refusals_in(Target::Kawasaki, &long).is_empty());
+        assert_eq!(
+            refusals_in(Target::Rapid, &long),
+            ["a string of 81 characters; this target holds at most 80"]
+        );
+        let flag =
+            "DEF p()\nINTERRUPT DECL 3 WHEN $FLAG[2] DO q()\nINTERRUPT ON 3\nEND\nDEF q()\nEND\n";
+        assert!(refusals_in(Target::Kawasaki, flag).is_empty());
+        let rapid = refusals_in(Target::Rapid, flag);
+        assert!(
+            !rapid.is_empty()
+                && rapid
+                    .iter()
+                    .all(|m| m.contains("its condition is not a single signal")),
+            "{rapid:?}"
+        );
     }
 
     #[test]

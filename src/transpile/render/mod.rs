@@ -10,18 +10,22 @@
 //! and what each declares it can hold ([`Caps`]).
 
 pub mod backend;
+pub mod expr;
+pub mod help;
 
 use std::collections::HashMap;
 
 use super::front::Program as Source;
 use super::front::comments::CommentQueue;
-use super::front::names::Namer;
+use super::front::names::{NameRules, Namer};
 use super::front::report::{FileId, Report};
 use super::front::{Fail, R};
-use super::ir::{Case, Expr, Op, Stmt, TempId};
+use super::ir::{
+    self as ir, Case, Expr, LabelId, LoopId, Op, RoutineId, RoutineKind, Stmt, TempId, Ty, Why,
+};
 use crate::diag::Span;
 
-pub use backend::{BACKENDS, Backend, Caps, backend};
+pub use backend::{BACKENDS, Backend, Blending, Caps, Trigger, backend};
 
 /// How a target writes lines and comments.
 pub struct Style {
@@ -48,6 +52,38 @@ pub struct Style {
     pub else_line: &'static str,
     /// `ENDIF`, `END`; `None` where indentation ends a block.
     pub end_if: Option<&'static str>,
+    /// What to do instead, in this target, for a construct no target can express.
+    pub help: fn(&Why) -> String,
+    /// How KRL's message routines (`MsgNotify` …) are written.
+    pub message: MessageWords,
+    /// How a target with `GOTO` writes a jump and a label; `None`: jumps become loops first.
+    pub jumps: Option<JumpWords>,
+}
+
+/// How a target shows a KRL message: an instruction that writes a line, without KUKA's
+/// message window or acknowledgement (a TR002 says so).
+pub struct MessageWords {
+    /// `PRINT`, `TPWrite`.
+    pub name: &'static str,
+    /// The line writing the rendered text.
+    pub line: fn(&str) -> String,
+    /// What to use where the operator must confirm (`PROMPT`, `UIMsgBox`).
+    pub confirm: &'static str,
+}
+
+/// How a target with `GOTO` writes jumps and labels.
+pub struct JumpWords {
+    /// `GOTO l`.
+    pub goto: fn(&str) -> String,
+    /// A label stands at the left margin (AS), not indented with the code (RAPID).
+    pub label_at_margin: bool,
+}
+
+/// The labels of the loops of a routine that are left (`EXIT`) or continued with a jump.
+#[derive(Default)]
+pub struct LoopLabels {
+    exits: HashMap<LoopId, String>,
+    nexts: HashMap<LoopId, String>,
 }
 
 /// How a target writes a SWITCH it has a statement for (`TEST`/`CASE`, `CASE`/`VALUE`).
@@ -74,6 +110,10 @@ pub fn has_code(lines: &[String], comment_lead: &str) -> bool {
 pub struct Out<'a> {
     pub style: &'static Style,
     pub src: &'a Source,
+    /// The program being rendered.
+    pub ir: &'a ir::Program,
+    /// The target's names for the program's (its `NameRules`), with the TR003 findings.
+    pub names: Namer<'a>,
     pub comments: CommentQueue<'a>,
     /// Lines of the statement being rendered (with their indentation).
     pub lines: Vec<String>,
@@ -86,10 +126,18 @@ pub struct Out<'a> {
 }
 
 impl<'a> Out<'a> {
-    pub fn new(style: &'static Style, src: &'a Source, rep: Report) -> Out<'a> {
+    pub fn new(
+        style: &'static Style,
+        src: &'a Source,
+        ir: &'a ir::Program,
+        rules: &'static NameRules,
+        rep: Report,
+    ) -> Out<'a> {
         Out {
             style,
             src,
+            ir,
+            names: Namer::new(rules, ir),
             comments: CommentQueue::new(&src.src.comments),
             lines: Vec::new(),
             depth: 0,
@@ -177,6 +225,114 @@ pub trait Emit<'a> {
     /// At a block's start and end: what the renderer knows of the robot's state (the
     /// blending, frames or standstill in force) does not hold across the edge.
     fn block_edge(&mut self);
+    /// The routine being rendered.
+    fn routine_id(&self) -> RoutineId;
+    /// The loop labels of the routine being rendered (targets with `GOTO`).
+    fn loop_labels(&mut self) -> Option<&mut LoopLabels> {
+        None
+    }
+
+    /// A construct the lowering found no target can express: TR001 with the target's help.
+    fn unsupported<T>(&mut self, why: &Why, at: Span) -> R<T> {
+        let help = (self.out().style.help)(why);
+        Err(Fail {
+            span: at,
+            message: why.message(),
+            help,
+        })
+    }
+
+    /// A KRL message as the target's instruction that writes a line (TR002).
+    fn message(&mut self, routine: &str, text: &Expr, span: Span) -> R<()> {
+        let t = self.expr_text(text)?;
+        let out = self.out();
+        let w = &out.style.message;
+        out.rep.approximate(
+            FileId::Src,
+            span,
+            format!(
+                "{routine} becomes {} (no message window, no acknowledgement)",
+                w.name
+            ),
+            format!("use {} where the operator must confirm", w.confirm),
+        );
+        let l = (w.line)(&t);
+        out.line(&l);
+        Ok(())
+    }
+
+    /// A label the translator needs (e.g. after a loop left with a jump).
+    fn fresh_label(&mut self, base: &str) -> String {
+        let id = self.routine_id();
+        self.out().names.fresh_label(id, base)
+    }
+
+    /// The target's name of a label of the KRL program.
+    fn label_name(&mut self, l: LabelId) -> String {
+        let id = self.routine_id();
+        let program = self.out().ir;
+        let krl = &program.routine(id).labels[l.0 as usize].0;
+        self.out().names.label(id, krl)
+    }
+
+    /// A routine of the program as a callee: its target name, whether it returns a value
+    /// (DEFFCT), and the value's type.
+    fn routine_callee(&mut self, r: RoutineId) -> (String, bool, Ty) {
+        let routine = self.out().ir.routine(r);
+        let name = self
+            .out()
+            .names
+            .routine_of(&routine.name)
+            .unwrap_or(&routine.name)
+            .to_owned();
+        let function = routine.kind == RoutineKind::Deffct;
+        (name, function, routine.ret.clone().unwrap_or(Ty::Real))
+    }
+
+    /// `GOTO to` in the target's words.
+    fn goto_line(&mut self, to: &str) {
+        if let Some(j) = &self.out().style.jumps {
+            let l = (j.goto)(to);
+            self.line(l);
+        }
+    }
+
+    /// A label line; what the renderer knows of the robot's state does not hold after it
+    /// (it can be jumped to).
+    fn label_line(&mut self, name: &str) {
+        let out = self.out();
+        match &out.style.jumps {
+            Some(j) if j.label_at_margin => out.lines.push(format!("{name}:")),
+            _ => out.line(&format!("{name}:")),
+        }
+        self.block_edge();
+    }
+
+    /// The label after loop `id` (where `EXIT` jumps to), minted when `needed`.
+    fn exit_label(&mut self, id: LoopId, needed: bool) -> String {
+        self.loop_label(id, needed, false)
+    }
+
+    /// The label before loop `id`'s end (where a jump to its next pass goes), minted when
+    /// `needed`.
+    fn next_label(&mut self, id: LoopId, needed: bool) -> String {
+        self.loop_label(id, needed, true)
+    }
+
+    fn loop_label(&mut self, id: LoopId, mint: bool, next: bool) -> String {
+        let base = if next { "loop_next" } else { "loop_end" };
+        if mint {
+            let l = self.fresh_label(base);
+            if let Some(ls) = self.loop_labels() {
+                let m = if next { &mut ls.nexts } else { &mut ls.exits };
+                m.insert(id, l.clone());
+            }
+            return l;
+        }
+        self.loop_labels()
+            .and_then(|ls| if next { &ls.nexts } else { &ls.exits }.get(&id).cloned())
+            .unwrap_or_else(|| base.into())
+    }
 
     /// A nested block, one level deeper.
     fn nested(&mut self, b: &[Stmt]) {
@@ -362,6 +518,19 @@ pub trait Emit<'a> {
         }
         out.trailing_comment(g, start);
     }
+}
+
+/// What the lowering lets no target without the capability have ([`Caps`]) reached this
+/// renderer: a defect of krlkit, reported (TR001) instead of a panic. No renderer refuses a
+/// construct itself.
+pub fn not_lowered<T>(span: Span, what: &str) -> R<T> {
+    Err(Fail {
+        span,
+        message: format!(
+            "internal: {what} reached a target whose capabilities exclude it (the lowering refuses it)"
+        ),
+        help: "report this as a krlkit defect".into(),
+    })
 }
 
 /// The header's name map, each line starting with `lead`.

@@ -9,7 +9,8 @@ use crate::transpile::front::ilf;
 use crate::transpile::front::sysvar::Sys;
 use crate::transpile::ir::why::KukaOnly;
 use crate::transpile::ir::{
-    Bank, Block, Callee, Expr, ExprKind, InterruptDecl, IoPlace, Op, Stmt, Ty, UnaryOp, Why,
+    Bank, BinaryOp, Block, Callee, Expr, ExprKind, InterruptDecl, IoPlace, Op, Stmt, Ty, UnaryOp,
+    Watched, Why,
 };
 
 impl<'p> Lower<'p> {
@@ -243,34 +244,44 @@ impl<'p> Lower<'p> {
         }
     }
 
-    /// An interrupt condition a target can watch: one signal, or its negation.
-    fn interrupt_condition(&mut self, c: &ast::Expr) -> Result<Expr, Why> {
+    /// An interrupt condition the target can watch (its `Caps`): one signal at a level.
+    fn interrupt_condition(&mut self, c: &ast::Expr) -> Result<Watched, Why> {
         let mut pre = Block::new();
         let e = self.expr(c, &mut pre).map_err(|(w, _)| w)?;
-        if is_signal_test(&e) {
-            Ok(e)
-        } else {
-            Err(Why::InterruptCondition)
+        match watched(&e) {
+            Some(w) if !matches!(w.io, IoPlace::Flag(_)) || self.caps.interrupt_on_flags => Ok(w),
+            _ => Err(Why::InterruptCondition),
         }
     }
 }
 
-/// `$IN[n]`, `NOT $IN[n]`, `$IN[n] == FALSE`, a one-bit SIGNAL: a test of one signal.
-pub(super) fn is_signal_test(e: &Expr) -> bool {
+/// `$IN[n]`, `NOT $IN[n]`, `$IN[n] == FALSE`, a one-bit SIGNAL: one signal and the level the
+/// test is true at.
+fn watched(e: &Expr) -> Option<Watched> {
     match &e.kind {
-        ExprKind::Io(IoPlace::Signal(r)) => {
-            r.width() == 1 && matches!(r.bank, Bank::In | Bank::Out)
+        ExprKind::Io(IoPlace::Signal(r))
+            if r.width() != 1 || !matches!(r.bank, Bank::In | Bank::Out) =>
+        {
+            None
         }
-        ExprKind::Io(_) => true,
-        ExprKind::Unary(UnaryOp::Not, a) => is_signal_test(a),
-        ExprKind::Binary(
-            crate::transpile::ir::BinaryOp::Eq | crate::transpile::ir::BinaryOp::Ne,
-            a,
-            b,
-        ) => {
-            (is_signal_test(a) && matches!(b.kind, ExprKind::Bool(_)))
-                || (is_signal_test(b) && matches!(a.kind, ExprKind::Bool(_)))
+        ExprKind::Io(io) => Some(Watched {
+            io: io.clone(),
+            high: true,
+        }),
+        ExprKind::Unary(UnaryOp::Not, a) => watched(a).map(|w| Watched { high: !w.high, ..w }),
+        ExprKind::Binary(op @ (BinaryOp::Eq | BinaryOp::Ne), a, b) => {
+            let (sig, level) = match (&a.kind, &b.kind) {
+                (_, ExprKind::Bool(v)) => (a, *v),
+                (ExprKind::Bool(v), _) => (b, *v),
+                _ => return None,
+            };
+            let w = watched(sig)?;
+            let same = level == (*op == BinaryOp::Eq);
+            Some(Watched {
+                high: w.high == same,
+                ..w
+            })
         }
-        _ => false,
+        _ => None,
     }
 }

@@ -26,7 +26,16 @@ impl<'p> Lower<'p> {
             A::Real(r) => lit(ExprKind::Real(*r), Ty::Real),
             A::Bool(b) => lit(ExprKind::Bool(*b), Ty::Bool),
             A::Char(c) => lit(ExprKind::Char(*c), Ty::Char),
-            A::Str(s) => lit(ExprKind::Str(s.clone()), Ty::Char),
+            A::Str(s) => match self.caps.string_len {
+                Some(max) if s.chars().count() > max => fail(
+                    Why::StringLength {
+                        len: s.chars().count(),
+                        max,
+                    },
+                    span,
+                ),
+                _ => lit(ExprKind::Str(s.clone()), Ty::Char),
+            },
             A::Bits(b) => lit(ExprKind::Bits(*b), Ty::Int),
             A::Hex(h) => lit(ExprKind::Hex(*h), Ty::Int),
             A::Enum(name) => match self.model.enum_value(name) {
@@ -276,7 +285,7 @@ impl<'p> Lower<'p> {
         for c in calls {
             let w = match &c {
                 Callee::Routine(r) => {
-                    let name = self.out.routine(*r).name.clone();
+                    let name = self.routine(*r).name.clone();
                     self.may_write(&name)
                 }
                 Callee::External { .. } => None,
@@ -379,16 +388,39 @@ impl<'p> Lower<'p> {
         }
     }
 
-    /// A variable of a type the target cannot hold (a STRUC without records, a KUKA structure
-    /// no target has) is refused here, once, for every target.
-    fn holdable(&self, v: crate::transpile::ir::VarId, at: Span) -> L<()> {
-        match &self.out.var(v).ty {
-            Ty::Struc(t) if !t.is_empty() && !self.caps.records => {
-                fail(Why::Structure(t.clone()), at)
+    /// A variable of a type the target cannot hold (a STRUC without records, or one whose
+    /// fields a record cannot hold; a KUKA structure no target has) is refused here, once, for
+    /// every target.
+    pub(super) fn holdable(&mut self, v: crate::transpile::ir::VarId, at: Span) -> L<()> {
+        match self.out.var(v).ty.clone() {
+            Ty::Struc(t) if !t.is_empty() && self.record_of(&t).is_none() => {
+                fail(Why::Structure(t), at)
             }
-            Ty::Other(t) if !t.is_empty() => fail(Why::Structure(t.clone()), at),
+            Ty::Other(t) if !t.is_empty() => fail(Why::Structure(t), at),
             _ => Ok(()),
         }
+    }
+
+    /// The record of STRUC type `t` in a target with records (`Caps::records`), added to the
+    /// program when first met; `None` without records or when a field is no value a record
+    /// holds.
+    pub(super) fn record_of(&mut self, t: &str) -> Option<&crate::transpile::ir::Record> {
+        if !self.caps.records {
+            return None;
+        }
+        let i = match self.out.records.iter().position(|r| r.name == t) {
+            Some(i) => i,
+            None => {
+                let routine = self.rt.as_ref().map(|r| r.key.as_str());
+                let fields = self.model.struc_fields(routine, t)?;
+                self.out.records.push(crate::transpile::ir::Record {
+                    name: t.to_owned(),
+                    fields,
+                });
+                self.out.records.len() - 1
+            }
+        };
+        self.out.records.get(i)
     }
 
     /// A place (assignment target or value), and the type it holds. `write`: an assignment
@@ -452,6 +484,15 @@ impl<'p> Lower<'p> {
                             _ => Ty::Real,
                         };
                         Ok((Place::Component(Box::new(b), c), cty))
+                    }
+                    Ty::Struc(t) => {
+                        let t = t.clone();
+                        let Some((_, fty)) = self.record_of(&t).and_then(|r| r.field(&field.text))
+                        else {
+                            return fail(Why::Structure(t), field.span);
+                        };
+                        let fty = fty.clone();
+                        Ok((Place::Member(Box::new(b), field.text.to_string()), fty))
                     }
                     _ => Ok((Place::Member(Box::new(b), field.text.to_string()), Ty::Real)),
                 }
@@ -577,11 +618,11 @@ impl<'p> Lower<'p> {
             return Ok(Expr::new(ExprKind::Builtin(b, v), ty, span));
         }
         if let Some(r) = self.routine_named(&name.text) {
-            if self.out.routine(r).kind != RoutineKind::Deffct {
+            if self.routine(r).kind != RoutineKind::Deffct {
                 return fail(Why::NotAFunction(name.text.to_string()), span);
             }
             let args = self.call_args(Some(r), name, args, span, pre)?;
-            let ty = self.out.routine(r).ret.clone().unwrap_or(Ty::Real);
+            let ty = self.routine(r).ret.clone().unwrap_or(Ty::Real);
             let t = self.temp(ty.clone());
             pre.push(Stmt {
                 op: Op::Call {
@@ -625,9 +666,9 @@ impl<'p> Lower<'p> {
         pre: &mut Block,
     ) -> L<Vec<Arg>> {
         let params: Option<Vec<crate::transpile::ir::Param>> =
-            routine.map(|r| self.out.routine(r).params.clone());
+            routine.map(|r| self.routine(r).params.clone());
         if let Some(p) = &params {
-            let header_ok = routine.is_some_and(|r| self.out.routine(r).header_error.is_none());
+            let header_ok = routine.is_some_and(|r| self.routine(r).header_error.is_none());
             if p.len() != args.len() && header_ok {
                 return fail(
                     Why::Arity {
@@ -738,6 +779,12 @@ impl<'p> Lower<'p> {
     /// rounded for an INT, an undeclared axis name assumed axis values.
     pub(super) fn value_for(&mut self, ty: &Ty, value: &ast::Expr, pre: &mut Block) -> L<Expr> {
         let span = value.span;
+        if let (Ty::Struc(t), A::Aggregate { fields, .. }) = (ty, &value.kind) {
+            return match self.record_of(t).cloned() {
+                Some(record) => self.record_value(&record, fields, span, pre),
+                None => fail(Why::Structure(t.clone()), span),
+            };
+        }
         if let (Ty::Pose | Ty::Joint, A::Aggregate { .. }) = (ty, &value.kind) {
             let want = if *ty == Ty::Pose {
                 Layout::Pose
@@ -771,6 +818,39 @@ impl<'p> Lower<'p> {
             ));
         }
         Ok(v)
+    }
+}
+
+impl Lower<'_> {
+    /// `{force 2.5, name[] "a"}` as a whole record: every field given, in the record's order.
+    fn record_value(
+        &mut self,
+        record: &crate::transpile::ir::Record,
+        fields: &[(Option<ast::Ident>, ast::Expr)],
+        span: Span,
+        pre: &mut Block,
+    ) -> L<Expr> {
+        let mut values: Vec<Option<Expr>> = vec![None; record.fields.len()];
+        for (name, v) in fields {
+            let Some((i, fty)) = name.as_ref().and_then(|n| record.field(&n.text)) else {
+                return fail(Why::Structure(record.name.clone()), v.span);
+            };
+            values[i] = Some(self.value_for(&fty.clone(), v, pre)?);
+        }
+        let Some(values) = values.into_iter().collect::<Option<Vec<Expr>>>() else {
+            return fail(
+                Why::Aggregate(format!(
+                    "a {} value that leaves fields out (KRL keeps them; a record value has every one)",
+                    record.name
+                )),
+                span,
+            );
+        };
+        Ok(Expr::new(
+            ExprKind::Record(values),
+            Ty::Struc(record.name.clone()),
+            span,
+        ))
     }
 }
 

@@ -53,43 +53,45 @@ pub struct Lowering {
 pub struct Replay {
     /// The variables as they were when the first routine began.
     vars: Vec<Var>,
-    keys: FxHashMap<(String, String), VarId>,
+    keys: VarKeys,
     /// The next spline id at the start of each routine.
     next_spline: Vec<u32>,
     caps: &'static Caps,
 }
 
 impl Replay {
-    /// A lowering that repeats the first pass over the same program and options.
+    /// A lowering that repeats the first pass over the same program and options. The
+    /// routines are the first pass's (`first`), read, not copied: the second pass changes none.
     pub fn lower<'p>(
-        &self,
-        first: &Program,
+        self,
+        first: &'p Program,
         src: &'p front::Program,
         options: &'p Options,
     ) -> Lower<'p> {
         let out = Program {
-            vars: self.vars.clone(),
-            routines: first.routines.clone(),
+            vars: self.vars,
             top_level: first.top_level,
             interrupts: first.interrupts.clone(),
+            records: first.records.clone(),
             ..Program::default()
         };
-        let routine_ids = index_routines(&out.routines);
+        let routine_ids = index_routines(&first.routines);
         Lower {
             src,
             model: Model::new(src),
             opts: options,
             caps: self.caps,
             out,
+            first: Some(&first.routines),
             routine_ids,
-            vars: self.keys.clone(),
+            vars: self.keys,
             rt: None,
             next_spline: 0,
             vision: None,
             writes: FxHashMap::default(),
             moves: FxHashMap::default(),
             pass: Pass::Replay {
-                spline_at: self.next_spline.clone(),
+                spline_at: self.next_spline,
             },
         }
     }
@@ -128,6 +130,9 @@ struct PendingTrigger {
     at: super::TriggerAt,
     action: Block,
     span: Span,
+    /// The trigger as the target can switch it on a LIN's path; when the next motion is no
+    /// LIN, `approx` (message, help) is reported and the action goes before or after it.
+    on_path: Option<(super::PathTrigger, (String, &'static str))>,
 }
 
 #[derive(Clone)]
@@ -146,11 +151,13 @@ pub struct Lower<'p> {
     /// What the target can hold: the lowering refuses the rest (TR001) once, for every target.
     caps: &'static Caps,
     out: Program,
+    /// The second pass reads the routines of the first's program instead of `out`'s.
+    first: Option<&'p [Routine]>,
     /// Upper-case name → the first routine of `out` of that name (a scan of the routines per
     /// call made a file of many routines quadratic).
     routine_ids: FxHashMap<String, RoutineId>,
     /// (routine key or "", upper-case name) → id; package and assumed names under "".
-    vars: FxHashMap<(String, String), VarId>,
+    vars: VarKeys,
     rt: Option<Ctx>,
     next_spline: u32,
     vision: Option<VisionServer>,
@@ -190,8 +197,9 @@ impl<'p> Lower<'p> {
             opts: options,
             caps,
             out: Program::default(),
+            first: None,
             routine_ids: FxHashMap::default(),
-            vars: FxHashMap::default(),
+            vars: VarKeys::default(),
             rt: None,
             next_spline: 0,
             vision: None,
@@ -237,12 +245,20 @@ impl<'p> Lower<'p> {
         Lowering {
             replay: Replay {
                 vars,
-                keys: self.vars.clone(),
+                keys: std::mem::take(&mut self.vars),
                 next_spline: spline_at,
                 caps: self.caps,
             },
             program: self.out,
             vision: self.vision,
+        }
+    }
+
+    /// A routine of the program being lowered.
+    pub(super) fn routine(&self, r: RoutineId) -> &Routine {
+        match self.first {
+            Some(routines) => &routines[r.0 as usize],
+            None => self.out.routine(r),
         }
     }
 
@@ -312,7 +328,7 @@ impl<'p> Lower<'p> {
 
     fn add_var(&mut self, routine: String, v: VarInfo, scope: Scope) -> VarId {
         let id = VarId(self.out.vars.len() as u32);
-        let key = (routine, v.name.to_ascii_uppercase());
+        let name = v.name.to_ascii_uppercase();
         self.out.vars.push(Var {
             name: v.name,
             ty: v.ty,
@@ -322,7 +338,7 @@ impl<'p> Lower<'p> {
             decl: v.decl,
             file: v.file,
         });
-        self.vars.insert(key, id);
+        self.vars.insert(routine, name, id);
         id
     }
 
@@ -330,22 +346,20 @@ impl<'p> Lower<'p> {
     pub(super) fn var(&self, name: &str) -> Option<VarId> {
         let key = name.to_ascii_uppercase();
         if let Some(rt) = &self.rt
-            && let Some(v) = self.vars.get(&(rt.key.clone(), key.clone()))
+            && let Some(v) = self.vars.get(&rt.key, &key)
         {
-            return Some(*v);
+            return Some(v);
         }
         self.vars
-            .get(&(String::new(), key))
-            .copied()
+            .get("", &key)
             .filter(|v| matches!(self.out.var(*v).scope, Scope::Global))
     }
 
     /// A global of the generated KUKA package (`MM_Last_Status` …), typed by the catalog.
     pub(super) fn package_var(&mut self, id: &ast::Ident) -> Option<VarId> {
         let g = crate::catalog::catalog().global(&id.text)?;
-        let key = (String::new(), id.key());
-        if let Some(v) = self.vars.get(&key) {
-            return Some(*v);
+        if let Some(v) = self.vars.get("", &id.key()) {
+            return Some(v);
         }
         let ty = match g.ty.to_ascii_uppercase().as_str() {
             "INT" => Ty::Int,
@@ -369,9 +383,8 @@ impl<'p> Lower<'p> {
 
     /// A name the program does not declare: its type assumed from its use, reported once.
     pub(super) fn assumed_var(&mut self, id: &ast::Ident, ty: Ty, what: &str) -> VarId {
-        let key = (String::new(), id.key());
-        if let Some(v) = self.vars.get(&key) {
-            return *v;
+        if let Some(v) = self.vars.get("", &id.key()) {
+            return v;
         }
         self.approx(
             id.span,
@@ -466,7 +479,7 @@ impl<'p> Lower<'p> {
             .params
             .iter()
             .filter_map(|p| {
-                let var = *self.vars.get(&(key.clone(), p.name.key()))?;
+                let var = self.vars.get(&key, &p.name.key())?;
                 // A repeated name would make a header no target accepts (`def f(x, x)`):
                 // the routine keeps one parameter of that name and the header is reported.
                 if !seen.insert(var) {
@@ -538,14 +551,14 @@ impl<'p> Lower<'p> {
     }
 
     /// The routine with index `i` begins: the ops before its body (a header that did not
-    /// parse, a repeated parameter, the values of its head's declarations).
+    /// parse, a repeated parameter); [`Lower::head`] adds its head's declarations' values.
     pub fn begin_routine(&mut self, i: usize) -> Block {
         let src = self.src;
         let outline = &src.src.outline.routines[i];
         let r = &outline.head;
         let id = RoutineId(i as u32);
         self.start_splines(id);
-        let kind = self.out.routine(id).kind;
+        let kind = self.routine(id).kind;
         self.enter(id, r.name.key());
         let header = match kind {
             RoutineKind::Def => "routine DEF",
@@ -568,7 +581,7 @@ impl<'p> Lower<'p> {
             self.label(name);
         }
         let mut body = Block::new();
-        if let Some(at) = self.out.routine(id).header_error {
+        if let Some(at) = self.routine(id).header_error {
             body.push(Stmt {
                 op: Op::Unsupported {
                     why: Why::HeaderSyntaxError,
@@ -577,7 +590,7 @@ impl<'p> Lower<'p> {
                 span: at,
             });
         }
-        if let Some((name, at)) = self.out.routine(id).duplicate_param.clone() {
+        if let Some((name, at)) = self.routine(id).duplicate_param.clone() {
             body.push(Stmt {
                 op: Op::Unsupported {
                     why: Why::DuplicateParameter(name),
@@ -586,10 +599,15 @@ impl<'p> Lower<'p> {
                 span: at,
             });
         }
-        for d in &r.decls {
-            self.body_decl(d, d.span, &mut body);
-        }
         body
+    }
+
+    /// A statement of the head of the routine begun last ([`front::Statement::Head`]): a
+    /// declaration's values are assigned, into the ops before the body.
+    pub fn head(&mut self, s: &ast::Stmt, into: &mut Block) {
+        if let StmtKind::Decl(d) = &s.kind {
+            self.body_decl(d, d.span, into);
+        }
     }
 
     /// One statement of the routine (or top level) begun last, lowered.
@@ -794,15 +812,9 @@ impl<'p> Lower<'p> {
         }
         // GLOBAL declarations inside routines are globals without a value here.
         for r in &src.src.outline.routines {
-            let decls = r
-                .head
-                .decls
-                .iter()
-                .filter(|d| d.global)
-                .chain(&r.facts.global_decls);
-            for d in decls {
+            for d in &r.facts.global_decls {
                 for v in &d.vars {
-                    if let Some(id) = self.vars.get(&(String::new(), v.name.key())).copied() {
+                    if let Some(id) = self.vars.get("", &v.name.key()) {
                         let dims = self.data_dims(&v.dims);
                         self.out.uninit_globals.push((id, dims));
                     }
@@ -821,7 +833,7 @@ impl<'p> Lower<'p> {
     fn dat_module(&mut self, m: &ast::DatModule, file: FileId, text: &str) {
         for d in &m.decls {
             for v in &d.vars {
-                let Some(id) = self.vars.get(&(String::new(), v.name.key())).copied() else {
+                let Some(id) = self.vars.get("", &v.name.key()) else {
                     continue;
                 };
                 let Some(init) = &v.init else {
@@ -866,7 +878,7 @@ impl<'p> Lower<'p> {
                 }
                 _ => continue,
             };
-            let Some(id) = self.vars.get(&(String::new(), name.key())).copied() else {
+            let Some(id) = self.vars.get("", &name.key()) else {
                 continue;
             };
             self.data_construct("data", s.span, file);
@@ -907,6 +919,21 @@ impl<'p> Lower<'p> {
 }
 
 /// Upper-case name → the first of `routines` of that name.
+/// (routine key or "", upper-case name) → variable: a map per routine, so a lookup copies no
+/// name (a pair of copied names per lookup was a tenth of a translation's time).
+#[derive(Default)]
+struct VarKeys(FxHashMap<String, FxHashMap<String, VarId>>);
+
+impl VarKeys {
+    fn get(&self, routine: &str, name: &str) -> Option<VarId> {
+        self.0.get(routine)?.get(name).copied()
+    }
+
+    fn insert(&mut self, routine: String, name: String, id: VarId) {
+        self.0.entry(routine).or_default().insert(name, id);
+    }
+}
+
 fn index_routines(routines: &[Routine]) -> FxHashMap<String, RoutineId> {
     let mut ids = FxHashMap::default();
     for (i, r) in routines.iter().enumerate() {

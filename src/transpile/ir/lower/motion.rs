@@ -371,7 +371,7 @@ impl<'p> Lower<'p> {
             }
         };
         let blend = blend_of(m.approx);
-        let mv = Move {
+        let mut mv = Move {
             path,
             blend,
             frames: Frames {
@@ -382,12 +382,27 @@ impl<'p> Lower<'p> {
             spline,
             with,
             krl,
+            trigger: None,
         };
-        let triggers = self
+        let mut triggers = self
             .rt
             .as_mut()
             .map(|r| std::mem::take(&mut r.triggers))
             .unwrap_or_default();
+        // One TRIGGER the target switches on the path, before a plain LIN: exact.
+        if let [t] = triggers.as_mut_slice()
+            && matches!(mv.path, Path::Linear { .. })
+            && mv.spline.is_none()
+            && let Some((p, _)) = t.on_path.take()
+        {
+            mv.trigger = Some(p);
+            triggers.clear();
+        }
+        for t in &mut triggers {
+            if let Some((_, (message, help))) = t.on_path.take() {
+                self.approx(t.span, message, help);
+            }
+        }
         let (start, end): (Vec<PendingTrigger>, Vec<PendingTrigger>) =
             triggers.into_iter().partition(|t| t.at == TriggerAt::Start);
         if !start.is_empty() {
@@ -573,6 +588,7 @@ impl<'p> Lower<'p> {
         action: &ast::Stmt,
         _prio: Option<&ast::Expr>,
         span: Span,
+        ops: &mut Block,
     ) -> L<()> {
         let pos = crate::transpile::front::literal::number(position);
         let at = match kind {
@@ -622,28 +638,82 @@ impl<'p> Lower<'p> {
             ast::TriggerKind::Distance => "DISTANCE",
             ast::TriggerKind::Path => "PATH",
         };
+        let on_path = self.on_path(kind, pos, delay, at, &act);
         let point = self.src.src.slice(position.span).trim().to_owned();
         let delay = self.src.src.slice(delay.span).trim().to_owned();
-        self.approx(
-            span,
-            match at {
-                TriggerAt::Start => format!(
-                    "TRIGGER WHEN {what}={point} DELAY={delay}: the action runs before the next motion starts (the previous motion ends first), not on the path"
-                ),
-                TriggerAt::End => format!(
-                    "TRIGGER WHEN {what}={point} DELAY={delay}: the action runs after the next motion has ended (the robot stops there), not on the path"
-                ),
-            },
-            "check the switching point; for a precise point use the target's path events by hand",
-        );
+        let message = match at {
+            TriggerAt::Start => format!(
+                "TRIGGER WHEN {what}={point} DELAY={delay}: the action runs before the next motion starts (the previous motion ends first), not on the path"
+            ),
+            TriggerAt::End => format!(
+                "TRIGGER WHEN {what}={point} DELAY={delay}: the action runs after the next motion has ended (the robot stops there), not on the path"
+            ),
+        };
+        let help =
+            "check the switching point; for a precise point use the target's path events by hand";
+        // Exact on a LIN's path: the finding waits until the next motion shows it is none.
+        let on_path = match on_path {
+            Some(p) => {
+                // Nothing to do where the TRIGGER stands: its KRL stays as a comment there.
+                ops.push(Stmt {
+                    op: Op::Keep {
+                        note: Some("switched with the next motion"),
+                    },
+                    span,
+                });
+                Some((p, (message, help)))
+            }
+            None => {
+                self.approx(span, message, help);
+                None
+            }
+        };
         if let Some(rt) = &mut self.rt {
             rt.triggers.push(PendingTrigger {
                 at,
                 action: act,
                 span,
+                on_path,
             });
         }
         Ok(())
+    }
+
+    /// A TRIGGER the target switches exactly on a LIN's path (`Caps::trigger`): at the start
+    /// or end point (`DISTANCE=0|1`), no delay, one `$OUT[n]` (literal `n`) set to a literal.
+    fn on_path(
+        &self,
+        kind: ast::TriggerKind,
+        pos: Option<f64>,
+        delay: &ast::Expr,
+        at: TriggerAt,
+        act: &Block,
+    ) -> Option<crate::transpile::ir::PathTrigger> {
+        if self.caps.trigger != crate::transpile::render::Trigger::OnPath
+            || kind != ast::TriggerKind::Distance
+            || !matches!(pos, Some(p) if p == 0.0 || p == 1.0)
+            || crate::transpile::front::literal::number(delay) != Some(0.0)
+        {
+            return None;
+        }
+        let [
+            Stmt {
+                op: Op::SetIo { io, value, .. },
+                ..
+            },
+        ] = act.as_slice()
+        else {
+            return None;
+        };
+        let (crate::transpile::ir::OutPlace::Out(n), ExprKind::Bool(v)) = (io, &value.kind) else {
+            return None;
+        };
+        n.integer()?;
+        Some(crate::transpile::ir::PathTrigger {
+            at,
+            io: io.clone(),
+            value: *v,
+        })
     }
 
     /// `BAS(#…, value)`, the KUKA inline-form helper, as what it sets.

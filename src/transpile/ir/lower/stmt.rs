@@ -348,7 +348,7 @@ impl<'p> Lower<'p> {
             StmtKind::Return { value } => {
                 let (kind, ret, synthetic) = match &self.rt {
                     Some(rt) => {
-                        let r = self.out.routine(rt.id);
+                        let r = self.routine(rt.id);
                         (r.kind, r.ret.clone(), r.synthetic)
                     }
                     None => (RoutineKind::Def, None, true),
@@ -387,6 +387,7 @@ impl<'p> Lower<'p> {
                 action,
                 prio.as_deref(),
                 span,
+                ops,
             ),
             StmtKind::Interrupt { action, number } => {
                 let n = match number {
@@ -501,7 +502,7 @@ impl<'p> Lower<'p> {
         moves
             || names.iter().any(|c| match c {
                 crate::transpile::ir::Callee::Routine(r) => {
-                    let n = self.out.routine(*r).name.clone();
+                    let n = self.routine(*r).name.clone();
                     self.routine_moves(&n)
                 }
                 crate::transpile::ir::Callee::External { name, .. } => self.routine_moves(name),
@@ -598,7 +599,7 @@ impl<'p> Lower<'p> {
         // x = f(…) with a function of this file: the call writes x.
         if let A::Call { name, args } = &value.kind
             && let Some(r) = self.routine_named(&name.text)
-            && self.out.routine(r).kind == RoutineKind::Deffct
+            && self.routine(r).kind == RoutineKind::Deffct
         {
             self.kind("call");
             let (place, _) = self.place(target, ops, true)?;
@@ -642,15 +643,19 @@ impl<'p> Lower<'p> {
         Ok(())
     }
 
-    /// Structures no target holds (user STRUCs, KUKA types) cannot be assigned.
-    fn check_structure(&self, place: &Place, at: Span) -> L<()> {
-        if let Some(v) = place.root()
-            && let Ty::Struc(t) | Ty::Other(t) = &self.out.var(v).ty
-            && !t.is_empty()
-        {
-            return fail(Why::Structure(t.clone()), at);
+    /// Structures the target does not hold (user STRUCs without records, KUKA types) cannot
+    /// be assigned.
+    fn check_structure(&mut self, place: &Place, at: Span) -> L<()> {
+        let Some(v) = place.root() else {
+            return Ok(());
+        };
+        match self.out.var(v).ty.clone() {
+            Ty::Struc(t) if !t.is_empty() && self.record_of(&t).is_none() => {
+                fail(Why::Structure(t), at)
+            }
+            Ty::Other(t) if !t.is_empty() => fail(Why::Structure(t), at),
+            _ => Ok(()),
         }
-        Ok(())
     }
 
     /// Assignment to a `SIGNAL` name.
@@ -807,6 +812,9 @@ impl<'p> Lower<'p> {
             None => return,
         };
         for t in pending {
+            if let Some((_, (message, help))) = t.on_path {
+                self.approx(t.span, message, help);
+            }
             self.approx(
                 t.span,
                 "no motion follows this TRIGGER in its block; its action runs where the block ends",

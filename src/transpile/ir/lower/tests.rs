@@ -10,6 +10,7 @@ fn loop_kinds(text: &str) -> Vec<&'static str> {
     let mut kinds = Vec::new();
     program.src.each_statement(false, |s| match s {
         front::Statement::Begin(i) => drop(lower.begin_routine(i)),
+        front::Statement::Head(s) => lower.head(&s, &mut Block::new()),
         front::Statement::Stmt(s) => {
             for op in lower.stmt(&s) {
                 if let Op::Loop { kind, .. } = &op.op {
