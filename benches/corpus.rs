@@ -24,15 +24,10 @@ fn roots() -> Vec<(String, PathBuf)> {
     roots
 }
 
-/// The KRL files under `root`, read as `check` reads a folder (archives and other files left
-/// out: the corpus is its KRL files).
+/// The KRL files under `root`, read as `krlkit check <root>` reads a folder (backups split into
+/// robots by their layout).
 fn load(root: &PathBuf) -> Workspace {
-    let paths: Vec<PathBuf> = krlkit::files::walk(std::slice::from_ref(root))
-        .found
-        .into_iter()
-        .map(|f| f.path)
-        .collect();
-    Workspace::load(&paths)
+    Workspace::load(std::slice::from_ref(root))
 }
 
 fn bytes(ws: &Workspace) -> usize {
