@@ -1,10 +1,12 @@
-//! Time and peak RSS of every command in the three program shapes (one routine, many routines
-//! in one module, many modules in one folder) at 2, 10 and 50 MB, and the growth from 10 to
-//! 50 MB (linear is 5×): `cargo bench --bench scaling`. Runs the release binary, or the one
-//! `KRLKIT_BIN` names (to compare two builds); `SCALING_MB=2,10` picks the sizes,
-//! `SCALING_RUNS=3` repeats each run and keeps the fastest (the machine is shared). A run over
-//! 60 s is killed and shown as "> 60 s". Times are CPU (user + system) and wall; the ratio is
-//! CPU time's, as wall time on a shared machine mostly measures the neighbours.
+//! Time and peak RSS of every command in the program shapes of `tests/scaling_support/shapes.rs`
+//! (one routine, many routines in one module, many modules in one folder, and the two dense in
+//! Mech-Mind calls) at 2, 10 and 50 MB, and the growth from 10 to 50 MB (linear is 5×):
+//! `cargo bench --bench scaling`. Runs the release binary, or the one `KRLKIT_BIN` names (to
+//! compare two builds); `SCALING_MB=2,10` picks the sizes, `SCALING_SHAPES="MM calls,many
+//! files"` the shapes whose names contain one of the parts, `SCALING_RUNS=3` repeats each run
+//! and keeps the fastest (the machine is shared). A run over 60 s is killed and shown as
+//! "> 60 s". Times are CPU (user + system) and wall; the ratio is CPU time's, as wall time on a
+//! shared machine mostly measures the neighbours.
 //! Prints, does not assert: `tests/scaling_guard.rs` guards the ratios.
 
 use std::path::PathBuf;
@@ -24,15 +26,16 @@ const LIMIT: Duration = Duration::from_secs(60);
 /// One cell of the matrix.
 #[derive(Clone, Copy)]
 enum Cell {
-    /// The command takes no folder (transpile reads one file).
+    /// The command takes no folder (transpile reads one file), or would wait for the vision
+    /// server (`run` of the Mech-Mind shapes).
     NotApplicable,
     TimedOut,
     Ran(Run),
 }
 
 /// The commands of the matrix for a program written by `shapes::write`; `None` where a
-/// command takes no folder (transpile reads one file).
-fn commands(lib: &Option<PathBuf>) -> Vec<(&'static str, Option<Vec<String>>)> {
+/// command takes no folder (transpile reads one file) or would wait for the vision server.
+fn commands(shape: Shape, lib: &Option<PathBuf>) -> Vec<(&'static str, Option<Vec<String>>)> {
     let s = |v: &[&str]| Some(v.iter().map(|a| a.to_string()).collect::<Vec<_>>());
     let all = if lib.is_some() { "." } else { "main.src" };
     let transpile = |to| {
@@ -49,7 +52,7 @@ fn commands(lib: &Option<PathBuf>) -> Vec<(&'static str, Option<Vec<String>>)> {
         ("transpile flexiv", transpile("flexiv")),
         ("fmt --check", s(&["fmt", "--check", all])),
         ("parse", s(&["parse", all])),
-        ("run", Some(run)),
+        ("run", (!shape.calls_vision()).then_some(run)),
     ]
 }
 
@@ -67,13 +70,15 @@ fn main() {
         .and_then(|v| v.parse().ok())
         .unwrap_or(1);
     println!("{}", bin.display());
-    for shape in Shape::ALL {
+    let only = std::env::var("SCALING_SHAPES").unwrap_or_default();
+    let wanted = |s: Shape| only.is_empty() || only.split(',').any(|p| s.name().contains(p.trim()));
+    for shape in Shape::ALL.into_iter().filter(|&s| wanted(s)) {
         // (command, size) -> (seconds, MB)
         let mut rows: Vec<(&str, Vec<Cell>)> = Vec::new();
         for (i, &mb) in sizes.iter().enumerate() {
             let dir = tempfile::tempdir().expect("temp dir");
             let (_, lib) = shapes::write(shape, mb << 20, dir.path());
-            for (c, (name, args)) in commands(&lib).into_iter().enumerate() {
+            for (c, (name, args)) in commands(shape, &lib).into_iter().enumerate() {
                 if i == 0 {
                     rows.push((name, Vec::new()));
                 }

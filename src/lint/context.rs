@@ -285,6 +285,40 @@ pub struct Project {
     pub interface: super::interface::Selected,
     /// Optional technology packages the config switches on (`[lint] packages`).
     pub packages: Vec<&'static str>,
+    /// Constants with a numeric literal value, by where they are visible from (learned with
+    /// the environment).
+    pub constants: Option<Constants>,
+}
+
+/// The model's constants with a numeric literal value, gathered in one pass over its symbols:
+/// a file asks for those of its module and robot ([`FileCtx::known_consts`]), and a scan of
+/// every symbol per file was quadratic in a workspace of many files.
+#[derive(Default)]
+pub struct Constants {
+    module: FxHashMap<crate::sema::ModuleId, Vec<(SymbolId, f64)>>,
+    robot: FxHashMap<RobotId, Vec<(SymbolId, f64)>>,
+}
+
+impl Constants {
+    fn of(sema: &Sema) -> Constants {
+        let mut c = Constants::default();
+        for (id, s) in sema.symbols() {
+            if s.kind != crate::sema::SymbolKind::Constant {
+                continue;
+            }
+            let Some(v) = s.value.as_ref().and_then(crate::sema::ConstValue::as_f64) else {
+                continue;
+            };
+            match s.scope {
+                crate::sema::Scope::Module(m) => c.module.entry(m).or_default().push((id, v)),
+                crate::sema::Scope::Global(r) | crate::sema::Scope::Config(r) => {
+                    c.robot.entry(r).or_default().push((id, v))
+                }
+                crate::sema::Scope::Routine(_) | crate::sema::Scope::System => {}
+            }
+        }
+        c
+    }
 }
 
 impl Project {
@@ -313,6 +347,7 @@ impl Project {
             environment: FxHashSet::default(),
             interface,
             packages: Vec::new(),
+            constants: None,
         };
         for s in sockets {
             s.owned_flags(&p.channels, &mut p.owned_flags);
@@ -321,8 +356,9 @@ impl Project {
     }
 
     /// Learn [`Project::environment`] from the model, and from the names of the optional
-    /// packages switched on.
+    /// packages switched on; and [`Project::constants`].
     pub fn learn_environment(&mut self, sema: &Sema) {
+        self.constants = Some(Constants::of(sema));
         self.environment.clear();
         let env = crate::sema::env();
         for p in self.packages.iter().filter_map(|p| env.package(p)) {
@@ -421,8 +457,11 @@ pub struct FileCtx<'p> {
     pub id: FileId,
     pub path: &'p str,
     pub text: &'p str,
-    /// Held only for files the Mech-Mind rules look at (see the module docs).
+    /// Held only for files the Mech-Mind rules look at (see the module docs); in `check` only
+    /// the bodies they can use (the others are empty, see `lint::kept`).
     pub ast: Option<&'p SourceFile>,
+    /// Upper-case names read by the user routines whose bodies `ast` does not hold.
+    pub elided_reads: Option<&'p FxHashSet<String>>,
     pub project: &'p Project,
     /// Every file's path and text (messages about declarations elsewhere).
     pub all: &'p dyn Texts,
@@ -446,6 +485,7 @@ impl<'p> FileCtx<'p> {
             path: all.path(id.index()),
             text: all.text(id.index()),
             ast,
+            elided_reads: None,
             project,
             all,
             flow: OnceLock::new(),
@@ -522,9 +562,18 @@ impl<'p> FileCtx<'p> {
 
     /// The model's id of a routine of this file's AST.
     pub fn routine_id(&self, r: &Routine) -> Option<RoutineId> {
-        let ast = self.ast?;
-        let i = ast.routines.iter().position(|x| std::ptr::eq(x, r))?;
+        let i = self.routine_index(r)?;
         self.sema.file(self.id).routines.get(i).copied()
+    }
+
+    /// The place of a routine of this file's AST among its routines, from its address (rules
+    /// ask per call: no search of the file's routines).
+    pub fn routine_index(&self, r: &Routine) -> Option<usize> {
+        let routines = &self.ast?.routines;
+        let size = std::mem::size_of::<Routine>();
+        let offset = (r as *const Routine as usize).checked_sub(routines.as_ptr() as usize)?;
+        let i = offset / size;
+        (offset % size == 0 && routines.get(i).is_some_and(|x| std::ptr::eq(x, r))).then_some(i)
     }
 
     /// The symbol a name at `offset` of this file resolves to.
@@ -572,6 +621,13 @@ impl<'p> FileCtx<'p> {
     /// robot's GLOBAL ones and `$config.dat`), by symbol.
     pub fn known_consts(&self) -> FxHashMap<SymbolId, f64> {
         let info = self.sema.file(self.id);
+        if let Some(c) = &self.project.constants {
+            let module = c.module.get(&info.module).into_iter().flatten();
+            return module
+                .chain(c.robot.get(&info.robot).into_iter().flatten())
+                .copied()
+                .collect();
+        }
         let at = Position {
             robot: info.robot,
             module: info.module,

@@ -636,6 +636,12 @@ pub fn analyze(ctx: &FileCtx) -> FlowResult {
     let order = analysis_order(&routines, &callers, &callees, is_main);
     for k in order {
         let r = &ast.routines[k];
+        if r.body.is_empty() {
+            // Nothing to find, no value, no call: its callees' entries are as without it (the
+            // routines `check` keeps no body of, see `lint::kept`).
+            done.insert(k);
+            continue;
+        }
         let local_callers = callers.get(&k);
         let entry = if called_elsewhere(k) {
             unknown()

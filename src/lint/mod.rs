@@ -22,6 +22,7 @@ pub mod context;
 pub mod eki_xml;
 mod flow;
 pub mod interface;
+mod kept;
 pub mod registry;
 mod rules;
 mod session;
@@ -41,8 +42,9 @@ use crate::sema::{
     FileId, FileSummary, KssVersion, Sema, SemaInput, Stats, SummaryBuilder, Workspace,
     WorkspaceFile,
 };
-use crate::syntax::ast::{ExprKind, FileBuilder, PieceLowerer, SourceFile, StmtKind};
+use crate::syntax::ast::{FileBuilder, PieceLowerer, SourceFile, StmtKind};
 use context::{FileCtx, FileText, Project, SyntaxCtx, SyntaxFacts};
+use kept::{Kept, KeptBuilder};
 
 /// One file to check: the path as the user should see it and its decoded text.
 #[derive(Debug, Clone)]
@@ -131,7 +133,7 @@ pub fn lint_text(path: &str, text: &str) -> FileReport {
 struct Pass1 {
     text: FileText,
     findings: Vec<Diagnostic>,
-    ast: Option<SourceFile>,
+    ast: Option<Kept>,
     input: SemaInput,
 }
 
@@ -159,7 +161,7 @@ pub fn lint_workspace(
     let mut project = Project::new(
         channels,
         channels_given,
-        rest.iter().filter_map(|(_, a)| a.as_ref()),
+        rest.iter().filter_map(|(_, a)| a.as_ref().map(|k| &k.ast)),
         interface::select(config.interface, &sema),
     );
     project.packages = config.packages.clone();
@@ -168,7 +170,14 @@ pub fn lint_workspace(
         .into_par_iter()
         .enumerate()
         .map(|(i, (mut findings, ast))| {
-            let ctx = FileCtx::new(&sema, FileId(i as u32), ast.as_ref(), &project, &texts);
+            let mut ctx = FileCtx::new(
+                &sema,
+                FileId(i as u32),
+                ast.as_ref().map(|k| &k.ast),
+                &project,
+                &texts,
+            );
+            ctx.elided_reads = ast.as_ref().map(|k| &k.elided_reads);
             for rule in RULES {
                 if let Check::Model(check) = rule.check {
                     run(rule, config, &mut findings, |out| check(&ctx, out));
@@ -197,16 +206,18 @@ pub fn lint_workspace(
 }
 
 /// The first pass over one file: parsed and lowered one piece at a time (see
-/// [`crate::syntax::parse_pieces`]), so neither its tree nor, unless the Mech-Mind rules need
-/// it, its AST is ever held whole (one file may be 50 MB); the syntax rules run on what the
-/// pieces showed, and the file is summarised for the model.
+/// [`crate::syntax::parse_pieces`]), so its tree is never held whole (one file may be 50 MB),
+/// nor its AST: only the routines the Mech-Mind rules can use ([`kept`]); the syntax rules run
+/// on what the pieces showed, and the file is summarised for the model.
 fn first_pass(f: WorkspaceFile, config: &LintConfig) -> Pass1 {
     // Only a file that names an `MM_` routine or `$FLAG` can need its AST in the model pass.
     let keep = mentions_mm(&f.text);
-    let (diagnostics, facts, case_edits, ast, summary) = match pieces(&f.text, config, keep) {
+    let tree = if keep { Tree::Kept } else { Tree::None };
+    let (diagnostics, facts, case_edits, ast, summary) = match pieces(&f.text, config, tree) {
         Some(p) => p,
-        None => pieces(&f.text, config, true).expect("a whole AST is always summarised"),
+        None => pieces(&f.text, config, Tree::Whole).expect("a whole AST is always summarised"),
     };
+    let ast = ast.filter(|_| keep);
     let mut cx = SyntaxCtx::new(&f.path, &f.text, &facts, &diagnostics);
     cx.case_edits = case_edits;
     let mut findings = Vec::new();
@@ -226,28 +237,39 @@ fn first_pass(f: WorkspaceFile, config: &LintConfig) -> Pass1 {
             text: f.text,
         },
         findings,
-        ast: ast.filter(mm_relevant),
+        ast: ast.filter(|k| mm_relevant(&k.ast)),
     }
 }
 
+/// Which AST [`pieces`] assembles.
+#[derive(Clone, Copy, PartialEq, Eq, Debug)]
+enum Tree {
+    None,
+    /// Only what the Mech-Mind rules can use ([`kept`]).
+    Kept,
+    /// All of it, and the summary from it (a file whose order the summary cannot stream).
+    Whole,
+}
+
 /// What the first pass learns from one file's pieces: the parser's findings, the syntax
-/// rules' facts, KRL005's edits (unless KRL005 is off), the AST if `keep`, and the summary.
-/// `None` when the file's order is one the summary cannot be streamed in (then call again
-/// with `keep`).
+/// rules' facts, KRL005's edits (unless KRL005 is off), the kept AST unless `tree` is
+/// [`Tree::None`], and the summary. `None` when the file's order is one
+/// the summary cannot be streamed in (then call again with [`Tree::Whole`]).
 type Pieces = (
     Vec<Diagnostic>,
     SyntaxFacts,
     Option<Vec<crate::diag::Edit>>,
-    Option<SourceFile>,
+    Option<Kept>,
     FileSummary,
 );
 
-fn pieces(text: &str, config: &LintConfig, keep: bool) -> Option<Pieces> {
+fn pieces(text: &str, config: &LintConfig, tree: Tree) -> Option<Pieces> {
     let mut lowerer = PieceLowerer::new(text);
     let mut facts = SyntaxFacts::default();
     let mut case =
         (!config.disabled.contains(rules::krl005::RULE.code)).then(crate::fmt::CaseEdits::default);
-    let mut file = keep.then(FileBuilder::default);
+    let mut kept = (tree == Tree::Kept).then(KeptBuilder::default);
+    let mut whole = (tree == Tree::Whole).then(FileBuilder::default);
     let mut summary = SummaryBuilder::default();
     let mut followed = true;
     let diagnostics = crate::syntax::parse_pieces(text, |piece| {
@@ -256,9 +278,15 @@ fn pieces(text: &str, config: &LintConfig, keep: bool) -> Option<Pieces> {
         }
         lowerer.lower(piece, |event| {
             facts.add(&event);
-            match &mut file {
-                Some(file) => file.add(event),
-                // Once the summary cannot follow the file's order, stop feeding it.
+            if let Some(whole) = &mut whole {
+                return whole.add(event);
+            }
+            // Once the summary cannot follow the file's order, stop feeding it.
+            match &mut kept {
+                Some(kept) => {
+                    followed = followed && summary.add_lent(&event);
+                    kept.add(event);
+                }
                 None if followed => followed = summary.add(event),
                 None => {}
             }
@@ -268,10 +296,12 @@ fn pieces(text: &str, config: &LintConfig, keep: bool) -> Option<Pieces> {
         return None;
     }
     let case_edits = case.map(|c| c.finish(text, &diagnostics));
-    let ast = file.map(FileBuilder::finish);
-    let summary = match &ast {
-        Some(ast) => FileSummary::of(ast),
-        None => summary.finish(),
+    let (ast, summary) = match whole.map(FileBuilder::finish) {
+        Some(ast) => {
+            let summary = FileSummary::of(&ast);
+            (Some(Kept::of(ast)), summary)
+        }
+        None => (kept.map(|k| k.finish(text)), summary.finish()),
     };
     Some((diagnostics, facts, case_edits, ast, summary))
 }
@@ -297,17 +327,11 @@ fn mm_relevant(ast: &SourceFile) -> bool {
         .map(|r| r.body.as_slice())
         .chain(std::iter::once(ast.top_level.as_slice()));
     for body in bodies {
-        let writes_flag = |target: &crate::syntax::ast::Expr| {
-            target.root_name().is_some_and(|v| v.is("$FLAG"))
-                && matches!(target.kind, ExprKind::Index { .. })
-        };
         walk::each_stmt(body, &mut |s| {
             found |= match &s.kind {
-                StmtKind::Call { name, .. } => {
-                    name.text.len() >= 3 && name.text[..3].eq_ignore_ascii_case("MM_")
-                }
-                StmtKind::Assign { target, .. } => writes_flag(target),
-                StmtKind::Pulse { signal, .. } => writes_flag(signal),
+                StmtKind::Call { name, .. } => kept::is_mm(&name.text),
+                StmtKind::Assign { target, .. } => kept::writes_flag(target),
+                StmtKind::Pulse { signal, .. } => kept::writes_flag(signal),
                 _ => false,
             }
         });
@@ -368,6 +392,7 @@ fn finish(path: &str, text: &str, mut diagnostics: Vec<Diagnostic>) -> FileRepor
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::syntax::ast::Routine;
 
     /// The first pass from pieces (streamed, and with the whole AST kept) against the tree:
     /// parser findings, syntax facts, KRL005 edits, summary, the AST (and `parse --tree`).
@@ -383,13 +408,25 @@ mod tests {
                 FileSummary::of(&ast),
             )
         );
-        for keep in [false, true] {
-            let (d, facts, edits, kept, summary) = pieces(text, &LintConfig::default(), keep)
-                .or_else(|| pieces(text, &LintConfig::default(), true))
+        let pruned = Kept::of(ast.clone());
+        for tree in [Tree::None, Tree::Kept] {
+            let (d, facts, edits, kept, summary) = pieces(text, &LintConfig::default(), tree)
+                .or_else(|| pieces(text, &LintConfig::default(), Tree::Whole))
                 .unwrap();
             let streamed = format!("{:?}", (d, facts, edits, summary));
-            assert!(streamed == whole, "{path} (keep {keep})");
-            assert!(kept.is_none_or(|kept| kept == ast), "{path}");
+            assert!(streamed == whole, "{path} ({tree:?})");
+            assert!(kept.is_none_or(|kept| kept == pruned), "{path}");
+        }
+        // The kept tree is the whole one but for emptied routines.
+        assert_eq!(pruned.ast.routines.len(), ast.routines.len(), "{path}");
+        for (k, w) in pruned.ast.routines.iter().zip(&ast.routines) {
+            let emptied = Routine {
+                body: Vec::new(),
+                decls: Vec::new(),
+                definitions: Vec::new(),
+                ..w.clone()
+            };
+            assert!(k == w || *k == emptied, "{path}: {}", w.name.text);
         }
         let mut json = Vec::new();
         crate::syntax::write_json_tree(text, &mut json).unwrap();

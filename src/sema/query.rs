@@ -219,17 +219,16 @@ impl Sema {
         }
     }
 
-    /// The routine whose DEF … END contains `offset`.
+    /// The routine whose DEF … END contains `offset`. A file's routines are in text order and
+    /// never overlap (a DEF ends an open routine), so the last one starting at or before
+    /// `offset` is the only candidate: a binary search, not a scan per query (`type_of` asks
+    /// for every expression).
     pub fn routine_at(&self, file: FileId, offset: u32) -> Option<RoutineId> {
-        self.files[file.index()]
-            .info
-            .routines
-            .iter()
-            .copied()
-            .find(|r| {
-                let s = self.routines[r.index()].span;
-                s.start <= offset && offset < s.end.max(s.start + 1)
-            })
+        let routines = &self.files[file.index()].info.routines;
+        let k = routines.partition_point(|r| self.routines[r.index()].span.start <= offset);
+        let r = *routines.get(k.checked_sub(1)?)?;
+        let s = self.routines[r.index()].span;
+        (offset < s.end.max(s.start + 1)).then_some(r)
     }
 
     /// A variable, constant or signal visible at `at` (routine → module → GLOBAL →

@@ -1,7 +1,10 @@
-//! The three program shapes of the scaling benchmark and guard: one long routine, many short
-//! pick routines in one module, and many modules in one folder. Each is KRL with CRLF line ends
-//! (the shape of the repository's examples) that `krlkit run` can execute to the end:
-//! the main routine calls every routine once, and no routine waits for an input.
+//! The program shapes of the scaling benchmark and guard: one long routine, many short pick
+//! routines in one module, and many modules in one folder, each KRL with CRLF line ends (the
+//! shape of the repository's examples) that `krlkit run` can execute to the end (the main
+//! routine calls every routine once, and no routine waits for an input); and the two dense in
+//! Mech-Mind calls (one routine, many routines) where every vision step calls the interface
+//! three times and checks the status, so the `MM_` rules and their dataflow judge every line
+//! (`run` would wait for the vision server: it has no such row).
 
 use std::fmt::Write as _;
 use std::path::{Path, PathBuf};
@@ -11,17 +14,34 @@ pub enum Shape {
     OneRoutine,
     ManyRoutines,
     ManyFiles,
+    /// One routine of vision steps.
+    MmOneRoutine,
+    /// Many routines of one vision step each, all called by the main routine.
+    MmManyRoutines,
 }
 
 impl Shape {
-    pub const ALL: [Shape; 3] = [Shape::OneRoutine, Shape::ManyRoutines, Shape::ManyFiles];
+    pub const ALL: [Shape; 5] = [
+        Shape::OneRoutine,
+        Shape::ManyRoutines,
+        Shape::ManyFiles,
+        Shape::MmOneRoutine,
+        Shape::MmManyRoutines,
+    ];
 
     pub fn name(self) -> &'static str {
         match self {
             Shape::OneRoutine => "one routine",
             Shape::ManyRoutines => "many routines",
             Shape::ManyFiles => "many files",
+            Shape::MmOneRoutine => "MM calls, one routine",
+            Shape::MmManyRoutines => "MM calls, many routines",
         }
+    }
+
+    /// Calls the vision server at every step (`run` would wait for it).
+    pub fn calls_vision(self) -> bool {
+        matches!(self, Shape::MmOneRoutine | Shape::MmManyRoutines)
     }
 }
 
@@ -36,6 +56,8 @@ pub fn write(shape: Shape, bytes: usize, dir: &Path) -> (PathBuf, Option<PathBuf
     match shape {
         Shape::OneRoutine => std::fs::write(&main, one_routine(bytes)).unwrap(),
         Shape::ManyRoutines => std::fs::write(&main, many_routines("main", bytes, &[])).unwrap(),
+        Shape::MmOneRoutine => std::fs::write(&main, mm_one_routine(bytes)).unwrap(),
+        Shape::MmManyRoutines => std::fs::write(&main, mm_many_routines(bytes)).unwrap(),
         Shape::ManyFiles => {
             let lib = dir.join("lib");
             std::fs::create_dir_all(&lib).unwrap();
@@ -121,4 +143,56 @@ fn pick_routine(s: &mut String, module: &str, k: usize) {
         k % 7,
     )
     .unwrap();
+}
+
+/// The declarations a vision step uses.
+const VISION_DECLS: &str = "  DECL INT last, num, status, label\r\n  DECL REAL speed\r\n  DECL E6AXIS jnt\r\n  DECL E6POS pose\r\n";
+
+/// The interface opens the channel once, first.
+const INIT_SOCKET: &str = "  MM_Init_Socket(\"XML_Kuka_MMIND\", 873, 871, 60)\r\n";
+
+/// One vision step `k`: start a job, fetch its result and check the status, take a pose and
+/// move there.
+fn vision_step(s: &mut String, k: usize) {
+    write!(
+        s,
+        "  ;FOLD vision {k}\r\n  jnt = $AXIS_ACT\r\n  MM_Start_Vis({}, 0, 2, jnt)\r\n  MM_Get_VisData({}, last, num, status)\r\n  IF status <> 1100 THEN\r\n    $OUT[{}] = TRUE\r\n  ELSE\r\n    MM_Get_Pose({}, pose, label, speed)\r\n    LIN pose\r\n  ENDIF\r\n  ;ENDFOLD\r\n",
+        k % 20 + 1,
+        k % 20 + 1,
+        k % 64 + 1,
+        k % 20 + 1,
+    )
+    .unwrap();
+}
+
+/// One routine of vision steps adding up to about `bytes`.
+pub fn mm_one_routine(bytes: usize) -> String {
+    let mut s = format!("&ACCESS RVP\r\n&REL 1\r\nDEF main()\r\n{VISION_DECLS}{INIT_SOCKET}");
+    let mut k = 0;
+    while s.len() < bytes {
+        vision_step(&mut s, k);
+        k += 1;
+    }
+    s.push_str("END\r\n");
+    s
+}
+
+/// A module of routines of one vision step each, adding up to about `bytes`; its main routine
+/// opens the channel and calls every one.
+pub fn mm_many_routines(bytes: usize) -> String {
+    let mut body = String::new();
+    let mut routines = 0;
+    while body.len() < bytes {
+        write!(body, "\r\nDEF main_vision_{routines}()\r\n{VISION_DECLS}").unwrap();
+        vision_step(&mut body, routines);
+        body.push_str("END\r\n");
+        routines += 1;
+    }
+    let mut s = format!("&ACCESS RVP\r\n&REL 1\r\nDEF main()\r\n{INIT_SOCKET}");
+    for k in 0..routines {
+        writeln!(s, "  main_vision_{k}()\r").unwrap();
+    }
+    s.push_str("END\r\n");
+    s.push_str(&body);
+    s
 }

@@ -66,6 +66,12 @@ impl SummaryBuilder {
         event.with_event(|e| self.event(e))
     }
 
+    /// [`SummaryBuilder::add`] with the event lent, for a caller that keeps the statement too
+    /// (a statement the builder must hold until later is copied then).
+    pub fn add_lent(&mut self, event: &Lowered) -> bool {
+        self.event(event.event())
+    }
+
     /// Take one event (see [`SummaryBuilder::add`]).
     pub(super) fn event(&mut self, event: Event<'_>) -> bool {
         match event {

@@ -222,6 +222,15 @@ impl Default for FileBuilder {
 }
 
 impl FileBuilder {
+    /// A builder holding a whole file already, for a caller that works on the routines of
+    /// either ([`FileBuilder::routines_mut`]).
+    pub fn of(file: SourceFile) -> FileBuilder {
+        FileBuilder {
+            file,
+            open: Open::None,
+        }
+    }
+
     pub fn add(&mut self, event: Lowered) {
         match event {
             Lowered::Routine(r) => self.open = Open::Routine(r, Vec::new()),
@@ -256,6 +265,21 @@ impl FileBuilder {
 
     pub fn finish(self) -> SourceFile {
         self.file
+    }
+
+    /// The statements the open routine holds so far, handed over (a caller that stops holding
+    /// a long routine's body; the routine closes with the statements added after).
+    pub fn take_open_statements(&mut self) -> Vec<Stmt> {
+        match &mut self.open {
+            Open::Routine(_, stmts) => std::mem::take(stmts),
+            _ => Vec::new(),
+        }
+    }
+
+    /// The routines closed so far, in file order (a caller that keeps only some routines'
+    /// bodies empties the others as they close).
+    pub fn routines_mut(&mut self) -> &mut [Routine] {
+        &mut self.file.routines
     }
 }
 
