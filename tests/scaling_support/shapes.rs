@@ -4,7 +4,8 @@
 //! routine calls every routine once, and no routine waits for an input); and the two dense in
 //! Mech-Mind calls (one routine, many routines) where every vision step calls the interface
 //! three times and checks the status, so the `MM_` rules and their dataflow judge every line
-//! (`run` would wait for the vision server: it has no such row).
+//! (`run` would wait for the vision server: it has no such row); and taught points, routines
+//! moving to the `.dat`'s E6POS declarations.
 
 use std::fmt::Write as _;
 use std::path::{Path, PathBuf};
@@ -18,15 +19,19 @@ pub enum Shape {
     MmOneRoutine,
     /// Many routines of one vision step each, all called by the main routine.
     MmManyRoutines,
+    /// Many routines moving to taught points of the module's `.dat` (the shape of taught
+    /// programs: every motion target a `.dat` declaration, about a third of the bytes there).
+    TaughtPoints,
 }
 
 impl Shape {
-    pub const ALL: [Shape; 5] = [
+    pub const ALL: [Shape; 6] = [
         Shape::OneRoutine,
         Shape::ManyRoutines,
         Shape::ManyFiles,
         Shape::MmOneRoutine,
         Shape::MmManyRoutines,
+        Shape::TaughtPoints,
     ];
 
     pub fn name(self) -> &'static str {
@@ -36,6 +41,7 @@ impl Shape {
             Shape::ManyFiles => "many files",
             Shape::MmOneRoutine => "MM calls, one routine",
             Shape::MmManyRoutines => "MM calls, many routines",
+            Shape::TaughtPoints => "taught points",
         }
     }
 
@@ -58,6 +64,11 @@ pub fn write(shape: Shape, bytes: usize, dir: &Path) -> (PathBuf, Option<PathBuf
         Shape::ManyRoutines => std::fs::write(&main, many_routines("main", bytes, &[])).unwrap(),
         Shape::MmOneRoutine => std::fs::write(&main, mm_one_routine(bytes)).unwrap(),
         Shape::MmManyRoutines => std::fs::write(&main, mm_many_routines(bytes)).unwrap(),
+        Shape::TaughtPoints => {
+            let (src, dat) = taught_points(bytes);
+            std::fs::write(&main, src).unwrap();
+            std::fs::write(dir.join("main.dat"), dat).unwrap();
+        }
         Shape::ManyFiles => {
             let lib = dir.join("lib");
             std::fs::create_dir_all(&lib).unwrap();
@@ -195,4 +206,46 @@ pub fn mm_many_routines(bytes: usize) -> String {
     s.push_str("END\r\n");
     s.push_str(&body);
     s
+}
+
+/// A module `main` (`.src`, `.dat`) of about `bytes` in all: routines of four taught points
+/// each (PTP and LIN to `.dat` E6POS declarations), a loop with I/O, a SWITCH; the main
+/// routine calls every routine once.
+pub fn taught_points(bytes: usize) -> (String, String) {
+    let mut body = String::new();
+    let mut dat = String::from("&ACCESS RVP\r\n&REL 1\r\nDEFDAT main\r\n");
+    let mut routines = 0;
+    while body.len() + dat.len() < bytes {
+        let r = routines;
+        write!(
+            body,
+            "\r\nDEF main_cell_{r}(count:IN)\r\n  DECL INT i, count\r\n"
+        )
+        .unwrap();
+        for p in r * 4..r * 4 + 4 {
+            write!(body, "  PTP XP{p} C_DIS\r\n  LIN XP{p} ; approach\r\n").unwrap();
+            write!(
+                dat,
+                "DECL E6POS XP{p}={{X {}.2,Y -18.7,Z 1276.5,A 12.5,B 45.0,C -170.1,S 6,T 27,E1 0.0}}\r\n",
+                1000 + p % 97
+            )
+            .unwrap();
+        }
+        write!(
+            body,
+            "  FOR i = 1 TO count\r\n    $OUT[{}] = TRUE\r\n    LIN_REL {{Z -10.5}} C_DIS\r\n  ENDFOR\r\n  SWITCH count\r\n  CASE 1, 2\r\n    WAIT SEC 0.2\r\n  DEFAULT\r\n    $OUT[{}] = FALSE\r\n  ENDSWITCH\r\nEND\r\n",
+            r % 64 + 1,
+            r % 64 + 1
+        )
+        .unwrap();
+        routines += 1;
+    }
+    dat.push_str("ENDDAT\r\n");
+    let mut s = String::from("&ACCESS RVP\r\n&REL 1\r\nDEF main()\r\n");
+    for k in 0..routines {
+        writeln!(s, "  main_cell_{k}({})\r", k % 3 + 1).unwrap();
+    }
+    s.push_str("END\r\n");
+    s.push_str(&body);
+    (s, dat)
 }
