@@ -1,7 +1,13 @@
 //! One run of krlkit, measured from the child's rusage (`wait4`): wall time, CPU time (user +
 //! system, all threads) and peak RSS. The ratios use CPU time: the machine the matrix and the
 //! guard run on is shared, and its wall time mostly measures the neighbours.
+//!
+//! The child is started by fork + exec, never by `posix_spawn`: a child spawned with a shared
+//! address space (vfork) takes its parent's *peak* resident set into its `ru_maxrss` at exec, so
+//! every small command read as the bench's own peak (~128 MB after writing the 50 MB shapes); a
+//! forked child starts from the parent's current resident set (a few MB here).
 
+use std::os::unix::process::CommandExt;
 use std::path::Path;
 use std::process::{Command, Stdio};
 use std::time::{Duration, Instant};
@@ -32,14 +38,19 @@ impl Run {
 /// (it is killed then).
 pub fn measure(bin: &Path, args: &[String], cwd: &Path, limit: Duration) -> Option<Run> {
     let start = Instant::now();
-    #[allow(clippy::zombie_processes)] // reaped by wait4 below, which also gives its rusage
-    let mut child = Command::new(bin)
+    let mut command = Command::new(bin);
+    command
         .args(args)
         .current_dir(cwd)
         .stdout(Stdio::null())
-        .stderr(Stdio::null())
-        .spawn()
-        .expect("start krlkit");
+        .stderr(Stdio::null());
+    // SAFETY: the hook runs nothing; its presence makes std fork + exec instead of posix_spawn
+    // (see the module comment).
+    unsafe {
+        command.pre_exec(|| Ok(()));
+    }
+    #[allow(clippy::zombie_processes)] // reaped by wait4 below, which also gives its rusage
+    let mut child = command.spawn().expect("start krlkit");
     let pid = child.id() as libc::pid_t;
     let mut status = 0;
     // SAFETY: an all-zero rusage is valid; wait4 fills it for our own child.
