@@ -50,6 +50,7 @@ fn commands(shape: Shape, lib: &Option<PathBuf>) -> Vec<(&'static str, Option<Ve
         ("check", s(&["check", all])),
         ("transpile kawasaki", transpile("kawasaki")),
         ("transpile flexiv", transpile("flexiv")),
+        ("transpile rapid", transpile("rapid")),
         ("fmt --check", s(&["fmt", "--check", all])),
         ("parse", s(&["parse", all])),
         ("run", (!shape.calls_vision()).then_some(run)),
