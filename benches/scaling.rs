@@ -1,6 +1,6 @@
 //! Time and peak RSS of every command in the program shapes of `tests/scaling_support/shapes.rs`
-//! (one routine, many routines in one module, many modules in one folder, and the two dense in
-//! Mech-Mind calls) at 2, 10 and 50 MB, and the growth from 10 to 50 MB (linear is 5×):
+//! (one routine, many routines in one module, many modules in one folder, the two dense in
+//! Mech-Mind calls, taught points) at 2, 10 and 50 MB (transpile to all three targets), and the growth from 10 to 50 MB (linear is 5×):
 //! `cargo bench --bench scaling`. Runs the release binary, or the one `KRLKIT_BIN` names (to
 //! compare two builds); `SCALING_MB=2,10` picks the sizes, `SCALING_SHAPES="MM calls,many
 //! files"` the shapes whose names contain one of the parts, `SCALING_RUNS=3` repeats each run
