@@ -37,6 +37,17 @@ pub fn catalog() -> &'static Catalog {
     })
 }
 
+/// The prefix every interface subprogram's name has (the catalog tests hold it to that): a call
+/// of a name with it is the interface's to judge (MM001 names an unknown one), whatever the
+/// file declares.
+pub const NAME_PREFIX: &str = "MM_";
+
+/// Whether `name` has the interface's prefix ([`NAME_PREFIX`]), in any case.
+pub fn has_interface_prefix(name: &str) -> bool {
+    name.len() >= NAME_PREFIX.len()
+        && name.as_bytes()[..NAME_PREFIX.len()].eq_ignore_ascii_case(NAME_PREFIX.as_bytes())
+}
+
 /// The raw catalog text (for `krlkit` docs and tests).
 pub fn catalog_source() -> &'static str {
     CATALOG_TOML

@@ -65,6 +65,17 @@ const V2_SIGNATURES: &[&str] = &[
 ];
 
 #[test]
+fn every_subprogram_name_has_the_interface_prefix() {
+    let cat = catalog();
+    for s in cat.subprograms.iter().chain(&cat.subprograms_v2) {
+        assert!(has_interface_prefix(&s.name), "{}", s.name);
+    }
+    assert!(has_interface_prefix("mm_start_vis"));
+    assert!(!has_interface_prefix("MM"));
+    assert!(!has_interface_prefix("MMX_Start"));
+}
+
+#[test]
 fn every_v2_subprogram_is_present_with_its_signature() {
     let cat = catalog();
     let got: Vec<String> = cat

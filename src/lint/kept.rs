@@ -17,6 +17,7 @@ use rustc_hash::{FxHashMap, FxHashSet};
 use super::context::FileCtx;
 use super::rules::mm008;
 use super::walk;
+use crate::catalog::has_interface_prefix;
 use crate::syntax::ast::{
     Expr, ExprKind, FileBuilder, Lowered, PieceLowerer, Routine, SourceFile, Stmt, StmtKind,
 };
@@ -49,7 +50,7 @@ struct Seen {
 impl Seen {
     fn stmt(&mut self, s: &Stmt) {
         walk::each_stmt(std::slice::from_ref(s), &mut |s| match &s.kind {
-            StmtKind::Call { name, .. } if is_mm(&name.text) => self.direct = true,
+            StmtKind::Call { name, .. } if has_interface_prefix(&name.text) => self.direct = true,
             StmtKind::Call { name, .. } => {
                 self.calls.insert(name.key());
             }
@@ -250,11 +251,6 @@ fn add_reads(body: &[Stmt], reads: &mut FxHashSet<String>) {
             reads.insert(id.key());
         })
     });
-}
-
-/// A call of this name can be an interface call (MM001 judges every `MM_` name).
-pub fn is_mm(name: &str) -> bool {
-    name.len() >= 3 && name.as_bytes()[..3].eq_ignore_ascii_case(b"MM_")
 }
 
 /// An assignment or PULSE target that is an element of `$FLAG`.

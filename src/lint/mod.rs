@@ -329,7 +329,7 @@ fn mm_relevant(ast: &SourceFile) -> bool {
     for body in bodies {
         walk::each_stmt(body, &mut |s| {
             found |= match &s.kind {
-                StmtKind::Call { name, .. } => kept::is_mm(&name.text),
+                StmtKind::Call { name, .. } => crate::catalog::has_interface_prefix(&name.text),
                 StmtKind::Assign { target, .. } => kept::writes_flag(target),
                 StmtKind::Pulse { signal, .. } => kept::writes_flag(signal),
                 _ => false,

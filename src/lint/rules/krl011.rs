@@ -28,8 +28,7 @@ fn check(ctx: &FileCtx, out: &mut Vec<Diagnostic>) {
             continue;
         }
         let name = sema.name(c.name);
-        if (name.len() >= 3 && name[..3].eq_ignore_ascii_case("MM_")) || ctx.in_environment(c.name)
-        {
+        if crate::catalog::has_interface_prefix(name) || ctx.in_environment(c.name) {
             continue;
         }
         let mut d = Diagnostic::error(

@@ -46,7 +46,7 @@ fn check(ctx: &FileCtx, out: &mut Vec<Diagnostic>) {
             continue;
         }
         let name = sema.name(c.name);
-        if name.len() >= 3 && name[..3].eq_ignore_ascii_case("MM_") {
+        if crate::catalog::has_interface_prefix(name) {
             continue;
         }
         // Routines and EXT declarations of the files given, never the KSS built-ins; one

@@ -22,10 +22,7 @@ fn check(ctx: &FileCtx, out: &mut Vec<Diagnostic>) {
             let StmtKind::Call { name, .. } = &s.kind else {
                 return;
             };
-            if name.text.len() < 3
-                || !name.text[..3].eq_ignore_ascii_case("MM_")
-                || ctx.mm_call(name).is_some()
-            {
+            if !crate::catalog::has_interface_prefix(&name.text) || ctx.mm_call(name).is_some() {
                 return;
             }
             // The user's own routine (visible at the call) or an EXT declaration of one.

@@ -133,10 +133,11 @@ pub struct Method {
 
 /// The Python method name of a KUKA subprogram: `MM_Get_VisData` → `get_visdata`.
 pub fn method_name(krl: &str) -> String {
-    let bare = krl
-        .strip_prefix("MM_")
-        .or_else(|| krl.strip_prefix("mm_"))
-        .unwrap_or(krl);
+    let bare = if crate::catalog::has_interface_prefix(krl) {
+        &krl[crate::catalog::NAME_PREFIX.len()..]
+    } else {
+        krl
+    };
     bare.to_ascii_lowercase()
 }
 

@@ -24,7 +24,7 @@ impl<'p> Lower<'p> {
     ) -> L<()> {
         let key = name.key();
         let routine = self.routine_named(&name.text);
-        if key.starts_with("MM_") && routine.is_none() {
+        if crate::catalog::has_interface_prefix(&key) && routine.is_none() {
             self.kind("MM_ call");
             return self.mm_call(name, args, span, ops);
         }
