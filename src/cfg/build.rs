@@ -14,6 +14,12 @@ use crate::syntax::ast::{Expr, ExprKind, Stmt, StmtKind};
 /// What a graph is built into: told of every block, edge and statement as the builder makes
 /// them, in the order of a whole-body build.
 pub trait Sink {
+    /// Whether the graph leaves out the ways control never takes: a literal condition's other
+    /// way, past a SWITCH whose cases name only ENUM values, past `HALT` and a stray `EXIT`.
+    /// The transpiler's flow keeps them (`false`): a translation's motion facts must hold on
+    /// every way its lowered code can go (a translated condition is not folded, a `HALT` can be
+    /// resumed, a stray `EXIT` is not translated and falls through).
+    const PRUNES: bool = true;
     /// What the sink keeps of a statement to be named again later (a jump's, a label's, a
     /// stray `EXIT`'s): the statement itself, or where it stands in a stream.
     type Mark: Clone;
@@ -27,6 +33,9 @@ pub trait Sink {
     fn stray_exit(&mut self, exit: Self::Mark);
     /// A label defined a second time (a `GOTO` reaches the first).
     fn duplicate_label(&mut self, label: Self::Mark);
+    /// Statement `s` has been built with its nested bodies; control goes on in `open` (`None`:
+    /// nothing falls through it).
+    fn done(&mut self, _s: Self::Mark, _open: Option<BlockId>) {}
 }
 
 /// A sink that can take statements that live `'s` long.
@@ -51,9 +60,10 @@ pub struct Builder<K: Sink> {
     gotos: Vec<(BlockId, K::Mark, String)>,
 }
 
-fn literal_bool(e: &Expr) -> Option<bool> {
+/// A literal condition's value, where the sink prunes the way it never takes.
+fn literal_bool<K: Sink>(e: &Expr) -> Option<bool> {
     match e.kind {
-        ExprKind::Bool(b) => Some(b),
+        ExprKind::Bool(b) if K::PRUNES => Some(b),
         _ => None,
     }
 }
@@ -137,6 +147,11 @@ impl<K: Sink> Builder<K> {
         self.stmt(s);
     }
 
+    /// The sink, to tell it what it needs of the statements still to come.
+    pub fn sink_mut(&mut self) -> &mut K {
+        &mut self.sink
+    }
+
     /// Appends `s` to the open block (opening one if needed); returns that block and the
     /// sink's mark of `s`.
     fn add<'s>(&mut self, s: &'s Stmt) -> (BlockId, K::Mark)
@@ -218,14 +233,23 @@ impl<K: Sink> Builder<K> {
     where
         K: Feed<'s>,
     {
+        let mark = self.build(s);
+        self.sink.done(mark, self.open);
+    }
+
+    /// Builds `s` (and its nested bodies); returns the sink's mark of it.
+    fn build<'s>(&mut self, s: &'s Stmt) -> K::Mark
+    where
+        K: Feed<'s>,
+    {
         match &s.kind {
             StmtKind::If {
                 cond,
                 then_body,
                 else_body,
             } => {
-                let lit = literal_bool(cond);
-                let (head, _) = self.add(s);
+                let lit = literal_bool::<K>(cond);
+                let (head, mark) = self.add(s);
                 let after = self.block();
                 self.branch(head, EdgeKind::True, lit != Some(false), then_body, after);
                 if else_body.is_empty() {
@@ -236,9 +260,10 @@ impl<K: Sink> Builder<K> {
                     self.branch(head, EdgeKind::False, lit != Some(true), else_body, after);
                 }
                 self.open = Some(after);
+                mark
             }
             StmtKind::Switch { cases, default, .. } => {
-                let (head, _) = self.add(s);
+                let (head, mark) = self.add(s);
                 let after = self.block();
                 for c in cases {
                     self.branch(head, EdgeKind::Case, true, &c.body, after);
@@ -246,7 +271,8 @@ impl<K: Sink> Builder<K> {
                 match default {
                     Some(d) => self.branch(head, EdgeKind::Default, true, d, after),
                     None => {
-                        let covers_enum = !cases.is_empty()
+                        let covers_enum = K::PRUNES
+                            && !cases.is_empty()
                             && cases.iter().all(|c| {
                                 c.values.iter().all(|v| matches!(v.kind, ExprKind::Enum(_)))
                             });
@@ -256,22 +282,24 @@ impl<K: Sink> Builder<K> {
                     }
                 }
                 self.open = Some(after);
+                mark
             }
             StmtKind::While { cond, body } => {
-                let lit = literal_bool(cond);
-                self.cond_loop(s, lit, body);
+                let lit = literal_bool::<K>(cond);
+                self.cond_loop(s, lit, body)
             }
             StmtKind::For { body, .. } => self.cond_loop(s, None, body),
             StmtKind::Loop { body } => {
                 let head = self.head();
-                self.add(s);
+                let (_, mark) = self.add(s);
                 let after = self.block();
                 self.loop_body(head, EdgeKind::Next, true, body, after);
                 self.flow_to(head, EdgeKind::Back);
                 self.open = Some(after);
+                mark
             }
             StmtKind::Repeat { body, until } => {
-                let lit = until.as_ref().and_then(literal_bool);
+                let lit = until.as_ref().and_then(literal_bool::<K>);
                 let after = self.block();
                 let first = self.block();
                 self.flow_to(first, EdgeKind::Next);
@@ -280,7 +308,7 @@ impl<K: Sink> Builder<K> {
                 self.stmts(body);
                 self.loops.pop();
                 let test = self.head();
-                self.add(s);
+                let (_, mark) = self.add(s);
                 if lit != Some(true) {
                     self.edge(test, first, EdgeKind::Back);
                 }
@@ -288,72 +316,84 @@ impl<K: Sink> Builder<K> {
                     self.edge(test, after, EdgeKind::True);
                 }
                 self.open = Some(after);
+                mark
             }
             StmtKind::Skip { body, .. } => {
-                let (head, _) = self.add(s);
+                let (head, mark) = self.add(s);
                 let after = self.block();
                 self.edge(head, after, EdgeKind::True);
                 self.branch(head, EdgeKind::False, true, body, after);
                 self.open = Some(after);
+                mark
             }
             StmtKind::Spline { body, .. } => {
-                self.add(s);
+                let (_, mark) = self.add(s);
                 self.stmts(body);
+                mark
             }
             StmtKind::InterruptDecl { handler, .. } => {
-                let (b, _) = self.add(s);
+                let (b, mark) = self.add(s);
                 self.detached(b, EdgeKind::Interrupt, handler);
+                mark
             }
             StmtKind::Trigger { action, .. } => {
-                let (b, _) = self.add(s);
+                let (b, mark) = self.add(s);
                 self.detached(b, EdgeKind::Trigger, action);
+                mark
             }
             StmtKind::Return { .. } => {
-                self.add(s);
+                let (_, mark) = self.add(s);
                 self.flow_to(RETURN, EdgeKind::Return);
+                mark
             }
             StmtKind::Halt => {
-                self.add(s);
-                self.open = None;
+                let (_, mark) = self.add(s);
+                if K::PRUNES {
+                    self.open = None;
+                }
+                mark
             }
             StmtKind::Exit => {
                 let (_, mark) = self.add(s);
                 match self.loops.last() {
                     Some(&after) => self.flow_to(after, EdgeKind::Exit),
                     None => {
-                        self.sink.stray_exit(mark);
-                        self.open = None;
+                        self.sink.stray_exit(mark.clone());
+                        if K::PRUNES {
+                            self.open = None;
+                        }
                     }
                 }
+                mark
             }
             StmtKind::Goto { label } => {
                 let (b, mark) = self.add(s);
-                self.gotos.push((b, mark, label.key()));
+                self.gotos.push((b, mark.clone(), label.key()));
                 self.open = None;
+                mark
             }
             StmtKind::Label { name } => {
                 let l = self.head();
                 let (_, mark) = self.add(s);
                 match self.labels.entry(name.key()) {
-                    Entry::Occupied(_) => self.sink.duplicate_label(mark),
+                    Entry::Occupied(_) => self.sink.duplicate_label(mark.clone()),
                     Entry::Vacant(v) => {
-                        v.insert((l, mark));
+                        v.insert((l, mark.clone()));
                     }
                 }
+                mark
             }
-            _ => {
-                self.add(s);
-            }
+            _ => self.add(s).1,
         }
     }
 
     /// WHILE and FOR: a head block testing the condition, the body, a back edge.
-    fn cond_loop<'s>(&mut self, s: &'s Stmt, lit: Option<bool>, body: &'s [Stmt])
+    fn cond_loop<'s>(&mut self, s: &'s Stmt, lit: Option<bool>, body: &'s [Stmt]) -> K::Mark
     where
         K: Feed<'s>,
     {
         let head = self.head();
-        self.add(s);
+        let (_, mark) = self.add(s);
         let after = self.block();
         if lit != Some(true) {
             self.edge(head, after, EdgeKind::False);
@@ -361,5 +401,6 @@ impl<K: Sink> Builder<K> {
         self.loop_body(head, EdgeKind::True, lit != Some(false), body, after);
         self.flow_to(head, EdgeKind::Back);
         self.open = Some(after);
+        mark
     }
 }

@@ -134,28 +134,7 @@ impl<'a> Cfg<'a> {
     /// before its successors, loops aside), then the others in index order: the order in
     /// which a forward dataflow converges fastest (a backward one: reversed).
     pub fn forward_order(&self) -> Vec<BlockId> {
-        let n = self.blocks.len();
-        let mut seen = vec![false; n];
-        let mut post = Vec::with_capacity(n);
-        // An explicit stack: a routine may chain a million blocks.
-        let mut stack = vec![(ENTRY, 0usize)];
-        seen[ENTRY] = true;
-        while let Some((b, next)) = stack.last_mut() {
-            let b = *b;
-            if let Some(e) = self.blocks[b].edges.get(*next) {
-                *next += 1;
-                if !seen[e.to] {
-                    seen[e.to] = true;
-                    stack.push((e.to, 0));
-                }
-            } else {
-                post.push(b);
-                stack.pop();
-            }
-        }
-        post.reverse();
-        post.extend((0..n).filter(|&b| !seen[b]));
-        post
+        forward_order(self.blocks.len(), |b| &self.blocks[b].edges)
     }
 
     /// Whether the body's end can be reached by falling off it (not through `RETURN`).
@@ -212,6 +191,32 @@ impl<'a> Feed<'a> for Cfg<'a> {
         self.blocks[b].stmts.push(s);
         s
     }
+}
+
+/// [`Cfg::forward_order`] of a graph of `n` blocks kept elsewhere: `edges(b)` are block `b`'s
+/// edges out.
+pub fn forward_order<'e>(n: usize, edges: impl Fn(BlockId) -> &'e [Edge]) -> Vec<BlockId> {
+    let mut seen = vec![false; n];
+    let mut post = Vec::with_capacity(n);
+    // An explicit stack: a routine may chain a million blocks.
+    let mut stack = vec![(ENTRY, 0usize)];
+    seen[ENTRY] = true;
+    while let Some((b, next)) = stack.last_mut() {
+        let b = *b;
+        if let Some(e) = edges(b).get(*next) {
+            *next += 1;
+            if !seen[e.to] {
+                seen[e.to] = true;
+                stack.push((e.to, 0));
+            }
+        } else {
+            post.push(b);
+            stack.pop();
+        }
+    }
+    post.reverse();
+    post.extend((0..n).filter(|&b| !seen[b]));
+    post
 }
 
 /// Whether `s` only ever passes control to the statement after it (no branch, jump or nested

@@ -130,9 +130,9 @@ pub trait Renderer {
 ///
 /// The statements are lowered twice, one at a time, and never held whole (memory follows the
 /// largest statement, not the program): the first pass records the program model without the
-/// routines' bodies and each routine's flow skeleton; the flow facts are solved on the
-/// skeletons; the second pass lowers each statement again, resolves its motions and hands it
-/// to the target's renderer.
+/// routines' bodies and each routine's control-flow graph with its blocks' motion-fact
+/// effects; the flow facts are solved on the graphs; the second pass lowers each statement
+/// again, resolves its motions and hands it to the target's renderer.
 pub fn transpile(
     target: Target,
     src: Source,
@@ -145,28 +145,28 @@ pub fn transpile(
     );
     let backend = render::backend(target);
     let mut first = ir::lower::Lower::new(&program, options, backend.caps());
-    let mut skeleton = ir::flow::Skeleton::default();
+    let mut graphs = ir::flow::Graphs::default();
     let mut plan = ir::goto::Plan::default();
-    let mut open = ir::RoutineId(0);
     each_lowered(&program, &mut first, |event| match event {
         Lowered::Begin(id) => {
-            open = id;
-            skeleton.begin(id);
+            graphs.begin(id);
             plan.begin(id);
         }
-        Lowered::Ops(ops, stmt) => {
-            skeleton.push(open, &ops);
+        Lowered::Ops(mut ops, stmt) => {
+            graphs.push(stmt, &mut ops);
             plan.push(stmt, &ops);
         }
-        Lowered::End(id) => plan.end(id),
+        Lowered::End(id) => {
+            graphs.end();
+            plan.end(id);
+        }
     });
     let ir::lower::Lowering {
         program: mut model,
         vision,
         replay,
     } = first.finish();
-    skeleton.finish();
-    let flow = ir::flow::solve(skeleton, &model);
+    let flow = ir::flow::solve(graphs, &model);
     let mut report = front::report::Report::default();
     for f in std::mem::take(&mut model.findings) {
         report.approximate(f.file, f.span, f.message, f.help);
@@ -186,9 +186,9 @@ pub fn transpile(
                 u.begin(id);
             }
         }
-        Lowered::Ops(mut ops, _) => {
+        Lowered::Ops(mut ops, stmt) => {
             if let Some(r) = &mut resolver {
-                r.resolve(&mut ops);
+                r.resolve(stmt, &mut ops);
             }
             match &mut units {
                 Some(u) => {
@@ -248,8 +248,8 @@ enum Lowered<'s> {
     /// A routine begins.
     Begin(ir::RoutineId),
     /// The ops of its next statement (the first: those before its body; the last: those
-    /// after), and the statement when they are one (the jump plan builds the routine's
-    /// control-flow graph from them).
+    /// after), and the statement when they are one (the jump plan and the flow build the
+    /// routine's control-flow graph from them).
     Ops(ir::Block, Option<&'s crate::syntax::ast::Stmt>),
     End(ir::RoutineId),
 }

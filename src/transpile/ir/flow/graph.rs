@@ -1,0 +1,295 @@
+//! The first pass's part: each routine's control-flow graph ([`crate::cfg`], fed its
+//! statements one at a time as they are lowered) with, per block, the effects of the ops that
+//! run there, in order. Only what the fixpoints need is kept: blocks, edges, effects.
+
+use rustc_hash::FxHashMap;
+
+use super::facts::Effect;
+use super::ops::{Parts, effects, split};
+use crate::cfg::{self, BlockId, END, ENTRY, Edge, EdgeKind};
+use crate::syntax::ast;
+use crate::transpile::ir::{Block, RoutineId, Stmt};
+
+/// Where the graph puts each statement of the one being fed, for [`split`]'s parts: a
+/// [`cfg::Sink`] both passes build the graph into (the second keeps no edges).
+pub(super) struct Places {
+    blocks: usize,
+    /// The edges, in the order they were made (`None`: not kept).
+    edges: Option<Vec<(u32, Edge)>>,
+    /// The last `Next` edge made (a FOR's set-up runs on the way into its head).
+    last_next: Option<(BlockId, BlockId)>,
+    /// Per statement: the block its own ops run in (`None`: no path reaches them).
+    at: FxHashMap<usize, Option<BlockId>>,
+    /// Per statement: the block control goes on in after it.
+    after: FxHashMap<usize, Option<BlockId>>,
+}
+
+fn key(s: &ast::Stmt) -> usize {
+    std::ptr::from_ref(s) as usize
+}
+
+impl Places {
+    pub(super) fn new(keep_edges: bool) -> Places {
+        Places {
+            blocks: 0,
+            edges: keep_edges.then(Vec::new),
+            last_next: None,
+            at: FxHashMap::default(),
+            after: FxHashMap::default(),
+        }
+    }
+
+    /// Where the own ops of `s` run.
+    pub(super) fn at(&self, s: &ast::Stmt) -> Option<BlockId> {
+        self.at.get(&key(s)).copied().flatten()
+    }
+
+    /// Where the ops run that come after `s`.
+    pub(super) fn after(&self, s: &ast::Stmt) -> Option<BlockId> {
+        self.after.get(&key(s)).copied().flatten()
+    }
+
+    /// The statement fed last has been split: its places are not asked again.
+    pub(super) fn clear(&mut self) {
+        self.at.clear();
+        self.after.clear();
+    }
+}
+
+impl cfg::Sink for Places {
+    type Mark = usize;
+    const PRUNES: bool = false;
+
+    fn block(&mut self, id: BlockId) {
+        self.blocks = id + 1;
+    }
+
+    fn edge(&mut self, from: BlockId, edge: Edge) {
+        if let Some(v) = &mut self.edges {
+            v.push((from as u32, edge));
+        }
+        if edge.kind == EdgeKind::Next {
+            self.last_next = Some((from, edge.to));
+        }
+    }
+
+    fn jump(&mut self, _: usize, _: Option<usize>) {}
+
+    fn stray_exit(&mut self, _: usize) {}
+
+    fn duplicate_label(&mut self, _: usize) {}
+
+    fn done(&mut self, s: usize, open: Option<BlockId>) {
+        self.after.insert(s, open);
+    }
+}
+
+impl cfg::Feed<'_> for Places {
+    fn stmt(&mut self, b: BlockId, s: &ast::Stmt, _depth: usize) -> usize {
+        // A FOR's set-up (its bounds' ops) runs once, before its head block.
+        let at = match s.kind {
+            ast::StmtKind::For { .. } => self.last_next.filter(|(_, to)| *to == b).map(|p| p.0),
+            _ => Some(b),
+        };
+        self.at.insert(key(s), at);
+        key(s)
+    }
+}
+
+/// One routine's graph as the fixpoints need it.
+#[derive(Default)]
+pub(super) struct Graph {
+    /// Every block's effects, a block's in one run.
+    pub(super) effects: Vec<Effect>,
+    /// Per block: its run in `effects`.
+    pub(super) ranges: Vec<(u32, u32)>,
+    /// The edges, as made.
+    pub(super) edges: Vec<(u32, Edge)>,
+    /// The routine moves the robot itself (a motion, a call of another module, `MM_CALIB`).
+    pub(super) moves: bool,
+    /// The routines of the file it calls (some more than once).
+    pub(super) callees: Vec<RoutineId>,
+}
+
+impl Graph {
+    /// The graph of an empty body.
+    pub(super) fn empty() -> Graph {
+        let places = cfg::Builder::new(Places::new(true)).finish();
+        Graph {
+            ranges: vec![(0, 0); places.blocks],
+            edges: places.edges.unwrap_or_default(),
+            ..Graph::default()
+        }
+    }
+
+    pub(super) fn block(&self, b: usize) -> &[Effect] {
+        let (s, e) = self.ranges[b];
+        &self.effects[s as usize..e as usize]
+    }
+
+    /// `effects` run in block `b` (or nowhere reachable: `None`), after those it has.
+    fn append(&mut self, b: Option<BlockId>, new: &[Effect]) {
+        note(new, &mut self.moves, &mut self.callees);
+        let Some(b) = b else {
+            return;
+        };
+        if self.ranges.len() <= b {
+            self.ranges.resize(b + 1, (0, 0));
+        }
+        let (start, end) = self.ranges[b];
+        let len = self.effects.len() as u32;
+        if start == end {
+            self.ranges[b] = (len, len);
+        } else if end != len {
+            // Another block's effects came between: move this block's to the end.
+            self.effects
+                .extend_from_within(start as usize..end as usize);
+            self.ranges[b] = (len, len + (end - start));
+        }
+        for e in new {
+            let (start, end) = self.ranges[b];
+            // Motions and stops in a row: only the last one counts.
+            if let (Effect::Moving(_), true) = (e, end > start)
+                && let Some(Effect::Moving(last)) = self.effects.last_mut()
+            {
+                *last = matches!(e, Effect::Moving(true));
+                continue;
+            }
+            self.effects.push(e.clone());
+            self.ranges[b].1 += 1;
+        }
+    }
+}
+
+/// Whether `effects` move the robot, and the calls among them.
+fn note(effects: &[Effect], moves: &mut bool, callees: &mut Vec<RoutineId>) {
+    for e in effects {
+        match e {
+            Effect::Moving(true) => *moves = true,
+            Effect::Call(r) => callees.push(*r),
+            Effect::Either(ways) => {
+                note(&ways.0, moves, callees);
+                note(&ways.1, moves, callees);
+            }
+            _ => {}
+        }
+    }
+}
+
+/// The graphs of a program's routines, built while its statements are lowered the first time.
+#[derive(Default)]
+pub struct Graphs {
+    /// By routine id.
+    pub(super) routines: Vec<Graph>,
+    open: Option<Open>,
+}
+
+/// The routine being fed.
+struct Open {
+    id: RoutineId,
+    builder: cfg::Builder<Places>,
+    graph: Graph,
+    /// The ops before its body have come.
+    head: bool,
+    /// Scratch: one run's effects.
+    scratch: Vec<Effect>,
+}
+
+/// [`Parts`] that add each run's effects to the block it runs in.
+struct Append<'a> {
+    places: &'a Places,
+    graph: &'a mut Graph,
+    scratch: &'a mut Vec<Effect>,
+}
+
+impl Append<'_> {
+    fn add(&mut self, b: Option<BlockId>, ops: &mut [Stmt]) {
+        self.scratch.clear();
+        effects(ops, self.scratch);
+        if !self.scratch.is_empty() {
+            self.graph.append(b, self.scratch);
+        }
+    }
+}
+
+impl Parts for Append<'_> {
+    fn own(&mut self, s: &ast::Stmt, ops: &mut [Stmt]) {
+        self.add(self.places.at(s), ops);
+    }
+
+    fn after(&mut self, s: &ast::Stmt, ops: &mut [Stmt]) {
+        self.add(self.places.after(s), ops);
+    }
+}
+
+impl Graphs {
+    /// Routine `id` begins.
+    pub fn begin(&mut self, id: RoutineId) {
+        self.open = Some(Open {
+            id,
+            builder: cfg::Builder::new(Places::new(true)),
+            graph: Graph::default(),
+            head: false,
+            scratch: Vec::new(),
+        });
+    }
+
+    /// The routine's next statement and its ops (`None`: the ops before its body, then those
+    /// after it).
+    pub fn push(&mut self, stmt: Option<&ast::Stmt>, ops: &mut Block) {
+        let Some(o) = &mut self.open else {
+            return;
+        };
+        match stmt {
+            Some(s) => {
+                o.head = true;
+                o.builder.push(s);
+                let places = o.builder.sink_mut();
+                o.graph.ranges.resize(places.blocks, (0, 0));
+                let mut parts = Append {
+                    places,
+                    graph: &mut o.graph,
+                    scratch: &mut o.scratch,
+                };
+                split(s, ops, &mut parts);
+                places.clear();
+            }
+            None => {
+                let b = if o.head { END } else { ENTRY };
+                o.head = true;
+                Append {
+                    places: o.builder.sink_mut(),
+                    graph: &mut o.graph,
+                    scratch: &mut o.scratch,
+                }
+                .add(Some(b), ops);
+            }
+        }
+    }
+
+    /// The routine begun last ends.
+    pub fn end(&mut self) {
+        let Some(Open {
+            id,
+            builder,
+            mut graph,
+            ..
+        }) = self.open.take()
+        else {
+            return;
+        };
+        let places = builder.finish();
+        graph.ranges.resize(places.blocks, (0, 0));
+        graph.edges = places.edges.unwrap_or_default();
+        graph.effects.shrink_to_fit();
+        graph.ranges.shrink_to_fit();
+        graph.edges.shrink_to_fit();
+        graph.callees.sort_unstable();
+        graph.callees.dedup();
+        let i = id.0 as usize;
+        if self.routines.len() <= i {
+            self.routines.resize_with(i + 1, Graph::empty);
+        }
+        self.routines[i] = graph;
+    }
+}

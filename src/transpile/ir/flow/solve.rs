@@ -1,0 +1,345 @@
+//! The fixpoints, on the routines' graphs: which routines move, what each leaves behind (over
+//! the call graph), what each starts with (the join over its calls), and the facts at each
+//! block's start.
+
+use super::facts::{Ctx, Id, Interner, NONE, State, Summary};
+use super::graph::{Graph, Graphs};
+use crate::cfg::{self, BlockId, END, ENTRY, Edge, EdgeKind, RETURN};
+use crate::transpile::ir::{Because, Program, RoutineId};
+
+/// No routine's facts need more rounds (the lattice is shallow); a cap in case a value never
+/// equals itself.
+const ROUNDS: usize = 64;
+
+/// A routine's graph made ready for its fixpoints.
+struct Prepared {
+    graph: Graph,
+    /// The blocks in the order the dataflow converges in ([`cfg::forward_order`]).
+    order: Vec<u32>,
+    /// Per block: its predecessors' range in `from` (edges into a handler or action aside).
+    preds: Vec<u32>,
+    from: Vec<u32>,
+    /// The blocks of `INTERRUPT` handlers and `TRIGGER` actions: they start from unknown facts.
+    detached: Vec<bool>,
+    /// The blocks holding calls of the file's routines, in the order of their statements.
+    calling: Vec<u32>,
+}
+
+impl Prepared {
+    fn new(mut graph: Graph) -> Prepared {
+        let n = graph.ranges.len();
+        let edges = std::mem::take(&mut graph.edges);
+        let mut out: Vec<(u32, Edge)> = edges.clone();
+        out.sort_by_key(|e| e.0);
+        let starts = offsets(n, out.iter().map(|e| e.0));
+        let succ: Vec<Edge> = out.into_iter().map(|e| e.1).collect();
+        let order = cfg::forward_order(n, |b| &succ[starts[b] as usize..starts[b + 1] as usize])
+            .into_iter()
+            .map(|b| b as u32)
+            .collect();
+        let mut detached = vec![false; n];
+        let mut into: Vec<(u32, u32)> = Vec::with_capacity(edges.len());
+        for (from, e) in &edges {
+            match e.kind {
+                EdgeKind::Interrupt | EdgeKind::Trigger => detached[e.to] = true,
+                _ => into.push((e.to as u32, *from)),
+            }
+        }
+        // Stable: a block's predecessors in the order their edges were made.
+        into.sort_by_key(|e| e.0);
+        let preds = offsets(n, into.iter().map(|e| e.0));
+        let from = into.into_iter().map(|e| e.1).collect();
+        let mut calling: Vec<u32> = (0..n as u32)
+            .filter(|&b| graph.block(b as usize).iter().any(calls))
+            .collect();
+        calling.sort_by_key(|&b| graph.ranges[b as usize].0);
+        Prepared {
+            graph,
+            order,
+            preds,
+            from,
+            detached,
+            calling,
+        }
+    }
+
+    fn preds(&self, b: usize) -> &[u32] {
+        &self.from[self.preds[b] as usize..self.preds[b + 1] as usize]
+    }
+}
+
+fn calls(e: &super::facts::Effect) -> bool {
+    use super::facts::Effect;
+    match e {
+        Effect::Call(_) => true,
+        Effect::Either(w) => w.0.iter().chain(&w.1).any(calls),
+        _ => false,
+    }
+}
+
+/// Offsets into a list sorted by block: entry `b` is where block `b`'s items begin.
+fn offsets(n: usize, sorted: impl Iterator<Item = u32>) -> Vec<u32> {
+    let mut counts = vec![0u32; n + 1];
+    for b in sorted {
+        counts[b as usize + 1] += 1;
+    }
+    for i in 0..n {
+        counts[i + 1] += counts[i];
+    }
+    counts
+}
+
+/// What one walk of a routine found.
+struct Walked {
+    /// The facts at each block's start.
+    starts: Vec<Id>,
+    /// At its end and RETURNs.
+    exit: Id,
+    /// At each call of a routine of the file (when asked for).
+    calls: Vec<(RoutineId, Id)>,
+}
+
+/// The facts of routine `g` from `entry` to a fixpoint over its blocks.
+fn walk(
+    g: &Prepared,
+    entry: Id,
+    handler: Id,
+    ix: &mut Interner,
+    ctx: &Ctx<'_>,
+    want_calls: bool,
+) -> Walked {
+    let n = g.graph.ranges.len();
+    let mut ins = vec![NONE; n];
+    let mut outs = vec![NONE; n];
+    for _ in 0..ROUNDS {
+        let mut changed = false;
+        for &b in &g.order {
+            let b = b as usize;
+            let i = if b == ENTRY {
+                entry
+            } else if g.detached[b] {
+                handler
+            } else {
+                let mut acc = NONE;
+                for &p in g.preds(b) {
+                    acc = ix.join(acc, outs[p as usize]);
+                }
+                acc
+            };
+            if i == ins[b] {
+                continue;
+            }
+            ins[b] = i;
+            let o = match i {
+                NONE => NONE,
+                _ => ix.after(i, g.graph.block(b), ctx),
+            };
+            if o != outs[b] {
+                outs[b] = o;
+                changed = true;
+            }
+        }
+        if !changed {
+            break;
+        }
+    }
+    let mut calls = Vec::new();
+    if want_calls {
+        for &b in &g.calling {
+            let Some(s) = ix.get(ins[b as usize]) else {
+                continue;
+            };
+            let mut s = s.clone();
+            let mut at = Vec::new();
+            s.run(g.graph.block(b as usize), ctx, &mut |r, st| {
+                at.push((r, st.clone()))
+            });
+            calls.extend(at.into_iter().map(|(r, st)| (r, ix.id(st))));
+        }
+    }
+    let exit = ix.join(ins[RETURN], outs[END]);
+    Walked {
+        starts: ins,
+        exit,
+        calls,
+    }
+}
+
+/// The facts every routine starts with and has at each block's start, found on the graphs;
+/// what the second pass needs to resolve the statements again.
+pub struct Solution {
+    pub(super) interner: Interner,
+    pub(super) summaries: Vec<Summary>,
+    pub(super) moves: Vec<bool>,
+    /// Per routine: the facts at each block's start.
+    pub(super) starts: Vec<Vec<Id>>,
+}
+
+/// The fixpoints: which routines move, what each routine leaves behind (to a fixpoint over the
+/// call graph), what each starts with (the join over its calls), and the facts at its blocks.
+pub fn solve(graphs: Graphs, program: &Program) -> Solution {
+    let mut routines = graphs.routines;
+    let n = routines.len().max(program.routines.len());
+    routines.resize_with(n, Graph::empty);
+    let names: Vec<String> = (0..n)
+        .map(|i| {
+            program
+                .routines
+                .get(i)
+                .map_or(String::new(), |r| r.name.clone())
+        })
+        .collect();
+    let callees: Vec<Vec<RoutineId>> = routines.iter().map(|g| g.callees.clone()).collect();
+    let mut moves: Vec<bool> = routines.iter().map(|g| g.moves).collect();
+    let routines: Vec<Prepared> = routines.into_iter().map(Prepared::new).collect();
+    // Which routines move the robot (themselves or through calls), to a fixpoint.
+    loop {
+        let mut changed = false;
+        for i in 0..n {
+            if !moves[i] && callees[i].iter().any(|c| moves[c.0 as usize]) {
+                moves[i] = true;
+                changed = true;
+            }
+        }
+        if !changed {
+            break;
+        }
+    }
+    let mut ix = Interner::default();
+    let handler = ix.id(State::uniform(Some(Because::Caller), true));
+    // Summaries to a fixpoint over the call graph: a routine again only when a callee's changed.
+    let mut callers: Vec<Vec<usize>> = vec![Vec::new(); n];
+    for (i, cs) in callees.iter().enumerate() {
+        for c in cs {
+            callers[c.0 as usize].push(i);
+        }
+    }
+    let identity = State::uniform(None, false);
+    let mut summaries: Vec<Summary> = names
+        .iter()
+        .map(|name| Summary {
+            exit: identity.clone(),
+            name: name.clone(),
+        })
+        .collect();
+    let unchanged = ix.id(identity.clone());
+    let mut dirty = vec![true; n];
+    for _ in 0..ROUNDS {
+        let mut changed = false;
+        for i in 0..n {
+            if !std::mem::take(&mut dirty[i]) {
+                continue;
+            }
+            let ctx = Ctx {
+                summaries: &summaries,
+                moves: &moves,
+            };
+            let exit = walk(&routines[i], unchanged, handler, &mut ix, &ctx, false).exit;
+            let exit = ix.get(exit).cloned().unwrap_or_else(|| identity.clone());
+            if summaries[i].exit != exit {
+                summaries[i].exit = exit;
+                changed = true;
+                for &c in &callers[i] {
+                    dirty[c] = true;
+                }
+            }
+        }
+        if !changed {
+            break;
+        }
+    }
+    let ctx = Ctx {
+        summaries: &summaries,
+        moves: &moves,
+    };
+    // Entry facts: the first routine (and statements outside any DEF) start with nothing set;
+    // the others with the join over their calls in the file, or their caller's (unknown).
+    let first: Vec<bool> = (0..n)
+        .map(|i| i == 0 || program.top_level == Some(RoutineId(i as u32)))
+        .collect();
+    let mut called = vec![false; n];
+    for c in callees.iter().flatten() {
+        called[c.0 as usize] = true;
+    }
+    let start_state = ix.id(State::uniform(Some(Because::NeverSet), false));
+    let caller_state = ix.id(State::uniform(Some(Because::Caller), true));
+    let first_state = |i: usize| {
+        if first[i] {
+            start_state
+        } else if !called[i] {
+            caller_state
+        } else {
+            NONE
+        }
+    };
+    let mut entries: Vec<Id> = (0..n).map(first_state).collect();
+    // Per routine: the entry it was walked from last, and what that walk found.
+    let mut walked: Vec<(Id, Walked)> = (0..n)
+        .map(|_| {
+            let none = Walked {
+                starts: Vec::new(),
+                exit: NONE,
+                calls: Vec::new(),
+            };
+            (NONE, none)
+        })
+        .collect();
+    for _ in 0..ROUNDS {
+        let mut calls = vec![NONE; n];
+        for i in 0..n {
+            let entry = entries[i];
+            if entry == NONE {
+                continue;
+            }
+            if walked[i].0 != entry {
+                walked[i] = (
+                    entry,
+                    walk(&routines[i], entry, handler, &mut ix, &ctx, true),
+                );
+            }
+            for &(c, st) in &walked[i].1.calls {
+                let slot = &mut calls[c.0 as usize];
+                *slot = ix.join(*slot, st);
+            }
+        }
+        let next: Vec<Id> = (0..n)
+            .map(|i| {
+                if first[i] || !called[i] {
+                    first_state(i)
+                } else {
+                    calls[i]
+                }
+            })
+            .collect();
+        if next == entries {
+            break;
+        }
+        entries = next;
+    }
+    let mut starts = Vec::with_capacity(n);
+    for (i, (at, w)) in walked.into_iter().enumerate() {
+        let entry = match entries[i] {
+            NONE => caller_state,
+            e => e,
+        };
+        starts.push(if at == entry {
+            w.starts
+        } else {
+            walk(&routines[i], entry, handler, &mut ix, &ctx, false).starts
+        });
+    }
+    Solution {
+        interner: ix,
+        summaries,
+        moves,
+        starts,
+    }
+}
+
+impl Solution {
+    /// The facts at the start of block `b` of routine `r` (`None`: nothing reaches it).
+    pub(super) fn start(&self, r: RoutineId, b: BlockId) -> Option<State> {
+        let id = *self.starts.get(r.0 as usize)?.get(b)?;
+        self.interner.get(id).cloned()
+    }
+}
