@@ -134,7 +134,9 @@ impl<'a> Cfg<'a> {
     /// before its successors, loops aside), then the others in index order: the order in
     /// which a forward dataflow converges fastest (a backward one: reversed).
     pub fn forward_order(&self) -> Vec<BlockId> {
-        forward_order(self.blocks.len(), |b| &self.blocks[b].edges)
+        forward_order(self.blocks.len(), |b, k| {
+            self.blocks[b].edges.get(k).map(|e| e.to)
+        })
     }
 
     /// Whether the body's end can be reached by falling off it (not through `RETURN`).
@@ -193,9 +195,9 @@ impl<'a> Feed<'a> for Cfg<'a> {
     }
 }
 
-/// [`Cfg::forward_order`] of a graph of `n` blocks kept elsewhere: `edges(b)` are block `b`'s
-/// edges out.
-pub fn forward_order<'e>(n: usize, edges: impl Fn(BlockId) -> &'e [Edge]) -> Vec<BlockId> {
+/// [`Cfg::forward_order`] of a graph of `n` blocks kept elsewhere: `succ(b, k)` is the block
+/// block `b`'s `k`-th edge leads to.
+pub fn forward_order(n: usize, succ: impl Fn(BlockId, usize) -> Option<BlockId>) -> Vec<BlockId> {
     let mut seen = vec![false; n];
     let mut post = Vec::with_capacity(n);
     // An explicit stack: a routine may chain a million blocks.
@@ -203,11 +205,11 @@ pub fn forward_order<'e>(n: usize, edges: impl Fn(BlockId) -> &'e [Edge]) -> Vec
     seen[ENTRY] = true;
     while let Some((b, next)) = stack.last_mut() {
         let b = *b;
-        if let Some(e) = edges(b).get(*next) {
+        if let Some(to) = succ(b, *next) {
             *next += 1;
-            if !seen[e.to] {
-                seen[e.to] = true;
-                stack.push((e.to, 0));
+            if !seen[to] {
+                seen[to] = true;
+                stack.push((to, 0));
             }
         } else {
             post.push(b);

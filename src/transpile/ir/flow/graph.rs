@@ -15,7 +15,7 @@ use crate::transpile::ir::{Block, RoutineId, Stmt};
 pub(super) struct Places {
     blocks: usize,
     /// The edges, in the order they were made (`None`: not kept).
-    edges: Option<Vec<(u32, Edge)>>,
+    edges: Option<Vec<Arc>>,
     /// The last `Next` edge made (a FOR's set-up runs on the way into its head).
     last_next: Option<(BlockId, BlockId)>,
     /// Per statement: the block its own ops run in (`None`: no path reaches them).
@@ -66,7 +66,11 @@ impl cfg::Sink for Places {
 
     fn edge(&mut self, from: BlockId, edge: Edge) {
         if let Some(v) = &mut self.edges {
-            v.push((from as u32, edge));
+            v.push(Arc {
+                from: from as u32,
+                to: edge.to as u32,
+                kind: edge.kind,
+            });
         }
         if edge.kind == EdgeKind::Next {
             self.last_next = Some((from, edge.to));
@@ -96,6 +100,14 @@ impl cfg::Feed<'_> for Places {
     }
 }
 
+/// An edge as the graph keeps it (a routine may have a million).
+#[derive(Debug, Clone, Copy)]
+pub(super) struct Arc {
+    pub(super) from: u32,
+    pub(super) to: u32,
+    pub(super) kind: EdgeKind,
+}
+
 /// One routine's graph as the fixpoints need it.
 #[derive(Default)]
 pub(super) struct Graph {
@@ -104,7 +116,7 @@ pub(super) struct Graph {
     /// Per block: its run in `effects`.
     pub(super) ranges: Vec<(u32, u32)>,
     /// The edges, as made.
-    pub(super) edges: Vec<(u32, Edge)>,
+    pub(super) edges: Vec<Arc>,
     /// The routine moves the robot itself (a motion, a call of another module, `MM_CALIB`).
     pub(super) moves: bool,
     /// The routines of the file it calls (some more than once).

@@ -184,3 +184,6 @@ fn drop_stops(b: &mut Block) {
         }
     }
 }
+
+#[cfg(test)]
+mod tests;

@@ -4,7 +4,7 @@
 
 use super::facts::{Ctx, Id, Interner, NONE, State, Summary};
 use super::graph::{Graph, Graphs};
-use crate::cfg::{self, BlockId, END, ENTRY, Edge, EdgeKind, RETURN};
+use crate::cfg::{self, BlockId, END, ENTRY, EdgeKind, RETURN};
 use crate::transpile::ir::{Because, Program, RoutineId};
 
 /// No routine's facts need more rounds (the lattice is shallow); a cap in case a value never
@@ -28,27 +28,28 @@ struct Prepared {
 impl Prepared {
     fn new(mut graph: Graph) -> Prepared {
         let n = graph.ranges.len();
-        let edges = std::mem::take(&mut graph.edges);
-        let mut out: Vec<(u32, Edge)> = edges.clone();
-        out.sort_by_key(|e| e.0);
-        let starts = offsets(n, out.iter().map(|e| e.0));
-        let succ: Vec<Edge> = out.into_iter().map(|e| e.1).collect();
-        let order = cfg::forward_order(n, |b| &succ[starts[b] as usize..starts[b + 1] as usize])
-            .into_iter()
-            .map(|b| b as u32)
-            .collect();
+        let mut edges = std::mem::take(&mut graph.edges);
         let mut detached = vec![false; n];
         let mut into: Vec<(u32, u32)> = Vec::with_capacity(edges.len());
-        for (from, e) in &edges {
+        for e in &edges {
             match e.kind {
-                EdgeKind::Interrupt | EdgeKind::Trigger => detached[e.to] = true,
-                _ => into.push((e.to as u32, *from)),
+                EdgeKind::Interrupt | EdgeKind::Trigger => detached[e.to as usize] = true,
+                _ => into.push((e.to, e.from)),
             }
         }
-        // Stable: a block's predecessors in the order their edges were made.
+        // Stable sorts: a block's edges in the order they were made.
         into.sort_by_key(|e| e.0);
         let preds = offsets(n, into.iter().map(|e| e.0));
         let from = into.into_iter().map(|e| e.1).collect();
+        edges.sort_by_key(|e| e.from);
+        let starts = offsets(n, edges.iter().map(|e| e.from));
+        let order = cfg::forward_order(n, |b, k| {
+            let i = starts[b] as usize + k;
+            (i < starts[b + 1] as usize).then(|| edges[i].to as BlockId)
+        })
+        .into_iter()
+        .map(|b| b as u32)
+        .collect();
         let mut calling: Vec<u32> = (0..n as u32)
             .filter(|&b| graph.block(b as usize).iter().any(calls))
             .collect();

@@ -35,7 +35,8 @@ use crate::transpile::render::Caps;
 ///
 /// - the first pass ([`Lower::new`]) records everything but the routines' bodies: variables,
 ///   routine headers, findings, constructs, interrupts, `.dat` values. Its caller keeps of each
-///   lowered statement only what it needs (the motion-parameter skeleton of `flow`);
+///   lowered statement only what it needs (the control-flow graph with its blocks' motion
+///   facts of `flow`);
 /// - the second pass ([`Replay::lower`]) lowers every statement again, to exactly the same
 ///   ops, for the renderers: nothing of the first pass's bookkeeping is repeated (findings,
 ///   constructs), and the variables' assumed types are replayed as they changed.

@@ -1,0 +1,72 @@
+//! Where the graph runs each statement's ops, seen in the speeds the RAPID translation gives
+//! its motions (RAPID writes every motion's resolved speed; `v100` with a TR002 when unknown).
+
+use crate::transpile::{Options, Source, Target, transpile};
+
+/// The speed of each `MoveL` of the translation of `body` (a routine `t` with `ok` and `i`
+/// declared, and a function `f` that sets `$VEL.CP` to 0.9).
+fn speeds(body: &str) -> Vec<String> {
+    let text = format!(
+        "DEF t()\n  DECL INT i\n  DECL BOOL ok\n  $VEL.CP = 0.5\n{body}END\n\
+         DEFFCT INT f()\n  $VEL.CP = 0.9\n  RETURN 3\nENDFCT\n"
+    );
+    let source = Source {
+        path: "t.src".into(),
+        text,
+    };
+    let t = transpile(Target::Rapid, source, None, &Options::default());
+    t.text
+        .lines()
+        .filter_map(|l| l.trim().strip_prefix("MoveL "))
+        .map(|l| l.split(", ").nth(1).expect("a speed").to_owned())
+        .collect()
+}
+
+const P: &str = "{X 1, Y 0, Z 0, A 0, B 0, C 0}";
+
+#[test]
+fn a_for_sets_up_once_before_its_head() {
+    // The bounds' call runs once: later passes have the body's speed.
+    let s = speeds(&format!(
+        "  FOR i = 1 TO f()\n    LIN {P}\n    $VEL.CP = 0.7\n  ENDFOR\n"
+    ));
+    assert_eq!(s, ["v100"]);
+    let s = speeds(&format!("  FOR i = 1 TO f()\n    LIN {P}\n  ENDFOR\n"));
+    assert_eq!(s, ["v1000 \\V:=900"]);
+}
+
+#[test]
+fn conditions_run_where_they_are_tested() {
+    // REPEAT: the UNTIL's call after the body; WHILE with a call: before every pass.
+    let s = speeds(&format!(
+        "  REPEAT\n    LIN {P}\n  UNTIL f() > 1\n  LIN {P}\n"
+    ));
+    assert_eq!(s, ["v100", "v1000 \\V:=900"]);
+    let s = speeds(&format!(
+        "  WHILE f() > 1\n    LIN {P}\n    $VEL.CP = 0.5\n  ENDWHILE\n  LIN {P}\n"
+    ));
+    assert_eq!(s, ["v1000 \\V:=900", "v1000 \\V:=900"]);
+    // A short-circuit AND calls only on one way.
+    let s = speeds(&format!("  IF ok AND f() > 1 THEN\n  ENDIF\n  LIN {P}\n"));
+    assert_eq!(s, ["v100"]);
+}
+
+#[test]
+fn a_trigger_no_motion_follows_acts_where_its_body_ends() {
+    let s = speeds(&format!(
+        "  IF ok THEN\n    TRIGGER WHEN DISTANCE=1 DELAY=0 DO $VEL.CP = 0.05\n    IF ok THEN\n      $OUT[1] = TRUE\n    ENDIF\n  ELSE\n    $VEL.CP = 0.05\n  ENDIF\n  LIN {P}\n"
+    ));
+    assert_eq!(s, ["v50"]);
+}
+
+#[test]
+fn translated_code_keeps_every_way() {
+    // HALT can be resumed; a literal condition is not folded in the translation.
+    let s = speeds(&format!(
+        "  HALT\n  LIN {P}\n  IF FALSE THEN\n    $VEL.CP = 0.2\n  ENDIF\n  LIN {P}\n"
+    ));
+    assert_eq!(s, ["v500", "v100"]);
+    // A jump skips what lies between.
+    let s = speeds(&format!("  GOTO l\n  $VEL.CP = 0.6\nl:\n  LIN {P}\n"));
+    assert_eq!(s, ["v500"]);
+}
