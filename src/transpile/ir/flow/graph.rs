@@ -2,103 +2,11 @@
 //! statements one at a time as they are lowered) with, per block, the effects of the ops that
 //! run there, in order. Only what the fixpoints need is kept: blocks, edges, effects.
 
-use rustc_hash::FxHashMap;
-
 use super::facts::Effect;
-use super::ops::{Parts, effects, split};
-use crate::cfg::{self, BlockId, END, ENTRY, Edge, EdgeKind};
+use super::ops::{Parts, Places, effects, feed};
+use crate::cfg::{self, BlockId, EdgeKind};
 use crate::syntax::ast;
 use crate::transpile::ir::{Block, RoutineId, Stmt};
-
-/// Where the graph puts each statement of the one being fed, for [`split`]'s parts: a
-/// [`cfg::Sink`] both passes build the graph into (the second keeps no edges).
-pub(super) struct Places {
-    blocks: usize,
-    /// The edges, in the order they were made (`None`: not kept).
-    edges: Option<Vec<Arc>>,
-    /// The last `Next` edge made (a FOR's set-up runs on the way into its head).
-    last_next: Option<(BlockId, BlockId)>,
-    /// Per statement: the block its own ops run in (`None`: no path reaches them).
-    at: FxHashMap<usize, Option<BlockId>>,
-    /// Per statement: the block control goes on in after it.
-    after: FxHashMap<usize, Option<BlockId>>,
-}
-
-fn key(s: &ast::Stmt) -> usize {
-    std::ptr::from_ref(s) as usize
-}
-
-impl Places {
-    pub(super) fn new(keep_edges: bool) -> Places {
-        Places {
-            blocks: 0,
-            edges: keep_edges.then(Vec::new),
-            last_next: None,
-            at: FxHashMap::default(),
-            after: FxHashMap::default(),
-        }
-    }
-
-    /// Where the own ops of `s` run.
-    pub(super) fn at(&self, s: &ast::Stmt) -> Option<BlockId> {
-        self.at.get(&key(s)).copied().flatten()
-    }
-
-    /// Where the ops run that come after `s`.
-    pub(super) fn after(&self, s: &ast::Stmt) -> Option<BlockId> {
-        self.after.get(&key(s)).copied().flatten()
-    }
-
-    /// The statement fed last has been split: its places are not asked again.
-    pub(super) fn clear(&mut self) {
-        self.at.clear();
-        self.after.clear();
-    }
-}
-
-impl cfg::Sink for Places {
-    type Mark = usize;
-    const PRUNES: bool = false;
-
-    fn block(&mut self, id: BlockId) {
-        self.blocks = id + 1;
-    }
-
-    fn edge(&mut self, from: BlockId, edge: Edge) {
-        if let Some(v) = &mut self.edges {
-            v.push(Arc {
-                from: from as u32,
-                to: edge.to as u32,
-                kind: edge.kind,
-            });
-        }
-        if edge.kind == EdgeKind::Next {
-            self.last_next = Some((from, edge.to));
-        }
-    }
-
-    fn jump(&mut self, _: usize, _: Option<usize>) {}
-
-    fn stray_exit(&mut self, _: usize) {}
-
-    fn duplicate_label(&mut self, _: usize) {}
-
-    fn done(&mut self, s: usize, open: Option<BlockId>) {
-        self.after.insert(s, open);
-    }
-}
-
-impl cfg::Feed<'_> for Places {
-    fn stmt(&mut self, b: BlockId, s: &ast::Stmt, _depth: usize) -> usize {
-        // A FOR's set-up (its bounds' ops) runs once, before its head block.
-        let at = match s.kind {
-            ast::StmtKind::For { .. } => self.last_next.filter(|(_, to)| *to == b).map(|p| p.0),
-            _ => Some(b),
-        };
-        self.at.insert(key(s), at);
-        key(s)
-    }
-}
 
 /// An edge as the graph keeps it (a routine may have a million).
 #[derive(Debug, Clone, Copy)]
@@ -209,28 +117,17 @@ struct Open {
 
 /// [`Parts`] that add each run's effects to the block it runs in.
 struct Append<'a> {
-    places: &'a Places,
     graph: &'a mut Graph,
     scratch: &'a mut Vec<Effect>,
 }
 
-impl Append<'_> {
-    fn add(&mut self, b: Option<BlockId>, ops: &mut [Stmt]) {
+impl Parts for Append<'_> {
+    fn run(&mut self, b: Option<BlockId>, ops: &mut [Stmt]) {
         self.scratch.clear();
         effects(ops, self.scratch);
         if !self.scratch.is_empty() {
             self.graph.append(b, self.scratch);
         }
-    }
-}
-
-impl Parts for Append<'_> {
-    fn own(&mut self, s: &ast::Stmt, ops: &mut [Stmt]) {
-        self.add(self.places.at(s), ops);
-    }
-
-    fn after(&mut self, s: &ast::Stmt, ops: &mut [Stmt]) {
-        self.add(self.places.after(s), ops);
     }
 }
 
@@ -249,33 +146,12 @@ impl Graphs {
     /// The routine's next statement and its ops (`None`: the ops before its body, then those
     /// after it).
     pub fn push(&mut self, stmt: Option<&ast::Stmt>, ops: &mut Block) {
-        let Some(o) = &mut self.open else {
-            return;
-        };
-        match stmt {
-            Some(s) => {
-                o.head = true;
-                o.builder.push(s);
-                let places = o.builder.sink_mut();
-                o.graph.ranges.resize(places.blocks, (0, 0));
-                let mut parts = Append {
-                    places,
-                    graph: &mut o.graph,
-                    scratch: &mut o.scratch,
-                };
-                split(s, ops, &mut parts);
-                places.clear();
-            }
-            None => {
-                let b = if o.head { END } else { ENTRY };
-                o.head = true;
-                Append {
-                    places: o.builder.sink_mut(),
-                    graph: &mut o.graph,
-                    scratch: &mut o.scratch,
-                }
-                .add(Some(b), ops);
-            }
+        if let Some(o) = &mut self.open {
+            let mut parts = Append {
+                graph: &mut o.graph,
+                scratch: &mut o.scratch,
+            };
+            feed(&mut o.builder, &mut o.head, stmt, ops, &mut parts);
         }
     }
 

@@ -31,11 +31,10 @@ pub use graph::Graphs;
 pub use solve::{Solution, solve};
 
 use facts::{Ctx, State, resolve_move};
-use graph::Places;
-use ops::{Parts, Step, split, step};
+use ops::{Parts, Places, Step, feed, step};
 
 use super::{Block, Op, RoutineId, Stmt};
-use crate::cfg::{self, BlockId, END, ENTRY};
+use crate::cfg::{self, BlockId};
 use crate::syntax::ast;
 
 /// Resolves the statements of one routine, lowered the second time, in order: each motion
@@ -69,35 +68,13 @@ impl Resolver<'_> {
     /// The routine's next statement and its ops, resolved in place (`None`: the ops before
     /// its body, then those after it).
     pub fn resolve(&mut self, stmt: Option<&ast::Stmt>, ops: &mut Block) {
-        let (solution, routine) = (self.solution, self.routine);
-        match stmt {
-            Some(s) => {
-                self.head = true;
-                self.graph.push(s);
-                let places = self.graph.sink_mut();
-                let mut walk = Walk {
-                    solution,
-                    routine,
-                    places,
-                    block: &mut self.block,
-                    state: &mut self.state,
-                };
-                split(s, ops, &mut walk);
-                places.clear();
-            }
-            None => {
-                let b = if self.head { END } else { ENTRY };
-                self.head = true;
-                Walk {
-                    solution,
-                    routine,
-                    places: self.graph.sink_mut(),
-                    block: &mut self.block,
-                    state: &mut self.state,
-                }
-                .run(Some(b), ops);
-            }
-        }
+        let mut walk = Walk {
+            solution: self.solution,
+            routine: self.routine,
+            block: &mut self.block,
+            state: &mut self.state,
+        };
+        feed(&mut self.graph, &mut self.head, stmt, ops, &mut walk);
         drop_stops(ops);
     }
 }
@@ -106,12 +83,11 @@ impl Resolver<'_> {
 struct Walk<'a> {
     solution: &'a Solution,
     routine: RoutineId,
-    places: &'a Places,
     block: &'a mut Option<BlockId>,
     state: &'a mut Option<State>,
 }
 
-impl Walk<'_> {
+impl Parts for Walk<'_> {
     fn run(&mut self, b: Option<BlockId>, ops: &mut [Stmt]) {
         if ops.is_empty() {
             return;
@@ -126,16 +102,6 @@ impl Walk<'_> {
             moves: &self.solution.moves,
         };
         resolve(ops, self.state, &ctx);
-    }
-}
-
-impl Parts for Walk<'_> {
-    fn own(&mut self, s: &ast::Stmt, ops: &mut [Stmt]) {
-        self.run(self.places.at(s), ops);
-    }
-
-    fn after(&mut self, s: &ast::Stmt, ops: &mut [Stmt]) {
-        self.run(self.places.after(s), ops);
     }
 }
 
