@@ -2,20 +2,28 @@
 //! the call graph), what each starts with (the join over its calls), and the facts at each
 //! block's start.
 
+use std::cmp::Reverse;
+use std::collections::BinaryHeap;
+
 use super::facts::{Ctx, Id, Interner, NONE, State, Summary};
 use super::graph::{Graph, Graphs};
 use crate::cfg::{self, BlockId, END, ENTRY, EdgeKind, RETURN};
 use crate::transpile::ir::{Because, Program, RoutineId};
 
-/// No routine's facts need more rounds (the lattice is shallow); a cap in case a value never
-/// equals itself.
+/// No fixpoint over routines needs more rounds (the lattice is shallow), nor a routine's more
+/// visits of each block; a cap in case a value never equals itself (a NaN).
 const ROUNDS: usize = 64;
 
 /// A routine's graph made ready for its fixpoints.
 struct Prepared {
     graph: Graph,
-    /// The blocks in the order the dataflow converges in ([`cfg::forward_order`]).
+    /// Per block: its place in the order the dataflow converges in ([`cfg::forward_order`]),
+    /// and the blocks in that order.
+    rank: Vec<u32>,
     order: Vec<u32>,
+    /// Per block: its successors' range in `to`.
+    succ: Vec<u32>,
+    to: Vec<u32>,
     /// Per block: its predecessors' range in `from` (edges into a handler or action aside).
     preds: Vec<u32>,
     from: Vec<u32>,
@@ -42,21 +50,29 @@ impl Prepared {
         let preds = offsets(n, into.iter().map(|e| e.0));
         let from = into.into_iter().map(|e| e.1).collect();
         edges.sort_by_key(|e| e.from);
-        let starts = offsets(n, edges.iter().map(|e| e.from));
-        let order = cfg::forward_order(n, |b, k| {
-            let i = starts[b] as usize + k;
-            (i < starts[b + 1] as usize).then(|| edges[i].to as BlockId)
+        let succ = offsets(n, edges.iter().map(|e| e.from));
+        let to: Vec<u32> = edges.into_iter().map(|e| e.to).collect();
+        let order: Vec<u32> = cfg::forward_order(n, |b, k| {
+            let i = succ[b] as usize + k;
+            (i < succ[b + 1] as usize).then(|| to[i] as BlockId)
         })
         .into_iter()
         .map(|b| b as u32)
         .collect();
+        let mut rank = vec![0u32; n];
+        for (i, &b) in order.iter().enumerate() {
+            rank[b as usize] = i as u32;
+        }
         let mut calling: Vec<u32> = (0..n as u32)
             .filter(|&b| graph.block(b as usize).iter().any(calls))
             .collect();
         calling.sort_by_key(|&b| graph.ranges[b as usize].0);
         Prepared {
             graph,
+            rank,
             order,
+            succ,
+            to,
             preds,
             from,
             detached,
@@ -66,6 +82,10 @@ impl Prepared {
 
     fn preds(&self, b: usize) -> &[u32] {
         &self.from[self.preds[b] as usize..self.preds[b + 1] as usize]
+    }
+
+    fn succ(&self, b: usize) -> &[u32] {
+        &self.to[self.succ[b] as usize..self.succ[b + 1] as usize]
     }
 }
 
@@ -112,36 +132,50 @@ fn walk(
     let n = g.graph.ranges.len();
     let mut ins = vec![NONE; n];
     let mut outs = vec![NONE; n];
-    for _ in 0..ROUNDS {
-        let mut changed = false;
-        for &b in &g.order {
-            let b = b as usize;
-            let i = if b == ENTRY {
-                entry
-            } else if g.detached[b] {
-                handler
-            } else {
-                let mut acc = NONE;
-                for &p in g.preds(b) {
-                    acc = ix.join(acc, outs[p as usize]);
-                }
-                acc
-            };
-            if i == ins[b] {
-                continue;
-            }
-            ins[b] = i;
-            let o = match i {
-                NONE => NONE,
-                _ => ix.after(i, g.graph.block(b), ctx),
-            };
-            if o != outs[b] {
-                outs[b] = o;
-                changed = true;
-            }
+    // A worklist, first in the converging order: a block again when a predecessor's facts
+    // changed.
+    let mut queued = vec![false; n];
+    let mut work = BinaryHeap::new();
+    for (b, q) in queued.iter_mut().enumerate() {
+        if b == ENTRY || g.detached[b] {
+            *q = true;
+            work.push(Reverse(g.rank[b]));
         }
-        if !changed {
+    }
+    let mut budget = ROUNDS * n;
+    while let Some(Reverse(r)) = work.pop() {
+        let b = g.order[r as usize] as usize;
+        queued[b] = false;
+        budget = budget.saturating_sub(1);
+        if budget == 0 {
             break;
+        }
+        let i = if b == ENTRY {
+            entry
+        } else if g.detached[b] {
+            handler
+        } else {
+            let mut acc = NONE;
+            for &p in g.preds(b) {
+                acc = ix.join(acc, outs[p as usize]);
+            }
+            acc
+        };
+        if i == ins[b] {
+            continue;
+        }
+        ins[b] = i;
+        let o = match i {
+            NONE => NONE,
+            _ => ix.after(i, g.graph.block(b), ctx),
+        };
+        if o != outs[b] {
+            outs[b] = o;
+            for &s in g.succ(b) {
+                if !std::mem::replace(&mut queued[s as usize], true) {
+                    work.push(Reverse(g.rank[s as usize]));
+                }
+            }
         }
     }
     let mut calls = Vec::new();
