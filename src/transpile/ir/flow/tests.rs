@@ -70,3 +70,18 @@ fn translated_code_keeps_every_way() {
     let s = speeds(&format!("  GOTO l\n  $VEL.CP = 0.6\nl:\n  LIN {P}\n"));
     assert_eq!(s, ["v500"]);
 }
+
+#[test]
+fn jumps_follow_the_graph() {
+    // A loop entered only by a jump into it (KRL rejects it; the graph has the edge): its
+    // motions get the facts of the jump, not "not resolved".
+    let s = speeds(&format!(
+        "  GOTO l\n  FOR i = 1 TO 3\nl:\n    LIN {P}\n  ENDFOR\n"
+    ));
+    assert_eq!(s, ["v500"]);
+    // A label defined twice: a GOTO reaches the first; the second is a label of its own.
+    let s = speeds(&format!(
+        "  GOTO l\nl:\n  LIN {P}\n  $VEL.CP = 0.7\nl:\n  LIN {P}\n"
+    ));
+    assert_eq!(s, ["v500", "v1000 \\V:=700"]);
+}
