@@ -26,7 +26,7 @@ use super::VisionServer;
 use super::front::Program as Source;
 use super::front::names::{Home, NameRules};
 use super::front::report::{FileId, Report};
-use super::ir::{self, Block, RoutineId, RoutineKind, TempId, Ty, VarId};
+use super::ir::{self, Block, RoutineId, TempId, VarId};
 use super::render::{self, Emit, Out, Style};
 use crate::diag::Span;
 
@@ -107,8 +107,6 @@ struct Rt {
     id: RoutineId,
     /// Its `.PROGRAM` line and the lines written so far (before [`Tx::lines`]).
     program: ProgramOut,
-    /// DEFFCT: the output parameter that carries the result (rendered, e.g. `.retval`).
-    retval: Option<(String, Ty)>,
     /// The `ACCURACY … ALWAYS` in force, if known at this point.
     accuracy: Option<String>,
     /// Temporaries named so far.
@@ -304,7 +302,6 @@ impl crate::transpile::Renderer for Tx<'_> {
                 header: String::new(),
                 body: String::new(),
             },
-            retval: None,
             accuracy: None,
             temps: HashMap::new(),
             loops: render::LoopLabels::default(),
@@ -330,14 +327,6 @@ impl crate::transpile::Renderer for Tx<'_> {
                 copies.push(format::copy_stmt(&format!(".{n}"), &copy, &ty));
             } else {
                 params.push(format::param_sigil(&format!(".{n}"), &ty));
-            }
-        }
-        if r.kind == RoutineKind::Deffct {
-            let ty = r.ret.clone().unwrap_or(Ty::Real);
-            let rv = self.fresh_local("retval");
-            params.push(format::param_sigil(&rv, &ty));
-            if let Some(rt) = &mut self.rt {
-                rt.retval = Some((rv, ty));
             }
         }
         if let Some(rt) = &mut self.rt {

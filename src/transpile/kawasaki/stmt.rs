@@ -1,6 +1,6 @@
 //! Statements and control flow, assignments and calls.
 
-use super::format::{self, with_sigil};
+use super::format;
 use super::{R, Tx, fail};
 use crate::diag::Span;
 use crate::transpile::front::report::FileId;
@@ -158,17 +158,12 @@ impl<'a> Tx<'a> {
         Ok(())
     }
 
+    /// `RETURN`: a DEFFCT's value was assigned to its result's parameter before
+    /// ([`ir::Routine::result`]).
     fn return_(&mut self, value: Option<&Expr>, span: Span) -> R<()> {
-        let retval = self.rt.as_ref().and_then(|r| r.retval.clone());
-        if let (Some(v), Some((rv, ty))) = (value, retval) {
-            let value = self.value(&ty, v)?;
-            let line = match ty {
-                Ty::Pose | Ty::Joint => format!("POINT {} = {value}", with_sigil(&rv, &ty)),
-                _ => format!("{} = {value}", with_sigil(&rv, &ty)),
-            };
-            self.line(line);
+        if value.is_some() {
+            return crate::transpile::render::not_lowered(span, "a RETURN with a value");
         }
-        let _ = span;
         self.line("RETURN");
         Ok(())
     }
@@ -301,7 +296,7 @@ impl<'a> Tx<'a> {
     }
 
     fn call(&mut self, callee: &Callee, args: &[Arg], ret: Option<&Place>, span: Span) -> R<()> {
-        let (name, function, ret_ty) = match callee {
+        let (name, function, _) = match callee {
             Callee::Mm(sub) => return self.mm_call(sub, args, span),
             Callee::Routine(r) => self.routine_callee(*r),
             Callee::External {
@@ -313,24 +308,14 @@ impl<'a> Tx<'a> {
                 (n, *function, Ty::Real)
             }
         };
+        // AS programs return values through a parameter: the lowering passes it as an
+        // argument ([`ir::Routine::result`]).
+        if function || ret.is_some() {
+            return crate::transpile::render::not_lowered(span, "a call for a function's value");
+        }
         let mut a = Vec::new();
         for arg in args {
             a.push(self.call_arg(arg)?);
-        }
-        if function {
-            // AS programs return values through a parameter.
-            let out = match ret {
-                Some(p) => {
-                    let ty = self.place_ty(p);
-                    let t = self.place_text(p, &ty, span)?;
-                    format::param_sigil(&t, &ty)
-                }
-                None => {
-                    let tmp = self.scratch("fct_result");
-                    format::param_sigil(&tmp, &ret_ty)
-                }
-            };
-            a.push(out);
         }
         if a.is_empty() {
             self.line(format!("CALL {name}"));

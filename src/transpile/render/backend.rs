@@ -24,8 +24,8 @@ pub struct Caps {
     /// An interrupt can watch an internal flag (`$FLAG[n]`), not only an input or output;
     /// without: such an interrupt is TR001.
     pub interrupt_on_flags: bool,
-    /// Functions return their value (DEFFCT → a function); without: through an added output
-    /// parameter.
+    /// Functions return their value (DEFFCT → a function); without: the lowering makes it a
+    /// routine with an added output parameter (`ir::Routine::result`).
     pub functions: bool,
     /// Relative motions in the base or tool frame (`LIN_REL … #TOOL`) as one instruction.
     pub relative_motions: bool,

@@ -20,9 +20,7 @@ use super::front::comments::CommentQueue;
 use super::front::names::{NameRules, Namer};
 use super::front::report::{FileId, Report};
 use super::front::{Fail, R};
-use super::ir::{
-    self as ir, Case, Expr, LabelId, LoopId, Op, RoutineId, RoutineKind, Stmt, TempId, Ty, Why,
-};
+use super::ir::{self as ir, Case, Expr, LabelId, LoopId, Op, RoutineId, Stmt, TempId, Ty, Why};
 use crate::diag::Span;
 
 pub use backend::{BACKENDS, Backend, Blending, Caps, Trigger, backend};
@@ -285,7 +283,7 @@ pub trait Emit<'a> {
             .routine_of(&routine.name)
             .unwrap_or(&routine.name)
             .to_owned();
-        let function = routine.kind == RoutineKind::Deffct;
+        let function = routine.gives_value();
         (name, function, routine.ret.clone().unwrap_or(Ty::Real))
     }
 

@@ -624,14 +624,8 @@ impl<'p> Lower<'p> {
             let args = self.call_args(Some(r), name, args, span, pre)?;
             let ty = self.routine(r).ret.clone().unwrap_or(Ty::Real);
             let t = self.temp(ty.clone());
-            pre.push(Stmt {
-                op: Op::Call {
-                    callee: Callee::Routine(r),
-                    args,
-                    ret: Some(Place::Temp(t)),
-                },
-                span,
-            });
+            let op = self.function_call(Callee::Routine(r), args, Place::Temp(t), &ty, span);
+            pre.push(Stmt { op, span });
             return Ok(Expr::new(ExprKind::Place(Place::Temp(t)), ty, span));
         }
         if let Some(family) = KukaOnly::of(&key) {
@@ -640,19 +634,45 @@ impl<'p> Lower<'p> {
         // A function of another module.
         let args = self.call_args(None, name, args, span, pre)?;
         let t = self.temp(Ty::Real);
-        pre.push(Stmt {
-            op: Op::Call {
-                callee: Callee::External {
-                    name: name.text.to_string(),
-                    span: name.span,
-                    function: true,
-                },
+        let callee = Callee::External {
+            name: name.text.to_string(),
+            span: name.span,
+            function: self.caps.functions,
+        };
+        let op = self.function_call(callee, args, Place::Temp(t), &Ty::Real, span);
+        pre.push(Stmt { op, span });
+        Ok(Expr::new(ExprKind::Place(Place::Temp(t)), Ty::Real, span))
+    }
+
+    /// The call of a function whose value goes to `into` (of type `ty`): returned where the
+    /// target has functions (`Caps::functions`), else passed back through an added last
+    /// argument ([`crate::transpile::ir::Routine::result`]).
+    pub(super) fn function_call(
+        &self,
+        callee: Callee,
+        mut args: Vec<Arg>,
+        into: Place,
+        ty: &Ty,
+        span: Span,
+    ) -> Op {
+        if self.caps.functions {
+            return Op::Call {
+                callee,
                 args,
-                ret: Some(Place::Temp(t)),
-            },
+                ret: Some(into),
+            };
+        }
+        args.push(Arg {
+            value: Some(Expr::new(ExprKind::Place(into.clone()), ty.clone(), span)),
+            place: Some(into),
+            out: true,
             span,
         });
-        Ok(Expr::new(ExprKind::Place(Place::Temp(t)), Ty::Real, span))
+        Op::Call {
+            callee,
+            args,
+            ret: None,
+        }
     }
 
     /// The arguments of a call of `routine` (None: another module's), in order; OUT arguments
@@ -666,7 +686,7 @@ impl<'p> Lower<'p> {
         pre: &mut Block,
     ) -> L<Vec<Arg>> {
         let params: Option<Vec<crate::transpile::ir::Param>> =
-            routine.map(|r| self.routine(r).params.clone());
+            routine.map(|r| self.routine(r).krl_params().to_vec());
         if let Some(p) = &params {
             let header_ok = routine.is_some_and(|r| self.routine(r).header_error.is_none());
             if p.len() != args.len() && header_ok {

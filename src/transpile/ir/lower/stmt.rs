@@ -346,12 +346,12 @@ impl<'p> Lower<'p> {
                 Ok(())
             }
             StmtKind::Return { value } => {
-                let (kind, ret, synthetic) = match &self.rt {
+                let (kind, ret, synthetic, result) = match &self.rt {
                     Some(rt) => {
                         let r = self.routine(rt.id);
-                        (r.kind, r.ret.clone(), r.synthetic)
+                        (r.kind, r.ret.clone(), r.synthetic, r.result)
                     }
-                    None => (RoutineKind::Def, None, true),
+                    None => (RoutineKind::Def, None, true, None),
                 };
                 let v = match (kind, value) {
                     (RoutineKind::Deffct, Some(v)) => {
@@ -361,6 +361,15 @@ impl<'p> Lower<'p> {
                         return fail(Why::ReturnWithoutValue, span);
                     }
                     _ => None,
+                };
+                // Without functions the value leaves through the result's parameter.
+                let v = match (v, result) {
+                    (Some(value), Some(r)) => {
+                        let place = Place::Var(r);
+                        Self::push(ops, Op::Assign { place, value }, span);
+                        None
+                    }
+                    (v, _) => v,
                 };
                 Self::push(ops, Op::Return(v), span);
                 Ok(())
@@ -605,15 +614,10 @@ impl<'p> Lower<'p> {
             let (place, _) = self.place(target, ops, true)?;
             self.check_structure(&place, target.span)?;
             let args = self.call_args(Some(r), name, args, value.span, ops)?;
-            Self::push(
-                ops,
-                Op::Call {
-                    callee: crate::transpile::ir::Callee::Routine(r),
-                    args,
-                    ret: Some(place),
-                },
-                span,
-            );
+            let ty = self.routine(r).ret.clone().unwrap_or(Ty::Real);
+            let callee = crate::transpile::ir::Callee::Routine(r);
+            let op = self.function_call(callee, args, place, &ty, value.span);
+            Self::push(ops, op, span);
             return Ok(());
         }
         let (place, ty) = self.place(target, ops, true)?;
