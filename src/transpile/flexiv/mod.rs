@@ -85,7 +85,11 @@ pub static BACKEND: render::Backend = render::Backend {
     caps: render::Caps {
         goto: false,
         interrupts: false,
-        blending: render::Blending::ZoneCodes,
+        blending: render::Blending {
+            distance: render::Distance::ZoneCodes,
+            to_axes: false,
+            ..render::Caps::BASE.blending
+        },
         ..render::Caps::BASE
     },
     name_rules: &NAME_RULES,

@@ -72,19 +72,14 @@ impl<'a> Tx<'a> {
         }
     }
 
-    /// The blending distance of a motion, reporting what is approximated.
-    fn accuracy_for(&mut self, m: &Move, span: Span) -> String {
-        let (cdis, other) = match &m.blend {
-            Blend::Exact => return FINE_ACCURACY.to_owned(),
-            Blend::Distance(d) => (d, None),
-            Blend::Percent { pct, cdis } => {
-                (cdis, Some(("C_PTP", pct, "percent of the axis path", " %")))
-            }
-            Blend::Velocity { pct, cdis } => {
-                (cdis, Some(("C_VEL", pct, "percent of the speed", " %")))
-            }
-            Blend::Orientation { deg, cdis } => {
-                (cdis, Some(("C_ORI", deg, "orientation angle", "°")))
+    /// The blending distance of a motion (the lowering made every blending kind a distance,
+    /// `Caps::blending`), reporting a distance not known here.
+    fn accuracy_for(&mut self, m: &Move, span: Span) -> R<String> {
+        let cdis = match &m.blend {
+            Blend::Exact => return Ok(FINE_ACCURACY.to_owned()),
+            Blend::Distance(d) => d,
+            Blend::Percent { .. } | Blend::Velocity { .. } | Blend::Orientation { .. } => {
+                return crate::transpile::render::not_lowered(span, "a blending kind but C_DIS");
             }
         };
         let value = match cdis {
@@ -111,19 +106,7 @@ impl<'a> Tx<'a> {
                 FINE_ACCURACY.to_owned()
             }
         };
-        if let Some((what, v, desc, unit)) = other {
-            let given = match v {
-                Known::Is(ParamValue::Num(x)) => format!(", {}{unit}", num(*x)),
-                _ => String::new(),
-            };
-            self.out.rep.approximate(
-                FileId::Src,
-                span,
-                format!("{what} ({desc}{given}) becomes ACCURACY {value} (a distance in mm)"),
-                "AS blends by distance only; check the path near this point",
-            );
-        }
-        value
+        Ok(value)
     }
 
     /// The AS speed a motion needs, if known.
@@ -158,7 +141,7 @@ impl<'a> Tx<'a> {
         }
         // Everything that can fail first, so a failure leaves no lines behind.
         let targets = self.targets(m, span)?;
-        let accuracy = self.accuracy_for(m, span);
+        let accuracy = self.accuracy_for(m, span)?;
         let needed = self.speed_of(m);
         let latest = match &m.latest_speed {
             Known::Is(s) => Some(self.as_speed(s)),

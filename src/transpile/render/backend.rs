@@ -47,18 +47,35 @@ impl Caps {
         interrupt_on_flags: false,
         functions: true,
         relative_motions: true,
-        blending: Blending::Distance,
+        blending: Blending {
+            distance: Distance::Mm,
+            krl_kinds: false,
+            to_axes: true,
+        },
         trigger: Trigger::BeforeOrAfter,
         string_len: None,
     };
 }
 
-/// How a target blends motions.
+/// How a target blends motions; the lowering maps KRL's blending kinds onto it.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
-pub enum Blending {
-    /// By a distance, as C_DIS (C_PTP/C_VEL become that distance, TR002).
-    Distance,
-    /// By a zone radius from a fixed set of codes (the nearest, TR002).
+pub struct Blending {
+    /// How it writes a blending distance (C_DIS, `$APO.CDIS` mm).
+    pub distance: Distance,
+    /// `C_PTP`/`C_VEL`/`C_ORI` as KRL means them (percent of the axis path, of the speed,
+    /// an orientation angle); without: blended within the distance `$APO.CDIS` (TR002).
+    pub krl_kinds: bool,
+    /// A motion to axis values (PTP to E6AXIS, PTP_REL in axes) is blended; without: it stops
+    /// at its point (TR002).
+    pub to_axes: bool,
+}
+
+/// How a target writes a blending distance.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Distance {
+    /// As a number of mm.
+    Mm,
+    /// As a zone radius from a fixed set of codes (the nearest, TR002).
     ZoneCodes,
 }
 
@@ -101,10 +118,16 @@ fn caps_row(b: &Backend) -> [String; 10] {
         (true, true) => "on one input, output or flag",
         (true, false) => "on one input or output",
     };
-    let blending = match c.blending {
-        Blending::Distance => "a distance",
-        Blending::ZoneCodes => "the nearest zone code (TR002)",
+    let mut blending = match c.blending.distance {
+        Distance::Mm => "a distance".to_owned(),
+        Distance::ZoneCodes => "the nearest zone code (TR002)".to_owned(),
     };
+    if !c.blending.krl_kinds {
+        blending.push_str("; C_PTP/C_VEL/C_ORI: that distance (TR002)");
+    }
+    if !c.blending.to_axes {
+        blending.push_str("; to axis values: an exact stop (TR002)");
+    }
     let trigger = match c.trigger {
         Trigger::BeforeOrAfter => "before/after the motion (TR002)",
         Trigger::OnPath => {
@@ -122,7 +145,7 @@ fn caps_row(b: &Backend) -> [String; 10] {
         interrupts.to_owned(),
         yes_no(c.functions, "an output parameter"),
         yes_no(c.relative_motions, "TR001"),
-        blending.to_owned(),
+        blending,
         trigger.to_owned(),
         strings,
         format!("≤ {} characters", n.max_len),

@@ -371,7 +371,7 @@ impl<'p> Lower<'p> {
                 }
             }
         };
-        let blend = blend_of(m.approx);
+        let blend = self.held_blend(blend_of(m.approx), &path, span);
         let mut mv = Move {
             path,
             blend,
@@ -567,12 +567,15 @@ impl<'p> Lower<'p> {
             .map(|(i, _)| i)
             .collect();
         for (k, i) in moves.iter().enumerate() {
+            let Op::Move(m) = &b[*i].op else { continue };
+            let blend = if k + 1 == moves.len() {
+                blend_of(approx)
+            } else {
+                Blend::Distance(pending())
+            };
+            let blend = self.held_blend(blend, &m.path, b[*i].span);
             if let Op::Move(m) = &mut b[*i].op {
-                m.blend = if k + 1 == moves.len() {
-                    blend_of(approx)
-                } else {
-                    Blend::Distance(pending())
-                };
+                m.blend = blend;
             }
         }
         ops.extend(b);
@@ -859,6 +862,46 @@ impl<'p> Lower<'p> {
             });
         }
         Ok(())
+    }
+}
+
+impl Lower<'_> {
+    /// KRL's blending `blend` of a motion on `path` as the target holds it
+    /// (`Caps::blending`): its kind as such, else within the distance `$APO.CDIS`, or an
+    /// exact stop (TR002 for each change).
+    fn held_blend(&mut self, blend: Blend, path: &Path, span: Span) -> Blend {
+        let caps = self.caps.blending;
+        let to_axes = match path {
+            Path::Joint { to, .. } => to.joints,
+            Path::JointRel { .. } => true,
+            _ => false,
+        };
+        if blend == Blend::Exact {
+            return blend;
+        }
+        if to_axes && !caps.to_axes {
+            self.approx(
+                span,
+                "this target does not blend a motion to axis values: the robot stops at this point",
+                "nothing to do unless the stop matters",
+            );
+            return Blend::Exact;
+        }
+        let kind = match &blend {
+            Blend::Percent { .. } => "C_PTP (percent of the axis path)",
+            Blend::Velocity { .. } => "C_VEL (percent of the speed)",
+            Blend::Orientation { .. } => "C_ORI (orientation angle)",
+            Blend::Exact | Blend::Distance(_) => return blend,
+        };
+        if caps.krl_kinds {
+            return blend;
+        }
+        self.approx(
+            span,
+            format!("{kind} becomes blending within the distance $APO.CDIS (mm)"),
+            "this target blends by distance only; check the path near this point",
+        );
+        Blend::Distance(pending())
     }
 }
 

@@ -93,3 +93,34 @@ fn a_function_without_functions_is_an_out_parameter() {
         }
     }
 }
+
+/// The lowering maps KRL's blending kinds onto what the target holds (`Caps::blending`):
+/// C_PTP becomes a distance with a TR002 where the target blends by distance only, and a
+/// blended motion to axis values stops where the target cannot blend it.
+#[test]
+fn blending_kinds_follow_the_targets_caps() {
+    use crate::transpile::ir::Blend;
+    let text = "DEF main()\nPTP {X 1, Y 2, Z 3, A 0, B 0, C 0} C_PTP\n\
+        PTP {A1 0, A2 -90, A3 90, A4 0, A5 0, A6 0} C_DIS\nEND\n";
+    for target in [Target::Kawasaki, Target::Flexiv, Target::Rapid] {
+        let caps = render::backend(target).caps().blending;
+        let (program, ops) = lowered(text, target);
+        let blends: Vec<&Blend> = ops
+            .iter()
+            .filter_map(|op| match op {
+                Op::Move(m) => Some(&m.blend),
+                _ => None,
+            })
+            .collect();
+        assert_eq!(blends.len(), 2);
+        assert_eq!(
+            matches!(blends[0], Blend::Percent { .. }),
+            caps.krl_kinds,
+            "{target:?}"
+        );
+        assert_eq!(*blends[1] == Blend::Exact, !caps.to_axes, "{target:?}");
+        let findings = program.findings.len();
+        let want = usize::from(!caps.krl_kinds) + usize::from(!caps.to_axes);
+        assert_eq!(findings, want, "{target:?}: {:?}", program.findings);
+    }
+}
