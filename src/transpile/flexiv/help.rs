@@ -48,6 +48,7 @@ fn own(why: &Why) -> Option<String> {
         Why::Aggregate(_) => "compute the pose with Pose(...) by hand, or use literal values".into(),
         Why::Component(_) => "compute the whole value and assign it".into(),
         Why::MotionTarget(_) => "move to a pose (E6POS) or axis values (E6AXIS)".into(),
+        Why::RelativeTurn { .. } | Why::RelativeExternal => "split it into a position change and a separate reorientation".into(),
         Why::RelativeOffset | Why::RelativeCirc => "compute the target pose and move to it".into(),
         Why::SplOutsideSpline => "replace it by LIN moves, and check the path".into(),
         Why::PulseSignal => "pulse an output ($OUT[n])".into(),

@@ -198,21 +198,10 @@ impl<'a> Tx<'a> {
                 self.line(format!("move_j_rel([{}]{vel})", d.join(", ")));
                 Ok(())
             }
-            Path::LinearRel {
-                delta,
-                in_tool,
-                joint,
-                ..
-            } => {
+            Path::LinearRel { delta, in_tool, .. } => {
+                // A PTP_REL is a straight MoveL too: the lowering said so
+                // (`Caps::relative_motions`).
                 let d = self.offset(delta)?;
-                if joint.is_some() {
-                    self.out.rep.approximate(
-                        FileId::Src,
-                        span,
-                        "PTP_REL with a Cartesian offset becomes a MoveL (a straight line; KUKA interpolates the axes)",
-                        "check the path for collisions",
-                    );
-                }
                 let world = matches!(m.frames.base, Known::Is(FrameRef::Null | FrameRef::World))
                     || matches!(m.frames.base, Known::Unknown(Because::NeverSet));
                 if !in_tool && !world {
@@ -271,11 +260,7 @@ impl<'a> Tx<'a> {
     /// `LIN_REL`/`PTP_REL` offsets: X, Y, Z only.
     fn offset(&mut self, d: &Delta) -> R<Vec<String>> {
         let Some(xyz) = d.position() else {
-            return fail(
-                d.span,
-                "a relative move with orientation or external-axis changes has no verified counterpart",
-                "split it into a position change and a separate reorientation",
-            );
+            return crate::transpile::render::not_lowered(d.span, "a relative move that turns");
         };
         xyz.iter()
             .map(|e| e.map_or(Ok("0".to_owned()), |e| self.expr(e)))

@@ -93,6 +93,11 @@ pub enum Why {
     RelativeOffset,
     /// A relative CIRC.
     RelativeCirc,
+    /// A relative move that turns about more of A, B, C than the target holds in its frame
+    /// (`Caps::relative_motions`): the frame, how many turns it holds.
+    RelativeTurn { in_tool: bool, held: usize },
+    /// A relative move of external axes (or with S/T).
+    RelativeExternal,
     /// `SPL`/`SCIRC` outside a spline block? (SPL alone is not valid KRL.)
     SplOutsideSpline,
     /// A `PULSE` of something that is not an output or flag.
@@ -226,6 +231,15 @@ impl Why {
             Why::MotionTarget(t) => format!("a motion target of type {t} has no counterpart"),
             Why::RelativeOffset => "a relative motion whose offset is not a literal has no counterpart".into(),
             Why::RelativeCirc => "a relative CIRC has no counterpart".into(),
+            Why::RelativeTurn { in_tool, held } => {
+                let frame = if *in_tool { "tool" } else { "base" };
+                match held {
+                    0 => format!("a relative move in the {frame} frame that turns the tool has no counterpart in this target (it only shifts)"),
+                    1 => format!("a relative move in the {frame} frame that turns about more than one axis has no counterpart in this target"),
+                    n => format!("a relative move in the {frame} frame that turns about more than {n} axes has no counterpart in this target"),
+                }
+            }
+            Why::RelativeExternal => "a relative move of external axes (or with S/T) has no counterpart".into(),
             Why::SplOutsideSpline => "a spline segment (SPL) outside a SPLINE block".into(),
             Why::PulseSignal => "PULSE of this signal has no counterpart".into(),
             Why::PulseLevel => "a PULSE to a computed level has no counterpart".into(),

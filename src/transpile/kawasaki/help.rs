@@ -41,6 +41,9 @@ fn own(why: &Why) -> Option<String> {
         Why::Aggregate(_) => "compute the pose with TRANS() by hand, or use literal values".into(),
         Why::Component(_) => "compute the whole value (TRANS / #PPOINT) and assign it".into(),
         Why::MotionTarget(_) => "move to a pose (E6POS) or joint value (E6AXIS)".into(),
+        Why::RelativeTurn { .. } | Why::RelativeExternal => {
+            "split it into a DRAW/TDRAW for the position and a separate reorientation".into()
+        }
         Why::RelativeOffset | Why::RelativeCirc => {
             "compute the target (e.g. #PPOINT or SHIFT/TRANS) and move to it".into()
         }

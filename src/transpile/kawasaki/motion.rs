@@ -202,21 +202,9 @@ impl<'a> Tx<'a> {
                 format!("C1MOVE {}", self.target(via)?),
                 format!("C2MOVE {}", self.target(to)?),
             ],
-            Path::LinearRel {
-                delta,
-                in_tool,
-                joint,
-                ..
-            } => {
+            Path::LinearRel { delta, in_tool, .. } => {
+                // A PTP_REL is a straight DRAW too: the lowering said so (`Caps::relative_motions`).
                 let d = self.draw_values(delta)?;
-                if joint.is_some() {
-                    self.out.rep.approximate(
-                        FileId::Src,
-                        span,
-                        "PTP_REL with a Cartesian offset becomes a straight DRAW/TDRAW (KUKA interpolates the axes)",
-                        "check the path for collisions",
-                    );
-                }
                 let instr = if *in_tool { "TDRAW" } else { "DRAW" };
                 vec![format!("{instr} {}", d.join(","))]
             }
@@ -327,11 +315,7 @@ impl<'a> Tx<'a> {
     /// `DRAW`/`TDRAW` values: X, Y, Z only.
     fn draw_values(&mut self, d: &Delta) -> R<Vec<String>> {
         let Some(xyz) = d.position() else {
-            return fail(
-                d.span,
-                "a relative move with orientation or external-axis changes has no confirmed AS equivalent",
-                "split it into a DRAW/TDRAW for the position and a separate reorientation",
-            );
+            return crate::transpile::render::not_lowered(d.span, "a relative move that turns");
         };
         xyz.iter()
             .map(|e| e.map_or(Ok("0".to_owned()), |e| self.expr(e)))

@@ -41,6 +41,7 @@ fn own(why: &Why) -> Option<String> {
         Why::Aggregate(_) => "compute the robtarget with Offs/RelTool by hand, or use literal values".into(),
         Why::Component(_) => "compute the whole value and assign it".into(),
         Why::MotionTarget(_) => "move to a robtarget or a jointtarget".into(),
+        Why::RelativeTurn { .. } | Why::RelativeExternal => "split it into a shift and one turn about one tool axis, or compute the target with PoseMult".into(),
         Why::RelativeOffset | Why::RelativeCirc => {
             "compute the target with Offs/RelTool and move to it".into()
         }

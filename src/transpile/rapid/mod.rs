@@ -74,6 +74,12 @@ pub static BACKEND: render::Backend = render::Backend {
     name: "rapid",
     caps: render::Caps {
         records: true,
+        // MoveJ to Offs/RelTool; RelTool turns about one tool axis (\Rx, \Ry or \Rz).
+        relative_motions: render::Relative {
+            joint_path: true,
+            tool_turns: 1,
+            base_turns: 0,
+        },
         trigger: render::Trigger::OnPath,
         string_len: Some(80),
         ..render::Caps::BASE

@@ -148,15 +148,11 @@ impl<'a> Tx<'a> {
                 Component::Pose(i @ 3..=5) if in_tool && turn.is_none() => {
                     turn = Some((*i, self.expr(e)?));
                 }
+                // The lowering let through only what `Caps::relative_motions` holds.
                 _ => {
-                    return fail(
+                    return crate::transpile::render::not_lowered(
                         d.span,
-                        if in_tool {
-                            "a relative move in the tool frame that turns about more than one axis or moves external axes: RelTool turns about x, y, z in another order than KUKA's A, B, C"
-                        } else {
-                            "a relative move in the base frame that turns the tool or moves external axes has no translation to RAPID yet (Offs only shifts)"
-                        },
-                        "split it into a shift and one turn about one tool axis, or compute the target with PoseMult",
+                        "a relative move with more turns than RAPID holds",
                     );
                 }
             }

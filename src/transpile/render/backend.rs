@@ -27,8 +27,9 @@ pub struct Caps {
     /// Functions return their value (DEFFCT → a function); without: the lowering makes it a
     /// routine with an added output parameter (`ir::Routine::result`).
     pub functions: bool,
-    /// Relative motions in the base or tool frame (`LIN_REL … #TOOL`) as one instruction.
-    pub relative_motions: bool,
+    /// Relative motions (`LIN_REL`/`PTP_REL` in the base or tool frame) as one instruction:
+    /// which offsets it holds.
+    pub relative_motions: Relative,
     /// How a blended motion's blending is given.
     pub blending: Blending,
     /// What becomes of a `TRIGGER`.
@@ -46,7 +47,11 @@ impl Caps {
         interrupts: true,
         interrupt_on_flags: false,
         functions: true,
-        relative_motions: true,
+        relative_motions: Relative {
+            joint_path: false,
+            tool_turns: 0,
+            base_turns: 0,
+        },
         blending: Blending {
             distance: Distance::Mm,
             krl_kinds: false,
@@ -55,6 +60,21 @@ impl Caps {
         trigger: Trigger::BeforeOrAfter,
         string_len: None,
     };
+}
+
+/// The Cartesian relative motions a target holds (every target shifts in the base and the
+/// tool frame; axis offsets, PTP_REL {A1 …}, go through the joint map). The lowering decides
+/// from it: exact, approximate (TR002) or not at all (TR001).
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub struct Relative {
+    /// A PTP_REL with a Cartesian offset keeps KUKA's joint-interpolated path; without: a
+    /// straight line (TR002).
+    pub joint_path: bool,
+    /// How many of A, B, C an offset in the tool frame may turn (0: it only shifts); more is
+    /// TR001.
+    pub tool_turns: usize,
+    /// The same in the base frame.
+    pub base_turns: usize,
 }
 
 /// How a target blends motions; the lowering maps KRL's blending kinds onto it.
@@ -144,12 +164,31 @@ fn caps_row(b: &Backend) -> [String; 10] {
         yes_no(c.records, "TR001"),
         interrupts.to_owned(),
         yes_no(c.functions, "an output parameter"),
-        yes_no(c.relative_motions, "TR001"),
+        relative(&c.relative_motions),
         blending,
         trigger.to_owned(),
         strings,
         format!("≤ {} characters", n.max_len),
     ]
+}
+
+/// The relative-motion cell of the capability table.
+fn relative(r: &Relative) -> String {
+    let turns = |n: usize| match n {
+        0 => "shifts".to_owned(),
+        1 => "shifts, turns about one axis".to_owned(),
+        n => format!("shifts, turns about {n} axes"),
+    };
+    let ptp = if r.joint_path {
+        "PTP_REL joint-interpolated"
+    } else {
+        "PTP_REL a straight line (TR002)"
+    };
+    format!(
+        "base: {}; tool: {}; more: TR001; {ptp}",
+        turns(r.base_turns),
+        turns(r.tool_turns)
+    )
 }
 
 /// The capability table of every target, as README shows it (a test keeps README equal to it).

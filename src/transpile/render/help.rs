@@ -39,6 +39,7 @@ fn shared(why: &Why) -> String {
             "translate the file that declares the interrupt, or declare it here"
         }
         Why::ReturnWithoutValue => "return a value",
+        Why::RelativeTurn { .. } => "split it into a shift and a separate reorientation",
         Why::WaitCall => "assign the function's value to a variable and wait on that",
         Why::MessageText => "pass the text",
         Why::StringLength { .. } => "shorten the string, or build it from shorter parts",
@@ -62,6 +63,7 @@ fn shared(why: &Why) -> String {
         | Why::MotionTarget(_)
         | Why::RelativeOffset
         | Why::RelativeCirc
+        | Why::RelativeExternal
         | Why::SplOutsideSpline
         | Why::PulseSignal
         | Why::PulseLevel

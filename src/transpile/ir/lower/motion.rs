@@ -334,12 +334,14 @@ impl<'p> Lower<'p> {
                     speed: pending(),
                 }
             } else {
+                let in_tool = m
+                    .frame
+                    .as_deref()
+                    .is_some_and(|f| f.eq_ignore_ascii_case("TOOL"));
+                self.held_offset(&delta, in_tool, joint, span)?;
                 Path::LinearRel {
                     delta,
-                    in_tool: m
-                        .frame
-                        .as_deref()
-                        .is_some_and(|f| f.eq_ignore_ascii_case("TOOL")),
+                    in_tool,
                     joint: joint.then(pending),
                     speed: pending(),
                 }
@@ -866,6 +868,37 @@ impl<'p> Lower<'p> {
 }
 
 impl Lower<'_> {
+    /// A Cartesian relative motion's offset the target holds (`Caps::relative_motions`): its
+    /// turns in its frame (more: TR001), and a PTP_REL's path (a straight line: TR002).
+    fn held_offset(&mut self, d: &Delta, in_tool: bool, joint: bool, span: Span) -> L<()> {
+        let caps = self.caps.relative_motions;
+        let mut turns = 0;
+        for (c, e) in &d.fields {
+            match c {
+                Component::Pose(0..=2) => {}
+                Component::Pose(_) if e.number() == Some(0.0) => {}
+                Component::Pose(_) => turns += 1,
+                _ => return fail(Why::RelativeExternal, d.span),
+            }
+        }
+        let held = if in_tool {
+            caps.tool_turns
+        } else {
+            caps.base_turns
+        };
+        if turns > held {
+            return fail(Why::RelativeTurn { in_tool, held }, d.span);
+        }
+        if joint && !caps.joint_path {
+            self.approx(
+                span,
+                "PTP_REL with a Cartesian offset becomes a straight-line move (KUKA interpolates the axes)",
+                "check the path for collisions",
+            );
+        }
+        Ok(())
+    }
+
     /// KRL's blending `blend` of a motion on `path` as the target holds it
     /// (`Caps::blending`): its kind as such, else within the distance `$APO.CDIS`, or an
     /// exact stop (TR002 for each change).

@@ -124,3 +124,32 @@ fn blending_kinds_follow_the_targets_caps() {
         assert_eq!(findings, want, "{target:?}: {:?}", program.findings);
     }
 }
+
+/// The lowering decides a Cartesian relative move from `Caps::relative_motions`: a turn in a
+/// frame beyond what the target holds is TR001, a PTP_REL without a joint path a TR002.
+#[test]
+fn relative_moves_follow_the_targets_caps() {
+    let text = "DEF main()\nLIN_REL {X 5, A 30} #TOOL\nLIN_REL {Z 5, C 15}\nPTP_REL {Z 30}\nEND\n";
+    for target in [Target::Kawasaki, Target::Flexiv, Target::Rapid] {
+        let caps = render::backend(target).caps().relative_motions;
+        let (program, ops) = lowered(text, target);
+        let refused: Vec<bool> = ops
+            .iter()
+            .filter_map(|op| match op {
+                Op::Move(_) => Some(false),
+                Op::Unsupported { .. } => Some(true),
+                _ => None,
+            })
+            .collect();
+        assert_eq!(
+            refused,
+            [caps.tool_turns < 1, caps.base_turns < 1, false],
+            "{target:?}"
+        );
+        assert_eq!(
+            program.findings.len(),
+            usize::from(!caps.joint_path),
+            "{target:?}"
+        );
+    }
+}
