@@ -80,13 +80,6 @@ impl<'a> Tx<'a> {
             Op::Wait(w) => self.wait(w),
             // Every move waits for reachedTarget: the robot has arrived already.
             Op::AdvanceStop { .. } => Ok(()),
-            Op::If {
-                cond,
-                then,
-                els,
-                else_at,
-                end,
-            } => self.if_block(cond, then, els, *else_at, *end),
             Op::Switch {
                 selector,
                 cases,
@@ -155,11 +148,6 @@ impl<'a> Tx<'a> {
                 self.jump(*id, true);
                 Ok(())
             }
-            Op::Goto(_) | Op::Label(_) => fail(
-                span,
-                "GOTO has no Python equivalent",
-                "restructure the jump with a loop (while/break) or IF",
-            ),
             Op::Return(v) => self.return_(v.as_ref(), span),
             Op::Halt => self.halt(span),
             Op::Brake { .. } => fail(
@@ -181,9 +169,8 @@ impl<'a> Tx<'a> {
                 self.keep_as_comment("TR002", span);
                 Ok(())
             }
-            Op::Message { routine, text } => self.message(routine, text, span),
-            Op::Unsupported { why, at } => self.unsupported(why, *at),
-            Op::Keep { note } => self.keep_op(*note, span),
+            // Jumps were made loops first (`ir::goto`).
+            _ => self.common_op(s),
         }
     }
 

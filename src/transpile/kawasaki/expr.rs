@@ -291,12 +291,7 @@ impl<'a> Tx<'a> {
             }
             Place::Temp(t) => {
                 let n = self.temp_name(*t);
-                let tty = self
-                    .rt
-                    .as_ref()
-                    .and_then(|r| self.ir.routine(r.id).temps.get(t.0 as usize))
-                    .cloned()
-                    .unwrap_or_else(|| ty.clone());
+                let tty = self.out.temp_ty(*t).cloned().unwrap_or_else(|| ty.clone());
                 Ok(with_sigil(&n, &tty))
             }
             Place::Index(base, idx) => {

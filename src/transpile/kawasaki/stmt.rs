@@ -53,13 +53,6 @@ impl<'a> Tx<'a> {
                 self.line("BREAK");
                 Ok(())
             }
-            Op::If {
-                cond,
-                then,
-                els,
-                else_at,
-                end,
-            } => self.if_block(cond, then, els, *else_at, *end),
             Op::Switch {
                 selector,
                 cases,
@@ -79,26 +72,6 @@ impl<'a> Tx<'a> {
                 body,
                 end,
             } => self.loop_(*id, kind, body, *end),
-            Op::Break(id) => {
-                let l = self.exit_label(*id, false);
-                self.goto_line(&l);
-                Ok(())
-            }
-            Op::Continue(id) => {
-                let l = self.next_label(*id, false);
-                self.goto_line(&l);
-                Ok(())
-            }
-            Op::Goto(l) => {
-                let n = self.label_name(*l);
-                self.goto_line(&n);
-                Ok(())
-            }
-            Op::Label(l) => {
-                let n = self.label_name(*l);
-                self.label_line(&n);
-                Ok(())
-            }
             Op::Return(v) => self.return_(v.as_ref(), span),
             Op::Halt => {
                 // AS HALT cannot be resumed; KRL HALT can: that is AS PAUSE.
@@ -119,9 +92,7 @@ impl<'a> Tx<'a> {
             }
             Op::Interrupt { action, number } => self.interrupt(*action, *number, span),
             Op::InterruptDecl(i) => self.interrupt_decl(*i, span),
-            Op::Message { routine, text } => self.message(routine, text, span),
-            Op::Unsupported { why, at } => self.unsupported(why, *at),
-            Op::Keep { note } => self.keep_op(*note, span),
+            _ => self.common_op(s),
         }
     }
 
@@ -257,12 +228,7 @@ impl<'a> Tx<'a> {
     pub(super) fn place_ty(&self, p: &Place) -> Ty {
         match p {
             Place::Var(v) => self.ir.var(*v).ty.clone(),
-            Place::Temp(t) => self
-                .rt
-                .as_ref()
-                .and_then(|r| self.ir.routine(r.id).temps.get(t.0 as usize))
-                .cloned()
-                .unwrap_or(Ty::Real),
+            Place::Temp(t) => self.out.temp_ty(*t).cloned().unwrap_or(Ty::Real),
             Place::Index(b, _) => self.place_ty(b),
             Place::Component(..) | Place::Member(..) => Ty::Real,
         }

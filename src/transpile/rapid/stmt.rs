@@ -78,13 +78,6 @@ impl<'a> Tx<'a> {
                 }
                 Ok(())
             }
-            Op::If {
-                cond,
-                then,
-                els,
-                else_at,
-                end,
-            } => self.if_block(cond, then, els, *else_at, *end),
             Op::Switch {
                 selector,
                 cases,
@@ -97,26 +90,6 @@ impl<'a> Tx<'a> {
                 body,
                 end,
             } => self.loop_(*id, kind, body, *end),
-            Op::Break(id) => {
-                let l = self.exit_label(*id, false);
-                self.goto_line(&l);
-                Ok(())
-            }
-            Op::Continue(_) => fail(
-                span,
-                "a jump to the next pass of a loop",
-                "restructure the jump",
-            ),
-            Op::Goto(l) => {
-                let n = self.label_name(*l);
-                self.goto_line(&n);
-                Ok(())
-            }
-            Op::Label(l) => {
-                let n = self.label_name(*l);
-                self.label_line(&n);
-                Ok(())
-            }
             Op::Return(v) => {
                 match v {
                     Some(v) => {
@@ -142,9 +115,7 @@ impl<'a> Tx<'a> {
             }
             Op::Interrupt { action, number } => self.interrupt(*action, *number, span),
             Op::InterruptDecl(i) => self.interrupt_decl(*i, span),
-            Op::Message { routine, text } => self.message(routine, text, span),
-            Op::Unsupported { why, at } => self.unsupported(why, *at),
-            Op::Keep { note } => self.keep_op(*note, span),
+            _ => self.common_op(s),
         }
     }
 

@@ -104,6 +104,16 @@ pub fn has_code(lines: &[String], comment_lead: &str) -> bool {
     })
 }
 
+/// What the core keeps of the routine being rendered; a renderer's own per-routine state is
+/// only what its language needs.
+pub struct RoutineState {
+    pub id: RoutineId,
+    /// Temporaries named so far.
+    pub temps: HashMap<TempId, String>,
+    /// The labels of loops left or continued with a jump (targets with `GOTO`).
+    pub loops: LoopLabels,
+}
+
 /// The output of a renderer while it walks the program.
 pub struct Out<'a> {
     pub style: &'static Style,
@@ -121,6 +131,8 @@ pub struct Out<'a> {
     pub produced: Vec<Span>,
     /// Header notes collected while translating (deduplicated, in order).
     pub notes: Vec<String>,
+    /// The routine being rendered (between a renderer's `begin_routine` and `end_routine`).
+    pub routine: Option<RoutineState>,
 }
 
 impl<'a> Out<'a> {
@@ -142,7 +154,28 @@ impl<'a> Out<'a> {
             rep,
             produced: Vec::new(),
             notes: Vec::new(),
+            routine: None,
         }
+    }
+
+    /// Routine `id` is rendered from here on.
+    pub fn begin_routine(&mut self, id: RoutineId) {
+        self.routine = Some(RoutineState {
+            id,
+            temps: HashMap::new(),
+            loops: LoopLabels::default(),
+        });
+    }
+
+    /// The type of temporary `t` of the routine being rendered.
+    pub fn temp_ty(&self, t: TempId) -> Option<&Ty> {
+        let r = self.routine.as_ref()?;
+        self.ir.routine(r.id).temps.get(t.0 as usize)
+    }
+
+    /// The routine being rendered (the first when none is: the data after the routines).
+    pub fn routine_id(&self) -> RoutineId {
+        self.routine.as_ref().map_or(RoutineId(0), |r| r.id)
     }
 
     pub fn line(&mut self, s: &str) {
@@ -214,8 +247,6 @@ pub trait Emit<'a> {
     fn out(&mut self) -> &mut Out<'a>;
     /// Renders one op; a failure drops the lines of its statement.
     fn op(&mut self, s: &Stmt) -> R<()>;
-    /// The temporaries named so far in the routine being rendered.
-    fn temps(&mut self) -> Option<&mut HashMap<TempId, String>>;
     /// A new name for a temporary (in the routine being rendered).
     fn mint_temp(&mut self) -> String;
     /// An expression in the target's spelling.
@@ -223,11 +254,54 @@ pub trait Emit<'a> {
     /// At a block's start and end: what the renderer knows of the robot's state (the
     /// blending, frames or standstill in force) does not hold across the edge.
     fn block_edge(&mut self);
+
     /// The routine being rendered.
-    fn routine_id(&self) -> RoutineId;
-    /// The loop labels of the routine being rendered (targets with `GOTO`).
-    fn loop_labels(&mut self) -> Option<&mut LoopLabels> {
-        None
+    fn routine_id(&mut self) -> RoutineId {
+        self.out().routine_id()
+    }
+
+    /// The ops every target renders alike: IF/ELSE, jumps, loop exits and labels (targets
+    /// with `GOTO`), messages, TR001s and kept statements. A renderer's `op` spells the ops of
+    /// its own language and hands every other one here.
+    fn common_op(&mut self, s: &Stmt) -> R<()> {
+        let span = s.span;
+        let jumps = self.out().style.jumps.is_some();
+        match &s.op {
+            Op::If {
+                cond,
+                then,
+                els,
+                else_at,
+                end,
+            } => self.if_block(cond, then, els, *else_at, *end),
+            Op::Goto(_) | Op::Label(_) | Op::Break(_) | Op::Continue(_) if !jumps => {
+                not_lowered(span, "a jump")
+            }
+            Op::Goto(l) => {
+                let n = self.label_name(*l);
+                self.goto_line(&n);
+                Ok(())
+            }
+            Op::Label(l) => {
+                let n = self.label_name(*l);
+                self.label_line(&n);
+                Ok(())
+            }
+            Op::Break(id) => {
+                let l = self.exit_label(*id, false);
+                self.goto_line(&l);
+                Ok(())
+            }
+            Op::Continue(id) => {
+                let l = self.next_label(*id, false);
+                self.goto_line(&l);
+                Ok(())
+            }
+            Op::Message { routine, text } => self.message(routine, text, span),
+            Op::Unsupported { why, at } => self.unsupported(why, *at),
+            Op::Keep { note } => self.keep_op(*note, span),
+            _ => not_lowered(span, "an op its target spells itself"),
+        }
     }
 
     /// A construct the lowering found no target can express: TR001 with the target's help.
@@ -321,14 +395,24 @@ pub trait Emit<'a> {
         let base = if next { "loop_next" } else { "loop_end" };
         if mint {
             let l = self.fresh_label(base);
-            if let Some(ls) = self.loop_labels() {
-                let m = if next { &mut ls.nexts } else { &mut ls.exits };
+            if let Some(r) = &mut self.out().routine {
+                let m = if next {
+                    &mut r.loops.nexts
+                } else {
+                    &mut r.loops.exits
+                };
                 m.insert(id, l.clone());
             }
             return l;
         }
-        self.loop_labels()
-            .and_then(|ls| if next { &ls.nexts } else { &ls.exits }.get(&id).cloned())
+        self.out()
+            .routine
+            .as_ref()
+            .and_then(|r| {
+                if next { &r.loops.nexts } else { &r.loops.exits }
+                    .get(&id)
+                    .cloned()
+            })
             .unwrap_or_else(|| base.into())
     }
 
@@ -459,12 +543,12 @@ pub trait Emit<'a> {
 
     /// A temporary's name, minted on first use.
     fn temp_name(&mut self, t: TempId) -> String {
-        if let Some(n) = self.temps().and_then(|m| m.get(&t)) {
+        if let Some(n) = self.out().routine.as_ref().and_then(|r| r.temps.get(&t)) {
             return n.clone();
         }
         let n = self.mint_temp();
-        if let Some(m) = self.temps() {
-            m.insert(t, n.clone());
+        if let Some(r) = &mut self.out().routine {
+            r.temps.insert(t, n.clone());
         }
         n
     }
