@@ -85,6 +85,7 @@ pub static BACKEND: render::Backend = render::Backend {
     caps: render::Caps {
         goto: false,
         interrupts: false,
+        bitwise_not: true,
         blending: render::Blending {
             distance: render::Distance::ZoneCodes,
             to_axes: false,

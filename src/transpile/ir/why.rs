@@ -128,7 +128,7 @@ pub enum Why {
     Load,
     /// A message routine without text.
     MessageText,
-    /// `B_NOT` (no bitwise NOT in AS; in Python only on integers).
+    /// `B_NOT` in a target without a bitwise NOT (`Caps::bitwise_not`).
     BitwiseNot,
     /// A string longer than the target holds (`Caps::string_len`).
     StringLength { len: usize, max: usize },
@@ -255,7 +255,7 @@ impl Why {
             Why::WaitCall => "a function called inside a WAIT FOR condition has no counterpart".into(),
             Why::Load => "this $LOAD value is not a mass with a centre of mass".into(),
             Why::MessageText => "a message without text".into(),
-            Why::BitwiseNot => "B_NOT (bitwise NOT) has no confirmed counterpart".into(),
+            Why::BitwiseNot => "B_NOT (bitwise NOT) has no counterpart in this target".into(),
             Why::StringLength { len, max } => {
                 format!("a string of {len} characters; this target holds at most {max}")
             }

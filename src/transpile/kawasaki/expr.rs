@@ -86,12 +86,9 @@ impl<'a> Tx<'a> {
         let sym = match op {
             UnaryOp::Not => "NOT ",
             UnaryOp::Neg => "-",
+            // The lowering refuses it (`Caps::bitwise_not`).
             UnaryOp::BNot => {
-                return fail(
-                    whole.span,
-                    "B_NOT (bitwise NOT) has no confirmed AS equivalent",
-                    "use BXOR with a mask of the bits you need (e.g. x BXOR ^HFF for 8 bits)",
-                );
+                return crate::transpile::render::not_lowered(whole.span, "B_NOT");
             }
         };
         Ok(Rendered::prefix(sym, inner, UNARY))

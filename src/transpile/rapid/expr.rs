@@ -75,12 +75,9 @@ impl<'a> Tx<'a> {
         let sym = match op {
             UnaryOp::Not => "NOT ",
             UnaryOp::Neg => "-",
+            // The lowering refuses it (`Caps::bitwise_not`).
             UnaryOp::BNot => {
-                return fail(
-                    whole.span,
-                    "B_NOT (bitwise NOT) has no RAPID equivalent on num",
-                    "compute the bits with BitNeg on a byte, or port by hand",
-                );
+                return crate::transpile::render::not_lowered(whole.span, "B_NOT");
             }
         };
         // NOT binds loosely in RAPID and a sign after an operator is unusual: both are

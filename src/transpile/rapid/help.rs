@@ -57,9 +57,7 @@ fn own(why: &Why) -> Option<String> {
         }
         Why::Goto => "restructure the jump".into(),
         Why::Load => "give the payload in the tooldata's tload, or with GripLoad".into(),
-        Why::BitwiseNot => {
-            "use BitNeg on a byte value".into()
-        }
+        Why::BitwiseNot => "compute the bits with BitNeg on a byte, or port by hand".into(),
         _ => return None,
     })
 }

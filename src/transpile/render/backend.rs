@@ -34,6 +34,8 @@ pub struct Caps {
     pub blending: Blending,
     /// What becomes of a `TRIGGER`.
     pub trigger: Trigger,
+    /// `B_NOT` (bitwise NOT of an integer); without: TR001.
+    pub bitwise_not: bool,
     /// The longest string the target holds, in characters (`None`: no limit known); a longer
     /// KRL string is TR001.
     pub string_len: Option<usize>,
@@ -58,6 +60,7 @@ impl Caps {
             to_axes: true,
         },
         trigger: Trigger::BeforeOrAfter,
+        bitwise_not: false,
         string_len: None,
     };
 }
@@ -110,7 +113,7 @@ pub enum Trigger {
 }
 
 /// The columns of the capability table.
-const CAPS_COLUMNS: [&str; 10] = [
+const CAPS_COLUMNS: [&str; 11] = [
     "language",
     "GOTO",
     "STRUC",
@@ -119,12 +122,13 @@ const CAPS_COLUMNS: [&str; 10] = [
     "`_REL` in base/tool",
     "blending",
     "TRIGGER",
+    "B_NOT",
     "strings",
     "identifiers",
 ];
 
 /// A target's row of the capability table, in [`CAPS_COLUMNS`] order.
-fn caps_row(b: &Backend) -> [String; 10] {
+fn caps_row(b: &Backend) -> [String; 11] {
     let yes_no = |b: bool, without: &str| {
         if b {
             "yes".to_owned()
@@ -167,6 +171,7 @@ fn caps_row(b: &Backend) -> [String; 10] {
         relative(&c.relative_motions),
         blending,
         trigger.to_owned(),
+        yes_no(c.bitwise_not, "TR001"),
         strings,
         format!("≤ {} characters", n.max_len),
     ]
@@ -382,6 +387,16 @@ mod tests {
             refusals_in(Target::Rapid, &long),
             ["a string of 81 characters; this target holds at most 80"]
         );
+        let bnot = "DEF p()\nDECL INT i\ni = B_NOT 5\nEND\n";
+        for b in BACKENDS {
+            let msgs = refusals_in(b.target(), bnot);
+            let want: &[&str] = if b.caps().bitwise_not {
+                &[]
+            } else {
+                &["B_NOT (bitwise NOT) has no counterpart in this target"]
+            };
+            assert_eq!(msgs, want, "{:?}", b.target());
+        }
         let flag =
             "DEF p()\nINTERRUPT DECL 3 WHEN $FLAG[2] DO q()\nINTERRUPT ON 3\nEND\nDEF q()\nEND\n";
         assert!(refusals_in(Target::Kawasaki, flag).is_empty());

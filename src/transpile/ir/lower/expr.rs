@@ -62,6 +62,9 @@ impl<'p> Lower<'p> {
                     ast::UnaryOp::Not => {
                         Expr::new(ExprKind::Unary(UnaryOp::Not, Box::new(v)), Ty::Bool, span)
                     }
+                    ast::UnaryOp::BNot if !self.caps.bitwise_not => {
+                        return fail(Why::BitwiseNot, span);
+                    }
                     ast::UnaryOp::BNot => {
                         Expr::new(ExprKind::Unary(UnaryOp::BNot, Box::new(v)), Ty::Int, span)
                     }
