@@ -580,8 +580,8 @@ impl<'a> Emit<'a> for Tx<'a> {
         self.forget_frames();
     }
 
-    fn block(&mut self, b: &[Stmt]) {
-        self.spline_block(b);
+    fn own_run(&mut self, b: &[Stmt]) -> Option<usize> {
+        self.spline_at(b)
     }
 
     /// Starts with `_`, which no translated KRL name does.

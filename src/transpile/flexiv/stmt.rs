@@ -11,25 +11,12 @@ use crate::transpile::ir::{
 use crate::transpile::render::Emit;
 
 impl<'a> Tx<'a> {
-    /// A block (the core's [`Emit::block`], which calls this): consecutive ops of one KRL
-    /// statement render together (and fail together), and a spline's motions as one MoveL.
-    pub(super) fn spline_block(&mut self, b: &[Stmt]) {
-        let mut i = 0;
-        while i < b.len() {
-            let span = b[i].span;
-            let mut j = i + 1;
-            while j < b.len() && b[j].span == span {
-                j += 1;
-            }
-            // Consecutive motions of one spline become one MoveL through waypoints.
-            if let Some(k) = self.spline_run(&b[i..]) {
-                self.spline_group(&b[i..i + k]);
-                i += k;
-                continue;
-            }
-            self.group(&b[i..j]);
-            i = j;
-        }
+    /// Consecutive motions of one spline at the start of `b` as one MoveL through waypoints
+    /// (the core's [`Emit::own_run`]): how many ops that took.
+    pub(super) fn spline_at(&mut self, b: &[Stmt]) -> Option<usize> {
+        let k = self.spline_run(b)?;
+        self.spline_group(&b[..k]);
+        Some(k)
     }
 
     pub(super) fn op(&mut self, s: &Stmt) -> R<()> {

@@ -553,10 +553,21 @@ pub trait Emit<'a> {
         n
     }
 
+    /// Ops at the start of `b` the target renders as one run of its own (Flexiv: a spline's
+    /// motions as one move through waypoints): how many it rendered, `None` for none.
+    fn own_run(&mut self, b: &[Stmt]) -> Option<usize> {
+        let _ = b;
+        None
+    }
+
     /// A block: consecutive ops of one KRL statement render together (and fail together).
     fn block(&mut self, b: &[Stmt]) {
         let mut i = 0;
         while i < b.len() {
+            if let Some(k) = self.own_run(&b[i..]) {
+                i += k;
+                continue;
+            }
             let span = b[i].span;
             let mut j = i + 1;
             while j < b.len() && b[j].span == span {
