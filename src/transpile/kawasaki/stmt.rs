@@ -112,20 +112,7 @@ impl<'a> Tx<'a> {
             LoopKind::Until(c) => ("DO".into(), format!("UNTIL {}", self.expr(c)?)),
             LoopKind::Forever => ("WHILE TRUE DO".into(), "END".into()),
         };
-        let exits = ir::visit::any_op(body, &mut |op| matches!(op, Op::Break(x) if *x == id));
-        let continues =
-            ir::visit::any_op(body, &mut |op| matches!(op, Op::Continue(x) if *x == id));
-        let exit = exits.then(|| self.exit_label(id, true));
-        let next = continues.then(|| self.next_label(id, true));
-        self.line(head);
-        self.nested(body);
-        if let Some(l) = next {
-            self.label_line(&l);
-        }
-        self.end_block(end, Some(&close));
-        if let Some(l) = exit {
-            self.label_line(&l);
-        }
+        self.jump_loop(id, false, Vec::new(), head, body, |_, _| {}, &close, end);
         Ok(())
     }
 

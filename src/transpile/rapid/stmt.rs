@@ -6,7 +6,7 @@ use super::{R, Tx, fail};
 use crate::diag::Span;
 use crate::transpile::front::report::FileId;
 use crate::transpile::ir::{
-    self, Arg, Block, Callee, Component, Expr, ExprKind, LoopId, LoopKind, Op, Place, Stmt, Ty,
+    Arg, Block, Callee, Component, Expr, ExprKind, LoopId, LoopKind, Op, Place, Stmt, Ty,
 };
 use crate::transpile::render::{CaseWords, Emit};
 
@@ -120,7 +120,6 @@ impl<'a> Tx<'a> {
     }
 
     fn loop_(&mut self, id: LoopId, kind: &LoopKind, body: &Block, end: u32) -> R<()> {
-        let exits = ir::visit::any_op(body, &mut |op| matches!(op, Op::Break(x) if *x == id));
         let until = matches!(kind, LoopKind::Until(_));
         // Everything that can fail before a line is written.
         let (pre, head, step) = match kind {
@@ -165,34 +164,23 @@ impl<'a> Tx<'a> {
             }
             LoopKind::Forever => (Vec::new(), "WHILE TRUE DO".into(), None),
         };
-        let exit = (exits || until).then(|| self.exit_label(id, true));
-        for p in pre {
-            self.line(p);
-        }
-        self.line(head);
-        self.nested(body);
-        match (&step, until) {
-            (Some(c), true) => {
-                let l = self.exit_label(id, false);
-                self.out.depth += 1;
-                self.line(format!("IF {c} THEN"));
-                self.out.depth += 1;
-                self.goto_line(&l);
-                self.out.depth -= 1;
-                self.line("ENDIF");
-                self.out.depth -= 1;
+        // The end of a pass: REPEAT's test (leaving through the exit label), FOR's step.
+        let tail = |tx: &mut Self, exit: Option<&str>| {
+            tx.out.depth += 1;
+            match (step, exit) {
+                (Some(c), Some(l)) if until => {
+                    tx.line(format!("IF {c} THEN"));
+                    tx.out.depth += 1;
+                    tx.goto_line(l);
+                    tx.out.depth -= 1;
+                    tx.line("ENDIF");
+                }
+                (Some(inc), _) if !until => tx.line(inc),
+                _ => {}
             }
-            (Some(inc), false) => {
-                self.out.depth += 1;
-                self.line(inc.clone());
-                self.out.depth -= 1;
-            }
-            (None, _) => {}
-        }
-        self.end_block(end, Some("ENDWHILE"));
-        if let Some(l) = exit {
-            self.label_line(&l);
-        }
+            tx.out.depth -= 1;
+        };
+        self.jump_loop(id, until, pre, head, body, tail, "ENDWHILE", end);
         Ok(())
     }
 

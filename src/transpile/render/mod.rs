@@ -77,11 +77,10 @@ pub struct JumpWords {
     pub label_at_margin: bool,
 }
 
-/// The labels of the loops of a routine that are left (`EXIT`) or continued with a jump.
+/// The labels after the loops of a routine that are left (`EXIT`) with a jump.
 #[derive(Default)]
 pub struct LoopLabels {
     exits: HashMap<LoopId, String>,
-    nexts: HashMap<LoopId, String>,
 }
 
 /// How a target writes a SWITCH it has a statement for (`TEST`/`CASE`, `CASE`/`VALUE`).
@@ -292,11 +291,8 @@ pub trait Emit<'a> {
                 self.goto_line(&l);
                 Ok(())
             }
-            Op::Continue(id) => {
-                let l = self.next_label(*id, false);
-                self.goto_line(&l);
-                Ok(())
-            }
+            // Made only for targets without `GOTO` (`ir::goto`), which spell it themselves.
+            Op::Continue(_) => not_lowered(span, "a jump to a loop's next pass"),
             Op::Message { routine, text } => self.message(routine, text, span),
             Op::Unsupported { why, at } => self.unsupported(why, *at),
             Op::Keep { note } => self.keep_op(*note, span),
@@ -382,38 +378,52 @@ pub trait Emit<'a> {
 
     /// The label after loop `id` (where `EXIT` jumps to), minted when `needed`.
     fn exit_label(&mut self, id: LoopId, needed: bool) -> String {
-        self.loop_label(id, needed, false)
-    }
-
-    /// The label before loop `id`'s end (where a jump to its next pass goes), minted when
-    /// `needed`.
-    fn next_label(&mut self, id: LoopId, needed: bool) -> String {
-        self.loop_label(id, needed, true)
-    }
-
-    fn loop_label(&mut self, id: LoopId, mint: bool, next: bool) -> String {
-        let base = if next { "loop_next" } else { "loop_end" };
-        if mint {
+        let base = "loop_end";
+        if needed {
             let l = self.fresh_label(base);
             if let Some(r) = &mut self.out().routine {
-                let m = if next {
-                    &mut r.loops.nexts
-                } else {
-                    &mut r.loops.exits
-                };
-                m.insert(id, l.clone());
+                r.loops.exits.insert(id, l.clone());
             }
             return l;
         }
         self.out()
             .routine
             .as_ref()
-            .and_then(|r| {
-                if next { &r.loops.nexts } else { &r.loops.exits }
-                    .get(&id)
-                    .cloned()
-            })
+            .and_then(|r| r.loops.exits.get(&id).cloned())
             .unwrap_or_else(|| base.into())
+    }
+
+    /// A loop of a target with `GOTO`: its `head` line, the body one level in, `tail` (the
+    /// target's own lines at the end of a pass, given the loop's exit label if it has one),
+    /// then its `close` line and the label after it, where the body's `EXIT`s jump (minted
+    /// before the head when the body breaks out of the loop, or `exit` asks for it).
+    #[allow(clippy::too_many_arguments)]
+    fn jump_loop(
+        &mut self,
+        id: LoopId,
+        exit: bool,
+        pre: Vec<String>,
+        head: String,
+        body: &ir::Block,
+        tail: impl FnOnce(&mut Self, Option<&str>),
+        close: &str,
+        end: u32,
+    ) where
+        Self: Sized,
+    {
+        let exits =
+            exit || ir::visit::any_op(body, &mut |op| matches!(op, Op::Break(x) if *x == id));
+        let exit = exits.then(|| self.exit_label(id, true));
+        for p in pre {
+            self.line(p);
+        }
+        self.line(head);
+        self.nested(body);
+        tail(self, exit.as_deref());
+        self.end_block(end, Some(close));
+        if let Some(l) = exit {
+            self.label_line(&l);
+        }
     }
 
     /// A nested block, one level deeper.
