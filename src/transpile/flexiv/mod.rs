@@ -86,6 +86,10 @@ pub static BACKEND: render::Backend = render::Backend {
         goto: false,
         interrupts: false,
         bitwise_not: true,
+        pulse: render::Pulse {
+            low: true,
+            flags: false,
+        },
         blending: render::Blending {
             distance: render::Distance::ZoneCodes,
             to_axes: false,

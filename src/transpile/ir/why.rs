@@ -104,6 +104,8 @@ pub enum Why {
     PulseSignal,
     /// A `PULSE` level that is not a literal.
     PulseLevel,
+    /// A low `PULSE` in a target without (`Caps::pulse`).
+    PulseLow,
     /// An interrupt number that is not a literal.
     InterruptNumber,
     /// `INTERRUPT ON n` with no declaration of `n` in the file.
@@ -243,6 +245,7 @@ impl Why {
             Why::SplOutsideSpline => "a spline segment (SPL) outside a SPLINE block".into(),
             Why::PulseSignal => "PULSE of this signal has no counterpart".into(),
             Why::PulseLevel => "a PULSE to a computed level has no counterpart".into(),
+            Why::PulseLow => "a PULSE to FALSE (a low pulse) has no counterpart in this target".into(),
             Why::InterruptNumber => "an interrupt number that is not a literal has no counterpart".into(),
             Why::NoInterruptDecl(n) => format!("no INTERRUPT DECL {n} in this file"),
             Why::NoInterrupts => "interrupts have no counterpart in this target (they would need a thread polling the condition)".into(),

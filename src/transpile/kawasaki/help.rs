@@ -49,7 +49,9 @@ fn own(why: &Why) -> Option<String> {
         }
         Why::SplOutsideSpline => "use LMOVE with ACCURACY, and check the path".into(),
         Why::PulseSignal => "pulse an output ($OUT[n]) or flag".into(),
-        Why::PulseLevel => "use SIGNAL -n, TWAIT t, SIGNAL n (this waits, PULSE does not)".into(),
+        Why::PulseLevel | Why::PulseLow => {
+            "use SIGNAL -n, TWAIT t, SIGNAL n (this waits, PULSE does not)".into()
+        }
         Why::NoInterrupts | Why::InterruptCondition | Why::InterruptHandler => {
             "watch the condition with a PC program, or poll it with SIG()".into()
         }

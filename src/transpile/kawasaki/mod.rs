@@ -79,6 +79,10 @@ pub static BACKEND: render::Backend = render::Backend {
     caps: render::Caps {
         interrupt_on_flags: true,
         functions: false,
+        pulse: render::Pulse {
+            low: false,
+            flags: true,
+        },
         ..render::Caps::BASE
     },
     name_rules: &NAME_RULES,

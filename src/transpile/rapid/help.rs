@@ -47,7 +47,7 @@ fn own(why: &Why) -> Option<String> {
         }
         Why::SplOutsideSpline => "use MoveL with a zone, and check the path".into(),
         Why::PulseSignal => "pulse an output ($OUT[n])".into(),
-        Why::PulseLevel => "use SetDO sig, 0; WaitTime t; SetDO sig, 1; (this waits, PULSE does not)".into(),
+        Why::PulseLevel | Why::PulseLow => "use SetDO sig, 0; WaitTime t; SetDO sig, 1; (this waits, PULSE does not)".into(),
         Why::NoInterrupts | Why::InterruptCondition | Why::InterruptHandler => {
             "watch the condition with ISignalDI on one input, or poll it with WaitUntil".into()
         }

@@ -34,6 +34,8 @@ pub struct Caps {
     pub blending: Blending,
     /// What becomes of a `TRIGGER`.
     pub trigger: Trigger,
+    /// Which `PULSE`s it holds (a computed level none: TR001 for every target).
+    pub pulse: Pulse,
     /// `B_NOT` (bitwise NOT of an integer); without: TR001.
     pub bitwise_not: bool,
     /// The longest string the target holds, in characters (`None`: no limit known); a longer
@@ -60,9 +62,22 @@ impl Caps {
             to_axes: true,
         },
         trigger: Trigger::BeforeOrAfter,
+        pulse: Pulse {
+            low: false,
+            flags: false,
+        },
         bitwise_not: false,
         string_len: None,
     };
+}
+
+/// The `PULSE`s a target holds besides a high pulse of an output; the rest is TR001.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub struct Pulse {
+    /// A low pulse (`PULSE(…, FALSE, t)`).
+    pub low: bool,
+    /// A pulse of a flag (`$FLAG[n]`).
+    pub flags: bool,
 }
 
 /// The Cartesian relative motions a target holds (every target shifts in the base and the
@@ -113,7 +128,7 @@ pub enum Trigger {
 }
 
 /// The columns of the capability table.
-const CAPS_COLUMNS: [&str; 11] = [
+const CAPS_COLUMNS: [&str; 12] = [
     "language",
     "GOTO",
     "STRUC",
@@ -122,13 +137,14 @@ const CAPS_COLUMNS: [&str; 11] = [
     "`_REL` in base/tool",
     "blending",
     "TRIGGER",
+    "PULSE",
     "B_NOT",
     "strings",
     "identifiers",
 ];
 
 /// A target's row of the capability table, in [`CAPS_COLUMNS`] order.
-fn caps_row(b: &Backend) -> [String; 11] {
+fn caps_row(b: &Backend) -> [String; 12] {
     let yes_no = |b: bool, without: &str| {
         if b {
             "yes".to_owned()
@@ -171,10 +187,22 @@ fn caps_row(b: &Backend) -> [String; 11] {
         relative(&c.relative_motions),
         blending,
         trigger.to_owned(),
+        pulse(&c.pulse),
         yes_no(c.bitwise_not, "TR001"),
         strings,
         format!("≤ {} characters", n.max_len),
     ]
+}
+
+/// The PULSE cell of the capability table.
+fn pulse(p: &Pulse) -> String {
+    let level = if p.low { "high or low" } else { "high" };
+    let of = if p.flags {
+        "an output or flag"
+    } else {
+        "an output"
+    };
+    format!("{level}, of {of}; else TR001")
 }
 
 /// The relative-motion cell of the capability table.
@@ -387,6 +415,19 @@ mod tests {
             refusals_in(Target::Rapid, &long),
             ["a string of 81 characters; this target holds at most 80"]
         );
+        let pulses = "DEF p()\nDECL BOOL b\nPULSE($OUT[2], FALSE, 0.5)\nPULSE($FLAG[3], TRUE, 0.5)\nPULSE($OUT[4], b, 0.5)\nEND\n";
+        for b in BACKENDS {
+            let p = b.caps().pulse;
+            let mut want = Vec::new();
+            if !p.low {
+                want.push("a PULSE to FALSE (a low pulse) has no counterpart in this target");
+            }
+            if !p.flags {
+                want.push("PULSE of this signal has no counterpart");
+            }
+            want.push("a PULSE to a computed level has no counterpart");
+            assert_eq!(refusals_in(b.target(), pulses), want, "{:?}", b.target());
+        }
         let bnot = "DEF p()\nDECL INT i\ni = B_NOT 5\nEND\n";
         for b in BACKENDS {
             let msgs = refusals_in(b.target(), bnot);

@@ -67,6 +67,7 @@ fn shared(why: &Why) -> String {
         | Why::SplOutsideSpline
         | Why::PulseSignal
         | Why::PulseLevel
+        | Why::PulseLow
         | Why::InterruptCondition
         | Why::NoInterrupts
         | Why::InterruptHandler

@@ -450,6 +450,9 @@ impl<'p> Lower<'p> {
             } => {
                 let io = match sysvar::classify(signal) {
                     Some(Sys::Out(i)) => OutPlace::Out(Box::new(self.expr(i, ops)?)),
+                    Some(Sys::Flag(_)) if !self.caps.pulse.flags => {
+                        return fail(Why::PulseSignal, signal.span);
+                    }
                     Some(Sys::Flag(i)) => OutPlace::Flag(Box::new(self.expr(i, ops)?)),
                     Some(_) => return fail(Why::PulseSignal, signal.span),
                     None => match &signal.kind {
@@ -466,6 +469,13 @@ impl<'p> Lower<'p> {
                 };
                 self.stop(span, ops);
                 let level = self.expr(level, ops)?;
+                match level.kind {
+                    ExprKind::Bool(false) if !self.caps.pulse.low => {
+                        return fail(Why::PulseLow, level.span);
+                    }
+                    ExprKind::Bool(_) => {}
+                    _ => return fail(Why::PulseLevel, level.span),
+                }
                 let seconds = self.expr(duration, ops)?;
                 Self::push(ops, Op::Pulse { io, level, seconds }, span);
                 Ok(())
