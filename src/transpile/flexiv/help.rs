@@ -2,6 +2,7 @@
 
 use crate::transpile::ir::Why;
 use crate::transpile::ir::why::KukaOnly;
+use crate::transpile::ir::why::Lacked;
 
 pub(super) fn help(why: &Why) -> String {
     crate::transpile::render::help::help(why, own)
@@ -69,6 +70,15 @@ fn own(why: &Why) -> Option<String> {
         Why::Goto => "restructure the jump with a loop (while/break) or IF".into(),
         Why::Load => "set mass, centre of mass and inertia in the tool (Flexiv Elements)".into(),
         Why::BitwiseNot => "use ~ on an integer by hand".into(),
+        Why::Lacks(Lacked::Load) => {
+            "the payload is part of the tool on a Flexiv robot: set mass, centre of mass and inertia in the tool (Flexiv Elements or ToolParams)".into()
+        }
+        Why::Lacks(Lacked::Brake) => {
+            "every move has ended before the next statement runs: remove it, or call robot.Stop() where the robot must stop".into()
+        }
+        Why::Lacks(Lacked::Circ) => {
+            "no verified Flexiv primitive (MoveL with a waypoint would be two straight lines): replace the arc by LIN moves through points on it".into()
+        }
         _ => return None,
     })
 }

@@ -29,6 +29,7 @@ pub mod options;
 mod script;
 mod stmt;
 
+use crate::transpile::render::Lacked;
 use std::collections::{BTreeMap, BTreeSet, HashMap};
 
 pub use motion::zone_code;
@@ -86,6 +87,7 @@ pub static BACKEND: render::Backend = render::Backend {
         goto: false,
         interrupts: false,
         bitwise_not: true,
+        lacks: &[Lacked::Load, Lacked::Brake, Lacked::Circ],
         pulse: render::Pulse {
             low: true,
             flags: false,

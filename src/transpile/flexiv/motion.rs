@@ -128,11 +128,8 @@ impl<'a> Tx<'a> {
         }
         let zone_arg = |z: Option<String>| z.map(|z| format!(", {z}")).unwrap_or_default();
         match &m.path {
-            Path::Circular { .. } => fail(
-                span,
-                "circular motions have no verified Flexiv primitive (MoveL with a waypoint would be two straight lines)",
-                "replace the arc by LIN moves through points on it",
-            ),
+            // The lowering refuses it (`Caps::lacks`).
+            Path::Circular { .. } => crate::transpile::render::not_lowered(span, "CIRC"),
             Path::Linear { to, .. } => {
                 if to.joints {
                     return fail(

@@ -48,11 +48,8 @@ impl<'a> Tx<'a> {
                 Ok(())
             }
             Op::SetFrame { which, frame } => self.set_frame(*which, frame, span),
-            Op::SetLoad(_) => fail(
-                span,
-                "$LOAD: the payload is part of the tool on a Flexiv robot",
-                "set mass, centre of mass and inertia in the tool (Flexiv Elements or ToolParams)",
-            ),
+            // The lowering refuses what `Caps::lacks` names.
+            Op::SetLoad(_) => crate::transpile::render::not_lowered(span, "$LOAD"),
             Op::SetOverride(v) => {
                 let v = match v.integer() {
                     Some(n) => n.to_string(),
@@ -137,11 +134,7 @@ impl<'a> Tx<'a> {
             }
             Op::Return(v) => self.return_(v.as_ref(), span),
             Op::Halt => self.halt(span),
-            Op::Brake { .. } => fail(
-                span,
-                "BRAKE (stopping the motion from an interrupt routine) has no counterpart: every move has ended before the next statement runs",
-                "remove it, or call robot.Stop() where the robot must stop",
-            ),
+            Op::Brake { .. } => crate::transpile::render::not_lowered(span, "BRAKE"),
             // The lowering refuses interrupts for a target without them
             // ([`crate::transpile::ir::Why::NoInterrupts`]): this is never reached.
             Op::Interrupt { .. } => crate::transpile::render::not_lowered(span, "an interrupt"),

@@ -130,10 +130,56 @@ pub enum Why {
     Load,
     /// A message routine without text.
     MessageText,
+    /// A statement the target has nothing for (`Caps::lacks`).
+    Lacks(Lacked),
     /// `B_NOT` in a target without a bitwise NOT (`Caps::bitwise_not`).
     BitwiseNot,
     /// A string longer than the target holds (`Caps::string_len`).
     StringLength { len: usize, max: usize },
+}
+
+/// A KRL statement some target has nothing for (`Caps::lacks`).
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Lacked {
+    /// `$OV_PRO = …`.
+    Override,
+    /// `$LOAD = …`.
+    Load,
+    /// `BRAKE`.
+    Brake,
+    /// `CIRC`.
+    Circ,
+    /// `$TIMER[n] = …`, `$TIMER_STOP[n] = …`.
+    Timers,
+    /// Stopping a timer: `$TIMER_STOP[n] = TRUE` (or a computed value).
+    TimerStop,
+}
+
+impl Lacked {
+    /// The KRL it stands for, as the capability table names it.
+    pub fn krl(self) -> &'static str {
+        match self {
+            Lacked::Override => "$OV_PRO",
+            Lacked::Load => "$LOAD",
+            Lacked::Brake => "BRAKE",
+            Lacked::Circ => "CIRC",
+            Lacked::Timers => "$TIMER",
+            Lacked::TimerStop => "$TIMER_STOP = TRUE",
+        }
+    }
+
+    fn message(self) -> &'static str {
+        match self {
+            Lacked::Override => "the program override ($OV_PRO) has no counterpart in this target",
+            Lacked::Load => "$LOAD (the payload) has no counterpart in this target",
+            Lacked::Brake => {
+                "BRAKE (stopping the motion from an interrupt routine) has no counterpart in this target"
+            }
+            Lacked::Circ => "a circular motion (CIRC) has no counterpart in this target",
+            Lacked::Timers => "KRL timers ($TIMER, in ms) have no counterpart in this target",
+            Lacked::TimerStop => "stopping a timer ($TIMER_STOP) has no counterpart in this target",
+        }
+    }
 }
 
 /// Where the target's own connect call is named in [`Why::VisionServer`]'s help (each backend
@@ -258,6 +304,7 @@ impl Why {
             Why::WaitCall => "a function called inside a WAIT FOR condition has no counterpart".into(),
             Why::Load => "this $LOAD value is not a mass with a centre of mass".into(),
             Why::MessageText => "a message without text".into(),
+            Why::Lacks(s) => s.message().into(),
             Why::BitwiseNot => "B_NOT (bitwise NOT) has no counterpart in this target".into(),
             Why::StringLength { len, max } => {
                 format!("a string of {len} characters; this target holds at most {max}")

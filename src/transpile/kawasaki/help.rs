@@ -2,6 +2,7 @@
 
 use crate::transpile::ir::Why;
 use crate::transpile::ir::why::KukaOnly;
+use crate::transpile::ir::why::Lacked;
 
 pub(super) fn help(why: &Why) -> String {
     crate::transpile::render::help::help(why, own)
@@ -63,6 +64,12 @@ fn own(why: &Why) -> Option<String> {
         Why::Load => "set the payload with WEIGHT mass, cx, cy, cz".into(),
         Why::BitwiseNot => {
             "use BXOR with a mask of the bits you need (e.g. x BXOR ^HFF for 8 bits)".into()
+        }
+        Why::Lacks(Lacked::Override) => {
+            "the program override is a monitor setting in AS: set the monitor speed on the controller (MC SPEED n), or scale SPEED".into()
+        }
+        Why::Lacks(Lacked::TimerStop) => {
+            "AS timers cannot be stopped: store TIMER(n) in a variable where KRL stopped the timer".into()
         }
         _ => return None,
     })

@@ -94,11 +94,8 @@ impl<'a> Tx<'a> {
                     self.keep_as_comment("TR002", span);
                     Ok(())
                 }
-                _ => fail(
-                    span,
-                    "AS timers cannot be stopped ($TIMER_STOP)",
-                    "store TIMER(n) in a variable where KRL stopped the timer",
-                ),
+                // The lowering refuses it (`Caps::lacks`).
+                _ => crate::transpile::render::not_lowered(span, "$TIMER_STOP = TRUE"),
             },
         }
     }

@@ -19,6 +19,7 @@ mod mm;
 mod motion;
 mod stmt;
 
+use crate::transpile::render::Lacked;
 use std::collections::HashMap;
 
 use super::Options;
@@ -79,6 +80,7 @@ pub static BACKEND: render::Backend = render::Backend {
     caps: render::Caps {
         interrupt_on_flags: true,
         functions: false,
+        lacks: &[Lacked::Override, Lacked::TimerStop],
         pulse: render::Pulse {
             low: false,
             flags: true,

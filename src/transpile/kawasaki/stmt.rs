@@ -40,11 +40,8 @@ impl<'a> Tx<'a> {
             Op::MotionDefaults => self.motion_defaults(span),
             Op::SetFrame { which, frame } => self.set_frame(*which, frame, span),
             Op::SetLoad(l) => self.set_load(l, span),
-            Op::SetOverride(_) => fail(
-                span,
-                "the program override ($OV_PRO) is a monitor setting in AS",
-                "set the monitor speed on the controller (MC SPEED n), or scale SPEED",
-            ),
+            // The lowering refuses what `Caps::lacks` names.
+            Op::SetOverride(_) => crate::transpile::render::not_lowered(span, "$OV_PRO"),
             Op::SetIo { io, value, when } => self.set_io(io, value, when, span),
             Op::Pulse { io, level, seconds } => self.pulse(io, level, seconds),
             Op::Timer { index, op } => self.timer(index, op, span),

@@ -40,11 +40,10 @@ impl<'a> Tx<'a> {
                 "({} = 1)",
                 self.signal(io, e.span)?
             ))),
-            ExprKind::Timer(_) | ExprKind::TimerFlag(_) => fail(
-                e.span,
-                "KRL timers ($TIMER, in ms) have no translation to RAPID clocks yet",
-                "use a clock: ClkReset, ClkStart and ClkRead (seconds)",
-            ),
+            // The lowering refuses them (`Caps::lacks`).
+            ExprKind::Timer(_) | ExprKind::TimerFlag(_) => {
+                crate::transpile::render::not_lowered(e.span, "$TIMER")
+            }
             ExprKind::Param(p) => fail(
                 e.span,
                 format!("reading {} back has no RAPID equivalent", p.krl()),

@@ -2,6 +2,7 @@
 
 use crate::transpile::ir::Why;
 use crate::transpile::ir::why::KukaOnly;
+use crate::transpile::ir::why::Lacked;
 
 pub(super) fn help(why: &Why) -> String {
     crate::transpile::render::help::help(why, own)
@@ -58,6 +59,12 @@ fn own(why: &Why) -> Option<String> {
         Why::Goto => "restructure the jump".into(),
         Why::Load => "give the payload in the tooldata's tload, or with GripLoad".into(),
         Why::BitwiseNot => "compute the bits with BitNeg on a byte, or port by hand".into(),
+        Why::Lacks(Lacked::Load) => {
+            "give the payload in the tooldata's tload, or with GripLoad".into()
+        }
+        Why::Lacks(Lacked::Timers | Lacked::TimerStop) => {
+            "use a clock: ClkReset, ClkStart and ClkRead (seconds)".into()
+        }
         _ => return None,
     })
 }

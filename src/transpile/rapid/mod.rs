@@ -28,6 +28,7 @@ use super::front::report::{FileId, Report};
 use super::ir::{self, Block, RoutineId, RoutineKind, TempId, Ty, VarId};
 use super::render::{self, Emit, Out, Style};
 use crate::diag::Span;
+use crate::transpile::render::Lacked;
 
 pub(super) use super::front::{R, fail};
 
@@ -79,6 +80,7 @@ pub static BACKEND: render::Backend = render::Backend {
             base_turns: 0,
         },
         trigger: render::Trigger::OnPath,
+        lacks: &[Lacked::Load, Lacked::Timers],
         string_len: Some(80),
         ..render::Caps::BASE
     },

@@ -45,11 +45,8 @@ impl<'a> Tx<'a> {
             Op::SetParam { param, value } => self.set_param(*param, value, span),
             Op::MotionDefaults => self.motion_defaults(span),
             Op::SetFrame { which, frame } => self.set_frame(*which, frame, span),
-            Op::SetLoad(_) => fail(
-                span,
-                "$LOAD has no translation to RAPID yet",
-                "give the payload in the tooldata's tload, or with GripLoad",
-            ),
+            // The lowering refuses what `Caps::lacks` names.
+            Op::SetLoad(_) => crate::transpile::render::not_lowered(span, "$LOAD"),
             Op::SetOverride(v) => {
                 let v = self.expr(v)?;
                 self.out.rep.approximate(
@@ -63,11 +60,7 @@ impl<'a> Tx<'a> {
             }
             Op::SetIo { io, value, when } => self.set_io(io, value, when, span),
             Op::Pulse { io, level, seconds } => self.pulse(io, level, seconds, span),
-            Op::Timer { .. } => fail(
-                span,
-                "KRL timers ($TIMER, in ms) have no translation to RAPID clocks yet",
-                "use a clock: ClkReset, ClkStart and ClkRead (seconds)",
-            ),
+            Op::Timer { .. } => crate::transpile::render::not_lowered(span, "$TIMER"),
             Op::Wait(w) => self.wait(w),
             Op::AdvanceStop { needed } => {
                 if *needed {

@@ -5,6 +5,7 @@
 use super::super::front::Program as Source;
 use super::super::front::names::NameRules;
 use super::super::front::report::Report;
+use super::super::ir::why::Lacked;
 use super::super::ir::{self, Why};
 use super::super::{Options, Renderer, Target, VisionServer};
 use crate::transpile::{flexiv, kawasaki, rapid};
@@ -36,6 +37,8 @@ pub struct Caps {
     pub trigger: Trigger,
     /// Which `PULSE`s it holds (a computed level none: TR001 for every target).
     pub pulse: Pulse,
+    /// KRL statements it has nothing for (TR001 `Why::Lacks`).
+    pub lacks: &'static [Lacked],
     /// `B_NOT` (bitwise NOT of an integer); without: TR001.
     pub bitwise_not: bool,
     /// The longest string the target holds, in characters (`None`: no limit known); a longer
@@ -66,6 +69,7 @@ impl Caps {
             low: false,
             flags: false,
         },
+        lacks: &[],
         bitwise_not: false,
         string_len: None,
     };
@@ -128,7 +132,7 @@ pub enum Trigger {
 }
 
 /// The columns of the capability table.
-const CAPS_COLUMNS: [&str; 12] = [
+const CAPS_COLUMNS: [&str; 13] = [
     "language",
     "GOTO",
     "STRUC",
@@ -139,12 +143,13 @@ const CAPS_COLUMNS: [&str; 12] = [
     "TRIGGER",
     "PULSE",
     "B_NOT",
+    "nothing for (TR001)",
     "strings",
     "identifiers",
 ];
 
 /// A target's row of the capability table, in [`CAPS_COLUMNS`] order.
-fn caps_row(b: &Backend) -> [String; 12] {
+fn caps_row(b: &Backend) -> [String; 13] {
     let yes_no = |b: bool, without: &str| {
         if b {
             "yes".to_owned()
@@ -189,9 +194,18 @@ fn caps_row(b: &Backend) -> [String; 12] {
         trigger.to_owned(),
         pulse(&c.pulse),
         yes_no(c.bitwise_not, "TR001"),
+        lacked(c.lacks),
         strings,
         format!("≤ {} characters", n.max_len),
     ]
+}
+
+/// The cell of the statements a target has nothing for.
+fn lacked(l: &[Lacked]) -> String {
+    if l.is_empty() {
+        return "—".to_owned();
+    }
+    l.iter().map(|s| s.krl()).collect::<Vec<_>>().join(", ")
 }
 
 /// The PULSE cell of the capability table.
@@ -449,6 +463,32 @@ mod tests {
                     .all(|m| m.contains("its condition is not a single signal")),
             "{rapid:?}"
         );
+    }
+
+    /// Each statement a target declares it has nothing for is refused by the lowering for that
+    /// target only (`Caps::lacks`).
+    #[test]
+    fn the_lowering_refuses_what_a_target_lacks() {
+        let cases = [
+            (Lacked::Override, "$OV_PRO = 50"),
+            (
+                Lacked::Load,
+                "$LOAD = {M 3.5, CM {X 0, Y 0, Z 80, A 0, B 0, C 0}}",
+            ),
+            (Lacked::Brake, "BRAKE"),
+            (Lacked::Circ, "CIRC {X 1, Y 2, Z 3}, {X 2, Y 3, Z 3}"),
+            (Lacked::Timers, "$TIMER[1] = 0"),
+            (Lacked::TimerStop, "$TIMER_STOP[1] = TRUE"),
+        ];
+        for (lacked, stmt) in cases {
+            let src = format!("DEF p()\n{stmt}\nEND\n");
+            for b in BACKENDS {
+                let msgs = refusals_in(b.target(), &src);
+                let refused = msgs.contains(&Why::Lacks(lacked).message());
+                let want = b.caps().lacks.contains(&lacked);
+                assert_eq!(refused, want, "{:?} {stmt}: {msgs:?}", b.target());
+            }
+        }
     }
 
     #[test]

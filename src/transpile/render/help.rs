@@ -75,6 +75,7 @@ fn shared(why: &Why) -> String {
         | Why::VisionServer { .. }
         | Why::Goto
         | Why::Load
+        | Why::Lacks(_)
         | Why::BitwiseNot => "port by hand",
     }
     .into()

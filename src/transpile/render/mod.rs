@@ -23,6 +23,7 @@ use super::front::{Fail, R};
 use super::ir::{self as ir, Case, Expr, LabelId, LoopId, Op, RoutineId, Stmt, TempId, Ty, Why};
 use crate::diag::Span;
 
+pub use super::ir::why::Lacked;
 pub use backend::{BACKENDS, Backend, Blending, Caps, Distance, Pulse, Relative, Trigger, backend};
 
 /// How a target writes lines and comments.

@@ -558,9 +558,15 @@ impl<'p> Lower<'p> {
                 let i = index(self, i, pre)?;
                 Expr::new(ExprKind::Io(IoPlace::Flag(i)), Ty::Bool, span)
             }
-            Sys::Timer(i) => Expr::new(ExprKind::Timer(index(self, i, pre)?), Ty::Int, span),
+            Sys::Timer(i) => {
+                let i = index(self, i, pre)?;
+                self.held(crate::transpile::ir::why::Lacked::Timers, span)?;
+                Expr::new(ExprKind::Timer(i), Ty::Int, span)
+            }
             Sys::TimerFlag(i) => {
-                Expr::new(ExprKind::TimerFlag(index(self, i, pre)?), Ty::Bool, span)
+                let i = index(self, i, pre)?;
+                self.held(crate::transpile::ir::why::Lacked::Timers, span)?;
+                Expr::new(ExprKind::TimerFlag(i), Ty::Bool, span)
             }
             Sys::PosAct => self.read_position(false, span, pre),
             Sys::AxisAct => self.read_position(true, span, pre),

@@ -286,6 +286,14 @@ impl<'p> Lower<'p> {
 
     // ----- findings, constructs ----------------------------------------------------------
 
+    /// TR001 where the target has nothing for `s` (`Caps::lacks`).
+    pub(super) fn held(&self, s: super::why::Lacked, span: Span) -> L<()> {
+        if self.caps.lacks.contains(&s) {
+            return fail(Why::Lacks(s), span);
+        }
+        Ok(())
+    }
+
     pub(super) fn approx(
         &mut self,
         span: Span,

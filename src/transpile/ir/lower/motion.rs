@@ -7,6 +7,7 @@ use crate::diag::Span;
 use crate::syntax::ast::{self, Approx, ExprKind as A, MotionKind};
 use crate::transpile::front::ilf;
 use crate::transpile::front::sysvar::{self, Sys};
+use crate::transpile::ir::why::Lacked;
 use crate::transpile::ir::{
     Because, Blend, Block, Component, Delta, Expr, ExprKind, FrameKind, FrameRef, Frames, IoTiming,
     Known, Load, MotionParam, Move, Op, ParamValue, Path, Place, SplineId, Stmt, Target, TriggerAt,
@@ -117,6 +118,7 @@ impl<'p> Lower<'p> {
             Sys::Load => {
                 self.kind("load");
                 let load = self.load(target, value, ops)?;
+                self.held(Lacked::Load, span)?;
                 ops.push(Stmt {
                     op: Op::SetLoad(load),
                     span,
@@ -126,6 +128,7 @@ impl<'p> Lower<'p> {
             Sys::OvPro => {
                 self.kind("override");
                 let v = self.expr(value, ops)?;
+                self.held(Lacked::Override, span)?;
                 ops.push(Stmt {
                     op: Op::SetOverride(v),
                     span,
@@ -358,6 +361,7 @@ impl<'p> Lower<'p> {
                     speed: pending(),
                 },
                 K::Circ | K::Scirc => {
+                    self.held(Lacked::Circ, span)?;
                     let Some(aux) = &m.aux else {
                         return fail(
                             Why::Aggregate("CIRC without an auxiliary point".into()),

@@ -8,6 +8,7 @@ use crate::transpile::front::end_line_start;
 use crate::transpile::front::ilf;
 use crate::transpile::front::kinds::category;
 use crate::transpile::front::sysvar::{self, Sys};
+use crate::transpile::ir::why::Lacked;
 use crate::transpile::ir::{
     Block, Case, Expr, ExprKind, ForLoop, InterruptAction, IoTiming, LoopKind, Op, OutPlace,
     OutSignal, Place, RoutineKind, Scope, Stmt, TimerOp, Ty, UnaryOp, Wait, Why,
@@ -481,6 +482,7 @@ impl<'p> Lower<'p> {
                 Ok(())
             }
             StmtKind::Brake { fast } => {
+                self.held(Lacked::Brake, span)?;
                 Self::push(ops, Op::Brake { fast: *fast }, span);
                 Ok(())
             }
@@ -777,6 +779,7 @@ impl<'p> Lower<'p> {
                 self.kind("timer");
                 let i = self.expr(i, ops)?;
                 let v = self.expr(value, ops)?;
+                self.held(Lacked::Timers, span)?;
                 Self::push(
                     ops,
                     Op::Timer {
@@ -791,6 +794,10 @@ impl<'p> Lower<'p> {
                 self.kind("timer");
                 let i = self.expr(i, ops)?;
                 let v = self.expr(value, ops)?;
+                self.held(Lacked::Timers, span)?;
+                if !matches!(v.kind, ExprKind::Bool(false)) {
+                    self.held(Lacked::TimerStop, span)?;
+                }
                 Self::push(
                     ops,
                     Op::Timer {
