@@ -87,6 +87,8 @@ pub static BACKEND: render::Backend = render::Backend {
         goto: false,
         interrupts: false,
         bitwise_not: true,
+        // The script's KRL object holds them (`KRL.vel_cp` …).
+        param_reads: true,
         lacks: &[Lacked::Load, Lacked::Brake, Lacked::Circ],
         pulse: render::Pulse {
             low: true,

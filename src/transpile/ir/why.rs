@@ -130,6 +130,8 @@ pub enum Why {
     Load,
     /// A message routine without text.
     MessageText,
+    /// A motion parameter read back in a target that cannot (`Caps::param_reads`).
+    ParamRead(crate::transpile::ir::MotionParam),
     /// A statement the target has nothing for (`Caps::lacks`).
     Lacks(Lacked),
     /// `B_NOT` in a target without a bitwise NOT (`Caps::bitwise_not`).
@@ -305,6 +307,7 @@ impl Why {
             Why::Load => "this $LOAD value is not a mass with a centre of mass".into(),
             Why::MessageText => "a message without text".into(),
             Why::Lacks(s) => s.message().into(),
+            Why::ParamRead(p) => format!("reading {} back has no counterpart in this target", p.krl()),
             Why::BitwiseNot => "B_NOT (bitwise NOT) has no counterpart in this target".into(),
             Why::StringLength { len, max } => {
                 format!("a string of {len} characters; this target holds at most {max}")

@@ -61,11 +61,10 @@ impl<'a> Tx<'a> {
                     op: Some(">="),
                 })
             }
-            ExprKind::Param(p) => fail(
-                e.span,
-                format!("reading {} back has no AS equivalent", p.krl()),
-                "keep the value in a variable where the program sets it",
-            ),
+            // The lowering refuses it (`Caps::param_reads`).
+            ExprKind::Param(_) => {
+                crate::transpile::render::not_lowered(e.span, "a motion parameter read back")
+            }
             ExprKind::NullFrame => Ok(Rendered::atom("NULL".into())),
             ExprKind::Record(_) => render::not_lowered(e.span, "a record value"),
             ExprKind::Current { .. } => fail(

@@ -44,11 +44,10 @@ impl<'a> Tx<'a> {
             ExprKind::Timer(_) | ExprKind::TimerFlag(_) => {
                 crate::transpile::render::not_lowered(e.span, "$TIMER")
             }
-            ExprKind::Param(p) => fail(
-                e.span,
-                format!("reading {} back has no RAPID equivalent", p.krl()),
-                "keep the value in a variable where the program sets it",
-            ),
+            // The lowering refuses it (`Caps::param_reads`).
+            ExprKind::Param(_) => {
+                crate::transpile::render::not_lowered(e.span, "a motion parameter read back")
+            }
             ExprKind::NullFrame => Ok(Rendered::atom(format::zero(&Ty::Pose))),
             ExprKind::Record(values) => {
                 let mut v = Vec::with_capacity(values.len());

@@ -37,6 +37,9 @@ pub struct Caps {
     pub trigger: Trigger,
     /// Which `PULSE`s it holds (a computed level none: TR001 for every target).
     pub pulse: Pulse,
+    /// A program can read the motion parameters it set back (`$VEL.CP`, `$APO.CDIS` … in an
+    /// expression); without: TR001.
+    pub param_reads: bool,
     /// KRL statements it has nothing for (TR001 `Why::Lacks`).
     pub lacks: &'static [Lacked],
     /// `B_NOT` (bitwise NOT of an integer); without: TR001.
@@ -70,6 +73,7 @@ impl Caps {
             flags: false,
         },
         lacks: &[],
+        param_reads: false,
         bitwise_not: false,
         string_len: None,
     };
@@ -132,7 +136,7 @@ pub enum Trigger {
 }
 
 /// The columns of the capability table.
-const CAPS_COLUMNS: [&str; 13] = [
+const CAPS_COLUMNS: [&str; 14] = [
     "language",
     "GOTO",
     "STRUC",
@@ -143,13 +147,14 @@ const CAPS_COLUMNS: [&str; 13] = [
     "TRIGGER",
     "PULSE",
     "B_NOT",
+    "`$VEL.CP`, `$APO` read",
     "nothing for (TR001)",
     "strings",
     "identifiers",
 ];
 
 /// A target's row of the capability table, in [`CAPS_COLUMNS`] order.
-fn caps_row(b: &Backend) -> [String; 13] {
+fn caps_row(b: &Backend) -> [String; 14] {
     let yes_no = |b: bool, without: &str| {
         if b {
             "yes".to_owned()
@@ -194,6 +199,7 @@ fn caps_row(b: &Backend) -> [String; 13] {
         trigger.to_owned(),
         pulse(&c.pulse),
         yes_no(c.bitwise_not, "TR001"),
+        yes_no(c.param_reads, "TR001"),
         lacked(c.lacks),
         strings,
         format!("≤ {} characters", n.max_len),
@@ -441,6 +447,15 @@ mod tests {
             }
             want.push("a PULSE to a computed level has no counterpart");
             assert_eq!(refusals_in(b.target(), pulses), want, "{:?}", b.target());
+        }
+        let read = "DEF p()\nDECL REAL r\nr = $APO.CDIS\nEND\n";
+        for b in BACKENDS {
+            let want: &[&str] = if b.caps().param_reads {
+                &[]
+            } else {
+                &["reading $APO.CDIS back has no counterpart in this target"]
+            };
+            assert_eq!(refusals_in(b.target(), read), want, "{:?}", b.target());
         }
         let bnot = "DEF p()\nDECL INT i\ni = B_NOT 5\nEND\n";
         for b in BACKENDS {

@@ -39,6 +39,7 @@ fn shared(why: &Why) -> String {
             "translate the file that declares the interrupt, or declare it here"
         }
         Why::ReturnWithoutValue => "return a value",
+        Why::ParamRead(_) => "keep the value in a variable where the program sets it",
         Why::RelativeTurn { .. } => "split it into a shift and a separate reorientation",
         Why::WaitCall => "assign the function's value to a variable and wait on that",
         Why::MessageText => "pass the text",

@@ -571,11 +571,11 @@ impl<'p> Lower<'p> {
             Sys::PosAct => self.read_position(false, span, pre),
             Sys::AxisAct => self.read_position(true, span, pre),
             Sys::NullFrame => Expr::new(ExprKind::NullFrame, Ty::Pose, span),
-            Sys::VelCp => Expr::new(ExprKind::Param(MotionParam::VelCp), Ty::Real, span),
-            Sys::ApoCdis => Expr::new(ExprKind::Param(MotionParam::ApoCdis), Ty::Real, span),
-            Sys::ApoCptp => Expr::new(ExprKind::Param(MotionParam::ApoCptp), Ty::Real, span),
-            Sys::ApoCvel => Expr::new(ExprKind::Param(MotionParam::ApoCvel), Ty::Real, span),
-            Sys::ApoCori => Expr::new(ExprKind::Param(MotionParam::ApoCori), Ty::Real, span),
+            Sys::VelCp => self.param_read(MotionParam::VelCp, span)?,
+            Sys::ApoCdis => self.param_read(MotionParam::ApoCdis, span)?,
+            Sys::ApoCptp => self.param_read(MotionParam::ApoCptp, span)?,
+            Sys::ApoCvel => self.param_read(MotionParam::ApoCvel, span)?,
+            Sys::ApoCori => self.param_read(MotionParam::ApoCori, span)?,
             Sys::CycFlag(_) => return fail(Why::CycFlag, span),
             _ => return fail(Why::SystemVariable(text), span),
         })
@@ -651,6 +651,14 @@ impl<'p> Lower<'p> {
         let op = self.function_call(callee, args, Place::Temp(t), &Ty::Real, span);
         pre.push(Stmt { op, span });
         Ok(Expr::new(ExprKind::Place(Place::Temp(t)), Ty::Real, span))
+    }
+
+    /// A motion parameter read back, where the target can (`Caps::param_reads`).
+    fn param_read(&self, p: MotionParam, span: Span) -> L<Expr> {
+        if !self.caps.param_reads {
+            return fail(Why::ParamRead(p), span);
+        }
+        Ok(Expr::new(ExprKind::Param(p), Ty::Real, span))
     }
 
     /// The call of a function whose value goes to `into` (of type `ty`): returned where the
