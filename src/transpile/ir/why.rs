@@ -140,7 +140,7 @@ pub enum Why {
     StringLength { len: usize, max: usize },
 }
 
-/// A KRL statement some target has nothing for (`Caps::lacks`).
+/// A KRL statement or operator some target has nothing for (`Caps::lacks`).
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub enum Lacked {
     /// `$OV_PRO = …`.
@@ -155,6 +155,10 @@ pub enum Lacked {
     Timers,
     /// Stopping a timer: `$TIMER_STOP[n] = TRUE` (or a computed value).
     TimerStop,
+    /// The geometric operator `:`.
+    Geo,
+    /// `B_AND`, `B_OR`, `B_EXOR` on integers.
+    Bitwise,
 }
 
 impl Lacked {
@@ -167,6 +171,8 @@ impl Lacked {
             Lacked::Circ => "CIRC",
             Lacked::Timers => "$TIMER",
             Lacked::TimerStop => "$TIMER_STOP = TRUE",
+            Lacked::Geo => "`:`",
+            Lacked::Bitwise => "B_AND/B_OR/B_EXOR",
         }
     }
 
@@ -180,6 +186,10 @@ impl Lacked {
             Lacked::Circ => "a circular motion (CIRC) has no counterpart in this target",
             Lacked::Timers => "KRL timers ($TIMER, in ms) have no counterpart in this target",
             Lacked::TimerStop => "stopping a timer ($TIMER_STOP) has no counterpart in this target",
+            Lacked::Geo => "the geometric operator `:` has no counterpart in this target",
+            Lacked::Bitwise => {
+                "bitwise operators on integers (B_AND, B_OR, B_EXOR) have no counterpart in this target"
+            }
         }
     }
 }

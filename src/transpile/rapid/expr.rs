@@ -88,18 +88,11 @@ impl<'a> Tx<'a> {
             return Ok(Rendered::atom(t?));
         }
         let (sym, prec): (&'static str, u8) = match op {
-            BinaryOp::Geo => {
-                return fail(
+            // The lowering refuses them (`Caps::lacks`).
+            BinaryOp::Geo | BinaryOp::BAnd | BinaryOp::BOr | BinaryOp::BExor => {
+                return crate::transpile::render::not_lowered(
                     whole.span,
-                    "the geometric operator `:` has no translation to RAPID yet",
-                    "compose the poses with PoseMult by hand",
-                );
-            }
-            BinaryOp::BAnd | BinaryOp::BOr | BinaryOp::BExor => {
-                return fail(
-                    whole.span,
-                    "bitwise operators on numbers have no RAPID equivalent (BitAnd/BitOr work on bytes)",
-                    "port by hand with BitAnd/BitOr on byte values",
+                    "an operator RAPID lacks",
                 );
             }
             BinaryOp::Mul => ("*", MUL),

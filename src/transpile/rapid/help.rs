@@ -62,6 +62,10 @@ fn own(why: &Why) -> Option<String> {
         Why::Lacks(Lacked::Load) => {
             "give the payload in the tooldata's tload, or with GripLoad".into()
         }
+        Why::Lacks(Lacked::Geo) => "compose the poses with PoseMult by hand".into(),
+        Why::Lacks(Lacked::Bitwise) => {
+            "BitAnd/BitOr work on bytes: port by hand with BitAnd/BitOr on byte values".into()
+        }
         Why::Lacks(Lacked::Timers | Lacked::TimerStop) => {
             "use a clock: ClkReset, ClkStart and ClkRead (seconds)".into()
         }

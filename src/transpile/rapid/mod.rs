@@ -80,7 +80,7 @@ pub static BACKEND: render::Backend = render::Backend {
             base_turns: 0,
         },
         trigger: render::Trigger::OnPath,
-        lacks: &[Lacked::Load, Lacked::Timers],
+        lacks: &[Lacked::Load, Lacked::Timers, Lacked::Geo, Lacked::Bitwise],
         string_len: Some(80),
         ..render::Caps::BASE
     },

@@ -494,6 +494,8 @@ mod tests {
             (Lacked::Circ, "CIRC {X 1, Y 2, Z 3}, {X 2, Y 3, Z 3}"),
             (Lacked::Timers, "$TIMER[1] = 0"),
             (Lacked::TimerStop, "$TIMER_STOP[1] = TRUE"),
+            (Lacked::Geo, "$BASE = $NULLFRAME : {X 1}"),
+            (Lacked::Bitwise, "$OUT[1] = (3 B_AND 1) == 1"),
         ];
         for (lacked, stmt) in cases {
             let src = format!("DEF p()\n{stmt}\nEND\n");

@@ -10,6 +10,7 @@ use crate::syntax::ast::{self, ExprKind as A};
 use crate::transpile::front::model::Layout;
 use crate::transpile::front::sysvar::{self, Sys};
 use crate::transpile::ir::why::KukaOnly;
+use crate::transpile::ir::why::Lacked;
 use crate::transpile::ir::{
     Aggregate, Arg, BinaryOp, Block, Builtin, Callee, Component, Expr, ExprKind, IoPlace,
     MotionParam, Op, Place, RoutineKind, Scope, Stmt, Ty, UnaryOp, Why,
@@ -227,6 +228,11 @@ impl<'p> Lower<'p> {
             let r = v.pop().expect("two");
             (v.pop().expect("two"), r)
         };
+        match op {
+            B::Geo => self.held(Lacked::Geo, span)?,
+            B::BAnd | B::BOr | B::BExor => self.held(Lacked::Bitwise, span)?,
+            _ => {}
+        }
         let (o, ty) = match op {
             B::Geo => (BinaryOp::Geo, Ty::Pose),
             B::Add | B::Sub | B::Mul | B::Div => {
@@ -560,12 +566,12 @@ impl<'p> Lower<'p> {
             }
             Sys::Timer(i) => {
                 let i = index(self, i, pre)?;
-                self.held(crate::transpile::ir::why::Lacked::Timers, span)?;
+                self.held(Lacked::Timers, span)?;
                 Expr::new(ExprKind::Timer(i), Ty::Int, span)
             }
             Sys::TimerFlag(i) => {
                 let i = index(self, i, pre)?;
-                self.held(crate::transpile::ir::why::Lacked::Timers, span)?;
+                self.held(Lacked::Timers, span)?;
                 Expr::new(ExprKind::TimerFlag(i), Ty::Bool, span)
             }
             Sys::PosAct => self.read_position(false, span, pre),
