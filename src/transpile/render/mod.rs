@@ -110,7 +110,7 @@ pub struct RoutineState {
     pub id: RoutineId,
     /// Temporaries named so far.
     pub temps: HashMap<TempId, String>,
-    /// The labels of loops left or continued with a jump (targets with `GOTO`).
+    /// The labels after loops left with a jump (targets with `GOTO`).
     pub loops: LoopLabels,
 }
 
