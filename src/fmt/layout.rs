@@ -236,6 +236,8 @@ struct Marker<'t> {
     next_diagnostic: usize,
     /// Diagnostics that start before the current line's end and may still reach it.
     diagnostics_open: Vec<Span>,
+    /// The text has an inline-form mark (`%{`) somewhere: else no line needs looking at.
+    marks: bool,
 }
 
 impl<'t> Marker<'t> {
@@ -260,6 +262,7 @@ impl<'t> Marker<'t> {
             diagnostics,
             next_diagnostic: 0,
             diagnostics_open: Vec::new(),
+            marks: text.contains("%{"),
         }
     }
 
@@ -285,7 +288,7 @@ impl<'t> Marker<'t> {
 
     fn mark<'a>(&mut self, mut l: Line<'a>, f: &mut impl FnMut(Line<'a>)) {
         let Span { start, end } = l.span;
-        if l.node.is_some_and(|n| has_inline_form_mark(n, self.text)) {
+        if self.marks && l.node.is_some_and(|n| has_inline_form_mark(n, self.text)) {
             l.protected = true;
         }
         while let Some(fold) = self.folds.get(self.next_fold)
