@@ -157,7 +157,7 @@ const CASES: &[Case] = &[
         rapid: &[ex(
             11,
             Aspect::Motion,
-            "the geometric operator `:` has no translation",
+            "the geometric operator `:` has no counterpart",
         )],
     },
     Case {

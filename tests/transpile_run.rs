@@ -1054,7 +1054,7 @@ fn vision_variants_run_like_the_krl_original() {
 fn every_fixture_runs_or_stops_at_a_located_error() {
     // Translated as they are (TR001 lines stay comments), with no vision server: the AS either
     // runs to its end or fails with the file and line of the statement that cannot run.
-    let expected: [(&str, &str); 24] = [
+    let expected: [(&str, &str); 25] = [
         ("advance_stops", "advance_stops.as:19: WAIT still waiting"),
         (
             "base_offsets",
@@ -1083,6 +1083,7 @@ fn every_fixture_runs_or_stops_at_a_located_error() {
         ("pick_cycle", "pick_cycle.as:20: SWAIT 1010 still waiting"),
         ("python_names", "done"),
         ("records", "done"),
+        ("relative_moves", "done"),
         ("speed_kinds", "done"),
         ("spline_trigger", "done"),
         ("taught", "taught.as:15: the variable #xhome is not defined"),

@@ -40,8 +40,28 @@ pub(super) fn check(option: &str, out: &Path, inputs: &[(&str, &Path)]) -> Resul
     Ok(())
 }
 
-/// Write to a temporary file in the target's directory, then rename it into place.
+/// Write to a temporary file in the target's directory, then rename it into place. Only a
+/// regular file (or a new one) is replaced that way: renaming over `/dev/null`, a pipe or a
+/// terminal would put a plain file in its place (it did: `-o /dev/null` in a measurement turned the
+/// machine's `/dev/null` into a file, and every later build read its junk), so those are written
+/// as they are; through a symlink, the file it names is replaced and the link stays.
 pub(super) fn write_atomically(path: &Path, bytes: &[u8]) -> anyhow::Result<()> {
+    let target = match std::fs::metadata(path) {
+        Ok(meta) if !meta.is_file() => {
+            return std::fs::OpenOptions::new()
+                .write(true)
+                .open(path)
+                .and_then(|mut f| f.write_all(bytes))
+                .with_context(|| format!("cannot write {}", path.display()));
+        }
+        Ok(_) if path.is_symlink() => std::fs::canonicalize(path)
+            .with_context(|| format!("cannot write {}", path.display()))?,
+        _ => path.to_path_buf(),
+    };
+    replace_file(&target, bytes)
+}
+
+fn replace_file(path: &Path, bytes: &[u8]) -> anyhow::Result<()> {
     let dir = path
         .parent()
         .filter(|d| !d.as_os_str().is_empty())
@@ -112,6 +132,46 @@ mod tests {
             check("-o", &missing, &[])
                 .unwrap_err()
                 .contains("does not exist")
+        );
+    }
+
+    /// A pipe (as `/dev/null` or a terminal) is written through, not renamed over: the reader gets
+    /// the text and the path stays a pipe.
+    #[cfg(unix)]
+    #[test]
+    fn a_pipe_is_written_not_replaced() {
+        use std::os::unix::fs::FileTypeExt;
+        let dir = tempfile::tempdir().unwrap();
+        let fifo = dir.path().join("fifo");
+        let c = std::ffi::CString::new(fifo.as_os_str().as_encoded_bytes()).unwrap();
+        assert_eq!(unsafe { libc::mkfifo(c.as_ptr(), 0o600) }, 0);
+        let reader = {
+            let fifo = fifo.clone();
+            std::thread::spawn(move || std::fs::read_to_string(fifo).unwrap())
+        };
+        write_atomically(&fifo, b"PROGRAM\n").unwrap();
+        // Checked before joining: had the pipe been renamed over, its reader would wait forever.
+        let kind = std::fs::symlink_metadata(&fifo).unwrap().file_type();
+        assert!(kind.is_fifo(), "{kind:?}");
+        assert_eq!(reader.join().unwrap(), "PROGRAM\n");
+    }
+
+    /// Through a symlink the file it names gets the text; the link stays a link.
+    #[cfg(unix)]
+    #[test]
+    fn a_symlink_keeps_pointing_at_the_replaced_file() {
+        let dir = tempfile::tempdir().unwrap();
+        let real = dir.path().join("real.as");
+        std::fs::write(&real, "old").unwrap();
+        let link = dir.path().join("link.as");
+        std::os::unix::fs::symlink(&real, &link).unwrap();
+        write_atomically(&link, b"new").unwrap();
+        assert!(link.is_symlink());
+        assert_eq!(std::fs::read_to_string(&real).unwrap(), "new");
+        write_atomically(&dir.path().join("fresh.as"), b"x").unwrap();
+        assert_eq!(
+            std::fs::read_to_string(dir.path().join("fresh.as")).unwrap(),
+            "x"
         );
     }
 }

@@ -95,10 +95,9 @@ impl<'a> Tx<'a> {
             }
             ExprKind::Param(p) => match param_field(*p) {
                 Some(f) => Ok(Py::atom(format!("KRL.{f}"))),
-                None => fail(
+                None => crate::transpile::render::not_lowered(
                     e.span,
-                    format!("reading {} back has no translation", p.krl()),
-                    "keep the value in a variable where the program sets it",
+                    "a motion parameter the script does not keep",
                 ),
             },
             ExprKind::NullFrame => Ok(Py::atom("Pose()")),

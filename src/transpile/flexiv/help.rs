@@ -2,6 +2,7 @@
 
 use crate::transpile::ir::Why;
 use crate::transpile::ir::why::KukaOnly;
+use crate::transpile::ir::why::Lacked;
 
 pub(super) fn help(why: &Why) -> String {
     crate::transpile::render::help::help(why, own)
@@ -48,6 +49,7 @@ fn own(why: &Why) -> Option<String> {
         Why::Aggregate(_) => "compute the pose with Pose(...) by hand, or use literal values".into(),
         Why::Component(_) => "compute the whole value and assign it".into(),
         Why::MotionTarget(_) => "move to a pose (E6POS) or axis values (E6AXIS)".into(),
+        Why::RelativeTurn { .. } | Why::RelativeExternal => "split it into a position change and a separate reorientation".into(),
         Why::RelativeOffset | Why::RelativeCirc => "compute the target pose and move to it".into(),
         Why::SplOutsideSpline => "replace it by LIN moves, and check the path".into(),
         Why::PulseSignal => "pulse an output ($OUT[n])".into(),
@@ -68,6 +70,15 @@ fn own(why: &Why) -> Option<String> {
         Why::Goto => "restructure the jump with a loop (while/break) or IF".into(),
         Why::Load => "set mass, centre of mass and inertia in the tool (Flexiv Elements)".into(),
         Why::BitwiseNot => "use ~ on an integer by hand".into(),
+        Why::Lacks(Lacked::Load) => {
+            "the payload is part of the tool on a Flexiv robot: set mass, centre of mass and inertia in the tool (Flexiv Elements or ToolParams)".into()
+        }
+        Why::Lacks(Lacked::Brake) => {
+            "every move has ended before the next statement runs: remove it, or call robot.Stop() where the robot must stop".into()
+        }
+        Why::Lacks(Lacked::Circ) => {
+            "no verified Flexiv primitive (MoveL with a waypoint would be two straight lines): replace the arc by LIN moves through points on it".into()
+        }
         _ => return None,
     })
 }

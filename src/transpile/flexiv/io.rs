@@ -1,7 +1,7 @@
 //! I/O, flags, timers, waits and HALT.
 
 use super::expr::{CMP, NOT};
-use super::{R, Tx, fail};
+use super::{R, Tx};
 use crate::diag::Span;
 use crate::transpile::front::report::FileId;
 use crate::transpile::ir::{Expr, ExprKind, IoTiming, OutPlace, TimerOp, UnaryOp, Wait};
@@ -79,23 +79,12 @@ impl<'a> Tx<'a> {
             OutPlace::Signal(r) if r.range().width() == 1 => {
                 self.signal_ports(r.range(), span)?.0.to_string()
             }
-            _ => {
-                return fail(
-                    span,
-                    "PULSE of this signal has no translation",
-                    "pulse an output ($OUT[n])",
-                );
-            }
+            // The lowering lets through a pulse of an output at a literal level only
+            // (`Caps::pulse`).
+            _ => return crate::transpile::render::not_lowered(span, "a PULSE of a flag"),
         };
-        let on = match &level.kind {
-            ExprKind::Bool(b) => *b,
-            _ => {
-                return fail(
-                    level.span,
-                    "a PULSE to a computed level has no translation",
-                    "use a literal TRUE or FALSE",
-                );
-            }
+        let ExprKind::Bool(on) = level.kind else {
+            return crate::transpile::render::not_lowered(level.span, "a computed PULSE level");
         };
         let t = self.expr(seconds)?;
         self.out.rep.approximate(

@@ -29,6 +29,7 @@ pub mod options;
 mod script;
 mod stmt;
 
+use crate::transpile::render::Lacked;
 use std::collections::{BTreeMap, BTreeSet, HashMap};
 
 pub use motion::zone_code;
@@ -39,7 +40,7 @@ use super::VisionServer;
 use super::front::Program as Source;
 use super::front::names::Home;
 use super::front::report::Report;
-use super::ir::{self, Block, LoopId, RoutineId, RoutineKind, Scope, Stmt, TempId, VarId};
+use super::ir::{self, Block, LoopId, RoutineId, RoutineKind, Scope, Stmt, VarId};
 use super::render::{self, Emit, Out, Style};
 use crate::diag::Span;
 use names::NAME_RULES;
@@ -85,7 +86,19 @@ pub static BACKEND: render::Backend = render::Backend {
     caps: render::Caps {
         goto: false,
         interrupts: false,
-        blending: render::Blending::ZoneCodes,
+        bitwise_not: true,
+        // The script's KRL object holds them (`KRL.vel_cp` …).
+        param_reads: true,
+        lacks: &[Lacked::Load, Lacked::Brake, Lacked::Circ],
+        pulse: render::Pulse {
+            low: true,
+            flags: false,
+        },
+        blending: render::Blending {
+            distance: render::Distance::ZoneCodes,
+            to_axes: false,
+            ..render::Caps::BASE.blending
+        },
         ..render::Caps::BASE
     },
     name_rules: &NAME_RULES,
@@ -98,7 +111,6 @@ pub static BACKEND: render::Backend = render::Backend {
 
 /// The routine being rendered.
 struct Rt {
-    id: RoutineId,
     /// Its Python name and parameters.
     name: String,
     params: Vec<String>,
@@ -118,8 +130,6 @@ struct Rt {
     outs: Vec<String>,
     /// Module-level names this function assigns (declared `global`).
     globals: BTreeSet<String>,
-    /// Temporaries named so far.
-    temps: HashMap<TempId, String>,
     /// Enclosing loops, innermost last.
     loops: Vec<LoopId>,
     /// Loops left or restarted from a nested loop: their flags.
@@ -422,8 +432,8 @@ impl crate::transpile::Renderer for Tx<'_> {
         } else {
             self.out.names.routine_of(&r.name).unwrap_or("").to_owned()
         };
+        self.out.begin_routine(id);
         self.rt = Some(Rt {
-            id,
             name,
             params: Vec::new(),
             before_def,
@@ -436,7 +446,6 @@ impl crate::transpile::Renderer for Tx<'_> {
             kind: r.kind,
             outs: Vec::new(),
             globals: BTreeSet::new(),
-            temps: HashMap::new(),
             loops: Vec::new(),
             flags: HashMap::new(),
             pending: Vec::new(),
@@ -496,7 +505,7 @@ impl crate::transpile::Renderer for Tx<'_> {
 
     fn end_routine(&mut self) {
         let ir = self.ir;
-        let Some(id) = self.rt.as_ref().map(|rt| rt.id) else {
+        let Some(id) = self.out.routine.as_ref().map(|r| r.id) else {
             return;
         };
         let r = ir.routine(id);
@@ -511,6 +520,7 @@ impl crate::transpile::Renderer for Tx<'_> {
         };
         self.local_defaults(r, &first);
         let defaults = std::mem::take(&mut self.out.lines);
+        self.out.routine = None;
         let Some(mut rt) = self.rt.take() else {
             return;
         };
@@ -574,20 +584,12 @@ impl<'a> Emit<'a> for Tx<'a> {
         self.expr(e)
     }
 
-    fn routine_id(&self) -> RoutineId {
-        self.rt.as_ref().map_or(RoutineId(0), |r| r.id)
-    }
-
     fn block_edge(&mut self) {
         self.forget_frames();
     }
 
-    fn block(&mut self, b: &[Stmt]) {
-        self.spline_block(b);
-    }
-
-    fn temps(&mut self) -> Option<&mut HashMap<TempId, String>> {
-        self.rt.as_mut().map(|r| &mut r.temps)
+    fn own_run(&mut self, b: &[Stmt]) -> Option<usize> {
+        self.spline_at(b)
     }
 
     /// Starts with `_`, which no translated KRL name does.

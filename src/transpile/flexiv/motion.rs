@@ -42,23 +42,15 @@ impl<'a> Tx<'a> {
         }
     }
 
-    /// The zoneRadius argument for a motion (`None`: the default "Z0", an exact stop).
-    fn zone_for(&mut self, m: &Move, span: Span) -> Option<String> {
-        let (cdis, what) = match &m.blend {
-            Blend::Exact => return None,
-            Blend::Distance(d) => (d, "C_DIS"),
-            Blend::Percent { cdis, .. } => (
-                cdis,
-                "C_PTP (percent of the axis path, taken as the distance $APO.CDIS)",
-            ),
-            Blend::Velocity { cdis, .. } => (
-                cdis,
-                "C_VEL (percent of the speed, taken as the distance $APO.CDIS)",
-            ),
-            Blend::Orientation { cdis, .. } => (
-                cdis,
-                "C_ORI (orientation angle, taken as the distance $APO.CDIS)",
-            ),
+    /// The zoneRadius argument for a motion (`None`: the default "Z0", an exact stop; the
+    /// lowering made every blending kind a distance, `Caps::blending`).
+    fn zone_for(&mut self, m: &Move, span: Span) -> R<Option<String>> {
+        let cdis = match &m.blend {
+            Blend::Exact => return Ok(None),
+            Blend::Distance(d) => d,
+            Blend::Percent { .. } | Blend::Velocity { .. } | Blend::Orientation { .. } => {
+                return crate::transpile::render::not_lowered(span, "a blending kind but C_DIS");
+            }
         };
         let (zone, known) = match cdis {
             Known::Is(ParamValue::Num(mm)) => {
@@ -75,7 +67,7 @@ impl<'a> Tx<'a> {
                     "the blending distance is not set in this program ($APO.CDIS); zoneRadius \"Z0\" (no blending) is used",
                     "set $APO.CDIS before the move",
                 );
-                return None;
+                return Ok(None);
             }
             // Set by a called routine or on another path: the value the script keeps.
             Known::Unknown(_) => (
@@ -87,11 +79,11 @@ impl<'a> Tx<'a> {
             FileId::Src,
             span,
             format!(
-                "{what} becomes zoneRadius {zone} ({known}), but the script waits for reachedTarget before the next move, so the robot stops at this point"
+                "C_DIS becomes zoneRadius {zone} ({known}), but the script waits for reachedTarget before the next move, so the robot stops at this point"
             ),
             "to blend, pass the following points as waypoints of one MoveL by hand",
         );
-        Some(zone)
+        Ok(Some(zone))
     }
 
     /// A TR002 where nothing in the program sets the speed this motion runs at (neither
@@ -136,11 +128,8 @@ impl<'a> Tx<'a> {
         }
         let zone_arg = |z: Option<String>| z.map(|z| format!(", {z}")).unwrap_or_default();
         match &m.path {
-            Path::Circular { .. } => fail(
-                span,
-                "circular motions have no verified Flexiv primitive (MoveL with a waypoint would be two straight lines)",
-                "replace the arc by LIN moves through points on it",
-            ),
+            // The lowering refuses it (`Caps::lacks`).
+            Path::Circular { .. } => crate::transpile::render::not_lowered(span, "CIRC"),
             Path::Linear { to, .. } => {
                 if to.joints {
                     return fail(
@@ -150,7 +139,7 @@ impl<'a> Tx<'a> {
                     );
                 }
                 let t = self.motion_target(to)?;
-                let z = self.zone_for(m, span);
+                let z = self.zone_for(m, span)?;
                 self.speed_never_set(m, span);
                 let vel = self.with_speed(m, MotionParam::VelCp, "vel");
                 self.line(format!("move_l({t}{}{vel})", zone_arg(z)));
@@ -158,7 +147,7 @@ impl<'a> Tx<'a> {
             }
             Path::Joint { to, .. } if !to.joints => {
                 let t = self.motion_target(to)?;
-                let z = self.zone_for(m, span);
+                let z = self.zone_for(m, span)?;
                 match self.fx.ptp {
                     super::PtpPrimitive::MoveL => {
                         self.out.rep.approximate(
@@ -186,7 +175,7 @@ impl<'a> Tx<'a> {
                     );
                 }
                 let t = self.motion_target(to)?;
-                self.move_j_stops(m, span);
+                self.move_j_stops(m, span)?;
                 self.out.rep.approximate(
                     FileId::Src,
                     to.expr.span,
@@ -200,27 +189,16 @@ impl<'a> Tx<'a> {
             }
             Path::JointRel { delta, .. } => {
                 let d = self.joint_offsets(delta)?;
-                self.move_j_stops(m, span);
+                self.move_j_stops(m, span)?;
                 self.speed_never_set(m, span);
                 let vel = self.with_speed(m, MotionParam::VelPtp, "vel");
                 self.line(format!("move_j_rel([{}]{vel})", d.join(", ")));
                 Ok(())
             }
-            Path::LinearRel {
-                delta,
-                in_tool,
-                joint,
-                ..
-            } => {
+            Path::LinearRel { delta, in_tool, .. } => {
+                // A PTP_REL is a straight MoveL too: the lowering said so
+                // (`Caps::relative_motions`).
                 let d = self.offset(delta)?;
-                if joint.is_some() {
-                    self.out.rep.approximate(
-                        FileId::Src,
-                        span,
-                        "PTP_REL with a Cartesian offset becomes a MoveL (a straight line; KUKA interpolates the axes)",
-                        "check the path for collisions",
-                    );
-                }
                 let world = matches!(m.frames.base, Known::Is(FrameRef::Null | FrameRef::World))
                     || matches!(m.frames.base, Known::Unknown(Because::NeverSet));
                 if !in_tool && !world {
@@ -231,7 +209,7 @@ impl<'a> Tx<'a> {
                         "check the move at reduced speed",
                     );
                 }
-                let z = self.zone_for(m, span);
+                let z = self.zone_for(m, span)?;
                 self.speed_never_set(m, span);
                 let vel = self.with_speed(m, MotionParam::VelCp, "vel");
                 self.line(format!(
@@ -245,16 +223,13 @@ impl<'a> Tx<'a> {
         }
     }
 
-    /// MoveJ is not blended: a blended KRL motion stops at its point (TR002).
-    fn move_j_stops(&mut self, m: &Move, span: Span) {
+    /// MoveJ is not blended: the lowering stops a motion to axis values
+    /// (`Caps::blending.to_axes`).
+    fn move_j_stops(&mut self, m: &Move, span: Span) -> R<()> {
         if !matches!(m.blend, Blend::Exact) {
-            self.out.rep.approximate(
-                FileId::Src,
-                span,
-                "MoveJ is not blended: the robot stops at this point",
-                "nothing to do unless the stop matters",
-            );
+            return crate::transpile::render::not_lowered(span, "a blended motion to axis values");
         }
+        Ok(())
     }
 
     /// `PTP_REL {A6 90}`: the offset of each Rizon joint (degrees) through the joint map, as
@@ -282,11 +257,7 @@ impl<'a> Tx<'a> {
     /// `LIN_REL`/`PTP_REL` offsets: X, Y, Z only.
     fn offset(&mut self, d: &Delta) -> R<Vec<String>> {
         let Some(xyz) = d.position() else {
-            return fail(
-                d.span,
-                "a relative move with orientation or external-axis changes has no verified counterpart",
-                "split it into a position change and a separate reorientation",
-            );
+            return crate::transpile::render::not_lowered(d.span, "a relative move that turns");
         };
         xyz.iter()
             .map(|e| e.map_or(Ok("0".to_owned()), |e| self.expr(e)))
@@ -341,9 +312,8 @@ impl<'a> Tx<'a> {
             Some(Op::Move(m)) => m,
             _ => unreachable!("a spline run ends with a motion"),
         };
-        match r {
-            Ok(()) => {
-                let z = self.zone_for(last, g[g.len() - 1].span);
+        match r.and_then(|()| self.zone_for(last, g[g.len() - 1].span)) {
+            Ok(z) => {
                 let vel = self.with_speed(last, MotionParam::VelCp, "vel");
                 self.out.rep.approximate(
                     FileId::Src,

@@ -11,25 +11,12 @@ use crate::transpile::ir::{
 use crate::transpile::render::Emit;
 
 impl<'a> Tx<'a> {
-    /// A block (the core's [`Emit::block`], which calls this): consecutive ops of one KRL
-    /// statement render together (and fail together), and a spline's motions as one MoveL.
-    pub(super) fn spline_block(&mut self, b: &[Stmt]) {
-        let mut i = 0;
-        while i < b.len() {
-            let span = b[i].span;
-            let mut j = i + 1;
-            while j < b.len() && b[j].span == span {
-                j += 1;
-            }
-            // Consecutive motions of one spline become one MoveL through waypoints.
-            if let Some(k) = self.spline_run(&b[i..]) {
-                self.spline_group(&b[i..i + k]);
-                i += k;
-                continue;
-            }
-            self.group(&b[i..j]);
-            i = j;
-        }
+    /// Consecutive motions of one spline at the start of `b` as one MoveL through waypoints
+    /// (the core's [`Emit::own_run`]): how many ops that took.
+    pub(super) fn spline_at(&mut self, b: &[Stmt]) -> Option<usize> {
+        let k = self.spline_run(b)?;
+        self.spline_group(&b[..k]);
+        Some(k)
     }
 
     pub(super) fn op(&mut self, s: &Stmt) -> R<()> {
@@ -61,11 +48,8 @@ impl<'a> Tx<'a> {
                 Ok(())
             }
             Op::SetFrame { which, frame } => self.set_frame(*which, frame, span),
-            Op::SetLoad(_) => fail(
-                span,
-                "$LOAD: the payload is part of the tool on a Flexiv robot",
-                "set mass, centre of mass and inertia in the tool (Flexiv Elements or ToolParams)",
-            ),
+            // The lowering refuses what `Caps::lacks` names.
+            Op::SetLoad(_) => crate::transpile::render::not_lowered(span, "$LOAD"),
             Op::SetOverride(v) => {
                 let v = match v.integer() {
                     Some(n) => n.to_string(),
@@ -80,13 +64,6 @@ impl<'a> Tx<'a> {
             Op::Wait(w) => self.wait(w),
             // Every move waits for reachedTarget: the robot has arrived already.
             Op::AdvanceStop { .. } => Ok(()),
-            Op::If {
-                cond,
-                then,
-                els,
-                else_at,
-                end,
-            } => self.if_block(cond, then, els, *else_at, *end),
             Op::Switch {
                 selector,
                 cases,
@@ -155,18 +132,9 @@ impl<'a> Tx<'a> {
                 self.jump(*id, true);
                 Ok(())
             }
-            Op::Goto(_) | Op::Label(_) => fail(
-                span,
-                "GOTO has no Python equivalent",
-                "restructure the jump with a loop (while/break) or IF",
-            ),
             Op::Return(v) => self.return_(v.as_ref(), span),
             Op::Halt => self.halt(span),
-            Op::Brake { .. } => fail(
-                span,
-                "BRAKE (stopping the motion from an interrupt routine) has no counterpart: every move has ended before the next statement runs",
-                "remove it, or call robot.Stop() where the robot must stop",
-            ),
+            Op::Brake { .. } => crate::transpile::render::not_lowered(span, "BRAKE"),
             // The lowering refuses interrupts for a target without them
             // ([`crate::transpile::ir::Why::NoInterrupts`]): this is never reached.
             Op::Interrupt { .. } => crate::transpile::render::not_lowered(span, "an interrupt"),
@@ -181,9 +149,8 @@ impl<'a> Tx<'a> {
                 self.keep_as_comment("TR002", span);
                 Ok(())
             }
-            Op::Message { routine, text } => self.message(routine, text, span),
-            Op::Unsupported { why, at } => self.unsupported(why, *at),
-            Op::Keep { note } => self.keep_op(*note, span),
+            // Jumps were made loops first (`ir::goto`).
+            _ => self.common_op(s),
         }
     }
 

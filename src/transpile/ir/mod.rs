@@ -176,6 +176,19 @@ impl Record {
     }
 }
 
+impl Routine {
+    /// The parameters KRL's header declares (the result's parameter excluded).
+    pub fn krl_params(&self) -> &[Param] {
+        let n = self.params.len() - usize::from(self.result.is_some());
+        &self.params[..n]
+    }
+
+    /// A call of it gives a value back (a DEFFCT in a target with functions).
+    pub fn gives_value(&self) -> bool {
+        self.kind == RoutineKind::Deffct && self.result.is_none()
+    }
+}
+
 impl Program {
     /// The record of STRUC type `name` (upper case), if the program has one.
     pub fn record(&self, name: &str) -> Option<&Record> {
@@ -345,6 +358,11 @@ pub struct Routine {
     pub kind: RoutineKind,
     pub ret: Option<Ty>,
     pub params: Vec<Param>,
+    /// A DEFFCT in a target without functions (`Caps::functions`): the OUT parameter, last
+    /// of `params`, its value leaves through. Its `RETURN value` is an assignment to it and a
+    /// `RETURN`; each call passes the place that receives the value as the last argument
+    /// (`ret` is `None`). `None`: the routine returns its value itself, if it has one.
+    pub result: Option<VarId>,
     /// Declared locals (parameters excluded) with their array dimensions.
     pub locals: Vec<(VarId, Vec<Option<Expr>>)>,
     /// Temporaries: their types, by [`TempId`].
@@ -909,7 +927,9 @@ pub enum Wait {
 pub enum Callee {
     /// A routine of this program.
     Routine(RoutineId),
-    /// A routine of another module (translated separately); `function`: used for its value.
+    /// A routine of another module (translated separately); `function`: it returns the
+    /// value it is used for (in a target without functions it is not: the value comes back
+    /// through an added last argument, see [`Routine::result`]).
     External {
         name: String,
         span: Span,

@@ -93,12 +93,19 @@ pub enum Why {
     RelativeOffset,
     /// A relative CIRC.
     RelativeCirc,
+    /// A relative move that turns about more of A, B, C than the target holds in its frame
+    /// (`Caps::relative_motions`): the frame, how many turns it holds.
+    RelativeTurn { in_tool: bool, held: usize },
+    /// A relative move of external axes (or with S/T).
+    RelativeExternal,
     /// `SPL`/`SCIRC` outside a spline block? (SPL alone is not valid KRL.)
     SplOutsideSpline,
     /// A `PULSE` of something that is not an output or flag.
     PulseSignal,
     /// A `PULSE` level that is not a literal.
     PulseLevel,
+    /// A low `PULSE` in a target without (`Caps::pulse`).
+    PulseLow,
     /// An interrupt number that is not a literal.
     InterruptNumber,
     /// `INTERRUPT ON n` with no declaration of `n` in the file.
@@ -123,10 +130,68 @@ pub enum Why {
     Load,
     /// A message routine without text.
     MessageText,
-    /// `B_NOT` (no bitwise NOT in AS; in Python only on integers).
+    /// A motion parameter read back in a target that cannot (`Caps::param_reads`).
+    ParamRead(crate::transpile::ir::MotionParam),
+    /// A statement the target has nothing for (`Caps::lacks`).
+    Lacks(Lacked),
+    /// `B_NOT` in a target without a bitwise NOT (`Caps::bitwise_not`).
     BitwiseNot,
     /// A string longer than the target holds (`Caps::string_len`).
     StringLength { len: usize, max: usize },
+}
+
+/// A KRL statement or operator some target has nothing for (`Caps::lacks`).
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Lacked {
+    /// `$OV_PRO = …`.
+    Override,
+    /// `$LOAD = …`.
+    Load,
+    /// `BRAKE`.
+    Brake,
+    /// `CIRC`.
+    Circ,
+    /// `$TIMER[n] = …`, `$TIMER_STOP[n] = …`.
+    Timers,
+    /// Stopping a timer: `$TIMER_STOP[n] = TRUE` (or a computed value).
+    TimerStop,
+    /// The geometric operator `:`.
+    Geo,
+    /// `B_AND`, `B_OR`, `B_EXOR` on integers.
+    Bitwise,
+}
+
+impl Lacked {
+    /// The KRL it stands for, as the capability table names it.
+    pub fn krl(self) -> &'static str {
+        match self {
+            Lacked::Override => "$OV_PRO",
+            Lacked::Load => "$LOAD",
+            Lacked::Brake => "BRAKE",
+            Lacked::Circ => "CIRC",
+            Lacked::Timers => "$TIMER",
+            Lacked::TimerStop => "$TIMER_STOP = TRUE",
+            Lacked::Geo => "`:`",
+            Lacked::Bitwise => "B_AND/B_OR/B_EXOR",
+        }
+    }
+
+    fn message(self) -> &'static str {
+        match self {
+            Lacked::Override => "the program override ($OV_PRO) has no counterpart in this target",
+            Lacked::Load => "$LOAD (the payload) has no counterpart in this target",
+            Lacked::Brake => {
+                "BRAKE (stopping the motion from an interrupt routine) has no counterpart in this target"
+            }
+            Lacked::Circ => "a circular motion (CIRC) has no counterpart in this target",
+            Lacked::Timers => "KRL timers ($TIMER, in ms) have no counterpart in this target",
+            Lacked::TimerStop => "stopping a timer ($TIMER_STOP) has no counterpart in this target",
+            Lacked::Geo => "the geometric operator `:` has no counterpart in this target",
+            Lacked::Bitwise => {
+                "bitwise operators on integers (B_AND, B_OR, B_EXOR) have no counterpart in this target"
+            }
+        }
+    }
 }
 
 /// Where the target's own connect call is named in [`Why::VisionServer`]'s help (each backend
@@ -226,9 +291,19 @@ impl Why {
             Why::MotionTarget(t) => format!("a motion target of type {t} has no counterpart"),
             Why::RelativeOffset => "a relative motion whose offset is not a literal has no counterpart".into(),
             Why::RelativeCirc => "a relative CIRC has no counterpart".into(),
+            Why::RelativeTurn { in_tool, held } => {
+                let frame = if *in_tool { "tool" } else { "base" };
+                match held {
+                    0 => format!("a relative move in the {frame} frame that turns the tool has no counterpart in this target (it only shifts)"),
+                    1 => format!("a relative move in the {frame} frame that turns about more than one axis has no counterpart in this target"),
+                    n => format!("a relative move in the {frame} frame that turns about more than {n} axes has no counterpart in this target"),
+                }
+            }
+            Why::RelativeExternal => "a relative move of external axes (or with S/T) has no counterpart".into(),
             Why::SplOutsideSpline => "a spline segment (SPL) outside a SPLINE block".into(),
             Why::PulseSignal => "PULSE of this signal has no counterpart".into(),
             Why::PulseLevel => "a PULSE to a computed level has no counterpart".into(),
+            Why::PulseLow => "a PULSE to FALSE (a low pulse) has no counterpart in this target".into(),
             Why::InterruptNumber => "an interrupt number that is not a literal has no counterpart".into(),
             Why::NoInterruptDecl(n) => format!("no INTERRUPT DECL {n} in this file"),
             Why::NoInterrupts => "interrupts have no counterpart in this target (they would need a thread polling the condition)".into(),
@@ -241,7 +316,9 @@ impl Why {
             Why::WaitCall => "a function called inside a WAIT FOR condition has no counterpart".into(),
             Why::Load => "this $LOAD value is not a mass with a centre of mass".into(),
             Why::MessageText => "a message without text".into(),
-            Why::BitwiseNot => "B_NOT (bitwise NOT) has no confirmed counterpart".into(),
+            Why::Lacks(s) => s.message().into(),
+            Why::ParamRead(p) => format!("reading {} back has no counterpart in this target", p.krl()),
+            Why::BitwiseNot => "B_NOT (bitwise NOT) has no counterpart in this target".into(),
             Why::StringLength { len, max } => {
                 format!("a string of {len} characters; this target holds at most {max}")
             }

@@ -61,11 +61,10 @@ impl<'a> Tx<'a> {
                     op: Some(">="),
                 })
             }
-            ExprKind::Param(p) => fail(
-                e.span,
-                format!("reading {} back has no AS equivalent", p.krl()),
-                "keep the value in a variable where the program sets it",
-            ),
+            // The lowering refuses it (`Caps::param_reads`).
+            ExprKind::Param(_) => {
+                crate::transpile::render::not_lowered(e.span, "a motion parameter read back")
+            }
             ExprKind::NullFrame => Ok(Rendered::atom("NULL".into())),
             ExprKind::Record(_) => render::not_lowered(e.span, "a record value"),
             ExprKind::Current { .. } => fail(
@@ -86,12 +85,9 @@ impl<'a> Tx<'a> {
         let sym = match op {
             UnaryOp::Not => "NOT ",
             UnaryOp::Neg => "-",
+            // The lowering refuses it (`Caps::bitwise_not`).
             UnaryOp::BNot => {
-                return fail(
-                    whole.span,
-                    "B_NOT (bitwise NOT) has no confirmed AS equivalent",
-                    "use BXOR with a mask of the bits you need (e.g. x BXOR ^HFF for 8 bits)",
-                );
+                return crate::transpile::render::not_lowered(whole.span, "B_NOT");
             }
         };
         Ok(Rendered::prefix(sym, inner, UNARY))
@@ -291,12 +287,7 @@ impl<'a> Tx<'a> {
             }
             Place::Temp(t) => {
                 let n = self.temp_name(*t);
-                let tty = self
-                    .rt
-                    .as_ref()
-                    .and_then(|r| self.ir.routine(r.id).temps.get(t.0 as usize))
-                    .cloned()
-                    .unwrap_or_else(|| ty.clone());
+                let tty = self.out.temp_ty(*t).cloned().unwrap_or_else(|| ty.clone());
                 Ok(with_sigil(&n, &tty))
             }
             Place::Index(base, idx) => {

@@ -2,6 +2,7 @@
 
 use crate::transpile::ir::Why;
 use crate::transpile::ir::why::KukaOnly;
+use crate::transpile::ir::why::Lacked;
 
 pub(super) fn help(why: &Why) -> String {
     crate::transpile::render::help::help(why, own)
@@ -41,12 +42,17 @@ fn own(why: &Why) -> Option<String> {
         Why::Aggregate(_) => "compute the pose with TRANS() by hand, or use literal values".into(),
         Why::Component(_) => "compute the whole value (TRANS / #PPOINT) and assign it".into(),
         Why::MotionTarget(_) => "move to a pose (E6POS) or joint value (E6AXIS)".into(),
+        Why::RelativeTurn { .. } | Why::RelativeExternal => {
+            "split it into a DRAW/TDRAW for the position and a separate reorientation".into()
+        }
         Why::RelativeOffset | Why::RelativeCirc => {
             "compute the target (e.g. #PPOINT or SHIFT/TRANS) and move to it".into()
         }
         Why::SplOutsideSpline => "use LMOVE with ACCURACY, and check the path".into(),
         Why::PulseSignal => "pulse an output ($OUT[n]) or flag".into(),
-        Why::PulseLevel => "use SIGNAL -n, TWAIT t, SIGNAL n (this waits, PULSE does not)".into(),
+        Why::PulseLevel | Why::PulseLow => {
+            "use SIGNAL -n, TWAIT t, SIGNAL n (this waits, PULSE does not)".into()
+        }
         Why::NoInterrupts | Why::InterruptCondition | Why::InterruptHandler => {
             "watch the condition with a PC program, or poll it with SIG()".into()
         }
@@ -58,6 +64,12 @@ fn own(why: &Why) -> Option<String> {
         Why::Load => "set the payload with WEIGHT mass, cx, cy, cz".into(),
         Why::BitwiseNot => {
             "use BXOR with a mask of the bits you need (e.g. x BXOR ^HFF for 8 bits)".into()
+        }
+        Why::Lacks(Lacked::Override) => {
+            "the program override is a monitor setting in AS: set the monitor speed on the controller (MC SPEED n), or scale SPEED".into()
+        }
+        Why::Lacks(Lacked::TimerStop) => {
+            "AS timers cannot be stopped: store TIMER(n) in a variable where KRL stopped the timer".into()
         }
         _ => return None,
     })

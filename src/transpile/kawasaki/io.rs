@@ -60,19 +60,12 @@ impl<'a> Tx<'a> {
     }
 
     pub(super) fn pulse(&mut self, io: &OutPlace, level: &Expr, seconds: &Expr) -> R<()> {
+        // The lowering lets through a high pulse of one signal only (`Caps::pulse`).
         let Sig::One(n) = self.signal(&io.as_io())? else {
-            return fail(
-                seconds.span,
-                "PULSE of a signal group has no AS equivalent",
-                "pulse an output ($OUT[n]) or flag",
-            );
+            return crate::transpile::render::not_lowered(seconds.span, "a PULSE of a group");
         };
         if !matches!(level.kind, ExprKind::Bool(true)) {
-            return fail(
-                level.span,
-                "a PULSE to FALSE (or a computed level) has no AS equivalent",
-                "use SIGNAL -n, TWAIT t, SIGNAL n (this waits, PULSE does not)",
-            );
+            return crate::transpile::render::not_lowered(level.span, "a low PULSE");
         }
         let t = self.expr(seconds)?;
         self.line(format!("PULSE {n},{t}"));
@@ -101,11 +94,8 @@ impl<'a> Tx<'a> {
                     self.keep_as_comment("TR002", span);
                     Ok(())
                 }
-                _ => fail(
-                    span,
-                    "AS timers cannot be stopped ($TIMER_STOP)",
-                    "store TIMER(n) in a variable where KRL stopped the timer",
-                ),
+                // The lowering refuses it (`Caps::lacks`).
+                _ => crate::transpile::render::not_lowered(span, "$TIMER_STOP = TRUE"),
             },
         }
     }

@@ -19,6 +19,7 @@ mod mm;
 mod motion;
 mod stmt;
 
+use crate::transpile::render::Lacked;
 use std::collections::HashMap;
 
 use super::Options;
@@ -26,7 +27,7 @@ use super::VisionServer;
 use super::front::Program as Source;
 use super::front::names::{Home, NameRules};
 use super::front::report::{FileId, Report};
-use super::ir::{self, Block, RoutineId, RoutineKind, TempId, Ty, VarId};
+use super::ir::{self, Block, RoutineId, VarId};
 use super::render::{self, Emit, Out, Style};
 use crate::diag::Span;
 
@@ -79,6 +80,11 @@ pub static BACKEND: render::Backend = render::Backend {
     caps: render::Caps {
         interrupt_on_flags: true,
         functions: false,
+        lacks: &[Lacked::Override, Lacked::TimerStop],
+        pulse: render::Pulse {
+            low: false,
+            flags: true,
+        },
         ..render::Caps::BASE
     },
     name_rules: &NAME_RULES,
@@ -104,17 +110,10 @@ struct ProgramOut {
 
 /// The routine being rendered.
 struct Rt {
-    id: RoutineId,
     /// Its `.PROGRAM` line and the lines written so far (before [`Tx::lines`]).
     program: ProgramOut,
-    /// DEFFCT: the output parameter that carries the result (rendered, e.g. `.retval`).
-    retval: Option<(String, Ty)>,
     /// The `ACCURACY … ALWAYS` in force, if known at this point.
     accuracy: Option<String>,
-    /// Temporaries named so far.
-    temps: HashMap<TempId, String>,
-    /// Loops left by a jump: the label after the loop, and the label before its end.
-    loops: render::LoopLabels,
     /// Scratch locals by purpose (each reused within the program).
     scratch: HashMap<String, String>,
 }
@@ -298,16 +297,13 @@ impl crate::transpile::Renderer for Tx<'_> {
         } else {
             self.out.names.routine_of(&r.name).unwrap_or("").to_owned()
         };
+        self.out.begin_routine(id);
         self.rt = Some(Rt {
-            id,
             program: ProgramOut {
                 header: String::new(),
                 body: String::new(),
             },
-            retval: None,
             accuracy: None,
-            temps: HashMap::new(),
-            loops: render::LoopLabels::default(),
             scratch: HashMap::new(),
         });
         // Locals first (parameters, then declarations), then labels, so made-up names never
@@ -330,14 +326,6 @@ impl crate::transpile::Renderer for Tx<'_> {
                 copies.push(format::copy_stmt(&format!(".{n}"), &copy, &ty));
             } else {
                 params.push(format::param_sigil(&format!(".{n}"), &ty));
-            }
-        }
-        if r.kind == RoutineKind::Deffct {
-            let ty = r.ret.clone().unwrap_or(Ty::Real);
-            let rv = self.fresh_local("retval");
-            params.push(format::param_sigil(&rv, &ty));
-            if let Some(rt) = &mut self.rt {
-                rt.retval = Some((rv, ty));
             }
         }
         if let Some(rt) = &mut self.rt {
@@ -363,6 +351,7 @@ impl crate::transpile::Renderer for Tx<'_> {
             rt.program.body.shrink_to_fit();
             self.programs.push(rt.program);
         }
+        self.out.routine = None;
     }
 
     fn finish(mut self: Box<Self>) -> (String, Report, Vec<Span>) {
@@ -385,20 +374,8 @@ impl<'a> Emit<'a> for Tx<'a> {
         self.expr(e)
     }
 
-    fn routine_id(&self) -> RoutineId {
-        self.rt.as_ref().map_or(RoutineId(0), |r| r.id)
-    }
-
-    fn loop_labels(&mut self) -> Option<&mut render::LoopLabels> {
-        self.rt.as_mut().map(|r| &mut r.loops)
-    }
-
     fn block_edge(&mut self) {
         self.forget_accuracy();
-    }
-
-    fn temps(&mut self) -> Option<&mut HashMap<TempId, String>> {
-        self.rt.as_mut().map(|r| &mut r.temps)
     }
 
     fn mint_temp(&mut self) -> String {

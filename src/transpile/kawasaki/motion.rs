@@ -72,19 +72,14 @@ impl<'a> Tx<'a> {
         }
     }
 
-    /// The blending distance of a motion, reporting what is approximated.
-    fn accuracy_for(&mut self, m: &Move, span: Span) -> String {
-        let (cdis, other) = match &m.blend {
-            Blend::Exact => return FINE_ACCURACY.to_owned(),
-            Blend::Distance(d) => (d, None),
-            Blend::Percent { pct, cdis } => {
-                (cdis, Some(("C_PTP", pct, "percent of the axis path", " %")))
-            }
-            Blend::Velocity { pct, cdis } => {
-                (cdis, Some(("C_VEL", pct, "percent of the speed", " %")))
-            }
-            Blend::Orientation { deg, cdis } => {
-                (cdis, Some(("C_ORI", deg, "orientation angle", "°")))
+    /// The blending distance of a motion (the lowering made every blending kind a distance,
+    /// `Caps::blending`), reporting a distance not known here.
+    fn accuracy_for(&mut self, m: &Move, span: Span) -> R<String> {
+        let cdis = match &m.blend {
+            Blend::Exact => return Ok(FINE_ACCURACY.to_owned()),
+            Blend::Distance(d) => d,
+            Blend::Percent { .. } | Blend::Velocity { .. } | Blend::Orientation { .. } => {
+                return crate::transpile::render::not_lowered(span, "a blending kind but C_DIS");
             }
         };
         let value = match cdis {
@@ -111,19 +106,7 @@ impl<'a> Tx<'a> {
                 FINE_ACCURACY.to_owned()
             }
         };
-        if let Some((what, v, desc, unit)) = other {
-            let given = match v {
-                Known::Is(ParamValue::Num(x)) => format!(", {}{unit}", num(*x)),
-                _ => String::new(),
-            };
-            self.out.rep.approximate(
-                FileId::Src,
-                span,
-                format!("{what} ({desc}{given}) becomes ACCURACY {value} (a distance in mm)"),
-                "AS blends by distance only; check the path near this point",
-            );
-        }
-        value
+        Ok(value)
     }
 
     /// The AS speed a motion needs, if known.
@@ -158,7 +141,7 @@ impl<'a> Tx<'a> {
         }
         // Everything that can fail first, so a failure leaves no lines behind.
         let targets = self.targets(m, span)?;
-        let accuracy = self.accuracy_for(m, span);
+        let accuracy = self.accuracy_for(m, span)?;
         let needed = self.speed_of(m);
         let latest = match &m.latest_speed {
             Known::Is(s) => Some(self.as_speed(s)),
@@ -219,21 +202,9 @@ impl<'a> Tx<'a> {
                 format!("C1MOVE {}", self.target(via)?),
                 format!("C2MOVE {}", self.target(to)?),
             ],
-            Path::LinearRel {
-                delta,
-                in_tool,
-                joint,
-                ..
-            } => {
+            Path::LinearRel { delta, in_tool, .. } => {
+                // A PTP_REL is a straight DRAW too: the lowering said so (`Caps::relative_motions`).
                 let d = self.draw_values(delta)?;
-                if joint.is_some() {
-                    self.out.rep.approximate(
-                        FileId::Src,
-                        span,
-                        "PTP_REL with a Cartesian offset becomes a straight DRAW/TDRAW (KUKA interpolates the axes)",
-                        "check the path for collisions",
-                    );
-                }
                 let instr = if *in_tool { "TDRAW" } else { "DRAW" };
                 vec![format!("{instr} {}", d.join(","))]
             }
@@ -344,11 +315,7 @@ impl<'a> Tx<'a> {
     /// `DRAW`/`TDRAW` values: X, Y, Z only.
     fn draw_values(&mut self, d: &Delta) -> R<Vec<String>> {
         let Some(xyz) = d.position() else {
-            return fail(
-                d.span,
-                "a relative move with orientation or external-axis changes has no confirmed AS equivalent",
-                "split it into a DRAW/TDRAW for the position and a separate reorientation",
-            );
+            return crate::transpile::render::not_lowered(d.span, "a relative move that turns");
         };
         xyz.iter()
             .map(|e| e.map_or(Ok("0".to_owned()), |e| self.expr(e)))

@@ -1,6 +1,6 @@
 //! Statements and control flow, assignments and calls.
 
-use super::format::{self, with_sigil};
+use super::format;
 use super::{R, Tx, fail};
 use crate::diag::Span;
 use crate::transpile::front::report::FileId;
@@ -40,11 +40,8 @@ impl<'a> Tx<'a> {
             Op::MotionDefaults => self.motion_defaults(span),
             Op::SetFrame { which, frame } => self.set_frame(*which, frame, span),
             Op::SetLoad(l) => self.set_load(l, span),
-            Op::SetOverride(_) => fail(
-                span,
-                "the program override ($OV_PRO) is a monitor setting in AS",
-                "set the monitor speed on the controller (MC SPEED n), or scale SPEED",
-            ),
+            // The lowering refuses what `Caps::lacks` names.
+            Op::SetOverride(_) => crate::transpile::render::not_lowered(span, "$OV_PRO"),
             Op::SetIo { io, value, when } => self.set_io(io, value, when, span),
             Op::Pulse { io, level, seconds } => self.pulse(io, level, seconds),
             Op::Timer { index, op } => self.timer(index, op, span),
@@ -53,13 +50,6 @@ impl<'a> Tx<'a> {
                 self.line("BREAK");
                 Ok(())
             }
-            Op::If {
-                cond,
-                then,
-                els,
-                else_at,
-                end,
-            } => self.if_block(cond, then, els, *else_at, *end),
             Op::Switch {
                 selector,
                 cases,
@@ -79,26 +69,6 @@ impl<'a> Tx<'a> {
                 body,
                 end,
             } => self.loop_(*id, kind, body, *end),
-            Op::Break(id) => {
-                let l = self.exit_label(*id, false);
-                self.goto_line(&l);
-                Ok(())
-            }
-            Op::Continue(id) => {
-                let l = self.next_label(*id, false);
-                self.goto_line(&l);
-                Ok(())
-            }
-            Op::Goto(l) => {
-                let n = self.label_name(*l);
-                self.goto_line(&n);
-                Ok(())
-            }
-            Op::Label(l) => {
-                let n = self.label_name(*l);
-                self.label_line(&n);
-                Ok(())
-            }
             Op::Return(v) => self.return_(v.as_ref(), span),
             Op::Halt => {
                 // AS HALT cannot be resumed; KRL HALT can: that is AS PAUSE.
@@ -119,9 +89,7 @@ impl<'a> Tx<'a> {
             }
             Op::Interrupt { action, number } => self.interrupt(*action, *number, span),
             Op::InterruptDecl(i) => self.interrupt_decl(*i, span),
-            Op::Message { routine, text } => self.message(routine, text, span),
-            Op::Unsupported { why, at } => self.unsupported(why, *at),
-            Op::Keep { note } => self.keep_op(*note, span),
+            _ => self.common_op(s),
         }
     }
 
@@ -141,34 +109,16 @@ impl<'a> Tx<'a> {
             LoopKind::Until(c) => ("DO".into(), format!("UNTIL {}", self.expr(c)?)),
             LoopKind::Forever => ("WHILE TRUE DO".into(), "END".into()),
         };
-        let exits = ir::visit::any_op(body, &mut |op| matches!(op, Op::Break(x) if *x == id));
-        let continues =
-            ir::visit::any_op(body, &mut |op| matches!(op, Op::Continue(x) if *x == id));
-        let exit = exits.then(|| self.exit_label(id, true));
-        let next = continues.then(|| self.next_label(id, true));
-        self.line(head);
-        self.nested(body);
-        if let Some(l) = next {
-            self.label_line(&l);
-        }
-        self.end_block(end, Some(&close));
-        if let Some(l) = exit {
-            self.label_line(&l);
-        }
+        self.jump_loop(id, false, Vec::new(), head, body, |_, _| {}, &close, end);
         Ok(())
     }
 
+    /// `RETURN`: a DEFFCT's value was assigned to its result's parameter before
+    /// ([`ir::Routine::result`]).
     fn return_(&mut self, value: Option<&Expr>, span: Span) -> R<()> {
-        let retval = self.rt.as_ref().and_then(|r| r.retval.clone());
-        if let (Some(v), Some((rv, ty))) = (value, retval) {
-            let value = self.value(&ty, v)?;
-            let line = match ty {
-                Ty::Pose | Ty::Joint => format!("POINT {} = {value}", with_sigil(&rv, &ty)),
-                _ => format!("{} = {value}", with_sigil(&rv, &ty)),
-            };
-            self.line(line);
+        if value.is_some() {
+            return crate::transpile::render::not_lowered(span, "a RETURN with a value");
         }
-        let _ = span;
         self.line("RETURN");
         Ok(())
     }
@@ -262,12 +212,7 @@ impl<'a> Tx<'a> {
     pub(super) fn place_ty(&self, p: &Place) -> Ty {
         match p {
             Place::Var(v) => self.ir.var(*v).ty.clone(),
-            Place::Temp(t) => self
-                .rt
-                .as_ref()
-                .and_then(|r| self.ir.routine(r.id).temps.get(t.0 as usize))
-                .cloned()
-                .unwrap_or(Ty::Real),
+            Place::Temp(t) => self.out.temp_ty(*t).cloned().unwrap_or(Ty::Real),
             Place::Index(b, _) => self.place_ty(b),
             Place::Component(..) | Place::Member(..) => Ty::Real,
         }
@@ -301,7 +246,7 @@ impl<'a> Tx<'a> {
     }
 
     fn call(&mut self, callee: &Callee, args: &[Arg], ret: Option<&Place>, span: Span) -> R<()> {
-        let (name, function, ret_ty) = match callee {
+        let (name, function, _) = match callee {
             Callee::Mm(sub) => return self.mm_call(sub, args, span),
             Callee::Routine(r) => self.routine_callee(*r),
             Callee::External {
@@ -313,24 +258,14 @@ impl<'a> Tx<'a> {
                 (n, *function, Ty::Real)
             }
         };
+        // AS programs return values through a parameter: the lowering passes it as an
+        // argument ([`ir::Routine::result`]).
+        if function || ret.is_some() {
+            return crate::transpile::render::not_lowered(span, "a call for a function's value");
+        }
         let mut a = Vec::new();
         for arg in args {
             a.push(self.call_arg(arg)?);
-        }
-        if function {
-            // AS programs return values through a parameter.
-            let out = match ret {
-                Some(p) => {
-                    let ty = self.place_ty(p);
-                    let t = self.place_text(p, &ty, span)?;
-                    format::param_sigil(&t, &ty)
-                }
-                None => {
-                    let tmp = self.scratch("fct_result");
-                    format::param_sigil(&tmp, &ret_ty)
-                }
-            };
-            a.push(out);
         }
         if a.is_empty() {
             self.line(format!("CALL {name}"));

@@ -40,16 +40,14 @@ impl<'a> Tx<'a> {
                 "({} = 1)",
                 self.signal(io, e.span)?
             ))),
-            ExprKind::Timer(_) | ExprKind::TimerFlag(_) => fail(
-                e.span,
-                "KRL timers ($TIMER, in ms) have no translation to RAPID clocks yet",
-                "use a clock: ClkReset, ClkStart and ClkRead (seconds)",
-            ),
-            ExprKind::Param(p) => fail(
-                e.span,
-                format!("reading {} back has no RAPID equivalent", p.krl()),
-                "keep the value in a variable where the program sets it",
-            ),
+            // The lowering refuses them (`Caps::lacks`).
+            ExprKind::Timer(_) | ExprKind::TimerFlag(_) => {
+                crate::transpile::render::not_lowered(e.span, "$TIMER")
+            }
+            // The lowering refuses it (`Caps::param_reads`).
+            ExprKind::Param(_) => {
+                crate::transpile::render::not_lowered(e.span, "a motion parameter read back")
+            }
             ExprKind::NullFrame => Ok(Rendered::atom(format::zero(&Ty::Pose))),
             ExprKind::Record(values) => {
                 let mut v = Vec::with_capacity(values.len());
@@ -75,12 +73,9 @@ impl<'a> Tx<'a> {
         let sym = match op {
             UnaryOp::Not => "NOT ",
             UnaryOp::Neg => "-",
+            // The lowering refuses it (`Caps::bitwise_not`).
             UnaryOp::BNot => {
-                return fail(
-                    whole.span,
-                    "B_NOT (bitwise NOT) has no RAPID equivalent on num",
-                    "compute the bits with BitNeg on a byte, or port by hand",
-                );
+                return crate::transpile::render::not_lowered(whole.span, "B_NOT");
             }
         };
         // NOT binds loosely in RAPID and a sign after an operator is unusual: both are
@@ -93,18 +88,11 @@ impl<'a> Tx<'a> {
             return Ok(Rendered::atom(t?));
         }
         let (sym, prec): (&'static str, u8) = match op {
-            BinaryOp::Geo => {
-                return fail(
+            // The lowering refuses them (`Caps::lacks`).
+            BinaryOp::Geo | BinaryOp::BAnd | BinaryOp::BOr | BinaryOp::BExor => {
+                return crate::transpile::render::not_lowered(
                     whole.span,
-                    "the geometric operator `:` has no translation to RAPID yet",
-                    "compose the poses with PoseMult by hand",
-                );
-            }
-            BinaryOp::BAnd | BinaryOp::BOr | BinaryOp::BExor => {
-                return fail(
-                    whole.span,
-                    "bitwise operators on numbers have no RAPID equivalent (BitAnd/BitOr work on bytes)",
-                    "port by hand with BitAnd/BitOr on byte values",
+                    "an operator RAPID lacks",
                 );
             }
             BinaryOp::Mul => ("*", MUL),

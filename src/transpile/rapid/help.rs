@@ -2,6 +2,7 @@
 
 use crate::transpile::ir::Why;
 use crate::transpile::ir::why::KukaOnly;
+use crate::transpile::ir::why::Lacked;
 
 pub(super) fn help(why: &Why) -> String {
     crate::transpile::render::help::help(why, own)
@@ -41,12 +42,13 @@ fn own(why: &Why) -> Option<String> {
         Why::Aggregate(_) => "compute the robtarget with Offs/RelTool by hand, or use literal values".into(),
         Why::Component(_) => "compute the whole value and assign it".into(),
         Why::MotionTarget(_) => "move to a robtarget or a jointtarget".into(),
+        Why::RelativeTurn { .. } | Why::RelativeExternal => "split it into a shift and one turn about one tool axis, or compute the target with PoseMult".into(),
         Why::RelativeOffset | Why::RelativeCirc => {
             "compute the target with Offs/RelTool and move to it".into()
         }
         Why::SplOutsideSpline => "use MoveL with a zone, and check the path".into(),
         Why::PulseSignal => "pulse an output ($OUT[n])".into(),
-        Why::PulseLevel => "use SetDO sig, 0; WaitTime t; SetDO sig, 1; (this waits, PULSE does not)".into(),
+        Why::PulseLevel | Why::PulseLow => "use SetDO sig, 0; WaitTime t; SetDO sig, 1; (this waits, PULSE does not)".into(),
         Why::NoInterrupts | Why::InterruptCondition | Why::InterruptHandler => {
             "watch the condition with ISignalDI on one input, or poll it with WaitUntil".into()
         }
@@ -56,8 +58,16 @@ fn own(why: &Why) -> Option<String> {
         }
         Why::Goto => "restructure the jump".into(),
         Why::Load => "give the payload in the tooldata's tload, or with GripLoad".into(),
-        Why::BitwiseNot => {
-            "use BitNeg on a byte value".into()
+        Why::BitwiseNot => "compute the bits with BitNeg on a byte, or port by hand".into(),
+        Why::Lacks(Lacked::Load) => {
+            "give the payload in the tooldata's tload, or with GripLoad".into()
+        }
+        Why::Lacks(Lacked::Geo) => "compose the poses with PoseMult by hand".into(),
+        Why::Lacks(Lacked::Bitwise) => {
+            "BitAnd/BitOr work on bytes: port by hand with BitAnd/BitOr on byte values".into()
+        }
+        Why::Lacks(Lacked::Timers | Lacked::TimerStop) => {
+            "use a clock: ClkReset, ClkStart and ClkRead (seconds)".into()
         }
         _ => return None,
     })

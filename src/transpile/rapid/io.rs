@@ -153,19 +153,12 @@ impl<'a> Tx<'a> {
         seconds: &Expr,
         span: Span,
     ) -> R<()> {
+        // The lowering lets through a high pulse of an output only (`Caps::pulse`).
         if let OutPlace::Flag(_) = io {
-            return fail(
-                span,
-                "a pulse of a flag has no RAPID equivalent",
-                "pulse an output",
-            );
+            return crate::transpile::render::not_lowered(span, "a PULSE of a flag");
         }
         if !matches!(level.kind, ExprKind::Bool(true)) {
-            return fail(
-                level.span,
-                "a low or computed pulse level: PulseDO pulses high",
-                "use SetDO sig, 0; WaitTime t; SetDO sig, 1; (this waits, PULSE does not)",
-            );
+            return crate::transpile::render::not_lowered(level.span, "a low PULSE");
         }
         let sig = self.out_name(io, span)?;
         let t = self.expr(seconds)?;

@@ -21,8 +21,6 @@ mod keywords;
 mod motion;
 mod stmt;
 
-use std::collections::HashMap;
-
 use super::Options;
 use super::front::Program as Source;
 use super::front::names::NameRules;
@@ -30,6 +28,7 @@ use super::front::report::{FileId, Report};
 use super::ir::{self, Block, RoutineId, RoutineKind, TempId, Ty, VarId};
 use super::render::{self, Emit, Out, Style};
 use crate::diag::Span;
+use crate::transpile::render::Lacked;
 
 pub(super) use super::front::{R, fail};
 
@@ -74,7 +73,14 @@ pub static BACKEND: render::Backend = render::Backend {
     name: "rapid",
     caps: render::Caps {
         records: true,
+        // MoveJ to Offs/RelTool; RelTool turns about one tool axis (\Rx, \Ry or \Rz).
+        relative_motions: render::Relative {
+            joint_path: true,
+            tool_turns: 1,
+            base_turns: 0,
+        },
         trigger: render::Trigger::OnPath,
+        lacks: &[Lacked::Load, Lacked::Timers, Lacked::Geo, Lacked::Bitwise],
         string_len: Some(80),
         ..render::Caps::BASE
     },
@@ -114,14 +120,9 @@ struct RoutineOut {
 
 /// The routine being rendered.
 struct Rt {
-    id: RoutineId,
     out: RoutineOut,
-    /// Temporaries named so far.
-    temps: HashMap<TempId, String>,
     /// Made-up locals, with their RAPID types, in the order minted.
     extra: Vec<(String, std::borrow::Cow<'static, str>)>,
-    /// Loops left by a jump: the label after the loop.
-    loops: render::LoopLabels,
 }
 
 pub struct Tx<'a> {
@@ -355,17 +356,15 @@ impl crate::transpile::Renderer for Tx<'_> {
         } else {
             self.out.names.routine_of(&r.name).unwrap_or("").to_owned()
         };
+        self.out.begin_routine(id);
         self.rt = Some(Rt {
-            id,
             out: RoutineOut {
                 head: String::new(),
                 end: "ENDPROC",
                 decls: Vec::new(),
                 body: String::new(),
             },
-            temps: HashMap::new(),
             extra: Vec::new(),
-            loops: render::LoopLabels::default(),
         });
         self.still = false;
         self.out.names.declare_locals(&mut self.out.rep, id);
@@ -415,12 +414,13 @@ impl crate::transpile::Renderer for Tx<'_> {
         self.flush_comments(r.span.end);
         self.flush_lines();
         let ir = self.ir;
-        if let Some(mut rt) = self.rt.take() {
-            let mut temps: Vec<(&TempId, &String)> = rt.temps.iter().collect();
+        let core = self.out.routine.take();
+        if let (Some(mut rt), Some(core)) = (self.rt.take(), core) {
+            let mut temps: Vec<(&TempId, &String)> = core.temps.iter().collect();
             temps.sort();
             for (t, n) in temps {
                 let ty = ir
-                    .routine(rt.id)
+                    .routine(core.id)
                     .temps
                     .get(t.0 as usize)
                     .unwrap_or(&Ty::Real);
@@ -454,20 +454,8 @@ impl<'a> Emit<'a> for Tx<'a> {
         self.expr(e)
     }
 
-    fn routine_id(&self) -> RoutineId {
-        self.rt.as_ref().map_or(RoutineId(0), |r| r.id)
-    }
-
-    fn loop_labels(&mut self) -> Option<&mut render::LoopLabels> {
-        self.rt.as_mut().map(|r| &mut r.loops)
-    }
-
     fn block_edge(&mut self) {
         self.still = false;
-    }
-
-    fn temps(&mut self) -> Option<&mut HashMap<TempId, String>> {
-        self.rt.as_mut().map(|r| &mut r.temps)
     }
 
     fn mint_temp(&mut self) -> String {

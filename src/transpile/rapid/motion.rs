@@ -112,7 +112,7 @@ impl<'a> Tx<'a> {
             }
         };
         let speed = self.speed_of(m, span);
-        let zone = self.zone_of(m, span);
+        let zone = self.zone_of(m, span)?;
         let blends = zone != "fine";
         let wobj = if wobj == "wobj0" {
             String::new()
@@ -148,15 +148,11 @@ impl<'a> Tx<'a> {
                 Component::Pose(i @ 3..=5) if in_tool && turn.is_none() => {
                     turn = Some((*i, self.expr(e)?));
                 }
+                // The lowering let through only what `Caps::relative_motions` holds.
                 _ => {
-                    return fail(
+                    return crate::transpile::render::not_lowered(
                         d.span,
-                        if in_tool {
-                            "a relative move in the tool frame that turns about more than one axis or moves external axes: RelTool turns about x, y, z in another order than KUKA's A, B, C"
-                        } else {
-                            "a relative move in the base frame that turns the tool or moves external axes has no translation to RAPID yet (Offs only shifts)"
-                        },
-                        "split it into a shift and one turn about one tool axis, or compute the target with PoseMult",
+                        "a relative move with more turns than RAPID holds",
                     );
                 }
             }
@@ -265,14 +261,15 @@ impl<'a> Tx<'a> {
         );
     }
 
-    /// The zonedata argument: `fine`, `z10`, `z10 \Z:=12.5`.
-    fn zone_of(&mut self, m: &Move, span: Span) -> String {
-        let (cdis, other) = match &m.blend {
-            Blend::Exact => return "fine".into(),
-            Blend::Distance(d) => (d, None),
-            Blend::Percent { cdis, .. } => (cdis, Some("C_PTP (percent of the axis path)")),
-            Blend::Velocity { cdis, .. } => (cdis, Some("C_VEL (percent of the speed)")),
-            Blend::Orientation { cdis, .. } => (cdis, Some("C_ORI (orientation angle)")),
+    /// The zonedata argument: `fine`, `z10`, `z10 \Z:=12.5` (the lowering made every
+    /// blending kind a distance, `Caps::blending`).
+    fn zone_of(&mut self, m: &Move, span: Span) -> R<String> {
+        let cdis = match &m.blend {
+            Blend::Exact => return Ok("fine".into()),
+            Blend::Distance(d) => d,
+            Blend::Percent { .. } | Blend::Velocity { .. } | Blend::Orientation { .. } => {
+                return crate::transpile::render::not_lowered(span, "a blending kind but C_DIS");
+            }
         };
         let zone = match cdis {
             Known::Is(ParamValue::Num(d)) if *d <= 0.0 => "fine".to_owned(),
@@ -290,25 +287,16 @@ impl<'a> Tx<'a> {
             }
             Known::Is(ParamValue::Default) => "fine".to_owned(),
             Known::Unknown(b) => {
-                // C_PTP/C_VEL/C_ORI become a zone of that distance: say so even when it is
-                // not known, or the blending kind changes without a finding naming it.
-                let used = match other {
-                    Some(kind) => format!("fine (no blending) instead of {kind}"),
-                    None => "fine (no blending)".to_owned(),
-                };
-                self.unknown(span, b, "the blending distance ($APO.CDIS)", &used);
-                return "fine".into();
+                self.unknown(
+                    span,
+                    b,
+                    "the blending distance ($APO.CDIS)",
+                    "fine (no blending)",
+                );
+                return Ok("fine".into());
             }
         };
-        if let Some(what) = other {
-            self.out.rep.approximate(
-                FileId::Src,
-                span,
-                format!("{what} becomes the zone {zone} (the distance $APO.CDIS in mm)"),
-                "RAPID zones are distances; check the path near this point",
-            );
-        }
-        zone
+        Ok(zone)
     }
 
     /// The tool (`tool0`, `tool3`) or work object (`wobj0`, `wobj2`) of a motion.

@@ -6,7 +6,7 @@ use super::{R, Tx, fail};
 use crate::diag::Span;
 use crate::transpile::front::report::FileId;
 use crate::transpile::ir::{
-    self, Arg, Block, Callee, Component, Expr, ExprKind, LoopId, LoopKind, Op, Place, Stmt, Ty,
+    Arg, Block, Callee, Component, Expr, ExprKind, LoopId, LoopKind, Op, Place, Stmt, Ty,
 };
 use crate::transpile::render::{CaseWords, Emit};
 
@@ -45,11 +45,8 @@ impl<'a> Tx<'a> {
             Op::SetParam { param, value } => self.set_param(*param, value, span),
             Op::MotionDefaults => self.motion_defaults(span),
             Op::SetFrame { which, frame } => self.set_frame(*which, frame, span),
-            Op::SetLoad(_) => fail(
-                span,
-                "$LOAD has no translation to RAPID yet",
-                "give the payload in the tooldata's tload, or with GripLoad",
-            ),
+            // The lowering refuses what `Caps::lacks` names.
+            Op::SetLoad(_) => crate::transpile::render::not_lowered(span, "$LOAD"),
             Op::SetOverride(v) => {
                 let v = self.expr(v)?;
                 self.out.rep.approximate(
@@ -63,11 +60,7 @@ impl<'a> Tx<'a> {
             }
             Op::SetIo { io, value, when } => self.set_io(io, value, when, span),
             Op::Pulse { io, level, seconds } => self.pulse(io, level, seconds, span),
-            Op::Timer { .. } => fail(
-                span,
-                "KRL timers ($TIMER, in ms) have no translation to RAPID clocks yet",
-                "use a clock: ClkReset, ClkStart and ClkRead (seconds)",
-            ),
+            Op::Timer { .. } => crate::transpile::render::not_lowered(span, "$TIMER"),
             Op::Wait(w) => self.wait(w),
             Op::AdvanceStop { needed } => {
                 if *needed {
@@ -78,13 +71,6 @@ impl<'a> Tx<'a> {
                 }
                 Ok(())
             }
-            Op::If {
-                cond,
-                then,
-                els,
-                else_at,
-                end,
-            } => self.if_block(cond, then, els, *else_at, *end),
             Op::Switch {
                 selector,
                 cases,
@@ -97,26 +83,6 @@ impl<'a> Tx<'a> {
                 body,
                 end,
             } => self.loop_(*id, kind, body, *end),
-            Op::Break(id) => {
-                let l = self.exit_label(*id, false);
-                self.goto_line(&l);
-                Ok(())
-            }
-            Op::Continue(_) => fail(
-                span,
-                "a jump to the next pass of a loop",
-                "restructure the jump",
-            ),
-            Op::Goto(l) => {
-                let n = self.label_name(*l);
-                self.goto_line(&n);
-                Ok(())
-            }
-            Op::Label(l) => {
-                let n = self.label_name(*l);
-                self.label_line(&n);
-                Ok(())
-            }
             Op::Return(v) => {
                 match v {
                     Some(v) => {
@@ -142,14 +108,11 @@ impl<'a> Tx<'a> {
             }
             Op::Interrupt { action, number } => self.interrupt(*action, *number, span),
             Op::InterruptDecl(i) => self.interrupt_decl(*i, span),
-            Op::Message { routine, text } => self.message(routine, text, span),
-            Op::Unsupported { why, at } => self.unsupported(why, *at),
-            Op::Keep { note } => self.keep_op(*note, span),
+            _ => self.common_op(s),
         }
     }
 
     fn loop_(&mut self, id: LoopId, kind: &LoopKind, body: &Block, end: u32) -> R<()> {
-        let exits = ir::visit::any_op(body, &mut |op| matches!(op, Op::Break(x) if *x == id));
         let until = matches!(kind, LoopKind::Until(_));
         // Everything that can fail before a line is written.
         let (pre, head, step) = match kind {
@@ -194,34 +157,23 @@ impl<'a> Tx<'a> {
             }
             LoopKind::Forever => (Vec::new(), "WHILE TRUE DO".into(), None),
         };
-        let exit = (exits || until).then(|| self.exit_label(id, true));
-        for p in pre {
-            self.line(p);
-        }
-        self.line(head);
-        self.nested(body);
-        match (&step, until) {
-            (Some(c), true) => {
-                let l = self.exit_label(id, false);
-                self.out.depth += 1;
-                self.line(format!("IF {c} THEN"));
-                self.out.depth += 1;
-                self.goto_line(&l);
-                self.out.depth -= 1;
-                self.line("ENDIF");
-                self.out.depth -= 1;
+        // The end of a pass: REPEAT's test (leaving through the exit label), FOR's step.
+        let tail = |tx: &mut Self, exit: Option<&str>| {
+            tx.out.depth += 1;
+            match (step, exit) {
+                (Some(c), Some(l)) if until => {
+                    tx.line(format!("IF {c} THEN"));
+                    tx.out.depth += 1;
+                    tx.goto_line(l);
+                    tx.out.depth -= 1;
+                    tx.line("ENDIF");
+                }
+                (Some(inc), _) if !until => tx.line(inc),
+                _ => {}
             }
-            (Some(inc), false) => {
-                self.out.depth += 1;
-                self.line(inc.clone());
-                self.out.depth -= 1;
-            }
-            (None, _) => {}
-        }
-        self.end_block(end, Some("ENDWHILE"));
-        if let Some(l) = exit {
-            self.label_line(&l);
-        }
+            tx.out.depth -= 1;
+        };
+        self.jump_loop(id, until, pre, head, body, tail, "ENDWHILE", end);
         Ok(())
     }
 

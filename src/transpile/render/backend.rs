@@ -5,6 +5,7 @@
 use super::super::front::Program as Source;
 use super::super::front::names::NameRules;
 use super::super::front::report::Report;
+use super::super::ir::why::Lacked;
 use super::super::ir::{self, Why};
 use super::super::{Options, Renderer, Target, VisionServer};
 use crate::transpile::{flexiv, kawasaki, rapid};
@@ -24,15 +25,25 @@ pub struct Caps {
     /// An interrupt can watch an internal flag (`$FLAG[n]`), not only an input or output;
     /// without: such an interrupt is TR001.
     pub interrupt_on_flags: bool,
-    /// Functions return their value (DEFFCT → a function); without: through an added output
-    /// parameter.
+    /// Functions return their value (DEFFCT → a function); without: the lowering makes it a
+    /// routine with an added output parameter (`ir::Routine::result`).
     pub functions: bool,
-    /// Relative motions in the base or tool frame (`LIN_REL … #TOOL`) as one instruction.
-    pub relative_motions: bool,
+    /// Relative motions (`LIN_REL`/`PTP_REL` in the base or tool frame) as one instruction:
+    /// which offsets it holds.
+    pub relative_motions: Relative,
     /// How a blended motion's blending is given.
     pub blending: Blending,
     /// What becomes of a `TRIGGER`.
     pub trigger: Trigger,
+    /// Which `PULSE`s it holds (a computed level none: TR001 for every target).
+    pub pulse: Pulse,
+    /// A program can read the motion parameters it set back (`$VEL.CP`, `$APO.CDIS` … in an
+    /// expression); without: TR001.
+    pub param_reads: bool,
+    /// KRL statements it has nothing for (TR001 `Why::Lacks`).
+    pub lacks: &'static [Lacked],
+    /// `B_NOT` (bitwise NOT of an integer); without: TR001.
+    pub bitwise_not: bool,
     /// The longest string the target holds, in characters (`None`: no limit known); a longer
     /// KRL string is TR001.
     pub string_len: Option<usize>,
@@ -46,19 +57,71 @@ impl Caps {
         interrupts: true,
         interrupt_on_flags: false,
         functions: true,
-        relative_motions: true,
-        blending: Blending::Distance,
+        relative_motions: Relative {
+            joint_path: false,
+            tool_turns: 0,
+            base_turns: 0,
+        },
+        blending: Blending {
+            distance: Distance::Mm,
+            krl_kinds: false,
+            to_axes: true,
+        },
         trigger: Trigger::BeforeOrAfter,
+        pulse: Pulse {
+            low: false,
+            flags: false,
+        },
+        lacks: &[],
+        param_reads: false,
+        bitwise_not: false,
         string_len: None,
     };
 }
 
-/// How a target blends motions.
+/// The `PULSE`s a target holds besides a high pulse of an output; the rest is TR001.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
-pub enum Blending {
-    /// By a distance, as C_DIS (C_PTP/C_VEL become that distance, TR002).
-    Distance,
-    /// By a zone radius from a fixed set of codes (the nearest, TR002).
+pub struct Pulse {
+    /// A low pulse (`PULSE(…, FALSE, t)`).
+    pub low: bool,
+    /// A pulse of a flag (`$FLAG[n]`).
+    pub flags: bool,
+}
+
+/// The Cartesian relative motions a target holds (every target shifts in the base and the
+/// tool frame; axis offsets, PTP_REL {A1 …}, go through the joint map). The lowering decides
+/// from it: exact, approximate (TR002) or not at all (TR001).
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub struct Relative {
+    /// A PTP_REL with a Cartesian offset keeps KUKA's joint-interpolated path; without: a
+    /// straight line (TR002).
+    pub joint_path: bool,
+    /// How many of A, B, C an offset in the tool frame may turn (0: it only shifts); more is
+    /// TR001.
+    pub tool_turns: usize,
+    /// The same in the base frame.
+    pub base_turns: usize,
+}
+
+/// How a target blends motions; the lowering maps KRL's blending kinds onto it.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub struct Blending {
+    /// How it writes a blending distance (C_DIS, `$APO.CDIS` mm).
+    pub distance: Distance,
+    /// `C_PTP`/`C_VEL`/`C_ORI` as KRL means them (percent of the axis path, of the speed,
+    /// an orientation angle); without: blended within the distance `$APO.CDIS` (TR002).
+    pub krl_kinds: bool,
+    /// A motion to axis values (PTP to E6AXIS, PTP_REL in axes) is blended; without: it stops
+    /// at its point (TR002).
+    pub to_axes: bool,
+}
+
+/// How a target writes a blending distance.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Distance {
+    /// As a number of mm.
+    Mm,
+    /// As a zone radius from a fixed set of codes (the nearest, TR002).
     ZoneCodes,
 }
 
@@ -73,7 +136,7 @@ pub enum Trigger {
 }
 
 /// The columns of the capability table.
-const CAPS_COLUMNS: [&str; 10] = [
+const CAPS_COLUMNS: [&str; 14] = [
     "language",
     "GOTO",
     "STRUC",
@@ -82,12 +145,16 @@ const CAPS_COLUMNS: [&str; 10] = [
     "`_REL` in base/tool",
     "blending",
     "TRIGGER",
+    "PULSE",
+    "B_NOT",
+    "`$VEL.CP`, `$APO` read",
+    "nothing for (TR001)",
     "strings",
     "identifiers",
 ];
 
 /// A target's row of the capability table, in [`CAPS_COLUMNS`] order.
-fn caps_row(b: &Backend) -> [String; 10] {
+fn caps_row(b: &Backend) -> [String; 14] {
     let yes_no = |b: bool, without: &str| {
         if b {
             "yes".to_owned()
@@ -101,10 +168,16 @@ fn caps_row(b: &Backend) -> [String; 10] {
         (true, true) => "on one input, output or flag",
         (true, false) => "on one input or output",
     };
-    let blending = match c.blending {
-        Blending::Distance => "a distance",
-        Blending::ZoneCodes => "the nearest zone code (TR002)",
+    let mut blending = match c.blending.distance {
+        Distance::Mm => "a distance".to_owned(),
+        Distance::ZoneCodes => "the nearest zone code (TR002)".to_owned(),
     };
+    if !c.blending.krl_kinds {
+        blending.push_str("; C_PTP/C_VEL/C_ORI: that distance (TR002)");
+    }
+    if !c.blending.to_axes {
+        blending.push_str("; to axis values: an exact stop (TR002)");
+    }
     let trigger = match c.trigger {
         Trigger::BeforeOrAfter => "before/after the motion (TR002)",
         Trigger::OnPath => {
@@ -121,12 +194,54 @@ fn caps_row(b: &Backend) -> [String; 10] {
         yes_no(c.records, "TR001"),
         interrupts.to_owned(),
         yes_no(c.functions, "an output parameter"),
-        yes_no(c.relative_motions, "TR001"),
-        blending.to_owned(),
+        relative(&c.relative_motions),
+        blending,
         trigger.to_owned(),
+        pulse(&c.pulse),
+        yes_no(c.bitwise_not, "TR001"),
+        yes_no(c.param_reads, "TR001"),
+        lacked(c.lacks),
         strings,
         format!("≤ {} characters", n.max_len),
     ]
+}
+
+/// The cell of the statements a target has nothing for.
+fn lacked(l: &[Lacked]) -> String {
+    if l.is_empty() {
+        return "—".to_owned();
+    }
+    l.iter().map(|s| s.krl()).collect::<Vec<_>>().join(", ")
+}
+
+/// The PULSE cell of the capability table.
+fn pulse(p: &Pulse) -> String {
+    let level = if p.low { "high or low" } else { "high" };
+    let of = if p.flags {
+        "an output or flag"
+    } else {
+        "an output"
+    };
+    format!("{level}, of {of}; else TR001")
+}
+
+/// The relative-motion cell of the capability table.
+fn relative(r: &Relative) -> String {
+    let turns = |n: usize| match n {
+        0 => "shifts".to_owned(),
+        1 => "shifts, turns about one axis".to_owned(),
+        n => format!("shifts, turns about {n} axes"),
+    };
+    let ptp = if r.joint_path {
+        "PTP_REL joint-interpolated"
+    } else {
+        "PTP_REL a straight line (TR002)"
+    };
+    format!(
+        "base: {}; tool: {}; more: TR001; {ptp}",
+        turns(r.base_turns),
+        turns(r.tool_turns)
+    )
 }
 
 /// The capability table of every target, as README shows it (a test keeps README equal to it).
@@ -320,6 +435,38 @@ mod tests {
             refusals_in(Target::Rapid, &long),
             ["a string of 81 characters; this target holds at most 80"]
         );
+        let pulses = "DEF p()\nDECL BOOL b\nPULSE($OUT[2], FALSE, 0.5)\nPULSE($FLAG[3], TRUE, 0.5)\nPULSE($OUT[4], b, 0.5)\nEND\n";
+        for b in BACKENDS {
+            let p = b.caps().pulse;
+            let mut want = Vec::new();
+            if !p.low {
+                want.push("a PULSE to FALSE (a low pulse) has no counterpart in this target");
+            }
+            if !p.flags {
+                want.push("PULSE of this signal has no counterpart");
+            }
+            want.push("a PULSE to a computed level has no counterpart");
+            assert_eq!(refusals_in(b.target(), pulses), want, "{:?}", b.target());
+        }
+        let read = "DEF p()\nDECL REAL r\nr = $APO.CDIS\nEND\n";
+        for b in BACKENDS {
+            let want: &[&str] = if b.caps().param_reads {
+                &[]
+            } else {
+                &["reading $APO.CDIS back has no counterpart in this target"]
+            };
+            assert_eq!(refusals_in(b.target(), read), want, "{:?}", b.target());
+        }
+        let bnot = "DEF p()\nDECL INT i\ni = B_NOT 5\nEND\n";
+        for b in BACKENDS {
+            let msgs = refusals_in(b.target(), bnot);
+            let want: &[&str] = if b.caps().bitwise_not {
+                &[]
+            } else {
+                &["B_NOT (bitwise NOT) has no counterpart in this target"]
+            };
+            assert_eq!(msgs, want, "{:?}", b.target());
+        }
         let flag =
             "DEF p()\nINTERRUPT DECL 3 WHEN $FLAG[2] DO q()\nINTERRUPT ON 3\nEND\nDEF q()\nEND\n";
         assert!(refusals_in(Target::Kawasaki, flag).is_empty());
@@ -331,6 +478,34 @@ mod tests {
                     .all(|m| m.contains("its condition is not a single signal")),
             "{rapid:?}"
         );
+    }
+
+    /// Each statement a target declares it has nothing for is refused by the lowering for that
+    /// target only (`Caps::lacks`).
+    #[test]
+    fn the_lowering_refuses_what_a_target_lacks() {
+        let cases = [
+            (Lacked::Override, "$OV_PRO = 50"),
+            (
+                Lacked::Load,
+                "$LOAD = {M 3.5, CM {X 0, Y 0, Z 80, A 0, B 0, C 0}}",
+            ),
+            (Lacked::Brake, "BRAKE"),
+            (Lacked::Circ, "CIRC {X 1, Y 2, Z 3}, {X 2, Y 3, Z 3}"),
+            (Lacked::Timers, "$TIMER[1] = 0"),
+            (Lacked::TimerStop, "$TIMER_STOP[1] = TRUE"),
+            (Lacked::Geo, "$BASE = $NULLFRAME : {X 1}"),
+            (Lacked::Bitwise, "$OUT[1] = (3 B_AND 1) == 1"),
+        ];
+        for (lacked, stmt) in cases {
+            let src = format!("DEF p()\n{stmt}\nEND\n");
+            for b in BACKENDS {
+                let msgs = refusals_in(b.target(), &src);
+                let refused = msgs.contains(&Why::Lacks(lacked).message());
+                let want = b.caps().lacks.contains(&lacked);
+                assert_eq!(refused, want, "{:?} {stmt}: {msgs:?}", b.target());
+            }
+        }
     }
 
     #[test]

@@ -39,6 +39,8 @@ fn shared(why: &Why) -> String {
             "translate the file that declares the interrupt, or declare it here"
         }
         Why::ReturnWithoutValue => "return a value",
+        Why::ParamRead(_) => "keep the value in a variable where the program sets it",
+        Why::RelativeTurn { .. } => "split it into a shift and a separate reorientation",
         Why::WaitCall => "assign the function's value to a variable and wait on that",
         Why::MessageText => "pass the text",
         Why::StringLength { .. } => "shorten the string, or build it from shorter parts",
@@ -62,9 +64,11 @@ fn shared(why: &Why) -> String {
         | Why::MotionTarget(_)
         | Why::RelativeOffset
         | Why::RelativeCirc
+        | Why::RelativeExternal
         | Why::SplOutsideSpline
         | Why::PulseSignal
         | Why::PulseLevel
+        | Why::PulseLow
         | Why::InterruptCondition
         | Why::NoInterrupts
         | Why::InterruptHandler
@@ -72,6 +76,7 @@ fn shared(why: &Why) -> String {
         | Why::VisionServer { .. }
         | Why::Goto
         | Why::Load
+        | Why::Lacks(_)
         | Why::BitwiseNot => "port by hand",
     }
     .into()

@@ -20,12 +20,11 @@ use super::front::comments::CommentQueue;
 use super::front::names::{NameRules, Namer};
 use super::front::report::{FileId, Report};
 use super::front::{Fail, R};
-use super::ir::{
-    self as ir, Case, Expr, LabelId, LoopId, Op, RoutineId, RoutineKind, Stmt, TempId, Ty, Why,
-};
+use super::ir::{self as ir, Case, Expr, LabelId, LoopId, Op, RoutineId, Stmt, TempId, Ty, Why};
 use crate::diag::Span;
 
-pub use backend::{BACKENDS, Backend, Blending, Caps, Trigger, backend};
+pub use super::ir::why::Lacked;
+pub use backend::{BACKENDS, Backend, Blending, Caps, Distance, Pulse, Relative, Trigger, backend};
 
 /// How a target writes lines and comments.
 pub struct Style {
@@ -79,11 +78,10 @@ pub struct JumpWords {
     pub label_at_margin: bool,
 }
 
-/// The labels of the loops of a routine that are left (`EXIT`) or continued with a jump.
+/// The labels after the loops of a routine that are left (`EXIT`) with a jump.
 #[derive(Default)]
 pub struct LoopLabels {
     exits: HashMap<LoopId, String>,
-    nexts: HashMap<LoopId, String>,
 }
 
 /// How a target writes a SWITCH it has a statement for (`TEST`/`CASE`, `CASE`/`VALUE`).
@@ -106,6 +104,16 @@ pub fn has_code(lines: &[String], comment_lead: &str) -> bool {
     })
 }
 
+/// What the core keeps of the routine being rendered; a renderer's own per-routine state is
+/// only what its language needs.
+pub struct RoutineState {
+    pub id: RoutineId,
+    /// Temporaries named so far.
+    pub temps: HashMap<TempId, String>,
+    /// The labels after loops left with a jump (targets with `GOTO`).
+    pub loops: LoopLabels,
+}
+
 /// The output of a renderer while it walks the program.
 pub struct Out<'a> {
     pub style: &'static Style,
@@ -123,6 +131,8 @@ pub struct Out<'a> {
     pub produced: Vec<Span>,
     /// Header notes collected while translating (deduplicated, in order).
     pub notes: Vec<String>,
+    /// The routine being rendered (between a renderer's `begin_routine` and `end_routine`).
+    pub routine: Option<RoutineState>,
 }
 
 impl<'a> Out<'a> {
@@ -144,7 +154,28 @@ impl<'a> Out<'a> {
             rep,
             produced: Vec::new(),
             notes: Vec::new(),
+            routine: None,
         }
+    }
+
+    /// Routine `id` is rendered from here on.
+    pub fn begin_routine(&mut self, id: RoutineId) {
+        self.routine = Some(RoutineState {
+            id,
+            temps: HashMap::new(),
+            loops: LoopLabels::default(),
+        });
+    }
+
+    /// The type of temporary `t` of the routine being rendered.
+    pub fn temp_ty(&self, t: TempId) -> Option<&Ty> {
+        let r = self.routine.as_ref()?;
+        self.ir.routine(r.id).temps.get(t.0 as usize)
+    }
+
+    /// The routine being rendered (the first when none is: the data after the routines).
+    pub fn routine_id(&self) -> RoutineId {
+        self.routine.as_ref().map_or(RoutineId(0), |r| r.id)
     }
 
     pub fn line(&mut self, s: &str) {
@@ -216,8 +247,6 @@ pub trait Emit<'a> {
     fn out(&mut self) -> &mut Out<'a>;
     /// Renders one op; a failure drops the lines of its statement.
     fn op(&mut self, s: &Stmt) -> R<()>;
-    /// The temporaries named so far in the routine being rendered.
-    fn temps(&mut self) -> Option<&mut HashMap<TempId, String>>;
     /// A new name for a temporary (in the routine being rendered).
     fn mint_temp(&mut self) -> String;
     /// An expression in the target's spelling.
@@ -225,11 +254,51 @@ pub trait Emit<'a> {
     /// At a block's start and end: what the renderer knows of the robot's state (the
     /// blending, frames or standstill in force) does not hold across the edge.
     fn block_edge(&mut self);
+
     /// The routine being rendered.
-    fn routine_id(&self) -> RoutineId;
-    /// The loop labels of the routine being rendered (targets with `GOTO`).
-    fn loop_labels(&mut self) -> Option<&mut LoopLabels> {
-        None
+    fn routine_id(&mut self) -> RoutineId {
+        self.out().routine_id()
+    }
+
+    /// The ops every target renders alike: IF/ELSE, jumps, loop exits and labels (targets
+    /// with `GOTO`), messages, TR001s and kept statements. A renderer's `op` spells the ops of
+    /// its own language and hands every other one here.
+    fn common_op(&mut self, s: &Stmt) -> R<()> {
+        let span = s.span;
+        let jumps = self.out().style.jumps.is_some();
+        match &s.op {
+            Op::If {
+                cond,
+                then,
+                els,
+                else_at,
+                end,
+            } => self.if_block(cond, then, els, *else_at, *end),
+            Op::Goto(_) | Op::Label(_) | Op::Break(_) | Op::Continue(_) if !jumps => {
+                not_lowered(span, "a jump")
+            }
+            Op::Goto(l) => {
+                let n = self.label_name(*l);
+                self.goto_line(&n);
+                Ok(())
+            }
+            Op::Label(l) => {
+                let n = self.label_name(*l);
+                self.label_line(&n);
+                Ok(())
+            }
+            Op::Break(id) => {
+                let l = self.exit_label(*id, false);
+                self.goto_line(&l);
+                Ok(())
+            }
+            // Made only for targets without `GOTO` (`ir::goto`), which spell it themselves.
+            Op::Continue(_) => not_lowered(span, "a jump to a loop's next pass"),
+            Op::Message { routine, text } => self.message(routine, text, span),
+            Op::Unsupported { why, at } => self.unsupported(why, *at),
+            Op::Keep { note } => self.keep_op(*note, span),
+            _ => not_lowered(span, "an op its target spells itself"),
+        }
     }
 
     /// A construct the lowering found no target can express: TR001 with the target's help.
@@ -285,7 +354,7 @@ pub trait Emit<'a> {
             .routine_of(&routine.name)
             .unwrap_or(&routine.name)
             .to_owned();
-        let function = routine.kind == RoutineKind::Deffct;
+        let function = routine.gives_value();
         (name, function, routine.ret.clone().unwrap_or(Ty::Real))
     }
 
@@ -310,28 +379,52 @@ pub trait Emit<'a> {
 
     /// The label after loop `id` (where `EXIT` jumps to), minted when `needed`.
     fn exit_label(&mut self, id: LoopId, needed: bool) -> String {
-        self.loop_label(id, needed, false)
-    }
-
-    /// The label before loop `id`'s end (where a jump to its next pass goes), minted when
-    /// `needed`.
-    fn next_label(&mut self, id: LoopId, needed: bool) -> String {
-        self.loop_label(id, needed, true)
-    }
-
-    fn loop_label(&mut self, id: LoopId, mint: bool, next: bool) -> String {
-        let base = if next { "loop_next" } else { "loop_end" };
-        if mint {
+        let base = "loop_end";
+        if needed {
             let l = self.fresh_label(base);
-            if let Some(ls) = self.loop_labels() {
-                let m = if next { &mut ls.nexts } else { &mut ls.exits };
-                m.insert(id, l.clone());
+            if let Some(r) = &mut self.out().routine {
+                r.loops.exits.insert(id, l.clone());
             }
             return l;
         }
-        self.loop_labels()
-            .and_then(|ls| if next { &ls.nexts } else { &ls.exits }.get(&id).cloned())
+        self.out()
+            .routine
+            .as_ref()
+            .and_then(|r| r.loops.exits.get(&id).cloned())
             .unwrap_or_else(|| base.into())
+    }
+
+    /// A loop of a target with `GOTO`: its `head` line, the body one level in, `tail` (the
+    /// target's own lines at the end of a pass, given the loop's exit label if it has one),
+    /// then its `close` line and the label after it, where the body's `EXIT`s jump (minted
+    /// before the head when the body breaks out of the loop, or `exit` asks for it).
+    #[allow(clippy::too_many_arguments)]
+    fn jump_loop(
+        &mut self,
+        id: LoopId,
+        exit: bool,
+        pre: Vec<String>,
+        head: String,
+        body: &ir::Block,
+        tail: impl FnOnce(&mut Self, Option<&str>),
+        close: &str,
+        end: u32,
+    ) where
+        Self: Sized,
+    {
+        let exits =
+            exit || ir::visit::any_op(body, &mut |op| matches!(op, Op::Break(x) if *x == id));
+        let exit = exits.then(|| self.exit_label(id, true));
+        for p in pre {
+            self.line(p);
+        }
+        self.line(head);
+        self.nested(body);
+        tail(self, exit.as_deref());
+        self.end_block(end, Some(close));
+        if let Some(l) = exit {
+            self.label_line(&l);
+        }
     }
 
     /// A nested block, one level deeper.
@@ -461,20 +554,31 @@ pub trait Emit<'a> {
 
     /// A temporary's name, minted on first use.
     fn temp_name(&mut self, t: TempId) -> String {
-        if let Some(n) = self.temps().and_then(|m| m.get(&t)) {
+        if let Some(n) = self.out().routine.as_ref().and_then(|r| r.temps.get(&t)) {
             return n.clone();
         }
         let n = self.mint_temp();
-        if let Some(m) = self.temps() {
-            m.insert(t, n.clone());
+        if let Some(r) = &mut self.out().routine {
+            r.temps.insert(t, n.clone());
         }
         n
+    }
+
+    /// Ops at the start of `b` the target renders as one run of its own (Flexiv: a spline's
+    /// motions as one move through waypoints): how many it rendered, `None` for none.
+    fn own_run(&mut self, b: &[Stmt]) -> Option<usize> {
+        let _ = b;
+        None
     }
 
     /// A block: consecutive ops of one KRL statement render together (and fail together).
     fn block(&mut self, b: &[Stmt]) {
         let mut i = 0;
         while i < b.len() {
+            if let Some(k) = self.own_run(&b[i..]) {
+                i += k;
+                continue;
+            }
             let span = b[i].span;
             let mut j = i + 1;
             while j < b.len() && b[j].span == span {

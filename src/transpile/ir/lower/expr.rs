@@ -10,6 +10,7 @@ use crate::syntax::ast::{self, ExprKind as A};
 use crate::transpile::front::model::Layout;
 use crate::transpile::front::sysvar::{self, Sys};
 use crate::transpile::ir::why::KukaOnly;
+use crate::transpile::ir::why::Lacked;
 use crate::transpile::ir::{
     Aggregate, Arg, BinaryOp, Block, Builtin, Callee, Component, Expr, ExprKind, IoPlace,
     MotionParam, Op, Place, RoutineKind, Scope, Stmt, Ty, UnaryOp, Why,
@@ -61,6 +62,9 @@ impl<'p> Lower<'p> {
                     }
                     ast::UnaryOp::Not => {
                         Expr::new(ExprKind::Unary(UnaryOp::Not, Box::new(v)), Ty::Bool, span)
+                    }
+                    ast::UnaryOp::BNot if !self.caps.bitwise_not => {
+                        return fail(Why::BitwiseNot, span);
                     }
                     ast::UnaryOp::BNot => {
                         Expr::new(ExprKind::Unary(UnaryOp::BNot, Box::new(v)), Ty::Int, span)
@@ -224,6 +228,11 @@ impl<'p> Lower<'p> {
             let r = v.pop().expect("two");
             (v.pop().expect("two"), r)
         };
+        match op {
+            B::Geo => self.held(Lacked::Geo, span)?,
+            B::BAnd | B::BOr | B::BExor => self.held(Lacked::Bitwise, span)?,
+            _ => {}
+        }
         let (o, ty) = match op {
             B::Geo => (BinaryOp::Geo, Ty::Pose),
             B::Add | B::Sub | B::Mul | B::Div => {
@@ -555,18 +564,24 @@ impl<'p> Lower<'p> {
                 let i = index(self, i, pre)?;
                 Expr::new(ExprKind::Io(IoPlace::Flag(i)), Ty::Bool, span)
             }
-            Sys::Timer(i) => Expr::new(ExprKind::Timer(index(self, i, pre)?), Ty::Int, span),
+            Sys::Timer(i) => {
+                let i = index(self, i, pre)?;
+                self.held(Lacked::Timers, span)?;
+                Expr::new(ExprKind::Timer(i), Ty::Int, span)
+            }
             Sys::TimerFlag(i) => {
-                Expr::new(ExprKind::TimerFlag(index(self, i, pre)?), Ty::Bool, span)
+                let i = index(self, i, pre)?;
+                self.held(Lacked::Timers, span)?;
+                Expr::new(ExprKind::TimerFlag(i), Ty::Bool, span)
             }
             Sys::PosAct => self.read_position(false, span, pre),
             Sys::AxisAct => self.read_position(true, span, pre),
             Sys::NullFrame => Expr::new(ExprKind::NullFrame, Ty::Pose, span),
-            Sys::VelCp => Expr::new(ExprKind::Param(MotionParam::VelCp), Ty::Real, span),
-            Sys::ApoCdis => Expr::new(ExprKind::Param(MotionParam::ApoCdis), Ty::Real, span),
-            Sys::ApoCptp => Expr::new(ExprKind::Param(MotionParam::ApoCptp), Ty::Real, span),
-            Sys::ApoCvel => Expr::new(ExprKind::Param(MotionParam::ApoCvel), Ty::Real, span),
-            Sys::ApoCori => Expr::new(ExprKind::Param(MotionParam::ApoCori), Ty::Real, span),
+            Sys::VelCp => self.param_read(MotionParam::VelCp, span)?,
+            Sys::ApoCdis => self.param_read(MotionParam::ApoCdis, span)?,
+            Sys::ApoCptp => self.param_read(MotionParam::ApoCptp, span)?,
+            Sys::ApoCvel => self.param_read(MotionParam::ApoCvel, span)?,
+            Sys::ApoCori => self.param_read(MotionParam::ApoCori, span)?,
             Sys::CycFlag(_) => return fail(Why::CycFlag, span),
             _ => return fail(Why::SystemVariable(text), span),
         })
@@ -624,14 +639,8 @@ impl<'p> Lower<'p> {
             let args = self.call_args(Some(r), name, args, span, pre)?;
             let ty = self.routine(r).ret.clone().unwrap_or(Ty::Real);
             let t = self.temp(ty.clone());
-            pre.push(Stmt {
-                op: Op::Call {
-                    callee: Callee::Routine(r),
-                    args,
-                    ret: Some(Place::Temp(t)),
-                },
-                span,
-            });
+            let op = self.function_call(Callee::Routine(r), args, Place::Temp(t), &ty, span);
+            pre.push(Stmt { op, span });
             return Ok(Expr::new(ExprKind::Place(Place::Temp(t)), ty, span));
         }
         if let Some(family) = KukaOnly::of(&key) {
@@ -640,19 +649,53 @@ impl<'p> Lower<'p> {
         // A function of another module.
         let args = self.call_args(None, name, args, span, pre)?;
         let t = self.temp(Ty::Real);
-        pre.push(Stmt {
-            op: Op::Call {
-                callee: Callee::External {
-                    name: name.text.to_string(),
-                    span: name.span,
-                    function: true,
-                },
+        let callee = Callee::External {
+            name: name.text.to_string(),
+            span: name.span,
+            function: self.caps.functions,
+        };
+        let op = self.function_call(callee, args, Place::Temp(t), &Ty::Real, span);
+        pre.push(Stmt { op, span });
+        Ok(Expr::new(ExprKind::Place(Place::Temp(t)), Ty::Real, span))
+    }
+
+    /// A motion parameter read back, where the target can (`Caps::param_reads`).
+    fn param_read(&self, p: MotionParam, span: Span) -> L<Expr> {
+        if !self.caps.param_reads {
+            return fail(Why::ParamRead(p), span);
+        }
+        Ok(Expr::new(ExprKind::Param(p), Ty::Real, span))
+    }
+
+    /// The call of a function whose value goes to `into` (of type `ty`): returned where the
+    /// target has functions (`Caps::functions`), else passed back through an added last
+    /// argument ([`crate::transpile::ir::Routine::result`]).
+    pub(super) fn function_call(
+        &self,
+        callee: Callee,
+        mut args: Vec<Arg>,
+        into: Place,
+        ty: &Ty,
+        span: Span,
+    ) -> Op {
+        if self.caps.functions {
+            return Op::Call {
+                callee,
                 args,
-                ret: Some(Place::Temp(t)),
-            },
+                ret: Some(into),
+            };
+        }
+        args.push(Arg {
+            value: Some(Expr::new(ExprKind::Place(into.clone()), ty.clone(), span)),
+            place: Some(into),
+            out: true,
             span,
         });
-        Ok(Expr::new(ExprKind::Place(Place::Temp(t)), Ty::Real, span))
+        Op::Call {
+            callee,
+            args,
+            ret: None,
+        }
     }
 
     /// The arguments of a call of `routine` (None: another module's), in order; OUT arguments
@@ -666,7 +709,7 @@ impl<'p> Lower<'p> {
         pre: &mut Block,
     ) -> L<Vec<Arg>> {
         let params: Option<Vec<crate::transpile::ir::Param>> =
-            routine.map(|r| self.routine(r).params.clone());
+            routine.map(|r| self.routine(r).krl_params().to_vec());
         if let Some(p) = &params {
             let header_ok = routine.is_some_and(|r| self.routine(r).header_error.is_none());
             if p.len() != args.len() && header_ok {

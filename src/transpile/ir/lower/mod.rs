@@ -286,6 +286,14 @@ impl<'p> Lower<'p> {
 
     // ----- findings, constructs ----------------------------------------------------------
 
+    /// TR001 where the target has nothing for `s` (`Caps::lacks`).
+    pub(super) fn held(&self, s: super::why::Lacked, span: Span) -> L<()> {
+        if self.caps.lacks.contains(&s) {
+            return fail(Why::Lacks(s), span);
+        }
+        Ok(())
+    }
+
     pub(super) fn approx(
         &mut self,
         span: Span,
@@ -480,7 +488,7 @@ impl<'p> Lower<'p> {
         let assigned = &outline.facts.assigned;
         let mut seen = rustc_hash::FxHashSet::default();
         let mut duplicate = None;
-        let params = r
+        let mut params: Vec<super::Param> = r
             .params
             .iter()
             .filter_map(|p| {
@@ -508,12 +516,16 @@ impl<'p> Lower<'p> {
                 })
             })
             .collect();
+        let ret = sig.and_then(|s| s.ret);
+        let result = (kind == RoutineKind::Deffct && !self.caps.functions)
+            .then(|| self.result_param(r, ret.clone().unwrap_or(Ty::Real), &mut params));
         self.push_routine(Routine {
             name: r.name.text.to_string(),
             name_span: r.name.span,
             kind,
-            ret: sig.and_then(|s| s.ret),
+            ret,
             params,
+            result,
             locals: Vec::new(),
             temps: Vec::new(),
             labels: Vec::new(),
@@ -524,6 +536,29 @@ impl<'p> Lower<'p> {
             end: front::end_line_start(&self.src.src.text, r.span),
             synthetic: false,
         });
+    }
+
+    /// A DEFFCT's value in a target without functions (`Caps::functions`): an OUT parameter
+    /// after the KRL ones, a variable of the routine no KRL name finds (the namer names it as
+    /// it names the routine's locals).
+    fn result_param(&mut self, r: &ast::Routine, ty: Ty, params: &mut Vec<super::Param>) -> VarId {
+        let var = VarId(self.out.vars.len() as u32);
+        self.out.vars.push(Var {
+            name: "retval".into(),
+            ty,
+            dims: 0,
+            scope: Scope::Param(RoutineId(self.out.routines.len() as u32)),
+            constant: false,
+            decl: r.name.span,
+            file: FileId::Src,
+        });
+        params.push(super::Param {
+            var,
+            dir: super::ParamDir::Out,
+            array: 0,
+            assigned: true,
+        });
+        var
     }
 
     /// The line of `r`'s header when the parser reported a syntax error on it.
@@ -672,6 +707,7 @@ impl<'p> Lower<'p> {
                     kind: RoutineKind::Def,
                     ret: None,
                     params: Vec::new(),
+                    result: None,
                     locals: Vec::new(),
                     temps: Vec::new(),
                     labels: Vec::new(),

@@ -7,6 +7,7 @@ use crate::diag::Span;
 use crate::syntax::ast::{self, Approx, ExprKind as A, MotionKind};
 use crate::transpile::front::ilf;
 use crate::transpile::front::sysvar::{self, Sys};
+use crate::transpile::ir::why::Lacked;
 use crate::transpile::ir::{
     Because, Blend, Block, Component, Delta, Expr, ExprKind, FrameKind, FrameRef, Frames, IoTiming,
     Known, Load, MotionParam, Move, Op, ParamValue, Path, Place, SplineId, Stmt, Target, TriggerAt,
@@ -117,6 +118,7 @@ impl<'p> Lower<'p> {
             Sys::Load => {
                 self.kind("load");
                 let load = self.load(target, value, ops)?;
+                self.held(Lacked::Load, span)?;
                 ops.push(Stmt {
                     op: Op::SetLoad(load),
                     span,
@@ -126,6 +128,7 @@ impl<'p> Lower<'p> {
             Sys::OvPro => {
                 self.kind("override");
                 let v = self.expr(value, ops)?;
+                self.held(Lacked::Override, span)?;
                 ops.push(Stmt {
                     op: Op::SetOverride(v),
                     span,
@@ -334,12 +337,14 @@ impl<'p> Lower<'p> {
                     speed: pending(),
                 }
             } else {
+                let in_tool = m
+                    .frame
+                    .as_deref()
+                    .is_some_and(|f| f.eq_ignore_ascii_case("TOOL"));
+                self.held_offset(&delta, in_tool, joint, span)?;
                 Path::LinearRel {
                     delta,
-                    in_tool: m
-                        .frame
-                        .as_deref()
-                        .is_some_and(|f| f.eq_ignore_ascii_case("TOOL")),
+                    in_tool,
                     joint: joint.then(pending),
                     speed: pending(),
                 }
@@ -356,6 +361,7 @@ impl<'p> Lower<'p> {
                     speed: pending(),
                 },
                 K::Circ | K::Scirc => {
+                    self.held(Lacked::Circ, span)?;
                     let Some(aux) = &m.aux else {
                         return fail(
                             Why::Aggregate("CIRC without an auxiliary point".into()),
@@ -371,7 +377,7 @@ impl<'p> Lower<'p> {
                 }
             }
         };
-        let blend = blend_of(m.approx);
+        let blend = self.held_blend(blend_of(m.approx), &path, span);
         let mut mv = Move {
             path,
             blend,
@@ -567,12 +573,15 @@ impl<'p> Lower<'p> {
             .map(|(i, _)| i)
             .collect();
         for (k, i) in moves.iter().enumerate() {
+            let Op::Move(m) = &b[*i].op else { continue };
+            let blend = if k + 1 == moves.len() {
+                blend_of(approx)
+            } else {
+                Blend::Distance(pending())
+            };
+            let blend = self.held_blend(blend, &m.path, b[*i].span);
             if let Op::Move(m) = &mut b[*i].op {
-                m.blend = if k + 1 == moves.len() {
-                    blend_of(approx)
-                } else {
-                    Blend::Distance(pending())
-                };
+                m.blend = blend;
             }
         }
         ops.extend(b);
@@ -859,6 +868,77 @@ impl<'p> Lower<'p> {
             });
         }
         Ok(())
+    }
+}
+
+impl Lower<'_> {
+    /// A Cartesian relative motion's offset the target holds (`Caps::relative_motions`): its
+    /// turns in its frame (more: TR001), and a PTP_REL's path (a straight line: TR002).
+    fn held_offset(&mut self, d: &Delta, in_tool: bool, joint: bool, span: Span) -> L<()> {
+        let caps = self.caps.relative_motions;
+        let mut turns = 0;
+        for (c, e) in &d.fields {
+            match c {
+                Component::Pose(0..=2) => {}
+                Component::Pose(_) if e.number() == Some(0.0) => {}
+                Component::Pose(_) => turns += 1,
+                _ => return fail(Why::RelativeExternal, d.span),
+            }
+        }
+        let held = if in_tool {
+            caps.tool_turns
+        } else {
+            caps.base_turns
+        };
+        if turns > held {
+            return fail(Why::RelativeTurn { in_tool, held }, d.span);
+        }
+        if joint && !caps.joint_path {
+            self.approx(
+                span,
+                "PTP_REL with a Cartesian offset becomes a straight-line move (KUKA interpolates the axes)",
+                "check the path for collisions",
+            );
+        }
+        Ok(())
+    }
+
+    /// KRL's blending `blend` of a motion on `path` as the target holds it
+    /// (`Caps::blending`): its kind as such, else within the distance `$APO.CDIS`, or an
+    /// exact stop (TR002 for each change).
+    fn held_blend(&mut self, blend: Blend, path: &Path, span: Span) -> Blend {
+        let caps = self.caps.blending;
+        let to_axes = match path {
+            Path::Joint { to, .. } => to.joints,
+            Path::JointRel { .. } => true,
+            _ => false,
+        };
+        if blend == Blend::Exact {
+            return blend;
+        }
+        if to_axes && !caps.to_axes {
+            self.approx(
+                span,
+                "this target does not blend a motion to axis values: the robot stops at this point",
+                "nothing to do unless the stop matters",
+            );
+            return Blend::Exact;
+        }
+        let kind = match &blend {
+            Blend::Percent { .. } => "C_PTP (percent of the axis path)",
+            Blend::Velocity { .. } => "C_VEL (percent of the speed)",
+            Blend::Orientation { .. } => "C_ORI (orientation angle)",
+            Blend::Exact | Blend::Distance(_) => return blend,
+        };
+        if caps.krl_kinds {
+            return blend;
+        }
+        self.approx(
+            span,
+            format!("{kind} becomes blending within the distance $APO.CDIS (mm)"),
+            "this target blends by distance only; check the path near this point",
+        );
+        Blend::Distance(pending())
     }
 }
 

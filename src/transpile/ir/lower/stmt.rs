@@ -8,6 +8,7 @@ use crate::transpile::front::end_line_start;
 use crate::transpile::front::ilf;
 use crate::transpile::front::kinds::category;
 use crate::transpile::front::sysvar::{self, Sys};
+use crate::transpile::ir::why::Lacked;
 use crate::transpile::ir::{
     Block, Case, Expr, ExprKind, ForLoop, InterruptAction, IoTiming, LoopKind, Op, OutPlace,
     OutSignal, Place, RoutineKind, Scope, Stmt, TimerOp, Ty, UnaryOp, Wait, Why,
@@ -346,12 +347,12 @@ impl<'p> Lower<'p> {
                 Ok(())
             }
             StmtKind::Return { value } => {
-                let (kind, ret, synthetic) = match &self.rt {
+                let (kind, ret, synthetic, result) = match &self.rt {
                     Some(rt) => {
                         let r = self.routine(rt.id);
-                        (r.kind, r.ret.clone(), r.synthetic)
+                        (r.kind, r.ret.clone(), r.synthetic, r.result)
                     }
-                    None => (RoutineKind::Def, None, true),
+                    None => (RoutineKind::Def, None, true, None),
                 };
                 let v = match (kind, value) {
                     (RoutineKind::Deffct, Some(v)) => {
@@ -361,6 +362,15 @@ impl<'p> Lower<'p> {
                         return fail(Why::ReturnWithoutValue, span);
                     }
                     _ => None,
+                };
+                // Without functions the value leaves through the result's parameter.
+                let v = match (v, result) {
+                    (Some(value), Some(r)) => {
+                        let place = Place::Var(r);
+                        Self::push(ops, Op::Assign { place, value }, span);
+                        None
+                    }
+                    (v, _) => v,
                 };
                 Self::push(ops, Op::Return(v), span);
                 Ok(())
@@ -441,6 +451,9 @@ impl<'p> Lower<'p> {
             } => {
                 let io = match sysvar::classify(signal) {
                     Some(Sys::Out(i)) => OutPlace::Out(Box::new(self.expr(i, ops)?)),
+                    Some(Sys::Flag(_)) if !self.caps.pulse.flags => {
+                        return fail(Why::PulseSignal, signal.span);
+                    }
                     Some(Sys::Flag(i)) => OutPlace::Flag(Box::new(self.expr(i, ops)?)),
                     Some(_) => return fail(Why::PulseSignal, signal.span),
                     None => match &signal.kind {
@@ -457,11 +470,19 @@ impl<'p> Lower<'p> {
                 };
                 self.stop(span, ops);
                 let level = self.expr(level, ops)?;
+                match level.kind {
+                    ExprKind::Bool(false) if !self.caps.pulse.low => {
+                        return fail(Why::PulseLow, level.span);
+                    }
+                    ExprKind::Bool(_) => {}
+                    _ => return fail(Why::PulseLevel, level.span),
+                }
                 let seconds = self.expr(duration, ops)?;
                 Self::push(ops, Op::Pulse { io, level, seconds }, span);
                 Ok(())
             }
             StmtKind::Brake { fast } => {
+                self.held(Lacked::Brake, span)?;
                 Self::push(ops, Op::Brake { fast: *fast }, span);
                 Ok(())
             }
@@ -605,15 +626,10 @@ impl<'p> Lower<'p> {
             let (place, _) = self.place(target, ops, true)?;
             self.check_structure(&place, target.span)?;
             let args = self.call_args(Some(r), name, args, value.span, ops)?;
-            Self::push(
-                ops,
-                Op::Call {
-                    callee: crate::transpile::ir::Callee::Routine(r),
-                    args,
-                    ret: Some(place),
-                },
-                span,
-            );
+            let ty = self.routine(r).ret.clone().unwrap_or(Ty::Real);
+            let callee = crate::transpile::ir::Callee::Routine(r);
+            let op = self.function_call(callee, args, place, &ty, value.span);
+            Self::push(ops, op, span);
             return Ok(());
         }
         let (place, ty) = self.place(target, ops, true)?;
@@ -763,6 +779,7 @@ impl<'p> Lower<'p> {
                 self.kind("timer");
                 let i = self.expr(i, ops)?;
                 let v = self.expr(value, ops)?;
+                self.held(Lacked::Timers, span)?;
                 Self::push(
                     ops,
                     Op::Timer {
@@ -777,6 +794,10 @@ impl<'p> Lower<'p> {
                 self.kind("timer");
                 let i = self.expr(i, ops)?;
                 let v = self.expr(value, ops)?;
+                self.held(Lacked::Timers, span)?;
+                if !matches!(v.kind, ExprKind::Bool(false)) {
+                    self.held(Lacked::TimerStop, span)?;
+                }
                 Self::push(
                     ops,
                     Op::Timer {

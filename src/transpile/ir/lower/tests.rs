@@ -1,5 +1,5 @@
 use super::*;
-use crate::transpile::ir::LoopKind;
+use crate::transpile::ir::{LoopKind, Place};
 use crate::transpile::{Target, render};
 
 /// The loops the lowering makes of `text`'s routines, in order.
@@ -38,4 +38,118 @@ fn whether_a_call_moves_comes_from_the_model() {
         WHILE $IN[2]\n    note()\n  ENDWHILE\n  WHILE $IN[3]\n    go()\n  ENDWHILE\nEND\n\
         DEF note()\n  MsgQuit(\"a\", \"b\", 2)\nEND\nDEF go()\n  PTP HOME\nEND\n";
     assert_eq!(loop_kinds(text), ["while", "while", "forever"]);
+}
+
+/// The top-level ops the lowering makes of `text` for `target`, and the program it recorded.
+fn lowered(text: &str, target: Target) -> (Program, Vec<Op>) {
+    let program = front::Program::new(front::Parsed::new("t.src", text), None);
+    let options = Options::default();
+    let mut lower = Lower::new(&program, &options, render::backend(target).caps());
+    let mut ops = Vec::new();
+    program.src.each_statement(false, |s| match s {
+        front::Statement::Begin(i) => ops.extend(lower.begin_routine(i).into_iter().map(|s| s.op)),
+        front::Statement::Head(s) => lower.head(&s, &mut Block::new()),
+        front::Statement::Stmt(s) => ops.extend(lower.stmt(&s).into_iter().map(|s| s.op)),
+        front::Statement::End(_) => ops.extend(lower.end_routine().into_iter().map(|s| s.op)),
+    });
+    (lower.finish().program, ops)
+}
+
+/// A target without functions (`Caps::functions`) gets a DEFFCT as a routine with an OUT
+/// parameter in the model: its RETURN assigns it, its calls pass the receiving place last.
+#[test]
+fn a_function_without_functions_is_an_out_parameter() {
+    let text = "DEF main()\nDECL REAL x\nx = f(2.0) + 1\nx = f(3.0)\nEND\n\
+        DEFFCT REAL f(a:IN)\nDECL REAL a\nRETURN a * 2\nENDFCT\n";
+    for target in [Target::Kawasaki, Target::Rapid] {
+        let functions = render::backend(target).caps().functions;
+        let (program, ops) = lowered(text, target);
+        let f = program.routine(RoutineId(1));
+        assert_eq!(f.result.is_some(), !functions, "{target:?}");
+        assert_eq!(f.params.len(), 1 + usize::from(!functions), "{target:?}");
+        assert_eq!(f.krl_params().len(), 1);
+        let calls: Vec<(usize, bool)> = ops
+            .iter()
+            .filter_map(|op| match op {
+                Op::Call { args, ret, .. } => Some((args.len(), ret.is_some())),
+                _ => None,
+            })
+            .collect();
+        let want = if functions { (1, true) } else { (2, false) };
+        assert_eq!(calls, [want, want], "{target:?}");
+        let returns: Vec<bool> = ops
+            .iter()
+            .filter_map(|op| match op {
+                Op::Return(v) => Some(v.is_some()),
+                _ => None,
+            })
+            .collect();
+        assert_eq!(returns, [functions], "{target:?}");
+        if let Some(r) = f.result {
+            assert!(
+                ops.iter()
+                    .any(|op| matches!(op, Op::Assign { place: Place::Var(v), .. } if *v == r))
+            );
+        }
+    }
+}
+
+/// The lowering maps KRL's blending kinds onto what the target holds (`Caps::blending`):
+/// C_PTP becomes a distance with a TR002 where the target blends by distance only, and a
+/// blended motion to axis values stops where the target cannot blend it.
+#[test]
+fn blending_kinds_follow_the_targets_caps() {
+    use crate::transpile::ir::Blend;
+    let text = "DEF main()\nPTP {X 1, Y 2, Z 3, A 0, B 0, C 0} C_PTP\n\
+        PTP {A1 0, A2 -90, A3 90, A4 0, A5 0, A6 0} C_DIS\nEND\n";
+    for target in [Target::Kawasaki, Target::Flexiv, Target::Rapid] {
+        let caps = render::backend(target).caps().blending;
+        let (program, ops) = lowered(text, target);
+        let blends: Vec<&Blend> = ops
+            .iter()
+            .filter_map(|op| match op {
+                Op::Move(m) => Some(&m.blend),
+                _ => None,
+            })
+            .collect();
+        assert_eq!(blends.len(), 2);
+        assert_eq!(
+            matches!(blends[0], Blend::Percent { .. }),
+            caps.krl_kinds,
+            "{target:?}"
+        );
+        assert_eq!(*blends[1] == Blend::Exact, !caps.to_axes, "{target:?}");
+        let findings = program.findings.len();
+        let want = usize::from(!caps.krl_kinds) + usize::from(!caps.to_axes);
+        assert_eq!(findings, want, "{target:?}: {:?}", program.findings);
+    }
+}
+
+/// The lowering decides a Cartesian relative move from `Caps::relative_motions`: a turn in a
+/// frame beyond what the target holds is TR001, a PTP_REL without a joint path a TR002.
+#[test]
+fn relative_moves_follow_the_targets_caps() {
+    let text = "DEF main()\nLIN_REL {X 5, A 30} #TOOL\nLIN_REL {Z 5, C 15}\nPTP_REL {Z 30}\nEND\n";
+    for target in [Target::Kawasaki, Target::Flexiv, Target::Rapid] {
+        let caps = render::backend(target).caps().relative_motions;
+        let (program, ops) = lowered(text, target);
+        let refused: Vec<bool> = ops
+            .iter()
+            .filter_map(|op| match op {
+                Op::Move(_) => Some(false),
+                Op::Unsupported { .. } => Some(true),
+                _ => None,
+            })
+            .collect();
+        assert_eq!(
+            refused,
+            [caps.tool_turns < 1, caps.base_turns < 1, false],
+            "{target:?}"
+        );
+        assert_eq!(
+            program.findings.len(),
+            usize::from(!caps.joint_path),
+            "{target:?}"
+        );
+    }
 }
