@@ -1,12 +1,14 @@
 //! Time and peak RSS of every command in the program shapes of `tests/scaling_support/shapes.rs`
 //! (one routine, many routines in one module, many modules in one folder, the two dense in
-//! Mech-Mind calls, taught points) at 2, 10 and 50 MB (transpile to all three targets), and the growth from 10 to 50 MB (linear is 5×):
+//! Mech-Mind calls, taught points, no motions) at 2, 10 and 50 MB (transpile to all three targets), and the growth from 10 to 50 MB (linear is 5×):
 //! `cargo bench --bench scaling`. Runs the release binary, or the one `KRLKIT_BIN` names (to
 //! compare two builds); `SCALING_MB=2,10` picks the sizes, `SCALING_SHAPES="MM calls,many
 //! files"` the shapes whose names contain one of the parts, `SCALING_RUNS=3` repeats each run
 //! and keeps the fastest (the machine is shared). A run over 60 s is killed and shown as
 //! "> 60 s". Times are CPU (user + system) and wall; the ratio is CPU time's, as wall time on a
 //! shared machine mostly measures the neighbours.
+//! `run` stops a program at 50,000 motions, so in the shapes that move its cell above a few MB
+//! is loading plus 50,000 motions; the no-motions shape's `run` executes the whole file.
 //! Prints, does not assert: `tests/scaling_guard.rs` guards the ratios.
 
 use std::path::PathBuf;

@@ -17,6 +17,8 @@ pub struct CaseEdits {
     /// Candidate edits with the span of their line, in text order.
     edits: Vec<(Span, Edit)>,
     walk: PieceNodes,
+    /// Whether the text has an inline-form mark (`%{`) anywhere, once asked.
+    marks: Option<bool>,
 }
 
 impl CaseEdits {
@@ -40,7 +42,8 @@ impl CaseEdits {
         let protected = matches!(
             node.kind,
             NodeKind::BlankLine | NodeKind::HeaderLine | NodeKind::Error
-        ) || has_inline_form_mark(node, text);
+        ) || (*self.marks.get_or_insert_with(|| text.contains("%{"))
+            && has_inline_form_mark(node, text));
         if !protected {
             let edits = &mut self.edits;
             case_changes(&mut self.renderer, node, text, &self.opts, |t| {

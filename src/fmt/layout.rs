@@ -6,7 +6,7 @@
 //! carry a syntax diagnostic, and every line of an inline-form fold (its `;FOLD … ;%{…}`
 //! metadata line through its `;ENDFOLD`, nested folds and `;Params` lines included).
 
-use crate::diag::Span;
+use crate::diag::{Diagnostic, Span};
 use crate::syntax::folds::Fold;
 use crate::syntax::{Element, Node, NodeKind, Parse, TokenKind};
 
@@ -28,37 +28,42 @@ pub(super) struct Line<'a> {
 }
 
 /// Where the lines come from: a tree already parsed, or the text, parsed one piece at a time
-/// (`syntax::parse_pieces`) so that a big file's tree is never held whole.
+/// (`syntax::parse_pieces`) so that a big file's tree is never held whole. A piece parse hands
+/// lines out before it has seen the whole file, so it is given the file's syntax diagnostics
+/// when an earlier parse found them; without them it assumes there are none (true of almost
+/// every file) and [`each_line`] says when that was wrong.
 #[derive(Clone, Copy)]
 pub(super) enum Source<'p> {
     Tree(&'p Parse),
-    Pieces,
+    Pieces(Option<&'p [Diagnostic]>),
 }
 
 /// Calls `f` with the lines of `text`, in order, covering the text exactly once. A line's node
-/// lives only as long as the call (pieces are dropped after).
+/// lives only as long as the call (pieces are dropped after). Returns the file's syntax
+/// diagnostics when the source was `Pieces(None)` and the parse found some: the lines handed
+/// out were marked without them, so the caller discards them and asks again with
+/// `Pieces(Some(..))` (one parse for a file without diagnostics, two for one with them).
 pub(super) fn each_line(
     text: &str,
     source: Source<'_>,
     indent_folds: bool,
     mut f: impl FnMut(Line<'_>),
-) {
+) -> Option<Vec<Diagnostic>> {
     let mut pieces = Pieces::default();
     match source {
         Source::Tree(parse) => {
             let mut m = Marker::new(text, &parse.diagnostics, indent_folds);
             parse.pieces(|piece| pieces.add(piece, &mut |l| m.add(l, &mut f)));
             m.end(&mut f);
+            None
         }
-        Source::Pieces => {
-            // The diagnostics protect lines before the parse that hands them out ends: a
-            // first parse finds them (parsing is cheap next to keeping a tree).
-            let diagnostics = crate::syntax::parse_pieces(text, |_| {});
-            let mut m = Marker::new(text, &diagnostics, indent_folds);
-            crate::syntax::parse_pieces(text, |piece| {
+        Source::Pieces(known) => {
+            let mut m = Marker::new(text, known.unwrap_or_default(), indent_folds);
+            let diagnostics = crate::syntax::parse_pieces(text, |piece| {
                 pieces.add(piece, &mut |l| m.add(l, &mut f));
             });
             m.end(&mut f);
+            (known.is_none() && !diagnostics.is_empty()).then_some(diagnostics)
         }
     }
 }
@@ -231,10 +236,12 @@ struct Marker<'t> {
     next_diagnostic: usize,
     /// Diagnostics that start before the current line's end and may still reach it.
     diagnostics_open: Vec<Span>,
+    /// The text has an inline-form mark (`%{`) somewhere: else no line needs looking at.
+    marks: bool,
 }
 
 impl<'t> Marker<'t> {
-    fn new(text: &'t str, diagnostics: &[crate::diag::Diagnostic], indent_folds: bool) -> Self {
+    fn new(text: &'t str, diagnostics: &[Diagnostic], indent_folds: bool) -> Self {
         let folds = crate::syntax::folds::folds(text)
             .0
             .into_iter()
@@ -255,6 +262,7 @@ impl<'t> Marker<'t> {
             diagnostics,
             next_diagnostic: 0,
             diagnostics_open: Vec::new(),
+            marks: text.contains("%{"),
         }
     }
 
@@ -280,7 +288,7 @@ impl<'t> Marker<'t> {
 
     fn mark<'a>(&mut self, mut l: Line<'a>, f: &mut impl FnMut(Line<'a>)) {
         let Span { start, end } = l.span;
-        if l.node.is_some_and(|n| has_inline_form_mark(n, self.text)) {
+        if self.marks && l.node.is_some_and(|n| has_inline_form_mark(n, self.text)) {
             l.protected = true;
         }
         while let Some(fold) = self.folds.get(self.next_fold)

@@ -47,7 +47,7 @@ pub use fix::{Applied, apply_safe_fixes};
 pub use options::{Case, FmtOptions, Spacing};
 pub use verify::{Equivalence, case_edits, case_edits_in, check_equivalent};
 
-use crate::diag::{Edit, Span};
+use crate::diag::{Diagnostic, Edit, Span};
 use crate::syntax::Parse;
 use layout::Source;
 use render::{DeclGap, Renderer};
@@ -62,7 +62,7 @@ pub struct Formatted {
 /// Format one file's decoded text. The file is parsed one piece at a time: its tree is never
 /// held whole (memory follows the output, not a tree of the input).
 pub fn format_text(text: &str, opts: &FmtOptions) -> Formatted {
-    format_from(text, Source::Pieces, opts)
+    format_from(text, Source::Pieces(None), opts)
 }
 
 /// [`format_text`] for a text already parsed.
@@ -71,30 +71,46 @@ pub fn format_parsed(text: &str, parsed: &Parse, opts: &FmtOptions) -> Formatted
 }
 
 fn format_from(text: &str, source: Source<'_>, opts: &FmtOptions) -> Formatted {
-    let mut out = String::with_capacity(text.len() + text.len() / 8);
-    let mut changed = false;
-    for_each_line(text, source, opts, |orig, new| {
-        let new = new.unwrap_or(orig);
-        changed |= new != orig;
-        out.push_str(new);
-    });
-    Formatted { text: out, changed }
+    with_diagnostics(source, |source| {
+        let mut out = String::with_capacity(text.len() + text.len() / 8);
+        let mut changed = false;
+        let again = for_each_line(text, source, opts, |orig, new| {
+            let new = new.unwrap_or(orig);
+            changed |= new != orig;
+            out.push_str(new);
+        });
+        (Formatted { text: out, changed }, again)
+    })
 }
 
 /// The formatting as whole-line edits (see the module docs).
 pub fn format_edits(text: &str, opts: &FmtOptions) -> Vec<Edit> {
-    let mut edits = Vec::new();
-    let mut pos = 0usize;
-    for_each_line(text, Source::Pieces, opts, |orig, new| {
-        let start = pos;
-        pos += orig.len();
-        if let Some(new) = new
-            && new != orig
-        {
-            edits.push(Edit::new(Span::new(start, pos), new));
-        }
-    });
-    edits
+    with_diagnostics(Source::Pieces(None), |source| {
+        let mut edits = Vec::new();
+        let mut pos = 0usize;
+        let again = for_each_line(text, source, opts, |orig, new| {
+            let start = pos;
+            pos += orig.len();
+            if let Some(new) = new
+                && new != orig
+            {
+                edits.push(Edit::new(Span::new(start, pos), new));
+            }
+        });
+        (edits, again)
+    })
+}
+
+/// Runs a pass over the lines of `source` and, when a piece parse found syntax diagnostics it
+/// had not been given (see [`layout::each_line`]), runs it again with them.
+fn with_diagnostics<R>(
+    source: Source<'_>,
+    mut pass: impl FnMut(Source<'_>) -> (R, Option<Vec<Diagnostic>>),
+) -> R {
+    match pass(source) {
+        (result, None) => result,
+        (_, Some(diagnostics)) => pass(Source::Pieces(Some(&diagnostics))).0,
+    }
 }
 
 /// The edits of [`format_edits`] whose lines touch `range` (byte offsets into `text`).
@@ -109,13 +125,14 @@ pub fn format_range(text: &str, range: std::ops::Range<usize>, opts: &FmtOptions
 }
 
 /// Calls `f(original line, Some(new line) | None when unchanged)` for every physical line in
-/// order; a removed blank line gets `Some("")`.
+/// order; a removed blank line gets `Some("")`. Returns what [`layout::each_line`] returns:
+/// the diagnostics to run it again with, the lines given being void.
 fn for_each_line<'t>(
     text: &'t str,
     source: Source<'_>,
     opts: &FmtOptions,
     mut f: impl FnMut(&'t str, Option<&str>),
-) {
+) -> Option<Vec<Diagnostic>> {
     let mut renderer = Renderer::default();
     let mut buf = String::with_capacity(256);
     let mut blank_run = 0usize;
@@ -124,7 +141,7 @@ fn for_each_line<'t>(
     let mut after_cr = false;
     // DECL lines waiting for the end of their run to be aligned: (original, rendered, gap).
     let mut run: Vec<(&'t str, String, DeclGap)> = Vec::new();
-    layout::each_line(text, source, opts.indent_folds, |line| {
+    let again = layout::each_line(text, source, opts.indent_folds, |line| {
         let orig = &text[line.span.range()];
         let Some(node) = line.node.filter(|_| !line.protected) else {
             flush_run(&mut run, &mut f);
@@ -161,6 +178,7 @@ fn for_each_line<'t>(
         after_cr = orig.ends_with('\r');
     });
     flush_run(&mut run, &mut f);
+    again
 }
 
 /// Align the names of a run of `DECL` lines one column after the longest type prefix.

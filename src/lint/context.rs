@@ -541,9 +541,12 @@ impl<'p> FileCtx<'p> {
 
     /// Whether `r` is the program's own, not one of an interface version's subprograms.
     pub fn is_user_routine(r: &Routine) -> bool {
-        Interface::ALL
-            .into_iter()
-            .all(|i| subprogram(i, &r.name.text).is_none())
+        // Every catalog name has the interface prefix (a catalog test holds it): most routines
+        // are answered without a search of the catalog.
+        !crate::catalog::has_interface_prefix(&r.name.text)
+            || Interface::ALL
+                .into_iter()
+                .all(|i| subprogram(i, &r.name.text).is_none())
     }
 
     /// The interface subprogram, in the version the program is checked against, that the call

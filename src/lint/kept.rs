@@ -1,9 +1,9 @@
 //! The syntax tree `check` keeps for the Mech-Mind rules, assembled while a file is streamed:
 //! only the bodies that can give those rules anything. A routine's body is kept when it calls an
 //! `MM_` routine or writes a `$FLAG`, or calls (by name) a routine of the file whose body is
-//! kept, as `lint::flow` follows local calls. Every other routine stays in the tree, at its
-//! index, with an empty body (and no declarations, which the rules take from the model): on its
-//! own it gives the rules nothing (no interface call, no flag), and `lint::flow` summarises a
+//! kept, as `lint::flow` follows local calls. No routine keeps its declarations (the rules take
+//! them from the model). Every other routine stays in the tree, at its index, with an empty
+//! body: on its own it gives the rules nothing (no interface call, no flag), and `lint::flow` summarises a
 //! call of it as it summarises the empty body (no `MM_` call may have run). What MM008 still
 //! asks of it, the names its body reads, is kept as a set.
 //!
@@ -51,9 +51,7 @@ impl Seen {
     fn stmt(&mut self, s: &Stmt) {
         walk::each_stmt(std::slice::from_ref(s), &mut |s| match &s.kind {
             StmtKind::Call { name, .. } if has_interface_prefix(&name.text) => self.direct = true,
-            StmtKind::Call { name, .. } => {
-                self.calls.insert(name.key());
-            }
+            StmtKind::Call { name, .. } => insert_key(&mut self.calls, &name.text),
             StmtKind::Assign { target, .. } => self.direct |= writes_flag(target),
             StmtKind::Pulse { signal, .. } => self.direct |= writes_flag(signal),
             _ => {}
@@ -139,6 +137,7 @@ impl KeptBuilder {
     }
 
     fn closed(&mut self, index: usize, seen: Seen) {
+        without_declarations(&mut self.file.routines_mut()[index]);
         if seen.dropped.is_some() {
             self.dropped.insert(index);
         }
@@ -166,8 +165,6 @@ impl KeptBuilder {
             }
         }
         r.body = Vec::new();
-        r.decls = Vec::new();
-        r.definitions = Vec::new();
     }
 
     /// The kept tree; `text` is the file's, lowered again for the routines that turned out to
@@ -201,7 +198,8 @@ impl KeptBuilder {
         }
         let again: FxHashSet<usize> = self.dropped.intersection(&kept).copied().collect();
         if !again.is_empty() {
-            for (k, r) in lower_routines(text, &again) {
+            for (k, mut r) in lower_routines(text, &again) {
+                without_declarations(&mut r);
                 self.file.routines_mut()[k] = r;
             }
         }
@@ -210,6 +208,15 @@ impl KeptBuilder {
             elided_reads: self.elided_reads,
         }
     }
+}
+
+/// A routine as it is kept: the rules take declarations from the model, so a kept routine
+/// holds none (a vision routine's `DECL` lines took more memory than its statements), and its
+/// body no spare capacity.
+fn without_declarations(r: &mut Routine) {
+    r.decls = Vec::new();
+    r.definitions = Vec::new();
+    r.body.shrink_to_fit();
 }
 
 /// The routines of `text` whose indices are in `wanted`, lowered whole (the file is parsed
@@ -247,10 +254,28 @@ fn lower_routines(text: &str, wanted: &FxHashSet<usize>) -> Vec<(usize, Routine)
 /// The upper-case names `body` reads (no interface call in it: no OUT argument of one).
 fn add_reads(body: &[Stmt], reads: &mut FxHashSet<String>) {
     walk::each_stmt(body, &mut |s| {
-        mm008::reads_of(|_| None, s, &mut |id| {
-            reads.insert(id.key());
-        })
+        mm008::reads_of(|_| None, s, &mut |id| insert_key(reads, &id.text))
     });
+}
+
+/// Adds the upper-case key of `name` (as `Ident::key`) to `set`, allocating only when it is
+/// new: a file's routines read the same few names over and over.
+fn insert_key(set: &mut FxHashSet<String>, name: &str) {
+    let mut buf = [0u8; 48];
+    match buf.get_mut(..name.len()) {
+        Some(key) => {
+            key.copy_from_slice(name.as_bytes());
+            key.make_ascii_uppercase();
+            // ASCII case changes keep UTF-8 valid.
+            let key = std::str::from_utf8(key).unwrap_or(name);
+            if !set.contains(key) {
+                set.insert(key.to_owned());
+            }
+        }
+        None => {
+            set.insert(name.to_ascii_uppercase());
+        }
+    }
 }
 
 /// An assignment or PULSE target that is an element of `$FLAG`.

@@ -60,22 +60,30 @@ pub fn decode(bytes: &[u8]) -> Decoded {
 /// [`decode`] taking the bytes: UTF-8 text (the usual case) becomes the `String` without a
 /// copy, so a file is in memory once.
 pub fn decode_owned(mut bytes: Vec<u8>) -> Decoded {
-    let bom = bytes.starts_with(BOM);
-    if std::str::from_utf8(&bytes[if bom { BOM.len() } else { 0 }..]).is_err()
-        || decode_utf16(&bytes).is_some()
-    {
+    if decode_utf16(&bytes).is_some() {
         return decode(&bytes);
     }
+    let bom = bytes.starts_with(BOM);
     if bom {
         bytes.drain(..BOM.len());
     }
-    Decoded {
-        text: String::from_utf8(bytes).expect("checked above"),
-        encoding: if bom {
-            TextEncoding::Utf8Bom
-        } else {
-            TextEncoding::Utf8
+    // Validated once, by the conversion itself (a 50 MB file is read once more per check).
+    match String::from_utf8(bytes) {
+        Ok(text) => Decoded {
+            text,
+            encoding: if bom {
+                TextEncoding::Utf8Bom
+            } else {
+                TextEncoding::Utf8
+            },
         },
+        Err(e) => {
+            let mut bytes = e.into_bytes();
+            if bom {
+                bytes.splice(..0, BOM.iter().copied());
+            }
+            decode(&bytes)
+        }
     }
 }
 

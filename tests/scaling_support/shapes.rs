@@ -4,8 +4,10 @@
 //! routine calls every routine once, and no routine waits for an input); and the two dense in
 //! Mech-Mind calls (one routine, many routines) where every vision step calls the interface
 //! three times and checks the status, so the `MM_` rules and their dataflow judge every line
-//! (`run` would wait for the vision server: it has no such row); and taught points, routines
-//! moving to the `.dat`'s E6POS declarations.
+//! (`run` would wait for the vision server: it has no such row); taught points, routines
+//! moving to the `.dat`'s E6POS declarations; and no motions, routines that compute and branch
+//! but never move, so `run` executes the whole file (`run` stops a program at 50,000 motions,
+//! which the other shapes reach long before their end at 10 MB and up).
 
 use std::fmt::Write as _;
 use std::path::{Path, PathBuf};
@@ -22,16 +24,19 @@ pub enum Shape {
     /// Many routines moving to taught points of the module's `.dat` (the shape of taught
     /// programs: every motion target a `.dat` declaration, about a third of the bytes there).
     TaughtPoints,
+    /// Many routines that compute, loop and branch but never move (`run` runs all of it).
+    NoMotions,
 }
 
 impl Shape {
-    pub const ALL: [Shape; 6] = [
+    pub const ALL: [Shape; 7] = [
         Shape::OneRoutine,
         Shape::ManyRoutines,
         Shape::ManyFiles,
         Shape::MmOneRoutine,
         Shape::MmManyRoutines,
         Shape::TaughtPoints,
+        Shape::NoMotions,
     ];
 
     pub fn name(self) -> &'static str {
@@ -42,6 +47,7 @@ impl Shape {
             Shape::MmOneRoutine => "MM calls, one routine",
             Shape::MmManyRoutines => "MM calls, many routines",
             Shape::TaughtPoints => "taught points",
+            Shape::NoMotions => "no motions",
         }
     }
 
@@ -64,6 +70,7 @@ pub fn write(shape: Shape, bytes: usize, dir: &Path) -> (PathBuf, Option<PathBuf
         Shape::ManyRoutines => std::fs::write(&main, many_routines("main", bytes, &[])).unwrap(),
         Shape::MmOneRoutine => std::fs::write(&main, mm_one_routine(bytes)).unwrap(),
         Shape::MmManyRoutines => std::fs::write(&main, mm_many_routines(bytes)).unwrap(),
+        Shape::NoMotions => std::fs::write(&main, no_motions(bytes)).unwrap(),
         Shape::TaughtPoints => {
             let (src, dat) = taught_points(bytes);
             std::fs::write(&main, src).unwrap();
@@ -248,4 +255,33 @@ pub fn taught_points(bytes: usize) -> (String, String) {
     s.push_str("END\r\n");
     s.push_str(&body);
     (s, dat)
+}
+
+/// A module `main` of routines that count, sum, branch and set outputs, each with its own
+/// function, adding up to about `bytes`; no motion and no wait, so `run` executes every line.
+/// The main routine calls every routine once.
+pub fn no_motions(bytes: usize) -> String {
+    let mut body = String::new();
+    let mut routines = 0;
+    while body.len() < bytes {
+        let k = routines;
+        write!(
+            body,
+            "\r\nDEF main_calc_{k}(count:IN)\r\n  DECL INT count, i, total\r\n  DECL REAL acc\r\n  DECL BOOL ok\r\n  ; Cell {k}: sum the layers, pick a gripper output\r\n  total = 0\r\n  ok = FALSE\r\n  acc = main_scale_{k}(count)\r\n  FOR i = 1 TO count\r\n    total = total + i * {}\r\n    IF (total B_AND 1) == 0 THEN\r\n      acc = acc + 0.5\r\n    ELSE\r\n      acc = acc - 0.25\r\n    ENDIF\r\n  ENDFOR\r\n  SWITCH total B_AND 3\r\n  CASE 0\r\n    $OUT[{}] = TRUE\r\n  CASE 1\r\n    $OUT[{}] = FALSE\r\n  DEFAULT\r\n    ok = acc > 10.0\r\n  ENDSWITCH\r\n  WHILE total > 10\r\n    total = total - 7\r\n  ENDWHILE\r\n  IF NOT ok AND (total < 0) THEN\r\n    total = 0\r\n  ENDIF\r\nEND\r\n\r\nDEFFCT REAL main_scale_{k}(n:IN)\r\n  DECL INT n\r\n  ; The base grows with the layer\r\n  RETURN n * 1.5 + {}.5\r\nENDFCT\r\n",
+            k % 7 + 1,
+            k % 64 + 1,
+            k % 64 + 1,
+            k % 9,
+        )
+        .unwrap();
+        routines += 1;
+    }
+    let mut s = String::from("&ACCESS RVP\r\n&REL 1\r\nDEF main()\r\n");
+    for k in 0..routines {
+        writeln!(s, "  main_calc_{k}({})\r", k % 20 + 1).unwrap();
+    }
+    s.push_str("END\r\n");
+    vision_routine(&mut s, "main");
+    s.push_str(&body);
+    s
 }

@@ -14,6 +14,19 @@ pub fn lower(parse: &Parse, text: &str) -> SourceFile {
     file.finish()
 }
 
+/// A statement's significant elements, on the stack for every usual statement (lowering
+/// allocates nothing per statement that the AST does not keep).
+type Elements<'a> = smallvec::SmallVec<[Element<'a>; 24]>;
+/// A block's lines, on the stack for a short block.
+type Lines<'a> = smallvec::SmallVec<[Node<'a>; 8]>;
+
+/// `s` upper-cased, inline (no heap allocation) for every keyword and operator.
+fn upper(s: &str) -> CompactString {
+    let mut u = CompactString::new(s);
+    u.make_ascii_uppercase();
+    u
+}
+
 pub(super) struct Cx<'t> {
     pub(super) text: &'t str,
 }
@@ -51,11 +64,9 @@ impl<'t> Cx<'t> {
         }
     }
 
-    fn kw(&self, el: &Element) -> Option<String> {
+    fn kw(&self, el: &Element) -> Option<CompactString> {
         match el {
-            Element::Token(t) if t.kind == T::Keyword => {
-                Some(t.text(self.text).to_ascii_uppercase())
-            }
+            Element::Token(t) if t.kind == T::Keyword => Some(upper(t.text(self.text))),
             _ => None,
         }
     }
@@ -172,7 +183,8 @@ impl<'t> Cx<'t> {
     }
 
     fn compound(&self, n: Node) -> ExprKind {
-        let sig: Vec<Element> = n.significant().collect();
+        // Few elements inline: this frame recurses once per operator of a long chain.
+        let sig: smallvec::SmallVec<[Element; 4]> = n.significant().collect();
         match n.kind {
             K::Paren => sig
                 .iter()
@@ -181,7 +193,7 @@ impl<'t> Cx<'t> {
                 .unwrap_or_else(|| ExprKind::Invalid(n.text(self.text).into())),
             K::Unary => {
                 let op = match sig.first().and_then(|e| e.as_token()) {
-                    Some(t) => match t.text(self.text).to_ascii_uppercase().as_str() {
+                    Some(t) => match upper(t.text(self.text)).as_str() {
                         "NOT" => UnaryOp::Not,
                         "B_NOT" => UnaryOp::BNot,
                         "-" => UnaryOp::Neg,
@@ -306,7 +318,7 @@ impl<'t> Cx<'t> {
 
     fn dir(&self, n: Node) -> Option<ParamDir> {
         n.tokens().filter(|t| t.kind == T::Keyword).find_map(|t| {
-            match t.text(self.text).to_ascii_uppercase().as_str() {
+            match upper(t.text(self.text)).as_str() {
                 "IN" => Some(ParamDir::In),
                 "OUT" => Some(ParamDir::Out),
                 _ => None,
@@ -356,7 +368,7 @@ impl<'t> Cx<'t> {
 
     fn stmt_kind(&self, node: Node) -> Option<StmtKind> {
         let text = self.text;
-        let sig: Vec<Element> = node.significant().collect();
+        let sig: Elements = node.significant().collect();
         let exprs = || self.exprs(node);
         let first_expr = || exprs().into_iter().next();
         let other = || StmtKind::Other {
@@ -381,7 +393,7 @@ impl<'t> Cx<'t> {
                     .unwrap_or_default(),
             },
             K::IfBlock => {
-                let lines: Vec<Node> = node.nodes().collect();
+                let lines: Lines = node.nodes().collect();
                 let cond = lines
                     .first()
                     .and_then(|h| self.exprs(*h).into_iter().next())?;
@@ -402,7 +414,7 @@ impl<'t> Cx<'t> {
                 }
             }
             K::ForBlock => {
-                let lines: Vec<Node> = node.nodes().collect();
+                let lines: Lines = node.nodes().collect();
                 let head = lines.first()?;
                 let var = head
                     .tokens()
@@ -426,14 +438,14 @@ impl<'t> Cx<'t> {
                 }
             }
             K::WhileBlock => {
-                let lines: Vec<Node> = node.nodes().collect();
+                let lines: Lines = node.nodes().collect();
                 StmtKind::While {
                     cond: self.exprs(*lines.first()?).into_iter().next()?,
                     body: self.body(inner(&lines, K::EndwhileLine)),
                 }
             }
             K::RepeatBlock => {
-                let lines: Vec<Node> = node.nodes().collect();
+                let lines: Lines = node.nodes().collect();
                 StmtKind::Repeat {
                     until: lines
                         .last()
@@ -443,13 +455,13 @@ impl<'t> Cx<'t> {
                 }
             }
             K::LoopBlock => {
-                let lines: Vec<Node> = node.nodes().collect();
+                let lines: Lines = node.nodes().collect();
                 StmtKind::Loop {
                     body: self.body(inner(&lines, K::EndloopLine)),
                 }
             }
             K::SwitchBlock => {
-                let lines: Vec<Node> = node.nodes().collect();
+                let lines: Lines = node.nodes().collect();
                 let selector = self.exprs(*lines.first()?).into_iter().next()?;
                 let mut cases = Vec::new();
                 let mut default = None;
@@ -472,7 +484,7 @@ impl<'t> Cx<'t> {
                 }
             }
             K::SplineBlock => {
-                let lines: Vec<Node> = node.nodes().collect();
+                let lines: Lines = node.nodes().collect();
                 let head = lines.first()?;
                 let end = lines.last().filter(|l| l.kind == K::EndsplineLine);
                 StmtKind::Spline {
@@ -488,7 +500,7 @@ impl<'t> Cx<'t> {
                 }
             }
             K::SkipBlock => {
-                let lines: Vec<Node> = node.nodes().collect();
+                let lines: Lines = node.nodes().collect();
                 StmtKind::Skip {
                     arg: lines
                         .first()
@@ -822,7 +834,7 @@ impl<'t> Cx<'t> {
     fn approx(&self, node: Node) -> Option<Approx> {
         node.tokens()
             .filter(|t| t.kind == T::Keyword)
-            .find_map(|t| match t.text(self.text).to_ascii_uppercase().as_str() {
+            .find_map(|t| match upper(t.text(self.text)).as_str() {
                 "C_PTP" => Some(Approx::Ptp),
                 "C_DIS" => Some(Approx::Dis),
                 "C_VEL" => Some(Approx::Vel),
@@ -915,7 +927,7 @@ fn inner<'l, 'a>(lines: &'l [Node<'a>], end: K) -> &'l [Node<'a>] {
 }
 
 fn binary_op(op: &str) -> BinaryOp {
-    match op.to_ascii_uppercase().as_str() {
+    match upper(op).as_str() {
         ":" => BinaryOp::Geo,
         "*" => BinaryOp::Mul,
         "/" => BinaryOp::Div,
