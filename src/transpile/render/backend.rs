@@ -12,7 +12,8 @@ use crate::transpile::{flexiv, kawasaki, rapid};
 
 /// What a target language can hold, declared once per target. The lowering asks it and
 /// decides once whether a construct translates exactly, approximately (TR002) or not at all
-/// (TR001); no renderer refuses a construct on its own.
+/// (TR001). Not yet for everything: the renderers' own remaining refusals (a missing joint
+/// map, pose components, external axes …) are listed in ARCHITECTURE.md.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub struct Caps {
     /// `GOTO` and labels; without them a label and the jumps to it are made loops first

@@ -117,8 +117,9 @@ impl<'p> Lower<'p> {
             }
             Sys::Load => {
                 self.kind("load");
-                let load = self.load(target, value, ops)?;
+                // A target without a payload setting refuses it whatever the value is.
                 self.held(Lacked::Load, span)?;
+                let load = self.load(target, value, ops)?;
                 ops.push(Stmt {
                     op: Op::SetLoad(load),
                     span,
@@ -127,8 +128,8 @@ impl<'p> Lower<'p> {
             }
             Sys::OvPro => {
                 self.kind("override");
-                let v = self.expr(value, ops)?;
                 self.held(Lacked::Override, span)?;
+                let v = self.expr(value, ops)?;
                 ops.push(Stmt {
                     op: Op::SetOverride(v),
                     span,
