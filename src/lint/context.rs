@@ -285,40 +285,6 @@ pub struct Project {
     pub interface: super::interface::Selected,
     /// Optional technology packages the config switches on (`[lint] packages`).
     pub packages: Vec<&'static str>,
-    /// Constants with a numeric literal value, by where they are visible from (learned with
-    /// the environment).
-    pub constants: Option<Constants>,
-}
-
-/// The model's constants with a numeric literal value, gathered in one pass over its symbols:
-/// a file asks for those of its module and robot ([`FileCtx::known_consts`]), and a scan of
-/// every symbol per file was quadratic in a workspace of many files.
-#[derive(Default)]
-pub struct Constants {
-    module: FxHashMap<crate::sema::ModuleId, Vec<(SymbolId, f64)>>,
-    robot: FxHashMap<RobotId, Vec<(SymbolId, f64)>>,
-}
-
-impl Constants {
-    fn of(sema: &Sema) -> Constants {
-        let mut c = Constants::default();
-        for (id, s) in sema.symbols() {
-            if s.kind != crate::sema::SymbolKind::Constant {
-                continue;
-            }
-            let Some(v) = s.value.as_ref().and_then(crate::sema::ConstValue::as_f64) else {
-                continue;
-            };
-            match s.scope {
-                crate::sema::Scope::Module(m) => c.module.entry(m).or_default().push((id, v)),
-                crate::sema::Scope::Global(r) | crate::sema::Scope::Config(r) => {
-                    c.robot.entry(r).or_default().push((id, v))
-                }
-                crate::sema::Scope::Routine(_) | crate::sema::Scope::System => {}
-            }
-        }
-        c
-    }
 }
 
 impl Project {
@@ -347,7 +313,6 @@ impl Project {
             environment: FxHashSet::default(),
             interface,
             packages: Vec::new(),
-            constants: None,
         };
         for s in sockets {
             s.owned_flags(&p.channels, &mut p.owned_flags);
@@ -356,9 +321,8 @@ impl Project {
     }
 
     /// Learn [`Project::environment`] from the model, and from the names of the optional
-    /// packages switched on; and [`Project::constants`].
+    /// packages switched on.
     pub fn learn_environment(&mut self, sema: &Sema) {
-        self.constants = Some(Constants::of(sema));
         self.environment.clear();
         let env = crate::sema::env();
         for p in self.packages.iter().filter_map(|p| env.package(p)) {
@@ -624,13 +588,6 @@ impl<'p> FileCtx<'p> {
     /// robot's GLOBAL ones and `$config.dat`), by symbol.
     pub fn known_consts(&self) -> FxHashMap<SymbolId, f64> {
         let info = self.sema.file(self.id);
-        if let Some(c) = &self.project.constants {
-            let module = c.module.get(&info.module).into_iter().flatten();
-            return module
-                .chain(c.robot.get(&info.robot).into_iter().flatten())
-                .copied()
-                .collect();
-        }
         let at = Position {
             robot: info.robot,
             module: info.module,

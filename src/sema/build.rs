@@ -102,6 +102,9 @@ pub struct Sema {
     pub(crate) scopes: Scopes,
     pub(crate) duplicates: Vec<Duplicate>,
     pub(crate) refs: super::query::RefIndex,
+    /// The constants with a numeric value by scope, built on the first
+    /// [`Sema::visible_constants`] (an in-place update keeps every declaration and value).
+    pub(crate) consts: OnceLock<super::consts::ConstIndex>,
 }
 
 /// Path pieces, `/` or `\` separated.
@@ -275,6 +278,7 @@ impl Sema {
                 scopes: Scopes::default(),
                 duplicates: Vec::new(),
                 refs: Default::default(),
+                consts: OnceLock::new(),
             },
         };
         let (robot_of, robots) = partition(&inputs, am_ini);

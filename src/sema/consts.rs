@@ -1,24 +1,59 @@
 //! The constants a position sees, with their numeric values (for rules that reason about
 //! values, such as loop bounds and array sizes).
 
+use rustc_hash::FxHashMap;
+
 use super::scope::Scope;
-use super::{ConstValue, Position, Sema, SymbolId, SymbolKind};
+use super::{ConstValue, ModuleId, Position, RobotId, RoutineId, Sema, SymbolId, SymbolKind};
+
+/// The constants with a numeric literal value, by the scope that declares them: one pass over
+/// the symbols, so a query costs what it returns (a scan of every symbol per file was
+/// quadratic in a workspace of many files).
+#[derive(Debug, Default)]
+pub(crate) struct ConstIndex {
+    routine: FxHashMap<RoutineId, Vec<(SymbolId, f64)>>,
+    module: FxHashMap<ModuleId, Vec<(SymbolId, f64)>>,
+    /// GLOBAL ones and `$config.dat`'s.
+    robot: FxHashMap<RobotId, Vec<(SymbolId, f64)>>,
+}
+
+impl ConstIndex {
+    fn of(sema: &Sema) -> ConstIndex {
+        let mut c = ConstIndex::default();
+        for (id, s) in sema.symbols() {
+            if s.kind != SymbolKind::Constant {
+                continue;
+            }
+            let Some(v) = s.value.as_ref().and_then(ConstValue::as_f64) else {
+                continue;
+            };
+            match s.scope {
+                Scope::Routine(r) => c.routine.entry(r).or_default().push((id, v)),
+                Scope::Module(m) => c.module.entry(m).or_default().push((id, v)),
+                Scope::Global(r) | Scope::Config(r) => c.robot.entry(r).or_default().push((id, v)),
+                Scope::System => {}
+            }
+        }
+        c
+    }
+}
 
 impl Sema {
     /// Every constant with a numeric literal value visible at `at`: the routine's own (when
     /// `at` is in one), its module's `.dat`, the robot's GLOBAL ones and `$config.dat`; not
     /// the system's. In symbol order.
     pub fn visible_constants(&self, at: Position) -> Vec<(SymbolId, f64)> {
-        self.symbols()
-            .filter(|(_, s)| match s.scope {
-                Scope::Routine(r) => at.routine == Some(r),
-                Scope::Module(m) => m == at.module,
-                Scope::Global(r) | Scope::Config(r) => r == at.robot,
-                Scope::System => false,
-            })
-            .filter(|(_, s)| s.kind == SymbolKind::Constant)
-            .filter_map(|(id, s)| Some((id, s.value.as_ref().and_then(ConstValue::as_f64)?)))
-            .collect()
+        let c = self.consts.get_or_init(|| ConstIndex::of(self));
+        let routine = at.routine.and_then(|r| c.routine.get(&r));
+        let mut all: Vec<(SymbolId, f64)> = routine
+            .into_iter()
+            .chain(c.module.get(&at.module))
+            .chain(c.robot.get(&at.robot))
+            .flatten()
+            .copied()
+            .collect();
+        all.sort_unstable_by_key(|(id, _)| *id);
+        all
     }
 }
 
