@@ -184,8 +184,9 @@ fn many_routines(n: usize) -> String {
     s
 }
 
-/// Translating the program of size `4 * n` costs well under 16 times the program of size `n`
-/// in CPU time, and in memory above what krlkit needs for no file.
+/// Translating the program of size `4 * n` takes well under 16 times the memory of the program
+/// of size `n` above what krlkit needs for no file. (Time is the scaling guard's, on the release
+/// binary, `tests/scaling_guard.rs`: CPU time of small debug runs flaked here under load.)
 fn assert_linear(name: &str, program: fn(usize) -> String, n: usize) {
     let dir = tempfile::tempdir().unwrap();
     std::fs::write(dir.path().join("small.src"), program(n)).unwrap();
@@ -193,12 +194,7 @@ fn assert_linear(name: &str, program: fn(usize) -> String, n: usize) {
     let (_, base) = cpu_and_rss(&["rules"], dir.path());
     for target in ["kawasaki", "flexiv"] {
         let run = |file: &str| cpu_and_rss(&["transpile", file, "--to", target], dir.path());
-        let ((small, small_rss), (large, large_rss)) = (run("small.src"), run("large.src"));
-        let ratio = large / small.max(0.01);
-        assert!(
-            ratio < 7.0,
-            "{name} --to {target}: 4x the program took {ratio:.1}x the CPU time ({small:.2} s, {large:.2} s)"
-        );
+        let ((_, small_rss), (_, large_rss)) = (run("small.src"), run("large.src"));
         let (small_mb, large_mb) = ((small_rss - base) / 1e6, (large_rss - base) / 1e6);
         assert!(
             large_mb < 7.0 * small_mb.max(1.0),
