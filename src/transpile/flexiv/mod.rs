@@ -99,6 +99,15 @@ pub static BACKEND: render::Backend = render::Backend {
             to_axes: false,
             ..render::Caps::BASE.blending
         },
+        // The script keeps KUKA axis values (`Axis`) and maps them at the motion.
+        axis_values: render::AxisValues {
+            robot: "Rizon",
+            joint: "joint",
+            joints: 7,
+            written: false,
+            every: true,
+            linear: false,
+        },
         ..render::Caps::BASE
     },
     name_rules: &NAME_RULES,

@@ -138,6 +138,26 @@ pub enum Why {
     BitwiseNot,
     /// A string longer than the target holds (`Caps::string_len`).
     StringLength { len: usize, max: usize },
+    /// A LIN or CIRC (its KRL name) to axis values in a target whose linear motions need a
+    /// Cartesian target (`Caps::axis_values`).
+    LinearToAxes(&'static str),
+    /// KUKA axis values where the target needs the joint map and none was given
+    /// (`Caps::axis_values`).
+    NoJointMap {
+        at: AxisUse,
+        axes: crate::transpile::render::AxisValues,
+    },
+}
+
+/// Where axis values met a target without a joint map.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum AxisUse {
+    /// Values written in the program (a literal, a `.dat` value) or a motion to axis values.
+    Values,
+    /// A relative axis move (`PTP_REL {A6 90}`).
+    Relative,
+    /// The robot's joints read back (`$AXIS_ACT`).
+    Read,
 }
 
 /// A KRL statement or operator some target has nothing for (`Caps::lacks`).
@@ -322,6 +342,11 @@ impl Why {
             Why::StringLength { len, max } => {
                 format!("a string of {len} characters; this target holds at most {max}")
             }
+            Why::NoJointMap { at, axes } => no_joint_map(*at, axes),
+            Why::LinearToAxes(krl) => {
+                let instr = if *krl == "CIRC" { "MoveC" } else { "MoveL" };
+                format!("{krl} to axis values has no counterpart ({instr} needs a Cartesian target)")
+            }
         }
     }
 }
@@ -331,6 +356,29 @@ fn v2_form(name: &str, args: Option<usize>) -> bool {
     crate::catalog::catalog()
         .subprogram_in(crate::catalog::Interface::V2, name)
         .is_some_and(|s| args.is_none_or(|n| s.params.len() == n))
+}
+
+/// Why KUKA axis values do not reach a target without a joint map.
+fn no_joint_map(at: AxisUse, axes: &crate::transpile::render::AxisValues) -> String {
+    let (robot, joint) = (axes.robot, axes.joint);
+    let count = match axes.joints {
+        7 => "seven".to_owned(),
+        n => n.to_string(),
+    };
+    match at {
+        AxisUse::Relative => format!(
+            "a relative axis move: which {robot} {joint} turns, and in which direction, needs a joint map"
+        ),
+        AxisUse::Values if axes.joints != 6 => format!(
+            "PTP to axis values: a {robot} has {count} joints, KUKA six, so the values have no meaning on the {robot} without a joint map"
+        ),
+        AxisUse::Read if axes.joints != 6 => format!(
+            "$AXIS_ACT: a {robot} has {count} joints, KUKA six; without a joint map that gives every axis one joint they cannot be read as KUKA axes"
+        ),
+        AxisUse::Values | AxisUse::Read => format!(
+            "KUKA axis values: {robot}'s {joint} zeros and directions differ, so the same numbers are another posture; without a joint map they are not translated"
+        ),
+    }
 }
 
 fn arity(name: &str, takes: usize, given: usize) -> String {

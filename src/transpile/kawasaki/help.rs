@@ -62,6 +62,7 @@ fn own(why: &Why) -> Option<String> {
         }
         Why::Goto => "restructure the jump".into(),
         Why::Load => "set the payload with WEIGHT mass, cx, cy, cz".into(),
+        Why::NoJointMap { .. } => super::expr::JOINT_MAP_HELP.into(),
         Why::BitwiseNot => {
             "use BXOR with a mask of the bits you need (e.g. x BXOR ^HFF for 8 bits)".into()
         }

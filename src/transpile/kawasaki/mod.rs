@@ -85,6 +85,15 @@ pub static BACKEND: render::Backend = render::Backend {
             low: false,
             flags: true,
         },
+        // The robot's joints (HERE) move and compare as they are.
+        axis_values: render::AxisValues {
+            robot: "Kawasaki",
+            joint: "joint",
+            joints: 6,
+            written: true,
+            every: false,
+            linear: true,
+        },
         ..render::Caps::BASE
     },
     name_rules: &NAME_RULES,

@@ -315,7 +315,10 @@ impl<'a> Tx<'a> {
         let ext = self.ext_axes(a, span)?;
         if a.axis {
             let Some(map) = self.opts.joint_map.clone() else {
-                return fail(span, NO_JOINT_MAP, JOINT_MAP_HELP);
+                return crate::transpile::render::not_lowered(
+                    span,
+                    "axis values without a joint map",
+                );
             };
             let Some(m) = a.numbers() else {
                 return fail(

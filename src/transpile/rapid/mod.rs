@@ -82,6 +82,15 @@ pub static BACKEND: render::Backend = render::Backend {
         trigger: render::Trigger::OnPath,
         lacks: &[Lacked::Load, Lacked::Timers, Lacked::Geo, Lacked::Bitwise],
         string_len: Some(80),
+        // MoveAbsJ takes ABB's axis values, CJointT reads them: every axis value is ABB's.
+        axis_values: render::AxisValues {
+            robot: "ABB",
+            joint: "axis",
+            joints: 6,
+            written: true,
+            every: true,
+            linear: false,
+        },
         ..render::Caps::BASE
     },
     name_rules: &NAME_RULES,

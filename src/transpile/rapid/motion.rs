@@ -83,10 +83,9 @@ impl<'a> Tx<'a> {
             }
             Path::JointRel { delta, .. } => {
                 let Some(map) = self.opts.joint_map.clone() else {
-                    return fail(
+                    return crate::transpile::render::not_lowered(
                         delta.span,
-                        "a relative axis move: which ABB axis turns, and in which direction, needs a joint map",
-                        super::expr::JOINT_MAP_HELP,
+                        "a relative axis move without a joint map",
                     );
                 };
                 let mut turns = Vec::new();
@@ -181,10 +180,9 @@ impl<'a> Tx<'a> {
     /// A motion target: a variable, an element or a literal.
     fn target(&mut self, t: &Target) -> R<String> {
         if t.joints && self.opts.joint_map.is_none() {
-            return fail(
+            return crate::transpile::render::not_lowered(
                 t.expr.span,
-                super::expr::NO_JOINT_MAP,
-                super::expr::JOINT_MAP_HELP,
+                "axis values without a joint map",
             );
         }
         if let ExprKind::Aggregate(a) = &t.expr.kind

@@ -32,7 +32,10 @@ impl<'a> Tx<'a> {
                 let t = self.place_text(place, span)?;
                 if *joints {
                     if self.opts.joint_map.is_none() {
-                        return fail(span, super::expr::NO_JOINT_MAP, super::expr::JOINT_MAP_HELP);
+                        return crate::transpile::render::not_lowered(
+                            span,
+                            "$AXIS_ACT without a joint map",
+                        );
                     }
                     self.line(format!("{t} := CJointT();"));
                 } else {

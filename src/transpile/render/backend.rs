@@ -48,6 +48,9 @@ pub struct Caps {
     /// The longest string the target holds, in characters (`None`: no limit known); a longer
     /// KRL string is TR001.
     pub string_len: Option<usize>,
+    /// Where KUKA axis values need the joint map (`--joint-map`): without one the lowering
+    /// refuses them there (TR001 `Why::NoJointMap`).
+    pub axis_values: AxisValues,
 }
 
 impl Caps {
@@ -77,7 +80,38 @@ impl Caps {
         param_reads: false,
         bitwise_not: false,
         string_len: None,
+        axis_values: AxisValues {
+            robot: "the robot",
+            joint: "joint",
+            joints: 6,
+            written: true,
+            every: false,
+            linear: true,
+        },
     };
+}
+
+/// Where a target needs the joint map (`--joint-map`) for KUKA axis values (E6AXIS, in KUKA's
+/// joint zeros and directions). Relative axis moves (`PTP_REL {A6 90}`) need it in every
+/// target.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub struct AxisValues {
+    /// The arm, as findings name it (`Kawasaki`, `ABB`, `Rizon`).
+    pub robot: &'static str,
+    /// What its manuals call one of its axes (`joint`, `axis`).
+    pub joint: &'static str,
+    /// How many it has (KUKA: six).
+    pub joints: u8,
+    /// Axis values written in the program (literals, `.dat` values) become the target's joint
+    /// values where they are written, so they need the map there; without: they stay KUKA's
+    /// and the robot's joints read back become KUKA axes (a map giving every axis a joint).
+    pub written: bool,
+    /// Every motion to axis values and every read of the robot's joints needs the map, not
+    /// only values written in the program.
+    pub every: bool,
+    /// A LIN or CIRC can go to axis values; without: TR001 (its linear motions need a
+    /// Cartesian target).
+    pub linear: bool,
 }
 
 /// The `PULSE`s a target holds besides a high pulse of an output; the rest is TR001.
@@ -137,7 +171,7 @@ pub enum Trigger {
 }
 
 /// The columns of the capability table.
-const CAPS_COLUMNS: [&str; 14] = [
+const CAPS_COLUMNS: [&str; 15] = [
     "language",
     "GOTO",
     "STRUC",
@@ -149,13 +183,14 @@ const CAPS_COLUMNS: [&str; 14] = [
     "PULSE",
     "B_NOT",
     "`$VEL.CP`, `$APO` read",
+    "axis values (E6AXIS)",
     "nothing for (TR001)",
     "strings",
     "identifiers",
 ];
 
 /// A target's row of the capability table, in [`CAPS_COLUMNS`] order.
-fn caps_row(b: &Backend) -> [String; 14] {
+fn caps_row(b: &Backend) -> [String; 15] {
     let yes_no = |b: bool, without: &str| {
         if b {
             "yes".to_owned()
@@ -201,10 +236,33 @@ fn caps_row(b: &Backend) -> [String; 14] {
         pulse(&c.pulse),
         yes_no(c.bitwise_not, "TR001"),
         yes_no(c.param_reads, "TR001"),
+        axis_values(&c.axis_values),
         lacked(c.lacks),
         strings,
         format!("≤ {} characters", n.max_len),
     ]
+}
+
+/// The axis-values cell: what needs `--joint-map` (else TR001), and LIN/CIRC to them.
+fn axis_values(a: &AxisValues) -> String {
+    let mut needs = Vec::new();
+    if a.written {
+        needs.push("written in the program");
+    }
+    if a.every {
+        needs.push("moved to");
+    }
+    let mut cell = format!("{}: need --joint-map", needs.join(", "));
+    match (a.every, a.written) {
+        (true, true) => cell.push_str("; $AXIS_ACT read: needs it"),
+        (_, false) => cell.push_str("; $AXIS_ACT read: needs a map giving every axis a joint"),
+        (false, true) => {}
+    }
+    cell.push_str("; PTP_REL in axes: needs it");
+    if !a.linear {
+        cell.push_str("; LIN/CIRC to them: TR001");
+    }
+    cell
 }
 
 /// The cell of the statements a target has nothing for.

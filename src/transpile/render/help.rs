@@ -44,6 +44,8 @@ fn shared(why: &Why) -> String {
         Why::WaitCall => "assign the function's value to a variable and wait on that",
         Why::MessageText => "pass the text",
         Why::StringLength { .. } => "shorten the string, or build it from shorter parts",
+        Why::NoJointMap { .. } => "give --joint-map",
+        Why::LinearToAxes(_) => "move to a pose (E6POS)",
         Why::Skip
         | Why::Other(_)
         | Why::SystemVariable(_)

@@ -24,7 +24,9 @@ use super::ir::{self as ir, Case, Expr, LabelId, LoopId, Op, RoutineId, Stmt, Te
 use crate::diag::Span;
 
 pub use super::ir::why::Lacked;
-pub use backend::{BACKENDS, Backend, Blending, Caps, Distance, Pulse, Relative, Trigger, backend};
+pub use backend::{
+    AxisValues, BACKENDS, Backend, Blending, Caps, Distance, Pulse, Relative, Trigger, backend,
+};
 
 /// How a target writes lines and comments.
 pub struct Style {
@@ -295,7 +297,7 @@ pub trait Emit<'a> {
             // Made only for targets without `GOTO` (`ir::goto`), which spell it themselves.
             Op::Continue(_) => not_lowered(span, "a jump to a loop's next pass"),
             Op::Message { routine, text } => self.message(routine, text, span),
-            Op::Unsupported { why, at } => self.unsupported(why, *at),
+            Op::Unsupported { why, at, .. } => self.unsupported(why, *at),
             Op::Keep { note } => self.keep_op(*note, span),
             _ => not_lowered(span, "an op its target spells itself"),
         }

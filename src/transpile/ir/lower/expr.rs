@@ -74,6 +74,9 @@ impl<'p> Lower<'p> {
             A::Binary { op, lhs, rhs } => self.binary(*op, lhs, rhs, span, pre),
             A::Aggregate { .. } => {
                 let a = self.aggregate(e, None, pre)?;
+                if a.axis {
+                    self.written_axes(span)?;
+                }
                 let ty = if a.axis { Ty::Joint } else { Ty::Pose };
                 Ok(Expr::new(ExprKind::Aggregate(Box::new(a)), ty, span))
             }
@@ -359,7 +362,7 @@ impl<'p> Lower<'p> {
         if let A::Member { base, field } = &e.kind
             && let Some(s @ (Sys::PosAct | Sys::AxisAct)) = sysvar::classify(base)
         {
-            let b = self.read_position(matches!(s, Sys::AxisAct), base.span, pre);
+            let b = self.read_position(matches!(s, Sys::AxisAct), base.span, pre)?;
             return self.member(b, field, span);
         }
         if let Some(s) = sysvar::classify(e) {
@@ -530,7 +533,10 @@ impl<'p> Lower<'p> {
     }
 
     /// The current position read into a temporary (after an advance-run stop).
-    pub(super) fn read_position(&mut self, joints: bool, span: Span, pre: &mut Block) -> Expr {
+    pub(super) fn read_position(&mut self, joints: bool, span: Span, pre: &mut Block) -> L<Expr> {
+        if joints {
+            self.read_axes(span)?;
+        }
         self.stop(span, pre);
         let ty = if joints { Ty::Joint } else { Ty::Pose };
         let t = self.temp(ty.clone());
@@ -541,7 +547,7 @@ impl<'p> Lower<'p> {
             },
             span,
         });
-        Expr::new(ExprKind::Place(Place::Temp(t)), ty, span)
+        Ok(Expr::new(ExprKind::Place(Place::Temp(t)), ty, span))
     }
 
     fn system_value(&mut self, s: Sys, e: &ast::Expr, pre: &mut Block) -> L<Expr> {
@@ -574,8 +580,8 @@ impl<'p> Lower<'p> {
                 self.held(Lacked::Timers, span)?;
                 Expr::new(ExprKind::TimerFlag(i), Ty::Bool, span)
             }
-            Sys::PosAct => self.read_position(false, span, pre),
-            Sys::AxisAct => self.read_position(true, span, pre),
+            Sys::PosAct => self.read_position(false, span, pre)?,
+            Sys::AxisAct => self.read_position(true, span, pre)?,
             Sys::NullFrame => Expr::new(ExprKind::NullFrame, Ty::Pose, span),
             Sys::VelCp => self.param_read(MotionParam::VelCp, span)?,
             Sys::ApoCdis => self.param_read(MotionParam::ApoCdis, span)?,
@@ -835,6 +841,9 @@ impl<'p> Lower<'p> {
                 Layout::Axis
             };
             let a = self.aggregate(value, Some(want), pre)?;
+            if a.axis {
+                self.written_axes(span)?;
+            }
             return Ok(Expr::new(
                 ExprKind::Aggregate(Box::new(a)),
                 ty.clone(),

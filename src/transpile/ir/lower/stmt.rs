@@ -85,7 +85,11 @@ impl<'p> Lower<'p> {
         match r {
             Ok(()) => out.extend(ops),
             Err((why, at)) => out.push(Stmt {
-                op: Op::Unsupported { why, at },
+                op: Op::Unsupported {
+                    why,
+                    at,
+                    moves: matches!(s.kind, StmtKind::Motion(_)),
+                },
                 span: s.span,
             }),
         }
@@ -112,7 +116,11 @@ impl<'p> Lower<'p> {
                 match self.assign(&target, init, span, &mut ops) {
                     Ok(()) => out.extend(ops),
                     Err((why, at)) => out.push(Stmt {
-                        op: Op::Unsupported { why, at },
+                        op: Op::Unsupported {
+                            why,
+                            at,
+                            moves: false,
+                        },
                         span,
                     }),
                 }
@@ -640,6 +648,9 @@ impl<'p> Lower<'p> {
         if matches!(place, Place::Var(_) | Place::Index(..)) {
             match (sysvar::classify(value), &ty) {
                 (Some(Sys::PosAct), Ty::Pose) | (Some(Sys::AxisAct), Ty::Joint) => {
+                    if ty == Ty::Joint {
+                        self.read_axes(span)?;
+                    }
                     self.stop(span, ops);
                     Self::push(
                         ops,

@@ -40,11 +40,21 @@ fn whether_a_call_moves_comes_from_the_model() {
     assert_eq!(loop_kinds(text), ["while", "while", "forever"]);
 }
 
-/// The top-level ops the lowering makes of `text` for `target`, and the program it recorded.
+/// The top-level ops the lowering makes of `text` for `target`, and the program it recorded
+/// (with joint maps for every target).
 fn lowered(text: &str, target: Target) -> (Program, Vec<Op>) {
+    let mut options = Options {
+        joint_map: Some(crate::transpile::kawasaki::joint_map("A1,A2,A3,A4,A5,A6").unwrap()),
+        ..Options::default()
+    };
+    options.flexiv.joint_map =
+        Some(crate::transpile::flexiv::options::joint_map("A1,A2,0,A3,A4,A5,A6").unwrap());
+    lowered_with(text, target, &options)
+}
+
+fn lowered_with(text: &str, target: Target, options: &Options) -> (Program, Vec<Op>) {
     let program = front::Program::new(front::Parsed::new("t.src", text), None);
-    let options = Options::default();
-    let mut lower = Lower::new(&program, &options, render::backend(target).caps());
+    let mut lower = Lower::new(&program, options, render::backend(target).caps());
     let mut ops = Vec::new();
     program.src.each_statement(false, |s| match s {
         front::Statement::Begin(i) => ops.extend(lower.begin_routine(i).into_iter().map(|s| s.op)),
@@ -151,5 +161,42 @@ fn relative_moves_follow_the_targets_caps() {
             usize::from(!caps.joint_path),
             "{target:?}"
         );
+    }
+}
+
+/// Without a joint map the lowering refuses KUKA axis values where the target needs the map
+/// (`Caps::axis_values`), and a LIN to axis values where the target's linear motions need a
+/// pose; no renderer meets them.
+#[test]
+fn axis_values_follow_the_targets_caps() {
+    use crate::transpile::ir::why::AxisUse;
+    let text = "DEF main()\nDECL E6AXIS j\nj = {A1 0, A2 -90, A3 90, A4 0, A5 0, A6 0}\n\
+        PTP j\nLIN j\nPTP_REL {A6 90}\nj = $AXIS_ACT\nEND\n";
+    for target in [Target::Kawasaki, Target::Flexiv, Target::Rapid] {
+        let a = render::backend(target).caps().axis_values;
+        let (_, ops) = lowered_with(text, target, &Options::default());
+        let refused: Vec<Option<Why>> = ops
+            .into_iter()
+            .filter_map(|op| match op {
+                Op::Unsupported { why, .. } => Some(Some(why)),
+                Op::Move(_) | Op::Assign { .. } | Op::ReadPos { .. } => Some(None),
+                _ => None,
+            })
+            .collect();
+        let no_map = |at| Some(Why::NoJointMap { at, axes: a });
+        let want = [
+            a.written.then(|| no_map(AxisUse::Values)).flatten(),
+            a.every.then(|| no_map(AxisUse::Values)).flatten(),
+            if a.linear {
+                a.every.then(|| no_map(AxisUse::Values)).flatten()
+            } else {
+                Some(Why::LinearToAxes("LIN"))
+            },
+            no_map(AxisUse::Relative),
+            (a.every || !a.written)
+                .then(|| no_map(AxisUse::Read))
+                .flatten(),
+        ];
+        assert_eq!(refused, want, "{target:?}");
     }
 }
