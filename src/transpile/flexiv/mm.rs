@@ -71,11 +71,11 @@ impl<'a> Tx<'a> {
                     }
                     Direction::In => ins.push(self.expr(value)?),
                     Direction::Out => {
+                        // The lowering refuses it (`Why::OutArgument`).
                         let Some(place) = &a.place else {
-                            return fail(
+                            return crate::transpile::render::not_lowered(
                                 a.span,
-                                "an OUT argument must be a variable",
-                                "pass a variable",
+                                "an OUT argument that is no variable",
                             );
                         };
                         places.push(self.target(place, a.span, true)?);

@@ -401,11 +401,9 @@ impl<'a> Tx<'a> {
         }
         match &a.value {
             Some(v) => self.expr(v),
-            None => fail(
-                a.span,
-                "an omitted argument has no translation",
-                "pass every argument",
-            ),
+            None => {
+                crate::transpile::render::not_lowered(a.span, "an omitted argument of a routine")
+            }
         }
     }
 
@@ -428,11 +426,11 @@ impl<'a> Tx<'a> {
                 for a in args {
                     rendered.push(self.arg_value(a)?);
                     if a.out {
+                        // The lowering refuses it (`Why::OutArgument`).
                         let Some(p) = &a.place else {
-                            return fail(
+                            return crate::transpile::render::not_lowered(
                                 a.span,
-                                "an OUT argument must be a variable (the script assigns the returned value to it)",
-                                "pass a variable",
+                                "an OUT argument that is no variable",
                             );
                         };
                         places.push(self.target(p, a.span, true)?);

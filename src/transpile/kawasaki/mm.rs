@@ -260,11 +260,11 @@ impl<'a> Tx<'a> {
                 )
             }
             (_, Direction::Out) => {
+                // The lowering refuses it (`Why::OutArgument`).
                 let Some(place) = &arg.place else {
-                    return fail(
+                    return crate::transpile::render::not_lowered(
                         arg.span,
-                        "an output argument must be a variable",
-                        "pass a variable",
+                        "an OUT argument that is no variable",
                     );
                 };
                 let ty = as_ty(kind);

@@ -222,10 +222,9 @@ impl<'a> Tx<'a> {
     /// value.
     fn call_arg(&mut self, a: &Arg) -> R<String> {
         let Some(v) = &a.value else {
-            return fail(
+            return crate::transpile::render::not_lowered(
                 a.span,
-                "an omitted argument has no AS equivalent",
-                "pass every argument",
+                "an omitted argument of a routine",
             );
         };
         if let Some(p) = &a.place

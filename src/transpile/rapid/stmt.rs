@@ -221,10 +221,9 @@ impl<'a> Tx<'a> {
     /// An argument: a variable for an INOUT parameter, else a value.
     fn call_arg(&mut self, a: &Arg) -> R<String> {
         let Some(v) = &a.value else {
-            return fail(
+            return crate::transpile::render::not_lowered(
                 a.span,
-                "an omitted argument has no RAPID equivalent",
-                "pass every argument",
+                "an omitted argument of a routine",
             );
         };
         if a.out

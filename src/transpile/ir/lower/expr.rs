@@ -737,14 +737,9 @@ impl<'p> Lower<'p> {
                 .as_ref()
                 .and_then(|p| p.get(i))
                 .is_some_and(|p| p.dir == crate::transpile::ir::ParamDir::Out);
+            // No target passes "no value" to a routine.
             let Some(a) = a else {
-                out.push(Arg {
-                    value: None,
-                    place: None,
-                    out: is_out,
-                    span,
-                });
-                continue;
+                return fail(Why::OmittedArgument, span);
             };
             let value = values.next().expect("one value per present argument");
             let place = match &value.kind {

@@ -200,3 +200,27 @@ fn axis_values_follow_the_targets_caps() {
         assert_eq!(refused, want, "{target:?}");
     }
 }
+
+/// An omitted argument of a routine, and an OUT argument that is no variable, are refused by
+/// the lowering for every target (none passes "no value" or assigns a value back to it).
+#[test]
+fn call_arguments_every_target_refuses() {
+    let text = "DEF main()\nDECL INT n\ngo(1, )\nget(n + 1)\nget(n)\nEND\n\
+        DEF go(a:IN, b:IN)\nINT a, b\nEND\nDEF get(x:OUT)\nINT x\nx = 1\nEND\n";
+    for target in [Target::Kawasaki, Target::Flexiv, Target::Rapid] {
+        let (_, ops) = lowered(text, target);
+        let refused: Vec<Option<Why>> = ops
+            .into_iter()
+            .filter_map(|op| match op {
+                Op::Unsupported { why, .. } => Some(Some(why)),
+                Op::Call { .. } => Some(None),
+                _ => None,
+            })
+            .collect();
+        assert_eq!(
+            refused,
+            [Some(Why::OmittedArgument), Some(Why::OutArgument), None],
+            "{target:?}"
+        );
+    }
+}
