@@ -71,6 +71,7 @@ fn own(why: &Why) -> Option<String> {
         Why::Goto => "restructure the jump with a loop (while/break) or IF".into(),
         Why::Load => "set mass, centre of mass and inertia in the tool (Flexiv Elements)".into(),
         Why::BitwiseNot => "use ~ on an integer by hand".into(),
+        Why::MmMoves(_) => "run the hand-eye calibration with Mech-Vision's Flexiv support, or port the handshake (command 701) by hand".into(),
         Why::NoJointMap { at, .. } => match at {
             AxisUse::Values => "give --joint-map (e.g. A1,A2,0,A3,A4,A5,A6), or teach the pose on the Rizon and move there with MoveJ",
             AxisUse::Relative => "give --joint-map (e.g. A1,A2,0,A3,A4,A5,A6)",

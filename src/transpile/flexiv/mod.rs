@@ -84,6 +84,11 @@ pub static BACKEND: render::Backend = render::Backend {
     target: super::Target::Flexiv,
     name: "flexiv",
     caps: render::Caps {
+        robot: "Rizon",
+        // The address comes from the spec or the EKI XML.
+        mech_mind: render::MechMind::Client {
+            reads: &[("MM_Init_Socket", &["Time_Out"] as &[&str])],
+        },
         goto: false,
         interrupts: false,
         bitwise_not: true,
@@ -101,7 +106,6 @@ pub static BACKEND: render::Backend = render::Backend {
         },
         // The script keeps KUKA axis values (`Axis`) and maps them at the motion.
         axis_values: render::AxisValues {
-            robot: "Rizon",
             joint: "joint",
             joints: 7,
             written: false,

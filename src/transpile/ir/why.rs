@@ -146,7 +146,18 @@ pub enum Why {
     NoJointMap {
         at: AxisUse,
         axes: crate::transpile::render::AxisValues,
+        robot: &'static str,
     },
+    /// An `MM_*` routine the target's Mech-Mind interface has no command for
+    /// (`Caps::mech_mind`).
+    MmNoCommand { name: String, robot: &'static str },
+    /// An `MM_*` routine that moves the robot with the KUKA package's own motions, in a
+    /// target whose client only talks to the vision system.
+    MmMoves(String),
+    /// An `MM_*` call in a target whose robots use their own Mech-Mind interface.
+    MmInterface { name: String, robot: &'static str },
+    /// An `MM_*` call omitting an argument the translation reads (the parameter).
+    MmArgument(String),
 }
 
 /// Where axis values met a target without a joint map.
@@ -342,7 +353,11 @@ impl Why {
             Why::StringLength { len, max } => {
                 format!("a string of {len} characters; this target holds at most {max}")
             }
-            Why::NoJointMap { at, axes } => no_joint_map(*at, axes),
+            Why::NoJointMap { at, axes, robot } => no_joint_map(*at, axes, robot),
+            Why::MmNoCommand { name, robot } => format!("`{name}` has no {robot} counterpart (the {robot} interface has no such command)"),
+            Why::MmMoves(name) => format!("`{name}` moves the robot through the KUKA package's own motions; the script's client does not translate it"),
+            Why::MmInterface { name, robot } => format!("`{name}` is a routine of the Mech-Mind KUKA interface; {robot} robots talk to Mech-Vision through Mech-Mind's {robot} interface"),
+            Why::MmArgument(p) => format!("argument {p} is omitted"),
             Why::LinearToAxes(krl) => {
                 let instr = if *krl == "CIRC" { "MoveC" } else { "MoveL" };
                 format!("{krl} to axis values has no counterpart ({instr} needs a Cartesian target)")
@@ -359,8 +374,8 @@ fn v2_form(name: &str, args: Option<usize>) -> bool {
 }
 
 /// Why KUKA axis values do not reach a target without a joint map.
-fn no_joint_map(at: AxisUse, axes: &crate::transpile::render::AxisValues) -> String {
-    let (robot, joint) = (axes.robot, axes.joint);
+fn no_joint_map(at: AxisUse, axes: &crate::transpile::render::AxisValues, robot: &str) -> String {
+    let joint = axes.joint;
     let count = match axes.joints {
         7 => "seven".to_owned(),
         n => n.to_string(),

@@ -49,14 +49,10 @@ impl<'a> Tx<'a> {
         }
         match sub.kawasaki() {
             Some(k) => self.mm_command(sub, k, args, span),
-            None => fail(
+            // The lowering refuses it (`Caps::mech_mind`).
+            None => crate::transpile::render::not_lowered(
                 span,
-                format!("`{}` has no Kawasaki counterpart (the Kawasaki interface has no such command)", sub.name),
-                match sub.name.as_str() {
-                    "MM_Get_Status" => "remove the check; mm_init_skt fails when the vision system is not reachable".to_owned(),
-                    "MM_Set_Pos" => "send the pose with the Mech-Vision External Move settings by hand, or restructure the cycle".to_owned(),
-                    _ => "port by hand".to_owned(),
-                },
+                "an MM_ routine without a Kawasaki command",
             ),
         }
     }
@@ -84,11 +80,11 @@ impl<'a> Tx<'a> {
             if let Some(i) = kuka_index {
                 let kp = sub.params[i].ident();
                 used[i] = true;
+                // The lowering refuses an omitted one (`Caps::mech_mind`).
                 let Some(arg) = args.get(i).filter(|a| a.value.is_some()) else {
-                    return fail(
+                    return crate::transpile::render::not_lowered(
                         span,
-                        format!("argument {kp} is omitted"),
-                        "pass every argument",
+                        &format!("an omitted argument {kp}"),
                     );
                 };
                 rendered.push(self.mm_arg(p.kind, p.dir, arg, &mut prelude)?);
@@ -234,7 +230,7 @@ impl<'a> Tx<'a> {
         prelude: &mut Vec<String>,
     ) -> R<String> {
         let Some(value) = &arg.value else {
-            return fail(arg.span, "an omitted argument", "pass every argument");
+            return crate::transpile::render::not_lowered(arg.span, "an omitted argument");
         };
         match (kind, dir) {
             (AsKind::Joint, Direction::In) => {
@@ -299,11 +295,9 @@ impl<'a> Tx<'a> {
             .position(|p| p.ident().eq_ignore_ascii_case(param));
         match i.and_then(|i| args.get(i)).and_then(|a| a.value.as_ref()) {
             Some(a) => self.expr(a),
-            None => fail(
-                span,
-                format!("argument {param} is missing"),
-                "pass every argument",
-            ),
+            None => {
+                crate::transpile::render::not_lowered(span, &format!("an omitted argument {param}"))
+            }
         }
     }
 
@@ -353,10 +347,9 @@ impl<'a> Tx<'a> {
             global(g, span)?;
         }
         let Some((target, at)) = arg(target_param) else {
-            return fail(
+            return crate::transpile::render::not_lowered(
                 span,
-                format!("argument {target_param} is missing"),
-                "pass every argument",
+                &format!("an omitted argument {target_param}"),
             );
         };
         let t = self.place_text(&target, &ty, at)?;

@@ -78,6 +78,15 @@ pub static BACKEND: render::Backend = render::Backend {
     target: super::Target::Kawasaki,
     name: "kawasaki",
     caps: render::Caps {
+        robot: "Kawasaki",
+        // Computed from mm_get_plandata's globals and mm_get_pose (`mm.rs`).
+        mech_mind: render::MechMind::Commands {
+            computed: &[
+                ("MM_Get_PlanJps", &["Serial", "MM_J"] as &[&str]),
+                ("MM_Get_PlanPose", &["Serial", "MM_P"] as &[&str]),
+                ("MM_Get_DyPose", &["Serial", "MM_P", "MM_Label"] as &[&str]),
+            ],
+        },
         interrupt_on_flags: true,
         functions: false,
         lacks: &[Lacked::Override, Lacked::TimerStop],
@@ -87,7 +96,6 @@ pub static BACKEND: render::Backend = render::Backend {
         },
         // The robot's joints (HERE) move and compare as they are.
         axis_values: render::AxisValues {
-            robot: "Kawasaki",
             joint: "joint",
             joints: 6,
             written: true,

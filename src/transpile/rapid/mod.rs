@@ -72,6 +72,7 @@ pub static BACKEND: render::Backend = render::Backend {
     target: super::Target::Rapid,
     name: "rapid",
     caps: render::Caps {
+        robot: "ABB",
         records: true,
         // MoveJ to Offs/RelTool; RelTool turns about one tool axis (\Rx, \Ry or \Rz).
         relative_motions: render::Relative {
@@ -84,7 +85,6 @@ pub static BACKEND: render::Backend = render::Backend {
         string_len: Some(80),
         // MoveAbsJ takes ABB's axis values, CJointT reads them: every axis value is ABB's.
         axis_values: render::AxisValues {
-            robot: "ABB",
             joint: "axis",
             joints: 6,
             written: true,

@@ -19,7 +19,7 @@ static TEST: CaseWords = CaseWords {
 };
 
 /// What KRL's Mech-Mind calls become on an ABB robot.
-const MM_HELP: &str =
+pub(super) const MM_HELP: &str =
     "use the Mech-Mind ABB interface (its RAPID modules and routines) for this call";
 
 impl<'a> Tx<'a> {
@@ -236,15 +236,9 @@ impl<'a> Tx<'a> {
 
     fn call(&mut self, callee: &Callee, args: &[Arg], ret: Option<&Place>, span: Span) -> R<()> {
         let (name, function, ret_ty) = match callee {
-            Callee::Mm(sub) => {
-                return fail(
-                    span,
-                    format!(
-                        "`{}` is a routine of the Mech-Mind KUKA interface; ABB robots talk to Mech-Vision through Mech-Mind's ABB interface",
-                        sub.name
-                    ),
-                    MM_HELP,
-                );
+            // The lowering refuses it (`Caps::mech_mind`).
+            Callee::Mm(_) => {
+                return crate::transpile::render::not_lowered(span, "an MM_ call");
             }
             Callee::Routine(r) => self.routine_callee(*r),
             Callee::External {

@@ -16,6 +16,8 @@ use crate::transpile::{flexiv, kawasaki, rapid};
 /// map, pose components, external axes …) are listed in ARCHITECTURE.md.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub struct Caps {
+    /// The arm, as findings name it (`Kawasaki`, `ABB`, `Rizon`).
+    pub robot: &'static str,
     /// `GOTO` and labels; without them a label and the jumps to it are made loops first
     /// ([`crate::transpile::ir::goto`]).
     pub goto: bool,
@@ -51,11 +53,34 @@ pub struct Caps {
     /// Where KUKA axis values need the joint map (`--joint-map`): without one the lowering
     /// refuses them there (TR001 `Why::NoJointMap`).
     pub axis_values: AxisValues,
+    /// Which `MM_*` calls it translates, with which arguments given.
+    pub mech_mind: MechMind,
+}
+
+/// How a target translates the Mech-Mind KUKA interface's `MM_*` calls; the lowering refuses
+/// the rest (TR001) and the calls that omit an argument the translation reads.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum MechMind {
+    /// The target's interface commands, from the catalog (each `[[kawasaki]]` entry names the
+    /// KUKA routine it stands for and reads the KUKA parameters it names), and the routines
+    /// the translator computes from those commands' results, with the parameters each reads.
+    Commands {
+        computed: &'static [(&'static str, &'static [&'static str])],
+    },
+    /// A client in the translated program with a method per routine that does not move the
+    /// robot, reading every argument except where `reads` names the ones it reads.
+    Client {
+        reads: &'static [(&'static str, &'static [&'static str])],
+    },
+    /// None: the robot's own Mech-Mind interface replaces them.
+    Absent,
 }
 
 impl Caps {
     /// The capabilities every target shares; a target's `Caps` says where it differs.
     pub const BASE: Caps = Caps {
+        robot: "the robot",
+        mech_mind: MechMind::Absent,
         goto: true,
         records: false,
         interrupts: true,
@@ -81,7 +106,6 @@ impl Caps {
         bitwise_not: false,
         string_len: None,
         axis_values: AxisValues {
-            robot: "the robot",
             joint: "joint",
             joints: 6,
             written: true,
@@ -96,8 +120,6 @@ impl Caps {
 /// target.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub struct AxisValues {
-    /// The arm, as findings name it (`Kawasaki`, `ABB`, `Rizon`).
-    pub robot: &'static str,
     /// What its manuals call one of its axes (`joint`, `axis`).
     pub joint: &'static str,
     /// How many it has (KUKA: six).
@@ -171,7 +193,7 @@ pub enum Trigger {
 }
 
 /// The columns of the capability table.
-const CAPS_COLUMNS: [&str; 15] = [
+const CAPS_COLUMNS: [&str; 16] = [
     "language",
     "GOTO",
     "STRUC",
@@ -184,13 +206,14 @@ const CAPS_COLUMNS: [&str; 15] = [
     "B_NOT",
     "`$VEL.CP`, `$APO` read",
     "axis values (E6AXIS)",
+    "`MM_*` calls",
     "nothing for (TR001)",
     "strings",
     "identifiers",
 ];
 
 /// A target's row of the capability table, in [`CAPS_COLUMNS`] order.
-fn caps_row(b: &Backend) -> [String; 15] {
+fn caps_row(b: &Backend) -> [String; 16] {
     let yes_no = |b: bool, without: &str| {
         if b {
             "yes".to_owned()
@@ -237,6 +260,7 @@ fn caps_row(b: &Backend) -> [String; 15] {
         yes_no(c.bitwise_not, "TR001"),
         yes_no(c.param_reads, "TR001"),
         axis_values(&c.axis_values),
+        mech_mind(&c.mech_mind),
         lacked(c.lacks),
         strings,
         format!("≤ {} characters", n.max_len),
@@ -263,6 +287,23 @@ fn axis_values(a: &AxisValues) -> String {
         cell.push_str("; LIN/CIRC to them: TR001");
     }
     cell
+}
+
+/// The `MM_*` cell: which calls translate (an omitted argument the translation reads: TR001).
+fn mech_mind(m: &MechMind) -> String {
+    match m {
+        MechMind::Commands { computed } => {
+            let names: Vec<&str> = computed.iter().map(|(n, _)| *n).collect();
+            format!(
+                "the interface's commands (catalog), {} computed from them; else TR001",
+                names.join(", ")
+            )
+        }
+        MechMind::Client { .. } => {
+            "a client method each, except routines that move the robot (TR001)".to_owned()
+        }
+        MechMind::Absent => "no: TR001 (the robot's own Mech-Mind interface)".to_owned(),
+    }
 }
 
 /// The cell of the statements a target has nothing for.

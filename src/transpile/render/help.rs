@@ -45,6 +45,8 @@ fn shared(why: &Why) -> String {
         Why::MessageText => "pass the text",
         Why::StringLength { .. } => "shorten the string, or build it from shorter parts",
         Why::NoJointMap { .. } => "give --joint-map",
+        Why::MmArgument(_) => "pass every argument",
+        Why::MmNoCommand { .. } | Why::MmMoves(_) | Why::MmInterface { .. } => "port by hand",
         Why::LinearToAxes(_) => "move to a pose (E6POS)",
         Why::Skip
         | Why::Other(_)

@@ -24,6 +24,7 @@ impl Lower<'_> {
             Why::NoJointMap {
                 at,
                 axes: self.caps.axis_values,
+                robot: self.caps.robot,
             },
             span,
         )

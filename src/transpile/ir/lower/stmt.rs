@@ -88,7 +88,7 @@ impl<'p> Lower<'p> {
                 op: Op::Unsupported {
                     why,
                     at,
-                    moves: matches!(s.kind, StmtKind::Motion(_)),
+                    moves: self.refused_moves(s),
                 },
                 span: s.span,
             }),

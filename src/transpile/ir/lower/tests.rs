@@ -183,7 +183,8 @@ fn axis_values_follow_the_targets_caps() {
                 _ => None,
             })
             .collect();
-        let no_map = |at| Some(Why::NoJointMap { at, axes: a });
+        let robot = render::backend(target).caps().robot;
+        let no_map = |at| Some(Why::NoJointMap { at, axes: a, robot });
         let want = [
             a.written.then(|| no_map(AxisUse::Values)).flatten(),
             a.every.then(|| no_map(AxisUse::Values)).flatten(),
@@ -222,5 +223,38 @@ fn call_arguments_every_target_refuses() {
             [Some(Why::OmittedArgument), Some(Why::OutArgument), None],
             "{target:?}"
         );
+    }
+}
+
+/// Which `MM_*` calls a target translates, and which omitted arguments it refuses, is decided
+/// by the lowering from `Caps::mech_mind` and the catalog.
+#[test]
+fn mech_mind_calls_follow_the_targets_caps() {
+    use crate::transpile::render::MechMind;
+    let text =
+        "DEF main()\nDECL E6AXIS j\nMM_Start_Vis(2, 0, 1, j)\nMM_Start_Vis(2, , 1, j)\nEND\n";
+    for target in [Target::Kawasaki, Target::Flexiv, Target::Rapid] {
+        let caps = render::backend(target).caps();
+        let (_, ops) = lowered(text, target);
+        let refused: Vec<Option<Why>> = ops
+            .into_iter()
+            .filter_map(|op| match op {
+                Op::Unsupported { why, .. } => Some(Some(why)),
+                Op::Call { .. } => Some(None),
+                _ => None,
+            })
+            .collect();
+        let want = match caps.mech_mind {
+            MechMind::Absent => {
+                let refused = Some(Why::MmInterface {
+                    name: "MM_Start_Vis".into(),
+                    robot: caps.robot,
+                });
+                [refused.clone(), refused]
+            }
+            // The second parameter is one the translation reads.
+            _ => [None, Some(Why::MmArgument("Pos_Num_Need".into()))],
+        };
+        assert_eq!(refused, want, "{target:?}");
     }
 }
