@@ -486,12 +486,9 @@ impl<'a> Tx<'a> {
             Ok(e) => e.iter().any(|v| v.is_some_and(|v| v != 0.0)),
             Err(_) => true,
         };
+        // The lowering refuses them (`Caps::external_axes`).
         if used {
-            return fail(
-                span,
-                "external axes (E1..E6) have no counterpart in a Flexiv target",
-                "move the external axes with their own program, or drop them",
-            );
+            return crate::transpile::render::not_lowered(span, "external axes");
         }
         Ok(())
     }

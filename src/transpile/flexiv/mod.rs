@@ -84,6 +84,7 @@ pub static BACKEND: render::Backend = render::Backend {
     target: super::Target::Flexiv,
     name: "flexiv",
     caps: render::Caps {
+        external_axes: 0,
         robot: "Rizon",
         // The address comes from the spec or the EKI XML.
         mech_mind: render::MechMind::Client {

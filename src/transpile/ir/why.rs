@@ -156,6 +156,11 @@ pub enum Why {
     MmMoves(String),
     /// An `MM_*` call in a target whose robots use their own Mech-Mind interface.
     MmInterface { name: String, robot: &'static str },
+    /// External axes beyond those a pose or axis value of the target holds
+    /// (`Caps::external_axes`).
+    ExternalAxes { held: u8 },
+    /// An external axis value that is not a number literal.
+    ExternalAxisValue,
     /// An `MM_*` call omitting an argument the translation reads (the parameter).
     MmArgument(String),
 }
@@ -358,6 +363,9 @@ impl Why {
             Why::MmMoves(name) => format!("`{name}` moves the robot through the KUKA package's own motions; the script's client does not translate it"),
             Why::MmInterface { name, robot } => format!("`{name}` is a routine of the Mech-Mind KUKA interface; {robot} robots talk to Mech-Vision through Mech-Mind's {robot} interface"),
             Why::MmArgument(p) => format!("argument {p} is omitted"),
+            Why::ExternalAxes { held: 0 } => "external axes (E1..E6) have no counterpart in this target".into(),
+            Why::ExternalAxes { held } => format!("external axes beyond E{held} have no counterpart in this target's pose or joint values"),
+            Why::ExternalAxisValue => "an external axis value that is not a number literal".into(),
             Why::LinearToAxes(krl) => {
                 let instr = if *krl == "CIRC" { "MoveC" } else { "MoveL" };
                 format!("{krl} to axis values has no counterpart ({instr} needs a Cartesian target)")

@@ -440,15 +440,10 @@ impl<'a> Tx<'a> {
             ]
         };
         self.status_turn(a, span, file);
+        // The lowering refused the rest (`Caps::external_axes`).
         let ext = match a.ext() {
             Ok(e) => e,
-            Err(at) => {
-                return fail(
-                    at,
-                    "an external axis value that is not a number literal",
-                    "use literal values",
-                );
-            }
+            Err(at) => return render::not_lowered(at, "an external axis value that is no number"),
         };
         let used: Vec<(usize, f64)> = ext
             .iter()
@@ -466,13 +461,7 @@ impl<'a> Tx<'a> {
                     "check that the robot's external axis is JT7 with the same unit",
                 );
             }
-            _ => {
-                return fail(
-                    span,
-                    "external axes beyond E1 have no AS counterpart in a pose or joint value",
-                    "move the external axes with their own program, or drop them",
-                );
-            }
+            _ => return render::not_lowered(span, "external axes beyond E1"),
         }
         Ok(out)
     }

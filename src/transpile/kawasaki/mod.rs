@@ -78,6 +78,8 @@ pub static BACKEND: render::Backend = render::Backend {
     target: super::Target::Kawasaki,
     name: "kawasaki",
     caps: render::Caps {
+        // E1 is the 7th value (JT7), TR002.
+        external_axes: 1,
         robot: "Kawasaki",
         // Computed from mm_get_plandata's globals and mm_get_pose (`mm.rs`).
         mech_mind: render::MechMind::Commands {

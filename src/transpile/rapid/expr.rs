@@ -365,13 +365,13 @@ impl<'a> Tx<'a> {
 
     /// E1…E6 of a literal, `9E9` where not given.
     fn ext_axes(&mut self, a: &Aggregate, span: Span) -> R<String> {
+        // The lowering refused the rest (`Caps::external_axes`).
         let ext = match a.ext() {
             Ok(e) => e,
             Err(at) => {
-                return fail(
+                return crate::transpile::render::not_lowered(
                     at,
-                    "an external axis value that is not a number literal",
-                    "use literal values",
+                    "an external axis value that is no number",
                 );
             }
         };

@@ -55,6 +55,10 @@ pub struct Caps {
     pub axis_values: AxisValues,
     /// Which `MM_*` calls it translates, with which arguments given.
     pub mech_mind: MechMind,
+    /// How many external axes (E1…) a pose or axis value holds; a literal giving a further
+    /// one a value other than 0 is TR001, and so is an external axis value that is not a
+    /// number where it holds any.
+    pub external_axes: u8,
 }
 
 /// How a target translates the Mech-Mind KUKA interface's `MM_*` calls; the lowering refuses
@@ -81,6 +85,7 @@ impl Caps {
     pub const BASE: Caps = Caps {
         robot: "the robot",
         mech_mind: MechMind::Absent,
+        external_axes: 6,
         goto: true,
         records: false,
         interrupts: true,
@@ -193,7 +198,7 @@ pub enum Trigger {
 }
 
 /// The columns of the capability table.
-const CAPS_COLUMNS: [&str; 16] = [
+const CAPS_COLUMNS: [&str; 17] = [
     "language",
     "GOTO",
     "STRUC",
@@ -207,13 +212,14 @@ const CAPS_COLUMNS: [&str; 16] = [
     "`$VEL.CP`, `$APO` read",
     "axis values (E6AXIS)",
     "`MM_*` calls",
+    "external axes in a value",
     "nothing for (TR001)",
     "strings",
     "identifiers",
 ];
 
 /// A target's row of the capability table, in [`CAPS_COLUMNS`] order.
-fn caps_row(b: &Backend) -> [String; 16] {
+fn caps_row(b: &Backend) -> [String; 17] {
     let yes_no = |b: bool, without: &str| {
         if b {
             "yes".to_owned()
@@ -261,6 +267,12 @@ fn caps_row(b: &Backend) -> [String; 16] {
         yes_no(c.param_reads, "TR001"),
         axis_values(&c.axis_values),
         mech_mind(&c.mech_mind),
+        match c.external_axes {
+            0 => "no: TR001".to_owned(),
+            1 => "E1; more: TR001".to_owned(),
+            6 => "E1…E6".to_owned(),
+            n => format!("E1…E{n}; more: TR001"),
+        },
         lacked(c.lacks),
         strings,
         format!("≤ {} characters", n.max_len),

@@ -46,6 +46,8 @@ fn shared(why: &Why) -> String {
         Why::StringLength { .. } => "shorten the string, or build it from shorter parts",
         Why::NoJointMap { .. } => "give --joint-map",
         Why::MmArgument(_) => "pass every argument",
+        Why::ExternalAxes { .. } => "move the external axes with their own program, or drop them",
+        Why::ExternalAxisValue => "use literal values",
         Why::MmNoCommand { .. } | Why::MmMoves(_) | Why::MmInterface { .. } => "port by hand",
         Why::LinearToAxes(_) => "move to a pose (E6POS)",
         Why::Skip

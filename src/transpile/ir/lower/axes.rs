@@ -5,7 +5,7 @@
 use super::{L, Lower, fail};
 use crate::diag::Span;
 use crate::transpile::ir::why::AxisUse;
-use crate::transpile::ir::{Target, Why};
+use crate::transpile::ir::{Aggregate, ExprKind, Target, Why};
 use crate::transpile::joints::JointMap;
 
 impl Lower<'_> {
@@ -39,20 +39,23 @@ impl Lower<'_> {
         Ok(())
     }
 
-    /// A motion's target `t`, when it is axis values; `linear`: the motion is a LIN or CIRC
-    /// (its KRL name), which some targets cannot move to axis values.
-    pub(super) fn axes_target(&self, t: &Target, linear: Option<&'static str>) -> L<()> {
+    /// A motion's target `t`: axis values where the target holds them, a literal's external
+    /// axes; `linear`: the motion is a LIN or CIRC (its KRL name), which some targets cannot
+    /// move to axis values.
+    pub(super) fn held_target(&self, t: &Target, linear: Option<&'static str>) -> L<()> {
         let a = &self.caps.axis_values;
-        if !t.joints {
-            return Ok(());
+        if t.joints {
+            if let Some(krl) = linear
+                && !a.linear
+            {
+                return fail(Why::LinearToAxes(krl), t.expr.span);
+            }
+            if (a.every || (a.written && t.literal)) && self.joint_map().is_none() {
+                return self.no_joint_map(AxisUse::Values, t.expr.span);
+            }
         }
-        if let Some(krl) = linear
-            && !a.linear
-        {
-            return fail(Why::LinearToAxes(krl), t.expr.span);
-        }
-        if (a.every || (a.written && t.literal)) && self.joint_map().is_none() {
-            return self.no_joint_map(AxisUse::Values, t.expr.span);
+        if let ExprKind::Aggregate(lit) = &t.expr.kind {
+            self.held_external(lit, t.expr.span)?;
         }
         Ok(())
     }
@@ -73,6 +76,32 @@ impl Lower<'_> {
         let map = self.joint_map();
         if (a.every && map.is_none()) || (!a.written && !map.is_some_and(JointMap::invertible)) {
             return self.no_joint_map(AxisUse::Read, span);
+        }
+        Ok(())
+    }
+
+    /// The external axes of literal `a` (at `span`) the target holds: a number each, none
+    /// beyond `Caps::external_axes` other than 0 (a target holding none refuses any value but 0).
+    pub(super) fn held_external(&self, a: &Aggregate, span: Span) -> L<()> {
+        let held = self.caps.external_axes;
+        let ext = a.ext();
+        if held == 0 {
+            let used = ext.is_err() || ext.is_ok_and(|e| e.iter().flatten().any(|v| *v != 0.0));
+            if used {
+                return fail(Why::ExternalAxes { held }, span);
+            }
+            return Ok(());
+        }
+        let ext = match ext {
+            Ok(e) => e,
+            Err(at) => return fail(Why::ExternalAxisValue, at),
+        };
+        let beyond = ext
+            .iter()
+            .enumerate()
+            .any(|(i, v)| i >= usize::from(held) && v.is_some_and(|v| v != 0.0));
+        if beyond {
+            return fail(Why::ExternalAxes { held }, span);
         }
         Ok(())
     }

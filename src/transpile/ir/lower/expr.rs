@@ -77,6 +77,7 @@ impl<'p> Lower<'p> {
                 if a.axis {
                     self.written_axes(span)?;
                 }
+                self.held_external(&a, span)?;
                 let ty = if a.axis { Ty::Joint } else { Ty::Pose };
                 Ok(Expr::new(ExprKind::Aggregate(Box::new(a)), ty, span))
             }
@@ -839,6 +840,7 @@ impl<'p> Lower<'p> {
             if a.axis {
                 self.written_axes(span)?;
             }
+            self.held_external(&a, span)?;
             return Ok(Expr::new(
                 ExprKind::Aggregate(Box::new(a)),
                 ty.clone(),

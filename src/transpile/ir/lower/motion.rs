@@ -355,14 +355,14 @@ impl<'p> Lower<'p> {
             let to = self.target(&m.target, ops)?;
             match m.kind {
                 K::Ptp | K::Sptp => {
-                    self.axes_target(&to, None)?;
+                    self.held_target(&to, None)?;
                     Path::Joint {
                         to,
                         speed: pending(),
                     }
                 }
                 K::Lin | K::Slin | K::Spl => {
-                    self.axes_target(&to, Some("LIN"))?;
+                    self.held_target(&to, Some("LIN"))?;
                     Path::Linear {
                         to,
                         speed: pending(),
@@ -377,8 +377,8 @@ impl<'p> Lower<'p> {
                         );
                     };
                     let via = self.target(aux, ops)?;
-                    self.axes_target(&via, Some("CIRC"))?;
-                    self.axes_target(&to, Some("CIRC"))?;
+                    self.held_target(&via, Some("CIRC"))?;
+                    self.held_target(&to, Some("CIRC"))?;
                     Path::Circular {
                         via,
                         to,

@@ -258,3 +258,34 @@ fn mech_mind_calls_follow_the_targets_caps() {
         assert_eq!(refused, want, "{target:?}");
     }
 }
+
+/// External axes in a literal: the lowering refuses those beyond `Caps::external_axes`.
+#[test]
+fn external_axes_follow_the_targets_caps() {
+    let text = "DEF main()\nDECL E6POS p\nDECL REAL e\n\
+        p = {X 1, Y 2, Z 3, A 0, B 0, C 0, E1 5}\np = {X 1, Y 2, Z 3, A 0, B 0, C 0, E2 5}\n\
+        p = {X 1, Y 2, Z 3, A 0, B 0, C 0, E1 e}\nEND\n";
+    for target in [Target::Kawasaki, Target::Flexiv, Target::Rapid] {
+        let held = render::backend(target).caps().external_axes;
+        let (_, ops) = lowered(text, target);
+        let refused: Vec<Option<Why>> = ops
+            .into_iter()
+            .filter_map(|op| match op {
+                Op::Unsupported { why, .. } => Some(Some(why)),
+                Op::Assign { .. } => Some(None),
+                _ => None,
+            })
+            .collect();
+        let beyond = |n: u8| (held < n).then_some(Why::ExternalAxes { held });
+        let computed = if held == 0 {
+            Why::ExternalAxes { held }
+        } else {
+            Why::ExternalAxisValue
+        };
+        assert_eq!(
+            refused,
+            [beyond(1), beyond(2), Some(computed)],
+            "{target:?}"
+        );
+    }
+}
