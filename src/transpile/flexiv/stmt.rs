@@ -113,7 +113,9 @@ impl<'a> Tx<'a> {
                     }
                     self.nested(d);
                 } else if first {
-                    return fail(span, "a SWITCH without cases", "remove it");
+                    // No CASE and no DEFAULT: nothing runs, as in KRL.
+                    self.line("if True:");
+                    self.nested(&[]);
                 }
                 self.end_block(*end, None);
                 Ok(())
@@ -159,9 +161,12 @@ impl<'a> Tx<'a> {
     fn loop_(&mut self, id: LoopId, kind: &LoopKind, body: &Block, end: u32) -> R<()> {
         let head = match kind {
             LoopKind::For(f) => {
-                let (var, from, to, step) = (&f.var, &f.from, &f.to, &f.step);
-                let Target::Plain(v) = self.target(var, from.span, true)? else {
-                    return fail(from.span, "a FOR variable must be a name", "use a name");
+                let (var, from, to, step) = (Place::Var(f.var), &f.from, &f.to, &f.step);
+                let Target::Plain(v) = self.target(&var, from.span, true)? else {
+                    return crate::transpile::render::not_lowered(
+                        from.span,
+                        "a FOR variable that is no name",
+                    );
                 };
                 let a = self.int_bound(from)?;
                 let range = match step.as_ref().map(|s| (s, s.integer())) {

@@ -535,7 +535,8 @@ pub enum LoopKind {
 
 #[derive(Debug, Clone, PartialEq)]
 pub struct ForLoop {
-    pub var: Place,
+    /// A variable (KRL counts with an INT variable; nothing else is a counter).
+    pub var: VarId,
     pub from: Expr,
     pub to: Expr,
     pub step: Option<Expr>,

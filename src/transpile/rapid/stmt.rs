@@ -120,7 +120,7 @@ impl<'a> Tx<'a> {
         // Everything that can fail before a line is written.
         let (pre, head, step) = match kind {
             LoopKind::For(f) => {
-                let v = self.place_text(&f.var, f.from.span)?;
+                let v = self.place_text(&Place::Var(f.var), f.from.span)?;
                 let from = self.expr(&f.from)?;
                 let step = match &f.step {
                     Some(st) => match st.number() {

@@ -211,11 +211,13 @@ impl<'p> Lower<'p> {
                     kind: A::Name(var.clone()),
                     span: var.span,
                 };
-                let (place, _) = if self.var(&var.text).is_some() {
-                    self.place(&target, ops, true)?
+                let place = if self.var(&var.text).is_some() {
+                    match self.place(&target, ops, true)? {
+                        (Place::Var(v), _) => v,
+                        _ => return fail(Why::AssignTarget, var.span),
+                    }
                 } else {
-                    let v = self.assumed_var(var, Ty::Int, "an INT (a FOR variable)");
-                    (Place::Var(v), Ty::Int)
+                    self.assumed_var(var, Ty::Int, "an INT (a FOR variable)")
                 };
                 let mut bounds: Vec<&ast::Expr> = vec![from, to];
                 bounds.extend(step.as_deref());
