@@ -114,10 +114,9 @@ impl<'a> Tx<'a> {
                 let s = server.as_ref().map(|s| (s.ip, s.port));
                 let v = s.and_then(|(ip, port)| spec_value(key, ip, port));
                 let Some(v) = v else {
-                    return fail(
+                    return crate::transpile::render::catalog_defect(
                         span,
-                        format!("catalog: unknown spec key `{key}` for {}", p.name),
-                        "report this catalog error",
+                        &format!("spec key `{key}` for {} is unknown", p.name),
                     );
                 };
                 rendered.push(num(v));
@@ -129,10 +128,9 @@ impl<'a> Tx<'a> {
                 let ty = as_ty(p.kind);
                 rendered.push(format::param_sigil(&tmp, &ty));
             } else {
-                return fail(
+                return crate::transpile::render::catalog_defect(
                     span,
-                    format!("catalog: no value for {} of {}", p.name, k.name),
-                    "report this catalog error",
+                    &format!("{} of {} has no value", p.name, k.name),
                 );
             }
         }
@@ -249,11 +247,9 @@ impl<'a> Tx<'a> {
                 if let ExprKind::Place(p) = &value.kind {
                     return self.place_text(p, &Ty::Joint, arg.span);
                 }
-                fail(
-                    arg.span,
-                    "this joint argument has no AS equivalent",
-                    "pass an E6AXIS variable",
-                )
+                // A call's value is hoisted into a temporary: axis values reach here as a
+                // place, a literal or `$AXIS_ACT` only.
+                crate::transpile::render::not_lowered(arg.span, "a joint argument that is no value")
             }
             (_, Direction::Out) => {
                 // The lowering refuses it (`Why::OutArgument`).
@@ -462,10 +458,9 @@ impl<'a> Tx<'a> {
 fn global(name: &str, span: Span) -> R<()> {
     match catalog().kawasaki_global(name) {
         Some(_) => Ok(()),
-        None => fail(
+        None => crate::transpile::render::catalog_defect(
             span,
-            format!("catalog: no Kawasaki global {name}"),
-            "report this catalog error",
+            &format!("Kawasaki global {name} is missing"),
         ),
     }
 }
@@ -522,6 +517,33 @@ mod tests {
                 let k = s.kawasaki().expect("has a Kawasaki program");
                 assert!(k.params.iter().all(|p| p.kuka.as_deref() != Some(name)));
             }
+        }
+    }
+
+    /// Every parameter of every Kawasaki command a KUKA routine translates to gets a value:
+    /// from a KUKA parameter, a known spec key, a default, or (an output) a scratch variable.
+    #[test]
+    fn every_kawasaki_parameter_has_a_source() {
+        let ip = Ipv4Addr::new(192, 168, 1, 121);
+        for k in catalog().kawasaki.iter().filter(|k| k.kuka.is_some()) {
+            for p in &k.params {
+                let ok = match (&p.kuka, &p.spec) {
+                    (_, Some(key)) => spec_value(key, ip, 50000).is_some(),
+                    (Some(_), None) => true,
+                    (None, None) => p.default.is_some() || p.dir == Direction::Out,
+                };
+                assert!(ok, "{} of {}", p.name, k.name);
+            }
+        }
+        for g in [
+            "vis_pos_j1",
+            "vis_pos_x",
+            "vis_pos_t",
+            "vis_pos_type",
+            "vis_pos_tool",
+            "vis_pos_spd",
+        ] {
+            assert!(global(g, Span::new(0, 0)).is_ok(), "{g}");
         }
     }
 

@@ -640,6 +640,16 @@ pub fn not_lowered<T>(span: Span, what: &str) -> R<T> {
     })
 }
 
+/// A catalog entry the renderer cannot use (a catalog test keeps every entry usable): a
+/// defect of krlkit, reported (TR001) instead of a panic, as [`not_lowered`].
+pub fn catalog_defect<T>(span: Span, what: &str) -> R<T> {
+    Err(Fail {
+        span,
+        message: format!("internal: the catalog's {what}"),
+        help: "report this as a krlkit defect".into(),
+    })
+}
+
 /// The header's name map, each line starting with `lead`.
 pub fn name_map_lines(names: &Namer<'_>, lead: &str) -> Vec<String> {
     let Some((title, entries)) = names.name_map() else {
