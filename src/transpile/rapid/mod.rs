@@ -158,6 +158,9 @@ pub struct Tx<'a> {
     /// The robot stands still at the previous point here (after an exact stop or an
     /// advance-run stop), as far as the statements rendered since show.
     still: bool,
+    /// The motion parameters this routine never sets that a finding already named (one
+    /// finding per routine and parameter, not one per motion).
+    never_set: Vec<&'static str>,
 }
 
 impl<'a> Tx<'a> {
@@ -175,6 +178,7 @@ impl<'a> Tx<'a> {
             frame_data: motion::FrameData::default(),
             file: FileId::Src,
             still: false,
+            never_set: Vec::new(),
             intnums: std::collections::BTreeSet::new(),
             traps: std::collections::BTreeMap::new(),
             braked: false,
@@ -376,6 +380,7 @@ impl crate::transpile::Renderer for Tx<'_> {
             extra: Vec::new(),
         });
         self.still = false;
+        self.never_set.clear();
         self.out.names.declare_locals(&mut self.out.rep, id);
         self.out.names.declare_labels(&mut self.out.rep, id);
         let mut params = Vec::new();

@@ -246,17 +246,27 @@ impl<'a> Tx<'a> {
         format!("vmax \\V:=vmax.v_tcp*{pct}/100")
     }
 
-    /// A TR002 for a motion parameter not known at a motion.
-    fn unknown(&mut self, span: Span, b: &Because, what: &str, used: &str) {
-        self.out.rep.approximate(
-            FileId::Src,
-            span,
+    /// A TR002 for a motion parameter not known at a motion. One the program never sets is
+    /// named once per routine, at its first motion: every later one uses the same value.
+    fn unknown(&mut self, span: Span, b: &Because, what: &'static str, used: &str) {
+        let message = if *b == Because::NeverSet {
+            if self.never_set.contains(&what) {
+                return;
+            }
+            self.never_set.push(what);
+            format!(
+                "{what} of this motion is not known here: {}; {used} is used, here and at every later motion of this routine that gets no value",
+                b.describe()
+            )
+        } else {
             format!(
                 "{what} of this motion is not known here: {}; {used} is used",
                 b.describe()
-            ),
-            "set it before the move",
-        );
+            )
+        };
+        self.out
+            .rep
+            .approximate(FileId::Src, span, message, "set it before the move");
     }
 
     /// The zonedata argument: `fine`, `z10`, `z10 \Z:=12.5` (the lowering made every
