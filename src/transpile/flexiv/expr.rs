@@ -305,11 +305,10 @@ impl<'a> Tx<'a> {
                 self.output_readback(span);
                 Ok(Py::atom(format!("out_state({first})")))
             }
-            (Bank::Out, _) => fail(
-                span,
-                "reading a group of outputs has no translation (RDK 1.x cannot read outputs back)",
-                "keep the value in a variable where the program sets it",
-            ),
+            // The lowering refuses it (`Caps::signals`).
+            (Bank::Out, _) => {
+                crate::transpile::render::not_lowered(span, "a group of outputs read back")
+            }
         }
     }
 

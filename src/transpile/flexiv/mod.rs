@@ -84,6 +84,11 @@ pub static BACKEND: render::Backend = render::Backend {
     target: super::Target::Flexiv,
     name: "flexiv",
     caps: render::Caps {
+        // RDK 1.x cannot read outputs back.
+        signals: render::Signals {
+            output_groups_read: false,
+            ..render::Caps::BASE.signals
+        },
         external_axes: 0,
         robot: "Rizon",
         // The address comes from the spec or the EKI XML.

@@ -161,6 +161,12 @@ pub enum Why {
     ExternalAxes { held: u8 },
     /// An external axis value that is not a number literal.
     ExternalAxisValue,
+    /// A SIGNAL of several bits in a target without groups (`Caps::signals`).
+    SignalGroup,
+    /// A group of outputs read back in a target that cannot (`Caps::signals`).
+    OutputGroupRead,
+    /// A signal number computed at run time in a target whose signals are names.
+    ComputedSignal,
     /// An `MM_*` call omitting an argument the translation reads (the parameter).
     MmArgument(String),
 }
@@ -366,6 +372,9 @@ impl Why {
             Why::ExternalAxes { held: 0 } => "external axes (E1..E6) have no counterpart in this target".into(),
             Why::ExternalAxes { held } => format!("external axes beyond E{held} have no counterpart in this target's pose or joint values"),
             Why::ExternalAxisValue => "an external axis value that is not a number literal".into(),
+            Why::SignalGroup => "a group of signals (SIGNAL … TO …) needs a group signal of the I/O configuration".into(),
+            Why::OutputGroupRead => "reading a group of outputs has no counterpart in this target (it cannot read outputs back)".into(),
+            Why::ComputedSignal => "a signal number computed at run time: this target's signals are names of the I/O configuration".into(),
             Why::LinearToAxes(krl) => {
                 let instr = if *krl == "CIRC" { "MoveC" } else { "MoveL" };
                 format!("{krl} to axis values has no counterpart ({instr} needs a Cartesian target)")

@@ -162,22 +162,18 @@ impl<'a> Tx<'a> {
                 return Ok(format!("krl_flag{{{i}}}"));
             }
             IoPlace::Signal(r) => {
+                // The lowering refuses groups and computed numbers (`Caps::signals`).
                 if r.width() != 1 {
-                    return fail(
-                        span,
-                        "a group of signals (SIGNAL … TO …) needs a group signal of the I/O configuration",
-                        "configure a group signal and read it with GInput / write it with SetGO",
-                    );
+                    return crate::transpile::render::not_lowered(span, "a group of signals");
                 }
                 return Ok(map.name(r.bank, r.from));
             }
         };
         match index.integer() {
             Some(n) => Ok(map.name(bank, n)),
-            None => fail(
+            None => crate::transpile::render::not_lowered(
                 index.span,
-                "a signal number computed at run time: RAPID signals are names of the I/O configuration",
-                "use a literal number, or an IF per signal",
+                "a signal number computed at run time",
             ),
         }
     }

@@ -72,6 +72,12 @@ pub static BACKEND: render::Backend = render::Backend {
     target: super::Target::Rapid,
     name: "rapid",
     caps: render::Caps {
+        // Signals are names of the I/O configuration (`--signal-map`), one bit each.
+        signals: render::Signals {
+            groups: false,
+            output_groups_read: true,
+            computed_numbers: false,
+        },
         robot: "ABB",
         records: true,
         // MoveJ to Offs/RelTool; RelTool turns about one tool axis (\Rx, \Ry or \Rz).

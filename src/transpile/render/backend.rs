@@ -59,6 +59,20 @@ pub struct Caps {
     /// one a value other than 0 is TR001, and so is an external axis value that is not a
     /// number where it holds any.
     pub external_axes: u8,
+    /// Which of KRL's signals it names.
+    pub signals: Signals,
+}
+
+/// The signals a target can read and write; the lowering refuses the rest (TR001).
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub struct Signals {
+    /// A SIGNAL of several inputs or outputs (an integer).
+    pub groups: bool,
+    /// Reading such a group of outputs back.
+    pub output_groups_read: bool,
+    /// `$IN[i]`/`$OUT[i]` with a number computed at run time (without: its signals are names
+    /// of the I/O configuration).
+    pub computed_numbers: bool,
 }
 
 /// How a target translates the Mech-Mind KUKA interface's `MM_*` calls; the lowering refuses
@@ -86,6 +100,11 @@ impl Caps {
         robot: "the robot",
         mech_mind: MechMind::Absent,
         external_axes: 6,
+        signals: Signals {
+            groups: true,
+            output_groups_read: true,
+            computed_numbers: true,
+        },
         goto: true,
         records: false,
         interrupts: true,
@@ -198,7 +217,7 @@ pub enum Trigger {
 }
 
 /// The columns of the capability table.
-const CAPS_COLUMNS: [&str; 17] = [
+const CAPS_COLUMNS: [&str; 18] = [
     "language",
     "GOTO",
     "STRUC",
@@ -213,13 +232,14 @@ const CAPS_COLUMNS: [&str; 17] = [
     "axis values (E6AXIS)",
     "`MM_*` calls",
     "external axes in a value",
+    "signals",
     "nothing for (TR001)",
     "strings",
     "identifiers",
 ];
 
 /// A target's row of the capability table, in [`CAPS_COLUMNS`] order.
-fn caps_row(b: &Backend) -> [String; 17] {
+fn caps_row(b: &Backend) -> [String; 18] {
     let yes_no = |b: bool, without: &str| {
         if b {
             "yes".to_owned()
@@ -273,6 +293,7 @@ fn caps_row(b: &Backend) -> [String; 17] {
             6 => "E1…E6".to_owned(),
             n => format!("E1…E{n}; more: TR001"),
         },
+        signals(&c.signals),
         lacked(c.lacks),
         strings,
         format!("≤ {} characters", n.max_len),
@@ -299,6 +320,24 @@ fn axis_values(a: &AxisValues) -> String {
         cell.push_str("; LIN/CIRC to them: TR001");
     }
     cell
+}
+
+/// The signals cell: what is TR001.
+fn signals(s: &Signals) -> String {
+    let mut no = Vec::new();
+    if !s.groups {
+        no.push("SIGNAL groups");
+    } else if !s.output_groups_read {
+        no.push("output groups read");
+    }
+    if !s.computed_numbers {
+        no.push("numbers computed at run time");
+    }
+    if no.is_empty() {
+        "all".to_owned()
+    } else {
+        format!("{}: TR001", no.join(", "))
+    }
 }
 
 /// The `MM_*` cell: which calls translate (an omitted argument the translation reads: TR001).

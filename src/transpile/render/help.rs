@@ -48,6 +48,9 @@ fn shared(why: &Why) -> String {
         Why::MmArgument(_) => "pass every argument",
         Why::ExternalAxes { .. } => "move the external axes with their own program, or drop them",
         Why::ExternalAxisValue => "use literal values",
+        Why::SignalGroup => "use one signal per bit",
+        Why::OutputGroupRead => "keep the value in a variable where the program sets it",
+        Why::ComputedSignal => "use a literal number, or an IF per signal",
         Why::MmNoCommand { .. } | Why::MmMoves(_) | Why::MmInterface { .. } => "port by hand",
         Why::LinearToAxes(_) => "move to a pose (E6POS)",
         Why::Skip

@@ -379,6 +379,7 @@ impl<'p> Lower<'p> {
                             self.stop(span, pre);
                         }
                         let ty = if r.width() == 1 { Ty::Bool } else { Ty::Int };
+                        self.held_read(&IoPlace::Signal(r), span)?;
                         return Ok(Expr::new(ExprKind::Io(IoPlace::Signal(r)), ty, span));
                     }
                     let ty = var.ty.clone();
@@ -560,12 +561,14 @@ impl<'p> Lower<'p> {
         Ok(match s {
             Sys::In(i) => {
                 self.stop(span, pre);
-                let i = index(self, i, pre)?;
-                Expr::new(ExprKind::Io(IoPlace::In(i)), Ty::Bool, span)
+                let io = IoPlace::In(index(self, i, pre)?);
+                self.held_read(&io, span)?;
+                Expr::new(ExprKind::Io(io), Ty::Bool, span)
             }
             Sys::Out(i) | Sys::OutC(i) => {
-                let i = index(self, i, pre)?;
-                Expr::new(ExprKind::Io(IoPlace::Out(i)), Ty::Bool, span)
+                let io = IoPlace::Out(index(self, i, pre)?);
+                self.held_read(&io, span)?;
+                Expr::new(ExprKind::Io(io), Ty::Bool, span)
             }
             Sys::Flag(i) => {
                 let i = index(self, i, pre)?;

@@ -11,6 +11,7 @@ mod call;
 mod expr;
 mod mech_mind;
 mod motion;
+mod signals;
 mod stmt;
 
 use std::collections::BTreeSet;

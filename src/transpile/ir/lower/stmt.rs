@@ -478,6 +478,7 @@ impl<'p> Lower<'p> {
                         _ => return fail(Why::PulseSignal, signal.span),
                     },
                 };
+                self.held_write(&io, span)?;
                 self.stop(span, ops);
                 let level = self.expr(level, ops)?;
                 match level.kind {
@@ -702,6 +703,7 @@ impl<'p> Lower<'p> {
                 span,
             );
         };
+        self.held_write(&OutPlace::Signal(r), span)?;
         let when = self.io_timing();
         self.stop(span, ops);
         let v = self.expr(value, ops)?;
@@ -740,28 +742,22 @@ impl<'p> Lower<'p> {
                 self.kind("I/O");
                 let when = self.io_timing();
                 self.stop(span, ops);
-                let i = self.expr(i, ops)?;
+                let io = OutPlace::Out(Box::new(self.expr(i, ops)?));
+                self.held_write(&io, span)?;
                 let v = self.expr(value, ops)?;
-                Self::push(
-                    ops,
-                    Op::SetIo {
-                        io: OutPlace::Out(Box::new(i)),
-                        value: v,
-                        when,
-                    },
-                    span,
-                );
+                Self::push(ops, Op::SetIo { io, value: v, when }, span);
                 Ok(())
             }
             Sys::OutC(i) => {
                 self.kind("I/O");
                 self.stop(span, ops);
-                let i = self.expr(i, ops)?;
+                let io = OutPlace::Out(Box::new(self.expr(i, ops)?));
+                self.held_write(&io, span)?;
                 let v = self.expr(value, ops)?;
                 Self::push(
                     ops,
                     Op::SetIo {
-                        io: OutPlace::Out(Box::new(i)),
+                        io,
                         value: v,
                         when: IoTiming::PathEnd,
                     },

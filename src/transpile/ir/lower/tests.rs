@@ -289,3 +289,29 @@ fn external_axes_follow_the_targets_caps() {
         );
     }
 }
+
+/// Signal groups, output groups read back and computed signal numbers: the lowering refuses
+/// what `Caps::signals` excludes.
+#[test]
+fn signals_follow_the_targets_caps() {
+    let text = "DEF main()\nSIGNAL grp $IN[1] TO $IN[4]\nSIGNAL ogrp $OUT[1] TO $OUT[4]\n\
+        DECL INT n, i\nn = grp\nn = ogrp\n$OUT[i] = TRUE\nEND\n";
+    for target in [Target::Kawasaki, Target::Flexiv, Target::Rapid] {
+        let s = render::backend(target).caps().signals;
+        let (_, ops) = lowered(text, target);
+        let refused: Vec<Option<Why>> = ops
+            .into_iter()
+            .filter_map(|op| match op {
+                Op::Unsupported { why, .. } => Some(Some(why)),
+                Op::Assign { .. } | Op::SetIo { .. } => Some(None),
+                _ => None,
+            })
+            .collect();
+        let group = (!s.groups).then_some(Why::SignalGroup);
+        let out_group = group
+            .clone()
+            .or((!s.output_groups_read).then_some(Why::OutputGroupRead));
+        let computed = (!s.computed_numbers).then_some(Why::ComputedSignal);
+        assert_eq!(refused, [group, out_group, computed], "{target:?}");
+    }
+}
