@@ -13,6 +13,7 @@ mod stmt;
 
 use std::collections::BTreeSet;
 
+use compact_str::CompactString;
 use rustc_hash::FxHashMap;
 
 use super::{
@@ -217,7 +218,7 @@ impl<'p> Lower<'p> {
             },
         };
         for g in l.model.globals() {
-            l.add_var(String::new(), g, Scope::Global);
+            l.add_var("", g, Scope::Global);
         }
         // Routines first (ids for calls), then their bodies.
         for r in &program.src.outline.routines {
@@ -340,9 +341,9 @@ impl<'p> Lower<'p> {
 
     // ----- variables ---------------------------------------------------------------------
 
-    fn add_var(&mut self, routine: String, v: VarInfo, scope: Scope) -> VarId {
+    fn add_var(&mut self, routine: &str, v: VarInfo, scope: Scope) -> VarId {
         let id = VarId(self.out.vars.len() as u32);
-        let name = v.name.to_ascii_uppercase();
+        let name = upper(&v.name);
         self.out.vars.push(Var {
             name: v.name,
             ty: v.ty,
@@ -352,13 +353,13 @@ impl<'p> Lower<'p> {
             decl: v.decl,
             file: v.file,
         });
-        self.vars.insert(routine, name, id);
+        self.vars.insert(routine, &name, id);
         id
     }
 
     /// The variable `name` as seen from here, if the program declares it.
     pub(super) fn var(&self, name: &str) -> Option<VarId> {
-        let key = name.to_ascii_uppercase();
+        let key = upper(name);
         if let Some(rt) = &self.rt
             && let Some(v) = self.vars.get(&rt.key, &key)
         {
@@ -372,7 +373,7 @@ impl<'p> Lower<'p> {
     /// A global of the generated KUKA package (`MM_Last_Status` …), typed by the catalog.
     pub(super) fn package_var(&mut self, id: &ast::Ident) -> Option<VarId> {
         let g = crate::catalog::catalog().global(&id.text)?;
-        if let Some(v) = self.vars.get("", &id.key()) {
+        if let Some(v) = self.vars.get("", &upper(&id.text)) {
             return Some(v);
         }
         let ty = match g.ty.to_ascii_uppercase().as_str() {
@@ -392,12 +393,12 @@ impl<'p> Lower<'p> {
             decl: id.span,
             file: FileId::Src,
         };
-        Some(self.add_var(String::new(), info, Scope::Package))
+        Some(self.add_var("", info, Scope::Package))
     }
 
     /// A name the program does not declare: its type assumed from its use, reported once.
     pub(super) fn assumed_var(&mut self, id: &ast::Ident, ty: Ty, what: &str) -> VarId {
-        if let Some(v) = self.vars.get("", &id.key()) {
+        if let Some(v) = self.vars.get("", &upper(&id.text)) {
             return v;
         }
         self.approx(
@@ -417,7 +418,7 @@ impl<'p> Lower<'p> {
             decl: id.span,
             file: FileId::Src,
         };
-        self.add_var(String::new(), info, Scope::Assumed)
+        self.add_var("", info, Scope::Assumed)
     }
 
     /// A temporary of the current routine.
@@ -479,7 +480,7 @@ impl<'p> Lower<'p> {
                 VarKind::Param(_) => Scope::Param(id),
                 _ => Scope::Local(id),
             };
-            self.add_var(key.clone(), v, scope);
+            self.add_var(&key, v, scope);
         }
         let sig = self.model.routine(&r.name.text);
         let kind = match r.kind {
@@ -493,7 +494,7 @@ impl<'p> Lower<'p> {
             .params
             .iter()
             .filter_map(|p| {
-                let var = self.vars.get(&key, &p.name.key())?;
+                let var = self.vars.get(&key, &upper(&p.name.text))?;
                 // A repeated name would make a header no target accepts (`def f(x, x)`):
                 // the routine keeps one parameter of that name and the header is reported.
                 if !seen.insert(var) {
@@ -856,7 +857,7 @@ impl<'p> Lower<'p> {
         for r in &src.src.outline.routines {
             for d in &r.facts.global_decls {
                 for v in &d.vars {
-                    if let Some(id) = self.vars.get("", &v.name.key()) {
+                    if let Some(id) = self.vars.get("", &upper(&v.name.text)) {
                         let dims = self.data_dims(&v.dims);
                         self.out.uninit_globals.push((id, dims));
                     }
@@ -875,7 +876,7 @@ impl<'p> Lower<'p> {
     fn dat_module(&mut self, m: &ast::DatModule, file: FileId, text: &str) {
         for d in &m.decls {
             for v in &d.vars {
-                let Some(id) = self.vars.get("", &v.name.key()) else {
+                let Some(id) = self.vars.get("", &upper(&v.name.text)) else {
                     continue;
                 };
                 let Some(init) = &v.init else {
@@ -920,7 +921,7 @@ impl<'p> Lower<'p> {
                 }
                 _ => continue,
             };
-            let Some(id) = self.vars.get("", &name.key()) else {
+            let Some(id) = self.vars.get("", &upper(&name.text)) else {
                 continue;
             };
             self.data_construct("data", s.span, file);
@@ -960,22 +961,50 @@ impl<'p> Lower<'p> {
     }
 }
 
-/// Upper-case name → the first of `routines` of that name.
-/// (routine key or "", upper-case name) → variable: a map per routine, so a lookup copies no
-/// name (a pair of copied names per lookup was a tenth of a translation's time).
+/// (routine key or "", upper-case name) → variable, in one map keyed by two small numbers: the
+/// routine's key and the name are each interned once (a map and a copied key per routine were
+/// the largest part of the first pass's memory on a file of many routines).
 #[derive(Default)]
-struct VarKeys(FxHashMap<String, FxHashMap<String, VarId>>);
+struct VarKeys {
+    /// Upper-case routine key ("" for package, assumed and global names) → its number.
+    scopes: FxHashMap<CompactString, u32>,
+    /// Upper-case variable name → its number.
+    names: FxHashMap<CompactString, u32>,
+    ids: FxHashMap<(u32, u32), VarId>,
+}
 
 impl VarKeys {
     fn get(&self, routine: &str, name: &str) -> Option<VarId> {
-        self.0.get(routine)?.get(name).copied()
+        let scope = *self.scopes.get(routine)?;
+        let name = *self.names.get(name)?;
+        self.ids.get(&(scope, name)).copied()
     }
 
-    fn insert(&mut self, routine: String, name: String, id: VarId) {
-        self.0.entry(routine).or_default().insert(name, id);
+    fn insert(&mut self, routine: &str, name: &str, id: VarId) {
+        let scope = intern(&mut self.scopes, routine);
+        let name = intern(&mut self.names, name);
+        self.ids.insert((scope, name), id);
     }
 }
 
+/// The number of `key` in `table`, added when new.
+fn intern(table: &mut FxHashMap<CompactString, u32>, key: &str) -> u32 {
+    if let Some(&n) = table.get(key) {
+        return n;
+    }
+    let n = table.len() as u32;
+    table.insert(CompactString::from(key), n);
+    n
+}
+
+/// A name's upper-case form, for [`VarKeys`]; KRL names fit inline (no allocation).
+fn upper(name: &str) -> CompactString {
+    let mut key = CompactString::from(name);
+    key.make_ascii_uppercase();
+    key
+}
+
+/// Upper-case name → the first of `routines` of that name.
 fn index_routines(routines: &[Routine]) -> FxHashMap<String, RoutineId> {
     let mut ids = FxHashMap::default();
     for (i, r) in routines.iter().enumerate() {
