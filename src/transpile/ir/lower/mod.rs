@@ -53,8 +53,10 @@ pub struct Lowering {
 
 /// What the second pass needs to lower the statements again exactly as the first did.
 pub struct Replay {
-    /// The variables as they were when the first routine began.
-    vars: Vec<Var>,
+    /// The variables whose type the first pass changed, as they were when the first routine
+    /// began (the others are read from the first pass's program: a copy of every variable was
+    /// a tenth of the translation's memory on a file of many routines).
+    changed: FxHashMap<VarId, Var>,
     keys: VarKeys,
     /// The next spline id at the start of each routine.
     next_spline: Vec<u32>,
@@ -71,7 +73,6 @@ impl Replay {
         options: &'p Options,
     ) -> Lower<'p> {
         let out = Program {
-            vars: self.vars,
             top_level: first.top_level,
             interrupts: first.interrupts.clone(),
             records: first.records.clone(),
@@ -85,6 +86,8 @@ impl Replay {
             caps: self.caps,
             out,
             first: Some(&first.routines),
+            first_vars: Some(&first.vars),
+            changed: self.changed,
             routine_ids,
             vars: self.keys,
             rt: None,
@@ -112,6 +115,8 @@ struct Ctx {
     id: RoutineId,
     /// Upper-case KRL name ("" for statements outside any DEF).
     key: String,
+    /// Its [`VarKeys`] scope (`None`: it declares no variable).
+    scope: Option<u32>,
     temps: Vec<Ty>,
     /// Enclosing loops, innermost last.
     loops: Vec<LoopId>,
@@ -156,6 +161,10 @@ pub struct Lower<'p> {
     out: Program,
     /// The second pass reads the routines of the first's program instead of `out`'s.
     first: Option<&'p [Routine]>,
+    /// The second pass reads the variables of the first's program, except those whose type
+    /// changed (`changed`, replayed as they change again).
+    first_vars: Option<&'p [Var]>,
+    changed: FxHashMap<VarId, Var>,
     /// Upper-case name → the first routine of `out` of that name (a scan of the routines per
     /// call made a file of many routines quadratic).
     routine_ids: FxHashMap<String, RoutineId>,
@@ -204,6 +213,8 @@ impl<'p> Lower<'p> {
             caps,
             out: Program::default(),
             first: None,
+            first_vars: None,
+            changed: FxHashMap::default(),
             routine_ids: FxHashMap::default(),
             vars: VarKeys::default(),
             rt: None,
@@ -242,16 +253,18 @@ impl<'p> Lower<'p> {
             ),
             Pass::Replay { .. } => (Vec::new(), Vec::new()),
         };
-        let mut vars = self.out.vars.clone();
+        let mut changed: FxHashMap<VarId, Var> = FxHashMap::default();
         for (v, ty, dims) in journal.into_iter().rev() {
-            let var = &mut vars[v.0 as usize];
+            let var = changed
+                .entry(v)
+                .or_insert_with(|| self.out.vars[v.0 as usize].clone());
             var.ty = ty;
             var.dims = dims;
         }
         self.data();
         Lowering {
             replay: Replay {
-                vars,
+                changed,
                 keys: std::mem::take(&mut self.vars),
                 next_spline: spline_at,
                 caps: self.caps,
@@ -273,9 +286,23 @@ impl<'p> Lower<'p> {
         matches!(self.pass, Pass::Replay { .. })
     }
 
+    /// A variable of the program being lowered, as it is at this point of the pass.
+    pub(super) fn var_decl(&self, v: VarId) -> &Var {
+        match self.first_vars {
+            Some(first) => self.changed.get(&v).unwrap_or_else(|| &first[v.0 as usize]),
+            None => self.out.var(v),
+        }
+    }
+
     /// Changes an assumed variable's type or dimensions, remembering the old ones.
     pub(super) fn retype(&mut self, v: VarId, ty: Ty, dims: usize) {
-        let var = &mut self.out.vars[v.0 as usize];
+        let var = match self.first_vars {
+            Some(first) => self
+                .changed
+                .entry(v)
+                .or_insert_with(|| first[v.0 as usize].clone()),
+            None => &mut self.out.vars[v.0 as usize],
+        };
         if let Pass::First {
             journal: Some(j), ..
         } = &mut self.pass
@@ -342,6 +369,8 @@ impl<'p> Lower<'p> {
     // ----- variables ---------------------------------------------------------------------
 
     fn add_var(&mut self, routine: &str, v: VarInfo, scope: Scope) -> VarId {
+        // The second pass finds every name the first added (it takes over its keys).
+        debug_assert!(!self.replaying(), "the second pass adds no variable");
         let id = VarId(self.out.vars.len() as u32);
         let name = upper(&v.name);
         self.out.vars.push(Var {
@@ -359,15 +388,16 @@ impl<'p> Lower<'p> {
 
     /// The variable `name` as seen from here, if the program declares it.
     pub(super) fn var(&self, name: &str) -> Option<VarId> {
-        let key = upper(name);
+        let name = self.vars.name(&upper(name))?;
         if let Some(rt) = &self.rt
-            && let Some(v) = self.vars.get(&rt.key, &key)
+            && let Some(scope) = rt.scope
+            && let Some(v) = self.vars.at(scope, name)
         {
             return Some(v);
         }
         self.vars
-            .get("", &key)
-            .filter(|v| matches!(self.out.var(*v).scope, Scope::Global))
+            .at(GLOBAL_SCOPE, name)
+            .filter(|v| matches!(self.var_decl(*v).scope, Scope::Global))
     }
 
     /// A global of the generated KUKA package (`MM_Last_Status` …), typed by the catalog.
@@ -505,7 +535,7 @@ impl<'p> Lower<'p> {
                     ast::ParamDir::In => super::ParamDir::In,
                     ast::ParamDir::Out => super::ParamDir::Out,
                 };
-                let v = self.out.var(var);
+                let v = self.var_decl(var);
                 let mut dims = v.dims.max(usize::from(p.array));
                 if v.ty == Ty::Char {
                     dims = dims.saturating_sub(1);
@@ -579,6 +609,7 @@ impl<'p> Lower<'p> {
     fn enter(&mut self, id: RoutineId, key: String) {
         self.rt = Some(Ctx {
             id,
+            scope: self.vars.scope(&key),
             key,
             temps: Vec::new(),
             loops: Vec::new(),
@@ -884,7 +915,7 @@ impl<'p> Lower<'p> {
                     self.out.uninit_globals.push((id, dims));
                     continue;
                 };
-                if let Ty::Other(t) = &self.out.var(id).ty
+                if let Ty::Other(t) = &self.var_decl(id).ty
                     && crate::transpile::front::ilf::RECORD_TYPES.contains(&t.as_str())
                 {
                     self.data_construct("data (inline-form)", d.span, file);
@@ -945,7 +976,7 @@ impl<'p> Lower<'p> {
     fn data_value(&mut self, var: VarId, init: &ast::Expr, file: FileId) -> Result<Expr, Why> {
         let before = self.out.findings.len();
         let mut pre = Block::new();
-        let ty = self.out.var(var).ty.clone();
+        let ty = self.var_decl(var).ty.clone();
         let r = self.value_for(&ty, init, &mut pre);
         // Findings about .dat values point into the .dat.
         for f in &mut self.out.findings[before..] {
@@ -964,19 +995,45 @@ impl<'p> Lower<'p> {
 /// (routine key or "", upper-case name) → variable, in one map keyed by two small numbers: the
 /// routine's key and the name are each interned once (a map and a copied key per routine were
 /// the largest part of the first pass's memory on a file of many routines).
-#[derive(Default)]
 struct VarKeys {
-    /// Upper-case routine key ("" for package, assumed and global names) → its number.
+    /// Upper-case routine key → its number; "" (package, assumed and global names) is 0.
     scopes: FxHashMap<CompactString, u32>,
     /// Upper-case variable name → its number.
     names: FxHashMap<CompactString, u32>,
     ids: FxHashMap<(u32, u32), VarId>,
 }
 
+impl Default for VarKeys {
+    fn default() -> VarKeys {
+        let mut scopes = FxHashMap::default();
+        scopes.insert(CompactString::default(), GLOBAL_SCOPE);
+        VarKeys {
+            scopes,
+            names: FxHashMap::default(),
+            ids: FxHashMap::default(),
+        }
+    }
+}
+
+/// The [`VarKeys`] scope of package, assumed and global names.
+const GLOBAL_SCOPE: u32 = 0;
+
 impl VarKeys {
     fn get(&self, routine: &str, name: &str) -> Option<VarId> {
-        let scope = *self.scopes.get(routine)?;
-        let name = *self.names.get(name)?;
+        self.at(self.scope(routine)?, self.name(name)?)
+    }
+
+    /// The number of a routine's scope, if it declares any variable.
+    fn scope(&self, routine: &str) -> Option<u32> {
+        self.scopes.get(routine).copied()
+    }
+
+    /// The number of an upper-case name, if any variable has it.
+    fn name(&self, name: &str) -> Option<u32> {
+        self.names.get(name).copied()
+    }
+
+    fn at(&self, scope: u32, name: u32) -> Option<VarId> {
         self.ids.get(&(scope, name)).copied()
     }
 
