@@ -72,6 +72,9 @@ pub struct Model<'p> {
     /// Each routine's parameters and locals.
     symbols_of: FxHashMap<RoutineId, Vec<sema::SymbolId>>,
     enums: OnceCell<Vec<(String, Option<String>)>>,
+    /// [`Model::layout_of_id`]'s answers: asked for every variable of a STRUC type, each
+    /// compared the field names of two types.
+    layouts: std::cell::RefCell<FxHashMap<TypeId, Option<Layout>>>,
     /// `SIGNAL` declarations by the span of their name.
     signals: OnceCell<BTreeMap<(FileId, Span), Option<SignalRange>>>,
 }
@@ -106,6 +109,7 @@ impl<'p> Model<'p> {
             routines,
             symbols_of,
             enums: OnceCell::new(),
+            layouts: Default::default(),
             signals: OnceCell::new(),
         }
     }
@@ -220,6 +224,15 @@ impl<'p> Model<'p> {
     /// Whether the STRUC `id` holds a pose or axis values: its fields are those of `E6POS` or
     /// `E6AXIS` (POS, FRAME, AXIS have a subset).
     fn layout_of_id(&self, id: TypeId) -> Option<Layout> {
+        if let Some(&l) = self.layouts.borrow().get(&id) {
+            return l;
+        }
+        let l = self.find_layout(id);
+        self.layouts.borrow_mut().insert(id, l);
+        l
+    }
+
+    fn find_layout(&self, id: TypeId) -> Option<Layout> {
         let names = |t: TypeId| -> Vec<String> {
             self.sema
                 .fields(t)

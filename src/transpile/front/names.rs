@@ -136,10 +136,12 @@ impl Namespace {
     /// The target name of `krl`. `Some(renamed)` the first time a name is seen and had to
     /// change beyond case.
     pub fn name(&mut self, krl: &str, rules: &NameRules) -> (String, Option<Renamed>) {
-        let key = krl.to_ascii_uppercase();
-        if let Some(t) = self.map.get(&key) {
+        let mut upper = compact_str::CompactString::from(krl);
+        upper.make_ascii_uppercase();
+        if let Some(t) = self.map.get(upper.as_str()) {
             return (t.clone(), None);
         }
+        let key = upper.to_string();
         let (mut target, mut reasons) = target_name(krl, rules);
         if self.taken.get(&target).is_some_and(|k| *k != key) {
             target = self.free_variant(&target, rules.max_len);
@@ -157,7 +159,9 @@ impl Namespace {
 
     /// The target name already assigned to `krl`, if any.
     pub fn get(&self, krl: &str) -> Option<&str> {
-        self.map.get(&krl.to_ascii_uppercase()).map(String::as_str)
+        let mut upper = compact_str::CompactString::from(krl);
+        upper.make_ascii_uppercase();
+        self.map.get(upper.as_str()).map(String::as_str)
     }
 
     /// A name the translator needs (`base`, else `base2`, `base3`, …) that no KRL name uses.

@@ -489,7 +489,7 @@ impl<'p> Lower<'p> {
 
     /// The routine of the program called `name` (any case), the first of that name.
     pub(super) fn routine_named(&self, name: &str) -> Option<RoutineId> {
-        self.routine_ids.get(&name.to_ascii_uppercase()).copied()
+        self.routine_ids.get(upper(name).as_str()).copied()
     }
 
     fn push_routine(&mut self, r: Routine) -> RoutineId {
