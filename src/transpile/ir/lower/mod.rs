@@ -235,6 +235,11 @@ impl<'p> Lower<'p> {
         for r in &program.src.outline.routines {
             l.declare_routine(r);
         }
+        let routines = &l.out.routines;
+        l.vars.by_routine = routines
+            .iter()
+            .map(|r| l.vars.scope(&upper(&r.name)))
+            .collect();
         l.collect_interrupts();
         if let Pass::First { journal, .. } = &mut l.pass {
             *journal = Some(Vec::new());
@@ -609,7 +614,10 @@ impl<'p> Lower<'p> {
     fn enter(&mut self, id: RoutineId, key: String) {
         self.rt = Some(Ctx {
             id,
-            scope: self.vars.scope(&key),
+            scope: match self.vars.by_routine.get(id.0 as usize) {
+                Some(&scope) if !key.is_empty() => scope,
+                _ => self.vars.scope(&key),
+            },
             key,
             temps: Vec::new(),
             loops: Vec::new(),
@@ -1001,6 +1009,9 @@ struct VarKeys {
     /// Upper-case variable name → its number.
     names: FxHashMap<CompactString, u32>,
     ids: FxHashMap<(u32, u32), VarId>,
+    /// Each routine's scope, by routine id (a lookup by name per routine entered missed the
+    /// cache on a file of many routines).
+    by_routine: Vec<Option<u32>>,
 }
 
 impl Default for VarKeys {
@@ -1011,6 +1022,7 @@ impl Default for VarKeys {
             scopes,
             names: FxHashMap::default(),
             ids: FxHashMap::default(),
+            by_routine: Vec::new(),
         }
     }
 }
