@@ -549,7 +549,7 @@ impl<'p> Lower<'p> {
                     var,
                     dir,
                     array: dims,
-                    assigned: assigned.contains(&p.name.key()),
+                    assigned: assigned.contains(upper(&p.name.text).as_str()),
                 })
             })
             .collect();
@@ -815,7 +815,8 @@ impl<'p> Lower<'p> {
         let result = match src.src.outline.routines.get(routine.index as usize) {
             None => None,
             Some(o) => {
-                let mut set = o.facts.written.clone();
+                let mut set: BTreeSet<String> =
+                    o.facts.written.iter().map(|n| n.to_string()).collect();
                 let mut unknown = false;
                 for c in &o.facts.callees {
                     let w = match self.call_target(Some(r), c) {
