@@ -4,6 +4,7 @@
 
 pub mod comments;
 pub mod fail;
+pub mod grouped;
 pub mod ilf;
 pub mod kinds;
 pub mod literal;

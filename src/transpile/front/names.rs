@@ -268,19 +268,20 @@ pub struct Namer<'a> {
     /// Routines whose namespaces were dropped: asked again, they are made again the same way.
     ended: FxHashSet<RoutineId>,
     /// Each routine's parameters and locals, in declaration order.
-    vars_of: FxHashMap<RoutineId, Vec<VarId>>,
+    vars_of: super::grouped::Grouped<VarId>,
     /// Every rename, in the order found, with what kind of name it is.
     renamed: Vec<(&'static str, Renamed)>,
 }
 
 impl<'a> Namer<'a> {
     pub fn new(rules: &'static NameRules, ir: &'a ir::Program) -> Namer<'a> {
-        let mut vars_of: FxHashMap<RoutineId, Vec<VarId>> = FxHashMap::default();
-        for (i, v) in ir.vars.iter().enumerate() {
-            if let Scope::Param(r) | Scope::Local(r) = v.scope {
-                vars_of.entry(r).or_default().push(VarId(i as u32));
-            }
-        }
+        let vars_of =
+            super::grouped::Grouped::new(ir.vars.iter().enumerate().filter_map(|(i, v)| {
+                match v.scope {
+                    Scope::Param(r) | Scope::Local(r) => Some((r.0 as usize, VarId(i as u32))),
+                    _ => None,
+                }
+            }));
         Namer {
             rules,
             ir,
@@ -368,7 +369,7 @@ impl<'a> Namer<'a> {
             self.ended.insert(prev);
         }
         let ir = self.ir;
-        let vars = self.vars_of.get(&id).map_or(&[][..], Vec::as_slice);
+        let vars = self.vars_of.get(id.0 as usize);
         let ns = self.locals.entry(id).or_default();
         for &v in vars {
             let var = ir.var(v);
@@ -399,7 +400,7 @@ impl<'a> Namer<'a> {
     fn locals_ns(&mut self, id: RoutineId) -> &mut Namespace {
         if !self.locals.contains_key(&id) && self.ended.contains(&id) {
             let mut ns = Namespace::default();
-            for &v in self.vars_of.get(&id).map_or(&[][..], Vec::as_slice) {
+            for &v in self.vars_of.get(id.0 as usize) {
                 ns.name(&self.ir.var(v).name, self.rules);
             }
             self.locals.insert(id, ns);
