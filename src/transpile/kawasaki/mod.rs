@@ -78,12 +78,31 @@ pub static BACKEND: render::Backend = render::Backend {
     target: super::Target::Kawasaki,
     name: "kawasaki",
     caps: render::Caps {
+        // E1 is the 7th value (JT7), TR002.
+        external_axes: 1,
+        robot: "Kawasaki",
+        // Computed from mm_get_plandata's globals and mm_get_pose (`mm.rs`).
+        mech_mind: render::MechMind::Commands {
+            computed: &[
+                ("MM_Get_PlanJps", &["Serial", "MM_J"] as &[&str]),
+                ("MM_Get_PlanPose", &["Serial", "MM_P"] as &[&str]),
+                ("MM_Get_DyPose", &["Serial", "MM_P", "MM_Label"] as &[&str]),
+            ],
+        },
         interrupt_on_flags: true,
         functions: false,
         lacks: &[Lacked::Override, Lacked::TimerStop],
         pulse: render::Pulse {
             low: false,
             flags: true,
+        },
+        // The robot's joints (HERE) move and compare as they are.
+        axis_values: render::AxisValues {
+            joint: "joint",
+            joints: 6,
+            written: true,
+            every: false,
+            linear: true,
         },
         ..render::Caps::BASE
     },

@@ -182,6 +182,7 @@ impl<'p> Lower<'p> {
                 span: a.span,
             });
         }
+        self.mm_held(sub, args, span)?;
         ops.push(Stmt {
             op: Op::Call {
                 callee: Callee::Mm(sub),

@@ -6,9 +6,12 @@
 //! values. What cannot be expressed in any target becomes [`Op::Unsupported`]; the motion
 //! parameters each motion uses are left for [`super::flow`].
 
+mod axes;
 mod call;
 mod expr;
+mod mech_mind;
 mod motion;
+mod signals;
 mod stmt;
 
 use std::collections::BTreeSet;
@@ -667,6 +670,7 @@ impl<'p> Lower<'p> {
                 op: Op::Unsupported {
                     why: Why::HeaderSyntaxError,
                     at,
+                    moves: false,
                 },
                 span: at,
             });
@@ -676,6 +680,7 @@ impl<'p> Lower<'p> {
                 op: Op::Unsupported {
                     why: Why::DuplicateParameter(name),
                     at,
+                    moves: false,
                 },
                 span: at,
             });
@@ -931,7 +936,7 @@ impl<'p> Lower<'p> {
                     continue;
                 }
                 self.data_construct("data", d.span, file);
-                let value = self.data_value(id, init, file);
+                let value = self.data_value(id, init, file, d.span);
                 self.out.data.push(Datum {
                     var: id,
                     index: None,
@@ -965,7 +970,7 @@ impl<'p> Lower<'p> {
                 continue;
             };
             self.data_construct("data", s.span, file);
-            let value = self.data_value(id, value, file);
+            let value = self.data_value(id, value, file, s.span);
             self.out.data.push(Datum {
                 var: id,
                 index,
@@ -982,7 +987,13 @@ impl<'p> Lower<'p> {
     }
 
     /// A `.dat` value: lowered as an expression (no calls), findings in `file`.
-    fn data_value(&mut self, var: VarId, init: &ast::Expr, file: FileId) -> Result<Expr, Why> {
+    fn data_value(
+        &mut self,
+        var: VarId,
+        init: &ast::Expr,
+        file: FileId,
+        span: Span,
+    ) -> Result<Expr, (Why, Span)> {
         let before = self.out.findings.len();
         let mut pre = Block::new();
         let ty = self.var_decl(var).ty.clone();
@@ -993,10 +1004,11 @@ impl<'p> Lower<'p> {
         }
         match r {
             Ok(e) if pre.is_empty() => Ok(e),
-            Ok(_) => Err(Why::Aggregate(
-                "a .dat value that calls a function has no counterpart".into(),
+            Ok(_) => Err((
+                Why::Aggregate("a .dat value that calls a function has no counterpart".into()),
+                span,
             )),
-            Err((why, _)) => Err(why),
+            Err(e) => Err(e),
         }
     }
 }
