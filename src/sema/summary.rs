@@ -1051,6 +1051,12 @@ pub(super) fn stmt_ends(s: &Stmt) -> StmtEnds {
             unknown: false,
         };
     }
+    if let StmtKind::Return { .. } = s.kind {
+        return StmtEnds {
+            falls: false,
+            unknown: false,
+        };
+    }
     let g = Cfg::of(std::slice::from_ref(s));
     StmtEnds {
         falls: g.end_reachable(),
