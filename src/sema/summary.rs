@@ -249,8 +249,9 @@ pub(crate) struct AssignFact {
 /// Everything stage 2 needs from one file.
 #[derive(Debug, Clone, Default)]
 pub struct FileSummary {
-    /// Per-file name table (first spelling); items and uses index it.
-    pub(crate) names: Vec<Box<str>>,
+    /// Per-file name table (first spelling); items and uses index it. Inline strings: most
+    /// names allocate nothing.
+    pub(crate) names: Vec<CompactString>,
     pub(crate) routines: Vec<RoutineItem>,
     /// DEFDAT name and PUBLIC.
     pub(crate) dat: Option<(u32, Span, bool)>,
@@ -319,7 +320,7 @@ impl FileSummary {
     /// a file with the same interface affect no other file's findings differently.
     pub fn interface(&self) -> String {
         use std::fmt::Write;
-        let n = |i: u32| self.names[i as usize].to_ascii_uppercase();
+        let n = |i: u32| self.names[i as usize].as_str().to_ascii_uppercase();
         let t = |t: &TypeRefItem| {
             format!(
                 "{}{:?}{:?}",
@@ -411,7 +412,11 @@ impl FileSummary {
         fn vec<T>(v: &Vec<T>) -> usize {
             v.capacity() * std::mem::size_of::<T>()
         }
-        let names = vec(&self.names) + self.names.iter().map(|n| n.len()).sum::<usize>();
+        let names = vec(&self.names)
+            + (self.names.iter())
+                .filter(|n| n.is_heap_allocated())
+                .map(|n| n.capacity())
+                .sum::<usize>();
         let routines =
             vec(&self.routines) + self.routines.iter().map(|r| vec(&r.params)).sum::<usize>();
         let decls = vec(&self.decls)
@@ -445,9 +450,18 @@ struct Summarizer {
     out: FileSummary,
     /// Upper-case name → id.
     ids: FxHashMap<CompactString, u32>,
-    spell: Vec<Box<str>>,
+    /// The ids of names looked up lately, by a hash of their upper-case form, once the file
+    /// has many names: a routine names the same few variables over and over, and a hit spares
+    /// a probe of the big map.
+    recent: Vec<(CompactString, u32)>,
+    spell: Vec<CompactString>,
     owner: u32,
 }
+
+/// Slots of [`Summarizer::recent`] (a power of two), and how many names a file has before it
+/// is used.
+const RECENT: usize = 256;
+const RECENT_AFTER: usize = 4096;
 
 impl Summarizer {
     fn declarations_only() -> Summarizer {
@@ -459,6 +473,28 @@ impl Summarizer {
     fn name(&mut self, text: &str) -> u32 {
         let mut key = CompactString::from(text);
         key.make_ascii_uppercase();
+        if self.spell.len() < RECENT_AFTER {
+            return self.new_name(key, text);
+        }
+        if self.recent.is_empty() {
+            self.recent.resize(RECENT, (CompactString::default(), NONE));
+        }
+        let slot = {
+            use std::hash::Hasher;
+            let mut h = rustc_hash::FxHasher::default();
+            h.write(key.as_bytes());
+            (h.finish() >> 32) as usize & (RECENT - 1)
+        };
+        if self.recent[slot].1 != NONE && self.recent[slot].0 == key {
+            return self.recent[slot].1;
+        }
+        let id = self.new_name(key.clone(), text);
+        self.recent[slot] = (key, id);
+        id
+    }
+
+    /// The id of `key` (`text` upper-cased) in the map, added when new.
+    fn new_name(&mut self, key: CompactString, text: &str) -> u32 {
         let next = self.spell.len() as u32;
         let id = *self.ids.entry(key).or_insert(next);
         if id == next {
