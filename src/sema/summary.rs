@@ -183,6 +183,45 @@ pub(crate) enum Proj {
     Index(u8),
 }
 
+/// Up to three projections of a [`Term::Var`], packed in a word each (a field's name, or an
+/// index count with the top bit set): a term takes 20 bytes instead of 32, and a big file's
+/// summary holds millions of them.
+#[derive(Debug, Clone, Copy, PartialEq, Default)]
+pub(crate) struct Projs([u32; 3]);
+
+const INDEX_BIT: u32 = 1 << 31;
+
+impl Projs {
+    pub fn get(&self, i: usize) -> Proj {
+        match self.0[i] {
+            w if w & INDEX_BIT != 0 => Proj::Index((w & 0xff) as u8),
+            w => Proj::Field(w),
+        }
+    }
+
+    fn set(&mut self, i: usize, p: Proj) {
+        self.0[i] = match p {
+            // A file or a model names far fewer than 2^31 names.
+            Proj::Field(f) => f & !INDEX_BIT,
+            Proj::Index(n) => INDEX_BIT | u32::from(n),
+        };
+    }
+
+    /// The first `len` projections.
+    pub fn iter(&self, len: u8) -> impl Iterator<Item = Proj> + '_ {
+        (0..usize::from(len).min(3)).map(|i| self.get(i))
+    }
+
+    /// Calls `f` on the name of every field among the first `len` projections (to rename them).
+    pub fn fields_mut(&mut self, len: u8, mut f: impl FnMut(&mut u32)) {
+        for w in self.0.iter_mut().take(usize::from(len)) {
+            if *w & INDEX_BIT == 0 {
+                f(w);
+            }
+        }
+    }
+}
+
 /// What the type of an expression depends on. Evaluated in stage 2.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub(crate) enum Term {
@@ -199,7 +238,7 @@ pub(crate) enum Term {
     /// A variable use with up to three projections.
     Var {
         use_ix: u32,
-        proj: [Proj; 3],
+        proj: Projs,
         len: u8,
     },
     /// The result of a function call (the `Call` use).
@@ -212,6 +251,9 @@ pub(crate) enum Term {
     Decl(u32),
     Unknown,
 }
+
+// A big file's summary holds millions of terms.
+const _: () = assert!(std::mem::size_of::<Term>() <= 20);
 
 /// How an argument was written.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -939,7 +981,7 @@ impl Summarizer {
                 let use_ix = self.use_of(id, UseKind::Var, access);
                 Term::Var {
                     use_ix,
-                    proj: [Proj::Index(0); 3],
+                    proj: Projs::default(),
                     len: 0,
                 }
             }
@@ -1005,8 +1047,8 @@ impl Summarizer {
                 use_ix,
                 mut proj,
                 len,
-            } if (len as usize) < proj.len() => {
-                proj[len as usize] = p;
+            } if len < 3 => {
+                proj.set(len as usize, p);
                 Term::Var {
                     use_ix,
                     proj,
