@@ -3,7 +3,7 @@
 //! `MM_` routine or writes a `$FLAG`, or calls (by name) a routine of the file whose body is
 //! kept, as `lint::flow` follows local calls. No routine keeps its declarations (the rules take
 //! them from the model). Every other routine stays in the tree, at its index, with an empty
-//! body: on its own it gives the rules nothing (no interface call, no flag), and `lint::flow` summarises a
+//! body (and no parameters or return type): on its own it gives the rules nothing (no interface call, no flag), and `lint::flow` summarises a
 //! call of it as it summarises the empty body (no `MM_` call may have run). What MM008 still
 //! asks of it, the names its body reads, is kept as a set.
 //!
@@ -165,6 +165,10 @@ impl KeptBuilder {
             }
         }
         r.body = Vec::new();
+        // No rule reads an AST routine's parameters or return type (signatures come from the
+        // model): an emptied routine keeps its name and place only.
+        r.params = Vec::new();
+        r.return_type = None;
     }
 
     /// The kept tree; `text` is the file's, lowered again for the routines that turned out to
