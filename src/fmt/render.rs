@@ -231,6 +231,9 @@ pub(super) fn case_changes(
     opts: &FmtOptions,
     mut f: impl FnMut(Token),
 ) {
+    if !may_change_case(line, text) {
+        return;
+    }
     renderer.pieces.clear();
     flatten(line, line.kind, &mut renderer.pieces, text);
     for p in &renderer.pieces {
@@ -239,6 +242,29 @@ pub(super) fn case_changes(
             f(p.tok);
         }
     }
+}
+
+/// Whether some token of `line` could be one [`case_changes`] reports under some options and
+/// roles: a keyword, word operator or boolean with a lower-case letter, or a lower-case name
+/// that is a `$` variable, a built-in type or a built-in function. Most lines have none, and
+/// this look at the tokens is cheaper than giving each its role.
+fn may_change_case(line: Node<'_>, text: &str) -> bool {
+    let mut may = false;
+    line.walk_tokens(&mut |t| {
+        if may {
+            return;
+        }
+        let lower = || t.text(text).bytes().any(|b| b.is_ascii_lowercase());
+        may = match t.kind {
+            TokenKind::Keyword | TokenKind::Operator | TokenKind::Bool => lower(),
+            TokenKind::Ident => {
+                let s = t.text(text);
+                lower() && (s.starts_with('$') || is_builtin_type(s) || is_builtin_function(s))
+            }
+            _ => false,
+        };
+    });
+    may
 }
 
 fn flatten(node: Node<'_>, parent: NodeKind, out: &mut Vec<Piece>, text: &str) {

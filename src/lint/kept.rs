@@ -3,7 +3,7 @@
 //! `MM_` routine or writes a `$FLAG`, or calls (by name) a routine of the file whose body is
 //! kept, as `lint::flow` follows local calls. No routine keeps its declarations (the rules take
 //! them from the model). Every other routine stays in the tree, at its index, with an empty
-//! body: on its own it gives the rules nothing (no interface call, no flag), and `lint::flow` summarises a
+//! body (and no parameters or return type): on its own it gives the rules nothing (no interface call, no flag), and `lint::flow` summarises a
 //! call of it as it summarises the empty body (no `MM_` call may have run). What MM008 still
 //! asks of it, the names its body reads, is kept as a set.
 //!
@@ -165,32 +165,36 @@ impl KeptBuilder {
             }
         }
         r.body = Vec::new();
+        // No rule reads an AST routine's parameters or return type (signatures come from the
+        // model): an emptied routine keeps its name and place only.
+        r.params = Vec::new();
+        r.return_type = None;
     }
 
     /// The kept tree; `text` is the file's, lowered again for the routines that turned out to
     /// be needed after their statements were dropped.
     pub fn finish(mut self, text: &str) -> Kept {
         // The routines kept transitively: callers of kept routines, breadth first from the
-        // direct ones.
-        let mut by_name: FxHashMap<String, Vec<usize>> = FxHashMap::default();
-        for (k, r) in self.file.routines_mut().iter().enumerate() {
-            by_name.entry(r.name.key()).or_default().push(k);
-        }
-        let mut callers: FxHashMap<usize, Vec<usize>> = FxHashMap::default();
+        // direct ones. Indexed by the names the pending routines call, so the work follows
+        // the calls and the kept routines, not every routine of the file.
+        let mut callers: FxHashMap<&str, Vec<usize>> = FxHashMap::default();
         for p in &self.pending {
-            for callee in p.calls.iter().filter_map(|c| by_name.get(c)).flatten() {
-                callers.entry(*callee).or_default().push(p.index);
+            for callee in &p.calls {
+                callers.entry(callee).or_default().push(p.index);
             }
         }
         let mut kept: FxHashSet<usize> = self.direct.iter().copied().collect();
         let mut queue = std::mem::take(&mut self.direct);
+        let routines = self.file.routines_mut();
         while let Some(k) = queue.pop() {
-            for &c in callers.get(&k).into_iter().flatten() {
+            let key = routines[k].name.key();
+            for &c in callers.get(key.as_str()).into_iter().flatten() {
                 if kept.insert(c) {
                     queue.push(c);
                 }
             }
         }
+        drop(callers);
         for p in std::mem::take(&mut self.pending) {
             if !kept.contains(&p.index) {
                 self.elide(p.index, p.dropped);

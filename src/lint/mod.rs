@@ -418,7 +418,7 @@ mod tests {
             assert!(kept.is_none_or(|kept| kept == pruned), "{path}");
         }
         // The kept tree is the whole one without routines' declarations, and for emptied
-        // routines without their bodies.
+        // routines without their bodies, parameters and return types.
         assert_eq!(pruned.ast.routines.len(), ast.routines.len(), "{path}");
         for (k, w) in pruned.ast.routines.iter().zip(&ast.routines) {
             let kept = Routine {
@@ -428,6 +428,8 @@ mod tests {
             };
             let emptied = Routine {
                 body: Vec::new(),
+                params: Vec::new(),
+                return_type: None,
                 ..kept.clone()
             };
             assert!(*k == kept || *k == emptied, "{path}: {}", w.name.text);

@@ -18,7 +18,7 @@ use super::model::{
 };
 use super::names::Names;
 use super::scope::Scope;
-use super::summary::{DeclKind, FileSummary, NONE, Proj, Term, TypeItemKind, TypeRefItem, UseKind};
+use super::summary::{DeclKind, FileSummary, NONE, Term, TypeItemKind, TypeRefItem, UseKind};
 use super::ty::{Field, Sizes, Ty, TyKind, TypeDef, TypeDefKind};
 use crate::catalog::catalog;
 
@@ -497,13 +497,7 @@ pub(super) fn intern(names: &mut Names, mut s: FileSummary) -> FileSummary {
     for t in &mut s.terms {
         match t {
             Term::EnumLit(n) => m(n),
-            Term::Var { proj, len, .. } => {
-                for p in &mut proj[..*len as usize] {
-                    if let Proj::Field(f) = p {
-                        m(f);
-                    }
-                }
-            }
+            Term::Var { proj, len, .. } => proj.fields_mut(*len, m),
             _ => {}
         }
     }

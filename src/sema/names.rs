@@ -1,18 +1,20 @@
 //! Interned names. KRL names are case-insensitive: a [`NameId`] stands for every spelling of a
 //! name, and keeps the first spelling seen for display.
 
+use compact_str::CompactString;
 use rustc_hash::FxHashMap;
 
 use super::ids::NameId;
 
-/// The name table of one model.
+/// The name table of one model. Inline strings: a name of up to 24 bytes (nearly every KRL
+/// name) allocates nothing, to intern or to free.
 #[derive(Debug, Default, Clone)]
 pub struct Names {
-    map: FxHashMap<Box<str>, NameId>,
+    map: FxHashMap<CompactString, NameId>,
     /// Upper-case key of each id.
-    keys: Vec<Box<str>>,
+    keys: Vec<CompactString>,
     /// The first spelling seen of each id.
-    text: Vec<Box<str>>,
+    text: Vec<CompactString>,
 }
 
 impl Names {
@@ -22,7 +24,8 @@ impl Names {
             return id;
         }
         let id = NameId(self.keys.len() as u32);
-        let key: Box<str> = name.to_ascii_uppercase().into();
+        let mut key = CompactString::from(name);
+        key.make_ascii_uppercase();
         self.map.insert(key.clone(), id);
         self.keys.push(key);
         self.text.push(name.into());

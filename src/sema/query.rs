@@ -660,8 +660,8 @@ impl Sema {
                     return Ty::UNKNOWN;
                 }
                 let mut ty = self.ty_of_resolved(r);
-                for p in &proj[..len as usize] {
-                    ty = match *p {
+                for p in proj.iter(len) {
+                    ty = match p {
                         Proj::Index(n) => ty.index(n as usize),
                         Proj::Field(f) => match (ty.kind, ty.dims, name_of(f)) {
                             (TyKind::Struc(id), 0, Some(name)) => self

@@ -183,6 +183,45 @@ pub(crate) enum Proj {
     Index(u8),
 }
 
+/// Up to three projections of a [`Term::Var`], packed in a word each (a field's name, or an
+/// index count with the top bit set): a term takes 20 bytes instead of 32, and a big file's
+/// summary holds millions of them.
+#[derive(Debug, Clone, Copy, PartialEq, Default)]
+pub(crate) struct Projs([u32; 3]);
+
+const INDEX_BIT: u32 = 1 << 31;
+
+impl Projs {
+    pub fn get(&self, i: usize) -> Proj {
+        match self.0[i] {
+            w if w & INDEX_BIT != 0 => Proj::Index((w & 0xff) as u8),
+            w => Proj::Field(w),
+        }
+    }
+
+    fn set(&mut self, i: usize, p: Proj) {
+        self.0[i] = match p {
+            // A file or a model names far fewer than 2^31 names.
+            Proj::Field(f) => f & !INDEX_BIT,
+            Proj::Index(n) => INDEX_BIT | u32::from(n),
+        };
+    }
+
+    /// The first `len` projections.
+    pub fn iter(&self, len: u8) -> impl Iterator<Item = Proj> + '_ {
+        (0..usize::from(len).min(3)).map(|i| self.get(i))
+    }
+
+    /// Calls `f` on the name of every field among the first `len` projections (to rename them).
+    pub fn fields_mut(&mut self, len: u8, mut f: impl FnMut(&mut u32)) {
+        for w in self.0.iter_mut().take(usize::from(len)) {
+            if *w & INDEX_BIT == 0 {
+                f(w);
+            }
+        }
+    }
+}
+
 /// What the type of an expression depends on. Evaluated in stage 2.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub(crate) enum Term {
@@ -199,7 +238,7 @@ pub(crate) enum Term {
     /// A variable use with up to three projections.
     Var {
         use_ix: u32,
-        proj: [Proj; 3],
+        proj: Projs,
         len: u8,
     },
     /// The result of a function call (the `Call` use).
@@ -212,6 +251,9 @@ pub(crate) enum Term {
     Decl(u32),
     Unknown,
 }
+
+// A big file's summary holds millions of terms.
+const _: () = assert!(std::mem::size_of::<Term>() <= 20);
 
 /// How an argument was written.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -249,8 +291,9 @@ pub(crate) struct AssignFact {
 /// Everything stage 2 needs from one file.
 #[derive(Debug, Clone, Default)]
 pub struct FileSummary {
-    /// Per-file name table (first spelling); items and uses index it.
-    pub(crate) names: Vec<Box<str>>,
+    /// Per-file name table (first spelling); items and uses index it. Inline strings: most
+    /// names allocate nothing.
+    pub(crate) names: Vec<CompactString>,
     pub(crate) routines: Vec<RoutineItem>,
     /// DEFDAT name and PUBLIC.
     pub(crate) dat: Option<(u32, Span, bool)>,
@@ -319,7 +362,7 @@ impl FileSummary {
     /// a file with the same interface affect no other file's findings differently.
     pub fn interface(&self) -> String {
         use std::fmt::Write;
-        let n = |i: u32| self.names[i as usize].to_ascii_uppercase();
+        let n = |i: u32| self.names[i as usize].as_str().to_ascii_uppercase();
         let t = |t: &TypeRefItem| {
             format!(
                 "{}{:?}{:?}",
@@ -411,7 +454,11 @@ impl FileSummary {
         fn vec<T>(v: &Vec<T>) -> usize {
             v.capacity() * std::mem::size_of::<T>()
         }
-        let names = vec(&self.names) + self.names.iter().map(|n| n.len()).sum::<usize>();
+        let names = vec(&self.names)
+            + (self.names.iter())
+                .filter(|n| n.is_heap_allocated())
+                .map(|n| n.capacity())
+                .sum::<usize>();
         let routines =
             vec(&self.routines) + self.routines.iter().map(|r| vec(&r.params)).sum::<usize>();
         let decls = vec(&self.decls)
@@ -445,9 +492,18 @@ struct Summarizer {
     out: FileSummary,
     /// Upper-case name → id.
     ids: FxHashMap<CompactString, u32>,
-    spell: Vec<Box<str>>,
+    /// The ids of names looked up lately, by a hash of their upper-case form, once the file
+    /// has many names: a routine names the same few variables over and over, and a hit spares
+    /// a probe of the big map.
+    recent: Vec<(CompactString, u32)>,
+    spell: Vec<CompactString>,
     owner: u32,
 }
+
+/// Slots of [`Summarizer::recent`] (a power of two), and how many names a file has before it
+/// is used.
+const RECENT: usize = 256;
+const RECENT_AFTER: usize = 4096;
 
 impl Summarizer {
     fn declarations_only() -> Summarizer {
@@ -459,6 +515,28 @@ impl Summarizer {
     fn name(&mut self, text: &str) -> u32 {
         let mut key = CompactString::from(text);
         key.make_ascii_uppercase();
+        if self.spell.len() < RECENT_AFTER {
+            return self.new_name(key, text);
+        }
+        if self.recent.is_empty() {
+            self.recent.resize(RECENT, (CompactString::default(), NONE));
+        }
+        let slot = {
+            use std::hash::Hasher;
+            let mut h = rustc_hash::FxHasher::default();
+            h.write(key.as_bytes());
+            (h.finish() >> 32) as usize & (RECENT - 1)
+        };
+        if self.recent[slot].1 != NONE && self.recent[slot].0 == key {
+            return self.recent[slot].1;
+        }
+        let id = self.new_name(key.clone(), text);
+        self.recent[slot] = (key, id);
+        id
+    }
+
+    /// The id of `key` (`text` upper-cased) in the map, added when new.
+    fn new_name(&mut self, key: CompactString, text: &str) -> u32 {
         let next = self.spell.len() as u32;
         let id = *self.ids.entry(key).or_insert(next);
         if id == next {
@@ -903,7 +981,7 @@ impl Summarizer {
                 let use_ix = self.use_of(id, UseKind::Var, access);
                 Term::Var {
                     use_ix,
-                    proj: [Proj::Index(0); 3],
+                    proj: Projs::default(),
                     len: 0,
                 }
             }
@@ -969,8 +1047,8 @@ impl Summarizer {
                 use_ix,
                 mut proj,
                 len,
-            } if (len as usize) < proj.len() => {
-                proj[len as usize] = p;
+            } if len < 3 => {
+                proj.set(len as usize, p);
                 Term::Var {
                     use_ix,
                     proj,
@@ -1048,6 +1126,12 @@ pub(super) fn stmt_ends(s: &Stmt) -> StmtEnds {
     if crate::cfg::is_straight(s) {
         return StmtEnds {
             falls: true,
+            unknown: false,
+        };
+    }
+    if let StmtKind::Return { .. } = s.kind {
+        return StmtEnds {
+            falls: false,
             unknown: false,
         };
     }

@@ -13,7 +13,7 @@ enum Part {
     Stmt(Stmt),
     /// The distinct names of a run of statements that declare nothing, in first-seen order,
     /// and whether one of them did not parse.
-    Names(Vec<Box<str>>, bool),
+    Names(Vec<compact_str::CompactString>, bool),
 }
 
 #[derive(Default)]

@@ -182,8 +182,13 @@ impl<'a> Out<'a> {
     }
 
     pub fn line(&mut self, s: &str) {
-        let indent = self.style.indent.repeat(self.depth + self.style.base_depth);
-        self.lines.push(format!("{indent}{s}"));
+        let depth = self.depth + self.style.base_depth;
+        let mut line = String::with_capacity(self.style.indent.len() * depth + s.len());
+        for _ in 0..depth {
+            line.push_str(self.style.indent);
+        }
+        line.push_str(s);
+        self.lines.push(line);
     }
 
     pub fn comment(&mut self, text: &str) {

@@ -329,7 +329,7 @@ impl<'p> Lower<'p> {
             if let ExprKind::Place(p) = &x.kind
                 && let Some(v) = p.root()
             {
-                let var = self.out.var(v);
+                let var = self.var_decl(v);
                 let global = matches!(var.scope, Scope::Global | Scope::Package | Scope::Assumed);
                 let written = writes.1.contains(&v)
                     || (global
@@ -373,7 +373,7 @@ impl<'p> Lower<'p> {
             A::Name(id) => {
                 if let Some(v) = self.var(&id.text) {
                     self.holdable(v, span)?;
-                    let var = self.out.var(v);
+                    let var = self.var_decl(v);
                     if let Ty::Signal(r) = var.ty {
                         if r.bank == crate::transpile::ir::Bank::In {
                             self.stop(span, pre);
@@ -387,11 +387,11 @@ impl<'p> Lower<'p> {
                 }
                 if let Some(v) = self.package_var(id) {
                     self.holdable(v, span)?;
-                    let ty = self.out.var(v).ty.clone();
+                    let ty = self.var_decl(v).ty.clone();
                     return Ok(Expr::new(ExprKind::Place(Place::Var(v)), ty, span));
                 }
                 let v = self.assumed_var(id, Ty::Real, "a number");
-                let ty = self.out.var(v).ty.clone();
+                let ty = self.var_decl(v).ty.clone();
                 Ok(Expr::new(ExprKind::Place(Place::Var(v)), ty, span))
             }
             A::Index { .. } | A::Member { .. } => {
@@ -406,7 +406,7 @@ impl<'p> Lower<'p> {
     /// fields a record cannot hold; a KUKA structure no target has) is refused here, once, for
     /// every target.
     pub(super) fn holdable(&mut self, v: crate::transpile::ir::VarId, at: Span) -> L<()> {
-        match self.out.var(v).ty.clone() {
+        match self.var_decl(v).ty.clone() {
             Ty::Struc(t) if !t.is_empty() && self.record_of(&t).is_none() => {
                 fail(Why::Structure(t), at)
             }
@@ -445,11 +445,11 @@ impl<'p> Lower<'p> {
             A::Name(id) => {
                 if let Some(v) = self.var(&id.text).or_else(|| self.package_var(id)) {
                     self.holdable(v, span)?;
-                    return Ok((Place::Var(v), self.out.var(v).ty.clone()));
+                    return Ok((Place::Var(v), self.var_decl(v).ty.clone()));
                 }
                 let _ = write;
                 let v = self.assumed_var(id, Ty::Real, "a number");
-                Ok((Place::Var(v), self.out.var(v).ty.clone()))
+                Ok((Place::Var(v), self.var_decl(v).ty.clone()))
             }
             A::Index { base, indices } => {
                 let A::Name(id) = &base.kind else {
@@ -461,7 +461,7 @@ impl<'p> Lower<'p> {
                         Some(v) => v,
                         None => {
                             let v = self.assumed_var(id, Ty::Real, "an array of numbers");
-                            let var = self.out.var(v);
+                            let var = self.var_decl(v);
                             let (ty, dims) = (var.ty.clone(), var.dims.max(indices.len()));
                             self.retype(v, ty, dims);
                             v
@@ -469,7 +469,7 @@ impl<'p> Lower<'p> {
                     },
                 };
                 self.holdable(v, span)?;
-                let ty = self.out.var(v).ty.clone();
+                let ty = self.var_decl(v).ty.clone();
                 let mut idx = Vec::new();
                 let present: Vec<&ast::Expr> = indices.iter().flatten().collect();
                 let mut lowered = self.seq(&present, pre)?.into_iter();

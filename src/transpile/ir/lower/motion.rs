@@ -485,7 +485,7 @@ impl<'p> Lower<'p> {
         }
         let v = self.expr(e, ops)?;
         let literal = match &v.kind {
-            ExprKind::Place(Place::Var(id)) => self.dat_literal(&self.out.var(*id).name),
+            ExprKind::Place(Place::Var(id)) => self.dat_literal(&self.var_decl(*id).name),
             _ => false,
         };
         match v.ty {

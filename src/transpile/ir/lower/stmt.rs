@@ -108,7 +108,7 @@ impl<'p> Lower<'p> {
     pub(super) fn body_decl(&mut self, d: &ast::Decl, span: Span, out: &mut Block) {
         for v in &d.vars {
             if let Some(id) = self.var(&v.name.text)
-                && matches!(self.out.var(id).scope, Scope::Local(_))
+                && matches!(self.var_decl(id).scope, Scope::Local(_))
             {
                 let dims = self.data_dims(&v.dims);
                 if let Some(rt) = &mut self.rt {
@@ -476,14 +476,15 @@ impl<'p> Lower<'p> {
                     Some(Sys::Flag(i)) => OutPlace::Flag(Box::new(self.expr(i, ops)?)),
                     Some(_) => return fail(Why::PulseSignal, signal.span),
                     None => match &signal.kind {
-                        A::Name(id) => match self.var(&id.text).map(|v| self.out.var(v).ty.clone())
-                        {
-                            Some(Ty::Signal(r)) if r.width() == 1 => match OutSignal::new(r) {
-                                Some(s) => OutPlace::Signal(s),
-                                None => return fail(Why::PulseSignal, signal.span),
-                            },
-                            _ => return fail(Why::PulseSignal, signal.span),
-                        },
+                        A::Name(id) => {
+                            match self.var(&id.text).map(|v| self.var_decl(v).ty.clone()) {
+                                Some(Ty::Signal(r)) if r.width() == 1 => match OutSignal::new(r) {
+                                    Some(s) => OutPlace::Signal(s),
+                                    None => return fail(Why::PulseSignal, signal.span),
+                                },
+                                _ => return fail(Why::PulseSignal, signal.span),
+                            }
+                        }
                         _ => return fail(Why::PulseSignal, signal.span),
                     },
                 };
@@ -688,7 +689,7 @@ impl<'p> Lower<'p> {
         let Some(v) = place.root() else {
             return Ok(());
         };
-        match self.out.var(v).ty.clone() {
+        match self.var_decl(v).ty.clone() {
             Ty::Struc(t) if !t.is_empty() && self.record_of(&t).is_none() => {
                 fail(Why::Structure(t), at)
             }
