@@ -119,7 +119,8 @@ const CASES: &[Case] = &[
         ],
         rapid: &[
             ex(5, Aspect::Speed, RAPID_PTP_UNSET),
-            ex(9, Aspect::Speed, RAPID_PTP_UNSET),
+            // Said once per routine, at its first motion without a speed.
+            by(9, Aspect::Speed, 5, RAPID_PTP_UNSET),
             by(7, Aspect::Blend, 6, SPLINE),
             by(8, Aspect::Blend, 6, SPLINE),
         ],
@@ -212,10 +213,11 @@ const CASES: &[Case] = &[
             ex(29, Aspect::Speed, "the path speed ($VEL.CP) is not set"),
             ex(31, Aspect::Speed, "the path speed ($VEL.CP) is not set"),
         ],
-        // Lines 29, 31: $VEL.CP is never set; the module moves at v100.
+        // Lines 29, 31: $VEL.CP is never set; the module moves at v100 (said once per
+        // routine, at line 29).
         rapid: &[
             ex(29, Aspect::Speed, RAPID_CP_UNSET),
-            ex(31, Aspect::Speed, RAPID_CP_UNSET),
+            by(31, Aspect::Speed, 29, RAPID_CP_UNSET),
         ],
     },
 ];

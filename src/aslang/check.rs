@@ -11,8 +11,9 @@ use std::collections::HashSet;
 use std::collections::hash_map::Entry;
 use std::fmt;
 
-use super::lex::{call_target, code_part, names, split_top_level, without_strings};
+use super::lex::{call_target, code_part, each_name, split_top_level, without_strings_into};
 use crate::catalog::catalog;
+use compact_str::CompactString;
 use rustc_hash::FxHashMap;
 
 /// One finding, on a 1-based line.
@@ -47,6 +48,8 @@ pub fn check(text: &str, calls: Calls<'_>) -> Vec<Problem> {
         state: State::Outside,
         programs: FxHashMap::default(),
         calls: Vec::new(),
+        bare: String::new(),
+        upper: String::new(),
     };
     let mut last = 0;
     for (idx, raw) in text.lines().enumerate() {
@@ -116,6 +119,10 @@ struct Checker {
     /// (a map: a scan per program and per call made a text of many programs quadratic).
     programs: FxHashMap<String, usize>,
     calls: Vec<Call>,
+    /// The line being checked without its strings, then upper case: buffers reused for every
+    /// line (three allocations per line were a tenth of a translation's).
+    bare: String,
+    upper: String,
 }
 
 impl Checker {
@@ -123,13 +130,19 @@ impl Checker {
         self.problems.push(Problem { line, message });
     }
 
+    /// Names longer than AS allows; leaves the line without its strings in `self.bare`.
     fn long_names(&mut self, n: usize, code: &str) {
-        for id in names(&without_strings(code)) {
-            if id.len() > self.max {
-                let max = self.max;
-                self.push(n, format!("name `{id}` is longer than {max}"));
+        self.bare.clear();
+        without_strings_into(code, &mut self.bare);
+        let (max, problems) = (self.max, &mut self.problems);
+        each_name(&self.bare, |id| {
+            if id.len() > max {
+                problems.push(Problem {
+                    line: n,
+                    message: format!("name `{id}` is longer than {max}"),
+                });
             }
-        }
+        });
     }
 
     fn line(&mut self, n: usize, raw: &str) {
@@ -140,11 +153,13 @@ impl Checker {
         if code.is_empty() {
             return;
         }
-        let upper = code.to_ascii_uppercase();
-        let head = upper
-            .split(|c: char| c.is_whitespace() || c == '(')
-            .next()
-            .unwrap_or("");
+        let mut head = CompactString::from(
+            code.split(|c: char| c.is_whitespace() || c == '(')
+                .next()
+                .unwrap_or(""),
+        );
+        head.make_ascii_uppercase();
+        let head = head.as_str();
         let section = head == ".PROGRAM" || head == ".END" || DATA_SECTIONS.contains(&head);
         match &mut self.state {
             State::Outside => self.outside(n, code, head),
@@ -274,11 +289,25 @@ impl Checker {
 
     fn program_line(&mut self, n: usize, code: &str) {
         self.long_names(n, code);
-        let bare = without_strings(code);
-        let upper = bare.to_ascii_uppercase();
-        let words: Vec<&str> = upper.split_whitespace().collect();
-        let first = words.first().copied().unwrap_or("");
-        let last_word = words.last().copied().unwrap_or("");
+        let mut upper = std::mem::take(&mut self.upper);
+        upper.clear();
+        upper.push_str(&self.bare);
+        upper.make_ascii_uppercase();
+        self.program_words(n, code, &upper);
+        self.upper = upper;
+    }
+
+    /// A line of a program, `upper` its words without strings in upper case.
+    fn program_words(&mut self, n: usize, code: &str, upper: &str) {
+        let mut words = upper.split_whitespace();
+        let first = words.next().unwrap_or("");
+        let (mut last_word, mut count, mut has_to) =
+            (first, usize::from(!first.is_empty()), first == "TO");
+        for w in words {
+            last_word = w;
+            count += 1;
+            has_to |= w == "TO";
+        }
         let State::Program(p) = &mut self.state else {
             return;
         };
@@ -320,7 +349,7 @@ impl Checker {
                     Some(_) => {}
                 },
                 "FOR" => {
-                    if !words.contains(&"TO") {
+                    if !has_to {
                         problems.push((n, "FOR without TO".into()));
                     }
                     p.blocks.push((Block::For, n));
@@ -331,7 +360,7 @@ impl Checker {
                     }
                     p.blocks.push((Block::While, n));
                 }
-                "DO" if words.len() == 1 => p.blocks.push((Block::Do, n)),
+                "DO" if count == 1 => p.blocks.push((Block::Do, n)),
                 "UNTIL" => match p.blocks.pop() {
                     Some((Block::Do, _)) => {}
                     Some((b, at)) => {

@@ -13,9 +13,9 @@ pub(super) fn code_part(line: &str) -> &str {
     line
 }
 
-/// The code with string literals blanked (so their words are not taken for names).
-pub(super) fn without_strings(code: &str) -> String {
-    let mut out = String::with_capacity(code.len());
+/// The code with string literals blanked (so their words are not taken for names), appended to
+/// `out` (the checker reuses one buffer for every line).
+pub(super) fn without_strings_into(code: &str, out: &mut String) {
     let mut in_str = false;
     for c in code.chars() {
         if c == '"' {
@@ -25,14 +25,20 @@ pub(super) fn without_strings(code: &str) -> String {
             out.push(if in_str { ' ' } else { c });
         }
     }
-    out
 }
 
 /// Names in a code line, without the local dot and the sigil: `.#cur` → `cur`,
 /// `$mm_tx[1]` → `mm_tx`. Numbers (`0.5`, `.5`, `1E5`) are skipped.
+#[cfg(test)]
 pub(super) fn names(code: &str) -> Vec<String> {
-    let b = code.as_bytes();
     let mut out = Vec::new();
+    each_name(code, |n| out.push(n.to_owned()));
+    out
+}
+
+/// [`names`] handed to `f` one at a time, without copying them.
+pub(super) fn each_name<'c>(code: &'c str, mut f: impl FnMut(&'c str)) {
+    let b = code.as_bytes();
     let mut i = 0;
     let is_name = |c: u8| c.is_ascii_alphanumeric() || c == b'_' || c == b'.';
     while i < b.len() {
@@ -52,7 +58,7 @@ pub(super) fn names(code: &str) -> Vec<String> {
             // A name right after a digit or a name character is part of a number (1E5).
             let glued = start > 0 && is_name(b[start - 1]) && b[start] != b'.';
             if !glued {
-                out.push(code[name_start..j].trim_end_matches('.').to_string());
+                f(code[name_start..j].trim_end_matches('.'));
             }
             i = j;
         } else if b[i].is_ascii_digit() || b[i] == b'.' {
@@ -64,7 +70,6 @@ pub(super) fn names(code: &str) -> Vec<String> {
             i += 1;
         }
     }
-    out
 }
 
 /// The comma-separated items of an argument or parameter list, ignoring commas inside

@@ -34,7 +34,7 @@ impl<'a> Tx<'a> {
         let start = self.out.lines.len();
         let r = match &d.value {
             Ok(v) => self.data_expr(&var.ty, v, d.file),
-            Err(why) => self.unsupported(why, d.span),
+            Err((why, at)) => self.unsupported(why, *at),
         };
         self.out.lines.truncate(start);
         match r {

@@ -305,11 +305,10 @@ impl<'a> Tx<'a> {
                 self.output_readback(span);
                 Ok(Py::atom(format!("out_state({first})")))
             }
-            (Bank::Out, _) => fail(
-                span,
-                "reading a group of outputs has no translation (RDK 1.x cannot read outputs back)",
-                "keep the value in a variable where the program sets it",
-            ),
+            // The lowering refuses it (`Caps::signals`).
+            (Bank::Out, _) => {
+                crate::transpile::render::not_lowered(span, "a group of outputs read back")
+            }
         }
     }
 
@@ -486,12 +485,9 @@ impl<'a> Tx<'a> {
             Ok(e) => e.iter().any(|v| v.is_some_and(|v| v != 0.0)),
             Err(_) => true,
         };
+        // The lowering refuses them (`Caps::external_axes`).
         if used {
-            return fail(
-                span,
-                "external axes (E1..E6) have no counterpart in a Flexiv target",
-                "move the external axes with their own program, or drop them",
-            );
+            return crate::transpile::render::not_lowered(span, "external axes");
         }
         Ok(())
     }

@@ -1,6 +1,7 @@
 //! What to do instead, in the Python script, for each construct no target can express.
 
 use crate::transpile::ir::Why;
+use crate::transpile::ir::why::AxisUse;
 use crate::transpile::ir::why::KukaOnly;
 use crate::transpile::ir::why::Lacked;
 
@@ -70,6 +71,13 @@ fn own(why: &Why) -> Option<String> {
         Why::Goto => "restructure the jump with a loop (while/break) or IF".into(),
         Why::Load => "set mass, centre of mass and inertia in the tool (Flexiv Elements)".into(),
         Why::BitwiseNot => "use ~ on an integer by hand".into(),
+        Why::MmMoves(_) => "run the hand-eye calibration with Mech-Vision's Flexiv support, or port the handshake (command 701) by hand".into(),
+        Why::NoJointMap { at, .. } => match at {
+            AxisUse::Values => "give --joint-map (e.g. A1,A2,0,A3,A4,A5,A6), or teach the pose on the Rizon and move there with MoveJ",
+            AxisUse::Relative => "give --joint-map (e.g. A1,A2,0,A3,A4,A5,A6)",
+            AxisUse::Read => "give --joint-map (e.g. A1,A2,0,A3,A4,A5,A6), or read robot.states().q yourself",
+        }
+        .into(),
         Why::Lacks(Lacked::Load) => {
             "the payload is part of the tool on a Flexiv robot: set mass, centre of mass and inertia in the tool (Flexiv Elements or ToolParams)".into()
         }

@@ -21,14 +21,11 @@ pub(super) const GLOBALS: [(&str, &str); 4] = [
 
 impl<'a> Tx<'a> {
     pub(super) fn mm_call(&mut self, sub: &'static Subprogram, args: &[Arg], span: Span) -> R<()> {
+        // The lowering refuses the rest (`Caps::mech_mind`).
         if !supported(sub) {
-            return fail(
+            return crate::transpile::render::not_lowered(
                 span,
-                format!(
-                    "`{}` moves the robot through the KUKA package's own motions; the script's client does not translate it",
-                    sub.name
-                ),
-                "run the hand-eye calibration with Mech-Vision's Flexiv support, or port the handshake (command 701) by hand",
+                "an MM_ routine that moves the robot",
             );
         }
         let method = format!("mm.{}", method_name(&sub.name));
@@ -49,7 +46,7 @@ impl<'a> Tx<'a> {
                 .and_then(|i| args.get(i))
                 .and_then(|a| a.value.as_ref());
             let Some(time_out) = time_out else {
-                return fail(span, "argument Time_Out is omitted", "pass every argument");
+                return crate::transpile::render::not_lowered(span, "an omitted argument Time_Out");
             };
             ins.push(super::format::string(&server.ip.to_string()));
             ins.push(server.port.to_string());
@@ -58,10 +55,9 @@ impl<'a> Tx<'a> {
         } else {
             for (p, a) in sub.params.iter().zip(args) {
                 let Some(value) = &a.value else {
-                    return fail(
+                    return crate::transpile::render::not_lowered(
                         span,
-                        format!("argument {} is omitted", p.ident()),
-                        "pass every argument",
+                        &format!("an omitted argument {}", p.ident()),
                     );
                 };
                 match p.dir {
@@ -71,11 +67,11 @@ impl<'a> Tx<'a> {
                     }
                     Direction::In => ins.push(self.expr(value)?),
                     Direction::Out => {
+                        // The lowering refuses it (`Why::OutArgument`).
                         let Some(place) = &a.place else {
-                            return fail(
+                            return crate::transpile::render::not_lowered(
                                 a.span,
-                                "an OUT argument must be a variable",
-                                "pass a variable",
+                                "an OUT argument that is no variable",
                             );
                         };
                         places.push(self.target(place, a.span, true)?);

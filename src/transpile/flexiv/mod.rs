@@ -84,6 +84,17 @@ pub static BACKEND: render::Backend = render::Backend {
     target: super::Target::Flexiv,
     name: "flexiv",
     caps: render::Caps {
+        // RDK 1.x cannot read outputs back.
+        signals: render::Signals {
+            output_groups_read: false,
+            ..render::Caps::BASE.signals
+        },
+        external_axes: 0,
+        robot: "Rizon",
+        // The address comes from the spec or the EKI XML.
+        mech_mind: render::MechMind::Client {
+            reads: &[("MM_Init_Socket", &["Time_Out"] as &[&str])],
+        },
         goto: false,
         interrupts: false,
         bitwise_not: true,
@@ -98,6 +109,14 @@ pub static BACKEND: render::Backend = render::Backend {
             distance: render::Distance::ZoneCodes,
             to_axes: false,
             ..render::Caps::BASE.blending
+        },
+        // The script keeps KUKA axis values (`Axis`) and maps them at the motion.
+        axis_values: render::AxisValues {
+            joint: "joint",
+            joints: 7,
+            written: false,
+            every: true,
+            linear: false,
         },
         ..render::Caps::BASE
     },

@@ -131,11 +131,11 @@ impl<'a> Tx<'a> {
             // The lowering refuses it (`Caps::lacks`).
             Path::Circular { .. } => crate::transpile::render::not_lowered(span, "CIRC"),
             Path::Linear { to, .. } => {
+                // The lowering refuses it (`Caps::axis_values`).
                 if to.joints {
-                    return fail(
+                    return crate::transpile::render::not_lowered(
                         to.expr.span,
-                        "LIN to axis values has no counterpart (MoveL needs a Cartesian target)",
-                        "move to a pose (E6POS)",
+                        "a LIN to axis values",
                     );
                 }
                 let t = self.motion_target(to)?;
@@ -168,10 +168,9 @@ impl<'a> Tx<'a> {
             }
             Path::Joint { to, .. } => {
                 if self.fx.joint_map.is_none() {
-                    return fail(
+                    return crate::transpile::render::not_lowered(
                         to.expr.span,
-                        "PTP to axis values: a Rizon has seven joints, KUKA six, so the values have no meaning on the Rizon without a joint map",
-                        "give --joint-map (e.g. A1,A2,0,A3,A4,A5,A6), or teach the pose on the Rizon and move there with MoveJ",
+                        "axis values without a joint map",
                     );
                 }
                 let t = self.motion_target(to)?;
@@ -236,10 +235,9 @@ impl<'a> Tx<'a> {
     /// Kawasaki's `DRIVE`; the joints move together, from where they are.
     fn joint_offsets(&mut self, d: &Delta) -> R<Vec<String>> {
         let Some(map) = &self.fx.joint_map else {
-            return fail(
+            return crate::transpile::render::not_lowered(
                 d.span,
-                "a relative axis move: which Rizon joint turns, and in which direction, needs a joint map",
-                "give --joint-map (e.g. A1,A2,0,A3,A4,A5,A6)",
+                "a relative axis move without a joint map",
             );
         };
         let mut offsets = vec!["0".to_owned(); map.0.len()];
@@ -502,10 +500,9 @@ impl<'a> Tx<'a> {
     pub(super) fn axis_act(&mut self, span: Span) -> R<String> {
         match &self.fx.joint_map {
             Some(m) if m.invertible() => Ok("axis_act()".into()),
-            _ => fail(
+            _ => crate::transpile::render::not_lowered(
                 span,
-                "$AXIS_ACT: a Rizon has seven joints, KUKA six; without a joint map that gives every axis one joint they cannot be read as KUKA axes",
-                "give --joint-map (e.g. A1,A2,0,A3,A4,A5,A6), or read robot.states().q yourself",
+                "$AXIS_ACT without a joint map giving every axis a joint",
             ),
         }
     }

@@ -113,7 +113,9 @@ impl<'a> Tx<'a> {
                     }
                     self.nested(d);
                 } else if first {
-                    return fail(span, "a SWITCH without cases", "remove it");
+                    // No CASE and no DEFAULT: nothing runs, as in KRL.
+                    self.line("if True:");
+                    self.nested(&[]);
                 }
                 self.end_block(*end, None);
                 Ok(())
@@ -159,9 +161,12 @@ impl<'a> Tx<'a> {
     fn loop_(&mut self, id: LoopId, kind: &LoopKind, body: &Block, end: u32) -> R<()> {
         let head = match kind {
             LoopKind::For(f) => {
-                let (var, from, to, step) = (&f.var, &f.from, &f.to, &f.step);
-                let Target::Plain(v) = self.target(var, from.span, true)? else {
-                    return fail(from.span, "a FOR variable must be a name", "use a name");
+                let (var, from, to, step) = (Place::Var(f.var), &f.from, &f.to, &f.step);
+                let Target::Plain(v) = self.target(&var, from.span, true)? else {
+                    return crate::transpile::render::not_lowered(
+                        from.span,
+                        "a FOR variable that is no name",
+                    );
                 };
                 let a = self.int_bound(from)?;
                 let range = match step.as_ref().map(|s| (s, s.integer())) {
@@ -401,11 +406,9 @@ impl<'a> Tx<'a> {
         }
         match &a.value {
             Some(v) => self.expr(v),
-            None => fail(
-                a.span,
-                "an omitted argument has no translation",
-                "pass every argument",
-            ),
+            None => {
+                crate::transpile::render::not_lowered(a.span, "an omitted argument of a routine")
+            }
         }
     }
 
@@ -428,11 +431,11 @@ impl<'a> Tx<'a> {
                 for a in args {
                     rendered.push(self.arg_value(a)?);
                     if a.out {
+                        // The lowering refuses it (`Why::OutArgument`).
                         let Some(p) = &a.place else {
-                            return fail(
+                            return crate::transpile::render::not_lowered(
                                 a.span,
-                                "an OUT argument must be a variable (the script assigns the returned value to it)",
-                                "pass a variable",
+                                "an OUT argument that is no variable",
                             );
                         };
                         places.push(self.target(p, a.span, true)?);

@@ -17,7 +17,7 @@ pub const RECORD_TYPES: [&str; 4] = ["PDAT", "LDAT", "FDAT", "BASIS_SUGG_T"];
 /// Whether `target = …` names an inline-form selector (when the program does not declare a
 /// variable of that name itself).
 pub fn is_selector(target: &Ident) -> bool {
-    SELECTORS.contains(&target.key().as_str())
+    SELECTORS.iter().any(|s| target.is(s))
 }
 
 /// The numeric fields of a `.dat` record such as `DECL FDAT FP1={TOOL_NO 1,BASE_NO 0,…}`

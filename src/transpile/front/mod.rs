@@ -4,6 +4,7 @@
 
 pub mod comments;
 pub mod fail;
+pub mod grouped;
 pub mod ilf;
 pub mod kinds;
 pub mod literal;
@@ -34,8 +35,8 @@ pub struct Parsed {
     pub syntax_errors: Vec<Diagnostic>,
     /// Every comment, in source order.
     pub comments: Vec<comments::Comment>,
-    /// Every identifier of the text, upper case.
-    names: FxHashSet<String>,
+    /// Every identifier of the text, upper case (inline: no allocation per name).
+    names: FxHashSet<compact_str::CompactString>,
     /// The file's summary for the semantic model (taken by [`Program::new`]).
     summary: Option<crate::sema::FileSummary>,
     /// Built on the first [`Parsed::line`] (building one per question was quadratic).
@@ -66,7 +67,7 @@ impl Parsed {
         let mut followed = true;
         let mut found: Vec<comments::Comment> = Vec::new();
         let mut names = FxHashSet::default();
-        let mut upper = String::new();
+        let mut upper = compact_str::CompactString::default();
         let syntax_errors = crate::syntax::parse_pieces(&text, |piece| {
             let node: &Node<'_> = match &piece {
                 Piece::Open { line, .. } => line,
@@ -247,7 +248,9 @@ impl Program {
 
     /// Whether the program's text names `name` (an identifier token, any case).
     pub fn uses_name(&self, name: &str) -> bool {
-        self.src.names.contains(&name.to_ascii_uppercase())
+        let mut key = compact_str::CompactString::from(name);
+        key.make_ascii_uppercase();
+        self.src.names.contains(&key)
     }
 }
 

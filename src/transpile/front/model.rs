@@ -7,6 +7,7 @@
 use std::cell::OnceCell;
 use std::collections::BTreeMap;
 
+use compact_str::CompactString;
 use rustc_hash::FxHashMap;
 
 use crate::diag::Span;
@@ -68,10 +69,13 @@ pub struct Model<'p> {
     pose: Option<TypeId>,
     axis: Option<TypeId>,
     /// The `.src`'s routines by upper-case name (the first of a name).
-    routines: FxHashMap<String, RoutineId>,
+    routines: FxHashMap<CompactString, RoutineId>,
     /// Each routine's parameters and locals.
-    symbols_of: FxHashMap<RoutineId, Vec<sema::SymbolId>>,
+    symbols_of: super::grouped::Grouped<sema::SymbolId>,
     enums: OnceCell<Vec<(String, Option<String>)>>,
+    /// [`Model::layout_of_id`]'s answers: asked for every variable of a STRUC type, each
+    /// compared the field names of two types.
+    layouts: std::cell::RefCell<FxHashMap<TypeId, Option<Layout>>>,
     /// `SIGNAL` declarations by the span of their name.
     signals: OnceCell<BTreeMap<(FileId, Span), Option<SignalRange>>>,
 }
@@ -89,15 +93,15 @@ impl<'p> Model<'p> {
         };
         let mut routines = FxHashMap::default();
         for &r in &sema.file(SRC).routines {
-            let name = sema.name(sema.routine(r).name).to_ascii_uppercase();
+            let mut name = CompactString::from(sema.name(sema.routine(r).name));
+            name.make_ascii_uppercase();
             routines.entry(name).or_insert(r);
         }
-        let mut symbols_of: FxHashMap<RoutineId, Vec<sema::SymbolId>> = FxHashMap::default();
-        for (id, s) in sema.symbols() {
-            if let Scope::Routine(r) = s.scope {
-                symbols_of.entry(r).or_default().push(id);
-            }
-        }
+        let symbols_of =
+            super::grouped::Grouped::new(sema.symbols().filter_map(|(id, s)| match s.scope {
+                Scope::Routine(r) => Some((r.index(), id)),
+                _ => None,
+            }));
         Model {
             program,
             sema,
@@ -106,6 +110,7 @@ impl<'p> Model<'p> {
             routines,
             symbols_of,
             enums: OnceCell::new(),
+            layouts: Default::default(),
             signals: OnceCell::new(),
         }
     }
@@ -118,7 +123,9 @@ impl<'p> Model<'p> {
     }
 
     fn routine_id(&self, name: &str) -> Option<RoutineId> {
-        self.routines.get(&name.to_ascii_uppercase()).copied()
+        let mut key = CompactString::from(name);
+        key.make_ascii_uppercase();
+        self.routines.get(&key).copied()
     }
 
     /// Whether a file of the model is the program's `.src` or `.dat`.
@@ -220,6 +227,15 @@ impl<'p> Model<'p> {
     /// Whether the STRUC `id` holds a pose or axis values: its fields are those of `E6POS` or
     /// `E6AXIS` (POS, FRAME, AXIS have a subset).
     fn layout_of_id(&self, id: TypeId) -> Option<Layout> {
+        if let Some(&l) = self.layouts.borrow().get(&id) {
+            return l;
+        }
+        let l = self.find_layout(id);
+        self.layouts.borrow_mut().insert(id, l);
+        l
+    }
+
+    fn find_layout(&self, id: TypeId) -> Option<Layout> {
         let names = |t: TypeId| -> Vec<String> {
             self.sema
                 .fields(t)
@@ -279,9 +295,8 @@ impl<'p> Model<'p> {
         };
         let mut v: Vec<VarInfo> = self
             .symbols_of
-            .get(&r)
-            .into_iter()
-            .flatten()
+            .get(r.index())
+            .iter()
             .filter_map(|&id| self.info(id))
             .collect();
         v.sort_by_key(|v| (v.decl.start, v.name.to_ascii_uppercase()));

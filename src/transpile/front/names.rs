@@ -9,8 +9,9 @@
 //! locals and labels) and records the renames (TR003 and the output's name map); the targets
 //! differ only in their [`NameRules`], which are data.
 
-use std::collections::{BTreeMap, BTreeSet};
+use std::collections::BTreeSet;
 
+use compact_str::CompactString;
 use rustc_hash::{FxHashMap, FxHashSet};
 
 use crate::diag::Span;
@@ -121,10 +122,10 @@ pub struct Renamed {
 /// One namespace of the target (e.g. programs, globals, one program's locals or labels).
 #[derive(Debug, Default, Clone)]
 pub struct Namespace {
-    /// Upper-case KRL name → target name.
-    map: BTreeMap<String, String>,
+    /// Upper-case KRL name → target name (names fit inline: no allocation per name).
+    map: FxHashMap<CompactString, CompactString>,
     /// Target name → upper-case KRL name (or "" for names the translator made up).
-    taken: FxHashMap<String, String>,
+    taken: FxHashMap<CompactString, CompactString>,
     /// (kept prefix, digits of the counter) → the counter [`Namespace::free_variant`] tries
     /// first: every smaller one of as many digits makes a taken name (names are never given
     /// back), so the thousands of cut names that share a prefix are not searched from 2 each
@@ -136,17 +137,18 @@ impl Namespace {
     /// The target name of `krl`. `Some(renamed)` the first time a name is seen and had to
     /// change beyond case.
     pub fn name(&mut self, krl: &str, rules: &NameRules) -> (String, Option<Renamed>) {
-        let key = krl.to_ascii_uppercase();
+        let mut key = CompactString::from(krl);
+        key.make_ascii_uppercase();
         if let Some(t) = self.map.get(&key) {
-            return (t.clone(), None);
+            return (t.to_string(), None);
         }
         let (mut target, mut reasons) = target_name(krl, rules);
-        if self.taken.get(&target).is_some_and(|k| *k != key) {
+        if self.taken.get(target.as_str()).is_some_and(|k| *k != key) {
             target = self.free_variant(&target, rules.max_len);
             reasons.push(Reason::Clash);
         }
-        self.taken.insert(target.clone(), key.clone());
-        self.map.insert(key, target.clone());
+        self.taken.insert(CompactString::from(&target), key.clone());
+        self.map.insert(key, CompactString::from(&target));
         let renamed = (!reasons.is_empty()).then(|| Renamed {
             krl: krl.to_owned(),
             target: target.clone(),
@@ -157,7 +159,9 @@ impl Namespace {
 
     /// The target name already assigned to `krl`, if any.
     pub fn get(&self, krl: &str) -> Option<&str> {
-        self.map.get(&krl.to_ascii_uppercase()).map(String::as_str)
+        let mut key = CompactString::from(krl);
+        key.make_ascii_uppercase();
+        self.map.get(&key).map(CompactString::as_str)
     }
 
     /// A name the translator needs (`base`, else `base2`, `base3`, …) that no KRL name uses.
@@ -168,7 +172,8 @@ impl Namespace {
         } else {
             base.to_owned()
         };
-        self.taken.insert(name.clone(), String::new());
+        self.taken
+            .insert(CompactString::from(&name), CompactString::default());
         name
     }
 
@@ -184,7 +189,7 @@ impl Namespace {
             let from = self.next_counter.get(&key).map_or(n, |&c| c.max(n));
             let free = (from..end)
                 .map(|m| (m, format!("{}{m}", key.0)))
-                .find(|(_, name)| !self.taken.contains_key(name));
+                .find(|(_, name)| !self.taken.contains_key(name.as_str()));
             match free {
                 Some((m, name)) => {
                     // The caller takes the name.
@@ -263,19 +268,20 @@ pub struct Namer<'a> {
     /// Routines whose namespaces were dropped: asked again, they are made again the same way.
     ended: FxHashSet<RoutineId>,
     /// Each routine's parameters and locals, in declaration order.
-    vars_of: FxHashMap<RoutineId, Vec<VarId>>,
+    vars_of: super::grouped::Grouped<VarId>,
     /// Every rename, in the order found, with what kind of name it is.
     renamed: Vec<(&'static str, Renamed)>,
 }
 
 impl<'a> Namer<'a> {
     pub fn new(rules: &'static NameRules, ir: &'a ir::Program) -> Namer<'a> {
-        let mut vars_of: FxHashMap<RoutineId, Vec<VarId>> = FxHashMap::default();
-        for (i, v) in ir.vars.iter().enumerate() {
-            if let Scope::Param(r) | Scope::Local(r) = v.scope {
-                vars_of.entry(r).or_default().push(VarId(i as u32));
-            }
-        }
+        let vars_of =
+            super::grouped::Grouped::new(ir.vars.iter().enumerate().filter_map(|(i, v)| {
+                match v.scope {
+                    Scope::Param(r) | Scope::Local(r) => Some((r.0 as usize, VarId(i as u32))),
+                    _ => None,
+                }
+            }));
         Namer {
             rules,
             ir,
@@ -363,7 +369,7 @@ impl<'a> Namer<'a> {
             self.ended.insert(prev);
         }
         let ir = self.ir;
-        let vars = self.vars_of.get(&id).map_or(&[][..], Vec::as_slice);
+        let vars = self.vars_of.get(id.0 as usize);
         let ns = self.locals.entry(id).or_default();
         for &v in vars {
             let var = ir.var(v);
@@ -394,7 +400,7 @@ impl<'a> Namer<'a> {
     fn locals_ns(&mut self, id: RoutineId) -> &mut Namespace {
         if !self.locals.contains_key(&id) && self.ended.contains(&id) {
             let mut ns = Namespace::default();
-            for &v in self.vars_of.get(&id).map_or(&[][..], Vec::as_slice) {
+            for &v in self.vars_of.get(id.0 as usize) {
                 ns.name(&self.ir.var(v).name, self.rules);
             }
             self.locals.insert(id, ns);

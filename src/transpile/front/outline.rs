@@ -6,9 +6,10 @@
 //! one at a time, from a second parse ([`super::Parsed::each_statement`]), so a large routine
 //! is never held whole.
 
-use std::collections::{BTreeSet, HashSet};
+use std::collections::BTreeSet;
 
-use rustc_hash::FxHashMap;
+use compact_str::CompactString;
+use rustc_hash::{FxHashMap, FxHashSet};
 
 use crate::syntax::ast::{self, Definition, Lowered, Stmt, StmtKind};
 
@@ -56,13 +57,13 @@ pub struct RoutineOutline {
 pub struct BodyFacts {
     /// Upper-case names of the routine's parameters assigned anywhere (assignment targets, FOR
     /// variables); other names are dropped when the routine ends.
-    pub assigned: HashSet<String>,
+    pub assigned: FxHashSet<CompactString>,
     /// Upper-case root names of assignment targets and of call arguments.
-    pub written: BTreeSet<String>,
+    pub written: BTreeSet<CompactString>,
     /// Routines called, by statement or inside an assigned value, in the order of their first
-    /// call (each once).
-    pub callees: Vec<String>,
-    called: HashSet<String>,
+    /// call (each once). Names are inline (`CompactString`): no allocation per name.
+    pub callees: Vec<CompactString>,
+    called: FxHashSet<CompactString>,
     /// A motion or spline block.
     pub moves: bool,
     /// Label names, in visiting order.
@@ -81,8 +82,8 @@ impl BodyFacts {
         ast::each_stmt(std::slice::from_ref(stmt), &mut |s| match &s.kind {
             StmtKind::Assign { target, value } => {
                 if let Some(id) = target.root_name() {
-                    self.assigned.insert(id.key());
-                    self.written.insert(id.key());
+                    self.assigned.insert(key(id));
+                    self.written.insert(key(id));
                 }
                 let mut calls = Vec::new();
                 expr_calls(value, &mut calls);
@@ -91,13 +92,13 @@ impl BodyFacts {
                 }
             }
             StmtKind::For { var, .. } => {
-                self.assigned.insert(var.key());
+                self.assigned.insert(key(var));
             }
             StmtKind::Call { name, args } => {
-                self.call(name.text.to_string());
+                self.call(name.text.clone());
                 for a in args.iter().flatten() {
                     if let Some(id) = a.root_name() {
-                        self.written.insert(id.key());
+                        self.written.insert(key(id));
                     }
                 }
             }
@@ -113,7 +114,7 @@ impl BodyFacts {
 
 impl BodyFacts {
     /// A call of `name`: a routine called again changes nothing another routine asks.
-    fn call(&mut self, name: String) {
+    fn call(&mut self, name: CompactString) {
         if !self.called.contains(&name) {
             self.called.insert(name.clone());
             self.callees.push(name);
@@ -121,10 +122,17 @@ impl BodyFacts {
     }
 }
 
+/// A name's upper-case form, inline.
+fn key(id: &ast::Ident) -> CompactString {
+    let mut k = id.text.clone();
+    k.make_ascii_uppercase();
+    k
+}
+
 /// Names of routines called inside an expression.
-pub fn expr_calls(e: &ast::Expr, out: &mut Vec<String>) {
+pub fn expr_calls(e: &ast::Expr, out: &mut Vec<CompactString>) {
     if let ast::ExprKind::Call { name, .. } = &e.kind {
-        out.push(name.text.to_string());
+        out.push(name.text.clone());
     }
     e.for_each_operand(|o| expr_calls(o, out));
 }
@@ -206,7 +214,8 @@ impl OutlineBuilder {
                             r.head.close(*span, *closed);
                             // Only needed while the routine is read: kept for every routine of
                             // a file, they were much of the outline's memory.
-                            r.facts.called = HashSet::new();
+                            r.facts.called = FxHashSet::default();
+                            r.facts.callees.shrink_to_fit();
                             let params = &r.head.params;
                             r.facts
                                 .assigned
@@ -257,7 +266,10 @@ mod tests {
             head.decls.clear();
             assert_eq!(r.head, head);
         }
-        assert_eq!(o.routines[0].facts.assigned, HashSet::from(["X".into()]));
+        assert_eq!(
+            o.routines[0].facts.assigned,
+            FxHashSet::from_iter(["X".into()])
+        );
         let a = &o.routines[0];
         assert_eq!(a.head_pieces, 3);
         assert_eq!(a.facts.callees, ["f", "b"]);
@@ -283,6 +295,6 @@ mod tests {
         let facts = &b.finish().routines[0].facts;
         assert_eq!(facts.callees, ["on_part", "count"]);
         assert_eq!(facts.written, BTreeSet::from(["N".into(), "P".into()]));
-        assert_eq!(facts.assigned, HashSet::from(["N".into()]));
+        assert_eq!(facts.assigned, FxHashSet::from_iter(["N".into()]));
     }
 }

@@ -302,6 +302,7 @@ fn fail_gotos(b: &mut Block) {
                 s.op = Op::Unsupported {
                     why: Why::Goto,
                     at: s.span,
+                    moves: false,
                 }
             }
             Op::Label(_) => {

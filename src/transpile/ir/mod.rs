@@ -501,6 +501,9 @@ pub enum Op {
     Unsupported {
         why: Why,
         at: Span,
+        /// A refused motion: hand-ported as a motion, so the flow keeps the advance-run
+        /// stops after it as for a motion that may be running.
+        moves: bool,
     },
     /// A statement with nothing to do in the targets, kept as a comment: `note` says why (for
     /// inline-form bookkeeping such as `$BWDSTART`, `CONTINUE`, labels); `None`: a finding
@@ -532,7 +535,8 @@ pub enum LoopKind {
 
 #[derive(Debug, Clone, PartialEq)]
 pub struct ForLoop {
-    pub var: Place,
+    /// A variable (KRL counts with an INT variable; nothing else is a counter).
+    pub var: VarId,
     pub from: Expr,
     pub to: Expr,
     pub step: Option<Expr>,
@@ -1322,7 +1326,8 @@ pub struct Datum {
     pub var: VarId,
     /// `x[2] = …` in the DEFDAT body: the literal indices (empty for a whole CHAR array).
     pub index: Option<Vec<i64>>,
-    pub value: Result<Expr, Why>,
+    /// The value, or why no target gets it and where to report that.
+    pub value: Result<Expr, (Why, Span)>,
     /// The declaration or assignment.
     pub span: Span,
     pub file: FileId,

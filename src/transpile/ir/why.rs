@@ -138,6 +138,48 @@ pub enum Why {
     BitwiseNot,
     /// A string longer than the target holds (`Caps::string_len`).
     StringLength { len: usize, max: usize },
+    /// A LIN or CIRC (its KRL name) to axis values in a target whose linear motions need a
+    /// Cartesian target (`Caps::axis_values`).
+    LinearToAxes(&'static str),
+    /// KUKA axis values where the target needs the joint map and none was given
+    /// (`Caps::axis_values`).
+    NoJointMap {
+        at: AxisUse,
+        axes: crate::transpile::render::AxisValues,
+        robot: &'static str,
+    },
+    /// An `MM_*` routine the target's Mech-Mind interface has no command for
+    /// (`Caps::mech_mind`).
+    MmNoCommand { name: String, robot: &'static str },
+    /// An `MM_*` routine that moves the robot with the KUKA package's own motions, in a
+    /// target whose client only talks to the vision system.
+    MmMoves(String),
+    /// An `MM_*` call in a target whose robots use their own Mech-Mind interface.
+    MmInterface { name: String, robot: &'static str },
+    /// External axes beyond those a pose or axis value of the target holds
+    /// (`Caps::external_axes`).
+    ExternalAxes { held: u8 },
+    /// An external axis value that is not a number literal.
+    ExternalAxisValue,
+    /// A SIGNAL of several bits in a target without groups (`Caps::signals`).
+    SignalGroup,
+    /// A group of outputs read back in a target that cannot (`Caps::signals`).
+    OutputGroupRead,
+    /// A signal number computed at run time in a target whose signals are names.
+    ComputedSignal,
+    /// An `MM_*` call omitting an argument the translation reads (the parameter).
+    MmArgument(String),
+}
+
+/// Where axis values met a target without a joint map.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum AxisUse {
+    /// Values written in the program (a literal, a `.dat` value) or a motion to axis values.
+    Values,
+    /// A relative axis move (`PTP_REL {A6 90}`).
+    Relative,
+    /// The robot's joints read back (`$AXIS_ACT`).
+    Read,
 }
 
 /// A KRL statement or operator some target has nothing for (`Caps::lacks`).
@@ -322,6 +364,21 @@ impl Why {
             Why::StringLength { len, max } => {
                 format!("a string of {len} characters; this target holds at most {max}")
             }
+            Why::NoJointMap { at, axes, robot } => no_joint_map(*at, axes, robot),
+            Why::MmNoCommand { name, robot } => format!("`{name}` has no {robot} counterpart (the {robot} interface has no such command)"),
+            Why::MmMoves(name) => format!("`{name}` moves the robot through the KUKA package's own motions; the script's client does not translate it"),
+            Why::MmInterface { name, robot } => format!("`{name}` is a routine of the Mech-Mind KUKA interface; {robot} robots talk to Mech-Vision through Mech-Mind's {robot} interface"),
+            Why::MmArgument(p) => format!("argument {p} is omitted"),
+            Why::ExternalAxes { held: 0 } => "external axes (E1..E6) have no counterpart in this target".into(),
+            Why::ExternalAxes { held } => format!("external axes beyond E{held} have no counterpart in this target's pose or joint values"),
+            Why::ExternalAxisValue => "an external axis value that is not a number literal".into(),
+            Why::SignalGroup => "a group of signals (SIGNAL … TO …) needs a group signal of the I/O configuration".into(),
+            Why::OutputGroupRead => "reading a group of outputs has no counterpart in this target (it cannot read outputs back)".into(),
+            Why::ComputedSignal => "a signal number computed at run time: this target's signals are names of the I/O configuration".into(),
+            Why::LinearToAxes(krl) => {
+                let instr = if *krl == "CIRC" { "MoveC" } else { "MoveL" };
+                format!("{krl} to axis values has no counterpart ({instr} needs a Cartesian target)")
+            }
         }
     }
 }
@@ -331,6 +388,29 @@ fn v2_form(name: &str, args: Option<usize>) -> bool {
     crate::catalog::catalog()
         .subprogram_in(crate::catalog::Interface::V2, name)
         .is_some_and(|s| args.is_none_or(|n| s.params.len() == n))
+}
+
+/// Why KUKA axis values do not reach a target without a joint map.
+fn no_joint_map(at: AxisUse, axes: &crate::transpile::render::AxisValues, robot: &str) -> String {
+    let joint = axes.joint;
+    let count = match axes.joints {
+        7 => "seven".to_owned(),
+        n => n.to_string(),
+    };
+    match at {
+        AxisUse::Relative => format!(
+            "a relative axis move: which {robot} {joint} turns, and in which direction, needs a joint map"
+        ),
+        AxisUse::Values if axes.joints != 6 => format!(
+            "PTP to axis values: a {robot} has {count} joints, KUKA six, so the values have no meaning on the {robot} without a joint map"
+        ),
+        AxisUse::Read if axes.joints != 6 => format!(
+            "$AXIS_ACT: a {robot} has {count} joints, KUKA six; without a joint map that gives every axis one joint they cannot be read as KUKA axes"
+        ),
+        AxisUse::Values | AxisUse::Read => format!(
+            "KUKA axis values: {robot}'s {joint} zeros and directions differ, so the same numbers are another posture; without a joint map they are not translated"
+        ),
+    }
 }
 
 fn arity(name: &str, takes: usize, given: usize) -> String {

@@ -47,7 +47,7 @@ impl<'a> Tx<'a> {
         let ty = var.ty.clone();
         let r = match &d.value {
             Ok(v) => self.data_line(&full, &ty, v, d.file),
-            Err(why) => self.unsupported(why, d.span),
+            Err((why, at)) => self.unsupported(why, *at),
         };
         match r {
             Ok(line) => {

@@ -422,7 +422,7 @@ impl<'a> Tx<'a> {
         };
         let mut out: Vec<String> = if a.axis {
             let Some(map) = &self.opts.joint_map else {
-                return fail(span, NO_JOINT_MAP, JOINT_MAP_HELP);
+                return render::not_lowered(span, "axis values without a joint map");
             };
             self.note(format!(
                 "KUKA axis values -> JT1..JT6 by the joint map {map} (--joint-map)"
@@ -440,15 +440,10 @@ impl<'a> Tx<'a> {
             ]
         };
         self.status_turn(a, span, file);
+        // The lowering refused the rest (`Caps::external_axes`).
         let ext = match a.ext() {
             Ok(e) => e,
-            Err(at) => {
-                return fail(
-                    at,
-                    "an external axis value that is not a number literal",
-                    "use literal values",
-                );
-            }
+            Err(at) => return render::not_lowered(at, "an external axis value that is no number"),
         };
         let used: Vec<(usize, f64)> = ext
             .iter()
@@ -466,13 +461,7 @@ impl<'a> Tx<'a> {
                     "check that the robot's external axis is JT7 with the same unit",
                 );
             }
-            _ => {
-                return fail(
-                    span,
-                    "external axes beyond E1 have no AS counterpart in a pose or joint value",
-                    "move the external axes with their own program, or drop them",
-                );
-            }
+            _ => return render::not_lowered(span, "external axes beyond E1"),
         }
         Ok(out)
     }
@@ -492,7 +481,6 @@ impl<'a> Tx<'a> {
 }
 
 /// Why axis values written in the program are not copied.
-pub(super) const NO_JOINT_MAP: &str = "KUKA axis values: Kawasaki's joint zeros and directions differ, so the same numbers are another posture; without a joint map they are not translated";
 pub(super) const JOINT_MAP_HELP: &str = "give --joint-map (per Kawasaki joint the KUKA axis, negated and shifted as the two arms need, e.g. A1,-A2+90,A3-90,A4,A5,A6), or teach the point on the Kawasaki";
 
 /// An AS signal: one (`SIG(n)`, `SIGNAL n`) or a group (`BITS(first, width)`).

@@ -62,6 +62,17 @@ fn own(why: &Why) -> Option<String> {
         }
         Why::Goto => "restructure the jump".into(),
         Why::Load => "set the payload with WEIGHT mass, cx, cy, cz".into(),
+        Why::NoJointMap { .. } => super::expr::JOINT_MAP_HELP.into(),
+        Why::MmNoCommand { name, .. } => match name.as_str() {
+            "MM_Get_Status" => {
+                "remove the check; mm_init_skt fails when the vision system is not reachable"
+            }
+            "MM_Set_Pos" => {
+                "send the pose with the Mech-Vision External Move settings by hand, or restructure the cycle"
+            }
+            _ => "port by hand",
+        }
+        .into(),
         Why::BitwiseNot => {
             "use BXOR with a mask of the bits you need (e.g. x BXOR ^HFF for 8 bits)".into()
         }

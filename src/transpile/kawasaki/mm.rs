@@ -49,14 +49,10 @@ impl<'a> Tx<'a> {
         }
         match sub.kawasaki() {
             Some(k) => self.mm_command(sub, k, args, span),
-            None => fail(
+            // The lowering refuses it (`Caps::mech_mind`).
+            None => crate::transpile::render::not_lowered(
                 span,
-                format!("`{}` has no Kawasaki counterpart (the Kawasaki interface has no such command)", sub.name),
-                match sub.name.as_str() {
-                    "MM_Get_Status" => "remove the check; mm_init_skt fails when the vision system is not reachable".to_owned(),
-                    "MM_Set_Pos" => "send the pose with the Mech-Vision External Move settings by hand, or restructure the cycle".to_owned(),
-                    _ => "port by hand".to_owned(),
-                },
+                "an MM_ routine without a Kawasaki command",
             ),
         }
     }
@@ -84,11 +80,11 @@ impl<'a> Tx<'a> {
             if let Some(i) = kuka_index {
                 let kp = sub.params[i].ident();
                 used[i] = true;
+                // The lowering refuses an omitted one (`Caps::mech_mind`).
                 let Some(arg) = args.get(i).filter(|a| a.value.is_some()) else {
-                    return fail(
+                    return crate::transpile::render::not_lowered(
                         span,
-                        format!("argument {kp} is omitted"),
-                        "pass every argument",
+                        &format!("an omitted argument {kp}"),
                     );
                 };
                 rendered.push(self.mm_arg(p.kind, p.dir, arg, &mut prelude)?);
@@ -118,10 +114,9 @@ impl<'a> Tx<'a> {
                 let s = server.as_ref().map(|s| (s.ip, s.port));
                 let v = s.and_then(|(ip, port)| spec_value(key, ip, port));
                 let Some(v) = v else {
-                    return fail(
+                    return crate::transpile::render::catalog_defect(
                         span,
-                        format!("catalog: unknown spec key `{key}` for {}", p.name),
-                        "report this catalog error",
+                        &format!("spec key `{key}` for {} is unknown", p.name),
                     );
                 };
                 rendered.push(num(v));
@@ -133,10 +128,9 @@ impl<'a> Tx<'a> {
                 let ty = as_ty(p.kind);
                 rendered.push(format::param_sigil(&tmp, &ty));
             } else {
-                return fail(
+                return crate::transpile::render::catalog_defect(
                     span,
-                    format!("catalog: no value for {} of {}", p.name, k.name),
-                    "report this catalog error",
+                    &format!("{} of {} has no value", p.name, k.name),
                 );
             }
         }
@@ -234,7 +228,7 @@ impl<'a> Tx<'a> {
         prelude: &mut Vec<String>,
     ) -> R<String> {
         let Some(value) = &arg.value else {
-            return fail(arg.span, "an omitted argument", "pass every argument");
+            return crate::transpile::render::not_lowered(arg.span, "an omitted argument");
         };
         match (kind, dir) {
             (AsKind::Joint, Direction::In) => {
@@ -253,18 +247,16 @@ impl<'a> Tx<'a> {
                 if let ExprKind::Place(p) = &value.kind {
                     return self.place_text(p, &Ty::Joint, arg.span);
                 }
-                fail(
-                    arg.span,
-                    "this joint argument has no AS equivalent",
-                    "pass an E6AXIS variable",
-                )
+                // A call's value is hoisted into a temporary: axis values reach here as a
+                // place, a literal or `$AXIS_ACT` only.
+                crate::transpile::render::not_lowered(arg.span, "a joint argument that is no value")
             }
             (_, Direction::Out) => {
+                // The lowering refuses it (`Why::OutArgument`).
                 let Some(place) = &arg.place else {
-                    return fail(
+                    return crate::transpile::render::not_lowered(
                         arg.span,
-                        "an output argument must be a variable",
-                        "pass a variable",
+                        "an OUT argument that is no variable",
                     );
                 };
                 let ty = as_ty(kind);
@@ -299,11 +291,9 @@ impl<'a> Tx<'a> {
             .position(|p| p.ident().eq_ignore_ascii_case(param));
         match i.and_then(|i| args.get(i)).and_then(|a| a.value.as_ref()) {
             Some(a) => self.expr(a),
-            None => fail(
-                span,
-                format!("argument {param} is missing"),
-                "pass every argument",
-            ),
+            None => {
+                crate::transpile::render::not_lowered(span, &format!("an omitted argument {param}"))
+            }
         }
     }
 
@@ -353,10 +343,9 @@ impl<'a> Tx<'a> {
             global(g, span)?;
         }
         let Some((target, at)) = arg(target_param) else {
-            return fail(
+            return crate::transpile::render::not_lowered(
                 span,
-                format!("argument {target_param} is missing"),
-                "pass every argument",
+                &format!("an omitted argument {target_param}"),
             );
         };
         let t = self.place_text(&target, &ty, at)?;
@@ -469,10 +458,9 @@ impl<'a> Tx<'a> {
 fn global(name: &str, span: Span) -> R<()> {
     match catalog().kawasaki_global(name) {
         Some(_) => Ok(()),
-        None => fail(
+        None => crate::transpile::render::catalog_defect(
             span,
-            format!("catalog: no Kawasaki global {name}"),
-            "report this catalog error",
+            &format!("Kawasaki global {name} is missing"),
         ),
     }
 }
@@ -529,6 +517,33 @@ mod tests {
                 let k = s.kawasaki().expect("has a Kawasaki program");
                 assert!(k.params.iter().all(|p| p.kuka.as_deref() != Some(name)));
             }
+        }
+    }
+
+    /// Every parameter of every Kawasaki command a KUKA routine translates to gets a value:
+    /// from a KUKA parameter, a known spec key, a default, or (an output) a scratch variable.
+    #[test]
+    fn every_kawasaki_parameter_has_a_source() {
+        let ip = Ipv4Addr::new(192, 168, 1, 121);
+        for k in catalog().kawasaki.iter().filter(|k| k.kuka.is_some()) {
+            for p in &k.params {
+                let ok = match (&p.kuka, &p.spec) {
+                    (_, Some(key)) => spec_value(key, ip, 50000).is_some(),
+                    (Some(_), None) => true,
+                    (None, None) => p.default.is_some() || p.dir == Direction::Out,
+                };
+                assert!(ok, "{} of {}", p.name, k.name);
+            }
+        }
+        for g in [
+            "vis_pos_j1",
+            "vis_pos_x",
+            "vis_pos_t",
+            "vis_pos_type",
+            "vis_pos_tool",
+            "vis_pos_spd",
+        ] {
+            assert!(global(g, Span::new(0, 0)).is_ok(), "{g}");
         }
     }
 

@@ -78,12 +78,31 @@ pub static BACKEND: render::Backend = render::Backend {
     target: super::Target::Kawasaki,
     name: "kawasaki",
     caps: render::Caps {
+        // E1 is the 7th value (JT7), TR002.
+        external_axes: 1,
+        robot: "Kawasaki",
+        // Computed from mm_get_plandata's globals and mm_get_pose (`mm.rs`).
+        mech_mind: render::MechMind::Commands {
+            computed: &[
+                ("MM_Get_PlanJps", &["Serial", "MM_J"] as &[&str]),
+                ("MM_Get_PlanPose", &["Serial", "MM_P"] as &[&str]),
+                ("MM_Get_DyPose", &["Serial", "MM_P", "MM_Label"] as &[&str]),
+            ],
+        },
         interrupt_on_flags: true,
         functions: false,
         lacks: &[Lacked::Override, Lacked::TimerStop],
         pulse: render::Pulse {
             low: false,
             flags: true,
+        },
+        // The robot's joints (HERE) move and compare as they are.
+        axis_values: render::AxisValues {
+            joint: "joint",
+            joints: 6,
+            written: true,
+            every: false,
+            linear: true,
         },
         ..render::Caps::BASE
     },
@@ -126,7 +145,11 @@ pub struct Tx<'a> {
     /// Its lines are those of the statement being rendered and the last line before it, which
     /// a SPEED line is compared with.
     out: Out<'a>,
-    programs: Vec<ProgramOut>,
+    /// The `.PROGRAM`s rendered so far, each appended whole when its routine ends (the output
+    /// is held once: a String per program copied into the text at the end held it twice).
+    programs: String,
+    /// Where the header comment goes: after the first `.PROGRAM` line (known at the end).
+    head_at: Option<usize>,
     rt: Option<Rt>,
     /// Vision server used by `mm_init_skt` (for the header).
     server_used: Option<String>,
@@ -147,7 +170,8 @@ impl<'a> Tx<'a> {
             opts,
             vision,
             out: Out::new(&STYLE, src, ir, &NAME_RULES, report),
-            programs: Vec::new(),
+            programs: String::new(),
+            head_at: None,
             rt: None,
             server_used: None,
             data: data::DataOut::default(),
@@ -219,37 +243,32 @@ impl<'a> Tx<'a> {
     fn assemble(&mut self) -> String {
         let head = self.header_comment();
         let data = format::ascii(&self.data_text()).into_owned();
-        let size: usize = self
-            .programs
-            .iter()
-            .map(|p| p.header.len() + p.body.len() + 8)
-            .sum::<usize>()
-            + head.iter().map(|l| l.len() + 3).sum::<usize>()
-            + data.len()
-            + 32;
-        let mut out = String::with_capacity(size);
-        if self.programs.is_empty() {
-            self.programs.push(ProgramOut {
+        if self.head_at.is_none() {
+            self.push_program(ProgramOut {
                 header: ".PROGRAM main()".into(),
                 body: String::new(),
             });
         }
-        // Each routine's text is dropped once copied: the output is held once.
-        for (i, p) in std::mem::take(&mut self.programs).into_iter().enumerate() {
-            out.push_str(&p.header);
-            out.push('\n');
-            if i == 0 {
-                for l in &head {
-                    out.push_str("  ");
-                    out.push_str(&format::ascii(l));
-                    out.push('\n');
-                }
-            }
-            out.push_str(&p.body);
-            out.push_str(".END\n");
+        let mut lines = String::with_capacity(head.iter().map(|l| l.len() + 3).sum());
+        for l in &head {
+            lines.push_str("  ");
+            lines.push_str(&format::ascii(l));
+            lines.push('\n');
         }
+        let mut out = std::mem::take(&mut self.programs);
+        out.reserve(lines.len() + data.len());
+        out.insert_str(self.head_at.unwrap_or(0), &lines);
         out.push_str(&data);
         out
+    }
+
+    /// A rendered `.PROGRAM` joins the output.
+    fn push_program(&mut self, p: ProgramOut) {
+        self.programs.push_str(&p.header);
+        self.programs.push('\n');
+        self.head_at.get_or_insert(self.programs.len());
+        self.programs.push_str(&p.body);
+        self.programs.push_str(".END\n");
     }
 
     fn header_comment(&self) -> Vec<String> {
@@ -347,9 +366,8 @@ impl crate::transpile::Renderer for Tx<'_> {
         let r = self.ir.routine(self.routine_id());
         self.flush_comments(r.span.end);
         self.flush_lines(0);
-        if let Some(mut rt) = self.rt.take() {
-            rt.program.body.shrink_to_fit();
-            self.programs.push(rt.program);
+        if let Some(rt) = self.rt.take() {
+            self.push_program(rt.program);
         }
         self.out.routine = None;
     }

@@ -217,7 +217,7 @@ impl<'a> Tx<'a> {
     /// axis is not given; the lines before the move, then the target.
     fn partial_axes(&mut self, a: &Aggregate, span: Span) -> R<Vec<String>> {
         let Some(map) = self.opts.joint_map.clone() else {
-            return fail(span, super::expr::NO_JOINT_MAP, super::expr::JOINT_MAP_HELP);
+            return crate::transpile::render::not_lowered(span, "axis values without a joint map");
         };
         let mut given = [None; 6];
         for (c, e) in &a.fields {
@@ -267,10 +267,9 @@ impl<'a> Tx<'a> {
     /// `PTP_REL {A6 90}`: one `DRIVE joint, degrees, speed` per axis, through the joint map.
     fn drive(&mut self, d: &Delta, speed: &Known<JointPct>, span: Span) -> R<Vec<String>> {
         let Some(map) = &self.opts.joint_map else {
-            return fail(
+            return crate::transpile::render::not_lowered(
                 d.span,
-                "a relative axis move: which Kawasaki joint turns, and in which direction, needs a joint map",
-                super::expr::JOINT_MAP_HELP,
+                "a relative axis move without a joint map",
             );
         };
         let mut moves = Vec::new();
@@ -324,16 +323,16 @@ impl<'a> Tx<'a> {
 
     /// A motion target: a pose or joint variable, a literal, or pose arithmetic.
     fn target(&mut self, t: &Target) -> R<String> {
-        // A `.dat` value written in KUKA's joint convention: reported at the move as well.
+        // The lowering refused axis values written in the program without a joint map
+        // (`Caps::axis_values`), `.dat` values at the move as well.
         if t.joints && t.literal && self.opts.joint_map.is_none() {
-            return fail(
+            return crate::transpile::render::not_lowered(
                 t.expr.span,
-                super::expr::NO_JOINT_MAP,
-                super::expr::JOINT_MAP_HELP,
+                "axis values without a joint map",
             );
         }
         match &t.expr.kind {
-            ExprKind::Aggregate(a) if a.axis && !a.complete() && self.opts.joint_map.is_some() => {
+            ExprKind::Aggregate(a) if a.axis && !a.complete() => {
                 Ok(self.partial_axes(a, t.expr.span)?.join("\n"))
             }
             ExprKind::Aggregate(a) => self.literal(a, t.expr.span, FileId::Src),

@@ -96,8 +96,8 @@ impl<'a> Tx<'a> {
     fn loop_(&mut self, id: LoopId, kind: &LoopKind, body: &Block, end: u32) -> R<()> {
         let (head, close) = match kind {
             LoopKind::For(f) => {
-                let (var, from, to, step) = (&f.var, &f.from, &f.to, &f.step);
-                let v = self.place_text(var, &Ty::Int, from.span)?;
+                let (var, from, to, step) = (Place::Var(f.var), &f.from, &f.to, &f.step);
+                let v = self.place_text(&var, &Ty::Int, from.span)?;
                 let (a, b) = (self.expr(from)?, self.expr(to)?);
                 let step = match step {
                     Some(st) => format!(" STEP {}", self.expr(st)?),
@@ -222,10 +222,9 @@ impl<'a> Tx<'a> {
     /// value.
     fn call_arg(&mut self, a: &Arg) -> R<String> {
         let Some(v) = &a.value else {
-            return fail(
+            return crate::transpile::render::not_lowered(
                 a.span,
-                "an omitted argument has no AS equivalent",
-                "pass every argument",
+                "an omitted argument of a routine",
             );
         };
         if let Some(p) = &a.place

@@ -87,7 +87,7 @@ impl<'a> Tx<'a> {
                 Ok(v) => self
                     .data_value(&var.ty, v)
                     .map(|v| format!("{kw} {} {name} := {v};", self.ty_name(&var.ty, 0))),
-                Err(why) => self.unsupported(why, d.span),
+                Err((why, at)) => self.unsupported(why, *at),
             };
             self.data_result(r, d.span, d.file);
         }
@@ -253,7 +253,7 @@ impl<'a> Tx<'a> {
             let idx = d.index.as_deref().unwrap_or(&[]);
             let value = match &d.value {
                 Ok(v) => self.data_value(ty, v)?,
-                Err(why) => return self.unsupported(why, d.span),
+                Err((why, at)) => return self.unsupported(why, *at),
             };
             let pos = match (idx, sizes.as_slice()) {
                 ([i], [n]) if (1..=*n as i64).contains(i) => (*i - 1) as usize,

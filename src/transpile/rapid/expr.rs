@@ -162,22 +162,18 @@ impl<'a> Tx<'a> {
                 return Ok(format!("krl_flag{{{i}}}"));
             }
             IoPlace::Signal(r) => {
+                // The lowering refuses groups and computed numbers (`Caps::signals`).
                 if r.width() != 1 {
-                    return fail(
-                        span,
-                        "a group of signals (SIGNAL … TO …) needs a group signal of the I/O configuration",
-                        "configure a group signal and read it with GInput / write it with SetGO",
-                    );
+                    return crate::transpile::render::not_lowered(span, "a group of signals");
                 }
                 return Ok(map.name(r.bank, r.from));
             }
         };
         match index.integer() {
             Some(n) => Ok(map.name(bank, n)),
-            None => fail(
+            None => crate::transpile::render::not_lowered(
                 index.span,
-                "a signal number computed at run time: RAPID signals are names of the I/O configuration",
-                "use a literal number, or an IF per signal",
+                "a signal number computed at run time",
             ),
         }
     }
@@ -315,7 +311,10 @@ impl<'a> Tx<'a> {
         let ext = self.ext_axes(a, span)?;
         if a.axis {
             let Some(map) = self.opts.joint_map.clone() else {
-                return fail(span, NO_JOINT_MAP, JOINT_MAP_HELP);
+                return crate::transpile::render::not_lowered(
+                    span,
+                    "axis values without a joint map",
+                );
             };
             let Some(m) = a.numbers() else {
                 return fail(
@@ -362,13 +361,13 @@ impl<'a> Tx<'a> {
 
     /// E1…E6 of a literal, `9E9` where not given.
     fn ext_axes(&mut self, a: &Aggregate, span: Span) -> R<String> {
+        // The lowering refused the rest (`Caps::external_axes`).
         let ext = match a.ext() {
             Ok(e) => e,
             Err(at) => {
-                return fail(
+                return crate::transpile::render::not_lowered(
                     at,
-                    "an external axis value that is not a number literal",
-                    "use literal values",
+                    "an external axis value that is no number",
                 );
             }
         };

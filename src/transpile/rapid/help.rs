@@ -58,6 +58,11 @@ fn own(why: &Why) -> Option<String> {
         }
         Why::Goto => "restructure the jump".into(),
         Why::Load => "give the payload in the tooldata's tload, or with GripLoad".into(),
+        Why::NoJointMap { .. } => super::expr::JOINT_MAP_HELP.into(),
+        Why::MmInterface { .. } => super::stmt::MM_HELP.into(),
+        Why::SignalGroup => {
+            "configure a group signal and read it with GInput / write it with SetGO".into()
+        }
         Why::BitwiseNot => "compute the bits with BitNeg on a byte, or port by hand".into(),
         Why::Lacks(Lacked::Load) => {
             "give the payload in the tooldata's tload, or with GripLoad".into()

@@ -72,6 +72,13 @@ pub static BACKEND: render::Backend = render::Backend {
     target: super::Target::Rapid,
     name: "rapid",
     caps: render::Caps {
+        // Signals are names of the I/O configuration (`--signal-map`), one bit each.
+        signals: render::Signals {
+            groups: false,
+            output_groups_read: true,
+            computed_numbers: false,
+        },
+        robot: "ABB",
         records: true,
         // MoveJ to Offs/RelTool; RelTool turns about one tool axis (\Rx, \Ry or \Rz).
         relative_motions: render::Relative {
@@ -82,6 +89,14 @@ pub static BACKEND: render::Backend = render::Backend {
         trigger: render::Trigger::OnPath,
         lacks: &[Lacked::Load, Lacked::Timers, Lacked::Geo, Lacked::Bitwise],
         string_len: Some(80),
+        // MoveAbsJ takes ABB's axis values, CJointT reads them: every axis value is ABB's.
+        axis_values: render::AxisValues {
+            joint: "axis",
+            joints: 6,
+            written: true,
+            every: true,
+            linear: false,
+        },
         ..render::Caps::BASE
     },
     name_rules: &NAME_RULES,
@@ -149,6 +164,9 @@ pub struct Tx<'a> {
     /// The robot stands still at the previous point here (after an exact stop or an
     /// advance-run stop), as far as the statements rendered since show.
     still: bool,
+    /// The motion parameters this routine never sets that a finding already named (one
+    /// finding per routine and parameter, not one per motion).
+    never_set: Vec<&'static str>,
 }
 
 impl<'a> Tx<'a> {
@@ -166,6 +184,7 @@ impl<'a> Tx<'a> {
             frame_data: motion::FrameData::default(),
             file: FileId::Src,
             still: false,
+            never_set: Vec::new(),
             intnums: std::collections::BTreeSet::new(),
             traps: std::collections::BTreeMap::new(),
             braked: false,
@@ -367,6 +386,7 @@ impl crate::transpile::Renderer for Tx<'_> {
             extra: Vec::new(),
         });
         self.still = false;
+        self.never_set.clear();
         self.out.names.declare_locals(&mut self.out.rep, id);
         self.out.names.declare_labels(&mut self.out.rep, id);
         let mut params = Vec::new();

@@ -83,10 +83,9 @@ impl<'a> Tx<'a> {
             }
             Path::JointRel { delta, .. } => {
                 let Some(map) = self.opts.joint_map.clone() else {
-                    return fail(
+                    return crate::transpile::render::not_lowered(
                         delta.span,
-                        "a relative axis move: which ABB axis turns, and in which direction, needs a joint map",
-                        super::expr::JOINT_MAP_HELP,
+                        "a relative axis move without a joint map",
                     );
                 };
                 let mut turns = Vec::new();
@@ -181,10 +180,9 @@ impl<'a> Tx<'a> {
     /// A motion target: a variable, an element or a literal.
     fn target(&mut self, t: &Target) -> R<String> {
         if t.joints && self.opts.joint_map.is_none() {
-            return fail(
+            return crate::transpile::render::not_lowered(
                 t.expr.span,
-                super::expr::NO_JOINT_MAP,
-                super::expr::JOINT_MAP_HELP,
+                "axis values without a joint map",
             );
         }
         if let ExprKind::Aggregate(a) = &t.expr.kind
@@ -248,17 +246,27 @@ impl<'a> Tx<'a> {
         format!("vmax \\V:=vmax.v_tcp*{pct}/100")
     }
 
-    /// A TR002 for a motion parameter not known at a motion.
-    fn unknown(&mut self, span: Span, b: &Because, what: &str, used: &str) {
-        self.out.rep.approximate(
-            FileId::Src,
-            span,
+    /// A TR002 for a motion parameter not known at a motion. One the program never sets is
+    /// named once per routine, at its first motion: every later one uses the same value.
+    fn unknown(&mut self, span: Span, b: &Because, what: &'static str, used: &str) {
+        let message = if *b == Because::NeverSet {
+            if self.never_set.contains(&what) {
+                return;
+            }
+            self.never_set.push(what);
+            format!(
+                "{what} of this motion is not known here: {}; {used} is used, here and at every later motion of this routine that gets no value",
+                b.describe()
+            )
+        } else {
             format!(
                 "{what} of this motion is not known here: {}; {used} is used",
                 b.describe()
-            ),
-            "set it before the move",
-        );
+            )
+        };
+        self.out
+            .rep
+            .approximate(FileId::Src, span, message, "set it before the move");
     }
 
     /// The zonedata argument: `fine`, `z10`, `z10 \Z:=12.5` (the lowering made every

@@ -19,7 +19,7 @@ static TEST: CaseWords = CaseWords {
 };
 
 /// What KRL's Mech-Mind calls become on an ABB robot.
-const MM_HELP: &str =
+pub(super) const MM_HELP: &str =
     "use the Mech-Mind ABB interface (its RAPID modules and routines) for this call";
 
 impl<'a> Tx<'a> {
@@ -32,7 +32,10 @@ impl<'a> Tx<'a> {
                 let t = self.place_text(place, span)?;
                 if *joints {
                     if self.opts.joint_map.is_none() {
-                        return fail(span, super::expr::NO_JOINT_MAP, super::expr::JOINT_MAP_HELP);
+                        return crate::transpile::render::not_lowered(
+                            span,
+                            "$AXIS_ACT without a joint map",
+                        );
                     }
                     self.line(format!("{t} := CJointT();"));
                 } else {
@@ -117,7 +120,7 @@ impl<'a> Tx<'a> {
         // Everything that can fail before a line is written.
         let (pre, head, step) = match kind {
             LoopKind::For(f) => {
-                let v = self.place_text(&f.var, f.from.span)?;
+                let v = self.place_text(&Place::Var(f.var), f.from.span)?;
                 let from = self.expr(&f.from)?;
                 let step = match &f.step {
                     Some(st) => match st.number() {
@@ -218,10 +221,9 @@ impl<'a> Tx<'a> {
     /// An argument: a variable for an INOUT parameter, else a value.
     fn call_arg(&mut self, a: &Arg) -> R<String> {
         let Some(v) = &a.value else {
-            return fail(
+            return crate::transpile::render::not_lowered(
                 a.span,
-                "an omitted argument has no RAPID equivalent",
-                "pass every argument",
+                "an omitted argument of a routine",
             );
         };
         if a.out
@@ -234,15 +236,9 @@ impl<'a> Tx<'a> {
 
     fn call(&mut self, callee: &Callee, args: &[Arg], ret: Option<&Place>, span: Span) -> R<()> {
         let (name, function, ret_ty) = match callee {
-            Callee::Mm(sub) => {
-                return fail(
-                    span,
-                    format!(
-                        "`{}` is a routine of the Mech-Mind KUKA interface; ABB robots talk to Mech-Vision through Mech-Mind's ABB interface",
-                        sub.name
-                    ),
-                    MM_HELP,
-                );
+            // The lowering refuses it (`Caps::mech_mind`).
+            Callee::Mm(_) => {
+                return crate::transpile::render::not_lowered(span, "an MM_ call");
             }
             Callee::Routine(r) => self.routine_callee(*r),
             Callee::External {

@@ -16,6 +16,8 @@ use crate::transpile::{flexiv, kawasaki, rapid};
 /// map, pose components, external axes …) are listed in ARCHITECTURE.md.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub struct Caps {
+    /// The arm, as findings name it (`Kawasaki`, `ABB`, `Rizon`).
+    pub robot: &'static str,
     /// `GOTO` and labels; without them a label and the jumps to it are made loops first
     /// ([`crate::transpile::ir::goto`]).
     pub goto: bool,
@@ -48,11 +50,61 @@ pub struct Caps {
     /// The longest string the target holds, in characters (`None`: no limit known); a longer
     /// KRL string is TR001.
     pub string_len: Option<usize>,
+    /// Where KUKA axis values need the joint map (`--joint-map`): without one the lowering
+    /// refuses them there (TR001 `Why::NoJointMap`).
+    pub axis_values: AxisValues,
+    /// Which `MM_*` calls it translates, with which arguments given.
+    pub mech_mind: MechMind,
+    /// How many external axes (E1…) a pose or axis value holds; a literal giving a further
+    /// one a value other than 0 is TR001, and so is an external axis value that is not a
+    /// number where it holds any.
+    pub external_axes: u8,
+    /// Which of KRL's signals it names.
+    pub signals: Signals,
+}
+
+/// The signals a target can read and write; the lowering refuses the rest (TR001).
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub struct Signals {
+    /// A SIGNAL of several inputs or outputs (an integer).
+    pub groups: bool,
+    /// Reading such a group of outputs back.
+    pub output_groups_read: bool,
+    /// `$IN[i]`/`$OUT[i]` with a number computed at run time (without: its signals are names
+    /// of the I/O configuration).
+    pub computed_numbers: bool,
+}
+
+/// How a target translates the Mech-Mind KUKA interface's `MM_*` calls; the lowering refuses
+/// the rest (TR001) and the calls that omit an argument the translation reads.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum MechMind {
+    /// The target's interface commands, from the catalog (each `[[kawasaki]]` entry names the
+    /// KUKA routine it stands for and reads the KUKA parameters it names), and the routines
+    /// the translator computes from those commands' results, with the parameters each reads.
+    Commands {
+        computed: &'static [(&'static str, &'static [&'static str])],
+    },
+    /// A client in the translated program with a method per routine that does not move the
+    /// robot, reading every argument except where `reads` names the ones it reads.
+    Client {
+        reads: &'static [(&'static str, &'static [&'static str])],
+    },
+    /// None: the robot's own Mech-Mind interface replaces them.
+    Absent,
 }
 
 impl Caps {
     /// The capabilities every target shares; a target's `Caps` says where it differs.
     pub const BASE: Caps = Caps {
+        robot: "the robot",
+        mech_mind: MechMind::Absent,
+        external_axes: 6,
+        signals: Signals {
+            groups: true,
+            output_groups_read: true,
+            computed_numbers: true,
+        },
         goto: true,
         records: false,
         interrupts: true,
@@ -77,7 +129,35 @@ impl Caps {
         param_reads: false,
         bitwise_not: false,
         string_len: None,
+        axis_values: AxisValues {
+            joint: "joint",
+            joints: 6,
+            written: true,
+            every: false,
+            linear: true,
+        },
     };
+}
+
+/// Where a target needs the joint map (`--joint-map`) for KUKA axis values (E6AXIS, in KUKA's
+/// joint zeros and directions). Relative axis moves (`PTP_REL {A6 90}`) need it in every
+/// target.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub struct AxisValues {
+    /// What its manuals call one of its axes (`joint`, `axis`).
+    pub joint: &'static str,
+    /// How many it has (KUKA: six).
+    pub joints: u8,
+    /// Axis values written in the program (literals, `.dat` values) become the target's joint
+    /// values where they are written, so they need the map there; without: they stay KUKA's
+    /// and the robot's joints read back become KUKA axes (a map giving every axis a joint).
+    pub written: bool,
+    /// Every motion to axis values and every read of the robot's joints needs the map, not
+    /// only values written in the program.
+    pub every: bool,
+    /// A LIN or CIRC can go to axis values; without: TR001 (its linear motions need a
+    /// Cartesian target).
+    pub linear: bool,
 }
 
 /// The `PULSE`s a target holds besides a high pulse of an output; the rest is TR001.
@@ -137,7 +217,7 @@ pub enum Trigger {
 }
 
 /// The columns of the capability table.
-const CAPS_COLUMNS: [&str; 14] = [
+const CAPS_COLUMNS: [&str; 18] = [
     "language",
     "GOTO",
     "STRUC",
@@ -149,13 +229,17 @@ const CAPS_COLUMNS: [&str; 14] = [
     "PULSE",
     "B_NOT",
     "`$VEL.CP`, `$APO` read",
+    "axis values (E6AXIS)",
+    "`MM_*` calls",
+    "external axes in a value",
+    "signals",
     "nothing for (TR001)",
     "strings",
     "identifiers",
 ];
 
 /// A target's row of the capability table, in [`CAPS_COLUMNS`] order.
-fn caps_row(b: &Backend) -> [String; 14] {
+fn caps_row(b: &Backend) -> [String; 18] {
     let yes_no = |b: bool, without: &str| {
         if b {
             "yes".to_owned()
@@ -201,10 +285,76 @@ fn caps_row(b: &Backend) -> [String; 14] {
         pulse(&c.pulse),
         yes_no(c.bitwise_not, "TR001"),
         yes_no(c.param_reads, "TR001"),
+        axis_values(&c.axis_values),
+        mech_mind(&c.mech_mind),
+        match c.external_axes {
+            0 => "no: TR001".to_owned(),
+            1 => "E1; more: TR001".to_owned(),
+            6 => "E1…E6".to_owned(),
+            n => format!("E1…E{n}; more: TR001"),
+        },
+        signals(&c.signals),
         lacked(c.lacks),
         strings,
         format!("≤ {} characters", n.max_len),
     ]
+}
+
+/// The axis-values cell: what needs `--joint-map` (else TR001), and LIN/CIRC to them.
+fn axis_values(a: &AxisValues) -> String {
+    let mut needs = Vec::new();
+    if a.written {
+        needs.push("written in the program");
+    }
+    if a.every {
+        needs.push("moved to");
+    }
+    let mut cell = format!("{}: need --joint-map", needs.join(", "));
+    match (a.every, a.written) {
+        (true, true) => cell.push_str("; $AXIS_ACT read: needs it"),
+        (_, false) => cell.push_str("; $AXIS_ACT read: needs a map giving every axis a joint"),
+        (false, true) => {}
+    }
+    cell.push_str("; PTP_REL in axes: needs it");
+    if !a.linear {
+        cell.push_str("; LIN/CIRC to them: TR001");
+    }
+    cell
+}
+
+/// The signals cell: what is TR001.
+fn signals(s: &Signals) -> String {
+    let mut no = Vec::new();
+    if !s.groups {
+        no.push("SIGNAL groups");
+    } else if !s.output_groups_read {
+        no.push("output groups read");
+    }
+    if !s.computed_numbers {
+        no.push("numbers computed at run time");
+    }
+    if no.is_empty() {
+        "all".to_owned()
+    } else {
+        format!("{}: TR001", no.join(", "))
+    }
+}
+
+/// The `MM_*` cell: which calls translate (an omitted argument the translation reads: TR001).
+fn mech_mind(m: &MechMind) -> String {
+    match m {
+        MechMind::Commands { computed } => {
+            let names: Vec<&str> = computed.iter().map(|(n, _)| *n).collect();
+            format!(
+                "the interface's commands (catalog), {} computed from them; else TR001",
+                names.join(", ")
+            )
+        }
+        MechMind::Client { .. } => {
+            "a client method each, except routines that move the robot (TR001)".to_owned()
+        }
+        MechMind::Absent => "no: TR001 (the robot's own Mech-Mind interface)".to_owned(),
+    }
 }
 
 /// The cell of the statements a target has nothing for.

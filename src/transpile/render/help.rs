@@ -44,6 +44,15 @@ fn shared(why: &Why) -> String {
         Why::WaitCall => "assign the function's value to a variable and wait on that",
         Why::MessageText => "pass the text",
         Why::StringLength { .. } => "shorten the string, or build it from shorter parts",
+        Why::NoJointMap { .. } => "give --joint-map",
+        Why::MmArgument(_) => "pass every argument",
+        Why::ExternalAxes { .. } => "move the external axes with their own program, or drop them",
+        Why::ExternalAxisValue => "use literal values",
+        Why::SignalGroup => "use one signal per bit",
+        Why::OutputGroupRead => "keep the value in a variable where the program sets it",
+        Why::ComputedSignal => "use a literal number, or an IF per signal",
+        Why::MmNoCommand { .. } | Why::MmMoves(_) | Why::MmInterface { .. } => "port by hand",
+        Why::LinearToAxes(_) => "move to a pose (E6POS)",
         Why::Skip
         | Why::Other(_)
         | Why::SystemVariable(_)

@@ -24,7 +24,10 @@ use super::ir::{self as ir, Case, Expr, LabelId, LoopId, Op, RoutineId, Stmt, Te
 use crate::diag::Span;
 
 pub use super::ir::why::Lacked;
-pub use backend::{BACKENDS, Backend, Blending, Caps, Distance, Pulse, Relative, Trigger, backend};
+pub use backend::{
+    AxisValues, BACKENDS, Backend, Blending, Caps, Distance, MechMind, Pulse, Relative, Signals,
+    Trigger, backend,
+};
 
 /// How a target writes lines and comments.
 pub struct Style {
@@ -179,8 +182,13 @@ impl<'a> Out<'a> {
     }
 
     pub fn line(&mut self, s: &str) {
-        let indent = self.style.indent.repeat(self.depth + self.style.base_depth);
-        self.lines.push(format!("{indent}{s}"));
+        let depth = self.depth + self.style.base_depth;
+        let mut line = String::with_capacity(self.style.indent.len() * depth + s.len());
+        for _ in 0..depth {
+            line.push_str(self.style.indent);
+        }
+        line.push_str(s);
+        self.lines.push(line);
     }
 
     pub fn comment(&mut self, text: &str) {
@@ -295,7 +303,7 @@ pub trait Emit<'a> {
             // Made only for targets without `GOTO` (`ir::goto`), which spell it themselves.
             Op::Continue(_) => not_lowered(span, "a jump to a loop's next pass"),
             Op::Message { routine, text } => self.message(routine, text, span),
-            Op::Unsupported { why, at } => self.unsupported(why, *at),
+            Op::Unsupported { why, at, .. } => self.unsupported(why, *at),
             Op::Keep { note } => self.keep_op(*note, span),
             _ => not_lowered(span, "an op its target spells itself"),
         }
@@ -633,6 +641,16 @@ pub fn not_lowered<T>(span: Span, what: &str) -> R<T> {
         message: format!(
             "internal: {what} reached a target whose capabilities exclude it (the lowering refuses it)"
         ),
+        help: "report this as a krlkit defect".into(),
+    })
+}
+
+/// A catalog entry the renderer cannot use (a catalog test keeps every entry usable): a
+/// defect of krlkit, reported (TR001) instead of a panic, as [`not_lowered`].
+pub fn catalog_defect<T>(span: Span, what: &str) -> R<T> {
+    Err(Fail {
+        span,
+        message: format!("internal: the catalog's {what}"),
         help: "report this as a krlkit defect".into(),
     })
 }

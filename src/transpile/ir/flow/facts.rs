@@ -129,7 +129,8 @@ impl State {
                 Effect::Call(r) => {
                     call(*r, self);
                     let i = r.0 as usize;
-                    *self = after_call(self, &ctx.summaries[i], ctx.moves[i]);
+                    let s = &ctx.summaries[i];
+                    *self = after_call(self, &ctx.exits[s.exit as usize], &s.name, ctx.moves[i]);
                 }
                 Effect::Either(ways) => {
                     let mut a = self.clone();
@@ -161,18 +162,22 @@ pub(super) enum Effect {
 /// What a routine leaves behind, relative to what it found (`Entry`: unchanged).
 #[derive(Debug, Clone, PartialEq)]
 pub(super) struct Summary {
-    pub(super) exit: State,
+    /// Its exit state: an index into [`Ctx::exits`] (few routines leave distinct facts; a
+    /// state per routine was most of the flow's memory on a file of many routines).
+    pub(super) exit: u32,
     pub(super) name: String,
 }
 
 /// What a call needs to know of the routines of the file.
 pub(super) struct Ctx<'a> {
     pub(super) summaries: &'a [Summary],
+    /// The distinct exit states of the summaries.
+    pub(super) exits: &'a [State],
     pub(super) moves: &'a [bool],
 }
 
 /// The facts of the caller after a call of a routine with summary `s`.
-fn after_call(caller: &State, s: &Summary, moves: bool) -> State {
+fn after_call(caller: &State, exit: &State, name: &str, moves: bool) -> State {
     fn after<T: Clone>(caller: &Fact<T>, callee: &Fact<T>, name: &str, local: bool) -> Fact<T> {
         match callee {
             Fact::Entry => caller.clone(),
@@ -194,26 +199,16 @@ fn after_call(caller: &State, s: &Summary, moves: bool) -> State {
     };
     State {
         params: std::array::from_fn(|i| {
-            let c = &s.exit.params[i];
-            after(&caller.params[i], c, &s.name, is_temp(c))
+            let c = &exit.params[i];
+            after(&caller.params[i], c, name, is_temp(c))
         }),
-        tool: after(
-            &caller.tool,
-            &s.exit.tool,
-            &s.name,
-            frame_local(&s.exit.tool),
-        ),
-        base: after(
-            &caller.base,
-            &s.exit.base,
-            &s.name,
-            frame_local(&s.exit.base),
-        ),
+        tool: after(&caller.tool, &exit.tool, name, frame_local(&exit.tool)),
+        base: after(&caller.base, &exit.base, name, frame_local(&exit.base)),
         latest: after(
             &caller.latest,
-            &s.exit.latest,
-            &s.name,
-            setting_temp(&s.exit.latest),
+            &exit.latest,
+            name,
+            setting_temp(&exit.latest),
         ),
         moving: caller.moving || moves,
     }

@@ -99,6 +99,7 @@ impl Parts for Walk<'_> {
         }
         let ctx = Ctx {
             summaries: &self.solution.summaries,
+            exits: &self.solution.exits,
             moves: &self.solution.moves,
         };
         resolve(ops, self.state, &ctx);

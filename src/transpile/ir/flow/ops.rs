@@ -298,6 +298,7 @@ pub(super) fn step(op: &mut Op) -> Step<'_> {
             Callee::Mm(sub) if sub.shape.moves() => Effect::Moving(true),
             Callee::Mm(_) => return Step::Effect(None),
         },
+        Op::Unsupported { moves: true, .. } => Effect::Moving(true),
         _ => return Step::Effect(None),
     };
     Step::Effect(Some(e))

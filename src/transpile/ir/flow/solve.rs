@@ -5,6 +5,8 @@
 use std::cmp::Reverse;
 use std::collections::BinaryHeap;
 
+use rustc_hash::FxHashMap;
+
 use super::facts::{Ctx, Id, Interner, NONE, State, Summary};
 use super::graph::{Graph, Graphs};
 use crate::cfg::{self, BlockId, END, ENTRY, EdgeKind, RETURN};
@@ -205,6 +207,8 @@ fn walk(
 pub struct Solution {
     pub(super) interner: Interner,
     pub(super) summaries: Vec<Summary>,
+    /// The distinct exit states the summaries point into.
+    pub(super) exits: Vec<State>,
     pub(super) moves: Vec<bool>,
     /// Per routine: the facts at each block's start.
     pub(super) starts: Vec<Vec<Id>>,
@@ -250,14 +254,15 @@ pub fn solve(graphs: Graphs, program: &Program) -> Solution {
         }
     }
     let identity = State::uniform(None, false);
-    let mut summaries: Vec<Summary> = names
-        .iter()
-        .map(|name| Summary {
-            exit: identity.clone(),
-            name: name.clone(),
-        })
-        .collect();
     let unchanged = ix.id(identity.clone());
+    // Each distinct exit state once, by its interned id (equal ids are equal states).
+    let mut exits: Vec<State> = vec![identity.clone()];
+    let mut exit_of: FxHashMap<Id, u32> = FxHashMap::default();
+    exit_of.insert(unchanged, 0);
+    let mut summaries: Vec<Summary> = names
+        .into_iter()
+        .map(|name| Summary { exit: 0, name })
+        .collect();
     let mut dirty = vec![true; n];
     for _ in 0..ROUNDS {
         let mut changed = false;
@@ -267,10 +272,18 @@ pub fn solve(graphs: Graphs, program: &Program) -> Solution {
             }
             let ctx = Ctx {
                 summaries: &summaries,
+                exits: &exits,
                 moves: &moves,
             };
-            let exit = walk(&routines[i], unchanged, handler, &mut ix, &ctx, false).exit;
-            let exit = ix.get(exit).cloned().unwrap_or_else(|| identity.clone());
+            let exit = match walk(&routines[i], unchanged, handler, &mut ix, &ctx, false).exit {
+                // Nothing reaches the end: the routine changes nothing.
+                NONE => unchanged,
+                e => e,
+            };
+            let exit = *exit_of.entry(exit).or_insert_with(|| {
+                exits.push(ix.get(exit).cloned().unwrap_or_else(|| identity.clone()));
+                exits.len() as u32 - 1
+            });
             if summaries[i].exit != exit {
                 summaries[i].exit = exit;
                 changed = true;
@@ -285,6 +298,7 @@ pub fn solve(graphs: Graphs, program: &Program) -> Solution {
     }
     let ctx = Ctx {
         summaries: &summaries,
+        exits: &exits,
         moves: &moves,
     };
     // Entry facts: the first routine (and statements outside any DEF) start with nothing set;
@@ -366,6 +380,7 @@ pub fn solve(graphs: Graphs, program: &Program) -> Solution {
     Solution {
         interner: ix,
         summaries,
+        exits,
         moves,
         starts,
     }

@@ -154,7 +154,7 @@ impl<'p> Lower<'p> {
             // An undeclared OUT variable takes the parameter's type.
             if is_out
                 && let ExprKind::Place(crate::transpile::ir::Place::Var(v)) = &value.kind
-                && self.out.var(*v).scope == crate::transpile::ir::Scope::Assumed
+                && self.var_decl(*v).scope == crate::transpile::ir::Scope::Assumed
             {
                 let ty = match p.ty.to_ascii_uppercase().as_str() {
                     "E6POS" => Ty::Pose,
@@ -162,7 +162,7 @@ impl<'p> Lower<'p> {
                     "INT" => Ty::Int,
                     _ => Ty::Real,
                 };
-                let dims = self.out.var(*v).dims;
+                let dims = self.var_decl(*v).dims;
                 self.retype(*v, ty.clone(), dims);
                 value.ty = ty;
             }
@@ -182,6 +182,7 @@ impl<'p> Lower<'p> {
                 span: a.span,
             });
         }
+        self.mm_held(sub, args, span)?;
         ops.push(Stmt {
             op: Op::Call {
                 callee: Callee::Mm(sub),

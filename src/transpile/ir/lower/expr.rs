@@ -74,6 +74,10 @@ impl<'p> Lower<'p> {
             A::Binary { op, lhs, rhs } => self.binary(*op, lhs, rhs, span, pre),
             A::Aggregate { .. } => {
                 let a = self.aggregate(e, None, pre)?;
+                if a.axis {
+                    self.written_axes(span)?;
+                }
+                self.held_external(&a, span)?;
                 let ty = if a.axis { Ty::Joint } else { Ty::Pose };
                 Ok(Expr::new(ExprKind::Aggregate(Box::new(a)), ty, span))
             }
@@ -325,7 +329,7 @@ impl<'p> Lower<'p> {
             if let ExprKind::Place(p) = &x.kind
                 && let Some(v) = p.root()
             {
-                let var = self.out.var(v);
+                let var = self.var_decl(v);
                 let global = matches!(var.scope, Scope::Global | Scope::Package | Scope::Assumed);
                 let written = writes.1.contains(&v)
                     || (global
@@ -359,7 +363,7 @@ impl<'p> Lower<'p> {
         if let A::Member { base, field } = &e.kind
             && let Some(s @ (Sys::PosAct | Sys::AxisAct)) = sysvar::classify(base)
         {
-            let b = self.read_position(matches!(s, Sys::AxisAct), base.span, pre);
+            let b = self.read_position(matches!(s, Sys::AxisAct), base.span, pre)?;
             return self.member(b, field, span);
         }
         if let Some(s) = sysvar::classify(e) {
@@ -369,12 +373,13 @@ impl<'p> Lower<'p> {
             A::Name(id) => {
                 if let Some(v) = self.var(&id.text) {
                     self.holdable(v, span)?;
-                    let var = self.out.var(v);
+                    let var = self.var_decl(v);
                     if let Ty::Signal(r) = var.ty {
                         if r.bank == crate::transpile::ir::Bank::In {
                             self.stop(span, pre);
                         }
                         let ty = if r.width() == 1 { Ty::Bool } else { Ty::Int };
+                        self.held_read(&IoPlace::Signal(r), span)?;
                         return Ok(Expr::new(ExprKind::Io(IoPlace::Signal(r)), ty, span));
                     }
                     let ty = var.ty.clone();
@@ -382,11 +387,11 @@ impl<'p> Lower<'p> {
                 }
                 if let Some(v) = self.package_var(id) {
                     self.holdable(v, span)?;
-                    let ty = self.out.var(v).ty.clone();
+                    let ty = self.var_decl(v).ty.clone();
                     return Ok(Expr::new(ExprKind::Place(Place::Var(v)), ty, span));
                 }
                 let v = self.assumed_var(id, Ty::Real, "a number");
-                let ty = self.out.var(v).ty.clone();
+                let ty = self.var_decl(v).ty.clone();
                 Ok(Expr::new(ExprKind::Place(Place::Var(v)), ty, span))
             }
             A::Index { .. } | A::Member { .. } => {
@@ -401,7 +406,7 @@ impl<'p> Lower<'p> {
     /// fields a record cannot hold; a KUKA structure no target has) is refused here, once, for
     /// every target.
     pub(super) fn holdable(&mut self, v: crate::transpile::ir::VarId, at: Span) -> L<()> {
-        match self.out.var(v).ty.clone() {
+        match self.var_decl(v).ty.clone() {
             Ty::Struc(t) if !t.is_empty() && self.record_of(&t).is_none() => {
                 fail(Why::Structure(t), at)
             }
@@ -440,11 +445,11 @@ impl<'p> Lower<'p> {
             A::Name(id) => {
                 if let Some(v) = self.var(&id.text).or_else(|| self.package_var(id)) {
                     self.holdable(v, span)?;
-                    return Ok((Place::Var(v), self.out.var(v).ty.clone()));
+                    return Ok((Place::Var(v), self.var_decl(v).ty.clone()));
                 }
                 let _ = write;
                 let v = self.assumed_var(id, Ty::Real, "a number");
-                Ok((Place::Var(v), self.out.var(v).ty.clone()))
+                Ok((Place::Var(v), self.var_decl(v).ty.clone()))
             }
             A::Index { base, indices } => {
                 let A::Name(id) = &base.kind else {
@@ -456,7 +461,7 @@ impl<'p> Lower<'p> {
                         Some(v) => v,
                         None => {
                             let v = self.assumed_var(id, Ty::Real, "an array of numbers");
-                            let var = self.out.var(v);
+                            let var = self.var_decl(v);
                             let (ty, dims) = (var.ty.clone(), var.dims.max(indices.len()));
                             self.retype(v, ty, dims);
                             v
@@ -464,7 +469,7 @@ impl<'p> Lower<'p> {
                     },
                 };
                 self.holdable(v, span)?;
-                let ty = self.out.var(v).ty.clone();
+                let ty = self.var_decl(v).ty.clone();
                 let mut idx = Vec::new();
                 let present: Vec<&ast::Expr> = indices.iter().flatten().collect();
                 let mut lowered = self.seq(&present, pre)?.into_iter();
@@ -530,7 +535,10 @@ impl<'p> Lower<'p> {
     }
 
     /// The current position read into a temporary (after an advance-run stop).
-    pub(super) fn read_position(&mut self, joints: bool, span: Span, pre: &mut Block) -> Expr {
+    pub(super) fn read_position(&mut self, joints: bool, span: Span, pre: &mut Block) -> L<Expr> {
+        if joints {
+            self.read_axes(span)?;
+        }
         self.stop(span, pre);
         let ty = if joints { Ty::Joint } else { Ty::Pose };
         let t = self.temp(ty.clone());
@@ -541,7 +549,7 @@ impl<'p> Lower<'p> {
             },
             span,
         });
-        Expr::new(ExprKind::Place(Place::Temp(t)), ty, span)
+        Ok(Expr::new(ExprKind::Place(Place::Temp(t)), ty, span))
     }
 
     fn system_value(&mut self, s: Sys, e: &ast::Expr, pre: &mut Block) -> L<Expr> {
@@ -553,12 +561,14 @@ impl<'p> Lower<'p> {
         Ok(match s {
             Sys::In(i) => {
                 self.stop(span, pre);
-                let i = index(self, i, pre)?;
-                Expr::new(ExprKind::Io(IoPlace::In(i)), Ty::Bool, span)
+                let io = IoPlace::In(index(self, i, pre)?);
+                self.held_read(&io, span)?;
+                Expr::new(ExprKind::Io(io), Ty::Bool, span)
             }
             Sys::Out(i) | Sys::OutC(i) => {
-                let i = index(self, i, pre)?;
-                Expr::new(ExprKind::Io(IoPlace::Out(i)), Ty::Bool, span)
+                let io = IoPlace::Out(index(self, i, pre)?);
+                self.held_read(&io, span)?;
+                Expr::new(ExprKind::Io(io), Ty::Bool, span)
             }
             Sys::Flag(i) => {
                 let i = index(self, i, pre)?;
@@ -574,8 +584,8 @@ impl<'p> Lower<'p> {
                 self.held(Lacked::Timers, span)?;
                 Expr::new(ExprKind::TimerFlag(i), Ty::Bool, span)
             }
-            Sys::PosAct => self.read_position(false, span, pre),
-            Sys::AxisAct => self.read_position(true, span, pre),
+            Sys::PosAct => self.read_position(false, span, pre)?,
+            Sys::AxisAct => self.read_position(true, span, pre)?,
             Sys::NullFrame => Expr::new(ExprKind::NullFrame, Ty::Pose, span),
             Sys::VelCp => self.param_read(MotionParam::VelCp, span)?,
             Sys::ApoCdis => self.param_read(MotionParam::ApoCdis, span)?,
@@ -731,14 +741,9 @@ impl<'p> Lower<'p> {
                 .as_ref()
                 .and_then(|p| p.get(i))
                 .is_some_and(|p| p.dir == crate::transpile::ir::ParamDir::Out);
+            // No target passes "no value" to a routine.
             let Some(a) = a else {
-                out.push(Arg {
-                    value: None,
-                    place: None,
-                    out: is_out,
-                    span,
-                });
-                continue;
+                return fail(Why::OmittedArgument, span);
             };
             let value = values.next().expect("one value per present argument");
             let place = match &value.kind {
@@ -835,6 +840,10 @@ impl<'p> Lower<'p> {
                 Layout::Axis
             };
             let a = self.aggregate(value, Some(want), pre)?;
+            if a.axis {
+                self.written_axes(span)?;
+            }
+            self.held_external(&a, span)?;
             return Ok(Expr::new(
                 ExprKind::Aggregate(Box::new(a)),
                 ty.clone(),

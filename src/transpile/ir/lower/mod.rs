@@ -6,13 +6,17 @@
 //! values. What cannot be expressed in any target becomes [`Op::Unsupported`]; the motion
 //! parameters each motion uses are left for [`super::flow`].
 
+mod axes;
 mod call;
 mod expr;
+mod mech_mind;
 mod motion;
+mod signals;
 mod stmt;
 
 use std::collections::BTreeSet;
 
+use compact_str::CompactString;
 use rustc_hash::FxHashMap;
 
 use super::{
@@ -52,8 +56,10 @@ pub struct Lowering {
 
 /// What the second pass needs to lower the statements again exactly as the first did.
 pub struct Replay {
-    /// The variables as they were when the first routine began.
-    vars: Vec<Var>,
+    /// The variables whose type the first pass changed, as they were when the first routine
+    /// began (the others are read from the first pass's program: a copy of every variable was
+    /// a tenth of the translation's memory on a file of many routines).
+    changed: FxHashMap<VarId, Var>,
     keys: VarKeys,
     /// The next spline id at the start of each routine.
     next_spline: Vec<u32>,
@@ -70,7 +76,6 @@ impl Replay {
         options: &'p Options,
     ) -> Lower<'p> {
         let out = Program {
-            vars: self.vars,
             top_level: first.top_level,
             interrupts: first.interrupts.clone(),
             records: first.records.clone(),
@@ -84,6 +89,8 @@ impl Replay {
             caps: self.caps,
             out,
             first: Some(&first.routines),
+            first_vars: Some(&first.vars),
+            changed: self.changed,
             routine_ids,
             vars: self.keys,
             rt: None,
@@ -111,6 +118,8 @@ struct Ctx {
     id: RoutineId,
     /// Upper-case KRL name ("" for statements outside any DEF).
     key: String,
+    /// Its [`VarKeys`] scope (`None`: it declares no variable).
+    scope: Option<u32>,
     temps: Vec<Ty>,
     /// Enclosing loops, innermost last.
     loops: Vec<LoopId>,
@@ -155,6 +164,10 @@ pub struct Lower<'p> {
     out: Program,
     /// The second pass reads the routines of the first's program instead of `out`'s.
     first: Option<&'p [Routine]>,
+    /// The second pass reads the variables of the first's program, except those whose type
+    /// changed (`changed`, replayed as they change again).
+    first_vars: Option<&'p [Var]>,
+    changed: FxHashMap<VarId, Var>,
     /// Upper-case name → the first routine of `out` of that name (a scan of the routines per
     /// call made a file of many routines quadratic).
     routine_ids: FxHashMap<String, RoutineId>,
@@ -203,6 +216,8 @@ impl<'p> Lower<'p> {
             caps,
             out: Program::default(),
             first: None,
+            first_vars: None,
+            changed: FxHashMap::default(),
             routine_ids: FxHashMap::default(),
             vars: VarKeys::default(),
             rt: None,
@@ -217,12 +232,17 @@ impl<'p> Lower<'p> {
             },
         };
         for g in l.model.globals() {
-            l.add_var(String::new(), g, Scope::Global);
+            l.add_var("", g, Scope::Global);
         }
         // Routines first (ids for calls), then their bodies.
         for r in &program.src.outline.routines {
             l.declare_routine(r);
         }
+        let routines = &l.out.routines;
+        l.vars.by_routine = routines
+            .iter()
+            .map(|r| l.vars.scope(&upper(&r.name)))
+            .collect();
         l.collect_interrupts();
         if let Pass::First { journal, .. } = &mut l.pass {
             *journal = Some(Vec::new());
@@ -241,16 +261,18 @@ impl<'p> Lower<'p> {
             ),
             Pass::Replay { .. } => (Vec::new(), Vec::new()),
         };
-        let mut vars = self.out.vars.clone();
+        let mut changed: FxHashMap<VarId, Var> = FxHashMap::default();
         for (v, ty, dims) in journal.into_iter().rev() {
-            let var = &mut vars[v.0 as usize];
+            let var = changed
+                .entry(v)
+                .or_insert_with(|| self.out.vars[v.0 as usize].clone());
             var.ty = ty;
             var.dims = dims;
         }
         self.data();
         Lowering {
             replay: Replay {
-                vars,
+                changed,
                 keys: std::mem::take(&mut self.vars),
                 next_spline: spline_at,
                 caps: self.caps,
@@ -272,9 +294,23 @@ impl<'p> Lower<'p> {
         matches!(self.pass, Pass::Replay { .. })
     }
 
+    /// A variable of the program being lowered, as it is at this point of the pass.
+    pub(super) fn var_decl(&self, v: VarId) -> &Var {
+        match self.first_vars {
+            Some(first) => self.changed.get(&v).unwrap_or_else(|| &first[v.0 as usize]),
+            None => self.out.var(v),
+        }
+    }
+
     /// Changes an assumed variable's type or dimensions, remembering the old ones.
     pub(super) fn retype(&mut self, v: VarId, ty: Ty, dims: usize) {
-        let var = &mut self.out.vars[v.0 as usize];
+        let var = match self.first_vars {
+            Some(first) => self
+                .changed
+                .entry(v)
+                .or_insert_with(|| first[v.0 as usize].clone()),
+            None => &mut self.out.vars[v.0 as usize],
+        };
         if let Pass::First {
             journal: Some(j), ..
         } = &mut self.pass
@@ -340,9 +376,11 @@ impl<'p> Lower<'p> {
 
     // ----- variables ---------------------------------------------------------------------
 
-    fn add_var(&mut self, routine: String, v: VarInfo, scope: Scope) -> VarId {
+    fn add_var(&mut self, routine: &str, v: VarInfo, scope: Scope) -> VarId {
+        // The second pass finds every name the first added (it takes over its keys).
+        debug_assert!(!self.replaying(), "the second pass adds no variable");
         let id = VarId(self.out.vars.len() as u32);
-        let name = v.name.to_ascii_uppercase();
+        let name = upper(&v.name);
         self.out.vars.push(Var {
             name: v.name,
             ty: v.ty,
@@ -352,27 +390,28 @@ impl<'p> Lower<'p> {
             decl: v.decl,
             file: v.file,
         });
-        self.vars.insert(routine, name, id);
+        self.vars.insert(routine, &name, id);
         id
     }
 
     /// The variable `name` as seen from here, if the program declares it.
     pub(super) fn var(&self, name: &str) -> Option<VarId> {
-        let key = name.to_ascii_uppercase();
+        let name = self.vars.name(&upper(name))?;
         if let Some(rt) = &self.rt
-            && let Some(v) = self.vars.get(&rt.key, &key)
+            && let Some(scope) = rt.scope
+            && let Some(v) = self.vars.at(scope, name)
         {
             return Some(v);
         }
         self.vars
-            .get("", &key)
-            .filter(|v| matches!(self.out.var(*v).scope, Scope::Global))
+            .at(GLOBAL_SCOPE, name)
+            .filter(|v| matches!(self.var_decl(*v).scope, Scope::Global))
     }
 
     /// A global of the generated KUKA package (`MM_Last_Status` …), typed by the catalog.
     pub(super) fn package_var(&mut self, id: &ast::Ident) -> Option<VarId> {
         let g = crate::catalog::catalog().global(&id.text)?;
-        if let Some(v) = self.vars.get("", &id.key()) {
+        if let Some(v) = self.vars.get("", &upper(&id.text)) {
             return Some(v);
         }
         let ty = match g.ty.to_ascii_uppercase().as_str() {
@@ -392,12 +431,12 @@ impl<'p> Lower<'p> {
             decl: id.span,
             file: FileId::Src,
         };
-        Some(self.add_var(String::new(), info, Scope::Package))
+        Some(self.add_var("", info, Scope::Package))
     }
 
     /// A name the program does not declare: its type assumed from its use, reported once.
     pub(super) fn assumed_var(&mut self, id: &ast::Ident, ty: Ty, what: &str) -> VarId {
-        if let Some(v) = self.vars.get("", &id.key()) {
+        if let Some(v) = self.vars.get("", &upper(&id.text)) {
             return v;
         }
         self.approx(
@@ -417,7 +456,7 @@ impl<'p> Lower<'p> {
             decl: id.span,
             file: FileId::Src,
         };
-        self.add_var(String::new(), info, Scope::Assumed)
+        self.add_var("", info, Scope::Assumed)
     }
 
     /// A temporary of the current routine.
@@ -458,7 +497,7 @@ impl<'p> Lower<'p> {
 
     /// The routine of the program called `name` (any case), the first of that name.
     pub(super) fn routine_named(&self, name: &str) -> Option<RoutineId> {
-        self.routine_ids.get(&name.to_ascii_uppercase()).copied()
+        self.routine_ids.get(upper(name).as_str()).copied()
     }
 
     fn push_routine(&mut self, r: Routine) -> RoutineId {
@@ -479,7 +518,7 @@ impl<'p> Lower<'p> {
                 VarKind::Param(_) => Scope::Param(id),
                 _ => Scope::Local(id),
             };
-            self.add_var(key.clone(), v, scope);
+            self.add_var(&key, v, scope);
         }
         let sig = self.model.routine(&r.name.text);
         let kind = match r.kind {
@@ -493,7 +532,7 @@ impl<'p> Lower<'p> {
             .params
             .iter()
             .filter_map(|p| {
-                let var = self.vars.get(&key, &p.name.key())?;
+                let var = self.vars.get(&key, &upper(&p.name.text))?;
                 // A repeated name would make a header no target accepts (`def f(x, x)`):
                 // the routine keeps one parameter of that name and the header is reported.
                 if !seen.insert(var) {
@@ -504,7 +543,7 @@ impl<'p> Lower<'p> {
                     ast::ParamDir::In => super::ParamDir::In,
                     ast::ParamDir::Out => super::ParamDir::Out,
                 };
-                let v = self.out.var(var);
+                let v = self.var_decl(var);
                 let mut dims = v.dims.max(usize::from(p.array));
                 if v.ty == Ty::Char {
                     dims = dims.saturating_sub(1);
@@ -513,7 +552,7 @@ impl<'p> Lower<'p> {
                     var,
                     dir,
                     array: dims,
-                    assigned: assigned.contains(&p.name.key()),
+                    assigned: assigned.contains(upper(&p.name.text).as_str()),
                 })
             })
             .collect();
@@ -578,6 +617,10 @@ impl<'p> Lower<'p> {
     fn enter(&mut self, id: RoutineId, key: String) {
         self.rt = Some(Ctx {
             id,
+            scope: match self.vars.by_routine.get(id.0 as usize) {
+                Some(&scope) if !key.is_empty() => scope,
+                _ => self.vars.scope(&key),
+            },
             key,
             temps: Vec::new(),
             loops: Vec::new(),
@@ -627,6 +670,7 @@ impl<'p> Lower<'p> {
                 op: Op::Unsupported {
                     why: Why::HeaderSyntaxError,
                     at,
+                    moves: false,
                 },
                 span: at,
             });
@@ -636,6 +680,7 @@ impl<'p> Lower<'p> {
                 op: Op::Unsupported {
                     why: Why::DuplicateParameter(name),
                     at,
+                    moves: false,
                 },
                 span: at,
             });
@@ -775,7 +820,8 @@ impl<'p> Lower<'p> {
         let result = match src.src.outline.routines.get(routine.index as usize) {
             None => None,
             Some(o) => {
-                let mut set = o.facts.written.clone();
+                let mut set: BTreeSet<String> =
+                    o.facts.written.iter().map(|n| n.to_string()).collect();
                 let mut unknown = false;
                 for c in &o.facts.callees {
                     let w = match self.call_target(Some(r), c) {
@@ -856,7 +902,7 @@ impl<'p> Lower<'p> {
         for r in &src.src.outline.routines {
             for d in &r.facts.global_decls {
                 for v in &d.vars {
-                    if let Some(id) = self.vars.get("", &v.name.key()) {
+                    if let Some(id) = self.vars.get("", &upper(&v.name.text)) {
                         let dims = self.data_dims(&v.dims);
                         self.out.uninit_globals.push((id, dims));
                     }
@@ -875,7 +921,7 @@ impl<'p> Lower<'p> {
     fn dat_module(&mut self, m: &ast::DatModule, file: FileId, text: &str) {
         for d in &m.decls {
             for v in &d.vars {
-                let Some(id) = self.vars.get("", &v.name.key()) else {
+                let Some(id) = self.vars.get("", &upper(&v.name.text)) else {
                     continue;
                 };
                 let Some(init) = &v.init else {
@@ -883,14 +929,14 @@ impl<'p> Lower<'p> {
                     self.out.uninit_globals.push((id, dims));
                     continue;
                 };
-                if let Ty::Other(t) = &self.out.var(id).ty
+                if let Ty::Other(t) = &self.var_decl(id).ty
                     && crate::transpile::front::ilf::RECORD_TYPES.contains(&t.as_str())
                 {
                     self.data_construct("data (inline-form)", d.span, file);
                     continue;
                 }
                 self.data_construct("data", d.span, file);
-                let value = self.data_value(id, init, file);
+                let value = self.data_value(id, init, file, d.span);
                 self.out.data.push(Datum {
                     var: id,
                     index: None,
@@ -920,11 +966,11 @@ impl<'p> Lower<'p> {
                 }
                 _ => continue,
             };
-            let Some(id) = self.vars.get("", &name.key()) else {
+            let Some(id) = self.vars.get("", &upper(&name.text)) else {
                 continue;
             };
             self.data_construct("data", s.span, file);
-            let value = self.data_value(id, value, file);
+            let value = self.data_value(id, value, file, s.span);
             self.out.data.push(Datum {
                 var: id,
                 index,
@@ -941,10 +987,16 @@ impl<'p> Lower<'p> {
     }
 
     /// A `.dat` value: lowered as an expression (no calls), findings in `file`.
-    fn data_value(&mut self, var: VarId, init: &ast::Expr, file: FileId) -> Result<Expr, Why> {
+    fn data_value(
+        &mut self,
+        var: VarId,
+        init: &ast::Expr,
+        file: FileId,
+        span: Span,
+    ) -> Result<Expr, (Why, Span)> {
         let before = self.out.findings.len();
         let mut pre = Block::new();
-        let ty = self.out.var(var).ty.clone();
+        let ty = self.var_decl(var).ty.clone();
         let r = self.value_for(&ty, init, &mut pre);
         // Findings about .dat values point into the .dat.
         for f in &mut self.out.findings[before..] {
@@ -952,30 +1004,89 @@ impl<'p> Lower<'p> {
         }
         match r {
             Ok(e) if pre.is_empty() => Ok(e),
-            Ok(_) => Err(Why::Aggregate(
-                "a .dat value that calls a function has no counterpart".into(),
+            Ok(_) => Err((
+                Why::Aggregate("a .dat value that calls a function has no counterpart".into()),
+                span,
             )),
-            Err((why, _)) => Err(why),
+            Err(e) => Err(e),
         }
     }
 }
 
-/// Upper-case name → the first of `routines` of that name.
-/// (routine key or "", upper-case name) → variable: a map per routine, so a lookup copies no
-/// name (a pair of copied names per lookup was a tenth of a translation's time).
-#[derive(Default)]
-struct VarKeys(FxHashMap<String, FxHashMap<String, VarId>>);
+/// (routine key or "", upper-case name) → variable, in one map keyed by two small numbers: the
+/// routine's key and the name are each interned once (a map and a copied key per routine were
+/// the largest part of the first pass's memory on a file of many routines).
+struct VarKeys {
+    /// Upper-case routine key → its number; "" (package, assumed and global names) is 0.
+    scopes: FxHashMap<CompactString, u32>,
+    /// Upper-case variable name → its number.
+    names: FxHashMap<CompactString, u32>,
+    ids: FxHashMap<(u32, u32), VarId>,
+    /// Each routine's scope, by routine id (a lookup by name per routine entered missed the
+    /// cache on a file of many routines).
+    by_routine: Vec<Option<u32>>,
+}
 
-impl VarKeys {
-    fn get(&self, routine: &str, name: &str) -> Option<VarId> {
-        self.0.get(routine)?.get(name).copied()
-    }
-
-    fn insert(&mut self, routine: String, name: String, id: VarId) {
-        self.0.entry(routine).or_default().insert(name, id);
+impl Default for VarKeys {
+    fn default() -> VarKeys {
+        let mut scopes = FxHashMap::default();
+        scopes.insert(CompactString::default(), GLOBAL_SCOPE);
+        VarKeys {
+            scopes,
+            names: FxHashMap::default(),
+            ids: FxHashMap::default(),
+            by_routine: Vec::new(),
+        }
     }
 }
 
+/// The [`VarKeys`] scope of package, assumed and global names.
+const GLOBAL_SCOPE: u32 = 0;
+
+impl VarKeys {
+    fn get(&self, routine: &str, name: &str) -> Option<VarId> {
+        self.at(self.scope(routine)?, self.name(name)?)
+    }
+
+    /// The number of a routine's scope, if it declares any variable.
+    fn scope(&self, routine: &str) -> Option<u32> {
+        self.scopes.get(routine).copied()
+    }
+
+    /// The number of an upper-case name, if any variable has it.
+    fn name(&self, name: &str) -> Option<u32> {
+        self.names.get(name).copied()
+    }
+
+    fn at(&self, scope: u32, name: u32) -> Option<VarId> {
+        self.ids.get(&(scope, name)).copied()
+    }
+
+    fn insert(&mut self, routine: &str, name: &str, id: VarId) {
+        let scope = intern(&mut self.scopes, routine);
+        let name = intern(&mut self.names, name);
+        self.ids.insert((scope, name), id);
+    }
+}
+
+/// The number of `key` in `table`, added when new.
+fn intern(table: &mut FxHashMap<CompactString, u32>, key: &str) -> u32 {
+    if let Some(&n) = table.get(key) {
+        return n;
+    }
+    let n = table.len() as u32;
+    table.insert(CompactString::from(key), n);
+    n
+}
+
+/// A name's upper-case form, for [`VarKeys`]; KRL names fit inline (no allocation).
+fn upper(name: &str) -> CompactString {
+    let mut key = CompactString::from(name);
+    key.make_ascii_uppercase();
+    key
+}
+
+/// Upper-case name → the first of `routines` of that name.
 fn index_routines(routines: &[Routine]) -> FxHashMap<String, RoutineId> {
     let mut ids = FxHashMap::default();
     for (i, r) in routines.iter().enumerate() {

@@ -333,6 +333,7 @@ impl<'p> Lower<'p> {
                 return fail(Why::RelativeOffset, m.target.span);
             }
             if axis {
+                self.relative_axes(delta.span)?;
                 Path::JointRel {
                     delta,
                     speed: pending(),
@@ -353,14 +354,20 @@ impl<'p> Lower<'p> {
         } else {
             let to = self.target(&m.target, ops)?;
             match m.kind {
-                K::Ptp | K::Sptp => Path::Joint {
-                    to,
-                    speed: pending(),
-                },
-                K::Lin | K::Slin | K::Spl => Path::Linear {
-                    to,
-                    speed: pending(),
-                },
+                K::Ptp | K::Sptp => {
+                    self.held_target(&to, None)?;
+                    Path::Joint {
+                        to,
+                        speed: pending(),
+                    }
+                }
+                K::Lin | K::Slin | K::Spl => {
+                    self.held_target(&to, Some("LIN"))?;
+                    Path::Linear {
+                        to,
+                        speed: pending(),
+                    }
+                }
                 K::Circ | K::Scirc => {
                     self.held(Lacked::Circ, span)?;
                     let Some(aux) = &m.aux else {
@@ -370,6 +377,8 @@ impl<'p> Lower<'p> {
                         );
                     };
                     let via = self.target(aux, ops)?;
+                    self.held_target(&via, Some("CIRC"))?;
+                    self.held_target(&to, Some("CIRC"))?;
                     Path::Circular {
                         via,
                         to,
@@ -475,7 +484,7 @@ impl<'p> Lower<'p> {
         }
         let v = self.expr(e, ops)?;
         let literal = match &v.kind {
-            ExprKind::Place(Place::Var(id)) => self.dat_literal(&self.out.var(*id).name),
+            ExprKind::Place(Place::Var(id)) => self.dat_literal(&self.var_decl(*id).name),
             _ => false,
         };
         match v.ty {

@@ -85,7 +85,11 @@ impl<'p> Lower<'p> {
         match r {
             Ok(()) => out.extend(ops),
             Err((why, at)) => out.push(Stmt {
-                op: Op::Unsupported { why, at },
+                op: Op::Unsupported {
+                    why,
+                    at,
+                    moves: self.refused_moves(s),
+                },
                 span: s.span,
             }),
         }
@@ -95,7 +99,7 @@ impl<'p> Lower<'p> {
     pub(super) fn body_decl(&mut self, d: &ast::Decl, span: Span, out: &mut Block) {
         for v in &d.vars {
             if let Some(id) = self.var(&v.name.text)
-                && matches!(self.out.var(id).scope, Scope::Local(_))
+                && matches!(self.var_decl(id).scope, Scope::Local(_))
             {
                 let dims = self.data_dims(&v.dims);
                 if let Some(rt) = &mut self.rt {
@@ -112,7 +116,11 @@ impl<'p> Lower<'p> {
                 match self.assign(&target, init, span, &mut ops) {
                     Ok(()) => out.extend(ops),
                     Err((why, at)) => out.push(Stmt {
-                        op: Op::Unsupported { why, at },
+                        op: Op::Unsupported {
+                            why,
+                            at,
+                            moves: false,
+                        },
                         span,
                     }),
                 }
@@ -203,11 +211,13 @@ impl<'p> Lower<'p> {
                     kind: A::Name(var.clone()),
                     span: var.span,
                 };
-                let (place, _) = if self.var(&var.text).is_some() {
-                    self.place(&target, ops, true)?
+                let place = if self.var(&var.text).is_some() {
+                    match self.place(&target, ops, true)? {
+                        (Place::Var(v), _) => v,
+                        _ => return fail(Why::AssignTarget, var.span),
+                    }
                 } else {
-                    let v = self.assumed_var(var, Ty::Int, "an INT (a FOR variable)");
-                    (Place::Var(v), Ty::Int)
+                    self.assumed_var(var, Ty::Int, "an INT (a FOR variable)")
                 };
                 let mut bounds: Vec<&ast::Expr> = vec![from, to];
                 bounds.extend(step.as_deref());
@@ -457,17 +467,19 @@ impl<'p> Lower<'p> {
                     Some(Sys::Flag(i)) => OutPlace::Flag(Box::new(self.expr(i, ops)?)),
                     Some(_) => return fail(Why::PulseSignal, signal.span),
                     None => match &signal.kind {
-                        A::Name(id) => match self.var(&id.text).map(|v| self.out.var(v).ty.clone())
-                        {
-                            Some(Ty::Signal(r)) if r.width() == 1 => match OutSignal::new(r) {
-                                Some(s) => OutPlace::Signal(s),
-                                None => return fail(Why::PulseSignal, signal.span),
-                            },
-                            _ => return fail(Why::PulseSignal, signal.span),
-                        },
+                        A::Name(id) => {
+                            match self.var(&id.text).map(|v| self.var_decl(v).ty.clone()) {
+                                Some(Ty::Signal(r)) if r.width() == 1 => match OutSignal::new(r) {
+                                    Some(s) => OutPlace::Signal(s),
+                                    None => return fail(Why::PulseSignal, signal.span),
+                                },
+                                _ => return fail(Why::PulseSignal, signal.span),
+                            }
+                        }
                         _ => return fail(Why::PulseSignal, signal.span),
                     },
                 };
+                self.held_write(&io, span)?;
                 self.stop(span, ops);
                 let level = self.expr(level, ops)?;
                 match level.kind {
@@ -640,6 +652,9 @@ impl<'p> Lower<'p> {
         if matches!(place, Place::Var(_) | Place::Index(..)) {
             match (sysvar::classify(value), &ty) {
                 (Some(Sys::PosAct), Ty::Pose) | (Some(Sys::AxisAct), Ty::Joint) => {
+                    if ty == Ty::Joint {
+                        self.read_axes(span)?;
+                    }
                     self.stop(span, ops);
                     Self::push(
                         ops,
@@ -665,7 +680,7 @@ impl<'p> Lower<'p> {
         let Some(v) = place.root() else {
             return Ok(());
         };
-        match self.out.var(v).ty.clone() {
+        match self.var_decl(v).ty.clone() {
             Ty::Struc(t) if !t.is_empty() && self.record_of(&t).is_none() => {
                 fail(Why::Structure(t), at)
             }
@@ -689,6 +704,7 @@ impl<'p> Lower<'p> {
                 span,
             );
         };
+        self.held_write(&OutPlace::Signal(r), span)?;
         let when = self.io_timing();
         self.stop(span, ops);
         let v = self.expr(value, ops)?;
@@ -727,28 +743,22 @@ impl<'p> Lower<'p> {
                 self.kind("I/O");
                 let when = self.io_timing();
                 self.stop(span, ops);
-                let i = self.expr(i, ops)?;
+                let io = OutPlace::Out(Box::new(self.expr(i, ops)?));
+                self.held_write(&io, span)?;
                 let v = self.expr(value, ops)?;
-                Self::push(
-                    ops,
-                    Op::SetIo {
-                        io: OutPlace::Out(Box::new(i)),
-                        value: v,
-                        when,
-                    },
-                    span,
-                );
+                Self::push(ops, Op::SetIo { io, value: v, when }, span);
                 Ok(())
             }
             Sys::OutC(i) => {
                 self.kind("I/O");
                 self.stop(span, ops);
-                let i = self.expr(i, ops)?;
+                let io = OutPlace::Out(Box::new(self.expr(i, ops)?));
+                self.held_write(&io, span)?;
                 let v = self.expr(value, ops)?;
                 Self::push(
                     ops,
                     Op::SetIo {
-                        io: OutPlace::Out(Box::new(i)),
+                        io,
                         value: v,
                         when: IoTiming::PathEnd,
                     },

@@ -40,11 +40,21 @@ fn whether_a_call_moves_comes_from_the_model() {
     assert_eq!(loop_kinds(text), ["while", "while", "forever"]);
 }
 
-/// The top-level ops the lowering makes of `text` for `target`, and the program it recorded.
+/// The top-level ops the lowering makes of `text` for `target`, and the program it recorded
+/// (with joint maps for every target).
 fn lowered(text: &str, target: Target) -> (Program, Vec<Op>) {
+    let mut options = Options {
+        joint_map: Some(crate::transpile::kawasaki::joint_map("A1,A2,A3,A4,A5,A6").unwrap()),
+        ..Options::default()
+    };
+    options.flexiv.joint_map =
+        Some(crate::transpile::flexiv::options::joint_map("A1,A2,0,A3,A4,A5,A6").unwrap());
+    lowered_with(text, target, &options)
+}
+
+fn lowered_with(text: &str, target: Target, options: &Options) -> (Program, Vec<Op>) {
     let program = front::Program::new(front::Parsed::new("t.src", text), None);
-    let options = Options::default();
-    let mut lower = Lower::new(&program, &options, render::backend(target).caps());
+    let mut lower = Lower::new(&program, options, render::backend(target).caps());
     let mut ops = Vec::new();
     program.src.each_statement(false, |s| match s {
         front::Statement::Begin(i) => ops.extend(lower.begin_routine(i).into_iter().map(|s| s.op)),
@@ -151,5 +161,157 @@ fn relative_moves_follow_the_targets_caps() {
             usize::from(!caps.joint_path),
             "{target:?}"
         );
+    }
+}
+
+/// Without a joint map the lowering refuses KUKA axis values where the target needs the map
+/// (`Caps::axis_values`), and a LIN to axis values where the target's linear motions need a
+/// pose; no renderer meets them.
+#[test]
+fn axis_values_follow_the_targets_caps() {
+    use crate::transpile::ir::why::AxisUse;
+    let text = "DEF main()\nDECL E6AXIS j\nj = {A1 0, A2 -90, A3 90, A4 0, A5 0, A6 0}\n\
+        PTP j\nLIN j\nPTP_REL {A6 90}\nj = $AXIS_ACT\nEND\n";
+    for target in [Target::Kawasaki, Target::Flexiv, Target::Rapid] {
+        let a = render::backend(target).caps().axis_values;
+        let (_, ops) = lowered_with(text, target, &Options::default());
+        let refused: Vec<Option<Why>> = ops
+            .into_iter()
+            .filter_map(|op| match op {
+                Op::Unsupported { why, .. } => Some(Some(why)),
+                Op::Move(_) | Op::Assign { .. } | Op::ReadPos { .. } => Some(None),
+                _ => None,
+            })
+            .collect();
+        let robot = render::backend(target).caps().robot;
+        let no_map = |at| Some(Why::NoJointMap { at, axes: a, robot });
+        let want = [
+            a.written.then(|| no_map(AxisUse::Values)).flatten(),
+            a.every.then(|| no_map(AxisUse::Values)).flatten(),
+            if a.linear {
+                a.every.then(|| no_map(AxisUse::Values)).flatten()
+            } else {
+                Some(Why::LinearToAxes("LIN"))
+            },
+            no_map(AxisUse::Relative),
+            (a.every || !a.written)
+                .then(|| no_map(AxisUse::Read))
+                .flatten(),
+        ];
+        assert_eq!(refused, want, "{target:?}");
+    }
+}
+
+/// An omitted argument of a routine, and an OUT argument that is no variable, are refused by
+/// the lowering for every target (none passes "no value" or assigns a value back to it).
+#[test]
+fn call_arguments_every_target_refuses() {
+    let text = "DEF main()\nDECL INT n\ngo(1, )\nget(n + 1)\nget(n)\nEND\n\
+        DEF go(a:IN, b:IN)\nINT a, b\nEND\nDEF get(x:OUT)\nINT x\nx = 1\nEND\n";
+    for target in [Target::Kawasaki, Target::Flexiv, Target::Rapid] {
+        let (_, ops) = lowered(text, target);
+        let refused: Vec<Option<Why>> = ops
+            .into_iter()
+            .filter_map(|op| match op {
+                Op::Unsupported { why, .. } => Some(Some(why)),
+                Op::Call { .. } => Some(None),
+                _ => None,
+            })
+            .collect();
+        assert_eq!(
+            refused,
+            [Some(Why::OmittedArgument), Some(Why::OutArgument), None],
+            "{target:?}"
+        );
+    }
+}
+
+/// Which `MM_*` calls a target translates, and which omitted arguments it refuses, is decided
+/// by the lowering from `Caps::mech_mind` and the catalog.
+#[test]
+fn mech_mind_calls_follow_the_targets_caps() {
+    use crate::transpile::render::MechMind;
+    let text =
+        "DEF main()\nDECL E6AXIS j\nMM_Start_Vis(2, 0, 1, j)\nMM_Start_Vis(2, , 1, j)\nEND\n";
+    for target in [Target::Kawasaki, Target::Flexiv, Target::Rapid] {
+        let caps = render::backend(target).caps();
+        let (_, ops) = lowered(text, target);
+        let refused: Vec<Option<Why>> = ops
+            .into_iter()
+            .filter_map(|op| match op {
+                Op::Unsupported { why, .. } => Some(Some(why)),
+                Op::Call { .. } => Some(None),
+                _ => None,
+            })
+            .collect();
+        let want = match caps.mech_mind {
+            MechMind::Absent => {
+                let refused = Some(Why::MmInterface {
+                    name: "MM_Start_Vis".into(),
+                    robot: caps.robot,
+                });
+                [refused.clone(), refused]
+            }
+            // The second parameter is one the translation reads.
+            _ => [None, Some(Why::MmArgument("Pos_Num_Need".into()))],
+        };
+        assert_eq!(refused, want, "{target:?}");
+    }
+}
+
+/// External axes in a literal: the lowering refuses those beyond `Caps::external_axes`.
+#[test]
+fn external_axes_follow_the_targets_caps() {
+    let text = "DEF main()\nDECL E6POS p\nDECL REAL e\n\
+        p = {X 1, Y 2, Z 3, A 0, B 0, C 0, E1 5}\np = {X 1, Y 2, Z 3, A 0, B 0, C 0, E2 5}\n\
+        p = {X 1, Y 2, Z 3, A 0, B 0, C 0, E1 e}\nEND\n";
+    for target in [Target::Kawasaki, Target::Flexiv, Target::Rapid] {
+        let held = render::backend(target).caps().external_axes;
+        let (_, ops) = lowered(text, target);
+        let refused: Vec<Option<Why>> = ops
+            .into_iter()
+            .filter_map(|op| match op {
+                Op::Unsupported { why, .. } => Some(Some(why)),
+                Op::Assign { .. } => Some(None),
+                _ => None,
+            })
+            .collect();
+        let beyond = |n: u8| (held < n).then_some(Why::ExternalAxes { held });
+        let computed = if held == 0 {
+            Why::ExternalAxes { held }
+        } else {
+            Why::ExternalAxisValue
+        };
+        assert_eq!(
+            refused,
+            [beyond(1), beyond(2), Some(computed)],
+            "{target:?}"
+        );
+    }
+}
+
+/// Signal groups, output groups read back and computed signal numbers: the lowering refuses
+/// what `Caps::signals` excludes.
+#[test]
+fn signals_follow_the_targets_caps() {
+    let text = "DEF main()\nSIGNAL grp $IN[1] TO $IN[4]\nSIGNAL ogrp $OUT[1] TO $OUT[4]\n\
+        DECL INT n, i\nn = grp\nn = ogrp\n$OUT[i] = TRUE\nEND\n";
+    for target in [Target::Kawasaki, Target::Flexiv, Target::Rapid] {
+        let s = render::backend(target).caps().signals;
+        let (_, ops) = lowered(text, target);
+        let refused: Vec<Option<Why>> = ops
+            .into_iter()
+            .filter_map(|op| match op {
+                Op::Unsupported { why, .. } => Some(Some(why)),
+                Op::Assign { .. } | Op::SetIo { .. } => Some(None),
+                _ => None,
+            })
+            .collect();
+        let group = (!s.groups).then_some(Why::SignalGroup);
+        let out_group = group
+            .clone()
+            .or((!s.output_groups_read).then_some(Why::OutputGroupRead));
+        let computed = (!s.computed_numbers).then_some(Why::ComputedSignal);
+        assert_eq!(refused, [group, out_group, computed], "{target:?}");
     }
 }
