@@ -5,7 +5,7 @@
 //! server's address from the spec or the EKI XML, as for Kawasaki.
 
 use super::client::{method_name, supported};
-use super::{R, Tx, fail};
+use super::{R, Tx};
 use crate::catalog::{Direction, Subprogram};
 use crate::diag::Span;
 use crate::transpile::front::report::FileId;
@@ -32,11 +32,11 @@ impl<'a> Tx<'a> {
         let mut ins = Vec::new();
         let mut places = Vec::new();
         if sub.name == "MM_Init_Socket" {
+            // The lowering refuses the call without one (`Why::VisionServer`).
             let Some(server) = self.vision else {
-                return fail(
+                return crate::transpile::render::not_lowered(
                     span,
-                    "the vision server's IP address and port are unknown",
-                    "pass --spec krlkit.toml or --eki-xml FILE",
+                    "MM_Init_Socket without a vision server",
                 );
             };
             let time_out = sub

@@ -201,6 +201,10 @@ pub enum Lacked {
     Geo,
     /// `B_AND`, `B_OR`, `B_EXOR` on integers.
     Bitwise,
+    /// `$ACC.CP = …` (a path acceleration in m/s²).
+    PathAcceleration,
+    /// `INV_POS(…)`.
+    InvPos,
 }
 
 impl Lacked {
@@ -215,6 +219,8 @@ impl Lacked {
             Lacked::TimerStop => "$TIMER_STOP = TRUE",
             Lacked::Geo => "`:`",
             Lacked::Bitwise => "B_AND/B_OR/B_EXOR",
+            Lacked::PathAcceleration => "$ACC.CP",
+            Lacked::InvPos => "INV_POS",
         }
     }
 
@@ -232,6 +238,10 @@ impl Lacked {
             Lacked::Bitwise => {
                 "bitwise operators on integers (B_AND, B_OR, B_EXOR) have no counterpart in this target"
             }
+            Lacked::PathAcceleration => {
+                "a path acceleration in m/s² ($ACC.CP) has no counterpart in this target (it sets accelerations as percentages)"
+            }
+            Lacked::InvPos => "INV_POS (the inverse of a frame) has no counterpart in this target",
         }
     }
 }

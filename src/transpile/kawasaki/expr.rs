@@ -67,11 +67,10 @@ impl<'a> Tx<'a> {
             }
             ExprKind::NullFrame => Ok(Rendered::atom("NULL".into())),
             ExprKind::Record(_) => render::not_lowered(e.span, "a record value"),
-            ExprKind::Current { .. } => fail(
-                e.span,
-                "the current position inside an expression needs a HERE statement first",
-                "assign $POS_ACT/$AXIS_ACT to a variable first (translated to HERE)",
-            ),
+            // Made only for an `MM_*` argument, which `mm.rs` reads with HERE.
+            ExprKind::Current { .. } => {
+                render::not_lowered(e.span, "the current position as a value")
+            }
         }
     }
 

@@ -63,6 +63,7 @@ fn own(why: &Why) -> Option<String> {
         Why::Goto => "restructure the jump".into(),
         Why::Load => "set the payload with WEIGHT mass, cx, cy, cz".into(),
         Why::NoJointMap { .. } => super::expr::JOINT_MAP_HELP.into(),
+        Why::Lacks(Lacked::PathAcceleration) => "set ACCEL/DECEL percentages by hand".into(),
         Why::MmNoCommand { name, .. } => match name.as_str() {
             "MM_Get_Status" => {
                 "remove the check; mm_init_skt fails when the vision system is not reachable"

@@ -91,7 +91,11 @@ pub static BACKEND: render::Backend = render::Backend {
         },
         interrupt_on_flags: true,
         functions: false,
-        lacks: &[Lacked::Override, Lacked::TimerStop],
+        lacks: &[
+            Lacked::Override,
+            Lacked::TimerStop,
+            Lacked::PathAcceleration,
+        ],
         pulse: render::Pulse {
             low: false,
             flags: true,

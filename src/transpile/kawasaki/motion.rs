@@ -364,11 +364,8 @@ impl<'a> Tx<'a> {
                 self.keep_as_comment("TR002", span);
             }
             MotionParam::AccCp => {
-                return fail(
-                    span,
-                    "a path acceleration in m/s² ($ACC.CP/ORI) has no AS equivalent (ACCEL is a percentage)",
-                    "set ACCEL/DECEL percentages by hand",
-                );
+                // The lowering refuses it (`Caps::lacks`).
+                return crate::transpile::render::not_lowered(span, "$ACC.CP");
             }
             MotionParam::AccPtp | MotionParam::AccCpPct => {
                 let v = self.param_text(v, 1.0);

@@ -57,11 +57,10 @@ impl<'a> Tx<'a> {
                 Ok(Rendered::atom(format!("[{}]", v.join(", "))))
             }
             ExprKind::Current { joints: false } => Ok(Rendered::atom(self.current_pos())),
-            ExprKind::Current { joints: true } => fail(
-                e.span,
-                NO_JOINT_MAP,
-                "assign $AXIS_ACT to a variable first, and give --joint-map",
-            ),
+            // Made only for an `MM_*` argument, which RAPID has none of (`Caps::mech_mind`).
+            ExprKind::Current { joints: true } => {
+                crate::transpile::render::not_lowered(e.span, "$AXIS_ACT as a value")
+            }
         }
     }
 
@@ -276,11 +275,8 @@ impl<'a> Tx<'a> {
             Builtin::StrLen => "StrLen",
             Builtin::Round => "Round",
             Builtin::InvPos => {
-                return fail(
-                    span,
-                    "INV_POS has no translation to RAPID yet",
-                    "invert the frame with PoseInv on a pose by hand",
-                );
+                // The lowering refuses it (`Caps::lacks`).
+                return crate::transpile::render::not_lowered(span, "INV_POS");
             }
         };
         Ok(Rendered::atom(format!("{name}({})", v.join(", "))))

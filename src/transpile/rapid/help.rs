@@ -60,6 +60,8 @@ fn own(why: &Why) -> Option<String> {
         Why::Load => "give the payload in the tooldata's tload, or with GripLoad".into(),
         Why::NoJointMap { .. } => super::expr::JOINT_MAP_HELP.into(),
         Why::MmInterface { .. } => super::stmt::MM_HELP.into(),
+        Why::Lacks(Lacked::PathAcceleration) => "set AccSet percentages by hand".into(),
+        Why::Lacks(Lacked::InvPos) => "invert the frame with PoseInv on a pose by hand".into(),
         Why::SignalGroup => {
             "configure a group signal and read it with GInput / write it with SetGO".into()
         }

@@ -87,7 +87,14 @@ pub static BACKEND: render::Backend = render::Backend {
             base_turns: 0,
         },
         trigger: render::Trigger::OnPath,
-        lacks: &[Lacked::Load, Lacked::Timers, Lacked::Geo, Lacked::Bitwise],
+        lacks: &[
+            Lacked::Load,
+            Lacked::Timers,
+            Lacked::Geo,
+            Lacked::Bitwise,
+            Lacked::PathAcceleration,
+            Lacked::InvPos,
+        ],
         string_len: Some(80),
         // MoveAbsJ takes ABB's axis values, CJointT reads them: every axis value is ABB's.
         axis_values: render::AxisValues {

@@ -380,11 +380,8 @@ impl<'a> Tx<'a> {
                     ParamValue::Default => "100".into(),
                 };
                 if p == MotionParam::AccCp {
-                    return fail(
-                        span,
-                        "a path acceleration in m/s² ($ACC.CP) has no RAPID equivalent (AccSet takes percentages)",
-                        "set AccSet percentages by hand",
-                    );
+                    // The lowering refuses it (`Caps::lacks`).
+                    return crate::transpile::render::not_lowered(span, "$ACC.CP");
                 }
                 self.out.rep.approximate(
                     FileId::Src,

@@ -12,8 +12,8 @@ use crate::transpile::{flexiv, kawasaki, rapid};
 
 /// What a target language can hold, declared once per target. The lowering asks it and
 /// decides once whether a construct translates exactly, approximately (TR002) or not at all
-/// (TR001). Not yet for everything: the renderers' own remaining refusals (a missing joint
-/// map, pose components, external axes …) are listed in ARCHITECTURE.md.
+/// (TR001). Not yet for everything: the renderers' own remaining refusals (pose components,
+/// incomplete literals, values that must be literals …) are listed in ARCHITECTURE.md.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub struct Caps {
     /// The arm, as findings name it (`Kawasaki`, `ABB`, `Rizon`).

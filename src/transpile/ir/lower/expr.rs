@@ -625,6 +625,9 @@ impl<'p> Lower<'p> {
                 Some(v) => v,
                 None => return fail(Why::OmittedArgument, span),
             };
+            if b == Builtin::InvPos {
+                self.held(Lacked::InvPos, span)?;
+            }
             if present.len() != b.arity() {
                 return fail(
                     Why::Arity {

@@ -84,6 +84,7 @@ impl<'p> Lower<'p> {
             }
             Sys::AccCp => {
                 self.kind("acceleration");
+                self.held(Lacked::PathAcceleration, span)?;
                 self.set_param(MotionParam::AccCp, value, span, ops)
             }
             Sys::AccAxis(_) => {

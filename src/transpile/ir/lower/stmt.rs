@@ -84,14 +84,23 @@ impl<'p> Lower<'p> {
         }
         match r {
             Ok(()) => out.extend(ops),
-            Err((why, at)) => out.push(Stmt {
-                op: Op::Unsupported {
-                    why,
-                    at,
-                    moves: self.refused_moves(s),
-                },
-                span: s.span,
-            }),
+            Err((why, at)) => {
+                // The advance-run stop KRL makes for a value the statement reads ($AXIS_ACT as
+                // an argument) comes before it in any port of it: it stays.
+                let stops = ops
+                    .iter()
+                    .take_while(|o| matches!(o.op, Op::AdvanceStop { .. }) && o.span != s.span)
+                    .count();
+                out.extend(ops.into_iter().take(stops));
+                out.push(Stmt {
+                    op: Op::Unsupported {
+                        why,
+                        at,
+                        moves: self.refused_moves(s),
+                    },
+                    span: s.span,
+                });
+            }
         }
     }
 

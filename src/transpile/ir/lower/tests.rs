@@ -40,6 +40,18 @@ fn whether_a_call_moves_comes_from_the_model() {
     assert_eq!(loop_kinds(text), ["while", "while", "forever"]);
 }
 
+/// Per op of interest (`kept`, or refused): `None` where it was kept, the reason where the
+/// lowering refused its statement.
+fn refusals(ops: Vec<Op>, kept: fn(&Op) -> bool) -> Vec<Option<Why>> {
+    ops.into_iter()
+        .filter_map(|op| match op {
+            Op::Unsupported { why, .. } => Some(Some(why)),
+            op if kept(&op) => Some(None),
+            _ => None,
+        })
+        .collect()
+}
+
 /// The top-level ops the lowering makes of `text` for `target`, and the program it recorded
 /// (with joint maps for every target).
 fn lowered(text: &str, target: Target) -> (Program, Vec<Op>) {
@@ -175,14 +187,9 @@ fn axis_values_follow_the_targets_caps() {
     for target in [Target::Kawasaki, Target::Flexiv, Target::Rapid] {
         let a = render::backend(target).caps().axis_values;
         let (_, ops) = lowered_with(text, target, &Options::default());
-        let refused: Vec<Option<Why>> = ops
-            .into_iter()
-            .filter_map(|op| match op {
-                Op::Unsupported { why, .. } => Some(Some(why)),
-                Op::Move(_) | Op::Assign { .. } | Op::ReadPos { .. } => Some(None),
-                _ => None,
-            })
-            .collect();
+        let refused = refusals(ops, |op| {
+            matches!(op, Op::Move(_) | Op::Assign { .. } | Op::ReadPos { .. })
+        });
         let robot = render::backend(target).caps().robot;
         let no_map = |at| Some(Why::NoJointMap { at, axes: a, robot });
         let want = [
@@ -210,14 +217,7 @@ fn call_arguments_every_target_refuses() {
         DEF go(a:IN, b:IN)\nINT a, b\nEND\nDEF get(x:OUT)\nINT x\nx = 1\nEND\n";
     for target in [Target::Kawasaki, Target::Flexiv, Target::Rapid] {
         let (_, ops) = lowered(text, target);
-        let refused: Vec<Option<Why>> = ops
-            .into_iter()
-            .filter_map(|op| match op {
-                Op::Unsupported { why, .. } => Some(Some(why)),
-                Op::Call { .. } => Some(None),
-                _ => None,
-            })
-            .collect();
+        let refused = refusals(ops, |op| matches!(op, Op::Call { .. }));
         assert_eq!(
             refused,
             [Some(Why::OmittedArgument), Some(Why::OutArgument), None],
@@ -236,14 +236,7 @@ fn mech_mind_calls_follow_the_targets_caps() {
     for target in [Target::Kawasaki, Target::Flexiv, Target::Rapid] {
         let caps = render::backend(target).caps();
         let (_, ops) = lowered(text, target);
-        let refused: Vec<Option<Why>> = ops
-            .into_iter()
-            .filter_map(|op| match op {
-                Op::Unsupported { why, .. } => Some(Some(why)),
-                Op::Call { .. } => Some(None),
-                _ => None,
-            })
-            .collect();
+        let refused = refusals(ops, |op| matches!(op, Op::Call { .. }));
         let want = match caps.mech_mind {
             MechMind::Absent => {
                 let refused = Some(Why::MmInterface {
@@ -268,14 +261,7 @@ fn external_axes_follow_the_targets_caps() {
     for target in [Target::Kawasaki, Target::Flexiv, Target::Rapid] {
         let held = render::backend(target).caps().external_axes;
         let (_, ops) = lowered(text, target);
-        let refused: Vec<Option<Why>> = ops
-            .into_iter()
-            .filter_map(|op| match op {
-                Op::Unsupported { why, .. } => Some(Some(why)),
-                Op::Assign { .. } => Some(None),
-                _ => None,
-            })
-            .collect();
+        let refused = refusals(ops, |op| matches!(op, Op::Assign { .. }));
         let beyond = |n: u8| (held < n).then_some(Why::ExternalAxes { held });
         let computed = if held == 0 {
             Why::ExternalAxes { held }
@@ -299,14 +285,7 @@ fn signals_follow_the_targets_caps() {
     for target in [Target::Kawasaki, Target::Flexiv, Target::Rapid] {
         let s = render::backend(target).caps().signals;
         let (_, ops) = lowered(text, target);
-        let refused: Vec<Option<Why>> = ops
-            .into_iter()
-            .filter_map(|op| match op {
-                Op::Unsupported { why, .. } => Some(Some(why)),
-                Op::Assign { .. } | Op::SetIo { .. } => Some(None),
-                _ => None,
-            })
-            .collect();
+        let refused = refusals(ops, |op| matches!(op, Op::Assign { .. } | Op::SetIo { .. }));
         let group = (!s.groups).then_some(Why::SignalGroup);
         let out_group = group
             .clone()
