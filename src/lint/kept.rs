@@ -18,6 +18,7 @@ use super::context::FileCtx;
 use super::rules::mm008;
 use super::walk;
 use crate::catalog::has_interface_prefix;
+use crate::diag::Span;
 use crate::syntax::ast::{
     Expr, ExprKind, FileBuilder, Lowered, PieceLowerer, Routine, SourceFile, Stmt, StmtKind,
 };
@@ -45,6 +46,8 @@ struct Seen {
     first: Option<u32>,
     /// Once its statements are no longer held: the names they read (MM008).
     dropped: Option<FxHashSet<String>>,
+    /// Still in the declarations before its first statement.
+    head: bool,
 }
 
 impl Seen {
@@ -70,8 +73,11 @@ struct Pending {
 #[derive(Default)]
 pub struct KeptBuilder {
     file: FileBuilder,
-    /// The open routine's statements so far.
+    /// What the open routine's statements showed so far.
     open: Option<Seen>,
+    /// The open routine's statements after its declarations, until it closes (or is too
+    /// long to hold).
+    held: Vec<Stmt>,
     /// Routines kept for their own interface calls or flag writes, by index.
     direct: Vec<usize>,
     pending: Vec<Pending>,
@@ -102,38 +108,70 @@ impl Kept {
 
 impl KeptBuilder {
     pub fn add(&mut self, event: Lowered) {
-        match &event {
-            Lowered::Routine(_) => self.open = Some(Seen::default()),
-            Lowered::Dat(_) => self.open = None,
-            Lowered::Stmt(s) => {
-                if let Some(seen) = &mut self.open {
-                    seen.stmt(s);
-                    if let Some(reads) = &mut seen.dropped {
-                        add_reads(std::slice::from_ref(s), reads);
-                        return;
-                    }
-                    let first = *seen.first.get_or_insert(s.span.start);
-                    if !seen.direct && s.span.end.saturating_sub(first) > HELD_BYTES {
-                        let mut reads = FxHashSet::default();
-                        add_reads(&self.file.take_open_statements(), &mut reads);
-                        add_reads(std::slice::from_ref(s), &mut reads);
-                        seen.dropped = Some(reads);
-                        return;
-                    }
-                }
+        let stmt = match event {
+            Lowered::Routine(r) => {
+                self.open = Some(Seen {
+                    head: true,
+                    ..Seen::default()
+                });
+                self.held.clear();
+                return self.file.add(Lowered::Routine(r));
             }
-            Lowered::Header(_) | Lowered::Close { .. } => {}
+            Lowered::Dat(d) => {
+                self.open = None;
+                return self.file.add(Lowered::Dat(d));
+            }
+            Lowered::Close { span, closed } => return self.close(span, closed),
+            Lowered::Header(_) => return self.file.add(event),
+            Lowered::Stmt(s) => s,
+        };
+        let Some(seen) = &mut self.open else {
+            return self.file.add(Lowered::Stmt(stmt));
+        };
+        seen.stmt(&stmt);
+        if let Some(reads) = &mut seen.dropped {
+            add_reads(std::slice::from_ref(&stmt), reads);
+            return;
         }
-        let closes = matches!(event, Lowered::Close { .. });
-        let before = self.file.routines_mut().len();
-        self.file.add(event);
-        if closes && self.file.routines_mut().len() > before {
-            let seen = self.open.take().unwrap_or_default();
-            self.closed(before, seen);
+        let first = *seen.first.get_or_insert(stmt.span.start);
+        if !seen.direct && stmt.span.end.saturating_sub(first) > HELD_BYTES {
+            let mut reads = FxHashSet::default();
+            add_reads(&self.held, &mut reads);
+            add_reads(std::slice::from_ref(&stmt), &mut reads);
+            self.held.clear();
+            seen.dropped = Some(reads);
+            return;
         }
-        if closes {
-            self.open = None;
+        // No kept routine holds its declarations: the head's are not held at all.
+        if seen.head && matches!(stmt.kind, StmtKind::Decl(_) | StmtKind::Definition(_)) {
+            return;
         }
+        seen.head = false;
+        self.held.push(stmt);
+    }
+
+    /// The open routine ends: its held statements go to the tree when it may be kept, else
+    /// only the names they read are (the buffer is reused by the next routine).
+    fn close(&mut self, span: Span, closed: bool) {
+        let Some(seen) = self.open.take() else {
+            return self.file.add(Lowered::Close { span, closed });
+        };
+        let elided = !seen.direct && seen.calls.is_empty();
+        if !elided {
+            for s in self.held.drain(..) {
+                self.file.add(Lowered::Stmt(s));
+            }
+        }
+        let index = self.file.routines_mut().len();
+        self.file.add(Lowered::Close { span, closed });
+        if elided
+            && seen.dropped.is_none()
+            && FileCtx::is_user_routine(&self.file.routines_mut()[index])
+        {
+            add_reads(&self.held, &mut self.elided_reads);
+        }
+        self.held.clear();
+        self.closed(index, seen);
     }
 
     fn closed(&mut self, index: usize, seen: Seen) {

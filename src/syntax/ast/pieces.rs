@@ -267,15 +267,6 @@ impl FileBuilder {
         self.file
     }
 
-    /// The statements the open routine holds so far, handed over (a caller that stops holding
-    /// a long routine's body; the routine closes with the statements added after).
-    pub fn take_open_statements(&mut self) -> Vec<Stmt> {
-        match &mut self.open {
-            Open::Routine(_, stmts) => std::mem::take(stmts),
-            _ => Vec::new(),
-        }
-    }
-
     /// The routines closed so far, in file order (a caller that keeps only some routines'
     /// bodies empties the others as they close).
     pub fn routines_mut(&mut self) -> &mut [Routine] {
