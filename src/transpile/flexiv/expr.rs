@@ -8,7 +8,7 @@ use crate::transpile::ir::{
     Aggregate, Bank, BinaryOp, Builtin, Component, Expr, ExprKind, IoPlace, MotionParam, Place,
     SignalRange, Ty, UnaryOp,
 };
-use crate::transpile::render::Emit;
+use crate::transpile::render::{Emit, not_lowered};
 
 /// Binding strength of a Python expression (higher binds tighter), to place parentheses.
 pub(super) const ATOM: u8 = 15;
@@ -346,24 +346,15 @@ impl<'a> Tx<'a> {
                 let string = matches!(&**base, Place::Var(v) if self.ir.var(*v).ty == Ty::Char);
                 // A whole array (`a[]`, an OUT argument) is assigned by name, like a string.
                 let whole = idx.iter().all(Option::is_none);
+                // The lowering indexes variables only.
                 let Target::Plain(b) = self.target(base, span, write && (string || whole))? else {
-                    return fail(
-                        span,
-                        "indexing a component has no translation",
-                        "port by hand",
-                    );
+                    return not_lowered(span, "an index of a component");
                 };
                 if string {
                     return match idx.as_slice() {
                         [None] | [] => Ok(Target::Plain(b)),
-                        [Some(i)] if write => {
-                            let _ = i;
-                            fail(
-                                span,
-                                "assigning one character of a string has no translation (Python strings are immutable)",
-                                "build the new string with slices and +",
-                            )
-                        }
+                        // The lowering refuses it (`Caps::components`).
+                        [Some(_)] if write => not_lowered(span, "a character of a string assigned"),
                         [Some(i)] => match i.integer() {
                             Some(n) => Ok(Target::Plain(format!("{b}[{}:{n}]", n - 1))),
                             None => {
@@ -375,61 +366,32 @@ impl<'a> Tx<'a> {
                                 )))
                             }
                         },
-                        _ => fail(
-                            span,
-                            "a two-dimensional CHAR array has no translation",
-                            "use one string variable per row",
-                        ),
+                        _ => not_lowered(span, "a two-dimensional CHAR array"),
                     };
                 }
+                // An omitted index takes the whole rest: `a[]` is the list, `a[1,]` its row.
                 let mut s = b;
-                for i in idx {
-                    match i {
-                        Some(i) => s.push_str(&format!("[{}]", self.expr(i)?)),
-                        None => {
-                            return fail(
-                                span,
-                                "a whole-array reference ([]) has no translation here",
-                                "use the array's elements",
-                            );
-                        }
-                    }
+                for i in idx.iter().map_while(Option::as_ref) {
+                    s.push_str(&format!("[{}]", self.expr(i)?));
                 }
                 Ok(Target::Plain(s))
             }
             Place::Component(base, c) => {
+                // The lowering refuses structures without records (`Caps::records`).
                 let Target::Plain(b) = self.target(base, span, write)? else {
-                    return fail(
-                        span,
-                        "a member of a member has no translation",
-                        "port by hand",
-                    );
+                    return not_lowered(span, "a component of a structure member");
                 };
                 let field = match c {
                     Component::Pose(i) => ["x", "y", "z", "a", "b", "c"][*i].to_owned(),
                     Component::Axis(i) => format!("a{}", i + 1),
-                    Component::Status | Component::Turn => {
-                        return fail(
-                            span,
-                            "status/turn are not kept in the script (a Rizon chooses its own posture)",
-                            "remove the use of S/T",
-                        );
-                    }
-                    Component::Ext(i) => {
-                        return fail(
-                            span,
-                            format!("component `E{}` (external axis) has no counterpart", i + 1),
-                            "drop the external axis",
-                        );
+                    // The lowering refuses the rest (`Caps::components`).
+                    Component::Status | Component::Turn | Component::Ext(_) => {
+                        return not_lowered(span, "a component the script does not keep");
                     }
                 };
                 Ok(Target::Member { base: b, field })
             }
-            Place::Member(_, f) => fail(
-                span,
-                format!("structure member `.{f}` has no translation"),
-                "split the structure into separate variables",
-            ),
+            Place::Member(..) => not_lowered(span, "a structure member"),
         }
     }
 

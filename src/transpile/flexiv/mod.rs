@@ -118,6 +118,14 @@ pub static BACKEND: render::Backend = render::Backend {
             every: true,
             linear: false,
         },
+        // `Pose`/`Axis` fields (`_replace` assigns one); a Rizon keeps no S/T.
+        components: render::Components {
+            status_turn: render::Access::None,
+            external: render::Access::None,
+            characters: render::Access::Read,
+            char_rows: false,
+            ..render::Caps::BASE.components
+        },
         ..render::Caps::BASE
     },
     name_rules: &NAME_RULES,

@@ -169,6 +169,22 @@ pub enum Why {
     ComputedSignal,
     /// An `MM_*` call omitting an argument the translation reads (the parameter).
     MmArgument(String),
+    /// A part of a value read or (`write`) assigned alone where the target cannot
+    /// (`Caps::components`).
+    Part { part: Part, write: bool },
+    /// A CHAR array of two dimensions in a target without (`Caps::components`).
+    CharRows,
+    /// A member (its name) of a value that is no structure.
+    NotAStructure(String),
+}
+
+/// A part of a value read or assigned alone.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Part {
+    /// A component of a pose or axis value.
+    Component(crate::transpile::ir::Component),
+    /// One character of a string.
+    Character,
 }
 
 /// Where axis values met a target without a joint map.
@@ -385,6 +401,26 @@ impl Why {
             Why::SignalGroup => "a group of signals (SIGNAL … TO …) needs a group signal of the I/O configuration".into(),
             Why::OutputGroupRead => "reading a group of outputs has no counterpart in this target (it cannot read outputs back)".into(),
             Why::ComputedSignal => "a signal number computed at run time: this target's signals are names of the I/O configuration".into(),
+            Why::Part { part, write } => {
+                let verb = if *write { "assigning" } else { "reading" };
+                let what = match part {
+                    Part::Component(c) => {
+                        use crate::transpile::ir::Component as C;
+                        let of = match c {
+                            C::Pose(0..=2) => "a position component of a pose",
+                            C::Pose(_) => "an orientation angle of a pose",
+                            C::Axis(_) => "one axis of axis values",
+                            C::Status | C::Turn => "the posture's status or turn",
+                            C::Ext(_) => "an external axis",
+                        };
+                        format!("`{}` ({of})", c.krl())
+                    }
+                    Part::Character => "one character of a string".to_owned(),
+                };
+                format!("{verb} {what} alone has no counterpart in this target")
+            }
+            Why::CharRows => "a two-dimensional CHAR array (rows of strings) has no counterpart in this target".into(),
+            Why::NotAStructure(f) => format!("`.{f}`: a member of a value that is no structure has no counterpart"),
             Why::LinearToAxes(krl) => {
                 let instr = if *krl == "CIRC" { "MoveC" } else { "MoveL" };
                 format!("{krl} to axis values has no counterpart ({instr} needs a Cartesian target)")

@@ -232,42 +232,14 @@ impl<'a> Tx<'a> {
                     Component::Pose(0) => "DX",
                     Component::Pose(1) => "DY",
                     Component::Pose(2) => "DZ",
-                    Component::Pose(_) => {
-                        return fail(
-                            span,
-                            format!(
-                                "the orientation component `{}` of a pose has no direct AS reading (AS uses O,A,T)",
-                                c.krl()
-                            ),
-                            "DECOMPOSE the pose into an array and convert O,A,T to A,B,C by hand",
-                        );
-                    }
-                    Component::Axis(_) => {
-                        return fail(
-                            span,
-                            format!(
-                                "reading one axis ({}) of a joint value has no direct AS reading",
-                                c.krl()
-                            ),
-                            "DECOMPOSE the joint value into an array and read the element",
-                        );
-                    }
-                    _ => {
-                        return fail(
-                            span,
-                            format!("component `{}` has no AS counterpart", c.krl()),
-                            "drop the status/turn or external axis",
-                        );
-                    }
+                    // The lowering refuses the rest (`Caps::components`).
+                    _ => return render::not_lowered(span, "a component AS cannot read"),
                 };
                 let b = self.place_text(base, &Ty::Pose, span)?;
                 Ok(Rendered::atom(format!("{f}({b})")))
             }
-            Place::Member(_, f) => fail(
-                span,
-                format!("structure member `.{f}` has no AS equivalent"),
-                "split the structure into separate variables",
-            ),
+            // The lowering refuses structures without records (`Caps::records`).
+            Place::Member(..) => render::not_lowered(span, "a structure member"),
             _ => Ok(Rendered::atom(self.place_text(p, ty, span)?)),
         }
     }
@@ -299,11 +271,8 @@ impl<'a> Tx<'a> {
                             let i = self.expr(i)?;
                             Ok(format!("$MID({b},{i},1)"))
                         }
-                        _ => fail(
-                            span,
-                            "a two-dimensional CHAR array has no AS equivalent",
-                            "use one string variable per row",
-                        ),
+                        // The lowering refuses it (`Caps::components`).
+                        _ => render::not_lowered(span, "a two-dimensional CHAR array"),
                     };
                 }
                 let mut v = Vec::new();

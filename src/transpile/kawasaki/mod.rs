@@ -108,6 +108,16 @@ pub static BACKEND: render::Backend = render::Backend {
             every: false,
             linear: true,
         },
+        // DX/DY/DZ read a position, SHIFT assigns it; $MID reads a character.
+        components: render::Components {
+            position: render::Access::Write,
+            orientation: render::Access::None,
+            axes: render::Access::None,
+            status_turn: render::Access::None,
+            external: render::Access::None,
+            characters: render::Access::Read,
+            char_rows: false,
+        },
         ..render::Caps::BASE
     },
     name_rules: &NAME_RULES,

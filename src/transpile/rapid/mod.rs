@@ -104,6 +104,16 @@ pub static BACKEND: render::Backend = render::Backend {
             every: true,
             linear: false,
         },
+        // `.trans.x`, `.extax.eax_a`; EulerZYX reads an angle; StrPart reads a character; a
+        // jointtarget's values are ABB's (after the joint map), not KUKA's axes.
+        components: render::Components {
+            orientation: render::Access::Read,
+            axes: render::Access::None,
+            status_turn: render::Access::None,
+            characters: render::Access::Read,
+            char_rows: false,
+            ..render::Caps::BASE.components
+        },
         ..render::Caps::BASE
     },
     name_rules: &NAME_RULES,

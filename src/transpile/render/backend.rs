@@ -61,6 +61,63 @@ pub struct Caps {
     pub external_axes: u8,
     /// Which of KRL's signals it names.
     pub signals: Signals,
+    /// Which parts of a value it reads or assigns alone.
+    pub components: Components,
+}
+
+/// Which parts of a value a target reads or assigns alone (`p.X`, `j.A1`, `s[3]`); the
+/// lowering refuses the rest (TR001 `Why::Part`).
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub struct Components {
+    /// X, Y, Z of a pose.
+    pub position: Access,
+    /// A, B, C of a pose.
+    pub orientation: Access,
+    /// A1 … A6 of axis values.
+    pub axes: Access,
+    /// S and T of a pose.
+    pub status_turn: Access,
+    /// E1 … E6.
+    pub external: Access,
+    /// One character of a string.
+    pub characters: Access,
+    /// CHAR arrays of two dimensions (rows of strings); without: TR001 `Why::CharRows`.
+    pub char_rows: bool,
+}
+
+impl Components {
+    /// How the target reads or assigns `c` alone.
+    pub fn of(&self, c: ir::Component) -> Access {
+        match c {
+            ir::Component::Pose(0..=2) => self.position,
+            ir::Component::Pose(_) => self.orientation,
+            ir::Component::Axis(_) => self.axes,
+            ir::Component::Status | ir::Component::Turn => self.status_turn,
+            ir::Component::Ext(_) => self.external,
+        }
+    }
+}
+
+/// How a target reaches one part of a value.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Access {
+    /// Not at all.
+    None,
+    /// Read only.
+    Read,
+    /// Read and assigned.
+    Write,
+}
+
+impl Access {
+    /// Whether it may be read, or (`write`) assigned.
+    pub fn allows(self, write: bool) -> bool {
+        match self {
+            Access::None => false,
+            Access::Read => !write,
+            Access::Write => true,
+        }
+    }
 }
 
 /// The signals a target can read and write; the lowering refuses the rest (TR001).
@@ -104,6 +161,15 @@ impl Caps {
             groups: true,
             output_groups_read: true,
             computed_numbers: true,
+        },
+        components: Components {
+            position: Access::Write,
+            orientation: Access::Write,
+            axes: Access::Write,
+            status_turn: Access::Write,
+            external: Access::Write,
+            characters: Access::Write,
+            char_rows: true,
         },
         goto: true,
         records: false,
@@ -217,7 +283,7 @@ pub enum Trigger {
 }
 
 /// The columns of the capability table.
-const CAPS_COLUMNS: [&str; 18] = [
+const CAPS_COLUMNS: [&str; 19] = [
     "language",
     "GOTO",
     "STRUC",
@@ -233,13 +299,14 @@ const CAPS_COLUMNS: [&str; 18] = [
     "`MM_*` calls",
     "external axes in a value",
     "signals",
+    "parts alone (read/assigned)",
     "nothing for (TR001)",
     "strings",
     "identifiers",
 ];
 
 /// A target's row of the capability table, in [`CAPS_COLUMNS`] order.
-fn caps_row(b: &Backend) -> [String; 18] {
+fn caps_row(b: &Backend) -> [String; 19] {
     let yes_no = |b: bool, without: &str| {
         if b {
             "yes".to_owned()
@@ -294,6 +361,7 @@ fn caps_row(b: &Backend) -> [String; 18] {
             n => format!("E1…E{n}; more: TR001"),
         },
         signals(&c.signals),
+        components(&c.components),
         lacked(c.lacks),
         strings,
         format!("≤ {} characters", n.max_len),
@@ -338,6 +406,32 @@ fn signals(s: &Signals) -> String {
     } else {
         format!("{}: TR001", no.join(", "))
     }
+}
+
+/// The components cell: what is read or assigned alone, the rest TR001.
+fn components(c: &Components) -> String {
+    let access = |a: Access| match a {
+        Access::None => "no",
+        Access::Read => "read",
+        Access::Write => "read, assigned",
+    };
+    let mut cell = [
+        ("X/Y/Z", c.position),
+        ("A/B/C", c.orientation),
+        ("A1…A6", c.axes),
+        ("S/T", c.status_turn),
+        ("E1…E6", c.external),
+        ("a string's character", c.characters),
+    ]
+    .iter()
+    .map(|(what, a)| format!("{what}: {}", access(*a)))
+    .collect::<Vec<_>>()
+    .join(", ");
+    if !c.char_rows {
+        cell.push_str("; 2-D CHAR arrays: no");
+    }
+    cell.push_str("; else TR001");
+    cell
 }
 
 /// The `MM_*` cell: which calls translate (an omitted argument the translation reads: TR001).
@@ -629,6 +723,70 @@ mod tests {
                     .all(|m| m.contains("its condition is not a single signal")),
             "{rapid:?}"
         );
+    }
+
+    /// Each part of a value is read and assigned alone exactly where the target's
+    /// `Caps::components` says, and refused by the lowering elsewhere.
+    #[test]
+    fn the_lowering_refuses_the_parts_a_target_cannot_reach() {
+        use crate::transpile::ir::Component as C;
+        use crate::transpile::ir::why::Part;
+        let parts = [
+            ("p.X", C::Pose(0)),
+            ("p.B", C::Pose(4)),
+            ("j.A2", C::Axis(1)),
+            ("p.S", C::Status),
+            ("p.E1", C::Ext(0)),
+        ];
+        let decls =
+            "DECL E6POS p\nDECL E6AXIS j\nDECL REAL r\nDECL CHAR s[8], c\nDECL CHAR rows[3,8]\n";
+        for b in BACKENDS {
+            let parts_of = &b.caps().components;
+            let mut cases: Vec<(String, Why, bool)> = Vec::new();
+            for (krl, c) in parts {
+                for write in [false, true] {
+                    let stmt = if write {
+                        format!("{krl} = 1")
+                    } else {
+                        format!("r = {krl}")
+                    };
+                    let why = Why::Part {
+                        part: Part::Component(c),
+                        write,
+                    };
+                    cases.push((stmt, why, !parts_of.of(c).allows(write)));
+                }
+            }
+            for (stmt, write) in [("c = s[2]", false), ("s[2] = \"a\"", true)] {
+                let why = Why::Part {
+                    part: Part::Character,
+                    write,
+                };
+                cases.push((stmt.into(), why, !parts_of.characters.allows(write)));
+            }
+            cases.push((
+                "rows[2,3] = \"a\"".into(),
+                Why::CharRows,
+                !parts_of.char_rows,
+            ));
+            cases.push(("r.x = 1".into(), Why::NotAStructure("x".into()), true));
+            for (stmt, why, refused) in cases {
+                let src = format!("DEF p()\n{decls}{stmt}\nEND\n");
+                let msgs = refusals_in(b.target(), &src);
+                // What the caps let through, the renderer translates (no `not_lowered`).
+                assert!(
+                    !msgs.iter().any(|m| m.starts_with("internal:")),
+                    "{:?} {stmt}: {msgs:?}",
+                    b.target()
+                );
+                assert_eq!(
+                    msgs.contains(&why.message()),
+                    refused,
+                    "{:?} {stmt}: {msgs:?}",
+                    b.target()
+                );
+            }
+        }
     }
 
     /// Each statement a target declares it has nothing for is refused by the lowering for that

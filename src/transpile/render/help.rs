@@ -53,6 +53,10 @@ fn shared(why: &Why) -> String {
         Why::ComputedSignal => "use a literal number, or an IF per signal",
         Why::MmNoCommand { .. } | Why::MmMoves(_) | Why::MmInterface { .. } => "port by hand",
         Why::LinearToAxes(_) => "move to a pose (E6POS)",
+        Why::Part { write: true, .. } => "compute the whole value and assign it",
+        Why::Part { write: false, .. } => "keep the part in a variable of its own",
+        Why::CharRows => "use one string variable per row",
+        Why::NotAStructure(_) => "declare the variable with its STRUC type",
         Why::Skip
         | Why::Other(_)
         | Why::SystemVariable(_)

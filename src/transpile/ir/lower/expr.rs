@@ -438,8 +438,15 @@ impl<'p> Lower<'p> {
     }
 
     /// A place (assignment target or value), and the type it holds. `write`: an assignment
-    /// target (an undeclared name is assumed from the value later).
+    /// target (an undeclared name is assumed from the value later). A part the target cannot
+    /// read or assign alone is refused (`Caps::components`).
     pub(super) fn place(&mut self, e: &ast::Expr, pre: &mut Block, write: bool) -> L<(Place, Ty)> {
+        let (p, ty) = self.place_of(e, pre, write)?;
+        self.reachable(&p, write, e.span)?;
+        Ok((p, ty))
+    }
+
+    fn place_of(&mut self, e: &ast::Expr, pre: &mut Block, write: bool) -> L<(Place, Ty)> {
         let span = e.span;
         match &e.kind {
             A::Name(id) => {
@@ -482,7 +489,7 @@ impl<'p> Lower<'p> {
                 Ok((Place::Index(Box::new(Place::Var(v)), idx), ty))
             }
             A::Member { base, field } => {
-                let (b, ty) = self.place(base, pre, write)?;
+                let (b, ty) = self.place_of(base, pre, write)?;
                 match &ty {
                     Ty::Pose | Ty::Joint => {
                         let layout = if ty == Ty::Pose {
@@ -508,7 +515,7 @@ impl<'p> Lower<'p> {
                         let fty = fty.clone();
                         Ok((Place::Member(Box::new(b), field.text.to_string()), fty))
                     }
-                    _ => Ok((Place::Member(Box::new(b), field.text.to_string()), Ty::Real)),
+                    _ => fail(Why::NotAStructure(field.text.to_string()), field.span),
                 }
             }
             _ => fail(Why::AssignTarget, span),
@@ -527,11 +534,9 @@ impl<'p> Lower<'p> {
         let Some(c) = self.model.component(layout, &field.text) else {
             return fail(Why::Component(field.text.to_string()), field.span);
         };
-        Ok(Expr::new(
-            ExprKind::Place(Place::Component(Box::new(p), c)),
-            Ty::Real,
-            span,
-        ))
+        let p = Place::Component(Box::new(p), c);
+        self.reachable(&p, false, span)?;
+        Ok(Expr::new(ExprKind::Place(p), Ty::Real, span))
     }
 
     /// The current position read into a temporary (after an advance-run stop).
@@ -755,6 +760,9 @@ impl<'p> Lower<'p> {
             };
             if is_out && place.is_none() {
                 return fail(Why::OutArgument, a.span);
+            }
+            if let (true, Some(p)) = (is_out, &place) {
+                self.reachable(p, true, a.span)?;
             }
             out.push(Arg {
                 value: Some(value),

@@ -11,6 +11,7 @@ mod call;
 mod expr;
 mod mech_mind;
 mod motion;
+mod parts;
 mod signals;
 mod stmt;
 
