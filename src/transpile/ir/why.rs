@@ -171,11 +171,22 @@ pub enum Why {
     MmArgument(String),
     /// A part of a value read or (`write`) assigned alone where the target cannot
     /// (`Caps::components`).
-    Part { part: Part, write: bool },
+    Part { part: Part, reach: Reach },
     /// A CHAR array of two dimensions in a target without (`Caps::components`).
     CharRows,
     /// A member (its name) of a value that is no structure.
     NotAStructure(String),
+}
+
+/// How a place is used.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Reach {
+    /// Read as a value.
+    Read,
+    /// Assigned by a statement.
+    Assign,
+    /// Passed as a variable (an OUT argument) that the callee assigns.
+    Pass,
 }
 
 /// A part of a value read or assigned alone.
@@ -401,8 +412,12 @@ impl Why {
             Why::SignalGroup => "a group of signals (SIGNAL … TO …) needs a group signal of the I/O configuration".into(),
             Why::OutputGroupRead => "reading a group of outputs has no counterpart in this target (it cannot read outputs back)".into(),
             Why::ComputedSignal => "a signal number computed at run time: this target's signals are names of the I/O configuration".into(),
-            Why::Part { part, write } => {
-                let verb = if *write { "assigning" } else { "reading" };
+            Why::Part { part, reach } => {
+                let verb = match reach {
+                    Reach::Read => "reading",
+                    Reach::Assign => "assigning",
+                    Reach::Pass => "passing as an OUT argument",
+                };
                 let what = match part {
                     Part::Component(c) => {
                         use crate::transpile::ir::Component as C;

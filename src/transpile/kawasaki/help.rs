@@ -2,7 +2,7 @@
 
 use crate::transpile::ir::why::KukaOnly;
 use crate::transpile::ir::why::Lacked;
-use crate::transpile::ir::why::Part;
+use crate::transpile::ir::why::{Part, Reach};
 use crate::transpile::ir::{Component, Why};
 
 pub(super) fn help(why: &Why) -> String {
@@ -84,16 +84,16 @@ fn own(why: &Why) -> Option<String> {
         Why::Lacks(Lacked::TimerStop) => {
             "AS timers cannot be stopped: store TIMER(n) in a variable where KRL stopped the timer".into()
         }
-        Why::Part { part: Part::Component(Component::Pose(3..=5)), write: false } => {
+        Why::Part { part: Part::Component(Component::Pose(3..=5)), reach: Reach::Read } => {
             "AS uses O,A,T: DECOMPOSE the pose into an array and convert O,A,T to A,B,C by hand".into()
         }
-        Why::Part { part: Part::Component(Component::Axis(_)), write: false } => {
+        Why::Part { part: Part::Component(Component::Axis(_)), reach: Reach::Read } => {
             "DECOMPOSE the joint value into an array and read the element".into()
         }
-        Why::Part { part: Part::Component(_), write: false } => {
+        Why::Part { part: Part::Component(_), reach: Reach::Read } => {
             "drop the status/turn or external axis".into()
         }
-        Why::Part { part: Part::Component(_), write: true } => {
+        Why::Part { part: Part::Component(_), reach: Reach::Assign } => {
             "compute the whole value (TRANS / #PPOINT) and assign it".into()
         }
         Why::Part { part: Part::Character, .. } => {

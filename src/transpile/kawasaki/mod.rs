@@ -110,7 +110,7 @@ pub static BACKEND: render::Backend = render::Backend {
         },
         // DX/DY/DZ read a position, SHIFT assigns it; $MID reads a character.
         components: render::Components {
-            position: render::Access::Write,
+            position: render::Access::Assign,
             orientation: render::Access::None,
             axes: render::Access::None,
             status_turn: render::Access::None,

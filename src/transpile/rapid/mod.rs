@@ -104,10 +104,11 @@ pub static BACKEND: render::Backend = render::Backend {
             every: true,
             linear: false,
         },
-        // `.trans.x`, `.extax.eax_a`; EulerZYX reads an angle; StrPart reads a character; a
-        // jointtarget's values are ABB's (after the joint map), not KUKA's axes.
+        // `.trans.x`, `.extax.eax_a`; EulerZYX reads an angle, OrientZYX assigns it; StrPart
+        // reads a character; a jointtarget's values are ABB's (after the joint map), not KUKA's
+        // axes.
         components: render::Components {
-            orientation: render::Access::Read,
+            orientation: render::Access::Assign,
             axes: render::Access::None,
             status_turn: render::Access::None,
             characters: render::Access::Read,

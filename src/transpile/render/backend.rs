@@ -5,7 +5,7 @@
 use super::super::front::Program as Source;
 use super::super::front::names::NameRules;
 use super::super::front::report::Report;
-use super::super::ir::why::Lacked;
+use super::super::ir::why::{Lacked, Reach};
 use super::super::ir::{self, Why};
 use super::super::{Options, Renderer, Target, VisionServer};
 use crate::transpile::{flexiv, kawasaki, rapid};
@@ -105,16 +105,20 @@ pub enum Access {
     None,
     /// Read only.
     Read,
-    /// Read and assigned.
+    /// Read, and assigned by a statement that recomputes the whole value (not a variable an
+    /// OUT argument can name).
+    Assign,
+    /// Read, assigned, and passed as a variable.
     Write,
 }
 
 impl Access {
-    /// Whether it may be read, or (`write`) assigned.
-    pub fn allows(self, write: bool) -> bool {
+    /// Whether a place can be used so.
+    pub fn allows(self, reach: Reach) -> bool {
         match self {
             Access::None => false,
-            Access::Read => !write,
+            Access::Read => reach == Reach::Read,
+            Access::Assign => reach != Reach::Pass,
             Access::Write => true,
         }
     }
@@ -299,7 +303,7 @@ const CAPS_COLUMNS: [&str; 19] = [
     "`MM_*` calls",
     "external axes in a value",
     "signals",
-    "parts alone (read/assigned)",
+    "parts alone (read/assigned/passed)",
     "nothing for (TR001)",
     "strings",
     "identifiers",
@@ -413,7 +417,8 @@ fn components(c: &Components) -> String {
     let access = |a: Access| match a {
         Access::None => "no",
         Access::Read => "read",
-        Access::Write => "read, assigned",
+        Access::Assign => "read, assigned",
+        Access::Write => "read, assigned, passed",
     };
     let mut cell = [
         ("X/Y/Z", c.position),
@@ -744,25 +749,32 @@ mod tests {
             let parts_of = &b.caps().components;
             let mut cases: Vec<(String, Why, bool)> = Vec::new();
             for (krl, c) in parts {
-                for write in [false, true] {
-                    let stmt = if write {
-                        format!("{krl} = 1")
+                for reach in [Reach::Read, Reach::Assign, Reach::Pass] {
+                    let stmt = match reach {
+                        Reach::Read => format!("r = {krl}"),
+                        Reach::Assign => format!("{krl} = 1"),
+                        Reach::Pass => format!("q({krl})"),
+                    };
+                    // An argument is read before it is passed.
+                    let access = parts_of.of(c);
+                    let first = if reach == Reach::Pass && !access.allows(Reach::Read) {
+                        Reach::Read
                     } else {
-                        format!("r = {krl}")
+                        reach
                     };
                     let why = Why::Part {
                         part: Part::Component(c),
-                        write,
+                        reach: first,
                     };
-                    cases.push((stmt, why, !parts_of.of(c).allows(write)));
+                    cases.push((stmt, why, !access.allows(reach)));
                 }
             }
-            for (stmt, write) in [("c = s[2]", false), ("s[2] = \"a\"", true)] {
+            for (stmt, reach) in [("c = s[2]", Reach::Read), ("s[2] = \"a\"", Reach::Assign)] {
                 let why = Why::Part {
                     part: Part::Character,
-                    write,
+                    reach,
                 };
-                cases.push((stmt.into(), why, !parts_of.characters.allows(write)));
+                cases.push((stmt.into(), why, !parts_of.characters.allows(reach)));
             }
             cases.push((
                 "rows[2,3] = \"a\"".into(),
@@ -771,7 +783,8 @@ mod tests {
             ));
             cases.push(("r.x = 1".into(), Why::NotAStructure("x".into()), true));
             for (stmt, why, refused) in cases {
-                let src = format!("DEF p()\n{decls}{stmt}\nEND\n");
+                let src =
+                    format!("DEF p()\n{decls}{stmt}\nEND\nDEF q(v:OUT)\nDECL REAL v\nv = 2\nEND\n");
                 let msgs = refusals_in(b.target(), &src);
                 // What the caps let through, the renderer translates (no `not_lowered`).
                 assert!(

@@ -176,7 +176,7 @@ impl<'p> Lower<'p> {
                 return fail(Why::OutArgument, a.span);
             }
             if let (true, Some(p)) = (is_out, &place) {
-                self.reachable(p, true, a.span)?;
+                self.reachable(p, crate::transpile::ir::why::Reach::Pass, a.span)?;
             }
             out.push(crate::transpile::ir::Arg {
                 value: Some(value),

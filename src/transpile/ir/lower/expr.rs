@@ -11,6 +11,7 @@ use crate::transpile::front::model::Layout;
 use crate::transpile::front::sysvar::{self, Sys};
 use crate::transpile::ir::why::KukaOnly;
 use crate::transpile::ir::why::Lacked;
+use crate::transpile::ir::why::Reach;
 use crate::transpile::ir::{
     Aggregate, Arg, BinaryOp, Block, Builtin, Callee, Component, Expr, ExprKind, IoPlace,
     MotionParam, Op, Place, RoutineKind, Scope, Stmt, Ty, UnaryOp, Why,
@@ -442,7 +443,8 @@ impl<'p> Lower<'p> {
     /// read or assign alone is refused (`Caps::components`).
     pub(super) fn place(&mut self, e: &ast::Expr, pre: &mut Block, write: bool) -> L<(Place, Ty)> {
         let (p, ty) = self.place_of(e, pre, write)?;
-        self.reachable(&p, write, e.span)?;
+        let reach = if write { Reach::Assign } else { Reach::Read };
+        self.reachable(&p, reach, e.span)?;
         Ok((p, ty))
     }
 
@@ -535,7 +537,7 @@ impl<'p> Lower<'p> {
             return fail(Why::Component(field.text.to_string()), field.span);
         };
         let p = Place::Component(Box::new(p), c);
-        self.reachable(&p, false, span)?;
+        self.reachable(&p, Reach::Read, span)?;
         Ok(Expr::new(ExprKind::Place(p), Ty::Real, span))
     }
 
@@ -762,7 +764,7 @@ impl<'p> Lower<'p> {
                 return fail(Why::OutArgument, a.span);
             }
             if let (true, Some(p)) = (is_out, &place) {
-                self.reachable(p, true, a.span)?;
+                self.reachable(p, Reach::Pass, a.span)?;
             }
             out.push(Arg {
                 value: Some(value),

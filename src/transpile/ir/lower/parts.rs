@@ -4,37 +4,37 @@
 
 use super::{L, Lower, fail};
 use crate::diag::Span;
-use crate::transpile::ir::why::Part;
+use crate::transpile::ir::why::{Part, Reach};
 use crate::transpile::ir::{Place, Ty, Why};
 
 impl Lower<'_> {
-    /// `p` read, or (`write`) assigned, at `at`.
-    pub(super) fn reachable(&self, p: &Place, write: bool, at: Span) -> L<()> {
+    /// `p` used so at `at`.
+    pub(super) fn reachable(&self, p: &Place, reach: Reach, at: Span) -> L<()> {
         let parts = &self.caps.components;
         match p {
             Place::Var(_) | Place::Temp(_) => Ok(()),
             Place::Component(base, c) => {
-                if !parts.of(*c).allows(write) {
+                if !parts.of(*c).allows(reach) {
                     return fail(
                         Why::Part {
                             part: Part::Component(*c),
-                            write,
+                            reach,
                         },
                         at,
                     );
                 }
-                self.reachable(base, write, at)
+                self.reachable(base, reach, at)
             }
             Place::Index(base, idx) => {
                 let string = matches!(&**base, Place::Var(v) if self.var_decl(*v).ty == Ty::Char);
                 if string {
                     match idx.as_slice() {
                         [None] | [] => {}
-                        [Some(_)] if !parts.characters.allows(write) => {
+                        [Some(_)] if !parts.characters.allows(reach) => {
                             return fail(
                                 Why::Part {
                                     part: Part::Character,
-                                    write,
+                                    reach,
                                 },
                                 at,
                             );
@@ -44,9 +44,9 @@ impl Lower<'_> {
                         _ => {}
                     }
                 }
-                self.reachable(base, write, at)
+                self.reachable(base, reach, at)
             }
-            Place::Member(base, _) => self.reachable(base, write, at),
+            Place::Member(base, _) => self.reachable(base, reach, at),
         }
     }
 }
