@@ -97,6 +97,12 @@ fn own(why: &Why) -> Option<String> {
         Why::Part { part: Part::Character, .. } => {
             "Python strings are immutable: build the new string with slices and +".into()
         }
+        Why::FrameValue { tool: true } => {
+            "define the tool in Flexiv Elements and call switch_tool(name)".into()
+        }
+        Why::FrameValue { tool: false } => {
+            "define a work coordinate in Flexiv Elements and set KRL.base = [\"WORK\", name]".into()
+        }
         _ => return None,
     })
 }

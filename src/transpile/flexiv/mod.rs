@@ -126,6 +126,11 @@ pub static BACKEND: render::Backend = render::Backend {
             char_rows: false,
             ..render::Caps::BASE.components
         },
+        // Tools and work coordinates are names defined on the robot (`"tool_data_%d" % i`).
+        frames: render::Frames {
+            values: false,
+            computed_numbers: true,
+        },
         ..render::Caps::BASE
     },
     name_rules: &NAME_RULES,

@@ -176,6 +176,12 @@ pub enum Why {
     CharRows,
     /// A member (its name) of a value that is no structure.
     NotAStructure(String),
+    /// A tool (`tool`) or base given as a frame value in a target that selects them by name
+    /// (`Caps::frames`).
+    FrameValue { tool: bool },
+    /// A `TOOL_DATA`/`BASE_DATA` number that is not a positive literal in a target whose
+    /// frames are names written in the program (`Caps::frames`).
+    FrameNumber,
 }
 
 /// How a place is used.
@@ -434,6 +440,11 @@ impl Why {
                 };
                 format!("{verb} {what} alone has no counterpart in this target")
             }
+            Why::FrameValue { tool } => {
+                let (what, table) = if *tool { ("tool", "TOOL_DATA") } else { ("base", "BASE_DATA") };
+                format!("a {what} given as a frame value (not a {table} entry) has no counterpart in this target: it selects {what}s defined on the robot by name")
+            }
+            Why::FrameNumber => "a tool or base number computed at run time has no counterpart in this target".into(),
             Why::CharRows => "a two-dimensional CHAR array (rows of strings) has no counterpart in this target".into(),
             Why::NotAStructure(f) => format!("`.{f}`: a member of a value that is no structure has no counterpart"),
             Why::LinearToAxes(krl) => {

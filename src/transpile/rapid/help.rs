@@ -81,6 +81,9 @@ fn own(why: &Why) -> Option<String> {
         Why::Part { part: Part::Component(Component::Axis(_)), .. } => {
             "read the jointtarget's robax by hand (its values are ABB's, after the joint map)".into()
         }
+        Why::FrameValue { .. } => {
+            "declare a tooldata/wobjdata with the frame and use it".into()
+        }
         _ => return None,
     })
 }

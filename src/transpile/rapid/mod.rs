@@ -115,6 +115,11 @@ pub static BACKEND: render::Backend = render::Backend {
             char_rows: false,
             ..render::Caps::BASE.components
         },
+        // `tool<n>`/`wobj<n>`: names written in the module.
+        frames: render::Frames {
+            values: false,
+            computed_numbers: false,
+        },
         ..render::Caps::BASE
     },
     name_rules: &NAME_RULES,

@@ -63,6 +63,20 @@ pub struct Caps {
     pub signals: Signals,
     /// Which parts of a value it reads or assigns alone.
     pub components: Components,
+    /// How `$TOOL`/`$BASE` may be given.
+    pub frames: Frames,
+}
+
+/// How a program may select its tool and base (`$TOOL`, `$BASE`, `BAS(#TOOL, n)`); the
+/// lowering refuses the rest (TR001).
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub struct Frames {
+    /// As a frame value (a variable or literal), not a `TOOL_DATA`/`BASE_DATA` entry; without:
+    /// `Why::FrameValue` (it selects frames defined on the robot by name).
+    pub values: bool,
+    /// As a `TOOL_DATA[i]`/`BASE_DATA[i]` entry whose number is computed at run time; without:
+    /// `Why::FrameNumber` (its frames are names written in the program).
+    pub computed_numbers: bool,
 }
 
 /// Which parts of a value a target reads or assigns alone (`p.X`, `j.A1`, `s[3]`); the
@@ -164,6 +178,10 @@ impl Caps {
         signals: Signals {
             groups: true,
             output_groups_read: true,
+            computed_numbers: true,
+        },
+        frames: Frames {
+            values: true,
             computed_numbers: true,
         },
         components: Components {
@@ -287,7 +305,7 @@ pub enum Trigger {
 }
 
 /// The columns of the capability table.
-const CAPS_COLUMNS: [&str; 19] = [
+const CAPS_COLUMNS: [&str; 20] = [
     "language",
     "GOTO",
     "STRUC",
@@ -304,13 +322,14 @@ const CAPS_COLUMNS: [&str; 19] = [
     "external axes in a value",
     "signals",
     "parts alone (read/assigned/passed)",
+    "`$TOOL`/`$BASE`",
     "nothing for (TR001)",
     "strings",
     "identifiers",
 ];
 
 /// A target's row of the capability table, in [`CAPS_COLUMNS`] order.
-fn caps_row(b: &Backend) -> [String; 19] {
+fn caps_row(b: &Backend) -> [String; 20] {
     let yes_no = |b: bool, without: &str| {
         if b {
             "yes".to_owned()
@@ -366,6 +385,7 @@ fn caps_row(b: &Backend) -> [String; 19] {
         },
         signals(&c.signals),
         components(&c.components),
+        frames(&c.frames),
         lacked(c.lacks),
         strings,
         format!("≤ {} characters", n.max_len),
@@ -409,6 +429,22 @@ fn signals(s: &Signals) -> String {
         "all".to_owned()
     } else {
         format!("{}: TR001", no.join(", "))
+    }
+}
+
+/// The `$TOOL`/`$BASE` cell: what is TR001 besides a `TOOL_DATA`/`BASE_DATA` entry.
+fn frames(f: &Frames) -> String {
+    let mut no = Vec::new();
+    if !f.values {
+        no.push("a frame value");
+    }
+    if !f.computed_numbers {
+        no.push("an entry number computed at run time");
+    }
+    if no.is_empty() {
+        "a TOOL_DATA/BASE_DATA entry or a frame value".to_owned()
+    } else {
+        format!("a TOOL_DATA/BASE_DATA entry; {}: TR001", no.join(", "))
     }
 }
 
@@ -795,6 +831,40 @@ mod tests {
                 assert_eq!(
                     msgs.contains(&why.message()),
                     refused,
+                    "{:?} {stmt}: {msgs:?}",
+                    b.target()
+                );
+            }
+        }
+    }
+
+    /// A tool or base is refused exactly where the target's `Caps::frames` says.
+    #[test]
+    fn the_lowering_refuses_the_frames_a_target_cannot_name() {
+        let cases = [
+            (
+                "$TOOL = {X 0, Y 0, Z 100, A 0, B 0, C 0}",
+                Why::FrameValue { tool: true },
+                (|f: &Frames| f.values) as fn(&Frames) -> bool,
+            ),
+            ("$BASE = f", Why::FrameValue { tool: false }, |f| f.values),
+            ("$TOOL = TOOL_DATA[i]", Why::FrameNumber, |f| {
+                f.computed_numbers
+            }),
+            ("BAS(#TOOL, i)", Why::FrameNumber, |f| f.computed_numbers),
+        ];
+        for b in BACKENDS {
+            for (stmt, why, held) in &cases {
+                let src = format!("DEF p()\nDECL FRAME f\nDECL INT i\n{stmt}\nEND\n");
+                let msgs = refusals_in(b.target(), &src);
+                assert!(
+                    !msgs.iter().any(|m| m.starts_with("internal:")),
+                    "{:?} {stmt}: {msgs:?}",
+                    b.target()
+                );
+                assert_eq!(
+                    msgs.contains(&why.message()),
+                    !held(&b.caps().frames),
                     "{:?} {stmt}: {msgs:?}",
                     b.target()
                 );

@@ -65,6 +65,8 @@ fn shared(why: &Why) -> String {
             reach: Reach::Pass, ..
         } => "pass a variable and assign the part from it after the call",
         Why::CharRows => "use one string variable per row",
+        Why::FrameNumber => "use a literal number",
+        Why::FrameValue { .. } => "define the frame on the robot and select it by its number",
         Why::NotAStructure(_) => "declare the variable with its STRUC type",
         Why::Skip
         | Why::Other(_)

@@ -9,6 +9,7 @@
 mod axes;
 mod call;
 mod expr;
+mod frames;
 mod mech_mind;
 mod motion;
 mod parts;

@@ -110,6 +110,7 @@ impl<'p> Lower<'p> {
                     FrameKind::Base
                 };
                 let frame = self.frame_ref(which, value, ops)?;
+                self.held_frame(which, &frame, span)?;
                 ops.push(Stmt {
                     op: Op::SetFrame { which, frame },
                     span,
@@ -793,6 +794,7 @@ impl<'p> Lower<'p> {
                 } else {
                     FrameRef::Table(i)
                 };
+                self.held_frame(which, &frame, span)?;
                 ops.push(Stmt {
                     op: Op::SetFrame { which, frame },
                     span,
@@ -849,6 +851,7 @@ impl<'p> Lower<'p> {
                         } else {
                             FrameRef::Table(Expr::new(ExprKind::Int(n as i64), Ty::Int, value.span))
                         };
+                        self.held_frame(which, &frame, span)?;
                         ops.push(Stmt {
                             op: Op::SetFrame { which, frame },
                             span,
