@@ -397,19 +397,9 @@ impl<'a> Tx<'a> {
 
     /// A complete pose or axis literal as a Python value: `Pose(…)` / `Axis(…)`.
     pub(super) fn literal(&mut self, a: &Aggregate, span: Span, file: FileId) -> R<String> {
+        // The lowering refuses it (`Caps::literals`).
         if !a.complete() {
-            let want = if a.axis {
-                "A1 to A6"
-            } else {
-                "X, Y, Z, A, B and C"
-            };
-            return fail(
-                span,
-                format!(
-                    "an incomplete literal (KRL keeps the missing components of the current value) needs all of {want} here"
-                ),
-                "write every component",
-            );
+            return crate::transpile::render::not_lowered(span, "an incomplete literal");
         }
         self.status_turn(a, span, file);
         self.external_axes(a, span)?;

@@ -131,6 +131,11 @@ pub static BACKEND: render::Backend = render::Backend {
             values: false,
             computed_numbers: true,
         },
+        // `_replace` sets the components given; a Rizon keeps no S/T.
+        literals: render::Literals {
+            partial_drops: true,
+            ..render::Caps::BASE.literals
+        },
         ..render::Caps::BASE
     },
     name_rules: &NAME_RULES,

@@ -182,6 +182,19 @@ pub enum Why {
     /// A `TOOL_DATA`/`BASE_DATA` number that is not a positive literal in a target whose
     /// frames are names written in the program (`Caps::frames`).
     FrameNumber,
+    /// A pose (or, `axis`, axis values) literal that leaves main components out where the
+    /// target needs them all (`Caps::literals`).
+    IncompleteLiteral { axis: bool },
+    /// A pose literal with computed A, B or C in a target that converts literal angles only.
+    ComputedAngles,
+    /// Axis values with computed components where they go through the joint map.
+    ComputedAxes,
+    /// A `.dat` value that is not a literal in a target that initialises data with literals.
+    DataLiteral,
+    /// A `.dat` value given to a SIGNAL name.
+    SignalValue,
+    /// A FOR step that is not a literal number in a target that needs the loop's direction.
+    ForStep,
 }
 
 /// How a place is used.
@@ -445,6 +458,15 @@ impl Why {
                 format!("a {what} given as a frame value (not a {table} entry) has no counterpart in this target: it selects {what}s defined on the robot by name")
             }
             Why::FrameNumber => "a tool or base number computed at run time has no counterpart in this target".into(),
+            Why::IncompleteLiteral { axis } => {
+                let want = if *axis { "A1 to A6" } else { "X, Y, Z, A, B and C" };
+                format!("an incomplete literal (KRL keeps the missing components of the current value) has no counterpart here; this target needs all of {want}")
+            }
+            Why::ComputedAngles => "a pose with computed A, B or C has no counterpart in this target: only literal angles are converted".into(),
+            Why::ComputedAxes => "axis values with computed components: only literal values go through the joint map".into(),
+            Why::DataLiteral => "this .dat value is not a literal; this target initialises data with literal values only".into(),
+            Why::SignalValue => "a signal has no value to store".into(),
+            Why::ForStep => "a FOR step that is not a literal number has no counterpart in this target (the loop's direction must be known)".into(),
             Why::CharRows => "a two-dimensional CHAR array (rows of strings) has no counterpart in this target".into(),
             Why::NotAStructure(f) => format!("`.{f}`: a member of a value that is no structure has no counterpart"),
             Why::LinearToAxes(krl) => {

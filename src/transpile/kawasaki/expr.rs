@@ -2,7 +2,7 @@
 //! literal poses converted to O,A,T.
 
 use super::format::{self, num, with_sigil};
-use super::{R, Tx, fail};
+use super::{R, Tx};
 use crate::diag::Span;
 use crate::geom::abc_to_oat;
 use crate::transpile::front::report::FileId;
@@ -352,19 +352,9 @@ impl<'a> Tx<'a> {
         span: Span,
         file: FileId,
     ) -> R<Vec<String>> {
+        // The lowering refuses it (`Caps::literals`).
         if !a.complete() {
-            let want = if a.axis {
-                "A1 to A6"
-            } else {
-                "X, Y, Z, A, B and C"
-            };
-            return fail(
-                span,
-                format!(
-                    "an incomplete literal (KRL keeps the missing components of the current value); AS needs all of {want}"
-                ),
-                "write every component",
-            );
+            return crate::transpile::render::not_lowered(span, "an incomplete literal");
         }
         let Some(m) = a.numbers() else {
             // Computed positions with literal angles still convert.
@@ -382,11 +372,7 @@ impl<'a> Tx<'a> {
                 self.status_turn(a, span, file);
                 return Ok(out);
             }
-            return fail(
-                span,
-                "a pose or joint value with computed components; only literal values can be converted to AS",
-                "compute the pose with TRANS() by hand, or use literal values",
-            );
+            return crate::transpile::render::not_lowered(span, "computed angles or axis values");
         };
         let mut out: Vec<String> = if a.axis {
             let Some(map) = &self.opts.joint_map else {

@@ -99,6 +99,9 @@ fn own(why: &Why) -> Option<String> {
         Why::Part { part: Part::Character, .. } => {
             "build the string with $LEFT/$MID/$RIGHT and +".into()
         }
+        Why::ComputedAngles => {
+            "compute the pose with TRANS() by hand, or use literal values".into()
+        }
         _ => return None,
     })
 }

@@ -118,6 +118,15 @@ pub static BACKEND: render::Backend = render::Backend {
             characters: render::Access::Read,
             char_rows: false,
         },
+        // Data sections hold numbers; A,B,C → O,A,T is converted when translated; `PTP {A1 45}`
+        // from HERE/DECOMPOSE (`motion.rs`).
+        literals: render::Literals {
+            data: true,
+            computed_angles: false,
+            partial_drops: false,
+            partial_axis_motion: true,
+            computed_step: true,
+        },
         ..render::Caps::BASE
     },
     name_rules: &NAME_RULES,

@@ -224,10 +224,9 @@ impl<'a> Tx<'a> {
             match (c, e.number()) {
                 (Component::Axis(i), Some(v)) => given[*i] = Some(v),
                 _ => {
-                    return fail(
+                    return crate::transpile::render::not_lowered(
                         e.span,
                         "an incomplete axis value with computed or external-axis components",
-                        "write the axes as numbers, or every axis",
                     );
                 }
             }

@@ -1,7 +1,7 @@
 //! Statements and control flow, assignments and calls.
 
 use super::format;
-use super::{R, Tx, fail};
+use super::{R, Tx};
 use crate::diag::Span;
 use crate::transpile::front::report::FileId;
 use crate::transpile::ir::{
@@ -156,10 +156,9 @@ impl<'a> Tx<'a> {
                 .iter()
                 .any(|(c, _)| !matches!(c, Component::Pose(0..=2)))
         {
-            return fail(
+            return crate::transpile::render::not_lowered(
                 at,
-                "an incomplete literal with orientation or axis components (KRL keeps the missing ones); AS needs all of them",
-                "write every component",
+                "an incomplete literal with parts AS cannot assign alone",
             );
         }
         for (c, v) in &a.fields {

@@ -2,7 +2,7 @@
 //! components (`p.trans.x`, `EulerZYX(\Z, p.rot)`), signal reads, robtarget literals.
 
 use super::format::{self, NO_EXTAX, num};
-use super::{R, Tx, fail};
+use super::{R, Tx};
 use crate::diag::Span;
 use crate::transpile::ir::{
     Aggregate, Bank, BinaryOp, Builtin, Component, Expr, ExprKind, IoPlace, Place, Ty, UnaryOp,
@@ -280,19 +280,9 @@ impl<'a> Tx<'a> {
     /// A complete pose or axis literal: `[[x,y,z],[q1,q2,q3,q4],[0,0,0,0],[e1,…]]` or
     /// `[[j1,…,j6],[e1,…]]`.
     pub(super) fn literal(&mut self, a: &Aggregate, span: Span) -> R<String> {
+        // The lowering refuses it (`Caps::literals`).
         if !a.complete() {
-            let want = if a.axis {
-                "A1 to A6"
-            } else {
-                "X, Y, Z, A, B and C"
-            };
-            return fail(
-                span,
-                format!(
-                    "an incomplete literal (KRL keeps the missing components of the current value); RAPID needs all of {want}"
-                ),
-                "write every component",
-            );
+            return crate::transpile::render::not_lowered(span, "an incomplete literal");
         }
         let ext = self.ext_axes(a, span)?;
         if a.axis {
@@ -303,11 +293,7 @@ impl<'a> Tx<'a> {
                 );
             };
             let Some(m) = a.numbers() else {
-                return fail(
-                    span,
-                    "axis values with computed components; only literal values go through the joint map",
-                    "use literal values",
-                );
+                return crate::transpile::render::not_lowered(span, "computed axis values");
             };
             self.note(format!(
                 "KUKA axis values -> ABB axes 1..6 by the joint map {map} (--joint-map)"

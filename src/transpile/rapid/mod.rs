@@ -120,6 +120,13 @@ pub static BACKEND: render::Backend = render::Backend {
             values: false,
             computed_numbers: false,
         },
+        // RAPID initialises data with literals; a FOR becomes a WHILE whose test needs the
+        // step's sign.
+        literals: render::Literals {
+            data: true,
+            computed_step: false,
+            ..render::Caps::BASE.literals
+        },
         ..render::Caps::BASE
     },
     name_rules: &NAME_RULES,

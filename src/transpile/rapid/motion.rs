@@ -5,7 +5,7 @@
 use std::collections::BTreeSet;
 
 use super::format::num;
-use super::{R, Tx, fail};
+use super::{R, Tx};
 use crate::diag::Span;
 use crate::transpile::front::report::FileId;
 use crate::transpile::ir::{
@@ -188,10 +188,9 @@ impl<'a> Tx<'a> {
         if let ExprKind::Aggregate(a) = &t.expr.kind
             && !a.complete()
         {
-            return fail(
+            return crate::transpile::render::not_lowered(
                 t.expr.span,
-                "a motion to an incomplete literal (KRL keeps the missing components from the previous target) has no translation to RAPID yet",
-                "write every component",
+                "a motion to an incomplete literal",
             );
         }
         self.expr(&t.expr)

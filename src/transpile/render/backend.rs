@@ -65,6 +65,30 @@ pub struct Caps {
     pub components: Components,
     /// How `$TOOL`/`$BASE` may be given.
     pub frames: Frames,
+    /// What must be written as a literal.
+    pub literals: Literals,
+}
+
+/// What a target needs written as a literal, and what it makes of an incomplete one (KRL keeps
+/// the missing components of the current value); the lowering refuses the rest (TR001). Every
+/// target needs a pose or axis value used as a whole complete, and axis values that go
+/// through the joint map where written (`AxisValues::written`) literal.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub struct Literals {
+    /// `.dat` values are literals (numbers, strings, poses of numbers); without: any value
+    /// the program could compute.
+    pub data: bool,
+    /// A pose's A, B, C may be computed; without: literal numbers, converted when translated.
+    pub computed_angles: bool,
+    /// An incomplete literal assigned (`p = {X 10, S 6}`) drops what the target does not
+    /// keep (S/T, TR002; external axes at 0); without: each part it gives is assigned alone
+    /// (`Caps::components`).
+    pub partial_drops: bool,
+    /// A motion to an incomplete literal of axis numbers (`PTP {A1 45}`) takes the other axes
+    /// from where the previous motion ended; without: TR001.
+    pub partial_axis_motion: bool,
+    /// A FOR's STEP may be computed; without: a literal number (the loop's direction).
+    pub computed_step: bool,
 }
 
 /// How a program may select its tool and base (`$TOOL`, `$BASE`, `BAS(#TOOL, n)`); the
@@ -179,6 +203,13 @@ impl Caps {
             groups: true,
             output_groups_read: true,
             computed_numbers: true,
+        },
+        literals: Literals {
+            data: false,
+            computed_angles: true,
+            partial_drops: false,
+            partial_axis_motion: false,
+            computed_step: true,
         },
         frames: Frames {
             values: true,
@@ -305,7 +336,7 @@ pub enum Trigger {
 }
 
 /// The columns of the capability table.
-const CAPS_COLUMNS: [&str; 20] = [
+const CAPS_COLUMNS: [&str; 21] = [
     "language",
     "GOTO",
     "STRUC",
@@ -323,13 +354,14 @@ const CAPS_COLUMNS: [&str; 20] = [
     "signals",
     "parts alone (read/assigned/passed)",
     "`$TOOL`/`$BASE`",
+    "literals",
     "nothing for (TR001)",
     "strings",
     "identifiers",
 ];
 
 /// A target's row of the capability table, in [`CAPS_COLUMNS`] order.
-fn caps_row(b: &Backend) -> [String; 20] {
+fn caps_row(b: &Backend) -> [String; 21] {
     let yes_no = |b: bool, without: &str| {
         if b {
             "yes".to_owned()
@@ -386,6 +418,7 @@ fn caps_row(b: &Backend) -> [String; 20] {
         signals(&c.signals),
         components(&c.components),
         frames(&c.frames),
+        literals(&c.literals),
         lacked(c.lacks),
         strings,
         format!("≤ {} characters", n.max_len),
@@ -430,6 +463,29 @@ fn signals(s: &Signals) -> String {
     } else {
         format!("{}: TR001", no.join(", "))
     }
+}
+
+/// The literals cell: what must be a literal, what an incomplete one becomes.
+fn literals(l: &Literals) -> String {
+    let mut cell = vec!["a whole pose or axis value: every component".to_owned()];
+    if l.data {
+        cell.push(".dat values: literals".into());
+    }
+    if !l.computed_angles {
+        cell.push("A/B/C: numbers".into());
+    }
+    cell.push(if l.partial_drops {
+        "an incomplete one assigned: the parts given, S/T dropped (TR002)".into()
+    } else {
+        "an incomplete one assigned: each part alone".into()
+    });
+    if l.partial_axis_motion {
+        cell.push("PTP {A1 45}: the other axes from the last position (TR002)".into());
+    }
+    if !l.computed_step {
+        cell.push("FOR STEP: a number".into());
+    }
+    format!("{}; else TR001", cell.join("; "))
 }
 
 /// The `$TOOL`/`$BASE` cell: what is TR001 besides a `TOOL_DATA`/`BASE_DATA` entry.
@@ -865,6 +921,66 @@ mod tests {
                 assert_eq!(
                     msgs.contains(&why.message()),
                     !held(&b.caps().frames),
+                    "{:?} {stmt}: {msgs:?}",
+                    b.target()
+                );
+            }
+        }
+    }
+
+    /// What must be a literal, and what an incomplete literal assigned becomes, is refused
+    /// exactly where the target's `Caps::literals` (and `Caps::components`) say.
+    #[test]
+    fn the_lowering_refuses_the_literals_a_target_cannot_write() {
+        use crate::transpile::ir::Component as C;
+        use crate::transpile::ir::why::Part;
+        let part = |c| Why::Part {
+            part: Part::Component(c),
+            reach: Reach::Assign,
+        };
+        for b in BACKENDS {
+            let (l, parts) = (b.caps().literals, b.caps().components);
+            let cases = [
+                (
+                    "p = {X 1, Y 2}",
+                    part(C::Pose(0)),
+                    parts.position.allows(Reach::Assign),
+                ),
+                (
+                    "p = {A 10}",
+                    part(C::Pose(3)),
+                    parts.orientation.allows(Reach::Assign),
+                ),
+                (
+                    "p = {X 1, S 6}",
+                    part(C::Status),
+                    l.partial_drops || parts.status_turn.allows(Reach::Assign),
+                ),
+                (
+                    "p = {X 0, Y 0, Z 0, A r, B 0, C 0}",
+                    Why::ComputedAngles,
+                    l.computed_angles,
+                ),
+                ("q({X 1})", Why::IncompleteLiteral { axis: false }, false),
+                (
+                    "FOR i = 1 TO 5 STEP k\nENDFOR",
+                    Why::ForStep,
+                    l.computed_step,
+                ),
+            ];
+            for (stmt, why, held) in cases {
+                let src = format!(
+                    "DEF p()\nDECL E6POS p\nDECL REAL r\nDECL INT i, k\n{stmt}\nEND\nDEF q(v:IN)\nDECL E6POS v\nEND\n"
+                );
+                let msgs = refusals_in(b.target(), &src);
+                assert!(
+                    !msgs.iter().any(|m| m.starts_with("internal:")),
+                    "{:?} {stmt}: {msgs:?}",
+                    b.target()
+                );
+                assert_eq!(
+                    msgs.contains(&why.message()),
+                    !held,
                     "{:?} {stmt}: {msgs:?}",
                     b.target()
                 );

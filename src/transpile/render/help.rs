@@ -66,6 +66,11 @@ fn shared(why: &Why) -> String {
         } => "pass a variable and assign the part from it after the call",
         Why::CharRows => "use one string variable per row",
         Why::FrameNumber => "use a literal number",
+        Why::IncompleteLiteral { .. } => "write every component",
+        Why::ComputedAngles | Why::ComputedAxes => "use literal values",
+        Why::DataLiteral => "use a literal",
+        Why::SignalValue => "remove it",
+        Why::ForStep => "use a literal step",
         Why::FrameValue { .. } => "define the frame on the robot and select it by its number",
         Why::NotAStructure(_) => "declare the variable with its STRUC type",
         Why::Skip

@@ -25,8 +25,8 @@ use crate::diag::Span;
 
 pub use super::ir::why::Lacked;
 pub use backend::{
-    Access, AxisValues, BACKENDS, Backend, Blending, Caps, Components, Distance, Frames, MechMind,
-    Pulse, Relative, Signals, Trigger, backend,
+    Access, AxisValues, BACKENDS, Backend, Blending, Caps, Components, Distance, Frames, Literals,
+    MechMind, Pulse, Relative, Signals, Trigger, backend,
 };
 
 /// How a target writes lines and comments.

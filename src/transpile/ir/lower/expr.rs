@@ -79,6 +79,7 @@ impl<'p> Lower<'p> {
                     self.written_axes(span)?;
                 }
                 self.held_external(&a, span)?;
+                self.held_literal(&a, span)?;
                 let ty = if a.axis { Ty::Joint } else { Ty::Pose };
                 Ok(Expr::new(ExprKind::Aggregate(Box::new(a)), ty, span))
             }
@@ -196,6 +197,7 @@ impl<'p> Lower<'p> {
                     }
                 }
                 a.fields.sort_by_key(|(c, _)| component_order(*c));
+                this.held_literal(&a, e.span)?;
                 return Ok(Expr::new(
                     ExprKind::Aggregate(Box::new(a)),
                     Ty::Pose,
@@ -836,9 +838,24 @@ impl<'p> Lower<'p> {
         })
     }
 
-    /// `value` lowered for a target of type `ty`: aggregates of the target's kind, a REAL
-    /// rounded for an INT, an undeclared axis name assumed axis values.
+    /// `value` lowered for a target of type `ty`: aggregates of the target's kind (complete,
+    /// [`Lower::held_literal`]), a REAL rounded for an INT, an undeclared axis name assumed
+    /// axis values.
     pub(super) fn value_for(&mut self, ty: &Ty, value: &ast::Expr, pre: &mut Block) -> L<Expr> {
+        let v = self.value_or_parts(ty, value, pre)?;
+        if let ExprKind::Aggregate(a) = &v.kind {
+            self.held_literal(a, v.span)?;
+        }
+        Ok(v)
+    }
+
+    /// [`Lower::value_for`], where an aggregate may leave components out (an assignment).
+    pub(super) fn value_or_parts(
+        &mut self,
+        ty: &Ty,
+        value: &ast::Expr,
+        pre: &mut Block,
+    ) -> L<Expr> {
         let span = value.span;
         if let (Ty::Struc(t), A::Aggregate { fields, .. }) = (ty, &value.kind) {
             return match self.record_of(t).cloned() {

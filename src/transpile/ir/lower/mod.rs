@@ -10,6 +10,7 @@ mod axes;
 mod call;
 mod expr;
 mod frames;
+mod literals;
 mod mech_mind;
 mod motion;
 mod parts;
@@ -1005,7 +1006,10 @@ impl<'p> Lower<'p> {
             f.file = file;
         }
         match r {
-            Ok(e) if pre.is_empty() => Ok(e),
+            Ok(e) if pre.is_empty() => {
+                self.held_data(&ty, &e)?;
+                Ok(e)
+            }
             Ok(_) => Err((
                 Why::Aggregate("a .dat value that calls a function has no counterpart".into()),
                 span,
