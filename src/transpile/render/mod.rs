@@ -645,6 +645,31 @@ pub fn not_lowered<T>(span: Span, what: &str) -> R<T> {
     })
 }
 
+/// Interrupt declaration `i`'s watched signal and handler, or (TR001) why the lowering could
+/// not translate it (`ir::InterruptDecl`): at the declaration with the target's `help`, at a
+/// statement that switches it (`help`: `None`) pointing there.
+pub fn interrupt_parts<'p>(
+    ir: &'p ir::Program,
+    i: usize,
+    span: Span,
+    help: Option<&str>,
+) -> R<(&'p ir::Watched, &'p ir::Callee)> {
+    let d = &ir.interrupts[i];
+    let why = match (&d.condition, &d.handler) {
+        (Ok(w), Ok(h)) => return Ok((w, h)),
+        (Err(why), _) | (_, Err(why)) => why,
+    };
+    Err(Fail {
+        span,
+        message: format!(
+            "interrupt {} cannot be translated: {}",
+            d.number,
+            why.message()
+        ),
+        help: help.unwrap_or("see its declaration").into(),
+    })
+}
+
 /// A catalog entry the renderer cannot use (a catalog test keeps every entry usable): a
 /// defect of krlkit, reported (TR001) instead of a panic, as [`not_lowered`].
 pub fn catalog_defect<T>(span: Span, what: &str) -> R<T> {
