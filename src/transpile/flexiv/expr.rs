@@ -1,7 +1,7 @@
 //! Expressions and places in Python: precedence, I/O ports, timers, literal poses.
 
 use super::format::{self, num};
-use super::{R, Tx, fail};
+use super::{R, Tx};
 use crate::diag::Span;
 use crate::transpile::front::report::FileId;
 use crate::transpile::ir::{
@@ -22,9 +22,6 @@ pub(super) const CMP: u8 = 5;
 pub(super) const NOT: u8 = 4;
 const AND: u8 = 3;
 const OR: u8 = 2;
-
-/// Digital ports of RDK 1.x: 16 on the control box and 2 in the wrist connector.
-pub(super) const PORTS: i64 = 18;
 
 /// A rendered expression and how tightly it binds.
 #[derive(Debug, Clone)]
@@ -224,21 +221,11 @@ impl<'a> Tx<'a> {
         }))
     }
 
-    /// `n + offset` as Python (folded when `n` is a literal): a Flexiv port number. A literal
-    /// port outside the robot's ports is untranslatable.
+    /// `n + offset` as Python (folded when `n` is a literal): a Flexiv port number (the
+    /// lowering refused a literal one on no port: `Caps::signals`).
     pub(super) fn port(&mut self, offset: i64, index: &Expr) -> R<Py> {
         if let Some(n) = index.integer() {
             let p = n + offset;
-            if !(0..PORTS).contains(&p) {
-                return fail(
-                    index.span,
-                    format!(
-                        "I/O {n} maps to Flexiv port {p}, outside the robot's {PORTS} digital ports (0-{})",
-                        PORTS - 1
-                    ),
-                    "wire the signal to a port of the robot and set --output-offset/--input-offset, or port by hand",
-                );
-            }
             return Ok(Py::atom(p.to_string()));
         }
         let i = self.render(index)?;
@@ -275,29 +262,19 @@ impl<'a> Tx<'a> {
         }
     }
 
-    /// The first and last Flexiv port of a SIGNAL range.
-    pub(super) fn signal_ports(&self, r: SignalRange, span: Span) -> R<(i64, i64)> {
-        let fx = self.fx;
-        let (offset, bank) = match r.bank {
-            Bank::In => (fx.input_offset, "input"),
-            Bank::Out => (fx.output_offset, "output"),
-        };
-        let (first, last) = (r.from + offset, r.to + offset);
-        if first < 0 || last >= PORTS {
-            return fail(
-                span,
-                format!(
-                    "the signal's {bank}s map to Flexiv ports {first}-{last}, outside the robot's {PORTS} digital ports"
-                ),
-                "set --input-offset/--output-offset, or port by hand",
-            );
-        }
-        Ok((first, last))
+    /// The first Flexiv port of a SIGNAL range (the lowering refused a range on no port:
+    /// `Caps::signals`).
+    pub(super) fn first_port(&self, r: SignalRange) -> i64 {
+        r.from
+            + match r.bank {
+                Bank::In => self.fx.input_offset,
+                Bank::Out => self.fx.output_offset,
+            }
     }
 
     /// A SIGNAL name read as a value.
     fn signal_value(&mut self, r: SignalRange, span: Span) -> R<Py> {
-        let (first, _) = self.signal_ports(r, span)?;
+        let first = self.first_port(r);
         match (r.bank, r.width()) {
             (Bank::In, 1) => Ok(Py::atom(format!("get_in({first})"))),
             (Bank::In, w) => Ok(Py::atom(format!("get_in_bits({first}, {w})"))),

@@ -103,6 +103,7 @@ fn own(why: &Why) -> Option<String> {
         Why::FrameValue { tool: false } => {
             "define a work coordinate in Flexiv Elements and set KRL.base = [\"WORK\", name]".into()
         }
+        Why::PortRange { list: true, .. } => "wire the signal to a port of the robot and set --output-offset/--input-offset, or port by hand".into(),
         _ => return None,
     })
 }

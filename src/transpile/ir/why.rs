@@ -195,6 +195,13 @@ pub enum Why {
     SignalValue,
     /// A FOR step that is not a literal number in a target that needs the loop's direction.
     ForStep,
+    /// A signal on no port of the robot (`Caps::signals`): what maps where, how many ports,
+    /// whether to list them.
+    PortRange {
+        what: String,
+        ports: i64,
+        list: bool,
+    },
 }
 
 /// How a place is used.
@@ -466,6 +473,10 @@ impl Why {
             Why::ComputedAxes => "axis values with computed components: only literal values go through the joint map".into(),
             Why::DataLiteral => "this .dat value is not a literal; this target initialises data with literal values only".into(),
             Why::SignalValue => "a signal has no value to store".into(),
+            Why::PortRange { what, ports, list } => {
+                let range = if *list { format!(" (0-{})", ports - 1) } else { String::new() };
+                format!("{what}, outside the robot's {ports} digital ports{range}")
+            }
             Why::ForStep => "a FOR step that is not a literal number has no counterpart in this target (the loop's direction must be known)".into(),
             Why::CharRows => "a two-dimensional CHAR array (rows of strings) has no counterpart in this target".into(),
             Why::NotAStructure(f) => format!("`.{f}`: a member of a value that is no structure has no counterpart"),

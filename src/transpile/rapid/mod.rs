@@ -77,6 +77,7 @@ pub static BACKEND: render::Backend = render::Backend {
             groups: false,
             output_groups_read: true,
             computed_numbers: false,
+            ports: None,
         },
         robot: "ABB",
         records: true,

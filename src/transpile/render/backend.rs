@@ -172,6 +172,19 @@ pub struct Signals {
     /// `$IN[i]`/`$OUT[i]` with a number computed at run time (without: its signals are names
     /// of the I/O configuration).
     pub computed_numbers: bool,
+    /// How many digital inputs and outputs the robot has, as ports from 0 (a KRL number plus
+    /// `--input-offset`/`--output-offset`); a literal signal on none is TR001. `None`: its
+    /// signals are not a fixed set of ports.
+    pub ports: Option<Ports>,
+}
+
+/// A robot's digital ports.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub struct Ports {
+    /// How many inputs, and as many outputs, numbered from 0.
+    pub count: i64,
+    /// Whose ports, as findings name them (`Flexiv port 19`).
+    pub of: &'static str,
 }
 
 /// How a target translates the Mech-Mind KUKA interface's `MM_*` calls; the lowering refuses
@@ -203,6 +216,7 @@ impl Caps {
             groups: true,
             output_groups_read: true,
             computed_numbers: true,
+            ports: None,
         },
         literals: Literals {
             data: false,
@@ -458,11 +472,19 @@ fn signals(s: &Signals) -> String {
     if !s.computed_numbers {
         no.push("numbers computed at run time");
     }
-    if no.is_empty() {
+    let mut cell = if no.is_empty() {
         "all".to_owned()
     } else {
         format!("{}: TR001", no.join(", "))
+    };
+    if let Some(p) = s.ports {
+        cell.push_str(&format!(
+            "; {} inputs and outputs (ports 0-{} after --input-offset/--output-offset), others TR001",
+            p.count,
+            p.count - 1
+        ));
     }
+    cell
 }
 
 /// The literals cell: what must be a literal, what an incomplete one becomes.
@@ -985,6 +1007,24 @@ mod tests {
                     b.target()
                 );
             }
+        }
+    }
+
+    /// A literal signal on no port of the robot is refused where the target has a fixed
+    /// number of ports (`Caps::signals`), and only there.
+    #[test]
+    fn the_lowering_refuses_signals_on_no_port() {
+        let src = "DEF p()\nSIGNAL many $OUT[17] TO $OUT[24]\n$OUT[30] = TRUE\nmany = 3\nEND\n";
+        for b in BACKENDS {
+            let msgs = refusals_in(b.target(), src);
+            let ports = msgs.iter().filter(|m| m.contains("digital ports")).count();
+            let want = if b.caps().signals.ports.is_some() {
+                2
+            } else {
+                0
+            };
+            assert_eq!(ports, want, "{:?}: {msgs:?}", b.target());
+            assert!(!msgs.iter().any(|m| m.starts_with("internal:")), "{msgs:?}");
         }
     }
 

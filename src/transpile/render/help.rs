@@ -71,6 +71,7 @@ fn shared(why: &Why) -> String {
         Why::DataLiteral => "use a literal",
         Why::SignalValue => "remove it",
         Why::ForStep => "use a literal step",
+        Why::PortRange { .. } => "set --input-offset/--output-offset, or port by hand",
         Why::FrameValue { .. } => "define the frame on the robot and select it by its number",
         Why::NotAStructure(_) => "declare the variable with its STRUC type",
         Why::Skip

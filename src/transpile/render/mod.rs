@@ -26,7 +26,7 @@ use crate::diag::Span;
 pub use super::ir::why::Lacked;
 pub use backend::{
     Access, AxisValues, BACKENDS, Backend, Blending, Caps, Components, Distance, Frames, Literals,
-    MechMind, Pulse, Relative, Signals, Trigger, backend,
+    MechMind, Ports, Pulse, Relative, Signals, Trigger, backend,
 };
 
 /// How a target writes lines and comments.
