@@ -242,6 +242,8 @@ pub enum Lacked {
     Override,
     /// `$LOAD = …`.
     Load,
+    /// `$LOAD = LOAD_DATA[n]` (a payload of KUKA's machine data).
+    LoadTable,
     /// `BRAKE`.
     Brake,
     /// `CIRC`.
@@ -266,6 +268,7 @@ impl Lacked {
         match self {
             Lacked::Override => "$OV_PRO",
             Lacked::Load => "$LOAD",
+            Lacked::LoadTable => "LOAD_DATA[n]",
             Lacked::Brake => "BRAKE",
             Lacked::Circ => "CIRC",
             Lacked::Timers => "$TIMER",
@@ -281,6 +284,9 @@ impl Lacked {
         match self {
             Lacked::Override => "the program override ($OV_PRO) has no counterpart in this target",
             Lacked::Load => "$LOAD (the payload) has no counterpart in this target",
+            Lacked::LoadTable => {
+                "LOAD_DATA[n] lives in the KUKA machine data; this target needs the load's values"
+            }
             Lacked::Brake => {
                 "BRAKE (stopping the motion from an interrupt routine) has no counterpart in this target"
             }

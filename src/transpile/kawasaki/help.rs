@@ -102,6 +102,9 @@ fn own(why: &Why) -> Option<String> {
         Why::ComputedAngles => {
             "compute the pose with TRANS() by hand, or use literal values".into()
         }
+        Why::Lacks(Lacked::LoadTable) => {
+            "write WEIGHT mass, cx, cy, cz with the load's values".into()
+        }
         _ => return None,
     })
 }

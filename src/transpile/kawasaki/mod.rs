@@ -31,7 +31,7 @@ use super::ir::{self, Block, RoutineId, VarId};
 use super::render::{self, Emit, Out, Style};
 use crate::diag::Span;
 
-pub(super) use super::front::{Fail, R, fail};
+pub(super) use super::front::{Fail, R};
 
 /// The joint map for a Kawasaki arm's six joints, e.g. `A1,-A2+90,A3-90,A4,A5,A6`.
 pub fn joint_map(s: &str) -> Result<super::joints::JointMap, String> {
@@ -95,6 +95,7 @@ pub static BACKEND: render::Backend = render::Backend {
             Lacked::Override,
             Lacked::TimerStop,
             Lacked::PathAcceleration,
+            Lacked::LoadTable,
         ],
         pulse: render::Pulse {
             low: false,

@@ -1038,6 +1038,7 @@ mod tests {
                 Lacked::Load,
                 "$LOAD = {M 3.5, CM {X 0, Y 0, Z 80, A 0, B 0, C 0}}",
             ),
+            (Lacked::LoadTable, "$LOAD = LOAD_DATA[2]"),
             (Lacked::Brake, "BRAKE"),
             (Lacked::Circ, "CIRC {X 1, Y 2, Z 3}, {X 2, Y 3, Z 3}"),
             (Lacked::Timers, "$TIMER[1] = 0"),

@@ -122,6 +122,9 @@ impl<'p> Lower<'p> {
                 // A target without a payload setting refuses it whatever the value is.
                 self.held(Lacked::Load, span)?;
                 let load = self.load(target, value, ops)?;
+                if matches!(load, Load::Table(_)) {
+                    self.held(Lacked::LoadTable, span)?;
+                }
                 ops.push(Stmt {
                     op: Op::SetLoad(load),
                     span,
