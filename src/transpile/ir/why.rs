@@ -195,6 +195,9 @@ pub enum Why {
     SignalValue,
     /// A FOR step that is not a literal number in a target that needs the loop's direction.
     ForStep,
+    /// A `.dat` array element in a target that initialises the array as one aggregate
+    /// (`Caps::literals`), where it cannot.
+    DatArray(DatArray),
     /// A signal on no port of the robot (`Caps::signals`): what maps where, how many ports,
     /// whether to list them.
     PortRange {
@@ -202,6 +205,19 @@ pub enum Why {
         ports: i64,
         list: bool,
     },
+}
+
+/// Why a `.dat` array cannot be initialised as one aggregate.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum DatArray {
+    /// The array is not declared in the `.dat`.
+    Undeclared,
+    /// Of strings, of more than two dimensions, or a size that is not a number.
+    Shape,
+    /// More cells than the target initialises at once.
+    Size,
+    /// An index outside the array.
+    Index,
 }
 
 /// How a place is used.
@@ -479,6 +495,10 @@ impl Why {
             Why::ComputedAxes => "axis values with computed components: only literal values go through the joint map".into(),
             Why::DataLiteral => "this .dat value is not a literal; this target initialises data with literal values only".into(),
             Why::SignalValue => "a signal has no value to store".into(),
+            Why::DatArray(DatArray::Undeclared) => "an array element of the .dat whose array is not declared here".into(),
+            Why::DatArray(DatArray::Shape) => "array values in the .dat of an array of more than two dimensions, of strings, or of a size that is not a number".into(),
+            Why::DatArray(DatArray::Size) => "an array too large to initialise in this target".into(),
+            Why::DatArray(DatArray::Index) => "an index outside the array".into(),
             Why::PortRange { what, ports, list } => {
                 let range = if *list { format!(" (0-{})", ports - 1) } else { String::new() };
                 format!("{what}, outside the robot's {ports} digital ports{range}")

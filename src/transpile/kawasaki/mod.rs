@@ -127,6 +127,7 @@ pub static BACKEND: render::Backend = render::Backend {
             partial_drops: false,
             partial_axis_motion: true,
             computed_step: true,
+            whole_arrays: None,
         },
         ..render::Caps::BASE
     },

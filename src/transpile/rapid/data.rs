@@ -5,11 +5,11 @@
 use std::collections::BTreeMap;
 
 use super::format::zero;
-use super::{R, Tx, fail};
+use super::{R, Tx};
 use crate::diag::Span;
 use crate::transpile::front::report::FileId;
 use crate::transpile::ir::{Datum, Expr, Scope, Ty, VarId};
-use crate::transpile::render::Emit;
+use crate::transpile::render::{Emit, not_lowered};
 
 /// The module's data lines.
 #[derive(Debug, Default)]
@@ -124,14 +124,14 @@ impl<'a> Tx<'a> {
                 }
             }
         }
-        // Elements of an array declared nowhere here.
+        // Elements of an array declared nowhere here: the lowering refused them
+        // (`Caps::literals`).
         for (_, values) in elements {
             for d in values {
-                let r = fail(
-                    d.span,
-                    "an array element of the .dat whose array is not declared here",
-                    "declare the array in the .dat",
-                );
+                let r = match &d.value {
+                    Err((why, at)) => self.unsupported(why, *at),
+                    Ok(_) => not_lowered(d.span, "an element of an array declared elsewhere"),
+                };
                 self.data_result(r, d.span, d.file);
             }
         }
@@ -234,35 +234,32 @@ impl<'a> Tx<'a> {
             })
             .collect();
         let at = values[0].span;
+        // The first refused element, in order, refuses the array: the lowering refused those
+        // RAPID cannot initialise so (`Caps::literals`) at each element.
+        if let Some(d) = values.iter().find(|d| d.value.is_err()) {
+            self.file = d.file;
+            if let Err((why, at)) = &d.value {
+                return self.unsupported(why, *at);
+            }
+        }
         let Some(sizes) = sizes.filter(|s| (1..=2).contains(&s.len()) && *ty != Ty::Char) else {
-            return fail(
-                at,
-                "array values in the .dat of an array of more than two dimensions, of strings, or of a size that is not a number",
-                "set the elements in the program",
-            );
+            return not_lowered(at, "a .dat array of this shape");
         };
         let total: usize = sizes.iter().product();
-        if total > 10_000 {
-            return fail(
-                at,
-                "an array too large to initialise in RAPID",
-                "set the elements in the program",
-            );
-        }
         let mut cells = vec![zero(ty); total];
         for d in values {
             self.file = d.file;
             let idx = d.index.as_deref().unwrap_or(&[]);
             let value = match &d.value {
                 Ok(v) => self.data_value(ty, v)?,
-                Err((why, at)) => return self.unsupported(why, *at),
+                Err(_) => return not_lowered(d.span, "a refused element"),
             };
             let pos = match (idx, sizes.as_slice()) {
                 ([i], [n]) if (1..=*n as i64).contains(i) => (*i - 1) as usize,
                 ([i, j], [n, m]) if (1..=*n as i64).contains(i) && (1..=*m as i64).contains(j) => {
                     (*i as usize - 1) * m + (*j as usize - 1)
                 }
-                _ => return fail(d.span, "an index outside the array", "fix the index"),
+                _ => return not_lowered(d.span, "an index outside the array"),
             };
             cells[pos] = value;
         }

@@ -30,7 +30,7 @@ use super::render::{self, Emit, Out, Style};
 use crate::diag::Span;
 use crate::transpile::render::Lacked;
 
-pub(super) use super::front::{R, fail};
+pub(super) use super::front::R;
 
 /// RAPID identifier rules: at most 32 characters, one namespace for routines and module data.
 pub const NAME_RULES: NameRules = NameRules {
@@ -126,6 +126,7 @@ pub static BACKEND: render::Backend = render::Backend {
         literals: render::Literals {
             data: true,
             computed_step: false,
+            whole_arrays: Some(10_000),
             ..render::Caps::BASE.literals
         },
         ..render::Caps::BASE

@@ -12,8 +12,7 @@ use crate::transpile::{flexiv, kawasaki, rapid};
 
 /// What a target language can hold, declared once per target. The lowering asks it and
 /// decides once whether a construct translates exactly, approximately (TR002) or not at all
-/// (TR001). Not yet for everything: the renderers' own remaining refusals (pose components,
-/// incomplete literals, values that must be literals …) are listed in ARCHITECTURE.md.
+/// (TR001); a renderer meets only what its target holds (`render::not_lowered` otherwise).
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub struct Caps {
     /// The arm, as findings name it (`Kawasaki`, `ABB`, `Rizon`).
@@ -89,6 +88,10 @@ pub struct Literals {
     pub partial_axis_motion: bool,
     /// A FOR's STEP may be computed; without: a literal number (the loop's direction).
     pub computed_step: bool,
+    /// `.dat` array elements (`a[2] = 5`) initialise their array as one aggregate of at most
+    /// this many cells: the array declared in the `.dat` with one or two sizes that are
+    /// numbers, not of strings, each index inside. `None`: each element is set alone.
+    pub whole_arrays: Option<usize>,
 }
 
 /// How a program may select its tool and base (`$TOOL`, `$BASE`, `BAS(#TOOL, n)`); the
@@ -224,6 +227,7 @@ impl Caps {
             partial_drops: false,
             partial_axis_motion: false,
             computed_step: true,
+            whole_arrays: None,
         },
         frames: Frames {
             values: true,
@@ -506,6 +510,11 @@ fn literals(l: &Literals) -> String {
     }
     if !l.computed_step {
         cell.push("FOR STEP: a number".into());
+    }
+    if let Some(n) = l.whole_arrays {
+        cell.push(format!(
+            ".dat array elements: of an array declared there, 1-2 dimensions, ≤ {n} cells"
+        ));
     }
     format!("{}; else TR001", cell.join("; "))
 }
@@ -1025,6 +1034,41 @@ mod tests {
             };
             assert_eq!(ports, want, "{:?}: {msgs:?}", b.target());
             assert!(!msgs.iter().any(|m| m.starts_with("internal:")), "{msgs:?}");
+        }
+    }
+
+    /// `.dat` array elements are refused, where the target initialises a `.dat` array as one
+    /// aggregate, exactly for the arrays it cannot so initialise (`Caps::literals`).
+    #[test]
+    fn dat_arrays_are_refused_where_they_cannot_be_one_aggregate() {
+        use crate::transpile::ir::why::DatArray;
+        let dat = "DEFDAT p\nDECL INT a[3]\nDECL CHAR s[2,4]\na[1] = 5\na[4] = 1\ns[1,1] = \"x\"\nENDDAT\n";
+        for b in BACKENDS {
+            let t = transpile(
+                b.target(),
+                Source {
+                    path: "p.src".into(),
+                    text: "DEF p()\nEND\n".into(),
+                },
+                Some(Source {
+                    path: "p.dat".into(),
+                    text: dat.into(),
+                }),
+                &Options::default(),
+            );
+            let msgs: Vec<String> = t
+                .reports
+                .iter()
+                .flat_map(|r| &r.diagnostics)
+                .filter(|d| d.code == crate::transpile::rules::UNTRANSLATABLE)
+                .map(|d| d.message.to_string())
+                .collect();
+            assert!(!msgs.iter().any(|m| m.starts_with("internal:")), "{msgs:?}");
+            let whole = b.caps().literals.whole_arrays.is_some();
+            for why in [DatArray::Index, DatArray::Shape] {
+                let refused = msgs.contains(&Why::DatArray(why).message());
+                assert_eq!(refused, whole, "{:?} {why:?}: {msgs:?}", b.target());
+            }
         }
     }
 

@@ -2,7 +2,7 @@
 //! instructions, its words) comes first and falls back to this.
 
 use crate::transpile::ir::Why;
-use crate::transpile::ir::why::Reach;
+use crate::transpile::ir::why::{DatArray, Reach};
 
 /// `why`'s help in a target: the target's own text, else the one every target shares.
 pub fn help(why: &Why, own: fn(&Why) -> Option<String>) -> String {
@@ -71,6 +71,9 @@ fn shared(why: &Why) -> String {
         Why::DataLiteral => "use a literal",
         Why::SignalValue => "remove it",
         Why::ForStep => "use a literal step",
+        Why::DatArray(DatArray::Undeclared) => "declare the array in the .dat",
+        Why::DatArray(DatArray::Shape | DatArray::Size) => "set the elements in the program",
+        Why::DatArray(DatArray::Index) => "fix the index",
         Why::PortRange { .. } => "set --input-offset/--output-offset, or port by hand",
         Why::FrameValue { .. } => "define the frame on the robot and select it by its number",
         Why::NotAStructure(_) => "declare the variable with its STRUC type",

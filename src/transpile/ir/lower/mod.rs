@@ -912,6 +912,7 @@ impl<'p> Lower<'p> {
                 }
             }
         }
+        self.held_elements();
     }
 
     fn data_dims(&mut self, dims: &[Option<ast::Expr>]) -> Vec<Option<Expr>> {
