@@ -206,7 +206,7 @@ impl<'p> Lower<'p> {
             .routines
             .iter()
             .enumerate()
-            .flat_map(|(i, r)| r.facts.interrupts.iter().map(move |s| (i, &r.head, s)));
+            .flat_map(|(i, r)| r.facts.interrupts().iter().map(move |s| (i, &r.head, s)));
         for (i, r, s) in decls {
             let StmtKind::InterruptDecl {
                 global,
