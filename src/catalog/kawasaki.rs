@@ -114,6 +114,20 @@ pub struct KawasakiCommand {
     pub params: Vec<AsParam>,
     #[serde(default)]
     pub assumption: Option<String>,
+    /// KUKA routines with no Kawasaki command that a translation computes from this one's
+    /// results.
+    #[serde(default)]
+    pub computes: Vec<Computed>,
+}
+
+/// A KUKA routine a translation computes from a Kawasaki command's results.
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct Computed {
+    /// The KUKA subprogram.
+    pub kuka: String,
+    /// The KUKA parameters the computation reads.
+    pub reads: Vec<String>,
 }
 
 impl KawasakiCommand {
@@ -191,6 +205,19 @@ impl Catalog {
         self.kawasaki
             .iter()
             .find(|k| k.name.eq_ignore_ascii_case(name))
+    }
+
+    /// How a translation computes KUKA routine `kuka` from a Kawasaki command's results.
+    pub fn kawasaki_computed(&self, kuka: &str) -> Option<&Computed> {
+        self.kawasaki
+            .iter()
+            .flat_map(|k| &k.computes)
+            .find(|c| c.kuka.eq_ignore_ascii_case(kuka))
+    }
+
+    /// Every KUKA routine a translation computes from Kawasaki commands' results.
+    pub fn kawasaki_computed_all(&self) -> impl Iterator<Item = &Computed> {
+        self.kawasaki.iter().flat_map(|k| &k.computes)
     }
 
     /// A Kawasaki global by name (case-insensitive).

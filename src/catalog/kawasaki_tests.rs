@@ -293,3 +293,34 @@ fn vision_move_layouts_differ_by_the_inserted_group_orientation() {
         at += f.count;
     }
 }
+
+/// What a translation computes from a Kawasaki command (`computes`), and what a client reads
+/// (`client_reads`), names KUKA routines and their parameters: a misspelt one would silently
+/// fall back to "reads every parameter" (checked: `MM_J` → `MM_X` fails it).
+#[test]
+fn computed_routines_and_client_reads_name_kuka_parameters() {
+    let cat = catalog();
+    let has =
+        |sub: &Subprogram, p: &str| sub.params.iter().any(|q| q.ident().eq_ignore_ascii_case(p));
+    let mut computed = 0;
+    for c in cat.kawasaki_computed_all() {
+        let sub = cat
+            .subprogram(&c.kuka)
+            .unwrap_or_else(|| panic!("{} is not a KUKA routine", c.kuka));
+        assert!(
+            sub.kawasaki().is_none(),
+            "{} has a command of its own",
+            c.kuka
+        );
+        for p in &c.reads {
+            assert!(has(sub, p), "{} has no parameter {p}", c.kuka);
+        }
+        computed += 1;
+    }
+    assert!(computed > 0);
+    for sub in &cat.subprograms {
+        for p in sub.client_reads.iter().flatten() {
+            assert!(has(sub, p), "{} has no parameter {p}", sub.name);
+        }
+    }
+}

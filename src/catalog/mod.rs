@@ -15,7 +15,8 @@ use serde::Deserialize;
 use interface::applies;
 pub use interface::{Codec, Hex, HexKind, Interface, float32_value};
 pub use kawasaki::{
-    AsKind, AsParam, GlobalOrigin, KawasakiCommand, KawasakiGlobal, KawasakiLimits, VisionMoveField,
+    AsKind, AsParam, Computed, GlobalOrigin, KawasakiCommand, KawasakiGlobal, KawasakiLimits,
+    VisionMoveField,
 };
 pub use shape::{ProgramShape, RoutineShape};
 
@@ -319,6 +320,9 @@ pub struct Subprogram {
     /// Where the signature comes from when it is not seed 000 (2.x entries).
     #[serde(default)]
     pub source: Option<String>,
+    /// The parameters a client in the translated program reads (`None`: every one).
+    #[serde(default)]
+    pub client_reads: Option<Vec<String>>,
     /// The interface version this subprogram belongs to (set when the catalog is loaded).
     #[serde(skip)]
     pub interface: Interface,

@@ -97,9 +97,7 @@ pub static BACKEND: render::Backend = render::Backend {
         external_axes: 0,
         robot: "Rizon",
         // The address comes from the spec or the EKI XML.
-        mech_mind: render::MechMind::Client {
-            reads: &[("MM_Init_Socket", &["Time_Out"] as &[&str])],
-        },
+        mech_mind: render::MechMind::Client,
         goto: false,
         interrupts: false,
         bitwise_not: true,

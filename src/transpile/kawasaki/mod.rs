@@ -81,14 +81,8 @@ pub static BACKEND: render::Backend = render::Backend {
         // E1 is the 7th value (JT7), TR002.
         external_axes: 1,
         robot: "Kawasaki",
-        // Computed from mm_get_plandata's globals and mm_get_pose (`mm.rs`).
-        mech_mind: render::MechMind::Commands {
-            computed: &[
-                ("MM_Get_PlanJps", &["Serial", "MM_J"] as &[&str]),
-                ("MM_Get_PlanPose", &["Serial", "MM_P"] as &[&str]),
-                ("MM_Get_DyPose", &["Serial", "MM_P", "MM_Label"] as &[&str]),
-            ],
-        },
+        // The catalog's commands, and what it computes from their results (`mm.rs`).
+        mech_mind: render::MechMind::Commands,
         interrupt_on_flags: true,
         functions: false,
         lacks: &[

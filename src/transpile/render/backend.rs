@@ -194,17 +194,14 @@ pub struct Ports {
 /// the rest (TR001) and the calls that omit an argument the translation reads.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub enum MechMind {
-    /// The target's interface commands, from the catalog (each `[[kawasaki]]` entry names the
-    /// KUKA routine it stands for and reads the KUKA parameters it names), and the routines
-    /// the translator computes from those commands' results, with the parameters each reads.
-    Commands {
-        computed: &'static [(&'static str, &'static [&'static str])],
-    },
+    /// The target's interface commands, from the catalog: each `[[kawasaki]]` entry names the
+    /// KUKA routine it stands for and reads the KUKA parameters it names, and the routines a
+    /// translation computes from its results (`computes`, with the parameters each reads).
+    Commands,
     /// A client in the translated program with a method per routine that does not move the
-    /// robot, reading every argument except where `reads` names the ones it reads.
-    Client {
-        reads: &'static [(&'static str, &'static [&'static str])],
-    },
+    /// robot, reading every argument except where the catalog's `client_reads` names the
+    /// ones it reads.
+    Client,
     /// None: the robot's own Mech-Mind interface replaces them.
     Absent,
 }
@@ -565,14 +562,17 @@ fn components(c: &Components) -> String {
 /// The `MM_*` cell: which calls translate (an omitted argument the translation reads: TR001).
 fn mech_mind(m: &MechMind) -> String {
     match m {
-        MechMind::Commands { computed } => {
-            let names: Vec<&str> = computed.iter().map(|(n, _)| *n).collect();
+        MechMind::Commands => {
+            let names: Vec<&str> = crate::catalog::catalog()
+                .kawasaki_computed_all()
+                .map(|c| c.kuka.as_str())
+                .collect();
             format!(
                 "the interface's commands (catalog), {} computed from them; else TR001",
                 names.join(", ")
             )
         }
-        MechMind::Client { .. } => {
+        MechMind::Client => {
             "a client method each, except routines that move the robot (TR001)".to_owned()
         }
         MechMind::Absent => "no: TR001 (the robot's own Mech-Mind interface)".to_owned(),

@@ -29,30 +29,28 @@ impl Lower<'_> {
                     span,
                 );
             }
-            MechMind::Client { .. } if sub.shape.moves() => {
+            MechMind::Client if sub.shape.moves() => {
                 return fail(Why::MmMoves(name()), span);
             }
-            MechMind::Client { reads } => match reads.iter().find(|(r, _)| *r == sub.name) {
-                Some((_, params)) => params.to_vec(),
+            MechMind::Client => match &sub.client_reads {
+                Some(params) => params.iter().map(String::as_str).collect(),
                 None => sub.params.iter().map(|p| p.ident()).collect(),
             },
-            MechMind::Commands { computed } => {
-                match computed.iter().find(|(r, _)| *r == sub.name) {
-                    Some((_, params)) => params.to_vec(),
-                    None => match sub.kawasaki() {
-                        Some(k) => k.params.iter().filter_map(|p| p.kuka.as_deref()).collect(),
-                        None => {
-                            return fail(
-                                Why::MmNoCommand {
-                                    name: name(),
-                                    robot,
-                                },
-                                span,
-                            );
-                        }
-                    },
-                }
-            }
+            MechMind::Commands => match catalog().kawasaki_computed(&sub.name) {
+                Some(c) => c.reads.iter().map(String::as_str).collect(),
+                None => match sub.kawasaki() {
+                    Some(k) => k.params.iter().filter_map(|p| p.kuka.as_deref()).collect(),
+                    None => {
+                        return fail(
+                            Why::MmNoCommand {
+                                name: name(),
+                                robot,
+                            },
+                            span,
+                        );
+                    }
+                },
+            },
         };
         for p in reads {
             let omitted = sub

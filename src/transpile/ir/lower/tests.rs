@@ -294,29 +294,3 @@ fn signals_follow_the_targets_caps() {
         assert_eq!(refused, [group, out_group, computed], "{target:?}");
     }
 }
-
-/// The `MM_*` routines and parameters a target's `Caps::mech_mind` names are the catalog's: a
-/// misspelt one would silently fall back to "reads every parameter".
-#[test]
-fn mech_mind_caps_name_only_catalog_routines_and_parameters() {
-    use crate::transpile::render::{BACKENDS, MechMind};
-    for b in BACKENDS {
-        let listed: &[(&str, &[&str])] = match b.caps().mech_mind {
-            MechMind::Absent => &[],
-            MechMind::Client { reads } => reads,
-            MechMind::Commands { computed } => computed,
-        };
-        for (name, params) in listed {
-            let sub = crate::catalog::catalog()
-                .subprogram(name)
-                .unwrap_or_else(|| panic!("{}: {name} is not in the catalog", b.caps().robot));
-            for p in *params {
-                assert!(
-                    sub.params.iter().any(|q| q.ident().eq_ignore_ascii_case(p)),
-                    "{}: {name} has no parameter {p}",
-                    b.caps().robot
-                );
-            }
-        }
-    }
-}
