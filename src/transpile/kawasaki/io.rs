@@ -203,31 +203,21 @@ impl<'a> Tx<'a> {
         number: Option<i64>,
         span: Span,
     ) -> R<()> {
-        let decls = &self.ir.interrupts;
-        let mut lines = Vec::new();
-        for i in self.ir.interrupts_for(number, span)? {
-            if decls[i].stop_messages {
-                self.stop_message_interrupt(span);
-                continue;
+        let note = (
+            "INTERRUPT ENABLE/DISABLE (which keep or buffer the event) become ON/IGNORE",
+            "an event while disabled is lost in AS",
+        );
+        self.switch_interrupts(action, number, span, note, |this, i| {
+            if this.ir.interrupts[i].stop_messages {
+                this.stop_message_interrupt(span);
+                return Ok(Vec::new());
             }
-            let (sig, prog) = self.interrupt_target(i, span, None)?;
-            lines.push(match action {
+            let (sig, prog) = this.interrupt_target(i, span, None)?;
+            Ok(vec![match action {
                 InterruptAction::On | InterruptAction::Enable => format!("ON {sig} CALL {prog}"),
                 InterruptAction::Off | InterruptAction::Disable => format!("IGNORE {sig}"),
-            });
-        }
-        if matches!(action, InterruptAction::Enable | InterruptAction::Disable) {
-            self.out.rep.approximate(
-                FileId::Src,
-                span,
-                "INTERRUPT ENABLE/DISABLE (which keep or buffer the event) become ON/IGNORE",
-                "an event while disabled is lost in AS",
-            );
-        }
-        for l in lines {
-            self.line(l);
-        }
-        Ok(())
+            }])
+        })
     }
 
     /// KUKA's INI fold declares an interrupt on `$STOPMESS` that calls `IR_STOPM`; the Kawasaki

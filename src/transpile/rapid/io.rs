@@ -305,39 +305,30 @@ impl<'a> Tx<'a> {
         number: Option<i64>,
         span: Span,
     ) -> R<()> {
-        let decls = &self.ir.interrupts;
-        let mut lines = Vec::new();
-        for i in self.ir.interrupts_for(number, span)? {
-            let n = decls[i].number;
-            if decls[i].stop_messages {
-                lines.push(format!("! INTERRUPT {n}: the controller's stop messages"));
-                continue;
+        let note = (
+            "INTERRUPT ENABLE/DISABLE become IWatch/ISleep: KRL keeps an event that comes while disabled and runs it at ENABLE, RAPID loses it",
+            "use IDisable/IEnable (all interrupts, events queued) if the event must not be lost",
+        );
+        self.switch_interrupts(action, number, span, note, |this, i| {
+            let n = this.ir.interrupts[i].number;
+            if this.ir.interrupts[i].stop_messages {
+                return Ok(vec![format!(
+                    "! INTERRUPT {n}: the controller's stop messages"
+                )]);
             }
-            let o = self.order(i, span, None)?;
-            self.intnums.insert(n);
-            match action {
-                InterruptAction::On => {
-                    // A connected intnum cannot be connected again: delete it first.
-                    lines.push(format!("IDelete ir{n};"));
-                    lines.push(format!("CONNECT ir{n} WITH {};", o.trap));
-                    lines.push(format!("{}, ir{n};", o.signal));
-                }
-                InterruptAction::Off => lines.push(format!("IDelete ir{n};")),
-                InterruptAction::Enable => lines.push(format!("IWatch ir{n};")),
-                InterruptAction::Disable => lines.push(format!("ISleep ir{n};")),
-            }
-        }
-        if matches!(action, InterruptAction::Enable | InterruptAction::Disable) {
-            self.out.rep.approximate(
-                FileId::Src,
-                span,
-                "INTERRUPT ENABLE/DISABLE become IWatch/ISleep: KRL keeps an event that comes while disabled and runs it at ENABLE, RAPID loses it",
-                "use IDisable/IEnable (all interrupts, events queued) if the event must not be lost",
-            );
-        }
-        for l in lines {
-            self.line(l);
-        }
-        Ok(())
+            let o = this.order(i, span, None)?;
+            this.intnums.insert(n);
+            Ok(match action {
+                // A connected intnum cannot be connected again: delete it first.
+                InterruptAction::On => vec![
+                    format!("IDelete ir{n};"),
+                    format!("CONNECT ir{n} WITH {};", o.trap),
+                    format!("{}, ir{n};", o.signal),
+                ],
+                InterruptAction::Off => vec![format!("IDelete ir{n};")],
+                InterruptAction::Enable => vec![format!("IWatch ir{n};")],
+                InterruptAction::Disable => vec![format!("ISleep ir{n};")],
+            })
+        })
     }
 }

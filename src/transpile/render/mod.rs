@@ -544,6 +544,39 @@ pub trait Emit<'a> {
         self.out().line(s.as_ref());
     }
 
+    /// `INTERRUPT ON/OFF/ENABLE/DISABLE [n]`: the lines of each declaration it switches
+    /// (`each`), written once all rendered (a failure writes none), and for ENABLE/DISABLE the
+    /// target's `note` (message, help: TR002).
+    fn switch_interrupts(
+        &mut self,
+        action: ir::InterruptAction,
+        number: Option<i64>,
+        span: Span,
+        note: (&str, &str),
+        mut each: impl FnMut(&mut Self, usize) -> R<Vec<String>>,
+    ) -> R<()>
+    where
+        Self: Sized,
+    {
+        let mut lines = Vec::new();
+        let ir = self.out().ir;
+        for i in ir.interrupts_for(number, span)? {
+            lines.extend(each(self, i)?);
+        }
+        if matches!(
+            action,
+            ir::InterruptAction::Enable | ir::InterruptAction::Disable
+        ) {
+            self.out()
+                .rep
+                .approximate(FileId::Src, span, note.0, note.1);
+        }
+        for l in lines {
+            self.line(l);
+        }
+        Ok(())
+    }
+
     fn comment(&mut self, text: &str) {
         self.out().comment(text);
     }
