@@ -433,6 +433,9 @@ pub struct FileCtx<'p> {
     lines: OnceLock<LineIndex>,
     /// The file's interface calls by the offset of their name, asked of the model once.
     mm_calls: OnceLock<rustc_hash::FxHashMap<u32, &'static Subprogram>>,
+    /// The places of [`FileCtx::user_routines`], found once: a kept file of many routines
+    /// holds most of them with an empty body, and several rules ask.
+    user_bodies: OnceLock<Vec<u32>>,
 }
 
 impl<'p> FileCtx<'p> {
@@ -455,6 +458,7 @@ impl<'p> FileCtx<'p> {
             flow: OnceLock::new(),
             lines: OnceLock::new(),
             mm_calls: OnceLock::new(),
+            user_bodies: OnceLock::new(),
         }
     }
 
@@ -495,12 +499,18 @@ impl<'p> FileCtx<'p> {
         self.project.environment.contains(&(robot, name))
     }
 
-    /// Routines of this file that are the user's code (not the MM package's own subprograms).
-    pub fn user_routines(&self) -> impl Iterator<Item = &'p Routine> {
-        self.ast
-            .into_iter()
-            .flat_map(|a| a.routines.iter())
-            .filter(|r| Self::is_user_routine(r))
+    /// Routines of this file that are the user's code (not the MM package's own subprograms)
+    /// and hold statements: a routine of none (or whose body `check` did not keep) gives the
+    /// rules that walk bodies nothing.
+    pub fn user_routines(&self) -> impl Iterator<Item = &'p Routine> + '_ {
+        let routines = self.ast.map_or(&[][..], |a| &a.routines[..]);
+        let places = self.user_bodies.get_or_init(|| {
+            (routines.iter().enumerate())
+                .filter(|(_, r)| !r.body.is_empty() && Self::is_user_routine(r))
+                .map(|(i, _)| i as u32)
+                .collect()
+        });
+        places.iter().map(move |&i| &routines[i as usize])
     }
 
     /// Whether `r` is the program's own, not one of an interface version's subprograms.

@@ -79,10 +79,15 @@ impl<'t> Cx<'t> {
     }
 
     fn exprs(&self, node: Node) -> Vec<Expr> {
-        node.significant()
-            .filter(|e| is_expr(e))
-            .map(|e| self.expr(&e))
-            .collect()
+        self.each_expr(node).collect()
+    }
+
+    /// The expressions of `node`, lowered as they are taken (a statement that needs one or
+    /// two builds no list).
+    fn each_expr<'n>(&'n self, node: Node<'n>) -> impl Iterator<Item = Expr> + 'n {
+        node.children()
+            .filter(|e| !e.is_trivia() && is_expr(e))
+            .map(move |e| self.expr(&e))
     }
 
     /// Comma-separated list between `open` and `close` with omitted entries as `None`.
@@ -358,19 +363,22 @@ impl<'t> Cx<'t> {
 
     /// Lower one line or block node; trivia lines add nothing.
     pub(super) fn stmt_into(&self, node: Node, out: &mut Vec<Stmt>) {
-        if let Some(kind) = self.stmt_kind(node) {
-            out.push(Stmt {
-                kind,
-                span: node.span,
-            });
-        }
+        out.extend(self.stmt(node));
+    }
+
+    /// The statement of `node`, if it is one.
+    pub(super) fn stmt(&self, node: Node) -> Option<Stmt> {
+        Some(Stmt {
+            kind: self.stmt_kind(node)?,
+            span: node.span,
+        })
     }
 
     fn stmt_kind(&self, node: Node) -> Option<StmtKind> {
         let text = self.text;
         let sig: Elements = node.significant().collect();
-        let exprs = || self.exprs(node);
-        let first_expr = || exprs().into_iter().next();
+        let exprs = || self.each_expr(node);
+        let first_expr = || exprs().next();
         let other = || StmtKind::Other {
             text: node.text(text).trim_end().to_string(),
         };
@@ -394,9 +402,7 @@ impl<'t> Cx<'t> {
             },
             K::IfBlock => {
                 let lines: Lines = node.nodes().collect();
-                let cond = lines
-                    .first()
-                    .and_then(|h| self.exprs(*h).into_iter().next())?;
+                let cond = lines.first().and_then(|h| self.each_expr(*h).next())?;
                 let else_at = lines.iter().position(|n| n.kind == K::ElseLine);
                 let end = if lines.last().is_some_and(|n| n.kind == K::EndifLine) {
                     lines.len() - 1
@@ -440,7 +446,7 @@ impl<'t> Cx<'t> {
             K::WhileBlock => {
                 let lines: Lines = node.nodes().collect();
                 StmtKind::While {
-                    cond: self.exprs(*lines.first()?).into_iter().next()?,
+                    cond: self.each_expr(*lines.first()?).next()?,
                     body: self.body(inner(&lines, K::EndwhileLine)),
                 }
             }
@@ -450,7 +456,7 @@ impl<'t> Cx<'t> {
                     until: lines
                         .last()
                         .filter(|l| l.kind == K::UntilLine)
-                        .and_then(|l| self.exprs(*l).into_iter().next()),
+                        .and_then(|l| self.each_expr(*l).next()),
                     body: self.body(inner(&lines, K::UntilLine)),
                 }
             }
@@ -462,7 +468,7 @@ impl<'t> Cx<'t> {
             }
             K::SwitchBlock => {
                 let lines: Lines = node.nodes().collect();
-                let selector = self.exprs(*lines.first()?).into_iter().next()?;
+                let selector = self.each_expr(*lines.first()?).next()?;
                 let mut cases = Vec::new();
                 let mut default = None;
                 for n in &lines[1..] {
@@ -502,9 +508,7 @@ impl<'t> Cx<'t> {
             K::SkipBlock => {
                 let lines: Lines = node.nodes().collect();
                 StmtKind::Skip {
-                    arg: lines
-                        .first()
-                        .and_then(|h| self.exprs(*h).into_iter().next()),
+                    arg: lines.first().and_then(|h| self.each_expr(*h).next()),
                     body: self.body(inner(&lines, K::EndskipLine)),
                 }
             }
@@ -536,7 +540,7 @@ impl<'t> Cx<'t> {
             | K::CaseBlock
             | K::DefaultBlock => other(),
             K::AssignStmt => {
-                let mut e = exprs().into_iter();
+                let mut e = exprs();
                 StmtKind::Assign {
                     target: e.next()?,
                     value: e.next()?,
@@ -609,7 +613,7 @@ impl<'t> Cx<'t> {
                 }
             }
             K::InterruptDecl => {
-                let mut e = exprs().into_iter();
+                let mut e = exprs();
                 let handler = node
                     .nodes()
                     .find(|n| matches!(n.kind, K::CallStmt | K::AssignStmt))?;
@@ -624,7 +628,7 @@ impl<'t> Cx<'t> {
                 }
             }
             K::TriggerStmt => {
-                let mut e = exprs().into_iter();
+                let mut e = exprs();
                 let action = node
                     .nodes()
                     .find(|n| matches!(n.kind, K::CallStmt | K::AssignStmt))?;
@@ -646,7 +650,7 @@ impl<'t> Cx<'t> {
             }
             K::AnalogStmt => {
                 let on = node.has_keyword(text, "ON");
-                let mut e = exprs().into_iter();
+                let mut e = exprs();
                 let analog = Analog {
                     on,
                     target: e.next()?,
@@ -656,7 +660,7 @@ impl<'t> Cx<'t> {
                         .filter(|n| n.kind == K::AnalogOpt)
                         .filter_map(|o| {
                             let name = o.tokens().next().map(|t| self.ident(t))?;
-                            Some((name, self.exprs(o).into_iter().next()?))
+                            Some((name, self.each_expr(o).next()?))
                         })
                         .collect(),
                 };
@@ -825,7 +829,7 @@ impl<'t> Cx<'t> {
             .nodes()
             .filter(|n| n.kind == K::WithItem)
             .filter_map(|item| {
-                let mut e = self.exprs(item).into_iter();
+                let mut e = self.each_expr(item);
                 Some((e.next()?, e.next()?))
             })
             .collect()

@@ -170,9 +170,7 @@ impl<'t> PieceLowerer<'t> {
     }
 
     fn stmt(&self, node: Node<'_>, f: &mut impl FnMut(Lowered)) {
-        let mut out = Vec::with_capacity(1);
-        self.cx.stmt_into(node, &mut out);
-        if let Some(s) = out.pop() {
+        if let Some(s) = self.cx.stmt(node) {
             f(Lowered::Stmt(s));
         }
     }

@@ -175,6 +175,9 @@ impl<'p> Lower<'p> {
             if is_out && place.is_none() {
                 return fail(Why::OutArgument, a.span);
             }
+            if let (true, Some(p)) = (is_out, &place) {
+                self.reachable(p, crate::transpile::ir::why::Reach::Pass, a.span)?;
+            }
             out.push(crate::transpile::ir::Arg {
                 value: Some(value),
                 place,

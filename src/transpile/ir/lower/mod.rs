@@ -9,8 +9,11 @@
 mod axes;
 mod call;
 mod expr;
+mod frames;
+mod literals;
 mod mech_mind;
 mod motion;
+mod parts;
 mod signals;
 mod stmt;
 
@@ -1002,7 +1005,10 @@ impl<'p> Lower<'p> {
             f.file = file;
         }
         match r {
-            Ok(e) if pre.is_empty() => Ok(e),
+            Ok(e) if pre.is_empty() => {
+                self.held_data(&ty, &e)?;
+                Ok(e)
+            }
             Ok(_) => Err((
                 Why::Aggregate("a .dat value that calls a function has no counterpart".into()),
                 span,
