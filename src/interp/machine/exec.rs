@@ -9,6 +9,8 @@ use crate::interp::value::Value;
 use crate::interp::{Event, WaitKind};
 
 impl<'p> Machine<'p> {
+    /// One statement (or loop iteration) executed: counts toward the step limit, then does what
+    /// happens between two statements.
     pub(super) fn tick(&mut self) -> R<()> {
         self.steps += 1;
         if self.steps > self.opts.step_limit {
@@ -18,6 +20,14 @@ impl<'p> Machine<'p> {
                 self.opts.step_limit
             )));
         }
+        self.between_statements()
+    }
+
+    /// What happens between two statements (and at every check of a `WAIT FOR`): the time
+    /// limit, pulses, EKI I/O, interrupts. A wait's checks are not statements: how many there
+    /// are depends on how fast a real peer answers, so counting them as steps would make where
+    /// a step limit falls depend on the wall clock.
+    fn between_statements(&mut self) -> R<()> {
         if self.clock_ms > self.opts.max_time_ms {
             return Err(self.limit_error(format!(
                 "the program ran for more than {:.0} s of simulated time (endless loop, or a \
@@ -412,7 +422,7 @@ impl<'p> Machine<'p> {
                 if m.eval_bool(cond)? {
                     return Ok(true);
                 }
-                m.tick()?;
+                m.between_statements()?;
                 Ok(false)
             });
             if done? {

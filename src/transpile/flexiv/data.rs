@@ -77,7 +77,7 @@ impl<'a> Tx<'a> {
                 crate::transpile::render::not_lowered(value.span, "a structure value")
             }
             (Ty::Signal(_), _) => {
-                super::fail(value.span, "a signal has no value to store", "remove it")
+                crate::transpile::render::not_lowered(value.span, "a value of a signal")
             }
             (_, ExprKind::Aggregate(a)) => self.literal(a, value.span, file),
             _ => self.expr(value),

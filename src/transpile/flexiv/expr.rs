@@ -1,14 +1,14 @@
 //! Expressions and places in Python: precedence, I/O ports, timers, literal poses.
 
 use super::format::{self, num};
-use super::{R, Tx, fail};
+use super::{R, Tx};
 use crate::diag::Span;
 use crate::transpile::front::report::FileId;
 use crate::transpile::ir::{
     Aggregate, Bank, BinaryOp, Builtin, Component, Expr, ExprKind, IoPlace, MotionParam, Place,
     SignalRange, Ty, UnaryOp,
 };
-use crate::transpile::render::Emit;
+use crate::transpile::render::{Emit, not_lowered};
 
 /// Binding strength of a Python expression (higher binds tighter), to place parentheses.
 pub(super) const ATOM: u8 = 15;
@@ -22,9 +22,6 @@ pub(super) const CMP: u8 = 5;
 pub(super) const NOT: u8 = 4;
 const AND: u8 = 3;
 const OR: u8 = 2;
-
-/// Digital ports of RDK 1.x: 16 on the control box and 2 in the wrist connector.
-pub(super) const PORTS: i64 = 18;
 
 /// A rendered expression and how tightly it binds.
 #[derive(Debug, Clone)]
@@ -224,21 +221,11 @@ impl<'a> Tx<'a> {
         }))
     }
 
-    /// `n + offset` as Python (folded when `n` is a literal): a Flexiv port number. A literal
-    /// port outside the robot's ports is untranslatable.
+    /// `n + offset` as Python (folded when `n` is a literal): a Flexiv port number (the
+    /// lowering refused a literal one on no port: `Caps::signals`).
     pub(super) fn port(&mut self, offset: i64, index: &Expr) -> R<Py> {
         if let Some(n) = index.integer() {
             let p = n + offset;
-            if !(0..PORTS).contains(&p) {
-                return fail(
-                    index.span,
-                    format!(
-                        "I/O {n} maps to Flexiv port {p}, outside the robot's {PORTS} digital ports (0-{})",
-                        PORTS - 1
-                    ),
-                    "wire the signal to a port of the robot and set --output-offset/--input-offset, or port by hand",
-                );
-            }
             return Ok(Py::atom(p.to_string()));
         }
         let i = self.render(index)?;
@@ -275,29 +262,19 @@ impl<'a> Tx<'a> {
         }
     }
 
-    /// The first and last Flexiv port of a SIGNAL range.
-    pub(super) fn signal_ports(&self, r: SignalRange, span: Span) -> R<(i64, i64)> {
-        let fx = self.fx;
-        let (offset, bank) = match r.bank {
-            Bank::In => (fx.input_offset, "input"),
-            Bank::Out => (fx.output_offset, "output"),
-        };
-        let (first, last) = (r.from + offset, r.to + offset);
-        if first < 0 || last >= PORTS {
-            return fail(
-                span,
-                format!(
-                    "the signal's {bank}s map to Flexiv ports {first}-{last}, outside the robot's {PORTS} digital ports"
-                ),
-                "set --input-offset/--output-offset, or port by hand",
-            );
-        }
-        Ok((first, last))
+    /// The first Flexiv port of a SIGNAL range (the lowering refused a range on no port:
+    /// `Caps::signals`).
+    pub(super) fn first_port(&self, r: SignalRange) -> i64 {
+        r.from
+            + match r.bank {
+                Bank::In => self.fx.input_offset,
+                Bank::Out => self.fx.output_offset,
+            }
     }
 
     /// A SIGNAL name read as a value.
     fn signal_value(&mut self, r: SignalRange, span: Span) -> R<Py> {
-        let (first, _) = self.signal_ports(r, span)?;
+        let first = self.first_port(r);
         match (r.bank, r.width()) {
             (Bank::In, 1) => Ok(Py::atom(format!("get_in({first})"))),
             (Bank::In, w) => Ok(Py::atom(format!("get_in_bits({first}, {w})"))),
@@ -346,24 +323,15 @@ impl<'a> Tx<'a> {
                 let string = matches!(&**base, Place::Var(v) if self.ir.var(*v).ty == Ty::Char);
                 // A whole array (`a[]`, an OUT argument) is assigned by name, like a string.
                 let whole = idx.iter().all(Option::is_none);
+                // The lowering indexes variables only.
                 let Target::Plain(b) = self.target(base, span, write && (string || whole))? else {
-                    return fail(
-                        span,
-                        "indexing a component has no translation",
-                        "port by hand",
-                    );
+                    return not_lowered(span, "an index of a component");
                 };
                 if string {
                     return match idx.as_slice() {
                         [None] | [] => Ok(Target::Plain(b)),
-                        [Some(i)] if write => {
-                            let _ = i;
-                            fail(
-                                span,
-                                "assigning one character of a string has no translation (Python strings are immutable)",
-                                "build the new string with slices and +",
-                            )
-                        }
+                        // The lowering refuses it (`Caps::components`).
+                        [Some(_)] if write => not_lowered(span, "a character of a string assigned"),
                         [Some(i)] => match i.integer() {
                             Some(n) => Ok(Target::Plain(format!("{b}[{}:{n}]", n - 1))),
                             None => {
@@ -375,79 +343,40 @@ impl<'a> Tx<'a> {
                                 )))
                             }
                         },
-                        _ => fail(
-                            span,
-                            "a two-dimensional CHAR array has no translation",
-                            "use one string variable per row",
-                        ),
+                        _ => not_lowered(span, "a two-dimensional CHAR array"),
                     };
                 }
+                // An omitted index takes the whole rest: `a[]` is the list, `a[1,]` its row.
                 let mut s = b;
-                for i in idx {
-                    match i {
-                        Some(i) => s.push_str(&format!("[{}]", self.expr(i)?)),
-                        None => {
-                            return fail(
-                                span,
-                                "a whole-array reference ([]) has no translation here",
-                                "use the array's elements",
-                            );
-                        }
-                    }
+                for i in idx.iter().map_while(Option::as_ref) {
+                    s.push_str(&format!("[{}]", self.expr(i)?));
                 }
                 Ok(Target::Plain(s))
             }
             Place::Component(base, c) => {
+                // The lowering refuses structures without records (`Caps::records`).
                 let Target::Plain(b) = self.target(base, span, write)? else {
-                    return fail(
-                        span,
-                        "a member of a member has no translation",
-                        "port by hand",
-                    );
+                    return not_lowered(span, "a component of a structure member");
                 };
                 let field = match c {
                     Component::Pose(i) => ["x", "y", "z", "a", "b", "c"][*i].to_owned(),
                     Component::Axis(i) => format!("a{}", i + 1),
-                    Component::Status | Component::Turn => {
-                        return fail(
-                            span,
-                            "status/turn are not kept in the script (a Rizon chooses its own posture)",
-                            "remove the use of S/T",
-                        );
-                    }
-                    Component::Ext(i) => {
-                        return fail(
-                            span,
-                            format!("component `E{}` (external axis) has no counterpart", i + 1),
-                            "drop the external axis",
-                        );
+                    // The lowering refuses the rest (`Caps::components`).
+                    Component::Status | Component::Turn | Component::Ext(_) => {
+                        return not_lowered(span, "a component the script does not keep");
                     }
                 };
                 Ok(Target::Member { base: b, field })
             }
-            Place::Member(_, f) => fail(
-                span,
-                format!("structure member `.{f}` has no translation"),
-                "split the structure into separate variables",
-            ),
+            Place::Member(..) => not_lowered(span, "a structure member"),
         }
     }
 
     /// A complete pose or axis literal as a Python value: `Pose(…)` / `Axis(…)`.
     pub(super) fn literal(&mut self, a: &Aggregate, span: Span, file: FileId) -> R<String> {
+        // The lowering refuses it (`Caps::literals`).
         if !a.complete() {
-            let want = if a.axis {
-                "A1 to A6"
-            } else {
-                "X, Y, Z, A, B and C"
-            };
-            return fail(
-                span,
-                format!(
-                    "an incomplete literal (KRL keeps the missing components of the current value) needs all of {want} here"
-                ),
-                "write every component",
-            );
+            return crate::transpile::render::not_lowered(span, "an incomplete literal");
         }
         self.status_turn(a, span, file);
         self.external_axes(a, span)?;

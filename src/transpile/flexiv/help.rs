@@ -1,9 +1,10 @@
 //! What to do instead, in the Python script, for each construct no target can express.
 
-use crate::transpile::ir::Why;
 use crate::transpile::ir::why::AxisUse;
 use crate::transpile::ir::why::KukaOnly;
 use crate::transpile::ir::why::Lacked;
+use crate::transpile::ir::why::Part;
+use crate::transpile::ir::{Component, Why};
 
 pub(super) fn help(why: &Why) -> String {
     crate::transpile::render::help::help(why, own)
@@ -87,6 +88,22 @@ fn own(why: &Why) -> Option<String> {
         Why::Lacks(Lacked::Circ) => {
             "no verified Flexiv primitive (MoveL with a waypoint would be two straight lines): replace the arc by LIN moves through points on it".into()
         }
+        Why::Part { part: Part::Component(Component::Status | Component::Turn), .. } => {
+            "a Rizon chooses its own posture: remove the use of S/T".into()
+        }
+        Why::Part { part: Part::Component(Component::Ext(_)), .. } => {
+            "drop the external axis".into()
+        }
+        Why::Part { part: Part::Character, .. } => {
+            "Python strings are immutable: build the new string with slices and +".into()
+        }
+        Why::FrameValue { tool: true } => {
+            "define the tool in Flexiv Elements and call switch_tool(name)".into()
+        }
+        Why::FrameValue { tool: false } => {
+            "define a work coordinate in Flexiv Elements and set KRL.base = [\"WORK\", name]".into()
+        }
+        Why::PortRange { list: true, .. } => "wire the signal to a port of the robot and set --output-offset/--input-offset, or port by hand".into(),
         _ => return None,
     })
 }

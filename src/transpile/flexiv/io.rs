@@ -53,7 +53,7 @@ impl<'a> Tx<'a> {
             }
             OutPlace::Signal(r) => {
                 let r = r.range();
-                let (first, _) = self.signal_ports(r, span)?;
+                let first = self.first_port(r);
                 if r.width() == 1 {
                     let v = self.bool_value(value)?;
                     self.line(format!("set_out({first}, {v})"));
@@ -76,9 +76,7 @@ impl<'a> Tx<'a> {
         let fx = self.fx;
         let port = match io {
             OutPlace::Out(i) => self.port(fx.output_offset, i)?.text,
-            OutPlace::Signal(r) if r.range().width() == 1 => {
-                self.signal_ports(r.range(), span)?.0.to_string()
-            }
+            OutPlace::Signal(r) if r.range().width() == 1 => self.first_port(r.range()).to_string(),
             // The lowering lets through a pulse of an output at a literal level only
             // (`Caps::pulse`).
             _ => return crate::transpile::render::not_lowered(span, "a PULSE of a flag"),

@@ -45,7 +45,7 @@ use super::render::{self, Emit, Out, Style};
 use crate::diag::Span;
 use names::NAME_RULES;
 
-pub(super) use super::front::{Fail, R, fail};
+pub(super) use super::front::{Fail, R};
 
 /// How Python writes lines: four-space indents, `#` comments in ASCII.
 static STYLE: Style = Style {
@@ -87,6 +87,11 @@ pub static BACKEND: render::Backend = render::Backend {
         // RDK 1.x cannot read outputs back.
         signals: render::Signals {
             output_groups_read: false,
+            // RDK 1.x: 16 on the control box and 2 in the wrist connector.
+            ports: Some(render::Ports {
+                count: 18,
+                of: "Flexiv",
+            }),
             ..render::Caps::BASE.signals
         },
         external_axes: 0,
@@ -117,6 +122,24 @@ pub static BACKEND: render::Backend = render::Backend {
             written: false,
             every: true,
             linear: false,
+        },
+        // `Pose`/`Axis` fields (`_replace` assigns one); a Rizon keeps no S/T.
+        components: render::Components {
+            status_turn: render::Access::None,
+            external: render::Access::None,
+            characters: render::Access::Read,
+            char_rows: false,
+            ..render::Caps::BASE.components
+        },
+        // Tools and work coordinates are names defined on the robot (`"tool_data_%d" % i`).
+        frames: render::Frames {
+            values: false,
+            computed_numbers: true,
+        },
+        // `_replace` sets the components given; a Rizon keeps no S/T.
+        literals: render::Literals {
+            partial_drops: true,
+            ..render::Caps::BASE.literals
         },
         ..render::Caps::BASE
     },

@@ -3,7 +3,7 @@
 //! frames.
 
 use super::format::{self, num};
-use super::{R, Tx, fail};
+use super::{R, Tx};
 use crate::diag::Span;
 use crate::transpile::front::report::FileId;
 use crate::transpile::ir::{
@@ -394,19 +394,10 @@ impl<'a> Tx<'a> {
                 Ok(())
             }
             FrameRef::Table(i) => self.frame_data(i, tool, span),
-            FrameRef::World | FrameRef::Value(_) => fail(
-                span,
-                format!(
-                    "a {} given as a value has no counterpart: Flexiv selects {} defined on the robot",
-                    if tool { "tool" } else { "base" },
-                    if tool { "tools" } else { "work coordinates" }
-                ),
-                if tool {
-                    "define the tool in Flexiv Elements and call switch_tool(name)"
-                } else {
-                    "define a work coordinate in Flexiv Elements and set KRL.base = [\"WORK\", name]"
-                },
-            ),
+            // The lowering refuses them (`Caps::frames`); a world tool is no KRL.
+            FrameRef::World | FrameRef::Value(_) => {
+                crate::transpile::render::not_lowered(span, "a frame value")
+            }
         }
     }
 

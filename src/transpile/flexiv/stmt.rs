@@ -1,7 +1,7 @@
 //! Statements and control flow, assignments and calls.
 
 use super::expr::{ADD, Py, Target};
-use super::{R, Tx, fail, has_code};
+use super::{R, Tx, has_code};
 use crate::diag::Span;
 use crate::transpile::front::report::FileId;
 use crate::transpile::ir::{
@@ -367,10 +367,9 @@ impl<'a> Tx<'a> {
             && !a.complete()
         {
             let Target::Plain(t) = &t else {
-                return fail(
+                return crate::transpile::render::not_lowered(
                     value.span,
-                    "an incomplete literal assigned to a component has no translation",
-                    "write every component",
+                    "an incomplete literal assigned to a component",
                 );
             };
             self.status_turn(a, value.span, FileId::Src);

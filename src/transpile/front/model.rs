@@ -361,7 +361,7 @@ impl<'p> Model<'p> {
                 // The head's definitions and those that are statements of the body itself.
                 let own = r.head.definitions.iter().chain(
                     r.facts
-                        .definitions
+                        .definitions()
                         .iter()
                         .filter(|(_, top)| *top)
                         .map(|(d, _)| d),
@@ -497,7 +497,7 @@ impl<'p> Model<'p> {
             }
             for r in &f.outline.routines {
                 r.head.definitions.iter().for_each(&mut look);
-                r.facts.definitions.iter().for_each(|(d, _)| look(d));
+                r.facts.definitions().iter().for_each(|(d, _)| look(d));
             }
         }
         found

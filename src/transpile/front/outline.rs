@@ -53,43 +53,89 @@ pub struct RoutineOutline {
 
 /// What other statements ask about a routine's body (statements after the head, nested ones
 /// included, visited depth-first in source order as `syntax::ast::each_stmt` does: the handler of an `INTERRUPT DECL` and the action of a `TRIGGER` included).
+/// Kept for every routine of a file, so compact: sorted name lists instead of sets, and the
+/// lists most routines leave empty behind one pointer.
 #[derive(Debug, Default)]
 pub struct BodyFacts {
     /// Upper-case names of the routine's parameters assigned anywhere (assignment targets, FOR
-    /// variables); other names are dropped when the routine ends.
-    pub assigned: FxHashSet<CompactString>,
-    /// Upper-case root names of assignment targets and of call arguments.
-    pub written: BTreeSet<CompactString>,
+    /// variables), sorted.
+    pub assigned: Box<[CompactString]>,
+    /// Upper-case root names of assignment targets and of call arguments, sorted.
+    pub written: Box<[CompactString]>,
     /// Routines called, by statement or inside an assigned value, in the order of their first
     /// call (each once). Names are inline (`CompactString`): no allocation per name.
     pub callees: Vec<CompactString>,
-    called: FxHashSet<CompactString>,
     /// A motion or spline block.
     pub moves: bool,
-    /// Label names, in visiting order.
-    pub labels: Vec<ast::Ident>,
-    /// `INTERRUPT DECL` statements, in visiting order.
-    pub interrupts: Vec<Stmt>,
-    /// `GLOBAL` declarations of the head and among the statements, in visiting order.
-    pub global_decls: Vec<ast::Decl>,
-    /// Definitions (ENUM, SIGNAL, …) among the statements, in visiting order, and whether
-    /// each is a statement of the body itself (not nested in a block).
-    pub definitions: Vec<(Definition, bool)>,
+    rare: Option<Box<Rare>>,
+}
+
+/// The facts few routines have.
+#[derive(Debug, Default)]
+struct Rare {
+    labels: Vec<ast::Ident>,
+    interrupts: Vec<Stmt>,
+    global_decls: Vec<ast::Decl>,
+    definitions: Vec<(Definition, bool)>,
 }
 
 impl BodyFacts {
-    fn add(&mut self, stmt: &Stmt) {
+    /// Whether the routine assigns its parameter `upper` (an upper-case name).
+    pub fn assigns(&self, upper: &str) -> bool {
+        self.assigned.iter().any(|n| n == upper)
+    }
+
+    /// Label names, in visiting order.
+    pub fn labels(&self) -> &[ast::Ident] {
+        self.rare.as_ref().map_or(&[], |r| &r.labels)
+    }
+
+    /// `INTERRUPT DECL` statements, in visiting order.
+    pub fn interrupts(&self) -> &[Stmt] {
+        self.rare.as_ref().map_or(&[], |r| &r.interrupts)
+    }
+
+    /// `GLOBAL` declarations of the head and among the statements, in visiting order.
+    pub fn global_decls(&self) -> &[ast::Decl] {
+        self.rare.as_ref().map_or(&[], |r| &r.global_decls)
+    }
+
+    /// Definitions (ENUM, SIGNAL, …) among the statements, in visiting order, and whether
+    /// each is a statement of the body itself (not nested in a block).
+    pub fn definitions(&self) -> &[(Definition, bool)] {
+        self.rare.as_ref().map_or(&[], |r| &r.definitions)
+    }
+
+    fn rare(&mut self) -> &mut Rare {
+        self.rare.get_or_insert_default()
+    }
+}
+
+/// The facts of the routine being read, in the forms that grow; [`Building::finish`] makes
+/// them [`BodyFacts`] when the routine ends (one of these serves every routine).
+#[derive(Debug, Default)]
+struct Building {
+    assigned: FxHashSet<CompactString>,
+    written: BTreeSet<CompactString>,
+    callees: Vec<CompactString>,
+    called: FxHashSet<CompactString>,
+    calls: Vec<CompactString>,
+}
+
+impl Building {
+    fn add(&mut self, facts: &mut BodyFacts, stmt: &Stmt) {
         ast::each_stmt(std::slice::from_ref(stmt), &mut |s| match &s.kind {
             StmtKind::Assign { target, value } => {
                 if let Some(id) = target.root_name() {
                     self.assigned.insert(key(id));
                     self.written.insert(key(id));
                 }
-                let mut calls = Vec::new();
+                let mut calls = std::mem::take(&mut self.calls);
                 expr_calls(value, &mut calls);
-                for c in calls {
+                for c in calls.drain(..) {
                     self.call(c);
                 }
+                self.calls = calls;
             }
             StmtKind::For { var, .. } => {
                 self.assigned.insert(key(var));
@@ -102,22 +148,44 @@ impl BodyFacts {
                     }
                 }
             }
-            StmtKind::Motion(_) | StmtKind::Spline { .. } => self.moves = true,
-            StmtKind::Label { name } => self.labels.push(name.clone()),
-            StmtKind::InterruptDecl { .. } => self.interrupts.push(s.clone()),
-            StmtKind::Decl(d) if d.global => self.global_decls.push((**d).clone()),
-            StmtKind::Definition(d) => self.definitions.push((d.clone(), std::ptr::eq(s, stmt))),
+            StmtKind::Motion(_) | StmtKind::Spline { .. } => facts.moves = true,
+            StmtKind::Label { name } => facts.rare().labels.push(name.clone()),
+            StmtKind::InterruptDecl { .. } => facts.rare().interrupts.push(s.clone()),
+            StmtKind::Decl(d) if d.global => facts.rare().global_decls.push((**d).clone()),
+            StmtKind::Definition(d) => facts
+                .rare()
+                .definitions
+                .push((d.clone(), std::ptr::eq(s, stmt))),
             _ => {}
         });
     }
-}
 
-impl BodyFacts {
     /// A call of `name`: a routine called again changes nothing another routine asks.
     fn call(&mut self, name: CompactString) {
         if !self.called.contains(&name) {
             self.called.insert(name.clone());
             self.callees.push(name);
+        }
+    }
+
+    /// The routine ends: its facts in their compact forms; only the parameters' names of
+    /// those assigned are kept. Leaves this empty for the next routine.
+    fn finish(&mut self, facts: &mut BodyFacts, params: &[ast::ParamDecl]) {
+        let mut assigned: Vec<CompactString> = self
+            .assigned
+            .drain()
+            .filter(|n| params.iter().any(|p| p.name.is(n)))
+            .collect();
+        assigned.sort_unstable();
+        facts.assigned = assigned.into_boxed_slice();
+        facts.written = std::mem::take(&mut self.written).into_iter().collect();
+        facts.callees = self.callees.drain(..).collect();
+        self.called.clear();
+        if let Some(r) = &mut facts.rare {
+            r.labels.shrink_to_fit();
+            r.interrupts.shrink_to_fit();
+            r.global_decls.shrink_to_fit();
+            r.definitions.shrink_to_fit();
         }
     }
 }
@@ -150,6 +218,10 @@ pub struct OutlineBuilder {
     open: Open,
     /// The open routine is still in its head (declarations and definitions only so far).
     in_head: bool,
+    /// The open routine's facts while they grow.
+    building: Building,
+    /// The last routine's facts are still in `building` (its END not read yet).
+    unfinished: bool,
 }
 
 impl Default for OutlineBuilder {
@@ -158,6 +230,8 @@ impl Default for OutlineBuilder {
             outline: Outline::default(),
             open: Open::None,
             in_head: false,
+            building: Building::default(),
+            unfinished: false,
         }
     }
 }
@@ -167,6 +241,7 @@ impl OutlineBuilder {
     pub fn add(&mut self, event: &Lowered) {
         match event {
             Lowered::Routine(r) => {
+                self.end_routine();
                 self.outline.routines.push(RoutineOutline {
                     head: r.clone(),
                     head_pieces: 0,
@@ -175,6 +250,7 @@ impl OutlineBuilder {
                 });
                 self.open = Open::Routine;
                 self.in_head = true;
+                self.unfinished = true;
             }
             Lowered::Dat(d) => self.open = Open::Dat(d.clone()),
             Lowered::Stmt(s) => match &mut self.open {
@@ -190,7 +266,7 @@ impl OutlineBuilder {
                         match &s.kind {
                             StmtKind::Decl(d) => {
                                 if d.global {
-                                    r.facts.global_decls.push((**d).clone());
+                                    r.facts.rare().global_decls.push((**d).clone());
                                 }
                                 r.head_pieces += 1;
                                 return;
@@ -203,7 +279,7 @@ impl OutlineBuilder {
                             _ => self.in_head = false,
                         }
                     }
-                    r.facts.add(s);
+                    self.building.add(&mut r.facts, s);
                 }
             },
             Lowered::Header(_) => {}
@@ -212,16 +288,8 @@ impl OutlineBuilder {
                     Open::Routine => {
                         if let Some(r) = self.outline.routines.last_mut() {
                             r.head.close(*span, *closed);
-                            // Only needed while the routine is read: kept for every routine of
-                            // a file, they were much of the outline's memory.
-                            r.facts.called = FxHashSet::default();
-                            r.facts.callees.shrink_to_fit();
-                            let params = &r.head.params;
-                            r.facts
-                                .assigned
-                                .retain(|n| params.iter().any(|p| p.name.is(n)));
-                            r.facts.assigned.shrink_to_fit();
                         }
+                        self.end_routine();
                     }
                     Open::Dat(mut d) => {
                         d.close(*span);
@@ -236,7 +304,17 @@ impl OutlineBuilder {
         }
     }
 
+    /// The facts read since the last routine began become its [`BodyFacts`].
+    fn end_routine(&mut self) {
+        if std::mem::take(&mut self.unfinished)
+            && let Some(r) = self.outline.routines.last_mut()
+        {
+            self.building.finish(&mut r.facts, &r.head.params);
+        }
+    }
+
     pub fn finish(mut self) -> Outline {
+        self.end_routine();
         let o = &mut self.outline;
         o.routines.shrink_to_fit();
         for (i, r) in o.routines.iter().enumerate() {
@@ -266,19 +344,16 @@ mod tests {
             head.decls.clear();
             assert_eq!(r.head, head);
         }
-        assert_eq!(
-            o.routines[0].facts.assigned,
-            FxHashSet::from_iter(["X".into()])
-        );
+        assert_eq!(*o.routines[0].facts.assigned, ["X"]);
         let a = &o.routines[0];
         assert_eq!(a.head_pieces, 3);
         assert_eq!(a.facts.callees, ["f", "b"]);
-        assert_eq!(a.facts.written, BTreeSet::from(["X".into(), "Y".into()]));
+        assert_eq!(*a.facts.written, ["X", "Y"]);
         assert!(a.facts.moves);
-        assert_eq!(a.facts.labels.len(), 1);
+        assert_eq!(a.facts.labels().len(), 1);
         // `DECL GLOBAL INT g` of the head, `DECL GLOBAL REAL r` of the body.
-        assert_eq!(a.facts.global_decls.len(), 2);
-        assert_eq!(a.facts.definitions.len(), 1);
+        assert_eq!(a.facts.global_decls().len(), 2);
+        assert_eq!(a.facts.definitions().len(), 1);
         assert!(!o.routines[1].facts.moves);
         assert_eq!(o.dat, ast.dat);
         assert!(!o.top_level);
@@ -294,7 +369,7 @@ mod tests {
         crate::syntax::parse_pieces(text, |p| lowerer.lower(p, |e| b.add(&e)));
         let facts = &b.finish().routines[0].facts;
         assert_eq!(facts.callees, ["on_part", "count"]);
-        assert_eq!(facts.written, BTreeSet::from(["N".into(), "P".into()]));
-        assert_eq!(facts.assigned, FxHashSet::from_iter(["N".into()]));
+        assert_eq!(*facts.written, ["N", "P"]);
+        assert_eq!(*facts.assigned, ["N"]);
     }
 }

@@ -169,6 +169,59 @@ pub enum Why {
     ComputedSignal,
     /// An `MM_*` call omitting an argument the translation reads (the parameter).
     MmArgument(String),
+    /// A part of a value read or (`write`) assigned alone where the target cannot
+    /// (`Caps::components`).
+    Part { part: Part, reach: Reach },
+    /// A CHAR array of two dimensions in a target without (`Caps::components`).
+    CharRows,
+    /// A member (its name) of a value that is no structure.
+    NotAStructure(String),
+    /// A tool (`tool`) or base given as a frame value in a target that selects them by name
+    /// (`Caps::frames`).
+    FrameValue { tool: bool },
+    /// A `TOOL_DATA`/`BASE_DATA` number that is not a positive literal in a target whose
+    /// frames are names written in the program (`Caps::frames`).
+    FrameNumber,
+    /// A pose (or, `axis`, axis values) literal that leaves main components out where the
+    /// target needs them all (`Caps::literals`).
+    IncompleteLiteral { axis: bool },
+    /// A pose literal with computed A, B or C in a target that converts literal angles only.
+    ComputedAngles,
+    /// Axis values with computed components where they go through the joint map.
+    ComputedAxes,
+    /// A `.dat` value that is not a literal in a target that initialises data with literals.
+    DataLiteral,
+    /// A `.dat` value given to a SIGNAL name.
+    SignalValue,
+    /// A FOR step that is not a literal number in a target that needs the loop's direction.
+    ForStep,
+    /// A signal on no port of the robot (`Caps::signals`): what maps where, how many ports,
+    /// whether to list them.
+    PortRange {
+        what: String,
+        ports: i64,
+        list: bool,
+    },
+}
+
+/// How a place is used.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Reach {
+    /// Read as a value.
+    Read,
+    /// Assigned by a statement.
+    Assign,
+    /// Passed as a variable (an OUT argument) that the callee assigns.
+    Pass,
+}
+
+/// A part of a value read or assigned alone.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Part {
+    /// A component of a pose or axis value.
+    Component(crate::transpile::ir::Component),
+    /// One character of a string.
+    Character,
 }
 
 /// Where axis values met a target without a joint map.
@@ -189,6 +242,8 @@ pub enum Lacked {
     Override,
     /// `$LOAD = …`.
     Load,
+    /// `$LOAD = LOAD_DATA[n]` (a payload of KUKA's machine data).
+    LoadTable,
     /// `BRAKE`.
     Brake,
     /// `CIRC`.
@@ -213,6 +268,7 @@ impl Lacked {
         match self {
             Lacked::Override => "$OV_PRO",
             Lacked::Load => "$LOAD",
+            Lacked::LoadTable => "LOAD_DATA[n]",
             Lacked::Brake => "BRAKE",
             Lacked::Circ => "CIRC",
             Lacked::Timers => "$TIMER",
@@ -228,6 +284,9 @@ impl Lacked {
         match self {
             Lacked::Override => "the program override ($OV_PRO) has no counterpart in this target",
             Lacked::Load => "$LOAD (the payload) has no counterpart in this target",
+            Lacked::LoadTable => {
+                "LOAD_DATA[n] lives in the KUKA machine data; this target needs the load's values"
+            }
             Lacked::Brake => {
                 "BRAKE (stopping the motion from an interrupt routine) has no counterpart in this target"
             }
@@ -385,6 +444,48 @@ impl Why {
             Why::SignalGroup => "a group of signals (SIGNAL … TO …) needs a group signal of the I/O configuration".into(),
             Why::OutputGroupRead => "reading a group of outputs has no counterpart in this target (it cannot read outputs back)".into(),
             Why::ComputedSignal => "a signal number computed at run time: this target's signals are names of the I/O configuration".into(),
+            Why::Part { part, reach } => {
+                let verb = match reach {
+                    Reach::Read => "reading",
+                    Reach::Assign => "assigning",
+                    Reach::Pass => "passing as an OUT argument",
+                };
+                let what = match part {
+                    Part::Component(c) => {
+                        use crate::transpile::ir::Component as C;
+                        let of = match c {
+                            C::Pose(0..=2) => "a position component of a pose",
+                            C::Pose(_) => "an orientation angle of a pose",
+                            C::Axis(_) => "one axis of axis values",
+                            C::Status | C::Turn => "the posture's status or turn",
+                            C::Ext(_) => "an external axis",
+                        };
+                        format!("`{}` ({of})", c.krl())
+                    }
+                    Part::Character => "one character of a string".to_owned(),
+                };
+                format!("{verb} {what} alone has no counterpart in this target")
+            }
+            Why::FrameValue { tool } => {
+                let (what, table) = if *tool { ("tool", "TOOL_DATA") } else { ("base", "BASE_DATA") };
+                format!("a {what} given as a frame value (not a {table} entry) has no counterpart in this target: it selects {what}s defined on the robot by name")
+            }
+            Why::FrameNumber => "a tool or base number computed at run time has no counterpart in this target".into(),
+            Why::IncompleteLiteral { axis } => {
+                let want = if *axis { "A1 to A6" } else { "X, Y, Z, A, B and C" };
+                format!("an incomplete literal (KRL keeps the missing components of the current value) has no counterpart here; this target needs all of {want}")
+            }
+            Why::ComputedAngles => "a pose with computed A, B or C has no counterpart in this target: only literal angles are converted".into(),
+            Why::ComputedAxes => "axis values with computed components: only literal values go through the joint map".into(),
+            Why::DataLiteral => "this .dat value is not a literal; this target initialises data with literal values only".into(),
+            Why::SignalValue => "a signal has no value to store".into(),
+            Why::PortRange { what, ports, list } => {
+                let range = if *list { format!(" (0-{})", ports - 1) } else { String::new() };
+                format!("{what}, outside the robot's {ports} digital ports{range}")
+            }
+            Why::ForStep => "a FOR step that is not a literal number has no counterpart in this target (the loop's direction must be known)".into(),
+            Why::CharRows => "a two-dimensional CHAR array (rows of strings) has no counterpart in this target".into(),
+            Why::NotAStructure(f) => format!("`.{f}`: a member of a value that is no structure has no counterpart"),
             Why::LinearToAxes(krl) => {
                 let instr = if *krl == "CIRC" { "MoveC" } else { "MoveL" };
                 format!("{krl} to axis values has no counterpart ({instr} needs a Cartesian target)")

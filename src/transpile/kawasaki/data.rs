@@ -1,7 +1,7 @@
 //! The data sections: `.dat` values become `.TRANS`, `.JOINTS`, `.REALS` and `.STRINGS` lines.
 
 use super::format::{self, num};
-use super::{R, Tx, fail};
+use super::{R, Tx};
 use crate::transpile::front::report::FileId;
 use crate::transpile::ir::{Datum, ExprKind, Ty};
 use crate::transpile::render::{self, Emit};
@@ -91,10 +91,9 @@ impl<'a> Tx<'a> {
                     Line::Trans(format!("{name} {}", values.join(" ")))
                 })
             }
-            (Ty::Pose | Ty::Joint, _) => fail(
+            (Ty::Pose | Ty::Joint, _) => crate::transpile::render::not_lowered(
                 value.span,
-                "this pose value is not a literal",
-                "use a literal pose",
+                "a .dat pose value that is no literal",
             ),
             (Ty::Char, ExprKind::Str(s)) => {
                 self.check_ascii(file, value.span, s);
@@ -104,10 +103,9 @@ impl<'a> Tx<'a> {
                 "${name} = {}",
                 format::string(&c.to_string())
             ))),
-            (Ty::Char, _) => fail(
+            (Ty::Char, _) => crate::transpile::render::not_lowered(
                 value.span,
-                "this string value is not a literal",
-                "use a literal",
+                "a .dat string value that is no literal",
             ),
             (Ty::Int | Ty::Real | Ty::Bool | Ty::Enum(_), _) => {
                 let v = match &value.kind {
@@ -117,10 +115,9 @@ impl<'a> Tx<'a> {
                     _ => match value.number() {
                         Some(v) => num(v),
                         None => {
-                            return fail(
+                            return crate::transpile::render::not_lowered(
                                 value.span,
-                                "this value is not a literal number",
-                                "use a literal",
+                                "a .dat value that is no literal number",
                             );
                         }
                     },
@@ -130,7 +127,9 @@ impl<'a> Tx<'a> {
             (Ty::Struc(_) | Ty::Other(_), _) => {
                 render::not_lowered(value.span, "a structure value")
             }
-            (Ty::Signal(_), _) => fail(value.span, "a signal has no value to store", "remove it"),
+            (Ty::Signal(_), _) => {
+                crate::transpile::render::not_lowered(value.span, "a value of a signal")
+            }
         }
     }
 

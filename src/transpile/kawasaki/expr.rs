@@ -2,7 +2,7 @@
 //! literal poses converted to O,A,T.
 
 use super::format::{self, num, with_sigil};
-use super::{R, Tx, fail};
+use super::{R, Tx};
 use crate::diag::Span;
 use crate::geom::abc_to_oat;
 use crate::transpile::front::report::FileId;
@@ -232,42 +232,14 @@ impl<'a> Tx<'a> {
                     Component::Pose(0) => "DX",
                     Component::Pose(1) => "DY",
                     Component::Pose(2) => "DZ",
-                    Component::Pose(_) => {
-                        return fail(
-                            span,
-                            format!(
-                                "the orientation component `{}` of a pose has no direct AS reading (AS uses O,A,T)",
-                                c.krl()
-                            ),
-                            "DECOMPOSE the pose into an array and convert O,A,T to A,B,C by hand",
-                        );
-                    }
-                    Component::Axis(_) => {
-                        return fail(
-                            span,
-                            format!(
-                                "reading one axis ({}) of a joint value has no direct AS reading",
-                                c.krl()
-                            ),
-                            "DECOMPOSE the joint value into an array and read the element",
-                        );
-                    }
-                    _ => {
-                        return fail(
-                            span,
-                            format!("component `{}` has no AS counterpart", c.krl()),
-                            "drop the status/turn or external axis",
-                        );
-                    }
+                    // The lowering refuses the rest (`Caps::components`).
+                    _ => return render::not_lowered(span, "a component AS cannot read"),
                 };
                 let b = self.place_text(base, &Ty::Pose, span)?;
                 Ok(Rendered::atom(format!("{f}({b})")))
             }
-            Place::Member(_, f) => fail(
-                span,
-                format!("structure member `.{f}` has no AS equivalent"),
-                "split the structure into separate variables",
-            ),
+            // The lowering refuses structures without records (`Caps::records`).
+            Place::Member(..) => render::not_lowered(span, "a structure member"),
             _ => Ok(Rendered::atom(self.place_text(p, ty, span)?)),
         }
     }
@@ -299,11 +271,8 @@ impl<'a> Tx<'a> {
                             let i = self.expr(i)?;
                             Ok(format!("$MID({b},{i},1)"))
                         }
-                        _ => fail(
-                            span,
-                            "a two-dimensional CHAR array has no AS equivalent",
-                            "use one string variable per row",
-                        ),
+                        // The lowering refuses it (`Caps::components`).
+                        _ => render::not_lowered(span, "a two-dimensional CHAR array"),
                     };
                 }
                 let mut v = Vec::new();
@@ -383,19 +352,9 @@ impl<'a> Tx<'a> {
         span: Span,
         file: FileId,
     ) -> R<Vec<String>> {
+        // The lowering refuses it (`Caps::literals`).
         if !a.complete() {
-            let want = if a.axis {
-                "A1 to A6"
-            } else {
-                "X, Y, Z, A, B and C"
-            };
-            return fail(
-                span,
-                format!(
-                    "an incomplete literal (KRL keeps the missing components of the current value); AS needs all of {want}"
-                ),
-                "write every component",
-            );
+            return crate::transpile::render::not_lowered(span, "an incomplete literal");
         }
         let Some(m) = a.numbers() else {
             // Computed positions with literal angles still convert.
@@ -413,11 +372,7 @@ impl<'a> Tx<'a> {
                 self.status_turn(a, span, file);
                 return Ok(out);
             }
-            return fail(
-                span,
-                "a pose or joint value with computed components; only literal values can be converted to AS",
-                "compute the pose with TRANS() by hand, or use literal values",
-            );
+            return crate::transpile::render::not_lowered(span, "computed angles or axis values");
         };
         let mut out: Vec<String> = if a.axis {
             let Some(map) = &self.opts.joint_map else {

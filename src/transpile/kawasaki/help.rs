@@ -1,8 +1,9 @@
 //! What to do instead, in AS, for each construct no target can express.
 
-use crate::transpile::ir::Why;
 use crate::transpile::ir::why::KukaOnly;
 use crate::transpile::ir::why::Lacked;
+use crate::transpile::ir::why::{Part, Reach};
+use crate::transpile::ir::{Component, Why};
 
 pub(super) fn help(why: &Why) -> String {
     crate::transpile::render::help::help(why, own)
@@ -82,6 +83,27 @@ fn own(why: &Why) -> Option<String> {
         }
         Why::Lacks(Lacked::TimerStop) => {
             "AS timers cannot be stopped: store TIMER(n) in a variable where KRL stopped the timer".into()
+        }
+        Why::Part { part: Part::Component(Component::Pose(3..=5)), reach: Reach::Read } => {
+            "AS uses O,A,T: DECOMPOSE the pose into an array and convert O,A,T to A,B,C by hand".into()
+        }
+        Why::Part { part: Part::Component(Component::Axis(_)), reach: Reach::Read } => {
+            "DECOMPOSE the joint value into an array and read the element".into()
+        }
+        Why::Part { part: Part::Component(_), reach: Reach::Read } => {
+            "drop the status/turn or external axis".into()
+        }
+        Why::Part { part: Part::Component(_), reach: Reach::Assign } => {
+            "compute the whole value (TRANS / #PPOINT) and assign it".into()
+        }
+        Why::Part { part: Part::Character, .. } => {
+            "build the string with $LEFT/$MID/$RIGHT and +".into()
+        }
+        Why::ComputedAngles => {
+            "compute the pose with TRANS() by hand, or use literal values".into()
+        }
+        Why::Lacks(Lacked::LoadTable) => {
+            "write WEIGHT mass, cx, cy, cz with the load's values".into()
         }
         _ => return None,
     })

@@ -2,13 +2,13 @@
 
 use super::expr::{Sig, negate};
 use super::format::num;
-use super::{R, Tx, fail};
+use super::{R, Tx};
 use crate::diag::Span;
 use crate::transpile::front::report::FileId;
 use crate::transpile::ir::{
     BinaryOp, Callee, Expr, ExprKind, InterruptAction, IoTiming, OutPlace, TimerOp, Wait,
 };
-use crate::transpile::render::Emit;
+use crate::transpile::render::{self, Emit};
 
 impl<'a> Tx<'a> {
     /// `SIGNAL n` / `SIGNAL -n`, an IF choosing between them, or `BITS` for a group.
@@ -149,23 +149,26 @@ impl<'a> Tx<'a> {
     // ----- interrupts --------------------------------------------------------------------
 
     /// An interrupt's signal and handler program, or why it cannot be one.
-    fn interrupt_target(&mut self, i: usize) -> Result<(String, String), String> {
-        let d = &self.ir.interrupts[i];
-        let watched = d.condition.as_ref().map_err(|w| w.message())?;
+    fn interrupt_target(
+        &mut self,
+        i: usize,
+        span: Span,
+        help: Option<&str>,
+    ) -> R<(String, String)> {
+        let (watched, handler) = render::interrupt_parts(self.ir, i, span, help)?;
         // A one-bit SIGNAL is its first (only) signal.
-        let sig = match self.signal(&watched.io).map_err(|f| f.message)? {
+        let sig = match self.signal(&watched.io)? {
             Sig::One(n) => n,
             Sig::Bits(first, _) => first.to_string(),
         };
         let sig = if watched.high { sig } else { negate(&sig) };
-        let prog = match &d.handler {
-            Ok(Callee::Routine(r)) => {
+        let prog = match handler {
+            Callee::Routine(r) => {
                 let n = self.ir.routine(*r).name.clone();
                 self.out.names.routine_of(&n).unwrap_or(&n).to_owned()
             }
-            Ok(Callee::External { name, span, .. }) => self.name_program(name, *span),
-            Ok(Callee::Mm(s)) => s.name.to_ascii_lowercase(),
-            Err(w) => return Err(w.message()),
+            Callee::External { name, span, .. } => self.name_program(name, *span),
+            Callee::Mm(s) => s.name.to_ascii_lowercase(),
         };
         Ok((sig, prog))
     }
@@ -177,25 +180,21 @@ impl<'a> Tx<'a> {
             self.stop_message_interrupt(span);
             return Ok(());
         }
-        match self.interrupt_target(i) {
-            Ok((sig, prog)) => {
-                self.line(format!(
-                    "; INTERRUPT {n}: ON {sig} CALL {prog} when switched on"
-                ));
-                self.out.rep.approximate(
-                    FileId::Src,
-                    span,
-                    format!("interrupt {n} becomes ON {sig} CALL {prog}: no priorities, and BRAKE/RESUME behave differently"),
-                    "check the reaction time and what the handler does to the running motion",
-                );
-                Ok(())
-            }
-            Err(why) => fail(
-                span,
-                format!("interrupt {n} cannot be translated: {why}"),
-                "watch the condition with a PC program, or poll it with SIG()",
-            ),
-        }
+        let (sig, prog) = self.interrupt_target(
+            i,
+            span,
+            Some("watch the condition with a PC program, or poll it with SIG()"),
+        )?;
+        self.line(format!(
+            "; INTERRUPT {n}: ON {sig} CALL {prog} when switched on"
+        ));
+        self.out.rep.approximate(
+            FileId::Src,
+            span,
+            format!("interrupt {n} becomes ON {sig} CALL {prog}: no priorities, and BRAKE/RESUME behave differently"),
+            "check the reaction time and what the handler does to the running motion",
+        );
+        Ok(())
     }
 
     pub(super) fn interrupt(
@@ -207,21 +206,11 @@ impl<'a> Tx<'a> {
         let decls = &self.ir.interrupts;
         let mut lines = Vec::new();
         for i in self.ir.interrupts_for(number, span)? {
-            let n = decls[i].number;
             if decls[i].stop_messages {
                 self.stop_message_interrupt(span);
                 continue;
             }
-            let (sig, prog) = match self.interrupt_target(i) {
-                Ok(t) => t,
-                Err(why) => {
-                    return fail(
-                        span,
-                        format!("interrupt {n} cannot be translated: {why}"),
-                        "see its declaration",
-                    );
-                }
-            };
+            let (sig, prog) = self.interrupt_target(i, span, None)?;
             lines.push(match action {
                 InterruptAction::On | InterruptAction::Enable => format!("ON {sig} CALL {prog}"),
                 InterruptAction::Off | InterruptAction::Disable => format!("IGNORE {sig}"),

@@ -31,7 +31,7 @@ use super::ir::{self, Block, RoutineId, VarId};
 use super::render::{self, Emit, Out, Style};
 use crate::diag::Span;
 
-pub(super) use super::front::{Fail, R, fail};
+pub(super) use super::front::{Fail, R};
 
 /// The joint map for a Kawasaki arm's six joints, e.g. `A1,-A2+90,A3-90,A4,A5,A6`.
 pub fn joint_map(s: &str) -> Result<super::joints::JointMap, String> {
@@ -95,6 +95,7 @@ pub static BACKEND: render::Backend = render::Backend {
             Lacked::Override,
             Lacked::TimerStop,
             Lacked::PathAcceleration,
+            Lacked::LoadTable,
         ],
         pulse: render::Pulse {
             low: false,
@@ -107,6 +108,25 @@ pub static BACKEND: render::Backend = render::Backend {
             written: true,
             every: false,
             linear: true,
+        },
+        // DX/DY/DZ read a position, SHIFT assigns it; $MID reads a character.
+        components: render::Components {
+            position: render::Access::Assign,
+            orientation: render::Access::None,
+            axes: render::Access::None,
+            status_turn: render::Access::None,
+            external: render::Access::None,
+            characters: render::Access::Read,
+            char_rows: false,
+        },
+        // Data sections hold numbers; A,B,C → O,A,T is converted when translated; `PTP {A1 45}`
+        // from HERE/DECOMPOSE (`motion.rs`).
+        literals: render::Literals {
+            data: true,
+            computed_angles: false,
+            partial_drops: false,
+            partial_axis_motion: true,
+            computed_step: true,
         },
         ..render::Caps::BASE
     },

@@ -3,7 +3,7 @@
 //! speed differs from it), ACCURACY per motion, ACCEL, TOOL, BASE, WEIGHT.
 
 use super::format::num;
-use super::{R, Tx, fail};
+use super::{R, Tx};
 use crate::diag::Span;
 use crate::transpile::front::report::FileId;
 use crate::transpile::ir::{
@@ -224,10 +224,9 @@ impl<'a> Tx<'a> {
             match (c, e.number()) {
                 (Component::Axis(i), Some(v)) => given[*i] = Some(v),
                 _ => {
-                    return fail(
+                    return crate::transpile::render::not_lowered(
                         e.span,
                         "an incomplete axis value with computed or external-axis components",
-                        "write the axes as numbers, or every axis",
                     );
                 }
             }
@@ -478,11 +477,8 @@ impl<'a> Tx<'a> {
 
     pub(super) fn set_load(&mut self, l: &Load, span: Span) -> R<()> {
         match l {
-            Load::Table(_) => fail(
-                span,
-                "LOAD_DATA[n] lives in the KUKA machine data; AS WEIGHT needs the values",
-                "write WEIGHT mass, cx, cy, cz with the load's values",
-            ),
+            // The lowering refuses it (`Caps::lacks`).
+            Load::Table(_) => crate::transpile::render::not_lowered(span, "LOAD_DATA[n]"),
             Load::Mass(m) => {
                 let m = self.expr(m)?;
                 self.out.rep.approximate(

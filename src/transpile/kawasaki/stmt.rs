@@ -1,13 +1,13 @@
 //! Statements and control flow, assignments and calls.
 
 use super::format;
-use super::{R, Tx, fail};
+use super::{R, Tx};
 use crate::diag::Span;
 use crate::transpile::front::report::FileId;
 use crate::transpile::ir::{
     self, Arg, Block, Callee, Component, Expr, ExprKind, LoopId, LoopKind, Op, Place, Stmt, Ty,
 };
-use crate::transpile::render::{CaseWords, Emit};
+use crate::transpile::render::{self, CaseWords, Emit};
 
 /// SWITCH on a number, and on a string (AS compares strings with SCASE/SVALUE).
 static CASE: CaseWords = CaseWords {
@@ -135,22 +135,6 @@ impl<'a> Tx<'a> {
         if let Place::Component(base, c) = place {
             return self.component_assign(base, *c, value, span);
         }
-        if let Place::Member(_, f) = place {
-            return fail(
-                span,
-                format!("assigning the structure member `.{f}` has no AS equivalent"),
-                "split the structure into separate variables",
-            );
-        }
-        if let (Ty::Char, Place::Index(_, idx)) = (&ty, place)
-            && !matches!(idx.as_slice(), [None] | [])
-        {
-            return fail(
-                span,
-                "assigning one character of a string has no AS equivalent",
-                "build the string with $LEFT/$MID/$RIGHT and +",
-            );
-        }
         if let ExprKind::Aggregate(a) = &value.kind
             && !a.complete()
         {
@@ -172,10 +156,9 @@ impl<'a> Tx<'a> {
                 .iter()
                 .any(|(c, _)| !matches!(c, Component::Pose(0..=2)))
         {
-            return fail(
+            return crate::transpile::render::not_lowered(
                 at,
-                "an incomplete literal with orientation or axis components (KRL keeps the missing ones); AS needs all of them",
-                "write every component",
+                "an incomplete literal with parts AS cannot assign alone",
             );
         }
         for (c, v) in &a.fields {
@@ -188,16 +171,8 @@ impl<'a> Tx<'a> {
     fn component_assign(&mut self, base: &Place, c: Component, value: &Expr, span: Span) -> R<()> {
         let axis = match c {
             Component::Pose(i @ 0..=2) => i,
-            _ => {
-                return fail(
-                    span,
-                    format!(
-                        "assigning the component `{}` alone has no AS equivalent",
-                        c.krl()
-                    ),
-                    "compute the whole value (TRANS / #PPOINT) and assign it",
-                );
-            }
+            // The lowering refuses the rest (`Caps::components`).
+            _ => return render::not_lowered(span, "a component AS cannot assign"),
         };
         let p = self.place_text(base, &Ty::Pose, span)?;
         let v = self.expr(value)?;

@@ -195,10 +195,9 @@ impl<'a> Tx<'a> {
             {
                 return self.expr(v);
             }
-            return fail(
+            return crate::transpile::render::not_lowered(
                 v.span,
-                "this pose value is not a literal",
-                "use a literal pose",
+                "a .dat pose value that is no literal",
             );
         }
         if v.number().is_none()
@@ -210,7 +209,10 @@ impl<'a> Tx<'a> {
                     | crate::transpile::ir::ExprKind::Enum { .. }
             )
         {
-            return fail(v.span, "this value is not a literal", "use a literal");
+            return crate::transpile::render::not_lowered(
+                v.span,
+                "a .dat value that is no literal",
+            );
         }
         self.expr(v)
     }

@@ -2,17 +2,16 @@
 //! components (`p.trans.x`, `EulerZYX(\Z, p.rot)`), signal reads, robtarget literals.
 
 use super::format::{self, NO_EXTAX, num};
-use super::{R, Tx, fail};
+use super::{R, Tx};
 use crate::diag::Span;
 use crate::transpile::ir::{
     Aggregate, Bank, BinaryOp, Builtin, Component, Expr, ExprKind, IoPlace, Place, Ty, UnaryOp,
 };
-use crate::transpile::render::Emit;
+use crate::transpile::render::{Emit, not_lowered};
 
 use crate::transpile::render::expr::{ADD, CMP, LOGIC, LOOSE_UNARY as NEG, MUL, Rendered};
 
 /// Why axis values written in the program are not copied.
-pub(super) const NO_JOINT_MAP: &str = "KUKA axis values: ABB's axis zeros and directions differ, so the same numbers are another posture; without a joint map they are not translated";
 pub(super) const JOINT_MAP_HELP: &str = "give --joint-map (per ABB axis the KUKA axis, negated and shifted as the two arms need, e.g. A1,A2+90,A3-90,A4,A5,A6), or teach the point on the ABB robot";
 
 impl<'a> Tx<'a> {
@@ -213,11 +212,8 @@ impl<'a> Tx<'a> {
                 if self.is_string(base) {
                     return match idx.as_slice() {
                         [None] | [] => Ok(b),
-                        _ => fail(
-                            span,
-                            "one character of a string as a place has no RAPID equivalent",
-                            "build the string with StrPart and +",
-                        ),
+                        // The lowering refuses it (`Caps::components`); a read is `StrPart`.
+                        _ => not_lowered(span, "one character of a string as a place"),
                     };
                 }
                 // `a[]` (the whole array, as an argument): RAPID passes an array by its name.
@@ -241,15 +237,9 @@ impl<'a> Tx<'a> {
                         "{b}.extax.eax_{}",
                         ["a", "b", "c", "d", "e", "f"][*i]
                     )),
-                    Component::Axis(_) => fail(span, NO_JOINT_MAP, JOINT_MAP_HELP),
-                    _ => fail(
-                        span,
-                        format!(
-                            "the component `{}` has no RAPID counterpart as a place",
-                            c.krl()
-                        ),
-                        "compute the whole value and assign it",
-                    ),
+                    // The lowering refuses the rest (`Caps::components`); an angle is
+                    // read by `place_value`.
+                    _ => not_lowered(span, "a component RAPID cannot assign"),
                 }
             }
             Place::Member(base, f) => {
@@ -290,19 +280,9 @@ impl<'a> Tx<'a> {
     /// A complete pose or axis literal: `[[x,y,z],[q1,q2,q3,q4],[0,0,0,0],[e1,…]]` or
     /// `[[j1,…,j6],[e1,…]]`.
     pub(super) fn literal(&mut self, a: &Aggregate, span: Span) -> R<String> {
+        // The lowering refuses it (`Caps::literals`).
         if !a.complete() {
-            let want = if a.axis {
-                "A1 to A6"
-            } else {
-                "X, Y, Z, A, B and C"
-            };
-            return fail(
-                span,
-                format!(
-                    "an incomplete literal (KRL keeps the missing components of the current value); RAPID needs all of {want}"
-                ),
-                "write every component",
-            );
+            return crate::transpile::render::not_lowered(span, "an incomplete literal");
         }
         let ext = self.ext_axes(a, span)?;
         if a.axis {
@@ -313,11 +293,7 @@ impl<'a> Tx<'a> {
                 );
             };
             let Some(m) = a.numbers() else {
-                return fail(
-                    span,
-                    "axis values with computed components; only literal values go through the joint map",
-                    "use literal values",
-                );
+                return crate::transpile::render::not_lowered(span, "computed axis values");
             };
             self.note(format!(
                 "KUKA axis values -> ABB axes 1..6 by the joint map {map} (--joint-map)"

@@ -1,8 +1,9 @@
 //! What to do instead, in RAPID, for each construct no target can express.
 
-use crate::transpile::ir::Why;
 use crate::transpile::ir::why::KukaOnly;
 use crate::transpile::ir::why::Lacked;
+use crate::transpile::ir::why::Part;
+use crate::transpile::ir::{Component, Why};
 
 pub(super) fn help(why: &Why) -> String {
     crate::transpile::render::help::help(why, own)
@@ -75,6 +76,13 @@ fn own(why: &Why) -> Option<String> {
         }
         Why::Lacks(Lacked::Timers | Lacked::TimerStop) => {
             "use a clock: ClkReset, ClkStart and ClkRead (seconds)".into()
+        }
+        Why::Part { part: Part::Character, .. } => "build the string with StrPart and +".into(),
+        Why::Part { part: Part::Component(Component::Axis(_)), .. } => {
+            "read the jointtarget's robax by hand (its values are ABB's, after the joint map)".into()
+        }
+        Why::FrameValue { .. } => {
+            "declare a tooldata/wobjdata with the frame and use it".into()
         }
         _ => return None,
     })

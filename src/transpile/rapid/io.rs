@@ -1,13 +1,13 @@
 //! Outputs, pulses and waits: `SetDO`, `PulseDO`, `WaitDI`/`WaitDO`, `WaitUntil`, `WaitTime`;
 //! `$FLAG[n]` is the module's bool array `krl_flag`. Signal names come from `--signal-map`.
 
-use super::{R, Tx, fail};
+use super::{R, Tx};
 use crate::diag::Span;
 use crate::transpile::front::report::FileId;
 use crate::transpile::ir::{
     Bank, Callee, Expr, ExprKind, InterruptAction, IoPlace, IoTiming, OutPlace, Wait,
 };
-use crate::transpile::render::Emit;
+use crate::transpile::render::{self, Emit};
 
 /// How KRL's digital I/O numbers become RAPID signal names: a pattern per bank with `{n}` for
 /// the number, and names for single signals.
@@ -223,35 +223,30 @@ struct Order {
 
 impl<'a> Tx<'a> {
     /// The RAPID form of interrupt declaration `i`, or why there is none.
-    fn order(&mut self, i: usize) -> Result<Order, String> {
-        let d = &self.ir.interrupts[i];
-        let watched = d.condition.as_ref().map_err(|w| w.message())?;
+    fn order(&mut self, i: usize, span: Span, help: Option<&str>) -> R<Order> {
+        let (watched, handler) = render::interrupt_parts(self.ir, i, span, help)?;
+        let number = self.ir.interrupts[i].number;
         let high = watched.high;
         let bank = match &watched.io {
             IoPlace::Out(_) => Bank::Out,
             IoPlace::Signal(r) => r.bank,
             IoPlace::In(_) | IoPlace::Flag(_) => Bank::In,
         };
-        let sig = self.signal(&watched.io, d.span).map_err(|f| f.message)?;
-        let proc_ = match &d.handler {
-            Ok(Callee::Routine(r)) => {
+        let sig = self.signal(&watched.io, self.ir.interrupts[i].span)?;
+        let proc_ = match handler {
+            Callee::Routine(r) => {
                 let n = self.ir.routine(*r).name.clone();
                 self.out.names.routine_of(&n).unwrap_or(&n).to_owned()
             }
-            Ok(Callee::External { name, span, .. }) => {
+            Callee::External { name, span, .. } => {
                 let n = self.out.names.routine(&mut self.out.rep, name, *span);
                 if !self.external.contains(&n) {
                     self.external.push(n.clone());
                 }
                 n
             }
-            Ok(Callee::Mm(s)) => {
-                return Err(format!(
-                    "its handler `{}` is a routine of the Mech-Mind KUKA interface",
-                    s.name
-                ));
-            }
-            Err(w) => return Err(w.message()),
+            // The lowering names a handler as a routine of this program or another.
+            Callee::Mm(_) => return render::not_lowered(span, "a Mech-Mind routine as a handler"),
         };
         let trap = match self.traps.iter().find(|(_, p)| **p == proc_) {
             Some((t, _)) => t.clone(),
@@ -266,7 +261,7 @@ impl<'a> Tx<'a> {
             Bank::Out => "ISignalDO",
         };
         Ok(Order {
-            number: d.number,
+            number,
             signal: format!("{instr} {sig}, {}", u8::from(high)),
             trap,
         })
@@ -285,27 +280,23 @@ impl<'a> Tx<'a> {
             self.keep_as_comment("TR002", span);
             return Ok(());
         }
-        match self.order(i) {
-            Ok(o) => {
-                self.intnums.insert(o.number);
-                self.line(format!(
-                    "! INTERRUPT {n}: {}, ir{n} with TRAP {} when switched on",
-                    o.signal, o.trap
-                ));
-                self.out.rep.approximate(
-                    FileId::Src,
-                    span,
-                    format!("interrupt {n} becomes {}, ir{n} with TRAP {}: no priorities (traps run in the order of their events), and BRAKE/RESUME behave differently", o.signal, o.trap),
-                    "check the reaction time and what the handler does to the running motion",
-                );
-                Ok(())
-            }
-            Err(why) => fail(
-                span,
-                format!("interrupt {n} cannot be translated: {why}"),
-                "watch one input with ISignalDI, or poll the condition with WaitUntil",
-            ),
-        }
+        let o = self.order(
+            i,
+            span,
+            Some("watch one input with ISignalDI, or poll the condition with WaitUntil"),
+        )?;
+        self.intnums.insert(o.number);
+        self.line(format!(
+            "! INTERRUPT {n}: {}, ir{n} with TRAP {} when switched on",
+            o.signal, o.trap
+        ));
+        self.out.rep.approximate(
+            FileId::Src,
+            span,
+            format!("interrupt {n} becomes {}, ir{n} with TRAP {}: no priorities (traps run in the order of their events), and BRAKE/RESUME behave differently", o.signal, o.trap),
+            "check the reaction time and what the handler does to the running motion",
+        );
+        Ok(())
     }
 
     pub(super) fn interrupt(
@@ -322,16 +313,7 @@ impl<'a> Tx<'a> {
                 lines.push(format!("! INTERRUPT {n}: the controller's stop messages"));
                 continue;
             }
-            let o = match self.order(i) {
-                Ok(o) => o,
-                Err(why) => {
-                    return fail(
-                        span,
-                        format!("interrupt {n} cannot be translated: {why}"),
-                        "see its declaration",
-                    );
-                }
-            };
+            let o = self.order(i, span, None)?;
             self.intnums.insert(n);
             match action {
                 InterruptAction::On => {

@@ -77,6 +77,7 @@ pub static BACKEND: render::Backend = render::Backend {
             groups: false,
             output_groups_read: true,
             computed_numbers: false,
+            ports: None,
         },
         robot: "ABB",
         records: true,
@@ -103,6 +104,29 @@ pub static BACKEND: render::Backend = render::Backend {
             written: true,
             every: true,
             linear: false,
+        },
+        // `.trans.x`, `.extax.eax_a`; EulerZYX reads an angle, OrientZYX assigns it; StrPart
+        // reads a character; a jointtarget's values are ABB's (after the joint map), not KUKA's
+        // axes.
+        components: render::Components {
+            orientation: render::Access::Assign,
+            axes: render::Access::None,
+            status_turn: render::Access::None,
+            characters: render::Access::Read,
+            char_rows: false,
+            ..render::Caps::BASE.components
+        },
+        // `tool<n>`/`wobj<n>`: names written in the module.
+        frames: render::Frames {
+            values: false,
+            computed_numbers: false,
+        },
+        // RAPID initialises data with literals; a FOR becomes a WHILE whose test needs the
+        // step's sign.
+        literals: render::Literals {
+            data: true,
+            computed_step: false,
+            ..render::Caps::BASE.literals
         },
         ..render::Caps::BASE
     },

@@ -5,14 +5,14 @@
 use std::collections::BTreeSet;
 
 use super::format::num;
-use super::{R, Tx, fail};
+use super::{R, Tx};
 use crate::diag::Span;
 use crate::transpile::front::report::FileId;
 use crate::transpile::ir::{
     Because, Blend, CartMps, ExprKind, FrameKind, FrameRef, JointPct, Known, MotionParam, Move,
     ParamValue, Path, Target, TriggerAt,
 };
-use crate::transpile::render::Emit;
+use crate::transpile::render::{Emit, not_lowered};
 
 /// The predefined speeddata `vN` (N mm/s).
 const SPEEDS: [u32; 25] = [
@@ -188,10 +188,9 @@ impl<'a> Tx<'a> {
         if let ExprKind::Aggregate(a) = &t.expr.kind
             && !a.complete()
         {
-            return fail(
+            return crate::transpile::render::not_lowered(
                 t.expr.span,
-                "a motion to an incomplete literal (KRL keeps the missing components from the previous target) has no translation to RAPID yet",
-                "write every component",
+                "a motion to an incomplete literal",
             );
         }
         self.expr(&t.expr)
@@ -326,17 +325,10 @@ impl<'a> Tx<'a> {
                     Ok(format!("{kind}{n}"))
                 }
                 Some(_) => Ok(zero.into()),
-                None => fail(
-                    i.span,
-                    "a tool or base number computed at run time",
-                    "use a literal number",
-                ),
+                // The lowering refuses it (`Caps::frames`).
+                None => not_lowered(i.span, "a tool or base number computed at run time"),
             },
-            Known::Is(FrameRef::Value(_)) => fail(
-                span,
-                "a tool or base given as a frame value has no translation to RAPID yet",
-                "declare a tooldata/wobjdata with the frame and use it",
-            ),
+            Known::Is(FrameRef::Value(_)) => not_lowered(span, "a frame value"),
             Known::Unknown(b) => {
                 let what = match which {
                     FrameKind::Tool => "the tool ($TOOL)",
@@ -409,9 +401,9 @@ impl<'a> Tx<'a> {
     /// `$TOOL = TOOL_DATA[n]`: the following motions use `tool<n>`, a placeholder the
     /// integrator defines.
     pub(super) fn set_frame(&mut self, which: FrameKind, frame: &FrameRef, span: Span) -> R<()> {
-        let (krl, kind) = match which {
-            FrameKind::Tool => ("$TOOL", "tool"),
-            FrameKind::Base => ("$BASE", "wobj"),
+        let kind = match which {
+            FrameKind::Tool => "tool",
+            FrameKind::Base => "wobj",
         };
         let text = self.src.src.slice(span).trim().to_owned();
         match frame {
@@ -419,12 +411,9 @@ impl<'a> Tx<'a> {
                 self.line(format!("! {text} (the following moves use {kind}0)"));
             }
             FrameRef::Table(i) => {
+                // The lowering refuses the rest (`Caps::frames`).
                 let Some(n) = i.integer().filter(|n| *n > 0) else {
-                    return fail(
-                        i.span,
-                        "a tool or base number computed at run time",
-                        "use a literal number",
-                    );
+                    return not_lowered(i.span, "a tool or base number computed at run time");
                 };
                 let (table, ty) = match which {
                     FrameKind::Tool => ("TOOL_DATA", "tooldata"),
@@ -442,13 +431,7 @@ impl<'a> Tx<'a> {
                 };
                 self.line(format!("! {text} (the following moves use {kind}{n})"));
             }
-            FrameRef::Value(_) => {
-                return fail(
-                    span,
-                    format!("{krl} given as a frame value has no translation to RAPID yet"),
-                    "declare a tooldata/wobjdata with the frame and use it",
-                );
-            }
+            FrameRef::Value(_) => return not_lowered(span, "a frame value"),
         }
         Ok(())
     }

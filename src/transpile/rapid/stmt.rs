@@ -2,7 +2,7 @@
 //! (RAPID's FOR counter is read-only and gone after the loop; KRL's is a variable), loops left
 //! early jump to a label after them (RAPID `EXIT` ends the program).
 
-use super::{R, Tx, fail};
+use super::{R, Tx};
 use crate::diag::Span;
 use crate::transpile::front::report::FileId;
 use crate::transpile::ir::{
@@ -126,10 +126,9 @@ impl<'a> Tx<'a> {
                     Some(st) => match st.number() {
                         Some(n) => n,
                         None => {
-                            return fail(
+                            return crate::transpile::render::not_lowered(
                                 st.span,
-                                "a FOR step that is not a literal number",
-                                "use a literal step",
+                                "a FOR step that is no literal number",
                             );
                         }
                     },
@@ -200,10 +199,9 @@ impl<'a> Tx<'a> {
             && !a.complete()
         {
             if a.axis {
-                return fail(
+                return crate::transpile::render::not_lowered(
                     value.span,
-                    "an incomplete axis literal (KRL keeps the missing axes)",
-                    "write every axis",
+                    "an incomplete axis literal assigned",
                 );
             }
             for (c, v) in &a.fields {

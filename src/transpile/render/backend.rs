@@ -5,7 +5,7 @@
 use super::super::front::Program as Source;
 use super::super::front::names::NameRules;
 use super::super::front::report::Report;
-use super::super::ir::why::Lacked;
+use super::super::ir::why::{Lacked, Reach};
 use super::super::ir::{self, Why};
 use super::super::{Options, Renderer, Target, VisionServer};
 use crate::transpile::{flexiv, kawasaki, rapid};
@@ -61,6 +61,105 @@ pub struct Caps {
     pub external_axes: u8,
     /// Which of KRL's signals it names.
     pub signals: Signals,
+    /// Which parts of a value it reads or assigns alone.
+    pub components: Components,
+    /// How `$TOOL`/`$BASE` may be given.
+    pub frames: Frames,
+    /// What must be written as a literal.
+    pub literals: Literals,
+}
+
+/// What a target needs written as a literal, and what it makes of an incomplete one (KRL keeps
+/// the missing components of the current value); the lowering refuses the rest (TR001). Every
+/// target needs a pose or axis value used as a whole complete, and axis values that go
+/// through the joint map where written (`AxisValues::written`) literal.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub struct Literals {
+    /// `.dat` values are literals (numbers, strings, poses of numbers); without: any value
+    /// the program could compute.
+    pub data: bool,
+    /// A pose's A, B, C may be computed; without: literal numbers, converted when translated.
+    pub computed_angles: bool,
+    /// An incomplete literal assigned (`p = {X 10, S 6}`) drops what the target does not
+    /// keep (S/T, TR002; external axes at 0); without: each part it gives is assigned alone
+    /// (`Caps::components`).
+    pub partial_drops: bool,
+    /// A motion to an incomplete literal of axis numbers (`PTP {A1 45}`) takes the other axes
+    /// from where the previous motion ended; without: TR001.
+    pub partial_axis_motion: bool,
+    /// A FOR's STEP may be computed; without: a literal number (the loop's direction).
+    pub computed_step: bool,
+}
+
+/// How a program may select its tool and base (`$TOOL`, `$BASE`, `BAS(#TOOL, n)`); the
+/// lowering refuses the rest (TR001).
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub struct Frames {
+    /// As a frame value (a variable or literal), not a `TOOL_DATA`/`BASE_DATA` entry; without:
+    /// `Why::FrameValue` (it selects frames defined on the robot by name).
+    pub values: bool,
+    /// As a `TOOL_DATA[i]`/`BASE_DATA[i]` entry whose number is computed at run time; without:
+    /// `Why::FrameNumber` (its frames are names written in the program).
+    pub computed_numbers: bool,
+}
+
+/// Which parts of a value a target reads or assigns alone (`p.X`, `j.A1`, `s[3]`); the
+/// lowering refuses the rest (TR001 `Why::Part`).
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub struct Components {
+    /// X, Y, Z of a pose.
+    pub position: Access,
+    /// A, B, C of a pose.
+    pub orientation: Access,
+    /// A1 … A6 of axis values.
+    pub axes: Access,
+    /// S and T of a pose.
+    pub status_turn: Access,
+    /// E1 … E6.
+    pub external: Access,
+    /// One character of a string.
+    pub characters: Access,
+    /// CHAR arrays of two dimensions (rows of strings); without: TR001 `Why::CharRows`.
+    pub char_rows: bool,
+}
+
+impl Components {
+    /// How the target reads or assigns `c` alone.
+    pub fn of(&self, c: ir::Component) -> Access {
+        match c {
+            ir::Component::Pose(0..=2) => self.position,
+            ir::Component::Pose(_) => self.orientation,
+            ir::Component::Axis(_) => self.axes,
+            ir::Component::Status | ir::Component::Turn => self.status_turn,
+            ir::Component::Ext(_) => self.external,
+        }
+    }
+}
+
+/// How a target reaches one part of a value.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Access {
+    /// Not at all.
+    None,
+    /// Read only.
+    Read,
+    /// Read, and assigned by a statement that recomputes the whole value (not a variable an
+    /// OUT argument can name).
+    Assign,
+    /// Read, assigned, and passed as a variable.
+    Write,
+}
+
+impl Access {
+    /// Whether a place can be used so.
+    pub fn allows(self, reach: Reach) -> bool {
+        match self {
+            Access::None => false,
+            Access::Read => reach == Reach::Read,
+            Access::Assign => reach != Reach::Pass,
+            Access::Write => true,
+        }
+    }
 }
 
 /// The signals a target can read and write; the lowering refuses the rest (TR001).
@@ -73,6 +172,19 @@ pub struct Signals {
     /// `$IN[i]`/`$OUT[i]` with a number computed at run time (without: its signals are names
     /// of the I/O configuration).
     pub computed_numbers: bool,
+    /// How many digital inputs and outputs the robot has, as ports from 0 (a KRL number plus
+    /// `--input-offset`/`--output-offset`); a literal signal on none is TR001. `None`: its
+    /// signals are not a fixed set of ports.
+    pub ports: Option<Ports>,
+}
+
+/// A robot's digital ports.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub struct Ports {
+    /// How many inputs, and as many outputs, numbered from 0.
+    pub count: i64,
+    /// Whose ports, as findings name them (`Flexiv port 19`).
+    pub of: &'static str,
 }
 
 /// How a target translates the Mech-Mind KUKA interface's `MM_*` calls; the lowering refuses
@@ -104,6 +216,27 @@ impl Caps {
             groups: true,
             output_groups_read: true,
             computed_numbers: true,
+            ports: None,
+        },
+        literals: Literals {
+            data: false,
+            computed_angles: true,
+            partial_drops: false,
+            partial_axis_motion: false,
+            computed_step: true,
+        },
+        frames: Frames {
+            values: true,
+            computed_numbers: true,
+        },
+        components: Components {
+            position: Access::Write,
+            orientation: Access::Write,
+            axes: Access::Write,
+            status_turn: Access::Write,
+            external: Access::Write,
+            characters: Access::Write,
+            char_rows: true,
         },
         goto: true,
         records: false,
@@ -217,7 +350,7 @@ pub enum Trigger {
 }
 
 /// The columns of the capability table.
-const CAPS_COLUMNS: [&str; 18] = [
+const CAPS_COLUMNS: [&str; 21] = [
     "language",
     "GOTO",
     "STRUC",
@@ -233,13 +366,16 @@ const CAPS_COLUMNS: [&str; 18] = [
     "`MM_*` calls",
     "external axes in a value",
     "signals",
+    "parts alone (read/assigned/passed)",
+    "`$TOOL`/`$BASE`",
+    "literals",
     "nothing for (TR001)",
     "strings",
     "identifiers",
 ];
 
 /// A target's row of the capability table, in [`CAPS_COLUMNS`] order.
-fn caps_row(b: &Backend) -> [String; 18] {
+fn caps_row(b: &Backend) -> [String; 21] {
     let yes_no = |b: bool, without: &str| {
         if b {
             "yes".to_owned()
@@ -294,6 +430,9 @@ fn caps_row(b: &Backend) -> [String; 18] {
             n => format!("E1…E{n}; more: TR001"),
         },
         signals(&c.signals),
+        components(&c.components),
+        frames(&c.frames),
+        literals(&c.literals),
         lacked(c.lacks),
         strings,
         format!("≤ {} characters", n.max_len),
@@ -333,11 +472,85 @@ fn signals(s: &Signals) -> String {
     if !s.computed_numbers {
         no.push("numbers computed at run time");
     }
-    if no.is_empty() {
+    let mut cell = if no.is_empty() {
         "all".to_owned()
     } else {
         format!("{}: TR001", no.join(", "))
+    };
+    if let Some(p) = s.ports {
+        cell.push_str(&format!(
+            "; {} inputs and outputs (ports 0-{} after --input-offset/--output-offset), others TR001",
+            p.count,
+            p.count - 1
+        ));
     }
+    cell
+}
+
+/// The literals cell: what must be a literal, what an incomplete one becomes.
+fn literals(l: &Literals) -> String {
+    let mut cell = vec!["a whole pose or axis value: every component".to_owned()];
+    if l.data {
+        cell.push(".dat values: literals".into());
+    }
+    if !l.computed_angles {
+        cell.push("A/B/C: numbers".into());
+    }
+    cell.push(if l.partial_drops {
+        "an incomplete one assigned: the parts given, S/T dropped (TR002)".into()
+    } else {
+        "an incomplete one assigned: each part alone".into()
+    });
+    if l.partial_axis_motion {
+        cell.push("PTP {A1 45}: the other axes from the last position (TR002)".into());
+    }
+    if !l.computed_step {
+        cell.push("FOR STEP: a number".into());
+    }
+    format!("{}; else TR001", cell.join("; "))
+}
+
+/// The `$TOOL`/`$BASE` cell: what is TR001 besides a `TOOL_DATA`/`BASE_DATA` entry.
+fn frames(f: &Frames) -> String {
+    let mut no = Vec::new();
+    if !f.values {
+        no.push("a frame value");
+    }
+    if !f.computed_numbers {
+        no.push("an entry number computed at run time");
+    }
+    if no.is_empty() {
+        "a TOOL_DATA/BASE_DATA entry or a frame value".to_owned()
+    } else {
+        format!("a TOOL_DATA/BASE_DATA entry; {}: TR001", no.join(", "))
+    }
+}
+
+/// The components cell: what is read or assigned alone, the rest TR001.
+fn components(c: &Components) -> String {
+    let access = |a: Access| match a {
+        Access::None => "no",
+        Access::Read => "read",
+        Access::Assign => "read, assigned",
+        Access::Write => "read, assigned, passed",
+    };
+    let mut cell = [
+        ("X/Y/Z", c.position),
+        ("A/B/C", c.orientation),
+        ("A1…A6", c.axes),
+        ("S/T", c.status_turn),
+        ("E1…E6", c.external),
+        ("a string's character", c.characters),
+    ]
+    .iter()
+    .map(|(what, a)| format!("{what}: {}", access(*a)))
+    .collect::<Vec<_>>()
+    .join(", ");
+    if !c.char_rows {
+        cell.push_str("; 2-D CHAR arrays: no");
+    }
+    cell.push_str("; else TR001");
+    cell
 }
 
 /// The `MM_*` cell: which calls translate (an omitted argument the translation reads: TR001).
@@ -631,6 +844,190 @@ mod tests {
         );
     }
 
+    /// Each part of a value is read and assigned alone exactly where the target's
+    /// `Caps::components` says, and refused by the lowering elsewhere.
+    #[test]
+    fn the_lowering_refuses_the_parts_a_target_cannot_reach() {
+        use crate::transpile::ir::Component as C;
+        use crate::transpile::ir::why::Part;
+        let parts = [
+            ("p.X", C::Pose(0)),
+            ("p.B", C::Pose(4)),
+            ("j.A2", C::Axis(1)),
+            ("p.S", C::Status),
+            ("p.E1", C::Ext(0)),
+        ];
+        let decls =
+            "DECL E6POS p\nDECL E6AXIS j\nDECL REAL r\nDECL CHAR s[8], c\nDECL CHAR rows[3,8]\n";
+        for b in BACKENDS {
+            let parts_of = &b.caps().components;
+            let mut cases: Vec<(String, Why, bool)> = Vec::new();
+            for (krl, c) in parts {
+                for reach in [Reach::Read, Reach::Assign, Reach::Pass] {
+                    let stmt = match reach {
+                        Reach::Read => format!("r = {krl}"),
+                        Reach::Assign => format!("{krl} = 1"),
+                        Reach::Pass => format!("q({krl})"),
+                    };
+                    // An argument is read before it is passed.
+                    let access = parts_of.of(c);
+                    let first = if reach == Reach::Pass && !access.allows(Reach::Read) {
+                        Reach::Read
+                    } else {
+                        reach
+                    };
+                    let why = Why::Part {
+                        part: Part::Component(c),
+                        reach: first,
+                    };
+                    cases.push((stmt, why, !access.allows(reach)));
+                }
+            }
+            for (stmt, reach) in [("c = s[2]", Reach::Read), ("s[2] = \"a\"", Reach::Assign)] {
+                let why = Why::Part {
+                    part: Part::Character,
+                    reach,
+                };
+                cases.push((stmt.into(), why, !parts_of.characters.allows(reach)));
+            }
+            cases.push((
+                "rows[2,3] = \"a\"".into(),
+                Why::CharRows,
+                !parts_of.char_rows,
+            ));
+            cases.push(("r.x = 1".into(), Why::NotAStructure("x".into()), true));
+            for (stmt, why, refused) in cases {
+                let src =
+                    format!("DEF p()\n{decls}{stmt}\nEND\nDEF q(v:OUT)\nDECL REAL v\nv = 2\nEND\n");
+                let msgs = refusals_in(b.target(), &src);
+                // What the caps let through, the renderer translates (no `not_lowered`).
+                assert!(
+                    !msgs.iter().any(|m| m.starts_with("internal:")),
+                    "{:?} {stmt}: {msgs:?}",
+                    b.target()
+                );
+                assert_eq!(
+                    msgs.contains(&why.message()),
+                    refused,
+                    "{:?} {stmt}: {msgs:?}",
+                    b.target()
+                );
+            }
+        }
+    }
+
+    /// A tool or base is refused exactly where the target's `Caps::frames` says.
+    #[test]
+    fn the_lowering_refuses_the_frames_a_target_cannot_name() {
+        let cases = [
+            (
+                "$TOOL = {X 0, Y 0, Z 100, A 0, B 0, C 0}",
+                Why::FrameValue { tool: true },
+                (|f: &Frames| f.values) as fn(&Frames) -> bool,
+            ),
+            ("$BASE = f", Why::FrameValue { tool: false }, |f| f.values),
+            ("$TOOL = TOOL_DATA[i]", Why::FrameNumber, |f| {
+                f.computed_numbers
+            }),
+            ("BAS(#TOOL, i)", Why::FrameNumber, |f| f.computed_numbers),
+        ];
+        for b in BACKENDS {
+            for (stmt, why, held) in &cases {
+                let src = format!("DEF p()\nDECL FRAME f\nDECL INT i\n{stmt}\nEND\n");
+                let msgs = refusals_in(b.target(), &src);
+                assert!(
+                    !msgs.iter().any(|m| m.starts_with("internal:")),
+                    "{:?} {stmt}: {msgs:?}",
+                    b.target()
+                );
+                assert_eq!(
+                    msgs.contains(&why.message()),
+                    !held(&b.caps().frames),
+                    "{:?} {stmt}: {msgs:?}",
+                    b.target()
+                );
+            }
+        }
+    }
+
+    /// What must be a literal, and what an incomplete literal assigned becomes, is refused
+    /// exactly where the target's `Caps::literals` (and `Caps::components`) say.
+    #[test]
+    fn the_lowering_refuses_the_literals_a_target_cannot_write() {
+        use crate::transpile::ir::Component as C;
+        use crate::transpile::ir::why::Part;
+        let part = |c| Why::Part {
+            part: Part::Component(c),
+            reach: Reach::Assign,
+        };
+        for b in BACKENDS {
+            let (l, parts) = (b.caps().literals, b.caps().components);
+            let cases = [
+                (
+                    "p = {X 1, Y 2}",
+                    part(C::Pose(0)),
+                    parts.position.allows(Reach::Assign),
+                ),
+                (
+                    "p = {A 10}",
+                    part(C::Pose(3)),
+                    parts.orientation.allows(Reach::Assign),
+                ),
+                (
+                    "p = {X 1, S 6}",
+                    part(C::Status),
+                    l.partial_drops || parts.status_turn.allows(Reach::Assign),
+                ),
+                (
+                    "p = {X 0, Y 0, Z 0, A r, B 0, C 0}",
+                    Why::ComputedAngles,
+                    l.computed_angles,
+                ),
+                ("q({X 1})", Why::IncompleteLiteral { axis: false }, false),
+                (
+                    "FOR i = 1 TO 5 STEP k\nENDFOR",
+                    Why::ForStep,
+                    l.computed_step,
+                ),
+            ];
+            for (stmt, why, held) in cases {
+                let src = format!(
+                    "DEF p()\nDECL E6POS p\nDECL REAL r\nDECL INT i, k\n{stmt}\nEND\nDEF q(v:IN)\nDECL E6POS v\nEND\n"
+                );
+                let msgs = refusals_in(b.target(), &src);
+                assert!(
+                    !msgs.iter().any(|m| m.starts_with("internal:")),
+                    "{:?} {stmt}: {msgs:?}",
+                    b.target()
+                );
+                assert_eq!(
+                    msgs.contains(&why.message()),
+                    !held,
+                    "{:?} {stmt}: {msgs:?}",
+                    b.target()
+                );
+            }
+        }
+    }
+
+    /// A literal signal on no port of the robot is refused where the target has a fixed
+    /// number of ports (`Caps::signals`), and only there.
+    #[test]
+    fn the_lowering_refuses_signals_on_no_port() {
+        let src = "DEF p()\nSIGNAL many $OUT[17] TO $OUT[24]\n$OUT[30] = TRUE\nmany = 3\nEND\n";
+        for b in BACKENDS {
+            let msgs = refusals_in(b.target(), src);
+            let ports = msgs.iter().filter(|m| m.contains("digital ports")).count();
+            let want = if b.caps().signals.ports.is_some() {
+                2
+            } else {
+                0
+            };
+            assert_eq!(ports, want, "{:?}: {msgs:?}", b.target());
+            assert!(!msgs.iter().any(|m| m.starts_with("internal:")), "{msgs:?}");
+        }
+    }
+
     /// Each statement a target declares it has nothing for is refused by the lowering for that
     /// target only (`Caps::lacks`).
     #[test]
@@ -641,6 +1038,7 @@ mod tests {
                 Lacked::Load,
                 "$LOAD = {M 3.5, CM {X 0, Y 0, Z 80, A 0, B 0, C 0}}",
             ),
+            (Lacked::LoadTable, "$LOAD = LOAD_DATA[2]"),
             (Lacked::Brake, "BRAKE"),
             (Lacked::Circ, "CIRC {X 1, Y 2, Z 3}, {X 2, Y 3, Z 3}"),
             (Lacked::Timers, "$TIMER[1] = 0"),

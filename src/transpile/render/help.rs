@@ -2,6 +2,7 @@
 //! instructions, its words) comes first and falls back to this.
 
 use crate::transpile::ir::Why;
+use crate::transpile::ir::why::Reach;
 
 /// `why`'s help in a target: the target's own text, else the one every target shares.
 pub fn help(why: &Why, own: fn(&Why) -> Option<String>) -> String {
@@ -53,6 +54,26 @@ fn shared(why: &Why) -> String {
         Why::ComputedSignal => "use a literal number, or an IF per signal",
         Why::MmNoCommand { .. } | Why::MmMoves(_) | Why::MmInterface { .. } => "port by hand",
         Why::LinearToAxes(_) => "move to a pose (E6POS)",
+        Why::Part {
+            reach: Reach::Read, ..
+        } => "keep the part in a variable of its own",
+        Why::Part {
+            reach: Reach::Assign,
+            ..
+        } => "compute the whole value and assign it",
+        Why::Part {
+            reach: Reach::Pass, ..
+        } => "pass a variable and assign the part from it after the call",
+        Why::CharRows => "use one string variable per row",
+        Why::FrameNumber => "use a literal number",
+        Why::IncompleteLiteral { .. } => "write every component",
+        Why::ComputedAngles | Why::ComputedAxes => "use literal values",
+        Why::DataLiteral => "use a literal",
+        Why::SignalValue => "remove it",
+        Why::ForStep => "use a literal step",
+        Why::PortRange { .. } => "set --input-offset/--output-offset, or port by hand",
+        Why::FrameValue { .. } => "define the frame on the robot and select it by its number",
+        Why::NotAStructure(_) => "declare the variable with its STRUC type",
         Why::Skip
         | Why::Other(_)
         | Why::SystemVariable(_)

@@ -25,8 +25,8 @@ use crate::diag::Span;
 
 pub use super::ir::why::Lacked;
 pub use backend::{
-    AxisValues, BACKENDS, Backend, Blending, Caps, Distance, MechMind, Pulse, Relative, Signals,
-    Trigger, backend,
+    Access, AxisValues, BACKENDS, Backend, Blending, Caps, Components, Distance, Frames, Literals,
+    MechMind, Ports, Pulse, Relative, Signals, Trigger, backend,
 };
 
 /// How a target writes lines and comments.
@@ -642,6 +642,31 @@ pub fn not_lowered<T>(span: Span, what: &str) -> R<T> {
             "internal: {what} reached a target whose capabilities exclude it (the lowering refuses it)"
         ),
         help: "report this as a krlkit defect".into(),
+    })
+}
+
+/// Interrupt declaration `i`'s watched signal and handler, or (TR001) why the lowering could
+/// not translate it (`ir::InterruptDecl`): at the declaration with the target's `help`, at a
+/// statement that switches it (`help`: `None`) pointing there.
+pub fn interrupt_parts<'p>(
+    ir: &'p ir::Program,
+    i: usize,
+    span: Span,
+    help: Option<&str>,
+) -> R<(&'p ir::Watched, &'p ir::Callee)> {
+    let d = &ir.interrupts[i];
+    let why = match (&d.condition, &d.handler) {
+        (Ok(w), Ok(h)) => return Ok((w, h)),
+        (Err(why), _) | (_, Err(why)) => why,
+    };
+    Err(Fail {
+        span,
+        message: format!(
+            "interrupt {} cannot be translated: {}",
+            d.number,
+            why.message()
+        ),
+        help: help.unwrap_or("see its declaration").into(),
     })
 }
 

@@ -56,6 +56,7 @@ impl Lower<'_> {
         }
         if let ExprKind::Aggregate(lit) = &t.expr.kind {
             self.held_external(lit, t.expr.span)?;
+            self.held_target_literal(lit, t.expr.span)?;
         }
         Ok(())
     }

@@ -175,6 +175,9 @@ impl<'p> Lower<'p> {
             if is_out && place.is_none() {
                 return fail(Why::OutArgument, a.span);
             }
+            if let (true, Some(p)) = (is_out, &place) {
+                self.reachable(p, crate::transpile::ir::why::Reach::Pass, a.span)?;
+            }
             out.push(crate::transpile::ir::Arg {
                 value: Some(value),
                 place,
@@ -203,7 +206,7 @@ impl<'p> Lower<'p> {
             .routines
             .iter()
             .enumerate()
-            .flat_map(|(i, r)| r.facts.interrupts.iter().map(move |s| (i, &r.head, s)));
+            .flat_map(|(i, r)| r.facts.interrupts().iter().map(move |s| (i, &r.head, s)));
         for (i, r, s) in decls {
             let StmtKind::InterruptDecl {
                 global,

@@ -11,6 +11,7 @@ use crate::transpile::front::model::Layout;
 use crate::transpile::front::sysvar::{self, Sys};
 use crate::transpile::ir::why::KukaOnly;
 use crate::transpile::ir::why::Lacked;
+use crate::transpile::ir::why::Reach;
 use crate::transpile::ir::{
     Aggregate, Arg, BinaryOp, Block, Builtin, Callee, Component, Expr, ExprKind, IoPlace,
     MotionParam, Op, Place, RoutineKind, Scope, Stmt, Ty, UnaryOp, Why,
@@ -78,6 +79,7 @@ impl<'p> Lower<'p> {
                     self.written_axes(span)?;
                 }
                 self.held_external(&a, span)?;
+                self.held_literal(&a, span)?;
                 let ty = if a.axis { Ty::Joint } else { Ty::Pose };
                 Ok(Expr::new(ExprKind::Aggregate(Box::new(a)), ty, span))
             }
@@ -195,6 +197,7 @@ impl<'p> Lower<'p> {
                     }
                 }
                 a.fields.sort_by_key(|(c, _)| component_order(*c));
+                this.held_literal(&a, e.span)?;
                 return Ok(Expr::new(
                     ExprKind::Aggregate(Box::new(a)),
                     Ty::Pose,
@@ -438,8 +441,16 @@ impl<'p> Lower<'p> {
     }
 
     /// A place (assignment target or value), and the type it holds. `write`: an assignment
-    /// target (an undeclared name is assumed from the value later).
+    /// target (an undeclared name is assumed from the value later). A part the target cannot
+    /// read or assign alone is refused (`Caps::components`).
     pub(super) fn place(&mut self, e: &ast::Expr, pre: &mut Block, write: bool) -> L<(Place, Ty)> {
+        let (p, ty) = self.place_of(e, pre, write)?;
+        let reach = if write { Reach::Assign } else { Reach::Read };
+        self.reachable(&p, reach, e.span)?;
+        Ok((p, ty))
+    }
+
+    fn place_of(&mut self, e: &ast::Expr, pre: &mut Block, write: bool) -> L<(Place, Ty)> {
         let span = e.span;
         match &e.kind {
             A::Name(id) => {
@@ -482,7 +493,7 @@ impl<'p> Lower<'p> {
                 Ok((Place::Index(Box::new(Place::Var(v)), idx), ty))
             }
             A::Member { base, field } => {
-                let (b, ty) = self.place(base, pre, write)?;
+                let (b, ty) = self.place_of(base, pre, write)?;
                 match &ty {
                     Ty::Pose | Ty::Joint => {
                         let layout = if ty == Ty::Pose {
@@ -508,7 +519,7 @@ impl<'p> Lower<'p> {
                         let fty = fty.clone();
                         Ok((Place::Member(Box::new(b), field.text.to_string()), fty))
                     }
-                    _ => Ok((Place::Member(Box::new(b), field.text.to_string()), Ty::Real)),
+                    _ => fail(Why::NotAStructure(field.text.to_string()), field.span),
                 }
             }
             _ => fail(Why::AssignTarget, span),
@@ -527,11 +538,9 @@ impl<'p> Lower<'p> {
         let Some(c) = self.model.component(layout, &field.text) else {
             return fail(Why::Component(field.text.to_string()), field.span);
         };
-        Ok(Expr::new(
-            ExprKind::Place(Place::Component(Box::new(p), c)),
-            Ty::Real,
-            span,
-        ))
+        let p = Place::Component(Box::new(p), c);
+        self.reachable(&p, Reach::Read, span)?;
+        Ok(Expr::new(ExprKind::Place(p), Ty::Real, span))
     }
 
     /// The current position read into a temporary (after an advance-run stop).
@@ -756,6 +765,9 @@ impl<'p> Lower<'p> {
             if is_out && place.is_none() {
                 return fail(Why::OutArgument, a.span);
             }
+            if let (true, Some(p)) = (is_out, &place) {
+                self.reachable(p, Reach::Pass, a.span)?;
+            }
             out.push(Arg {
                 value: Some(value),
                 place,
@@ -826,9 +838,24 @@ impl<'p> Lower<'p> {
         })
     }
 
-    /// `value` lowered for a target of type `ty`: aggregates of the target's kind, a REAL
-    /// rounded for an INT, an undeclared axis name assumed axis values.
+    /// `value` lowered for a target of type `ty`: aggregates of the target's kind (complete,
+    /// [`Lower::held_literal`]), a REAL rounded for an INT, an undeclared axis name assumed
+    /// axis values.
     pub(super) fn value_for(&mut self, ty: &Ty, value: &ast::Expr, pre: &mut Block) -> L<Expr> {
+        let v = self.value_or_parts(ty, value, pre)?;
+        if let ExprKind::Aggregate(a) = &v.kind {
+            self.held_literal(a, v.span)?;
+        }
+        Ok(v)
+    }
+
+    /// [`Lower::value_for`], where an aggregate may leave components out (an assignment).
+    pub(super) fn value_or_parts(
+        &mut self,
+        ty: &Ty,
+        value: &ast::Expr,
+        pre: &mut Block,
+    ) -> L<Expr> {
         let span = value.span;
         if let (Ty::Struc(t), A::Aggregate { fields, .. }) = (ty, &value.kind) {
             return match self.record_of(t).cloned() {

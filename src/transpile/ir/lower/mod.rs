@@ -9,8 +9,11 @@
 mod axes;
 mod call;
 mod expr;
+mod frames;
+mod literals;
 mod mech_mind;
 mod motion;
+mod parts;
 mod signals;
 mod stmt;
 
@@ -525,7 +528,6 @@ impl<'p> Lower<'p> {
             ast::RoutineKind::Def => RoutineKind::Def,
             ast::RoutineKind::Deffct => RoutineKind::Deffct,
         };
-        let assigned = &outline.facts.assigned;
         let mut seen = rustc_hash::FxHashSet::default();
         let mut duplicate = None;
         let mut params: Vec<super::Param> = r
@@ -552,7 +554,7 @@ impl<'p> Lower<'p> {
                     var,
                     dir,
                     array: dims,
-                    assigned: assigned.contains(upper(&p.name.text).as_str()),
+                    assigned: outline.facts.assigns(&upper(&p.name.text)),
                 })
             })
             .collect();
@@ -661,7 +663,7 @@ impl<'p> Lower<'p> {
             );
         }
         // Labels in source order, so their ids follow the text.
-        for name in &outline.facts.labels {
+        for name in outline.facts.labels() {
             self.label(name);
         }
         let mut body = Block::new();
@@ -900,7 +902,7 @@ impl<'p> Lower<'p> {
         }
         // GLOBAL declarations inside routines are globals without a value here.
         for r in &src.src.outline.routines {
-            for d in &r.facts.global_decls {
+            for d in r.facts.global_decls() {
                 for v in &d.vars {
                     if let Some(id) = self.vars.get("", &upper(&v.name.text)) {
                         let dims = self.data_dims(&v.dims);
@@ -1003,7 +1005,10 @@ impl<'p> Lower<'p> {
             f.file = file;
         }
         match r {
-            Ok(e) if pre.is_empty() => Ok(e),
+            Ok(e) if pre.is_empty() => {
+                self.held_data(&ty, &e)?;
+                Ok(e)
+            }
             Ok(_) => Err((
                 Why::Aggregate("a .dat value that calls a function has no counterpart".into()),
                 span,
@@ -1013,19 +1018,46 @@ impl<'p> Lower<'p> {
     }
 }
 
-/// (routine key or "", upper-case name) → variable, in one map keyed by two small numbers: the
-/// routine's key and the name are each interned once (a map and a copied key per routine were
-/// the largest part of the first pass's memory on a file of many routines).
+/// (routine key or "", upper-case name) → variable, keyed by two small numbers: the routine's
+/// key and the name are each interned once (a map and a copied key per routine were the
+/// largest part of the first pass's memory on a file of many routines); globals indexed by
+/// name, a routine's few variables a run of ids, only the rest in one map.
 struct VarKeys {
     /// Upper-case routine key → its number; "" (package, assumed and global names) is 0.
     scopes: FxHashMap<CompactString, u32>,
     /// Upper-case variable name → its number.
     names: FxHashMap<CompactString, u32>,
+    /// The variables of [`GLOBAL_SCOPE`] by name number ([`NO_VAR`]: none): every lookup of a
+    /// global, one index instead of a probe into a map of all the program's variables.
+    globals: Vec<u32>,
+    /// Each routine scope's variables (index: scope number − 1) while they are a short run
+    /// of consecutive ids (a routine's parameters and locals are added together): found by
+    /// a scan of a few neighbours, not in the big map (a lookup there missed the cache on
+    /// every name of a file of many routines).
+    runs: Vec<Run>,
+    /// The name number of each variable, by id (what a [`Run`] scans).
+    name_of: Vec<u32>,
+    /// The variables of scopes that are not a short run.
     ids: FxHashMap<(u32, u32), VarId>,
     /// Each routine's scope, by routine id (a lookup by name per routine entered missed the
     /// cache on a file of many routines).
     by_routine: Vec<Option<u32>>,
 }
+
+/// A routine scope's variables: ids `start..end`, or in [`VarKeys::ids`] (`start` is
+/// [`NO_VAR`]).
+#[derive(Clone, Copy)]
+struct Run {
+    start: u32,
+    end: u32,
+}
+
+/// A run no longer than this is scanned; a longer one goes to the map (a routine of
+/// thousands of locals must not be scanned per name).
+const RUN_MAX: u32 = 24;
+
+/// No variable.
+const NO_VAR: u32 = u32::MAX;
 
 impl Default for VarKeys {
     fn default() -> VarKeys {
@@ -1034,6 +1066,9 @@ impl Default for VarKeys {
         VarKeys {
             scopes,
             names: FxHashMap::default(),
+            globals: Vec::new(),
+            runs: Vec::new(),
+            name_of: Vec::new(),
             ids: FxHashMap::default(),
             by_routine: Vec::new(),
         }
@@ -1059,13 +1094,56 @@ impl VarKeys {
     }
 
     fn at(&self, scope: u32, name: u32) -> Option<VarId> {
-        self.ids.get(&(scope, name)).copied()
+        if scope == GLOBAL_SCOPE {
+            let v = *self.globals.get(name as usize)?;
+            return (v != NO_VAR).then_some(VarId(v));
+        }
+        match self.runs.get(scope as usize - 1) {
+            // The last of a repeated name, as the map keeps it.
+            Some(run) if run.start != NO_VAR => (run.start..run.end)
+                .rev()
+                .find(|&v| self.name_of[v as usize] == name)
+                .map(VarId),
+            _ => self.ids.get(&(scope, name)).copied(),
+        }
     }
 
     fn insert(&mut self, routine: &str, name: &str, id: VarId) {
         let scope = intern(&mut self.scopes, routine);
         let name = intern(&mut self.names, name);
-        self.ids.insert((scope, name), id);
+        if self.name_of.len() <= id.0 as usize {
+            self.name_of.resize(id.0 as usize + 1, NO_VAR);
+        }
+        self.name_of[id.0 as usize] = name;
+        if scope == GLOBAL_SCOPE {
+            if self.globals.len() <= name as usize {
+                self.globals.resize(name as usize + 1, NO_VAR);
+            }
+            self.globals[name as usize] = id.0;
+            return;
+        }
+        let at = scope as usize - 1;
+        if self.runs.len() <= at {
+            self.runs.resize(at + 1, Run { start: 0, end: 0 });
+        }
+        let run = self.runs[at];
+        if run.start == NO_VAR {
+            self.ids.insert((scope, name), id);
+        } else if run.start == run.end {
+            self.runs[at] = Run {
+                start: id.0,
+                end: id.0 + 1,
+            };
+        } else if run.end == id.0 && run.end - run.start < RUN_MAX {
+            self.runs[at].end += 1;
+        } else {
+            // No longer a short run: its variables move to the map, in order.
+            for v in run.start..run.end {
+                self.ids.insert((scope, self.name_of[v as usize]), VarId(v));
+            }
+            self.ids.insert((scope, name), id);
+            self.runs[at].start = NO_VAR;
+        }
     }
 }
 

@@ -110,6 +110,7 @@ impl<'p> Lower<'p> {
                     FrameKind::Base
                 };
                 let frame = self.frame_ref(which, value, ops)?;
+                self.held_frame(which, &frame, span)?;
                 ops.push(Stmt {
                     op: Op::SetFrame { which, frame },
                     span,
@@ -121,6 +122,9 @@ impl<'p> Lower<'p> {
                 // A target without a payload setting refuses it whatever the value is.
                 self.held(Lacked::Load, span)?;
                 let load = self.load(target, value, ops)?;
+                if matches!(load, Load::Table(_)) {
+                    self.held(Lacked::LoadTable, span)?;
+                }
                 ops.push(Stmt {
                     op: Op::SetLoad(load),
                     span,
@@ -793,6 +797,7 @@ impl<'p> Lower<'p> {
                 } else {
                     FrameRef::Table(i)
                 };
+                self.held_frame(which, &frame, span)?;
                 ops.push(Stmt {
                     op: Op::SetFrame { which, frame },
                     span,
@@ -849,6 +854,7 @@ impl<'p> Lower<'p> {
                         } else {
                             FrameRef::Table(Expr::new(ExprKind::Int(n as i64), Ty::Int, value.span))
                         };
+                        self.held_frame(which, &frame, span)?;
                         ops.push(Stmt {
                             op: Op::SetFrame { which, frame },
                             span,

@@ -233,6 +233,7 @@ impl<'p> Lower<'p> {
                 let mut v = self.seq(&bounds, ops)?.into_iter();
                 let (from, to) = (v.next().expect("from"), v.next().expect("to"));
                 let step = v.next();
+                self.held_step(step.as_ref())?;
                 let id = self.new_loop();
                 let body = self.loop_block(id, body);
                 Self::push(
@@ -678,7 +679,14 @@ impl<'p> Lower<'p> {
                 _ => {}
             }
         }
-        let v = self.value_for(&ty, value, ops)?;
+        let v = self.value_or_parts(&ty, value, ops)?;
+        if let ExprKind::Aggregate(a) = &v.kind {
+            if a.complete() {
+                self.held_literal(a, v.span)?;
+            } else {
+                self.held_partial(a, v.span)?;
+            }
+        }
         Self::push(ops, Op::Assign { place, value: v }, span);
         Ok(())
     }
