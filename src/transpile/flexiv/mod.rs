@@ -289,7 +289,7 @@ impl<'a> Tx<'a> {
             self.assumed.insert(
                 n.clone(),
                 Assumed {
-                    krl: var.name.clone(),
+                    krl: var.name.to_string(),
                     what,
                 },
             );

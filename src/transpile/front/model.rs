@@ -22,7 +22,8 @@ use crate::transpile::ir::{self, Bank, Component, SignalRange, Ty};
 /// A variable as the lowering sees it.
 #[derive(Debug, Clone, PartialEq)]
 pub struct VarInfo {
-    pub name: String,
+    /// Inline (`CompactString`): one per variable of the program.
+    pub name: CompactString,
     pub ty: Ty,
     pub dims: usize,
     pub kind: VarKind,
@@ -143,7 +144,7 @@ impl<'p> Model<'p> {
         let sym = self.sema.symbol(s);
         let decl = sym.decl?;
         let file = self.file_id(decl.file)?;
-        let name = self.sema.name(sym.name).to_owned();
+        let name = CompactString::from(self.sema.name(sym.name));
         let kind = match sym.scope {
             Scope::Routine(r) => match sym.kind {
                 SymbolKind::Parameter => {

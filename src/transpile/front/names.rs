@@ -9,8 +9,6 @@
 //! locals and labels) and records the renames (TR003 and the output's name map); the targets
 //! differ only in their [`NameRules`], which are data.
 
-use std::collections::BTreeSet;
-
 use compact_str::CompactString;
 use rustc_hash::{FxHashMap, FxHashSet};
 
@@ -238,9 +236,13 @@ pub enum Home {
     Package,
 }
 
+/// A rename kept for the name map: what kind of name, the KRL name, the target name (inline:
+/// a file of many routines renames a hundred thousand names).
+type MapEntry = (&'static str, CompactString, CompactString);
+
 /// A TR003 for a name that had to change, recorded for the name map too.
 fn note(
-    renamed: &mut Vec<(&'static str, Renamed)>,
+    renamed: &mut Vec<MapEntry>,
     rules: &NameRules,
     rep: &mut Report,
     kind: &'static str,
@@ -261,7 +263,7 @@ fn note(
             why.join(", ")
         ),
     );
-    renamed.push((kind, r));
+    renamed.push((kind, r.krl.into(), r.target.into()));
 }
 
 /// The names of one translation under one target's rules.
@@ -282,7 +284,7 @@ pub struct Namer<'a> {
     /// Each routine's parameters and locals, in declaration order.
     vars_of: super::grouped::Grouped<VarId>,
     /// Every rename, in the order found, with what kind of name it is.
-    renamed: Vec<(&'static str, Renamed)>,
+    renamed: Vec<MapEntry>,
 }
 
 impl<'a> Namer<'a> {
@@ -491,12 +493,17 @@ impl<'a> Namer<'a> {
         if self.renamed.is_empty() {
             return None;
         }
-        let mut seen = BTreeSet::new();
+        // Keys inline and borrowed: no allocation per rename.
+        let mut seen = FxHashSet::default();
         let entries = self
             .renamed
             .iter()
-            .filter(|(kind, r)| seen.insert((*kind, r.krl.to_ascii_uppercase(), r.target.clone())))
-            .map(|(kind, r)| format!("{kind} {} -> {}", r.krl, r.target))
+            .filter(|(kind, krl, target)| {
+                let mut upper = krl.clone();
+                upper.make_ascii_uppercase();
+                seen.insert((*kind, upper, target.as_str()))
+            })
+            .map(|(kind, krl, target)| format!("{kind} {krl} -> {target}"))
             .collect();
         Some((
             format!("Name map (KRL -> {}):", self.rules.language),

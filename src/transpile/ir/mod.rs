@@ -124,7 +124,7 @@ pub enum Scope {
 #[derive(Debug, Clone, PartialEq)]
 pub struct Var {
     /// As first written in the KRL.
-    pub name: String,
+    pub name: compact_str::CompactString,
     pub ty: Ty,
     /// Number of array dimensions (a `CHAR` string's length counts as one).
     pub dims: usize,

@@ -336,10 +336,9 @@ impl<'p> Lower<'p> {
                 let global = matches!(var.scope, Scope::Global | Scope::Package | Scope::Assumed);
                 let written = writes.1.contains(&v)
                     || (global
-                        && writes
-                            .0
-                            .as_ref()
-                            .is_none_or(|w| w.contains(&var.name.to_ascii_uppercase())));
+                        && writes.0.as_ref().is_none_or(|w| {
+                            w.contains(var.name.as_str().to_ascii_uppercase().as_str())
+                        }));
                 hit |= written;
             }
         });

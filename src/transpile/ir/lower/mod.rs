@@ -426,7 +426,7 @@ impl<'p> Lower<'p> {
         };
         let dims = usize::from(g.name.contains('[') || g.ty.contains('['));
         let info = VarInfo {
-            name: g.name.split('[').next().unwrap_or(&g.name).to_owned(),
+            name: g.name.split('[').next().unwrap_or(&g.name).into(),
             ty,
             dims,
             kind: VarKind::Global,
@@ -451,7 +451,7 @@ impl<'p> Lower<'p> {
             "declare it (e.g. in the .dat), or check its value and type in the translation",
         );
         let info = VarInfo {
-            name: id.text.to_string(),
+            name: id.text.clone(),
             ty,
             dims: 0,
             kind: VarKind::Global,
@@ -843,7 +843,7 @@ impl<'p> Lower<'p> {
                     .model
                     .locals(src.sema.name(routine.name))
                     .into_iter()
-                    .map(|v| v.name.to_ascii_uppercase())
+                    .map(|v| v.name.as_str().to_ascii_uppercase())
                     .collect();
                 set.retain(|n| !locals.contains(n));
                 (!unknown).then_some(set)
