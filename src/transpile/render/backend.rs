@@ -797,6 +797,21 @@ mod tests {
             .unwrap_or_default()
     }
 
+    /// `stmt` (inside `src`) is refused with `why` exactly when `refused`, and what the caps let
+    /// through the renderer translates (no `not_lowered`).
+    fn assert_refused_exactly(target: Target, src: &str, stmt: &str, why: &Why, refused: bool) {
+        let msgs = refusals_in(target, src);
+        assert!(
+            !msgs.iter().any(|m| m.starts_with("internal:")),
+            "{target:?} {stmt}: {msgs:?}"
+        );
+        assert_eq!(
+            msgs.contains(&why.message()),
+            refused,
+            "{target:?} {stmt}: {msgs:?}"
+        );
+    }
+
     #[test]
     fn the_lowering_asks_each_targets_caps() {
         let long = format!(
@@ -908,19 +923,7 @@ mod tests {
             for (stmt, why, refused) in cases {
                 let src =
                     format!("DEF p()\n{decls}{stmt}\nEND\nDEF q(v:OUT)\nDECL REAL v\nv = 2\nEND\n");
-                let msgs = refusals_in(b.target(), &src);
-                // What the caps let through, the renderer translates (no `not_lowered`).
-                assert!(
-                    !msgs.iter().any(|m| m.starts_with("internal:")),
-                    "{:?} {stmt}: {msgs:?}",
-                    b.target()
-                );
-                assert_eq!(
-                    msgs.contains(&why.message()),
-                    refused,
-                    "{:?} {stmt}: {msgs:?}",
-                    b.target()
-                );
+                assert_refused_exactly(b.target(), &src, &stmt, &why, refused);
             }
         }
     }
@@ -943,18 +946,7 @@ mod tests {
         for b in BACKENDS {
             for (stmt, why, held) in &cases {
                 let src = format!("DEF p()\nDECL FRAME f\nDECL INT i\n{stmt}\nEND\n");
-                let msgs = refusals_in(b.target(), &src);
-                assert!(
-                    !msgs.iter().any(|m| m.starts_with("internal:")),
-                    "{:?} {stmt}: {msgs:?}",
-                    b.target()
-                );
-                assert_eq!(
-                    msgs.contains(&why.message()),
-                    !held(&b.caps().frames),
-                    "{:?} {stmt}: {msgs:?}",
-                    b.target()
-                );
+                assert_refused_exactly(b.target(), &src, stmt, why, !held(&b.caps().frames));
             }
         }
     }
@@ -1003,18 +995,7 @@ mod tests {
                 let src = format!(
                     "DEF p()\nDECL E6POS p\nDECL REAL r\nDECL INT i, k\n{stmt}\nEND\nDEF q(v:IN)\nDECL E6POS v\nEND\n"
                 );
-                let msgs = refusals_in(b.target(), &src);
-                assert!(
-                    !msgs.iter().any(|m| m.starts_with("internal:")),
-                    "{:?} {stmt}: {msgs:?}",
-                    b.target()
-                );
-                assert_eq!(
-                    msgs.contains(&why.message()),
-                    !held,
-                    "{:?} {stmt}: {msgs:?}",
-                    b.target()
-                );
+                assert_refused_exactly(b.target(), &src, stmt, &why, !held);
             }
         }
     }
