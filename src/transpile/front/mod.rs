@@ -83,7 +83,8 @@ impl Parsed {
                     .filter(|c| after.is_none_or(|a| c.span.start > a)),
             );
             node.walk_tokens(&mut |t| {
-                if t.kind == TokenKind::Ident && is_package_name(t.text(&text)) {
+                if t.kind == TokenKind::Ident && crate::catalog::has_interface_prefix(t.text(&text))
+                {
                     upper.clear();
                     upper.push_str(t.text(&text));
                     upper.make_ascii_uppercase();
@@ -251,16 +252,14 @@ impl Program {
     /// Whether the program's text names `name`, a name of the Mech-Mind package (`MM_…`), as
     /// an identifier token, any case.
     pub fn uses_name(&self, name: &str) -> bool {
-        debug_assert!(is_package_name(name), "only MM_ names are kept: {name}");
+        debug_assert!(
+            crate::catalog::has_interface_prefix(name),
+            "only MM_ names are kept: {name}"
+        );
         let mut key = compact_str::CompactString::from(name);
         key.make_ascii_uppercase();
         self.src.names.contains(&key)
     }
-}
-
-/// Whether an identifier is one of the Mech-Mind package's (`MM_…`, any case).
-fn is_package_name(name: &str) -> bool {
-    name.get(..3).is_some_and(|p| p.eq_ignore_ascii_case("MM_"))
 }
 
 /// Where the last line of `span` starts (the END line of a block).
