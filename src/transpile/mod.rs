@@ -198,7 +198,7 @@ fn translate(
         &mut dyn render::LineCheck,
     ) -> std::io::Result<()>,
 ) -> std::io::Result<Translation> {
-    let program = front::Program::new(
+    let mut program = front::Program::new(
         front::Parsed::new(src.path, src.text),
         dat.map(|d| front::Parsed::new(d.path, d.text)),
     );
@@ -225,6 +225,8 @@ fn translate(
         vision,
         replay,
     } = first.finish();
+    // The first pass lowered the data lists' values: their trees go.
+    program.forget_data_values();
     let flow = ir::flow::solve(graphs, &model);
     let mut report = front::report::Report::default();
     for f in std::mem::take(&mut model.findings) {
@@ -265,7 +267,9 @@ fn translate(
             renderer.end_routine(&mut spool);
         }
     });
-    drop(second);
+    // What only the passes needed goes before the text is assembled and the findings made.
+    drop((second, resolver, units));
+    drop((flow, plan));
     let (framed, mut report, produced) = renderer.finish();
     let at = model
         .routines
@@ -277,7 +281,15 @@ fn translate(
     report.coverage = coverage(&model, &report);
     let silent = silent(&model, &report, &produced);
     drop(model);
-    let front::Program { src, dat, .. } = program;
+    let front::Program {
+        src,
+        dat,
+        sema,
+        dat_index,
+    } = program;
+    drop((sema, dat_index));
+    let src = src.into_source();
+    let dat = dat.map(front::Parsed::into_source);
     report.trim_spans(front::report::FileId::Src, &src.text);
     if let Some(dat) = &dat {
         report.trim_spans(front::report::FileId::Dat, &dat.text);

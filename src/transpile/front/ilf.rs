@@ -4,7 +4,6 @@
 //! each backend decides what to write for them.
 
 use super::Program;
-use super::literal;
 use crate::syntax::ast::{Expr, ExprKind, Ident, Stmt, StmtKind};
 
 /// The inline-form selector variables (`*_ACT`), upper case.
@@ -22,31 +21,20 @@ pub fn is_selector(target: &Ident) -> bool {
 
 /// The numeric fields of a `.dat` record such as `DECL FDAT FP1={TOOL_NO 1,BASE_NO 0,…}`
 /// (upper-case field names), or `None` when `value` names no record of the program's `.dat`.
-pub fn dat_record(program: &Program, value: &Expr) -> Option<Vec<(String, f64)>> {
+pub fn dat_record<'p>(program: &'p Program, value: &Expr) -> Option<&'p [(&'static str, f64)]> {
     let ExprKind::Name(id) = &value.kind else {
         return None;
     };
-    let dat = program.dat.as_ref()?.outline.dat.as_ref()?;
-    let init = dat
-        .decls
-        .iter()
-        .flat_map(|d| d.vars.iter())
-        .find(|v| v.name.is(&id.text))?
-        .init
-        .as_ref()?;
-    let ExprKind::Aggregate { fields, .. } = &init.kind else {
-        return None;
-    };
-    Some(
-        fields
-            .iter()
-            .filter_map(|(n, v)| Some((n.as_ref()?.key(), literal::number(v)?)))
-            .collect(),
-    )
+    program.dat_index.record(&id.text)
 }
 
-/// A field of a record read with [`dat_record`].
-pub fn field(fields: &[(String, f64)], name: &str) -> Option<f64> {
+/// The fields of an inline-form record the translation reads ([`field`]); the data index keeps
+/// only these of each `.dat` record.
+pub const READ_FIELDS: [&str; 3] = ["TOOL_NO", "BASE_NO", "APO_DIST"];
+
+/// A field of a record read with [`dat_record`], one of [`READ_FIELDS`].
+pub fn field(fields: &[(&str, f64)], name: &str) -> Option<f64> {
+    debug_assert!(READ_FIELDS.contains(&name), "not kept: {name}");
     fields
         .iter()
         .find(|(n, _)| n.eq_ignore_ascii_case(name))

@@ -3,6 +3,7 @@
 //! variables by meaning, comments, deterministic renaming, the findings/coverage record.
 
 pub mod comments;
+pub mod dat_index;
 pub mod fail;
 pub mod grouped;
 pub mod ilf;
@@ -211,6 +212,14 @@ impl Parsed {
         });
     }
 
+    /// Its path and text, the rest dropped.
+    pub fn into_source(self) -> crate::transpile::Source {
+        crate::transpile::Source {
+            path: self.path,
+            text: self.text,
+        }
+    }
+
     /// The 1-based line of a byte offset.
     pub fn line(&self, offset: u32) -> usize {
         let lines = self
@@ -231,6 +240,9 @@ pub struct Program {
     pub src: Parsed,
     pub dat: Option<Parsed>,
     pub sema: crate::sema::Sema,
+    /// What the lowering asks of the data lists' values by name (their trees go after the
+    /// first pass: [`Program::forget_data_values`]).
+    pub dat_index: dat_index::DatIndex,
 }
 
 impl Program {
@@ -246,7 +258,29 @@ impl Program {
             })
             .collect();
         let sema = crate::sema::Sema::build(inputs, &[]);
-        Program { src, dat, sema }
+        let dat_index = dat_index::DatIndex::new(
+            dat.as_ref().and_then(|d| d.outline.dat.as_ref()),
+            src.outline.dat.as_ref(),
+        );
+        Program {
+            src,
+            dat,
+            sema,
+            dat_index,
+        }
+    }
+
+    /// Drops the data lists' declarations and assignments, once the first pass lowered their
+    /// values (the program model holds them; later questions go to [`Program::dat_index`]);
+    /// their type definitions stay.
+    pub fn forget_data_values(&mut self) {
+        let lists = std::iter::once(&mut self.src)
+            .chain(&mut self.dat)
+            .filter_map(|f| f.outline.dat.as_mut());
+        for m in lists {
+            m.decls = Vec::new();
+            m.body = Vec::new();
+        }
     }
 
     /// Whether the program's text names `name`, a name of the Mech-Mind package (`MM_…`), as

@@ -99,7 +99,6 @@ impl Replay {
             rt: None,
             next_spline: 0,
             vision: None,
-            dat_literals: Default::default(),
             writes: FxHashMap::default(),
             moves: FxHashMap::default(),
             pass: Pass::Replay {
@@ -179,9 +178,6 @@ pub struct Lower<'p> {
     rt: Option<Ctx>,
     next_spline: u32,
     vision: Option<VisionServer>,
-    /// Upper-case global name → whether the `.dat` gives it a literal value; built at the first
-    /// motion target (a scan of every `.dat` declaration per target was quadratic).
-    dat_literals: std::cell::OnceCell<FxHashMap<String, bool>>,
     /// A routine of the `.src` → upper-case global names it may assign (itself or through the
     /// routines of the file it calls); `None`: unknown (it calls another module).
     writes: FxHashMap<sema::RoutineId, Option<BTreeSet<String>>>,
@@ -226,7 +222,6 @@ impl<'p> Lower<'p> {
             rt: None,
             next_spline: 0,
             vision: None,
-            dat_literals: Default::default(),
             writes: FxHashMap::default(),
             moves: FxHashMap::default(),
             pass: Pass::First {

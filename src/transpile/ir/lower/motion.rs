@@ -13,7 +13,6 @@ use crate::transpile::ir::{
     Known, Load, MotionParam, Move, Op, ParamValue, Path, Place, SplineId, Stmt, Target, TriggerAt,
     Ty, Why,
 };
-use rustc_hash::FxHashMap;
 
 fn pending<T>() -> Known<T> {
     Known::Unknown(Because::Pending)
@@ -505,27 +504,7 @@ impl<'p> Lower<'p> {
     /// Whether the `.dat` gives the global `name` a literal value (a value written in the
     /// program, in KUKA's conventions).
     fn dat_literal(&self, name: &str) -> bool {
-        let literals = self.dat_literals.get_or_init(|| {
-            let src = self.src;
-            let modules = src
-                .dat
-                .iter()
-                .filter_map(|d| d.outline.dat.as_ref())
-                .chain(src.src.outline.dat.as_ref());
-            let mut literals = FxHashMap::default();
-            for v in modules.flat_map(|m| &m.decls).flat_map(|d| &d.vars) {
-                // The first declaration of a name decides, as the scan it replaces did.
-                literals.entry(v.name.key()).or_insert(matches!(
-                    v.init.as_ref().map(|i| &i.kind),
-                    Some(A::Aggregate { .. })
-                ));
-            }
-            literals
-        });
-        literals
-            .get(&name.to_ascii_uppercase())
-            .copied()
-            .unwrap_or(false)
+        self.src.dat_index.literal(name)
     }
 
     /// A relative motion's offset.
@@ -848,7 +827,7 @@ impl<'p> Lower<'p> {
         match key.as_str() {
             "FDAT_ACT" => {
                 for (field, which) in [("TOOL_NO", FrameKind::Tool), ("BASE_NO", FrameKind::Base)] {
-                    if let Some(n) = ilf::field(&fields, field) {
+                    if let Some(n) = ilf::field(fields, field) {
                         let frame = if n == 0.0 {
                             FrameRef::Null
                         } else {
@@ -863,7 +842,7 @@ impl<'p> Lower<'p> {
                 }
             }
             "LDAT_ACT" => {
-                if let Some(d) = ilf::field(&fields, "APO_DIST") {
+                if let Some(d) = ilf::field(fields, "APO_DIST") {
                     let _ = num(d);
                     ops.push(Stmt {
                         op: Op::SetParam {
