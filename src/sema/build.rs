@@ -18,7 +18,9 @@ use super::model::{
 };
 use super::names::Names;
 use super::scope::Scope;
-use super::summary::{DeclKind, FileSummary, NONE, Term, TypeItemKind, TypeRefItem, UseKind};
+use super::summary::{
+    ConstValue, DeclKind, FileSummary, NONE, Term, TypeItemKind, TypeRefItem, UseKind,
+};
 use super::ty::{Field, Sizes, Ty, TyKind, TypeDef, TypeDefKind};
 use crate::catalog::catalog;
 
@@ -105,6 +107,22 @@ pub struct Sema {
     /// The constants with a numeric value by scope, built on the first
     /// [`Sema::visible_constants`] (an in-place update keeps every declaration and value).
     pub(crate) consts: OnceLock<super::consts::ConstIndex>,
+    /// The literal values of the symbols that have one (CONSTs, `.dat` initialisers).
+    pub(crate) values: FxHashMap<SymbolId, ConstValue>,
+    /// The documentation of the KSS environment's system variables.
+    pub(crate) docs: FxHashMap<SymbolId, &'static str>,
+}
+
+impl Sema {
+    /// The literal value of a CONST (or a `.dat` initialiser).
+    pub fn symbol_value(&self, id: SymbolId) -> Option<&ConstValue> {
+        self.values.get(&id)
+    }
+
+    /// A system variable's documentation.
+    pub fn symbol_doc(&self, id: SymbolId) -> Option<&'static str> {
+        self.docs.get(&id).copied()
+    }
 }
 
 /// Path pieces, `/` or `\` separated.
@@ -279,6 +297,8 @@ impl Sema {
                 duplicates: Vec::new(),
                 refs: Default::default(),
                 consts: OnceLock::new(),
+                values: FxHashMap::default(),
+                docs: FxHashMap::default(),
             },
         };
         let (robot_of, robots) = partition(&inputs, am_ini);
@@ -534,9 +554,20 @@ impl Builder {
         id
     }
 
-    fn push_symbol(&mut self, s: Symbol) -> SymbolId {
+    fn push_symbol(
+        &mut self,
+        s: Symbol,
+        value: Option<ConstValue>,
+        doc: Option<&'static str>,
+    ) -> SymbolId {
         let id = SymbolId(self.sema.symbols.len() as u32);
         self.sema.symbols.push(s);
+        if let Some(v) = value {
+            self.sema.values.insert(id, v);
+        }
+        if let Some(d) = doc {
+            self.sema.docs.insert(id, d);
+        }
         id
     }
 
@@ -611,18 +642,20 @@ impl Builder {
                 &v.decl.ty.name.text,
                 var.dims.len() as u8,
             );
-            let id = self.push_symbol(Symbol {
-                name,
-                kind: SymbolKind::System,
-                ty,
-                sizes: literal_sizes(&var.dims),
-                scope: Scope::System,
-                decl: None,
-                global: true,
-                value: None,
-                doc: Some(v.meta.doc.as_str()),
-                unverified: v.meta.unverified,
-            });
+            let id = self.push_symbol(
+                Symbol {
+                    name,
+                    kind: SymbolKind::System,
+                    ty,
+                    sizes: literal_sizes(&var.dims),
+                    scope: Scope::System,
+                    decl: None,
+                    global: true,
+                    unverified: v.meta.unverified,
+                },
+                None,
+                Some(v.meta.doc.as_str()),
+            );
             self.sema.scopes.system.vars.insert(name, id);
             self.versioned(name, &v.meta);
         }
@@ -889,18 +922,20 @@ impl Builder {
                 (_, Some(t)) => (Ty::array(TyKind::Unknown, t.dims), t.sizes),
                 (_, None) => (Ty::UNKNOWN, [0; 3]),
             };
-            let id = self.push_symbol(Symbol {
-                name: NameId(d.name),
-                kind,
-                ty,
-                sizes,
-                scope,
-                decl: Some(Loc { file, span: d.span }),
-                global: d.global || matches!(scope, Scope::Config(_)),
-                value: d.value.clone(),
-                doc: None,
-                unverified: false,
-            });
+            let id = self.push_symbol(
+                Symbol {
+                    name: NameId(d.name),
+                    kind,
+                    ty,
+                    sizes,
+                    scope,
+                    decl: Some(Loc { file, span: d.span }),
+                    global: d.global || matches!(scope, Scope::Config(_)),
+                    unverified: false,
+                },
+                d.value.clone(),
+                None,
+            );
             decl_ids.push(id);
             self.declare_var(scope, NameId(d.name), id);
         }
@@ -928,18 +963,20 @@ impl Builder {
                 let symbol = match self.sema.scopes.routine[rid.index()].vars.get(&name) {
                     Some(s) => *s,
                     None => {
-                        let id = self.push_symbol(Symbol {
-                            name,
-                            kind: SymbolKind::Parameter,
-                            ty: Ty::UNKNOWN,
-                            sizes: [0; 3],
-                            scope: Scope::Routine(rid),
-                            decl: Some(here),
-                            global: false,
-                            value: None,
-                            doc: None,
-                            unverified: false,
-                        });
+                        let id = self.push_symbol(
+                            Symbol {
+                                name,
+                                kind: SymbolKind::Parameter,
+                                ty: Ty::UNKNOWN,
+                                sizes: [0; 3],
+                                scope: Scope::Routine(rid),
+                                decl: Some(here),
+                                global: false,
+                                unverified: false,
+                            },
+                            None,
+                            None,
+                        );
                         self.sema.scopes.routine[rid.index()].vars.insert(name, id);
                         id
                     }
