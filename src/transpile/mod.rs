@@ -339,26 +339,26 @@ fn each_lowered(
     let mut head: Option<ir::Block> = None;
     program.src.each_statement(false, |s| match s {
         front::Statement::Begin(i) => {
-            head = Some(lower.begin_routine(i));
-            f(Lowered::Begin(ir::RoutineId(i as u32)));
+            head = Some(lower.begin_routine(*i));
+            f(Lowered::Begin(ir::RoutineId(*i as u32)));
         }
         front::Statement::Head(s) => {
             if let Some(ops) = &mut head {
-                lower.head(&s, ops);
+                lower.head(s, ops);
             }
         }
         front::Statement::Stmt(s) => {
             if let Some(ops) = head.take() {
                 f(Lowered::Ops(ops, None));
             }
-            f(Lowered::Ops(lower.stmt(&s), Some(&s)));
+            f(Lowered::Ops(lower.stmt(s), Some(s)));
         }
         front::Statement::End(i) => {
             if let Some(ops) = head.take() {
                 f(Lowered::Ops(ops, None));
             }
             f(Lowered::Ops(lower.end_routine(), None));
-            f(Lowered::End(ir::RoutineId(i as u32)));
+            f(Lowered::End(ir::RoutineId(*i as u32)));
         }
     });
     if let Some((id, ops)) = lower.begin_top_level() {
@@ -366,7 +366,7 @@ fn each_lowered(
         f(Lowered::Ops(ops, None));
         program.src.each_statement(true, |s| {
             if let front::Statement::Stmt(s) = s {
-                f(Lowered::Ops(lower.stmt(&s), Some(&s)));
+                f(Lowered::Ops(lower.stmt(s), Some(s)));
             }
         });
         f(Lowered::Ops(lower.end_routine(), None));

@@ -277,6 +277,7 @@ impl<'a> Tx<'a> {
     /// The Python spelling of a variable, and whether it lives at module level.
     fn var_name(&mut self, v: VarId, used_at: Span) -> (String, bool) {
         let (n, home) = self.out.names.var(&mut self.out.rep, v, used_at);
+        let n = String::from(n);
         let var = self.ir.var(v);
         if var.scope == Scope::Assumed && !self.assumed.contains_key(&n) {
             let what = match &var.ty {

@@ -128,31 +128,49 @@ impl Parsed {
     /// definitions come first, as [`Statement::Head`].
     ///
     /// The parse runs on a second thread, a bounded batch of statements ahead of `f`: parsing
-    /// is a third of a translation's work, and it overlaps the lowering and rendering.
-    pub fn each_statement(&self, top_level: bool, mut f: impl FnMut(Statement)) {
+    /// is a third of a translation's work, and it overlaps the lowering and rendering. Each
+    /// batch goes back to that thread to be dropped there: glibc frees a block another
+    /// thread's arena allocated under that arena's lock, and the two threads contending for
+    /// it were a tenth of a translation's CPU.
+    pub fn each_statement(&self, top_level: bool, mut f: impl FnMut(&Statement)) {
         const BATCH: usize = 256;
         let (send, receive) = std::sync::mpsc::sync_channel::<Vec<Statement>>(4);
+        let (give_back, returned) = std::sync::mpsc::channel::<Vec<Statement>>();
         std::thread::scope(|scope| {
             let parser = std::thread::Builder::new().spawn_scoped(scope, move || {
                 let mut batch = Vec::with_capacity(BATCH);
                 self.statements(top_level, |s| {
                     batch.push(s);
                     if batch.len() == BATCH {
-                        let full = std::mem::replace(&mut batch, Vec::with_capacity(BATCH));
+                        // The batches `f` is done with are dropped here; one is reused.
+                        let mut next = None;
+                        while let Ok(mut done) = returned.try_recv() {
+                            done.clear();
+                            next = Some(done);
+                        }
+                        let next = next.unwrap_or_else(|| Vec::with_capacity(BATCH));
+                        let full = std::mem::replace(&mut batch, next);
                         // The receiver only stops early when `f` panicked.
                         let _ = send.send(full);
                     }
                 });
                 let _ = send.send(batch);
+                drop(send);
+                // The last batches, once `f` is done with them.
+                for done in returned {
+                    drop(done);
+                }
             });
             match parser {
                 Ok(_) => {
                     for batch in receive {
-                        batch.into_iter().for_each(&mut f);
+                        batch.iter().for_each(&mut f);
+                        let _ = give_back.send(batch);
                     }
+                    drop(give_back);
                 }
                 // No thread to be had: parse here.
-                Err(_) => self.statements(top_level, f),
+                Err(_) => self.statements(top_level, |s| f(&s)),
             }
         });
     }

@@ -134,25 +134,27 @@ pub struct Namespace {
 impl Namespace {
     /// The target name of `krl`. `Some(renamed)` the first time a name is seen and had to
     /// change beyond case.
-    pub fn name(&mut self, krl: &str, rules: &NameRules) -> (String, Option<Renamed>) {
+    pub fn name(&mut self, krl: &str, rules: &NameRules) -> (CompactString, Option<Renamed>) {
         let mut key = CompactString::from(krl);
         key.make_ascii_uppercase();
+        // Names fit inline: a name asked again costs no allocation.
         if let Some(t) = self.map.get(&key) {
-            return (t.to_string(), None);
+            return (t.clone(), None);
         }
         let (mut target, mut reasons) = target_name(krl, rules);
         if self.taken.get(target.as_str()).is_some_and(|k| *k != key) {
             target = self.free_variant(&target, rules.max_len);
             reasons.push(Reason::Clash);
         }
-        self.taken.insert(CompactString::from(&target), key.clone());
-        self.map.insert(key, CompactString::from(&target));
+        let name = CompactString::from(&target);
+        self.taken.insert(name.clone(), key.clone());
+        self.map.insert(key, name.clone());
         let renamed = (!reasons.is_empty()).then(|| Renamed {
             krl: krl.to_owned(),
-            target: target.clone(),
+            target,
             reasons,
         });
-        (target, renamed)
+        (name, renamed)
     }
 
     /// The namespace with no name, its maps kept for reuse when they are small (emptying a
@@ -338,7 +340,7 @@ impl<'a> Namer<'a> {
     pub fn routine(&mut self, rep: &mut Report, krl: &str, span: Span) -> String {
         let (name, r) = self.routines.name(krl, self.rules);
         self.note(rep, self.rules.routine, FileId::Src, span, r);
-        name
+        name.into()
     }
 
     /// The target name given to a routine before.
@@ -439,15 +441,15 @@ impl<'a> Namer<'a> {
         self.labels.entry(id).or_default()
     }
 
-    /// A variable's target name (without sigils) and where it lives.
-    pub fn var(&mut self, rep: &mut Report, v: VarId, used_at: Span) -> (String, Home) {
+    /// A variable's target name (without sigils) and where it lives (inline: no allocation).
+    pub fn var(&mut self, rep: &mut Report, v: VarId, used_at: Span) -> (CompactString, Home) {
         let (ir, rules) = (self.ir, self.rules);
         let var = ir.var(v);
         let (ns, home) = match var.scope {
             Scope::Local(r) | Scope::Param(r) => (self.locals_ns(r), Home::Local),
             Scope::Package => {
                 if let Some(g) = package_name(rules, &var.name) {
-                    return (g.to_owned(), Home::Package);
+                    return (g.into(), Home::Package);
                 }
                 (self.globals_ns(), Home::Global)
             }
@@ -461,13 +463,13 @@ impl<'a> Namer<'a> {
     /// A global's target name, without a finding (its declaration had one).
     pub fn global(&mut self, krl: &str) -> String {
         let rules = self.rules;
-        self.globals_ns().name(krl, rules).0
+        self.globals_ns().name(krl, rules).0.into()
     }
 
     /// A label of the KRL routine `id`.
     pub fn label(&mut self, id: RoutineId, krl: &str) -> String {
         let rules = self.rules;
-        self.labels_ns(id).name(krl, rules).0
+        self.labels_ns(id).name(krl, rules).0.into()
     }
 
     /// A label the translator needs in routine `id`.

@@ -251,10 +251,17 @@ impl<'a> Tx<'a> {
             Place::Var(v) => {
                 let var = self.ir.var(*v);
                 // A structure never gets here: the lowering refuses what the target cannot hold.
-                let vty = var.ty.clone();
+                let sigil = super::format::sigil(&var.ty);
                 let (n, local) = self.var_name(*v, span);
-                let n = if local { format!(".{n}") } else { n };
-                Ok(with_sigil(&n, &vty))
+                // `.`, sigil, name: as `with_sigil` spells it, in one allocation (a variable
+                // is the most frequent thing the renderer writes).
+                let mut text = String::with_capacity(usize::from(local) + sigil.len() + n.len());
+                if local {
+                    text.push('.');
+                }
+                text.push_str(sigil);
+                text.push_str(&n);
+                Ok(text)
             }
             Place::Temp(t) => {
                 let n = self.temp_name(*t);

@@ -214,7 +214,7 @@ impl<'a> Tx<'a> {
     }
 
     /// A variable's AS spelling without sigils, and whether it is local (gets a `.`).
-    fn var_name(&mut self, v: VarId, used_at: Span) -> (String, bool) {
+    fn var_name(&mut self, v: VarId, used_at: Span) -> (compact_str::CompactString, bool) {
         let (n, home) = self.out.names.var(&mut self.out.rep, v, used_at);
         (n, home == Home::Local)
     }

@@ -247,7 +247,7 @@ impl<'a> Tx<'a> {
 
     /// A variable's RAPID name.
     fn var_name(&mut self, v: VarId, used_at: Span) -> String {
-        self.out.names.var(&mut self.out.rep, v, used_at).0
+        self.out.names.var(&mut self.out.rep, v, used_at).0.into()
     }
 
     /// A local the translator needs, declared with `ty` in the routine being rendered.

@@ -952,6 +952,9 @@ mod tests {
                 f.computed_numbers
             }),
             ("BAS(#TOOL, i)", Why::FrameNumber, |f| f.computed_numbers),
+            ("$TOOL = TOOL_DATA[-1]", Why::FrameNegative(-1), |f| {
+                f.computed_numbers
+            }),
         ];
         for b in BACKENDS {
             for (stmt, why, held) in &cases {

@@ -9,10 +9,10 @@ fn loop_kinds(text: &str) -> Vec<&'static str> {
     let mut lower = Lower::new(&program, &options, render::backend(Target::Kawasaki).caps());
     let mut kinds = Vec::new();
     program.src.each_statement(false, |s| match s {
-        front::Statement::Begin(i) => drop(lower.begin_routine(i)),
-        front::Statement::Head(s) => lower.head(&s, &mut Block::new()),
+        front::Statement::Begin(i) => drop(lower.begin_routine(*i)),
+        front::Statement::Head(s) => lower.head(s, &mut Block::new()),
         front::Statement::Stmt(s) => {
-            for op in lower.stmt(&s) {
+            for op in lower.stmt(s) {
                 if let Op::Loop { kind, .. } = &op.op {
                     kinds.push(match kind {
                         LoopKind::While(_) => "while",
@@ -69,9 +69,9 @@ fn lowered_with(text: &str, target: Target, options: &Options) -> (Program, Vec<
     let mut lower = Lower::new(&program, options, render::backend(target).caps());
     let mut ops = Vec::new();
     program.src.each_statement(false, |s| match s {
-        front::Statement::Begin(i) => ops.extend(lower.begin_routine(i).into_iter().map(|s| s.op)),
-        front::Statement::Head(s) => lower.head(&s, &mut Block::new()),
-        front::Statement::Stmt(s) => ops.extend(lower.stmt(&s).into_iter().map(|s| s.op)),
+        front::Statement::Begin(i) => ops.extend(lower.begin_routine(*i).into_iter().map(|s| s.op)),
+        front::Statement::Head(s) => lower.head(s, &mut Block::new()),
+        front::Statement::Stmt(s) => ops.extend(lower.stmt(s).into_iter().map(|s| s.op)),
         front::Statement::End(_) => ops.extend(lower.end_routine().into_iter().map(|s| s.op)),
     });
     (lower.finish().program, ops)
