@@ -94,9 +94,15 @@ mod tests {
             "DEF p()\nEND\nDEFDAT q\nDECL E6POS xp2={X 5.0}\nDECL E6POS XS={X 5.0}\nDECL FDAT FS={TOOL_NO 1}\nENDDAT\n",
         );
         assert!(i.literal("xp1") && i.literal("FP1") && i.literal("XS"));
-        assert!(!i.literal("XP2"), "the .dat's declaration without a value decides");
+        assert!(
+            !i.literal("XP2"),
+            "the .dat's declaration without a value decides"
+        );
         assert!(!i.literal("N") && !i.literal("nowhere"));
-        assert_eq!(i.record("fp1"), Some(&[("TOOL_NO", 2.0), ("BASE_NO", 0.0)][..]));
+        assert_eq!(
+            i.record("fp1"),
+            Some(&[("TOOL_NO", 2.0), ("BASE_NO", 0.0)][..])
+        );
         assert_eq!(i.record("XP1"), Some(&[][..]));
         assert_eq!(i.record("XP2"), None);
         assert_eq!(i.record("FS"), None, "not the .src's DEFDAT");
