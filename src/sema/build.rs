@@ -111,6 +111,8 @@ pub struct Sema {
     pub(crate) values: FxHashMap<SymbolId, ConstValue>,
     /// The documentation of the KSS environment's system variables.
     pub(crate) docs: FxHashMap<SymbolId, &'static str>,
+    /// [`Sema::forget_items`] was called.
+    pub(crate) items_forgotten: bool,
 }
 
 impl Sema {
@@ -122,6 +124,18 @@ impl Sema {
     /// A system variable's documentation.
     pub fn symbol_doc(&self, id: SymbolId) -> Option<&'static str> {
         self.docs.get(&id).copied()
+    }
+
+    /// Drops the files' DECL and routine items (one per declared name and per routine, kept
+    /// for the language server), for a consumer that builds the model once and asks it names,
+    /// types and calls (transpile): those answer as before; [`Sema::resolve`] no longer finds
+    /// the name in a declaration, and the model cannot be updated.
+    pub fn forget_items(&mut self) {
+        for f in &mut self.files {
+            f.s.decls = Vec::new();
+            f.s.routines = Vec::new();
+        }
+        self.items_forgotten = true;
     }
 }
 
@@ -248,6 +262,10 @@ impl Sema {
     /// same summaries; only [`NameId`] numbers may differ. A file edited inside its bodies,
     /// declaring what it declared before, is updated in place (`edit.rs`).
     pub fn update(&mut self, files: Vec<Update>, am_ini: &[AmIni]) {
+        assert!(
+            !self.items_forgotten,
+            "a model that forgot its items cannot be updated"
+        );
         if let Err(files) = self.update_in_place(files, am_ini) {
             self.rebuild(files, am_ini);
         }
@@ -299,6 +317,7 @@ impl Sema {
                 consts: OnceLock::new(),
                 values: FxHashMap::default(),
                 docs: FxHashMap::default(),
+                items_forgotten: false,
             },
         };
         let (robot_of, robots) = partition(&inputs, am_ini);

@@ -469,3 +469,35 @@ fn an_edit_in_place_gives_the_rebuilt_model() {
         );
     }
 }
+
+/// A model that forgot its items answers names, types and calls as before; only a
+/// declaration's name is no longer found by position.
+#[test]
+fn forgotten_items_keep_lookups() {
+    let text =
+        "DEF t()\nDECL REAL r\nr = h(2)\nEND\nDEFFCT REAL h(n:IN)\nDECL INT n\nRETURN n\nENDFCT\n";
+    let mut a = analysis(&[("R1/System/$config.dat", CONFIG), ("t.src", text)]);
+    let f = a.sema.file_id("t.src").unwrap();
+    let inside = a.sema.position(f, text.find("r = h").unwrap() as u32);
+    let ask = |s: &Sema| {
+        let r = s.lookup_var(inside, "R");
+        let h = s.call_target(f, None, "H");
+        let Resolved::Routine(id) = h else { panic!() };
+        (
+            r,
+            s.ty_of_resolved(r),
+            h,
+            s.signature(id),
+            s.lookup_var(inside, "speed"),
+        )
+    };
+    let before = ask(&a.sema);
+    let decl = text.find("REAL r").unwrap() as u32 + 5;
+    assert!(matches!(
+        a.sema.resolve(f, decl),
+        Some((_, Resolved::Symbol(_)))
+    ));
+    a.sema.forget_items();
+    assert_eq!(ask(&a.sema), before);
+    assert_eq!(a.sema.resolve(f, decl), None);
+}

@@ -275,7 +275,9 @@ impl Program {
                 summary: f.summary.take().unwrap_or_default(),
             })
             .collect();
-        let sema = crate::sema::Sema::build(inputs, &[]);
+        let mut sema = crate::sema::Sema::build(inputs, &[]);
+        // The translation asks names, types and calls, never for a declaration by position.
+        sema.forget_items();
         let dat_index = dat_index::DatIndex::new(
             dat.as_ref().and_then(|d| d.outline.dat.as_ref()),
             src.outline.dat.as_ref(),
