@@ -6,7 +6,7 @@ use compact_str::CompactString;
 use rustc_hash::FxHashMap;
 
 use super::{ilf, literal};
-use crate::syntax::ast::{DatModule, ExprKind};
+use crate::syntax::ast::{Decl, ExprKind};
 
 /// Per upper-case name of a data list variable (the first declaration of a name decides).
 #[derive(Debug, Default)]
@@ -24,12 +24,12 @@ struct Facts {
 }
 
 impl DatIndex {
-    /// `dat`: the `.dat`'s data list, `src`: the `.src`'s DEFDAT.
-    pub fn new(dat: Option<&DatModule>, src: Option<&DatModule>) -> DatIndex {
+    /// `dat`: the declarations of the `.dat`'s data list, `src`: of the `.src`'s DEFDAT.
+    pub fn new(dat: &[Decl], src: &[Decl]) -> DatIndex {
         let mut names: FxHashMap<CompactString, Facts> = FxHashMap::default();
         let mut key = CompactString::default();
         for (m, in_dat) in [(dat, true), (src, false)] {
-            for v in m.iter().flat_map(|m| &m.decls).flat_map(|d| &d.vars) {
+            for v in m.iter().flat_map(|d| &d.vars) {
                 key.clear();
                 key.push_str(&v.name.text);
                 key.make_ascii_uppercase();
@@ -82,7 +82,7 @@ mod tests {
     fn index(dat: &str, src: &str) -> DatIndex {
         let d = crate::transpile::front::Parsed::new("p.dat", dat);
         let s = crate::transpile::front::Parsed::new("p.src", src);
-        DatIndex::new(d.outline.dat.as_ref(), s.outline.dat.as_ref())
+        DatIndex::new(&d.outline.dat_values().decls, &s.outline.dat_values().decls)
     }
 
     /// Literals from either list (the first declaration of a name decides), records only from

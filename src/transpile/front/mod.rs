@@ -278,10 +278,12 @@ impl Program {
         let mut sema = crate::sema::Sema::build(inputs, &[]);
         // The translation asks names, types and calls, never for a declaration by position.
         sema.forget_items();
+        let dat_values = dat.as_ref().map(|d| d.outline.dat_values());
         let dat_index = dat_index::DatIndex::new(
-            dat.as_ref().and_then(|d| d.outline.dat.as_ref()),
-            src.outline.dat.as_ref(),
+            dat_values.as_ref().map_or(&[][..], |v| &v.decls),
+            &src.outline.dat_values().decls,
         );
+        drop(dat_values);
         Program {
             src,
             dat,
@@ -290,16 +292,12 @@ impl Program {
         }
     }
 
-    /// Drops the data lists' declarations and assignments, once the first pass lowered their
-    /// values (the program model holds them; later questions go to [`Program::dat_index`]);
-    /// their type definitions stay.
+    /// Drops what is left of the data lists' declarations and assignments once the first pass
+    /// lowered their values (it takes them: the program model holds the values; later questions
+    /// go to [`Program::dat_index`]); their type definitions stay.
     pub fn forget_data_values(&mut self) {
-        let lists = std::iter::once(&mut self.src)
-            .chain(&mut self.dat)
-            .filter_map(|f| f.outline.dat.as_mut());
-        for m in lists {
-            m.decls = Vec::new();
-            m.body = Vec::new();
+        for f in std::iter::once(&self.src).chain(&self.dat) {
+            drop(f.outline.take_dat_values());
         }
     }
 

@@ -20,14 +20,38 @@ pub struct Outline {
     pub routines: Vec<RoutineOutline>,
     /// The file has statements outside any DEF (a `.sub` fragment).
     pub top_level: bool,
-    /// The first data list (`DEFDAT`), whole: its values are read as data.
+    /// The first data list (`DEFDAT`), its declarations and assignments apart
+    /// ([`Outline::take_dat_values`]).
     pub dat: Option<ast::DatModule>,
+    /// The first data list's declarations and assignments: its values, lowered once and handed
+    /// over (a taught program's `.dat` holds a pose per point: its trees were most of a
+    /// translation's memory while they were lowered).
+    dat_values: std::sync::Mutex<DatValues>,
     /// Upper-case routine name → index of the first routine of that name (a scan per call
     /// made a file of many routines quadratic).
     by_name: FxHashMap<String, usize>,
 }
 
+/// A data list's declarations and assignments (`name[]="text"`).
+#[derive(Debug, Default)]
+pub struct DatValues {
+    pub decls: Vec<ast::Decl>,
+    pub body: Vec<Stmt>,
+}
+
 impl Outline {
+    /// The data list's declarations and assignments, until they are taken.
+    pub fn dat_values(&self) -> std::sync::MutexGuard<'_, DatValues> {
+        self.dat_values
+            .lock()
+            .unwrap_or_else(std::sync::PoisonError::into_inner)
+    }
+
+    /// Hands over the data list's declarations and assignments (empty afterwards).
+    pub fn take_dat_values(&self) -> DatValues {
+        std::mem::take(&mut *self.dat_values())
+    }
+
     /// The routine called `name` (case-insensitive), the first of that name.
     pub fn routine(&self, name: &str) -> Option<&RoutineOutline> {
         let i = *self.by_name.get(&name.to_ascii_uppercase())?;
@@ -316,6 +340,12 @@ impl OutlineBuilder {
     pub fn finish(mut self) -> Outline {
         self.end_routine();
         let o = &mut self.outline;
+        if let Some(d) = &mut o.dat {
+            *o.dat_values.get_mut().unwrap_or_else(|e| e.into_inner()) = DatValues {
+                decls: std::mem::take(&mut d.decls),
+                body: std::mem::take(&mut d.body),
+            };
+        }
         o.routines.shrink_to_fit();
         for (i, r) in o.routines.iter().enumerate() {
             o.by_name.entry(r.head.name.key()).or_insert(i);
@@ -355,7 +385,13 @@ mod tests {
         assert_eq!(a.facts.global_decls().len(), 2);
         assert_eq!(a.facts.definitions().len(), 1);
         assert!(!o.routines[1].facts.moves);
-        assert_eq!(o.dat, ast.dat);
+        // The data list's values are apart from its definitions.
+        let mut dat = ast.dat.clone().unwrap();
+        let values = o.take_dat_values();
+        assert_eq!(values.decls, std::mem::take(&mut dat.decls));
+        assert_eq!(values.body, std::mem::take(&mut dat.body));
+        assert_eq!(o.dat, Some(dat));
+        assert!(o.take_dat_values().decls.is_empty(), "handed over once");
         assert!(!o.top_level);
     }
 

@@ -887,14 +887,11 @@ impl<'p> Lower<'p> {
 
     fn data(&mut self) {
         let src = self.src;
-        if let Some(dat) = &src.dat
-            && let Some(m) = &dat.outline.dat
-        {
-            self.dat_module(m, FileId::Dat, &dat.text);
+        // Each declaration's tree goes once its value is lowered.
+        if let Some(dat) = &src.dat {
+            self.dat_module(dat.outline.take_dat_values(), FileId::Dat);
         }
-        if let Some(m) = &src.src.outline.dat {
-            self.dat_module(m, FileId::Src, &src.src.text);
-        }
+        self.dat_module(src.src.outline.take_dat_values(), FileId::Src);
         // GLOBAL declarations inside routines are globals without a value here.
         for r in &src.src.outline.routines {
             for d in r.facts.global_decls() {
@@ -916,8 +913,8 @@ impl<'p> Lower<'p> {
             .collect()
     }
 
-    fn dat_module(&mut self, m: &ast::DatModule, file: FileId, text: &str) {
-        for d in &m.decls {
+    fn dat_module(&mut self, m: front::outline::DatValues, file: FileId) {
+        for d in m.decls {
             for v in &d.vars {
                 let Some(id) = self.vars.get("", &upper(&v.name.text)) else {
                     continue;
@@ -944,7 +941,7 @@ impl<'p> Lower<'p> {
                 });
             }
         }
-        for s in &m.body {
+        for s in m.body {
             let StmtKind::Assign { target, value } = &s.kind else {
                 continue;
             };
@@ -977,7 +974,6 @@ impl<'p> Lower<'p> {
                 file,
             });
         }
-        let _ = text;
     }
 
     fn data_construct(&mut self, kind: &'static str, span: Span, file: FileId) {
