@@ -124,7 +124,7 @@ fn answers(sema: &Sema) -> String {
             s.sizes,
             s.decl,
             s.global,
-            s.value,
+            sema.symbol_value(id),
             s.unverified
         );
     }

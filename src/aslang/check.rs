@@ -42,28 +42,61 @@ pub enum Calls<'a> {
 
 /// Check AS text; the problems in line order, none when it is well formed.
 pub fn check(text: &str, calls: Calls<'_>) -> Vec<Problem> {
-    let mut c = Checker {
-        max: catalog().kawasaki_limits.name_max,
-        problems: Vec::new(),
-        state: State::Outside,
-        programs: FxHashMap::default(),
-        calls: Vec::new(),
-        bare: String::new(),
-        upper: String::new(),
-    };
-    let mut last = 0;
-    for (idx, raw) in text.lines().enumerate() {
-        last = idx + 1;
-        c.line(last, raw);
+    let mut c = Lines::new();
+    for raw in text.lines() {
+        c.line(raw);
     }
-    match std::mem::replace(&mut c.state, State::Outside) {
-        State::Outside => {}
-        State::Program(p) => c.push(last, format!("program `{}` has no .END", p.name)),
-        State::Data { kind, .. } => c.push(last, format!("{kind} section has no .END")),
+    c.finish(calls)
+}
+
+/// [`check`] fed one line at a time (a translation checks its output as it is written, never
+/// holding it whole).
+pub struct Lines {
+    checker: Checker,
+    /// Lines seen so far.
+    last: usize,
+}
+
+impl Default for Lines {
+    fn default() -> Lines {
+        Lines::new()
     }
-    c.resolve_calls(calls);
-    c.problems.sort_by_key(|p| p.line);
-    c.problems
+}
+
+impl Lines {
+    pub fn new() -> Lines {
+        Lines {
+            checker: Checker {
+                max: catalog().kawasaki_limits.name_max,
+                problems: Vec::new(),
+                state: State::Outside,
+                programs: FxHashMap::default(),
+                calls: Vec::new(),
+                bare: String::new(),
+                upper: String::new(),
+            },
+            last: 0,
+        }
+    }
+
+    /// The next line, without its line break.
+    pub fn line(&mut self, raw: &str) {
+        self.last += 1;
+        self.checker.line(self.last, raw);
+    }
+
+    /// The problems in line order, none when the text was well formed.
+    pub fn finish(self, calls: Calls<'_>) -> Vec<Problem> {
+        let (mut c, last) = (self.checker, self.last);
+        match std::mem::replace(&mut c.state, State::Outside) {
+            State::Outside => {}
+            State::Program(p) => c.push(last, format!("program `{}` has no .END", p.name)),
+            State::Data { kind, .. } => c.push(last, format!("{kind} section has no .END")),
+        }
+        c.resolve_calls(calls);
+        c.problems.sort_by_key(|p| p.line);
+        c.problems
+    }
 }
 
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]

@@ -7,5 +7,5 @@ mod lex;
 #[cfg(test)]
 mod tests;
 
-pub use check::{Calls, Problem, check};
+pub use check::{Calls, Lines, Problem, check};
 pub use lex::split_top_level;

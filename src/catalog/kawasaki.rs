@@ -118,6 +118,19 @@ pub struct KawasakiCommand {
     /// results.
     #[serde(default)]
     pub computes: Vec<Computed>,
+    /// KUKA outputs of its KUKA routine it has no counterpart for, and the value a translation
+    /// sets each to after the call.
+    #[serde(default)]
+    pub sets: Vec<SetAfter>,
+}
+
+/// A KUKA output a translation sets after the Kawasaki command, which has no counterpart.
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct SetAfter {
+    /// The KUKA parameter.
+    pub kuka: String,
+    pub value: f64,
 }
 
 /// A KUKA routine a translation computes from a Kawasaki command's results.
@@ -213,6 +226,13 @@ impl Catalog {
             .iter()
             .flat_map(|k| &k.computes)
             .find(|c| c.kuka.eq_ignore_ascii_case(kuka))
+    }
+
+    /// The Kawasaki command whose results a translation computes KUKA routine `kuka` from.
+    pub fn kawasaki_computing(&self, kuka: &str) -> Option<&KawasakiCommand> {
+        self.kawasaki
+            .iter()
+            .find(|k| k.computes.iter().any(|c| c.kuka.eq_ignore_ascii_case(kuka)))
     }
 
     /// Every KUKA routine a translation computes from Kawasaki commands' results.

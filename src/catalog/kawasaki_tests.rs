@@ -324,3 +324,68 @@ fn computed_routines_and_client_reads_name_kuka_parameters() {
         }
     }
 }
+
+/// What a Kawasaki command `sets` after the call names KUKA outputs of its KUKA routine that
+/// the command does not produce (checked: `Last_Data` → `Pos_Num` fails it).
+#[test]
+fn set_outputs_are_kuka_outputs_without_counterpart() {
+    let cat = catalog();
+    let mut sets = 0;
+    for k in &cat.kawasaki {
+        for set in &k.sets {
+            let kuka = k.kuka.as_deref().expect("a command of a KUKA routine");
+            let sub = cat.subprogram(kuka).expect("a KUKA routine");
+            let q = sub
+                .params
+                .iter()
+                .find(|q| q.ident().eq_ignore_ascii_case(&set.kuka))
+                .unwrap_or_else(|| panic!("{kuka} has no parameter {}", set.kuka));
+            assert_eq!(q.dir, crate::catalog::Direction::Out, "{}", set.kuka);
+            assert!(
+                k.params.iter().all(|p| !p
+                    .kuka
+                    .as_deref()
+                    .is_some_and(|n| n.eq_ignore_ascii_case(&set.kuka))),
+                "{} produces {}",
+                k.name,
+                set.kuka
+            );
+            sets += 1;
+        }
+    }
+    assert!(sets > 0);
+}
+
+/// Every output of a KUKA routine whose arguments a translation passes to a Kawasaki command
+/// (its own, or the one it is computed from, e.g. `MM_Get_DyPose` → `mm_get_pose`) is
+/// produced by the command or set after it (`sets`), so none is refused as a catalog defect
+/// (checked: removing `sets` from `mm_get_visdata` fails it).
+#[test]
+fn every_kuka_output_has_a_kawasaki_source() {
+    let cat = catalog();
+    let is = |a: &str, b: &str| a.eq_ignore_ascii_case(b);
+    for s in &cat.subprograms {
+        // A routine computed from a stored point (`get_pose`) passes its arguments on; one
+        // computed from other results (`MM_Get_PlanJps`) has code of its own.
+        let from_point = || {
+            cat.kawasaki_computing(&s.name)
+                .filter(|k| k.shape == crate::catalog::ProgramShape::GetPose)
+        };
+        let Some(k) = s.kawasaki().or_else(from_point) else {
+            continue;
+        };
+        let takes = |q: &crate::catalog::Param| {
+            k.params
+                .iter()
+                .any(|p| p.kuka.as_deref().is_some_and(|kp| is(kp, q.ident())))
+        };
+        for q in s
+            .params
+            .iter()
+            .filter(|q| q.dir == crate::catalog::Direction::Out)
+        {
+            let set = k.sets.iter().any(|set| is(&set.kuka, q.ident()));
+            assert!(takes(q) || set, "{} of {}", q.ident(), s.name);
+        }
+    }
+}

@@ -16,7 +16,7 @@ use interface::applies;
 pub use interface::{Codec, Hex, HexKind, Interface, float32_value};
 pub use kawasaki::{
     AsKind, AsParam, Computed, GlobalOrigin, KawasakiCommand, KawasakiGlobal, KawasakiLimits,
-    VisionMoveField,
+    SetAfter, VisionMoveField,
 };
 pub use shape::{ProgramShape, RoutineShape};
 

@@ -128,6 +128,8 @@ pub fn run(args: CheckArgs) -> anyhow::Result<Outcome> {
             }
         );
     }
+    // The process exits after this: freeing the model would only cost time.
+    outcome.forget_model();
     let reports = &outcome.reports;
     let errors: usize = reports.iter().map(|r| r.count(Severity::Error)).sum();
     let warnings: usize = reports.iter().map(|r| r.count(Severity::Warning)).sum();

@@ -46,30 +46,64 @@ pub(super) fn check(option: &str, out: &Path, inputs: &[(&str, &Path)]) -> Resul
 /// machine's `/dev/null` into a file, and every later build read its junk), so those are written
 /// as they are; through a symlink, the file it names is replaced and the link stays.
 pub(super) fn write_atomically(path: &Path, bytes: &[u8]) -> anyhow::Result<()> {
+    write_atomically_with(path, |w| Ok(w.write_all(bytes)?))
+}
+
+/// [`write_atomically`], the text written by `write` (buffered) as it is made, so it is never
+/// held whole; `write`'s result is returned once the file is in place.
+pub(super) fn write_atomically_with<T>(
+    path: &Path,
+    write: impl FnOnce(&mut dyn Write) -> anyhow::Result<T>,
+) -> anyhow::Result<T> {
     let target = match std::fs::metadata(path) {
         Ok(meta) if !meta.is_file() => {
-            return std::fs::OpenOptions::new()
+            let file = std::fs::OpenOptions::new()
                 .write(true)
                 .open(path)
-                .and_then(|mut f| f.write_all(bytes))
-                .with_context(|| format!("cannot write {}", path.display()));
+                .with_context(|| format!("cannot write {}", path.display()))?;
+            let mut w = std::io::BufWriter::new(file);
+            let value = write(&mut w)?;
+            w.flush()
+                .with_context(|| format!("cannot write {}", path.display()))?;
+            return Ok(value);
         }
         Ok(_) if path.is_symlink() => std::fs::canonicalize(path)
             .with_context(|| format!("cannot write {}", path.display()))?,
         _ => path.to_path_buf(),
     };
-    replace_file(&target, bytes)
+    replace_file(&target, write)
 }
 
-fn replace_file(path: &Path, bytes: &[u8]) -> anyhow::Result<()> {
+/// An unnamed temporary file beside `path` (the system's temporary folder when `path` is no
+/// regular file or its folder takes none): a large output is spooled there, on the disk it goes
+/// to, before it is written in order.
+pub(super) fn spool_beside(path: &Path) -> std::io::Result<std::fs::File> {
     let dir = path
         .parent()
         .filter(|d| !d.as_os_str().is_empty())
         .unwrap_or(Path::new("."));
-    let mut tmp = tempfile::NamedTempFile::new_in(dir)
+    let regular = std::fs::metadata(path).map_or(true, |m| m.is_file());
+    match regular {
+        true => tempfile::tempfile_in(dir).or_else(|_| tempfile::tempfile()),
+        false => tempfile::tempfile(),
+    }
+}
+
+fn replace_file<T>(
+    path: &Path,
+    write: impl FnOnce(&mut dyn Write) -> anyhow::Result<T>,
+) -> anyhow::Result<T> {
+    let dir = path
+        .parent()
+        .filter(|d| !d.as_os_str().is_empty())
+        .unwrap_or(Path::new("."));
+    let tmp = tempfile::NamedTempFile::new_in(dir)
         .with_context(|| format!("cannot write in {}", dir.display()))?;
-    tmp.write_all(bytes)
-        .with_context(|| format!("cannot write {}", path.display()))?;
+    let mut w = std::io::BufWriter::new(tmp);
+    let value = write(&mut w)?;
+    let tmp = w
+        .into_inner()
+        .map_err(|e| anyhow::anyhow!("cannot write {}: {}", path.display(), e.error()))?;
     // A temporary file is private (0600); the output gets the permissions of the file it
     // replaces, or the usual ones for a new file.
     #[cfg(unix)]
@@ -82,7 +116,7 @@ fn replace_file(path: &Path, bytes: &[u8]) -> anyhow::Result<()> {
     }
     tmp.persist(path)
         .map_err(|e| anyhow::anyhow!("cannot write {}: {}", path.display(), e.error))?;
-    Ok(())
+    Ok(value)
 }
 
 fn same_file(a: &Path, b: &Path) -> bool {

@@ -20,6 +20,7 @@ use super::ui::plural;
 use crate::diag::Severity;
 use crate::diag::render::sarif::RuleMeta;
 use crate::transpile::flexiv::{self, FlexivOptions, RdkVersion};
+use crate::transpile::render::Spool;
 use crate::transpile::{self, Options, SignalMap, Source, Target, VisionServer};
 use crate::transpile::{kawasaki, rapid};
 
@@ -161,11 +162,25 @@ pub fn run(mut args: TranspileArgs) -> anyhow::Result<Outcome> {
         }
     }
 
-    let t = transpile::transpile(target, src, dat, &options);
-    match &args.out {
-        Some(out) => super::outputs::write_atomically(out, t.text.as_bytes())?,
-        None => std::io::stdout().lock().write_all(t.text.as_bytes())?,
-    }
+    // The routines' text is spooled to a temporary file (beside the output), never held in
+    // memory, then written in order with the header known only at the end.
+    let spool =
+        |file: std::io::Result<std::fs::File>| file.map_or_else(|_| Spool::memory(), Spool::file);
+    let t = match &args.out {
+        Some(out) => super::outputs::write_atomically_with(out, |w| {
+            let spool = spool(super::outputs::spool_beside(out));
+            Ok(transpile::transpile_to(
+                target, src, dat, &options, spool, w,
+            )?)
+        })?,
+        None => {
+            let mut w = std::io::BufWriter::new(std::io::stdout().lock());
+            let spool = spool(tempfile::tempfile());
+            let t = transpile::transpile_to(target, src, dat, &options, spool, &mut w)?;
+            w.flush()?;
+            t
+        }
+    };
     let errors: usize = t.reports.iter().map(|r| r.count(Severity::Error)).sum();
     let warnings: usize = t.reports.iter().map(|r| r.count(Severity::Warning)).sum();
     let infos: usize = t.reports.iter().map(|r| r.count(Severity::Info)).sum();

@@ -129,13 +129,13 @@ impl Model<'_> {
                     s.name(sym.name),
                     self.scope_text(sym.scope)
                 );
-                if let Some(v) = &sym.value {
+                if let Some(v) = s.symbol_value(id) {
                     text.push_str(&format!(", value `{}`", const_text(v)));
                 }
                 if let Some(loc) = sym.decl {
                     text.push_str(&format!(", declared at `{}`", self.place(loc)));
                 }
-                if let Some(doc) = sym.doc {
+                if let Some(doc) = s.symbol_doc(id) {
                     text.push_str(&format!("\n\n{doc}"));
                 }
                 if sym.unverified {

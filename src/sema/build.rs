@@ -18,7 +18,9 @@ use super::model::{
 };
 use super::names::Names;
 use super::scope::Scope;
-use super::summary::{DeclKind, FileSummary, NONE, Term, TypeItemKind, TypeRefItem, UseKind};
+use super::summary::{
+    ConstValue, DeclKind, FileSummary, NONE, Term, TypeItemKind, TypeRefItem, UseKind,
+};
 use super::ty::{Field, Sizes, Ty, TyKind, TypeDef, TypeDefKind};
 use crate::catalog::catalog;
 
@@ -105,6 +107,22 @@ pub struct Sema {
     /// The constants with a numeric value by scope, built on the first
     /// [`Sema::visible_constants`] (an in-place update keeps every declaration and value).
     pub(crate) consts: OnceLock<super::consts::ConstIndex>,
+    /// The literal values of the symbols that have one (CONSTs, `.dat` initialisers).
+    pub(crate) values: FxHashMap<SymbolId, ConstValue>,
+    /// The documentation of the KSS environment's system variables.
+    pub(crate) docs: FxHashMap<SymbolId, &'static str>,
+}
+
+impl Sema {
+    /// The literal value of a CONST (or a `.dat` initialiser).
+    pub fn symbol_value(&self, id: SymbolId) -> Option<&ConstValue> {
+        self.values.get(&id)
+    }
+
+    /// A system variable's documentation.
+    pub fn symbol_doc(&self, id: SymbolId) -> Option<&'static str> {
+        self.docs.get(&id).copied()
+    }
 }
 
 /// Path pieces, `/` or `\` separated.
@@ -279,6 +297,8 @@ impl Sema {
                 duplicates: Vec::new(),
                 refs: Default::default(),
                 consts: OnceLock::new(),
+                values: FxHashMap::default(),
+                docs: FxHashMap::default(),
             },
         };
         let (robot_of, robots) = partition(&inputs, am_ini);
@@ -467,6 +487,7 @@ fn partition(inputs: &[Source], am_ini: &[AmIni]) -> (Vec<RobotId>, Vec<Robot>) 
 
 /// Replace a summary's per-file name indices by model [`NameId`]s.
 pub(super) fn intern(names: &mut Names, mut s: FileSummary) -> FileSummary {
+    names.reserve(s.names.len());
     let map: Vec<u32> = s.names.iter().map(|n| names.intern(n).0).collect();
     let m = |i: &mut u32| *i = map[*i as usize];
     for u in &mut s.uses {
@@ -534,9 +555,20 @@ impl Builder {
         id
     }
 
-    fn push_symbol(&mut self, s: Symbol) -> SymbolId {
+    fn push_symbol(
+        &mut self,
+        s: Symbol,
+        value: Option<ConstValue>,
+        doc: Option<&'static str>,
+    ) -> SymbolId {
         let id = SymbolId(self.sema.symbols.len() as u32);
         self.sema.symbols.push(s);
+        if let Some(v) = value {
+            self.sema.values.insert(id, v);
+        }
+        if let Some(d) = doc {
+            self.sema.docs.insert(id, d);
+        }
         id
     }
 
@@ -611,18 +643,20 @@ impl Builder {
                 &v.decl.ty.name.text,
                 var.dims.len() as u8,
             );
-            let id = self.push_symbol(Symbol {
-                name,
-                kind: SymbolKind::System,
-                ty,
-                sizes: literal_sizes(&var.dims),
-                scope: Scope::System,
-                decl: None,
-                global: true,
-                value: None,
-                doc: Some(v.meta.doc.as_str()),
-                unverified: v.meta.unverified,
-            });
+            let id = self.push_symbol(
+                Symbol {
+                    name,
+                    kind: SymbolKind::System,
+                    ty,
+                    sizes: literal_sizes(&var.dims),
+                    scope: Scope::System,
+                    decl: None,
+                    global: true,
+                    unverified: v.meta.unverified,
+                },
+                None,
+                Some(v.meta.doc.as_str()),
+            );
             self.sema.scopes.system.vars.insert(name, id);
             self.versioned(name, &v.meta);
         }
@@ -759,6 +793,9 @@ impl Builder {
         let routine_items = std::mem::take(&mut self.sema.files[fi].s.routines);
         let main_kind = matches!(info.kind, FileKind::Src | FileKind::Sub | FileKind::Other);
         let mut ids = Vec::with_capacity(routine_items.len());
+        // Grown once per file, not copied over and over (a 50 MB module has 130k routines).
+        self.sema.routines.reserve(routine_items.len());
+        self.sema.scopes.routine.reserve(routine_items.len());
         for (k, r) in routine_items.iter().enumerate() {
             let id = RoutineId(self.sema.routines.len() as u32);
             self.sema.routines.push(Routine {
@@ -873,6 +910,7 @@ impl Builder {
         // Data declarations.
         let decl_items = std::mem::take(&mut self.sema.files[fi].s.decls);
         let mut decl_ids = Vec::with_capacity(decl_items.len());
+        self.sema.symbols.reserve(decl_items.len());
         for d in &decl_items {
             let scope = scope_of(d.owner, d.global);
             let kind = match d.kind {
@@ -889,18 +927,20 @@ impl Builder {
                 (_, Some(t)) => (Ty::array(TyKind::Unknown, t.dims), t.sizes),
                 (_, None) => (Ty::UNKNOWN, [0; 3]),
             };
-            let id = self.push_symbol(Symbol {
-                name: NameId(d.name),
-                kind,
-                ty,
-                sizes,
-                scope,
-                decl: Some(Loc { file, span: d.span }),
-                global: d.global || matches!(scope, Scope::Config(_)),
-                value: d.value.clone(),
-                doc: None,
-                unverified: false,
-            });
+            let id = self.push_symbol(
+                Symbol {
+                    name: NameId(d.name),
+                    kind,
+                    ty,
+                    sizes,
+                    scope,
+                    decl: Some(Loc { file, span: d.span }),
+                    global: d.global || matches!(scope, Scope::Config(_)),
+                    unverified: false,
+                },
+                d.value.clone(),
+                None,
+            );
             decl_ids.push(id);
             self.declare_var(scope, NameId(d.name), id);
         }
@@ -928,18 +968,20 @@ impl Builder {
                 let symbol = match self.sema.scopes.routine[rid.index()].vars.get(&name) {
                     Some(s) => *s,
                     None => {
-                        let id = self.push_symbol(Symbol {
-                            name,
-                            kind: SymbolKind::Parameter,
-                            ty: Ty::UNKNOWN,
-                            sizes: [0; 3],
-                            scope: Scope::Routine(rid),
-                            decl: Some(here),
-                            global: false,
-                            value: None,
-                            doc: None,
-                            unverified: false,
-                        });
+                        let id = self.push_symbol(
+                            Symbol {
+                                name,
+                                kind: SymbolKind::Parameter,
+                                ty: Ty::UNKNOWN,
+                                sizes: [0; 3],
+                                scope: Scope::Routine(rid),
+                                decl: Some(here),
+                                global: false,
+                                unverified: false,
+                            },
+                            None,
+                            None,
+                        );
                         self.sema.scopes.routine[rid.index()].vars.insert(name, id);
                         id
                     }

@@ -24,7 +24,7 @@ impl ConstIndex {
             if s.kind != SymbolKind::Constant {
                 continue;
             }
-            let Some(v) = s.value.as_ref().and_then(ConstValue::as_f64) else {
+            let Some(v) = sema.symbol_value(id).and_then(ConstValue::as_f64) else {
                 continue;
             };
             match s.scope {

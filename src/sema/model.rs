@@ -6,7 +6,6 @@ use super::ids::{
     BuiltinId, ExtId, FileId, Loc, ModuleId, NameId, RobotId, RoutineId, SymbolId, TypeId,
 };
 use super::scope::Scope;
-use super::summary::ConstValue;
 use super::ty::{Sizes, Ty};
 use crate::diag::Span;
 use crate::syntax::ast::{ExtKind, ParamDir, RoutineKind};
@@ -144,12 +143,14 @@ pub struct Symbol {
     pub decl: Option<Loc>,
     /// Declared GLOBAL.
     pub global: bool,
-    /// The literal value of a CONST (or a `.dat` initialiser).
-    pub value: Option<ConstValue>,
-    pub doc: Option<&'static str>,
     /// From an unverified KSS entry: rules do not judge its type.
     pub unverified: bool,
 }
+
+// One per declared name (every local of every routine): what few symbols have — a literal
+// value, a system variable's documentation — is in side tables ([`Sema::symbol_value`],
+// [`Sema::symbol_doc`]).
+const _: () = assert!(std::mem::size_of::<Symbol>() <= 56);
 
 /// A parameter of a signature.
 #[derive(Debug, Clone, Copy, PartialEq)]

@@ -32,6 +32,13 @@ impl Names {
         id
     }
 
+    /// Room for `additional` new names, so interning a big file's names grows the table once.
+    pub fn reserve(&mut self, additional: usize) {
+        self.map.reserve(additional);
+        self.keys.reserve(additional);
+        self.text.reserve(additional);
+    }
+
     /// The id of `name` (any case), if it occurs anywhere in the model.
     pub fn get(&self, name: &str) -> Option<NameId> {
         if name.bytes().any(|b| b.is_ascii_lowercase()) {

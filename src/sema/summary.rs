@@ -11,9 +11,9 @@
 //! summary's).
 
 use compact_str::CompactString;
-use rustc_hash::FxHashMap;
 
 mod deferred;
+mod names;
 mod stream;
 
 pub use stream::SummaryBuilder;
@@ -490,20 +490,9 @@ impl FileSummary {
 #[derive(Default)]
 struct Summarizer {
     out: FileSummary,
-    /// Upper-case name → id.
-    ids: FxHashMap<CompactString, u32>,
-    /// The ids of names looked up lately, by a hash of their upper-case form, once the file
-    /// has many names: a routine names the same few variables over and over, and a hit spares
-    /// a probe of the big map.
-    recent: Vec<(CompactString, u32)>,
-    spell: Vec<CompactString>,
+    names: names::FileNames,
     owner: u32,
 }
-
-/// Slots of [`Summarizer::recent`] (a power of two), and how many names a file has before it
-/// is used.
-const RECENT: usize = 256;
-const RECENT_AFTER: usize = 4096;
 
 impl Summarizer {
     fn declarations_only() -> Summarizer {
@@ -513,41 +502,12 @@ impl Summarizer {
     }
 
     fn name(&mut self, text: &str) -> u32 {
-        let mut key = CompactString::from(text);
-        key.make_ascii_uppercase();
-        if self.spell.len() < RECENT_AFTER {
-            return self.new_name(key, text);
-        }
-        if self.recent.is_empty() {
-            self.recent.resize(RECENT, (CompactString::default(), NONE));
-        }
-        let slot = {
-            use std::hash::Hasher;
-            let mut h = rustc_hash::FxHasher::default();
-            h.write(key.as_bytes());
-            (h.finish() >> 32) as usize & (RECENT - 1)
-        };
-        if self.recent[slot].1 != NONE && self.recent[slot].0 == key {
-            return self.recent[slot].1;
-        }
-        let id = self.new_name(key.clone(), text);
-        self.recent[slot] = (key, id);
-        id
-    }
-
-    /// The id of `key` (`text` upper-cased) in the map, added when new.
-    fn new_name(&mut self, key: CompactString, text: &str) -> u32 {
-        let next = self.spell.len() as u32;
-        let id = *self.ids.entry(key).or_insert(next);
-        if id == next {
-            self.spell.push(text.into());
-        }
-        id
+        self.names.id(text)
     }
 
     fn finish(self) -> FileSummary {
-        let Summarizer { mut out, spell, .. } = self;
-        out.names = spell;
+        let Summarizer { mut out, names, .. } = self;
+        out.names = names.spell;
         out
     }
 

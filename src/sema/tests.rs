@@ -75,7 +75,7 @@ fn scopes_in_krl_order() {
     let speed = at(&a, "R1/Program/cell.src", "speed");
     assert_eq!(s.ty_of_resolved(speed), Ty::REAL);
     let Resolved::Symbol(c) = cfg else { panic!() };
-    assert_eq!(s.symbol(c).value, Some(ConstValue::Int(3)));
+    assert_eq!(s.symbol_value(c), Some(&ConstValue::Int(3)));
     assert_eq!(s.references(c).len(), 1);
     assert!(s.robots().all(|(_, r)| r.is_complete()));
 }

@@ -102,7 +102,8 @@ pub struct Source {
 /// The result of a translation.
 #[derive(Debug, Clone)]
 pub struct Translation {
-    /// The target program text (always produced, also when there are TR001 findings).
+    /// The target program text (always produced, also when there are TR001 findings; empty
+    /// from [`transpile_to`], which writes it).
     pub text: String,
     /// Findings of the `.src` and, when given, the `.dat`, in that order.
     pub reports: Vec<FileReport>,
@@ -113,32 +114,90 @@ pub struct Translation {
 }
 
 /// A target's renderer, fed the program one routine at a time: each routine's body comes as
-/// the lowered, resolved ops of one statement after another, and is never held whole.
+/// the lowered, resolved ops of one statement after another, and is never held whole; an
+/// ended routine's text goes to the spool.
 pub trait Renderer {
     /// Before the first routine.
     fn start(&mut self);
     fn begin_routine(&mut self, id: ir::RoutineId);
     /// The next ops of the routine begun last.
     fn ops(&mut self, ops: &ir::Block);
-    fn end_routine(&mut self);
-    /// The target program's text, the findings (not yet sorted) and the statements that wrote
-    /// something.
-    fn finish(self: Box<Self>) -> (String, front::report::Report, Vec<crate::diag::Span>);
+    /// Writes the routine begun last to `spool`.
+    fn end_routine(&mut self, spool: &mut render::Spool);
+    /// The text before and after the spooled routines, the findings (not yet sorted) and the
+    /// statements that wrote something.
+    fn finish(
+        self: Box<Self>,
+    ) -> (
+        render::Framed,
+        front::report::Report,
+        Vec<crate::diag::Span>,
+    );
 }
 
-/// Translate a KRL program (its `.src` and optional `.dat`) to `target`.
-///
-/// The statements are lowered twice, one at a time, and never held whole (memory follows the
-/// largest statement, not the program): the first pass records the program model without the
-/// routines' bodies and each routine's control-flow graph with its blocks' motion-fact
-/// effects; the flow facts are solved on the graphs; the second pass lowers each statement
-/// again, resolves its motions and hands it to the target's renderer.
+/// Translate a KRL program (its `.src` and optional `.dat`) to `target`, the text in
+/// `Translation.text`.
 pub fn transpile(
     target: Target,
     src: Source,
     dat: Option<Source>,
     options: &Options,
 ) -> Translation {
+    let mut text = String::new();
+    let mut t = translate(
+        target,
+        src,
+        dat,
+        options,
+        render::Spool::memory(),
+        |spool, framed, check| {
+            text = spool.into_text(framed, check)?;
+            Ok(())
+        },
+    )
+    // Only writing to a file can fail.
+    .expect("a translation in memory");
+    t.text = text;
+    t
+}
+
+/// Translate a KRL program to `target`, writing the text to `out` (`Translation.text` stays
+/// empty): the routines' text is spooled to `spool` as it is rendered (e.g.
+/// [`render::Spool::file`], so the text is never held in memory), then written to `out` in
+/// order with what is known only at the end (the header with the name map, data).
+pub fn transpile_to(
+    target: Target,
+    src: Source,
+    dat: Option<Source>,
+    options: &Options,
+    spool: render::Spool,
+    out: &mut dyn std::io::Write,
+) -> std::io::Result<Translation> {
+    translate(target, src, dat, options, spool, |spool, framed, check| {
+        spool.write_to(framed, check, out)
+    })
+}
+
+/// The translation, its text assembled by `assemble` from the spooled routines and the frame
+/// around them, checked line by line with the target's check.
+///
+/// The statements are lowered twice, one at a time, and never held whole (memory follows the
+/// largest statement, not the program): the first pass records the program model without the
+/// routines' bodies and each routine's control-flow graph with its blocks' motion-fact
+/// effects; the flow facts are solved on the graphs; the second pass lowers each statement
+/// again, resolves its motions and hands it to the target's renderer.
+fn translate(
+    target: Target,
+    src: Source,
+    dat: Option<Source>,
+    options: &Options,
+    mut spool: render::Spool,
+    assemble: impl FnOnce(
+        render::Spool,
+        render::Framed,
+        &mut dyn render::LineCheck,
+    ) -> std::io::Result<()>,
+) -> std::io::Result<Translation> {
     let program = front::Program::new(
         front::Parsed::new(src.path, src.text),
         dat.map(|d| front::Parsed::new(d.path, d.text)),
@@ -203,16 +262,18 @@ pub fn transpile(
             if let Some(unit) = units.as_mut().and_then(|u| u.end()) {
                 renderer.ops(&unit);
             }
-            renderer.end_routine();
+            renderer.end_routine(&mut spool);
         }
     });
     drop(second);
-    let (text, mut report, produced) = renderer.finish();
+    let (framed, mut report, produced) = renderer.finish();
     let at = model
         .routines
         .first()
         .map_or(crate::diag::Span::new(0, 0), |r| r.name_span);
-    report_structure(backend, &text, at, &mut report);
+    let mut check = backend.checker();
+    assemble(spool, framed, check.as_mut())?;
+    report_structure(backend, check.finish(), at, &mut report);
     report.coverage = coverage(&model, &report);
     let silent = silent(&model, &report, &produced);
     drop(model);
@@ -235,12 +296,12 @@ pub fn transpile(
             diagnostics: dat_findings,
         });
     }
-    Translation {
-        text,
+    Ok(Translation {
+        text: String::new(),
         reports,
         coverage,
         silent,
-    }
+    })
 }
 
 /// What [`each_lowered`] hands out.
@@ -306,11 +367,11 @@ fn each_lowered(
 /// instead of reaching the robot.
 fn report_structure(
     backend: &render::Backend,
-    text: &str,
+    problems: Vec<String>,
     at: crate::diag::Span,
     report: &mut front::report::Report,
 ) {
-    for problem in backend.check(text) {
+    for problem in problems {
         report.untranslatable(
             front::report::FileId::Src,
             at,
@@ -453,7 +514,7 @@ mod structure_tests {
         let mut report = front::report::Report::default();
         report_structure(
             render::backend(Target::Kawasaki),
-            ".PROGRAM a()\n  IF x THEN\n.END\n",
+            render::backend(Target::Kawasaki).check(".PROGRAM a()\n  IF x THEN\n.END\n"),
             crate::diag::Span::new(4, 5),
             &mut report,
         );
@@ -465,7 +526,7 @@ mod structure_tests {
         let mut report = front::report::Report::default();
         report_structure(
             render::backend(Target::Kawasaki),
-            ".PROGRAM a()\n  HOME\n.END\n",
+            render::backend(Target::Kawasaki).check(".PROGRAM a()\n  HOME\n.END\n"),
             crate::diag::Span::new(4, 5),
             &mut report,
         );

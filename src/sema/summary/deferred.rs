@@ -39,8 +39,8 @@ impl Deferred {
 
     fn end_run(&mut self) {
         if let Some(run) = self.run.take() {
-            let Summarizer { spell, out, .. } = *run;
-            self.parts.push(Part::Names(spell, out.has_errors));
+            let Summarizer { names, out, .. } = *run;
+            self.parts.push(Part::Names(names.spell, out.has_errors));
         }
     }
 

@@ -200,7 +200,7 @@ impl SummaryBuilder {
                     self.s.definition(&d);
                 }
                 // A routine without a name is named by its span.
-                if self.s.spell[item.name as usize].is_empty() {
+                if self.s.names.spell[item.name as usize].is_empty() {
                     item.name_span = span;
                 }
                 item.span = span;
@@ -210,7 +210,7 @@ impl SummaryBuilder {
             }
             Some(Open::Dat { definitions, body }) => {
                 if let Some(dat) = &mut self.s.out.dat
-                    && self.s.spell[dat.0 as usize].is_empty()
+                    && self.s.names.spell[dat.0 as usize].is_empty()
                 {
                     dat.1 = span;
                 }

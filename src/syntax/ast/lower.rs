@@ -92,7 +92,7 @@ impl<'t> Cx<'t> {
 
     /// Comma-separated list between `open` and `close` with omitted entries as `None`.
     fn list(&self, elements: &[Element], open: &str, close: &str) -> Vec<Option<Expr>> {
-        let mut out = Vec::new();
+        let mut out = Vec::with_capacity(self.list_len(elements, open, close));
         let mut cur = None;
         let mut inside = false;
         let mut seen = false;
@@ -114,6 +114,30 @@ impl<'t> Cx<'t> {
             }
         }
         out
+    }
+
+    /// How many entries [`Cx::list`] gives, so it allocates exactly that: a kept tree holds
+    /// one list per call and per index, and a `Vec` grown by pushes holds four 72-byte `Expr`s
+    /// for an index `[i]` (288 bytes for 72).
+    fn list_len(&self, elements: &[Element], open: &str, close: &str) -> usize {
+        let (mut commas, mut any) = (0, false);
+        let inside = elements
+            .iter()
+            .skip_while(|el| !is_punct(self.text, el, open))
+            .skip(1)
+            .take_while(|el| !is_punct(self.text, el, close));
+        for el in inside {
+            if is_punct(self.text, el, ",") {
+                commas += 1;
+            } else {
+                any |= is_expr(el);
+            }
+        }
+        if commas > 0 {
+            commas + 1
+        } else {
+            usize::from(any)
+        }
     }
 
     /// Array dimensions; `[]` (an open-array parameter, `DECL CHAR file[]`) is one of no size.
@@ -977,4 +1001,34 @@ fn statements<'a>(nodes: impl Iterator<Item = Node<'a>>) -> usize {
     nodes
         .filter(|n| !matches!(n.kind, K::BlankLine | K::CommentLine | K::HeaderLine))
         .count()
+}
+
+#[cfg(test)]
+mod tests {
+    use super::super::{ExprKind, StmtKind};
+
+    /// Lists hold exactly their entries (a kept tree holds millions of them).
+    #[test]
+    fn argument_and_index_lists_are_allocated_to_their_length() {
+        let text = "DEF a()\n  f(1, , x[2])\n  g()\n  h(\n  y = z[1, 2]\nEND\n";
+        let ast = crate::syntax::parse(text).ast(text);
+        let mut lists = Vec::new();
+        crate::syntax::ast::each_stmt(&ast.routines[0].body, &mut |s| match &s.kind {
+            StmtKind::Call { args, .. } => {
+                lists.push((args.len(), args.capacity()));
+                if let Some(Some(e)) = args.get(2)
+                    && let ExprKind::Index { indices, .. } = &e.kind
+                {
+                    lists.push((indices.len(), indices.capacity()));
+                }
+            }
+            StmtKind::Assign { value, .. } => {
+                if let ExprKind::Index { indices, .. } = &value.kind {
+                    lists.push((indices.len(), indices.capacity()));
+                }
+            }
+            _ => {}
+        });
+        assert_eq!(lists, [(3, 3), (1, 1), (0, 0), (2, 2)]);
+    }
 }

@@ -143,11 +143,14 @@ pub static BACKEND: render::Backend = render::Backend {
     },
     name_rules: &NAME_RULES,
     help: help::help,
-    check: |_| Vec::new(),
+    check: || Box::new(render::NoCheck),
     renderer: |src, program, vision, options, report| {
         Box::new(Tx::new(src, program, vision, options, report))
     },
 };
+
+/// Where the spooled functions go in the rendered script (no script contains it).
+const FUNCTIONS: &str = "\u{0}krlkit: the functions\u{0}";
 
 /// The routine being rendered.
 struct Rt {
@@ -207,8 +210,6 @@ pub struct Tx<'a> {
     globals: Vec<String>,
     /// `.dat` declarations that could not be translated, kept as comments.
     data_kept: Vec<String>,
-    /// Rendered functions, in source order.
-    functions: Vec<String>,
     /// The function `main()` calls.
     entry: Option<String>,
 }
@@ -234,7 +235,6 @@ impl<'a> Tx<'a> {
             server_used: None,
             globals: Vec::new(),
             data_kept: Vec::new(),
-            functions: Vec::new(),
             entry: None,
         }
     }
@@ -352,7 +352,8 @@ impl<'a> Tx<'a> {
 
     // ----- assembly ----------------------------------------------------------------------
 
-    fn assemble(&mut self) -> String {
+    /// The script before and after the functions.
+    fn assemble(&mut self) -> render::Framed {
         let mut program = String::new();
         let section = |lines: &[String], program: &mut String| {
             if lines.is_empty() {
@@ -389,18 +390,15 @@ impl<'a> Tx<'a> {
             }
             section(&v, &mut program);
         }
-        // Each function's text is dropped once copied.
-        program.reserve(self.functions.iter().map(|f| f.len() + 3).sum());
-        for f in std::mem::take(&mut self.functions) {
-            program.push_str("\n\n");
-            for l in f.lines() {
-                program.push_str(l.trim_end());
-                program.push('\n');
-            }
-        }
+        // The functions were spooled: the script is split where they go.
+        program.push_str(FUNCTIONS);
         let text = script::render(self, program);
+        let (before, after) = text.split_once(FUNCTIONS).unwrap_or((&text, ""));
         // Comments and names are ASCII already; this is a guard, not a translation.
-        format::ascii_lines(text)
+        render::Framed {
+            before: format::ascii_lines(before.to_owned()),
+            after: format::ascii_lines(after.to_owned()),
+        }
     }
 
     fn header_comment(&self) -> Vec<String> {
@@ -544,7 +542,7 @@ impl crate::transpile::Renderer for Tx<'_> {
         self.flush_lines();
     }
 
-    fn end_routine(&mut self) {
+    fn end_routine(&mut self, spool: &mut render::Spool) {
         let ir = self.ir;
         let Some(id) = self.out.routine.as_ref().map(|r| r.id) else {
             return;
@@ -600,15 +598,22 @@ impl crate::transpile::Renderer for Tx<'_> {
             head.push('\n');
         }
         f.insert_str(0, &head);
-        f.shrink_to_fit();
-        self.functions.push(f);
+        spool.push_str("\n\n");
+        for l in f.lines().map(str::trim_end) {
+            // As the rest of the script: a guard, not a translation.
+            match l.is_ascii() {
+                true => spool.push_str(l),
+                false => spool.push_str(&format::ascii_lines(l.to_owned())),
+            }
+            spool.push('\n');
+        }
         self.out.depth = 0;
     }
 
-    fn finish(mut self: Box<Self>) -> (String, Report, Vec<Span>) {
+    fn finish(mut self: Box<Self>) -> (render::Framed, Report, Vec<Span>) {
         self.choose_entry();
-        let text = self.assemble();
-        (text, self.out.rep, self.out.produced)
+        let framed = self.assemble();
+        (framed, self.out.rep, self.out.produced)
     }
 }
 

@@ -179,9 +179,12 @@ pub enum Why {
     /// A tool (`tool`) or base given as a frame value in a target that selects them by name
     /// (`Caps::frames`).
     FrameValue { tool: bool },
-    /// A `TOOL_DATA`/`BASE_DATA` number that is not a positive literal in a target whose
-    /// frames are names written in the program (`Caps::frames`).
+    /// A `TOOL_DATA`/`BASE_DATA` number computed at run time in a target whose frames are
+    /// names written in the program (`Caps::frames`).
     FrameNumber,
+    /// A negative literal `TOOL_DATA`/`BASE_DATA` number, which names no frame (0 is
+    /// `$NULLFRAME`), in a target whose frames are names written in the program.
+    FrameNegative(i64),
     /// A pose (or, `axis`, axis values) literal that leaves main components out where the
     /// target needs them all (`Caps::literals`).
     IncompleteLiteral { axis: bool },
@@ -487,6 +490,7 @@ impl Why {
                 format!("a {what} given as a frame value (not a {table} entry) has no counterpart in this target: it selects {what}s defined on the robot by name")
             }
             Why::FrameNumber => "a tool or base number computed at run time has no counterpart in this target".into(),
+            Why::FrameNegative(n) => format!("tool and base number {n} names no frame: KRL numbers them from 1 (0 is the flange or the world)"),
             Why::IncompleteLiteral { axis } => {
                 let want = if *axis { "A1 to A6" } else { "X, Y, Z, A, B and C" };
                 format!("an incomplete literal (KRL keeps the missing components of the current value) has no counterpart here; this target needs all of {want}")

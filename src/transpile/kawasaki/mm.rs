@@ -27,10 +27,6 @@ pub(super) const GLOBALS: [(&str, &str); 4] = [
     ("MM_Plan_Results", "mm_plan_results"),
 ];
 
-/// KUKA output parameters without a Kawasaki counterpart, and the value they get: Kawasaki
-/// programs deliver everything in one call, so there is never a further batch.
-const DROPPED_OUTPUTS: [(&str, f64); 1] = [("Last_Data", 1.0)];
-
 impl<'a> Tx<'a> {
     pub(super) fn mm_call(&mut self, sub: &'static Subprogram, args: &[Arg], span: Span) -> R<()> {
         let cat = catalog();
@@ -39,7 +35,7 @@ impl<'a> Tx<'a> {
             // KUKA splits "get the custom data" and "select one point"; Kawasaki's
             // mm_get_dydata stores every point and mm_get_pose selects one.
             "MM_Get_DyPose" => {
-                if let Some(k) = cat.kawasaki_command("mm_get_pose") {
+                if let Some(k) = cat.kawasaki_computing(&sub.name) {
                     self.mm_command(sub, k, args, span)?;
                     let serial = self.kuka_arg(sub, args, "Serial", span)?;
                     return self.copy_point_data(&serial, false, span);
@@ -154,22 +150,24 @@ impl<'a> Tx<'a> {
                     let Some(place) = &arg.place else {
                         continue;
                     };
-                    match DROPPED_OUTPUTS
+                    match k
+                        .sets
                         .iter()
-                        .find(|(n, _)| n.eq_ignore_ascii_case(q.ident()))
+                        .find(|s| s.kuka.eq_ignore_ascii_case(q.ident()))
                     {
-                        Some((n, v)) => {
+                        Some(set) => {
+                            let (n, v) = (&set.kuka, set.value);
                             let ty = self.place_ty(place);
                             let t = self.place_text(place, &ty, arg.span)?;
-                            after.push(format!("{t} = {}", num(*v)));
+                            after.push(format!("{t} = {}", num(v)));
                             self.out.rep.approximate(
                                 FileId::Src,
                                 arg.span,
-                                format!("{} has no {n}; {} is set to {} after the call (all data arrive in one call)", k.name, self.src.src.slice(arg.span), num(*v)),
+                                format!("{} has no {n}; {} is set to {} after the call (all data arrive in one call)", k.name, self.src.src.slice(arg.span), num(v)),
                                 "a loop that fetches further batches runs once; check that one call returns all points you need",
                             );
                         }
-                        // A catalog test keeps every such output in DROPPED_OUTPUTS.
+                        // A catalog test keeps every such output in the command's `sets`.
                         None => {
                             return crate::transpile::render::catalog_defect(
                                 arg.span,
@@ -500,49 +498,6 @@ mod tests {
                 assert!(cat.kawasaki_global(kaw).is_some(), "Kawasaki global {kaw}");
             }
             assert!(kaw.len() <= super::super::NAME_RULES.max_len);
-        }
-    }
-
-    #[test]
-    fn dropped_outputs_are_kuka_parameters_without_counterpart() {
-        let cat = catalog();
-        for (name, _) in DROPPED_OUTPUTS {
-            let subs: Vec<&Subprogram> = cat
-                .subprograms
-                .iter()
-                .filter(|s| s.param(name).is_some())
-                .collect();
-            assert!(!subs.is_empty());
-            for s in subs {
-                let k = s.kawasaki().expect("has a Kawasaki program");
-                assert!(k.params.iter().all(|p| p.kuka.as_deref() != Some(name)));
-            }
-        }
-    }
-
-    /// Every KUKA output that the routine's Kawasaki command does not produce has a value
-    /// the translation sets after the call (`DROPPED_OUTPUTS`), so none is refused.
-    #[test]
-    fn every_kuka_output_without_counterpart_is_dropped() {
-        let cat = catalog();
-        let dy = cat.kawasaki_command("mm_get_pose");
-        for s in &cat.subprograms {
-            let k = match s.name.as_str() {
-                "MM_Get_DyPose" => dy,
-                _ => s.kawasaki(),
-            };
-            let Some(k) = k else { continue };
-            for q in s.params.iter().filter(|q| q.dir == Direction::Out) {
-                let produced = k.params.iter().any(|p| {
-                    p.kuka
-                        .as_deref()
-                        .is_some_and(|kp| kp.eq_ignore_ascii_case(q.ident()))
-                });
-                let dropped = DROPPED_OUTPUTS
-                    .iter()
-                    .any(|(n, _)| n.eq_ignore_ascii_case(q.ident()));
-                assert!(produced || dropped, "{} of {}", q.ident(), s.name);
-            }
         }
     }
 

@@ -128,16 +128,28 @@ pub static BACKEND: render::Backend = render::Backend {
     name_rules: &NAME_RULES,
     help: help::help,
     // Calls of programs defined elsewhere (the package, other modules) are not resolved.
-    check: |text| {
-        crate::aslang::check(text, crate::aslang::Calls::Open)
-            .iter()
-            .map(ToString::to_string)
-            .collect()
-    },
+    check: || Box::new(AsCheck(crate::aslang::Lines::new())),
     renderer: |src, program, vision, options, report| {
         Box::new(Tx::new(src, program, vision, options, report))
     },
 };
+
+/// The AS check of a translation, fed line by line.
+struct AsCheck(crate::aslang::Lines);
+
+impl render::LineCheck for AsCheck {
+    fn line(&mut self, line: &str) {
+        self.0.line(line);
+    }
+
+    fn finish(self: Box<Self>) -> Vec<String> {
+        self.0
+            .finish(crate::aslang::Calls::Open)
+            .iter()
+            .map(ToString::to_string)
+            .collect()
+    }
+}
 
 /// One translated `.PROGRAM`.
 struct ProgramOut {
@@ -164,11 +176,9 @@ pub struct Tx<'a> {
     /// Its lines are those of the statement being rendered and the last line before it, which
     /// a SPEED line is compared with.
     out: Out<'a>,
-    /// The `.PROGRAM`s rendered so far, each appended whole when its routine ends (the output
-    /// is held once: a String per program copied into the text at the end held it twice).
-    programs: String,
-    /// Where the header comment goes: after the first `.PROGRAM` line (known at the end).
-    head_at: Option<usize>,
+    /// The first `.PROGRAM` line: the header comment follows it (known at the end), so it is
+    /// held back while the rest of the programs go to the spool.
+    first_program: Option<String>,
     rt: Option<Rt>,
     /// Vision server used by `mm_init_skt` (for the header).
     server_used: Option<String>,
@@ -189,8 +199,7 @@ impl<'a> Tx<'a> {
             opts,
             vision,
             out: Out::new(&STYLE, src, ir, &NAME_RULES, report),
-            programs: String::new(),
-            head_at: None,
+            first_program: None,
             rt: None,
             server_used: None,
             data: data::DataOut::default(),
@@ -259,35 +268,40 @@ impl<'a> Tx<'a> {
 
     // ----- assembly ----------------------------------------------------------------------
 
-    fn assemble(&mut self) -> String {
+    /// The first `.PROGRAM` line and the header comment before the spooled programs, the data
+    /// sections after them.
+    fn assemble(&mut self) -> render::Framed {
         let head = self.header_comment();
-        let data = format::ascii(&self.data_text()).into_owned();
-        if self.head_at.is_none() {
-            self.push_program(ProgramOut {
-                header: ".PROGRAM main()".into(),
-                body: String::new(),
-            });
-        }
-        let mut lines = String::with_capacity(head.iter().map(|l| l.len() + 3).sum());
+        let mut after = String::new();
+        let first = self.first_program.take().unwrap_or_else(|| {
+            // No routine: an empty program carries the header.
+            after.push_str(".END\n");
+            ".PROGRAM main()".into()
+        });
+        after.push_str(&format::ascii(&self.data_text()));
+        let mut before = String::with_capacity(
+            first.len() + 1 + head.iter().map(|l| l.len() + 3).sum::<usize>(),
+        );
+        before.push_str(&first);
+        before.push('\n');
         for l in &head {
-            lines.push_str("  ");
-            lines.push_str(&format::ascii(l));
-            lines.push('\n');
+            before.push_str("  ");
+            before.push_str(&format::ascii(l));
+            before.push('\n');
         }
-        let mut out = std::mem::take(&mut self.programs);
-        out.reserve(lines.len() + data.len());
-        out.insert_str(self.head_at.unwrap_or(0), &lines);
-        out.push_str(&data);
-        out
+        render::Framed { before, after }
     }
 
-    /// A rendered `.PROGRAM` joins the output.
-    fn push_program(&mut self, p: ProgramOut) {
-        self.programs.push_str(&p.header);
-        self.programs.push('\n');
-        self.head_at.get_or_insert(self.programs.len());
-        self.programs.push_str(&p.body);
-        self.programs.push_str(".END\n");
+    /// A rendered `.PROGRAM` joins the output (the first one's line is held back).
+    fn push_program(&mut self, p: ProgramOut, spool: &mut render::Spool) {
+        if self.first_program.is_none() {
+            self.first_program = Some(p.header);
+        } else {
+            spool.push_str(&p.header);
+            spool.push('\n');
+        }
+        spool.push_str(&p.body);
+        spool.push_str(".END\n");
     }
 
     fn header_comment(&self) -> Vec<String> {
@@ -381,20 +395,20 @@ impl crate::transpile::Renderer for Tx<'_> {
         self.flush_lines(1);
     }
 
-    fn end_routine(&mut self) {
+    fn end_routine(&mut self, spool: &mut render::Spool) {
         let r = self.ir.routine(self.routine_id());
         self.flush_comments(r.span.end);
         self.flush_lines(0);
         if let Some(rt) = self.rt.take() {
-            self.push_program(rt.program);
+            self.push_program(rt.program, spool);
         }
         self.out.routine = None;
     }
 
-    fn finish(mut self: Box<Self>) -> (String, Report, Vec<Span>) {
+    fn finish(mut self: Box<Self>) -> (render::Framed, Report, Vec<Span>) {
         self.data_sections();
-        let text = self.assemble();
-        (text, self.out.rep, self.out.produced)
+        let framed = self.assemble();
+        (framed, self.out.rep, self.out.produced)
     }
 }
 

@@ -63,17 +63,45 @@ const KEYWORDS: [&str; 12] = [
     "not", "and", "or", "xor", "div", "mod", "if", "while", "test", "case", "var", "pers",
 ];
 
+/// Problems of a module's text that would keep RAPID from loading it.
 pub fn check(text: &str) -> Vec<String> {
-    let mut problems = Vec::new();
-    let mut stack: Vec<(&'static str, usize)> = Vec::new();
-    let mut defined: HashSet<String> = HashSet::new();
-    let mut called: Vec<(String, usize)> = Vec::new();
-    let mut external: HashSet<String> = HashSet::new();
-    // Per routine: labels defined and GOTO targets.
-    let mut labels: HashSet<String> = HashSet::new();
-    let mut gotos: Vec<(String, usize)> = Vec::new();
-    for (i, raw) in text.lines().enumerate() {
-        let n = i + 1;
+    let mut c = Lines::default();
+    for raw in text.lines() {
+        c.line(raw);
+    }
+    c.finish()
+}
+
+/// [`check`] fed one line at a time (a translation checks its output as it is written).
+#[derive(Default)]
+pub struct Lines {
+    /// Lines seen so far.
+    n: usize,
+    problems: Vec<String>,
+    stack: Vec<(&'static str, usize)>,
+    defined: HashSet<String>,
+    called: Vec<(String, usize)>,
+    external: HashSet<String>,
+    /// Per routine: labels defined and GOTO targets.
+    labels: HashSet<String>,
+    gotos: Vec<(String, usize)>,
+}
+
+impl Lines {
+    /// The next line, without its line break.
+    pub fn line(&mut self, raw: &str) {
+        self.n += 1;
+        let n = self.n;
+        let Lines {
+            problems,
+            stack,
+            defined,
+            called,
+            external,
+            labels,
+            gotos,
+            ..
+        } = self;
         if let Some(list) = raw
             .trim()
             .strip_prefix("! External routines (other modules):")
@@ -94,7 +122,7 @@ pub fn check(text: &str) -> Vec<String> {
         }
         let line = code.trim();
         if line.is_empty() {
-            continue;
+            return;
         }
         let words = identifiers(line);
         for w in &words {
@@ -122,8 +150,8 @@ pub fn check(text: &str) -> Vec<String> {
             }
         };
         match first {
-            "module" => open("MODULE", &mut stack),
-            "endmodule" => close("MODULE", &mut stack, &mut problems),
+            "module" => open("MODULE", stack),
+            "endmodule" => close("MODULE", stack, problems),
             "proc" | "func" | "trap" => {
                 let kind = match first {
                     "proc" => "PROC",
@@ -138,34 +166,34 @@ pub fn check(text: &str) -> Vec<String> {
                 if let Some(name) = name {
                     defined.insert(name.to_ascii_lowercase());
                 }
-                check_gotos(&labels, &gotos, &mut problems);
+                check_gotos(labels, gotos, problems);
                 labels.clear();
                 gotos.clear();
-                open(kind, &mut stack);
+                open(kind, stack);
             }
-            "endproc" => close("PROC", &mut stack, &mut problems),
-            "endfunc" => close("FUNC", &mut stack, &mut problems),
-            "endtrap" => close("TRAP", &mut stack, &mut problems),
-            "if" if ends_then => open("IF", &mut stack),
+            "endproc" => close("PROC", stack, problems),
+            "endfunc" => close("FUNC", stack, problems),
+            "endtrap" => close("TRAP", stack, problems),
+            "if" if ends_then => open("IF", stack),
             "else" | "elseif" => {
                 if stack.last().map(|s| s.0) != Some("IF") {
                     problems.push(format!("line {n}: {} outside IF", first.to_uppercase()));
                 }
             }
-            "endif" => close("IF", &mut stack, &mut problems),
-            "while" => open("WHILE", &mut stack),
-            "endwhile" => close("WHILE", &mut stack, &mut problems),
-            "for" => open("FOR", &mut stack),
-            "endfor" => close("FOR", &mut stack, &mut problems),
-            "test" => open("TEST", &mut stack),
+            "endif" => close("IF", stack, problems),
+            "while" => open("WHILE", stack),
+            "endwhile" => close("WHILE", stack, problems),
+            "for" => open("FOR", stack),
+            "endfor" => close("FOR", stack, problems),
+            "test" => open("TEST", stack),
             "case" | "default" => {
                 if stack.last().map(|s| s.0) != Some("TEST") {
                     problems.push(format!("line {n}: {} outside TEST", first.to_uppercase()));
                 }
             }
-            "endtest" => close("TEST", &mut stack, &mut problems),
-            "record" => open("RECORD", &mut stack),
-            "endrecord" => close("RECORD", &mut stack, &mut problems),
+            "endtest" => close("TEST", stack, problems),
+            "record" => open("RECORD", stack),
+            "endrecord" => close("RECORD", stack, problems),
             _ => {
                 if line.ends_with(':') && words.len() == 1 {
                     labels.insert(words[0].to_ascii_lowercase());
@@ -187,7 +215,7 @@ pub fn check(text: &str) -> Vec<String> {
             }
         }
         if !line.contains('(') {
-            continue;
+            return;
         }
         for f in calls_in(line) {
             let l = f.to_ascii_lowercase();
@@ -199,16 +227,21 @@ pub fn check(text: &str) -> Vec<String> {
             }
         }
     }
-    check_gotos(&labels, &gotos, &mut problems);
-    for (k, at) in stack {
-        problems.push(format!("line {at}: {k} is not closed"));
-    }
-    for (name, at) in called {
-        if !defined.contains(&name) && !external.contains(&name) {
-            problems.push(format!("line {at}: `{name}` is called but not defined"));
+
+    /// The problems found, in the order found.
+    pub fn finish(self) -> Vec<String> {
+        let mut problems = self.problems;
+        check_gotos(&self.labels, &self.gotos, &mut problems);
+        for (k, at) in self.stack {
+            problems.push(format!("line {at}: {k} is not closed"));
         }
+        for (name, at) in self.called {
+            if !self.defined.contains(&name) && !self.external.contains(&name) {
+                problems.push(format!("line {at}: `{name}` is called but not defined"));
+            }
+        }
+        problems
     }
-    problems
 }
 
 /// `word` in lower case, in `buf` (a word longer than the buffer, never a keyword, is `""`).

@@ -133,11 +133,24 @@ pub static BACKEND: render::Backend = render::Backend {
     },
     name_rules: &NAME_RULES,
     help: help::help,
-    check: check::check,
+    check: || Box::new(RapidCheck(check::Lines::default())),
     renderer: |src, program, _vision, options, report| {
         Box::new(Tx::new(src, program, options, report))
     },
 };
+
+/// The module's structural check, fed line by line.
+struct RapidCheck(check::Lines);
+
+impl render::LineCheck for RapidCheck {
+    fn line(&mut self, line: &str) {
+        self.0.line(line);
+    }
+
+    fn finish(self: Box<Self>) -> Vec<String> {
+        self.0.finish()
+    }
+}
 
 /// The RAPID backend's settings.
 #[derive(Debug, Clone, Default)]
@@ -177,7 +190,6 @@ pub struct Tx<'a> {
     ir: &'a ir::Program,
     opts: &'a Options,
     out: Out<'a>,
-    routines: Vec<RoutineOut>,
     rt: Option<Rt>,
     data: data::DataOut,
     /// Routines of other modules the program calls (RAPID names), for the header.
@@ -208,7 +220,6 @@ impl<'a> Tx<'a> {
             ir,
             opts,
             out: Out::new(&STYLE, src, ir, &NAME_RULES, report),
-            routines: Vec::new(),
             rt: None,
             data: data::DataOut::default(),
             external: Vec::new(),
@@ -274,19 +285,10 @@ impl<'a> Tx<'a> {
 
     // ----- assembly ----------------------------------------------------------------------
 
-    fn assemble(&mut self) -> String {
-        let size: usize = self
-            .routines
-            .iter()
-            .map(|r| {
-                r.head.len()
-                    + r.body.len()
-                    + r.decls.iter().map(|d| d.len() + 5).sum::<usize>()
-                    + 16
-            })
-            .sum::<usize>()
-            + 64 * (self.data.len() + 16);
-        let mut out = String::with_capacity(size);
+    /// The module's head, records and data before the spooled routines; its TRAPs and `main`
+    /// after them.
+    fn assemble(&mut self) -> render::Framed {
+        let mut out = String::with_capacity(64 * (self.data.len() + 16));
         let module = format::module_name(&self.src.src.path);
         out.push_str(&format!("MODULE {module}\n"));
         for l in self.header_comment() {
@@ -310,20 +312,8 @@ impl<'a> Tx<'a> {
             out.push_str(&l);
             out.push('\n');
         }
-        for r in std::mem::take(&mut self.routines) {
-            out.push_str("  ");
-            out.push_str(&r.head);
-            out.push('\n');
-            for d in &r.decls {
-                out.push_str("    ");
-                out.push_str(d);
-                out.push('\n');
-            }
-            out.push_str(&r.body);
-            out.push_str("  ");
-            out.push_str(r.end);
-            out.push('\n');
-        }
+        let before = out;
+        let mut out = String::new();
         for (trap, proc_) in std::mem::take(&mut self.traps) {
             out.push_str(&format!("  TRAP {trap}\n    {proc_};\n"));
             if self.braked {
@@ -341,7 +331,23 @@ impl<'a> Tx<'a> {
         }
         out.push_str("  ENDPROC\n");
         out.push_str("ENDMODULE\n");
-        out
+        render::Framed { before, after: out }
+    }
+
+    /// An ended routine joins the module.
+    fn push_routine(r: RoutineOut, spool: &mut render::Spool) {
+        spool.push_str("  ");
+        spool.push_str(&r.head);
+        spool.push('\n');
+        for d in &r.decls {
+            spool.push_str("    ");
+            spool.push_str(d);
+            spool.push('\n');
+        }
+        spool.push_str(&r.body);
+        spool.push_str("  ");
+        spool.push_str(r.end);
+        spool.push('\n');
     }
 
     fn header_comment(&self) -> Vec<String> {
@@ -461,7 +467,7 @@ impl crate::transpile::Renderer for Tx<'_> {
         self.flush_lines();
     }
 
-    fn end_routine(&mut self) {
+    fn end_routine(&mut self, spool: &mut render::Spool) {
         let r = self.ir.routine(self.routine_id());
         self.flush_comments(r.span.end);
         self.flush_lines();
@@ -483,13 +489,13 @@ impl crate::transpile::Renderer for Tx<'_> {
             for (n, ty) in &rt.extra {
                 rt.out.decls.push(format!("VAR {ty} {n};"));
             }
-            self.routines.push(rt.out);
+            Tx::push_routine(rt.out, spool);
         }
     }
 
-    fn finish(mut self: Box<Self>) -> (String, Report, Vec<Span>) {
-        let text = self.assemble();
-        (text, self.out.rep, self.out.produced)
+    fn finish(mut self: Box<Self>) -> (render::Framed, Report, Vec<Span>) {
+        let framed = self.assemble();
+        (framed, self.out.rep, self.out.produced)
     }
 }
 

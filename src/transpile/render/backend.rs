@@ -8,6 +8,7 @@ use super::super::front::report::Report;
 use super::super::ir::why::{Lacked, Reach};
 use super::super::ir::{self, Why};
 use super::super::{Options, Renderer, Target, VisionServer};
+use super::sink::LineCheck;
 use crate::transpile::{flexiv, kawasaki, rapid};
 
 /// What a target language can hold, declared once per target. The lowering asks it and
@@ -668,8 +669,9 @@ pub struct Backend {
     pub name_rules: &'static NameRules,
     /// What to do instead, in this target, for a construct no target can express.
     pub help: fn(&Why) -> String,
-    /// Problems of the target text that would keep it from loading (a renderer defect).
-    pub check: fn(&str) -> Vec<String>,
+    /// Problems of the target text that would keep it from loading (a renderer defect), found
+    /// line by line as the text is written.
+    pub check: fn() -> Box<dyn LineCheck>,
     pub renderer: MakeRenderer,
 }
 
@@ -694,8 +696,16 @@ impl Backend {
         (self.help)(why)
     }
 
+    /// The structural check of a whole text.
     pub fn check(&self, text: &str) -> Vec<String> {
-        (self.check)(text)
+        let mut c = self.checker();
+        text.lines().for_each(|l| c.line(l));
+        c.finish()
+    }
+
+    /// The structural check, to feed line by line.
+    pub fn checker(&self) -> Box<dyn LineCheck> {
+        (self.check)()
     }
 
     pub fn renderer<'a>(
@@ -942,6 +952,9 @@ mod tests {
                 f.computed_numbers
             }),
             ("BAS(#TOOL, i)", Why::FrameNumber, |f| f.computed_numbers),
+            ("$TOOL = TOOL_DATA[-1]", Why::FrameNegative(-1), |f| {
+                f.computed_numbers
+            }),
         ];
         for b in BACKENDS {
             for (stmt, why, held) in &cases {

@@ -66,6 +66,7 @@ fn shared(why: &Why) -> String {
         } => "pass a variable and assign the part from it after the call",
         Why::CharRows => "use one string variable per row",
         Why::FrameNumber => "use a literal number",
+        Why::FrameNegative(_) => "use the number of a defined tool or base (1 or more)",
         Why::IncompleteLiteral { .. } => "write every component",
         Why::ComputedAngles | Why::ComputedAxes => "use literal values",
         Why::DataLiteral => "use a literal",

@@ -12,6 +12,7 @@
 pub mod backend;
 pub mod expr;
 pub mod help;
+pub mod sink;
 
 use std::collections::HashMap;
 
@@ -28,6 +29,7 @@ pub use backend::{
     Access, AxisValues, BACKENDS, Backend, Blending, Caps, Components, Distance, Frames, Literals,
     MechMind, Ports, Pulse, Relative, Signals, Trigger, backend,
 };
+pub use sink::{Framed, LineCheck, NoCheck, Spool};
 
 /// How a target writes lines and comments.
 pub struct Style {

@@ -16,9 +16,11 @@ impl Lower<'_> {
                 },
                 span,
             ),
-            FrameRef::Table(i) if !f.computed_numbers && i.integer().is_none_or(|n| n < 1) => {
-                fail(Why::FrameNumber, i.span)
-            }
+            FrameRef::Table(i) if !f.computed_numbers => match i.integer() {
+                None => fail(Why::FrameNumber, i.span),
+                Some(n) if n < 1 => fail(Why::FrameNegative(n), i.span),
+                Some(_) => Ok(()),
+            },
             _ => Ok(()),
         }
     }
