@@ -280,6 +280,7 @@ fn every_failure_ends_in_its_status_code() {
     text.push_str(faults);
     let server = start(scenario(&text));
     let mut a = connected(&server);
+    a.time_scale = 0.02;
     // The reply timeout is 15 s * time_scale = 0.3 s; the late reply comes after 0.6 s.
     for want in ["BAD_REPLY", "WRONG_ECHO", "REPLY_TIMEOUT", "REPLY_TIMEOUT"] {
         a.exec("CALL mm_switch_model(1,1)").unwrap();

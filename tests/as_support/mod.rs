@@ -205,7 +205,10 @@ impl As {
             c1_pending: false,
             home: [[0.0, 0.0, 0.0, 0.0, 0.0, 0.0]; 2],
             recv_split: 1 << 16,
-            time_scale: 0.02,
+            // The package's 15 s reply timeout becomes 3 s: a fake server thread on a loaded
+            // CI machine can take longer than 0.3 s to answer (a REPLY_TIMEOUT that was not
+            // the test's). Tests of timeouts set a shorter scale themselves.
+            time_scale: 0.2,
             clock: 0.0,
             max_wait: 60.0,
             trace: Vec::new(),
