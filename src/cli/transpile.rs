@@ -169,16 +169,15 @@ pub fn run(mut args: TranspileArgs) -> anyhow::Result<Outcome> {
     let t = match &args.out {
         Some(out) => super::outputs::write_atomically_with(out, |w| {
             let spool = spool(super::outputs::spool_beside(out));
-            Ok(transpile::transpile_to(
-                target, src, dat, &options, spool, w,
-            )?)
+            transpile::transpile_to(target, src, dat, &options, spool, w)
+                .with_context(|| format!("cannot write {}", out.display()))
         })?,
         None => {
             let mut w = std::io::BufWriter::new(std::io::stdout().lock());
             let spool = spool(tempfile::tempfile());
-            let t = transpile::transpile_to(target, src, dat, &options, spool, &mut w)?;
-            w.flush()?;
-            t
+            transpile::transpile_to(target, src, dat, &options, spool, &mut w)
+                .and_then(|t| w.flush().map(|()| t))
+                .context("cannot write the translation to standard output")?
         }
     };
     let errors: usize = t.reports.iter().map(|r| r.count(Severity::Error)).sum();
