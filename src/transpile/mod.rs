@@ -191,7 +191,7 @@ fn translate(
     src: Source,
     dat: Option<Source>,
     options: &Options,
-    mut spool: render::Spool,
+    spool: render::Spool,
     assemble: impl FnOnce(
         render::Spool,
         render::Framed,
@@ -232,45 +232,46 @@ fn translate(
     for f in std::mem::take(&mut model.findings) {
         report.approximate(f.file, f.span, f.message, f.help);
     }
-    let mut renderer = backend.renderer(&program, &model, vision.as_ref(), options, report);
-    renderer.start();
     let mut second = replay.lower(&model, &program, options);
-    // A target without GOTO: a label and the jumps to it are made loops together
-    // ([`ir::goto`]).
-    let mut units = (!backend.caps().goto).then(|| ir::goto::Units::new(&plan));
-    let mut resolver = None;
-    each_lowered(&program, &mut second, |event| match event {
-        Lowered::Begin(id) => {
-            resolver = Some(flow.resolver(id));
-            renderer.begin_routine(id);
-            if let Some(u) = &mut units {
-                u.begin(id);
-            }
-        }
-        Lowered::Ops(mut ops, stmt) => {
-            if let Some(r) = &mut resolver {
-                r.resolve(stmt, &mut ops);
-            }
-            match &mut units {
-                Some(u) => {
-                    if let Some(unit) = u.push(ops) {
-                        renderer.ops(&unit);
-                    }
+    let make = || backend.renderer(&program, &model, vision.as_ref(), options, report);
+    let (spool, framed, mut report, produced) = rendered(make, spool, |to| {
+        let (flow, plan) = (flow, plan);
+        // A target without GOTO: a label and the jumps to it are made loops together
+        // ([`ir::goto`]).
+        let mut units = (!backend.caps().goto).then(|| ir::goto::Units::new(&plan));
+        let mut resolver = None;
+        each_lowered(&program, &mut second, |event| match event {
+            Lowered::Begin(id) => {
+                resolver = Some(flow.resolver(id));
+                to(Render::Begin(id));
+                if let Some(u) = &mut units {
+                    u.begin(id);
                 }
-                None => renderer.ops(&ops),
             }
-        }
-        Lowered::End(_) => {
-            if let Some(unit) = units.as_mut().and_then(|u| u.end()) {
-                renderer.ops(&unit);
+            Lowered::Ops(mut ops, stmt) => {
+                if let Some(r) = &mut resolver {
+                    r.resolve(stmt, &mut ops);
+                }
+                match &mut units {
+                    Some(u) => {
+                        if let Some(unit) = u.push(ops) {
+                            to(Render::Ops(unit));
+                        }
+                    }
+                    None => to(Render::Ops(ops)),
+                }
             }
-            renderer.end_routine(&mut spool);
-        }
+            Lowered::End(_) => {
+                if let Some(unit) = units.as_mut().and_then(|u| u.end()) {
+                    to(Render::Ops(unit));
+                }
+                to(Render::End);
+            }
+        });
+        // What only the pass needed goes while the renderer finishes.
+        drop((second, resolver, units));
+        drop((flow, plan));
     });
-    // What only the passes needed goes before the text is assembled and the findings made.
-    drop((second, resolver, units));
-    drop((flow, plan));
-    let (framed, mut report, produced) = renderer.finish();
     let at = model
         .routines
         .first()
@@ -313,6 +314,126 @@ fn translate(
         reports,
         coverage,
         silent,
+    })
+}
+
+/// What the second pass hands the renderer, in order.
+enum Render {
+    Begin(ir::RoutineId),
+    /// Resolved ops of the routine begun last.
+    Ops(ir::Block),
+    End,
+}
+
+/// The spooled routines, the frame around them, the findings and the statements that wrote
+/// something ([`Renderer::finish`]).
+type Rendered = (
+    render::Spool,
+    render::Framed,
+    front::report::Report,
+    Vec<crate::diag::Span>,
+);
+
+/// Renders what `produce` hands out, in order, with the renderer `make` makes, into `spool`.
+///
+/// The renderer runs on a thread of its own, a bounded number of batches behind `produce`:
+/// the second pass's lowering and motion resolution are the critical path of a translation,
+/// and rendering was on it. Each batch goes back to be dropped by the thread that made its
+/// blocks (glibc frees a block another thread's arena allocated under that arena's lock, see
+/// `front::Parsed::each_statement`). Without a thread, it renders here, as it is handed out.
+fn rendered<'a>(
+    make: impl FnOnce() -> Box<dyn Renderer + 'a> + Send,
+    spool: render::Spool,
+    produce: impl FnOnce(&mut dyn FnMut(Render)),
+) -> Rendered {
+    rendered_on(true, make, spool, produce)
+}
+
+/// [`rendered`], on a thread of its own when `thread` and one can be had.
+fn rendered_on<'a, M: FnOnce() -> Box<dyn Renderer + 'a> + Send>(
+    thread: bool,
+    make: M,
+    spool: render::Spool,
+    produce: impl FnOnce(&mut dyn FnMut(Render)),
+) -> Rendered {
+    use std::sync::mpsc;
+    const BATCH: usize = 256;
+    fn step(renderer: &mut dyn Renderer, spool: &mut render::Spool, r: &Render) {
+        match r {
+            Render::Begin(id) => renderer.begin_routine(*id),
+            Render::Ops(ops) => renderer.ops(ops),
+            Render::End => renderer.end_routine(spool),
+        }
+    }
+    fn here<'a>(
+        make: impl FnOnce() -> Box<dyn Renderer + 'a>,
+        mut spool: render::Spool,
+        produce: impl FnOnce(&mut dyn FnMut(Render)),
+    ) -> Rendered {
+        let mut renderer = make();
+        renderer.start();
+        produce(&mut |r| step(renderer.as_mut(), &mut spool, &r));
+        let (framed, report, produced) = renderer.finish();
+        (spool, framed, report, produced)
+    }
+    if !thread {
+        return here(make, spool, produce);
+    }
+    std::thread::scope(|scope| {
+        let (start, started) = mpsc::channel::<(M, render::Spool)>();
+        let (send, receive) = mpsc::sync_channel::<Vec<Render>>(4);
+        let (give_back, returned) = mpsc::channel::<Vec<Render>>();
+        let renderer = std::thread::Builder::new()
+            .name("render".into())
+            .spawn_scoped(scope, move || {
+                let (make, mut spool) = started.recv().ok()?;
+                let mut renderer: Box<dyn Renderer + 'a> = make();
+                renderer.start();
+                for batch in receive {
+                    for r in &batch {
+                        step(renderer.as_mut(), &mut spool, r);
+                    }
+                    // The producer stops early only when it panicked.
+                    let _ = give_back.send(batch);
+                }
+                let (framed, report, produced) = renderer.finish();
+                Some((spool, framed, report, produced))
+            });
+        // No thread to be had (or it is gone before its start): render here.
+        let renderer = match renderer {
+            Ok(renderer) => match start.send((make, spool)) {
+                Ok(()) => renderer,
+                Err(mpsc::SendError((make, spool))) => return here(make, spool, produce),
+            },
+            Err(_) => return here(make, spool, produce),
+        };
+        let mut batch = Vec::with_capacity(BATCH);
+        produce(&mut |r| {
+            batch.push(r);
+            if batch.len() == BATCH {
+                // The batches rendered are dropped here; one is reused.
+                let mut next = None;
+                while let Ok(mut done) = returned.try_recv() {
+                    done.clear();
+                    next = Some(done);
+                }
+                let next = next.unwrap_or_else(|| Vec::with_capacity(BATCH));
+                // The renderer stops early only when it panicked (resumed below).
+                let _ = send.send(std::mem::replace(&mut batch, next));
+            }
+        });
+        let _ = send.send(batch);
+        drop(send);
+        // The last batches, once rendered.
+        for done in returned {
+            drop(done);
+        }
+        match renderer.join() {
+            Ok(Some(rendered)) => rendered,
+            // The start was sent above, so the thread had it.
+            Ok(None) => unreachable!("the render thread got its renderer"),
+            Err(panic) => std::panic::resume_unwind(panic),
+        }
     })
 }
 
