@@ -666,3 +666,89 @@ mod structure_tests {
         assert!(report.is_empty());
     }
 }
+
+#[cfg(test)]
+mod render_thread_tests {
+    use super::*;
+
+    /// Writes each event it is fed as a line, a routine's lines when it ends; reports each
+    /// routine's begin as a finding and as a statement produced.
+    #[derive(Default)]
+    struct Record {
+        routine: String,
+        report: front::report::Report,
+        produced: Vec<crate::diag::Span>,
+    }
+
+    impl Renderer for Record {
+        fn start(&mut self) {
+            self.routine.push_str("start\n");
+        }
+
+        fn begin_routine(&mut self, id: ir::RoutineId) {
+            self.routine.push_str(&format!("begin {}\n", id.0));
+            let at = crate::diag::Span::new(id.0 as usize, id.0 as usize + 1);
+            self.report
+                .untranslatable(front::report::FileId::Src, at, format!("r{}", id.0), "");
+            self.produced.push(at);
+        }
+
+        fn ops(&mut self, ops: &ir::Block) {
+            self.routine.push_str(&format!("ops {}\n", ops.len()));
+        }
+
+        fn end_routine(&mut self, spool: &mut render::Spool) {
+            spool.push_str(&self.routine);
+            spool.push_str("end\n");
+            self.routine.clear();
+        }
+
+        fn finish(
+            self: Box<Self>,
+        ) -> (
+            render::Framed,
+            front::report::Report,
+            Vec<crate::diag::Span>,
+        ) {
+            let framed = render::Framed {
+                before: "before\n".into(),
+                after: "after\n".into(),
+            };
+            (framed, self.report, self.produced)
+        }
+    }
+
+    /// On the render thread (batches of many events, given back) and here, the renderer sees
+    /// the same events in the order they were made: same text, findings and statements.
+    #[test]
+    fn the_render_thread_renders_what_rendering_here_does() {
+        let runs = [true, false].map(|thread| {
+            let (spool, framed, report, produced) = rendered_on(
+                thread,
+                || Box::new(Record::default()),
+                render::Spool::memory(),
+                |to| {
+                    for i in 0..2000u32 {
+                        to(Render::Begin(ir::RoutineId(i)));
+                        for _ in 0..i % 5 {
+                            to(Render::Ops(vec![]));
+                        }
+                        to(Render::End);
+                    }
+                },
+            );
+            let text = spool.into_text(framed, &mut render::NoCheck).unwrap();
+            let [findings, _] = report.into_diagnostics();
+            let findings: Vec<String> = findings.iter().map(|d| d.message.to_string()).collect();
+            (text, findings, produced)
+        });
+        let (text, findings, produced) = &runs[0];
+        assert_eq!(runs[0], runs[1]);
+        assert!(text.starts_with("before\nstart\nbegin 0\nend\nbegin 1\nops 0\nend\n"));
+        assert!(text.ends_with("begin 1999\nops 0\nops 0\nops 0\nops 0\nend\nafter\n"));
+        assert_eq!(text.lines().filter(|l| l.starts_with("ops")).count(), 4000);
+        assert_eq!(findings.len(), 2000);
+        assert_eq!(findings[1234], "r1234");
+        assert_eq!(produced.len(), 2000);
+    }
+}
