@@ -336,25 +336,27 @@ type Rendered = (
 
 /// Renders what `produce` hands out, in order, with the renderer `make` makes, into `spool`.
 ///
-/// The renderer runs on a thread of its own, a bounded number of batches behind `produce`:
-/// the second pass's lowering and motion resolution are the critical path of a translation,
-/// and rendering was on it. Each batch goes back to be dropped by the thread that made its
-/// blocks (glibc frees a block another thread's arena allocated under that arena's lock, see
-/// `front::Parsed::each_statement`). Without a thread, it renders here, as it is handed out.
+/// `produce` runs on a thread of its own, a bounded number of batches ahead of the renderer,
+/// which runs here: the second pass's lowering and motion resolution and the rendering were
+/// one critical path. The renderer stays on this thread so that what it keeps (names,
+/// findings, the text held back) is allocated where the first pass's freed memory is, as
+/// before; each batch goes back to be dropped by the thread that made its blocks (glibc frees
+/// a block another thread's arena allocated under that arena's lock, see
+/// `front::Parsed::each_statement`). Without a thread, it all runs here.
 fn rendered<'a>(
-    make: impl FnOnce() -> Box<dyn Renderer + 'a> + Send,
+    make: impl FnOnce() -> Box<dyn Renderer + 'a>,
     spool: render::Spool,
-    produce: impl FnOnce(&mut dyn FnMut(Render)),
+    produce: impl FnOnce(&mut dyn FnMut(Render)) + Send,
 ) -> Rendered {
     rendered_on(true, make, spool, produce)
 }
 
-/// [`rendered`], on a thread of its own when `thread` and one can be had.
-fn rendered_on<'a, M: FnOnce() -> Box<dyn Renderer + 'a> + Send>(
+/// [`rendered`], `produce` on a thread of its own when `thread` and one can be had.
+fn rendered_on<'a, P: FnOnce(&mut dyn FnMut(Render)) + Send>(
     thread: bool,
-    make: M,
-    spool: render::Spool,
-    produce: impl FnOnce(&mut dyn FnMut(Render)),
+    make: impl FnOnce() -> Box<dyn Renderer + 'a>,
+    mut spool: render::Spool,
+    produce: P,
 ) -> Rendered {
     use std::sync::mpsc;
     const BATCH: usize = 256;
@@ -365,76 +367,74 @@ fn rendered_on<'a, M: FnOnce() -> Box<dyn Renderer + 'a> + Send>(
             Render::End => renderer.end_routine(spool),
         }
     }
-    fn here<'a>(
-        make: impl FnOnce() -> Box<dyn Renderer + 'a>,
-        mut spool: render::Spool,
+    let mut renderer = make();
+    renderer.start();
+    fn here(
+        renderer: &mut dyn Renderer,
+        spool: &mut render::Spool,
         produce: impl FnOnce(&mut dyn FnMut(Render)),
-    ) -> Rendered {
-        let mut renderer = make();
-        renderer.start();
-        produce(&mut |r| step(renderer.as_mut(), &mut spool, &r));
-        let (framed, report, produced) = renderer.finish();
-        (spool, framed, report, produced)
+    ) {
+        produce(&mut |r| step(renderer, spool, &r));
     }
     if !thread {
-        return here(make, spool, produce);
-    }
-    std::thread::scope(|scope| {
-        let (start, started) = mpsc::channel::<(M, render::Spool)>();
-        let (send, receive) = mpsc::sync_channel::<Vec<Render>>(4);
-        let (give_back, returned) = mpsc::channel::<Vec<Render>>();
-        let renderer = std::thread::Builder::new()
-            .name("render".into())
-            .spawn_scoped(scope, move || {
-                let (make, mut spool) = started.recv().ok()?;
-                let mut renderer: Box<dyn Renderer + 'a> = make();
-                renderer.start();
-                for batch in receive {
-                    for r in &batch {
-                        step(renderer.as_mut(), &mut spool, r);
+        here(renderer.as_mut(), &mut spool, produce);
+    } else {
+        std::thread::scope(|scope| {
+            let (start, started) = mpsc::channel::<P>();
+            let (send, receive) = mpsc::sync_channel::<Vec<Render>>(4);
+            let (give_back, returned) = mpsc::channel::<Vec<Render>>();
+            let producer = std::thread::Builder::new()
+                .name("lower".into())
+                .spawn_scoped(scope, move || {
+                    let Ok(produce) = started.recv() else {
+                        return;
+                    };
+                    let mut batch = Vec::with_capacity(BATCH);
+                    produce(&mut |r| {
+                        batch.push(r);
+                        if batch.len() == BATCH {
+                            // The batches rendered are dropped here; one is reused.
+                            let mut next = None;
+                            while let Ok(mut done) = returned.try_recv() {
+                                done.clear();
+                                next = Some(done);
+                            }
+                            let next = next.unwrap_or_else(|| Vec::with_capacity(BATCH));
+                            // The renderer stops early only when it panicked.
+                            let _ = send.send(std::mem::replace(&mut batch, next));
+                        }
+                    });
+                    let _ = send.send(batch);
+                    drop(send);
+                    // The last batches, once rendered.
+                    for done in returned {
+                        drop(done);
                     }
-                    // The producer stops early only when it panicked.
-                    let _ = give_back.send(batch);
+                });
+            // No thread to be had (or it is gone before its start): all here.
+            let produce = match producer {
+                Ok(_) => match start.send(produce) {
+                    Ok(()) => None,
+                    Err(mpsc::SendError(produce)) => Some(produce),
+                },
+                Err(_) => Some(produce),
+            };
+            match produce {
+                Some(produce) => here(renderer.as_mut(), &mut spool, produce),
+                None => {
+                    // Ends when the producer is done (or panicked: that is the scope's).
+                    for batch in receive {
+                        for r in &batch {
+                            step(renderer.as_mut(), &mut spool, r);
+                        }
+                        let _ = give_back.send(batch);
+                    }
                 }
-                let (framed, report, produced) = renderer.finish();
-                Some((spool, framed, report, produced))
-            });
-        // No thread to be had (or it is gone before its start): render here.
-        let renderer = match renderer {
-            Ok(renderer) => match start.send((make, spool)) {
-                Ok(()) => renderer,
-                Err(mpsc::SendError((make, spool))) => return here(make, spool, produce),
-            },
-            Err(_) => return here(make, spool, produce),
-        };
-        let mut batch = Vec::with_capacity(BATCH);
-        produce(&mut |r| {
-            batch.push(r);
-            if batch.len() == BATCH {
-                // The batches rendered are dropped here; one is reused.
-                let mut next = None;
-                while let Ok(mut done) = returned.try_recv() {
-                    done.clear();
-                    next = Some(done);
-                }
-                let next = next.unwrap_or_else(|| Vec::with_capacity(BATCH));
-                // The renderer stops early only when it panicked (resumed below).
-                let _ = send.send(std::mem::replace(&mut batch, next));
             }
         });
-        let _ = send.send(batch);
-        drop(send);
-        // The last batches, once rendered.
-        for done in returned {
-            drop(done);
-        }
-        match renderer.join() {
-            Ok(Some(rendered)) => rendered,
-            // The start was sent above, so the thread had it.
-            Ok(None) => unreachable!("the render thread got its renderer"),
-            Err(panic) => std::panic::resume_unwind(panic),
-        }
-    })
+    }
+    let (framed, report, produced) = renderer.finish();
+    (spool, framed, report, produced)
 }
 
 /// What [`each_lowered`] hands out.
