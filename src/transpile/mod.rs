@@ -185,7 +185,8 @@ pub fn transpile_to(
 /// largest statement, not the program): the first pass records the program model without the
 /// routines' bodies and each routine's control-flow graph with its blocks' motion-fact
 /// effects; the flow facts are solved on the graphs; the second pass lowers each statement
-/// again, resolves its motions and hands it to the target's renderer.
+/// again, resolves its motions and hands it to the target's renderer (the lowering on a thread
+/// of its own, the renderer on this one: [`rendered`]).
 fn translate(
     target: Target,
     src: Source,
@@ -367,8 +368,6 @@ fn rendered_on<'a, P: FnOnce(&mut dyn FnMut(Render)) + Send>(
             Render::End => renderer.end_routine(spool),
         }
     }
-    let mut renderer = make();
-    renderer.start();
     fn here(
         renderer: &mut dyn Renderer,
         spool: &mut render::Spool,
@@ -376,6 +375,8 @@ fn rendered_on<'a, P: FnOnce(&mut dyn FnMut(Render)) + Send>(
     ) {
         produce(&mut |r| step(renderer, spool, &r));
     }
+    let mut renderer = make();
+    renderer.start();
     if !thread {
         here(renderer.as_mut(), &mut spool, produce);
     } else {
