@@ -185,13 +185,14 @@ pub fn transpile_to(
 /// largest statement, not the program): the first pass records the program model without the
 /// routines' bodies and each routine's control-flow graph with its blocks' motion-fact
 /// effects; the flow facts are solved on the graphs; the second pass lowers each statement
-/// again, resolves its motions and hands it to the target's renderer.
+/// again, resolves its motions and hands it to the target's renderer (the lowering on a thread
+/// of its own, the renderer on this one: [`rendered`]).
 fn translate(
     target: Target,
     src: Source,
     dat: Option<Source>,
     options: &Options,
-    mut spool: render::Spool,
+    spool: render::Spool,
     assemble: impl FnOnce(
         render::Spool,
         render::Framed,
@@ -232,45 +233,46 @@ fn translate(
     for f in std::mem::take(&mut model.findings) {
         report.approximate(f.file, f.span, f.message, f.help);
     }
-    let mut renderer = backend.renderer(&program, &model, vision.as_ref(), options, report);
-    renderer.start();
     let mut second = replay.lower(&model, &program, options);
-    // A target without GOTO: a label and the jumps to it are made loops together
-    // ([`ir::goto`]).
-    let mut units = (!backend.caps().goto).then(|| ir::goto::Units::new(&plan));
-    let mut resolver = None;
-    each_lowered(&program, &mut second, |event| match event {
-        Lowered::Begin(id) => {
-            resolver = Some(flow.resolver(id));
-            renderer.begin_routine(id);
-            if let Some(u) = &mut units {
-                u.begin(id);
-            }
-        }
-        Lowered::Ops(mut ops, stmt) => {
-            if let Some(r) = &mut resolver {
-                r.resolve(stmt, &mut ops);
-            }
-            match &mut units {
-                Some(u) => {
-                    if let Some(unit) = u.push(ops) {
-                        renderer.ops(&unit);
-                    }
+    let make = || backend.renderer(&program, &model, vision.as_ref(), options, report);
+    let (spool, framed, mut report, produced) = rendered(make, spool, |to| {
+        let (flow, plan) = (flow, plan);
+        // A target without GOTO: a label and the jumps to it are made loops together
+        // ([`ir::goto`]).
+        let mut units = (!backend.caps().goto).then(|| ir::goto::Units::new(&plan));
+        let mut resolver = None;
+        each_lowered(&program, &mut second, |event| match event {
+            Lowered::Begin(id) => {
+                resolver = Some(flow.resolver(id));
+                to(Render::Begin(id));
+                if let Some(u) = &mut units {
+                    u.begin(id);
                 }
-                None => renderer.ops(&ops),
             }
-        }
-        Lowered::End(_) => {
-            if let Some(unit) = units.as_mut().and_then(|u| u.end()) {
-                renderer.ops(&unit);
+            Lowered::Ops(mut ops, stmt) => {
+                if let Some(r) = &mut resolver {
+                    r.resolve(stmt, &mut ops);
+                }
+                match &mut units {
+                    Some(u) => {
+                        if let Some(unit) = u.push(ops) {
+                            to(Render::Ops(unit));
+                        }
+                    }
+                    None => to(Render::Ops(ops)),
+                }
             }
-            renderer.end_routine(&mut spool);
-        }
+            Lowered::End(_) => {
+                if let Some(unit) = units.as_mut().and_then(|u| u.end()) {
+                    to(Render::Ops(unit));
+                }
+                to(Render::End);
+            }
+        });
+        // What only the pass needed goes while the renderer finishes.
+        drop((second, resolver, units));
+        drop((flow, plan));
     });
-    // What only the passes needed goes before the text is assembled and the findings made.
-    drop((second, resolver, units));
-    drop((flow, plan));
-    let (framed, mut report, produced) = renderer.finish();
     let at = model
         .routines
         .first()
@@ -314,6 +316,126 @@ fn translate(
         coverage,
         silent,
     })
+}
+
+/// What the second pass hands the renderer, in order.
+enum Render {
+    Begin(ir::RoutineId),
+    /// Resolved ops of the routine begun last.
+    Ops(ir::Block),
+    End,
+}
+
+/// The spooled routines, the frame around them, the findings and the statements that wrote
+/// something ([`Renderer::finish`]).
+type Rendered = (
+    render::Spool,
+    render::Framed,
+    front::report::Report,
+    Vec<crate::diag::Span>,
+);
+
+/// Renders what `produce` hands out, in order, with the renderer `make` makes, into `spool`.
+///
+/// `produce` runs on a thread of its own, a bounded number of batches ahead of the renderer,
+/// which runs here: the second pass's lowering and motion resolution and the rendering were
+/// one critical path. The renderer stays on this thread so that what it keeps (names,
+/// findings, the text held back) is allocated where the first pass's freed memory is, as
+/// before; each batch goes back to be dropped by the thread that made its blocks (glibc frees
+/// a block another thread's arena allocated under that arena's lock, see
+/// `front::Parsed::each_statement`). Without a thread, it all runs here.
+fn rendered<'a>(
+    make: impl FnOnce() -> Box<dyn Renderer + 'a>,
+    spool: render::Spool,
+    produce: impl FnOnce(&mut dyn FnMut(Render)) + Send,
+) -> Rendered {
+    rendered_on(true, make, spool, produce)
+}
+
+/// [`rendered`], `produce` on a thread of its own when `thread` and one can be had.
+fn rendered_on<'a, P: FnOnce(&mut dyn FnMut(Render)) + Send>(
+    thread: bool,
+    make: impl FnOnce() -> Box<dyn Renderer + 'a>,
+    mut spool: render::Spool,
+    produce: P,
+) -> Rendered {
+    use std::sync::mpsc;
+    const BATCH: usize = 256;
+    fn step(renderer: &mut dyn Renderer, spool: &mut render::Spool, r: &Render) {
+        match r {
+            Render::Begin(id) => renderer.begin_routine(*id),
+            Render::Ops(ops) => renderer.ops(ops),
+            Render::End => renderer.end_routine(spool),
+        }
+    }
+    fn here(
+        renderer: &mut dyn Renderer,
+        spool: &mut render::Spool,
+        produce: impl FnOnce(&mut dyn FnMut(Render)),
+    ) {
+        produce(&mut |r| step(renderer, spool, &r));
+    }
+    let mut renderer = make();
+    renderer.start();
+    if !thread {
+        here(renderer.as_mut(), &mut spool, produce);
+    } else {
+        std::thread::scope(|scope| {
+            let (start, started) = mpsc::channel::<P>();
+            let (send, receive) = mpsc::sync_channel::<Vec<Render>>(4);
+            let (give_back, returned) = mpsc::channel::<Vec<Render>>();
+            let producer = std::thread::Builder::new()
+                .name("lower".into())
+                .spawn_scoped(scope, move || {
+                    let Ok(produce) = started.recv() else {
+                        return;
+                    };
+                    let mut batch = Vec::with_capacity(BATCH);
+                    produce(&mut |r| {
+                        batch.push(r);
+                        if batch.len() == BATCH {
+                            // The batches rendered are dropped here; one is reused.
+                            let mut next = None;
+                            while let Ok(mut done) = returned.try_recv() {
+                                done.clear();
+                                next = Some(done);
+                            }
+                            let next = next.unwrap_or_else(|| Vec::with_capacity(BATCH));
+                            // The renderer stops early only when it panicked.
+                            let _ = send.send(std::mem::replace(&mut batch, next));
+                        }
+                    });
+                    let _ = send.send(batch);
+                    drop(send);
+                    // The last batches, once rendered.
+                    for done in returned {
+                        drop(done);
+                    }
+                });
+            // No thread to be had (or it is gone before its start): all here.
+            let produce = match producer {
+                Ok(_) => match start.send(produce) {
+                    Ok(()) => None,
+                    Err(mpsc::SendError(produce)) => Some(produce),
+                },
+                Err(_) => Some(produce),
+            };
+            match produce {
+                Some(produce) => here(renderer.as_mut(), &mut spool, produce),
+                None => {
+                    // Ends when the producer is done (or panicked: that is the scope's).
+                    for batch in receive {
+                        for r in &batch {
+                            step(renderer.as_mut(), &mut spool, r);
+                        }
+                        let _ = give_back.send(batch);
+                    }
+                }
+            }
+        });
+    }
+    let (framed, report, produced) = renderer.finish();
+    (spool, framed, report, produced)
 }
 
 /// What [`each_lowered`] hands out.
@@ -543,5 +665,91 @@ mod structure_tests {
             &mut report,
         );
         assert!(report.is_empty());
+    }
+}
+
+#[cfg(test)]
+mod render_thread_tests {
+    use super::*;
+
+    /// Writes each event it is fed as a line, a routine's lines when it ends; reports each
+    /// routine's begin as a finding and as a statement produced.
+    #[derive(Default)]
+    struct Record {
+        routine: String,
+        report: front::report::Report,
+        produced: Vec<crate::diag::Span>,
+    }
+
+    impl Renderer for Record {
+        fn start(&mut self) {
+            self.routine.push_str("start\n");
+        }
+
+        fn begin_routine(&mut self, id: ir::RoutineId) {
+            self.routine.push_str(&format!("begin {}\n", id.0));
+            let at = crate::diag::Span::new(id.0 as usize, id.0 as usize + 1);
+            self.report
+                .untranslatable(front::report::FileId::Src, at, format!("r{}", id.0), "");
+            self.produced.push(at);
+        }
+
+        fn ops(&mut self, ops: &ir::Block) {
+            self.routine.push_str(&format!("ops {}\n", ops.len()));
+        }
+
+        fn end_routine(&mut self, spool: &mut render::Spool) {
+            spool.push_str(&self.routine);
+            spool.push_str("end\n");
+            self.routine.clear();
+        }
+
+        fn finish(
+            self: Box<Self>,
+        ) -> (
+            render::Framed,
+            front::report::Report,
+            Vec<crate::diag::Span>,
+        ) {
+            let framed = render::Framed {
+                before: "before\n".into(),
+                after: "after\n".into(),
+            };
+            (framed, self.report, self.produced)
+        }
+    }
+
+    /// On the render thread (batches of many events, given back) and here, the renderer sees
+    /// the same events in the order they were made: same text, findings and statements.
+    #[test]
+    fn the_render_thread_renders_what_rendering_here_does() {
+        let runs = [true, false].map(|thread| {
+            let (spool, framed, report, produced) = rendered_on(
+                thread,
+                || Box::new(Record::default()),
+                render::Spool::memory(),
+                |to| {
+                    for i in 0..2000u32 {
+                        to(Render::Begin(ir::RoutineId(i)));
+                        for _ in 0..i % 5 {
+                            to(Render::Ops(vec![]));
+                        }
+                        to(Render::End);
+                    }
+                },
+            );
+            let text = spool.into_text(framed, &mut render::NoCheck).unwrap();
+            let [findings, _] = report.into_diagnostics();
+            let findings: Vec<String> = findings.iter().map(|d| d.message.to_string()).collect();
+            (text, findings, produced)
+        });
+        let (text, findings, produced) = &runs[0];
+        assert_eq!(runs[0], runs[1]);
+        assert!(text.starts_with("before\nstart\nbegin 0\nend\nbegin 1\nops 0\nend\n"));
+        assert!(text.ends_with("begin 1999\nops 0\nops 0\nops 0\nops 0\nend\nafter\n"));
+        assert_eq!(text.lines().filter(|l| l.starts_with("ops")).count(), 4000);
+        assert_eq!(findings.len(), 2000);
+        assert_eq!(findings[1234], "r1234");
+        assert_eq!(produced.len(), 2000);
     }
 }

@@ -12,7 +12,7 @@ pub fn write<W: Write + ?Sized>(report: &FileReport, out: &mut W) -> io::Result<
 }
 
 /// Like [`write`], with a caller-chosen renderer (e.g. `Renderer::styled()` for a terminal).
-/// Each diagnostic is rendered and written before the next one is rendered.
+/// The diagnostics are rendered and written a chunk at a time, never held whole.
 pub fn write_with<W: Write + ?Sized>(
     report: &FileReport,
     out: &mut W,
@@ -23,8 +23,67 @@ pub fn write_with<W: Write + ?Sized>(
         return Ok(());
     }
     let index = LineIndex::new(&report.text);
-    for d in &report.diagnostics {
-        out.write_all(render_one(report, &index, d, renderer).as_bytes())?;
+    let chunks = report.diagnostics.chunks(CHUNK);
+    if chunks.len() < 4 {
+        // A few: here, as they are rendered.
+        return chunks
+            .into_iter()
+            .try_for_each(|c| write_chunk(out, render_chunk(report, &index, c, renderer)));
+    }
+    // Many findings (a large translation has one per renamed name): every other chunk is
+    // rendered on a second thread, a bounded number ahead, and written here in order.
+    std::thread::scope(|scope| {
+        let (send, receive) = std::sync::mpsc::sync_channel::<Vec<String>>(2);
+        let index = &index;
+        let helper = std::thread::Builder::new()
+            .name("findings".into())
+            .spawn_scoped(scope, move || {
+                for c in report.diagnostics.chunks(CHUNK).skip(1).step_by(2) {
+                    // Stops when the writer failed.
+                    if send.send(render_chunk(report, index, c, renderer)).is_err() {
+                        break;
+                    }
+                }
+            });
+        // No thread to be had: every chunk here.
+        let mut helped = helper.ok().map(|_| receive);
+        for (i, c) in report.diagnostics.chunks(CHUNK).enumerate() {
+            let text = match (&helped, i % 2) {
+                (Some(r), 1) => match r.recv() {
+                    Ok(text) => text,
+                    // The helper panicked: its panic is the scope's.
+                    Err(_) => {
+                        helped = None;
+                        render_chunk(report, index, c, renderer)
+                    }
+                },
+                _ => render_chunk(report, index, c, renderer),
+            };
+            write_chunk(out, text)?;
+        }
+        Ok(())
+    })
+}
+
+/// Findings rendered together (on one thread).
+const CHUNK: usize = 256;
+
+/// The diagnostics `ds` of `report`, each rendered.
+fn render_chunk(
+    report: &FileReport,
+    index: &LineIndex,
+    ds: &[Diagnostic],
+    renderer: &Renderer,
+) -> Vec<String> {
+    ds.iter()
+        .map(|d| render_one(report, index, d, renderer))
+        .collect()
+}
+
+/// Each rendered diagnostic, followed by a blank line (a write each: see the module tests).
+fn write_chunk<W: Write + ?Sized>(out: &mut W, chunk: Vec<String>) -> io::Result<()> {
+    for d in chunk {
+        out.write_all(d.as_bytes())?;
         out.write_all(b"\n\n")?;
     }
     Ok(())
@@ -82,5 +141,38 @@ mod tests {
         write(&report, &mut bytes).unwrap();
         let out = String::from_utf8(bytes).unwrap();
         insta::assert_snapshot!(out);
+    }
+
+    /// Many findings (rendered in chunks, every other one on a second thread) come out as each
+    /// rendered alone, in order.
+    #[test]
+    fn many_findings_render_in_order() {
+        let mut text = String::new();
+        let mut diagnostics = Vec::new();
+        for i in 0..3000 {
+            let at = text.len() + 2;
+            text.push_str(&format!("  i{i} = {i}\n"));
+            diagnostics.push(
+                Diagnostic::warning("TR003", Span::new(at, at + 2), format!("renamed {i}"))
+                    .with_help(format!("help {i}")),
+            );
+        }
+        let report = FileReport {
+            path: "many.src".into(),
+            text,
+            diagnostics,
+        };
+        let index = LineIndex::new(&report.text);
+        let renderer = Renderer::plain();
+        let want: String = report
+            .diagnostics
+            .iter()
+            .map(|d| render_one(&report, &index, d, &renderer) + "\n\n")
+            .collect();
+        let mut bytes = Vec::new();
+        write(&report, &mut bytes).unwrap();
+        let got = String::from_utf8(bytes).unwrap();
+        assert!(got.contains("renamed 2999"), "{}", &got[got.len() - 300..]);
+        assert_eq!(got, want);
     }
 }
