@@ -183,6 +183,57 @@ pub struct Node<'a> {
     id: u32,
 }
 
+/// A node and everything below it, copied out of its tree ([`Node::to_owned_node`]): a piece
+/// of a streamed parse (`parse_pieces` reuses its storage) that outlives it, e.g. to be read
+/// on another thread.
+#[derive(Debug, Clone, Default)]
+pub struct OwnedNode {
+    /// The node first, then its descendants (pre-order).
+    tree: SyntaxTree,
+}
+
+impl OwnedNode {
+    /// The node, as [`Node::to_owned_node`] copied it.
+    pub fn node(&self) -> Node<'_> {
+        match self.tree.nodes.is_empty() {
+            true => self.tree.root(),
+            false => self.tree.node(0),
+        }
+    }
+}
+
+impl Node<'_> {
+    /// This node and everything below it as a tree of its own ([`OwnedNode`]).
+    pub fn to_owned_node(&self) -> OwnedNode {
+        let mut tree = SyntaxTree {
+            nodes: Vec::new(),
+            children: Vec::new(),
+        };
+        if (self.id as usize) < self.tree.nodes.len() {
+            copy_node(self.tree, self.id, &mut tree);
+        }
+        OwnedNode { tree }
+    }
+}
+
+/// Copies node `id` of `from` and its descendants to the end of `to`; returns its new id.
+fn copy_node(from: &SyntaxTree, id: u32, to: &mut SyntaxTree) -> u32 {
+    let data = from.nodes[id as usize];
+    let first = to.children.len();
+    to.children.extend_from_slice(from.children_of(id));
+    let new = to.nodes.len() as u32;
+    to.nodes.push(NodeData {
+        first: first as u32,
+        ..data
+    });
+    for i in first..first + data.len as usize {
+        if let Child::Node(child) = to.children[i] {
+            to.children[i] = Child::Node(copy_node(from, child, to));
+        }
+    }
+    new
+}
+
 /// A child of a node: another node or a token.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub enum Element<'a> {
