@@ -498,6 +498,41 @@ pub fn end_line_start(text: &str, span: Span) -> u32 {
 mod tests {
     use super::*;
 
+    /// What `Parsed::new` reads off the pieces it is handed (copied, on another thread) is
+    /// what the whole tree holds: every comment once, in order, the `MM_…` names, the routines'
+    /// heads as the whole AST has them.
+    #[test]
+    fn the_first_parse_reads_what_the_whole_tree_holds() {
+        let mut text = String::from("&ACCESS RVP ; header\n; top\nDEF a(x:IN) ; opens\n");
+        for k in 0..600 {
+            text.push_str(&format!(
+                "  mm_call_{k}(x) ; call {k}\n  IF x > {k} THEN ; if\n    ; inside\n    LIN P1\n  ENDIF\n"
+            ));
+        }
+        text.push_str("END ; closes\nDEF b()\n  Mm_Other = 1\nEND\nDEFDAT d ; dat\n  DECL INT z = 1 ; z\nENDDAT ; end\n");
+        let parsed = Parsed::new("t.src", text.clone());
+        let tree = crate::syntax::parse(&text).tree;
+        let mut comments = Vec::new();
+        tree.root()
+            .walk_tokens(&mut |t| comments.extend(comments::of_token(t, &text)));
+        assert_eq!(comments.len(), 3 * 600 + 7);
+        assert_eq!(parsed.comments, comments);
+        let mut names: Vec<_> = parsed.names.iter().map(|n| n.to_string()).collect();
+        names.sort();
+        assert_eq!(names.len(), 601);
+        assert_eq!(names[0], "MM_CALL_0");
+        assert_eq!(names[600], "MM_OTHER");
+        let (ast, _) = crate::syntax::ast::lower_pieces(&text);
+        assert_eq!(parsed.outline.routines.len(), 2);
+        for (r, a) in parsed.outline.routines.iter().zip(&ast.routines) {
+            let mut head = a.clone();
+            head.body.clear();
+            head.decls.clear();
+            assert_eq!(r.head, head);
+        }
+        assert_eq!(parsed.outline.routines[0].facts.callees.len(), 600);
+    }
+
     /// The statements handed out one at a time (in batches, from another thread) are the
     /// whole AST's, in order: routine bodies after their heads, then the top level.
     #[test]

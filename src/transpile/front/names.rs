@@ -485,6 +485,12 @@ impl<'a> Namer<'a> {
     /// The locals' namespace of `id`; one of a routine that ended is made again as its
     /// [`Namer::declare_locals`] made it (same names, findings not repeated).
     fn locals_ns(&mut self, id: RoutineId) -> &mut Namespace {
+        self.remake_locals(id);
+        self.locals.entry(id).or_default()
+    }
+
+    /// Makes the locals' namespace of an ended routine again (see [`Namer::locals_ns`]).
+    fn remake_locals(&mut self, id: RoutineId) {
         if !self.locals.contains_key(&id) && self.has_ended(id) {
             let mut ns = Namespace::default();
             for &v in self.vars_of.get(id.0 as usize) {
@@ -492,7 +498,6 @@ impl<'a> Namer<'a> {
             }
             self.locals.insert(id, ns);
         }
-        self.locals.entry(id).or_default()
     }
 
     /// The labels' namespace of `id`, made again for a routine that ended.
@@ -513,7 +518,7 @@ impl<'a> Namer<'a> {
         let var = ir.var(v);
         let (ns, home) = match var.scope {
             Scope::Local(r) | Scope::Param(r) => {
-                self.locals_ns(r);
+                self.remake_locals(r);
                 let ns = self.locals.entry(r).or_default();
                 let (n, renamed) = ns.name_spelled(&var.name, rules, Some(&mut self.spellings));
                 self.note(rep, "variable", FileId::Src, used_at, renamed);
