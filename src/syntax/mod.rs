@@ -64,7 +64,7 @@ mod line;
 mod parser;
 mod words;
 
-pub use cst::{Children, Element, Node, NodeKind, OwnedNode, SyntaxTree, Token, TokenKind};
+pub use cst::{Children, Element, Node, NodeKind, SyntaxTree, Token, TokenKind};
 pub use decode::{Decoded, TextEncoding, decode, decode_owned, encode_as};
 pub use parser::{
     Parse, Piece, PieceNodes, SYNTAX_ERROR, diagnostics, parse, parse_pieces, write_json_tree,

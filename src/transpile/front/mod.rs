@@ -61,30 +61,30 @@ pub enum Statement {
 
 impl Parsed {
     /// Parses `text` one piece at a time and reads out what the translation needs of the
-    /// whole file. The parse runs on a second thread, a bounded batch of pieces ahead
-    /// ([`pipelined`]: each piece copied out of the parser's storage, [`OwnedPiece`]); here
-    /// each piece is lowered to its AST, its comments and `MM_…` names are read, and the
-    /// outline and the summary are built (about as much work as the parse).
+    /// whole file. The parse, the AST of each piece, its comments and `MM_…` names are made on
+    /// a second thread, a bounded batch ahead of the outline and the summary, which are built
+    /// here from the pieces' events ([`pipelined`]).
     pub fn new(path: impl Into<String>, text: impl Into<String>) -> Parsed {
         let text = text.into();
         let mut outline = outline::OutlineBuilder::default();
         let mut summary = crate::sema::SummaryBuilder::declarations_only();
         let mut followed = true;
-        let mut reader = Reader::new(&text);
-        let syntax_errors = pipelined(
-            |sink| crate::syntax::parse_pieces(&text, |piece| sink.push(OwnedPiece::of(piece))),
-            |piece| {
-                reader.piece(piece.piece(), |e| {
-                    outline.add(&e);
-                    if followed && !summary.add(e) {
-                        followed = false;
-                    }
-                })
+        let read = pipelined(
+            |sink| {
+                let mut reader = Reader::new(&text);
+                let errors = crate::syntax::parse_pieces(&text, |piece| {
+                    reader.piece(piece, |e| sink.push(e))
+                });
+                (errors, reader.comments, reader.names)
+            },
+            |e| {
+                outline.add(e);
+                if followed && !summary.add_lent(e) {
+                    followed = false;
+                }
             },
         );
-        let Reader {
-            comments, names, ..
-        } = reader;
+        let (syntax_errors, comments, names) = read;
         // Declarations only: the translation asks the model what names mean, never where they
         // are used. A file whose order the streamed summary cannot follow (a routine after its
         // data list) is summarised from its whole AST, the one case where it is built.
@@ -192,43 +192,6 @@ impl Parsed {
     /// The source text of a span.
     pub fn slice(&self, span: crate::diag::Span) -> &str {
         self.text.get(span.range()).unwrap_or("")
-    }
-}
-
-/// A piece of [`crate::syntax::parse_pieces`] copied out of the parser's storage, to be read
-/// on another thread.
-enum OwnedPiece {
-    Open {
-        line: crate::syntax::OwnedNode,
-        data: bool,
-    },
-    Item(crate::syntax::OwnedNode),
-    Close(crate::syntax::OwnedNode),
-}
-
-impl OwnedPiece {
-    fn of(piece: crate::syntax::Piece<'_>) -> OwnedPiece {
-        use crate::syntax::Piece;
-        match piece {
-            Piece::Open { line, data } => OwnedPiece::Open {
-                line: line.to_owned_node(),
-                data,
-            },
-            Piece::Item(n) => OwnedPiece::Item(n.to_owned_node()),
-            Piece::Close(n) => OwnedPiece::Close(n.to_owned_node()),
-        }
-    }
-
-    fn piece(&self) -> crate::syntax::Piece<'_> {
-        use crate::syntax::Piece;
-        match self {
-            OwnedPiece::Open { line, data } => Piece::Open {
-                line: line.node(),
-                data: *data,
-            },
-            OwnedPiece::Item(n) => Piece::Item(n.node()),
-            OwnedPiece::Close(n) => Piece::Close(n.node()),
-        }
     }
 }
 
@@ -498,7 +461,7 @@ pub fn end_line_start(text: &str, span: Span) -> u32 {
 mod tests {
     use super::*;
 
-    /// What `Parsed::new` reads off the pieces it is handed (copied, on another thread) is
+    /// What `Parsed::new` reads off the pieces (on another thread, handed over in batches) is
     /// what the whole tree holds: every comment once, in order, the `MM_…` names, the routines'
     /// heads as the whole AST has them.
     #[test]
