@@ -198,7 +198,10 @@ fn translate(
         &mut dyn render::LineCheck,
     ) -> std::io::Result<()>,
 ) -> std::io::Result<Translation> {
-    let mut program = front::Program::read(src, dat);
+    let mut program = front::Program::new(
+        front::Parsed::new(src.path, src.text),
+        dat.map(|d| front::Parsed::new(d.path, d.text)),
+    );
     let backend = render::backend(target);
     let mut first = ir::lower::Lower::new(&program, options, backend.caps());
     let mut graphs = ir::flow::Graphs::default();

@@ -368,38 +368,6 @@ pub struct Program {
 }
 
 impl Program {
-    /// Parses the `.src` and its `.dat` ([`Parsed::new`]), the `.dat` on a thread of its own
-    /// (a taught program's `.dat` is a third of its bytes), and models them ([`Program::new`]).
-    pub fn read(src: crate::transpile::Source, dat: Option<crate::transpile::Source>) -> Program {
-        let parse = |f: crate::transpile::Source| Parsed::new(f.path, f.text);
-        let (src, dat) = match dat {
-            None => (parse(src), None),
-            Some(dat) => {
-                // Moved in only once the thread runs: without one, it is parsed here.
-                let handed = std::sync::Mutex::new(Some(dat));
-                let take = || {
-                    handed
-                        .lock()
-                        .unwrap_or_else(std::sync::PoisonError::into_inner)
-                        .take()
-                };
-                std::thread::scope(|scope| {
-                    let other =
-                        std::thread::Builder::new().spawn_scoped(scope, || take().map(parse));
-                    let src = parse(src);
-                    let dat = match other {
-                        Ok(other) => other
-                            .join()
-                            .unwrap_or_else(|panic| std::panic::resume_unwind(panic)),
-                        Err(_) => take().map(parse),
-                    };
-                    (src, dat)
-                })
-            }
-        };
-        Program::new(src, dat)
-    }
-
     /// The model is built from the summaries made while parsing: `sema::Analysis` would parse
     /// the files a second time and keep a tree of each.
     pub fn new(mut src: Parsed, mut dat: Option<Parsed>) -> Program {
