@@ -59,7 +59,7 @@ pub enum Command {
     /// Explain one rule: what, why, example, fix.
     Rule(RuleArgs),
     /// Translate a KRL program to another robot language.
-    #[command(after_help = transpile_caps_help())]
+    // Its help ends with the targets' capabilities: `cli::command(true)` adds them.
     Transpile(TranspileArgs),
     /// Simulation tools: the fake Mech-Mind vision server.
     Sim(SimArgs),
@@ -493,7 +493,7 @@ pub enum SrciCommand {
 
 /// The fields `srci encode` accepts, from the SRCI table.
 /// What each target can hold, from the targets' declared capabilities (as README shows it).
-fn transpile_caps_help() -> String {
+pub(crate) fn transpile_caps_help() -> String {
     format!(
         "What each target can hold (TR001: not translated, TR002: approximately):\n{}",
         crate::transpile::render::backend::caps_text()

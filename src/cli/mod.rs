@@ -76,8 +76,10 @@ const EXIT_STATUS: [(u8, &str); 3] = [
     ),
 ];
 
-/// The clap command with the exit status after every command's help.
-fn command() -> clap::Command {
+/// The clap command with the exit status after every command's help; `full` adds the help
+/// text made from data (the transpile targets' capabilities, read from the catalog), which
+/// only a help on display needs: parsing the catalog for it was 88 % of `krlkit --version`.
+fn command(full: bool) -> clap::Command {
     use clap::CommandFactory;
     fn with_exit_status(cmd: clap::Command) -> clap::Command {
         let mut text = cmd
@@ -90,13 +92,29 @@ fn command() -> clap::Command {
         }
         cmd.after_help(text).mut_subcommands(with_exit_status)
     }
-    with_exit_status(Cli::command())
+    with_exit_status(with_data_help(Cli::command(), full))
+}
+
+/// `cmd` with the help text made from data when `full`.
+fn with_data_help(cmd: clap::Command, full: bool) -> clap::Command {
+    match full {
+        true => cmd.mut_subcommand("transpile", |c| c.after_help(args::transpile_caps_help())),
+        false => cmd,
+    }
 }
 
 pub fn main() -> ExitCode {
     use clap::FromArgMatches;
-    let parsed = command()
+    use clap::error::ErrorKind;
+    let parsed = command(false)
         .try_get_matches()
+        .or_else(|e| match e.kind() {
+            // A help is shown: again, with its full text.
+            ErrorKind::DisplayHelp | ErrorKind::DisplayHelpOnMissingArgumentOrSubcommand => {
+                command(true).try_get_matches()
+            }
+            _ => Err(e),
+        })
         .and_then(|m| Cli::from_arg_matches(&m));
     let cli = match parsed {
         Ok(cli) => cli,
@@ -123,7 +141,7 @@ pub fn main() -> ExitCode {
         Command::Lsp => lsp::run(),
         Command::Fmt(a) => fmt::run(a),
         Command::Completions(a) => {
-            let mut cmd = command();
+            let mut cmd = command(false);
             clap_complete::generate(a.shell, &mut cmd, "krlkit", &mut std::io::stdout());
             Ok(Outcome::Success)
         }
@@ -149,7 +167,7 @@ pub fn main() -> ExitCode {
 /// STATUS section.
 fn man(args: args::ManArgs) -> anyhow::Result<Outcome> {
     use clap::CommandFactory;
-    let root = Cli::command();
+    let root = with_data_help(Cli::command(), true);
     let cmd = match &args.command {
         None => root,
         Some(name) => match root.find_subcommand(name) {

@@ -262,8 +262,8 @@ impl<'t> Cx<'t> {
             },
             K::Call => match sig.first().and_then(|e| e.as_token()) {
                 Some(name) => ExprKind::Call {
-                    name: self.ident(name),
-                    args: self.list(&sig[1..], "(", ")"),
+                    name: Box::new(self.ident(name)),
+                    args: self.list(&sig[1..], "(", ")").into_boxed_slice(),
                 },
                 None => ExprKind::Invalid(n.text(self.text).into()),
             },
@@ -271,8 +271,11 @@ impl<'t> Cx<'t> {
                 let type_name = n
                     .child(K::AggType)
                     .and_then(|t| t.tokens().find(|t| t.kind == T::Ident))
-                    .map(|t| self.ident(t));
-                let fields = n.nodes().filter(|c| c.kind == K::AggField).filter_map(|f| {
+                    .map(|t| Box::new(self.ident(t)));
+                let fields = n.nodes().filter(|c| c.kind == K::AggField);
+                // Allocated to the number of fields (a `.dat` holds one aggregate per point).
+                let mut out = Vec::with_capacity(fields.clone().count());
+                out.extend(fields.filter_map(|f| {
                     let parts: Vec<Element> = f.significant().filter(|e| is_expr(e)).collect();
                     match parts.as_slice() {
                         [Element::Token(name), .., value]
@@ -283,10 +286,10 @@ impl<'t> Cx<'t> {
                         [value] => Some((None, self.expr(value))),
                         _ => None,
                     }
-                });
+                }));
                 ExprKind::Aggregate {
                     type_name,
-                    fields: fields.collect(),
+                    fields: out.into_boxed_slice(),
                 }
             }
             _ => ExprKind::Invalid(n.text(self.text).into()),
@@ -587,7 +590,7 @@ impl<'t> Cx<'t> {
                     StmtKind::Call { name, args }
                 }
             }
-            K::MotionStmt => StmtKind::Motion(Box::new(self.motion(node, &sig)?)),
+            K::MotionStmt => StmtKind::Motion(self.motion(node, &sig)?),
             K::WaitForStmt => StmtKind::WaitFor {
                 cond: first_expr()?,
             },
@@ -884,7 +887,8 @@ impl<'t> Cx<'t> {
             "SCIRC" => MotionKind::Scirc,
             _ => MotionKind::Spl,
         };
-        let mut points = Vec::new();
+        // A target and at most an auxiliary point: no allocation per motion.
+        let mut points: smallvec::SmallVec<[Expr; 2]> = smallvec::SmallVec::new();
         let mut ca = None;
         let mut frame = None;
         let mut prev_ca = false;
@@ -900,7 +904,7 @@ impl<'t> Cx<'t> {
             }
             if is_expr(el) {
                 if prev_ca {
-                    ca = Some(self.expr(el));
+                    ca = Some(Box::new(self.expr(el)));
                 } else if prev_sep {
                     points.push(self.expr(el));
                 } else if let Element::Token(t) = el
@@ -910,7 +914,7 @@ impl<'t> Cx<'t> {
                         t.text(self.text)
                             .trim_start_matches('#')
                             .trim_start()
-                            .to_string(),
+                            .into(),
                     );
                 }
             }
@@ -922,7 +926,7 @@ impl<'t> Cx<'t> {
             1 => (None, points.pop()?),
             _ => {
                 let target = points.pop()?;
-                (points.pop(), target)
+                (points.pop().map(Box::new), target)
             }
         };
         Some(Motion {
@@ -934,7 +938,7 @@ impl<'t> Cx<'t> {
             approx: self.approx(node),
             with: node
                 .child(K::WithClause)
-                .map(|w| self.with(w))
+                .map(|w| self.with(w).into_boxed_slice())
                 .unwrap_or_default(),
             frame,
         })

@@ -306,7 +306,9 @@ pub enum StmtKind {
     },
     Continue,
     OnErrorProceed,
-    Motion(Box<Motion>),
+    /// Inline (no allocation per motion): its rare parts are boxed, so it fits in the
+    /// largest frequent variant, `Assign`.
+    Motion(Motion),
     /// `SPLINE … ENDSPLINE` or `PTP_SPLINE … ENDSPLINE`.
     Spline {
         ptp: bool,
@@ -365,9 +367,15 @@ pub enum StmtKind {
     },
 }
 
-// Large variants are boxed so the frequent statements stay small (a 50 MB file has millions).
-const _: () = assert!(std::mem::size_of::<Stmt>() <= 152);
-const _: () = assert!(std::mem::size_of::<Expr>() <= 72);
+// Large rare variants and parts are boxed so the frequent nodes stay small (a 50 MB file has
+// millions; `check` holds every routine that calls the interface): an `Expr` is its largest
+// frequent variant (`Member`: a box and an `Ident`) with the tag in the name's spare bits, and
+// a `Stmt` holds `Assign`'s two `Expr`s or a `Motion` inline (its aux point, CA, WITH and frame
+// boxed), every other variant fitting beside them.
+const _: () = assert!(std::mem::size_of::<Expr>() <= 48);
+const _: () = assert!(std::mem::size_of::<Option<Expr>>() <= 48);
+const _: () = assert!(std::mem::size_of::<Motion>() <= 104);
+const _: () = assert!(std::mem::size_of::<Stmt>() <= 112);
 
 #[derive(Debug, Clone, PartialEq)]
 pub struct Case {
@@ -403,14 +411,14 @@ pub struct Motion {
     pub relative: bool,
     pub target: Expr,
     /// CIRC/SCIRC auxiliary point (written first).
-    pub aux: Option<Expr>,
+    pub aux: Option<Box<Expr>>,
     /// `CA angle` (circular angle).
-    pub ca: Option<Expr>,
+    pub ca: Option<Box<Expr>>,
     pub approx: Option<Approx>,
     /// `WITH $VEL = …, $ACC = …`.
-    pub with: Vec<(Expr, Expr)>,
+    pub with: Box<[(Expr, Expr)]>,
     /// `#BASE`/`#TOOL` after a `_REL` target.
-    pub frame: Option<String>,
+    pub frame: Option<Box<str>>,
 }
 
 #[derive(Debug, Clone, PartialEq)]
@@ -474,9 +482,11 @@ pub enum ExprKind {
         base: Box<Expr>,
         field: Ident,
     },
+    /// A function call: its name is boxed (as the aggregate's type name) so that an `Expr`
+    /// stays at 56 bytes; the arguments never grow after lowering.
     Call {
-        name: Ident,
-        args: Vec<Option<Expr>>,
+        name: Box<Ident>,
+        args: Box<[Option<Expr>]>,
     },
     Unary {
         op: UnaryOp,
@@ -489,8 +499,8 @@ pub enum ExprKind {
     },
     /// `{X 1, Y 2}`, `{E6POS: X 1}`, positional `{1, 2}`.
     Aggregate {
-        type_name: Option<Ident>,
-        fields: Vec<(Option<Ident>, Expr)>,
+        type_name: Option<Box<Ident>>,
+        fields: Box<[(Option<Ident>, Expr)]>,
     },
     /// A literal that does not fit its type (e.g. an integer beyond 64 bits).
     Invalid(String),
