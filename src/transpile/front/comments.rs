@@ -2,7 +2,7 @@
 //! (and the inline-form metadata they carry) are editor structure, not comments, and are left out.
 
 use crate::diag::Span;
-use crate::syntax::{Node, TokenKind};
+use crate::syntax::{Token, TokenKind};
 
 /// One `;` comment.
 #[derive(Debug, Clone, PartialEq, Eq)]
@@ -14,26 +14,22 @@ pub struct Comment {
     pub own_line: bool,
 }
 
-/// Every comment of the file, in source order.
-pub fn collect(root: &Node, text: &str) -> Vec<Comment> {
-    let mut out = Vec::new();
-    root.walk_tokens(&mut |t| {
-        if t.kind != TokenKind::Comment {
-            return;
-        }
-        let start = t.span.start as usize;
-        let line_start = text[..start].rfind(['\n', '\r']).map_or(0, |i| i + 1);
-        let own_line = text[line_start..start]
-            .chars()
-            .all(|c| c == ' ' || c == '\t');
-        let body = t.text(text).strip_prefix(';').unwrap_or(t.text(text));
-        out.push(Comment {
-            span: t.span,
-            text: body.trim_end().to_owned(),
-            own_line,
-        });
-    });
-    out
+/// The comment a token is, if it is one.
+pub fn of_token(t: &Token, text: &str) -> Option<Comment> {
+    if t.kind != TokenKind::Comment {
+        return None;
+    }
+    let start = t.span.start as usize;
+    let line_start = text[..start].rfind(['\n', '\r']).map_or(0, |i| i + 1);
+    let own_line = text[line_start..start]
+        .chars()
+        .all(|c| c == ' ' || c == '\t');
+    let body = t.text(text).strip_prefix(';').unwrap_or(t.text(text));
+    Some(Comment {
+        span: t.span,
+        text: body.trim_end().to_owned(),
+        own_line,
+    })
 }
 
 /// Hands out comments in source order as a translator moves through the file.

@@ -60,47 +60,31 @@ pub enum Statement {
 }
 
 impl Parsed {
+    /// Parses `text` one piece at a time and reads out what the translation needs of the
+    /// whole file. The parse, the AST of each piece, its comments and `MM_…` names are made on
+    /// a second thread, a bounded batch ahead of the outline and the summary, which are built
+    /// here from the pieces' events ([`pipelined`]).
     pub fn new(path: impl Into<String>, text: impl Into<String>) -> Parsed {
-        use crate::syntax::ast::PieceLowerer;
-        use crate::syntax::{Node, Piece};
         let text = text.into();
-        let mut lowerer = PieceLowerer::new(&text);
         let mut outline = outline::OutlineBuilder::default();
         let mut summary = crate::sema::SummaryBuilder::declarations_only();
         let mut followed = true;
-        let mut found: Vec<comments::Comment> = Vec::new();
-        let mut names = FxHashSet::default();
-        let mut upper = compact_str::CompactString::default();
-        let syntax_errors = crate::syntax::parse_pieces(&text, |piece| {
-            let node: &Node<'_> = match &piece {
-                Piece::Open { line, .. } => line,
-                Piece::Item(n) | Piece::Close(n) => n,
-            };
-            // A closing piece repeats its routine's first line: its comments are taken once.
-            let after = found.last().map(|c| c.span.start);
-            let new = comments::collect(node, &text);
-            found.extend(
-                new.into_iter()
-                    .filter(|c| after.is_none_or(|a| c.span.start > a)),
-            );
-            node.walk_tokens(&mut |t| {
-                if t.kind == TokenKind::Ident && crate::catalog::has_interface_prefix(t.text(&text))
-                {
-                    upper.clear();
-                    upper.push_str(t.text(&text));
-                    upper.make_ascii_uppercase();
-                    if !names.contains(&upper) {
-                        names.insert(upper.clone());
-                    }
-                }
-            });
-            lowerer.lower(piece, |e| {
-                outline.add(&e);
-                if followed && !summary.add(e) {
+        let read = pipelined(
+            |sink| {
+                let mut reader = Reader::new(&text);
+                let errors = crate::syntax::parse_pieces(&text, |piece| {
+                    reader.piece(piece, |e| sink.push(e))
+                });
+                (errors, reader.comments, reader.names)
+            },
+            |e| {
+                outline.add(e);
+                if followed && !summary.add_lent(e) {
                     followed = false;
                 }
-            });
-        });
+            },
+        );
+        let (syntax_errors, comments, names) = read;
         // Declarations only: the translation asks the model what names mean, never where they
         // are used. A file whose order the streamed summary cannot follow (a routine after its
         // data list) is summarised from its whole AST, the one case where it is built.
@@ -113,7 +97,7 @@ impl Parsed {
             path: path.into(),
             outline: outline.finish(),
             syntax_errors,
-            comments: found,
+            comments,
             text,
             names,
             summary: Some(summary),
@@ -127,52 +111,11 @@ impl Parsed {
     /// time: only a few statements' trees exist at once. A routine's head declarations and
     /// definitions come first, as [`Statement::Head`].
     ///
-    /// The parse runs on a second thread, a bounded batch of statements ahead of `f`: parsing
-    /// is a third of a translation's work, and it overlaps the lowering and rendering. Each
-    /// batch goes back to that thread to be dropped there: glibc frees a block another
-    /// thread's arena allocated under that arena's lock, and the two threads contending for
-    /// it were a tenth of a translation's CPU.
-    pub fn each_statement(&self, top_level: bool, mut f: impl FnMut(&Statement)) {
-        const BATCH: usize = 256;
-        let (send, receive) = std::sync::mpsc::sync_channel::<Vec<Statement>>(4);
-        let (give_back, returned) = std::sync::mpsc::channel::<Vec<Statement>>();
-        std::thread::scope(|scope| {
-            let parser = std::thread::Builder::new().spawn_scoped(scope, move || {
-                let mut batch = Vec::with_capacity(BATCH);
-                self.statements(top_level, |s| {
-                    batch.push(s);
-                    if batch.len() == BATCH {
-                        // The batches `f` is done with are dropped here; one is reused.
-                        let mut next = None;
-                        while let Ok(mut done) = returned.try_recv() {
-                            done.clear();
-                            next = Some(done);
-                        }
-                        let next = next.unwrap_or_else(|| Vec::with_capacity(BATCH));
-                        let full = std::mem::replace(&mut batch, next);
-                        // The receiver only stops early when `f` panicked.
-                        let _ = send.send(full);
-                    }
-                });
-                let _ = send.send(batch);
-                drop(send);
-                // The last batches, once `f` is done with them.
-                for done in returned {
-                    drop(done);
-                }
-            });
-            match parser {
-                Ok(_) => {
-                    for batch in receive {
-                        batch.iter().for_each(&mut f);
-                        let _ = give_back.send(batch);
-                    }
-                    drop(give_back);
-                }
-                // No thread to be had: parse here.
-                Err(_) => self.statements(top_level, |s| f(&s)),
-            }
-        });
+    /// The parse runs on a second thread, a bounded batch of statements ahead of `f`
+    /// ([`pipelined`]): parsing is a third of a translation's work, and it overlaps the
+    /// lowering and rendering.
+    pub fn each_statement(&self, top_level: bool, f: impl FnMut(&Statement)) {
+        pipelined(|sink| self.statements(top_level, |s| sink.push(s)), f);
     }
 
     /// [`Parsed::each_statement`] on this thread.
@@ -252,6 +195,167 @@ impl Parsed {
     }
 }
 
+/// What the first parse reads off the lossless pieces besides their AST: the comments and
+/// the `MM_…` identifiers (one walk over each piece's tokens).
+struct Reader<'t> {
+    text: &'t str,
+    lowerer: crate::syntax::ast::PieceLowerer<'t>,
+    /// Each line once (a closing piece repeats its routine's first line).
+    nodes: crate::syntax::PieceNodes,
+    comments: Vec<comments::Comment>,
+    names: FxHashSet<compact_str::CompactString>,
+    upper: compact_str::CompactString,
+}
+
+impl<'t> Reader<'t> {
+    fn new(text: &'t str) -> Reader<'t> {
+        Reader {
+            text,
+            lowerer: crate::syntax::ast::PieceLowerer::new(text),
+            nodes: crate::syntax::PieceNodes::default(),
+            comments: Vec::new(),
+            names: FxHashSet::default(),
+            upper: compact_str::CompactString::default(),
+        }
+    }
+
+    /// One piece: its comments and names kept, its events to `f`.
+    fn piece(
+        &mut self,
+        piece: crate::syntax::Piece<'_>,
+        f: impl FnMut(crate::syntax::ast::Lowered),
+    ) {
+        let Reader {
+            text,
+            nodes,
+            comments,
+            names,
+            upper,
+            ..
+        } = self;
+        nodes.each(piece, |node| {
+            node.walk_tokens(&mut |t| match t.kind {
+                TokenKind::Comment => comments.extend(comments::of_token(t, text)),
+                TokenKind::Ident if crate::catalog::has_interface_prefix(t.text(text)) => {
+                    upper.clear();
+                    upper.push_str(t.text(text));
+                    upper.make_ascii_uppercase();
+                    if !names.contains(&*upper) {
+                        names.insert(upper.clone());
+                    }
+                }
+                _ => {}
+            })
+        });
+        self.lowerer.lower(piece, f);
+    }
+}
+
+/// What [`pipelined`]'s producer hands on: into the batch of the moment, or (without a second
+/// thread) straight to the consumer.
+enum Sink<'a, T> {
+    Batches {
+        batch: Vec<T>,
+        send: std::sync::mpsc::SyncSender<Vec<T>>,
+        returned: std::sync::mpsc::Receiver<Vec<T>>,
+    },
+    Direct(&'a mut dyn FnMut(&T)),
+}
+
+/// How many items a batch of [`pipelined`] holds, and how many batches may wait.
+const BATCH: usize = 256;
+const BATCHES: usize = 4;
+
+impl<T> Sink<'_, T> {
+    fn push(&mut self, item: T) {
+        match self {
+            Sink::Direct(f) => f(&item),
+            Sink::Batches {
+                batch,
+                send,
+                returned,
+            } => {
+                batch.push(item);
+                if batch.len() == BATCH {
+                    // The batches the consumer is done with are dropped here; one is reused.
+                    let mut next = None;
+                    while let Ok(mut done) = returned.try_recv() {
+                        done.clear();
+                        next = Some(done);
+                    }
+                    let next = next.unwrap_or_else(|| Vec::with_capacity(BATCH));
+                    let full = std::mem::replace(batch, next);
+                    // The receiver only stops early when the consumer panicked.
+                    let _ = send.send(full);
+                }
+            }
+        }
+    }
+}
+
+/// Runs `produce` on a second thread and `consume` on this one, on each item `produce` pushes,
+/// in order: the producer runs a bounded number of batches ahead, so only a few items exist at
+/// once. Each batch goes back to the producer's thread to be dropped there: glibc frees a
+/// block another thread's arena allocated under that arena's lock, and the two threads
+/// contending for it were a tenth of a translation's CPU. Without a thread to be had, both run
+/// here, one item at a time. Returns what `produce` returns.
+fn pipelined<T: Send, R: Send>(
+    produce: impl FnOnce(&mut Sink<'_, T>) -> R + Send,
+    mut consume: impl FnMut(&T),
+) -> R {
+    let (send, receive) = std::sync::mpsc::sync_channel::<Vec<T>>(BATCHES);
+    let (give_back, returned) = std::sync::mpsc::channel::<Vec<T>>();
+    // Taken by the thread, or here when there is none.
+    let work = std::sync::Mutex::new(Some(produce));
+    let take = || {
+        work.lock()
+            .unwrap_or_else(std::sync::PoisonError::into_inner)
+            .take()
+    };
+    std::thread::scope(|scope| {
+        let producer = std::thread::Builder::new().spawn_scoped(scope, || {
+            let produce = take().expect("the work is taken once");
+            let mut sink = Sink::Batches {
+                batch: Vec::with_capacity(BATCH),
+                send,
+                returned,
+            };
+            let out = produce(&mut sink);
+            let Sink::Batches {
+                batch,
+                send,
+                returned,
+            } = sink
+            else {
+                unreachable!("the sink sends batches")
+            };
+            let _ = send.send(batch);
+            drop(send);
+            // The last batches, once the consumer is done with them.
+            for done in returned {
+                drop(done);
+            }
+            out
+        });
+        match producer {
+            Ok(producer) => {
+                for batch in receive {
+                    batch.iter().for_each(&mut consume);
+                    let _ = give_back.send(batch);
+                }
+                drop(give_back);
+                producer
+                    .join()
+                    .unwrap_or_else(|panic| std::panic::resume_unwind(panic))
+            }
+            Err(_) => {
+                let produce = take().expect("no thread took the work");
+                produce(&mut Sink::Direct(&mut consume))
+            }
+        }
+    })
+}
+
 /// The program to translate: its `.src` and, when present, its `.dat`, and the semantic
 /// model of the two ([`model`] asks it).
 pub struct Program {
@@ -324,6 +428,42 @@ pub fn end_line_start(text: &str, span: Span) -> u32 {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    /// What `Parsed::new` reads off the pieces (on another thread, handed over in batches) is
+    /// what the whole tree holds: every comment once, in order, the `MM_…` names, the routines'
+    /// heads as the whole AST has them.
+    #[test]
+    fn the_first_parse_reads_what_the_whole_tree_holds() {
+        let mut text = String::from("&ACCESS RVP ; header\n; top\nDEF a(x:IN) ; opens\n");
+        for k in 0..600 {
+            text.push_str(&format!(
+                "  mm_call_{k}(x) ; call {k}\n  IF x > {k} THEN ; if\n    ; inside\n    LIN P1\n  ENDIF\n"
+            ));
+        }
+        text.push_str("END ; closes\nDEF b()\n  Mm_Other = 1\nEND\nDEFDAT d ; dat\n  DECL INT z = 1 ; z\nENDDAT ; end\n");
+        let parsed = Parsed::new("t.src", text.clone());
+        let tree = crate::syntax::parse(&text).tree;
+        let mut comments = Vec::new();
+        tree.root()
+            .walk_tokens(&mut |t| comments.extend(comments::of_token(t, &text)));
+        // Three per step, six around them (an `&` line, its `;` included, is one token).
+        assert_eq!(comments.len(), 3 * 600 + 6);
+        assert_eq!(parsed.comments, comments);
+        let mut names: Vec<_> = parsed.names.iter().map(|n| n.to_string()).collect();
+        names.sort();
+        assert_eq!(names.len(), 601);
+        assert_eq!(names[0], "MM_CALL_0");
+        assert_eq!(names[600], "MM_OTHER");
+        let (ast, _) = crate::syntax::ast::lower_pieces(&text);
+        assert_eq!(parsed.outline.routines.len(), 2);
+        for (r, a) in parsed.outline.routines.iter().zip(&ast.routines) {
+            let mut head = a.clone();
+            head.body.clear();
+            head.decls.clear();
+            assert_eq!(r.head, head);
+        }
+        assert_eq!(parsed.outline.routines[0].facts.callees.len(), 600);
+    }
 
     /// The statements handed out one at a time (in batches, from another thread) are the
     /// whole AST's, in order: routine bodies after their heads, then the top level.

@@ -135,26 +135,42 @@ impl Namespace {
     /// The target name of `krl`. `Some(renamed)` the first time a name is seen and had to
     /// change beyond case.
     pub fn name(&mut self, krl: &str, rules: &NameRules) -> (CompactString, Option<Renamed>) {
+        self.name_spelled(krl, rules, None)
+    }
+
+    /// [`Namespace::name`], the target spelling of a name not seen in this namespace taken
+    /// from `spellings` when given (the same as [`target_name`] gives).
+    fn name_spelled(
+        &mut self,
+        krl: &str,
+        rules: &NameRules,
+        spellings: Option<&mut Spellings>,
+    ) -> (CompactString, Option<Renamed>) {
         let mut key = CompactString::from(krl);
         key.make_ascii_uppercase();
         // Names fit inline: a name asked again costs no allocation.
         if let Some(t) = self.map.get(&key) {
             return (t.clone(), None);
         }
-        let (mut target, mut reasons) = target_name(krl, rules);
-        if self.taken.get(target.as_str()).is_some_and(|k| *k != key) {
-            target = self.free_variant(&target, rules.max_len);
+        let (mut target, mut reasons) = match spellings {
+            Some(s) => s.spell(&key, rules),
+            None => {
+                let (t, r) = target_name(krl, rules);
+                (CompactString::from(t), r)
+            }
+        };
+        if self.taken.get(&target).is_some_and(|k| *k != key) {
+            target = self.free_variant(&target, rules.max_len).into();
             reasons.push(Reason::Clash);
         }
-        let name = CompactString::from(&target);
-        self.taken.insert(name.clone(), key.clone());
-        self.map.insert(key, name.clone());
+        self.taken.insert(target.clone(), key.clone());
+        self.map.insert(key, target.clone());
         let renamed = (!reasons.is_empty()).then(|| Renamed {
             krl: krl.to_owned(),
-            target,
+            target: target.to_string(),
             reasons,
         });
-        (name, renamed)
+        (target, renamed)
     }
 
     /// The namespace with no name, its maps kept for reuse when they are small (emptying a
@@ -215,6 +231,34 @@ impl Namespace {
                 }
             }
         }
+    }
+}
+
+/// The target spellings of names asked before ([`target_name`] of the upper-case name: it is
+/// a pure function of the name, and case changes nothing of it). Every routine's locals are
+/// named again in a namespace of their own, mostly the same few names in thousands of
+/// routines: each is spelled once. Emptied when it holds [`Spellings::MAX`] names, so a
+/// program of ever new names keeps no more.
+#[derive(Debug, Default)]
+struct Spellings {
+    map: FxHashMap<CompactString, (CompactString, Vec<Reason>)>,
+}
+
+impl Spellings {
+    const MAX: usize = 4096;
+
+    /// [`target_name`] of `key`, an upper-case name.
+    fn spell(&mut self, key: &CompactString, rules: &NameRules) -> (CompactString, Vec<Reason>) {
+        if let Some((t, r)) = self.map.get(key) {
+            return (t.clone(), r.clone());
+        }
+        if self.map.len() >= Self::MAX {
+            self.map.clear();
+        }
+        let (t, r) = target_name(key, rules);
+        let spelled = (CompactString::from(t), r);
+        self.map.insert(key.clone(), spelled.clone());
+        spelled
     }
 }
 
@@ -281,8 +325,12 @@ pub struct Namer<'a> {
     labels: FxHashMap<RoutineId, Namespace>,
     /// The routine whose locals were declared last.
     current: Option<RoutineId>,
-    /// Routines whose namespaces were dropped: asked again, they are made again the same way.
-    ended: FxHashSet<RoutineId>,
+    /// Routines whose namespaces were dropped, one bit each by id: asked again, they are made
+    /// again the same way. (A set of ids grew with every routine, its lookups missing the
+    /// cache ever more often.)
+    ended: Vec<u64>,
+    /// Locals' spellings, made once for every routine that declares the same name.
+    spellings: Spellings,
     /// Each routine's parameters and locals, in declaration order.
     vars_of: super::grouped::Grouped<VarId>,
     /// Every rename, in the order found, with what kind of name it is.
@@ -306,7 +354,8 @@ impl<'a> Namer<'a> {
             locals: FxHashMap::default(),
             labels: FxHashMap::default(),
             current: None,
-            ended: FxHashSet::default(),
+            ended: Vec::new(),
+            spellings: Spellings::default(),
             vars_of,
             renamed: Vec::new(),
         }
@@ -383,7 +432,7 @@ impl<'a> Namer<'a> {
         {
             spare = self.locals.remove(&prev).and_then(Namespace::emptied);
             self.labels.remove(&prev);
-            self.ended.insert(prev);
+            self.end(prev);
         }
         let ir = self.ir;
         let vars = self.vars_of.get(id.0 as usize);
@@ -394,7 +443,7 @@ impl<'a> Namer<'a> {
             .or_insert_with(|| spare.unwrap_or_default());
         for &v in vars {
             let var = ir.var(v);
-            let (_, r) = ns.name(&var.name, self.rules);
+            let (_, r) = ns.name_spelled(&var.name, self.rules, Some(&mut self.spellings));
             note(
                 &mut self.renamed,
                 self.rules,
@@ -416,22 +465,44 @@ impl<'a> Namer<'a> {
         }
     }
 
+    /// Whether `id`'s namespaces were dropped ([`Namer::declare_locals`]).
+    fn has_ended(&self, id: RoutineId) -> bool {
+        let i = id.0 as usize;
+        self.ended
+            .get(i / 64)
+            .is_some_and(|w| w & (1 << (i % 64)) != 0)
+    }
+
+    /// `id`'s namespaces were dropped.
+    fn end(&mut self, id: RoutineId) {
+        let i = id.0 as usize;
+        if self.ended.len() <= i / 64 {
+            self.ended.resize(i / 64 + 1, 0);
+        }
+        self.ended[i / 64] |= 1 << (i % 64);
+    }
+
     /// The locals' namespace of `id`; one of a routine that ended is made again as its
     /// [`Namer::declare_locals`] made it (same names, findings not repeated).
     fn locals_ns(&mut self, id: RoutineId) -> &mut Namespace {
-        if !self.locals.contains_key(&id) && self.ended.contains(&id) {
+        self.remake_locals(id);
+        self.locals.entry(id).or_default()
+    }
+
+    /// Makes the locals' namespace of an ended routine again (see [`Namer::locals_ns`]).
+    fn remake_locals(&mut self, id: RoutineId) {
+        if !self.locals.contains_key(&id) && self.has_ended(id) {
             let mut ns = Namespace::default();
             for &v in self.vars_of.get(id.0 as usize) {
-                ns.name(&self.ir.var(v).name, self.rules);
+                ns.name_spelled(&self.ir.var(v).name, self.rules, Some(&mut self.spellings));
             }
             self.locals.insert(id, ns);
         }
-        self.locals.entry(id).or_default()
     }
 
     /// The labels' namespace of `id`, made again for a routine that ended.
     fn labels_ns(&mut self, id: RoutineId) -> &mut Namespace {
-        if !self.labels.contains_key(&id) && self.ended.contains(&id) {
+        if !self.labels.contains_key(&id) && self.has_ended(id) {
             let mut ns = Namespace::default();
             for (krl, _) in &self.ir.routine(id).labels {
                 ns.name(krl, self.rules);
@@ -446,7 +517,13 @@ impl<'a> Namer<'a> {
         let (ir, rules) = (self.ir, self.rules);
         let var = ir.var(v);
         let (ns, home) = match var.scope {
-            Scope::Local(r) | Scope::Param(r) => (self.locals_ns(r), Home::Local),
+            Scope::Local(r) | Scope::Param(r) => {
+                self.remake_locals(r);
+                let ns = self.locals.entry(r).or_default();
+                let (n, renamed) = ns.name_spelled(&var.name, rules, Some(&mut self.spellings));
+                self.note(rep, "variable", FileId::Src, used_at, renamed);
+                return (n, Home::Local);
+            }
             Scope::Package => {
                 if let Some(g) = package_name(rules, &var.name) {
                     return (g.into(), Home::Package);
