@@ -18,6 +18,7 @@ pub mod front;
 pub mod ir;
 pub mod joints;
 pub mod kawasaki;
+mod pipeline;
 pub mod rapid;
 pub mod render;
 pub mod rules;
@@ -353,87 +354,23 @@ fn rendered<'a>(
 }
 
 /// [`rendered`], `produce` on a thread of its own when `thread` and one can be had.
-fn rendered_on<'a, P: FnOnce(&mut dyn FnMut(Render)) + Send>(
+fn rendered_on<'a>(
     thread: bool,
     make: impl FnOnce() -> Box<dyn Renderer + 'a>,
     mut spool: render::Spool,
-    produce: P,
+    produce: impl FnOnce(&mut dyn FnMut(Render)) + Send,
 ) -> Rendered {
-    use std::sync::mpsc;
-    const BATCH: usize = 256;
-    fn step(renderer: &mut dyn Renderer, spool: &mut render::Spool, r: &Render) {
-        match r {
-            Render::Begin(id) => renderer.begin_routine(*id),
-            Render::Ops(ops) => renderer.ops(ops),
-            Render::End => renderer.end_routine(spool),
-        }
-    }
-    fn here(
-        renderer: &mut dyn Renderer,
-        spool: &mut render::Spool,
-        produce: impl FnOnce(&mut dyn FnMut(Render)),
-    ) {
-        produce(&mut |r| step(renderer, spool, &r));
-    }
     let mut renderer = make();
     renderer.start();
-    if !thread {
-        here(renderer.as_mut(), &mut spool, produce);
-    } else {
-        std::thread::scope(|scope| {
-            let (start, started) = mpsc::channel::<P>();
-            let (send, receive) = mpsc::sync_channel::<Vec<Render>>(4);
-            let (give_back, returned) = mpsc::channel::<Vec<Render>>();
-            let producer = std::thread::Builder::new()
-                .name("lower".into())
-                .spawn_scoped(scope, move || {
-                    let Ok(produce) = started.recv() else {
-                        return;
-                    };
-                    let mut batch = Vec::with_capacity(BATCH);
-                    produce(&mut |r| {
-                        batch.push(r);
-                        if batch.len() == BATCH {
-                            // The batches rendered are dropped here; one is reused.
-                            let mut next = None;
-                            while let Ok(mut done) = returned.try_recv() {
-                                done.clear();
-                                next = Some(done);
-                            }
-                            let next = next.unwrap_or_else(|| Vec::with_capacity(BATCH));
-                            // The renderer stops early only when it panicked.
-                            let _ = send.send(std::mem::replace(&mut batch, next));
-                        }
-                    });
-                    let _ = send.send(batch);
-                    drop(send);
-                    // The last batches, once rendered.
-                    for done in returned {
-                        drop(done);
-                    }
-                });
-            // No thread to be had (or it is gone before its start): all here.
-            let produce = match producer {
-                Ok(_) => match start.send(produce) {
-                    Ok(()) => None,
-                    Err(mpsc::SendError(produce)) => Some(produce),
-                },
-                Err(_) => Some(produce),
-            };
-            match produce {
-                Some(produce) => here(renderer.as_mut(), &mut spool, produce),
-                None => {
-                    // Ends when the producer is done (or panicked: that is the scope's).
-                    for batch in receive {
-                        for r in &batch {
-                            step(renderer.as_mut(), &mut spool, r);
-                        }
-                        let _ = give_back.send(batch);
-                    }
-                }
-            }
-        });
-    }
+    pipeline::pipelined_on(
+        thread,
+        |sink| produce(&mut |r| sink.push(r)),
+        |r| match r {
+            Render::Begin(id) => renderer.begin_routine(*id),
+            Render::Ops(ops) => renderer.ops(ops),
+            Render::End => renderer.end_routine(&mut spool),
+        },
+    );
     let (framed, report, produced) = renderer.finish();
     (spool, framed, report, produced)
 }

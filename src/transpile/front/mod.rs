@@ -18,6 +18,8 @@ pub mod vision;
 
 pub use fail::{Fail, R, fail};
 
+use crate::transpile::pipeline::pipelined;
+
 use rustc_hash::FxHashSet;
 
 use crate::diag::{Diagnostic, Span};
@@ -63,7 +65,7 @@ impl Parsed {
     /// Parses `text` one piece at a time and reads out what the translation needs of the
     /// whole file. The parse, the AST of each piece, its comments and `MM_…` names are made on
     /// a second thread, a bounded batch ahead of the outline and the summary, which are built
-    /// here from the pieces' events ([`pipelined`]).
+    /// here from the pieces' events ([`pipelined`](crate::transpile::pipeline::pipelined)).
     pub fn new(path: impl Into<String>, text: impl Into<String>) -> Parsed {
         let text = text.into();
         let mut outline = outline::OutlineBuilder::default();
@@ -112,7 +114,7 @@ impl Parsed {
     /// definitions come first, as [`Statement::Head`].
     ///
     /// The parse runs on a second thread, a bounded batch of statements ahead of `f`
-    /// ([`pipelined`]): parsing is a third of a translation's work, and it overlaps the
+    /// ([`pipelined`](crate::transpile::pipeline::pipelined)): parsing is a third of a translation's work, and it overlaps the
     /// lowering and rendering.
     pub fn each_statement(&self, top_level: bool, f: impl FnMut(&Statement)) {
         pipelined(|sink| self.statements(top_level, |s| sink.push(s)), f);
@@ -249,111 +251,6 @@ impl<'t> Reader<'t> {
         });
         self.lowerer.lower(piece, f);
     }
-}
-
-/// What [`pipelined`]'s producer hands on: into the batch of the moment, or (without a second
-/// thread) straight to the consumer.
-enum Sink<'a, T> {
-    Batches {
-        batch: Vec<T>,
-        send: std::sync::mpsc::SyncSender<Vec<T>>,
-        returned: std::sync::mpsc::Receiver<Vec<T>>,
-    },
-    Direct(&'a mut dyn FnMut(&T)),
-}
-
-/// How many items a batch of [`pipelined`] holds, and how many batches may wait.
-const BATCH: usize = 256;
-const BATCHES: usize = 4;
-
-impl<T> Sink<'_, T> {
-    fn push(&mut self, item: T) {
-        match self {
-            Sink::Direct(f) => f(&item),
-            Sink::Batches {
-                batch,
-                send,
-                returned,
-            } => {
-                batch.push(item);
-                if batch.len() == BATCH {
-                    // The batches the consumer is done with are dropped here; one is reused.
-                    let mut next = None;
-                    while let Ok(mut done) = returned.try_recv() {
-                        done.clear();
-                        next = Some(done);
-                    }
-                    let next = next.unwrap_or_else(|| Vec::with_capacity(BATCH));
-                    let full = std::mem::replace(batch, next);
-                    // The receiver only stops early when the consumer panicked.
-                    let _ = send.send(full);
-                }
-            }
-        }
-    }
-}
-
-/// Runs `produce` on a second thread and `consume` on this one, on each item `produce` pushes,
-/// in order: the producer runs a bounded number of batches ahead, so only a few items exist at
-/// once. Each batch goes back to the producer's thread to be dropped there: glibc frees a
-/// block another thread's arena allocated under that arena's lock, and the two threads
-/// contending for it were a tenth of a translation's CPU. Without a thread to be had, both run
-/// here, one item at a time. Returns what `produce` returns.
-fn pipelined<T: Send, R: Send>(
-    produce: impl FnOnce(&mut Sink<'_, T>) -> R + Send,
-    mut consume: impl FnMut(&T),
-) -> R {
-    let (send, receive) = std::sync::mpsc::sync_channel::<Vec<T>>(BATCHES);
-    let (give_back, returned) = std::sync::mpsc::channel::<Vec<T>>();
-    // Taken by the thread, or here when there is none.
-    let work = std::sync::Mutex::new(Some(produce));
-    let take = || {
-        work.lock()
-            .unwrap_or_else(std::sync::PoisonError::into_inner)
-            .take()
-    };
-    std::thread::scope(|scope| {
-        let producer = std::thread::Builder::new().spawn_scoped(scope, || {
-            let produce = take().expect("the work is taken once");
-            let mut sink = Sink::Batches {
-                batch: Vec::with_capacity(BATCH),
-                send,
-                returned,
-            };
-            let out = produce(&mut sink);
-            let Sink::Batches {
-                batch,
-                send,
-                returned,
-            } = sink
-            else {
-                unreachable!("the sink sends batches")
-            };
-            let _ = send.send(batch);
-            drop(send);
-            // The last batches, once the consumer is done with them.
-            for done in returned {
-                drop(done);
-            }
-            out
-        });
-        match producer {
-            Ok(producer) => {
-                for batch in receive {
-                    batch.iter().for_each(&mut consume);
-                    let _ = give_back.send(batch);
-                }
-                drop(give_back);
-                producer
-                    .join()
-                    .unwrap_or_else(|panic| std::panic::resume_unwind(panic))
-            }
-            Err(_) => {
-                let produce = take().expect("no thread took the work");
-                produce(&mut Sink::Direct(&mut consume))
-            }
-        }
-    })
 }
 
 /// The program to translate: its `.src` and, when present, its `.dat`, and the semantic
