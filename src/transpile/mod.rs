@@ -344,7 +344,7 @@ type Rendered = (
 /// findings, the text held back) is allocated where the first pass's freed memory is, as
 /// before; each batch goes back to be dropped by the thread that made its blocks (glibc frees
 /// a block another thread's arena allocated under that arena's lock, see
-/// `front::Parsed::each_statement`). Without a thread, it all runs here.
+/// [`pipeline::pipelined`]). Without a thread, it all runs here.
 fn rendered<'a>(
     make: impl FnOnce() -> Box<dyn Renderer + 'a>,
     spool: render::Spool,

@@ -118,3 +118,46 @@ pub fn pipelined_on<T: Send, R: Send>(
         }
     })
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// Across many batches, the consumer sees every item in the order made, the same as
+    /// without a thread, and the producer's result comes back.
+    #[test]
+    fn items_arrive_in_order_as_without_a_thread() {
+        let n = BATCH * (BATCHES + 3) + 17;
+        let run = |thread: bool| {
+            let mut seen = Vec::new();
+            let made = pipelined_on(
+                thread,
+                |sink| {
+                    for i in 0..n {
+                        sink.push(i.to_string());
+                    }
+                    n
+                },
+                |s: &String| seen.push(s.parse::<usize>().unwrap()),
+            );
+            (made, seen)
+        };
+        let (made, seen) = run(true);
+        assert_eq!(made, n);
+        assert_eq!(seen, (0..n).collect::<Vec<_>>());
+        assert_eq!(run(false), (made, seen));
+    }
+
+    /// A producer's panic reaches the caller.
+    #[test]
+    #[should_panic(expected = "producer failed")]
+    fn a_producers_panic_reaches_the_caller() {
+        pipelined(
+            |sink: &mut Sink<'_, usize>| {
+                sink.push(1);
+                panic!("producer failed")
+            },
+            |_| {},
+        );
+    }
+}
