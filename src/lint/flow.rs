@@ -104,6 +104,11 @@ struct Summary {
     must: u64,
 }
 
+/// Stack left before a summary's walk grows the stack, and the size of each new segment: one
+/// level of the call chain (a walk of one routine) takes a few KB in release, tens in debug.
+const STACK_RED_ZONE: usize = 256 * 1024;
+const STACK_SEGMENT: usize = 4 * 1024 * 1024;
+
 struct Shared<'c, 'p> {
     ctx: &'c FileCtx<'p>,
     summaries: RefCell<FxHashMap<usize, Summary>>,
@@ -139,6 +144,15 @@ impl Shared<'_, '_> {
         if !self.in_progress.borrow_mut().insert(key) {
             return Summary::default();
         }
+        // A routine's summary walks its body, and the walk asks for its callees' summaries: a
+        // chain of calls thousands of routines deep recursed as deep and overflowed the stack
+        // (5,000 routines did). The stack grows on the heap instead, as rustc's does for deep
+        // expressions; the summaries, and so the findings, are the same as before.
+        stacker::maybe_grow(STACK_RED_ZONE, STACK_SEGMENT, || self.summarise(key, r))
+    }
+
+    /// [`Shared::summary`] of routine `key` (`r`), not yet known nor in progress.
+    fn summarise(&self, key: usize, r: &Routine) -> Summary {
         let entry = State {
             dead: false,
             may: 0,
