@@ -1,6 +1,6 @@
 //! Time and peak RSS of every command in the program shapes of `tests/scaling_support/shapes.rs`
 //! (one routine, many routines in one module, many modules in one folder, the two dense in
-//! Mech-Mind calls, taught points, no motions) at 2, 10 and 50 MB (transpile to all three targets), and the growth from 10 to 50 MB (linear is 5×):
+//! Mech-Mind calls, taught points, no motions, a call chain) at 2, 10 and 50 MB (transpile to all three targets), and the growth from 10 to 50 MB (linear is 5×):
 //! `cargo bench --bench scaling`. Runs the release binary, or the one `KRLKIT_BIN` names (to
 //! compare two builds); `SCALING_MB=2,10` picks the sizes, `SCALING_SHAPES="MM calls,many
 //! files"` the shapes whose names contain one of the parts, `SCALING_RUNS=3` repeats each run
@@ -28,15 +28,16 @@ const LIMIT: Duration = Duration::from_secs(60);
 /// One cell of the matrix.
 #[derive(Clone, Copy)]
 enum Cell {
-    /// The command takes no folder (transpile reads one file), or would wait for the vision
-    /// server (`run` of the Mech-Mind shapes).
+    /// The command takes no folder (transpile reads one file), would wait for the vision
+    /// server (`run` of the Mech-Mind shapes) or nest calls deeper than a controller
+    /// (`run` of the call chain).
     NotApplicable,
     TimedOut,
     Ran(Run),
 }
 
 /// The commands of the matrix for a program written by `shapes::write`; `None` where a
-/// command takes no folder (transpile reads one file) or would wait for the vision server.
+/// command takes no folder (transpile reads one file) or cannot run (`Shape::runs`).
 fn commands(shape: Shape, lib: &Option<PathBuf>) -> Vec<(&'static str, Option<Vec<String>>)> {
     let s = |v: &[&str]| Some(v.iter().map(|a| a.to_string()).collect::<Vec<_>>());
     let all = if lib.is_some() { "." } else { "main.src" };
@@ -55,7 +56,7 @@ fn commands(shape: Shape, lib: &Option<PathBuf>) -> Vec<(&'static str, Option<Ve
         ("transpile rapid", transpile("rapid")),
         ("fmt --check", s(&["fmt", "--check", all])),
         ("parse", s(&["parse", all])),
-        ("run", (!shape.calls_vision()).then_some(run)),
+        ("run", shape.runs().then_some(run)),
     ]
 }
 

@@ -11,7 +11,8 @@
 //! plain `cargo test`: `.ci/run` runs it after `cargo xtask dist` on the binary dist built
 //! (`KRLKIT_BIN=… cargo test --test scaling_guard -- --ignored`); here
 //! `cargo test --release --test scaling_guard -- --ignored`. `SCALING_GUARD_MAX` lowers the
-//! bound (to see it fail); `benches/scaling.rs` prints the whole matrix.
+//! bound (to see it fail), `SCALING_SHAPES` picks shapes by name as in the bench;
+//! `benches/scaling.rs` prints the whole matrix. A krlkit that crashes fails it too.
 
 #[path = "scaling_support/measure.rs"]
 mod measure;
@@ -82,7 +83,14 @@ fn every_command_grows_linearly_in_every_shape() {
     let mut failures = Vec::new();
     // The motion-free shape is there for the bench's `run` row; its statements are the
     // other shapes' (a few more CI seconds would guard nothing new).
-    for shape in Shape::ALL.into_iter().filter(|&s| s != Shape::NoMotions) {
+    // `SCALING_SHAPES="call chain,taught"`: only the shapes whose names contain a part (as in
+    // the bench).
+    let only = std::env::var("SCALING_SHAPES").unwrap_or_default();
+    let wanted = |s: Shape| only.is_empty() || only.split(',').any(|p| s.name().contains(p.trim()));
+    for shape in Shape::ALL
+        .into_iter()
+        .filter(|&s| s != Shape::NoMotions && wanted(s))
+    {
         let max = max_for(shape);
         let small = tempfile::tempdir().unwrap();
         let large = tempfile::tempdir().unwrap();

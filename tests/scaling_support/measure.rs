@@ -35,7 +35,7 @@ impl Run {
 }
 
 /// Run `bin args` in `cwd`, output discarded; `None` when it was still running after `limit`
-/// (it is killed then).
+/// (it is killed then). Panics when krlkit dies of a signal (a crash).
 pub fn measure(bin: &Path, args: &[String], cwd: &Path, limit: Duration) -> Option<Run> {
     let start = Instant::now();
     let mut command = Command::new(bin);
@@ -68,6 +68,15 @@ pub fn measure(bin: &Path, args: &[String], cwd: &Path, limit: Duration) -> Opti
         }
         std::thread::sleep(Duration::from_millis(5));
     }
+    // A crash is no measurement: a stack overflow on a deep call chain aborted in a few
+    // milliseconds and read as the fastest run of all.
+    assert!(
+        timed_out || !libc::WIFSIGNALED(status),
+        "krlkit {} in {} was killed by signal {}",
+        args.join(" "),
+        cwd.display(),
+        libc::WTERMSIG(status)
+    );
     let wall = start.elapsed().as_secs_f64();
     let secs = |t: libc::timeval| t.tv_sec as f64 + t.tv_usec as f64 / 1e6;
     (!timed_out).then(|| Run {

@@ -7,7 +7,11 @@
 //! (`run` would wait for the vision server: it has no such row); taught points, routines
 //! moving to the `.dat`'s E6POS declarations; and no motions, routines that compute and branch
 //! but never move, so `run` executes the whole file (`run` stops a program at 50,000 motions,
-//! which the other shapes reach long before their end at 10 MB and up).
+//! which the other shapes reach long before their end at 10 MB and up); and a call chain,
+//! routines each calling the next, only the deepest one moving (what is known of a routine
+//! then depends on every routine below it: an analysis that settles one level per sweep over
+//! all routines is quadratic here, and a recursive one is as deep as the chain; `run` stops at
+//! the controller's call depth, so it has no row).
 
 use std::fmt::Write as _;
 use std::path::{Path, PathBuf};
@@ -26,10 +30,12 @@ pub enum Shape {
     TaughtPoints,
     /// Many routines that compute, loop and branch but never move (`run` runs all of it).
     NoMotions,
+    /// Many routines, each calling the next; only the last one moves.
+    CallChain,
 }
 
 impl Shape {
-    pub const ALL: [Shape; 7] = [
+    pub const ALL: [Shape; 8] = [
         Shape::OneRoutine,
         Shape::ManyRoutines,
         Shape::ManyFiles,
@@ -37,6 +43,7 @@ impl Shape {
         Shape::MmManyRoutines,
         Shape::TaughtPoints,
         Shape::NoMotions,
+        Shape::CallChain,
     ];
 
     pub fn name(self) -> &'static str {
@@ -48,12 +55,20 @@ impl Shape {
             Shape::MmManyRoutines => "MM calls, many routines",
             Shape::TaughtPoints => "taught points",
             Shape::NoMotions => "no motions",
+            Shape::CallChain => "call chain",
         }
     }
 
     /// Calls the vision server at every step (`run` would wait for it).
     pub fn calls_vision(self) -> bool {
         matches!(self, Shape::MmOneRoutine | Shape::MmManyRoutines)
+    }
+
+    /// `krlkit run` can execute it (it calls no vision server, and its calls nest no deeper
+    /// than a controller's).
+    #[allow(dead_code)] // the bench's question; the guard runs no `run`
+    pub fn runs(self) -> bool {
+        !self.calls_vision() && self != Shape::CallChain
     }
 }
 
@@ -71,6 +86,7 @@ pub fn write(shape: Shape, bytes: usize, dir: &Path) -> (PathBuf, Option<PathBuf
         Shape::MmOneRoutine => std::fs::write(&main, mm_one_routine(bytes)).unwrap(),
         Shape::MmManyRoutines => std::fs::write(&main, mm_many_routines(bytes)).unwrap(),
         Shape::NoMotions => std::fs::write(&main, no_motions(bytes)).unwrap(),
+        Shape::CallChain => std::fs::write(&main, call_chain(bytes)).unwrap(),
         Shape::TaughtPoints => {
             let (src, dat) = taught_points(bytes);
             std::fs::write(&main, src).unwrap();
@@ -281,6 +297,36 @@ pub fn no_motions(bytes: usize) -> String {
         writeln!(s, "  main_calc_{k}({})\r", k % 20 + 1).unwrap();
     }
     s.push_str("END\r\n");
+    vision_routine(&mut s, "main");
+    s.push_str(&body);
+    s
+}
+
+/// A module of about `bytes` whose main routine calls the first of a chain of routines, each
+/// of which computes and then calls the next; only the last one moves and starts a vision job
+/// (so whether a routine moves, where the robot is and which `MM_` calls have run after it are
+/// known only from the bottom of the chain).
+pub fn call_chain(bytes: usize) -> String {
+    let mut body = String::new();
+    let mut k = 0;
+    while body.len() < bytes {
+        write!(
+            body,
+            "\r\nDEF main_step_{k}(count:IN)\r\n  DECL INT count, i, total\r\n  ; Step {k}: count the layers, then the next step\r\n  total = 0\r\n  FOR i = 1 TO count\r\n    total = total + i * {}\r\n  ENDFOR\r\n  IF total > {} THEN\r\n    $OUT[{}] = TRUE\r\n  ENDIF\r\n  main_step_{}(count)\r\nEND\r\n",
+            k % 7 + 1,
+            k % 90,
+            k % 64 + 1,
+            k + 1,
+        )
+        .unwrap();
+        k += 1;
+    }
+    write!(
+        body,
+        "\r\nDEF main_step_{k}(count:IN)\r\n  DECL INT count\r\n  PTP {{A1 0.0, A2 -90.0, A3 90.0, A4 0.0, A5 0.0, A6 0.0}}\r\n  MM_Start_Vis(1, 0, 0, $AXIS_ACT)\r\nEND\r\n"
+    )
+    .unwrap();
+    let mut s = String::from("&ACCESS RVP\r\n&REL 1\r\nDEF main()\r\n  main_step_0(3)\r\nEND\r\n");
     vision_routine(&mut s, "main");
     s.push_str(&body);
     s
