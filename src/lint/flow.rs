@@ -597,6 +597,78 @@ fn analysis_order(
     order
 }
 
+/// Summarises, callees first, every routine of the file whose calls reach no cycle of calls,
+/// so that a summary's walk finds its callees' summaries made: on a chain of calls thousands of
+/// routines deep the lazy summaries recursed once per level (~5 KB of stack each: 370 MB and
+/// 1.8 s at 78,000 levels). Such a summary depends on its callees' alone, so making it early
+/// changes nothing; a routine that reaches a cycle (recursion) is left to be summarised when
+/// first asked, as before, since there the first asked decides what the cycle's members see.
+fn summarise_bottom_up(sh: &Shared) {
+    #[derive(Clone, Copy, PartialEq)]
+    enum Mark {
+        New,
+        Open,
+        Done,
+    }
+    let n = sh.routines.len();
+    let callees: Vec<Vec<usize>> = sh
+        .routines
+        .iter()
+        .map(|r| {
+            let mut c = Vec::new();
+            walk::each_stmt(&r.body, &mut |s| {
+                if let StmtKind::Call { name, .. } = &s.kind
+                    && sh.ctx.mm_call(name).is_none()
+                    && let Some(k) = sh.local_routine(name)
+                {
+                    c.push(k);
+                }
+            });
+            c
+        })
+        .collect();
+    // Depth first, without recursion: a routine is finished after its callees. It reaches a
+    // cycle when a call leads back to a routine still open (on the stack), when a callee
+    // reaches one, or when a routine it opened does.
+    let mut mark = vec![Mark::New; n];
+    let mut cyclic = vec![false; n];
+    let mut finished = Vec::with_capacity(n);
+    let mut stack: Vec<(usize, usize)> = Vec::new();
+    for root in 0..n {
+        if mark[root] != Mark::New {
+            continue;
+        }
+        mark[root] = Mark::Open;
+        stack.push((root, 0));
+        while let Some((k, next)) = stack.last_mut() {
+            let k = *k;
+            if let Some(&c) = callees[k].get(*next) {
+                *next += 1;
+                match mark[c] {
+                    Mark::New => {
+                        mark[c] = Mark::Open;
+                        stack.push((c, 0));
+                    }
+                    Mark::Open => cyclic[k] = true,
+                    Mark::Done => cyclic[k] |= cyclic[c],
+                }
+            } else {
+                stack.pop();
+                mark[k] = Mark::Done;
+                if let Some((parent, _)) = stack.last() {
+                    cyclic[*parent] |= cyclic[k];
+                }
+                finished.push(k);
+            }
+        }
+    }
+    for k in finished {
+        if !cyclic[k] && !callees[k].is_empty() {
+            sh.summary(k);
+        }
+    }
+}
+
 /// Analyse every user routine of the file.
 pub fn analyze(ctx: &FileCtx) -> FlowResult {
     let mut result = FlowResult::default();
@@ -639,6 +711,7 @@ pub fn analyze(ctx: &FileCtx) -> FlowResult {
             }
         });
     }
+    summarise_bottom_up(&sh);
     let mut done: FxHashSet<usize> = FxHashSet::default();
     let mut entries: FxHashMap<usize, State> = FxHashMap::default();
     let is_dat = ctx.sema.file(ctx.id).kind == crate::sema::FileKind::Dat;
