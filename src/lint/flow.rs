@@ -603,7 +603,14 @@ fn analysis_order(
 /// 1.8 s at 78,000 levels). Such a summary depends on its callees' alone, so making it early
 /// changes nothing; a routine that reaches a cycle (recursion) is left to be summarised when
 /// first asked, as before, since there the first asked decides what the cycle's members see.
-fn summarise_bottom_up(sh: &Shared) {
+///
+/// `local_calls` holds the local callees of the `analysed` routines; the others' calls are read
+/// here (a call that is never summarised only makes a routine count as reaching more).
+fn summarise_bottom_up(
+    sh: &Shared,
+    analysed: &[usize],
+    local_calls: &FxHashMap<usize, FxHashSet<usize>>,
+) {
     #[derive(Clone, Copy, PartialEq)]
     enum Mark {
         New,
@@ -611,14 +618,23 @@ fn summarise_bottom_up(sh: &Shared) {
         Done,
     }
     let n = sh.routines.len();
+    let mut read = vec![false; n];
+    for &k in analysed {
+        read[k] = true;
+    }
     let callees: Vec<Vec<usize>> = sh
         .routines
         .iter()
-        .map(|r| {
+        .enumerate()
+        .map(|(k, r)| {
+            if read[k] {
+                return local_calls
+                    .get(&k)
+                    .map_or(Vec::new(), |c| c.iter().copied().collect());
+            }
             let mut c = Vec::new();
             walk::each_stmt(&r.body, &mut |s| {
                 if let StmtKind::Call { name, .. } = &s.kind
-                    && sh.ctx.mm_call(name).is_none()
                     && let Some(k) = sh.local_routine(name)
                 {
                     c.push(k);
@@ -662,8 +678,14 @@ fn summarise_bottom_up(sh: &Shared) {
             }
         }
     }
+    // A routine no routine calls is never asked for its summary; one that calls nothing is made
+    // at its caller's, as deep as that.
+    let mut called = vec![false; n];
+    for &c in callees.iter().flatten() {
+        called[c] = true;
+    }
     for k in finished {
-        if !cyclic[k] && !callees[k].is_empty() {
+        if !cyclic[k] && called[k] && !callees[k].is_empty() {
             sh.summary(k);
         }
     }
@@ -711,7 +733,7 @@ pub fn analyze(ctx: &FileCtx) -> FlowResult {
             }
         });
     }
-    summarise_bottom_up(&sh);
+    summarise_bottom_up(&sh, &routines, &callees);
     let mut done: FxHashSet<usize> = FxHashSet::default();
     let mut entries: FxHashMap<usize, State> = FxHashMap::default();
     let is_dat = ctx.sema.file(ctx.id).kind == crate::sema::FileKind::Dat;
