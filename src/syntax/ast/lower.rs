@@ -847,9 +847,16 @@ impl<'t> Cx<'t> {
                 })
             })
             .collect();
+        // `GLOBAL` and `CONST` in one walk over the line's keywords.
+        let (mut global, mut constant) = (false, false);
+        for t in node.tokens().filter(|t| t.kind == T::Keyword) {
+            let w = t.text(self.text);
+            global |= w.eq_ignore_ascii_case("GLOBAL");
+            constant |= w.eq_ignore_ascii_case("CONST");
+        }
         Decl {
-            global: node.has_keyword(self.text, "GLOBAL"),
-            constant: node.has_keyword(self.text, "CONST"),
+            global,
+            constant,
             ty,
             vars,
             span: node.span,
