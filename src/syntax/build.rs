@@ -251,6 +251,23 @@ pub(crate) fn standalone<'t>(
 /// Lex bytes the grammar matched silently: blanks, punctuation, inline keywords.
 pub(crate) fn gap_tokens(text: &str, start: usize, end: usize, out: &mut Vec<Child>) {
     let bytes = text.as_bytes();
+    // The usual gap: one blank or one punctuation byte (`a, b`, `f(`).
+    if end == start + 1 {
+        let b = bytes[start];
+        let kind = match b {
+            b' ' | b'\t' | 0x0B | 0x0C => Some(TokenKind::Whitespace),
+            _ if b.is_ascii_alphanumeric() || b == b'_' || b == b'$' => Some(TokenKind::Keyword),
+            _ if b < 0x80 => Some(TokenKind::Punct),
+            _ => None,
+        };
+        if let Some(kind) = kind {
+            out.push(Child::Token(Token {
+                kind,
+                span: Span::new(start, end),
+            }));
+            return;
+        }
+    }
     let mut i = start;
     while i < end {
         let b = bytes[i];

@@ -165,6 +165,16 @@ pub(crate) fn is_upper(upper: &[u8], roles: u16) -> bool {
     roles_upper(upper).is_some_and(|r| r & roles != 0)
 }
 
+/// Whether a word starting with `first` (any case) can be a [`RESERVED`] word: most names
+/// are answered without looking the word up (a test keeps this equal to the table).
+#[inline]
+pub(crate) fn may_be_reserved(first: u8) -> bool {
+    matches!(
+        first.to_ascii_uppercase(),
+        b'A' | b'B' | b'D' | b'E' | b'N' | b'O' | b'S' | b'T' | b'W'
+    )
+}
+
 /// The roles of the keyword spelled `word` in any case.
 #[inline]
 pub(crate) fn roles(word: &[u8]) -> Option<u16> {
@@ -281,6 +291,19 @@ mod tests {
                     || rule("motion_kw").contains(w)
                     || rule("approx").contains(w),
                 "{w} is in no grammar rule"
+            );
+        }
+    }
+
+    #[test]
+    fn reserved_words_start_with_the_letters_the_prefilter_lets_through() {
+        let firsts: BTreeSet<u8> = with(RESERVED).iter().map(|w| w.as_bytes()[0]).collect();
+        for b in 0..=255u8 {
+            assert_eq!(
+                may_be_reserved(b),
+                firsts.contains(&b.to_ascii_uppercase()),
+                "{:?}",
+                b as char
             );
         }
     }

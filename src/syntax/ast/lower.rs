@@ -403,16 +403,19 @@ impl<'t> Cx<'t> {
 
     fn stmt_kind(&self, node: Node) -> Option<StmtKind> {
         let text = self.text;
-        let sig: Elements = node.significant().collect();
+        // Collected only by the statements that look at their elements by position (a block,
+        // an assignment and a declaration walk their children once, as they need them).
+        let sig = || -> Elements { node.significant().collect() };
         let exprs = || self.each_expr(node);
         let first_expr = || exprs().next();
         let other = || StmtKind::Other {
             text: node.text(text).trim_end().to_string(),
         };
         // A block whose header line did not parse: keep it visible as an error statement.
-        if let Some(head) = node.nodes().next()
+        // (Only blocks hold lines: the parser makes `Error` nodes of lines alone.)
+        if is_block(node.kind)
+            && let Some(head) = node.nodes().next()
             && head.kind == K::Error
-            && node.kind != K::Error
         {
             return Some(StmtKind::Error {
                 text: head.text(text).trim().to_string(),
@@ -574,6 +577,7 @@ impl<'t> Cx<'t> {
                 }
             }
             K::CallStmt => {
+                let sig = sig();
                 let name = sig
                     .first()
                     .and_then(|e| e.as_token())
@@ -590,7 +594,7 @@ impl<'t> Cx<'t> {
                     StmtKind::Call { name, args }
                 }
             }
-            K::MotionStmt => StmtKind::Motion(self.motion(node, &sig)?),
+            K::MotionStmt => StmtKind::Motion(self.motion(node, &sig())?),
             K::WaitForStmt => StmtKind::WaitFor {
                 cond: first_expr()?,
             },
@@ -625,7 +629,7 @@ impl<'t> Cx<'t> {
                 TimeBlock::End(first_expr())
             }),
             K::InterruptCtl => {
-                let action = sig.iter().skip(1).find_map(|e| {
+                let action = sig().iter().skip(1).find_map(|e| {
                     Some(match self.kw(e)?.as_str() {
                         "ON" => InterruptAction::On,
                         "OFF" => InterruptAction::Off,
@@ -739,6 +743,7 @@ impl<'t> Cx<'t> {
                     .find(|t| t.kind == T::Ident)
                     .map(|t| self.ident(t))?;
                 // The name token is also an expression-shaped child; skip it.
+                let sig = sig();
                 let mut e = sig
                     .iter()
                     .skip_while(|e| !matches!(e, Element::Token(t) if t.kind == T::Ident))
@@ -754,7 +759,7 @@ impl<'t> Cx<'t> {
                 }))
             }
             K::ChannelDecl => {
-                let ids: Vec<Element> = sig.iter().copied().filter(|e| is_expr(e)).collect();
+                let ids: Vec<Element> = sig().iter().copied().filter(|e| is_expr(e)).collect();
                 let name = ids
                     .first()
                     .and_then(|e| e.as_token())
@@ -771,7 +776,7 @@ impl<'t> Cx<'t> {
                 }))
             }
             K::ExtDecl => {
-                let kind = match sig.iter().find_map(|e| self.kw(e)).as_deref() {
+                let kind = match sig().iter().find_map(|e| self.kw(e)).as_deref() {
                     Some("EXTP") => ExtKind::Extp,
                     Some("EXTFCT") => ExtKind::Extfct,
                     Some("EXTFCTP") => ExtKind::Extfctp,
@@ -842,9 +847,16 @@ impl<'t> Cx<'t> {
                 })
             })
             .collect();
+        // `GLOBAL` and `CONST` in one walk over the line's keywords.
+        let (mut global, mut constant) = (false, false);
+        for t in node.tokens().filter(|t| t.kind == T::Keyword) {
+            let w = t.text(self.text);
+            global |= w.eq_ignore_ascii_case("GLOBAL");
+            constant |= w.eq_ignore_ascii_case("CONST");
+        }
         Decl {
-            global: node.has_keyword(self.text, "GLOBAL"),
-            constant: node.has_keyword(self.text, "CONST"),
+            global,
+            constant,
             ty,
             vars,
             span: node.span,
@@ -864,7 +876,8 @@ impl<'t> Cx<'t> {
 
     fn approx(&self, node: Node) -> Option<Approx> {
         node.tokens()
-            .filter(|t| t.kind == T::Keyword)
+            // Every approximation keyword is `C_` and three letters.
+            .filter(|t| t.kind == T::Keyword && t.span.len() == 5)
             .find_map(|t| match upper(t.text(self.text)).as_str() {
                 "C_PTP" => Some(Approx::Ptp),
                 "C_DIS" => Some(Approx::Dis),
@@ -877,8 +890,12 @@ impl<'t> Cx<'t> {
 
     fn motion(&self, node: Node, sig: &[Element]) -> Option<Motion> {
         let kw = self.kw(sig.first()?)?;
-        let relative = kw.ends_with("_REL");
-        let kind = match kw.trim_end_matches("_REL") {
+        // A motion keyword has at most one `_REL`.
+        let (kw, relative) = match kw.strip_suffix("_REL") {
+            Some(k) => (k, true),
+            None => (kw.as_str(), false),
+        };
+        let kind = match kw {
             "PTP" => MotionKind::Ptp,
             "LIN" => MotionKind::Lin,
             "CIRC" => MotionKind::Circ,
@@ -898,7 +915,9 @@ impl<'t> Cx<'t> {
                 prev_sep = true;
                 continue;
             }
-            if self.kw(el).as_deref() == Some("CA") {
+            if matches!(el, Element::Token(t) if t.kind == T::Keyword
+                && t.text(self.text).eq_ignore_ascii_case("CA"))
+            {
                 prev_ca = true;
                 continue;
             }
@@ -945,6 +964,26 @@ impl<'t> Cx<'t> {
     }
 }
 
+/// Whether nodes of `kind` hold lines (blocks, routines, data lists).
+fn is_block(kind: K) -> bool {
+    matches!(
+        kind,
+        K::SourceFile
+            | K::Routine
+            | K::DatModule
+            | K::IfBlock
+            | K::ForBlock
+            | K::WhileBlock
+            | K::RepeatBlock
+            | K::LoopBlock
+            | K::SwitchBlock
+            | K::CaseBlock
+            | K::DefaultBlock
+            | K::SplineBlock
+            | K::SkipBlock
+    )
+}
+
 /// The lines between a block's header and its end line.
 fn inner<'l, 'a>(lines: &'l [Node<'a>], end: K) -> &'l [Node<'a>] {
     if lines.is_empty() {
@@ -959,23 +998,27 @@ fn inner<'l, 'a>(lines: &'l [Node<'a>], end: K) -> &'l [Node<'a>] {
 }
 
 fn binary_op(op: &str) -> BinaryOp {
+    // The symbols as they are; only the operator words need upper-casing.
+    match op {
+        ":" => return BinaryOp::Geo,
+        "*" => return BinaryOp::Mul,
+        "/" => return BinaryOp::Div,
+        "+" => return BinaryOp::Add,
+        "-" => return BinaryOp::Sub,
+        "==" => return BinaryOp::Eq,
+        "<>" => return BinaryOp::Ne,
+        "<" => return BinaryOp::Lt,
+        ">" => return BinaryOp::Gt,
+        "<=" => return BinaryOp::Le,
+        _ => {}
+    }
     match upper(op).as_str() {
-        ":" => BinaryOp::Geo,
-        "*" => BinaryOp::Mul,
-        "/" => BinaryOp::Div,
-        "+" => BinaryOp::Add,
-        "-" => BinaryOp::Sub,
         "AND" => BinaryOp::And,
         "B_AND" => BinaryOp::BAnd,
         "OR" => BinaryOp::Or,
         "B_OR" => BinaryOp::BOr,
         "EXOR" => BinaryOp::Exor,
         "B_EXOR" => BinaryOp::BExor,
-        "==" => BinaryOp::Eq,
-        "<>" => BinaryOp::Ne,
-        "<" => BinaryOp::Lt,
-        ">" => BinaryOp::Gt,
-        "<=" => BinaryOp::Le,
         _ => BinaryOp::Ge,
     }
 }

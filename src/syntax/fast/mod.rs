@@ -59,8 +59,20 @@ const MAX_ITEMS: usize = 1024;
 
 #[inline]
 fn is_idc(b: u8) -> bool {
-    b.is_ascii_alphanumeric() || b == b'_' || b == b'$'
+    IDC[b as usize]
 }
+
+/// [`is_idc`] as a table (every word of a line is scanned with it).
+static IDC: [bool; 256] = {
+    let mut t = [false; 256];
+    let mut i = 0;
+    while i < 256 {
+        let b = i as u8;
+        t[i] = b.is_ascii_alphanumeric() || b == b'_' || b == b'$';
+        i += 1;
+    }
+    t
+};
 
 /// Binding powers as in `line.rs`'s Pratt table (relative order is all that matters).
 const PREFIX_BP: u8 = 70;
@@ -132,10 +144,11 @@ impl<'t> P<'t, '_> {
 
     #[inline]
     fn word_len(&self) -> usize {
-        self.b[self.pos..self.end]
-            .iter()
-            .take_while(|c| is_idc(**c))
-            .count()
+        let mut i = self.pos;
+        while i < self.end && is_idc(self.b[i]) {
+            i += 1;
+        }
+        i - self.pos
     }
 
     /// The word at the cursor, upper-cased (not consumed).
@@ -225,8 +238,11 @@ impl<'t> P<'t, '_> {
             return None;
         }
         let n = self.word_len();
-        // Reserved words have at most 6 letters.
-        if n <= 6 && words::is(&self.b[self.pos..self.pos + n], words::RESERVED) {
+        // Reserved words have at most 6 letters, and only a few first letters.
+        if n <= 6
+            && words::may_be_reserved(first)
+            && words::is(&self.b[self.pos..self.pos + n], words::RESERVED)
+        {
             return None;
         }
         let start = self.pos;

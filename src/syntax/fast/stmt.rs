@@ -3,13 +3,13 @@
 
 use super::super::cst::{Child, NodeKind};
 use super::super::words;
-use super::{P, is_idc};
+use super::{P, Upper, is_idc};
 use crate::diag::Span;
 
 impl P<'_, '_> {
     pub(super) fn line(&mut self, start: usize) -> Option<NodeKind> {
         let n = self.word_len();
-        let word = self.upper_word();
+        let word = Upper::of(&self.b[self.pos..self.pos + n]);
         let upper = word.as_bytes();
         // `name:` alone is a label (the grammar tries labels first); other lines whose first
         // word is followed by a colon are left to the grammar, except `CHANNEL :…`.
