@@ -394,7 +394,11 @@ impl<'p> Lower<'p> {
 
     /// The variable `name` as seen from here, if the program declares it.
     pub(super) fn var(&self, name: &str) -> Option<VarId> {
-        let name = self.vars.name(&upper(name))?;
+        let mut buf = [0u8; 64];
+        let name = match upper_into(name, &mut buf) {
+            Some(key) => self.vars.name(key),
+            None => self.vars.name(&upper(name)),
+        }?;
         if let Some(rt) = &self.rt
             && let Some(scope) = rt.scope
             && let Some(v) = self.vars.at(scope, name)
@@ -1156,6 +1160,15 @@ fn upper(name: &str) -> CompactString {
     key
 }
 
+/// [`upper`] in `buf` (the name looked up most, at every use of a variable: no string
+/// made), `None` when it does not fit.
+fn upper_into<'b>(name: &str, buf: &'b mut [u8; 64]) -> Option<&'b str> {
+    let b = buf.get_mut(..name.len())?;
+    b.copy_from_slice(name.as_bytes());
+    b.make_ascii_uppercase();
+    std::str::from_utf8(b).ok()
+}
+
 /// Upper-case name → the first of `routines` of that name.
 fn index_routines(routines: &[Routine]) -> FxHashMap<String, RoutineId> {
     let mut ids = FxHashMap::default();
@@ -1170,7 +1183,10 @@ fn index_routines(routines: &[Routine]) -> FxHashMap<String, RoutineId> {
 pub(super) fn first_line(text: &str, span: Span) -> Span {
     let start = span.start as usize;
     let rest = text.get(start..span.end as usize).unwrap_or("");
-    let len = rest.find(['\n', '\r']).unwrap_or(rest.len());
+    let len = rest
+        .bytes()
+        .position(|b| b == b'\n' || b == b'\r')
+        .unwrap_or(rest.len());
     Span::new(start, start + len)
 }
 
