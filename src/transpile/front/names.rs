@@ -146,13 +146,12 @@ impl Namespace {
         rules: &NameRules,
         spellings: Option<&mut Spellings>,
     ) -> (CompactString, Option<Renamed>) {
-        // A name asked again is looked up upper-cased on the stack (names fit inline: its
-        // target name costs no allocation either).
-        if let Some(t) = self.lookup(krl) {
-            return (t.clone(), None);
-        }
         let mut key = CompactString::from(krl);
         key.make_ascii_uppercase();
+        // Names fit inline: a name asked again costs no allocation.
+        if let Some(t) = self.map.get(&key) {
+            return (t.clone(), None);
+        }
         let (mut target, mut reasons) = match spellings {
             Some(s) => s.spell(&key, rules),
             None => {
@@ -188,20 +187,9 @@ impl Namespace {
 
     /// The target name already assigned to `krl`, if any.
     pub fn get(&self, krl: &str) -> Option<&str> {
-        self.lookup(krl).map(CompactString::as_str)
-    }
-
-    /// The target name of `krl`, looked up by its upper-case form made on the stack.
-    fn lookup(&self, krl: &str) -> Option<&CompactString> {
-        let mut buf = [0u8; 64];
-        match upper_into(krl, &mut buf) {
-            Some(key) => self.map.get(key),
-            None => {
-                let mut key = CompactString::from(krl);
-                key.make_ascii_uppercase();
-                self.map.get(&key)
-            }
-        }
+        let mut key = CompactString::from(krl);
+        key.make_ascii_uppercase();
+        self.map.get(&key).map(CompactString::as_str)
     }
 
     /// A name the translator needs (`base`, else `base2`, `base3`, …) that no KRL name uses.
@@ -244,15 +232,6 @@ impl Namespace {
             }
         }
     }
-}
-
-/// `krl` upper-cased in `buf` (a lookup key made without a string), `None` when it does not
-/// fit.
-fn upper_into<'b>(krl: &str, buf: &'b mut [u8; 64]) -> Option<&'b str> {
-    let b = buf.get_mut(..krl.len())?;
-    b.copy_from_slice(krl.as_bytes());
-    b.make_ascii_uppercase();
-    std::str::from_utf8(b).ok()
 }
 
 /// The target spellings of names asked before ([`target_name`] of the upper-case name: it is

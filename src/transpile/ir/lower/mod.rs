@@ -394,11 +394,7 @@ impl<'p> Lower<'p> {
 
     /// The variable `name` as seen from here, if the program declares it.
     pub(super) fn var(&self, name: &str) -> Option<VarId> {
-        let mut buf = [0u8; 64];
-        let name = match upper_into(name, &mut buf) {
-            Some(key) => self.vars.name(key),
-            None => self.vars.name(&upper(name)),
-        }?;
+        let name = self.vars.name(&upper(name))?;
         if let Some(rt) = &self.rt
             && let Some(scope) = rt.scope
             && let Some(v) = self.vars.at(scope, name)
@@ -1158,15 +1154,6 @@ fn upper(name: &str) -> CompactString {
     let mut key = CompactString::from(name);
     key.make_ascii_uppercase();
     key
-}
-
-/// [`upper`] in `buf` (the name looked up most, at every use of a variable: no string
-/// made), `None` when it does not fit.
-fn upper_into<'b>(name: &str, buf: &'b mut [u8; 64]) -> Option<&'b str> {
-    let b = buf.get_mut(..name.len())?;
-    b.copy_from_slice(name.as_bytes());
-    b.make_ascii_uppercase();
-    std::str::from_utf8(b).ok()
 }
 
 /// Upper-case name → the first of `routines` of that name.
