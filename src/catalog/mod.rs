@@ -206,10 +206,19 @@ pub struct Param {
     pub status: bool,
 }
 
+/// `name` without trailing `[]`s (as `trim_end_matches("[]")`, without a substring search:
+/// the translation asks for every `MM_*` argument).
+fn bare(mut name: &str) -> &str {
+    while let Some(n) = name.strip_suffix("[]") {
+        name = n;
+    }
+    name
+}
+
 impl Param {
     /// The name without a trailing `[]`.
     pub fn ident(&self) -> &str {
-        self.name.trim_end_matches("[]")
+        bare(&self.name)
     }
 
     pub fn is_array(&self) -> bool {
@@ -351,7 +360,7 @@ impl Subprogram {
     pub fn param(&self, name: &str) -> Option<&Param> {
         self.params
             .iter()
-            .find(|p| p.ident().eq_ignore_ascii_case(name.trim_end_matches("[]")))
+            .find(|p| p.ident().eq_ignore_ascii_case(bare(name)))
     }
 
     /// The KRL signature as the seed prints it, e.g. `MM_Get_Status(MM_Status:OUT)`.

@@ -46,6 +46,17 @@ impl Py {
             self.text.clone()
         }
     }
+
+    /// [`Py::at`] written at the end of `out`.
+    fn push_at(&self, out: &mut String, min: u8) {
+        if self.prec < min {
+            out.push('(');
+            out.push_str(&self.text);
+            out.push(')');
+        } else {
+            out.push_str(&self.text);
+        }
+    }
 }
 
 /// An assignment target in Python.
@@ -182,7 +193,12 @@ impl<'a> Tx<'a> {
         } else {
             (prec, prec + 1)
         };
-        let text = format!("{} {sym} {}", l.at(lmin), r.at(rmin));
+        let mut text = String::with_capacity(l.text.len() + sym.len() + r.text.len() + 6);
+        l.push_at(&mut text, lmin);
+        text.push(' ');
+        text.push_str(sym);
+        text.push(' ');
+        r.push_at(&mut text, rmin);
         if op == BinaryOp::IntDiv {
             // KRL divides integers with truncation towards zero; Python's / is real division.
             return Ok(Py::atom(format!("int({text})")));

@@ -44,22 +44,22 @@ impl<'a> Tx<'a> {
             OutPlace::Out(i) => {
                 let p = self.port(fx.output_offset, i)?;
                 let v = self.bool_value(value)?;
-                self.line(format!("set_out({}, {v})", p.text));
+                self.line_fmt(format_args!("set_out({}, {v})", p.text));
             }
             OutPlace::Flag(i) => {
                 let i = self.expr(i)?;
                 let v = self.expr(value)?;
-                self.line(format!("FLAG[{i}] = {v}"));
+                self.line_fmt(format_args!("FLAG[{i}] = {v}"));
             }
             OutPlace::Signal(r) => {
                 let r = r.range();
                 let first = self.first_port(r);
                 if r.width() == 1 {
                     let v = self.bool_value(value)?;
-                    self.line(format!("set_out({first}, {v})"));
+                    self.line_fmt(format_args!("set_out({first}, {v})"));
                 } else {
                     let v = self.expr(value)?;
-                    self.line(format!("set_out_bits({first}, {}, {v})", r.width()));
+                    self.line_fmt(format_args!("set_out_bits({first}, {}, {v})", r.width()));
                 }
             }
         }
@@ -96,9 +96,9 @@ impl<'a> Tx<'a> {
         } else {
             ("False", "True")
         };
-        self.line(format!("set_out({port}, {a})"));
-        self.line(format!("time.sleep({t})"));
-        self.line(format!("set_out({port}, {b})"));
+        self.line_fmt(format_args!("set_out({port}, {a})"));
+        self.line_fmt(format_args!("time.sleep({t})"));
+        self.line_fmt(format_args!("set_out({port}, {b})"));
         Ok(())
     }
 
@@ -108,11 +108,11 @@ impl<'a> Tx<'a> {
         match op {
             TimerOp::Set(v) => {
                 let v = self.expr(v)?;
-                self.line(format!("timer_set({i}, {v})"));
+                self.line_fmt(format_args!("timer_set({i}, {v})"));
             }
             TimerOp::Stop(v) => {
                 let v = self.bool_value(v)?;
-                self.line(format!("timer_stop({i}, {v})"));
+                self.line_fmt(format_args!("timer_stop({i}, {v})"));
             }
         }
         Ok(())
@@ -124,7 +124,7 @@ impl<'a> Tx<'a> {
         match w {
             Wait::Seconds(t) => {
                 let t = self.expr(t)?;
-                self.line(format!("time.sleep({t})"));
+                self.line_fmt(format_args!("time.sleep({t})"));
             }
             Wait::Poll => self.line("time.sleep(POLL)"),
             Wait::Until(cond) => {
@@ -143,7 +143,7 @@ impl<'a> Tx<'a> {
                         }
                     }
                 };
-                self.line(format!("while {test}:"));
+                self.line_fmt(format_args!("while {test}:"));
                 self.line("    time.sleep(POLL)");
             }
         }
@@ -162,7 +162,7 @@ impl<'a> Tx<'a> {
             "HALT waits for Enter at the console (there is no teach pendant); without a console the script stops the robot and ends",
             "run the script in a terminal, or handle the stop in Python",
         );
-        self.line(format!("halt({})", super::format::string(&at)));
+        self.line_fmt(format_args!("halt({})", super::format::string(&at)));
         Ok(())
     }
 }

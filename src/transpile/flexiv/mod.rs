@@ -329,10 +329,11 @@ impl<'a> Tx<'a> {
             return;
         };
         rt.has_code |= has_code(&self.out.lines);
-        for l in self.out.lines.drain(..) {
-            rt.body.push_str(&l);
+        let n = self.out.lines.len();
+        self.out.drain_lines(n, |l| {
+            rt.body.push_str(l);
             rt.body.push('\n');
-        }
+        });
     }
 
     /// Locals start with their type's zero value (KRL leaves them undefined; Python needs a
@@ -345,7 +346,7 @@ impl<'a> Tx<'a> {
             let ty = self.ir.var(*v).ty.clone();
             if let Some(value) = self.zero_value(&ty, dims) {
                 let (n, _) = self.var_name(*v, self.ir.var(*v).decl);
-                self.line(format!("{n} = {value}"));
+                self.line_fmt(format_args!("{n} = {value}"));
             }
         }
     }
@@ -571,7 +572,7 @@ impl crate::transpile::Renderer for Tx<'_> {
         }
         rt.body.insert_str(rt.defaults_at, &text);
         if !rt.outs.is_empty() && rt.kind == RoutineKind::Def && !rt.last_op_is_return {
-            self.line(format!("return {}", rt.outs.join(", ")));
+            self.line_fmt(format_args!("return {}", rt.outs.join(", ")));
         }
         if !rt.has_code && !has_code(&self.out.lines) {
             self.line("pass");

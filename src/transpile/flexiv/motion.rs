@@ -142,7 +142,7 @@ impl<'a> Tx<'a> {
                 let z = self.zone_for(m, span)?;
                 self.speed_never_set(m, span);
                 let vel = self.with_speed(m, MotionParam::VelCp, "vel");
-                self.line(format!("move_l({t}{}{vel})", zone_arg(z)));
+                self.line_fmt(format_args!("move_l({t}{}{vel})", zone_arg(z)));
                 Ok(())
             }
             Path::Joint { to, .. } if !to.joints => {
@@ -156,12 +156,12 @@ impl<'a> Tx<'a> {
                             "PTP to a pose becomes MoveL: the path is a straight line (KUKA interpolates the axes) and the speed is $VEL.CP (KRL.vel_cp, m/s), not the PTP percentage",
                             "check the path for collisions, or use --ptp moveptp if the robot's software has MovePTP",
                         );
-                        self.line(format!("move_l({t}{})", zone_arg(z)));
+                        self.line_fmt(format_args!("move_l({t}{})", zone_arg(z)));
                     }
                     super::PtpPrimitive::MovePtp => {
                         self.speed_never_set(m, span);
                         let vel = self.with_speed(m, MotionParam::VelPtp, "vel");
-                        self.line(format!("move_ptp({t}{}{vel})", zone_arg(z)));
+                        self.line_fmt(format_args!("move_ptp({t}{}{vel})", zone_arg(z)));
                     }
                 }
                 Ok(())
@@ -183,7 +183,7 @@ impl<'a> Tx<'a> {
                 );
                 self.speed_never_set(m, span);
                 let vel = self.with_speed(m, MotionParam::VelPtp, "vel");
-                self.line(format!("move_j({t}{vel})"));
+                self.line_fmt(format_args!("move_j({t}{vel})"));
                 Ok(())
             }
             Path::JointRel { delta, .. } => {
@@ -191,7 +191,7 @@ impl<'a> Tx<'a> {
                 self.move_j_stops(m, span)?;
                 self.speed_never_set(m, span);
                 let vel = self.with_speed(m, MotionParam::VelPtp, "vel");
-                self.line(format!("move_j_rel([{}]{vel})", d.join(", ")));
+                self.line_fmt(format_args!("move_j_rel([{}]{vel})", d.join(", ")));
                 Ok(())
             }
             Path::LinearRel { delta, in_tool, .. } => {
@@ -211,7 +211,7 @@ impl<'a> Tx<'a> {
                 let z = self.zone_for(m, span)?;
                 self.speed_never_set(m, span);
                 let vel = self.with_speed(m, MotionParam::VelCp, "vel");
-                self.line(format!(
+                self.line_fmt(format_args!(
                     "move_rel(Pose({}), {}{}{vel})",
                     d.join(", "),
                     if *in_tool { "True" } else { "False" },
@@ -323,7 +323,10 @@ impl<'a> Tx<'a> {
                     "check the path between the points at reduced speed",
                 );
                 let zone = z.map(|z| format!(", {z}")).unwrap_or_default();
-                self.line(format!("move_l_path([{}]{zone}{vel})", points.join(", ")));
+                self.line_fmt(format_args!(
+                    "move_l_path([{}]{zone}{vel})",
+                    points.join(", ")
+                ));
                 for s in g {
                     self.out.produced.push(s.span);
                 }
@@ -348,7 +351,7 @@ impl<'a> Tx<'a> {
                     ParamValue::Default if p == MotionParam::VelPtp => "DEFAULT_PTP".to_owned(),
                     v => self.param_text(v),
                 };
-                self.line(format!("KRL.{f} = {v}"));
+                self.line_fmt(format_args!("KRL.{f} = {v}"));
             }
             MotionParam::ApoCptp | MotionParam::ApoCvel | MotionParam::ApoCori => {
                 let f = super::expr::param_field(p).unwrap_or("apo_cptp");
@@ -367,7 +370,7 @@ impl<'a> Tx<'a> {
                     ),
                     "check the blending of these moves",
                 );
-                self.line(format!("KRL.{f} = {v}"));
+                self.line_fmt(format_args!("KRL.{f} = {v}"));
             }
             MotionParam::VelOri
             | MotionParam::AccCp
@@ -463,7 +466,7 @@ impl<'a> Tx<'a> {
         if self.rt.as_ref().and_then(|r| r.tool.as_ref()) == Some(&name) {
             return;
         }
-        self.line(format!("switch_tool({name})"));
+        self.line_fmt(format_args!("switch_tool({name})"));
         if let Some(rt) = &mut self.rt {
             rt.tool = Some(name);
         }
@@ -473,7 +476,7 @@ impl<'a> Tx<'a> {
         if self.rt.as_ref().and_then(|r| r.base.as_ref()) == Some(&frame) {
             return;
         }
-        self.line(format!("KRL.base = {frame}"));
+        self.line_fmt(format_args!("KRL.base = {frame}"));
         if let Some(rt) = &mut self.rt {
             rt.base = Some(frame);
         }

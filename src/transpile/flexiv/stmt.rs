@@ -55,7 +55,7 @@ impl<'a> Tx<'a> {
                     Some(n) => n.to_string(),
                     None => format!("to_int({})", self.expr(v)?),
                 };
-                self.line(format!("robot.SetVelocityScale({v})"));
+                self.line_fmt(format_args!("robot.SetVelocityScale({v})"));
                 Ok(())
             }
             Op::SetIo { io, value, when } => self.set_io(io, value, when, span),
@@ -88,7 +88,7 @@ impl<'a> Tx<'a> {
                     sel.text
                 } else {
                     let t = self.made("sel");
-                    self.line(format!("{t} = {}", sel.text));
+                    self.line_fmt(format_args!("{t} = {}", sel.text));
                     t
                 };
                 let mut first = true;
@@ -100,7 +100,7 @@ impl<'a> Tx<'a> {
                     };
                     let kw = if first { "if" } else { "elif" };
                     first = false;
-                    self.line(format!("{kw} {test}:"));
+                    self.line_fmt(format_args!("{kw} {test}:"));
                     self.nested(&c.body);
                 }
                 if let Some((d, at)) = default {
@@ -213,7 +213,7 @@ impl<'a> Tx<'a> {
             if nested_jump(cont) {
                 let f = self.made(if cont { "next" } else { "exit" });
                 if !cont {
-                    self.line(format!("{f} = False"));
+                    self.line_fmt(format_args!("{f} = False"));
                 }
                 if let Some(rt) = &mut self.rt {
                     rt.flags.insert((id, cont), f);
@@ -232,13 +232,13 @@ impl<'a> Tx<'a> {
             .as_ref()
             .and_then(|r| r.flags.get(&(id, true)).cloned())
         {
-            self.line(format!("{f} = False"));
+            self.line_fmt(format_args!("{f} = False"));
         }
         let start = self.out.lines.len();
         self.block(body);
         self.flush_comments(end);
         if let Some(c) = until {
-            self.line(format!("if {c}:"));
+            self.line_fmt(format_args!("if {c}:"));
             self.line("    break");
         }
         if !has_code(&self.out.lines[start..]) {
@@ -268,8 +268,8 @@ impl<'a> Tx<'a> {
             } else {
                 "break"
             };
-            self.line(format!("if {f}:"));
-            self.line(format!("    {stmt}"));
+            self.line_fmt(format_args!("if {f}:"));
+            self.line_fmt(format_args!("    {stmt}"));
             if innermost != Some(target)
                 && let Some(rt) = &mut self.rt
                 && let Some(p) = rt.pending.last_mut()
@@ -293,7 +293,7 @@ impl<'a> Tx<'a> {
             .as_ref()
             .and_then(|r| r.flags.get(&(id, cont)).cloned())
             .unwrap_or_else(|| "_exit".into());
-        self.line(format!("{flag} = True"));
+        self.line_fmt(format_args!("{flag} = True"));
         self.line("break");
         if let Some(rt) = &mut self.rt
             && let Some(p) = rt.pending.last_mut()
@@ -343,7 +343,7 @@ impl<'a> Tx<'a> {
         if parts.is_empty() {
             self.line("return");
         } else {
-            self.line(format!("return {}", parts.join(", ")));
+            self.line_fmt(format_args!("return {}", parts.join(", ")));
         }
         Ok(())
     }
@@ -352,9 +352,9 @@ impl<'a> Tx<'a> {
 
     pub(super) fn assign_to(&mut self, t: &Target, value: &str) {
         match t {
-            Target::Plain(t) => self.line(format!("{t} = {value}")),
+            Target::Plain(t) => self.line_fmt(format_args!("{t} = {value}")),
             Target::Member { base, field } => {
-                self.line(format!("{base} = {base}._replace({field}={value})"))
+                self.line_fmt(format_args!("{base} = {base}._replace({field}={value})"))
             }
         }
     }
@@ -384,7 +384,7 @@ impl<'a> Tx<'a> {
                 parts.push(format!("{n}={}", self.expr(v)?));
             }
             if !parts.is_empty() {
-                self.line(format!("{t} = {t}._replace({})", parts.join(", ")));
+                self.line_fmt(format_args!("{t} = {t}._replace({})", parts.join(", ")));
             }
             return Ok(());
         }
@@ -498,11 +498,11 @@ impl<'a> Tx<'a> {
                         Target::Member { .. } => "",
                     })
                     .collect();
-                self.line(format!("{} = {call}", t.join(", ")));
+                self.line_fmt(format_args!("{} = {call}", t.join(", ")));
             }
             many => {
                 let tmp = self.made("out");
-                self.line(format!("{tmp} = {call}"));
+                self.line_fmt(format_args!("{tmp} = {call}"));
                 for (i, p) in many.iter().enumerate() {
                     self.assign_to(p, &format!("{tmp}[{i}]"));
                 }

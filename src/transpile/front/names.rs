@@ -325,6 +325,9 @@ pub struct Namer<'a> {
     labels: FxHashMap<RoutineId, Namespace>,
     /// The routine whose locals were declared last.
     current: Option<RoutineId>,
+    /// The target names of `current`'s parameters and locals, in its `vars_of` order: a
+    /// variable is named at every use, and these are asked most.
+    current_names: Vec<CompactString>,
     /// Routines whose namespaces were dropped, one bit each by id: asked again, they are made
     /// again the same way. (A set of ids grew with every routine, its lookups missing the
     /// cache ever more often.)
@@ -354,6 +357,7 @@ impl<'a> Namer<'a> {
             locals: FxHashMap::default(),
             labels: FxHashMap::default(),
             current: None,
+            current_names: Vec::new(),
             ended: Vec::new(),
             spellings: Spellings::default(),
             vars_of,
@@ -441,9 +445,11 @@ impl<'a> Namer<'a> {
             .locals
             .entry(id)
             .or_insert_with(|| spare.unwrap_or_default());
+        self.current_names.clear();
         for &v in vars {
             let var = ir.var(v);
-            let (_, r) = ns.name_spelled(&var.name, self.rules, Some(&mut self.spellings));
+            let (n, r) = ns.name_spelled(&var.name, self.rules, Some(&mut self.spellings));
+            self.current_names.push(n);
             note(
                 &mut self.renamed,
                 self.rules,
@@ -518,6 +524,14 @@ impl<'a> Namer<'a> {
         let var = ir.var(v);
         let (ns, home) = match var.scope {
             Scope::Local(r) | Scope::Param(r) => {
+                // The routine being rendered: its names were all made when it was declared
+                // (asked again, a name is the same and makes no finding).
+                if self.current == Some(r)
+                    && let Ok(i) = self.vars_of.get(r.0 as usize).binary_search(&v)
+                    && let Some(n) = self.current_names.get(i)
+                {
+                    return (n.clone(), Home::Local);
+                }
                 self.remake_locals(r);
                 let ns = self.locals.entry(r).or_default();
                 let (n, renamed) = ns.name_spelled(&var.name, rules, Some(&mut self.spellings));

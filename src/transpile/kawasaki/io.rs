@@ -38,19 +38,19 @@ impl<'a> Tx<'a> {
         match sig {
             Sig::Bits(first, w) => {
                 let v = self.expr(value)?;
-                self.line(format!("BITS {first},{w} = {v}"));
+                self.line_fmt(format_args!("BITS {first},{w} = {v}"));
             }
             Sig::One(n) => {
                 let neg = negate(&n);
                 match &value.kind {
-                    ExprKind::Bool(true) => self.line(format!("SIGNAL {n}")),
-                    ExprKind::Bool(false) => self.line(format!("SIGNAL {neg}")),
+                    ExprKind::Bool(true) => self.line_fmt(format_args!("SIGNAL {n}")),
+                    ExprKind::Bool(false) => self.line_fmt(format_args!("SIGNAL {neg}")),
                     _ => {
                         let c = self.expr(value)?;
-                        self.line(format!("IF {c} THEN"));
-                        self.line(format!("  SIGNAL {n}"));
+                        self.line_fmt(format_args!("IF {c} THEN"));
+                        self.line_fmt(format_args!("  SIGNAL {n}"));
                         self.line("ELSE");
-                        self.line(format!("  SIGNAL {neg}"));
+                        self.line_fmt(format_args!("  SIGNAL {neg}"));
                         self.line("END");
                     }
                 }
@@ -68,7 +68,7 @@ impl<'a> Tx<'a> {
             return crate::transpile::render::not_lowered(level.span, "a low PULSE");
         }
         let t = self.expr(seconds)?;
-        self.line(format!("PULSE {n},{t}"));
+        self.line_fmt(format_args!("PULSE {n},{t}"));
         Ok(())
     }
 
@@ -80,7 +80,7 @@ impl<'a> Tx<'a> {
                     Some(ms) => num(ms / 1000.0),
                     None => format!("({})/1000", self.expr(v)?),
                 };
-                self.line(format!("TIMER {i} = {v}"));
+                self.line_fmt(format_args!("TIMER {i} = {v}"));
                 Ok(())
             }
             TimerOp::Stop(v) => match &v.kind {
@@ -108,7 +108,7 @@ impl<'a> Tx<'a> {
                     self.line("; WAIT SEC 0 (stops KRL's advance run)");
                 } else {
                     let t = self.expr(t)?;
-                    self.line(format!("TWAIT {t}"));
+                    self.line_fmt(format_args!("TWAIT {t}"));
                 }
             }
             Wait::Until(c) => {
@@ -185,7 +185,7 @@ impl<'a> Tx<'a> {
             span,
             Some("watch the condition with a PC program, or poll it with SIG()"),
         )?;
-        self.line(format!(
+        self.line_fmt(format_args!(
             "; INTERRUPT {n}: ON {sig} CALL {prog} when switched on"
         ));
         self.out.rep.approximate(

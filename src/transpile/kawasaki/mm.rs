@@ -207,9 +207,9 @@ impl<'a> Tx<'a> {
             self.line(l);
         }
         if rendered.is_empty() {
-            self.line(format!("CALL {}", k.name));
+            self.line_fmt(format_args!("CALL {}", k.name));
         } else {
-            self.line(format!("CALL {}({})", k.name, rendered.join(",")));
+            self.line_fmt(format_args!("CALL {}({})", k.name, rendered.join(",")));
         }
         for l in after {
             self.line(l);
@@ -353,7 +353,7 @@ impl<'a> Tx<'a> {
         } else {
             format!("TRANS({})", values.join(","))
         };
-        self.line(format!("POINT {t} = {value}"));
+        self.line_fmt(format_args!("POINT {t} = {value}"));
         for (kuka, global_name) in [
             ("MM_MoveType", "vis_pos_type"),
             ("MM_ToolNum", "vis_pos_tool"),
@@ -362,7 +362,7 @@ impl<'a> Tx<'a> {
             if let Some((a, at)) = arg(kuka) {
                 let ty = self.place_ty(&a);
                 let t = self.place_text(&a, &ty, at)?;
-                self.line(format!("{t} = {global_name}[{serial}]"));
+                self.line_fmt(format_args!("{t} = {global_name}[{serial}]"));
             }
         }
         self.copy_point_data(&serial, true, span)
@@ -398,12 +398,14 @@ impl<'a> Tx<'a> {
             self.zero_loop(&k, plan_to, cat.kuka_plan_len());
         }
         if vision_move {
-            self.line(format!("IF vis_pos_vismove[{serial}] == 1 THEN"));
+            self.line_fmt(format_args!("IF vis_pos_vismove[{serial}] == 1 THEN"));
             self.out.depth += 1;
         }
         if user {
-            self.line(format!("FOR {k} = 1 TO num_customdata[{serial}]"));
-            self.line(format!("  {user_to}[{k}] = vis_custom_data[{serial},{k}]"));
+            self.line_fmt(format_args!("FOR {k} = 1 TO num_customdata[{serial}]"));
+            self.line_fmt(format_args!(
+                "  {user_to}[{k}] = vis_custom_data[{serial},{k}]"
+            ));
             self.line("END");
         }
         if plan {
@@ -423,8 +425,10 @@ impl<'a> Tx<'a> {
                     0 => k.clone(),
                     s => format!("{k}+{s}"),
                 };
-                self.line(format!("FOR {k} = {a} TO {b}"));
-                self.line(format!("  {plan_to}[{k}] = vis_plan_result[{serial},{j}]"));
+                self.line_fmt(format_args!("FOR {k} = {a} TO {b}"));
+                self.line_fmt(format_args!(
+                    "  {plan_to}[{k}] = vis_plan_result[{serial},{j}]"
+                ));
                 self.line("END");
             }
             self.note(format!(
@@ -446,8 +450,8 @@ impl<'a> Tx<'a> {
     }
 
     fn zero_loop(&mut self, k: &str, array: &str, n: u32) {
-        self.line(format!("FOR {k} = 1 TO {n}"));
-        self.line(format!("  {array}[{k}] = 0"));
+        self.line_fmt(format_args!("FOR {k} = 1 TO {n}"));
+        self.line_fmt(format_args!("  {array}[{k}] = 0"));
         self.line("END");
     }
 }

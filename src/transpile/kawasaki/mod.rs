@@ -162,7 +162,7 @@ struct ProgramOut {
 struct Rt {
     /// Its `.PROGRAM` line and the lines written so far (before [`Tx::lines`]).
     program: ProgramOut,
-    /// The `ACCURACY … ALWAYS` in force, if known at this point.
+    /// The value of the `ACCURACY … ALWAYS` in force, if known at this point.
     accuracy: Option<String>,
     /// Scratch locals by purpose (each reused within the program).
     scratch: HashMap<String, String>,
@@ -259,11 +259,11 @@ impl<'a> Tx<'a> {
             return;
         };
         let n = self.out.lines.len().saturating_sub(keep);
-        for l in self.out.lines.drain(..n) {
+        self.out.drain_lines(n, |l| {
             // Non-ASCII can only come from comments and strings (strings are reported).
             rt.program.body.push_str(&format::ascii(l.trim_end()));
             rt.program.body.push('\n');
-        }
+        });
     }
 
     // ----- assembly ----------------------------------------------------------------------

@@ -47,13 +47,12 @@ impl<'a> Tx<'a> {
 
     /// Writes `ACCURACY value ALWAYS` unless it is what is already in force.
     fn set_accuracy(&mut self, value: String) {
-        let line = format!("ACCURACY {value} ALWAYS");
-        if self.rt.as_ref().and_then(|r| r.accuracy.as_ref()) == Some(&line) {
+        if self.rt.as_ref().and_then(|r| r.accuracy.as_ref()) == Some(&value) {
             return;
         }
-        self.line(&line);
+        self.line_fmt(format_args!("ACCURACY {value} ALWAYS"));
         if let Some(rt) = &mut self.rt {
-            rt.accuracy = Some(line);
+            rt.accuracy = Some(value);
         }
     }
 
@@ -191,6 +190,9 @@ impl<'a> Tx<'a> {
         Ok(match &m.path {
             Path::Joint { to, .. } => {
                 let t = self.target(to)?;
+                if !t.is_empty() && !t.contains(['\n', '\r']) {
+                    return Ok(vec![format!("JMOVE {t}")]);
+                }
                 // A partial axis value: its preparation lines, then the move.
                 let mut lines: Vec<String> = t.lines().map(str::to_owned).collect();
                 let last = lines.pop().unwrap_or_default();
@@ -379,7 +381,7 @@ impl<'a> Tx<'a> {
             }
             MotionParam::ApoCdis => {
                 let text = self.src.src.slice(span).trim().to_owned();
-                self.line(format!("; {text} (the ACCURACY of the blended moves)"));
+                self.line_fmt(format_args!("; {text} (the ACCURACY of the blended moves)"));
             }
             MotionParam::ApoCptp | MotionParam::ApoCvel | MotionParam::ApoCori => {
                 let text = self.src.src.slice(span).trim().to_owned();
@@ -394,7 +396,7 @@ impl<'a> Tx<'a> {
                     format!("AS blends by distance only: {} has no counterpart; {which} moves use ACCURACY from $APO.CDIS", p.krl()),
                     "check the blending of these moves",
                 );
-                self.line(format!(
+                self.line_fmt(format_args!(
                     "; {text} ({which} moves blend with ACCURACY from $APO.CDIS)"
                 ));
             }
@@ -415,7 +417,7 @@ impl<'a> Tx<'a> {
             format!("BAS(#INITMOV) sets KUKA's motion defaults from BAS.DAT; AS gets conservative defaults SPEED {INIT_SPEED} ALWAYS and ACCURACY {FINE_ACCURACY} ALWAYS"),
             "set the SPEED you want after this line",
         );
-        self.line(format!("SPEED {INIT_SPEED} ALWAYS"));
+        self.line_fmt(format_args!("SPEED {INIT_SPEED} ALWAYS"));
         self.set_accuracy(FINE_ACCURACY.to_owned());
         Ok(())
     }
@@ -439,7 +441,7 @@ impl<'a> Tx<'a> {
                 }
             }
         };
-        self.line(format!("{} {v}", if tool { "TOOL" } else { "BASE" }));
+        self.line_fmt(format_args!("{} {v}", if tool { "TOOL" } else { "BASE" }));
         Ok(())
     }
 
@@ -487,7 +489,7 @@ impl<'a> Tx<'a> {
                     "only the mass is set: AS WEIGHT takes the centre of mass as 0,0,0",
                     "write WEIGHT mass, cx, cy, cz with the load's centre of mass",
                 );
-                self.line(format!("WEIGHT {m},0,0,0"));
+                self.line_fmt(format_args!("WEIGHT {m},0,0,0"));
                 Ok(())
             }
             Load::Value { mass, cm, inertia } => {
@@ -506,7 +508,7 @@ impl<'a> Tx<'a> {
                         "check the payload settings on the controller",
                     );
                 }
-                self.line(format!("WEIGHT {}", v.join(",")));
+                self.line_fmt(format_args!("WEIGHT {}", v.join(",")));
                 Ok(())
             }
         }

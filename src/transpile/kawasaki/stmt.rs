@@ -32,7 +32,7 @@ impl<'a> Tx<'a> {
             Op::ReadPos { place, joints } => {
                 let ty = if *joints { Ty::Joint } else { Ty::Pose };
                 let t = self.place_text(place, &ty, span)?;
-                self.line(format!("HERE {t}"));
+                self.line_fmt(format_args!("HERE {t}"));
                 Ok(())
             }
             Op::Move(m) => self.motion(m, span),
@@ -143,8 +143,8 @@ impl<'a> Tx<'a> {
         let t = self.place_text(place, &ty, span)?;
         let v = self.value(&ty, value)?;
         match ty {
-            Ty::Pose | Ty::Joint => self.line(format!("POINT {t} = {v}")),
-            _ => self.line(format!("{t} = {v}")),
+            Ty::Pose | Ty::Joint => self.line_fmt(format_args!("POINT {t} = {v}")),
+            _ => self.line_fmt(format_args!("{t} = {v}")),
         }
         Ok(())
     }
@@ -177,9 +177,25 @@ impl<'a> Tx<'a> {
         let p = self.place_text(base, &Ty::Pose, span)?;
         let v = self.expr(value)?;
         let d = ["DX", "DY", "DZ"][axis];
-        let mut by = ["0".to_owned(), "0".to_owned(), "0".to_owned()];
-        by[axis] = format!("({v})-{d}({p})");
-        self.line(format!("POINT {p} = SHIFT({p} BY {})", by.join(",")));
+        // `0,(v)-DY(p),0`: the offset on the axis set, zero on the others.
+        let mut by = String::with_capacity(v.len() + p.len() + 12);
+        for i in 0..3 {
+            if i > 0 {
+                by.push(',');
+            }
+            if i == axis {
+                by.push('(');
+                by.push_str(&v);
+                by.push_str(")-");
+                by.push_str(d);
+                by.push('(');
+                by.push_str(&p);
+                by.push(')');
+            } else {
+                by.push('0');
+            }
+        }
+        self.line_fmt(format_args!("POINT {p} = SHIFT({p} BY {by})"));
         Ok(())
     }
 
@@ -237,14 +253,18 @@ impl<'a> Tx<'a> {
         if function || ret.is_some() {
             return crate::transpile::render::not_lowered(span, "a call for a function's value");
         }
-        let mut a = Vec::new();
-        for arg in args {
-            a.push(self.call_arg(arg)?);
+        // The arguments joined by commas as they are rendered.
+        let mut a = String::new();
+        for (i, arg) in args.iter().enumerate() {
+            if i > 0 {
+                a.push(',');
+            }
+            a.push_str(&self.call_arg(arg)?);
         }
-        if a.is_empty() {
-            self.line(format!("CALL {name}"));
+        if args.is_empty() {
+            self.line_fmt(format_args!("CALL {name}"));
         } else {
-            self.line(format!("CALL {name}({})", a.join(",")));
+            self.line_fmt(format_args!("CALL {name}({a})"));
         }
         // ACCURACY … ALWAYS is controller state the called program may have changed.
         self.forget_accuracy();

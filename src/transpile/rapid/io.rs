@@ -125,20 +125,20 @@ impl<'a> Tx<'a> {
         }
         if let OutPlace::Flag(_) = io {
             let v = self.expr(value)?;
-            self.line(format!("{sig} := {v};"));
+            self.line_fmt(format_args!("{sig} := {v};"));
             return Ok(());
         }
         match &value.kind {
-            ExprKind::Bool(b) => self.line(format!("SetDO {sig}, {};", u8::from(*b))),
+            ExprKind::Bool(b) => self.line_fmt(format_args!("SetDO {sig}, {};", u8::from(*b))),
             _ => {
                 let c = self.expr(value)?;
-                self.line(format!("IF {c} THEN"));
+                self.line_fmt(format_args!("IF {c} THEN"));
                 self.out.depth += 1;
-                self.line(format!("SetDO {sig}, 1;"));
+                self.line_fmt(format_args!("SetDO {sig}, 1;"));
                 self.out.depth -= 1;
                 self.line("ELSE");
                 self.out.depth += 1;
-                self.line(format!("SetDO {sig}, 0;"));
+                self.line_fmt(format_args!("SetDO {sig}, 0;"));
                 self.out.depth -= 1;
                 self.line("ENDIF");
             }
@@ -162,7 +162,7 @@ impl<'a> Tx<'a> {
         }
         let sig = self.out_name(io, span)?;
         let t = self.expr(seconds)?;
-        self.line(format!("PulseDO \\PLength:={t}, {sig};"));
+        self.line_fmt(format_args!("PulseDO \\PLength:={t}, {sig};"));
         Ok(())
     }
 
@@ -170,7 +170,7 @@ impl<'a> Tx<'a> {
         match w {
             Wait::Seconds(t) => {
                 let t = self.expr(t)?;
-                self.line(format!("WaitTime {t};"));
+                self.line_fmt(format_args!("WaitTime {t};"));
             }
             Wait::Until(c) => {
                 let io_of = |e: &Expr| -> Option<Bank> {
@@ -199,11 +199,11 @@ impl<'a> Tx<'a> {
                             Bank::In => "WaitDI",
                             Bank::Out => "WaitDO",
                         };
-                        self.line(format!("{instr} {sig}, {};", u8::from(high)));
+                        self.line_fmt(format_args!("{instr} {sig}, {};", u8::from(high)));
                     }
                     _ => {
                         let c = self.expr(c)?;
-                        self.line(format!("WaitUntil {c};"));
+                        self.line_fmt(format_args!("WaitUntil {c};"));
                     }
                 }
             }
@@ -286,7 +286,7 @@ impl<'a> Tx<'a> {
             Some("watch one input with ISignalDI, or poll the condition with WaitUntil"),
         )?;
         self.intnums.insert(o.number);
-        self.line(format!(
+        self.line_fmt(format_args!(
             "! INTERRUPT {n}: {}, ir{n} with TRAP {} when switched on",
             o.signal, o.trap
         ));

@@ -267,10 +267,11 @@ impl<'a> Tx<'a> {
         let Some(rt) = &mut self.rt else {
             return;
         };
-        for l in self.out.lines.drain(..) {
+        let n = self.out.lines.len();
+        self.out.drain_lines(n, |l| {
             rt.out.body.push_str(l.trim_end());
             rt.out.body.push('\n');
-        }
+        });
     }
 
     /// The routine that `PROC main()` starts: the file's first routine, when it takes no

@@ -121,7 +121,9 @@ impl<'a> Tx<'a> {
         for p in pre {
             self.line(p);
         }
-        self.line(format!("{line}, {speed}{trigg}, {zone}, {tool}{wobj};"));
+        self.line_fmt(format_args!(
+            "{line}, {speed}{trigg}, {zone}, {tool}{wobj};"
+        ));
         self.still = !blends;
         Ok(())
     }
@@ -346,13 +348,13 @@ impl<'a> Tx<'a> {
         let text = self.src.src.slice(span).trim().to_owned();
         match p {
             MotionParam::VelCp | MotionParam::VelPtp => {
-                self.line(format!("! {text} (the speed of the following moves)"));
+                self.line_fmt(format_args!("! {text} (the speed of the following moves)"));
             }
             MotionParam::ApoCdis
             | MotionParam::ApoCptp
             | MotionParam::ApoCvel
             | MotionParam::ApoCori => {
-                self.line(format!(
+                self.line_fmt(format_args!(
                     "! {text} (the zone of the following blended moves)"
                 ));
             }
@@ -381,7 +383,7 @@ impl<'a> Tx<'a> {
                     "an acceleration in percent becomes AccSet for all motions",
                     "check the acceleration",
                 );
-                self.line(format!("AccSet {v}, 100;"));
+                self.line_fmt(format_args!("AccSet {v}, 100;"));
             }
         }
         Ok(())
@@ -408,7 +410,7 @@ impl<'a> Tx<'a> {
         let text = self.src.src.slice(span).trim().to_owned();
         match frame {
             FrameRef::Null | FrameRef::World => {
-                self.line(format!("! {text} (the following moves use {kind}0)"));
+                self.line_fmt(format_args!("! {text} (the following moves use {kind}0)"));
             }
             FrameRef::Table(i) => {
                 // The lowering refuses the rest (`Caps::frames`).
@@ -429,7 +431,7 @@ impl<'a> Tx<'a> {
                     FrameKind::Tool => self.frame_data.tools.insert(n),
                     FrameKind::Base => self.frame_data.wobjs.insert(n),
                 };
-                self.line(format!("! {text} (the following moves use {kind}{n})"));
+                self.line_fmt(format_args!("! {text} (the following moves use {kind}{n})"));
             }
             FrameRef::Value(_) => return not_lowered(span, "a frame value"),
         }

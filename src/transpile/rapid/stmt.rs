@@ -37,10 +37,10 @@ impl<'a> Tx<'a> {
                             "$AXIS_ACT without a joint map",
                         );
                     }
-                    self.line(format!("{t} := CJointT();"));
+                    self.line_fmt(format_args!("{t} := CJointT();"));
                 } else {
                     let c = self.current_pos();
-                    self.line(format!("{t} := {c};"));
+                    self.line_fmt(format_args!("{t} := {c};"));
                 }
                 Ok(())
             }
@@ -58,7 +58,7 @@ impl<'a> Tx<'a> {
                     "the program override ($OV_PRO) becomes VelSet, which scales the programmed speeds of the following motions",
                     "check the speeds; the operator's override on the FlexPendant is separate",
                 );
-                self.line(format!("VelSet {v}, 10000;"));
+                self.line_fmt(format_args!("VelSet {v}, 10000;"));
                 Ok(())
             }
             Op::SetIo { io, value, when } => self.set_io(io, value, when, span),
@@ -90,7 +90,7 @@ impl<'a> Tx<'a> {
                 match v {
                     Some(v) => {
                         let v = self.expr(v)?;
-                        self.line(format!("RETURN {v};"));
+                        self.line_fmt(format_args!("RETURN {v};"));
                     }
                     None => self.line("RETURN;"),
                 }
@@ -192,7 +192,7 @@ impl<'a> Tx<'a> {
             if let Component::Pose(i) = c {
                 abc[i - 3] = v;
             }
-            self.line(format!("{b}.rot := OrientZYX({});", abc.join(", ")));
+            self.line_fmt(format_args!("{b}.rot := OrientZYX({});", abc.join(", ")));
             return Ok(());
         }
         if let ExprKind::Aggregate(a) = &value.kind
@@ -212,7 +212,7 @@ impl<'a> Tx<'a> {
         }
         let t = self.place_text(place, span)?;
         let v = self.expr(value)?;
-        self.line(format!("{t} := {v};"));
+        self.line_fmt(format_args!("{t} := {v};"));
         Ok(())
     }
 
@@ -264,11 +264,11 @@ impl<'a> Tx<'a> {
                     self.fresh_local("fct_result", ty)
                 }
             };
-            self.line(format!("{to} := {name}({});", a.join(", ")));
+            self.line_fmt(format_args!("{to} := {name}({});", a.join(", ")));
         } else if a.is_empty() {
-            self.line(format!("{name};"));
+            self.line_fmt(format_args!("{name};"));
         } else {
-            self.line(format!("{name} {};", a.join(", ")));
+            self.line_fmt(format_args!("{name} {};", a.join(", ")));
         }
         Ok(())
     }

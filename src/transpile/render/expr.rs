@@ -42,11 +42,10 @@ impl Rendered {
     /// `NOT x`, `-x` binding as `prec` (`UNARY`, or `LOOSE_UNARY` where the target
     /// parenthesises it as an operand): the operand in parentheses unless it binds tighter.
     pub fn prefix(sym: &str, inner: Rendered, prec: u8) -> Rendered {
-        let text = if inner.prec < UNARY {
-            format!("{sym}({})", inner.text)
-        } else {
-            format!("{sym}{}", inner.text)
-        };
+        let paren = inner.prec < UNARY;
+        let mut text = String::with_capacity(sym.len() + inner.text.len() + 2);
+        text.push_str(sym);
+        push_operand(&mut text, &inner.text, paren);
         Rendered::of(text, prec)
     }
 
@@ -54,25 +53,45 @@ impl Rendered {
     /// parentheses, `a - (b + c)` does), a comparison's operands are arithmetic, and a logic
     /// operator chains only with itself.
     pub fn infix(sym: &'static str, prec: u8, l: Rendered, r: Rendered) -> Rendered {
-        let side = |c: Rendered, right: bool| -> String {
-            let paren = if prec >= ADD {
+        let paren = |c: &Rendered, right: bool| -> bool {
+            if prec >= ADD {
                 c.prec < prec || (c.prec == prec && right)
             } else if prec == CMP {
                 c.prec < ADD
             } else {
                 c.prec < UNARY && (right || c.op != Some(sym))
-            };
-            if paren {
-                format!("({})", c.text)
-            } else {
-                c.text
             }
         };
-        let text = format!("{} {sym} {}", side(l, false), side(r, true));
+        let (pl, pr) = (paren(&l, false), paren(&r, true));
+        // Written in place into the left operand's text when it needs no parentheses.
+        let mut text = if pl {
+            let mut t = String::with_capacity(l.text.len() + sym.len() + r.text.len() + 6);
+            push_operand(&mut t, &l.text, true);
+            t
+        } else {
+            let mut t = l.text;
+            t.reserve(sym.len() + r.text.len() + 4);
+            t
+        };
+        text.push(' ');
+        text.push_str(sym);
+        text.push(' ');
+        push_operand(&mut text, &r.text, pr);
         Rendered {
             text,
             prec,
             op: Some(sym),
         }
+    }
+}
+
+/// `operand`, in parentheses when `paren`, at the end of `text`.
+fn push_operand(text: &mut String, operand: &str, paren: bool) {
+    if paren {
+        text.push('(');
+        text.push_str(operand);
+        text.push(')');
+    } else {
+        text.push_str(operand);
     }
 }

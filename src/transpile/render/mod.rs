@@ -130,6 +130,9 @@ pub struct Out<'a> {
     pub comments: CommentQueue<'a>,
     /// Lines of the statement being rendered (with their indentation).
     pub lines: Vec<String>,
+    /// Buffers of lines written out ([`Out::drain_lines`]), reused for the next lines: a line
+    /// costs no allocation.
+    spare: Vec<String>,
     pub depth: usize,
     pub rep: Report,
     /// KRL statements that wrote at least one line.
@@ -155,6 +158,7 @@ impl<'a> Out<'a> {
             names: Namer::new(rules, ir),
             comments: CommentQueue::new(&src.src.comments),
             lines: Vec::new(),
+            spare: Vec::new(),
             depth: 0,
             rep,
             produced: Vec::new(),
@@ -184,13 +188,40 @@ impl<'a> Out<'a> {
     }
 
     pub fn line(&mut self, s: &str) {
+        let mut line = self.indented();
+        line.push_str(s);
+        self.lines.push(line);
+    }
+
+    /// A line written in place (`format_args!`): no text made first and copied.
+    pub fn line_fmt(&mut self, args: std::fmt::Arguments<'_>) {
+        let mut line = self.indented();
+        // Writing to a `String` does not fail.
+        let _ = std::fmt::Write::write_fmt(&mut line, args);
+        self.lines.push(line);
+    }
+
+    /// An empty line at the current depth, in a buffer used before when there is one.
+    fn indented(&mut self) -> String {
         let depth = self.depth + self.style.base_depth;
-        let mut line = String::with_capacity(self.style.indent.len() * depth + s.len());
+        let mut line = self.spare.pop().unwrap_or_default();
         for _ in 0..depth {
             line.push_str(self.style.indent);
         }
-        line.push_str(s);
-        self.lines.push(line);
+        line
+    }
+
+    /// Hands the first `n` lines to `write`, in order, and keeps their buffers for the next.
+    pub fn drain_lines(&mut self, n: usize, mut write: impl FnMut(&str)) {
+        /// Buffers kept: more than a statement's lines is seldom needed.
+        const SPARE: usize = 64;
+        for mut l in self.lines.drain(..n) {
+            write(&l);
+            if self.spare.len() < SPARE {
+                l.clear();
+                self.spare.push(l);
+            }
+        }
     }
 
     pub fn comment(&mut self, text: &str) {
@@ -544,6 +575,11 @@ pub trait Emit<'a> {
 
     fn line(&mut self, s: impl AsRef<str>) {
         self.out().line(s.as_ref());
+    }
+
+    /// A line written in place: `self.line_fmt(format_args!(…))`.
+    fn line_fmt(&mut self, args: std::fmt::Arguments<'_>) {
+        self.out().line_fmt(args);
     }
 
     /// `INTERRUPT ON/OFF/ENABLE/DISABLE [n]`: the lines of each declaration it switches

@@ -89,7 +89,7 @@ impl<'p> Lower<'p> {
     /// Several expressions evaluated in order: when a later one calls a function, earlier ones
     /// it may change are read into temporaries first.
     pub(super) fn seq(&mut self, items: &[&ast::Expr], pre: &mut Block) -> L<Vec<Expr>> {
-        let mut done: Vec<Expr> = Vec::new();
+        let mut done: Vec<Expr> = Vec::with_capacity(items.len());
         for e in items {
             let mut p = Block::new();
             let v = self.expr(e, &mut p)?;

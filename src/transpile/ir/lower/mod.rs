@@ -1170,7 +1170,10 @@ fn index_routines(routines: &[Routine]) -> FxHashMap<String, RoutineId> {
 pub(super) fn first_line(text: &str, span: Span) -> Span {
     let start = span.start as usize;
     let rest = text.get(start..span.end as usize).unwrap_or("");
-    let len = rest.find(['\n', '\r']).unwrap_or(rest.len());
+    let len = rest
+        .bytes()
+        .position(|b| b == b'\n' || b == b'\r')
+        .unwrap_or(rest.len());
     Span::new(start, start + len)
 }
 

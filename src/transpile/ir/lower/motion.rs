@@ -807,6 +807,8 @@ impl<'p> Lower<'p> {
         ops: &mut Block,
     ) -> L<()> {
         self.kind("inline-form data");
+        // `ops` may hold the ops of statements before this one.
+        let start = ops.len();
         let key = target.key();
         let Some(fields) = ilf::dat_record(self.src, value) else {
             self.approx(
@@ -855,7 +857,7 @@ impl<'p> Lower<'p> {
             }
             _ => {}
         }
-        if ops.is_empty() {
+        if ops.len() == start {
             ops.push(Stmt {
                 op: Op::Keep {
                     note: Some("inline-form motion data: its speed comes with the BAS call"),

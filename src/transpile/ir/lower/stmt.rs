@@ -76,31 +76,43 @@ impl<'p> Lower<'p> {
             _ => s.span,
         };
         self.construct(category(s), own);
-        let mut ops = Block::new();
-        let r = self.stmt_ops(s, &mut ops);
+        let mut fresh = Block::new();
+        let (ops, start) = Self::ops_for(out, &mut fresh);
+        let r = self.stmt_ops(s, ops);
         let continues = matches!(s.kind, StmtKind::Continue);
         if let Some(rt) = &mut self.rt {
             rt.continued = continues;
         }
-        match r {
-            Ok(()) => out.extend(ops),
-            Err((why, at)) => {
-                // The advance-run stop KRL makes for a value the statement reads ($AXIS_ACT as
-                // an argument) comes before it in any port of it: it stays.
-                let stops = ops
-                    .iter()
-                    .take_while(|o| matches!(o.op, Op::AdvanceStop { .. }) && o.span != s.span)
-                    .count();
-                out.extend(ops.into_iter().take(stops));
-                out.push(Stmt {
-                    op: Op::Unsupported {
-                        why,
-                        at,
-                        moves: self.refused_moves(s),
-                    },
-                    span: s.span,
-                });
-            }
+        if let Err((why, at)) = r {
+            // The advance-run stop KRL makes for a value the statement reads ($AXIS_ACT as
+            // an argument) comes before it in any port of it: it stays.
+            let stops = ops[start..]
+                .iter()
+                .take_while(|o| matches!(o.op, Op::AdvanceStop { .. }) && o.span != s.span)
+                .count();
+            ops.truncate(start + stops);
+            ops.push(Stmt {
+                op: Op::Unsupported {
+                    why,
+                    at,
+                    moves: self.refused_moves(s),
+                },
+                span: s.span,
+            });
+        }
+        out.append(&mut fresh);
+    }
+
+    /// Where a statement's ops go, and where they start there: straight into `out` (no block
+    /// per statement; a refused statement's are cut off again from `start`), unless `out` ends
+    /// with an advance-run stop — the statement's own first stop is never merged with it
+    /// ([`Lower::stop`] looks at the last op) — then into `fresh`, appended after.
+    fn ops_for<'b>(out: &'b mut Block, fresh: &'b mut Block) -> (&'b mut Block, usize) {
+        if matches!(out.last().map(|s| &s.op), Some(Op::AdvanceStop { .. })) {
+            (fresh, 0)
+        } else {
+            let start = out.len();
+            (out, start)
         }
     }
 
@@ -121,18 +133,20 @@ impl<'p> Lower<'p> {
                     kind: A::Name(v.name.clone()),
                     span: v.name.span,
                 };
-                let mut ops = Block::new();
-                match self.assign(&target, init, span, &mut ops) {
-                    Ok(()) => out.extend(ops),
-                    Err((why, at)) => out.push(Stmt {
+                let mut fresh = Block::new();
+                let (ops, start) = Self::ops_for(out, &mut fresh);
+                if let Err((why, at)) = self.assign(&target, init, span, ops) {
+                    ops.truncate(start);
+                    ops.push(Stmt {
                         op: Op::Unsupported {
                             why,
                             at,
                             moves: false,
                         },
                         span,
-                    }),
+                    });
                 }
+                out.append(&mut fresh);
             }
         }
     }
@@ -144,7 +158,9 @@ impl<'p> Lower<'p> {
     fn stmt_ops(&mut self, s: &ast::Stmt, ops: &mut Block) -> L<()> {
         let span = s.span;
         let text = &self.src.src.text;
-        let end = end_line_start(text, span);
+        // Where a block statement's last line starts (its end line): only block statements
+        // ask, so it is found only for them.
+        let end = || end_line_start(text, span);
         match &s.kind {
             StmtKind::Assign { target, value } => self.assign(target, value, span, ops),
             StmtKind::Call { name, args } => self.call_stmt(name, args, span, ops),
@@ -168,7 +184,7 @@ impl<'p> Lower<'p> {
                         then,
                         els,
                         else_at,
-                        end,
+                        end: end(),
                     },
                     span,
                 );
@@ -194,7 +210,9 @@ impl<'p> Lower<'p> {
                     });
                 }
                 let default = default.as_ref().map(|d| {
-                    let at = d.first().map_or(end, |f| f.span.start.saturating_sub(1));
+                    let at = d
+                        .first()
+                        .map_or_else(end, |f| f.span.start.saturating_sub(1));
                     (self.block(d), at)
                 });
                 Self::push(
@@ -203,7 +221,7 @@ impl<'p> Lower<'p> {
                         selector: sel,
                         cases: out,
                         default,
-                        end,
+                        end: end(),
                     },
                     span,
                 );
@@ -247,7 +265,7 @@ impl<'p> Lower<'p> {
                             step,
                         })),
                         body,
-                        end,
+                        end: end(),
                     },
                     span,
                 );
@@ -267,7 +285,7 @@ impl<'p> Lower<'p> {
                             id,
                             kind: LoopKind::While(c),
                             body: b,
-                            end,
+                            end: end(),
                         },
                         span,
                     );
@@ -297,7 +315,7 @@ impl<'p> Lower<'p> {
                             id,
                             kind: LoopKind::Forever,
                             body: pre,
-                            end,
+                            end: end(),
                         },
                         span,
                     );
@@ -317,7 +335,7 @@ impl<'p> Lower<'p> {
                         id,
                         kind: LoopKind::Until(c),
                         body: b,
-                        end,
+                        end: end(),
                     },
                     span,
                 );
@@ -332,7 +350,7 @@ impl<'p> Lower<'p> {
                         id,
                         kind: LoopKind::Forever,
                         body: b,
-                        end,
+                        end: end(),
                     },
                     span,
                 );
