@@ -172,7 +172,7 @@ pub fn transpile_to(
     dat: Option<Source>,
     options: &Options,
     spool: render::Spool,
-    out: &mut dyn std::io::Write,
+    out: &mut (dyn std::io::Write + Send),
 ) -> std::io::Result<Translation> {
     translate(target, src, dat, options, spool, |spool, framed, check| {
         spool.write_to(framed, check, out)
@@ -198,7 +198,8 @@ fn translate(
         render::Spool,
         render::Framed,
         &mut dyn render::LineCheck,
-    ) -> std::io::Result<()>,
+    ) -> std::io::Result<()>
+    + Send,
 ) -> std::io::Result<Translation> {
     let mut program = front::Program::new(
         front::Parsed::new(src.path, src.text),
@@ -278,11 +279,27 @@ fn translate(
         .routines
         .first()
         .map_or(crate::diag::Span::new(0, 0), |r| r.name_span);
+    // The text is assembled (and the coverage and the silent statements found) on a thread
+    // of its own while the target's check reads its lines here ([`checked`]); its findings
+    // are known only then: when it has some, the coverage and the silent statements are found
+    // again with them.
     let mut check = backend.checker();
-    assemble(spool, framed, check.as_mut())?;
-    report_structure(backend, check.finish(), at, &mut report);
-    report.coverage = coverage(&model, &report);
-    let silent = silent(&model, &report, &produced);
+    let (assembled, covered, mut silent) = checked(check.as_mut(), |lines| {
+        let assembled = assemble(spool, framed, lines);
+        (
+            assembled,
+            coverage(&model, &report),
+            silent(&model, &report, &produced),
+        )
+    });
+    assembled?;
+    let problems = check.finish();
+    report.coverage = covered;
+    if !problems.is_empty() {
+        report_structure(backend, problems, at, &mut report);
+        report.coverage = coverage(&model, &report);
+        silent = self::silent(&model, &report, &produced);
+    }
     drop(model);
     let front::Program {
         src,
@@ -373,6 +390,68 @@ fn rendered_on<'a>(
     );
     let (framed, report, produced) = renderer.finish();
     (spool, framed, report, produced)
+}
+
+/// Runs `work` on a thread of its own and `check` here on each line `work` hands its
+/// [`render::LineCheck`] (in order, in chunks of many lines: the check was the longest stretch
+/// after the second pass that ran on one thread). Returns what `work` returns.
+fn checked<R: Send>(
+    check: &mut dyn render::LineCheck,
+    work: impl FnOnce(&mut dyn render::LineCheck) -> R + Send,
+) -> R {
+    checked_on(true, check, work)
+}
+
+/// [`checked`], `work` on a thread of its own only when `thread`.
+fn checked_on<R: Send>(
+    thread: bool,
+    check: &mut dyn render::LineCheck,
+    work: impl FnOnce(&mut dyn render::LineCheck) -> R + Send,
+) -> R {
+    pipeline::pipelined_on(
+        thread,
+        |sink| {
+            let mut lines = Handed {
+                sink,
+                chunk: String::new(),
+            };
+            let out = work(&mut lines);
+            if !lines.chunk.is_empty() {
+                lines.sink.push(std::mem::take(&mut lines.chunk));
+            }
+            out
+        },
+        // A line has no line break: each ends in one in its chunk.
+        |chunk: &String| chunk.split_terminator('\n').for_each(|l| check.line(l)),
+    )
+}
+
+/// The lines handed to [`checked`]'s check, each followed by a line break, in chunks of about
+/// this many bytes (a few batches of them wait at most: a few megabytes).
+const CHUNK: usize = 4096;
+
+/// A [`render::LineCheck`] that hands its lines on to [`checked`]'s check.
+struct Handed<'s, 'a> {
+    sink: &'s mut pipeline::Sink<'a, String>,
+    chunk: String,
+}
+
+impl render::LineCheck for Handed<'_, '_> {
+    fn line(&mut self, line: &str) {
+        if self.chunk.capacity() == 0 {
+            self.chunk.reserve(CHUNK + 128);
+        }
+        self.chunk.push_str(line);
+        self.chunk.push('\n');
+        if self.chunk.len() >= CHUNK {
+            self.sink.push(std::mem::take(&mut self.chunk));
+        }
+    }
+
+    /// The check's findings are [`checked`]'s check's.
+    fn finish(self: Box<Self>) -> Vec<String> {
+        Vec::new()
+    }
 }
 
 /// What [`each_lowered`] hands out.
