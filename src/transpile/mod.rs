@@ -279,27 +279,14 @@ fn translate(
         .routines
         .first()
         .map_or(crate::diag::Span::new(0, 0), |r| r.name_span);
-    // The text is assembled (and the coverage and the silent statements found) on a thread
-    // of its own while the target's check reads its lines here ([`checked`]); its findings
-    // are known only then: when it has some, the coverage and the silent statements are found
-    // again with them.
+    // The text is assembled on a thread of its own while the target's check reads its lines
+    // here ([`checked`]). (The coverage and the silent statements are found after it, here:
+    // on the other thread, their tables took pages of their own, and the peak grew.)
     let mut check = backend.checker();
-    let (assembled, covered, mut silent) = checked(check.as_mut(), |lines| {
-        let assembled = assemble(spool, framed, lines);
-        (
-            assembled,
-            coverage(&model, &report),
-            silent(&model, &report, &produced),
-        )
-    });
-    assembled?;
-    let problems = check.finish();
-    report.coverage = covered;
-    if !problems.is_empty() {
-        report_structure(backend, problems, at, &mut report);
-        report.coverage = coverage(&model, &report);
-        silent = self::silent(&model, &report, &produced);
-    }
+    checked(check.as_mut(), |lines| assemble(spool, framed, lines))?;
+    report_structure(backend, check.finish(), at, &mut report);
+    report.coverage = coverage(&model, &report);
+    let silent = silent(&model, &report, &produced);
     drop(model);
     let front::Program {
         src,
@@ -428,7 +415,7 @@ fn checked_on<R: Send>(
 
 /// The lines handed to [`checked`]'s check, each followed by a line break, in chunks of about
 /// this many bytes (a few batches of them wait at most: a few megabytes).
-const CHUNK: usize = 4096;
+const CHUNK: usize = 1024;
 
 /// A [`render::LineCheck`] that hands its lines on to [`checked`]'s check.
 struct Handed<'s, 'a> {
