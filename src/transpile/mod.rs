@@ -722,6 +722,45 @@ mod render_thread_tests {
         }
     }
 
+    /// Records the lines it is fed.
+    #[derive(Default)]
+    struct Seen(Vec<String>);
+
+    impl render::LineCheck for Seen {
+        fn line(&mut self, line: &str) {
+            self.0.push(line.to_owned());
+        }
+
+        fn finish(self: Box<Self>) -> Vec<String> {
+            Vec::new()
+        }
+    }
+
+    /// With the work on a thread of its own (lines in chunks, many batches of them) and here,
+    /// the check sees every line in order, empty ones and `\r`s kept, and the work's result
+    /// comes back.
+    #[test]
+    fn the_check_beside_the_work_sees_what_checking_here_does() {
+        let lines: Vec<String> = (0..20_000)
+            .map(|i| match i % 7 {
+                0 => String::new(),
+                1 => format!("line {i}\r"),
+                _ => "x".repeat(i % 300),
+            })
+            .collect();
+        let runs = [true, false].map(|thread| {
+            let mut seen = Seen::default();
+            let out = checked_on(thread, &mut seen, |check| {
+                lines.iter().for_each(|l| check.line(l));
+                lines.len()
+            });
+            (out, seen.0)
+        });
+        assert_eq!(runs[0], runs[1]);
+        assert_eq!(runs[0].0, 20_000);
+        assert_eq!(runs[0].1, lines);
+    }
+
     /// On the render thread (batches of many events, given back) and here, the renderer sees
     /// the same events in the order they were made: same text, findings and statements.
     #[test]

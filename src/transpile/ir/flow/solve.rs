@@ -220,15 +220,20 @@ pub fn solve(graphs: Graphs, program: &Program) -> Solution {
     let mut routines = graphs.routines;
     let n = routines.len().max(program.routines.len());
     routines.resize_with(n, Graph::empty);
-    let names: Vec<String> = (0..n)
+    let names: Vec<compact_str::CompactString> = (0..n)
         .map(|i| {
             program
                 .routines
                 .get(i)
-                .map_or(String::new(), |r| r.name.clone())
+                .map_or("", |r| r.name.as_str())
+                .into()
         })
         .collect();
-    let callees: Vec<Vec<RoutineId>> = routines.iter().map(|g| g.callees.clone()).collect();
+    // The fixpoints need the callees apart from the graphs (taken, not copied).
+    let callees: Vec<Vec<RoutineId>> = routines
+        .iter_mut()
+        .map(|g| std::mem::take(&mut g.callees))
+        .collect();
     let mut moves: Vec<bool> = routines.iter().map(|g| g.moves).collect();
     let routines: Vec<Prepared> = routines.into_iter().map(Prepared::new).collect();
     // Routine → the routines of the file that call it (once per call).
