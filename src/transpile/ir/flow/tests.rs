@@ -88,8 +88,8 @@ fn jumps_follow_the_graph() {
 
 /// Which routines move, in a chain of calls (routine i calls i + 1) whose last routine alone
 /// moves: all of them but the one outside the chain. A sweep of every routine until nothing
-/// changed needed a sweep per link (30,000 routines: 1.1 s); the worklist up the callers visits
-/// each call once (3 ms).
+/// changed needed a sweep per link (30,000 routines: 29,999 sweeps, 0.67 s in a standalone
+/// release copy of that loop); the worklist up the callers visits each call once (2 ms).
 #[test]
 fn a_long_chain_of_calls_moves_in_linear_time() {
     use super::graph::{Graph, Graphs};
