@@ -11,7 +11,9 @@ use std::collections::HashSet;
 use std::collections::hash_map::Entry;
 use std::fmt;
 
-use super::lex::{call_target, code_part, each_name, split_top_level, without_strings_into};
+use super::lex::{
+    call_target, code_part, each_name, may_have_longer_name, split_top_level, without_strings_into,
+};
 use crate::catalog::catalog;
 use compact_str::CompactString;
 use rustc_hash::FxHashMap;
@@ -141,6 +143,21 @@ struct Call {
     arity: usize,
 }
 
+/// The first word of a line's code: up to a blank or `(` (a byte scan when the code is ASCII).
+fn first_word(code: &str) -> &str {
+    if code.is_ascii() {
+        // The ASCII characters `char::is_whitespace` takes, vertical tab included.
+        let end = code
+            .bytes()
+            .position(|c| matches!(c, b' ' | b'\t'..=b'\r' | b'('))
+            .unwrap_or(code.len());
+        return &code[..end];
+    }
+    code.split(|c: char| c.is_whitespace() || c == '(')
+        .next()
+        .unwrap_or("")
+}
+
 /// Data sections the generator and the translator write.
 const DATA_SECTIONS: [&str; 4] = [".REALS", ".STRINGS", ".TRANS", ".JOINTS"];
 
@@ -167,6 +184,9 @@ impl Checker {
     fn long_names(&mut self, n: usize, code: &str) {
         self.bare.clear();
         without_strings_into(code, &mut self.bare);
+        if !may_have_longer_name(&self.bare, self.max) {
+            return;
+        }
         let (max, problems) = (self.max, &mut self.problems);
         each_name(&self.bare, |id| {
             if id.len() > max {
@@ -186,11 +206,7 @@ impl Checker {
         if code.is_empty() {
             return;
         }
-        let mut head = CompactString::from(
-            code.split(|c: char| c.is_whitespace() || c == '(')
-                .next()
-                .unwrap_or(""),
-        );
+        let mut head = CompactString::from(first_word(code));
         head.make_ascii_uppercase();
         let head = head.as_str();
         let section = head == ".PROGRAM" || head == ".END" || DATA_SECTIONS.contains(&head);

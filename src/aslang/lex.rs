@@ -1,30 +1,69 @@
 //! Lexical pieces of an AS line: its code part, its names, its argument lists.
 
 /// The code part of a line: everything before a `;` that is not inside a string.
+///
+/// A byte scan (`"` and `;` are never part of a longer UTF-8 sequence): the line's first `;`
+/// ends the code unless a `"` comes before it.
 pub(super) fn code_part(line: &str) -> &str {
+    let b = line.as_bytes();
+    let mut from = 0;
     let mut in_str = false;
-    for (i, c) in line.char_indices() {
-        match c {
-            '"' => in_str = !in_str,
-            ';' if !in_str => return &line[..i],
+    while let Some(i) = memchr::memchr2(b'"', b';', &b[from..]) {
+        let i = from + i;
+        match b[i] {
+            b'"' => in_str = !in_str,
+            _ if !in_str => return &line[..i],
             _ => {}
         }
+        from = i + 1;
     }
     line
 }
 
 /// The code with string literals blanked (so their words are not taken for names), appended to
-/// `out` (the checker reuses one buffer for every line).
+/// `out` (the checker reuses one buffer for every line): each `"` and each character inside a
+/// string becomes one space.
 pub(super) fn without_strings_into(code: &str, out: &mut String) {
     let mut in_str = false;
-    for c in code.chars() {
-        if c == '"' {
-            in_str = !in_str;
-            out.push(' ');
+    let mut rest = code;
+    while let Some(i) = memchr::memchr(b'"', rest.as_bytes()) {
+        let (part, after) = rest.split_at(i);
+        push_part(part, in_str, out);
+        out.push(' ');
+        in_str = !in_str;
+        rest = &after[1..];
+    }
+    push_part(rest, in_str, out);
+}
+
+/// A run between quotes: as it is, or one space per character inside a string.
+fn push_part(part: &str, in_str: bool, out: &mut String) {
+    if in_str {
+        out.extend(std::iter::repeat_n(' ', part.chars().count()));
+    } else {
+        out.push_str(part);
+    }
+}
+
+/// Whether `code` may hold a name longer than `max` ([`each_name`]): a name is part of a run
+/// of name characters, so a line without a run longer than `max` has none (most lines: the
+/// check skips the name scan for them).
+pub(super) fn may_have_longer_name(code: &str, max: usize) -> bool {
+    if code.len() <= max {
+        return false;
+    }
+    let mut run = 0;
+    for &c in code.as_bytes() {
+        if c.is_ascii_alphanumeric() || c == b'_' || c == b'.' {
+            run += 1;
+            if run > max {
+                return true;
+            }
         } else {
-            out.push(if in_str { ' ' } else { c });
+            run = 0;
         }
     }
+    false
 }
 
 /// Names in a code line, without the local dot and the sigil: `.#cur` → `cur`,

@@ -53,7 +53,7 @@ pub(super) fn write_atomically(path: &Path, bytes: &[u8]) -> anyhow::Result<()> 
 /// held whole; `write`'s result is returned once the file is in place.
 pub(super) fn write_atomically_with<T>(
     path: &Path,
-    write: impl FnOnce(&mut dyn Write) -> anyhow::Result<T>,
+    write: impl FnOnce(&mut (dyn Write + Send)) -> anyhow::Result<T>,
 ) -> anyhow::Result<T> {
     let target = match std::fs::metadata(path) {
         Ok(meta) if !meta.is_file() => {
@@ -91,7 +91,7 @@ pub(super) fn spool_beside(path: &Path) -> std::io::Result<std::fs::File> {
 
 fn replace_file<T>(
     path: &Path,
-    write: impl FnOnce(&mut dyn Write) -> anyhow::Result<T>,
+    write: impl FnOnce(&mut (dyn Write + Send)) -> anyhow::Result<T>,
 ) -> anyhow::Result<T> {
     let dir = path
         .parent()

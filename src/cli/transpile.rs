@@ -173,7 +173,8 @@ pub fn run(mut args: TranspileArgs) -> anyhow::Result<Outcome> {
                 .with_context(|| format!("cannot write {}", out.display()))
         })?,
         None => {
-            let mut w = std::io::BufWriter::new(std::io::stdout().lock());
+            // Unlocked: the translation writes it from a thread of its own.
+            let mut w = std::io::BufWriter::new(std::io::stdout());
             let spool = spool(tempfile::tempfile());
             transpile::transpile_to(target, src, dat, &options, spool, &mut w)
                 .and_then(|t| w.flush().map(|()| t))

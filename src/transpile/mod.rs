@@ -172,7 +172,7 @@ pub fn transpile_to(
     dat: Option<Source>,
     options: &Options,
     spool: render::Spool,
-    out: &mut dyn std::io::Write,
+    out: &mut (dyn std::io::Write + Send),
 ) -> std::io::Result<Translation> {
     translate(target, src, dat, options, spool, |spool, framed, check| {
         spool.write_to(framed, check, out)
@@ -198,7 +198,8 @@ fn translate(
         render::Spool,
         render::Framed,
         &mut dyn render::LineCheck,
-    ) -> std::io::Result<()>,
+    ) -> std::io::Result<()>
+    + Send,
 ) -> std::io::Result<Translation> {
     let mut program = front::Program::new(
         front::Parsed::new(src.path, src.text),
@@ -278,8 +279,11 @@ fn translate(
         .routines
         .first()
         .map_or(crate::diag::Span::new(0, 0), |r| r.name_span);
+    // The text is assembled on a thread of its own while the target's check reads its lines
+    // here ([`checked`]). (The coverage and the silent statements are found after it, here:
+    // on the other thread, their tables took pages of their own, and the peak grew.)
     let mut check = backend.checker();
-    assemble(spool, framed, check.as_mut())?;
+    checked(check.as_mut(), |lines| assemble(spool, framed, lines))?;
     report_structure(backend, check.finish(), at, &mut report);
     report.coverage = coverage(&model, &report);
     let silent = silent(&model, &report, &produced);
@@ -373,6 +377,68 @@ fn rendered_on<'a>(
     );
     let (framed, report, produced) = renderer.finish();
     (spool, framed, report, produced)
+}
+
+/// Runs `work` on a thread of its own and `check` here on each line `work` hands its
+/// [`render::LineCheck`] (in order, in chunks of many lines: the check was the longest stretch
+/// after the second pass that ran on one thread). Returns what `work` returns.
+fn checked<R: Send>(
+    check: &mut dyn render::LineCheck,
+    work: impl FnOnce(&mut dyn render::LineCheck) -> R + Send,
+) -> R {
+    checked_on(true, check, work)
+}
+
+/// [`checked`], `work` on a thread of its own only when `thread`.
+fn checked_on<R: Send>(
+    thread: bool,
+    check: &mut dyn render::LineCheck,
+    work: impl FnOnce(&mut dyn render::LineCheck) -> R + Send,
+) -> R {
+    pipeline::pipelined_on(
+        thread,
+        |sink| {
+            let mut lines = Handed {
+                sink,
+                chunk: String::new(),
+            };
+            let out = work(&mut lines);
+            if !lines.chunk.is_empty() {
+                lines.sink.push(std::mem::take(&mut lines.chunk));
+            }
+            out
+        },
+        // A line has no line break: each ends in one in its chunk.
+        |chunk: &String| chunk.split_terminator('\n').for_each(|l| check.line(l)),
+    )
+}
+
+/// The lines handed to [`checked`]'s check, each followed by a line break, in chunks of about
+/// this many bytes (a few batches of them wait at most: a few megabytes).
+const CHUNK: usize = 1024;
+
+/// A [`render::LineCheck`] that hands its lines on to [`checked`]'s check.
+struct Handed<'s, 'a> {
+    sink: &'s mut pipeline::Sink<'a, String>,
+    chunk: String,
+}
+
+impl render::LineCheck for Handed<'_, '_> {
+    fn line(&mut self, line: &str) {
+        if self.chunk.capacity() == 0 {
+            self.chunk.reserve(CHUNK + 128);
+        }
+        self.chunk.push_str(line);
+        self.chunk.push('\n');
+        if self.chunk.len() >= CHUNK {
+            self.sink.push(std::mem::take(&mut self.chunk));
+        }
+    }
+
+    /// The check's findings are [`checked`]'s check's.
+    fn finish(self: Box<Self>) -> Vec<String> {
+        Vec::new()
+    }
 }
 
 /// What [`each_lowered`] hands out.
@@ -654,6 +720,45 @@ mod render_thread_tests {
             };
             (framed, self.report, self.produced)
         }
+    }
+
+    /// Records the lines it is fed.
+    #[derive(Default)]
+    struct Seen(Vec<String>);
+
+    impl render::LineCheck for Seen {
+        fn line(&mut self, line: &str) {
+            self.0.push(line.to_owned());
+        }
+
+        fn finish(self: Box<Self>) -> Vec<String> {
+            Vec::new()
+        }
+    }
+
+    /// With the work on a thread of its own (lines in chunks, many batches of them) and here,
+    /// the check sees every line in order, empty ones and `\r`s kept, and the work's result
+    /// comes back.
+    #[test]
+    fn the_check_beside_the_work_sees_what_checking_here_does() {
+        let lines: Vec<String> = (0..20_000)
+            .map(|i| match i % 7 {
+                0 => String::new(),
+                1 => format!("line {i}\r"),
+                _ => "x".repeat(i % 300),
+            })
+            .collect();
+        let runs = [true, false].map(|thread| {
+            let mut seen = Seen::default();
+            let out = checked_on(thread, &mut seen, |check| {
+                lines.iter().for_each(|l| check.line(l));
+                lines.len()
+            });
+            (out, seen.0)
+        });
+        assert_eq!(runs[0], runs[1]);
+        assert_eq!(runs[0].0, 20_000);
+        assert_eq!(runs[0].1, lines);
     }
 
     /// On the render thread (batches of many events, given back) and here, the renderer sees

@@ -92,8 +92,9 @@ impl<'p> Model<'p> {
             Resolved::Type(t) => Some(t),
             _ => None,
         };
-        let mut routines = FxHashMap::default();
-        for &r in &sema.file(SRC).routines {
+        let ids = &sema.file(SRC).routines;
+        let mut routines = FxHashMap::with_capacity_and_hasher(ids.len(), Default::default());
+        for &r in ids {
             let mut name = CompactString::from(sema.name(sema.routine(r).name));
             name.make_ascii_uppercase();
             routines.entry(name).or_insert(r);
@@ -289,11 +290,22 @@ impl<'p> Model<'p> {
         v
     }
 
+    /// The parameters and locals of `routine` in declaration order, and its signature: one
+    /// lookup of its name for both.
+    pub fn declared(&self, routine: &str) -> (Vec<VarInfo>, Option<Signature>) {
+        match self.routine_id(routine) {
+            Some(r) => (self.locals_of(r), Some(self.signature(r))),
+            None => (Vec::new(), None),
+        }
+    }
+
     /// The parameters and locals of `routine`, in declaration order.
     pub fn locals(&self, routine: &str) -> Vec<VarInfo> {
-        let Some(r) = self.routine_id(routine) else {
-            return Vec::new();
-        };
+        self.routine_id(routine)
+            .map_or_else(Vec::new, |r| self.locals_of(r))
+    }
+
+    fn locals_of(&self, r: RoutineId) -> Vec<VarInfo> {
         let mut v: Vec<VarInfo> = self
             .symbols_of
             .get(r.index())
@@ -306,9 +318,12 @@ impl<'p> Model<'p> {
 
     /// The routine of the program called `name`.
     pub fn routine(&self, name: &str) -> Option<Signature> {
-        let id = self.routine_id(name)?;
+        Some(self.signature(self.routine_id(name)?))
+    }
+
+    fn signature(&self, id: RoutineId) -> Signature {
         let r = self.sema.routine(id);
-        Some(Signature {
+        Signature {
             name: self.sema.name(r.name).to_owned(),
             kind: match r.kind {
                 ast::RoutineKind::Def => ir::RoutineKind::Def,
@@ -326,7 +341,7 @@ impl<'p> Model<'p> {
                 })
                 .collect(),
             ret: r.ret.map(|t| self.ty(t)),
-        })
+        }
     }
 
     /// The enum type and 1-based ordinal of `#name`, if exactly one ENUM of the program has it.

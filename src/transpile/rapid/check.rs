@@ -85,6 +85,8 @@ pub struct Lines {
     /// Per routine: labels defined and GOTO targets.
     labels: HashSet<String>,
     gotos: Vec<(String, usize)>,
+    /// The line's identifiers (byte ranges): one buffer for every line.
+    spans: Vec<(usize, usize)>,
 }
 
 impl Lines {
@@ -100,6 +102,7 @@ impl Lines {
             external,
             labels,
             gotos,
+            spans,
             ..
         } = self;
         if let Some(list) = raw
@@ -124,14 +127,17 @@ impl Lines {
         if line.is_empty() {
             return;
         }
-        let words = identifiers(line);
-        for w in &words {
-            if w.len() > 32 {
+        identifiers(line, spans);
+        let spans: &[(usize, usize)] = spans;
+        let word = |k: usize| spans.get(k).map(|&(a, b)| &line[a..b]);
+        for &(a, b) in spans {
+            if b - a > 32 {
+                let w = &line[a..b];
                 problems.push(format!("line {n}: `{w}` is longer than 32 characters"));
             }
         }
         let mut buf = [0u8; 12];
-        let first = lower(words.first().copied().unwrap_or(""), &mut buf);
+        let first = lower(word(0).unwrap_or(""), &mut buf);
         let ends_then = line.len() >= 4
             && line.is_char_boundary(line.len() - 4)
             && line[line.len() - 4..].eq_ignore_ascii_case("THEN");
@@ -158,11 +164,7 @@ impl Lines {
                     "func" => "FUNC",
                     _ => "TRAP",
                 };
-                let name = if kind == "FUNC" {
-                    words.get(2)
-                } else {
-                    words.get(1)
-                };
+                let name = if kind == "FUNC" { word(2) } else { word(1) };
                 if let Some(name) = name {
                     defined.insert(name.to_ascii_lowercase());
                 }
@@ -195,37 +197,38 @@ impl Lines {
             "record" => open("RECORD", stack),
             "endrecord" => close("RECORD", stack, problems),
             _ => {
-                if line.ends_with(':') && words.len() == 1 {
-                    labels.insert(words[0].to_ascii_lowercase());
+                if line.ends_with(':') && spans.len() == 1 {
+                    labels.insert(line[spans[0].0..spans[0].1].to_ascii_lowercase());
                 } else if !line.ends_with(';') {
                     problems.push(format!("line {n}: a statement without `;`: {line}"));
                 } else if stack.last().map(|s| s.0) == Some("RECORD") {
                     // A component: `num force;`.
                 } else if first == "goto" {
-                    if let Some(l) = words.get(1) {
+                    if let Some(l) = word(1) {
                         gotos.push((l.to_ascii_lowercase(), n));
                     }
                 } else if !matches!(first, "var" | "pers" | "const")
-                    && let Some(rest) = line.get(words[0].len()..)
+                    && let Some(rest) = line.get(spans[0].1 - spans[0].0..)
                     && !rest.trim_start().starts_with([':', '{', '.'])
                     && !INSTRUCTIONS.contains(&first)
                 {
-                    called.push((words[0].to_ascii_lowercase(), n));
+                    called.push((line[spans[0].0..spans[0].1].to_ascii_lowercase(), n));
                 }
             }
         }
         if !line.contains('(') {
             return;
         }
-        for f in calls_in(line) {
-            let l = f.to_ascii_lowercase();
-            if !FUNCTIONS.contains(&l.as_str())
-                && !KEYWORDS.contains(&l.as_str())
-                && !matches!(first, "proc" | "func")
-            {
-                called.push((l, n));
-            }
+        if matches!(first, "proc" | "func") {
+            return;
         }
+        // The lists are lower case: compared without a copy, one made for a call kept.
+        each_call(line, |f| {
+            let known = |list: &[&str]| list.iter().any(|k| k.eq_ignore_ascii_case(f));
+            if !known(&FUNCTIONS) && !known(&KEYWORDS) {
+                called.push((f.to_ascii_lowercase(), n));
+            }
+        });
     }
 
     /// The problems found, in the order found.
@@ -297,8 +300,8 @@ fn split_code(line: &str) -> (String, Vec<usize>) {
 }
 
 /// The identifiers of a line of code (numbers and `9E9` excluded).
-fn identifiers(code: &str) -> Vec<&str> {
-    let mut v = Vec::new();
+fn identifiers(code: &str, v: &mut Vec<(usize, usize)>) {
+    v.clear();
     let b = code.as_bytes();
     let mut i = 0;
     while i < b.len() {
@@ -310,17 +313,15 @@ fn identifiers(code: &str) -> Vec<&str> {
             while i < b.len() && (b[i].is_ascii_alphanumeric() || b[i] == b'_') {
                 i += 1;
             }
-            v.push(&code[s..i]);
+            v.push((s, i));
         } else {
             i += 1;
         }
     }
-    v
 }
 
 /// Names directly followed by `(`: function calls (and declarations' parameter lists).
-fn calls_in(code: &str) -> Vec<&str> {
-    let mut v = Vec::new();
+fn each_call<'c>(code: &'c str, mut f: impl FnMut(&'c str)) {
     for (i, _) in code.match_indices('(') {
         let before = &code[..i];
         let start = before
@@ -330,10 +331,9 @@ fn calls_in(code: &str) -> Vec<&str> {
         if name.starts_with(|c: char| c.is_ascii_alphabetic())
             && !before[..start].ends_with(['.', '\\'])
         {
-            v.push(name);
+            f(name);
         }
     }
-    v
 }
 
 #[cfg(test)]

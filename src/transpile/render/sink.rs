@@ -153,7 +153,7 @@ impl Lines<'_> {
     fn write(&mut self, bytes: &[u8]) -> io::Result<()> {
         self.out.write_all(bytes)?;
         let mut rest = bytes;
-        while let Some(i) = rest.iter().position(|&b| b == b'\n') {
+        while let Some(i) = memchr::memchr(b'\n', rest) {
             let (line, after) = rest.split_at(i);
             if self.partial.is_empty() {
                 self.line(line, true);

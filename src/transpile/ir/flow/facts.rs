@@ -165,7 +165,8 @@ pub(super) struct Summary {
     /// Its exit state: an index into [`Ctx::exits`] (few routines leave distinct facts; a
     /// state per routine was most of the flow's memory on a file of many routines).
     pub(super) exit: u32,
-    pub(super) name: String,
+    /// Inline for most names: one per routine of the file.
+    pub(super) name: compact_str::CompactString,
 }
 
 /// What a call needs to know of the routines of the file.

@@ -220,39 +220,42 @@ pub fn solve(graphs: Graphs, program: &Program) -> Solution {
     let mut routines = graphs.routines;
     let n = routines.len().max(program.routines.len());
     routines.resize_with(n, Graph::empty);
-    let names: Vec<String> = (0..n)
+    let names: Vec<compact_str::CompactString> = (0..n)
         .map(|i| {
             program
                 .routines
                 .get(i)
-                .map_or(String::new(), |r| r.name.clone())
+                .map_or("", |r| r.name.as_str())
+                .into()
         })
         .collect();
-    let callees: Vec<Vec<RoutineId>> = routines.iter().map(|g| g.callees.clone()).collect();
+    // The fixpoints need the callees apart from the graphs (taken, not copied).
+    let callees: Vec<Vec<RoutineId>> = routines
+        .iter_mut()
+        .map(|g| std::mem::take(&mut g.callees))
+        .collect();
     let mut moves: Vec<bool> = routines.iter().map(|g| g.moves).collect();
     let routines: Vec<Prepared> = routines.into_iter().map(Prepared::new).collect();
-    // Which routines move the robot (themselves or through calls), to a fixpoint.
-    loop {
-        let mut changed = false;
-        for i in 0..n {
-            if !moves[i] && callees[i].iter().any(|c| moves[c.0 as usize]) {
-                moves[i] = true;
-                changed = true;
-            }
-        }
-        if !changed {
-            break;
-        }
-    }
-    let mut ix = Interner::default();
-    let handler = ix.id(State::uniform(Some(Because::Caller), true));
-    // Summaries to a fixpoint over the call graph: a routine again only when a callee's changed.
+    // Routine → the routines of the file that call it (once per call).
     let mut callers: Vec<Vec<usize>> = vec![Vec::new(); n];
     for (i, cs) in callees.iter().enumerate() {
         for c in cs {
             callers[c.0 as usize].push(i);
         }
     }
+    // Which routines move the robot (themselves or through calls): from each that moves, up
+    // its callers (a sweep of every routine until nothing changed was quadratic in a chain of
+    // calls whose last routine moves).
+    let mut up: Vec<usize> = (0..n).filter(|&i| moves[i]).collect();
+    while let Some(c) = up.pop() {
+        for &i in &callers[c] {
+            if !std::mem::replace(&mut moves[i], true) {
+                up.push(i);
+            }
+        }
+    }
+    let mut ix = Interner::default();
+    let handler = ix.id(State::uniform(Some(Because::Caller), true));
     let identity = State::uniform(None, false);
     let unchanged = ix.id(identity.clone());
     // Each distinct exit state once, by its interned id (equal ids are equal states).
@@ -263,13 +266,17 @@ pub fn solve(graphs: Graphs, program: &Program) -> Solution {
         .into_iter()
         .map(|name| Summary { exit: 0, name })
         .collect();
+    // Summaries to a fixpoint over the call graph: a routine again only when a callee's changed,
+    // in the order of sweeps over the routines (a caller after the routine in this sweep, one
+    // before it or itself in the next), but only the routines to walk again are visited: a
+    // sweep of them all per round was O(routines × rounds).
     let mut dirty = vec![true; n];
+    let mut now: BinaryHeap<Reverse<usize>> = (0..n).map(Reverse).collect();
+    let mut next: BinaryHeap<Reverse<usize>> = BinaryHeap::new();
     for _ in 0..ROUNDS {
         let mut changed = false;
-        for i in 0..n {
-            if !std::mem::take(&mut dirty[i]) {
-                continue;
-            }
+        while let Some(Reverse(i)) = now.pop() {
+            dirty[i] = false;
             let ctx = Ctx {
                 summaries: &summaries,
                 exits: &exits,
@@ -288,13 +295,19 @@ pub fn solve(graphs: Graphs, program: &Program) -> Solution {
                 summaries[i].exit = exit;
                 changed = true;
                 for &c in &callers[i] {
-                    dirty[c] = true;
+                    if !std::mem::replace(&mut dirty[c], true) {
+                        match c > i {
+                            true => now.push(Reverse(c)),
+                            false => next.push(Reverse(c)),
+                        }
+                    }
                 }
             }
         }
         if !changed {
             break;
         }
+        std::mem::swap(&mut now, &mut next);
     }
     let ctx = Ctx {
         summaries: &summaries,

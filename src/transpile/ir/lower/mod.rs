@@ -172,7 +172,7 @@ pub struct Lower<'p> {
     changed: FxHashMap<VarId, Var>,
     /// Upper-case name → the first routine of `out` of that name (a scan of the routines per
     /// call made a file of many routines quadratic).
-    routine_ids: FxHashMap<String, RoutineId>,
+    routine_ids: FxHashMap<CompactString, RoutineId>,
     /// (routine key or "", upper-case name) → id; package and assumed names under "".
     vars: VarKeys,
     rt: Option<Ctx>,
@@ -208,17 +208,26 @@ impl<'p> Lower<'p> {
         options: &'p Options,
         caps: &'static Caps,
     ) -> Lower<'p> {
+        // Sized once for every routine (growing them was a tenth of this set-up's time on a
+        // file of many routines).
+        let routines = program.src.outline.routines.len();
+        let mut out = Program::default();
+        out.routines.reserve_exact(routines);
+        let mut vars = VarKeys::default();
+        vars.scopes.reserve(routines);
+        vars.runs.reserve(routines);
+        vars.by_routine.reserve_exact(routines);
         let mut l = Lower {
             src: program,
             model: Model::new(program),
             opts: options,
             caps,
-            out: Program::default(),
+            out,
             first: None,
             first_vars: None,
             changed: FxHashMap::default(),
-            routine_ids: FxHashMap::default(),
-            vars: VarKeys::default(),
+            routine_ids: FxHashMap::with_capacity_and_hasher(routines, Default::default()),
+            vars,
             rt: None,
             next_spline: 0,
             vision: None,
@@ -236,11 +245,12 @@ impl<'p> Lower<'p> {
         for r in &program.src.outline.routines {
             l.declare_routine(r);
         }
-        let routines = &l.out.routines;
-        l.vars.by_routine = routines
-            .iter()
-            .map(|r| l.vars.scope(&upper(&r.name)))
-            .collect();
+        // A routine that declared nothing may share its name with a later one that did.
+        for (i, r) in program.src.outline.routines.iter().enumerate() {
+            if l.vars.by_routine[i].is_none() {
+                l.vars.by_routine[i] = l.vars.scope(&upper(&r.head.name.text));
+            }
+        }
         l.collect_interrupts();
         if let Pass::First { journal, .. } = &mut l.pass {
             *journal = Some(Vec::new());
@@ -499,18 +509,23 @@ impl<'p> Lower<'p> {
     }
 
     fn push_routine(&mut self, r: Routine) -> RoutineId {
+        let key = upper(&r.name);
+        self.push_routine_keyed(r, key)
+    }
+
+    /// [`Lower::push_routine`], its upper-case name `key` known.
+    fn push_routine_keyed(&mut self, r: Routine, key: CompactString) -> RoutineId {
         let id = RoutineId(self.out.routines.len() as u32);
-        self.routine_ids
-            .entry(r.name.to_ascii_uppercase())
-            .or_insert(id);
+        self.routine_ids.entry(key).or_insert(id);
         self.out.routines.push(r);
         id
     }
 
     fn declare_routine(&mut self, outline: &RoutineOutline) {
         let r = &outline.head;
-        let key = r.name.key();
-        for v in self.model.locals(&r.name.text) {
+        let key = upper(&r.name.text);
+        let (locals, sig) = self.model.declared(&r.name.text);
+        for v in locals {
             let id = RoutineId(self.out.routines.len() as u32);
             let scope = match v.kind {
                 VarKind::Param(_) => Scope::Param(id),
@@ -518,7 +533,6 @@ impl<'p> Lower<'p> {
             };
             self.add_var(&key, v, scope);
         }
-        let sig = self.model.routine(&r.name.text);
         let kind = match r.kind {
             ast::RoutineKind::Def => RoutineKind::Def,
             ast::RoutineKind::Deffct => RoutineKind::Deffct,
@@ -556,23 +570,29 @@ impl<'p> Lower<'p> {
         let ret = sig.and_then(|s| s.ret);
         let result = (kind == RoutineKind::Deffct && !self.caps.functions)
             .then(|| self.result_param(r, ret.clone().unwrap_or(Ty::Real), &mut params));
-        self.push_routine(Routine {
-            name: r.name.text.to_string(),
-            name_span: r.name.span,
-            kind,
-            ret,
-            params,
-            result,
-            locals: Vec::new(),
-            temps: Vec::new(),
-            labels: Vec::new(),
-            closed: r.closed,
-            header_error: self.header_syntax_error(outline),
-            duplicate_param: duplicate,
-            span: r.span,
-            end: front::end_line_start(&self.src.src.text, r.span),
-            synthetic: false,
-        });
+        // The routine's scope, by its id: found here once, not by name per routine entered
+        // (none yet: looked up again when all are declared).
+        self.vars.by_routine.push(self.vars.scope(&key));
+        self.push_routine_keyed(
+            Routine {
+                name: r.name.text.to_string(),
+                name_span: r.name.span,
+                kind,
+                ret,
+                params,
+                result,
+                locals: Vec::new(),
+                temps: Vec::new(),
+                labels: Vec::new(),
+                closed: r.closed,
+                header_error: self.header_syntax_error(outline),
+                duplicate_param: duplicate,
+                span: r.span,
+                end: front::end_line_start(&self.src.src.text, r.span),
+                synthetic: false,
+            },
+            key,
+        );
     }
 
     /// A DEFFCT's value in a target without functions (`Caps::functions`): an OUT parameter
@@ -1157,11 +1177,10 @@ fn upper(name: &str) -> CompactString {
 }
 
 /// Upper-case name → the first of `routines` of that name.
-fn index_routines(routines: &[Routine]) -> FxHashMap<String, RoutineId> {
-    let mut ids = FxHashMap::default();
+fn index_routines(routines: &[Routine]) -> FxHashMap<CompactString, RoutineId> {
+    let mut ids = FxHashMap::with_capacity_and_hasher(routines.len(), Default::default());
     for (i, r) in routines.iter().enumerate() {
-        ids.entry(r.name.to_ascii_uppercase())
-            .or_insert(RoutineId(i as u32));
+        ids.entry(upper(&r.name)).or_insert(RoutineId(i as u32));
     }
     ids
 }
