@@ -470,22 +470,23 @@ impl<'p> Model<'p> {
         let i = fields
             .iter()
             .position(|f| self.sema.name(f.name).eq_ignore_ascii_case(field))?;
-        let key = field.to_ascii_uppercase();
         if i < 6 {
             return Some(match layout {
                 Layout::Pose => Component::Pose(i),
                 Layout::Axis => Component::Axis(i),
             });
         }
-        match key.as_str() {
-            "S" => Some(Component::Status),
-            "T" => Some(Component::Turn),
-            _ => key
-                .strip_prefix('E')
-                .and_then(|n| n.parse::<usize>().ok())
-                .filter(|n| (1..=6).contains(n))
-                .map(|n| Component::Ext(n - 1)),
+        if field.eq_ignore_ascii_case("S") {
+            return Some(Component::Status);
         }
+        if field.eq_ignore_ascii_case("T") {
+            return Some(Component::Turn);
+        }
+        field
+            .strip_prefix(['E', 'e'])
+            .and_then(|n| n.parse::<usize>().ok())
+            .filter(|n| (1..=6).contains(n))
+            .map(|n| Component::Ext(n - 1))
     }
 
     /// The range of the `SIGNAL` declaration whose name is at `name` in `file`.
