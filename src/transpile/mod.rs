@@ -127,14 +127,16 @@ pub trait Renderer {
     fn end_routine(&mut self, spool: &mut render::Spool);
     /// The text before and after the spooled routines, the findings (not yet sorted) and the
     /// statements that wrote something.
-    fn finish(
-        self: Box<Self>,
-    ) -> (
-        render::Framed,
-        front::report::Report,
-        Vec<crate::diag::Span>,
-    );
+    fn finish(self: Box<Self>) -> Finished;
 }
+
+/// What a [`Renderer`] hands back when it finishes: the frame around the spooled routines, the
+/// findings and the statements that wrote something.
+pub type Finished = (
+    render::Framed,
+    front::report::Report,
+    Vec<crate::diag::Span>,
+);
 
 /// Translate a KRL program (its `.src` and optional `.dat`) to `target`, the text in
 /// `Translation.text`.
@@ -707,13 +709,7 @@ mod render_thread_tests {
             self.routine.clear();
         }
 
-        fn finish(
-            self: Box<Self>,
-        ) -> (
-            render::Framed,
-            front::report::Report,
-            Vec<crate::diag::Span>,
-        ) {
+        fn finish(self: Box<Self>) -> Finished {
             let framed = render::Framed {
                 before: "before\n".into(),
                 after: "after\n".into(),

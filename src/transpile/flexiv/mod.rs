@@ -611,7 +611,7 @@ impl crate::transpile::Renderer for Tx<'_> {
         self.out.depth = 0;
     }
 
-    fn finish(mut self: Box<Self>) -> (render::Framed, Report, Vec<Span>) {
+    fn finish(mut self: Box<Self>) -> super::Finished {
         self.choose_entry();
         let framed = self.assemble();
         (framed, self.out.rep, self.out.produced)

@@ -405,7 +405,7 @@ impl crate::transpile::Renderer for Tx<'_> {
         self.out.routine = None;
     }
 
-    fn finish(mut self: Box<Self>) -> (render::Framed, Report, Vec<Span>) {
+    fn finish(mut self: Box<Self>) -> super::Finished {
         self.data_sections();
         let framed = self.assemble();
         (framed, self.out.rep, self.out.produced)

@@ -494,7 +494,7 @@ impl crate::transpile::Renderer for Tx<'_> {
         }
     }
 
-    fn finish(mut self: Box<Self>) -> (render::Framed, Report, Vec<Span>) {
+    fn finish(mut self: Box<Self>) -> super::Finished {
         let framed = self.assemble();
         (framed, self.out.rep, self.out.produced)
     }
