@@ -87,11 +87,11 @@ fn jumps_follow_the_graph() {
 }
 
 /// Which routines move, in a chain of calls (routine i calls i + 1) whose last routine alone
-/// moves: all of them but the one outside the chain. A sweep of every routine until nothing
-/// changed needed a sweep per link (30,000 routines: 29,999 sweeps, 0.67 s in a standalone
-/// release copy of that loop); the worklist up the callers visits each call once (2 ms).
+/// moves: all of them but the one outside the chain. (A sweep of every routine until nothing
+/// changed needed a sweep per link, quadratic in the chain; the worklist up the callers visits
+/// each call once. Time is the scaling guard's to check, on its call-chain shape, not a test's.)
 #[test]
-fn a_long_chain_of_calls_moves_in_linear_time() {
+fn a_long_chain_of_calls_all_move() {
     use super::graph::{Graph, Graphs};
     use crate::transpile::ir::{Program, RoutineId};
     let n = 30_000;
@@ -103,11 +103,7 @@ fn a_long_chain_of_calls_moves_in_linear_time() {
     routines[n - 2].moves = true;
     let mut graphs = Graphs::default();
     graphs.routines = routines;
-    let started = std::time::Instant::now();
     let solution = super::solve(graphs, &Program::default());
-    let took = started.elapsed();
     assert!(solution.moves[..n - 1].iter().all(|&m| m));
     assert!(!solution.moves[n - 1]);
-    // Generous for a loaded debug build; the quadratic sweep took minutes there.
-    assert!(took.as_secs() < 20, "{took:?}");
 }
