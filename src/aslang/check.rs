@@ -158,6 +158,23 @@ fn first_word(code: &str) -> &str {
         .unwrap_or("")
 }
 
+/// `str::trim`, a byte scan when the ends are ASCII (the blanks `char::is_whitespace` takes,
+/// vertical tab included).
+fn trim_blanks(s: &str) -> &str {
+    let blank = |c: &u8| matches!(c, b' ' | b'\t'..=b'\r');
+    let b = s.as_bytes();
+    let start = b.iter().position(|c| !blank(c)).unwrap_or(b.len());
+    let end = b.iter().rposition(|c| !blank(c)).map_or(start, |i| i + 1);
+    let t = &s[start..end];
+    match (t.as_bytes().first(), t.as_bytes().last()) {
+        (Some(a), Some(z)) if a.is_ascii() && z.is_ascii() => t,
+        _ => t.trim(),
+    }
+}
+
+/// The statement heads whose check reads more of the line than its first word.
+const BLOCK_HEADS: [&str; 6] = ["IF", "FOR", "WHILE", "DO", "CASE", "SCASE"];
+
 /// Data sections the generator and the translator write.
 const DATA_SECTIONS: [&str; 4] = [".REALS", ".STRINGS", ".TRANS", ".JOINTS"];
 
@@ -202,7 +219,7 @@ impl Checker {
         if !raw.is_ascii() {
             self.push(n, "non-ASCII character".into());
         }
-        let code = code_part(raw).trim();
+        let code = trim_blanks(code_part(raw));
         if code.is_empty() {
             return;
         }
@@ -338,21 +355,25 @@ impl Checker {
 
     fn program_line(&mut self, n: usize, code: &str) {
         self.long_names(n, code);
+        let mut first = CompactString::from(self.bare.split_whitespace().next().unwrap_or(""));
+        first.make_ascii_uppercase();
+        // Only block heads read the rest of the line's words: the upper-case copy and the
+        // word scan are made for them alone (most lines are moves and assignments).
         let mut upper = std::mem::take(&mut self.upper);
         upper.clear();
-        upper.push_str(&self.bare);
-        upper.make_ascii_uppercase();
-        self.program_words(n, code, &upper);
+        if BLOCK_HEADS.contains(&first.as_str()) {
+            upper.push_str(&self.bare);
+            upper.make_ascii_uppercase();
+        }
+        self.program_words(n, code, &first, &upper);
         self.upper = upper;
     }
 
-    /// A line of a program, `upper` its words without strings in upper case.
-    fn program_words(&mut self, n: usize, code: &str, upper: &str) {
-        let mut words = upper.split_whitespace();
-        let first = words.next().unwrap_or("");
-        let (mut last_word, mut count, mut has_to) =
-            (first, usize::from(!first.is_empty()), first == "TO");
-        for w in words {
+    /// A line of a program: `first` its first word without strings in upper case, `upper` all
+    /// its words so when `first` is one of [`BLOCK_HEADS`] (empty otherwise).
+    fn program_words(&mut self, n: usize, code: &str, first: &str, upper: &str) {
+        let (mut last_word, mut count, mut has_to) = ("", 0, false);
+        for w in upper.split_whitespace() {
             last_word = w;
             count += 1;
             has_to |= w == "TO";
@@ -427,7 +448,7 @@ impl Checker {
                     if !matches!(p.blocks.last(), Some((Block::Case, _))) {
                         problems.push((n, format!("{first} outside a CASE block")));
                     }
-                    if !upper.trim_end().ends_with(':') {
+                    if !self.bare.trim_end().ends_with(':') {
                         problems.push((n, format!("{first} without `:`")));
                     }
                 }

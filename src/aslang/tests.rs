@@ -148,3 +148,15 @@ fn names_skip_numbers_and_strip_sigils() {
         ["cur", "mm_tx", "v", "i", "x.y"]
     );
 }
+
+#[test]
+fn blanks_around_a_line_are_trimmed_as_str_trim_does() {
+    // A vertical tab, a no-break space and an em space around block heads: the block still
+    // opens and closes, the label is defined (only the non-ASCII lines are found).
+    let text =
+        ".PROGRAM a()\n\x0bIF .x THEN\x0b\n\u{a0}\tEND\u{2003}\nlbl:\u{a0}\n GOTO lbl\n.END\n";
+    assert_eq!(
+        messages(text),
+        vec!["3: non-ASCII character", "4: non-ASCII character"]
+    );
+}
