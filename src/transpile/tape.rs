@@ -34,7 +34,7 @@ pub(super) enum Event {
 }
 
 fn codec() -> impl bincode::Options {
-    bincode::DefaultOptions::new()
+    bincode::DefaultOptions::new().with_fixint_encoding()
 }
 
 enum To {
