@@ -48,7 +48,9 @@ impl std::fmt::Display for Severity {
 }
 
 /// A half-open byte range `[start, end)` into the decoded (UTF-8) text of one file.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, PartialOrd, Ord, Hash, Default, Serialize)]
+#[derive(
+    Debug, Clone, Copy, PartialEq, Eq, PartialOrd, Ord, Hash, Default, Serialize, serde::Deserialize,
+)]
 pub struct Span {
     pub start: u32,
     pub end: u32,

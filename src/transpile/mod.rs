@@ -22,6 +22,7 @@ mod pipeline;
 pub mod rapid;
 pub mod render;
 pub mod rules;
+mod tape;
 
 use std::net::Ipv4Addr;
 
@@ -153,6 +154,7 @@ pub fn transpile(
         dat,
         options,
         render::Spool::memory(),
+        tape::Writer::memory(),
         |spool, framed, check| {
             text = spool.into_text(framed, check)?;
             Ok(())
@@ -176,26 +178,36 @@ pub fn transpile_to(
     spool: render::Spool,
     out: &mut (dyn std::io::Write + Send),
 ) -> std::io::Result<Translation> {
-    translate(target, src, dat, options, spool, |spool, framed, check| {
-        spool.write_to(framed, check, out)
-    })
+    // The replay tape likewise (in memory only when no file can be had).
+    let tape = tempfile::tempfile().map_or_else(|_| tape::Writer::memory(), tape::Writer::file);
+    translate(
+        target,
+        src,
+        dat,
+        options,
+        spool,
+        tape,
+        |spool, framed, check| spool.write_to(framed, check, out),
+    )
 }
 
 /// The translation, its text assembled by `assemble` from the spooled routines and the frame
 /// around them, checked line by line with the target's check.
 ///
-/// The statements are lowered twice, one at a time, and never held whole (memory follows the
-/// largest statement, not the program): the first pass records the program model without the
-/// routines' bodies and each routine's control-flow graph with its blocks' motion-fact
-/// effects; the flow facts are solved on the graphs; the second pass lowers each statement
-/// again, resolves its motions and hands it to the target's renderer (the lowering on a thread
-/// of its own, the renderer on this one: [`rendered`]).
+/// The statements are lowered once, one at a time, and never held whole (memory follows the
+/// largest statement, not the program): the first pass ([`first_pass`]) records the program
+/// model without the routines' bodies and each routine's control-flow graph with its blocks'
+/// motion-fact effects, and writes each statement's ops to `tape` ([`tape`]); the flow facts
+/// are solved on the graphs; the second pass reads the ops back, resolves their motions and
+/// hands them to the target's renderer (the reading on a thread of its own, the renderer on
+/// this one: [`rendered`]).
 fn translate(
     target: Target,
     src: Source,
     dat: Option<Source>,
     options: &Options,
     spool: render::Spool,
+    tape: tape::Writer,
     assemble: impl FnOnce(
         render::Spool,
         render::Framed,
@@ -203,80 +215,33 @@ fn translate(
     ) -> std::io::Result<()>
     + Send,
 ) -> std::io::Result<Translation> {
-    let mut program = front::Program::new(
-        front::Parsed::new(src.path, src.text),
-        dat.map(|d| front::Parsed::new(d.path, d.text)),
-    );
     let backend = render::backend(target);
-    let mut first = ir::lower::Lower::new(&program, options, backend.caps());
-    let mut graphs = ir::flow::Graphs::default();
-    let mut plan = ir::goto::Plan::default();
-    each_lowered(&program, &mut first, |event| match event {
-        Lowered::Begin(id) => {
-            graphs.begin(id);
-            plan.begin(id);
-        }
-        Lowered::Ops(mut ops, stmt) => {
-            graphs.push(stmt, &mut ops);
-            plan.push(stmt, &ops);
-        }
-        Lowered::End(id) => {
-            graphs.end();
-            plan.end(id);
-        }
-    });
-    let ir::lower::Lowering {
-        program: mut model,
+    let First {
+        program,
+        model,
         vision,
         replay,
-    } = first.finish();
-    // The first pass lowered the data lists' values: their trees go.
-    program.forget_data_values();
-    let flow = ir::flow::solve(graphs, &model);
+        flow,
+        plan,
+        tape,
+    } = first_pass(backend, src, dat, options, tape);
+    // The second pass reads the first's ops back: it lowers nothing again.
+    drop(replay);
+    let mut tape = tape?;
     let mut report = front::report::Report::default();
+    let mut model = model;
     for f in std::mem::take(&mut model.findings) {
         report.approximate(f.file, f.span, f.message, f.help);
     }
-    let mut second = replay.lower(&model, &program, options);
     let make = || backend.renderer(&program, &model, vision.as_ref(), options, report);
+    let mut read = Ok(());
     let (spool, framed, mut report, produced) = rendered(make, spool, |to| {
         let (flow, plan) = (flow, plan);
-        // A target without GOTO: a label and the jumps to it are made loops together
-        // ([`ir::goto`]).
-        let mut units = (!backend.caps().goto).then(|| ir::goto::Units::new(&plan));
-        let mut resolver = None;
-        each_lowered(&program, &mut second, |event| match event {
-            Lowered::Begin(id) => {
-                resolver = Some(flow.resolver(id));
-                to(Render::Begin(id));
-                if let Some(u) = &mut units {
-                    u.begin(id);
-                }
-            }
-            Lowered::Ops(mut ops, stmt) => {
-                if let Some(r) = &mut resolver {
-                    r.resolve(stmt, &mut ops);
-                }
-                match &mut units {
-                    Some(u) => {
-                        if let Some(unit) = u.push(ops) {
-                            to(Render::Ops(unit));
-                        }
-                    }
-                    None => to(Render::Ops(ops)),
-                }
-            }
-            Lowered::End(_) => {
-                if let Some(unit) = units.as_mut().and_then(|u| u.end()) {
-                    to(Render::Ops(unit));
-                }
-                to(Render::End);
-            }
-        });
+        read = second_pass(backend, &flow, &plan, &mut tape, to);
         // What only the pass needed goes while the renderer finishes.
-        drop((second, resolver, units));
-        drop((flow, plan));
+        drop((flow, plan, tape));
     });
+    read?;
     let at = model
         .routines
         .first()
@@ -323,6 +288,118 @@ fn translate(
         coverage,
         silent,
     })
+}
+
+/// What the first pass leaves: the program, its model and what the second pass needs.
+struct First {
+    program: front::Program,
+    model: ir::Program,
+    vision: Option<VisionServer>,
+    /// How to lower the statements again as the first pass did (only tests still do).
+    replay: ir::lower::Replay,
+    flow: ir::flow::Solution,
+    plan: ir::goto::Plan,
+    /// The statements' ops and runs, to be read back.
+    tape: std::io::Result<tape::Reader>,
+}
+
+/// Loads the program, lowers its statements once (the model, each routine's graph and jump
+/// plan, the ops written to `tape`) and solves the flow facts.
+fn first_pass(
+    backend: &'static render::Backend,
+    src: Source,
+    dat: Option<Source>,
+    options: &Options,
+    mut tape: tape::Writer,
+) -> First {
+    let mut program = front::Program::new(
+        front::Parsed::new(src.path, src.text),
+        dat.map(|d| front::Parsed::new(d.path, d.text)),
+    );
+    let mut first = ir::lower::Lower::new(&program, options, backend.caps());
+    let mut graphs = ir::flow::Graphs::default();
+    let mut plan = ir::goto::Plan::default();
+    let mut runs = ir::flow::Runs::default();
+    each_lowered(&program, &mut first, |event| match event {
+        Lowered::Begin(id) => {
+            graphs.begin(id);
+            plan.begin(id);
+            tape.begin(id);
+        }
+        Lowered::Ops(mut ops, stmt) => {
+            graphs.push(stmt, &mut ops, &mut runs);
+            plan.push(stmt, &ops);
+            tape.ops(&ops, &runs);
+        }
+        Lowered::End(id) => {
+            graphs.end();
+            plan.end(id);
+            tape.end();
+        }
+    });
+    let ir::lower::Lowering {
+        program: model,
+        vision,
+        replay,
+    } = first.finish();
+    // The first pass lowered the data lists' values: their trees go.
+    program.forget_data_values();
+    let flow = ir::flow::solve(graphs, &model);
+    First {
+        program,
+        model,
+        vision,
+        replay,
+        flow,
+        plan,
+        tape: tape.finish(),
+    }
+}
+
+/// The second pass: each routine's ops read back from `tape`, resolved (`flow`) and, for a
+/// target without GOTO, made loops (`plan`), handed to `to` in order.
+fn second_pass(
+    backend: &render::Backend,
+    flow: &ir::flow::Solution,
+    plan: &ir::goto::Plan,
+    tape: &mut tape::Reader,
+    to: &mut dyn FnMut(Render),
+) -> std::io::Result<()> {
+    // A target without GOTO: a label and the jumps to it are made loops together
+    // ([`ir::goto`]).
+    let mut units = (!backend.caps().goto).then(|| ir::goto::Units::new(plan));
+    let mut resolver = None;
+    while let Some(event) = tape.next()? {
+        match event {
+            tape::Event::Begin(id) => {
+                resolver = Some(flow.resolver(id));
+                to(Render::Begin(id));
+                if let Some(u) = &mut units {
+                    u.begin(id);
+                }
+            }
+            tape::Event::Ops(mut ops, runs) => {
+                if let Some(r) = &mut resolver {
+                    r.replay(&mut ops, &runs);
+                }
+                match &mut units {
+                    Some(u) => {
+                        if let Some(unit) = u.push(ops) {
+                            to(Render::Ops(unit));
+                        }
+                    }
+                    None => to(Render::Ops(ops)),
+                }
+            }
+            tape::Event::End => {
+                if let Some(unit) = units.as_mut().and_then(|u| u.end()) {
+                    to(Render::Ops(unit));
+                }
+                to(Render::End);
+            }
+        }
+    }
+    Ok(())
 }
 
 /// What the second pass hands the renderer, in order.

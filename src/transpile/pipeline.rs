@@ -1,6 +1,6 @@
 //! Two threads in a row: a producer a bounded number of batches ahead of its consumer. The
 //! translation's parses feed the outline and the lowering this way, and the second pass's
-//! lowering feeds the renderer.
+//! reading of the first pass's ops (`tape.rs`) feeds the renderer.
 
 /// What [`pipelined`]'s producer hands on: into the batch of the moment, or (without a second
 /// thread) straight to the consumer.

@@ -17,6 +17,7 @@
 //! - Every KRL statement becomes ops or an [`Op::Unsupported`] with its reason; none is dropped.
 //! - Loops have identities ([`LoopId`]); `EXIT` is a `Break` of one of them.
 
+mod codec;
 pub mod flow;
 pub mod goto;
 pub mod lower;
@@ -31,32 +32,44 @@ use crate::transpile::front::{R, fail};
 pub use why::Why;
 
 /// A variable of the program (declared, a parameter, a package global, or assumed).
-#[derive(Debug, Clone, Copy, PartialEq, Eq, PartialOrd, Ord, Hash)]
+#[derive(
+    Debug, Clone, Copy, PartialEq, Eq, PartialOrd, Ord, Hash, serde::Serialize, serde::Deserialize,
+)]
 pub struct VarId(pub u32);
 
 /// A temporary minted by the lowering (hoisted call results, snapshots, pose reads), local to
 /// its routine.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, PartialOrd, Ord, Hash)]
+#[derive(
+    Debug, Clone, Copy, PartialEq, Eq, PartialOrd, Ord, Hash, serde::Serialize, serde::Deserialize,
+)]
 pub struct TempId(pub u32);
 
 /// A loop's identity within its routine.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, PartialOrd, Ord, Hash)]
+#[derive(
+    Debug, Clone, Copy, PartialEq, Eq, PartialOrd, Ord, Hash, serde::Serialize, serde::Deserialize,
+)]
 pub struct LoopId(pub u32);
 
 /// A label's identity within its routine.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, PartialOrd, Ord, Hash)]
+#[derive(
+    Debug, Clone, Copy, PartialEq, Eq, PartialOrd, Ord, Hash, serde::Serialize, serde::Deserialize,
+)]
 pub struct LabelId(pub u32);
 
 /// A routine of the program (index into [`Program::routines`]).
-#[derive(Debug, Clone, Copy, PartialEq, Eq, PartialOrd, Ord, Hash)]
+#[derive(
+    Debug, Clone, Copy, PartialEq, Eq, PartialOrd, Ord, Hash, serde::Serialize, serde::Deserialize,
+)]
 pub struct RoutineId(pub u32);
 
 /// A group of motions that were one KRL spline (a `SPLINE … ENDSPLINE` block or one `SLIN`).
-#[derive(Debug, Clone, Copy, PartialEq, Eq, PartialOrd, Ord, Hash)]
+#[derive(
+    Debug, Clone, Copy, PartialEq, Eq, PartialOrd, Ord, Hash, serde::Serialize, serde::Deserialize,
+)]
 pub struct SplineId(pub u32);
 
 /// The type of a value as the targets care about it.
-#[derive(Debug, Clone, PartialEq)]
+#[derive(Debug, Clone, PartialEq, serde::Serialize, serde::Deserialize)]
 pub enum Ty {
     Int,
     Real,
@@ -84,14 +97,14 @@ impl Ty {
 }
 
 /// Which I/O bank a `SIGNAL` declaration names.
-#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+#[derive(Debug, Clone, Copy, PartialEq, Eq, serde::Serialize, serde::Deserialize)]
 pub enum Bank {
     In,
     Out,
 }
 
 /// `SIGNAL name $OUT[from] [TO $OUT[to]]` with literal numbers.
-#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+#[derive(Debug, Clone, Copy, PartialEq, Eq, serde::Serialize, serde::Deserialize)]
 pub struct SignalRange {
     pub bank: Bank,
     pub from: i64,
@@ -385,7 +398,7 @@ pub struct Routine {
 pub type Block = Vec<Stmt>;
 
 /// One operation, with the KRL statement it comes from.
-#[derive(Debug, Clone, PartialEq)]
+#[derive(Debug, Clone, PartialEq, serde::Serialize, serde::Deserialize)]
 pub struct Stmt {
     pub op: Op,
     /// The KRL statement (several ops may share it).
@@ -393,7 +406,7 @@ pub struct Stmt {
 }
 
 /// What a program does.
-#[derive(Debug, Clone, PartialEq)]
+#[derive(Debug, Clone, PartialEq, serde::Serialize, serde::Deserialize)]
 pub enum Op {
     /// `place = value`.
     Assign {
@@ -509,18 +522,19 @@ pub enum Op {
     /// inline-form bookkeeping such as `$BWDSTART`, `CONTINUE`, labels); `None`: a finding
     /// (TR002) made for it explains.
     Keep {
-        note: Option<&'static str>,
+        #[serde(with = "codec::maybe_text")]
+        note: Option<codec::Static>,
     },
 }
 
-#[derive(Debug, Clone, PartialEq)]
+#[derive(Debug, Clone, PartialEq, serde::Serialize, serde::Deserialize)]
 pub struct Case {
     pub values: Vec<Expr>,
     pub body: Block,
     pub span: Span,
 }
 
-#[derive(Debug, Clone, PartialEq)]
+#[derive(Debug, Clone, PartialEq, serde::Serialize, serde::Deserialize)]
 pub enum LoopKind {
     /// `FOR var = from TO to STEP step` (bounds evaluated once, before the loop). Boxed: it is
     /// the largest loop kind and every [`Op`] would carry its size.
@@ -533,7 +547,7 @@ pub enum LoopKind {
     Forever,
 }
 
-#[derive(Debug, Clone, PartialEq)]
+#[derive(Debug, Clone, PartialEq, serde::Serialize, serde::Deserialize)]
 pub struct ForLoop {
     /// A variable (KRL counts with an INT variable; nothing else is a counter).
     pub var: VarId,
@@ -542,7 +556,7 @@ pub struct ForLoop {
     pub step: Option<Expr>,
 }
 
-#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+#[derive(Debug, Clone, Copy, PartialEq, Eq, serde::Serialize, serde::Deserialize)]
 pub enum InterruptAction {
     On,
     Off,
@@ -575,7 +589,7 @@ pub struct Watched {
 // ----- places and expressions -----------------------------------------------------------
 
 /// Something a value can be stored in.
-#[derive(Debug, Clone, PartialEq)]
+#[derive(Debug, Clone, PartialEq, serde::Serialize, serde::Deserialize)]
 pub enum Place {
     Var(VarId),
     Temp(TempId),
@@ -599,7 +613,7 @@ impl Place {
 }
 
 /// A component of a pose (X … C, S, T) or axis value (A1 … A6), or an external axis.
-#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+#[derive(Debug, Clone, Copy, PartialEq, Eq, serde::Serialize, serde::Deserialize)]
 pub enum Component {
     /// X Y Z A B C (0..6) of a pose.
     Pose(usize),
@@ -623,14 +637,14 @@ impl Component {
     }
 }
 
-#[derive(Debug, Clone, PartialEq)]
+#[derive(Debug, Clone, PartialEq, serde::Serialize, serde::Deserialize)]
 pub struct Expr {
     pub kind: ExprKind,
     pub ty: Ty,
     pub span: Span,
 }
 
-#[derive(Debug, Clone, PartialEq)]
+#[derive(Debug, Clone, PartialEq, serde::Serialize, serde::Deserialize)]
 pub enum ExprKind {
     Int(i64),
     Real(f64),
@@ -708,7 +722,7 @@ impl Expr {
     }
 }
 
-#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+#[derive(Debug, Clone, Copy, PartialEq, Eq, serde::Serialize, serde::Deserialize)]
 pub enum UnaryOp {
     Not,
     /// `B_NOT`.
@@ -716,7 +730,7 @@ pub enum UnaryOp {
     Neg,
 }
 
-#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+#[derive(Debug, Clone, Copy, PartialEq, Eq, serde::Serialize, serde::Deserialize)]
 pub enum BinaryOp {
     /// The geometric operator `:` (the right frame expressed in the left one).
     Geo,
@@ -742,7 +756,7 @@ pub enum BinaryOp {
 }
 
 /// KRL built-ins every target has.
-#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+#[derive(Debug, Clone, Copy, PartialEq, Eq, serde::Serialize, serde::Deserialize)]
 pub enum Builtin {
     Abs,
     Sqrt,
@@ -770,7 +784,7 @@ impl Builtin {
 }
 
 /// A pose or axis aggregate.
-#[derive(Debug, Clone, PartialEq)]
+#[derive(Debug, Clone, PartialEq, serde::Serialize, serde::Deserialize)]
 pub struct Aggregate {
     /// Axis values (A1…A6) rather than a pose (X…C).
     pub axis: bool,
@@ -843,7 +857,7 @@ impl Aggregate {
 // ----- I/O ------------------------------------------------------------------------------
 
 /// A digital signal.
-#[derive(Debug, Clone, PartialEq)]
+#[derive(Debug, Clone, PartialEq, serde::Serialize, serde::Deserialize)]
 pub enum IoPlace {
     /// `$IN[n]`.
     In(Box<Expr>),
@@ -857,7 +871,7 @@ pub enum IoPlace {
 
 /// A place a program writes: never an input (the lowering refuses writes to inputs with
 /// `Why::ReadOnly`, and this type cannot hold one, so no renderer meets one).
-#[derive(Debug, Clone, PartialEq)]
+#[derive(Debug, Clone, PartialEq, serde::Serialize, serde::Deserialize)]
 pub enum OutPlace {
     /// `$OUT[n]`.
     Out(Box<Expr>),
@@ -879,7 +893,7 @@ impl OutPlace {
 }
 
 /// A `SIGNAL` range of outputs.
-#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+#[derive(Debug, Clone, Copy, PartialEq, Eq, serde::Serialize, serde::Deserialize)]
 pub struct OutSignal(SignalRange);
 
 impl OutSignal {
@@ -894,7 +908,7 @@ impl OutSignal {
 }
 
 /// When an output switches relative to the motions around it.
-#[derive(Debug, Clone, PartialEq)]
+#[derive(Debug, Clone, PartialEq, serde::Serialize, serde::Deserialize)]
 pub enum IoTiming {
     /// Where the statement stands (after an [`Op::AdvanceStop`] unless `CONTINUE` came before).
     Now,
@@ -907,7 +921,7 @@ pub enum IoTiming {
     Trigger(TriggerAt),
 }
 
-#[derive(Debug, Clone, PartialEq)]
+#[derive(Debug, Clone, PartialEq, serde::Serialize, serde::Deserialize)]
 pub enum TimerOp {
     /// Set to a value in milliseconds.
     Set(Expr),
@@ -915,7 +929,7 @@ pub enum TimerOp {
     Stop(Expr),
 }
 
-#[derive(Debug, Clone, PartialEq)]
+#[derive(Debug, Clone, PartialEq, serde::Serialize, serde::Deserialize)]
 pub enum Wait {
     /// `WAIT SEC t`.
     Seconds(Expr),
@@ -927,7 +941,7 @@ pub enum Wait {
 
 // ----- calls ----------------------------------------------------------------------------
 
-#[derive(Debug, Clone)]
+#[derive(Debug, Clone, serde::Serialize, serde::Deserialize)]
 pub enum Callee {
     /// A routine of this program.
     Routine(RoutineId),
@@ -940,7 +954,7 @@ pub enum Callee {
         function: bool,
     },
     /// A routine of the Mech-Mind interface.
-    Mm(&'static Subprogram),
+    Mm(#[serde(with = "codec::subprogram")] &'static Subprogram),
 }
 
 impl PartialEq for Callee {
@@ -966,7 +980,7 @@ impl PartialEq for Callee {
 }
 
 /// One argument; omitted arguments (`f(1, , 3)`) are `None` values.
-#[derive(Debug, Clone, PartialEq)]
+#[derive(Debug, Clone, PartialEq, serde::Serialize, serde::Deserialize)]
 pub struct Arg {
     pub value: Option<Expr>,
     /// The argument is a variable the callee may write back (OUT parameter, or any variable
@@ -980,7 +994,7 @@ pub struct Arg {
 // ----- motions --------------------------------------------------------------------------
 
 /// A value known at translation time, or why not.
-#[derive(Debug, Clone, PartialEq)]
+#[derive(Debug, Clone, PartialEq, serde::Serialize, serde::Deserialize)]
 pub enum Known<T> {
     Is(T),
     Unknown(Because),
@@ -996,7 +1010,7 @@ impl<T> Known<T> {
 }
 
 /// Why a motion parameter is not known where a motion uses it.
-#[derive(Debug, Clone, PartialEq, Eq, PartialOrd, Ord)]
+#[derive(Debug, Clone, PartialEq, Eq, PartialOrd, Ord, serde::Serialize, serde::Deserialize)]
 pub enum Because {
     /// Nothing in the program sets it before this point.
     NeverSet,
@@ -1024,7 +1038,7 @@ impl Because {
 }
 
 /// A motion parameter's value.
-#[derive(Debug, Clone, PartialEq)]
+#[derive(Debug, Clone, PartialEq, serde::Serialize, serde::Deserialize)]
 pub enum ParamValue {
     /// A number in the parameter's KRL unit.
     Num(f64),
@@ -1035,7 +1049,9 @@ pub enum ParamValue {
 }
 
 /// The KRL motion parameters a program sets.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, PartialOrd, Ord, Hash)]
+#[derive(
+    Debug, Clone, Copy, PartialEq, Eq, PartialOrd, Ord, Hash, serde::Serialize, serde::Deserialize,
+)]
 pub enum MotionParam {
     /// `$VEL.CP` (m/s).
     VelCp,
@@ -1100,11 +1116,11 @@ impl MotionParam {
 }
 
 /// A percentage of the axes' maximum speed.
-#[derive(Debug, Clone, PartialEq)]
+#[derive(Debug, Clone, PartialEq, serde::Serialize, serde::Deserialize)]
 pub struct JointPct(pub ParamValue);
 
 /// A path speed in m/s.
-#[derive(Debug, Clone, PartialEq)]
+#[derive(Debug, Clone, PartialEq, serde::Serialize, serde::Deserialize)]
 pub struct CartMps(pub ParamValue);
 
 /// The speed of one motion: its kind follows the path's.
@@ -1116,14 +1132,14 @@ pub enum Speed {
 
 /// The speed set most recently before a motion, of either kind (targets with one speed
 /// register hold this one).
-#[derive(Debug, Clone, PartialEq)]
+#[derive(Debug, Clone, PartialEq, serde::Serialize, serde::Deserialize)]
 pub enum SpeedSetting {
     Joint(ParamValue),
     Cart(ParamValue),
 }
 
 /// How a motion ends.
-#[derive(Debug, Clone, PartialEq)]
+#[derive(Debug, Clone, PartialEq, serde::Serialize, serde::Deserialize)]
 pub enum Blend {
     /// Exact stop.
     Exact,
@@ -1148,14 +1164,14 @@ pub enum Blend {
 }
 
 /// `$TOOL`/`$BASE`.
-#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+#[derive(Debug, Clone, Copy, PartialEq, Eq, serde::Serialize, serde::Deserialize)]
 pub enum FrameKind {
     Tool,
     Base,
 }
 
 /// A tool or base frame.
-#[derive(Debug, Clone, PartialEq)]
+#[derive(Debug, Clone, PartialEq, serde::Serialize, serde::Deserialize)]
 pub enum FrameRef {
     /// `$NULLFRAME` (`TOOL_DATA[0]`): the flange / the world.
     Null,
@@ -1185,14 +1201,14 @@ impl FrameRef {
 }
 
 /// The frames a motion's target is expressed in.
-#[derive(Debug, Clone, PartialEq)]
+#[derive(Debug, Clone, PartialEq, serde::Serialize, serde::Deserialize)]
 pub struct Frames {
     pub tool: Known<FrameRef>,
     pub base: Known<FrameRef>,
 }
 
 /// `$LOAD`: mass (kg) and centre of mass (mm), from a value or `LOAD_DATA[n]`.
-#[derive(Debug, Clone, PartialEq)]
+#[derive(Debug, Clone, PartialEq, serde::Serialize, serde::Deserialize)]
 pub enum Load {
     /// `$LOAD = LOAD_DATA[n]` (machine data).
     Table(Expr),
@@ -1207,7 +1223,7 @@ pub enum Load {
 }
 
 /// A motion target.
-#[derive(Debug, Clone, PartialEq)]
+#[derive(Debug, Clone, PartialEq, serde::Serialize, serde::Deserialize)]
 pub struct Target {
     pub expr: Expr,
     /// Axis values (E6AXIS) rather than a pose.
@@ -1218,7 +1234,7 @@ pub struct Target {
 }
 
 /// A relative motion's offset (`{X 10}`, `{A6 90}`): the components given.
-#[derive(Debug, Clone, PartialEq)]
+#[derive(Debug, Clone, PartialEq, serde::Serialize, serde::Deserialize)]
 pub struct Delta {
     pub fields: Vec<(Component, Expr)>,
     pub span: Span,
@@ -1240,7 +1256,7 @@ impl Delta {
     }
 }
 
-#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+#[derive(Debug, Clone, Copy, PartialEq, Eq, serde::Serialize, serde::Deserialize)]
 pub enum TriggerAt {
     /// At the start point (`DISTANCE=0`, `PATH … ONSTART`).
     Start,
@@ -1249,7 +1265,7 @@ pub enum TriggerAt {
 }
 
 /// One motion: the speed's kind follows the path's kind.
-#[derive(Debug, Clone, PartialEq)]
+#[derive(Debug, Clone, PartialEq, serde::Serialize, serde::Deserialize)]
 pub struct Move {
     pub path: Path,
     pub blend: Blend,
@@ -1261,7 +1277,8 @@ pub struct Move {
     /// `WITH` values (and a spline block's): in force for this motion only.
     pub with: Vec<(MotionParam, ParamValue)>,
     /// The KRL motion statement (`PTP`, `LIN_REL`, `SLIN` …), for messages.
-    pub krl: &'static str,
+    #[serde(with = "codec::text")]
+    pub krl: codec::Static,
     /// A `TRIGGER` switched on this motion's path (only for a target whose
     /// `Caps::trigger` is `OnPath`, on a LIN).
     pub trigger: Option<PathTrigger>,
@@ -1269,7 +1286,7 @@ pub struct Move {
 
 /// A `TRIGGER WHEN DISTANCE=0|1 DELAY=0 DO $OUT[n]=TRUE|FALSE`: the output set exactly at the
 /// motion's start or end point (the middle of its blending, as KRL's DISTANCE=1).
-#[derive(Debug, Clone, PartialEq)]
+#[derive(Debug, Clone, PartialEq, serde::Serialize, serde::Deserialize)]
 pub struct PathTrigger {
     pub at: TriggerAt,
     /// `$OUT[n]` with a literal `n`.
@@ -1293,7 +1310,7 @@ impl Move {
     }
 }
 
-#[derive(Debug, Clone, PartialEq)]
+#[derive(Debug, Clone, PartialEq, serde::Serialize, serde::Deserialize)]
 pub enum Path {
     /// PTP (to a pose or to axis values).
     Joint { to: Target, speed: Known<JointPct> },

@@ -2,7 +2,7 @@
 //! lowering; each backend adds its own help text (an exhaustive `match` over [`Why`]).
 
 /// A construct with no faithful equivalent in any target.
-#[derive(Debug, Clone, PartialEq)]
+#[derive(Debug, Clone, PartialEq, serde::Serialize, serde::Deserialize)]
 pub enum Why {
     /// The line does not parse (KRL001).
     SyntaxError,
@@ -140,22 +140,32 @@ pub enum Why {
     StringLength { len: usize, max: usize },
     /// A LIN or CIRC (its KRL name) to axis values in a target whose linear motions need a
     /// Cartesian target (`Caps::axis_values`).
-    LinearToAxes(&'static str),
+    LinearToAxes(#[serde(with = "super::codec::text")] super::codec::Static),
     /// KUKA axis values where the target needs the joint map and none was given
     /// (`Caps::axis_values`).
     NoJointMap {
         at: AxisUse,
+        #[serde(with = "super::codec::axis_values")]
         axes: crate::transpile::render::AxisValues,
-        robot: &'static str,
+        #[serde(with = "super::codec::text")]
+        robot: super::codec::Static,
     },
     /// An `MM_*` routine the target's Mech-Mind interface has no command for
     /// (`Caps::mech_mind`).
-    MmNoCommand { name: String, robot: &'static str },
+    MmNoCommand {
+        name: String,
+        #[serde(with = "super::codec::text")]
+        robot: super::codec::Static,
+    },
     /// An `MM_*` routine that moves the robot with the KUKA package's own motions, in a
     /// target whose client only talks to the vision system.
     MmMoves(String),
     /// An `MM_*` call in a target whose robots use their own Mech-Mind interface.
-    MmInterface { name: String, robot: &'static str },
+    MmInterface {
+        name: String,
+        #[serde(with = "super::codec::text")]
+        robot: super::codec::Static,
+    },
     /// External axes beyond those a pose or axis value of the target holds
     /// (`Caps::external_axes`).
     ExternalAxes { held: u8 },
@@ -211,7 +221,7 @@ pub enum Why {
 }
 
 /// Why a `.dat` array cannot be initialised as one aggregate.
-#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+#[derive(Debug, Clone, Copy, PartialEq, Eq, serde::Serialize, serde::Deserialize)]
 pub enum DatArray {
     /// The array is not declared in the `.dat`.
     Undeclared,
@@ -224,7 +234,7 @@ pub enum DatArray {
 }
 
 /// How a place is used.
-#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+#[derive(Debug, Clone, Copy, PartialEq, Eq, serde::Serialize, serde::Deserialize)]
 pub enum Reach {
     /// Read as a value.
     Read,
@@ -235,7 +245,7 @@ pub enum Reach {
 }
 
 /// A part of a value read or assigned alone.
-#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+#[derive(Debug, Clone, Copy, PartialEq, Eq, serde::Serialize, serde::Deserialize)]
 pub enum Part {
     /// A component of a pose or axis value.
     Component(crate::transpile::ir::Component),
@@ -244,7 +254,7 @@ pub enum Part {
 }
 
 /// Where axis values met a target without a joint map.
-#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+#[derive(Debug, Clone, Copy, PartialEq, Eq, serde::Serialize, serde::Deserialize)]
 pub enum AxisUse {
     /// Values written in the program (a literal, a `.dat` value) or a motion to axis values.
     Values,
@@ -255,7 +265,7 @@ pub enum AxisUse {
 }
 
 /// A KRL statement or operator some target has nothing for (`Caps::lacks`).
-#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+#[derive(Debug, Clone, Copy, PartialEq, Eq, serde::Serialize, serde::Deserialize)]
 pub enum Lacked {
     /// `$OV_PRO = …`.
     Override,
@@ -329,7 +339,7 @@ impl Lacked {
 pub const INIT_CALL: &str = "{init_call}";
 
 /// Families of KUKA built-ins without counterparts.
-#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+#[derive(Debug, Clone, Copy, PartialEq, Eq, serde::Serialize, serde::Deserialize)]
 pub enum KukaOnly {
     /// EthernetKRL (`EKI_*`).
     Eki,

@@ -4,6 +4,7 @@
 
 use super::facts::Effect;
 use super::ops::{Parts, Places, effects, feed};
+use super::runs::{Record, Runs};
 use crate::cfg::{self, BlockId, EdgeKind};
 use crate::syntax::ast;
 use crate::transpile::ir::{Block, RoutineId, Stmt};
@@ -144,14 +145,17 @@ impl Graphs {
     }
 
     /// The routine's next statement and its ops (`None`: the ops before its body, then those
-    /// after it).
-    pub fn push(&mut self, stmt: Option<&ast::Stmt>, ops: &mut Block) {
+    /// after it). `runs` gets where each run of the ops runs, for [`super::Resolver::replay`]
+    /// (cleared first).
+    pub fn push(&mut self, stmt: Option<&ast::Stmt>, ops: &mut Block, runs: &mut Runs) {
+        runs.clear();
         if let Some(o) = &mut self.open {
             let mut parts = Append {
                 graph: &mut o.graph,
                 scratch: &mut o.scratch,
             };
-            feed(&mut o.builder, &mut o.head, stmt, ops, &mut parts);
+            let mut recorded = Record::new(ops, &mut parts, runs);
+            feed(&mut o.builder, &mut o.head, stmt, ops, &mut recorded);
         }
     }
 

@@ -18,16 +18,19 @@
 //! The model's routine bodies are never held whole: while the statements are lowered the
 //! first time, each routine keeps only its graph with its blocks' effects ([`Graphs`]), and
 //! [`solve`] finds the fixpoints on them, keeping the facts at each block's start (interned:
-//! few distinct ones). The second lowering hands each statement and its ops to a
-//! [`Resolver`], which builds the same graph again, walks the ops from the facts at their
-//! block's start and writes the facts into the motions and advance-run stops.
+//! few distinct ones). The first pass also records where each run of a statement's ops runs
+//! ([`Runs`]: its block and its slice of the ops); the second pass reads the same ops back
+//! with their runs and hands them to a [`Resolver`], which walks each run from the facts at
+//! its block's start and writes the facts into the motions and advance-run stops.
 
 mod facts;
 mod graph;
 mod ops;
+mod runs;
 mod solve;
 
 pub use graph::Graphs;
+pub use runs::Runs;
 pub use solve::{Solution, solve};
 
 use facts::{Ctx, State, resolve_move};
@@ -42,7 +45,8 @@ use crate::syntax::ast;
 pub struct Resolver<'a> {
     solution: &'a Solution,
     routine: RoutineId,
-    graph: cfg::Builder<Places>,
+    /// The routine's graph, built again by [`Resolver::resolve`] only.
+    graph: Option<cfg::Builder<Places>>,
     /// The ops before the body have come.
     head: bool,
     /// The block whose facts `state` holds, as far as the ops walked so far.
@@ -56,7 +60,7 @@ impl Solution {
         Resolver {
             solution: self,
             routine,
-            graph: cfg::Builder::new(Places::new(false)),
+            graph: None,
             head: false,
             block: None,
             state: None,
@@ -66,7 +70,9 @@ impl Solution {
 
 impl Resolver<'_> {
     /// The routine's next statement and its ops, resolved in place (`None`: the ops before
-    /// its body, then those after it).
+    /// its body, then those after it): the routine's graph is built again from the statements
+    /// to find where each run of ops runs. (The translation replays the first pass's runs
+    /// instead, [`Resolver::replay`]; tests compare the two.)
     pub fn resolve(&mut self, stmt: Option<&ast::Stmt>, ops: &mut Block) {
         let mut walk = Walk {
             solution: self.solution,
@@ -74,7 +80,24 @@ impl Resolver<'_> {
             block: &mut self.block,
             state: &mut self.state,
         };
-        feed(&mut self.graph, &mut self.head, stmt, ops, &mut walk);
+        let graph = self
+            .graph
+            .get_or_insert_with(|| cfg::Builder::new(Places::new(false)));
+        feed(graph, &mut self.head, stmt, ops, &mut walk);
+        drop_stops(ops);
+    }
+
+    /// The routine's next ops, resolved in place, handed out in the runs the first pass
+    /// recorded for them ([`Graphs::push`]): the same ops, in the same blocks of the same
+    /// graph, without the statement.
+    pub fn replay(&mut self, ops: &mut Block, runs: &Runs) {
+        let mut walk = Walk {
+            solution: self.solution,
+            routine: self.routine,
+            block: &mut self.block,
+            state: &mut self.state,
+        };
+        runs.each(ops, |b, run| walk.run(b, run));
         drop_stops(ops);
     }
 }

@@ -1,0 +1,123 @@
+//! Where each run of a statement's ops runs, recorded by the first pass so that the second
+//! resolves the same ops without the statement's tree.
+//!
+//! [`super::ops::feed`] hands a statement's ops to its [`Parts`] in runs (slices of the op tree:
+//! of the statement's ops, or of a block nested in one of them), each with the block of the
+//! routine's graph it runs in. The first pass records each run as that block and the run's
+//! place in the op tree (the path of op indices and child blocks, [`visit::children`]'s order,
+//! to the slice, and the slice's start and length); the second pass reads the same ops back
+//! and hands the same slices, in the same order, to its resolver ([`super::Resolver::replay`]).
+//! Empty runs are not recorded: no [`Parts`] does anything with one.
+
+use serde::{Deserialize, Serialize};
+
+use super::ops::Parts;
+use crate::cfg::BlockId;
+use crate::transpile::ir::{Stmt, visit};
+
+/// The runs of one statement's ops, in the order they were handed out.
+#[derive(Debug, Default, Clone, PartialEq, Serialize, Deserialize)]
+pub struct Runs(Vec<Run>);
+
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+struct Run {
+    /// The block it runs in (`None`: no path reaches it).
+    block: Option<u32>,
+    /// From the statement's ops to the slice's block: an op's index, then which of its child
+    /// blocks, and so on (empty: the statement's ops).
+    path: Vec<u32>,
+    start: u32,
+    len: u32,
+}
+
+impl Runs {
+    pub(super) fn clear(&mut self) {
+        self.0.clear();
+    }
+
+    /// Each run as a block and its slice of `ops` (the ops the runs were recorded on, as read
+    /// back), in order.
+    pub(super) fn each(&self, ops: &mut [Stmt], mut f: impl FnMut(Option<BlockId>, &mut [Stmt])) {
+        for r in &self.0 {
+            let mut block = &mut *ops;
+            for step in r.path.chunks_exact(2) {
+                let (i, c) = (step[0] as usize, step[1] as usize);
+                block = visit::children_mut(&mut block[i].op)
+                    .into_iter()
+                    .nth(c)
+                    .expect("the recorded child block")
+                    .as_mut_slice();
+            }
+            let (start, len) = (r.start as usize, r.len as usize);
+            f(
+                r.block.map(|b| b as BlockId),
+                &mut block[start..start + len],
+            );
+        }
+    }
+}
+
+/// [`Parts`] that records each run in [`Runs`] and hands it on to `inner`.
+pub(super) struct Record<'a, P> {
+    inner: &'a mut P,
+    runs: &'a mut Runs,
+    /// Every non-empty block of the statement's op tree: its first op's address, its length
+    /// and its path, sorted by address.
+    blocks: Vec<(usize, usize, Vec<u32>)>,
+}
+
+impl<'a, P: Parts> Record<'a, P> {
+    /// For the runs of `ops` (the statement's, before they are handed out).
+    pub(super) fn new(ops: &[Stmt], inner: &'a mut P, runs: &'a mut Runs) -> Record<'a, P> {
+        let mut blocks = Vec::new();
+        let mut path = Vec::new();
+        index(ops, &mut path, &mut blocks);
+        blocks.sort_unstable_by_key(|b| b.0);
+        Record {
+            inner,
+            runs,
+            blocks,
+        }
+    }
+}
+
+/// Adds `ops` and the non-empty blocks nested in it to `blocks`.
+fn index(ops: &[Stmt], path: &mut Vec<u32>, blocks: &mut Vec<(usize, usize, Vec<u32>)>) {
+    if ops.is_empty() {
+        return;
+    }
+    blocks.push((ops.as_ptr() as usize, ops.len(), path.clone()));
+    for (i, s) in ops.iter().enumerate() {
+        for (c, child) in visit::children(&s.op).into_iter().enumerate() {
+            path.extend([i as u32, c as u32]);
+            index(child, path, blocks);
+            path.truncate(path.len() - 2);
+        }
+    }
+}
+
+impl<P: Parts> Parts for Record<'_, P> {
+    fn run(&mut self, b: Option<BlockId>, ops: &mut [Stmt]) {
+        if !ops.is_empty() {
+            let at = ops.as_ptr() as usize;
+            let size = std::mem::size_of::<Stmt>();
+            // The block holding the run: the last one starting at or before it.
+            let k = self.blocks.partition_point(|blk| blk.0 <= at);
+            let (first, len, path) = k
+                .checked_sub(1)
+                .map(|k| &self.blocks[k])
+                .filter(|blk| at < blk.0 + blk.1 * size)
+                .expect("a run is a slice of the statement's ops");
+            debug_assert_eq!((at - first) % size, 0);
+            let start = (at - first) / size;
+            debug_assert!(start + ops.len() <= *len);
+            self.runs.0.push(Run {
+                block: b.map(|b| b as u32),
+                path: path.clone(),
+                start: start as u32,
+                len: ops.len() as u32,
+            });
+        }
+        self.inner.run(b, ops);
+    }
+}
