@@ -346,37 +346,64 @@ pub fn solve(graphs: Graphs, program: &Program) -> Solution {
             (NONE, none)
         })
         .collect();
+    // Rounds as sweeps of every routine made them (round k + 1's entries from round k's walks,
+    // the joins in the order of the callers, and each caller's calls in the order of its
+    // statements: the join of facts is not associative, so another order could give other
+    // facts; and a chain of calls deeper than `ROUNDS` keeps the entries the cap left), but
+    // only the routines whose entry changed are walked again, and only their callees' entries
+    // joined again: a sweep of every routine per round was O(routines × rounds) on a chain of
+    // calls, which takes every round. A walk's calls are sorted by callee (stably: the order
+    // of the statements kept) so each callee's share of a caller is found by a search.
+    let mut again: Vec<usize> = (0..n).filter(|&i| entries[i] != NONE).collect();
+    let mut affected = vec![false; n];
+    let mut callees_of: Vec<usize> = Vec::new();
+    let mut changes: Vec<(usize, Id)> = Vec::new();
     for _ in 0..ROUNDS {
-        let mut calls = vec![NONE; n];
-        for i in 0..n {
+        for &i in &again {
             let entry = entries[i];
-            if entry == NONE {
-                continue;
+            if entry != NONE && walked[i].0 != entry {
+                let mut w = walk(&routines[i], entry, handler, &mut ix, &ctx, true);
+                w.calls.sort_by_key(|c| c.0);
+                walked[i] = (entry, w);
             }
-            if walked[i].0 != entry {
-                walked[i] = (
-                    entry,
-                    walk(&routines[i], entry, handler, &mut ix, &ctx, true),
-                );
-            }
-            for &(c, st) in &walked[i].1.calls {
-                let slot = &mut calls[c.0 as usize];
-                *slot = ix.join(*slot, st);
+            // A walk calls only its graph's callees (`graph::note`).
+            for c in &callees[i] {
+                let c = c.0 as usize;
+                if !first[c] && !std::mem::replace(&mut affected[c], true) {
+                    callees_of.push(c);
+                }
             }
         }
-        let next: Vec<Id> = (0..n)
-            .map(|i| {
-                if first[i] || !called[i] {
-                    first_state(i)
-                } else {
-                    calls[i]
+        callees_of.sort_unstable();
+        for &c in &callees_of {
+            affected[c] = false;
+            let mut acc = NONE;
+            let mut last = usize::MAX;
+            for &i in &callers[c] {
+                // Each caller once (a graph's callees are distinct; a test's need not be).
+                if std::mem::replace(&mut last, i) == i || entries[i] == NONE {
+                    continue;
                 }
-            })
-            .collect();
-        if next == entries {
+                let calls = &walked[i].1.calls;
+                let from = calls.partition_point(|k| (k.0.0 as usize) < c);
+                for &(_, st) in calls[from..].iter().take_while(|k| k.0.0 as usize == c) {
+                    acc = ix.join(acc, st);
+                }
+            }
+            if acc != entries[c] {
+                changes.push((c, acc));
+            }
+        }
+        callees_of.clear();
+        if changes.is_empty() {
             break;
         }
-        entries = next;
+        again.clear();
+        for &(c, e) in &changes {
+            entries[c] = e;
+            again.push(c);
+        }
+        changes.clear();
     }
     let mut starts = Vec::with_capacity(n);
     for (i, (at, w)) in walked.into_iter().enumerate() {
