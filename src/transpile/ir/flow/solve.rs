@@ -116,13 +116,24 @@ fn offsets(n: usize, sorted: impl Iterator<Item = u32>) -> Vec<u32> {
 struct Walked {
     /// The facts at each block's start.
     starts: Vec<Id>,
-    /// At its end and RETURNs.
-    exit: Id,
     /// At each call of a routine of the file (when asked for).
     calls: Vec<(RoutineId, Id)>,
 }
 
-/// The facts of routine `g` from `entry` to a fixpoint over its blocks.
+/// A walk's working space, kept from walk to walk (a routine of a few blocks took as long to
+/// allocate them as to walk).
+#[derive(Default)]
+struct Scratch {
+    /// The facts at each block's start (what [`Walked::starts`] copies).
+    ins: Vec<Id>,
+    outs: Vec<Id>,
+    queued: Vec<bool>,
+    work: BinaryHeap<Reverse<u32>>,
+}
+
+/// The facts of routine `g` from `entry` to a fixpoint over its blocks, at each block's start
+/// in `w.ins`; the facts at its end and RETURNs, and (when `want_calls`) at each call of a
+/// routine of the file.
 fn walk(
     g: &Prepared,
     entry: Id,
@@ -130,14 +141,24 @@ fn walk(
     ix: &mut Interner,
     ctx: &Ctx<'_>,
     want_calls: bool,
-) -> Walked {
+    w: &mut Scratch,
+) -> (Id, Vec<(RoutineId, Id)>) {
     let n = g.graph.ranges.len();
-    let mut ins = vec![NONE; n];
-    let mut outs = vec![NONE; n];
+    let Scratch {
+        ins,
+        outs,
+        queued,
+        work,
+    } = w;
+    ins.clear();
+    ins.resize(n, NONE);
+    outs.clear();
+    outs.resize(n, NONE);
+    queued.clear();
+    queued.resize(n, false);
+    work.clear();
     // A worklist, first in the converging order: a block again when a predecessor's facts
     // changed.
-    let mut queued = vec![false; n];
-    let mut work = BinaryHeap::new();
     for (b, q) in queued.iter_mut().enumerate() {
         if b == ENTRY || g.detached[b] {
             *q = true;
@@ -195,11 +216,7 @@ fn walk(
         }
     }
     let exit = ix.join(ins[RETURN], outs[END]);
-    Walked {
-        starts: ins,
-        exit,
-        calls,
-    }
+    (exit, calls)
 }
 
 /// The facts every routine starts with and has at each block's start, found on the graphs;
@@ -270,6 +287,7 @@ pub fn solve(graphs: Graphs, program: &Program) -> Solution {
     // in the order of sweeps over the routines (a caller after the routine in this sweep, one
     // before it or itself in the next), but only the routines to walk again are visited: a
     // sweep of them all per round was O(routines × rounds).
+    let mut scratch = Scratch::default();
     let mut dirty = vec![true; n];
     let mut now: BinaryHeap<Reverse<usize>> = (0..n).map(Reverse).collect();
     let mut next: BinaryHeap<Reverse<usize>> = BinaryHeap::new();
@@ -282,7 +300,17 @@ pub fn solve(graphs: Graphs, program: &Program) -> Solution {
                 exits: &exits,
                 moves: &moves,
             };
-            let exit = match walk(&routines[i], unchanged, handler, &mut ix, &ctx, false).exit {
+            let exit = match walk(
+                &routines[i],
+                unchanged,
+                handler,
+                &mut ix,
+                &ctx,
+                false,
+                &mut scratch,
+            )
+            .0
+            {
                 // Nothing reaches the end: the routine changes nothing.
                 NONE => unchanged,
                 e => e,
@@ -340,7 +368,6 @@ pub fn solve(graphs: Graphs, program: &Program) -> Solution {
         .map(|_| {
             let none = Walked {
                 starts: Vec::new(),
-                exit: NONE,
                 calls: Vec::new(),
             };
             (NONE, none)
@@ -362,9 +389,18 @@ pub fn solve(graphs: Graphs, program: &Program) -> Solution {
         for &i in &again {
             let entry = entries[i];
             if entry != NONE && walked[i].0 != entry {
-                let mut w = walk(&routines[i], entry, handler, &mut ix, &ctx, true);
-                w.calls.sort_by_key(|c| c.0);
-                walked[i] = (entry, w);
+                let (_, mut calls) = walk(
+                    &routines[i],
+                    entry,
+                    handler,
+                    &mut ix,
+                    &ctx,
+                    true,
+                    &mut scratch,
+                );
+                calls.sort_by_key(|c| c.0);
+                let starts = scratch.ins.clone();
+                walked[i] = (entry, Walked { starts, calls });
             }
             // A walk calls only its graph's callees (`graph::note`).
             for c in &callees[i] {
@@ -414,7 +450,16 @@ pub fn solve(graphs: Graphs, program: &Program) -> Solution {
         starts.push(if at == entry {
             w.starts
         } else {
-            walk(&routines[i], entry, handler, &mut ix, &ctx, false).starts
+            walk(
+                &routines[i],
+                entry,
+                handler,
+                &mut ix,
+                &ctx,
+                false,
+                &mut scratch,
+            );
+            scratch.ins.clone()
         });
     }
     Solution {
