@@ -71,6 +71,9 @@ pub struct Model<'p> {
     axis: Option<TypeId>,
     /// The `.src`'s routines by upper-case name (the first of a name).
     routines: FxHashMap<CompactString, RoutineId>,
+    /// Per routine of the `.src`, by its place in the file: the first of its name (what
+    /// `routines` holds for it; [`Model::declared_at`] needs no look-up of the name).
+    first_of: Vec<Option<RoutineId>>,
     /// Each routine's parameters and locals.
     symbols_of: super::grouped::Grouped<sema::SymbolId>,
     enums: OnceCell<Vec<(String, Option<String>)>>,
@@ -84,9 +87,18 @@ pub struct Model<'p> {
 /// The `.src` is file 0 of the model, the `.dat` file 1.
 const SRC: sema::FileId = sema::FileId(0);
 
-impl<'p> Model<'p> {
-    pub fn new(program: &'p Program) -> Model<'p> {
-        let sema = &program.sema;
+/// What [`Model::new`] indexes of the program's model, without the borrow of it: the first
+/// pass hands it to the second's model (it was made twice, on one core, between the passes).
+pub struct Index {
+    pose: Option<TypeId>,
+    axis: Option<TypeId>,
+    routines: FxHashMap<CompactString, RoutineId>,
+    first_of: Vec<Option<RoutineId>>,
+    symbols_of: super::grouped::Grouped<sema::SymbolId>,
+}
+
+impl Index {
+    fn new(sema: &sema::Sema) -> Index {
         let at = sema.position(SRC, 0);
         let ty = |name: &str| match sema.lookup_type(at, name) {
             Resolved::Type(t) => Some(t),
@@ -94,26 +106,68 @@ impl<'p> Model<'p> {
         };
         let ids = &sema.file(SRC).routines;
         let mut routines = FxHashMap::with_capacity_and_hasher(ids.len(), Default::default());
+        let mut first_of = vec![None; ids.len()];
         for &r in ids {
-            let mut name = CompactString::from(sema.name(sema.routine(r).name));
+            let routine = sema.routine(r);
+            let mut name = CompactString::from(sema.name(routine.name));
             name.make_ascii_uppercase();
-            routines.entry(name).or_insert(r);
+            let first = *routines.entry(name).or_insert(r);
+            if let Some(slot) = first_of.get_mut(routine.index as usize) {
+                *slot = Some(first);
+            }
         }
         let symbols_of =
             super::grouped::Grouped::new(sema.symbols().filter_map(|(id, s)| match s.scope {
                 Scope::Routine(r) => Some((r.index(), id)),
                 _ => None,
             }));
-        Model {
-            program,
-            sema,
+        Index {
             pose: ty("E6POS"),
             axis: ty("E6AXIS"),
             routines,
+            first_of,
+            symbols_of,
+        }
+    }
+}
+
+impl<'p> Model<'p> {
+    pub fn new(program: &'p Program) -> Model<'p> {
+        Model::with(program, Index::new(&program.sema))
+    }
+
+    /// The model of `program` on its index (made by [`Model::new`] of the same program, and
+    /// taken back by [`Model::into_index`]); the answers it caches are found again.
+    pub fn with(program: &'p Program, index: Index) -> Model<'p> {
+        let Index {
+            pose,
+            axis,
+            routines,
+            first_of,
+            symbols_of,
+        } = index;
+        Model {
+            program,
+            sema: &program.sema,
+            pose,
+            axis,
+            routines,
+            first_of,
             symbols_of,
             enums: OnceCell::new(),
             layouts: Default::default(),
             signals: OnceCell::new(),
+        }
+    }
+
+    /// The index, for [`Model::with`] (a later model of the same program).
+    pub fn into_index(self) -> Index {
+        Index {
+            pose: self.pose,
+            axis: self.axis,
+            routines: self.routines,
+            first_of: self.first_of,
+            symbols_of: self.symbols_of,
         }
     }
 
@@ -293,7 +347,30 @@ impl<'p> Model<'p> {
     /// The parameters and locals of `routine` in declaration order, and its signature: one
     /// lookup of its name for both.
     pub fn declared(&self, routine: &str) -> (Vec<VarInfo>, Option<Signature>) {
-        match self.routine_id(routine) {
+        self.declared_as(self.routine_id(routine))
+    }
+
+    /// [`Model::declared`] of the routine at `index` in the `.src` (its outline's place),
+    /// called `routine`: the first routine of that name, found without a look-up of the name
+    /// (on a file of many routines the look-ups were most of the set-up before the first
+    /// pass); by the name when the model has another name there (a header that is not KRL).
+    pub fn declared_at(&self, index: usize, routine: &str) -> (Vec<VarInfo>, Option<Signature>) {
+        let r = match self.first_of.get(index) {
+            Some(&Some(r))
+                if self
+                    .sema
+                    .name(self.sema.routine(r).name)
+                    .eq_ignore_ascii_case(routine) =>
+            {
+                Some(r)
+            }
+            _ => self.routine_id(routine),
+        };
+        self.declared_as(r)
+    }
+
+    fn declared_as(&self, r: Option<RoutineId>) -> (Vec<VarInfo>, Option<Signature>) {
+        match r {
             Some(r) => (self.locals_of(r), Some(self.signature(r))),
             None => (Vec::new(), None),
         }

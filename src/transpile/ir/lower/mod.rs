@@ -67,6 +67,10 @@ pub struct Replay {
     /// The next spline id at the start of each routine.
     next_spline: Vec<u32>,
     caps: &'static Caps,
+    /// The first pass's index of the model and of its routines' names: the same program's,
+    /// kept, not made again on one core between the passes.
+    model: front::model::Index,
+    routine_ids: FxHashMap<CompactString, RoutineId>,
 }
 
 impl Replay {
@@ -84,10 +88,12 @@ impl Replay {
             records: first.records.clone(),
             ..Program::default()
         };
-        let routine_ids = index_routines(&first.routines);
+        // The first pass's names of its routines are those of its program (`push_routine_keyed`).
+        debug_assert_eq!(self.routine_ids, index_routines(&first.routines));
+        let routine_ids = self.routine_ids;
         Lower {
             src,
-            model: Model::new(src),
+            model: Model::with(src, self.model),
             opts: options,
             caps: self.caps,
             out,
@@ -242,8 +248,8 @@ impl<'p> Lower<'p> {
             l.add_var("", g, Scope::Global);
         }
         // Routines first (ids for calls), then their bodies.
-        for r in &program.src.outline.routines {
-            l.declare_routine(r);
+        for (i, r) in program.src.outline.routines.iter().enumerate() {
+            l.declare_routine(i, r);
         }
         // A routine that declared nothing may share its name with a later one that did.
         for (i, r) in program.src.outline.routines.iter().enumerate() {
@@ -284,6 +290,8 @@ impl<'p> Lower<'p> {
                 keys: std::mem::take(&mut self.vars),
                 next_spline: spline_at,
                 caps: self.caps,
+                model: self.model.into_index(),
+                routine_ids: self.routine_ids,
             },
             program: self.out,
             vision: self.vision,
@@ -521,10 +529,11 @@ impl<'p> Lower<'p> {
         id
     }
 
-    fn declare_routine(&mut self, outline: &RoutineOutline) {
+    /// The routine at `index` in the outline.
+    fn declare_routine(&mut self, index: usize, outline: &RoutineOutline) {
         let r = &outline.head;
         let key = upper(&r.name.text);
-        let (locals, sig) = self.model.declared(&r.name.text);
+        let (locals, sig) = self.model.declared_at(index, &r.name.text);
         for v in locals {
             let id = RoutineId(self.out.routines.len() as u32);
             let scope = match v.kind {
