@@ -87,18 +87,9 @@ pub struct Model<'p> {
 /// The `.src` is file 0 of the model, the `.dat` file 1.
 const SRC: sema::FileId = sema::FileId(0);
 
-/// What [`Model::new`] indexes of the program's model, without the borrow of it: the first
-/// pass hands it to the second's model (it was made twice, on one core, between the passes).
-pub struct Index {
-    pose: Option<TypeId>,
-    axis: Option<TypeId>,
-    routines: FxHashMap<CompactString, RoutineId>,
-    first_of: Vec<Option<RoutineId>>,
-    symbols_of: super::grouped::Grouped<sema::SymbolId>,
-}
-
-impl Index {
-    fn new(sema: &sema::Sema) -> Index {
+impl<'p> Model<'p> {
+    pub fn new(program: &'p Program) -> Model<'p> {
+        let sema = &program.sema;
         let at = sema.position(SRC, 0);
         let ty = |name: &str| match sema.lookup_type(at, name) {
             Resolved::Type(t) => Some(t),
@@ -121,53 +112,17 @@ impl Index {
                 Scope::Routine(r) => Some((r.index(), id)),
                 _ => None,
             }));
-        Index {
-            pose: ty("E6POS"),
-            axis: ty("E6AXIS"),
-            routines,
-            first_of,
-            symbols_of,
-        }
-    }
-}
-
-impl<'p> Model<'p> {
-    pub fn new(program: &'p Program) -> Model<'p> {
-        Model::with(program, Index::new(&program.sema))
-    }
-
-    /// The model of `program` on its index (made by [`Model::new`] of the same program, and
-    /// taken back by [`Model::into_index`]); the answers it caches are found again.
-    pub fn with(program: &'p Program, index: Index) -> Model<'p> {
-        let Index {
-            pose,
-            axis,
-            routines,
-            first_of,
-            symbols_of,
-        } = index;
         Model {
             program,
-            sema: &program.sema,
-            pose,
-            axis,
+            sema,
+            pose: ty("E6POS"),
+            axis: ty("E6AXIS"),
             routines,
             first_of,
             symbols_of,
             enums: OnceCell::new(),
             layouts: Default::default(),
             signals: OnceCell::new(),
-        }
-    }
-
-    /// The index, for [`Model::with`] (a later model of the same program).
-    pub fn into_index(self) -> Index {
-        Index {
-            pose: self.pose,
-            axis: self.axis,
-            routines: self.routines,
-            first_of: self.first_of,
-            symbols_of: self.symbols_of,
         }
     }
 

@@ -67,10 +67,6 @@ pub struct Replay {
     /// The next spline id at the start of each routine.
     next_spline: Vec<u32>,
     caps: &'static Caps,
-    /// The first pass's index of the model and of its routines' names: the same program's,
-    /// kept, not made again on one core between the passes.
-    model: front::model::Index,
-    routine_ids: FxHashMap<CompactString, RoutineId>,
 }
 
 impl Replay {
@@ -88,12 +84,10 @@ impl Replay {
             records: first.records.clone(),
             ..Program::default()
         };
-        // The first pass's names of its routines are those of its program (`push_routine_keyed`).
-        debug_assert_eq!(self.routine_ids, index_routines(&first.routines));
-        let routine_ids = self.routine_ids;
+        let routine_ids = index_routines(&first.routines);
         Lower {
             src,
-            model: Model::with(src, self.model),
+            model: Model::new(src),
             opts: options,
             caps: self.caps,
             out,
@@ -290,8 +284,6 @@ impl<'p> Lower<'p> {
                 keys: std::mem::take(&mut self.vars),
                 next_spline: spline_at,
                 caps: self.caps,
-                model: self.model.into_index(),
-                routine_ids: self.routine_ids,
             },
             program: self.out,
             vision: self.vision,
