@@ -174,7 +174,7 @@ struct Walked {
 /// allocate them as to walk).
 #[derive(Default)]
 struct Scratch {
-    /// The facts at each block's start (what [`Walked::starts`] copies).
+    /// The facts at each block's start (what [`Walked::starts`] takes).
     ins: Vec<Id>,
     outs: Vec<Id>,
     queued: Vec<bool>,
@@ -449,7 +449,7 @@ pub fn solve(graphs: Graphs, program: &Program) -> Solution {
                     &mut scratch,
                 );
                 calls.sort_by_key(|c| c.0);
-                let starts = scratch.ins.clone();
+                let starts = std::mem::take(&mut scratch.ins);
                 walked[i] = (entry, Walked { starts, calls });
             }
             // A walk calls only its graph's callees (`graph::note`).
@@ -509,9 +509,12 @@ pub fn solve(graphs: Graphs, program: &Program) -> Solution {
                 false,
                 &mut scratch,
             );
-            scratch.ins.clone()
+            std::mem::take(&mut scratch.ins)
         });
     }
+    // The working space is as large as the largest routine: it goes before the solution is
+    // handed on.
+    drop(scratch);
     Solution {
         interner: ix,
         summaries,
