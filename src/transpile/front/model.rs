@@ -71,6 +71,9 @@ pub struct Model<'p> {
     axis: Option<TypeId>,
     /// The `.src`'s routines by upper-case name (the first of a name).
     routines: FxHashMap<CompactString, RoutineId>,
+    /// Per routine of the `.src`, by its place in the file: the first of its name (what
+    /// `routines` holds for it; [`Model::declared_at`] needs no look-up of the name).
+    first_of: Vec<Option<RoutineId>>,
     /// Each routine's parameters and locals.
     symbols_of: super::grouped::Grouped<sema::SymbolId>,
     enums: OnceCell<Vec<(String, Option<String>)>>,
@@ -94,10 +97,15 @@ impl<'p> Model<'p> {
         };
         let ids = &sema.file(SRC).routines;
         let mut routines = FxHashMap::with_capacity_and_hasher(ids.len(), Default::default());
+        let mut first_of = vec![None; ids.len()];
         for &r in ids {
-            let mut name = CompactString::from(sema.name(sema.routine(r).name));
+            let routine = sema.routine(r);
+            let mut name = CompactString::from(sema.name(routine.name));
             name.make_ascii_uppercase();
-            routines.entry(name).or_insert(r);
+            let first = *routines.entry(name).or_insert(r);
+            if let Some(slot) = first_of.get_mut(routine.index as usize) {
+                *slot = Some(first);
+            }
         }
         let symbols_of =
             super::grouped::Grouped::new(sema.symbols().filter_map(|(id, s)| match s.scope {
@@ -110,6 +118,7 @@ impl<'p> Model<'p> {
             pose: ty("E6POS"),
             axis: ty("E6AXIS"),
             routines,
+            first_of,
             symbols_of,
             enums: OnceCell::new(),
             layouts: Default::default(),
@@ -293,7 +302,30 @@ impl<'p> Model<'p> {
     /// The parameters and locals of `routine` in declaration order, and its signature: one
     /// lookup of its name for both.
     pub fn declared(&self, routine: &str) -> (Vec<VarInfo>, Option<Signature>) {
-        match self.routine_id(routine) {
+        self.declared_as(self.routine_id(routine))
+    }
+
+    /// [`Model::declared`] of the routine at `index` in the `.src` (its outline's place),
+    /// called `routine`: the first routine of that name, found without a look-up of the name
+    /// (on a file of many routines the look-ups were most of the set-up before the first
+    /// pass); by the name when the model has another name there (a header that is not KRL).
+    pub fn declared_at(&self, index: usize, routine: &str) -> (Vec<VarInfo>, Option<Signature>) {
+        let r = match self.first_of.get(index) {
+            Some(&Some(r))
+                if self
+                    .sema
+                    .name(self.sema.routine(r).name)
+                    .eq_ignore_ascii_case(routine) =>
+            {
+                Some(r)
+            }
+            _ => self.routine_id(routine),
+        };
+        self.declared_as(r)
+    }
+
+    fn declared_as(&self, r: Option<RoutineId>) -> (Vec<VarInfo>, Option<Signature>) {
+        match r {
             Some(r) => (self.locals_of(r), Some(self.signature(r))),
             None => (Vec::new(), None),
         }

@@ -19,75 +19,126 @@ const ROUNDS: usize = 64;
 /// A routine's graph made ready for its fixpoints.
 struct Prepared {
     graph: Graph,
-    /// Per block: its place in the order the dataflow converges in ([`cfg::forward_order`]),
-    /// and the blocks in that order.
-    rank: Vec<u32>,
-    order: Vec<u32>,
-    /// Per block: its successors' range in `to`.
-    succ: Vec<u32>,
-    to: Vec<u32>,
-    /// Per block: its predecessors' range in `from` (edges into a handler or action aside).
-    preds: Vec<u32>,
-    from: Vec<u32>,
-    /// The blocks of `INTERRUPT` handlers and `TRIGGER` actions: they start from unknown facts.
-    detached: Vec<bool>,
-    /// The blocks holding calls of the file's routines, in the order of their statements.
-    calling: Vec<u32>,
+    /// One allocation for what the walks read of the graph (eight vectors per routine were a
+    /// sixth of the translation's peak on a file of many routines, and most of the set-up's
+    /// time), `n` its blocks: per block its place in the order the dataflow converges in
+    /// ([`cfg::forward_order`]), from `RANK`; the blocks in that order, from `ORDER`; its
+    /// successors' range in `to` (`n + 1` offsets), from `SUCC`; its predecessors' range in
+    /// `from` (edges into a handler or action aside), from `PREDS`; whether it starts an
+    /// `INTERRUPT` handler or a `TRIGGER` action (facts unknown), from `DETACHED`. Then `to`,
+    /// `from`, and the blocks holding calls of the file's routines in the order of their
+    /// statements (`calling`).
+    data: Box<[u32]>,
+    n: usize,
+    to: usize,
+    from: usize,
+    calling: usize,
+}
+
+/// Where each per-block table of [`Prepared::data`] begins, for `n` blocks.
+const RANK: usize = 0;
+fn order_at(n: usize) -> usize {
+    n
+}
+fn succ_at(n: usize) -> usize {
+    2 * n
+}
+fn preds_at(n: usize) -> usize {
+    3 * n + 1
+}
+fn detached_at(n: usize) -> usize {
+    4 * n + 2
 }
 
 impl Prepared {
     fn new(mut graph: Graph) -> Prepared {
         let n = graph.ranges.len();
         let mut edges = std::mem::take(&mut graph.edges);
-        let mut detached = vec![false; n];
+        let mut calling: Vec<u32> = (0..n as u32)
+            .filter(|&b| graph.block(b as usize).iter().any(calls))
+            .collect();
+        calling.sort_by_key(|&b| graph.ranges[b as usize].0);
         let mut into: Vec<(u32, u32)> = Vec::with_capacity(edges.len());
+        let tables = detached_at(n) + n;
+        let mut data: Vec<u32> = Vec::with_capacity(tables + 2 * edges.len() + calling.len());
+        data.resize(tables, 0);
         for e in &edges {
             match e.kind {
-                EdgeKind::Interrupt | EdgeKind::Trigger => detached[e.to as usize] = true,
+                EdgeKind::Interrupt | EdgeKind::Trigger => {
+                    data[detached_at(n) + e.to as usize] = 1;
+                }
                 _ => into.push((e.to, e.from)),
             }
         }
         // Stable sorts: a block's edges in the order they were made.
         into.sort_by_key(|e| e.0);
-        let preds = offsets(n, into.iter().map(|e| e.0));
-        let from = into.into_iter().map(|e| e.1).collect();
         edges.sort_by_key(|e| e.from);
-        let succ = offsets(n, edges.iter().map(|e| e.from));
-        let to: Vec<u32> = edges.into_iter().map(|e| e.to).collect();
-        let order: Vec<u32> = cfg::forward_order(n, |b, k| {
-            let i = succ[b] as usize + k;
-            (i < succ[b + 1] as usize).then(|| to[i] as BlockId)
-        })
-        .into_iter()
-        .map(|b| b as u32)
-        .collect();
-        let mut rank = vec![0u32; n];
+        offsets(
+            &mut data[succ_at(n)..succ_at(n) + n + 1],
+            edges.iter().map(|e| e.from),
+        );
+        offsets(
+            &mut data[preds_at(n)..preds_at(n) + n + 1],
+            into.iter().map(|e| e.0),
+        );
+        let to = data.len();
+        data.extend(edges.iter().map(|e| e.to));
+        drop(edges);
+        let from = data.len();
+        data.extend(into.iter().map(|e| e.1));
+        drop(into);
+        let at = data.len();
+        data.extend(calling);
+        let order = {
+            let succ = &data[succ_at(n)..succ_at(n) + n + 1];
+            let targets = &data[to..from];
+            cfg::forward_order(n, |b, k| {
+                let i = succ[b] as usize + k;
+                (i < succ[b + 1] as usize).then(|| targets[i] as BlockId)
+            })
+        };
         for (i, &b) in order.iter().enumerate() {
-            rank[b as usize] = i as u32;
+            data[order_at(n) + i] = b as u32;
+            data[RANK + b] = i as u32;
         }
-        let mut calling: Vec<u32> = (0..n as u32)
-            .filter(|&b| graph.block(b as usize).iter().any(calls))
-            .collect();
-        calling.sort_by_key(|&b| graph.ranges[b as usize].0);
         Prepared {
             graph,
-            rank,
-            order,
-            succ,
+            data: data.into_boxed_slice(),
+            n,
             to,
-            preds,
             from,
-            detached,
-            calling,
+            calling: at,
         }
+    }
+
+    fn rank(&self, b: usize) -> u32 {
+        self.data[RANK + b]
+    }
+
+    /// The block at place `r` of the converging order.
+    fn order(&self, r: u32) -> usize {
+        self.data[order_at(self.n) + r as usize] as usize
+    }
+
+    fn detached(&self, b: usize) -> bool {
+        self.data[detached_at(self.n) + b] != 0
     }
 
     fn preds(&self, b: usize) -> &[u32] {
-        &self.from[self.preds[b] as usize..self.preds[b + 1] as usize]
+        let at = preds_at(self.n);
+        let from = &self.data[self.from..self.calling];
+        &from[self.data[at + b] as usize..self.data[at + b + 1] as usize]
     }
 
     fn succ(&self, b: usize) -> &[u32] {
-        &self.to[self.succ[b] as usize..self.succ[b + 1] as usize]
+        let at = succ_at(self.n);
+        let to = &self.data[self.to..self.from];
+        &to[self.data[at + b] as usize..self.data[at + b + 1] as usize]
+    }
+
+    /// The blocks holding calls of the file's routines, in the order of their statements.
+    fn calling(&self) -> &[u32] {
+        &self.data[self.calling..]
     }
 }
 
@@ -100,29 +151,39 @@ fn calls(e: &super::facts::Effect) -> bool {
     }
 }
 
-/// Offsets into a list sorted by block: entry `b` is where block `b`'s items begin.
-fn offsets(n: usize, sorted: impl Iterator<Item = u32>) -> Vec<u32> {
-    let mut counts = vec![0u32; n + 1];
+/// Offsets into a list sorted by block, written to `counts` (`n + 1` zeros): entry `b` is
+/// where block `b`'s items begin.
+fn offsets(counts: &mut [u32], sorted: impl Iterator<Item = u32>) {
     for b in sorted {
         counts[b as usize + 1] += 1;
     }
-    for i in 0..n {
+    for i in 0..counts.len() - 1 {
         counts[i + 1] += counts[i];
     }
-    counts
 }
 
 /// What one walk of a routine found.
 struct Walked {
     /// The facts at each block's start.
     starts: Vec<Id>,
-    /// At its end and RETURNs.
-    exit: Id,
     /// At each call of a routine of the file (when asked for).
     calls: Vec<(RoutineId, Id)>,
 }
 
-/// The facts of routine `g` from `entry` to a fixpoint over its blocks.
+/// A walk's working space, kept from walk to walk (a routine of a few blocks took as long to
+/// allocate them as to walk).
+#[derive(Default)]
+struct Scratch {
+    /// The facts at each block's start (what [`Walked::starts`] takes).
+    ins: Vec<Id>,
+    outs: Vec<Id>,
+    queued: Vec<bool>,
+    work: BinaryHeap<Reverse<u32>>,
+}
+
+/// The facts of routine `g` from `entry` to a fixpoint over its blocks, at each block's start
+/// in `w.ins`; the facts at its end and RETURNs, and (when `want_calls`) at each call of a
+/// routine of the file.
 fn walk(
     g: &Prepared,
     entry: Id,
@@ -130,23 +191,33 @@ fn walk(
     ix: &mut Interner,
     ctx: &Ctx<'_>,
     want_calls: bool,
-) -> Walked {
+    w: &mut Scratch,
+) -> (Id, Vec<(RoutineId, Id)>) {
     let n = g.graph.ranges.len();
-    let mut ins = vec![NONE; n];
-    let mut outs = vec![NONE; n];
+    let Scratch {
+        ins,
+        outs,
+        queued,
+        work,
+    } = w;
+    ins.clear();
+    ins.resize(n, NONE);
+    outs.clear();
+    outs.resize(n, NONE);
+    queued.clear();
+    queued.resize(n, false);
+    work.clear();
     // A worklist, first in the converging order: a block again when a predecessor's facts
     // changed.
-    let mut queued = vec![false; n];
-    let mut work = BinaryHeap::new();
     for (b, q) in queued.iter_mut().enumerate() {
-        if b == ENTRY || g.detached[b] {
+        if b == ENTRY || g.detached(b) {
             *q = true;
-            work.push(Reverse(g.rank[b]));
+            work.push(Reverse(g.rank(b)));
         }
     }
     let mut budget = ROUNDS * n;
     while let Some(Reverse(r)) = work.pop() {
-        let b = g.order[r as usize] as usize;
+        let b = g.order(r);
         queued[b] = false;
         budget = budget.saturating_sub(1);
         if budget == 0 {
@@ -154,7 +225,7 @@ fn walk(
         }
         let i = if b == ENTRY {
             entry
-        } else if g.detached[b] {
+        } else if g.detached(b) {
             handler
         } else {
             let mut acc = NONE;
@@ -175,14 +246,14 @@ fn walk(
             outs[b] = o;
             for &s in g.succ(b) {
                 if !std::mem::replace(&mut queued[s as usize], true) {
-                    work.push(Reverse(g.rank[s as usize]));
+                    work.push(Reverse(g.rank(s as usize)));
                 }
             }
         }
     }
     let mut calls = Vec::new();
     if want_calls {
-        for &b in &g.calling {
+        for &b in g.calling() {
             let Some(s) = ix.get(ins[b as usize]) else {
                 continue;
             };
@@ -195,11 +266,7 @@ fn walk(
         }
     }
     let exit = ix.join(ins[RETURN], outs[END]);
-    Walked {
-        starts: ins,
-        exit,
-        calls,
-    }
+    (exit, calls)
 }
 
 /// The facts every routine starts with and has at each block's start, found on the graphs;
@@ -270,6 +337,7 @@ pub fn solve(graphs: Graphs, program: &Program) -> Solution {
     // in the order of sweeps over the routines (a caller after the routine in this sweep, one
     // before it or itself in the next), but only the routines to walk again are visited: a
     // sweep of them all per round was O(routines × rounds).
+    let mut scratch = Scratch::default();
     let mut dirty = vec![true; n];
     let mut now: BinaryHeap<Reverse<usize>> = (0..n).map(Reverse).collect();
     let mut next: BinaryHeap<Reverse<usize>> = BinaryHeap::new();
@@ -282,7 +350,17 @@ pub fn solve(graphs: Graphs, program: &Program) -> Solution {
                 exits: &exits,
                 moves: &moves,
             };
-            let exit = match walk(&routines[i], unchanged, handler, &mut ix, &ctx, false).exit {
+            let exit = match walk(
+                &routines[i],
+                unchanged,
+                handler,
+                &mut ix,
+                &ctx,
+                false,
+                &mut scratch,
+            )
+            .0
+            {
                 // Nothing reaches the end: the routine changes nothing.
                 NONE => unchanged,
                 e => e,
@@ -340,43 +418,78 @@ pub fn solve(graphs: Graphs, program: &Program) -> Solution {
         .map(|_| {
             let none = Walked {
                 starts: Vec::new(),
-                exit: NONE,
                 calls: Vec::new(),
             };
             (NONE, none)
         })
         .collect();
+    // Rounds as sweeps of every routine made them (round k + 1's entries from round k's walks,
+    // the joins in the order of the callers, and each caller's calls in the order of its
+    // statements: the join of facts is not associative, so another order could give other
+    // facts; and a chain of calls deeper than `ROUNDS` keeps the entries the cap left), but
+    // only the routines whose entry changed are walked again, and only their callees' entries
+    // joined again: a sweep of every routine per round was O(routines × rounds) on a chain of
+    // calls, which takes every round. A walk's calls are sorted by callee (stably: the order
+    // of the statements kept) so each callee's share of a caller is found by a search.
+    let mut again: Vec<usize> = (0..n).filter(|&i| entries[i] != NONE).collect();
+    let mut affected = vec![false; n];
+    let mut callees_of: Vec<usize> = Vec::new();
+    let mut changes: Vec<(usize, Id)> = Vec::new();
     for _ in 0..ROUNDS {
-        let mut calls = vec![NONE; n];
-        for i in 0..n {
+        for &i in &again {
             let entry = entries[i];
-            if entry == NONE {
-                continue;
-            }
-            if walked[i].0 != entry {
-                walked[i] = (
+            if entry != NONE && walked[i].0 != entry {
+                let (_, mut calls) = walk(
+                    &routines[i],
                     entry,
-                    walk(&routines[i], entry, handler, &mut ix, &ctx, true),
+                    handler,
+                    &mut ix,
+                    &ctx,
+                    true,
+                    &mut scratch,
                 );
+                calls.sort_by_key(|c| c.0);
+                let starts = std::mem::take(&mut scratch.ins);
+                walked[i] = (entry, Walked { starts, calls });
             }
-            for &(c, st) in &walked[i].1.calls {
-                let slot = &mut calls[c.0 as usize];
-                *slot = ix.join(*slot, st);
+            // A walk calls only its graph's callees (`graph::note`).
+            for c in &callees[i] {
+                let c = c.0 as usize;
+                if !first[c] && !std::mem::replace(&mut affected[c], true) {
+                    callees_of.push(c);
+                }
             }
         }
-        let next: Vec<Id> = (0..n)
-            .map(|i| {
-                if first[i] || !called[i] {
-                    first_state(i)
-                } else {
-                    calls[i]
+        callees_of.sort_unstable();
+        for &c in &callees_of {
+            affected[c] = false;
+            let mut acc = NONE;
+            let mut last = usize::MAX;
+            for &i in &callers[c] {
+                // Each caller once (a graph's callees are distinct; a test's need not be).
+                if std::mem::replace(&mut last, i) == i || entries[i] == NONE {
+                    continue;
                 }
-            })
-            .collect();
-        if next == entries {
+                let calls = &walked[i].1.calls;
+                let from = calls.partition_point(|k| (k.0.0 as usize) < c);
+                for &(_, st) in calls[from..].iter().take_while(|k| k.0.0 as usize == c) {
+                    acc = ix.join(acc, st);
+                }
+            }
+            if acc != entries[c] {
+                changes.push((c, acc));
+            }
+        }
+        callees_of.clear();
+        if changes.is_empty() {
             break;
         }
-        entries = next;
+        again.clear();
+        for &(c, e) in &changes {
+            entries[c] = e;
+            again.push(c);
+        }
+        changes.clear();
     }
     let mut starts = Vec::with_capacity(n);
     for (i, (at, w)) in walked.into_iter().enumerate() {
@@ -387,9 +500,21 @@ pub fn solve(graphs: Graphs, program: &Program) -> Solution {
         starts.push(if at == entry {
             w.starts
         } else {
-            walk(&routines[i], entry, handler, &mut ix, &ctx, false).starts
+            walk(
+                &routines[i],
+                entry,
+                handler,
+                &mut ix,
+                &ctx,
+                false,
+                &mut scratch,
+            );
+            std::mem::take(&mut scratch.ins)
         });
     }
+    // The working space is as large as the largest routine: it goes before the solution is
+    // handed on.
+    drop(scratch);
     Solution {
         interner: ix,
         summaries,

@@ -107,3 +107,35 @@ fn a_long_chain_of_calls_all_move() {
     assert!(solution.moves[..n - 1].iter().all(|&m| m));
     assert!(!solution.moves[n - 1]);
 }
+
+/// A chain of calls deeper than the rounds of the entry facts' fixpoint (`ROUNDS`, 64): the
+/// routine `k` calls deep gets its entry in round `k`, so the first 64 know the speed their
+/// first caller set, the rest start from their caller's (unknown: `v100` and a TR002). Only the
+/// routine whose entry changed is walked again in a round; the cap leaves what a sweep of
+/// every routine per round left.
+#[test]
+fn a_chain_of_calls_deeper_than_the_rounds_keeps_the_capped_entries() {
+    let n = 70;
+    let mut text = String::from("DEF t()\n  $VEL.CP = 0.5\n  r1()\nEND\n");
+    for i in 1..=n {
+        text.push_str(&format!("DEF r{i}()\n  LIN {P}\n"));
+        if i < n {
+            text.push_str(&format!("  r{}()\n", i + 1));
+        }
+        text.push_str("END\n");
+    }
+    let source = Source {
+        path: "t.src".into(),
+        text,
+    };
+    let t = transpile(Target::Rapid, source, None, &Options::default());
+    let speeds: Vec<&str> = t
+        .text
+        .lines()
+        .filter_map(|l| l.trim().strip_prefix("MoveL "))
+        .map(|l| l.split(", ").nth(1).expect("a speed"))
+        .collect();
+    assert_eq!(speeds.len(), n);
+    assert!(speeds[..64].iter().all(|&s| s == "v500"), "{speeds:?}");
+    assert!(speeds[64..].iter().all(|&s| s == "v100"), "{speeds:?}");
+}

@@ -242,8 +242,8 @@ impl<'p> Lower<'p> {
             l.add_var("", g, Scope::Global);
         }
         // Routines first (ids for calls), then their bodies.
-        for r in &program.src.outline.routines {
-            l.declare_routine(r);
+        for (i, r) in program.src.outline.routines.iter().enumerate() {
+            l.declare_routine(i, r);
         }
         // A routine that declared nothing may share its name with a later one that did.
         for (i, r) in program.src.outline.routines.iter().enumerate() {
@@ -521,10 +521,11 @@ impl<'p> Lower<'p> {
         id
     }
 
-    fn declare_routine(&mut self, outline: &RoutineOutline) {
+    /// The routine at `index` in the outline.
+    fn declare_routine(&mut self, index: usize, outline: &RoutineOutline) {
         let r = &outline.head;
         let key = upper(&r.name.text);
-        let (locals, sig) = self.model.declared(&r.name.text);
+        let (locals, sig) = self.model.declared_at(index, &r.name.text);
         for v in locals {
             let id = RoutineId(self.out.routines.len() as u32);
             let scope = match v.kind {
