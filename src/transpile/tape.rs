@@ -110,6 +110,10 @@ impl Writer {
 
     /// The tape written, to be read from its start.
     pub(super) fn finish(self) -> io::Result<Reader> {
+        self.read_back().map_err(named)
+    }
+
+    fn read_back(self) -> io::Result<Reader> {
         if let Some(e) = self.error {
             return Err(e);
         }
@@ -145,6 +149,10 @@ pub(super) struct Reader {
 impl Reader {
     /// The next event (`None` after the last one).
     pub(super) fn next(&mut self) -> io::Result<Option<Event>> {
+        self.read().map_err(named)
+    }
+
+    fn read(&mut self) -> io::Result<Option<Event>> {
         if self.left == 0 {
             return Ok(None);
         }
@@ -168,6 +176,16 @@ impl Reader {
             .map(Some)
             .map_err(io::Error::other)
     }
+}
+
+/// A tape's error says it is the tape's: the CLI reports it under the output it was writing,
+/// and the tape is elsewhere (the system's temporary folder), so "no space left" alone would
+/// send the user to the wrong disk.
+fn named(e: io::Error) -> io::Error {
+    io::Error::new(
+        e.kind(),
+        format!("the translation's replay file in the system's temporary folder: {e}"),
+    )
 }
 
 /// The next `n` bytes of `v` from `at`.
@@ -282,6 +300,32 @@ mod tests {
         }
         assert!(programs >= 90, "{programs} programs");
         assert!(ops >= 1500, "{ops} statements");
+    }
+
+    /// A tape that cannot be written fails the translation with an error that names it.
+    #[test]
+    fn a_tape_that_cannot_be_written_is_named_in_the_error() {
+        let dir = tempfile::tempdir().unwrap();
+        let path = dir.path().join("tape");
+        std::fs::write(&path, b"").unwrap();
+        let read_only = File::open(&path).unwrap();
+        let src = std::path::Path::new(env!("CARGO_MANIFEST_DIR"))
+            .join("tests/fixtures/transpile/bin_pick.src");
+        let first = first_pass(
+            render::backend(Target::Kawasaki),
+            read(&src),
+            None,
+            &crate::transpile::Options::default(),
+            Writer::file(read_only),
+        );
+        let e = first
+            .tape
+            .err()
+            .expect("a read-only tape cannot be written");
+        assert!(
+            e.to_string().starts_with("the translation's replay file"),
+            "{e}"
+        );
     }
 
     /// A tape in a file reads back what one in memory does, event by event, with the
