@@ -299,13 +299,8 @@ impl<'p> Model<'p> {
         v
     }
 
-    /// The parameters and locals of `routine` in declaration order, and its signature: one
-    /// lookup of its name for both.
-    pub fn declared(&self, routine: &str) -> (Vec<VarInfo>, Option<Signature>) {
-        self.declared_as(self.routine_id(routine))
-    }
-
-    /// [`Model::declared`] of the routine at `index` in the `.src` (its outline's place),
+    /// The parameters and locals, in declaration order, and the signature of the routine at
+    /// `index` in the `.src` (its outline's place),
     /// called `routine`: the first routine of that name, found without a look-up of the name
     /// (on a file of many routines the look-ups were most of the set-up before the first
     /// pass); by the name when the model has another name there (a header that is not KRL).
