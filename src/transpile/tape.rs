@@ -40,6 +40,96 @@ fn codec() -> impl bincode::Options {
 enum To {
     Memory(Vec<u8>),
     File(BufWriter<File>),
+    /// A file written on a thread of its own.
+    Behind(Behind),
+}
+
+/// How many bytes of events [`Behind`] gathers before handing them on, and how many such
+/// chunks may wait.
+const CHUNK: usize = 1 << 18;
+const CHUNKS: usize = 4;
+
+/// A file written on a thread of its own: the events' encodings are gathered here in chunks,
+/// which the thread writes and hands back to be filled again (the `write`s were a tenth of the
+/// first pass's critical path). Only bytes cross: the ops stay on the thread that made them
+/// (handing them over to be encoded there kept each batch alive longer, and the first pass's
+/// allocations slowed by more than the encoding saved).
+struct Behind {
+    chunk: Vec<u8>,
+    send: std::sync::mpsc::SyncSender<Vec<u8>>,
+    returned: std::sync::mpsc::Receiver<Vec<u8>>,
+    /// The file back, with the first write error.
+    thread: std::thread::JoinHandle<(File, io::Result<()>)>,
+}
+
+impl Behind {
+    /// Writes to `file` on a thread of its own; the file back when no thread can be had.
+    fn start(file: File) -> Result<Behind, File> {
+        let (give, take) = std::sync::mpsc::channel::<File>();
+        let (send, receive) = std::sync::mpsc::sync_channel::<Vec<u8>>(CHUNKS);
+        let (give_back, returned) = std::sync::mpsc::channel::<Vec<u8>>();
+        let spawned = std::thread::Builder::new()
+            .name("tape".into())
+            .spawn(move || {
+                let mut file = take.recv().expect("the file is handed over");
+                let mut written = Ok(());
+                for chunk in receive {
+                    if written.is_ok() {
+                        written = file.write_all(&chunk);
+                    }
+                    // Back to be filled again (or dropped) where it was allocated.
+                    let _ = give_back.send(chunk);
+                }
+                (file, written)
+            });
+        match spawned {
+            Ok(thread) => {
+                give.send(file).expect("the thread waits for the file");
+                Ok(Behind {
+                    chunk: Vec::with_capacity(CHUNK),
+                    send,
+                    returned,
+                    thread,
+                })
+            }
+            Err(_) => Err(file),
+        }
+    }
+
+    fn write(&mut self, bytes: &[u8]) {
+        self.chunk.extend_from_slice(bytes);
+        if self.chunk.len() >= CHUNK {
+            let next = self.returned.try_recv().map_or_else(
+                |_| Vec::with_capacity(CHUNK + 4096),
+                |mut done| {
+                    done.clear();
+                    done
+                },
+            );
+            let full = std::mem::replace(&mut self.chunk, next);
+            // The receiver only stops early when the thread panicked (seen at `finish`).
+            let _ = self.send.send(full);
+        }
+    }
+
+    /// Everything written: the file back.
+    fn finish(self) -> io::Result<File> {
+        let Behind {
+            chunk,
+            send,
+            returned,
+            thread,
+        } = self;
+        if !chunk.is_empty() {
+            let _ = send.send(chunk);
+        }
+        drop(send);
+        let (file, written) = thread
+            .join()
+            .unwrap_or_else(|panic| std::panic::resume_unwind(panic));
+        drop(returned);
+        written.map(|()| file)
+    }
 }
 
 /// The tape being written.
@@ -58,8 +148,17 @@ impl Writer {
         Writer::new(To::Memory(Vec::new()))
     }
 
-    /// A tape in `file` (an unnamed temporary file).
+    /// A tape in `file` (an unnamed temporary file), written on a thread of its own when one
+    /// can be had.
     pub(super) fn file(file: File) -> Writer {
+        match Behind::start(file) {
+            Ok(behind) => Writer::new(To::Behind(behind)),
+            Err(file) => Writer::file_here(file),
+        }
+    }
+
+    /// A tape in `file`, written on this thread.
+    fn file_here(file: File) -> Writer {
         Writer::new(To::File(BufWriter::with_capacity(1 << 16, file)))
     }
 
@@ -105,6 +204,10 @@ impl Writer {
                     self.error = Some(e);
                 }
             }
+            To::Behind(b) => {
+                b.write(&len);
+                b.write(&self.buf);
+            }
         }
     }
 
@@ -121,6 +224,11 @@ impl Writer {
             To::Memory(v) => From::Memory(v, 0),
             To::File(f) => {
                 let mut f = f.into_inner().map_err(io::IntoInnerError::into_error)?;
+                f.rewind()?;
+                From::File(BufReader::with_capacity(1 << 16, f))
+            }
+            To::Behind(b) => {
+                let mut f = b.finish()?;
                 f.rewind()?;
                 From::File(BufReader::with_capacity(1 << 16, f))
             }
@@ -328,6 +436,56 @@ mod tests {
         );
     }
 
+    /// The events of a program of many routines (many chunks for the writing thread), read
+    /// back from a tape in a file written on its own thread, are those of a tape written here,
+    /// in a file or in memory, in order.
+    #[test]
+    fn a_tape_written_on_its_own_thread_reads_back_as_one_written_here() {
+        let mut text = String::new();
+        for r in 0..5000 {
+            text.push_str(&format!(
+                "DEF r{r}()\n  DECL INT i\n  i = {r}\n  IF i > 3 THEN\n    PTP {{A1 {r}}}\n  ENDIF\n  r{}()\nEND\n",
+                (r + 1) % 5000
+            ));
+        }
+        let writers = [
+            Writer::file(tempfile::tempfile().unwrap()),
+            Writer::file_here(tempfile::tempfile().unwrap()),
+            Writer::memory(),
+        ];
+        assert!(matches!(writers[0].to, To::Behind(_)));
+        assert!(matches!(writers[1].to, To::File(_)));
+        let tapes = writers.map(|w| {
+            let first = first_pass(
+                render::backend(Target::Kawasaki),
+                Source {
+                    path: "many.src".into(),
+                    text: text.clone(),
+                },
+                None,
+                &crate::transpile::Options::default(),
+                w,
+            );
+            let mut tape = first.tape.unwrap();
+            if let From::Memory(bytes, _) = &tape.from {
+                // Many chunks' worth for the thread.
+                assert!(bytes.len() > 6 * CHUNK, "{} bytes", bytes.len());
+            }
+            let mut events = Vec::new();
+            while let Some(e) = tape.next().unwrap() {
+                events.push(match e {
+                    Event::Begin(id) => (Seen::Begin(id), None),
+                    Event::Ops(ops, runs) => (Seen::Ops(ops), Some(runs)),
+                    Event::End => (Seen::End, None),
+                });
+            }
+            events
+        });
+        assert!(tapes[0].len() > 20_000, "{} events", tapes[0].len());
+        assert_eq!(tapes[0], tapes[1]);
+        assert_eq!(tapes[0], tapes[2]);
+    }
+
     /// A tape in a file reads back what one in memory does, event by event, with the
     /// `&'static` texts and subprograms of the ops the same references.
     #[test]
@@ -337,6 +495,7 @@ mod tests {
         let tapes = [
             Writer::memory(),
             Writer::file(tempfile::tempfile().unwrap()),
+            Writer::file_here(tempfile::tempfile().unwrap()),
         ]
         .map(|w| {
             let first = first_pass(
@@ -358,6 +517,7 @@ mod tests {
             events
         });
         assert_eq!(tapes[0], tapes[1]);
+        assert_eq!(tapes[0], tapes[2]);
         let mut mm = 0;
         for s in &tapes[0] {
             if let Seen::Ops(ops) = s {
