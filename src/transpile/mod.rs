@@ -316,11 +316,17 @@ fn first_pass(
         front::Parsed::new(src.path, src.text),
         dat.map(|d| front::Parsed::new(d.path, d.text)),
     );
-    let mut first = ir::lower::Lower::new(&program, options, backend.caps());
     let mut graphs = ir::flow::Graphs::default();
     let mut plan = ir::goto::Plan::default();
     let mut runs = ir::flow::Runs::default();
-    each_lowered(&program, &mut first, |event| match event {
+    // The lowering's set-up (the model, every routine's and variable's id) is made when the
+    // first statement comes, while the parse goes on ahead: it was a stretch where only this
+    // thread worked.
+    let mut first = Made {
+        lower: None,
+        make: Some(|| ir::lower::Lower::new(&program, options, backend.caps())),
+    };
+    each_lowered_ahead(&program, &mut first, SET_UP_AHEAD, |event| match event {
         Lowered::Begin(id) => {
             graphs.begin(id);
             plan.begin(id);
@@ -341,7 +347,7 @@ fn first_pass(
         program: model,
         vision,
         replay,
-    } = first.finish();
+    } = first.take().finish();
     // The first pass lowered the data lists' values: their trees go.
     program.forget_data_values();
     let flow = ir::flow::solve(graphs, &model);
@@ -531,40 +537,93 @@ enum Lowered<'s> {
     End(ir::RoutineId),
 }
 
+/// How many batches of statements the first pass's parse may run ahead: the lowering's
+/// set-up takes a few tenths of a second on a 50 MB program, and about a tenth of that many
+/// statements wait meanwhile (a few tens of megabytes at most).
+const SET_UP_AHEAD: usize = 32;
+
+/// A lowering, or how to make it when it is first asked for.
+trait LowerSlot<'p> {
+    fn get(&mut self) -> &mut ir::lower::Lower<'p>;
+}
+
+impl<'p> LowerSlot<'p> for ir::lower::Lower<'p> {
+    fn get(&mut self) -> &mut ir::lower::Lower<'p> {
+        self
+    }
+}
+
+/// A lowering made when it is first asked for.
+struct Made<'p, F> {
+    lower: Option<ir::lower::Lower<'p>>,
+    make: Option<F>,
+}
+
+impl<'p, F: FnOnce() -> ir::lower::Lower<'p>> Made<'p, F> {
+    /// The lowering (made now if it was never asked for).
+    fn take(mut self) -> ir::lower::Lower<'p> {
+        self.get();
+        self.lower.expect("made")
+    }
+}
+
+impl<'p, F: FnOnce() -> ir::lower::Lower<'p>> LowerSlot<'p> for Made<'p, F> {
+    fn get(&mut self) -> &mut ir::lower::Lower<'p> {
+        let Made { lower, make } = self;
+        lower.get_or_insert_with(|| (make.take().expect("made once"))())
+    }
+}
+
 /// Lowers the program's statements one at a time with `lower`: each routine in source order,
 /// then the statements outside any DEF.
-fn each_lowered(
-    program: &front::Program,
-    lower: &mut ir::lower::Lower<'_>,
+#[cfg(test)]
+fn each_lowered<'p>(
+    program: &'p front::Program,
+    lower: &mut ir::lower::Lower<'p>,
+    f: impl FnMut(Lowered<'_>),
+) {
+    each_lowered_ahead(program, lower, 1, f);
+}
+
+/// [`each_lowered`], the routines' statements parsed up to `ahead` batches ahead; `lower` is
+/// first asked for when the first statement has come.
+fn each_lowered_ahead<'p>(
+    program: &'p front::Program,
+    lower: &mut impl LowerSlot<'p>,
+    ahead: usize,
     mut f: impl FnMut(Lowered<'_>),
 ) {
     // The ops before the open routine's body: its head's declarations add to them until the
     // first statement or its end.
     let mut head: Option<ir::Block> = None;
-    program.src.each_statement(false, |s| match s {
-        front::Statement::Begin(i) => {
-            head = Some(lower.begin_routine(*i));
-            f(Lowered::Begin(ir::RoutineId(*i as u32)));
-        }
-        front::Statement::Head(s) => {
-            if let Some(ops) = &mut head {
-                lower.head(s, ops);
+    program.src.each_statement_ahead(false, ahead, |s| {
+        let lower = lower.get();
+        match s {
+            front::Statement::Begin(i) => {
+                head = Some(lower.begin_routine(*i));
+                f(Lowered::Begin(ir::RoutineId(*i as u32)));
             }
-        }
-        front::Statement::Stmt(s) => {
-            if let Some(ops) = head.take() {
-                f(Lowered::Ops(ops, None));
+            front::Statement::Head(s) => {
+                if let Some(ops) = &mut head {
+                    lower.head(s, ops);
+                }
             }
-            f(Lowered::Ops(lower.stmt(s), Some(s)));
-        }
-        front::Statement::End(i) => {
-            if let Some(ops) = head.take() {
-                f(Lowered::Ops(ops, None));
+            front::Statement::Stmt(s) => {
+                if let Some(ops) = head.take() {
+                    f(Lowered::Ops(ops, None));
+                }
+                f(Lowered::Ops(lower.stmt(s), Some(s)));
             }
-            f(Lowered::Ops(lower.end_routine(), None));
-            f(Lowered::End(ir::RoutineId(*i as u32)));
+            front::Statement::End(i) => {
+                if let Some(ops) = head.take() {
+                    f(Lowered::Ops(ops, None));
+                }
+                f(Lowered::Ops(lower.end_routine(), None));
+                f(Lowered::End(ir::RoutineId(*i as u32)));
+            }
         }
     });
+    let lower = lower.get();
     if let Some((id, ops)) = lower.begin_top_level() {
         f(Lowered::Begin(id));
         f(Lowered::Ops(ops, None));

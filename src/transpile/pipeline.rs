@@ -61,12 +61,23 @@ pub fn pipelined<T: Send, R: Send>(
 pub fn pipelined_on<T: Send, R: Send>(
     thread: bool,
     produce: impl FnOnce(&mut Sink<'_, T>) -> R + Send,
+    consume: impl FnMut(&T),
+) -> R {
+    pipelined_ahead(thread, BATCHES, produce, consume)
+}
+
+/// [`pipelined_on`] with up to `ahead` batches waiting (a consumer that starts with work of
+/// its own lets the producer run further ahead meanwhile).
+pub fn pipelined_ahead<T: Send, R: Send>(
+    thread: bool,
+    ahead: usize,
+    produce: impl FnOnce(&mut Sink<'_, T>) -> R + Send,
     mut consume: impl FnMut(&T),
 ) -> R {
     if !thread {
         return produce(&mut Sink::Direct(&mut consume));
     }
-    let (send, receive) = std::sync::mpsc::sync_channel::<Vec<T>>(BATCHES);
+    let (send, receive) = std::sync::mpsc::sync_channel::<Vec<T>>(ahead.max(1));
     let (give_back, returned) = std::sync::mpsc::channel::<Vec<T>>();
     // Taken by the thread, or here when there is none.
     let work = std::sync::Mutex::new(Some(produce));
@@ -146,6 +157,41 @@ mod tests {
         assert_eq!(made, n);
         assert_eq!(seen, (0..n).collect::<Vec<_>>());
         assert_eq!(run(false), (made, seen));
+    }
+
+    /// With many batches allowed to wait while the consumer is busy at its start, the
+    /// consumer still sees every item in order, and the producer ran ahead meanwhile.
+    #[test]
+    fn a_producer_further_ahead_hands_out_the_same_items() {
+        let n = BATCH * 40 + 3;
+        let made = std::sync::atomic::AtomicUsize::new(0);
+        let mut seen = Vec::new();
+        let mut ahead_at_start = None;
+        pipelined_ahead(
+            true,
+            32,
+            |sink| {
+                for i in 0..n {
+                    sink.push(i);
+                    made.store(i + 1, std::sync::atomic::Ordering::Relaxed);
+                }
+            },
+            |&i| {
+                if ahead_at_start.is_none() {
+                    // The consumer's own work at its start: the producer goes on meanwhile.
+                    let until = std::time::Instant::now() + std::time::Duration::from_secs(5);
+                    while made.load(std::sync::atomic::Ordering::Relaxed) < BATCH * 20
+                        && std::time::Instant::now() < until
+                    {
+                        std::thread::yield_now();
+                    }
+                    ahead_at_start = Some(made.load(std::sync::atomic::Ordering::Relaxed));
+                }
+                seen.push(i);
+            },
+        );
+        assert_eq!(seen, (0..n).collect::<Vec<_>>());
+        assert!(ahead_at_start.unwrap() >= BATCH * 20, "{ahead_at_start:?}");
     }
 
     /// A producer's panic reaches the caller.

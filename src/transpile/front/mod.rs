@@ -120,6 +120,17 @@ impl Parsed {
         pipelined(|sink| self.statements(top_level, |s| sink.push(s)), f);
     }
 
+    /// [`Parsed::each_statement`] with up to `ahead` batches of statements parsed ahead of `f`
+    /// (`f` may start with work of its own: the parse goes on meanwhile).
+    pub fn each_statement_ahead(&self, top_level: bool, ahead: usize, f: impl FnMut(&Statement)) {
+        crate::transpile::pipeline::pipelined_ahead(
+            true,
+            ahead,
+            |sink| self.statements(top_level, |s| sink.push(s)),
+            f,
+        );
+    }
+
     /// [`Parsed::each_statement`] on this thread.
     fn statements(&self, top_level: bool, mut f: impl FnMut(Statement)) {
         use crate::syntax::ast::{Lowered, PieceLowerer};
