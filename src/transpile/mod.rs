@@ -246,9 +246,9 @@ fn translate(
         .routines
         .first()
         .map_or(crate::diag::Span::new(0, 0), |r| r.name_span);
-    // The text is assembled on a thread of its own, which then finds the coverage and the
-    // silent statements, while the target's check reads its lines here ([`tail`]).
-    // The statements that wrote something, sorted where they are (the first tally's).
+    // The text is assembled on a thread of its own and the coverage and the silent statements
+    // are found on another while the target's check reads its lines here ([`tail`]).
+    // The statements that wrote something, sorted where they are (by the first tally).
     let (mut made, mut produced) = (produced, None);
     let (coverage, silent) = tail(
         true,
@@ -467,13 +467,56 @@ fn rendered_on<'a>(
     (spool, framed, report, produced)
 }
 
+/// Runs `there` on a thread of its own (when `thread` and one can be had) and `here` on this
+/// one, at the same time; without a thread, `here` and then `there` run here. A panic of
+/// `there` reaches the caller.
+fn beside<A: Send, B>(
+    thread: bool,
+    there: impl FnOnce() -> A + Send,
+    here: impl FnOnce() -> B,
+) -> (A, B) {
+    // Taken by the thread, or here when there is none.
+    let work = std::sync::Mutex::new(Some(there));
+    let take = || {
+        work.lock()
+            .unwrap_or_else(std::sync::PoisonError::into_inner)
+            .take()
+            .expect("the work is taken once")
+    };
+    std::thread::scope(|scope| {
+        let spawned = thread
+            .then(|| {
+                std::thread::Builder::new()
+                    .spawn_scoped(scope, || take()())
+                    .ok()
+            })
+            .flatten();
+        match spawned {
+            Some(spawned) => {
+                let b = here();
+                let a = spawned
+                    .join()
+                    .unwrap_or_else(|panic| std::panic::resume_unwind(panic));
+                (a, b)
+            }
+            None => {
+                let b = here();
+                (take()(), b)
+            }
+        }
+    })
+}
+
 /// The end of a translation: `assemble` writes the text on a thread of its own and hands
-/// each line to `check` here (in order, in chunks of many lines), and then, there, `tally`
-/// finds the coverage and the silent statements in `report` (they depend on the check only
+/// each line to `check` here (in order, in chunks of many lines), while `tally` finds the
+/// coverage and the silent statements in `report` on a third (they depend on the check only
 /// when it finds a problem), so the check, the longest stretch after the second pass, is all
-/// this thread does (50 MB of many routines: the check ~0.4 s of CPU, the tally ~0.17 s). The check's problems — a renderer defect, so none nearly always — go into
-/// `report` with `found`, and `tally` runs again on it. Without a thread (`thread` false, or
-/// none to be had) it all runs here, one after the other; the result is the same.
+/// that is left on the critical path (50 MB of many routines: the check ~0.4 s of CPU, the
+/// tally ~0.17 s, the copy little; after the copy, the tally found itself behind the check:
+/// the copy is held a few chunks ahead of it). The check's problems — a renderer defect, so
+/// none nearly always — go into `report` with `found`, and `tally` runs again on it. Without
+/// a thread (`thread` false, or none to be had) it all runs here, one after the other; the
+/// result is the same.
 fn tail<T: Send>(
     thread: bool,
     mut check: Box<dyn render::LineCheck + '_>,
@@ -484,22 +527,29 @@ fn tail<T: Send>(
 ) -> std::io::Result<T> {
     let seen: &front::report::Report = report;
     let once = &mut tally;
-    let tallied = pipeline::pipelined_on(
+    let (tallied, written) = beside(
         thread,
-        |sink| {
-            let mut lines = Handed {
-                sink,
-                chunk: String::new(),
-            };
-            let out = assemble(&mut lines);
-            if !lines.chunk.is_empty() {
-                lines.sink.push(std::mem::take(&mut lines.chunk));
-            }
-            out.map(|()| once(seen))
+        || once(seen),
+        || {
+            pipeline::pipelined_on(
+                thread,
+                |sink| {
+                    let mut lines = Handed {
+                        sink,
+                        chunk: String::new(),
+                    };
+                    let out = assemble(&mut lines);
+                    if !lines.chunk.is_empty() {
+                        lines.sink.push(std::mem::take(&mut lines.chunk));
+                    }
+                    out
+                },
+                // A line has no line break: each ends in one in its chunk.
+                |chunk: &String| chunk.split_terminator('\n').for_each(|l| check.line(l)),
+            )
         },
-        // A line has no line break: each ends in one in its chunk.
-        |chunk: &String| chunk.split_terminator('\n').for_each(|l| check.line(l)),
-    )?;
+    );
+    written?;
     let problems = check.finish();
     if problems.is_empty() {
         return Ok(tallied);
