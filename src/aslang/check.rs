@@ -7,7 +7,6 @@
 //! It is a checker of our own output, not an AS parser: it knows the statement heads the
 //! generator and the translator write and ignores the rest of a line.
 
-use std::collections::HashSet;
 use std::collections::hash_map::Entry;
 use std::fmt;
 
@@ -16,7 +15,7 @@ use super::lex::{
 };
 use crate::catalog::catalog;
 use compact_str::CompactString;
-use rustc_hash::FxHashMap;
+use rustc_hash::{FxHashMap, FxHashSet};
 
 /// One finding, on a 1-based line.
 #[derive(Debug, Clone, PartialEq, Eq)]
@@ -125,7 +124,7 @@ impl Block {
 struct Program {
     name: String,
     blocks: Vec<(Block, usize)>,
-    labels: HashSet<String>,
+    labels: FxHashSet<String>,
     gotos: Vec<(String, usize)>,
     /// Line of a C1MOVE waiting for its C2MOVE.
     c1: Option<usize>,
@@ -309,7 +308,7 @@ impl Checker {
         self.state = State::Program(Program {
             name: lower,
             blocks: Vec::new(),
-            labels: HashSet::new(),
+            labels: FxHashSet::default(),
             gotos: Vec::new(),
             c1: None,
         });

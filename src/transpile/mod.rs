@@ -246,14 +246,24 @@ fn translate(
         .routines
         .first()
         .map_or(crate::diag::Span::new(0, 0), |r| r.name_span);
-    // The text is assembled on a thread of its own while the target's check reads its lines
-    // here ([`checked`]). (The coverage and the silent statements are found after it, here:
-    // on the other thread, their tables took pages of their own, and the peak grew.)
-    let mut check = backend.checker();
-    checked(check.as_mut(), |lines| assemble(spool, framed, lines))?;
-    report_structure(backend, check.finish(), at, &mut report);
-    report.coverage = coverage(&model, &report);
-    let silent = silent(&model, &report, &produced);
+    // The text is assembled on a thread of its own and the coverage and the silent statements
+    // are found on another while the target's check reads its lines here ([`tail`]).
+    // The statements that wrote something, sorted where they are (by the first tally).
+    let (mut made, mut produced) = (produced, None);
+    let (coverage, silent) = tail(
+        true,
+        backend.checker(),
+        |lines| assemble(spool, framed, lines),
+        &mut report,
+        |problems, report| report_structure(backend, problems, at, report),
+        |report| {
+            // One table of where the `.src`'s findings start serves both.
+            let src = Starts::new(report.starts(front::report::FileId::Src));
+            let dat = Starts::new(report.starts(front::report::FileId::Dat));
+            let produced = produced.get_or_insert_with(|| Covered::new(std::mem::take(&mut made)));
+            (coverage(&model, &src, &dat), silent(&model, &src, produced))
+        },
+    )?;
     drop(model);
     let front::Program {
         src,
@@ -268,7 +278,6 @@ fn translate(
     if let Some(dat) = &dat {
         report.trim_spans(front::report::FileId::Dat, &dat.text);
     }
-    let coverage = std::mem::take(&mut report.coverage);
     let [src_findings, dat_findings] = report.into_diagnostics();
     let mut reports = vec![FileReport {
         path: src.path,
@@ -464,45 +473,102 @@ fn rendered_on<'a>(
     (spool, framed, report, produced)
 }
 
-/// Runs `work` on a thread of its own and `check` here on each line `work` hands its
-/// [`render::LineCheck`] (in order, in chunks of many lines: the check was the longest stretch
-/// after the second pass that ran on one thread). Returns what `work` returns.
-fn checked<R: Send>(
-    check: &mut dyn render::LineCheck,
-    work: impl FnOnce(&mut dyn render::LineCheck) -> R + Send,
-) -> R {
-    checked_on(true, check, work)
-}
-
-/// [`checked`], `work` on a thread of its own only when `thread`.
-fn checked_on<R: Send>(
+/// Runs `there` on a thread of its own (when `thread` and one can be had) and `here` on this
+/// one, at the same time; without a thread, `here` and then `there` run here. A panic of
+/// `there` reaches the caller.
+fn beside<A: Send, B>(
     thread: bool,
-    check: &mut dyn render::LineCheck,
-    work: impl FnOnce(&mut dyn render::LineCheck) -> R + Send,
-) -> R {
-    pipeline::pipelined_on(
-        thread,
-        |sink| {
-            let mut lines = Handed {
-                sink,
-                chunk: String::new(),
-            };
-            let out = work(&mut lines);
-            if !lines.chunk.is_empty() {
-                lines.sink.push(std::mem::take(&mut lines.chunk));
+    there: impl FnOnce() -> A + Send,
+    here: impl FnOnce() -> B,
+) -> (A, B) {
+    // Taken by the thread, or here when there is none.
+    let work = std::sync::Mutex::new(Some(there));
+    let take = || {
+        work.lock()
+            .unwrap_or_else(std::sync::PoisonError::into_inner)
+            .take()
+            .expect("the work is taken once")
+    };
+    std::thread::scope(|scope| {
+        let spawned = thread
+            .then(|| {
+                std::thread::Builder::new()
+                    .spawn_scoped(scope, || take()())
+                    .ok()
+            })
+            .flatten();
+        match spawned {
+            Some(spawned) => {
+                let b = here();
+                let a = spawned
+                    .join()
+                    .unwrap_or_else(|panic| std::panic::resume_unwind(panic));
+                (a, b)
             }
-            out
-        },
-        // A line has no line break: each ends in one in its chunk.
-        |chunk: &String| chunk.split_terminator('\n').for_each(|l| check.line(l)),
-    )
+            None => {
+                let b = here();
+                (take()(), b)
+            }
+        }
+    })
 }
 
-/// The lines handed to [`checked`]'s check, each followed by a line break, in chunks of about
+/// The end of a translation: `assemble` writes the text on a thread of its own and hands
+/// each line to `check` here (in order, in chunks of many lines), while `tally` finds the
+/// coverage and the silent statements in `report` on a third (they depend on the check only
+/// when it finds a problem), so the check, the longest stretch after the second pass, is all
+/// that is left on the critical path (50 MB of many routines: the check ~0.4 s of CPU, the
+/// tally ~0.17 s, the copy little; after the copy, the tally found itself behind the check:
+/// the copy is held a few chunks ahead of it). The check's problems — a renderer defect, so
+/// none nearly always — go into `report` with `found`, and `tally` runs again on it. Without
+/// a thread (`thread` false, or none to be had) it all runs here, one after the other; the
+/// result is the same.
+fn tail<T: Send>(
+    thread: bool,
+    mut check: Box<dyn render::LineCheck + '_>,
+    assemble: impl FnOnce(&mut dyn render::LineCheck) -> std::io::Result<()> + Send,
+    report: &mut front::report::Report,
+    found: impl FnOnce(Vec<String>, &mut front::report::Report),
+    mut tally: impl FnMut(&front::report::Report) -> T + Send,
+) -> std::io::Result<T> {
+    let seen: &front::report::Report = report;
+    let once = &mut tally;
+    let (tallied, written) = beside(
+        thread,
+        || once(seen),
+        || {
+            pipeline::pipelined_on(
+                thread,
+                |sink| {
+                    let mut lines = Handed {
+                        sink,
+                        chunk: String::new(),
+                    };
+                    let out = assemble(&mut lines);
+                    if !lines.chunk.is_empty() {
+                        lines.sink.push(std::mem::take(&mut lines.chunk));
+                    }
+                    out
+                },
+                // A line has no line break: each ends in one in its chunk.
+                |chunk: &String| chunk.split_terminator('\n').for_each(|l| check.line(l)),
+            )
+        },
+    );
+    written?;
+    let problems = check.finish();
+    if problems.is_empty() {
+        return Ok(tallied);
+    }
+    found(problems, report);
+    Ok(tally(report))
+}
+
+/// The lines handed to [`tail`]'s check, each followed by a line break, in chunks of about
 /// this many bytes (a few batches of them wait at most: a few megabytes).
 const CHUNK: usize = 1024;
 
-/// A [`render::LineCheck`] that hands its lines on to [`checked`]'s check.
+/// A [`render::LineCheck`] that hands its lines on to [`tail`]'s check.
 struct Handed<'s, 'a> {
     sink: &'s mut pipeline::Sink<'a, String>,
     chunk: String,
@@ -520,7 +586,7 @@ impl render::LineCheck for Handed<'_, '_> {
         }
     }
 
-    /// The check's findings are [`checked`]'s check's.
+    /// The check's findings are [`tail`]'s check's.
     fn finish(self: Box<Self>) -> Vec<String> {
         Vec::new()
     }
@@ -659,17 +725,16 @@ fn report_structure(
     }
 }
 
-/// The coverage table from the program's constructs and the findings: a construct is as good
-/// as the worst finding that starts inside it (renames do not count).
-fn coverage(model: &ir::Program, report: &front::report::Report) -> Coverage {
+/// The coverage table from the program's constructs and where the findings of the `.src` and
+/// the `.dat` start: a construct is as good as the worst finding that starts inside it
+/// (renames do not count).
+fn coverage(model: &ir::Program, src: &Starts, dat: &Starts) -> Coverage {
     use front::report::{FileId, Outcome};
-    let src = Starts::new(report.starts(FileId::Src));
-    let dat = Starts::new(report.starts(FileId::Dat));
     let mut c = Coverage::default();
     for k in &model.constructs.list {
         let starts = match k.file {
-            FileId::Src => &src,
-            FileId::Dat => &dat,
+            FileId::Src => src,
+            FileId::Dat => dat,
         };
         let [untranslated, approximate, _] = starts.inside(k.span);
         let o = if untranslated > 0 {
@@ -684,16 +749,11 @@ fn coverage(model: &ir::Program, report: &front::report::Report) -> Coverage {
     c
 }
 
-/// The `.src` statements that wrote no line and have no finding inside them (routine headers
-/// and `.dat` values are rendered with their routine or data section).
-fn silent(
-    model: &ir::Program,
-    report: &front::report::Report,
-    produced: &[crate::diag::Span],
-) -> Vec<crate::diag::Span> {
+/// The `.src` statements that wrote no line (`produced`: the spans that did) and have no finding
+/// inside them (`findings`: where the `.src`'s start; routine headers and `.dat` values are rendered with their routine or
+/// data section).
+fn silent(model: &ir::Program, findings: &Starts, produced: &Covered) -> Vec<crate::diag::Span> {
     use front::report::FileId;
-    let findings = Starts::new(report.starts(FileId::Src));
-    let produced = Covered::new(produced);
     model
         .constructs
         .list
@@ -750,33 +810,31 @@ impl Starts {
     }
 }
 
-/// The spans that wrote output, sorted by start, with the furthest end among each prefix.
+/// The spans that wrote output, sorted by start, each end the furthest among it and those
+/// before it (made in place: a file of many statements has millions).
 struct Covered {
-    starts: Vec<u32>,
-    furthest: Vec<u32>,
+    spans: Vec<crate::diag::Span>,
 }
 
 impl Covered {
-    fn new(spans: &[crate::diag::Span]) -> Covered {
-        let mut sorted: Vec<(u32, u32)> = spans.iter().map(|s| (s.start, end_of(*s))).collect();
-        sorted.sort_unstable();
-        let mut furthest = Vec::with_capacity(sorted.len());
+    fn new(mut spans: Vec<crate::diag::Span>) -> Covered {
+        for s in &mut spans {
+            s.end = end_of(*s);
+        }
+        spans.sort_unstable_by_key(|s| (s.start, s.end));
         let mut max = 0;
-        for &(_, end) in &sorted {
-            max = max.max(end);
-            furthest.push(max);
+        for s in &mut spans {
+            max = max.max(s.end);
+            s.end = max;
         }
-        Covered {
-            starts: sorted.into_iter().map(|(s, _)| s).collect(),
-            furthest,
-        }
+        Covered { spans }
     }
 
     /// Whether any of the spans overlaps `span`: one that starts before `span` ends reaches
     /// past its start.
     fn overlaps(&self, span: crate::diag::Span) -> bool {
-        let before = self.starts.partition_point(|&s| s < end_of(span));
-        before > 0 && self.furthest[before - 1] > span.start
+        let before = self.spans.partition_point(|s| s.start < end_of(span));
+        before > 0 && self.spans[before - 1].end > span.start
     }
 }
 
@@ -854,7 +912,7 @@ mod render_thread_tests {
         }
     }
 
-    /// Records the lines it is fed.
+    /// Records the lines it is fed, and gives them back as its problems.
     #[derive(Default)]
     struct Seen(Vec<String>);
 
@@ -864,15 +922,14 @@ mod render_thread_tests {
         }
 
         fn finish(self: Box<Self>) -> Vec<String> {
-            Vec::new()
+            self.0
         }
     }
 
-    /// With the work on a thread of its own (lines in chunks, many batches of them) and here,
-    /// the check sees every line in order, empty ones and `\r`s kept, and the work's result
-    /// comes back.
+    /// With the text assembled on a thread of its own (lines in chunks, many batches of them)
+    /// and here, the check sees every line in order, empty ones and `\r`s kept.
     #[test]
-    fn the_check_beside_the_work_sees_what_checking_here_does() {
+    fn the_check_beside_the_assembly_sees_what_checking_here_does() {
         let lines: Vec<String> = (0..20_000)
             .map(|i| match i % 7 {
                 0 => String::new(),
@@ -881,16 +938,105 @@ mod render_thread_tests {
             })
             .collect();
         let runs = [true, false].map(|thread| {
-            let mut seen = Seen::default();
-            let out = checked_on(thread, &mut seen, |check| {
-                lines.iter().for_each(|l| check.line(l));
-                lines.len()
-            });
-            (out, seen.0)
+            let mut seen = Vec::new();
+            let tallied = tail(
+                thread,
+                Box::new(Seen::default()),
+                |check| {
+                    lines.iter().for_each(|l| check.line(l));
+                    Ok(())
+                },
+                &mut front::report::Report::default(),
+                |problems, _| seen = problems,
+                |report| report.len(front::report::FileId::Src),
+            )
+            .unwrap();
+            (tallied, seen)
         });
         assert_eq!(runs[0], runs[1]);
-        assert_eq!(runs[0].0, 20_000);
         assert_eq!(runs[0].1, lines);
+    }
+
+    /// Fails each line that says `bad`.
+    #[derive(Default)]
+    struct Bad {
+        lines: usize,
+        problems: Vec<String>,
+    }
+
+    impl render::LineCheck for Bad {
+        fn line(&mut self, line: &str) {
+            self.lines += 1;
+            if line.contains("bad") {
+                self.problems.push(format!("line {}: {line}", self.lines));
+            }
+        }
+
+        fn finish(self: Box<Self>) -> Vec<String> {
+            self.problems
+        }
+    }
+
+    /// With the text assembled (and the tally taken) on a thread of its own and here, the same
+    /// findings (the check's problems among them) and the same tally, taken again once the
+    /// check's problems are in the report; an error assembling the text is the result.
+    #[test]
+    fn the_tail_beside_the_check_is_the_tail_after_it() {
+        use front::report::{FileId, Report};
+        for bad in [None, Some(7), Some(19_999)] {
+            let lines: Vec<String> = (0..20_000)
+                .map(|i| match Some(i) == bad {
+                    true => format!("bad {i}"),
+                    false => format!("line {i}"),
+                })
+                .collect();
+            let runs = [true, false].map(|thread| {
+                let mut report = Report::default();
+                report.renamed(FileId::Src, crate::diag::Span::new(3, 4), "renamed");
+                let tallied = tail(
+                    thread,
+                    Box::new(Bad::default()),
+                    |check| {
+                        lines.iter().for_each(|l| check.line(l));
+                        Ok(())
+                    },
+                    &mut report,
+                    |problems, report| {
+                        for p in problems {
+                            let at = crate::diag::Span::new(1, 2);
+                            report.untranslatable(FileId::Src, at, p, "");
+                        }
+                    },
+                    |report| report.len(FileId::Src),
+                )
+                .unwrap();
+                let [findings, _] = report.into_diagnostics();
+                let findings: Vec<String> =
+                    findings.iter().map(|d| d.message.to_string()).collect();
+                (findings, tallied)
+            });
+            assert_eq!(runs[0], runs[1]);
+            let (findings, tallied) = &runs[0];
+            match bad {
+                None => assert_eq!(findings, &["renamed"]),
+                Some(i) => {
+                    let problem = format!("line {}: bad {i}", i + 1);
+                    assert_eq!(findings, &[problem, "renamed".into()]);
+                }
+            }
+            assert_eq!(*tallied, findings.len());
+        }
+        for thread in [true, false] {
+            let failed = tail(
+                thread,
+                Box::new(Bad::default()),
+                |_| Err(std::io::Error::other("disk full")),
+                &mut Report::default(),
+                |_, _| unreachable!("no text, no check"),
+                |report| report.len(FileId::Src),
+            );
+            assert_eq!(failed.unwrap_err().to_string(), "disk full");
+        }
     }
 
     /// On the render thread (batches of many events, given back) and here, the renderer sees

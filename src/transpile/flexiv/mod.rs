@@ -30,7 +30,9 @@ mod script;
 mod stmt;
 
 use crate::transpile::render::Lacked;
-use std::collections::{BTreeMap, BTreeSet, HashMap};
+use std::collections::{BTreeMap, BTreeSet};
+
+use rustc_hash::FxHashMap;
 
 pub use motion::zone_code;
 pub use options::{Api, FlexivOptions, JointMap, JointSource, PtpPrimitive, RdkVersion};
@@ -176,7 +178,7 @@ struct Rt {
     /// Enclosing loops, innermost last.
     loops: Vec<LoopId>,
     /// Loops left or restarted from a nested loop: their flags.
-    flags: HashMap<(LoopId, bool), String>,
+    flags: FxHashMap<(LoopId, bool), String>,
     /// Per loop being rendered: the outer loops left (false) or restarted (true) from inside.
     pending: Vec<BTreeSet<(LoopId, bool)>>,
     /// Counter for made-up names.
@@ -487,7 +489,7 @@ impl crate::transpile::Renderer for Tx<'_> {
             outs: Vec::new(),
             globals: BTreeSet::new(),
             loops: Vec::new(),
-            flags: HashMap::new(),
+            flags: FxHashMap::default(),
             pending: Vec::new(),
             made: 0,
             tool: None,

@@ -173,6 +173,12 @@ impl Namespace {
         (target, renamed)
     }
 
+    /// Room for `n` more names.
+    fn reserve(&mut self, n: usize) {
+        self.map.reserve(n);
+        self.taken.reserve(n);
+    }
+
     /// The namespace with no name, its maps kept for reuse when they are small (emptying a
     /// large one costs its capacity again for every small routine after it).
     fn emptied(mut self) -> Option<Namespace> {
@@ -406,6 +412,8 @@ impl<'a> Namer<'a> {
     /// never take a user's.
     pub fn declare_program(&mut self, rep: &mut Report) {
         let ir = self.ir;
+        // Every routine is named here: the maps are grown once, not doubled again and again.
+        self.routines.reserve(ir.routines.len());
         for r in &ir.routines {
             if !r.synthetic {
                 self.routine(rep, &r.name, r.name_span);
@@ -668,8 +676,8 @@ mod tests {
     #[test]
     fn clash_counters_are_the_smallest_free() {
         let mut ns = Namespace::default();
-        let mut plain: std::collections::HashSet<String> = Default::default();
-        let slow = |taken: &std::collections::HashSet<String>, base: &str, max: usize| {
+        let mut plain: FxHashSet<String> = Default::default();
+        let slow = |taken: &FxHashSet<String>, base: &str, max: usize| {
             (2..)
                 .map(|n: usize| {
                     let suffix = n.to_string();

@@ -1,6 +1,8 @@
 //! Findings and coverage, collected while a translator walks the program.
 
-use std::collections::{BTreeMap, HashMap};
+use std::collections::BTreeMap;
+
+use rustc_hash::FxHashMap;
 use std::sync::Arc;
 
 use serde::Serialize;
@@ -104,7 +106,7 @@ const NO_HELP: u32 = u32::MAX;
 #[derive(Debug, Default)]
 struct Texts {
     list: Vec<Arc<str>>,
-    index: HashMap<Arc<str>, u32>,
+    index: FxHashMap<Arc<str>, u32>,
 }
 
 impl Texts {

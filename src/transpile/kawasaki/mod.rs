@@ -20,7 +20,7 @@ mod motion;
 mod stmt;
 
 use crate::transpile::render::Lacked;
-use std::collections::HashMap;
+use rustc_hash::FxHashMap;
 
 use super::Options;
 use super::VisionServer;
@@ -165,7 +165,7 @@ struct Rt {
     /// The value of the `ACCURACY … ALWAYS` in force, if known at this point.
     accuracy: Option<String>,
     /// Scratch locals by purpose (each reused within the program).
-    scratch: HashMap<String, String>,
+    scratch: FxHashMap<String, String>,
 }
 
 pub struct Tx<'a> {
@@ -356,7 +356,7 @@ impl crate::transpile::Renderer for Tx<'_> {
                 body: String::new(),
             },
             accuracy: None,
-            scratch: HashMap::new(),
+            scratch: FxHashMap::default(),
         });
         // Locals first (parameters, then declarations), then labels, so made-up names never
         // take a user's.

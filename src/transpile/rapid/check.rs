@@ -4,7 +4,7 @@
 //! strings of at most 80 characters, every called routine defined in the module or listed as
 //! external in the header, every `GOTO` label in its routine.
 
-use std::collections::HashSet;
+use rustc_hash::FxHashSet;
 
 /// Instructions the translator writes (called without being defined in the module).
 const INSTRUCTIONS: [&str; 28] = [
@@ -79,11 +79,11 @@ pub struct Lines {
     n: usize,
     problems: Vec<String>,
     stack: Vec<(&'static str, usize)>,
-    defined: HashSet<String>,
+    defined: FxHashSet<String>,
     called: Vec<(String, usize)>,
-    external: HashSet<String>,
+    external: FxHashSet<String>,
     /// Per routine: labels defined and GOTO targets.
-    labels: HashSet<String>,
+    labels: FxHashSet<String>,
     gotos: Vec<(String, usize)>,
     /// The line's identifiers (byte ranges): one buffer for every line.
     spans: Vec<(usize, usize)>,
@@ -258,7 +258,7 @@ fn lower<'b>(word: &str, buf: &'b mut [u8; 12]) -> &'b str {
     std::str::from_utf8(b).unwrap_or("")
 }
 
-fn check_gotos(labels: &HashSet<String>, gotos: &[(String, usize)], problems: &mut Vec<String>) {
+fn check_gotos(labels: &FxHashSet<String>, gotos: &[(String, usize)], problems: &mut Vec<String>) {
     for (l, at) in gotos {
         if !labels.contains(l) {
             problems.push(format!("line {at}: GOTO {l} has no label in its routine"));

@@ -73,7 +73,7 @@ impl<'a> Tx<'a> {
                 elements.entry(d.var).or_default().push(d);
             }
         }
-        let mut declared = std::collections::HashSet::new();
+        let mut declared = rustc_hash::FxHashSet::default();
         for d in &ir.data {
             if d.index.as_ref().is_some_and(|i| !i.is_empty()) {
                 continue;

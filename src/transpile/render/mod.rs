@@ -14,7 +14,7 @@ pub mod expr;
 pub mod help;
 pub mod sink;
 
-use std::collections::HashMap;
+use rustc_hash::FxHashMap;
 
 use super::front::Program as Source;
 use super::front::comments::CommentQueue;
@@ -86,7 +86,7 @@ pub struct JumpWords {
 /// The labels after the loops of a routine that are left (`EXIT`) with a jump.
 #[derive(Default)]
 pub struct LoopLabels {
-    exits: HashMap<LoopId, String>,
+    exits: FxHashMap<LoopId, String>,
 }
 
 /// How a target writes a SWITCH it has a statement for (`TEST`/`CASE`, `CASE`/`VALUE`).
@@ -114,7 +114,7 @@ pub fn has_code(lines: &[String], comment_lead: &str) -> bool {
 pub struct RoutineState {
     pub id: RoutineId,
     /// Temporaries named so far.
-    pub temps: HashMap<TempId, String>,
+    pub temps: FxHashMap<TempId, String>,
     /// The labels after loops left with a jump (targets with `GOTO`).
     pub loops: LoopLabels,
 }
@@ -171,7 +171,7 @@ impl<'a> Out<'a> {
     pub fn begin_routine(&mut self, id: RoutineId) {
         self.routine = Some(RoutineState {
             id,
-            temps: HashMap::new(),
+            temps: FxHashMap::default(),
             loops: LoopLabels::default(),
         });
     }
