@@ -211,6 +211,9 @@ struct Frame {
     drained_end: u32,
 }
 
+/// What [`Assembler::hand_out`] calls: the builder, the pieces (kind, node id) and the floor.
+pub(crate) type HandOut<'f> = dyn FnMut(&Builder<'_>, &[(PieceKind, u32)], Checkpoint) + 'f;
+
 /// What a piece handed out by a piece build is (see [`super::parser::Piece`]).
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub(crate) enum PieceKind {
@@ -337,11 +340,7 @@ impl Assembler {
     /// `f` gets the builder, the pieces (kind, node id) recorded since the last hand-out, and
     /// where what an `Item` inside the open module may hold starts (what was built after the
     /// module's first line; everything when none is open).
-    pub(crate) fn hand_out(
-        &mut self,
-        b: &mut Builder,
-        f: &mut dyn FnMut(&Builder, &[(PieceKind, u32)], Checkpoint),
-    ) {
+    pub(crate) fn hand_out(&mut self, b: &mut Builder, f: &mut HandOut<'_>) {
         let Some(pieces) = &mut self.pieces else {
             return;
         };
