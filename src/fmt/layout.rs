@@ -59,9 +59,12 @@ pub(super) fn each_line(
         }
         Source::Pieces(known) => {
             let mut m = Marker::new(text, known.unwrap_or_default(), indent_folds);
-            let diagnostics = crate::syntax::parse_pieces(text, |piece| {
-                pieces.add(piece, &mut |l| m.add(l, &mut f));
-            });
+            // A big file is parsed on a second thread, ahead of the layout and rendering.
+            let diagnostics = crate::syntax::parse_pieces_ahead(
+                text,
+                |_| {},
+                |piece| pieces.add(piece, &mut |l| m.add(l, &mut f)),
+            );
             m.end(&mut f);
             (known.is_none() && !diagnostics.is_empty()).then_some(diagnostics)
         }

@@ -5,7 +5,9 @@
 //!    each piece is lowered, summarised for the semantic model ([`crate::sema::SummaryBuilder`])
 //!    and dropped, and the syntax rules (KRL001–KRL006) run on what the pieces showed; only the
 //!    files the Mech-Mind rules look at (those calling an `MM_` routine or writing a `$FLAG`)
-//!    keep their AST;
+//!    keep their AST. A file of 1 MiB or more is parsed (and its KRL005 edits gathered) on a
+//!    second thread a bounded number of pieces ahead of the rest
+//!    ([`crate::syntax::parse_pieces_ahead`]): one big file then uses two cores;
 //! 2. the workspace model is built ([`crate::sema::Sema`]: robots, modules, scopes, every name
 //!    resolved, types);
 //! 3. the model rules run on every file in parallel ([`context::FileCtx`]).
@@ -275,6 +277,13 @@ type Pieces = (
 );
 
 fn pieces(text: &str, config: &LintConfig, tree: Tree) -> Option<Pieces> {
+    pieces_on(text.len() >= crate::syntax::AHEAD_BYTES, text, config, tree)
+}
+
+/// [`pieces`], the parse and KRL005's edits on a second thread ahead of the lowering, the
+/// summary and the syntax facts when `thread` ([`crate::syntax::parse_pieces_ahead`]): a big
+/// file's first pass then takes both cores.
+fn pieces_on(thread: bool, text: &str, config: &LintConfig, tree: Tree) -> Option<Pieces> {
     let mut lowerer = PieceLowerer::new(text);
     let mut facts = SyntaxFacts::default();
     let mut case =
@@ -283,10 +292,12 @@ fn pieces(text: &str, config: &LintConfig, tree: Tree) -> Option<Pieces> {
     let mut whole = (tree == Tree::Whole).then(FileBuilder::default);
     let mut summary = SummaryBuilder::default();
     let mut followed = true;
-    let diagnostics = crate::syntax::parse_pieces(text, |piece| {
+    let near = |piece: crate::syntax::Piece<'_>| {
         if let Some(case) = &mut case {
             case.add(piece, text);
         }
+    };
+    let diagnostics = crate::syntax::parse_pieces_ahead_on(thread, text, near, |piece| {
         lowerer.lower(piece, |event| {
             facts.add(&event);
             if let Some(whole) = &mut whole {
@@ -420,12 +431,17 @@ mod tests {
             )
         );
         let pruned = Kept::of(ast.clone());
-        for tree in [Tree::None, Tree::Kept] {
-            let (d, facts, edits, kept, summary) = pieces(text, &LintConfig::default(), tree)
-                .or_else(|| pieces(text, &LintConfig::default(), Tree::Whole))
+        // On this thread, and with the parse on a second one (as for a big file).
+        for (tree, thread) in [Tree::None, Tree::Kept]
+            .into_iter()
+            .flat_map(|t| [(t, false), (t, true)])
+        {
+            let config = LintConfig::default();
+            let (d, facts, edits, kept, summary) = pieces_on(thread, text, &config, tree)
+                .or_else(|| pieces_on(thread, text, &config, Tree::Whole))
                 .unwrap();
             let streamed = format!("{:?}", (d, facts, edits, summary));
-            assert!(streamed == whole, "{path} ({tree:?})");
+            assert!(streamed == whole, "{path} ({tree:?}, thread {thread})");
             assert!(kept.is_none_or(|kept| kept == pruned), "{path}");
         }
         // The kept tree is the whole one without routines' declarations, and for emptied

@@ -7,7 +7,7 @@
 //! `PTPP`) into the error it is.
 
 use super::build::{Builder, Checkpoint};
-use super::cst::{Child, Node, NodeKind, SyntaxTree};
+use super::cst::{Child, NodeKind, SyntaxTree};
 use super::parser::SYNTAX_ERROR;
 use crate::diag::{Diagnostic, Span};
 
@@ -211,6 +211,9 @@ struct Frame {
     drained_end: u32,
 }
 
+/// What [`Assembler::hand_out`] calls: the builder, the pieces (kind, node id) and the floor.
+pub(crate) type HandOut<'f> = dyn FnMut(&Builder<'_>, &[(PieceKind, u32)], Checkpoint) + 'f;
+
 /// What a piece handed out by a piece build is (see [`super::parser::Piece`]).
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub(crate) enum PieceKind {
@@ -334,13 +337,19 @@ impl Assembler {
 
     /// Hand the recorded pieces to `f`, then drop what no open block needs any more: with no
     /// block open everything, inside a module everything after its first line.
-    pub(crate) fn hand_out(&mut self, b: &mut Builder, f: &mut dyn FnMut(PieceKind, Node<'_>)) {
+    /// `f` gets the builder, the pieces (kind, node id) recorded since the last hand-out, and
+    /// where what an `Item` inside the open module may hold starts (what was built after the
+    /// module's first line; everything when none is open).
+    pub(crate) fn hand_out(&mut self, b: &mut Builder, f: &mut HandOut<'_>) {
         let Some(pieces) = &mut self.pieces else {
             return;
         };
-        for (kind, id) in pieces.drain(..) {
-            f(kind, b.view(id));
-        }
+        let floor = match self.stack.last() {
+            Some(frame) if frame.block.is_module() => frame.after_opener,
+            _ => Checkpoint::START,
+        };
+        f(b, pieces, floor);
+        pieces.clear();
         match self.stack.last_mut() {
             None => b.rollback(Checkpoint::START),
             Some(frame) if frame.block.is_module() => {

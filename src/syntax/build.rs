@@ -34,6 +34,15 @@ impl Checkpoint {
         self.stack
     }
 
+    /// The tree's node and child counts at the checkpoint.
+    pub(crate) fn nodes(&self) -> usize {
+        self.nodes
+    }
+
+    pub(crate) fn children(&self) -> usize {
+        self.children
+    }
+
     /// Nothing built yet (to drop everything once no piece is pending).
     pub(crate) const START: Checkpoint = Checkpoint {
         stack: 0,
@@ -68,6 +77,11 @@ impl<'t> Builder<'t> {
         let mut b = Builder::outline(text);
         b.outline = false;
         b
+    }
+
+    /// The tree built so far (to copy the pieces of a hand-out, see `parser::PieceChunk`).
+    pub(crate) fn tree(&self) -> &SyntaxTree {
+        &self.tree
     }
 
     /// The node `id` as a view (to hand out a piece before its storage is reused).

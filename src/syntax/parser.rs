@@ -7,8 +7,8 @@
 //! starts fresh.
 
 use super::blocks::{Assembler, PieceKind, Role, code_span};
-use super::build::Builder;
-use super::cst::{Child, Node, NodeKind, SyntaxTree, TokenKind};
+use super::build::{Builder, Checkpoint};
+use super::cst::{Child, Node, NodeData, NodeKind, SyntaxTree, TokenKind};
 use super::line::parse_code;
 use crate::diag::{Diagnostic, Span};
 
@@ -165,30 +165,168 @@ impl PieceNodes {
 /// reused after. Memory follows the largest block, not the file (a 50 MB routine is parsed
 /// in a few kilobytes of tree). Returns the diagnostics [`parse`] reports.
 pub fn parse_pieces(text: &str, mut f: impl FnMut(Piece<'_>)) -> Vec<Diagnostic> {
+    each_hand_out(text, |b, pieces, _| {
+        for &(kind, id) in pieces {
+            f(piece_of(kind, b.view(id)));
+        }
+    })
+}
+
+/// The parse of [`parse_pieces`]: `hand_out` gets the builder and the pieces recorded since
+/// its last call (their nodes live until it returns), and where an `Item`'s nodes and
+/// children start in the builder's tree (see [`Assembler::hand_out`]).
+fn each_hand_out(
+    text: &str,
+    mut hand_out: impl FnMut(&Builder, &[(PieceKind, u32)], Checkpoint),
+) -> Vec<Diagnostic> {
     let mut diagnostics = Vec::new();
     let mut b = Builder::pieces(text);
     let mut asm = Assembler::for_pieces();
-    let mut hand = |kind: PieceKind, node: Node<'_>| {
-        f(match kind {
-            PieceKind::Open => Piece::Open {
-                line: node,
-                data: false,
-            },
-            PieceKind::OpenDat => Piece::Open {
-                line: node,
-                data: true,
-            },
-            PieceKind::Item => Piece::Item(node),
-            PieceKind::Close => Piece::Close(node),
-        })
-    };
     each_line(&mut b, &mut asm, &mut diagnostics, |b, asm| {
-        asm.hand_out(b, &mut hand)
+        asm.hand_out(b, &mut hand_out)
     });
     asm.close_all(&mut b, &mut diagnostics);
-    asm.hand_out(&mut b, &mut hand);
+    asm.hand_out(&mut b, &mut hand_out);
     diagnostics.sort_by_key(|d| d.span.start);
     diagnostics
+}
+
+fn piece_of(kind: PieceKind, node: Node<'_>) -> Piece<'_> {
+    match kind {
+        PieceKind::Open => Piece::Open {
+            line: node,
+            data: false,
+        },
+        PieceKind::OpenDat => Piece::Open {
+            line: node,
+            data: true,
+        },
+        PieceKind::Item => Piece::Item(node),
+        PieceKind::Close => Piece::Close(node),
+    }
+}
+
+/// From this size on, [`parse_pieces_ahead`] parses on a second thread. Below it a file's
+/// pieces take under ~20 ms to parse and consume, and such files come many at a time (a
+/// controller's ~1000 files are checked in parallel, one per core): a thread per file, and the
+/// copy of every piece to hand it across, would cost more than the overlap gives back. A file
+/// this large is its own run's critical path (one 50 MB program on an otherwise idle core).
+pub const AHEAD_BYTES: usize = 1 << 20;
+
+/// [`parse_pieces`] with the parse a bounded number of pieces ahead of `f` on a second thread
+/// when `text` is [`AHEAD_BYTES`] or more (the two halves of a big file's check or format then
+/// use both cores): `near` sees each piece on the parser's thread, `f` the same pieces after
+/// it, in order, on this one. Returns the diagnostics [`parse_pieces`] returns.
+pub fn parse_pieces_ahead(
+    text: &str,
+    near: impl FnMut(Piece<'_>) + Send,
+    f: impl FnMut(Piece<'_>),
+) -> Vec<Diagnostic> {
+    parse_pieces_ahead_on(text.len() >= AHEAD_BYTES, text, near, f)
+}
+
+/// [`parse_pieces_ahead`], on a second thread only when `thread` (tests compare the two ways).
+pub fn parse_pieces_ahead_on(
+    thread: bool,
+    text: &str,
+    mut near: impl FnMut(Piece<'_>) + Send,
+    mut f: impl FnMut(Piece<'_>),
+) -> Vec<Diagnostic> {
+    if !thread {
+        return parse_pieces(text, |piece| {
+            near(piece);
+            f(piece);
+        });
+    }
+    crate::transpile::pipeline::pipelined(
+        |sink| {
+            let mut chunk = PieceChunk::like(&PieceChunk {
+                tree: SyntaxTree::default(),
+                pieces: Vec::new(),
+            });
+            let diagnostics = each_hand_out(text, |b, pieces, floor| {
+                if pieces.is_empty() {
+                    return;
+                }
+                for &(kind, id) in pieces {
+                    near(piece_of(kind, b.view(id)));
+                }
+                // Lines inside a module hold only what was built after its first line: that
+                // line is not copied again with each of them.
+                let floor = match pieces.iter().all(|&(kind, _)| kind == PieceKind::Item) {
+                    true => floor,
+                    false => Checkpoint::START,
+                };
+                chunk.append(b.tree(), pieces, floor);
+                if chunk.pieces.len() >= CHUNK_PIECES || chunk.tree.nodes.len() >= CHUNK_NODES {
+                    let next = PieceChunk::like(&chunk);
+                    sink.push(std::mem::replace(&mut chunk, next));
+                }
+            });
+            if !chunk.pieces.is_empty() {
+                sink.push(chunk);
+            }
+            diagnostics
+        },
+        |chunk: &PieceChunk| {
+            for &(kind, id) in &chunk.pieces {
+                f(piece_of(kind, chunk.tree.node(id)));
+            }
+        },
+    )
+}
+
+/// How many pieces, or nodes, a [`PieceChunk`] gathers before it is handed on: a few lines'
+/// worth, so that the parser runs at most a few thousand lines ahead (the pipeline holds a
+/// few hundred chunks) and a chunk's storage is allocated once for many pieces.
+const CHUNK_PIECES: usize = 16;
+const CHUNK_NODES: usize = 4096;
+
+/// Pieces copied out of the parser's tree, to be handed to another thread: the builder's
+/// tree as it was at each hand-out from `floor` on (it is rolled back after), one after the
+/// other, node and child indices moved along.
+struct PieceChunk {
+    tree: SyntaxTree,
+    pieces: Vec<(PieceKind, u32)>,
+}
+
+impl PieceChunk {
+    /// A chunk with room for one like `last` (a chunk's storage is allocated once, not grown).
+    fn like(last: &PieceChunk) -> PieceChunk {
+        let room = |n: usize| n + n / 4 + 16;
+        PieceChunk {
+            tree: SyntaxTree {
+                nodes: Vec::with_capacity(room(last.tree.nodes.len())),
+                children: Vec::with_capacity(room(last.tree.children.len())),
+            },
+            pieces: Vec::with_capacity(room(last.pieces.len())),
+        }
+    }
+
+    /// Copy `tree` from `floor` on (the pieces' nodes, and what they hold, are all there).
+    fn append(&mut self, tree: &SyntaxTree, pieces: &[(PieceKind, u32)], floor: Checkpoint) {
+        let (lo, first) = (floor.nodes() as u32, floor.children() as u32);
+        // Indices at or after the floor move by these (wrapping: the chunk may be shorter).
+        let nodes = (self.tree.nodes.len() as u32).wrapping_sub(lo);
+        let children = (self.tree.children.len() as u32).wrapping_sub(first);
+        self.tree
+            .nodes
+            .extend(tree.nodes[lo as usize..].iter().map(|d| NodeData {
+                first: d.first.wrapping_add(children),
+                ..*d
+            }));
+        self.tree
+            .children
+            .extend(tree.children[first as usize..].iter().map(|c| match *c {
+                Child::Node(id) => Child::Node(id.wrapping_add(nodes)),
+                token => token,
+            }));
+        self.pieces.extend(
+            pieces
+                .iter()
+                .map(|&(kind, id)| (kind, id.wrapping_add(nodes))),
+        );
+    }
 }
 
 /// The `--tree` JSON of [`Parse::write_json_tree`], written piece by piece as the file is
@@ -456,5 +594,48 @@ fn comment_kind(comment: &str) -> TokenKind {
         TokenKind::FoldOpen
     } else {
         TokenKind::Comment
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// What a run of [`parse_pieces_ahead_on`] hands out: each piece (with its whole subtree)
+    /// as `near` saw it, as `f` saw it, and the diagnostics.
+    fn handed_out(thread: bool, text: &str) -> (Vec<String>, Vec<String>, Vec<Diagnostic>) {
+        let (mut near, mut far) = (Vec::new(), Vec::new());
+        let diagnostics = parse_pieces_ahead_on(
+            thread,
+            text,
+            |p| near.push(format!("{p:?}")),
+            |p| far.push(format!("{p:?}")),
+        );
+        (near, far, diagnostics)
+    }
+
+    /// On a second thread, the pieces are those of [`parse_pieces`], node for node, in order,
+    /// to both callbacks: on every repository file, and on all of them in one text (thousands
+    /// of pieces, across many chunks and batches, blocks left open and syntax errors).
+    #[test]
+    fn pieces_parsed_ahead_are_the_pieces() {
+        let root = std::path::Path::new(env!("CARGO_MANIFEST_DIR"));
+        let files = crate::files::walk(&[root.join("tests/fixtures"), root.join("krl")]).found;
+        assert!(files.len() > 100);
+        let mut all = String::new();
+        for f in &files {
+            let text = crate::syntax::decode(&std::fs::read(&f.path).unwrap()).text;
+            all.push_str(&text);
+            let mut pieces = Vec::new();
+            let diagnostics = parse_pieces(&text, |p| pieces.push(format!("{p:?}")));
+            let one = (pieces.clone(), pieces, diagnostics);
+            assert!(handed_out(true, &text) == one, "{}", f.path.display());
+            assert!(handed_out(false, &text) == one, "{}", f.path.display());
+        }
+        let (near, far, diagnostics) = handed_out(true, &all);
+        // More than two of the pipeline's batches (256 chunks each).
+        assert!(near.len() > 2 * 256 * CHUNK_PIECES, "{} pieces", near.len());
+        assert!(!diagnostics.is_empty());
+        assert!((near, far, diagnostics) == handed_out(false, &all));
     }
 }

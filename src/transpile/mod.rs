@@ -18,7 +18,7 @@ pub mod front;
 pub mod ir;
 pub mod joints;
 pub mod kawasaki;
-mod pipeline;
+pub(crate) mod pipeline;
 pub mod rapid;
 pub mod render;
 pub mod rules;
