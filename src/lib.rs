@@ -21,6 +21,7 @@ pub mod geom;
 pub mod interp;
 pub mod lint;
 pub mod lsp;
+pub(crate) mod pipeline;
 pub mod report;
 pub mod sema;
 pub mod sim;

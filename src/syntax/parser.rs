@@ -238,7 +238,7 @@ pub fn parse_pieces_ahead_on(
             f(piece);
         });
     }
-    crate::transpile::pipeline::pipelined(
+    crate::pipeline::pipelined(
         |sink| {
             let mut chunk = PieceChunk::like(&PieceChunk {
                 tree: SyntaxTree::default(),

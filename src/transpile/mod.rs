@@ -18,7 +18,6 @@ pub mod front;
 pub mod ir;
 pub mod joints;
 pub mod kawasaki;
-pub(crate) mod pipeline;
 pub mod rapid;
 pub mod render;
 pub mod rules;
@@ -442,7 +441,7 @@ type Rendered = (
 /// findings, the text held back) is allocated where the first pass's freed memory is, as
 /// before; each batch goes back to be dropped by the thread that made its blocks (glibc frees
 /// a block another thread's arena allocated under that arena's lock, see
-/// [`pipeline::pipelined`]). Without a thread, it all runs here.
+/// [`crate::pipeline::pipelined`]). Without a thread, it all runs here.
 fn rendered<'a>(
     make: impl FnOnce() -> Box<dyn Renderer + 'a>,
     spool: render::Spool,
@@ -460,7 +459,7 @@ fn rendered_on<'a>(
 ) -> Rendered {
     let mut renderer = make();
     renderer.start();
-    pipeline::pipelined_on(
+    crate::pipeline::pipelined_on(
         thread,
         |sink| produce(&mut |r| sink.push(r)),
         |r| match r {
@@ -537,7 +536,7 @@ fn tail<T: Send>(
         thread,
         || once(seen),
         || {
-            pipeline::pipelined_on(
+            crate::pipeline::pipelined_on(
                 thread,
                 |sink| {
                     let mut lines = Handed {
@@ -570,7 +569,7 @@ const CHUNK: usize = 1024;
 
 /// A [`render::LineCheck`] that hands its lines on to [`tail`]'s check.
 struct Handed<'s, 'a> {
-    sink: &'s mut pipeline::Sink<'a, String>,
+    sink: &'s mut crate::pipeline::Sink<'a, String>,
     chunk: String,
 }
 

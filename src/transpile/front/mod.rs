@@ -18,7 +18,7 @@ pub mod vision;
 
 pub use fail::{Fail, R, fail};
 
-use crate::transpile::pipeline::pipelined;
+use crate::pipeline::pipelined;
 
 use rustc_hash::FxHashSet;
 
@@ -65,7 +65,7 @@ impl Parsed {
     /// Parses `text` one piece at a time and reads out what the translation needs of the
     /// whole file. The parse, the AST of each piece, its comments and `MM_…` names are made on
     /// a second thread, a bounded batch ahead of the outline and the summary, which are built
-    /// here from the pieces' events ([`pipelined`](crate::transpile::pipeline::pipelined)).
+    /// here from the pieces' events ([`pipelined`](crate::pipeline::pipelined)).
     pub fn new(path: impl Into<String>, text: impl Into<String>) -> Parsed {
         let text = text.into();
         let mut outline = outline::OutlineBuilder::default();
@@ -114,7 +114,7 @@ impl Parsed {
     /// definitions come first, as [`Statement::Head`].
     ///
     /// The parse runs on a second thread, a bounded batch of statements ahead of `f`
-    /// ([`pipelined`](crate::transpile::pipeline::pipelined)): parsing is a third of a translation's work, and it overlaps the
+    /// ([`pipelined`](crate::pipeline::pipelined)): parsing is a third of a translation's work, and it overlaps the
     /// lowering and rendering.
     pub fn each_statement(&self, top_level: bool, f: impl FnMut(&Statement)) {
         pipelined(|sink| self.statements(top_level, |s| sink.push(s)), f);
@@ -123,7 +123,7 @@ impl Parsed {
     /// [`Parsed::each_statement`] with up to `ahead` batches of statements parsed ahead of `f`
     /// (`f` may start with work of its own: the parse goes on meanwhile).
     pub fn each_statement_ahead(&self, top_level: bool, ahead: usize, f: impl FnMut(&Statement)) {
-        crate::transpile::pipeline::pipelined_ahead(
+        crate::pipeline::pipelined_ahead(
             true,
             ahead,
             |sink| self.statements(top_level, |s| sink.push(s)),

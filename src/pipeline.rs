@@ -1,6 +1,7 @@
 //! Two threads in a row: a producer a bounded number of batches ahead of its consumer. The
-//! translation's parses feed the outline and the lowering this way, and the second pass's
-//! reading of the first pass's ops (`tape.rs`) feeds the renderer.
+//! translation's parses feed the outline and the lowering this way, the second pass's
+//! reading of the first pass's ops (`transpile/tape.rs`) feeds the renderer, and `check`'s
+//! parse of a big file feeds its first pass (`syntax::parse_pieces_ahead`).
 
 /// What [`pipelined`]'s producer hands on: into the batch of the moment, or (without a second
 /// thread) straight to the consumer.
