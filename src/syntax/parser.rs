@@ -214,8 +214,8 @@ fn piece_of(kind: PieceKind, node: Node<'_>) -> Piece<'_> {
 pub const AHEAD_BYTES: usize = 1 << 20;
 
 /// [`parse_pieces`] with the parse a bounded number of pieces ahead of `f` on a second thread
-/// when `text` is [`AHEAD_BYTES`] or more (the two halves of a big file's check or format then
-/// use both cores): `near` sees each piece on the parser's thread, `f` the same pieces after
+/// when `text` is [`AHEAD_BYTES`] or more (the two halves of a big file's check then use both
+/// cores; `fmt` does not use it: its layout is too light to pay for the copy of each piece): `near` sees each piece on the parser's thread, `f` the same pieces after
 /// it, in order, on this one. Returns the diagnostics [`parse_pieces`] returns.
 pub fn parse_pieces_ahead(
     text: &str,
