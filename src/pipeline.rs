@@ -1,7 +1,8 @@
 //! Two threads in a row: a producer a bounded number of batches ahead of its consumer. The
 //! translation's parses feed the outline and the lowering this way, the second pass's
 //! reading of the first pass's ops (`transpile/tape.rs`) feeds the renderer, and `check`'s
-//! parse of a big file feeds its first pass (`syntax::parse_pieces_ahead`).
+//! parse of a big file feeds its first pass (`syntax::parse_pieces_ahead`). [`beside`] runs
+//! two pieces of work at once (the translation's coverage beside its text's check).
 
 /// What [`pipelined`]'s producer hands on: into the batch of the moment, or (without a second
 /// thread) straight to the consumer.
@@ -80,16 +81,10 @@ pub fn pipelined_ahead<T: Send, R: Send>(
     }
     let (send, receive) = std::sync::mpsc::sync_channel::<Vec<T>>(ahead.max(1));
     let (give_back, returned) = std::sync::mpsc::channel::<Vec<T>>();
-    // Taken by the thread, or here when there is none.
-    let work = std::sync::Mutex::new(Some(produce));
-    let take = || {
-        work.lock()
-            .unwrap_or_else(std::sync::PoisonError::into_inner)
-            .take()
-    };
+    let work = TakenOnce::new(produce);
     std::thread::scope(|scope| {
         let producer = std::thread::Builder::new().spawn_scoped(scope, || {
-            let produce = take().expect("the work is taken once");
+            let produce = work.take();
             let mut sink = Sink::Batches {
                 batch: Vec::with_capacity(BATCH),
                 send,
@@ -124,11 +119,57 @@ pub fn pipelined_ahead<T: Send, R: Send>(
                     .unwrap_or_else(|panic| std::panic::resume_unwind(panic))
             }
             Err(_) => {
-                let produce = take().expect("no thread took the work");
+                let produce = work.take();
                 produce(&mut Sink::Direct(&mut consume))
             }
         }
     })
+}
+
+/// Runs `there` on a thread of its own (when `thread` and one can be had) and `here` on this
+/// one, at the same time; without a thread, `here` and then `there` run here. A panic of
+/// `there` reaches the caller.
+pub fn beside<A: Send, B>(
+    thread: bool,
+    there: impl FnOnce() -> A + Send,
+    here: impl FnOnce() -> B,
+) -> (A, B) {
+    let work = TakenOnce::new(there);
+    std::thread::scope(|scope| {
+        let spawned = thread
+            .then(|| {
+                std::thread::Builder::new()
+                    .spawn_scoped(scope, || work.take()())
+                    .ok()
+            })
+            .flatten();
+        let b = here();
+        let a = match spawned {
+            Some(spawned) => spawned
+                .join()
+                .unwrap_or_else(|panic| std::panic::resume_unwind(panic)),
+            None => work.take()(),
+        };
+        (a, b)
+    })
+}
+
+/// Work for a thread that may not be had: the thread takes it, or the caller does when none
+/// could be spawned (a closure handed to a spawn that failed is gone).
+struct TakenOnce<F>(std::sync::Mutex<Option<F>>);
+
+impl<F> TakenOnce<F> {
+    fn new(work: F) -> TakenOnce<F> {
+        TakenOnce(std::sync::Mutex::new(Some(work)))
+    }
+
+    fn take(&self) -> F {
+        self.0
+            .lock()
+            .unwrap_or_else(std::sync::PoisonError::into_inner)
+            .take()
+            .expect("the work is taken once")
+    }
 }
 
 #[cfg(test)]

@@ -297,7 +297,7 @@ fn pieces_on(thread: bool, text: &str, config: &LintConfig, tree: Tree) -> Optio
             case.add(piece, text);
         }
     };
-    let diagnostics = crate::syntax::parse_pieces_ahead_on(thread, text, near, |piece| {
+    let diagnostics = crate::syntax::parse_pieces_ahead(thread, text, near, |piece| {
         lowerer.lower(piece, |event| {
             facts.add(&event);
             if let Some(whole) = &mut whole {

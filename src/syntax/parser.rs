@@ -206,27 +206,20 @@ fn piece_of(kind: PieceKind, node: Node<'_>) -> Piece<'_> {
     }
 }
 
-/// From this size on, [`parse_pieces_ahead`] parses on a second thread. Below it a file's
-/// pieces take under ~20 ms to parse and consume, and such files come many at a time (a
-/// controller's ~1000 files are checked in parallel, one per core): a thread per file, and the
-/// copy of every piece to hand it across, would cost more than the overlap gives back. A file
-/// this large is its own run's critical path (one 50 MB program on an otherwise idle core).
+/// From this size on, `check` parses a file on a second thread ([`parse_pieces_ahead`]).
+/// Below it a file's pieces take under ~20 ms to parse and consume, and such files come many at
+/// a time (a controller's ~1000 files are checked in parallel, one per core): a thread per
+/// file, and the copy of every piece to hand it across, would cost more than the overlap gives
+/// back. A file this large is its own run's critical path (one 50 MB program on an otherwise
+/// idle core).
 pub const AHEAD_BYTES: usize = 1 << 20;
 
-/// [`parse_pieces`] with the parse a bounded number of pieces ahead of `f` on a second thread
-/// when `text` is [`AHEAD_BYTES`] or more (the two halves of a big file's check then use both
-/// cores; `fmt` does not use it: its layout is too light to pay for the copy of each piece): `near` sees each piece on the parser's thread, `f` the same pieces after
-/// it, in order, on this one. Returns the diagnostics [`parse_pieces`] returns.
+/// [`parse_pieces`], with the parse a bounded number of pieces ahead of `f` on a second thread
+/// when `thread` (each piece's tree is copied to cross: it pays for `check`'s first pass on a
+/// file of [`AHEAD_BYTES`] or more; `fmt`'s layout is too light to pay for it): `near` sees
+/// each piece on the parser's thread, `f` the same pieces after it, in order, on this one.
+/// Returns the diagnostics [`parse_pieces`] returns; without a thread, the same.
 pub fn parse_pieces_ahead(
-    text: &str,
-    near: impl FnMut(Piece<'_>) + Send,
-    f: impl FnMut(Piece<'_>),
-) -> Vec<Diagnostic> {
-    parse_pieces_ahead_on(text.len() >= AHEAD_BYTES, text, near, f)
-}
-
-/// [`parse_pieces_ahead`], on a second thread only when `thread` (tests compare the two ways).
-pub fn parse_pieces_ahead_on(
     thread: bool,
     text: &str,
     mut near: impl FnMut(Piece<'_>) + Send,
@@ -240,10 +233,7 @@ pub fn parse_pieces_ahead_on(
     }
     crate::pipeline::pipelined(
         |sink| {
-            let mut chunk = PieceChunk::like(&PieceChunk {
-                tree: SyntaxTree::default(),
-                pieces: Vec::new(),
-            });
+            let mut chunk = PieceChunk::default();
             let diagnostics = each_hand_out(text, |b, pieces, floor| {
                 if pieces.is_empty() {
                     return;
@@ -285,6 +275,7 @@ const CHUNK_NODES: usize = 4096;
 /// Pieces copied out of the parser's tree, to be handed to another thread: the builder's
 /// tree as it was at each hand-out from `floor` on (it is rolled back after), one after the
 /// other, node and child indices moved along.
+#[derive(Default)]
 struct PieceChunk {
     tree: SyntaxTree,
     pieces: Vec<(PieceKind, u32)>,
@@ -601,11 +592,11 @@ fn comment_kind(comment: &str) -> TokenKind {
 mod tests {
     use super::*;
 
-    /// What a run of [`parse_pieces_ahead_on`] hands out: each piece (with its whole subtree)
+    /// What a run of [`parse_pieces_ahead`] hands out: each piece (with its whole subtree)
     /// as `near` saw it, as `f` saw it, and the diagnostics.
     fn handed_out(thread: bool, text: &str) -> (Vec<String>, Vec<String>, Vec<Diagnostic>) {
         let (mut near, mut far) = (Vec::new(), Vec::new());
-        let diagnostics = parse_pieces_ahead_on(
+        let diagnostics = parse_pieces_ahead(
             thread,
             text,
             |p| near.push(format!("{p:?}")),

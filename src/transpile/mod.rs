@@ -330,11 +330,8 @@ fn first_pass(
     // The lowering's set-up (the model, every routine's and variable's id) is made when the
     // first statement comes, while the parse goes on ahead: it was a stretch where only this
     // thread worked.
-    let mut first = Made {
-        lower: None,
-        make: Some(|| ir::lower::Lower::new(&program, options, backend.caps())),
-    };
-    each_lowered_ahead(&program, &mut first, SET_UP_AHEAD, |event| match event {
+    let make = || ir::lower::Lower::new(&program, options, backend.caps());
+    let first = each_lowered(&program, make, SET_UP_AHEAD, |event| match event {
         Lowered::Begin(id) => {
             graphs.begin(id);
             plan.begin(id);
@@ -355,7 +352,7 @@ fn first_pass(
         program: model,
         vision,
         replay,
-    } = first.take().finish();
+    } = first.finish();
     // The first pass lowered the data lists' values: their trees go.
     program.forget_data_values();
     let flow = ir::flow::solve(graphs, &model);
@@ -472,46 +469,6 @@ fn rendered_on<'a>(
     (spool, framed, report, produced)
 }
 
-/// Runs `there` on a thread of its own (when `thread` and one can be had) and `here` on this
-/// one, at the same time; without a thread, `here` and then `there` run here. A panic of
-/// `there` reaches the caller.
-fn beside<A: Send, B>(
-    thread: bool,
-    there: impl FnOnce() -> A + Send,
-    here: impl FnOnce() -> B,
-) -> (A, B) {
-    // Taken by the thread, or here when there is none.
-    let work = std::sync::Mutex::new(Some(there));
-    let take = || {
-        work.lock()
-            .unwrap_or_else(std::sync::PoisonError::into_inner)
-            .take()
-            .expect("the work is taken once")
-    };
-    std::thread::scope(|scope| {
-        let spawned = thread
-            .then(|| {
-                std::thread::Builder::new()
-                    .spawn_scoped(scope, || take()())
-                    .ok()
-            })
-            .flatten();
-        match spawned {
-            Some(spawned) => {
-                let b = here();
-                let a = spawned
-                    .join()
-                    .unwrap_or_else(|panic| std::panic::resume_unwind(panic));
-                (a, b)
-            }
-            None => {
-                let b = here();
-                (take()(), b)
-            }
-        }
-    })
-}
-
 /// The end of a translation: `assemble` writes the text on a thread of its own and hands
 /// each line to `check` here (in order, in chunks of many lines), while `tally` finds the
 /// coverage and the silent statements in `report` on a third (they depend on the check only
@@ -532,7 +489,7 @@ fn tail<T: Send>(
 ) -> std::io::Result<T> {
     let seen: &front::report::Report = report;
     let once = &mut tally;
-    let (tallied, written) = beside(
+    let (tallied, written) = crate::pipeline::beside(
         thread,
         || once(seen),
         || {
@@ -607,62 +564,23 @@ enum Lowered<'s> {
 /// statements wait meanwhile (a few tens of megabytes at most).
 const SET_UP_AHEAD: usize = 32;
 
-/// A lowering, or how to make it when it is first asked for.
-trait LowerSlot<'p> {
-    fn get(&mut self) -> &mut ir::lower::Lower<'p>;
-}
-
-impl<'p> LowerSlot<'p> for ir::lower::Lower<'p> {
-    fn get(&mut self) -> &mut ir::lower::Lower<'p> {
-        self
-    }
-}
-
-/// A lowering made when it is first asked for.
-struct Made<'p, F> {
-    lower: Option<ir::lower::Lower<'p>>,
-    make: Option<F>,
-}
-
-impl<'p, F: FnOnce() -> ir::lower::Lower<'p>> Made<'p, F> {
-    /// The lowering (made now if it was never asked for).
-    fn take(mut self) -> ir::lower::Lower<'p> {
-        self.get();
-        self.lower.expect("made")
-    }
-}
-
-impl<'p, F: FnOnce() -> ir::lower::Lower<'p>> LowerSlot<'p> for Made<'p, F> {
-    fn get(&mut self) -> &mut ir::lower::Lower<'p> {
-        let Made { lower, make } = self;
-        lower.get_or_insert_with(|| (make.take().expect("made once"))())
-    }
-}
-
-/// Lowers the program's statements one at a time with `lower`: each routine in source order,
-/// then the statements outside any DEF.
-#[cfg(test)]
+/// Lowers the program's statements one at a time with the lowering `make` makes, and returns
+/// it: each routine in source order, then the statements outside any DEF. The routines'
+/// statements are parsed up to `ahead` batches ahead, and `make` runs when the first has come
+/// (the lowering's set-up then overlaps the parse).
 fn each_lowered<'p>(
     program: &'p front::Program,
-    lower: &mut ir::lower::Lower<'p>,
-    f: impl FnMut(Lowered<'_>),
-) {
-    each_lowered_ahead(program, lower, 1, f);
-}
-
-/// [`each_lowered`], the routines' statements parsed up to `ahead` batches ahead; `lower` is
-/// first asked for when the first statement has come.
-fn each_lowered_ahead<'p>(
-    program: &'p front::Program,
-    lower: &mut impl LowerSlot<'p>,
+    make: impl FnOnce() -> ir::lower::Lower<'p>,
     ahead: usize,
     mut f: impl FnMut(Lowered<'_>),
-) {
+) -> ir::lower::Lower<'p> {
+    let mut make = Some(make);
+    let mut slot = None;
     // The ops before the open routine's body: its head's declarations add to them until the
     // first statement or its end.
     let mut head: Option<ir::Block> = None;
     program.src.each_statement_ahead(false, ahead, |s| {
-        let lower = lower.get();
+        let lower = slot.get_or_insert_with(|| (make.take().expect("made once"))());
         match s {
             front::Statement::Begin(i) => {
                 head = Some(lower.begin_routine(*i));
@@ -688,7 +606,8 @@ fn each_lowered_ahead<'p>(
             }
         }
     });
-    let lower = lower.get();
+    // A program without routines: made now.
+    let mut lower = slot.unwrap_or_else(|| (make.take().expect("made once"))());
     if let Some((id, ops)) = lower.begin_top_level() {
         f(Lowered::Begin(id));
         f(Lowered::Ops(ops, None));
@@ -700,6 +619,7 @@ fn each_lowered_ahead<'p>(
         f(Lowered::Ops(lower.end_routine(), None));
         f(Lowered::End(id));
     }
+    lower
 }
 
 /// The promise is "loads on the controller": target text that fails the backend's own check

@@ -342,10 +342,10 @@ mod tests {
                 Event::End => Seen::End,
             });
         }
-        let mut second = first.replay.lower(&first.model, &first.program, &options);
+        let second = || first.replay.lower(&first.model, &first.program, &options);
         let mut fresh = Vec::new();
         let mut resolver = None;
-        each_lowered(&first.program, &mut second, |e| {
+        each_lowered(&first.program, second, 1, |e| {
             fresh.push(match e {
                 Lowered::Begin(id) => {
                     resolver = Some(first.flow.resolver(id));
