@@ -9,6 +9,8 @@
 pub enum Sink<'a, T> {
     Batches {
         batch: Vec<T>,
+        /// How many items a batch holds before it is sent.
+        size: usize,
         send: std::sync::mpsc::SyncSender<Vec<T>>,
         returned: std::sync::mpsc::Receiver<Vec<T>>,
     },
@@ -16,8 +18,8 @@ pub enum Sink<'a, T> {
 }
 
 /// How many items a batch of [`pipelined`] holds, and how many batches may wait.
-const BATCH: usize = 256;
-const BATCHES: usize = 4;
+pub const BATCH: usize = 256;
+pub const BATCHES: usize = 4;
 
 impl<T> Sink<'_, T> {
     pub fn push(&mut self, item: T) {
@@ -25,18 +27,19 @@ impl<T> Sink<'_, T> {
             Sink::Direct(f) => f(&item),
             Sink::Batches {
                 batch,
+                size,
                 send,
                 returned,
             } => {
                 batch.push(item);
-                if batch.len() == BATCH {
+                if batch.len() == *size {
                     // The batches the consumer is done with are dropped here; one is reused.
                     let mut next = None;
                     while let Ok(mut done) = returned.try_recv() {
                         done.clear();
                         next = Some(done);
                     }
-                    let next = next.unwrap_or_else(|| Vec::with_capacity(BATCH));
+                    let next = next.unwrap_or_else(|| Vec::with_capacity(*size));
                     let full = std::mem::replace(batch, next);
                     // The receiver only stops early when the consumer panicked.
                     let _ = send.send(full);
@@ -74,8 +77,21 @@ pub fn pipelined_ahead<T: Send, R: Send>(
     thread: bool,
     ahead: usize,
     produce: impl FnOnce(&mut Sink<'_, T>) -> R + Send,
+    consume: impl FnMut(&T),
+) -> R {
+    pipelined_batches(thread, ahead, BATCH, produce, consume)
+}
+
+/// [`pipelined_ahead`] with batches of `size` items (items that are batches themselves,
+/// and large ones, go in a few at a time: the pipeline holds `(ahead + 2) * size` of them).
+pub fn pipelined_batches<T: Send, R: Send>(
+    thread: bool,
+    ahead: usize,
+    size: usize,
+    produce: impl FnOnce(&mut Sink<'_, T>) -> R + Send,
     mut consume: impl FnMut(&T),
 ) -> R {
+    let size = size.max(1);
     if !thread {
         return produce(&mut Sink::Direct(&mut consume));
     }
@@ -86,7 +102,8 @@ pub fn pipelined_ahead<T: Send, R: Send>(
         let producer = std::thread::Builder::new().spawn_scoped(scope, || {
             let produce = work.take();
             let mut sink = Sink::Batches {
-                batch: Vec::with_capacity(BATCH),
+                batch: Vec::with_capacity(size),
+                size,
                 send,
                 returned,
             };
@@ -95,6 +112,7 @@ pub fn pipelined_ahead<T: Send, R: Send>(
                 batch,
                 send,
                 returned,
+                ..
             } = sink
             else {
                 unreachable!("the sink sends batches")

@@ -68,6 +68,6 @@ pub use cst::{Children, Element, Node, NodeKind, SyntaxTree, Token, TokenKind};
 pub use decode::{Decoded, TextEncoding, decode, decode_owned, encode_as};
 pub use parser::{
     AHEAD_BYTES, Parse, Piece, PieceNodes, SYNTAX_ERROR, diagnostics, parse, parse_pieces,
-    parse_pieces_ahead, write_json_tree,
+    parse_pieces_across, parse_pieces_ahead, write_json_tree,
 };
 pub use words::is_keyword;

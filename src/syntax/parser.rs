@@ -222,6 +222,33 @@ pub const AHEAD_BYTES: usize = 1 << 20;
 pub fn parse_pieces_ahead(
     thread: bool,
     text: &str,
+    near: impl FnMut(Piece<'_>) + Send,
+    f: impl FnMut(Piece<'_>),
+) -> Vec<Diagnostic> {
+    let (ahead, size) = (crate::pipeline::BATCHES, crate::pipeline::BATCH);
+    pieces_ahead(thread, (ahead, size), text, near, f)
+}
+
+/// [`parse_pieces`] on a second thread when `thread`, each piece's tree copied across to `f`
+/// on this one, in order, at most a few hundred pieces ahead ([`ACROSS_BATCHES`] batches of
+/// [`ACROSS_CHUNKS`] chunks): the translation's first parse, whose other side (the AST
+/// lowering, outline and summary) takes about as long as the parse; the few pieces in flight
+/// keep its memory where the parse on one thread had it. Without a thread, [`parse_pieces`].
+pub fn parse_pieces_across(thread: bool, text: &str, f: impl FnMut(Piece<'_>)) -> Vec<Diagnostic> {
+    pieces_ahead(thread, (ACROSS_BATCHES, ACROSS_CHUNKS), text, |_| {}, f)
+}
+
+/// How many batches of how many chunks [`parse_pieces_across`] lets wait: more held 15 MB
+/// more of a 50 MB translation's memory to the end (the chunks' blocks in the parser's
+/// arena), for no time.
+const ACROSS_BATCHES: usize = 1;
+const ACROSS_CHUNKS: usize = 16;
+
+/// [`parse_pieces_ahead`], with up to `ahead` batches of `size` chunks waiting.
+fn pieces_ahead(
+    thread: bool,
+    (ahead, size): (usize, usize),
+    text: &str,
     mut near: impl FnMut(Piece<'_>) + Send,
     mut f: impl FnMut(Piece<'_>),
 ) -> Vec<Diagnostic> {
@@ -231,7 +258,10 @@ pub fn parse_pieces_ahead(
             f(piece);
         });
     }
-    crate::pipeline::pipelined(
+    crate::pipeline::pipelined_batches(
+        true,
+        ahead,
+        size,
         |sink| {
             let mut chunk = PieceChunk::default();
             let diagnostics = each_hand_out(text, |b, pieces, floor| {

@@ -63,30 +63,36 @@ pub enum Statement {
 
 impl Parsed {
     /// Parses `text` one piece at a time and reads out what the translation needs of the
-    /// whole file. The parse, the AST of each piece, its comments and `MM_…` names are made on
-    /// a second thread, a bounded batch ahead of the outline and the summary, which are built
-    /// here from the pieces' events ([`pipelined`](crate::pipeline::pipelined)).
+    /// whole file. The parse runs on a second thread, a few hundred pieces ahead of this one,
+    /// which reads each piece's comments and `MM_…` names, lowers it to its AST events and
+    /// builds the outline and the summary from them
+    /// ([`parse_pieces_across`](crate::syntax::parse_pieces_across): each piece's tree is
+    /// copied to cross). The cut is where the two sides' work is about even: with the lowering
+    /// beside the parse, the parse's thread was the whole stretch's time and this one idled
+    /// half of it.
     pub fn new(path: impl Into<String>, text: impl Into<String>) -> Parsed {
-        let text = text.into();
+        Parsed::read(true, path.into(), text.into())
+    }
+
+    /// [`Parsed::new`], on a second thread only when `thread` (tests compare the two ways).
+    fn read(thread: bool, path: String, text: String) -> Parsed {
         let mut outline = outline::OutlineBuilder::default();
         let mut summary = crate::sema::SummaryBuilder::declarations_only();
         let mut followed = true;
-        let read = pipelined(
-            |sink| {
-                let mut reader = Reader::new(&text);
-                let errors = crate::syntax::parse_pieces(&text, |piece| {
-                    reader.piece(piece, |e| sink.push(e))
-                });
-                (errors, reader.comments, reader.names)
-            },
-            |e| {
-                outline.add(e);
-                if followed && !summary.add_lent(e) {
+        let mut reader = Reader::new(&text);
+        let mut lowerer = crate::syntax::ast::PieceLowerer::new(&text);
+        let syntax_errors = crate::syntax::parse_pieces_across(thread, &text, |piece| {
+            reader.piece(piece);
+            lowerer.lower(piece, |e| {
+                outline.add(&e);
+                if followed && !summary.add_lent(&e) {
                     followed = false;
                 }
-            },
-        );
-        let (syntax_errors, comments, names) = read;
+            })
+        });
+        let Reader {
+            comments, names, ..
+        } = reader;
         // Declarations only: the translation asks the model what names mean, never where they
         // are used. A file whose order the streamed summary cannot follow (a routine after its
         // data list) is summarised from its whole AST, the one case where it is built.
@@ -96,7 +102,7 @@ impl Parsed {
             crate::sema::FileSummary::declarations_of(&crate::syntax::ast::lower_pieces(&text).0)
         };
         Parsed {
-            path: path.into(),
+            path,
             outline: outline.finish(),
             syntax_errors,
             comments,
@@ -212,7 +218,6 @@ impl Parsed {
 /// the `MM_…` identifiers (one walk over each piece's tokens).
 struct Reader<'t> {
     text: &'t str,
-    lowerer: crate::syntax::ast::PieceLowerer<'t>,
     /// Each line once (a closing piece repeats its routine's first line).
     nodes: crate::syntax::PieceNodes,
     comments: Vec<comments::Comment>,
@@ -224,7 +229,6 @@ impl<'t> Reader<'t> {
     fn new(text: &'t str) -> Reader<'t> {
         Reader {
             text,
-            lowerer: crate::syntax::ast::PieceLowerer::new(text),
             nodes: crate::syntax::PieceNodes::default(),
             comments: Vec::new(),
             names: FxHashSet::default(),
@@ -232,19 +236,14 @@ impl<'t> Reader<'t> {
         }
     }
 
-    /// One piece: its comments and names kept, its events to `f`.
-    fn piece(
-        &mut self,
-        piece: crate::syntax::Piece<'_>,
-        f: impl FnMut(crate::syntax::ast::Lowered),
-    ) {
+    /// One piece: its comments and names kept.
+    fn piece(&mut self, piece: crate::syntax::Piece<'_>) {
         let Reader {
             text,
             nodes,
             comments,
             names,
             upper,
-            ..
         } = self;
         nodes.each(piece, |node| {
             node.walk_tokens(&mut |t| match t.kind {
@@ -260,7 +259,6 @@ impl<'t> Reader<'t> {
                 _ => {}
             })
         });
-        self.lowerer.lower(piece, f);
     }
 }
 
@@ -371,6 +369,60 @@ mod tests {
             assert_eq!(r.head, head);
         }
         assert_eq!(parsed.outline.routines[0].facts.callees.len(), 600);
+    }
+
+    /// The first parse on two threads (the parse ahead, each piece's tree copied across) reads
+    /// exactly what it reads on one: on every `.src` and `.dat` of the tests and examples, and
+    /// on all of them joined (thousands of pieces, many batches).
+    #[test]
+    fn the_first_parse_reads_the_same_on_one_thread_and_two() {
+        fn seen(p: &Parsed) -> String {
+            let mut names: Vec<_> = p.names.iter().collect();
+            names.sort();
+            format!(
+                "{:?}\n{:?}\n{names:?}\n{:?}\n{:?}",
+                p.outline, p.comments, p.syntax_errors, p.summary
+            )
+        }
+        fn files(dir: &std::path::Path, out: &mut Vec<std::path::PathBuf>) {
+            for e in std::fs::read_dir(dir).unwrap() {
+                let path = e.unwrap().path();
+                if path.is_dir() {
+                    files(&path, out);
+                } else if path
+                    .extension()
+                    .is_some_and(|e| e.eq_ignore_ascii_case("src") || e.eq_ignore_ascii_case("dat"))
+                {
+                    out.push(path);
+                }
+            }
+        }
+        let root = std::path::Path::new(env!("CARGO_MANIFEST_DIR"));
+        let mut paths = Vec::new();
+        files(&root.join("tests"), &mut paths);
+        files(&root.join("krl"), &mut paths);
+        paths.sort();
+        let mut joined = String::new();
+        for path in &paths {
+            let text = crate::syntax::decode(&std::fs::read(path).unwrap()).text;
+            let one = seen(&Parsed::read(false, "t".into(), text.clone()));
+            let two = seen(&Parsed::read(true, "t".into(), text.clone()));
+            assert!(one == two, "{}: the two ways differ", path.display());
+            joined.push_str(&text);
+            joined.push('\n');
+        }
+        assert!(paths.len() >= 400, "{} files", paths.len());
+        let one = Parsed::read(false, "t".into(), joined.clone());
+        let two = Parsed::read(true, "t".into(), joined);
+        let (routines, comments) = (one.outline.routines.len(), one.comments.len());
+        assert!(
+            routines >= 600 && comments >= 2000,
+            "{routines} routines, {comments} comments"
+        );
+        assert!(
+            seen(&one) == seen(&two),
+            "all the files joined: the two ways differ"
+        );
     }
 
     /// The statements handed out one at a time (in batches, from another thread) are the
