@@ -506,8 +506,18 @@ fn tail<T: Send>(
                     }
                     out
                 },
-                // A line has no line break: each ends in one in its chunk.
-                |chunk: &String| chunk.split_terminator('\n').for_each(|l| check.line(l)),
+                // A line has no line break: each ends in one in its chunk (`split_terminator`
+                // with the memchr crate's search, which is vectorised).
+                |chunk: &String| {
+                    let mut from = 0;
+                    for end in memchr::memchr_iter(b'\n', chunk.as_bytes()) {
+                        check.line(&chunk[from..end]);
+                        from = end + 1;
+                    }
+                    if from < chunk.len() {
+                        check.line(&chunk[from..]);
+                    }
+                },
             )
         },
     );
