@@ -11,7 +11,8 @@ use std::collections::hash_map::Entry;
 use std::fmt;
 
 use super::lex::{
-    call_target, code_part, each_name, may_have_longer_name, split_top_level, without_strings_into,
+    call_target, code_part, each_name, may_have_longer_name, split_top_level, trim_blanks,
+    without_strings_into,
 };
 use crate::catalog::catalog;
 use compact_str::CompactString;
@@ -174,20 +175,6 @@ fn first_blank_word(text: &str, ascii: bool) -> &str {
         return &text[start..end];
     }
     text.split_whitespace().next().unwrap_or("")
-}
-
-/// `str::trim`, a byte scan when the ends are ASCII (the blanks `char::is_whitespace` takes,
-/// vertical tab included).
-fn trim_blanks(s: &str) -> &str {
-    let blank = |c: &u8| matches!(c, b' ' | b'\t'..=b'\r');
-    let b = s.as_bytes();
-    let start = b.iter().position(|c| !blank(c)).unwrap_or(b.len());
-    let end = b.iter().rposition(|c| !blank(c)).map_or(start, |i| i + 1);
-    let t = &s[start..end];
-    match (t.as_bytes().first(), t.as_bytes().last()) {
-        (Some(a), Some(z)) if a.is_ascii() && z.is_ascii() => t,
-        _ => t.trim(),
-    }
 }
 
 /// The statement heads whose check reads more of the line than its first word.

@@ -24,6 +24,20 @@ pub(super) fn code_part(line: &str) -> (&str, bool) {
     (line, quoted)
 }
 
+/// `str::trim`, a byte scan when the ends are ASCII (the blanks `char::is_whitespace` takes,
+/// vertical tab included).
+pub fn trim_blanks(s: &str) -> &str {
+    let blank = |c: &u8| matches!(c, b' ' | b'\t'..=b'\r');
+    let b = s.as_bytes();
+    let start = b.iter().position(|c| !blank(c)).unwrap_or(b.len());
+    let end = b.iter().rposition(|c| !blank(c)).map_or(start, |i| i + 1);
+    let t = &s[start..end];
+    match (t.as_bytes().first(), t.as_bytes().last()) {
+        (Some(a), Some(z)) if a.is_ascii() && z.is_ascii() => t,
+        _ => t.trim(),
+    }
+}
+
 /// The code with string literals blanked (so their words are not taken for names), appended to
 /// `out` (the checker reuses one buffer for every line): each `"` and each character inside a
 /// string becomes one space.
