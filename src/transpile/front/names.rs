@@ -73,21 +73,18 @@ impl Reason {
 /// The target spelling of `krl` under `rules`, and why it differs (beyond case).
 pub fn target_name(krl: &str, rules: &NameRules) -> (String, Vec<Reason>) {
     let mut reasons = Vec::new();
-    let mut name: String = krl
-        .chars()
-        .map(|c| {
-            if c.is_ascii_alphanumeric() || c == '_' {
-                c.to_ascii_lowercase()
-            } else {
-                '_'
-            }
-        })
-        .collect();
-    if name
-        .chars()
-        .zip(krl.chars())
-        .any(|(a, b)| a == '_' && b != '_')
-    {
+    // Every character becomes one ASCII byte: the name is ASCII, cut anywhere.
+    let mut name = String::with_capacity(krl.len() + 1);
+    let mut replaced = false;
+    for c in krl.chars() {
+        if c.is_ascii_alphanumeric() || c == '_' {
+            name.push(c.to_ascii_lowercase());
+        } else {
+            name.push('_');
+            replaced = true;
+        }
+    }
+    if replaced {
         reasons.push(Reason::Chars);
     }
     if !name.starts_with(|c: char| c.is_ascii_alphabetic()) {
@@ -101,25 +98,27 @@ pub fn target_name(krl: &str, rules: &NameRules) -> (String, Vec<Reason>) {
         reasons.push(Reason::Reserved);
     }
     if name.len() > rules.max_len {
+        // The kept start without its trailing `_`s, `_`, the hash: in place.
         let keep = rules.max_len.saturating_sub(4);
-        let cut = name[..keep].trim_end_matches('_');
-        name = format!("{cut}_{}", hash3(&krl.to_ascii_uppercase()));
+        let cut = name[..keep].trim_end_matches('_').len();
+        name.truncate(cut);
+        name.push('_');
+        name.extend(hash3(krl).map(char::from));
         reasons.push(Reason::TooLong);
     }
     (name, reasons)
 }
 
-/// Three base-36 characters of FNV-1a over `s`.
-fn hash3(s: &str) -> String {
+/// Three base-36 characters of FNV-1a over `s` in upper case (ASCII letters only, as
+/// `str::to_ascii_uppercase`).
+fn hash3(s: &str) -> [u8; 3] {
     let mut h: u64 = 0xcbf2_9ce4_8422_2325;
     for b in s.bytes() {
-        h ^= u64::from(b);
+        h ^= u64::from(b.to_ascii_uppercase());
         h = h.wrapping_mul(0x0100_0000_01b3);
     }
     const DIGITS: &[u8; 36] = b"0123456789abcdefghijklmnopqrstuvwxyz";
-    (0..3)
-        .map(|i| DIGITS[((h >> (i * 12)) % 36) as usize] as char)
-        .collect()
+    [0, 1, 2].map(|i| DIGITS[((h >> (i * 12)) % 36) as usize])
 }
 
 /// A renamed identifier, for the TR003 diagnostic and the name map.
