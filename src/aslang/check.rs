@@ -11,7 +11,8 @@ use std::collections::hash_map::Entry;
 use std::fmt;
 
 use super::lex::{
-    call_target, code_part, each_name, may_have_longer_name, split_top_level, without_strings_into,
+    call_target, code_part, each_name, may_have_longer_name, split_top_level, trim_blanks,
+    without_strings_into,
 };
 use crate::catalog::catalog;
 use compact_str::CompactString;
@@ -142,9 +143,10 @@ struct Call {
     arity: usize,
 }
 
-/// The first word of a line's code: up to a blank or `(` (a byte scan when the code is ASCII).
-fn first_word(code: &str) -> &str {
-    if code.is_ascii() {
+/// The first word of a line's code: up to a blank or `(` (a byte scan when the code is
+/// `ascii`).
+fn first_word(code: &str, ascii: bool) -> &str {
+    if ascii {
         // The ASCII characters `char::is_whitespace` takes, vertical tab included.
         let end = code
             .bytes()
@@ -157,18 +159,22 @@ fn first_word(code: &str) -> &str {
         .unwrap_or("")
 }
 
-/// `str::trim`, a byte scan when the ends are ASCII (the blanks `char::is_whitespace` takes,
-/// vertical tab included).
-fn trim_blanks(s: &str) -> &str {
-    let blank = |c: &u8| matches!(c, b' ' | b'\t'..=b'\r');
-    let b = s.as_bytes();
-    let start = b.iter().position(|c| !blank(c)).unwrap_or(b.len());
-    let end = b.iter().rposition(|c| !blank(c)).map_or(start, |i| i + 1);
-    let t = &s[start..end];
-    match (t.as_bytes().first(), t.as_bytes().last()) {
-        (Some(a), Some(z)) if a.is_ascii() && z.is_ascii() => t,
-        _ => t.trim(),
+/// The first of `text`'s words between blanks (`split_whitespace`; a byte scan when `text` is
+/// `ascii`: the blanks `char::is_whitespace` takes there, vertical tab included).
+fn first_blank_word(text: &str, ascii: bool) -> &str {
+    if ascii {
+        let b = text.as_bytes();
+        let blank = |c: &u8| matches!(c, b' ' | b'\t'..=b'\r');
+        let Some(start) = b.iter().position(|c| !blank(c)) else {
+            return "";
+        };
+        let end = b[start..]
+            .iter()
+            .position(blank)
+            .map_or(b.len(), |i| start + i);
+        return &text[start..end];
     }
+    text.split_whitespace().next().unwrap_or("")
 }
 
 /// The statement heads whose check reads more of the line than its first word.
@@ -196,15 +202,22 @@ impl Checker {
         self.problems.push(Problem { line, message });
     }
 
-    /// Names longer than AS allows; leaves the line without its strings in `self.bare`.
+    /// Names longer than AS allows in `code`.
     fn long_names(&mut self, n: usize, code: &str) {
-        self.bare.clear();
-        without_strings_into(code, &mut self.bare);
-        if !may_have_longer_name(&self.bare, self.max) {
+        let mut bare = std::mem::take(&mut self.bare);
+        bare.clear();
+        without_strings_into(code, &mut bare);
+        self.long_names_in(n, &bare);
+        self.bare = bare;
+    }
+
+    /// Names longer than AS allows in `bare`, a line's code without its strings.
+    fn long_names_in(&mut self, n: usize, bare: &str) {
+        if !may_have_longer_name(bare, self.max) {
             return;
         }
         let (max, problems) = (self.max, &mut self.problems);
-        each_name(&self.bare, |id| {
+        each_name(bare, |id| {
             if id.len() > max {
                 problems.push(Problem {
                     line: n,
@@ -215,14 +228,17 @@ impl Checker {
     }
 
     fn line(&mut self, n: usize, raw: &str) {
-        if !raw.is_ascii() {
+        // Whether the line is ASCII is asked once: its code and every word of it are then.
+        let ascii = raw.is_ascii();
+        if !ascii {
             self.push(n, "non-ASCII character".into());
         }
-        let code = trim_blanks(code_part(raw));
+        let (code, quoted) = code_part(raw);
+        let code = trim_blanks(code);
         if code.is_empty() {
             return;
         }
-        let mut head = CompactString::from(first_word(code));
+        let mut head = CompactString::from(first_word(code, ascii));
         head.make_ascii_uppercase();
         let head = head.as_str();
         let section = head == ".PROGRAM" || head == ".END" || DATA_SECTIONS.contains(&head);
@@ -252,7 +268,7 @@ impl Checker {
                     let msg = format!("`{head}` inside program `{}` (missing .END?)", p.name);
                     self.push(n, msg);
                 } else {
-                    self.program_line(n, code);
+                    self.program_line(n, code, ascii, quoted);
                 }
             }
         }
@@ -352,25 +368,39 @@ impl Checker {
         }
     }
 
-    fn program_line(&mut self, n: usize, code: &str) {
-        self.long_names(n, code);
-        let mut first = CompactString::from(self.bare.split_whitespace().next().unwrap_or(""));
+    /// A line of a program: `code` its code part, `ascii` whether the line is, `quoted` whether
+    /// `code` holds a `"` (without one, it is its own text without strings: no copy is made).
+    fn program_line(&mut self, n: usize, code: &str, ascii: bool, quoted: bool) {
+        let mut buf = std::mem::take(&mut self.bare);
+        let bare = if quoted {
+            buf.clear();
+            without_strings_into(code, &mut buf);
+            buf.as_str()
+        } else {
+            code
+        };
+        self.long_names_in(n, bare);
+        let mut first = CompactString::from(first_blank_word(bare, ascii));
         first.make_ascii_uppercase();
         // Only block heads read the rest of the line's words: the upper-case copy and the
         // word scan are made for them alone (most lines are moves and assignments).
         let mut upper = std::mem::take(&mut self.upper);
         upper.clear();
         if BLOCK_HEADS.contains(&first.as_str()) {
-            upper.push_str(&self.bare);
+            upper.push_str(bare);
             upper.make_ascii_uppercase();
         }
-        self.program_words(n, code, &first, &upper);
+        let colon = matches!(first.as_str(), "VALUE" | "SVALUE" | "ANY" | "ANY:")
+            && bare.trim_end().ends_with(':');
+        self.program_words(n, code, &first, &upper, colon);
         self.upper = upper;
+        self.bare = buf;
     }
 
     /// A line of a program: `first` its first word without strings in upper case, `upper` all
-    /// its words so when `first` is one of [`BLOCK_HEADS`] (empty otherwise).
-    fn program_words(&mut self, n: usize, code: &str, first: &str, upper: &str) {
+    /// its words so when `first` is one of [`BLOCK_HEADS`] (empty otherwise), `colon` whether
+    /// it ends in `:` without strings (asked of the case heads only).
+    fn program_words(&mut self, n: usize, code: &str, first: &str, upper: &str, colon: bool) {
         let (mut last_word, mut count, mut has_to) = ("", 0, false);
         for w in upper.split_whitespace() {
             last_word = w;
@@ -447,7 +477,7 @@ impl Checker {
                     if !matches!(p.blocks.last(), Some((Block::Case, _))) {
                         problems.push((n, format!("{first} outside a CASE block")));
                     }
-                    if !self.bare.trim_end().ends_with(':') {
+                    if !colon {
                         problems.push((n, format!("{first} without `:`")));
                     }
                 }

@@ -1,23 +1,41 @@
 //! Lexical pieces of an AS line: its code part, its names, its argument lists.
 
-/// The code part of a line: everything before a `;` that is not inside a string.
+/// The code part of a line: everything before a `;` that is not inside a string, and whether
+/// it holds a `"` (a code part without one is its own [`without_strings_into`]).
 ///
 /// A byte scan (`"` and `;` are never part of a longer UTF-8 sequence): the line's first `;`
 /// ends the code unless a `"` comes before it.
-pub(super) fn code_part(line: &str) -> &str {
+pub(super) fn code_part(line: &str) -> (&str, bool) {
     let b = line.as_bytes();
     let mut from = 0;
-    let mut in_str = false;
+    let (mut in_str, mut quoted) = (false, false);
     while let Some(i) = memchr::memchr2(b'"', b';', &b[from..]) {
         let i = from + i;
         match b[i] {
-            b'"' => in_str = !in_str,
-            _ if !in_str => return &line[..i],
+            b'"' => {
+                in_str = !in_str;
+                quoted = true;
+            }
+            _ if !in_str => return (&line[..i], quoted),
             _ => {}
         }
         from = i + 1;
     }
-    line
+    (line, quoted)
+}
+
+/// `str::trim`, a byte scan when the ends are ASCII (the blanks `char::is_whitespace` takes,
+/// vertical tab included).
+pub fn trim_blanks(s: &str) -> &str {
+    let blank = |c: &u8| matches!(c, b' ' | b'\t'..=b'\r');
+    let b = s.as_bytes();
+    let start = b.iter().position(|c| !blank(c)).unwrap_or(b.len());
+    let end = b.iter().rposition(|c| !blank(c)).map_or(start, |i| i + 1);
+    let t = &s[start..end];
+    match (t.as_bytes().first(), t.as_bytes().last()) {
+        (Some(a), Some(z)) if a.is_ascii() && z.is_ascii() => t,
+        _ => t.trim(),
+    }
 }
 
 /// The code with string literals blanked (so their words are not taken for names), appended to
@@ -54,7 +72,7 @@ pub(super) fn may_have_longer_name(code: &str, max: usize) -> bool {
     }
     let mut run = 0;
     for &c in code.as_bytes() {
-        if c.is_ascii_alphanumeric() || c == b'_' || c == b'.' {
+        if NAME_BYTE[usize::from(c)] {
             run += 1;
             if run > max {
                 return true;
@@ -65,6 +83,19 @@ pub(super) fn may_have_longer_name(code: &str, max: usize) -> bool {
     }
     false
 }
+
+/// The bytes of a name's run: ASCII letters and digits, `_` and `.` (a table: the check asks
+/// it of every byte of every line).
+static NAME_BYTE: [bool; 256] = {
+    let mut t = [false; 256];
+    let mut c = 0;
+    while c < 256 {
+        let b = c as u8;
+        t[c] = b.is_ascii_alphanumeric() || b == b'_' || b == b'.';
+        c += 1;
+    }
+    t
+};
 
 /// Names in a code line, without the local dot and the sigil: `.#cur` → `cur`,
 /// `$mm_tx[1]` → `mm_tx`. Numbers (`0.5`, `.5`, `1E5`) are skipped.

@@ -8,4 +8,4 @@ mod lex;
 mod tests;
 
 pub use check::{Calls, Lines, Problem, check};
-pub use lex::split_top_level;
+pub use lex::{split_top_level, trim_blanks};

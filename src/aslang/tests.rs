@@ -160,3 +160,15 @@ fn blanks_around_a_line_are_trimmed_as_str_trim_does() {
         vec!["3: non-ASCII character", "4: non-ASCII character"]
     );
 }
+
+#[test]
+fn strings_and_non_ascii_blanks_are_read_as_without_them() {
+    // A case head's `:` inside a string does not count; a long name inside one is no name; a
+    // line's first word after a string is found; a block head followed by a non-ASCII blank
+    // opens its block (the lines without a `"` and the ASCII lines take a shorter path).
+    let text = ".PROGRAM a()\n  CASE .x OF\n  VALUE 1 \"a:\"\n  VALUE 2:\n  END\n  PRINT \"a_name_longer_than_fifteen\"\n  \"x\" = 1\n  IF\u{2003}.x THEN\n  END\n.END\n";
+    assert_eq!(
+        messages(text),
+        ["3: VALUE without `:`", "8: non-ASCII character"]
+    );
+}

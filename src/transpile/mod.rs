@@ -249,6 +249,16 @@ fn translate(
     // are found on another while the target's check reads its lines here ([`tail`]).
     // The statements that wrote something, sorted where they are (by the first tally).
     let (mut made, mut produced) = (produced, None);
+    // The program but its texts is dropped on the tally's thread, after the first tally (the
+    // drops were a stretch where only this thread worked, after the check).
+    let front::Program {
+        src,
+        dat,
+        sema,
+        dat_index,
+    } = program;
+    let mut rest = Some((src, dat, sema, dat_index));
+    let mut sources = None;
     let (coverage, silent) = tail(
         true,
         backend.checker(),
@@ -260,19 +270,24 @@ fn translate(
             let src = Starts::new(report.starts(front::report::FileId::Src));
             let dat = Starts::new(report.starts(front::report::FileId::Dat));
             let produced = produced.get_or_insert_with(|| Covered::new(std::mem::take(&mut made)));
-            (coverage(&model, &src, &dat), silent(&model, &src, produced))
+            let tallied = (coverage(&model, &src, &dat), silent(&model, &src, produced));
+            if let Some(rest) = rest.take() {
+                sources = Some(into_sources(rest));
+            }
+            tallied
         },
     )?;
     drop(model);
-    let front::Program {
-        src,
-        dat,
-        sema,
-        dat_index,
-    } = program;
-    drop((sema, dat_index));
-    let src = src.into_source();
-    let dat = dat.map(front::Parsed::into_source);
+    // The tally ran at least once (it took the program's rest); if not, the rest goes here.
+    let (src, dat) = match (sources, rest) {
+        (Some(s), _) => s,
+        (None, Some(rest)) => into_sources(rest),
+        (None, None) => {
+            return Err(std::io::Error::other(
+                "internal: the program's texts were lost after the tally",
+            ));
+        }
+    };
     report.trim_spans(front::report::FileId::Src, &src.text);
     if let Some(dat) = &dat {
         report.trim_spans(front::report::FileId::Dat, &dat.text);
@@ -296,6 +311,19 @@ fn translate(
         coverage,
         silent,
     })
+}
+
+/// The program's `.src` and `.dat` texts, the rest of it dropped.
+fn into_sources(
+    (src, dat, sema, dat_index): (
+        front::Parsed,
+        Option<front::Parsed>,
+        crate::sema::Sema,
+        front::dat_index::DatIndex,
+    ),
+) -> (Source, Option<Source>) {
+    drop((sema, dat_index));
+    (src.into_source(), dat.map(front::Parsed::into_source))
 }
 
 /// What the first pass leaves: the program, its model and what the second pass needs.
@@ -506,8 +534,18 @@ fn tail<T: Send>(
                     }
                     out
                 },
-                // A line has no line break: each ends in one in its chunk.
-                |chunk: &String| chunk.split_terminator('\n').for_each(|l| check.line(l)),
+                // A line has no line break: each ends in one in its chunk (`split_terminator`
+                // with the memchr crate's search, which is vectorised).
+                |chunk: &String| {
+                    let mut from = 0;
+                    for end in memchr::memchr_iter(b'\n', chunk.as_bytes()) {
+                        check.line(&chunk[from..end]);
+                        from = end + 1;
+                    }
+                    if from < chunk.len() {
+                        check.line(&chunk[from..]);
+                    }
+                },
             )
         },
     );

@@ -48,11 +48,24 @@ pub enum Reason {
 
 impl Reason {
     pub fn describe(self, rules: &NameRules) -> String {
+        let mut s = String::new();
+        self.describe_into(rules, &mut s);
+        s
+    }
+
+    /// [`Reason::describe`] appended to `out`.
+    fn describe_into(self, rules: &NameRules, out: &mut String) {
         match self {
-            Reason::TooLong => format!("longer than {} characters", rules.max_len),
-            Reason::Reserved => "a reserved word".into(),
-            Reason::Chars => "characters not allowed in names".into(),
-            Reason::Clash => "clashes with another name".into(),
+            Reason::TooLong => {
+                // Writing to a `String` does not fail.
+                let _ = std::fmt::Write::write_fmt(
+                    out,
+                    format_args!("longer than {} characters", rules.max_len),
+                );
+            }
+            Reason::Reserved => out.push_str("a reserved word"),
+            Reason::Chars => out.push_str("characters not allowed in names"),
+            Reason::Clash => out.push_str("clashes with another name"),
         }
     }
 }
@@ -60,21 +73,18 @@ impl Reason {
 /// The target spelling of `krl` under `rules`, and why it differs (beyond case).
 pub fn target_name(krl: &str, rules: &NameRules) -> (String, Vec<Reason>) {
     let mut reasons = Vec::new();
-    let mut name: String = krl
-        .chars()
-        .map(|c| {
-            if c.is_ascii_alphanumeric() || c == '_' {
-                c.to_ascii_lowercase()
-            } else {
-                '_'
-            }
-        })
-        .collect();
-    if name
-        .chars()
-        .zip(krl.chars())
-        .any(|(a, b)| a == '_' && b != '_')
-    {
+    // Every character becomes one ASCII byte: the name is ASCII, cut anywhere.
+    let mut name = String::with_capacity(krl.len() + 1);
+    let mut replaced = false;
+    for c in krl.chars() {
+        if c.is_ascii_alphanumeric() || c == '_' {
+            name.push(c.to_ascii_lowercase());
+        } else {
+            name.push('_');
+            replaced = true;
+        }
+    }
+    if replaced {
         reasons.push(Reason::Chars);
     }
     if !name.starts_with(|c: char| c.is_ascii_alphabetic()) {
@@ -88,32 +98,34 @@ pub fn target_name(krl: &str, rules: &NameRules) -> (String, Vec<Reason>) {
         reasons.push(Reason::Reserved);
     }
     if name.len() > rules.max_len {
+        // The kept start without its trailing `_`s, `_`, the hash: in place.
         let keep = rules.max_len.saturating_sub(4);
-        let cut = name[..keep].trim_end_matches('_');
-        name = format!("{cut}_{}", hash3(&krl.to_ascii_uppercase()));
+        let cut = name[..keep].trim_end_matches('_').len();
+        name.truncate(cut);
+        name.push('_');
+        name.extend(hash3(krl).map(char::from));
         reasons.push(Reason::TooLong);
     }
     (name, reasons)
 }
 
-/// Three base-36 characters of FNV-1a over `s`.
-fn hash3(s: &str) -> String {
+/// Three base-36 characters of FNV-1a over `s` in upper case (ASCII letters only, as
+/// `str::to_ascii_uppercase`).
+fn hash3(s: &str) -> [u8; 3] {
     let mut h: u64 = 0xcbf2_9ce4_8422_2325;
     for b in s.bytes() {
-        h ^= u64::from(b);
+        h ^= u64::from(b.to_ascii_uppercase());
         h = h.wrapping_mul(0x0100_0000_01b3);
     }
     const DIGITS: &[u8; 36] = b"0123456789abcdefghijklmnopqrstuvwxyz";
-    (0..3)
-        .map(|i| DIGITS[((h >> (i * 12)) % 36) as usize] as char)
-        .collect()
+    [0, 1, 2].map(|i| DIGITS[((h >> (i * 12)) % 36) as usize])
 }
 
 /// A renamed identifier, for the TR003 diagnostic and the name map.
 #[derive(Debug, Clone, PartialEq, Eq)]
 pub struct Renamed {
-    pub krl: String,
-    pub target: String,
+    pub krl: CompactString,
+    pub target: CompactString,
     pub reasons: Vec<Reason>,
 }
 
@@ -166,8 +178,8 @@ impl Namespace {
         self.taken.insert(target.clone(), key.clone());
         self.map.insert(key, target.clone());
         let renamed = (!reasons.is_empty()).then(|| Renamed {
-            krl: krl.to_owned(),
-            target: target.to_string(),
+            krl: krl.into(),
+            target: target.clone(),
             reasons,
         });
         (target, renamed)
@@ -303,19 +315,23 @@ fn note(
     r: Option<Renamed>,
 ) {
     let Some(r) = r else { return };
-    let why: Vec<String> = r.reasons.iter().map(|x| x.describe(rules)).collect();
-    rep.renamed(
-        file,
-        span,
-        format!(
-            "{kind} `{}` is renamed `{}` in {} ({})",
-            r.krl,
-            r.target,
-            rules.language,
-            why.join(", ")
-        ),
-    );
-    renamed.push((kind, r.krl.into(), r.target.into()));
+    // `{kind} `{krl}` is renamed `{target}` in {language} ({reasons joined by ", "})`, written
+    // in place (a file of many routines renames a hundred thousand names).
+    let mut message = String::with_capacity(96);
+    for part in [kind, " `", &r.krl, "` is renamed `", &r.target, "` in "] {
+        message.push_str(part);
+    }
+    message.push_str(rules.language);
+    message.push_str(" (");
+    for (i, x) in r.reasons.iter().enumerate() {
+        if i > 0 {
+            message.push_str(", ");
+        }
+        x.describe_into(rules, &mut message);
+    }
+    message.push(')');
+    rep.renamed(file, span, message);
+    renamed.push((kind, r.krl, r.target));
 }
 
 /// The names of one translation under one target's rules.

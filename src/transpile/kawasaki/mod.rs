@@ -183,6 +183,10 @@ pub struct Tx<'a> {
     /// Vision server used by `mm_init_skt` (for the header).
     server_used: Option<String>,
     data: data::DataOut,
+    /// The last spooled program's body buffer, emptied: the next program's lines go into it
+    /// (grown again from nothing for every program, it cost a tenth of the rendering in
+    /// reallocations).
+    spare_body: String,
 }
 
 impl<'a> Tx<'a> {
@@ -203,6 +207,7 @@ impl<'a> Tx<'a> {
             rt: None,
             server_used: None,
             data: data::DataOut::default(),
+            spare_body: String::new(),
         }
     }
 
@@ -302,6 +307,9 @@ impl<'a> Tx<'a> {
         }
         spool.push_str(&p.body);
         spool.push_str(".END\n");
+        let mut body = p.body;
+        body.clear();
+        self.spare_body = body;
     }
 
     fn header_comment(&self) -> Vec<String> {
@@ -344,16 +352,21 @@ impl crate::transpile::Renderer for Tx<'_> {
         self.flush_comments(r.span.start);
         // Comments before the DEF line belong to no program: carry them into this one.
         let before: Vec<String> = std::mem::take(&mut self.out.lines);
-        let name = if r.synthetic {
-            self.name_program(&r.name, r.name_span)
+        // `.PROGRAM name(params)`, written in place (a file of many routines has many).
+        let mut header = String::with_capacity(64);
+        header.push_str(".PROGRAM ");
+        if r.synthetic {
+            let name = self.name_program(&r.name, r.name_span);
+            header.push_str(&name);
         } else {
-            self.out.names.routine_of(&r.name).unwrap_or("").to_owned()
-        };
+            header.push_str(self.out.names.routine_of(&r.name).unwrap_or(""));
+        }
+        header.push('(');
         self.out.begin_routine(id);
         self.rt = Some(Rt {
             program: ProgramOut {
                 header: String::new(),
-                body: String::new(),
+                body: std::mem::take(&mut self.spare_body),
             },
             accuracy: None,
             scratch: FxHashMap::default(),
@@ -362,26 +375,40 @@ impl crate::transpile::Renderer for Tx<'_> {
         // take a user's.
         self.out.names.declare_locals(&mut self.out.rep, id);
         self.out.names.declare_labels(&mut self.out.rep, id);
-        let mut params: Vec<String> = Vec::new();
         let mut copies: Vec<String> = Vec::new();
-        for p in &r.params {
+        for (i, p) in r.params.iter().enumerate() {
+            if i > 0 {
+                header.push(',');
+            }
             let var = ir.var(p.var);
-            let ty = var.ty.clone();
+            let ty = &var.ty;
             let (n, _) = self.var_name(p.var, var.decl);
-            if p.array > 0 {
-                let sig = format::param_sigil(&format!(".{n}"), &ty);
-                params.push(format!("{sig}[{}]", ",".repeat(p.array - 1)));
-            } else if p.dir == ir::ParamDir::In && p.assigned {
+            if p.dir == ir::ParamDir::In && p.assigned && p.array == 0 {
                 // AS passes by reference: keep the caller's variable unchanged.
                 let copy = self.fresh_local(&format!("{}_in", truncate(&n, 12)));
-                params.push(format::param_sigil(&copy, &ty));
-                copies.push(format::copy_stmt(&format!(".{n}"), &copy, &ty));
+                header.push_str(&format::param_sigil(&copy, ty));
+                copies.push(format::copy_stmt(&format!(".{n}"), &copy, ty));
             } else {
-                params.push(format::param_sigil(&format!(".{n}"), &ty));
+                // `.` and the sigil, as `format::param_sigil` spells a local.
+                header.push('.');
+                header.push_str(if *ty == ir::Ty::Pose {
+                    "&"
+                } else {
+                    format::sigil(ty)
+                });
+                header.push_str(&n);
+                if p.array > 0 {
+                    header.push('[');
+                    for _ in 1..p.array {
+                        header.push(',');
+                    }
+                    header.push(']');
+                }
             }
         }
+        header.push(')');
         if let Some(rt) = &mut self.rt {
-            rt.program.header = format!(".PROGRAM {name}({})", params.join(","));
+            rt.program.header = header;
         }
         self.out.lines = before;
         for c in copies {

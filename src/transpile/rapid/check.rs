@@ -6,6 +6,8 @@
 
 use rustc_hash::FxHashSet;
 
+use crate::aslang::trim_blanks;
+
 /// Instructions the translator writes (called without being defined in the module).
 const INSTRUCTIONS: [&str; 28] = [
     "movej",
@@ -105,14 +107,14 @@ impl Lines {
             spans,
             ..
         } = self;
-        if let Some(list) = raw
-            .trim()
-            .strip_prefix("! External routines (other modules):")
-        {
-            external.extend(list.split(',').map(|s| s.trim().to_ascii_lowercase()));
-        }
-        // Most lines have neither a string nor a comment: no copy for them.
-        let (code, strings) = if raw.contains(['"', '!']) {
+        // Most lines have neither a string nor a comment (one vectorised search says so): no
+        // copy for them, and the header's list of external routines is a comment.
+        let (code, strings) = if memchr::memchr2(b'"', b'!', raw.as_bytes()).is_some() {
+            if let Some(list) =
+                trim_blanks(raw).strip_prefix("! External routines (other modules):")
+            {
+                external.extend(list.split(',').map(|s| s.trim().to_ascii_lowercase()));
+            }
             let (c, s) = split_code(raw);
             (std::borrow::Cow::Owned(c), s)
         } else {
@@ -123,7 +125,7 @@ impl Lines {
                 problems.push(format!("line {n}: a string of {s} characters (at most 80)"));
             }
         }
-        let line = code.trim();
+        let line = trim_blanks(&code);
         if line.is_empty() {
             return;
         }
@@ -216,7 +218,7 @@ impl Lines {
                 }
             }
         }
-        if !line.contains('(') {
+        if memchr::memchr(b'(', line.as_bytes()).is_none() {
             return;
         }
         if matches!(first, "proc" | "func") {
@@ -305,12 +307,11 @@ fn identifiers(code: &str, v: &mut Vec<(usize, usize)>) {
     let b = code.as_bytes();
     let mut i = 0;
     while i < b.len() {
-        if b[i].is_ascii_alphabetic()
-            && (i == 0
-                || !(b[i - 1].is_ascii_alphanumeric() || b[i - 1] == b'_' || b[i - 1] == b'.'))
+        if BYTE[usize::from(b[i])] & ALPHA != 0
+            && (i == 0 || BYTE[usize::from(b[i - 1])] & GLUE == 0)
         {
             let s = i;
-            while i < b.len() && (b[i].is_ascii_alphanumeric() || b[i] == b'_') {
+            while i < b.len() && BYTE[usize::from(b[i])] & WORD != 0 {
                 i += 1;
             }
             v.push((s, i));
@@ -319,6 +320,26 @@ fn identifiers(code: &str, v: &mut Vec<(usize, usize)>) {
         }
     }
 }
+
+/// [`identifiers`]' classes of a byte (a table: it is asked of every byte of every line): an
+/// ASCII letter starts an identifier, letters, digits and `_` continue one, and those and `.`
+/// before a letter glue it to what comes before.
+const ALPHA: u8 = 1;
+const WORD: u8 = 2;
+const GLUE: u8 = 4;
+static BYTE: [u8; 256] = {
+    let mut t = [0u8; 256];
+    let mut c = 0;
+    while c < 256 {
+        let b = c as u8;
+        let word = b.is_ascii_alphanumeric() || b == b'_';
+        t[c] = if b.is_ascii_alphabetic() { ALPHA } else { 0 }
+            | if word { WORD } else { 0 }
+            | if word || b == b'.' { GLUE } else { 0 };
+        c += 1;
+    }
+    t
+};
 
 /// Names directly followed by `(`: function calls (and declarations' parameter lists).
 fn each_call<'c>(code: &'c str, mut f: impl FnMut(&'c str)) {

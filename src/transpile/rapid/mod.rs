@@ -211,6 +211,9 @@ pub struct Tx<'a> {
     /// The motion parameters this routine never sets that a finding already named (one
     /// finding per routine and parameter, not one per motion).
     never_set: Vec<&'static str>,
+    /// The last spooled routine's body buffer, emptied: the next routine's lines go into it
+    /// (as the Kawasaki renderer's).
+    spare_body: String,
 }
 
 impl<'a> Tx<'a> {
@@ -228,6 +231,7 @@ impl<'a> Tx<'a> {
             file: FileId::Src,
             still: false,
             never_set: Vec::new(),
+            spare_body: String::new(),
             intnums: std::collections::BTreeSet::new(),
             traps: std::collections::BTreeMap::new(),
             braked: false,
@@ -335,8 +339,8 @@ impl<'a> Tx<'a> {
         render::Framed { before, after: out }
     }
 
-    /// An ended routine joins the module.
-    fn push_routine(r: RoutineOut, spool: &mut render::Spool) {
+    /// An ended routine joins the module; its body buffer is given back.
+    fn push_routine(r: RoutineOut, spool: &mut render::Spool) -> String {
         spool.push_str("  ");
         spool.push_str(&r.head);
         spool.push('\n');
@@ -349,6 +353,7 @@ impl<'a> Tx<'a> {
         spool.push_str("  ");
         spool.push_str(r.end);
         spool.push('\n');
+        r.body
     }
 
     fn header_comment(&self) -> Vec<String> {
@@ -420,7 +425,7 @@ impl crate::transpile::Renderer for Tx<'_> {
                 head: String::new(),
                 end: "ENDPROC",
                 decls: Vec::new(),
-                body: String::new(),
+                body: std::mem::take(&mut self.spare_body),
             },
             extra: Vec::new(),
         });
@@ -490,7 +495,9 @@ impl crate::transpile::Renderer for Tx<'_> {
             for (n, ty) in &rt.extra {
                 rt.out.decls.push(format!("VAR {ty} {n};"));
             }
-            Tx::push_routine(rt.out, spool);
+            let mut body = Tx::push_routine(rt.out, spool);
+            body.clear();
+            self.spare_body = body;
         }
     }
 
