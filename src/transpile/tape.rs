@@ -356,9 +356,9 @@ mod tests {
                     resolver = Some(first.flow.resolver(id));
                     Seen::Begin(id)
                 }
-                Lowered::Ops(mut ops, stmt) => {
-                    resolver.as_mut().expect("begun").resolve(stmt, &mut ops);
-                    Seen::Ops(ops)
+                Lowered::Ops(ops, stmt) => {
+                    resolver.as_mut().expect("begun").resolve(stmt, ops);
+                    Seen::Ops(std::mem::take(ops))
                 }
                 Lowered::End(_) => Seen::End,
             })

@@ -17,30 +17,40 @@ use crate::transpile::ir::{Stmt, visit};
 
 /// The runs of one statement's ops, in the order they were handed out.
 #[derive(Debug, Default, Clone, PartialEq, Serialize, Deserialize)]
-pub struct Runs(Vec<Run>);
+pub struct Runs {
+    runs: Vec<Run>,
+    /// The runs' paths, one after another (a vector per run was made and dropped for every
+    /// nested run of the first pass).
+    paths: Vec<u32>,
+}
 
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 struct Run {
     /// The block it runs in (`None`: no path reaches it).
     block: Option<u32>,
-    /// From the statement's ops to the slice's block: an op's index, then which of its child
-    /// blocks, and so on (empty: the statement's ops).
-    path: Vec<u32>,
+    /// How many entries of [`Runs::paths`] it takes, after the runs before it: from the
+    /// statement's ops to the slice's block, an op's index, then which of its child blocks,
+    /// and so on (none: the statement's ops).
+    path: u32,
     start: u32,
     len: u32,
 }
 
 impl Runs {
     pub(super) fn clear(&mut self) {
-        self.0.clear();
+        self.runs.clear();
+        self.paths.clear();
     }
 
     /// Each run as a block and its slice of `ops` (the ops the runs were recorded on, as read
     /// back), in order.
     pub(super) fn each(&self, ops: &mut [Stmt], mut f: impl FnMut(Option<BlockId>, &mut [Stmt])) {
-        for r in &self.0 {
+        let mut at = 0;
+        for r in &self.runs {
             let mut block = &mut *ops;
-            for step in r.path.chunks_exact(2) {
+            let path = &self.paths[at..at + r.path as usize];
+            at += r.path as usize;
+            for step in path.chunks_exact(2) {
                 let (i, c) = (step[0] as usize, step[1] as usize);
                 block = visit::children_mut(&mut block[i].op)
                     .into_iter()
@@ -146,9 +156,12 @@ impl<P: Parts> Parts for Record<'_, P> {
             debug_assert_eq!((at - first) % size, 0);
             let start = (at - first) / size;
             debug_assert!(start + ops.len() <= len);
-            self.runs.0.push(Run {
+            self.runs
+                .paths
+                .extend_from_slice(&self.blocks.paths[path as usize..(path + depth) as usize]);
+            self.runs.runs.push(Run {
                 block: b.map(|b| b as u32),
-                path: self.blocks.paths[path as usize..(path + depth) as usize].to_vec(),
+                path: depth,
                 start: start as u32,
                 len: ops.len() as u32,
             });

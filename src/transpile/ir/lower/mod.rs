@@ -740,6 +740,13 @@ impl<'p> Lower<'p> {
         out
     }
 
+    /// [`Lower::stmt`] into `out`, emptied first (a block kept from statement to statement:
+    /// a new one per statement was an allocation and a free each).
+    pub fn stmt_in(&mut self, s: &ast::Stmt, out: &mut Block) {
+        out.clear();
+        self.stmt_into(s, out);
+    }
+
     /// The routine (or top level) begun last ends: the ops of TRIGGERs no motion followed.
     /// The first pass records its temporaries, locals and labels.
     pub fn end_routine(&mut self) -> Block {
