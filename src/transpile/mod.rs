@@ -365,10 +365,10 @@ fn first_pass(
             plan.begin(id);
             tape.begin(id);
         }
-        Lowered::Ops(mut ops, stmt) => {
-            graphs.push(stmt, &mut ops, &mut runs);
-            plan.push(stmt, &ops);
-            tape.ops(&ops, &runs);
+        Lowered::Ops(ops, stmt) => {
+            graphs.push(stmt, ops, &mut runs);
+            plan.push(stmt, ops);
+            tape.ops(ops, &runs);
         }
         Lowered::End(id) => {
             graphs.end();
@@ -587,13 +587,14 @@ impl render::LineCheck for Handed<'_, '_> {
 }
 
 /// What [`each_lowered`] hands out.
-enum Lowered<'s> {
+enum Lowered<'s, 'b> {
     /// A routine begins.
     Begin(ir::RoutineId),
     /// The ops of its next statement (the first: those before its body; the last: those
     /// after), and the statement when they are one (the jump plan and the flow build the
     /// routine's control-flow graph from them).
-    Ops(ir::Block, Option<&'s crate::syntax::ast::Stmt>),
+    /// The ops are lent: the statements' block is used again for the next.
+    Ops(&'b mut ir::Block, Option<&'s crate::syntax::ast::Stmt>),
     End(ir::RoutineId),
 }
 
@@ -610,13 +611,15 @@ fn each_lowered<'p>(
     program: &'p front::Program,
     make: impl FnOnce() -> ir::lower::Lower<'p>,
     ahead: usize,
-    mut f: impl FnMut(Lowered<'_>),
+    mut f: impl FnMut(Lowered<'_, '_>),
 ) -> ir::lower::Lower<'p> {
     let mut make = Some(make);
     let mut slot = None;
     // The ops before the open routine's body: its head's declarations add to them until the
     // first statement or its end.
     let mut head: Option<ir::Block> = None;
+    // Each statement's ops, lowered into the block the last one's were.
+    let mut block = ir::Block::new();
     program.src.each_statement_ahead(false, ahead, |s| {
         let lower = slot.get_or_insert_with(|| (make.take().expect("made once"))());
         match s {
@@ -630,16 +633,17 @@ fn each_lowered<'p>(
                 }
             }
             front::Statement::Stmt(s) => {
-                if let Some(ops) = head.take() {
-                    f(Lowered::Ops(ops, None));
+                if let Some(mut ops) = head.take() {
+                    f(Lowered::Ops(&mut ops, None));
                 }
-                f(Lowered::Ops(lower.stmt(s), Some(s)));
+                lower.stmt_in(s, &mut block);
+                f(Lowered::Ops(&mut block, Some(s)));
             }
             front::Statement::End(i) => {
-                if let Some(ops) = head.take() {
-                    f(Lowered::Ops(ops, None));
+                if let Some(mut ops) = head.take() {
+                    f(Lowered::Ops(&mut ops, None));
                 }
-                f(Lowered::Ops(lower.end_routine(), None));
+                f(Lowered::Ops(&mut lower.end_routine(), None));
                 f(Lowered::End(ir::RoutineId(*i as u32)));
             }
         }
@@ -647,14 +651,16 @@ fn each_lowered<'p>(
     // A program without routines: made now.
     let mut lower = slot.unwrap_or_else(|| (make.take().expect("made once"))());
     if let Some((id, ops)) = lower.begin_top_level() {
+        let mut ops = ops;
         f(Lowered::Begin(id));
-        f(Lowered::Ops(ops, None));
+        f(Lowered::Ops(&mut ops, None));
         program.src.each_statement(true, |s| {
             if let front::Statement::Stmt(s) = s {
-                f(Lowered::Ops(lower.stmt(s), Some(s)));
+                lower.stmt_in(s, &mut block);
+                f(Lowered::Ops(&mut block, Some(s)));
             }
         });
-        f(Lowered::Ops(lower.end_routine(), None));
+        f(Lowered::Ops(&mut lower.end_routine(), None));
         f(Lowered::End(id));
     }
     lower

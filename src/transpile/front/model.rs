@@ -339,7 +339,17 @@ impl<'p> Model<'p> {
             .iter()
             .filter_map(|&id| self.info(id))
             .collect();
-        v.sort_by_key(|v| (v.decl.start, v.name.to_ascii_uppercase()));
+        // By position, then by upper-case name, compared byte by byte (a key made per
+        // comparison was a third of this).
+        v.sort_by(|a, b| {
+            fn up(v: &VarInfo) -> impl Iterator<Item = u8> + '_ {
+                v.name.bytes().map(|c| c.to_ascii_uppercase())
+            }
+            a.decl
+                .start
+                .cmp(&b.decl.start)
+                .then_with(|| up(a).cmp(up(b)))
+        });
         v
     }
 

@@ -1014,8 +1014,9 @@ impl<T> Known<T> {
 pub enum Because {
     /// Nothing in the program sets it before this point.
     NeverSet,
-    /// The routine (named) sets it to a value not known here.
-    SetIn(String),
+    /// The routine (named) sets it to a value not known here (shared: the flow's facts hold
+    /// it after every call of the routine).
+    SetIn(std::sync::Arc<str>),
     /// Paths into this point leave different values.
     PathsDisagree,
     /// A routine that may be called from elsewhere: its caller's value.

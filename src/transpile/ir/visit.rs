@@ -19,6 +19,27 @@ pub fn children(op: &Op) -> Vec<&Block> {
     }
 }
 
+/// Calls `f` on each block nested directly in `op`, in the order of [`children`] (without
+/// gathering them: a walk of every op made a vector per op).
+pub fn each_child<'a>(op: &'a Op, mut f: impl FnMut(&'a Block)) {
+    match op {
+        Op::If { then, els, .. } => {
+            f(then);
+            f(els);
+        }
+        Op::Switch { cases, default, .. } => {
+            for c in cases {
+                f(&c.body);
+            }
+            if let Some((d, _)) = default {
+                f(d);
+            }
+        }
+        Op::Loop { body, .. } => f(body),
+        _ => {}
+    }
+}
+
 /// The blocks nested directly in `op`, to change (the order of [`children`]).
 pub fn children_mut(op: &mut Op) -> Vec<&mut Block> {
     match op {
@@ -39,9 +60,7 @@ pub fn children_mut(op: &mut Op) -> Vec<&mut Block> {
 pub fn each_op<'a>(block: &'a Block, f: &mut impl FnMut(&'a Op)) {
     for s in block {
         f(&s.op);
-        for c in children(&s.op) {
-            each_op(c, f);
-        }
+        each_child(&s.op, |c| each_op(c, f));
     }
 }
 

@@ -2,6 +2,7 @@
 //! the interner that keeps each distinct set of facts once.
 
 use std::hash::{Hash, Hasher};
+use std::sync::Arc;
 
 use rustc_hash::{FxHashMap, FxHasher};
 
@@ -165,8 +166,9 @@ pub(super) struct Summary {
     /// Its exit state: an index into [`Ctx::exits`] (few routines leave distinct facts; a
     /// state per routine was most of the flow's memory on a file of many routines).
     pub(super) exit: u32,
-    /// Inline for most names: one per routine of the file.
-    pub(super) name: compact_str::CompactString,
+    /// Shared by every fact its calls leave unknown (a name made per fact and call was most
+    /// of the interprocedural fixpoint's allocations).
+    pub(super) name: std::sync::Arc<str>,
 }
 
 /// What a call needs to know of the routines of the file.
@@ -178,14 +180,19 @@ pub(super) struct Ctx<'a> {
 }
 
 /// The facts of the caller after a call of a routine with summary `s`.
-fn after_call(caller: &State, exit: &State, name: &str, moves: bool) -> State {
-    fn after<T: Clone>(caller: &Fact<T>, callee: &Fact<T>, name: &str, local: bool) -> Fact<T> {
+fn after_call(caller: &State, exit: &State, name: &Arc<str>, moves: bool) -> State {
+    fn after<T: Clone>(
+        caller: &Fact<T>,
+        callee: &Fact<T>,
+        name: &Arc<str>,
+        local: bool,
+    ) -> Fact<T> {
         match callee {
             Fact::Entry => caller.clone(),
             // A value held in one of the callee's temporaries is not the caller's to read.
-            Fact::Is(_) if local => Fact::Unknown(Because::SetIn(name.to_owned())),
+            Fact::Is(_) if local => Fact::Unknown(Because::SetIn(Arc::clone(name))),
             Fact::Is(v) => Fact::Is(v.clone()),
-            Fact::Unknown(_) => Fact::Unknown(Because::SetIn(name.to_owned())),
+            Fact::Unknown(_) => Fact::Unknown(Because::SetIn(Arc::clone(name))),
         }
     }
     let is_temp = |f: &Fact<ParamValue>| matches!(f, Fact::Is(ParamValue::Temp(_)));

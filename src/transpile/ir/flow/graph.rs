@@ -4,7 +4,7 @@
 
 use super::facts::Effect;
 use super::ops::{Parts, Places, effects, feed};
-use super::runs::{Record, Runs};
+use super::runs::{Blocks, Record, Runs};
 use crate::cfg::{self, BlockId, EdgeKind};
 use crate::syntax::ast;
 use crate::transpile::ir::{Block, RoutineId, Stmt};
@@ -103,6 +103,10 @@ pub struct Graphs {
     /// By routine id.
     pub(super) routines: Vec<Graph>,
     open: Option<Open>,
+    /// The last routine's sink and scratch, to be used again by the next one.
+    spare: Option<(Places, Vec<Effect>)>,
+    /// Scratch: the blocks of the statement being fed.
+    blocks: Blocks,
 }
 
 /// The routine being fed.
@@ -135,12 +139,16 @@ impl Parts for Append<'_> {
 impl Graphs {
     /// Routine `id` begins.
     pub fn begin(&mut self, id: RoutineId) {
+        let (places, scratch) = match self.spare.take() {
+            Some((places, scratch)) => (Places::again(places), scratch),
+            None => (Places::new(true), Vec::new()),
+        };
         self.open = Some(Open {
             id,
-            builder: cfg::Builder::new(Places::new(true)),
+            builder: cfg::Builder::new(places),
             graph: Graph::default(),
             head: false,
-            scratch: Vec::new(),
+            scratch,
         });
     }
 
@@ -154,7 +162,7 @@ impl Graphs {
                 graph: &mut o.graph,
                 scratch: &mut o.scratch,
             };
-            let mut recorded = Record::new(ops, &mut parts, runs);
+            let mut recorded = Record::new(ops, &mut self.blocks, &mut parts, runs);
             feed(&mut o.builder, &mut o.head, stmt, ops, &mut recorded);
         }
     }
@@ -165,23 +173,31 @@ impl Graphs {
             id,
             builder,
             mut graph,
+            scratch,
             ..
         }) = self.open.take()
         else {
             return;
         };
-        let places = builder.finish();
+        let mut places = builder.finish();
         graph.ranges.resize(places.blocks, (0, 0));
-        graph.edges = places.edges.unwrap_or_default();
+        graph.edges = places.edges.take().unwrap_or_default();
         graph.effects.shrink_to_fit();
         graph.ranges.shrink_to_fit();
         graph.edges.shrink_to_fit();
         graph.callees.sort_unstable();
         graph.callees.dedup();
+        self.spare = Some((places, scratch));
         let i = id.0 as usize;
-        if self.routines.len() <= i {
-            self.routines.resize_with(i + 1, Graph::empty);
+        // Routines usually end in the order of their ids: the next one is pushed (an empty
+        // graph made for its place and replaced at once was a tenth of this).
+        if self.routines.len() < i {
+            self.routines.resize_with(i, Graph::empty);
         }
-        self.routines[i] = graph;
+        if self.routines.len() == i {
+            self.routines.push(graph);
+        } else {
+            self.routines[i] = graph;
+        }
     }
 }

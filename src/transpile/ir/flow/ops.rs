@@ -87,6 +87,23 @@ impl Places {
         }
     }
 
+    /// A sink like `Places::new(true)` that keeps the maps of `old`, a finished graph's
+    /// (a new pair per routine grew them again on every routine of a file of many).
+    pub(super) fn again(old: Places) -> Places {
+        let Places {
+            mut at, mut after, ..
+        } = old;
+        at.clear();
+        after.clear();
+        Places {
+            blocks: 0,
+            edges: Some(Vec::new()),
+            last_next: None,
+            at,
+            after,
+        }
+    }
+
     /// Where the own ops of `s` run.
     pub(super) fn at(&self, s: &ast::Stmt) -> Option<BlockId> {
         self.at.get(&key(s)).copied().flatten()

@@ -258,11 +258,11 @@ fn walk(
                 continue;
             };
             let mut s = s.clone();
-            let mut at = Vec::new();
+            // Each call's facts interned as the run meets it (gathered first, a block of
+            // many calls grew a vector of states).
             s.run(g.graph.block(b as usize), ctx, &mut |r, st| {
-                at.push((r, st.clone()))
+                calls.push((r, ix.id(st.clone())));
             });
-            calls.extend(at.into_iter().map(|(r, st)| (r, ix.id(st))));
         }
     }
     let exit = ix.join(ins[RETURN], outs[END]);
@@ -287,7 +287,7 @@ pub fn solve(graphs: Graphs, program: &Program) -> Solution {
     let mut routines = graphs.routines;
     let n = routines.len().max(program.routines.len());
     routines.resize_with(n, Graph::empty);
-    let names: Vec<compact_str::CompactString> = (0..n)
+    let names: Vec<std::sync::Arc<str>> = (0..n)
         .map(|i| {
             program
                 .routines
