@@ -24,23 +24,31 @@ pub fn write_with<W: Write + ?Sized>(
     }
     let index = LineIndex::new(&report.text);
     let chunks = report.diagnostics.chunks(CHUNK);
+    let mut text = Rendered::default();
     if chunks.len() < 4 {
         // A few: here, as they are rendered.
-        return chunks
-            .into_iter()
-            .try_for_each(|c| write_chunk(out, render_chunk(report, &index, c, renderer)));
+        for c in chunks {
+            render_chunk(report, &index, c, renderer, &mut text);
+            text.write_to(out)?;
+        }
+        return Ok(());
     }
     // Many findings (a large translation has one per renamed name): every other chunk is
-    // rendered on a second thread, a bounded number ahead, and written here in order.
+    // rendered on a second thread, a bounded number ahead, and written here in order. Its
+    // texts go back to it to be filled again: freed here, each would be freed under the lock
+    // of the thread's malloc arena, which that thread's rendering takes at every allocation.
     std::thread::scope(|scope| {
-        let (send, receive) = std::sync::mpsc::sync_channel::<Vec<String>>(2);
+        let (send, receive) = std::sync::mpsc::sync_channel::<Rendered>(2);
+        let (give_back, given_back) = std::sync::mpsc::channel::<Rendered>();
         let index = &index;
         let helper = std::thread::Builder::new()
             .name("findings".into())
             .spawn_scoped(scope, move || {
                 for c in report.diagnostics.chunks(CHUNK).skip(1).step_by(2) {
+                    let mut text = given_back.try_recv().unwrap_or_default();
+                    render_chunk(report, index, c, renderer, &mut text);
                     // Stops when the writer failed.
-                    if send.send(render_chunk(report, index, c, renderer)).is_err() {
+                    if send.send(text).is_err() {
                         break;
                     }
                 }
@@ -48,18 +56,28 @@ pub fn write_with<W: Write + ?Sized>(
         // No thread to be had: every chunk here.
         let mut helped = helper.ok().map(|_| receive);
         for (i, c) in report.diagnostics.chunks(CHUNK).enumerate() {
-            let text = match (&helped, i % 2) {
+            let theirs = match (&helped, i % 2) {
                 (Some(r), 1) => match r.recv() {
-                    Ok(text) => text,
+                    Ok(theirs) => Some(theirs),
                     // The helper panicked: its panic is the scope's.
                     Err(_) => {
                         helped = None;
-                        render_chunk(report, index, c, renderer)
+                        None
                     }
                 },
-                _ => render_chunk(report, index, c, renderer),
+                _ => None,
             };
-            write_chunk(out, text)?;
+            match theirs {
+                Some(theirs) => {
+                    theirs.write_to(out)?;
+                    // The helper has stopped only when it is done.
+                    let _ = give_back.send(theirs);
+                }
+                None => {
+                    render_chunk(report, index, c, renderer, &mut text);
+                    text.write_to(out)?;
+                }
+            }
         }
         Ok(())
     })
@@ -68,25 +86,42 @@ pub fn write_with<W: Write + ?Sized>(
 /// Findings rendered together (on one thread).
 const CHUNK: usize = 256;
 
-/// The diagnostics `ds` of `report`, each rendered.
+/// A chunk of rendered diagnostics, each followed by a blank line: one text, and where each
+/// ends in it (reused from chunk to chunk).
+#[derive(Default)]
+struct Rendered {
+    text: String,
+    ends: Vec<usize>,
+}
+
+impl Rendered {
+    /// A write per diagnostic: no write carries many (see `diag::render`'s tests).
+    fn write_to<W: Write + ?Sized>(&self, out: &mut W) -> io::Result<()> {
+        let mut start = 0;
+        for &end in &self.ends {
+            out.write_all(&self.text.as_bytes()[start..end])?;
+            start = end;
+        }
+        Ok(())
+    }
+}
+
+/// The diagnostics `ds` of `report`, each rendered and followed by a blank line, into `out`
+/// (what it held before is dropped).
 fn render_chunk(
     report: &FileReport,
     index: &LineIndex,
     ds: &[Diagnostic],
     renderer: &Renderer,
-) -> Vec<String> {
-    ds.iter()
-        .map(|d| render_one(report, index, d, renderer))
-        .collect()
-}
-
-/// Each rendered diagnostic, followed by a blank line (a write each: see the module tests).
-fn write_chunk<W: Write + ?Sized>(out: &mut W, chunk: Vec<String>) -> io::Result<()> {
-    for d in chunk {
-        out.write_all(d.as_bytes())?;
-        out.write_all(b"\n\n")?;
+    out: &mut Rendered,
+) {
+    out.text.clear();
+    out.ends.clear();
+    for d in ds {
+        out.text.push_str(&render_one(report, index, d, renderer));
+        out.text.push_str("\n\n");
+        out.ends.push(out.text.len());
     }
-    Ok(())
 }
 
 fn render_one(
