@@ -279,15 +279,9 @@ fn translate(
     )?;
     drop(model);
     // The tally ran at least once (it took the program's rest); if not, the rest goes here.
-    let (src, dat) = match (sources, rest) {
-        (Some(s), _) => s,
-        (None, Some(rest)) => into_sources(rest),
-        (None, None) => {
-            return Err(std::io::Error::other(
-                "internal: the program's texts were lost after the tally",
-            ));
-        }
-    };
+    let (src, dat) = sources
+        .or_else(|| rest.map(into_sources))
+        .ok_or_else(|| std::io::Error::other("internal: the program's texts were lost"))?;
     report.trim_spans(front::report::FileId::Src, &src.text);
     if let Some(dat) = &dat {
         report.trim_spans(front::report::FileId::Dat, &dat.text);
