@@ -528,18 +528,8 @@ fn tail<T: Send>(
                     }
                     out
                 },
-                // A line has no line break: each ends in one in its chunk (`split_terminator`
-                // with the memchr crate's search, which is vectorised).
-                |chunk: &String| {
-                    let mut from = 0;
-                    for end in memchr::memchr_iter(b'\n', chunk.as_bytes()) {
-                        check.line(&chunk[from..end]);
-                        from = end + 1;
-                    }
-                    if from < chunk.len() {
-                        check.line(&chunk[from..]);
-                    }
-                },
+                // A line has no line break: each ends in one in its chunk.
+                |chunk: &String| render::each_line(chunk, |l| check.line(l)),
             )
         },
     );
@@ -644,8 +634,7 @@ fn each_lowered<'p>(
     });
     // A program without routines: made now.
     let mut lower = slot.unwrap_or_else(|| (make.take().expect("made once"))());
-    if let Some((id, ops)) = lower.begin_top_level() {
-        let mut ops = ops;
+    if let Some((id, mut ops)) = lower.begin_top_level() {
         f(Lowered::Begin(id));
         f(Lowered::Ops(&mut ops, None));
         program.src.each_statement(true, |s| {

@@ -601,12 +601,12 @@ impl crate::transpile::Renderer for Tx<'_> {
             head.push('\n');
         }
         f.insert_str(0, &head);
-        // Its lines (`str::lines`, found with memchr's vectorised search) without trailing
-        // blanks, into one text spooled at once (a line at a time, the spool's calls and the
-        // line search were a third of ending a routine).
+        // Its lines without trailing blanks (a `\r` too, as `str::lines` took it), into one
+        // text spooled at once (a line at a time, the spool's calls and the line search were a
+        // third of ending a routine).
         let mut text = String::with_capacity(f.len() + 3);
         text.push_str("\n\n");
-        let mut line = |l: &str| {
+        crate::transpile::render::each_line(&f, |l| {
             let l = l.trim_end();
             // As the rest of the script: a guard, not a translation.
             match l.is_ascii() {
@@ -614,15 +614,7 @@ impl crate::transpile::Renderer for Tx<'_> {
                 false => text.push_str(&format::ascii_lines(l.to_owned())),
             }
             text.push('\n');
-        };
-        let mut from = 0;
-        for end in memchr::memchr_iter(b'\n', f.as_bytes()) {
-            line(&f[from..end]);
-            from = end + 1;
-        }
-        if from < f.len() {
-            line(&f[from..]);
-        }
+        });
         spool.push_str(&text);
         self.out.depth = 0;
     }

@@ -5,22 +5,13 @@ use super::{Block, Expr, ExprKind, IoPlace, LoopKind, Op, Place};
 
 /// The blocks nested directly in `op`.
 pub fn children(op: &Op) -> Vec<&Block> {
-    match op {
-        Op::If { then, els, .. } => vec![then, els],
-        Op::Switch { cases, default, .. } => {
-            let mut v: Vec<&Block> = cases.iter().map(|c| &c.body).collect();
-            if let Some((d, _)) = default {
-                v.push(d);
-            }
-            v
-        }
-        Op::Loop { body, .. } => vec![body],
-        _ => Vec::new(),
-    }
+    let mut v = Vec::new();
+    each_child(op, |b| v.push(b));
+    v
 }
 
-/// Calls `f` on each block nested directly in `op`, in the order of [`children`] (without
-/// gathering them: a walk of every op made a vector per op).
+/// Calls `f` on each block nested directly in `op`, in order (what [`children`] gathers; a
+/// walk of every op without a vector per op).
 pub fn each_child<'a>(op: &'a Op, mut f: impl FnMut(&'a Block)) {
     match op {
         Op::If { then, els, .. } => {

@@ -30,13 +30,18 @@ pub fn with_sigil(name: &str, ty: &Ty) -> String {
 
 /// `name` as a parameter in a `.PROGRAM` header or a `CALL` argument: poses get `&`.
 pub fn param_sigil(name: &str, ty: &Ty) -> String {
-    if *ty == Ty::Pose {
-        match name.strip_prefix('.') {
-            Some(bare) => format!(".&{bare}"),
-            None => format!("&{name}"),
-        }
-    } else {
-        with_sigil(name, ty)
+    let s = parameter_sigil(ty);
+    match name.strip_prefix('.') {
+        Some(bare) => format!(".{s}{bare}"),
+        None => format!("{s}{name}"),
+    }
+}
+
+/// The sigil of a type as a parameter: `&` poses (passed by reference), else [`sigil`]'s.
+pub fn parameter_sigil(ty: &Ty) -> &'static str {
+    match ty {
+        Ty::Pose => "&",
+        _ => sigil(ty),
     }
 }
 

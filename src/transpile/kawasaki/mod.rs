@@ -391,11 +391,7 @@ impl crate::transpile::Renderer for Tx<'_> {
             } else {
                 // `.` and the sigil, as `format::param_sigil` spells a local.
                 header.push('.');
-                header.push_str(if *ty == ir::Ty::Pose {
-                    "&"
-                } else {
-                    format::sigil(ty)
-                });
+                header.push_str(format::parameter_sigil(ty));
                 header.push_str(&n);
                 if p.array > 0 {
                     header.push('[');

@@ -761,6 +761,19 @@ pub fn name_map_lines(names: &Namer<'_>, lead: &str) -> Vec<String> {
     v
 }
 
+/// Each line of `text` without its line break, in order: `str::split_terminator('\n')` with
+/// the memchr crate's vectorised search (the output is scanned line by line, twice).
+pub fn each_line<'t>(text: &'t str, mut f: impl FnMut(&'t str)) {
+    let mut from = 0;
+    for end in memchr::memchr_iter(b'\n', text.as_bytes()) {
+        f(&text[from..end]);
+        from = end + 1;
+    }
+    if from < text.len() {
+        f(&text[from..]);
+    }
+}
+
 /// `span` widened to whole source lines.
 pub fn whole_lines(text: &str, span: Span) -> Span {
     let start = (span.start as usize).min(text.len());

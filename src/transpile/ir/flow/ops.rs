@@ -96,11 +96,9 @@ impl Places {
         at.clear();
         after.clear();
         Places {
-            blocks: 0,
-            edges: Some(Vec::new()),
-            last_next: None,
             at,
             after,
+            ..Places::new(true)
         }
     }
 
