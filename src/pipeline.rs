@@ -2,7 +2,9 @@
 //! translation's parses feed the outline and the lowering this way, the second pass's
 //! reading of the first pass's ops (`transpile/tape.rs`) feeds the renderer, and `check`'s
 //! parse of a big file feeds its first pass (`syntax::parse_pieces_ahead`). [`beside`] runs
-//! two pieces of work at once (the translation's coverage beside its text's check).
+//! two pieces of work at once (the translation's flow solve beside its renderer's making, its
+//! coverage beside its text's check); [`release_free_memory`] gives a finished thread's
+//! freed working space back.
 
 /// What [`pipelined`]'s producer hands on: into the batch of the moment, or (without a second
 /// thread) straight to the consumer.
@@ -170,6 +172,18 @@ pub fn beside<A: Send, B>(
         };
         (a, b)
     })
+}
+
+/// Gives the allocator's free memory back to the system (glibc: every arena's free pages;
+/// elsewhere nothing). Memory a thread freed stays in its own arena, where another thread's
+/// allocations never reuse it: after a thread's large working space is freed, that is
+/// memory the process holds and no one uses.
+pub fn release_free_memory() {
+    #[cfg(all(target_os = "linux", target_env = "gnu"))]
+    // SAFETY: `malloc_trim` only reads and changes the allocator's own state, under its locks.
+    unsafe {
+        libc::malloc_trim(0);
+    }
 }
 
 /// Work for a thread that may not be had: the thread takes it, or the caller does when none

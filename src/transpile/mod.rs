@@ -197,7 +197,8 @@ pub fn transpile_to(
 /// largest statement, not the program): the first pass ([`first_pass`]) records the program
 /// model without the routines' bodies and each routine's control-flow graph with its blocks'
 /// motion-fact effects, and writes each statement's ops to `tape` ([`tape`]); the flow facts
-/// are solved on the graphs; the second pass reads the ops back, resolves their motions and
+/// are solved on the graphs (on a thread of their own while the renderer is made and started
+/// here); the second pass reads the ops back, resolves their motions and
 /// hands them to the target's renderer (the reading on a thread of its own, the renderer on
 /// this one: [`rendered`]).
 fn translate(
@@ -220,7 +221,7 @@ fn translate(
         model,
         vision,
         replay,
-        flow,
+        graphs,
         plan,
         tape,
     } = first_pass(backend, src, dat, options, tape);
@@ -232,9 +233,27 @@ fn translate(
     for f in std::mem::take(&mut model.findings) {
         report.approximate(f.file, f.span, f.message, f.help);
     }
-    let make = || backend.renderer(&program, &model, vision.as_ref(), options, report);
+    // The flow facts are solved on a thread of their own while the renderer is made and
+    // started here: both only read the model, and the solution is first needed by the second
+    // pass (each was a stretch where only one thread worked). The solve's working space is
+    // freed in that thread's arena, where this thread's allocations cannot reuse it: it is
+    // given back to the system before the second pass (without, the renderer's growth in the
+    // second pass came on top of it: 50 MB more at the peak of 50 MB of many routines).
+    let (flow, renderer) = crate::pipeline::beside(
+        true,
+        || {
+            let flow = ir::flow::solve(graphs, &model);
+            crate::pipeline::release_free_memory();
+            flow
+        },
+        || {
+            let mut renderer = backend.renderer(&program, &model, vision.as_ref(), options, report);
+            renderer.start();
+            renderer
+        },
+    );
     let mut read = Ok(());
-    let (spool, framed, mut report, produced) = rendered(make, spool, |to| {
+    let (spool, framed, mut report, produced) = rendered(renderer, spool, |to| {
         let (flow, plan) = (flow, plan);
         read = second_pass(backend, &flow, &plan, &mut tape, to);
         // What only the pass needed goes while the renderer finishes.
@@ -327,14 +346,15 @@ struct First {
     vision: Option<VisionServer>,
     /// How to lower the statements again as the first pass did (only tests still do).
     replay: ir::lower::Replay,
-    flow: ir::flow::Solution,
+    /// Each routine's control-flow graph, the flow facts to be solved on.
+    graphs: ir::flow::Graphs,
     plan: ir::goto::Plan,
     /// The statements' ops and runs, to be read back.
     tape: std::io::Result<tape::Reader>,
 }
 
 /// Loads the program, lowers its statements once (the model, each routine's graph and jump
-/// plan, the ops written to `tape`) and solves the flow facts.
+/// plan, the ops written to `tape`); the caller solves the flow facts on the graphs.
 fn first_pass(
     backend: &'static render::Backend,
     src: Source,
@@ -377,13 +397,12 @@ fn first_pass(
     } = first.finish();
     // The first pass lowered the data lists' values: their trees go.
     program.forget_data_values();
-    let flow = ir::flow::solve(graphs, &model);
     First {
         program,
         model,
         vision,
         replay,
-        flow,
+        graphs,
         plan,
         tape: tape.finish(),
     }
@@ -452,7 +471,8 @@ type Rendered = (
     Vec<crate::diag::Span>,
 );
 
-/// Renders what `produce` hands out, in order, with the renderer `make` makes, into `spool`.
+/// Renders what `produce` hands out, in order, with `renderer` (made and started), into
+/// `spool`.
 ///
 /// `produce` runs on a thread of its own, a bounded number of batches ahead of the renderer,
 /// which runs here: the second pass's lowering and motion resolution and the rendering were
@@ -461,23 +481,21 @@ type Rendered = (
 /// before; each batch goes back to be dropped by the thread that made its blocks (glibc frees
 /// a block another thread's arena allocated under that arena's lock, see
 /// [`crate::pipeline::pipelined`]). Without a thread, it all runs here.
-fn rendered<'a>(
-    make: impl FnOnce() -> Box<dyn Renderer + 'a>,
+fn rendered(
+    renderer: Box<dyn Renderer + '_>,
     spool: render::Spool,
     produce: impl FnOnce(&mut dyn FnMut(Render)) + Send,
 ) -> Rendered {
-    rendered_on(true, make, spool, produce)
+    rendered_on(true, renderer, spool, produce)
 }
 
 /// [`rendered`], `produce` on a thread of its own when `thread` and one can be had.
-fn rendered_on<'a>(
+fn rendered_on(
     thread: bool,
-    make: impl FnOnce() -> Box<dyn Renderer + 'a>,
+    mut renderer: Box<dyn Renderer + '_>,
     mut spool: render::Spool,
     produce: impl FnOnce(&mut dyn FnMut(Render)) + Send,
 ) -> Rendered {
-    let mut renderer = make();
-    renderer.start();
     crate::pipeline::pipelined_on(
         thread,
         |sink| produce(&mut |r| sink.push(r)),
@@ -990,11 +1008,10 @@ mod render_thread_tests {
     #[test]
     fn the_render_thread_renders_what_rendering_here_does() {
         let runs = [true, false].map(|thread| {
-            let (spool, framed, report, produced) = rendered_on(
-                thread,
-                || Box::new(Record::default()),
-                render::Spool::memory(),
-                |to| {
+            let mut renderer: Box<dyn Renderer> = Box::new(Record::default());
+            renderer.start();
+            let (spool, framed, report, produced) =
+                rendered_on(thread, renderer, render::Spool::memory(), |to| {
                     for i in 0..2000u32 {
                         to(Render::Begin(ir::RoutineId(i)));
                         for _ in 0..i % 5 {
@@ -1002,8 +1019,7 @@ mod render_thread_tests {
                         }
                         to(Render::End);
                     }
-                },
-            );
+                });
             let text = spool.into_text(framed, &mut render::NoCheck).unwrap();
             let [findings, _] = report.into_diagnostics();
             let findings: Vec<String> = findings.iter().map(|d| d.message.to_string()).collect();

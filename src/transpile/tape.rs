@@ -331,13 +331,14 @@ mod tests {
         let backend = render::backend(target);
         let options = crate::transpile::Options::default();
         let first = first_pass(backend, src, dat, &options, Writer::memory());
+        let flow = ir::flow::solve(first.graphs, &first.model);
         let mut tape = first.tape.expect("a tape in memory");
         let mut replayed = Vec::new();
         let mut resolver = None;
         while let Some(e) = tape.next().expect("the tape reads back") {
             replayed.push(match e {
                 Event::Begin(id) => {
-                    resolver = Some(first.flow.resolver(id));
+                    resolver = Some(flow.resolver(id));
                     Seen::Begin(id)
                 }
                 Event::Ops(mut ops, runs) => {
@@ -353,7 +354,7 @@ mod tests {
         each_lowered(&first.program, second, 1, |e| {
             fresh.push(match e {
                 Lowered::Begin(id) => {
-                    resolver = Some(first.flow.resolver(id));
+                    resolver = Some(flow.resolver(id));
                     Seen::Begin(id)
                 }
                 Lowered::Ops(ops, stmt) => {
