@@ -177,6 +177,26 @@ fn first_blank_word(text: &str, ascii: bool) -> &str {
     text.split_whitespace().next().unwrap_or("")
 }
 
+/// The first words of a program's line that the check reads, upper case.
+const KEYWORDS: [&str; 17] = [
+    "IF", "DO", "END", "FOR", "ANY", "ELSE", "CASE", "ANY:", "GOTO", "CALL", "WHILE", "UNTIL",
+    "SCASE", "VALUE", "SVALUE", "C1MOVE", "C2MOVE",
+];
+
+/// `word` upper case when it is one of the [`KEYWORDS`] (any case), else empty: all the check
+/// asks of a line's first word (upper-case copies of every line's head and first word were a
+/// tenth of the check's instructions).
+fn keyword(word: &str) -> &'static str {
+    if !(2..=6).contains(&word.len()) {
+        return "";
+    }
+    KEYWORDS
+        .iter()
+        .find(|k| k.len() == word.len() && k.eq_ignore_ascii_case(word))
+        .copied()
+        .unwrap_or("")
+}
+
 /// The statement heads whose check reads more of the line than its first word.
 const BLOCK_HEADS: [&str; 6] = ["IF", "FOR", "WHILE", "DO", "CASE", "SCASE"];
 
@@ -238,10 +258,21 @@ impl Checker {
         if code.is_empty() {
             return;
         }
-        let mut head = CompactString::from(first_word(code, ascii));
+        let word = first_word(code, ascii);
+        let is = |h: &str| word.eq_ignore_ascii_case(h);
+        let section = is(".END") || is(".PROGRAM") || DATA_SECTIONS.iter().any(|s| is(s));
+        // A line of a program or of a data section that heads no section (nearly every line):
+        // no upper-case copy of its head is made.
+        if !section {
+            match &self.state {
+                State::Program(_) => return self.program_line(n, code, ascii, quoted),
+                State::Data { kind, .. } => return self.data_line(n, kind, code),
+                State::Outside => {}
+            }
+        }
+        let mut head = CompactString::from(word);
         head.make_ascii_uppercase();
         let head = head.as_str();
-        let section = head == ".PROGRAM" || head == ".END" || DATA_SECTIONS.contains(&head);
         match &mut self.state {
             State::Outside => self.outside(n, code, head),
             State::Data { kind, line } => {
@@ -380,26 +411,26 @@ impl Checker {
             code
         };
         self.long_names_in(n, bare);
-        let mut first = CompactString::from(first_blank_word(bare, ascii));
-        first.make_ascii_uppercase();
+        let first = keyword(first_blank_word(bare, ascii));
         // Only block heads read the rest of the line's words: the upper-case copy and the
         // word scan are made for them alone (most lines are moves and assignments).
         let mut upper = std::mem::take(&mut self.upper);
         upper.clear();
-        if BLOCK_HEADS.contains(&first.as_str()) {
+        if BLOCK_HEADS.contains(&first) {
             upper.push_str(bare);
             upper.make_ascii_uppercase();
         }
-        let colon = matches!(first.as_str(), "VALUE" | "SVALUE" | "ANY" | "ANY:")
-            && bare.trim_end().ends_with(':');
-        self.program_words(n, code, &first, &upper, colon);
+        let colon =
+            matches!(first, "VALUE" | "SVALUE" | "ANY" | "ANY:") && bare.trim_end().ends_with(':');
+        self.program_words(n, code, first, &upper, colon);
         self.upper = upper;
         self.bare = buf;
     }
 
-    /// A line of a program: `first` its first word without strings in upper case, `upper` all
-    /// its words so when `first` is one of [`BLOCK_HEADS`] (empty otherwise), `colon` whether
-    /// it ends in `:` without strings (asked of the case heads only).
+    /// A line of a program: `first` its first word without strings in upper case when it is one
+    /// of the [`KEYWORDS`] (empty otherwise), `upper` all its words so when `first` is one of
+    /// [`BLOCK_HEADS`] (empty otherwise), `colon` whether it ends in `:` without strings (asked
+    /// of the case heads only).
     fn program_words(&mut self, n: usize, code: &str, first: &str, upper: &str, colon: bool) {
         let (mut last_word, mut count, mut has_to) = ("", 0, false);
         for w in upper.split_whitespace() {

@@ -172,3 +172,19 @@ fn strings_and_non_ascii_blanks_are_read_as_without_them() {
         ["3: VALUE without `:`", "8: non-ASCII character"]
     );
 }
+
+#[test]
+fn heads_and_keywords_are_read_in_any_case() {
+    // Section heads and statement heads in lower and mixed case, local variables' lines (which
+    // start with a dot, as section heads do), a word that only starts like a keyword: read as
+    // their upper-case forms are, the messages naming the upper-case head.
+    let text = ".Program a()\n  .x = 1\n  .end_x = 2\n  if .x Then\n  For .i = 1 to 2\n  enD\n  Else\n  end\n  case .x of\n  value 1:\n  Any :\n  end\n  do\n  until .x\n  iffy\n  Value 2:\n  .Reals\n.end\n.reals\nx = 1\n.Trans\n.END\n";
+    assert_eq!(
+        messages(text),
+        [
+            "16: VALUE outside a CASE block",
+            "17: `.REALS` inside program `a` (missing .END?)",
+            "21: `.TRANS` inside the .REALS section of line 19 (missing .END?)",
+        ]
+    );
+}
