@@ -339,6 +339,10 @@ pub struct Namer<'a> {
     rules: &'static NameRules,
     ir: &'a ir::Program,
     routines: Namespace,
+    /// Each routine's target name by id, as [`Namer::declare_program`] gave it (`None`: not
+    /// named there, a synthetic routine): a routine is named at its `DEF` and every call, and a
+    /// probe of a map of every routine's name missed the cache ever more often.
+    routine_names: Vec<Option<CompactString>>,
     globals: Namespace,
     /// The namespaces of the routine being rendered (and of any other asked about since it
     /// began): a routine's are dropped when the next one is declared, so a file of many
@@ -375,6 +379,7 @@ impl<'a> Namer<'a> {
             rules,
             ir,
             routines: Namespace::default(),
+            routine_names: Vec::new(),
             globals: Namespace::default(),
             locals: FxHashMap::default(),
             labels: FxHashMap::default(),
@@ -423,6 +428,15 @@ impl<'a> Namer<'a> {
         self.routines.get(krl)
     }
 
+    /// [`Namer::routine_of`] the name of routine `id` of the program (a routine's name never
+    /// changes once given: the one [`Namer::declare_program`] kept, else a lookup).
+    pub fn routine_of_id(&self, id: RoutineId) -> Option<&str> {
+        match self.routine_names.get(id.0 as usize) {
+            Some(Some(n)) => Some(n.as_str()),
+            _ => self.routine_of(&self.ir.routine(id).name),
+        }
+    }
+
     /// Names what the program declares before anything is rendered — its routines, then its
     /// globals, in declaration order — so TR003 points at declarations and names made up later
     /// never take a user's.
@@ -430,10 +444,14 @@ impl<'a> Namer<'a> {
         let ir = self.ir;
         // Every routine is named here: the maps are grown once, not doubled again and again.
         self.routines.reserve(ir.routines.len());
+        self.routine_names.reserve_exact(ir.routines.len());
         for r in &ir.routines {
-            if !r.synthetic {
-                self.routine(rep, &r.name, r.name_span);
-            }
+            let name = (!r.synthetic).then(|| {
+                let (name, renamed) = self.routines.name(&r.name, self.rules);
+                self.note(rep, self.rules.routine, FileId::Src, r.name_span, renamed);
+                name
+            });
+            self.routine_names.push(name);
         }
         self.declare_globals(rep);
     }
@@ -714,6 +732,62 @@ mod tests {
             assert_eq!(got, want, "{i}");
             plain.insert(got);
         }
+    }
+
+    /// A routine's name by its id is the one its name looks up: clashing and repeated names
+    /// too, and a synthetic routine named only later.
+    #[test]
+    fn routine_names_by_id_are_those_by_name() {
+        let routine = |name: &str, synthetic: bool| ir::Routine {
+            name: name.into(),
+            name_span: Span::new(0, 1),
+            kind: ir::RoutineKind::Def,
+            ret: None,
+            params: Vec::new(),
+            result: None,
+            locals: Vec::new(),
+            temps: Vec::new(),
+            labels: Vec::new(),
+            closed: true,
+            header_error: None,
+            duplicate_param: None,
+            span: Span::new(0, 1),
+            end: 1,
+            synthetic,
+        };
+        let program = ir::Program {
+            routines: vec![
+                routine("a$b", false),
+                routine("a_b", false),
+                routine("A$B", false),
+                routine("speed", false),
+                routine("top", true),
+            ],
+            ..ir::Program::default()
+        };
+        let rules: &'static NameRules = Box::leak(Box::new(rules()));
+        let mut names = Namer::new(rules, &program);
+        let mut rep = Report::default();
+        names.declare_program(&mut rep);
+        assert_eq!(names.routine_of_id(RoutineId(4)), None);
+        names.routine(&mut rep, "top", Span::new(0, 1));
+        let by_id: Vec<_> = (0..5).map(|i| names.routine_of_id(RoutineId(i))).collect();
+        let by_name: Vec<_> = program
+            .routines
+            .iter()
+            .map(|r| names.routine_of(&r.name))
+            .collect();
+        assert_eq!(by_id, by_name);
+        assert_eq!(
+            by_id,
+            [
+                Some("a_b"),
+                Some("a_b2"),
+                Some("a_b"),
+                Some("speed_"),
+                Some("top")
+            ]
+        );
     }
 
     /// A routine's names are dropped when the next routine is declared; asked again, they
