@@ -632,7 +632,11 @@ impl crate::transpile::Renderer for Tx<'_> {
         let mut last_empty = false;
         let mut put = |l: &str| {
             last_empty = l.is_empty();
-            let l = l.trim_end();
+            // A line ending in a visible ASCII character has nothing to trim.
+            let l = match l.as_bytes().last() {
+                Some(b) if b.is_ascii_graphic() => l,
+                _ => l.trim_end(),
+            };
             // As the rest of the script: a guard, not a translation.
             match l.is_ascii() {
                 true => text.push_str(l),

@@ -72,9 +72,15 @@ impl Reason {
 
 /// The target spelling of `krl` under `rules`, and why it differs (beyond case).
 pub fn target_name(krl: &str, rules: &NameRules) -> (String, Vec<Reason>) {
+    let (name, reasons) = spelled(krl, rules);
+    (name.into_string(), reasons)
+}
+
+/// [`target_name`] inline (a name of up to 24 bytes is no allocation).
+fn spelled(krl: &str, rules: &NameRules) -> (CompactString, Vec<Reason>) {
     let mut reasons = Vec::new();
     // Every character becomes one ASCII byte: the name is ASCII, cut anywhere.
-    let mut name = String::with_capacity(krl.len() + 1);
+    let mut name = CompactString::with_capacity(krl.len() + 1);
     let mut replaced = false;
     for c in krl.chars() {
         if c.is_ascii_alphanumeric() || c == '_' {
@@ -166,10 +172,7 @@ impl Namespace {
         }
         let (mut target, mut reasons) = match spellings {
             Some(s) => s.spell(&key, rules),
-            None => {
-                let (t, r) = target_name(krl, rules);
-                (CompactString::from(t), r)
-            }
+            None => spelled(krl, rules),
         };
         if self.taken.get(&target).is_some_and(|k| *k != key) {
             target = self.free_variant(&target, rules.max_len).into();
@@ -273,8 +276,7 @@ impl Spellings {
         if self.map.len() >= Self::MAX {
             self.map.clear();
         }
-        let (t, r) = target_name(key, rules);
-        let spelled = (CompactString::from(t), r);
+        let spelled = spelled(key, rules);
         self.map.insert(key.clone(), spelled.clone());
         spelled
     }
