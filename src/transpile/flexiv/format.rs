@@ -32,15 +32,30 @@ pub fn string(s: &str) -> String {
 
 /// Comment text for the ASCII script: every non-ASCII character becomes `?`.
 pub fn ascii(s: &str) -> String {
-    s.chars()
-        .map(|c| {
-            if c.is_ascii() && !c.is_ascii_control() {
-                c
-            } else {
-                '?'
-            }
-        })
-        .collect()
+    let mut out = String::with_capacity(s.len());
+    push_ascii(&mut out, s);
+    out
+}
+
+/// [`ascii`] of `s` at the end of `out` (a comment's text is printable ASCII nearly always:
+/// copied whole, not a character at a time).
+pub fn push_ascii(out: &mut String, s: &str) {
+    if is_printable(s) {
+        out.push_str(s);
+        return;
+    }
+    out.extend(s.chars().map(|c| {
+        if c.is_ascii() && !c.is_ascii_control() {
+            c
+        } else {
+            '?'
+        }
+    }));
+}
+
+/// Whether `s` is ASCII without control characters (what [`ascii`] keeps as it is).
+fn is_printable(s: &str) -> bool {
+    s.bytes().all(|b| (b' '..=b'~').contains(&b))
 }
 
 /// The whole script with every non-ASCII character replaced by `?` (line breaks kept).
@@ -73,5 +88,34 @@ mod tests {
         assert_eq!(string("a\\b"), "\"a\\\\b\"");
         assert_eq!(string("\u{20ac}"), "\"\\u20ac\"");
         assert_eq!(ascii("Greifer pr\u{fc}fen\t"), "Greifer pr?fen?");
+    }
+
+    /// Printable ASCII is copied whole, anything else a character at a time: both give what
+    /// the character rule gives.
+    #[test]
+    fn ascii_is_the_character_rule() {
+        let rule = |s: &str| -> String {
+            s.chars()
+                .map(|c| match c.is_ascii() && !c.is_ascii_control() {
+                    true => c,
+                    false => '?',
+                })
+                .collect()
+        };
+        for s in [
+            "",
+            " a ~}",
+            "tab\there",
+            "del\u{7f}",
+            "\u{a0}nbsp",
+            "\u{20ac}1",
+            "x\r\n",
+        ] {
+            assert_eq!(ascii(s), rule(s), "{s:?}");
+            let mut out = String::from("# ");
+            push_ascii(&mut out, s);
+            assert_eq!(out, format!("# {}", rule(s)), "{s:?}");
+        }
+        assert_eq!(ascii("tab\there"), "tab?here");
     }
 }

@@ -54,15 +54,33 @@ static STYLE: Style = Style {
     indent: "    ",
     base_depth: 0,
     comment: |text| {
-        let t = format::ascii(text.trim_end());
-        if t.trim().is_empty() {
-            "#".into()
-        } else {
-            format!("# {}", t.trim_start())
+        // `# ` and the text without its trailing blanks and leading spaces (made ASCII, a
+        // leading tab is a `?`: `ascii` turns no other character into a space).
+        let t = text.trim_end();
+        let mut line = String::with_capacity(t.len() + 2);
+        line.push('#');
+        let t = t.trim_start_matches(' ');
+        if !t.is_empty() {
+            line.push(' ');
+            format::push_ascii(&mut line, t);
         }
+        line
     },
-    kept: |code, krl| format!("# [{code}] {}", format::ascii(krl)),
-    trailing: |t| format!("  # {}", format::ascii(t.trim())),
+    kept: |code, krl| {
+        let mut line = String::with_capacity(krl.len() + code.len() + 5);
+        for part in ["# [", code, "] "] {
+            line.push_str(part);
+        }
+        format::push_ascii(&mut line, krl);
+        line
+    },
+    trailing: |t| {
+        let t = t.trim();
+        let mut line = String::with_capacity(t.len() + 4);
+        line.push_str("  # ");
+        format::push_ascii(&mut line, t);
+        line
+    },
     trailing_on_first: true,
     comment_lead: "#",
     pass: Some("pass"),
@@ -214,6 +232,10 @@ pub struct Tx<'a> {
     data_kept: Vec<String>,
     /// The function `main()` calls.
     entry: Option<String>,
+    /// Buffers of the routine ended last, for the next: its body, head and text.
+    body: String,
+    head: String,
+    function: String,
 }
 
 impl<'a> Tx<'a> {
@@ -238,6 +260,9 @@ impl<'a> Tx<'a> {
             globals: Vec::new(),
             data_kept: Vec::new(),
             entry: None,
+            body: String::new(),
+            head: String::new(),
+            function: String::new(),
         }
     }
 
@@ -472,14 +497,14 @@ impl crate::transpile::Renderer for Tx<'_> {
         let name = if r.synthetic {
             self.routine_name(&r.name, r.name_span)
         } else {
-            self.out.names.routine_of(&r.name).unwrap_or("").to_owned()
+            self.out.names.routine_of_id(id).unwrap_or("").to_owned()
         };
         self.out.begin_routine(id);
         self.rt = Some(Rt {
             name,
             params: Vec::new(),
             before_def,
-            body: String::new(),
+            body: std::mem::take(&mut self.body),
             has_code: false,
             defaults_at: 0,
             leading: Some(BTreeSet::new()),
@@ -560,62 +585,88 @@ impl crate::transpile::Renderer for Tx<'_> {
                 .unwrap_or_else(|| std::mem::take(&mut rt.first)),
             None => BTreeSet::new(),
         };
+        // The locals' zero values, then the lines that end the function, stay in `lines`
+        // (`defaults` of them the values).
         self.local_defaults(r, &first);
-        let defaults = std::mem::take(&mut self.out.lines);
+        let defaults = self.out.lines.len();
         self.out.routine = None;
         let Some(mut rt) = self.rt.take() else {
             return;
         };
-        rt.has_code |= has_code(&defaults);
-        let mut text = String::new();
-        for l in &defaults {
-            text.push_str(l);
-            text.push('\n');
-        }
-        rt.body.insert_str(rt.defaults_at, &text);
+        rt.has_code |= has_code(&self.out.lines);
         if !rt.outs.is_empty() && rt.kind == RoutineKind::Def && !rt.last_op_is_return {
             self.line_fmt(format_args!("return {}", rt.outs.join(", ")));
         }
-        if !rt.has_code && !has_code(&self.out.lines) {
+        if !rt.has_code && !has_code(&self.out.lines[defaults..]) {
             self.line("pass");
         }
-        for l in self.out.lines.drain(..) {
-            rt.body.push_str(&l);
-            rt.body.push('\n');
+        // The function's head: the comments before it, `def`, the `global` line.
+        let mut head = std::mem::take(&mut self.head);
+        head.clear();
+        // As `join("\n")` and a line break when that is not empty.
+        if !matches!(rt.before_def.as_slice(), [one] if one.is_empty()) {
+            for l in &rt.before_def {
+                head.push_str(l);
+                head.push('\n');
+            }
         }
-        let mut head = rt.before_def.join("\n");
-        if !head.is_empty() {
-            head.push('\n');
-        }
-        head.push_str(&format!("def {}({}):", rt.name, rt.params.join(", ")));
+        head.push_str("def ");
+        head.push_str(&rt.name);
+        head.push('(');
+        push_joined(&mut head, rt.params.iter().map(String::as_str));
+        head.push_str("):");
         if !rt.globals.is_empty() {
-            let g: Vec<&str> = rt.globals.iter().map(String::as_str).collect();
-            head.push_str(&format!("\n    global {}", g.join(", ")));
+            head.push_str("\n    global ");
+            push_joined(&mut head, rt.globals.iter().map(String::as_str));
         }
-        // The function is its body with the head put in front (one copy of a large body).
-        let mut f = rt.body;
-        if f.ends_with('\n') {
-            f.pop();
-        }
-        if !f.is_empty() {
-            head.push('\n');
-        }
-        f.insert_str(0, &head);
-        // Its lines without trailing blanks (a `\r` too, as `str::lines` took it), into one
-        // text spooled at once (a line at a time, the spool's calls and the line search were a
-        // third of ending a routine).
-        let mut text = String::with_capacity(f.len() + 3);
+        // The function is the head, then the body (its zero values put in at `defaults_at`)
+        // and the lines that end it, each line without trailing blanks (a `\r` too, as
+        // `str::lines` took it), into one text spooled at once. The body's last line break
+        // ended the text, so its last line goes when it is empty (a body of one empty line is
+        // no line).
+        let lines = &self.out.lines;
+        let body_len = rt.body.len() + lines.iter().map(|l| l.len() + 1).sum::<usize>();
+        let mut text = std::mem::take(&mut self.function);
+        text.clear();
         text.push_str("\n\n");
-        crate::transpile::render::each_line(&f, |l| {
-            let l = l.trim_end();
+        let mut last_empty = false;
+        let mut put = |l: &str| {
+            last_empty = l.is_empty();
+            // A line ending in a visible ASCII character has nothing to trim.
+            let l = match l.as_bytes().last() {
+                Some(b) if b.is_ascii_graphic() => l,
+                _ => l.trim_end(),
+            };
             // As the rest of the script: a guard, not a translation.
             match l.is_ascii() {
                 true => text.push_str(l),
                 false => text.push_str(&format::ascii_lines(l.to_owned())),
             }
             text.push('\n');
-        });
+        };
+        head.split('\n').for_each(&mut put);
+        if body_len > 1 {
+            let (before, after) = rt.body.split_at(rt.defaults_at);
+            render::each_line(before, &mut put);
+            for l in &lines[..defaults] {
+                l.split('\n').for_each(&mut put);
+            }
+            render::each_line(after, &mut put);
+            for l in &lines[defaults..] {
+                l.split('\n').for_each(&mut put);
+            }
+            if last_empty {
+                text.pop();
+            }
+        }
         spool.push_str(&text);
+        let n = self.out.lines.len();
+        self.out.drain_lines(n, |_| {});
+        // The buffers serve the next function (a large one's go).
+        self.function = keep(text);
+        self.head = keep(head);
+        rt.body.clear();
+        self.body = keep(rt.body);
         self.out.depth = 0;
     }
 
@@ -653,7 +704,50 @@ impl<'a> Emit<'a> for Tx<'a> {
     }
 }
 
+/// `items` joined by `, ` at the end of `out`.
+fn push_joined<'s>(out: &mut String, items: impl Iterator<Item = &'s str>) {
+    for (i, s) in items.enumerate() {
+        if i > 0 {
+            out.push_str(", ");
+        }
+        out.push_str(s);
+    }
+}
+
+/// A text buffer kept for the next routine unless it grew large (one large function must not
+/// keep its memory to the end).
+fn keep(mut s: String) -> String {
+    const LARGE: usize = 1 << 20;
+    if s.capacity() > LARGE {
+        return String::new();
+    }
+    s.clear();
+    s
+}
+
 /// Whether any line is code (not a comment or blank).
 fn has_code(lines: &[String]) -> bool {
     render::has_code(lines, STYLE.comment_lead)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// The comment lines as the character rule, trimming and `format!` wrote them: leading
+    /// spaces go, a leading tab is a `?`, a blank comment is `#`.
+    #[test]
+    fn comment_lines() {
+        let comment = STYLE.comment;
+        assert_eq!(comment(" Pick 5: approach"), "# Pick 5: approach");
+        assert_eq!(comment("   "), "#");
+        assert_eq!(comment(""), "#");
+        assert_eq!(comment("\tindented\t "), "# ?indented");
+        assert_eq!(comment(" \u{a0}Gr\u{fc}\u{df}e"), "# ?Gr??e");
+        assert_eq!(
+            (STYLE.kept)("TR001", "$OUT[19] = TRUE"),
+            "# [TR001] $OUT[19] = TRUE"
+        );
+        assert_eq!((STYLE.trailing)("  \tnote \u{e4} "), "  # note ?");
+    }
 }

@@ -45,17 +45,17 @@ impl<'a> CommentQueue<'a> {
     }
 
     /// Comments before `offset` not handed out yet (a comment after code that was not taken
-    /// with [`CommentQueue::trailing`] comes out here, on its own line).
-    pub fn before(&mut self, offset: u32) -> Vec<Comment> {
-        let mut v = Vec::new();
-        while let Some(c) = self.comments.get(self.next) {
-            if c.span.start >= offset {
-                break;
-            }
-            v.push(c.clone());
-            self.next += 1;
-        }
-        v
+    /// with [`CommentQueue::trailing`] comes out here, on its own line); borrowed, not copied
+    /// (it is asked before every statement).
+    pub fn before(&mut self, offset: u32) -> &'a [Comment] {
+        let from = self.next;
+        let rest = &self.comments[from.min(self.comments.len())..];
+        let n = rest
+            .iter()
+            .position(|c| c.span.start >= offset)
+            .unwrap_or(rest.len());
+        self.next = from + n;
+        &rest[..n]
     }
 
     /// The comment that follows code on the last line of `span` (a statement), if it is the

@@ -72,9 +72,15 @@ impl Reason {
 
 /// The target spelling of `krl` under `rules`, and why it differs (beyond case).
 pub fn target_name(krl: &str, rules: &NameRules) -> (String, Vec<Reason>) {
+    let (name, reasons) = spelled(krl, rules);
+    (name.into_string(), reasons)
+}
+
+/// [`target_name`] inline (a name of up to 24 bytes is no allocation).
+fn spelled(krl: &str, rules: &NameRules) -> (CompactString, Vec<Reason>) {
     let mut reasons = Vec::new();
     // Every character becomes one ASCII byte: the name is ASCII, cut anywhere.
-    let mut name = String::with_capacity(krl.len() + 1);
+    let mut name = CompactString::with_capacity(krl.len() + 1);
     let mut replaced = false;
     for c in krl.chars() {
         if c.is_ascii_alphanumeric() || c == '_' {
@@ -166,10 +172,7 @@ impl Namespace {
         }
         let (mut target, mut reasons) = match spellings {
             Some(s) => s.spell(&key, rules),
-            None => {
-                let (t, r) = target_name(krl, rules);
-                (CompactString::from(t), r)
-            }
+            None => spelled(krl, rules),
         };
         if self.taken.get(&target).is_some_and(|k| *k != key) {
             target = self.free_variant(&target, rules.max_len).into();
@@ -273,8 +276,7 @@ impl Spellings {
         if self.map.len() >= Self::MAX {
             self.map.clear();
         }
-        let (t, r) = target_name(key, rules);
-        let spelled = (CompactString::from(t), r);
+        let spelled = spelled(key, rules);
         self.map.insert(key.clone(), spelled.clone());
         spelled
     }
@@ -339,6 +341,10 @@ pub struct Namer<'a> {
     rules: &'static NameRules,
     ir: &'a ir::Program,
     routines: Namespace,
+    /// Each routine's target name by id, as [`Namer::declare_program`] gave it (`None`: not
+    /// named there, a synthetic routine): a routine is named at its `DEF` and every call, and a
+    /// probe of a map of every routine's name missed the cache ever more often.
+    routine_names: Vec<Option<CompactString>>,
     globals: Namespace,
     /// The namespaces of the routine being rendered (and of any other asked about since it
     /// began): a routine's are dropped when the next one is declared, so a file of many
@@ -347,6 +353,13 @@ pub struct Namer<'a> {
     labels: FxHashMap<RoutineId, Namespace>,
     /// The routine whose locals were declared last.
     current: Option<RoutineId>,
+    /// `current` when its names were made without its namespace (none clashed: nearly every
+    /// routine), which is made, the same way, only when asked for ([`Namer::declare_locals`]).
+    unmade: Option<RoutineId>,
+    /// An ended routine's namespace, emptied, for the next one made.
+    spare: Option<Namespace>,
+    /// The upper-case names of `current`'s variables while they are declared.
+    keys: Vec<CompactString>,
     /// The target names of `current`'s parameters and locals, in its `vars_of` order: a
     /// variable is named at every use, and these are asked most.
     current_names: Vec<CompactString>,
@@ -375,10 +388,14 @@ impl<'a> Namer<'a> {
             rules,
             ir,
             routines: Namespace::default(),
+            routine_names: Vec::new(),
             globals: Namespace::default(),
             locals: FxHashMap::default(),
             labels: FxHashMap::default(),
             current: None,
+            unmade: None,
+            spare: None,
+            keys: Vec::new(),
             current_names: Vec::new(),
             ended: Vec::new(),
             spellings: Spellings::default(),
@@ -423,6 +440,15 @@ impl<'a> Namer<'a> {
         self.routines.get(krl)
     }
 
+    /// [`Namer::routine_of`] the name of routine `id` of the program (a routine's name never
+    /// changes once given: the one [`Namer::declare_program`] kept, else a lookup).
+    pub fn routine_of_id(&self, id: RoutineId) -> Option<&str> {
+        match self.routine_names.get(id.0 as usize) {
+            Some(Some(n)) => Some(n.as_str()),
+            _ => self.routine_of(&self.ir.routine(id).name),
+        }
+    }
+
     /// Names what the program declares before anything is rendered — its routines, then its
     /// globals, in declaration order — so TR003 points at declarations and names made up later
     /// never take a user's.
@@ -430,10 +456,14 @@ impl<'a> Namer<'a> {
         let ir = self.ir;
         // Every routine is named here: the maps are grown once, not doubled again and again.
         self.routines.reserve(ir.routines.len());
+        self.routine_names.reserve_exact(ir.routines.len());
         for r in &ir.routines {
-            if !r.synthetic {
-                self.routine(rep, &r.name, r.name_span);
-            }
+            let name = (!r.synthetic).then(|| {
+                let (name, renamed) = self.routines.name(&r.name, self.rules);
+                self.note(rep, self.rules.routine, FileId::Src, r.name_span, renamed);
+                name
+            });
+            self.routine_names.push(name);
         }
         self.declare_globals(rep);
     }
@@ -454,21 +484,35 @@ impl<'a> Namer<'a> {
     /// declared before ends here: its namespaces are dropped (renderers render one routine
     /// after another).
     pub fn declare_locals(&mut self, rep: &mut Report, id: RoutineId) {
-        let mut spare = None;
         if let Some(prev) = self.current.replace(id)
             && prev != id
         {
-            spare = self.locals.remove(&prev).and_then(Namespace::emptied);
+            // The ended routine's maps, emptied, serve the next (one allocation per routine
+            // less).
+            if let Some(ns) = self.locals.remove(&prev).and_then(Namespace::emptied) {
+                self.spare = Some(ns);
+            }
+            if self.unmade == Some(prev) {
+                self.unmade = None;
+            }
             self.labels.remove(&prev);
             self.end(prev);
         }
+        // A routine no name was asked of yet whose names do not meet: named without a
+        // namespace (a map of its names and one of the target names, five probes a name).
+        if self.unmade != Some(id) && !self.locals.contains_key(&id) && self.declare_apart(rep, id)
+        {
+            self.unmade = Some(id);
+            return;
+        }
+        self.make_unmade(id);
         let ir = self.ir;
         let vars = self.vars_of.get(id.0 as usize);
-        // The ended routine's maps, emptied, serve the next (one allocation per routine less).
+        let spare = &mut self.spare;
         let ns = self
             .locals
             .entry(id)
-            .or_insert_with(|| spare.unwrap_or_default());
+            .or_insert_with(|| spare.take().unwrap_or_default());
         self.current_names.clear();
         for &v in vars {
             let var = ir.var(v);
@@ -484,6 +528,83 @@ impl<'a> Namer<'a> {
                 r,
             );
         }
+    }
+
+    /// [`Namer::declare_locals`] of a routine without a namespace yet, when no two of its
+    /// variables have the same name or target name (what a namespace would find: then nothing
+    /// is named and it is false). The names and findings are those of a new namespace.
+    fn declare_apart(&mut self, rep: &mut Report, id: RoutineId) -> bool {
+        /// More variables than this are named in a namespace (the search here is linear).
+        const MANY: usize = 32;
+        let (ir, rules) = (self.ir, self.rules);
+        let vars = self.vars_of.get(id.0 as usize);
+        if vars.len() > MANY {
+            return false;
+        }
+        self.keys.clear();
+        self.current_names.clear();
+        let mut renamed = Vec::new();
+        for (i, &v) in vars.iter().enumerate() {
+            let mut key = CompactString::from(ir.var(v).name.as_str());
+            key.make_ascii_uppercase();
+            if self.keys.contains(&key) {
+                return false;
+            }
+            let (target, reasons) = self.spellings.spell(&key, rules);
+            if self.current_names.contains(&target) {
+                return false;
+            }
+            self.keys.push(key);
+            self.current_names.push(target);
+            if !reasons.is_empty() {
+                renamed.push((i, reasons));
+            }
+        }
+        for (i, reasons) in renamed {
+            let var = ir.var(vars[i]);
+            let r = Renamed {
+                krl: var.name.clone(),
+                target: self.current_names[i].clone(),
+                reasons,
+            };
+            note(
+                &mut self.renamed,
+                rules,
+                rep,
+                "variable",
+                var.file,
+                var.decl,
+                Some(r),
+            );
+        }
+        true
+    }
+
+    /// The namespace of `id` when its names were made without it ([`Namer::declare_apart`]):
+    /// made now as a namespace makes them (no finding again) — from the names made, each new
+    /// and none clashing (RAPID asks for its temporaries' names in most routines).
+    fn make_unmade(&mut self, id: RoutineId) {
+        if self.unmade != Some(id) {
+            return;
+        }
+        self.unmade = None;
+        let mut ns = self.spare.take().unwrap_or_default();
+        let vars = self.vars_of.get(id.0 as usize);
+        if self.current == Some(id)
+            && self.keys.len() == vars.len()
+            && self.current_names.len() == vars.len()
+        {
+            ns.reserve(vars.len());
+            for (key, target) in self.keys.iter().zip(&self.current_names) {
+                ns.taken.insert(target.clone(), key.clone());
+                ns.map.insert(key.clone(), target.clone());
+            }
+        } else {
+            for &v in vars {
+                ns.name_spelled(&self.ir.var(v).name, self.rules, Some(&mut self.spellings));
+            }
+        }
+        self.locals.insert(id, ns);
     }
 
     /// Names the labels of `id` in source order.
@@ -521,6 +642,7 @@ impl<'a> Namer<'a> {
 
     /// Makes the locals' namespace of an ended routine again (see [`Namer::locals_ns`]).
     fn remake_locals(&mut self, id: RoutineId) {
+        self.make_unmade(id);
         if !self.locals.contains_key(&id) && self.has_ended(id) {
             let mut ns = Namespace::default();
             for &v in self.vars_of.get(id.0 as usize) {
@@ -714,6 +836,100 @@ mod tests {
             assert_eq!(got, want, "{i}");
             plain.insert(got);
         }
+    }
+
+    /// A routine whose names do not meet is named without a namespace; one is made when a
+    /// name is made up, as declaring in a namespace made it: the made-up name avoids the
+    /// user's, and declaring again repeats no finding.
+    #[test]
+    fn locals_named_apart_get_their_namespace_when_asked() {
+        let var = |name: &str, r: u32| ir::Var {
+            name: name.into(),
+            ty: ir::Ty::Int,
+            dims: 0,
+            scope: Scope::Local(RoutineId(r)),
+            constant: false,
+            decl: Span::new(0, 1),
+            file: FileId::Src,
+        };
+        let program = ir::Program {
+            vars: vec![var("Speed", 0), var("tmp", 0), var("x", 1)],
+            ..ir::Program::default()
+        };
+        let rules: &'static NameRules = Box::leak(Box::new(rules()));
+        let mut names = Namer::new(rules, &program);
+        let mut rep = Report::default();
+        names.declare_locals(&mut rep, RoutineId(0));
+        assert_eq!(names.unmade, Some(RoutineId(0)));
+        assert!(!names.locals.contains_key(&RoutineId(0)));
+        assert_eq!(names.renamed.len(), 1);
+        assert_eq!(names.var(&mut rep, VarId(0), Span::new(2, 3)).0, "speed_");
+        assert_eq!(names.fresh_local(RoutineId(0), "speed_"), "speed_2");
+        assert_eq!(names.fresh_local(RoutineId(0), "tmp"), "tmp2");
+        assert!(names.locals.contains_key(&RoutineId(0)));
+        names.declare_locals(&mut rep, RoutineId(0));
+        assert_eq!(names.renamed.len(), 1);
+        assert_eq!(names.var(&mut rep, VarId(1), Span::new(2, 3)).0, "tmp");
+        names.declare_locals(&mut rep, RoutineId(1));
+        assert_eq!(names.var(&mut rep, VarId(0), Span::new(4, 5)).0, "speed_");
+        assert_eq!(names.fresh_local(RoutineId(0), "tmp"), "tmp2");
+        assert_eq!(names.renamed.len(), 1);
+    }
+
+    /// A routine's name by its id is the one its name looks up: clashing and repeated names
+    /// too, and a synthetic routine named only later.
+    #[test]
+    fn routine_names_by_id_are_those_by_name() {
+        let routine = |name: &str, synthetic: bool| ir::Routine {
+            name: name.into(),
+            name_span: Span::new(0, 1),
+            kind: ir::RoutineKind::Def,
+            ret: None,
+            params: Vec::new(),
+            result: None,
+            locals: Vec::new(),
+            temps: Vec::new(),
+            labels: Vec::new(),
+            closed: true,
+            header_error: None,
+            duplicate_param: None,
+            span: Span::new(0, 1),
+            end: 1,
+            synthetic,
+        };
+        let program = ir::Program {
+            routines: vec![
+                routine("a$b", false),
+                routine("a_b", false),
+                routine("A$B", false),
+                routine("speed", false),
+                routine("top", true),
+            ],
+            ..ir::Program::default()
+        };
+        let rules: &'static NameRules = Box::leak(Box::new(rules()));
+        let mut names = Namer::new(rules, &program);
+        let mut rep = Report::default();
+        names.declare_program(&mut rep);
+        assert_eq!(names.routine_of_id(RoutineId(4)), None);
+        names.routine(&mut rep, "top", Span::new(0, 1));
+        let by_id: Vec<_> = (0..5).map(|i| names.routine_of_id(RoutineId(i))).collect();
+        let by_name: Vec<_> = program
+            .routines
+            .iter()
+            .map(|r| names.routine_of(&r.name))
+            .collect();
+        assert_eq!(by_id, by_name);
+        assert_eq!(
+            by_id,
+            [
+                Some("a_b"),
+                Some("a_b2"),
+                Some("a_b"),
+                Some("speed_"),
+                Some("top")
+            ]
+        );
     }
 
     /// A routine's names are dropped when the next routine is declared; asked again, they

@@ -110,8 +110,10 @@ struct Texts {
 }
 
 impl Texts {
-    fn intern(&mut self, text: String) -> u32 {
-        if let Some(&i) = self.index.get(text.as_str()) {
+    /// The index of `text`, copied only the first time (most findings repeat a text of the
+    /// program, often a `&'static str`).
+    fn intern(&mut self, text: &str) -> u32 {
+        if let Some(&i) = self.index.get(text) {
             return i;
         }
         let i = self.list.len() as u32;
@@ -140,8 +142,8 @@ impl Report {
         code: &'static str,
         severity: Severity,
         span: Span,
-        message: String,
-        help: Option<String>,
+        message: &str,
+        help: Option<&str>,
     ) {
         let message = self.texts.intern(message);
         let help = help.map_or(NO_HELP, |h| self.texts.intern(h));
@@ -158,17 +160,16 @@ impl Report {
         &mut self,
         file: FileId,
         span: Span,
-        message: impl Into<String>,
-        help: impl Into<String>,
+        message: impl AsRef<str>,
+        help: impl AsRef<str>,
     ) {
-        let help = Some(help.into());
         self.push(
             file,
             UNTRANSLATABLE,
             Severity::Error,
             span,
-            message.into(),
-            help,
+            message.as_ref(),
+            Some(help.as_ref()),
         );
     }
 
@@ -176,22 +177,21 @@ impl Report {
         &mut self,
         file: FileId,
         span: Span,
-        message: impl Into<String>,
-        help: impl Into<String>,
+        message: impl AsRef<str>,
+        help: impl AsRef<str>,
     ) {
-        let help = Some(help.into());
         self.push(
             file,
             APPROXIMATE,
             Severity::Warning,
             span,
-            message.into(),
-            help,
+            message.as_ref(),
+            Some(help.as_ref()),
         );
     }
 
-    pub fn renamed(&mut self, file: FileId, span: Span, message: impl Into<String>) {
-        self.push(file, RENAMED, Severity::Info, span, message.into(), None);
+    pub fn renamed(&mut self, file: FileId, span: Span, message: impl AsRef<str>) {
+        self.push(file, RENAMED, Severity::Info, span, message.as_ref(), None);
     }
 
     /// A mark to compare against with [`Report::outcome_since`].

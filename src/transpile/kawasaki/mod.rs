@@ -359,7 +359,7 @@ impl crate::transpile::Renderer for Tx<'_> {
             let name = self.name_program(&r.name, r.name_span);
             header.push_str(&name);
         } else {
-            header.push_str(self.out.names.routine_of(&r.name).unwrap_or(""));
+            header.push_str(self.out.names.routine_of_id(id).unwrap_or(""));
         }
         header.push('(');
         self.out.begin_routine(id);

@@ -417,7 +417,7 @@ impl crate::transpile::Renderer for Tx<'_> {
                 .names
                 .routine(&mut self.out.rep, &r.name, r.name_span)
         } else {
-            self.out.names.routine_of(&r.name).unwrap_or("").to_owned()
+            self.out.names.routine_of_id(id).unwrap_or("").to_owned()
         };
         self.out.begin_routine(id);
         self.rt = Some(Rt {

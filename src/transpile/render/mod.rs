@@ -392,7 +392,7 @@ pub trait Emit<'a> {
         let name = self
             .out()
             .names
-            .routine_of(&routine.name)
+            .routine_of_id(r)
             .unwrap_or(&routine.name)
             .to_owned();
         let function = routine.gives_value();
