@@ -17,7 +17,10 @@ pub(super) fn write(
     rules: Option<&[RuleMeta]>,
     out: impl Write,
 ) -> std::io::Result<()> {
-    let mut out = std::io::BufWriter::new(out);
+    // 64 KiB, not the default 8: a large translation's findings are 100+ MB, and writing them
+    // in 8 KiB pieces cost the kernel about twice the time of 64 KiB ones (measured with dd:
+    // 164 MB, 0.085 s against 0.035 s of system time), on the thread that writes them in order.
+    let mut out = std::io::BufWriter::with_capacity(64 * 1024, out);
     match format {
         CheckFormat::Human => {
             let renderer = super::ui::renderer(to_stdout);
