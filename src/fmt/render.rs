@@ -91,7 +91,7 @@ impl Renderer {
         }
         let mut gap = None;
         if first < last {
-            push_indent(out, depth * opts.indent_width);
+            out.extend(std::iter::repeat_n(' ', depth * opts.indent_width));
             let mut prev: Option<Piece> = None;
             let mut i = first;
             while i < last {
@@ -130,16 +130,6 @@ impl Renderer {
             out.push_str(nl.text(text));
         }
         gap
-    }
-}
-
-fn push_indent(out: &mut String, n: usize) {
-    const SPACES: &str = "                                                                ";
-    let mut n = n;
-    while n > 0 {
-        let k = n.min(SPACES.len());
-        out.push_str(&SPACES[..k]);
-        n -= k;
     }
 }
 

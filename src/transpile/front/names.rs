@@ -755,6 +755,19 @@ impl<'a> Namer<'a> {
 mod tests {
     use super::*;
 
+    /// An integer local `name` of routine `r`.
+    fn local(name: &str, r: u32) -> ir::Var {
+        ir::Var {
+            name: name.into(),
+            ty: ir::Ty::Int,
+            dims: 0,
+            scope: Scope::Local(RoutineId(r)),
+            constant: false,
+            decl: Span::new(0, 1),
+            file: FileId::Src,
+        }
+    }
+
     fn rules() -> NameRules {
         NameRules {
             max_len: 15,
@@ -843,17 +856,8 @@ mod tests {
     /// user's, and declaring again repeats no finding.
     #[test]
     fn locals_named_apart_get_their_namespace_when_asked() {
-        let var = |name: &str, r: u32| ir::Var {
-            name: name.into(),
-            ty: ir::Ty::Int,
-            dims: 0,
-            scope: Scope::Local(RoutineId(r)),
-            constant: false,
-            decl: Span::new(0, 1),
-            file: FileId::Src,
-        };
         let program = ir::Program {
-            vars: vec![var("Speed", 0), var("tmp", 0), var("x", 1)],
+            vars: vec![local("Speed", 0), local("tmp", 0), local("x", 1)],
             ..ir::Program::default()
         };
         let rules: &'static NameRules = Box::leak(Box::new(rules()));
@@ -936,17 +940,8 @@ mod tests {
     /// come back as they were (clash counters included), without a second TR003.
     #[test]
     fn an_ended_routines_locals_keep_their_names() {
-        let var = |name: &str, r: u32| ir::Var {
-            name: name.into(),
-            ty: ir::Ty::Int,
-            dims: 0,
-            scope: Scope::Local(RoutineId(r)),
-            constant: false,
-            decl: Span::new(0, 1),
-            file: FileId::Src,
-        };
         let program = ir::Program {
-            vars: vec![var("a$b", 0), var("a_b", 0), var("x", 1)],
+            vars: vec![local("a$b", 0), local("a_b", 0), local("x", 1)],
             ..ir::Program::default()
         };
         let rules: &'static NameRules = Box::leak(Box::new(rules()));

@@ -29,6 +29,7 @@
 //! stylesheet writes no escape codes (`anstyle`'s empty style renders nothing). The tests
 //! compare this writer with annotate-snippets on random findings in and out of the subset.
 
+use std::iter::repeat_n;
 use std::ops::Range;
 
 use annotate_snippets::renderer::DEFAULT_TERM_WIDTH;
@@ -93,7 +94,7 @@ pub(super) fn write(
     out.push_str(message);
     out.push('\n');
     // `render_origin`: the gutter's digits as spaces, `--> `, path:line:column.
-    spaces(out, digits);
+    out.extend(repeat_n(' ', digits));
     out.push_str("--> ");
     out.push_str(path);
     out.push(':');
@@ -103,7 +104,7 @@ pub(super) fn write(
     out.push_str(itoa(start + 1, &mut column));
     out.push('\n');
     // The spacer under the location.
-    spaces(out, gutter);
+    out.extend(repeat_n(' ', gutter));
     out.push_str("|\n");
     // `draw_line`: the number, ` |`, and the code from column digits + 3 (nothing for an empty
     // line: the buffer's line ends at the `|`).
@@ -115,16 +116,16 @@ pub(super) fn write(
     }
     out.push('\n');
     // The caret run, at least one caret.
-    spaces(out, gutter);
+    out.extend(repeat_n(' ', gutter));
     out.push_str("| ");
-    spaces(out, start);
-    carets(out, (end - start).max(1));
+    out.extend(repeat_n(' ', start));
+    out.extend(repeat_n('^', (end - start).max(1)));
     if let Some(help) = help {
         // A blank `|` before the help, then `= help: ` under the gutter.
         out.push('\n');
-        spaces(out, gutter);
+        out.extend(repeat_n(' ', gutter));
         out.push_str("|\n");
-        spaces(out, gutter);
+        out.extend(repeat_n(' ', gutter));
         out.push_str("= help: ");
         out.push_str(help);
     }
@@ -175,26 +176,6 @@ fn itoa(mut n: usize, buf: &mut [u8; 20]) -> &str {
     }
     // Only ASCII digits were written.
     std::str::from_utf8(&buf[at..]).unwrap_or_default()
-}
-
-fn spaces(out: &mut String, n: usize) {
-    const SPACES: &str = "                                                                ";
-    let mut n = n;
-    while n > 0 {
-        let k = n.min(SPACES.len());
-        out.push_str(&SPACES[..k]);
-        n -= k;
-    }
-}
-
-fn carets(out: &mut String, n: usize) {
-    const CARETS: &str = "^^^^^^^^^^^^^^^^^^^^^^^^^^^^^^^^^^^^^^^^^^^^^^^^^^^^^^^^^^^^^^^^";
-    let mut n = n;
-    while n > 0 {
-        let k = n.min(CARETS.len());
-        out.push_str(&CARETS[..k]);
-        n -= k;
-    }
 }
 
 #[cfg(test)]
