@@ -275,7 +275,7 @@ impl<'a> Tx<'a> {
                 self.entry = self
                     .out
                     .names
-                    .routine_of(&ir.routines[i].name)
+                    .routine_of_id(RoutineId(i as u32))
                     .map(str::to_owned);
             }
             Some(i) => self.note(format!(
@@ -284,11 +284,7 @@ impl<'a> Tx<'a> {
             )),
             None => {
                 if let Some(t) = ir.top_level {
-                    self.entry = self
-                        .out
-                        .names
-                        .routine_of(&ir.routine(t).name)
-                        .map(str::to_owned);
+                    self.entry = self.out.names.routine_of_id(t).map(str::to_owned);
                 }
             }
         }

@@ -163,10 +163,10 @@ impl<'a> Tx<'a> {
         };
         let sig = if watched.high { sig } else { negate(&sig) };
         let prog = match handler {
-            Callee::Routine(r) => {
-                let n = self.ir.routine(*r).name.clone();
-                self.out.names.routine_of(&n).unwrap_or(&n).to_owned()
-            }
+            Callee::Routine(r) => match self.out.names.routine_of_id(*r) {
+                Some(n) => n.to_owned(),
+                None => self.ir.routine(*r).name.clone(),
+            },
             Callee::External { name, span, .. } => self.name_program(name, *span),
             Callee::Mm(s) => s.name.to_ascii_lowercase(),
         };

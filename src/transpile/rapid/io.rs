@@ -234,10 +234,10 @@ impl<'a> Tx<'a> {
         };
         let sig = self.signal(&watched.io, self.ir.interrupts[i].span)?;
         let proc_ = match handler {
-            Callee::Routine(r) => {
-                let n = self.ir.routine(*r).name.clone();
-                self.out.names.routine_of(&n).unwrap_or(&n).to_owned()
-            }
+            Callee::Routine(r) => match self.out.names.routine_of_id(*r) {
+                Some(n) => n.to_owned(),
+                None => self.ir.routine(*r).name.clone(),
+            },
             Callee::External { name, span, .. } => {
                 let n = self.out.names.routine(&mut self.out.rep, name, *span);
                 if !self.external.contains(&n) {

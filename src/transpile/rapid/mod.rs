@@ -285,7 +285,10 @@ impl<'a> Tx<'a> {
         if r.kind != RoutineKind::Def || !r.params.is_empty() {
             return None;
         }
-        self.out.names.routine_of(&r.name).map(str::to_owned)
+        self.out
+            .names
+            .routine_of_id(RoutineId(0))
+            .map(str::to_owned)
     }
 
     // ----- assembly ----------------------------------------------------------------------
