@@ -58,7 +58,7 @@ pub(super) fn write(
 ) -> bool {
     let line = shown.window.as_bytes();
     let Range { start, end } = shown.rel;
-    let digits = decimal_digits(shown.line);
+    let digits = shown.line.checked_ilog10().map_or(1, |d| d as usize + 1);
     if !printable_ascii(line)
         || start > end
         || end > line.len()
@@ -75,11 +75,7 @@ pub(super) fn write(
     if !title || help.is_some_and(|h| h.contains('\n')) {
         return false;
     }
-    let level = match severity {
-        Severity::Error => "error",
-        Severity::Warning => "warning",
-        Severity::Info => "info",
-    };
+    let level = severity.as_str();
     let mut number = itoa_buf();
     let number = itoa(shown.line, &mut number);
     let gutter = digits + 1;
@@ -148,15 +144,6 @@ fn title_char(c: char) -> bool {
         || c == '\u{200d}'
         || ('\u{202a}'..='\u{202e}').contains(&c)
         || ('\u{2066}'..='\u{2069}').contains(&c))
-}
-
-fn decimal_digits(mut n: usize) -> usize {
-    let mut digits = 1;
-    while n >= 10 {
-        n /= 10;
-        digits += 1;
-    }
-    digits
 }
 
 fn itoa_buf() -> [u8; 20] {
