@@ -11,8 +11,8 @@ use std::collections::hash_map::Entry;
 use std::fmt;
 
 use super::lex::{
-    call_target, code_part, each_name, may_have_longer_name, split_top_level, trim_blanks,
-    without_strings_into,
+    call_target, code_part, each_name, lower_key, may_have_longer_name, split_top_level,
+    trim_blanks, without_strings_into,
 };
 use crate::catalog::catalog;
 use compact_str::CompactString;
@@ -123,10 +123,10 @@ impl Block {
 }
 
 struct Program {
-    name: String,
+    name: CompactString,
     blocks: Vec<(Block, usize)>,
-    labels: FxHashSet<String>,
-    gotos: Vec<(String, usize)>,
+    labels: FxHashSet<CompactString>,
+    gotos: Vec<(CompactString, usize)>,
     /// Line of a C1MOVE waiting for its C2MOVE.
     c1: Option<usize>,
 }
@@ -137,10 +137,16 @@ enum State {
     Data { kind: &'static str, line: usize },
 }
 
+/// A `CALL` that may be a problem: of a program not defined before it, or with another number
+/// of arguments than the one defined before it takes (the calls of a program defined before
+/// with its number of arguments, nearly all, are not kept).
 struct Call {
     line: usize,
-    name: String,
+    /// Lower case.
+    name: CompactString,
     arity: usize,
+    /// The parameter count of the program defined before the call.
+    takes: Option<usize>,
 }
 
 /// The first word of a line's code: up to a blank or `(` (a byte scan when the code is
@@ -209,7 +215,7 @@ struct Checker {
     state: State,
     /// Programs defined so far (lower case) with their parameter counts, the first of a name
     /// (a map: a scan per program and per call made a text of many programs quadratic).
-    programs: FxHashMap<String, usize>,
+    programs: FxHashMap<CompactString, usize>,
     calls: Vec<Call>,
     /// The line being checked without its strings, then upper case: buffers reused for every
     /// line (three allocations per line were a tenth of a translation's).
@@ -345,7 +351,7 @@ impl Checker {
                 Some(_) => {}
             }
         }
-        let lower = name.to_ascii_lowercase();
+        let lower = lower_key(name);
         match self.programs.entry(lower.clone()) {
             Entry::Occupied(_) => self.push(n, format!("program `{name}` defined twice")),
             Entry::Vacant(v) => {
@@ -452,7 +458,7 @@ impl Checker {
             && !label.contains(' ')
             && first != "ANY:"
         {
-            if !p.labels.insert(label.to_ascii_lowercase()) {
+            if !p.labels.insert(lower_key(label)) {
                 problems.push((n, format!("label `{label}` defined twice")));
             }
         } else {
@@ -461,7 +467,7 @@ impl Checker {
                     if last_word == "THEN" {
                         p.blocks.push((Block::If { has_else: false }, n));
                     } else if let Some(i) = upper.find(" GOTO ") {
-                        p.gotos.push((code[i + 6..].trim().to_ascii_lowercase(), n));
+                        p.gotos.push((lower_key(code[i + 6..].trim()), n));
                     } else {
                         problems.push((n, "IF without THEN (or GOTO)".into()));
                     }
@@ -512,18 +518,24 @@ impl Checker {
                         problems.push((n, format!("{first} without `:`")));
                     }
                 }
-                "GOTO" => p.gotos.push((code[4..].trim().to_ascii_lowercase(), n)),
+                "GOTO" => p.gotos.push((lower_key(code[4..].trim()), n)),
                 "C1MOVE" => p.c1 = Some(n),
                 "C2MOVE" if after_c1.is_none() => {
                     problems.push((n, "C2MOVE without C1MOVE".into()))
                 }
                 "CALL" => {
                     let (name, arity) = call_target(&code[4..]);
-                    self.calls.push(Call {
-                        line: n,
-                        name,
-                        arity,
-                    });
+                    let name = lower_key(name);
+                    let takes = self.programs.get(&name).copied();
+                    // Resolved now, and right: nothing to report, whatever follows.
+                    if takes != Some(arity) {
+                        self.calls.push(Call {
+                            line: n,
+                            name,
+                            arity,
+                            takes,
+                        });
+                    }
                 }
                 _ => {}
             }
@@ -539,8 +551,9 @@ impl Checker {
             Calls::Open => &[],
         };
         for c in std::mem::take(&mut self.calls) {
-            let known = match self.programs.get(&c.name.to_ascii_lowercase()) {
-                Some(a) => Some(*a),
+            // A program defined before the call keeps its count: the first of a name stays.
+            let known = match c.takes.or_else(|| self.programs.get(&c.name).copied()) {
+                Some(a) => Some(a),
                 None => external
                     .iter()
                     .find(|(p, _)| p.eq_ignore_ascii_case(&c.name))

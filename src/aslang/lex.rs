@@ -1,5 +1,7 @@
 //! Lexical pieces of an AS line: its code part, its names, its argument lists.
 
+use compact_str::CompactString;
+
 /// The code part of a line: everything before a `;` that is not inside a string, and whether
 /// it holds a `"` (a code part without one is its own [`without_strings_into`]).
 ///
@@ -22,6 +24,14 @@ pub(super) fn code_part(line: &str) -> (&str, bool) {
         from = i + 1;
     }
     (line, quoted)
+}
+
+/// `name` in ASCII lower case, a key of the checks' tables of names (AS and RAPID names fit
+/// inline: no allocation, where a `String` per program, call and label was one each).
+pub(crate) fn lower_key(name: &str) -> CompactString {
+    let mut key = CompactString::from(name);
+    key.make_ascii_lowercase();
+    key
 }
 
 /// `str::trim`, a byte scan when the ends are ASCII (the blanks `char::is_whitespace` takes,
@@ -145,28 +155,34 @@ pub(super) fn each_name<'c>(code: &'c str, mut f: impl FnMut(&'c str)) {
 /// The comma-separated items of an argument or parameter list, ignoring commas inside
 /// brackets (`.t[,]`, `f(a, b)`); empty for a blank list.
 pub fn split_top_level(list: &str) -> Vec<&str> {
-    if list.trim().is_empty() {
-        return Vec::new();
-    }
     let mut items = Vec::new();
+    each_top_level(list, |item| items.push(item));
+    items
+}
+
+/// Each of `list`'s items at the top level (outside brackets), trimmed, in order: nothing
+/// for a blank list ([`split_top_level`] collects them; a `CALL`'s arity only counts them).
+fn each_top_level<'a>(list: &'a str, mut item: impl FnMut(&'a str)) {
+    if list.trim().is_empty() {
+        return;
+    }
     let (mut depth, mut start) = (0i32, 0);
     for (i, c) in list.char_indices() {
         match c {
             '(' | '[' => depth += 1,
             ')' | ']' => depth -= 1,
             ',' if depth == 0 => {
-                items.push(list[start..i].trim());
+                item(list[start..i].trim());
                 start = i + 1;
             }
             _ => {}
         }
     }
-    items.push(list[start..].trim());
-    items
+    item(list[start..].trim());
 }
 
-/// `(name, argument count)` of a `CALL` statement's target.
-pub(super) fn call_target(rest: &str) -> (String, usize) {
+/// `(name, argument count)` of a `CALL` statement's target, the name as written.
+pub(super) fn call_target(rest: &str) -> (&str, usize) {
     let rest = rest.trim();
     let (name, args) = match rest.find('(') {
         Some(p) => (&rest[..p], Some(&rest[p + 1..])),
@@ -174,7 +190,9 @@ pub(super) fn call_target(rest: &str) -> (String, usize) {
     };
     let arity = args.map_or(0, |a| {
         let inner = a.rsplit_once(')').map_or(a, |(x, _)| x);
-        split_top_level(inner).len()
+        let mut n = 0;
+        each_top_level(inner, |_| n += 1);
+        n
     });
-    (name.trim().to_ascii_lowercase(), arity)
+    (name.trim(), arity)
 }

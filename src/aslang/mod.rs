@@ -8,4 +8,5 @@ mod lex;
 mod tests;
 
 pub use check::{Calls, Lines, Problem, check};
+pub(crate) use lex::lower_key;
 pub use lex::{split_top_level, trim_blanks};

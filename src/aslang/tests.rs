@@ -141,6 +141,37 @@ fn calls_must_resolve_with_the_right_arity() {
     assert_eq!(open, ["line 2: CALL a with 2 arguments; it takes 1"]);
 }
 
+/// A call is resolved against the first program of its name wherever that program stands
+/// (before or after the call, whatever a second definition takes), and the problems come in
+/// line order as calls were made, whether the call was resolved when it came or at the end.
+#[test]
+fn calls_resolve_against_the_first_definition_before_or_after_them() {
+    let t = concat!(
+        ".PROGRAM b(.x)\n.END\n",
+        ".PROGRAM a()\n",
+        "  CALL c(1)\n",
+        "  CALL B(1, 2)\n",
+        "  CALL c(1, 2)\n",
+        "  CALL b(7)\n",
+        "  CALL B\n",
+        ".END\n",
+        ".PROGRAM c(.y, .z)\n.END\n",
+        ".PROGRAM b()\n.END\n",
+        ".PROGRAM d()\n  CALL b(1)\n  CALL b\n  CALL c(1)\n.END\n",
+    );
+    assert_eq!(
+        messages(t),
+        [
+            "4: CALL c with 1 arguments; it takes 2",
+            "5: CALL b with 2 arguments; it takes 1",
+            "8: CALL b with 0 arguments; it takes 1",
+            "12: program `b` defined twice",
+            "16: CALL b with 0 arguments; it takes 1",
+            "17: CALL c with 1 arguments; it takes 2",
+        ]
+    );
+}
+
 #[test]
 fn names_skip_numbers_and_strip_sigils() {
     assert_eq!(

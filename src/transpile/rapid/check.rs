@@ -6,7 +6,9 @@
 
 use rustc_hash::FxHashSet;
 
-use crate::aslang::trim_blanks;
+use compact_str::CompactString;
+
+use crate::aslang::{lower_key, trim_blanks};
 
 /// Instructions the translator writes (called without being defined in the module).
 const INSTRUCTIONS: [&str; 28] = [
@@ -81,12 +83,15 @@ pub struct Lines {
     n: usize,
     problems: Vec<String>,
     stack: Vec<(&'static str, usize)>,
-    defined: FxHashSet<String>,
-    called: Vec<(String, usize)>,
-    external: FxHashSet<String>,
+    /// Routines defined so far, lower case.
+    defined: FxHashSet<CompactString>,
+    /// Calls of a routine not defined before them, lower case (those of one defined before,
+    /// nearly all, are not kept: `defined` only grows).
+    called: Vec<(CompactString, usize)>,
+    external: FxHashSet<CompactString>,
     /// Per routine: labels defined and GOTO targets.
-    labels: FxHashSet<String>,
-    gotos: Vec<(String, usize)>,
+    labels: FxHashSet<CompactString>,
+    gotos: Vec<(CompactString, usize)>,
     /// The line's identifiers (byte ranges): one buffer for every line.
     spans: Vec<(usize, usize)>,
 }
@@ -113,7 +118,7 @@ impl Lines {
             if let Some(list) =
                 trim_blanks(raw).strip_prefix("! External routines (other modules):")
             {
-                external.extend(list.split(',').map(|s| s.trim().to_ascii_lowercase()));
+                external.extend(list.split(',').map(|s| lower_key(s.trim())));
             }
             let (c, s) = split_code(raw);
             (std::borrow::Cow::Owned(c), s)
@@ -168,7 +173,7 @@ impl Lines {
                 };
                 let name = if kind == "FUNC" { word(2) } else { word(1) };
                 if let Some(name) = name {
-                    defined.insert(name.to_ascii_lowercase());
+                    defined.insert(lower_key(name));
                 }
                 check_gotos(labels, gotos, problems);
                 labels.clear();
@@ -200,21 +205,24 @@ impl Lines {
             "endrecord" => close("RECORD", stack, problems),
             _ => {
                 if line.ends_with(':') && spans.len() == 1 {
-                    labels.insert(line[spans[0].0..spans[0].1].to_ascii_lowercase());
+                    labels.insert(lower_key(&line[spans[0].0..spans[0].1]));
                 } else if !line.ends_with(';') {
                     problems.push(format!("line {n}: a statement without `;`: {line}"));
                 } else if stack.last().map(|s| s.0) == Some("RECORD") {
                     // A component: `num force;`.
                 } else if first == "goto" {
                     if let Some(l) = word(1) {
-                        gotos.push((l.to_ascii_lowercase(), n));
+                        gotos.push((lower_key(l), n));
                     }
                 } else if !matches!(first, "var" | "pers" | "const")
                     && let Some(rest) = line.get(spans[0].1 - spans[0].0..)
                     && !rest.trim_start().starts_with([':', '{', '.'])
                     && !INSTRUCTIONS.contains(&first)
                 {
-                    called.push((line[spans[0].0..spans[0].1].to_ascii_lowercase(), n));
+                    let name = lower_key(&line[spans[0].0..spans[0].1]);
+                    if !defined.contains(&name) {
+                        called.push((name, n));
+                    }
                 }
             }
         }
@@ -228,7 +236,10 @@ impl Lines {
         each_call(line, |f| {
             let known = |list: &[&str]| list.iter().any(|k| k.eq_ignore_ascii_case(f));
             if !known(&FUNCTIONS) && !known(&KEYWORDS) {
-                called.push((f.to_ascii_lowercase(), n));
+                let name = lower_key(f);
+                if !defined.contains(&name) {
+                    called.push((name, n));
+                }
             }
         });
     }
@@ -260,7 +271,11 @@ fn lower<'b>(word: &str, buf: &'b mut [u8; 12]) -> &'b str {
     std::str::from_utf8(b).unwrap_or("")
 }
 
-fn check_gotos(labels: &FxHashSet<String>, gotos: &[(String, usize)], problems: &mut Vec<String>) {
+fn check_gotos(
+    labels: &FxHashSet<CompactString>,
+    gotos: &[(CompactString, usize)],
+    problems: &mut Vec<String>,
+) {
     for (l, at) in gotos {
         if !labels.contains(l) {
             problems.push(format!("line {at}: GOTO {l} has no label in its routine"));
@@ -365,6 +380,37 @@ mod tests {
     fn a_sound_module_passes() {
         let m = "MODULE m\n  PROC a()\n    IF x THEN\n      b 1;\n    ENDIF\n    l:\n    GOTO l;\n    y := f(2) + Abs(-1);\n  ENDPROC\n  PROC b(num n)\n  ENDPROC\n  FUNC num f(num n)\n    RETURN n;\n  ENDFUNC\nENDMODULE\n";
         assert_eq!(check(m), Vec::<String>::new());
+    }
+
+    /// A call is of a routine defined before or after it, in any case, or listed external;
+    /// the others are found, in the order of the calls.
+    #[test]
+    fn calls_resolve_before_or_after_their_routine() {
+        let m = concat!(
+            "MODULE m\n",
+            "  ! External routines (other modules): Ext1, EXT2\n",
+            "  PROC a()\n",
+            "    B;\n",
+            "    c;\n",
+            "    ext1;\n",
+            "    y := D(1) + Ext2(2);\n",
+            "  ENDPROC\n",
+            "  PROC b()\n",
+            "    A;\n",
+            "    e;\n",
+            "    C;\n",
+            "  ENDPROC\n",
+            "ENDMODULE\n",
+        );
+        assert_eq!(
+            check(m),
+            [
+                "line 5: `c` is called but not defined",
+                "line 7: `d` is called but not defined",
+                "line 11: `e` is called but not defined",
+                "line 12: `c` is called but not defined",
+            ]
+        );
     }
 
     #[test]
