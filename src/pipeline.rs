@@ -15,6 +15,10 @@ pub enum Sink<'a, T> {
         size: usize,
         send: std::sync::mpsc::SyncSender<Vec<T>>,
         returned: std::sync::mpsc::Receiver<Vec<T>>,
+        /// A batch the consumer is done with, being dropped a few items at a time, and an
+        /// emptied one to be filled again.
+        spent: Vec<T>,
+        spare: Option<Vec<T>>,
     },
     Direct(&'a mut dyn FnMut(&T)),
 }
@@ -32,16 +36,27 @@ impl<T> Sink<'_, T> {
                 size,
                 send,
                 returned,
+                spent,
+                spare,
             } => {
+                // The items the consumer is done with are dropped here, one for each item
+                // made: each one's memory is freed just before the next one's is allocated,
+                // and glibc's per-thread cache serves most of those allocations (a whole
+                // batch freed at once overflowed it). Nothing piles up: an item is made
+                // without one dropped only when every item the consumer is done with is
+                // dropped, so no more items exist than the batches in flight hold.
+                if spent.is_empty()
+                    && let Ok(done) = returned.try_recv()
+                {
+                    let emptied = std::mem::replace(spent, done);
+                    if spare.is_none() && emptied.capacity() > 0 {
+                        *spare = Some(emptied);
+                    }
+                }
+                drop(spent.pop());
                 batch.push(item);
                 if batch.len() == *size {
-                    // The batches the consumer is done with are dropped here; one is reused.
-                    let mut next = None;
-                    while let Ok(mut done) = returned.try_recv() {
-                        done.clear();
-                        next = Some(done);
-                    }
-                    let next = next.unwrap_or_else(|| Vec::with_capacity(*size));
+                    let next = spare.take().unwrap_or_else(|| Vec::with_capacity(*size));
                     let full = std::mem::replace(batch, next);
                     // The receiver only stops early when the consumer panicked.
                     let _ = send.send(full);
@@ -108,12 +123,16 @@ pub fn pipelined_batches<T: Send, R: Send>(
                 size,
                 send,
                 returned,
+                spent: Vec::new(),
+                spare: None,
             };
             let out = produce(&mut sink);
             let Sink::Batches {
                 batch,
                 send,
                 returned,
+                spent,
+                spare,
                 ..
             } = sink
             else {
@@ -121,6 +140,7 @@ pub fn pipelined_batches<T: Send, R: Send>(
             };
             let _ = send.send(batch);
             drop(send);
+            drop((spent, spare));
             // The last batches, once the consumer is done with them.
             for done in returned {
                 drop(done);
