@@ -318,7 +318,11 @@ impl Constructs {
     }
 
     fn kind_index(&mut self, kind: &'static str) -> u8 {
-        match self.kinds.iter().position(|k| *k == kind) {
+        match self
+            .kinds
+            .iter()
+            .position(|k| std::ptr::eq(*k, kind) || *k == kind)
+        {
             Some(i) => i as u8,
             None => {
                 // Kinds are the handful the lowering names (front::kinds and its handlers).
