@@ -318,11 +318,7 @@ impl Constructs {
     }
 
     fn kind_index(&mut self, kind: &'static str) -> u8 {
-        match self
-            .kinds
-            .iter()
-            .position(|k| std::ptr::eq(*k, kind) || *k == kind)
-        {
+        match self.kinds.iter().position(|k| *k == kind) {
             Some(i) => i as u8,
             None => {
                 // Kinds are the handful the lowering names (front::kinds and its handlers).
