@@ -299,12 +299,13 @@ impl<'p> Model<'p> {
         v
     }
 
-    /// The parameters and locals, in declaration order, and the signature of the routine at
+    /// The parameters and locals, in declaration order, and the return type of the routine at
     /// `index` in the `.src` (its outline's place),
     /// called `routine`: the first routine of that name, found without a look-up of the name
     /// (on a file of many routines the look-ups were most of the set-up before the first
     /// pass); by the name when the model has another name there (a header that is not KRL).
-    pub fn declared_at(&self, index: usize, routine: &str) -> (Vec<VarInfo>, Option<Signature>) {
+    /// `None` and no variables: the model has no routine of that name.
+    pub fn declared_at(&self, index: usize, routine: &str) -> (Vec<VarInfo>, Option<Ty>) {
         let r = match self.first_of.get(index) {
             Some(&Some(r))
                 if self
@@ -316,12 +317,13 @@ impl<'p> Model<'p> {
             }
             _ => self.routine_id(routine),
         };
-        self.declared_as(r)
-    }
-
-    fn declared_as(&self, r: Option<RoutineId>) -> (Vec<VarInfo>, Option<Signature>) {
         match r {
-            Some(r) => (self.locals_of(r), Some(self.signature(r))),
+            // Only the return type of its signature: the whole one (its name and its
+            // parameters' names copied) was made and dropped per routine.
+            Some(r) => (
+                self.locals_of(r),
+                self.sema.routine(r).ret.map(|t| self.ty(t)),
+            ),
             None => (Vec::new(), None),
         }
     }

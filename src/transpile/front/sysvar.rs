@@ -3,7 +3,9 @@
 //! Translators match on [`Sys`] instead of on spellings, so every target handles the same set of
 //! system variables the same way and an unknown one is always reported, never passed through.
 
-use crate::syntax::ast::{Expr, ExprKind};
+use compact_str::CompactString;
+
+use crate::syntax::ast::{Expr, ExprKind, Ident};
 
 /// A system variable reference, with its index expression where it has one.
 #[derive(Debug, Clone, Copy)]
@@ -66,10 +68,18 @@ pub enum Sys<'a> {
     Other(&'a Expr),
 }
 
+/// `id`'s upper-case form, inline for a name of up to 24 bytes (an allocation and a free per
+/// system variable read or written was most of this module's time).
+fn key(id: &Ident) -> CompactString {
+    let mut k = id.text.clone();
+    k.make_ascii_uppercase();
+    k
+}
+
 /// Classify `e` if it is (an element or member of) a system variable.
 pub fn classify(e: &Expr) -> Option<Sys<'_>> {
     match &e.kind {
-        ExprKind::Name(id) if id.is_system() => Some(match id.key().as_str() {
+        ExprKind::Name(id) if id.is_system() => Some(match key(id).as_str() {
             "$TOOL" => Sys::Tool,
             "$BASE" => Sys::Base,
             "$LOAD" => Sys::Load,
@@ -92,7 +102,7 @@ pub fn classify(e: &Expr) -> Option<Sys<'_>> {
             let Some(Some(i)) = (indices.len() == 1).then(|| indices[0].as_ref()) else {
                 return Some(Sys::Other(e));
             };
-            Some(match id.key().as_str() {
+            Some(match key(id).as_str() {
                 "$OUT" => Sys::Out(i),
                 "$OUT_C" => Sys::OutC(i),
                 "$IN" => Sys::In(i),
@@ -116,8 +126,7 @@ pub fn classify(e: &Expr) -> Option<Sys<'_>> {
             if !id.is_system() {
                 return None;
             }
-            let f = field.key();
-            Some(match (id.key().as_str(), f.as_str()) {
+            Some(match (key(id).as_str(), key(field).as_str()) {
                 ("$VEL", "CP") => Sys::VelCp,
                 ("$VEL", "ORI1" | "ORI2") => Sys::VelOri,
                 ("$ACC", _) => Sys::AccCp,

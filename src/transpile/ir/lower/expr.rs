@@ -119,6 +119,38 @@ impl<'p> Lower<'p> {
         Ok(done)
     }
 
+    /// [`Lower::seq`] of two operands, without a vector (one per binary operation was an
+    /// allocation and a free each).
+    fn pair(&mut self, lhs: &ast::Expr, rhs: &ast::Expr, pre: &mut Block) -> L<(Expr, Expr)> {
+        let mut p = Block::new();
+        let mut l = self.expr(lhs, &mut p)?;
+        if has_call(&p) {
+            // Asked as `seq` asks it: the answers are kept, a recursive routine's as they
+            // were when first asked.
+            self.call_writes(&p);
+        }
+        pre.append(&mut p);
+        let r = self.expr(rhs, &mut p)?;
+        if has_call(&p) {
+            let writes = self.call_writes(&p);
+            if self.affected(&l, &writes) {
+                let (ty, span) = (l.ty.clone(), l.span);
+                let t = self.temp(ty.clone());
+                let old =
+                    std::mem::replace(&mut l, Expr::new(ExprKind::Place(Place::Temp(t)), ty, span));
+                pre.push(Stmt {
+                    op: Op::Assign {
+                        place: Place::Temp(t),
+                        value: old,
+                    },
+                    span,
+                });
+            }
+        }
+        pre.append(&mut p);
+        Ok((l, r))
+    }
+
     fn binary(
         &mut self,
         op: ast::BinaryOp,
@@ -231,9 +263,7 @@ impl<'p> Lower<'p> {
             pre.extend(pr);
             (v.remove(0), r)
         } else {
-            let mut v = self.seq(&[lhs, rhs], pre)?;
-            let r = v.pop().expect("two");
-            (v.pop().expect("two"), r)
+            self.pair(lhs, rhs, pre)?
         };
         match op {
             B::Geo => self.held(Lacked::Geo, span)?,

@@ -243,7 +243,7 @@ impl<'p> Lower<'p> {
             },
         };
         for g in l.model.globals() {
-            l.add_var("", g, Scope::Global);
+            l.add_var(GLOBAL_SCOPE, g, Scope::Global);
         }
         // Routines first (ids for calls), then their bodies.
         for (i, r) in program.src.outline.routines.iter().enumerate() {
@@ -388,7 +388,9 @@ impl<'p> Lower<'p> {
 
     // ----- variables ---------------------------------------------------------------------
 
-    fn add_var(&mut self, routine: &str, v: VarInfo, scope: Scope) -> VarId {
+    /// A variable of [`VarKeys`] scope `keys` (a routine's, interned once for all its
+    /// variables, or [`GLOBAL_SCOPE`]).
+    fn add_var(&mut self, keys: u32, v: VarInfo, scope: Scope) -> VarId {
         // The second pass finds every name the first added (it takes over its keys).
         debug_assert!(!self.replaying(), "the second pass adds no variable");
         let id = VarId(self.out.vars.len() as u32);
@@ -402,7 +404,7 @@ impl<'p> Lower<'p> {
             decl: v.decl,
             file: v.file,
         });
-        self.vars.insert(routine, &name, id);
+        self.vars.insert(keys, name, id);
         id
     }
 
@@ -458,7 +460,7 @@ impl<'p> Lower<'p> {
             decl: id.span,
             file: FileId::Src,
         };
-        Some(self.add_var("", info, Scope::Package))
+        Some(self.add_var(GLOBAL_SCOPE, info, Scope::Package))
     }
 
     /// A name the program does not declare: its type assumed from its use, reported once.
@@ -483,7 +485,7 @@ impl<'p> Lower<'p> {
             decl: id.span,
             file: FileId::Src,
         };
-        self.add_var("", info, Scope::Assumed)
+        self.add_var(GLOBAL_SCOPE, info, Scope::Assumed)
     }
 
     /// A temporary of the current routine.
@@ -544,58 +546,68 @@ impl<'p> Lower<'p> {
     fn declare_routine(&mut self, index: usize, outline: &RoutineOutline) {
         let r = &outline.head;
         let key = upper(&r.name.text);
-        let (locals, sig) = self.model.declared_at(index, &r.name.text);
+        let (locals, ret) = self.model.declared_at(index, &r.name.text);
+        // The routine's scope, by its id: found here once, not by name per routine entered
+        // or variable added (none yet: looked up again when all are declared).
+        let keys = match locals.is_empty() {
+            true => self.vars.scope(&key),
+            false => Some(self.vars.intern_scope(&key)),
+        };
         for v in locals {
             let id = RoutineId(self.out.routines.len() as u32);
             let scope = match v.kind {
                 VarKind::Param(_) => Scope::Param(id),
                 _ => Scope::Local(id),
             };
-            self.add_var(&key, v, scope);
+            self.add_var(keys.unwrap_or(GLOBAL_SCOPE), v, scope);
         }
         let kind = match r.kind {
             ast::RoutineKind::Def => RoutineKind::Def,
             ast::RoutineKind::Deffct => RoutineKind::Deffct,
         };
+        // A repeated name would make a header no target accepts (`def f(x, x)`): the routine
+        // keeps one parameter of that name and the header is reported. The few parameters
+        // are compared with those kept (a set per routine was an allocation each), many in a
+        // set.
         let mut seen = rustc_hash::FxHashSet::default();
+        let many = r.params.len() > 16;
         let mut duplicate = None;
-        let mut params: Vec<super::Param> = r
-            .params
-            .iter()
-            .filter_map(|p| {
-                let var = self.vars.get(&key, &upper(&p.name.text))?;
-                // A repeated name would make a header no target accepts (`def f(x, x)`):
-                // the routine keeps one parameter of that name and the header is reported.
-                if !seen.insert(var) {
-                    duplicate.get_or_insert((p.name.text.to_string(), p.name.span));
-                    return None;
-                }
-                let dir = match p.dir.unwrap_or(ast::ParamDir::In) {
-                    ast::ParamDir::In => super::ParamDir::In,
-                    ast::ParamDir::Out => super::ParamDir::Out,
-                };
-                let v = self.var_decl(var);
-                let mut dims = v.dims.max(usize::from(p.array));
-                if v.ty == Ty::Char {
-                    dims = dims.saturating_sub(1);
-                }
-                Some(super::Param {
-                    var,
-                    dir,
-                    array: dims,
-                    assigned: outline.facts.assigns(&upper(&p.name.text)),
-                })
-            })
-            .collect();
-        let ret = sig.and_then(|s| s.ret);
+        let mut params: Vec<super::Param> = Vec::with_capacity(r.params.len());
+        for p in &r.params {
+            let name = upper(&p.name.text);
+            let Some(var) = keys.and_then(|k| self.vars.at(k, self.vars.name(&name)?)) else {
+                continue;
+            };
+            let repeated = match many {
+                true => !seen.insert(var),
+                false => params.iter().any(|q| q.var == var),
+            };
+            if repeated {
+                duplicate.get_or_insert((p.name.text.to_string(), p.name.span));
+                continue;
+            }
+            let dir = match p.dir.unwrap_or(ast::ParamDir::In) {
+                ast::ParamDir::In => super::ParamDir::In,
+                ast::ParamDir::Out => super::ParamDir::Out,
+            };
+            let v = self.var_decl(var);
+            let mut dims = v.dims.max(usize::from(p.array));
+            if v.ty == Ty::Char {
+                dims = dims.saturating_sub(1);
+            }
+            params.push(super::Param {
+                var,
+                dir,
+                array: dims,
+                assigned: outline.facts.assigns(&name),
+            });
+        }
         let result = (kind == RoutineKind::Deffct && !self.caps.functions)
             .then(|| self.result_param(r, ret.clone().unwrap_or(Ty::Real), &mut params));
-        // The routine's scope, by its id: found here once, not by name per routine entered
-        // (none yet: looked up again when all are declared).
-        self.vars.by_routine.push(self.vars.scope(&key));
+        self.vars.by_routine.push(keys);
         self.push_routine_keyed(
             Routine {
-                name: r.name.text.to_string(),
+                name: r.name.text.as_str().to_owned(),
                 name_span: r.name.span,
                 kind,
                 ret,
@@ -1147,9 +1159,16 @@ impl VarKeys {
         }
     }
 
-    fn insert(&mut self, routine: &str, name: &str, id: VarId) {
-        let scope = intern(&mut self.scopes, routine);
-        let name = intern(&mut self.names, name);
+    /// The number of a routine's scope (upper-case `routine`), added when new.
+    fn intern_scope(&mut self, routine: &str) -> u32 {
+        intern(&mut self.scopes, routine)
+    }
+
+    /// Variable `id` of scope number `scope`, upper-case `name`.
+    fn insert(&mut self, scope: u32, name: CompactString, id: VarId) {
+        // The name hashed once (an owned key: a look-up and then an insert hashed it twice).
+        let next = self.names.len() as u32;
+        let name = *self.names.entry(name).or_insert(next);
         if self.name_of.len() <= id.0 as usize {
             self.name_of.resize(id.0 as usize + 1, NO_VAR);
         }

@@ -30,11 +30,12 @@ impl<'p> Lower<'p> {
             .as_mut()
             .map(|r| std::mem::take(&mut r.triggers))
             .unwrap_or_default();
-        let mut out = Block::new();
+        // Sized for an op per statement (most make one): grown from empty, each nested block
+        // was a few reallocations, and a shrink to fit one more copy (the first pass's blocks
+        // live until their statement is written to the tape; the model keeps none).
+        let mut out = Block::with_capacity(body.len());
         self.block_into(body, &mut out);
         self.finish_triggers(&mut out);
-        // Blocks grow by doubling: up to half of a large program's model was spare capacity.
-        out.shrink_to_fit();
         if let Some(rt) = &mut self.rt {
             rt.continued = saved.unwrap_or(false);
             rt.triggers = saved_triggers;
