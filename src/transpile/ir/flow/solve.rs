@@ -627,10 +627,10 @@ pub fn solve(graphs: Graphs, program: &Program) -> Solution {
 
 impl Solution {
     /// The facts at the start of block `b` of routine `r` (`None`: nothing reaches it).
-    pub(super) fn start(&self, r: RoutineId, b: BlockId) -> Option<State> {
+    pub(super) fn start(&self, r: RoutineId, b: BlockId) -> Option<&State> {
         let r = r.0 as usize;
         let (&from, &to) = (self.starts_at.get(r)?, self.starts_at.get(r + 1)?);
         let id = *self.starts[from..to].get(b)?;
-        self.interner.get(id).cloned()
+        self.interner.get(id)
     }
 }
