@@ -198,27 +198,49 @@ impl<'a> Feed<'a> for Cfg<'a> {
 /// [`Cfg::forward_order`] of a graph of `n` blocks kept elsewhere: `succ(b, k)` is the block
 /// block `b`'s `k`-th edge leads to.
 pub fn forward_order(n: usize, succ: impl Fn(BlockId, usize) -> Option<BlockId>) -> Vec<BlockId> {
-    let mut seen = vec![false; n];
-    let mut post = Vec::with_capacity(n);
-    // An explicit stack: a routine may chain a million blocks.
-    let mut stack = vec![(ENTRY, 0usize)];
-    seen[ENTRY] = true;
-    while let Some((b, next)) = stack.last_mut() {
-        let b = *b;
-        if let Some(to) = succ(b, *next) {
-            *next += 1;
-            if !seen[to] {
-                seen[to] = true;
-                stack.push((to, 0));
+    let mut w = Order::default();
+    w.of(n, succ);
+    w.post
+}
+
+/// [`forward_order`]'s working space, kept from graph to graph by a caller that orders many
+/// (three vectors made per graph were most of ordering a small one).
+#[derive(Debug, Default)]
+pub struct Order {
+    seen: Vec<bool>,
+    stack: Vec<(BlockId, usize)>,
+    post: Vec<BlockId>,
+}
+
+impl Order {
+    /// [`forward_order`] of the graph, in this working space.
+    pub fn of(&mut self, n: usize, succ: impl Fn(BlockId, usize) -> Option<BlockId>) -> &[BlockId] {
+        let Order { seen, stack, post } = self;
+        seen.clear();
+        seen.resize(n, false);
+        post.clear();
+        post.reserve(n);
+        // An explicit stack: a routine may chain a million blocks.
+        stack.clear();
+        stack.push((ENTRY, 0usize));
+        seen[ENTRY] = true;
+        while let Some((b, next)) = stack.last_mut() {
+            let b = *b;
+            if let Some(to) = succ(b, *next) {
+                *next += 1;
+                if !seen[to] {
+                    seen[to] = true;
+                    stack.push((to, 0));
+                }
+            } else {
+                post.push(b);
+                stack.pop();
             }
-        } else {
-            post.push(b);
-            stack.pop();
         }
+        post.reverse();
+        post.extend((0..n).filter(|&b| !seen[b]));
+        post
     }
-    post.reverse();
-    post.extend((0..n).filter(|&b| !seen[b]));
-    post
 }
 
 /// Whether `s` only ever passes control to the statement after it (no branch, jump or nested

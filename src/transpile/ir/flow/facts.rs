@@ -87,6 +87,15 @@ impl State {
         }
     }
 
+    /// Every fact is `Entry`: after a call of a routine that ends so, the caller's facts are
+    /// its own ([`after_call`]), `moving` aside.
+    pub(super) fn keeps_all(&self) -> bool {
+        self.params.iter().all(|f| matches!(f, Fact::Entry))
+            && matches!(self.tool, Fact::Entry)
+            && matches!(self.base, Fact::Entry)
+            && matches!(self.latest, Fact::Entry)
+    }
+
     fn param(&self, p: MotionParam) -> &Fact<ParamValue> {
         &self.params[p as usize]
     }
@@ -131,7 +140,15 @@ impl State {
                     call(*r, self);
                     let i = r.0 as usize;
                     let s = &ctx.summaries[i];
-                    *self = after_call(self, &ctx.exits[s.exit as usize], &s.name, ctx.moves[i]);
+                    match &s.name {
+                        // A callee that leaves every fact as it found it changes `moving` only
+                        // (what `after_call` makes of it, without a new state).
+                        None => self.moving |= ctx.moves[i],
+                        Some(name) => {
+                            *self =
+                                after_call(self, &ctx.exits[s.exit as usize], name, ctx.moves[i]);
+                        }
+                    }
                 }
                 Effect::Either(ways) => {
                     let mut a = self.clone();
@@ -166,9 +183,12 @@ pub(super) struct Summary {
     /// Its exit state: an index into [`Ctx::exits`] (few routines leave distinct facts; a
     /// state per routine was most of the flow's memory on a file of many routines).
     pub(super) exit: u32,
-    /// Shared by every fact its calls leave unknown (a name made per fact and call was most
-    /// of the interprocedural fixpoint's allocations).
-    pub(super) name: std::sync::Arc<str>,
+    /// The routine's name when its exit state sets or loses a fact (`None`: it leaves every
+    /// fact as it found it, [`State::keeps_all`]): shared by every fact its calls leave
+    /// unknown (a name made per fact and call was most of the interprocedural fixpoint's
+    /// allocations; one made per routine, most of which change nothing, was a tenth of the
+    /// solve's).
+    pub(super) name: Option<Arc<str>>,
 }
 
 /// What a call needs to know of the routines of the file.
@@ -292,9 +312,16 @@ pub(super) const NONE: Id = Id::MAX;
 /// Each distinct [`State`] once: the facts at a routine's block starts are ids into it (a long
 /// routine has a block for every branch and loop, and few distinct facts among them), and
 /// the joins and the motion-only steps between ids are remembered.
+///
+/// A state that does not equal itself (a NaN among its values) is never found again: each
+/// [`Interner::id`] of it is a new id, and a join of two such ids says the paths disagree.
+/// The steps that stay among ids ([`Interner::run`]) keep that: they are taken from states
+/// that equal themselves only, where an id is the state's one id.
 #[derive(Default)]
 pub(super) struct Interner {
     states: Vec<State>,
+    /// Per state: it equals itself.
+    reflexive: Vec<bool>,
     by_hash: FxHashMap<u64, Vec<Id>>,
     joins: FxHashMap<(Id, Id), Id>,
     moving: FxHashMap<(Id, bool), Id>,
@@ -309,6 +336,10 @@ impl Interner {
         }
         let i = self.states.len() as Id;
         ids.push(i);
+        // A NaN makes a state unequal to itself.
+        #[allow(clippy::eq_op)]
+        let reflexive = s == s;
+        self.reflexive.push(reflexive);
         self.states.push(s);
         i
     }
@@ -338,22 +369,57 @@ impl Interner {
     pub(super) fn after(&mut self, i: Id, effects: &[Effect], ctx: &Ctx<'_>) -> Id {
         match effects {
             [] => i,
-            [Effect::Moving(m)] => {
-                if let Some(&j) = self.moving.get(&(i, *m)) {
-                    return j;
-                }
-                let mut s = self.states[i as usize].clone();
-                s.moving = *m;
-                let j = self.id(s);
-                self.moving.insert((i, *m), j);
-                j
-            }
-            _ => {
-                let mut s = self.states[i as usize].clone();
-                s.run(effects, ctx, &mut |_, _| {});
-                self.id(s)
-            }
+            [Effect::Moving(m)] => self.with_moving(i, *m),
+            _ => self.run(i, effects, ctx, &mut |_, _| {}),
         }
+    }
+
+    /// `i` with `moving` set to `m`.
+    fn with_moving(&mut self, i: Id, m: bool) -> Id {
+        if let Some(&j) = self.moving.get(&(i, m)) {
+            return j;
+        }
+        let mut s = self.states[i as usize].clone();
+        s.moving = m;
+        let j = self.id(s);
+        self.moving.insert((i, m), j);
+        j
+    }
+
+    /// `i` after `effects`; `call` sees the facts at each call of a routine of the file (the
+    /// ids [`State::run`] and [`Interner::id`] give: the steps that change `moving` only are
+    /// taken among ids, the others on a state).
+    pub(super) fn run(
+        &mut self,
+        mut i: Id,
+        effects: &[Effect],
+        ctx: &Ctx<'_>,
+        call: &mut impl FnMut(RoutineId, Id),
+    ) -> Id {
+        for (k, e) in effects.iter().enumerate() {
+            match e {
+                _ if !self.reflexive[i as usize] => {}
+                Effect::Moving(m) if self.states[i as usize].moving == *m => continue,
+                Effect::Moving(m) => {
+                    i = self.with_moving(i, *m);
+                    continue;
+                }
+                Effect::Call(r) if ctx.summaries[r.0 as usize].name.is_none() => {
+                    call(*r, i);
+                    if ctx.moves[r.0 as usize] && !self.states[i as usize].moving {
+                        i = self.with_moving(i, true);
+                    }
+                    continue;
+                }
+                _ => {}
+            }
+            let mut s = self.states[i as usize].clone();
+            s.run(&effects[k..], ctx, &mut |r, st| {
+                call(r, self.id(st.clone()))
+            });
+            return self.id(s);
+        }
+        i
     }
 }
 

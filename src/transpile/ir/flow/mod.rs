@@ -33,7 +33,7 @@ pub use graph::Graphs;
 pub use runs::Runs;
 pub use solve::{Solution, solve};
 
-use facts::{Ctx, State, resolve_move};
+use facts::{Ctx, Effect, State, resolve_move};
 use ops::{Parts, Places, Step, feed, step};
 
 use super::{Block, Op, RoutineId, Stmt};
@@ -51,7 +51,66 @@ pub struct Resolver<'a> {
     head: bool,
     /// The block whose facts `state` holds, as far as the ops walked so far.
     block: Option<BlockId>,
-    state: Option<State>,
+    state: Option<Facts<'a>>,
+}
+
+/// The facts a resolver walks with: those at a block's start, as the solution holds them,
+/// with `moving` of their own, until a step changes more (a copy of the facts made at every
+/// block was most of the resolver's time). One is held per resolver (and one more inside a
+/// short-circuit's way): a box would be an allocation per copy.
+#[allow(clippy::large_enum_variant)]
+enum Facts<'a> {
+    At(&'a State, bool),
+    Own(State),
+}
+
+impl Facts<'_> {
+    fn get(&self) -> &State {
+        match self {
+            Facts::At(s, _) => s,
+            Facts::Own(s) => s,
+        }
+    }
+
+    fn moving(&self) -> bool {
+        match self {
+            Facts::At(_, m) => *m,
+            Facts::Own(s) => s.moving,
+        }
+    }
+
+    fn set_moving(&mut self, m: bool) {
+        match self {
+            Facts::At(_, x) => *x = m,
+            Facts::Own(s) => s.moving = m,
+        }
+    }
+
+    fn into_state(self) -> State {
+        match self {
+            Facts::At(s, m) => with_moving(s, m),
+            Facts::Own(s) => s,
+        }
+    }
+
+    /// The facts after `e` (what [`State::run`] makes of them).
+    fn step(&mut self, e: &Effect, ctx: &Ctx<'_>) {
+        match e {
+            Effect::Moving(m) => self.set_moving(*m),
+            Effect::Call(r) if ctx.summaries[r.0 as usize].name.is_none() => {
+                let m = self.moving() || ctx.moves[r.0 as usize];
+                self.set_moving(m);
+            }
+            _ => {
+                if let Facts::At(s, m) = *self {
+                    *self = Facts::Own(with_moving(s, m));
+                }
+                if let Facts::Own(s) = self {
+                    s.run(std::slice::from_ref(e), ctx, &mut |_, _| {});
+                }
+            }
+        }
+    }
 }
 
 impl Solution {
@@ -102,15 +161,22 @@ impl Resolver<'_> {
     }
 }
 
-/// [`Parts`] that resolve each run of ops from the facts where it runs.
-struct Walk<'a> {
-    solution: &'a Solution,
-    routine: RoutineId,
-    block: &'a mut Option<BlockId>,
-    state: &'a mut Option<State>,
+/// A copy of `s` with `moving` set to `m`.
+fn with_moving(s: &State, m: bool) -> State {
+    let mut s = s.clone();
+    s.moving = m;
+    s
 }
 
-impl Parts for Walk<'_> {
+/// [`Parts`] that resolve each run of ops from the facts where it runs.
+struct Walk<'w, 'a> {
+    solution: &'a Solution,
+    routine: RoutineId,
+    block: &'w mut Option<BlockId>,
+    state: &'w mut Option<Facts<'a>>,
+}
+
+impl Parts for Walk<'_, '_> {
     fn run(&mut self, b: Option<BlockId>, ops: &mut [Stmt]) {
         if ops.is_empty() {
             return;
@@ -118,7 +184,9 @@ impl Parts for Walk<'_> {
         // Runs come in the order the graph runs them: a new block starts from its facts.
         if b != *self.block || b.is_none() {
             *self.block = b;
-            *self.state = b.and_then(|b| self.solution.start(self.routine, b));
+            *self.state = b
+                .and_then(|b| self.solution.start(self.routine, b))
+                .map(|s| Facts::At(s, s.moving));
         }
         let ctx = Ctx {
             summaries: &self.solution.summaries,
@@ -130,33 +198,35 @@ impl Parts for Walk<'_> {
 }
 
 /// Walks one run of ops from `st`, writing the facts into motions and stops.
-fn resolve(ops: &mut [Stmt], st: &mut Option<State>, ctx: &Ctx<'_>) {
+fn resolve<'a>(ops: &mut [Stmt], st: &mut Option<Facts<'a>>, ctx: &Ctx<'_>) {
     for s in ops {
         match step(&mut s.op) {
             Step::Effect(Some(e)) => {
                 if let Some(x) = st {
-                    x.run(std::slice::from_ref(&e), ctx, &mut |_, _| {});
+                    x.step(&e, ctx);
                 }
             }
             Step::Effect(None) => {}
             Step::Move(m) => {
                 if let Some(x) = st {
-                    resolve_move(m, x);
-                    x.moving = true;
+                    resolve_move(m, x.get());
+                    x.set_moving(true);
                 }
             }
             Step::Stop(needed) => {
                 if let Some(x) = st {
-                    *needed = x.moving;
-                    x.moving = false;
+                    *needed = x.moving();
+                    x.set_moving(false);
                 }
             }
             Step::Either(a, b) => {
-                let mut then = st.clone();
+                let mut then = st
+                    .as_ref()
+                    .map(|x| Facts::Own(with_moving(x.get(), x.moving())));
                 resolve(a, &mut then, ctx);
                 resolve(b, st, ctx);
                 *st = match (then, st.take()) {
-                    (Some(a), Some(b)) => Some(a.join(&b)),
+                    (Some(a), Some(b)) => Some(Facts::Own(a.into_state().join(&b.into_state()))),
                     (a, b) => a.or(b),
                 };
             }
