@@ -91,29 +91,7 @@ impl<'p> Lower<'p> {
     pub(super) fn seq(&mut self, items: &[&ast::Expr], pre: &mut Block) -> L<Vec<Expr>> {
         let mut done: Vec<Expr> = Vec::with_capacity(items.len());
         for e in items {
-            let mut p = Block::new();
-            let v = self.expr(e, &mut p)?;
-            if has_call(&p) {
-                let writes = self.call_writes(&p);
-                for d in &mut done {
-                    if self.affected(d, &writes) {
-                        let t = self.temp(d.ty.clone());
-                        let span = d.span;
-                        let old = std::mem::replace(
-                            d,
-                            Expr::new(ExprKind::Place(Place::Temp(t)), d.ty.clone(), span),
-                        );
-                        pre.push(Stmt {
-                            op: Op::Assign {
-                                place: Place::Temp(t),
-                                value: old,
-                            },
-                            span,
-                        });
-                    }
-                }
-            }
-            pre.extend(p);
+            let v = self.next_of_seq(e, &mut done, pre)?;
             done.push(v);
         }
         Ok(done)
@@ -122,33 +100,42 @@ impl<'p> Lower<'p> {
     /// [`Lower::seq`] of two operands, without a vector (one per binary operation was an
     /// allocation and a free each).
     fn pair(&mut self, lhs: &ast::Expr, rhs: &ast::Expr, pre: &mut Block) -> L<(Expr, Expr)> {
+        let l = self.next_of_seq(lhs, &mut [], pre)?;
+        let mut done = [l];
+        let r = self.next_of_seq(rhs, &mut done, pre)?;
+        let [l] = done;
+        Ok((l, r))
+    }
+
+    /// The next of [`Lower::seq`]'s expressions, `e`, after `done`: when it calls a function,
+    /// those of `done` it may change are read into temporaries first. The calls' writes are
+    /// asked even when `done` is empty: the answers are kept, a recursive routine's as they
+    /// were when first asked.
+    fn next_of_seq(&mut self, e: &ast::Expr, done: &mut [Expr], pre: &mut Block) -> L<Expr> {
         let mut p = Block::new();
-        let mut l = self.expr(lhs, &mut p)?;
-        if has_call(&p) {
-            // Asked as `seq` asks it: the answers are kept, a recursive routine's as they
-            // were when first asked.
-            self.call_writes(&p);
-        }
-        pre.append(&mut p);
-        let r = self.expr(rhs, &mut p)?;
+        let v = self.expr(e, &mut p)?;
         if has_call(&p) {
             let writes = self.call_writes(&p);
-            if self.affected(&l, &writes) {
-                let (ty, span) = (l.ty.clone(), l.span);
-                let t = self.temp(ty.clone());
-                let old =
-                    std::mem::replace(&mut l, Expr::new(ExprKind::Place(Place::Temp(t)), ty, span));
-                pre.push(Stmt {
-                    op: Op::Assign {
-                        place: Place::Temp(t),
-                        value: old,
-                    },
-                    span,
-                });
+            for d in done {
+                if self.affected(d, &writes) {
+                    let t = self.temp(d.ty.clone());
+                    let span = d.span;
+                    let old = std::mem::replace(
+                        d,
+                        Expr::new(ExprKind::Place(Place::Temp(t)), d.ty.clone(), span),
+                    );
+                    pre.push(Stmt {
+                        op: Op::Assign {
+                            place: Place::Temp(t),
+                            value: old,
+                        },
+                        span,
+                    });
+                }
             }
         }
-        pre.append(&mut p);
-        Ok((l, r))
+        pre.extend(p);
+        Ok(v)
     }
 
     fn binary(
