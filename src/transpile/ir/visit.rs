@@ -33,18 +33,42 @@ pub fn each_child<'a>(op: &'a Op, mut f: impl FnMut(&'a Block)) {
 
 /// The blocks nested directly in `op`, to change (the order of [`children`]).
 pub fn children_mut(op: &mut Op) -> Vec<&mut Block> {
+    let mut v = Vec::new();
+    each_child_mut(op, |b| v.push(b));
+    v
+}
+
+/// Calls `f` on each block nested directly in `op`, to change, in order (what
+/// [`children_mut`] gathers, without a vector per op: the second pass asks it of every op).
+pub fn each_child_mut<'a>(op: &'a mut Op, mut f: impl FnMut(&'a mut Block)) {
     match op {
-        Op::If { then, els, .. } => vec![then, els],
-        Op::Switch { cases, default, .. } => {
-            let mut v: Vec<&mut Block> = cases.iter_mut().map(|c| &mut c.body).collect();
-            if let Some((d, _)) = default {
-                v.push(d);
-            }
-            v
+        Op::If { then, els, .. } => {
+            f(then);
+            f(els);
         }
-        Op::Loop { body, .. } => vec![body],
-        _ => Vec::new(),
+        Op::Switch { cases, default, .. } => {
+            for c in cases {
+                f(&mut c.body);
+            }
+            if let Some((d, _)) = default {
+                f(d);
+            }
+        }
+        Op::Loop { body, .. } => f(body),
+        _ => {}
     }
+}
+
+/// The `n`th block nested directly in `op` (in the order of [`children_mut`]), to change.
+pub fn nth_child_mut(op: &mut Op, n: usize) -> Option<&mut Block> {
+    let (mut found, mut k) = (None, 0);
+    each_child_mut(op, |b| {
+        if k == n {
+            found = Some(b);
+        }
+        k += 1;
+    });
+    found
 }
 
 /// Calls `f` on every op, depth-first in order.

@@ -239,9 +239,7 @@ fn resolve<'a>(ops: &mut [Stmt], st: &mut Option<Facts<'a>>, ctx: &Ctx<'_>) {
 fn drop_stops(b: &mut Block) {
     b.retain(|s| !matches!(s.op, Op::AdvanceStop { needed: false }));
     for s in b.iter_mut() {
-        for c in super::visit::children_mut(&mut s.op) {
-            drop_stops(c);
-        }
+        super::visit::each_child_mut(&mut s.op, drop_stops);
     }
 }
 

@@ -52,9 +52,7 @@ impl Runs {
             at += r.path as usize;
             for step in path.chunks_exact(2) {
                 let (i, c) = (step[0] as usize, step[1] as usize);
-                block = visit::children_mut(&mut block[i].op)
-                    .into_iter()
-                    .nth(c)
+                block = visit::nth_child_mut(&mut block[i].op, c)
                     .expect("the recorded child block")
                     .as_mut_slice();
             }
