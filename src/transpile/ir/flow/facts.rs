@@ -138,15 +138,10 @@ impl State {
                 Effect::Moving(m) => self.moving = *m,
                 Effect::Call(r) => {
                     call(*r, self);
-                    let i = r.0 as usize;
-                    let s = &ctx.summaries[i];
-                    match &s.name {
-                        // A callee that leaves every fact as it found it changes `moving` only
-                        // (what `after_call` makes of it, without a new state).
-                        None => self.moving |= ctx.moves[i],
-                        Some(name) => {
-                            *self =
-                                after_call(self, &ctx.exits[s.exit as usize], name, ctx.moves[i]);
+                    match ctx.call(*r) {
+                        Call::MovingOnly(moves) => self.moving |= moves,
+                        Call::Changes { exit, name, moves } => {
+                            *self = after_call(self, exit, name, moves);
                         }
                     }
                 }
@@ -197,6 +192,36 @@ pub(super) struct Ctx<'a> {
     /// The distinct exit states of the summaries.
     pub(super) exits: &'a [State],
     pub(super) moves: &'a [bool],
+}
+
+/// What a call of a routine of the file does to its caller's facts.
+pub(super) enum Call<'a> {
+    /// The routine leaves every fact as it found it ([`Summary::name`] `None`): the call
+    /// changes `moving` only, set when the routine moves (what [`after_call`] would make of
+    /// it, without a new state).
+    MovingOnly(bool),
+    /// The caller's facts after it are [`after_call`]'s.
+    Changes {
+        exit: &'a State,
+        name: &'a Arc<str>,
+        moves: bool,
+    },
+}
+
+impl<'a> Ctx<'a> {
+    /// What a call of `r` does (the one place that reads its summary for that).
+    pub(super) fn call(&self, r: RoutineId) -> Call<'a> {
+        let i = r.0 as usize;
+        let s = &self.summaries[i];
+        match &s.name {
+            None => Call::MovingOnly(self.moves[i]),
+            Some(name) => Call::Changes {
+                exit: &self.exits[s.exit as usize],
+                name,
+                moves: self.moves[i],
+            },
+        }
+    }
 }
 
 /// The facts of the caller after a call of a routine with summary `s`.
@@ -404,12 +429,14 @@ impl Interner {
                     i = self.with_moving(i, *m);
                     continue;
                 }
-                Effect::Call(r) if ctx.summaries[r.0 as usize].name.is_none() => {
-                    call(*r, i);
-                    if ctx.moves[r.0 as usize] && !self.states[i as usize].moving {
-                        i = self.with_moving(i, true);
+                Effect::Call(r) => {
+                    if let Call::MovingOnly(moves) = ctx.call(*r) {
+                        call(*r, i);
+                        if moves && !self.states[i as usize].moving {
+                            i = self.with_moving(i, true);
+                        }
+                        continue;
                     }
-                    continue;
                 }
                 _ => {}
             }

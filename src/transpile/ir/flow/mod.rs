@@ -33,7 +33,7 @@ pub use graph::Graphs;
 pub use runs::Runs;
 pub use solve::{Solution, solve};
 
-use facts::{Ctx, Effect, State, resolve_move};
+use facts::{Call, Ctx, Effect, State, resolve_move};
 use ops::{Parts, Places, Step, feed, step};
 
 use super::{Block, Op, RoutineId, Stmt};
@@ -59,6 +59,7 @@ pub struct Resolver<'a> {
 /// block was most of the resolver's time). One is held per resolver (and one more inside a
 /// short-circuit's way): a box would be an allocation per copy.
 #[allow(clippy::large_enum_variant)]
+#[derive(Clone)]
 enum Facts<'a> {
     At(&'a State, bool),
     Own(State),
@@ -96,19 +97,20 @@ impl Facts<'_> {
     /// The facts after `e` (what [`State::run`] makes of them).
     fn step(&mut self, e: &Effect, ctx: &Ctx<'_>) {
         match e {
-            Effect::Moving(m) => self.set_moving(*m),
-            Effect::Call(r) if ctx.summaries[r.0 as usize].name.is_none() => {
-                let m = self.moving() || ctx.moves[r.0 as usize];
-                self.set_moving(m);
-            }
-            _ => {
-                if let Facts::At(s, m) = *self {
-                    *self = Facts::Own(with_moving(s, m));
-                }
-                if let Facts::Own(s) = self {
-                    s.run(std::slice::from_ref(e), ctx, &mut |_, _| {});
+            Effect::Moving(m) => return self.set_moving(*m),
+            Effect::Call(r) => {
+                if let Call::MovingOnly(moves) = ctx.call(*r) {
+                    let m = self.moving() || moves;
+                    return self.set_moving(m);
                 }
             }
+            _ => {}
+        }
+        if let Facts::At(s, m) = *self {
+            *self = Facts::Own(with_moving(s, m));
+        }
+        if let Facts::Own(s) = self {
+            s.run(std::slice::from_ref(e), ctx, &mut |_, _| {});
         }
     }
 }
@@ -220,9 +222,7 @@ fn resolve<'a>(ops: &mut [Stmt], st: &mut Option<Facts<'a>>, ctx: &Ctx<'_>) {
                 }
             }
             Step::Either(a, b) => {
-                let mut then = st
-                    .as_ref()
-                    .map(|x| Facts::Own(with_moving(x.get(), x.moving())));
+                let mut then = st.clone();
                 resolve(a, &mut then, ctx);
                 resolve(b, st, ctx);
                 *st = match (then, st.take()) {
